@@ -1,0 +1,9 @@
+//! `tumble`: a terminal teaching tool for rigid-body dynamics.
+//!
+//! Data flows one way: a lesson file is parsed into a scene ([`scene`]), the scene builds a
+//! [`physics::World`], and every front end (the TUI, `walk`, `run`, `study`) reads the world's
+//! [`physics::Snapshot`].
+
+pub mod cli;
+pub mod physics;
+pub mod scene;

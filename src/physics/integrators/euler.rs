@@ -1,0 +1,32 @@
+//! `euler`: explicit (forward) Euler with a unit quaternion.
+//!
+//! ```text
+//! x ← x + dt v          v = P / M            (at the start of the step)
+//! q ← normalise(q + dt · ½ ω ⊗ q)            ω = I⁻¹_world L
+//! P ← P + dt F
+//! L ← L + dt τ
+//! ```
+//!
+//! First order. The quaternion stays a rotation (renormalised), and torque-free L is kept
+//! exactly, but the orientation lags behind the true motion: the kinetic energy `½ ω·L` drifts
+//! upward, and a spin about the major axis (stable in reality) is pushed off it until the body
+//! tumbles. It is the method to *watch fail*.
+
+use super::super::derive::Kinematics;
+use super::super::effects::Loads;
+use super::super::state::{Orientation, State};
+use super::{advance_quaternion, quaternion_of};
+
+/// One explicit Euler step.
+pub fn step(state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
+    State {
+        position: state.position + start.velocity * dt,
+        orientation: Orientation::Quaternion(advance_quaternion(
+            &quaternion_of(state),
+            &start.angular_velocity,
+            dt,
+        )),
+        linear_momentum: state.linear_momentum + loads.force * dt,
+        angular_momentum: state.angular_momentum + loads.torque * dt,
+    }
+}

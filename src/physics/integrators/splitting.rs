@@ -1,0 +1,78 @@
+//! `splitting`: a geometric integrator — kick, drift, and the free rotation split into exact
+//! rotations about the principal axes (Dullweber, Leimkuhler & McLachlan, J. Chem. Phys. 107,
+//! 1997; Strang composition, second order).
+//!
+//! ```text
+//! kick   P ← P + dt/2 F(X),  L ← L + dt/2 τ(X)
+//! drift  x ← x + dt P / M
+//!        free rotation for dt with L fixed, split as  R₁(dt/2) R₂(dt/2) R₃(dt) R₂(dt/2) R₁(dt/2):
+//!          Rᵢ(h): Π = (q E)⁻¹ L  (angular momentum in the principal frame, E the principal axes),
+//!                 θ = h Πᵢ / Iᵢ,   q E ← q E · rotᵢ(θ)
+//! kick   P ← P + dt/2 F(X'),  L ← L + dt/2 τ(X')
+//! ```
+//!
+//! Each sub-flow `Rᵢ` is the *exact* motion of a body whose energy is `Πᵢ²/2Iᵢ`: a rotation about
+//! principal axis i at the constant rate Πᵢ/Iᵢ. It moves the body but not L, so torque-free L is
+//! untouched — |L| is kept to the last bit — and, being a composition of exact Hamiltonian flows,
+//! the method is symplectic: the energy error oscillates with amplitude O(dt²) and never drifts.
+//!
+//! When it wins: long runs, fast spins, tumbling near the separatrix, large steps (a spin about
+//! the major axis stays put at dt = 1e-2 and beyond). When it does not: short runs where a few
+//! digits more per step matter — `rk4` is fourth order and reaches a small error faster once dt
+//! is small — and velocity-dependent forces (drag), for which the kicks are only first-order
+//! accurate in the drag term.
+
+use super::super::body::Body;
+use super::super::derive::derive;
+use super::super::effects::{Effects, Loads};
+use super::super::state::{Orientation, State};
+use super::quaternion_of;
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
+/// One kick–drift–kick step with the split free rotation.
+pub fn step(body: &Body, effects: &Effects, state: &State, loads: &Loads, dt: f64) -> State {
+    let half = dt / 2.0;
+    let linear_momentum = state.linear_momentum + loads.force * half;
+    let angular_momentum = state.angular_momentum + loads.torque * half;
+    let position = state.position + linear_momentum * (body.inv_mass * dt);
+    let orientation = free_rotation(body, &quaternion_of(state), &angular_momentum, dt);
+    let mut end = State {
+        position,
+        orientation: Orientation::Quaternion(orientation),
+        linear_momentum,
+        angular_momentum,
+    };
+    if !effects.list().is_empty() {
+        let loads = effects.loads(body, &derive(body, &end));
+        end.linear_momentum += loads.force * half;
+        end.angular_momentum += loads.torque * half;
+    }
+    end
+}
+
+/// The Strang-split free rotation over `dt` with world angular momentum `l`.
+fn free_rotation(
+    body: &Body,
+    q: &UnitQuaternion<f64>,
+    l: &Vector3<f64>,
+    dt: f64,
+) -> UnitQuaternion<f64> {
+    let inertia = body.principal_moments;
+    // Orientation of the principal frame, and L seen in it.
+    let mut qp = *q.quaternion() * body.principal_axes.quaternion();
+    let mut pi = UnitQuaternion::new_unchecked(qp).inverse_transform_vector(l);
+    for (axis, h) in [(0, 0.5), (1, 0.5), (2, 1.0), (1, 0.5), (0, 0.5)] {
+        let theta = h * dt * pi[axis] / inertia[axis];
+        let (s, c) = (theta / 2.0).sin_cos();
+        let mut imag = Vector3::zeros();
+        imag[axis] = s;
+        qp *= Quaternion::from_parts(c, imag);
+        // Π ← rotᵢ(−θ) Π : the other two components turn the opposite way.
+        let (j, k) = ((axis + 1) % 3, (axis + 2) % 3);
+        let (st, ct) = theta.sin_cos();
+        let (pj, pk) = (pi[j], pi[k]);
+        pi[j] = ct * pj + st * pk;
+        pi[k] = -st * pj + ct * pk;
+    }
+    UnitQuaternion::new_normalize(qp * body.principal_axes.quaternion().conjugate())
+}

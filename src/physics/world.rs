@@ -1,0 +1,340 @@
+//! The world: one body, its declared effects and obstacles, stepped through the animation loop
+//! one phase at a time.
+//!
+//! ```text
+//! derive → forces → integrate → collide      (one frame, dt)
+//! ```
+//!
+//! [`World::step`] runs a whole frame; [`World::step_phase`] runs one phase. Front ends read
+//! [`World::snapshot`] and never recompute physics.
+
+use super::body::Body;
+use super::collision::{collide, CollideInput, Contact, ContactModel, Obstacle};
+use super::derive::{derive, Kinematics};
+use super::divergence::{Divergence, EnergyGuard};
+use super::effects::{Effects, Loads};
+use super::integrators::Integrator;
+use super::snapshot::{energy, Energy, Snapshot};
+use super::state::State;
+use nalgebra::Vector3;
+use std::fmt;
+
+/// One phase of the animation loop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Phase {
+    /// `I⁻¹_world = R I⁻¹_body Rᵀ`, `ω = I⁻¹_world L`, `v = P/M` (CalculStateX).
+    Derive,
+    /// Force and torque of the declared effects: the state derivative (CalculDeriveeStateX).
+    Forces,
+    /// One integrator step; vertex positions `pᵢ = x + R r₀ᵢ` (Solve).
+    Integrate,
+    /// Collision detection and response (a no-op without obstacles).
+    Collide,
+}
+
+impl Phase {
+    /// The four phases in loop order.
+    pub const ALL: [Phase; 4] = [
+        Phase::Derive,
+        Phase::Forces,
+        Phase::Integrate,
+        Phase::Collide,
+    ];
+
+    /// The phase's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::Derive => "derive",
+            Phase::Forces => "forces",
+            Phase::Integrate => "integrate",
+            Phase::Collide => "collide",
+        }
+    }
+
+    /// The phase after this one, wrapping to the next frame.
+    pub fn next(self) -> Phase {
+        match self {
+            Phase::Derive => Phase::Forces,
+            Phase::Forces => Phase::Integrate,
+            Phase::Integrate => Phase::Collide,
+            Phase::Collide => Phase::Derive,
+        }
+    }
+}
+
+impl fmt::Display for Phase {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Everything needed to put a world back exactly where it was (for stepping back in time).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpoint {
+    state: State,
+    before: State,
+    step: u64,
+    last: Option<Phase>,
+    kinematics: Kinematics,
+    loads: Loads,
+    contacts: Vec<Contact>,
+    guard: EnergyGuard,
+}
+
+/// A body in a scene, stepped through the loop.
+#[derive(Debug, Clone)]
+pub struct World {
+    body: Body,
+    effects: Effects,
+    obstacles: Vec<Obstacle>,
+    contact: Option<ContactModel>,
+    integrator: Integrator,
+    dt: f64,
+    initial: State,
+    now: Checkpoint,
+}
+
+impl World {
+    /// A world at its initial state. `contact` must be given when there are obstacles; the
+    /// orientation is converted to what `integrator` steps.
+    pub fn new(
+        body: Body,
+        effects: Effects,
+        obstacles: Vec<Obstacle>,
+        contact: Option<ContactModel>,
+        integrator: Integrator,
+        dt: f64,
+        initial: State,
+    ) -> World {
+        let initial = State {
+            orientation: integrator.orientation_for(&initial.orientation),
+            ..initial
+        };
+        let kinematics = derive(&body, &initial);
+        let loads = effects.loads(&body, &kinematics);
+        let guard = EnergyGuard::new(&body, &effects, &obstacles, &initial);
+        World {
+            body,
+            effects,
+            obstacles,
+            contact,
+            integrator,
+            dt,
+            initial,
+            now: Checkpoint {
+                state: initial,
+                before: initial,
+                step: 0,
+                last: None,
+                kinematics,
+                loads,
+                contacts: Vec::new(),
+                guard,
+            },
+        }
+    }
+
+    /// Runs the rest of the current frame (all four phases from the start of a frame).
+    pub fn step(&mut self) {
+        loop {
+            if self.step_phase() == Phase::Collide {
+                break;
+            }
+        }
+    }
+
+    /// Runs the next phase of the loop; returns the phase it ran.
+    pub fn step_phase(&mut self) -> Phase {
+        let phase = self.next_phase();
+        let now = &mut self.now;
+        match phase {
+            Phase::Derive => now.kinematics = derive(&self.body, &now.state),
+            Phase::Forces => now.loads = self.effects.loads(&self.body, &now.kinematics),
+            Phase::Integrate => {
+                now.before = now.state;
+                now.state = self.integrator.step(
+                    &self.body,
+                    &self.effects,
+                    &now.state,
+                    &now.kinematics,
+                    &now.loads,
+                    self.dt,
+                );
+                now.step += 1;
+            }
+            Phase::Collide => {
+                if let (false, Some(model)) = (self.obstacles.is_empty(), &self.contact) {
+                    let input = CollideInput {
+                        body: &self.body,
+                        obstacles: &self.obstacles,
+                        model,
+                        before: &now.before,
+                        loads: &now.loads,
+                        initial_position: &self.initial.position,
+                        gravity: self.effects.gravity(),
+                        dt: self.dt,
+                    };
+                    let energy_before = energy(&self.body, &self.effects, &now.state).total;
+                    let state_before = now.state;
+                    now.contacts = collide(&input, &mut now.state);
+                    if now.state != state_before {
+                        let energy_after = energy(&self.body, &self.effects, &now.state);
+                        now.guard.after_collision(energy_before, &energy_after);
+                    }
+                }
+            }
+        }
+        self.now.last = Some(phase);
+        phase
+    }
+
+    /// The phase that [`World::step_phase`] will run next.
+    pub fn next_phase(&self) -> Phase {
+        self.now.last.map_or(Phase::Derive, Phase::next)
+    }
+
+    /// The phase just completed (None before the first).
+    pub fn last_phase(&self) -> Option<Phase> {
+        self.now.last
+    }
+
+    /// Completed integrate phases.
+    pub fn step_count(&self) -> u64 {
+        self.now.step
+    }
+
+    /// Simulated time, s.
+    pub fn time(&self) -> f64 {
+        self.now.step as f64 * self.dt
+    }
+
+    /// Time step, s.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &State {
+        &self.now.state
+    }
+
+    /// The state at t = 0.
+    pub fn initial_state(&self) -> &State {
+        &self.initial
+    }
+
+    /// The body.
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// The declared effects.
+    pub fn effects(&self) -> &Effects {
+        &self.effects
+    }
+
+    /// The declared obstacles.
+    pub fn obstacles(&self) -> &[Obstacle] {
+        &self.obstacles
+    }
+
+    /// The contact parameters, if the scene has obstacles.
+    pub fn contact_model(&self) -> Option<&ContactModel> {
+        self.contact.as_ref()
+    }
+
+    /// The integrator in use.
+    pub fn integrator(&self) -> Integrator {
+        self.integrator
+    }
+
+    /// Contacts handled by the last collide phase.
+    pub fn contacts(&self) -> &[Contact] {
+        &self.now.contacts
+    }
+
+    /// Switches integrator, keeping t and the state (the orientation changes representation;
+    /// a drifted `euler-seed` matrix becomes the nearest rotation). The current frame restarts
+    /// at its derive phase.
+    pub fn set_integrator(&mut self, integrator: Integrator) {
+        self.integrator = integrator;
+        let now = &mut self.now;
+        now.state.orientation = integrator.orientation_for(&now.state.orientation);
+        if now.last != Some(Phase::Collide) && now.last.is_some() {
+            now.last = Some(Phase::Collide);
+        }
+        now.kinematics = derive(&self.body, &now.state);
+        now.loads = self.effects.loads(&self.body, &now.kinematics);
+    }
+
+    /// Switches the collision response (takes effect at the next collide phase).
+    pub fn set_contact_model(&mut self, model: ContactModel) {
+        self.contact = Some(model);
+    }
+
+    /// A copy of everything that changes as the world steps.
+    pub fn checkpoint(&self) -> Checkpoint {
+        self.now.clone()
+    }
+
+    /// Puts the world back exactly at a checkpoint taken from it.
+    pub fn restore(&mut self, checkpoint: &Checkpoint) {
+        self.now = checkpoint.clone();
+    }
+
+    /// Back to t = 0.
+    pub fn reset(&mut self) {
+        let fresh = World::new(
+            self.body.clone(),
+            self.effects.clone(),
+            self.obstacles.clone(),
+            self.contact,
+            self.integrator,
+            self.dt,
+            self.initial,
+        );
+        self.now = fresh.now;
+    }
+
+    /// Vertex positions `pᵢ = x + R r₀ᵢ` of the current state.
+    pub fn vertices(&self) -> Vec<Vector3<f64>> {
+        let r = self.now.state.orientation.matrix();
+        let x = self.now.state.position;
+        self.body.points_body.iter().map(|r0| x + r * r0).collect()
+    }
+
+    /// Kinetic, potential and total energy of a state (measured from the state itself).
+    pub fn energy_of(&self, state: &State) -> Energy {
+        energy(&self.body, &self.effects, state)
+    }
+
+    /// A non-finite or runaway state, if the simulation has diverged.
+    pub fn divergence(&self) -> Option<Divergence> {
+        let energy = self.energy_of(&self.now.state);
+        self.now
+            .guard
+            .check(&self.now.state, &energy)
+            .map(|quantity| Divergence {
+                step: self.now.step,
+                time: self.time(),
+                quantity,
+                integrator: self.integrator,
+                dt: self.dt,
+            })
+    }
+
+    /// Every quantity a user is shown, after the last phase.
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot::of(self)
+    }
+
+    /// The derive phase's results for the current frame.
+    pub fn kinematics(&self) -> &Kinematics {
+        &self.now.kinematics
+    }
+
+    /// The forces phase's results for the current frame.
+    pub fn loads(&self) -> &Loads {
+        &self.now.loads
+    }
+}

@@ -1,0 +1,60 @@
+//! Wavefront `.obj` meshes: their vertices become the body's mass points, their face edges
+//! are drawn.
+
+use nalgebra::Vector3;
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// Vertices and unique edges of every model in an `.obj` file.
+pub fn load_obj(path: &Path) -> Result<(Vec<Vector3<f64>>, Vec<(usize, usize)>), String> {
+    if !path.is_file() {
+        return Err("no such file".to_string());
+    }
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: false,
+        ignore_points: true,
+        ignore_lines: false,
+        ..Default::default()
+    };
+    let (models, _) = tobj::load_obj(path, &options).map_err(|e| format!("malformed .obj: {e}"))?;
+    let mut points = Vec::new();
+    let mut edges = BTreeSet::new();
+    for model in &models {
+        let mesh = &model.mesh;
+        let base = points.len();
+        for p in mesh.positions.chunks_exact(3) {
+            points.push(Vector3::new(
+                f64::from(p[0]),
+                f64::from(p[1]),
+                f64::from(p[2]),
+            ));
+        }
+        let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+            vec![3; mesh.indices.len() / 3]
+        } else {
+            mesh.face_arities.iter().map(|&a| a as usize).collect()
+        };
+        let mut start = 0;
+        for arity in arities {
+            let face = &mesh.indices[start..start + arity];
+            for k in 0..arity {
+                let (a, b) = (
+                    face[k] as usize + base,
+                    face[(k + 1) % arity] as usize + base,
+                );
+                if a != b {
+                    edges.insert((a.min(b), a.max(b)));
+                }
+            }
+            start += arity;
+        }
+    }
+    if points.is_empty() {
+        return Err("malformed .obj: no vertices (`v x y z` lines)".to_string());
+    }
+    if points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
+        return Err("malformed .obj: a vertex coordinate is not finite".to_string());
+    }
+    Ok((points, edges.into_iter().collect()))
+}

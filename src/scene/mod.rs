@@ -1,0 +1,602 @@
+//! Scene and lesson files: TOML with the keys of `design.md`, parsed and validated into a
+//! [`Lesson`] whose [`Scene`] builds a [`World`].
+//!
+//! Every error is one line naming file:line:column, what was expected and what was found.
+//! A missing effect key means the effect is absent; missing initial conditions mean rest.
+
+mod error;
+mod mesh;
+mod raw;
+
+pub use error::{did_you_mean, LoadError};
+
+use crate::physics::{
+    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State, World,
+};
+use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
+use raw::{RawBody, RawLesson, RawObstacle, RawScene, Vec3};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// A page of a lesson's narrative.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Page {
+    /// The page applies from this time on, s.
+    pub at: f64,
+    pub title: String,
+    pub text: String,
+}
+
+/// Everything a world is built from.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Time step, s.
+    pub dt: f64,
+    /// How long the scene is meant to run, s.
+    pub duration: Option<f64>,
+    pub integrator: Integrator,
+    pub effects: Effects,
+    pub contact: Option<ContactModel>,
+    pub obstacles: Vec<Obstacle>,
+    pub body: Body,
+    /// The body's shape name as written (box, points, mesh).
+    pub shape: String,
+    pub initial: State,
+}
+
+impl Scene {
+    /// A world at the scene's initial state.
+    pub fn world(&self) -> World {
+        World::new(
+            self.body.clone(),
+            self.effects.clone(),
+            self.obstacles.clone(),
+            self.contact,
+            self.integrator,
+            self.dt,
+            self.initial,
+        )
+    }
+}
+
+/// A lesson (or a bare scene): title, summary, scene and pages.
+#[derive(Debug, Clone)]
+pub struct Lesson {
+    pub path: PathBuf,
+    pub title: String,
+    pub summary: String,
+    pub scene: Scene,
+    /// Pages in order of `at`.
+    pub pages: Vec<Page>,
+}
+
+impl Lesson {
+    /// The page that applies at time `t` (the last one whose `at` ≤ t).
+    pub fn page_at(&self, t: f64) -> Option<(usize, &Page)> {
+        self.pages
+            .iter()
+            .enumerate()
+            .rev()
+            .find(|(_, p)| p.at <= t + 1e-12)
+    }
+}
+
+/// Reads and validates a lesson or scene file.
+pub fn load(path: &Path) -> Result<Lesson, LoadError> {
+    if path.is_dir() {
+        return Err(LoadError::file(path, "is a directory, not a scene file"));
+    }
+    let bytes = std::fs::read(path).map_err(|e| {
+        let reason = match e.kind() {
+            std::io::ErrorKind::NotFound => "no such file".to_string(),
+            _ => e.to_string(),
+        };
+        LoadError::file(path, format!("cannot read: {reason}"))
+    })?;
+    let source = String::from_utf8(bytes).map_err(|_| {
+        LoadError::file(
+            path,
+            "not a text file (invalid UTF-8): expected a TOML scene",
+        )
+    })?;
+    parse(&source, path)
+}
+
+/// Parses and validates a lesson from its source text; `path` names it in errors and anchors
+/// relative mesh paths.
+pub fn parse(source: &str, path: &Path) -> Result<Lesson, LoadError> {
+    if source.trim().is_empty() {
+        return Err(LoadError::file(
+            path,
+            "empty file: expected a TOML scene with at least `title`, [scene] and [body]",
+        ));
+    }
+    if source.contains('\0') {
+        return Err(LoadError::file(
+            path,
+            "not a text file (contains NUL bytes): expected a TOML scene",
+        ));
+    }
+    let raw: RawLesson = toml::from_str(source).map_err(|e| toml_error(&e, source, path))?;
+    Validator { source, path }.lesson(raw)
+}
+
+/// A TOML or shape error turned into one line, with a suggestion for unknown keys.
+fn toml_error(error: &toml::de::Error, source: &str, path: &Path) -> LoadError {
+    let message = improve_message(error.message());
+    match error.span() {
+        Some(span) => LoadError::at(path, source, span, message),
+        None => LoadError::file(path, message),
+    }
+}
+
+/// Rewrites serde's "unknown field `x`, expected one of `a`, `b`" with a suggestion.
+fn improve_message(message: &str) -> String {
+    let Some(rest) = message.strip_prefix("unknown field `") else {
+        return message.trim().to_string();
+    };
+    let Some((word, expected)) = rest.split_once('`') else {
+        return message.trim().to_string();
+    };
+    let valid: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
+    let hint = did_you_mean(word, valid.iter().copied())
+        .map(|s| format!(" (did you mean `{s}`?)"))
+        .unwrap_or_default();
+    format!(
+        "unknown key `{word}`{hint}; valid keys here: {}",
+        valid.join(", ")
+    )
+}
+
+struct Validator<'a> {
+    source: &'a str,
+    path: &'a Path,
+}
+
+impl Validator<'_> {
+    fn error(&self, span: Range<usize>, message: impl Into<String>) -> LoadError {
+        LoadError::at(self.path, self.source, span, message)
+    }
+
+    fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
+        let title = raw.title.into_inner();
+        let scene_span = raw.scene.span();
+        let mut scene = self.scene(raw.scene.into_inner(), raw.body, &raw.obstacles, scene_span)?;
+        scene.obstacles = raw
+            .obstacles
+            .iter()
+            .map(|o| self.obstacle(o))
+            .collect::<Result<_, _>>()?;
+        let mut pages = Vec::new();
+        for page in raw.pages {
+            let span = page.span();
+            let page = page.into_inner();
+            let at = self.finite(&page.at, "page time `at`")?;
+            if at < 0.0 {
+                return Err(self.error(
+                    page.at.span(),
+                    format!("page time `at` must be ≥ 0 s, found {at}"),
+                ));
+            }
+            if pages.last().is_some_and(|p: &Page| p.at > at) {
+                return Err(self.error(span, "pages must be in order of `at`"));
+            }
+            pages.push(Page {
+                at,
+                title: page.title,
+                text: page.text,
+            });
+        }
+        Ok(Lesson {
+            path: self.path.to_path_buf(),
+            title,
+            summary: raw.summary.unwrap_or_default(),
+            scene,
+            pages,
+        })
+    }
+
+    fn finite(&self, value: &Spanned<f64>, what: &str) -> Result<f64, LoadError> {
+        let v = *value.get_ref();
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!("{what} must be a finite number, found {v}"),
+            ))
+        }
+    }
+
+    fn positive(&self, value: &Spanned<f64>, what: &str) -> Result<f64, LoadError> {
+        let v = self.finite(value, what)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(value.span(), format!("{what} must be > 0, found {v}")))
+        }
+    }
+
+    fn non_negative(&self, value: &Spanned<f64>, what: &str) -> Result<f64, LoadError> {
+        let v = self.finite(value, what)?;
+        if v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(value.span(), format!("{what} must be ≥ 0, found {v}")))
+        }
+    }
+
+    fn vector(&self, value: &Vec3, what: &str) -> Result<Vector3<f64>, LoadError> {
+        let v = value.get_ref();
+        if v.iter().all(|c| c.is_finite()) {
+            Ok(Vector3::from(*v))
+        } else {
+            Err(self.error(
+                value.span(),
+                format!("{what} must have finite components, found {v:?}"),
+            ))
+        }
+    }
+
+    fn optional_vector(&self, value: &Option<Vec3>, what: &str) -> Result<Vector3<f64>, LoadError> {
+        value
+            .as_ref()
+            .map_or(Ok(Vector3::zeros()), |v| self.vector(v, what))
+    }
+
+    fn scene(
+        &self,
+        raw: RawScene,
+        body: Spanned<RawBody>,
+        obstacles: &[Spanned<RawObstacle>],
+        scene_span: Range<usize>,
+    ) -> Result<Scene, LoadError> {
+        let dt = self.positive(&raw.dt, "dt")?;
+        let duration = raw
+            .duration
+            .as_ref()
+            .map(|d| self.positive(d, "duration"))
+            .transpose()?;
+        let integrator = Integrator::from_name(raw.integrator.get_ref()).ok_or_else(|| {
+            let name = raw.integrator.get_ref();
+            let hint = did_you_mean(name, Integrator::ALL.map(Integrator::name))
+                .map(|s| format!(" (did you mean `{s}`?)"))
+                .unwrap_or_default();
+            self.error(
+                raw.integrator.span(),
+                format!(
+                    "unknown integrator `{name}`{hint}; valid integrators: {}",
+                    Integrator::names()
+                ),
+            )
+        })?;
+        let mut effects = Vec::new();
+        if let Some(g) = &raw.gravity {
+            effects.push(Effect::Gravity(self.vector(g, "gravity")?));
+        }
+        if let Some(drag) = &raw.drag {
+            let d = drag.get_ref();
+            let coefficient = |c: &Option<Spanned<f64>>, what| {
+                c.as_ref().map_or(Ok(0.0), |c| self.non_negative(c, what))
+            };
+            let linear = coefficient(&d.linear, "drag.linear")?;
+            let angular = coefficient(&d.angular, "drag.angular")?;
+            if d.linear.is_none() && d.angular.is_none() {
+                return Err(self.error(
+                    drag.span(),
+                    "drag needs `linear` and/or `angular` coefficients",
+                ));
+            }
+            effects.push(Effect::Drag { linear, angular });
+        }
+        let contact = raw.contact.as_ref().map(|c| self.contact(c)).transpose()?;
+        if contact.is_none() {
+            if let Some(first) = obstacles.first() {
+                return Err(self.error(
+                    first.span(),
+                    "obstacles need a collision response: add `contact = { response = \"impulse\", \
+                     restitution = 0.4, friction = 0.5 }` to [scene]",
+                ));
+            }
+        }
+        let _ = scene_span;
+        let (body_model, shape, initial) = self.body(body)?;
+        Ok(Scene {
+            dt,
+            duration,
+            integrator,
+            effects: Effects::new(effects),
+            contact,
+            obstacles: Vec::new(),
+            body: body_model,
+            shape,
+            initial,
+        })
+    }
+
+    fn contact(&self, raw: &Spanned<raw::RawContact>) -> Result<ContactModel, LoadError> {
+        let c = raw.get_ref();
+        let name = c.response.get_ref();
+        let response = Response::from_name(name).ok_or_else(|| {
+            let hint = did_you_mean(name, Response::ALL.map(Response::name))
+                .map(|s| format!(" (did you mean `{s}`?)"))
+                .unwrap_or_default();
+            self.error(
+                c.response.span(),
+                format!(
+                    "unknown collision response `{name}`{hint}; valid responses: {}",
+                    Response::names()
+                ),
+            )
+        })?;
+        let restitution = match &c.restitution {
+            Some(e) => {
+                let e_value = self.non_negative(e, "restitution")?;
+                if e_value > 1.0 {
+                    return Err(self.error(
+                        e.span(),
+                        format!("restitution must be between 0 and 1, found {e_value}"),
+                    ));
+                }
+                e_value
+            }
+            None => 0.0,
+        };
+        let friction = c
+            .friction
+            .as_ref()
+            .map_or(Ok(0.0), |f| self.non_negative(f, "friction"))?;
+        Ok(ContactModel {
+            response,
+            restitution,
+            friction,
+        })
+    }
+
+    fn obstacle(&self, raw: &Spanned<RawObstacle>) -> Result<Obstacle, LoadError> {
+        let o = raw.get_ref();
+        let span = raw.span();
+        let missing = |key: &str, kind: &str| {
+            self.error(span.clone(), format!("a {kind} obstacle needs `{key}`"))
+        };
+        let kind = o.kind.get_ref().as_str();
+        let allowed: &[&str] = match kind {
+            "ground" => &["height"],
+            "sphere" => &["center", "radius"],
+            "box" => &["min", "max"],
+            other => {
+                let hint = did_you_mean(other, ["ground", "sphere", "box"])
+                    .map(|s| format!(" (did you mean `{s}`?)"))
+                    .unwrap_or_default();
+                return Err(self.error(
+                    o.kind.span(),
+                    format!(
+                        "unknown obstacle type `{other}`{hint}; valid types: ground, sphere, box"
+                    ),
+                ));
+            }
+        };
+        let present = [
+            ("height", o.height.as_ref().map(|v| v.span())),
+            ("center", o.center.as_ref().map(|v| v.span())),
+            ("radius", o.radius.as_ref().map(|v| v.span())),
+            ("min", o.min.as_ref().map(|v| v.span())),
+            ("max", o.max.as_ref().map(|v| v.span())),
+        ];
+        for (key, key_span) in present {
+            if let (Some(key_span), false) = (key_span, allowed.contains(&key)) {
+                return Err(self.error(
+                    key_span,
+                    format!(
+                        "`{key}` does not apply to a {kind} obstacle; valid keys: type, {}",
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+        match kind {
+            "ground" => {
+                let height = o.height.as_ref().ok_or_else(|| missing("height", kind))?;
+                Ok(Obstacle::Ground {
+                    height: self.finite(height, "height")?,
+                })
+            }
+            "sphere" => {
+                let center = o.center.as_ref().ok_or_else(|| missing("center", kind))?;
+                let radius = o.radius.as_ref().ok_or_else(|| missing("radius", kind))?;
+                Ok(Obstacle::Sphere {
+                    center: self.vector(center, "center")?,
+                    radius: self.positive(radius, "radius")?,
+                })
+            }
+            _ => {
+                let min_raw = o.min.as_ref().ok_or_else(|| missing("min", kind))?;
+                let max_raw = o.max.as_ref().ok_or_else(|| missing("max", kind))?;
+                let min = self.vector(min_raw, "min")?;
+                let max = self.vector(max_raw, "max")?;
+                if !(0..3).all(|i| min[i] < max[i]) {
+                    return Err(self.error(
+                        max_raw.span(),
+                        format!(
+                            "box obstacle needs min < max on every axis, found min {:?} and max {:?}",
+                            min_raw.get_ref(),
+                            max_raw.get_ref()
+                        ),
+                    ));
+                }
+                Ok(Obstacle::Box { min, max })
+            }
+        }
+    }
+
+    fn body(&self, raw: Spanned<RawBody>) -> Result<(Body, String, State), LoadError> {
+        let span = raw.span();
+        let b = raw.into_inner();
+        let shape = b.shape.get_ref().as_str();
+        let needs = |key: &str| self.error(span.clone(), format!("a {shape} body needs `{key}`"));
+        let mass = b
+            .mass
+            .as_ref()
+            .map(|m| self.positive(m, "mass"))
+            .transpose()?;
+        let inertia = match &b.inertia {
+            None => None,
+            Some(i) => match i.get_ref().as_str() {
+                "solid" | "points" => Some((i.get_ref().as_str(), i.span())),
+                other => {
+                    return Err(self.error(
+                        i.span(),
+                        format!("unknown inertia `{other}`; valid: solid, points"),
+                    ))
+                }
+            },
+        };
+        let body_error =
+            |at: Range<usize>, e: crate::physics::BodyError| self.error(at, e.to_string());
+        let body = match shape {
+            "box" => {
+                let size_raw = b.size.as_ref().ok_or_else(|| needs("size"))?;
+                let size = self.vector(size_raw, "size")?;
+                if let Some(bad) = size.iter().find(|s| **s <= 0.0) {
+                    return Err(self.error(
+                        size_raw.span(),
+                        format!("box sides must be > 0, found {bad}"),
+                    ));
+                }
+                let mass = mass.ok_or_else(|| needs("mass"))?;
+                match inertia.map(|i| i.0) {
+                    Some("points") => Body::box_of_corners(size, mass),
+                    _ => Body::solid_box(size, mass),
+                }
+                .map_err(|e| body_error(size_raw.span(), e))?
+            }
+            "points" => {
+                let points_raw = b.points.as_ref().ok_or_else(|| needs("points"))?;
+                self.no_solid(inertia)?;
+                let points: Vec<Vector3<f64>> = points_raw
+                    .get_ref()
+                    .iter()
+                    .map(|p| Vector3::from(*p))
+                    .collect();
+                let masses = match &b.masses {
+                    Some(m) => {
+                        for &value in m.get_ref() {
+                            if !(value > 0.0 && value.is_finite()) {
+                                return Err(self.error(
+                                    m.span(),
+                                    format!("point masses must be > 0 and finite, found {value}"),
+                                ));
+                            }
+                        }
+                        if let (Some(total), Some(mass_raw)) = (mass, &b.mass) {
+                            let sum: f64 = m.get_ref().iter().sum();
+                            if (sum - total).abs() > 1e-9 * total {
+                                return Err(self.error(
+                                    mass_raw.span(),
+                                    format!("`mass` = {total} but the point masses sum to {sum}: give one or the other"),
+                                ));
+                            }
+                        }
+                        m.get_ref().clone()
+                    }
+                    None => {
+                        mass.ok_or_else(|| needs("mass (or `masses`, one per point)"))?;
+                        Vec::new()
+                    }
+                };
+                Body::from_points(&points, &masses, mass.unwrap_or(0.0), Vec::new())
+                    .map_err(|e| body_error(points_raw.span(), e))?
+            }
+            "mesh" => {
+                let file_raw = b.file.as_ref().ok_or_else(|| needs("file"))?;
+                self.no_solid(inertia)?;
+                let mass = mass.ok_or_else(|| needs("mass"))?;
+                let mesh_path = self
+                    .path
+                    .parent()
+                    .unwrap_or(Path::new("."))
+                    .join(file_raw.get_ref());
+                let (points, edges) = mesh::load_obj(&mesh_path).map_err(|why| {
+                    self.error(
+                        file_raw.span(),
+                        format!("mesh `{}`: {why}", mesh_path.display()),
+                    )
+                })?;
+                Body::from_points(&points, &[], mass, edges)
+                    .map_err(|e| body_error(file_raw.span(), e))?
+            }
+            other => {
+                let hint = did_you_mean(other, ["box", "points", "mesh"])
+                    .map(|s| format!(" (did you mean `{s}`?)"))
+                    .unwrap_or_default();
+                return Err(self.error(
+                    b.shape.span(),
+                    format!("unknown shape `{other}`{hint}; valid shapes: box, points, mesh"),
+                ));
+            }
+        };
+        let orientation = match &b.orientation {
+            None => UnitQuaternion::identity(),
+            Some(o) => self.orientation(o)?,
+        };
+        let rotation = orientation.to_rotation_matrix().into_inner();
+        let omega =
+            match (&b.angular_velocity, &b.angular_velocity_body) {
+                (Some(_), Some(both)) => return Err(self.error(
+                    both.span(),
+                    "give `angular_velocity` (world frame) or `angular_velocity_body`, not both",
+                )),
+                (Some(w), None) => self.vector(w, "angular_velocity")?,
+                (None, Some(w)) => rotation * self.vector(w, "angular_velocity_body")?,
+                (None, None) => Vector3::zeros(),
+            };
+        let inertia_world = rotation * body.inertia_body * rotation.transpose();
+        let initial = State {
+            position: self.optional_vector(&b.position, "position")?,
+            orientation: Orientation::Quaternion(orientation),
+            linear_momentum: self.optional_vector(&b.velocity, "velocity")? * body.mass,
+            angular_momentum: inertia_world * omega,
+        };
+        Ok((body, shape.to_string(), initial))
+    }
+
+    fn no_solid(&self, inertia: Option<(&str, Range<usize>)>) -> Result<(), LoadError> {
+        match inertia {
+            Some(("solid", span)) => Err(self.error(
+                span,
+                "`inertia = \"solid\"` needs a closed-form shape (box); points and meshes use `points`",
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    fn orientation(
+        &self,
+        raw: &Spanned<raw::RawOrientation>,
+    ) -> Result<UnitQuaternion<f64>, LoadError> {
+        let o = raw.get_ref();
+        match (&o.axis, &o.degrees, &o.quaternion) {
+            (Some(axis), Some(degrees), None) => {
+                let a = self.vector(axis, "orientation axis")?;
+                let angle = self.finite(degrees, "orientation degrees")?;
+                let unit = Unit::try_new(a, 1e-12).ok_or_else(|| {
+                    self.error(axis.span(), "orientation axis has zero length: give a non-zero axis")
+                })?;
+                Ok(UnitQuaternion::from_axis_angle(&unit, angle.to_radians()))
+            }
+            (None, None, Some(q)) => {
+                let [w, x, y, z] = *q.get_ref();
+                let quaternion = Quaternion::new(w, x, y, z);
+                if !(quaternion.coords.iter().all(|c| c.is_finite()) && quaternion.norm() > 1e-12) {
+                    return Err(self.error(q.span(), "orientation quaternion must be finite and non-zero"));
+                }
+                Ok(UnitQuaternion::from_quaternion(quaternion))
+            }
+            _ => Err(self.error(
+                raw.span(),
+                "orientation is either { axis = [x, y, z], degrees = a } or { quaternion = [w, x, y, z] }",
+            )),
+        }
+    }
+}

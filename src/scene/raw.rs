@@ -1,0 +1,92 @@
+//! The scene file as written, before validation: the keys of `design.md`, each with its span.
+//!
+//! Unknown keys are errors (`deny_unknown_fields`): a typo must not silently drop an effect.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+pub type Vec3 = Spanned<[f64; 3]>;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLesson {
+    pub title: Spanned<String>,
+    pub summary: Option<String>,
+    pub scene: Spanned<RawScene>,
+    pub body: Spanned<RawBody>,
+    #[serde(default, rename = "obstacle")]
+    pub obstacles: Vec<Spanned<RawObstacle>>,
+    #[serde(default, rename = "page")]
+    pub pages: Vec<Spanned<RawPage>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    pub dt: Spanned<f64>,
+    pub duration: Option<Spanned<f64>>,
+    pub integrator: Spanned<String>,
+    pub gravity: Option<Vec3>,
+    pub drag: Option<Spanned<RawDrag>>,
+    pub contact: Option<Spanned<RawContact>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDrag {
+    pub linear: Option<Spanned<f64>>,
+    pub angular: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawContact {
+    pub response: Spanned<String>,
+    pub restitution: Option<Spanned<f64>>,
+    pub friction: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBody {
+    pub shape: Spanned<String>,
+    pub size: Option<Vec3>,
+    pub points: Option<Spanned<Vec<[f64; 3]>>>,
+    pub masses: Option<Spanned<Vec<f64>>>,
+    pub file: Option<Spanned<String>>,
+    pub mass: Option<Spanned<f64>>,
+    pub inertia: Option<Spanned<String>>,
+    pub position: Option<Vec3>,
+    pub orientation: Option<Spanned<RawOrientation>>,
+    pub velocity: Option<Vec3>,
+    pub angular_velocity: Option<Vec3>,
+    pub angular_velocity_body: Option<Vec3>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOrientation {
+    pub axis: Option<Vec3>,
+    pub degrees: Option<Spanned<f64>>,
+    pub quaternion: Option<Spanned<[f64; 4]>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawObstacle {
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    pub height: Option<Spanned<f64>>,
+    pub center: Option<Vec3>,
+    pub radius: Option<Spanned<f64>>,
+    pub min: Option<Vec3>,
+    pub max: Option<Vec3>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPage {
+    pub at: Spanned<f64>,
+    pub title: String,
+    pub text: String,
+}
