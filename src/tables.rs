@@ -1,0 +1,249 @@
+//! The numeric panels, as text: one number formatter and one table builder shared by the
+//! terminal app and `tumble walk`, so a panel and its text walkthrough never disagree.
+//!
+//! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e5, otherwise
+//! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
+
+use crate::physics::Snapshot;
+use nalgebra::{Matrix3, Vector3};
+
+/// Width of every formatted number, in characters.
+pub const NUMBER_WIDTH: usize = 12;
+
+/// A number, right-aligned in [`NUMBER_WIDTH`] characters.
+pub fn number(x: f64) -> String {
+    format!("{:>width$}", number_plain(x), width = NUMBER_WIDTH)
+}
+
+/// A number with no padding.
+pub fn number_plain(x: f64) -> String {
+    if x.is_nan() {
+        return "NaN".to_string();
+    }
+    if x.is_infinite() {
+        return if x > 0.0 { "inf" } else { "-inf" }.to_string();
+    }
+    let magnitude = x.abs();
+    let text = if magnitude == 0.0 || (1e-3..1e5).contains(&magnitude) {
+        format!("{x:.6}")
+    } else {
+        format!("{x:.4e}")
+    };
+    // "-0.000000" (a tiny negative rounded away) prints as zero, without its sign.
+    if text.starts_with('-') && text[1..].chars().all(|c| c == '0' || c == '.') {
+        text[1..].to_string()
+    } else {
+        text
+    }
+}
+
+/// Which frame vectors and tensors are shown in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Frame {
+    /// World frame (the default).
+    World,
+    /// Body frame: vectors as Rᵀ v, tensors as I_body and I⁻¹_body.
+    Body,
+}
+
+impl Frame {
+    /// The other frame.
+    pub fn toggle(self) -> Frame {
+        match self {
+            Frame::World => Frame::Body,
+            Frame::Body => Frame::World,
+        }
+    }
+
+    /// "world" or "body".
+    pub fn name(self) -> &'static str {
+        match self {
+            Frame::World => "world",
+            Frame::Body => "body",
+        }
+    }
+}
+
+/// One labelled row of numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// Label, e.g. `ω` or `I[0]`.
+    pub label: String,
+    /// Formatted numbers (each [`NUMBER_WIDTH`] wide).
+    pub cells: Vec<String>,
+    /// Unit, e.g. `rad/s` (may be empty).
+    pub unit: &'static str,
+}
+
+/// A titled table of rows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Panel {
+    pub title: String,
+    pub rows: Vec<Row>,
+}
+
+fn vector_row(label: &str, v: &Vector3<f64>, unit: &'static str) -> Row {
+    Row {
+        label: label.to_string(),
+        cells: v.iter().map(|c| number(*c)).collect(),
+        unit,
+    }
+}
+
+fn scalar_row(label: &str, x: f64, unit: &'static str) -> Row {
+    Row {
+        label: label.to_string(),
+        cells: vec![number(x)],
+        unit,
+    }
+}
+
+fn matrix_rows(label: &str, m: &Matrix3<f64>, unit: &'static str) -> Vec<Row> {
+    (0..3)
+        .map(|i| Row {
+            label: if i == 0 {
+                label.to_string()
+            } else {
+                String::new()
+            },
+            cells: (0..3).map(|j| number(m[(i, j)])).collect(),
+            unit: if i == 0 { unit } else { "" },
+        })
+        .collect()
+}
+
+/// Every numeric panel of a snapshot, in display order:
+/// state, inertia, angular velocity, forces, momentum, angular momentum, energy.
+pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
+    let rt = s.rotation.transpose();
+    let to_frame = |v: &Vector3<f64>| match frame {
+        Frame::World => *v,
+        Frame::Body => rt * v,
+    };
+    let suffix = match frame {
+        Frame::World => "",
+        Frame::Body => " (body frame)",
+    };
+    let q = s.quaternion.quaternion();
+    let state = Panel {
+        title: "state".to_string(),
+        rows: vec![
+            vector_row("x", &s.position, "m"),
+            Row {
+                label: "q".to_string(),
+                cells: [q.w, q.i, q.j, q.k].iter().map(|c| number(*c)).collect(),
+                unit: "w x y z",
+            },
+            scalar_row("‖RᵀR−1‖", s.orthonormality_error, ""),
+        ],
+    };
+    let (inertia, inverse, inertia_label, inverse_label) = match frame {
+        Frame::World => (s.inertia_world, s.inv_inertia_world, "I", "I⁻¹"),
+        Frame::Body => (
+            s.inertia_body,
+            rt * s.inv_inertia_world * s.rotation,
+            "Ibody",
+            "Ibody⁻¹",
+        ),
+    };
+    let mut inertia_rows = matrix_rows(inertia_label, &inertia, "kg·m²");
+    inertia_rows.extend(matrix_rows(inverse_label, &inverse, "1/(kg·m²)"));
+    let inertia_panel = Panel {
+        title: format!("inertia tensor{suffix}"),
+        rows: inertia_rows,
+    };
+    let angular_velocity = Panel {
+        title: "angular velocity".to_string(),
+        rows: vec![
+            vector_row("ω", &s.angular_velocity, "rad/s"),
+            vector_row("ωbody", &s.angular_velocity_body, "rad/s"),
+            scalar_row("|ω|", s.angular_velocity.norm(), "rad/s"),
+        ],
+    };
+    let forces = Panel {
+        title: format!("force and torque{suffix}"),
+        rows: vec![
+            vector_row("F", &to_frame(&s.force), "N"),
+            vector_row("τ", &to_frame(&s.torque), "N·m"),
+        ],
+    };
+    let momentum = Panel {
+        title: format!("linear momentum{suffix}"),
+        rows: vec![
+            vector_row("P", &to_frame(&s.linear_momentum), "kg·m/s"),
+            vector_row("v", &to_frame(&s.velocity), "m/s"),
+        ],
+    };
+    let angular_momentum = Panel {
+        title: format!("angular momentum{suffix}"),
+        rows: vec![
+            vector_row("L", &to_frame(&s.angular_momentum), "kg·m²/s"),
+            scalar_row("|L|", s.angular_momentum.norm(), "kg·m²/s"),
+        ],
+    };
+    let drift = s.energy.total - s.initial_energy.total;
+    let scale = s
+        .initial_energy
+        .total
+        .abs()
+        .max(s.initial_energy.kinetic.abs());
+    let relative = if scale > 0.0 { drift / scale } else { 0.0 };
+    let energy = Panel {
+        title: "energy".to_string(),
+        rows: vec![
+            scalar_row("kinetic", s.energy.kinetic, "J"),
+            scalar_row("potential", s.energy.potential, "J"),
+            scalar_row("total", s.energy.total, "J"),
+            scalar_row("drift", drift, "J"),
+            scalar_row("drift/E₀", relative, ""),
+        ],
+    };
+    vec![
+        state,
+        inertia_panel,
+        angular_velocity,
+        forces,
+        momentum,
+        angular_momentum,
+        energy,
+    ]
+}
+
+/// A panel as aligned plain-text lines (title first).
+pub fn panel_text(panel: &Panel) -> Vec<String> {
+    let label_width = panel
+        .rows
+        .iter()
+        .map(|r| r.label.chars().count())
+        .max()
+        .unwrap_or(0);
+    let mut lines = vec![panel.title.clone()];
+    for row in &panel.rows {
+        let pad = label_width - row.label.chars().count();
+        let mut line = format!("  {}{} ", row.label, " ".repeat(pad));
+        line.push_str(&row.cells.join(""));
+        if !row.unit.is_empty() {
+            line.push_str("  ");
+            line.push_str(row.unit);
+        }
+        lines.push(line.trim_end().to_string());
+    }
+    lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_fixed_width_and_no_negative_zero() {
+        assert_eq!(number(0.0), "    0.000000");
+        assert_eq!(number(-0.0), "    0.000000");
+        assert_eq!(number(-1e-9), "  -1.0000e-9");
+        assert_eq!(number(9.81), "    9.810000");
+        assert_eq!(number(-123456.0), "   -1.2346e5");
+        assert_eq!(number(f64::NAN), "         NaN");
+        assert_eq!(number(f64::NEG_INFINITY), "        -inf");
+        assert_eq!(number_plain(-0.0000001), "-1.0000e-7");
+    }
+}
