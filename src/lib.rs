@@ -5,6 +5,7 @@
 //! [`physics::Snapshot`].
 
 pub mod cli;
+pub mod lessons;
 pub mod physics;
 pub mod scene;
 pub mod tables;
