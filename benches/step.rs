@@ -1,1 +1,110 @@
-fn main() {}
+//! What one `World::step()` costs, per integrator and per scene, in ns/step.
+//!
+//! Scenes (built with the physics API, no files):
+//! - `free`: the torque-free tumbling box 1.0 × 0.4 × 0.1 m, 1 kg, ω_body = (0.01, 10, 0.01):
+//!   no effects at all, so the forces phase evaluates nothing;
+//! - `falling`: the same box under gravity;
+//! - `falling+drag`: gravity and viscous drag: adding effects is what adds cost.
+//!
+//! Each world is stepped in place and put back at its start every [`RESTART_EVERY`] steps (so
+//! `euler-seed`'s drifting matrix and a falling body's speed stay in a representative range).
+//!
+//! To add a scene, add a line to [`scenes`].
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use nalgebra::{UnitQuaternion, Vector3};
+use std::hint::black_box;
+use std::time::Duration;
+use tumble::physics::{Body, Effect, Effects, Integrator, Orientation, State, World};
+
+/// Steps between two restarts from the initial state (restoring costs one `Vec` clone).
+const RESTART_EVERY: u64 = 10_000;
+
+/// The box of the tennis-racket lesson.
+fn tumbling_box() -> Body {
+    Body::solid_box(Vector3::new(1.0, 0.4, 0.1), 1.0).expect("valid box")
+}
+
+/// The box spinning near its intermediate axis, at 2 m, at rest otherwise.
+fn tumbling_state(body: &Body) -> State {
+    let omega_body = Vector3::new(0.01, 10.0, 0.01);
+    State {
+        position: Vector3::new(0.0, 2.0, 0.0),
+        orientation: Orientation::Quaternion(UnitQuaternion::identity()),
+        linear_momentum: Vector3::zeros(),
+        angular_momentum: body.inertia_body * omega_body,
+    }
+}
+
+/// A world holding the tumbling box with the given effects.
+fn box_world(effects: Vec<Effect>, integrator: Integrator) -> World {
+    let body = tumbling_box();
+    let state = tumbling_state(&body);
+    World::new(
+        body,
+        Effects::new(effects),
+        Vec::new(),
+        None,
+        integrator,
+        1e-3,
+        state,
+    )
+}
+
+const GRAVITY: Effect = Effect::Gravity(Vector3::new(0.0, -9.81, 0.0));
+const DRAG: Effect = Effect::Drag {
+    linear: 0.05,
+    angular: 0.01,
+};
+
+/// A benchmarked scene: its name and how to build its world for an integrator.
+struct Case {
+    name: &'static str,
+    build: fn(Integrator) -> World,
+}
+
+/// The benchmarked scenes.
+fn scenes() -> Vec<Case> {
+    vec![
+        Case {
+            name: "free",
+            build: |i| box_world(Vec::new(), i),
+        },
+        Case {
+            name: "falling",
+            build: |i| box_world(vec![GRAVITY], i),
+        },
+        Case {
+            name: "falling+drag",
+            build: |i| box_world(vec![GRAVITY, DRAG], i),
+        },
+    ]
+}
+
+fn step(c: &mut Criterion) {
+    for Case { name, build } in scenes() {
+        let mut group = c.benchmark_group(format!("step/{name}"));
+        group
+            .warm_up_time(Duration::from_millis(500))
+            .measurement_time(Duration::from_secs(2));
+        for integrator in Integrator::ALL {
+            let mut world = build(integrator);
+            let start = world.checkpoint();
+            let mut steps = 0u64;
+            group.bench_function(BenchmarkId::from_parameter(integrator.name()), |b| {
+                b.iter(|| {
+                    steps += 1;
+                    if steps.is_multiple_of(RESTART_EVERY) {
+                        world.restore(&start);
+                    }
+                    black_box(&mut world).step();
+                    black_box(world.state());
+                })
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, step);
+criterion_main!(benches);

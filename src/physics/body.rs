@@ -144,7 +144,10 @@ impl Body {
     ) -> Result<Body, BodyError> {
         let (principal_moments, principal_axes) = principal_frame(&inertia_body);
         let largest = principal_moments.z;
-        if !(principal_moments.x > 1e-12 * largest) || !largest.is_finite() {
+        // Written so that a NaN moment also counts as singular.
+        let invertible = principal_moments.x.partial_cmp(&(1e-12 * largest))
+            == Some(std::cmp::Ordering::Greater);
+        if !invertible || !largest.is_finite() {
             return Err(BodyError::SingularInertia(
                 principal_moments.x,
                 principal_moments.y,

@@ -27,18 +27,32 @@ pub struct Kinematics {
 }
 
 /// Runs the derive phase on a state.
+#[inline]
 pub fn derive(body: &Body, state: &State) -> Kinematics {
     let rotation = state.orientation.matrix();
     derive_with_rotation(body, state, rotation)
 }
 
 /// The derive phase when R is already known.
+#[inline]
 pub fn derive_with_rotation(body: &Body, state: &State, rotation: Matrix3<f64>) -> Kinematics {
-    let inv_inertia_world = rotation * body.inv_inertia_body * rotation.transpose();
+    let inv_inertia_world = congruence(&rotation, &body.inv_inertia_body);
     Kinematics {
         rotation,
         inv_inertia_world,
         angular_velocity: inv_inertia_world * state.angular_momentum,
         velocity: state.linear_momentum * body.inv_mass,
     }
+}
+
+/// `R S Rᵀ` for a symmetric S: `A = R S`, then only the upper triangle of `A Rᵀ`
+/// (`(A Rᵀ)ᵢⱼ = Aᵢ·Rⱼ`, rows), mirrored — the result is exactly symmetric and a third cheaper.
+#[inline]
+pub fn congruence(r: &Matrix3<f64>, s: &Matrix3<f64>) -> Matrix3<f64> {
+    let a = r * s;
+    let entry =
+        |i: usize, j: usize| a[(i, 0)] * r[(j, 0)] + a[(i, 1)] * r[(j, 1)] + a[(i, 2)] * r[(j, 2)];
+    let (xx, xy, xz) = (entry(0, 0), entry(0, 1), entry(0, 2));
+    let (yy, yz, zz) = (entry(1, 1), entry(1, 2), entry(2, 2));
+    Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
 }

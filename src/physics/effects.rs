@@ -52,6 +52,7 @@ impl Effects {
     }
 
     /// Gravity, if declared.
+    #[inline]
     pub fn gravity(&self) -> Option<Vector3<f64>> {
         self.list.iter().find_map(|e| match e {
             Effect::Gravity(g) => Some(*g),
@@ -71,14 +72,26 @@ impl Effects {
     }
 
     /// F and τ at the given velocities: the sum over the declared effects only.
+    #[inline]
     pub fn loads(&self, body: &Body, kinematics: &Kinematics) -> Loads {
+        self.loads_at(body, &kinematics.velocity, &kinematics.angular_velocity)
+    }
+
+    /// F and τ at velocity v and angular velocity ω (world frame).
+    #[inline]
+    pub fn loads_at(
+        &self,
+        body: &Body,
+        velocity: &Vector3<f64>,
+        angular_velocity: &Vector3<f64>,
+    ) -> Loads {
         let mut loads = Loads::default();
         for effect in &self.list {
             match *effect {
                 Effect::Gravity(g) => loads.force += g * body.mass,
                 Effect::Drag { linear, angular } => {
-                    loads.force -= kinematics.velocity * linear;
-                    loads.torque -= kinematics.angular_velocity * angular;
+                    loads.force -= velocity * linear;
+                    loads.torque -= angular_velocity * angular;
                 }
             }
         }

@@ -7,7 +7,7 @@
 
 use super::body::Body;
 use super::collision::{Contact, Obstacle};
-use super::derive::derive;
+use super::derive::{congruence, derive};
 use super::effects::Effects;
 use super::integrators::Integrator;
 use super::state::State;
@@ -114,7 +114,7 @@ impl Snapshot {
             angular_velocity: kinematics.angular_velocity,
             angular_velocity_body: rotation.transpose() * kinematics.angular_velocity,
             inertia_body: body.inertia_body,
-            inertia_world: rotation * body.inertia_body * rotation.transpose(),
+            inertia_world: congruence(&rotation, &body.inertia_body),
             inv_inertia_world: kinematics.inv_inertia_world,
             force: loads.force,
             torque: loads.torque,

@@ -25,6 +25,7 @@ pub enum Orientation {
 
 impl Orientation {
     /// The orientation as a 3×3 matrix R (body → world).
+    #[inline]
     pub fn matrix(&self) -> Matrix3<f64> {
         match self {
             Orientation::Matrix(m) => *m,
@@ -33,6 +34,7 @@ impl Orientation {
     }
 
     /// The nearest rotation as a unit quaternion (a drifted matrix is projected back).
+    #[inline]
     pub fn quaternion(&self) -> UnitQuaternion<f64> {
         match self {
             Orientation::Matrix(m) => nearest_rotation(m),

@@ -72,6 +72,8 @@ impl fmt::Display for Phase {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Checkpoint {
     state: State,
+    /// The state at the start of the last integrate phase (kept only when there are obstacles:
+    /// the collide phase's swept tests are its only reader).
     before: State,
     step: u64,
     last: Option<Phase>,
@@ -135,57 +137,87 @@ impl World {
     }
 
     /// Runs the rest of the current frame (all four phases from the start of a frame).
+    ///
+    /// From the start of a frame this is exactly `derive`, `forces`, `integrate`, `collide` as
+    /// [`World::step_phase`] runs them, without dispatching on the phase in between.
     pub fn step(&mut self) {
-        loop {
-            if self.step_phase() == Phase::Collide {
-                break;
-            }
+        if self.next_phase() != Phase::Derive {
+            while self.step_phase() != Phase::Collide {}
+            return;
         }
+        self.derive_phase();
+        self.forces_phase();
+        self.integrate_phase();
+        self.collide_phase();
+        self.now.last = Some(Phase::Collide);
     }
 
     /// Runs the next phase of the loop; returns the phase it ran.
     pub fn step_phase(&mut self) -> Phase {
         let phase = self.next_phase();
-        let now = &mut self.now;
         match phase {
-            Phase::Derive => now.kinematics = derive(&self.body, &now.state),
-            Phase::Forces => now.loads = self.effects.loads(&self.body, &now.kinematics),
-            Phase::Integrate => {
-                now.before = now.state;
-                now.state = self.integrator.step(
-                    &self.body,
-                    &self.effects,
-                    &now.state,
-                    &now.kinematics,
-                    &now.loads,
-                    self.dt,
-                );
-                now.step += 1;
-            }
-            Phase::Collide => {
-                if let (false, Some(model)) = (self.obstacles.is_empty(), &self.contact) {
-                    let input = CollideInput {
-                        body: &self.body,
-                        obstacles: &self.obstacles,
-                        model,
-                        before: &now.before,
-                        loads: &now.loads,
-                        initial_position: &self.initial.position,
-                        gravity: self.effects.gravity(),
-                        dt: self.dt,
-                    };
-                    let energy_before = energy(&self.body, &self.effects, &now.state).total;
-                    let state_before = now.state;
-                    now.contacts = collide(&input, &mut now.state);
-                    if now.state != state_before {
-                        let energy_after = energy(&self.body, &self.effects, &now.state);
-                        now.guard.after_collision(energy_before, &energy_after);
-                    }
-                }
-            }
+            Phase::Derive => self.derive_phase(),
+            Phase::Forces => self.forces_phase(),
+            Phase::Integrate => self.integrate_phase(),
+            Phase::Collide => self.collide_phase(),
         }
         self.now.last = Some(phase);
         phase
+    }
+
+    /// *derive*: I⁻¹_world, ω and v from the current state.
+    #[inline]
+    fn derive_phase(&mut self) {
+        self.now.kinematics = derive(&self.body, &self.now.state);
+    }
+
+    /// *forces*: F and τ of the declared effects at the derived velocities.
+    #[inline]
+    fn forces_phase(&mut self) {
+        self.now.loads = self.effects.loads(&self.body, &self.now.kinematics);
+    }
+
+    /// *integrate*: one integrator step (the state before it is kept for swept collisions).
+    #[inline]
+    fn integrate_phase(&mut self) {
+        let now = &mut self.now;
+        if !self.obstacles.is_empty() {
+            now.before = now.state;
+        }
+        now.state = self.integrator.step(
+            &self.body,
+            &self.effects,
+            &now.state,
+            &now.kinematics,
+            &now.loads,
+            self.dt,
+        );
+        now.step += 1;
+    }
+
+    /// *collide*: detection and response, only when the scene declares obstacles.
+    #[inline]
+    fn collide_phase(&mut self) {
+        let now = &mut self.now;
+        if let (false, Some(model)) = (self.obstacles.is_empty(), &self.contact) {
+            let input = CollideInput {
+                body: &self.body,
+                obstacles: &self.obstacles,
+                model,
+                before: &now.before,
+                loads: &now.loads,
+                initial_position: &self.initial.position,
+                gravity: self.effects.gravity(),
+                dt: self.dt,
+            };
+            let energy_before = energy(&self.body, &self.effects, &now.state).total;
+            let state_before = now.state;
+            now.contacts = collide(&input, &mut now.state);
+            if now.state != state_before {
+                let energy_after = energy(&self.body, &self.effects, &now.state);
+                now.guard.after_collision(energy_before, &energy_after);
+            }
+        }
     }
 
     /// The phase that [`World::step_phase`] will run next.

@@ -5,8 +5,11 @@ use nalgebra::Vector3;
 use std::collections::BTreeSet;
 use std::path::Path;
 
+/// A mesh's vertices and its unique edges (pairs of vertex indices).
+pub type Mesh = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
+
 /// Vertices and unique edges of every model in an `.obj` file.
-pub fn load_obj(path: &Path) -> Result<(Vec<Vector3<f64>>, Vec<(usize, usize)>), String> {
+pub fn load_obj(path: &Path) -> Result<Mesh, String> {
     if !path.is_file() {
         return Err("no such file".to_string());
     }
@@ -15,7 +18,6 @@ pub fn load_obj(path: &Path) -> Result<(Vec<Vector3<f64>>, Vec<(usize, usize)>),
         triangulate: false,
         ignore_points: true,
         ignore_lines: false,
-        ..Default::default()
     };
     let (models, _) = tobj::load_obj(path, &options).map_err(|e| format!("malformed .obj: {e}"))?;
     let mut points = Vec::new();

@@ -18,6 +18,7 @@ use super::super::state::{Orientation, State};
 use super::{advance_quaternion, quaternion_of};
 
 /// One explicit Euler step.
+#[inline]
 pub fn step(state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
     State {
         position: state.position + start.velocity * dt,

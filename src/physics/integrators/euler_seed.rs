@@ -21,6 +21,7 @@ use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
 
 /// One step of the original loop.
+#[inline]
 pub fn step(body: &Body, state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
     let r = start.rotation;
     let vertex_torque = body

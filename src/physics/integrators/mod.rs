@@ -87,6 +87,7 @@ impl Integrator {
     }
 
     /// One step of length `dt` from `state`, given the derive and forces phases' results there.
+    #[inline]
     pub fn step(
         self,
         body: &Body,
@@ -107,21 +108,58 @@ impl Integrator {
 }
 
 /// The quaternion of a state; the matrix form is only stepped by `euler-seed`.
+#[inline]
 fn quaternion_of(state: &State) -> UnitQuaternion<f64> {
     state.orientation.quaternion()
 }
 
 /// `q̇ = ½ ω ⊗ q` (ω world frame, q body → world), as a plain quaternion.
+#[inline]
 fn quaternion_rate(omega: &Vector3<f64>, q: &Quaternion<f64>) -> Quaternion<f64> {
     Quaternion::from_imag(*omega) * q * 0.5
 }
 
 /// One explicit step `q + dt·q̇`, renormalised.
+#[inline]
 fn advance_quaternion(
     q: &UnitQuaternion<f64>,
     omega: &Vector3<f64>,
     dt: f64,
 ) -> UnitQuaternion<f64> {
     let q = q.quaternion();
-    UnitQuaternion::new_normalize(q + quaternion_rate(omega, q) * dt)
+    normalize(q + quaternion_rate(omega, q) * dt)
+}
+
+/// `q / |q|`, with one division.
+#[inline]
+fn normalize(q: Quaternion<f64>) -> UnitQuaternion<f64> {
+    UnitQuaternion::new_unchecked(q * (1.0 / q.norm()))
+}
+
+/// The rotation matrix of a quaternion that need not be unit (it is normalised on the way):
+///
+/// ```text
+/// s = 2 / |q|²,   R = ⎡1 − s(y²+z²)   s(xy − wz)    s(xz + wy) ⎤
+///                     ⎢s(xy + wz)     1 − s(x²+z²)  s(yz − wx) ⎥
+///                     ⎣s(xz − wy)     s(yz + wx)    1 − s(x²+y²)⎦
+/// ```
+#[inline]
+fn rotation_of(q: &Quaternion<f64>) -> nalgebra::Matrix3<f64> {
+    let (w, x, y, z) = (q.w, q.i, q.j, q.k);
+    let s = 2.0 / (w * w + x * x + y * y + z * z);
+    let (xs, ys, zs) = (x * s, y * s, z * s);
+    let (wx, wy, wz) = (w * xs, w * ys, w * zs);
+    let (xx, xy, xz) = (x * xs, x * ys, x * zs);
+    let (yy, yz, zz) = (y * ys, y * zs, z * zs);
+    nalgebra::Matrix3::new(
+        1.0 - (yy + zz),
+        xy - wz,
+        xz + wy,
+        xy + wz,
+        1.0 - (xx + zz),
+        yz - wx,
+        xz - wy,
+        yz + wx,
+        1.0 - (xx + yy),
+    )
 }

@@ -13,11 +13,11 @@
 //! and L changes only through round-off because τ = 0 at every stage.
 
 use super::super::body::Body;
-use super::super::derive::{derive_with_rotation, Kinematics};
+use super::super::derive::Kinematics;
 use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
-use super::{quaternion_of, quaternion_rate};
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use super::{normalize, quaternion_of, quaternion_rate, rotation_of};
+use nalgebra::{Quaternion, Vector3};
 
 /// The state as a plain vector space element, quaternion not yet normalised.
 #[derive(Clone, Copy)]
@@ -29,6 +29,7 @@ struct Flat {
 }
 
 impl Flat {
+    #[inline]
     fn plus(&self, k: &Flat, h: f64) -> Flat {
         Flat {
             x: self.x + k.x * h,
@@ -40,6 +41,7 @@ impl Flat {
 }
 
 /// The derivative of `state` given its kinematics and loads.
+#[inline]
 fn rate(q: &Quaternion<f64>, kinematics: &Kinematics, loads: &Loads) -> Flat {
     Flat {
         x: kinematics.velocity,
@@ -49,18 +51,21 @@ fn rate(q: &Quaternion<f64>, kinematics: &Kinematics, loads: &Loads) -> Flat {
     }
 }
 
-/// `f(X)` at an intermediate stage: derive then forces, on the normalised quaternion.
+/// `f(X)` at an intermediate stage: the derive phase's `v = P/M`, `ω = R I⁻¹_body Rᵀ L` (as
+/// three matrix–vector products: a stage needs ω, not I⁻¹_world; R is that of q/|q|), then the
+/// forces phase.
+#[inline]
 fn stage(body: &Body, effects: &Effects, y: &Flat) -> Flat {
-    let unit = UnitQuaternion::new_normalize(y.q);
-    let state = State {
-        position: y.x,
-        orientation: Orientation::Quaternion(unit),
-        linear_momentum: y.p,
-        angular_momentum: y.l,
-    };
-    let kinematics = derive_with_rotation(body, &state, unit.to_rotation_matrix().into_inner());
-    let loads = effects.loads(body, &kinematics);
-    rate(&y.q, &kinematics, &loads)
+    let rotation = rotation_of(&y.q);
+    let angular_velocity = rotation * (body.inv_inertia_body * rotation.tr_mul(&y.l));
+    let velocity = y.p * body.inv_mass;
+    let loads = effects.loads_at(body, &velocity, &angular_velocity);
+    Flat {
+        x: velocity,
+        q: quaternion_rate(&angular_velocity, &y.q),
+        p: loads.force,
+        l: loads.torque,
+    }
 }
 
 /// One RK4 step.
@@ -91,7 +96,7 @@ pub fn step(
     let end = y.plus(&sum, dt / 6.0);
     State {
         position: end.x,
-        orientation: Orientation::Quaternion(UnitQuaternion::new_normalize(end.q)),
+        orientation: Orientation::Quaternion(normalize(end.q)),
         linear_momentum: end.p,
         angular_momentum: end.l,
     }

@@ -26,7 +26,7 @@ use super::super::body::Body;
 use super::super::derive::derive;
 use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
-use super::quaternion_of;
+use super::{normalize, quaternion_of};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// One kick–drift–kick step with the split free rotation.
@@ -68,11 +68,12 @@ fn free_rotation(
         imag[axis] = s;
         qp *= Quaternion::from_parts(c, imag);
         // Π ← rotᵢ(−θ) Π : the other two components turn the opposite way.
+        // sin θ = 2 s c, cos θ = c² − s² (double angle: one sin_cos per sub-rotation).
         let (j, k) = ((axis + 1) % 3, (axis + 2) % 3);
-        let (st, ct) = theta.sin_cos();
+        let (st, ct) = (2.0 * s * c, c * c - s * s);
         let (pj, pk) = (pi[j], pi[k]);
         pi[j] = ct * pj + st * pk;
         pi[k] = -st * pj + ct * pk;
     }
-    UnitQuaternion::new_normalize(qp * body.principal_axes.quaternion().conjugate())
+    normalize(qp * body.principal_axes.quaternion().conjugate())
 }

@@ -18,6 +18,7 @@ use super::super::state::{Orientation, State};
 use super::{advance_quaternion, quaternion_of};
 
 /// One semi-implicit Euler step.
+#[inline]
 pub fn step(body: &Body, state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
     let linear_momentum = state.linear_momentum + loads.force * dt;
     let angular_momentum = state.angular_momentum + loads.torque * dt;
