@@ -24,15 +24,20 @@ pub struct Energy {
 
 /// The energy of a state, measured from the state itself.
 pub fn energy(body: &Body, effects: &Effects, state: &State) -> Energy {
-    let kinematics = derive(body, state);
-    let kinetic = 0.5 * body.mass * kinematics.velocity.norm_squared()
-        + 0.5 * kinematics.angular_velocity.dot(&state.angular_momentum);
+    let kinetic = kinetic_energy(body, state);
     let potential = effects.potential_energy(body, &state.position);
     Energy {
         kinetic,
         potential,
         total: kinetic + potential,
     }
+}
+
+/// Kinetic energy `½ M v·v + ½ ω·L` of a state, J.
+pub fn kinetic_energy(body: &Body, state: &State) -> f64 {
+    let kinematics = derive(body, state);
+    0.5 * body.mass * kinematics.velocity.norm_squared()
+        + 0.5 * kinematics.angular_velocity.dot(&state.angular_momentum)
 }
 
 /// Every loop quantity after a phase.

@@ -212,7 +212,7 @@ impl World {
             };
             let energy_before = energy(&self.body, &self.effects, &now.state).total;
             let state_before = now.state;
-            now.contacts = collide(&input, &mut now.state);
+            collide(&input, &mut now.state, &mut now.contacts);
             if now.state != state_before {
                 let energy_after = energy(&self.body, &self.effects, &now.state);
                 now.guard.after_collision(energy_before, &energy_after);

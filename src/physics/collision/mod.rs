@@ -2,6 +2,16 @@
 //!
 //! Detection follows the report: every body vertex `pᵢ = x + R r₀ᵢ` is tested against every
 //! declared obstacle. The phase runs only when the scene declares obstacles.
+//!
+//! | file | idea |
+//! |---|---|
+//! | `detect` | is a vertex inside an obstacle (depth, normal); the swept test along its motion |
+//! | `seed` | the report's response, reproduced with its failures |
+//! | `impulse` | impulses with restitution and Coulomb friction, energy never added |
+
+pub mod detect;
+pub mod impulse;
+pub mod seed;
 
 use super::body::Body;
 use super::effects::Loads;
@@ -97,13 +107,17 @@ pub struct Contact {
     pub depth: f64,
     /// Unit contact normal, pointing out of the obstacle.
     pub normal: Vector3<f64>,
-    /// Lever arm r from the barycenter to the point, m.
+    /// Lever arm r to the point, m: from the current barycenter (`impulse`), or from the
+    /// *initial* barycenter x₀ as the report measures it (`seed`).
     pub lever: Vector3<f64>,
-    /// Normal relative velocity v·n before the response, m/s (negative: approaching).
+    /// Normal velocity of the point `(v + ω × (p − x))·n` before the response, m/s
+    /// (negative: approaching).
     pub normal_velocity: f64,
-    /// 1/M + n·((I⁻¹(r×n))×r), 1/kg: the denominator of the impulse formula.
+    /// 1/M + n·((I⁻¹(r×n))×r), 1/kg: the denominator of the impulse formula (`impulse`;
+    /// 0 for `seed`, which has no impulse formula).
     pub denominator: f64,
-    /// Total impulse applied at this point (normal and friction), N·s.
+    /// Impulse applied at this point, N·s: normal (with restitution) plus friction for
+    /// `impulse`; for `seed`, the change it made to the whole momentum, −1.4 P.
     pub impulse: Vector3<f64>,
 }
 
@@ -123,10 +137,21 @@ pub struct CollideInput<'a> {
     pub dt: f64,
 }
 
-/// Runs detection and the chosen response on `state`; returns the contacts it handled.
-pub fn collide(input: &CollideInput, state: &mut State) -> Vec<Contact> {
-    let _ = (input, state);
-    Vec::new()
+/// Runs detection and the chosen response on `state`; `contacts` is cleared and filled with the
+/// contacts it handled (a buffer reused from step to step).
+pub fn collide(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
+    contacts.clear();
+    match input.model.response {
+        Response::Seed => seed::respond(input, state, contacts),
+        Response::Impulse => impulse::respond(input, state, contacts),
+    }
+}
+
+/// Vertex positions `pᵢ = x + R r₀ᵢ` of a state, written into `out`.
+pub(crate) fn vertices_into(body: &Body, state: &State, out: &mut Vec<Vector3<f64>>) {
+    let r = state.orientation.matrix();
+    out.clear();
+    out.extend(body.points_body.iter().map(|r0| state.position + r * r0));
 }
 
 impl Obstacle {

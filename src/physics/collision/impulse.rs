@@ -1,0 +1,368 @@
+//! `impulse`: a physically based response with restitution e and Coulomb friction μ that never
+//! adds kinetic energy (for 0 ≤ e ≤ 1, μ ≥ 0), whatever the number of contacts.
+//!
+//! # One contact
+//!
+//! A vertex at lever arm r from the barycenter, contact normal n (out of the obstacle). An
+//! impulse j n there changes the momenta by `ΔP = j n`, `ΔL = r × (j n)`, so the normal velocity
+//! of the point `u_n = (v + ω × r)·n` changes by `j·k` with
+//!
+//! ```text
+//! k = 1/M + n·((I⁻¹(r×n)) × r) = 1/M + (r×n)·I⁻¹(r×n)       (the denominator, 1/kg)
+//! j = −(1 + e) u_n / k                                      (Newton's law for one contact)
+//! ```
+//!
+//! # Many contacts (a face landing flat has 4), in three stages
+//!
+//! Applying that formula to one vertex after the other makes the result depend on the vertex
+//! order, and a single pass leaves later contacts approaching. Instead:
+//!
+//! 1. **Inelastic normal impulses** λᵢ ≥ 0 by projected Gauss–Seidel (sequential impulses with
+//!    *accumulated* clamping): sweep the contacts, set each one's normal velocity to zero,
+//!    `λᵢ ← max(0, λᵢ − u_nᵢ / kᵢ)`, and sweep again until no impulse changes any velocity by
+//!    more than a tolerance. The solution (the velocities) does not depend on the order.
+//!    The kinetic energy after a set of impulses Λ is a convex quadratic in Λ,
+//!    `K(Λ) = K₀ + Λ·u₀ + ½ Λᵀ A Λ` (A the contact-space inverse mass, positive semi-definite),
+//!    and each update is the exact minimisation of K along one coordinate over an interval
+//!    that contains the current value: K can only go down.
+//! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
+//!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
+//!    The sweep updates the normal impulse as in stage 1, then each tangent direction in turn,
+//!    `λ_t1 ← clamp(λ_t1 − u_t1 / k_t1, ±√((μλ)² − λ_t2²))` (the current slice of the disk), and
+//!    the same for t2. Still exact coordinate minimisations of the same convex K over an
+//!    interval containing the current value: K still only goes down.
+//! 3. **Restitution** (Poisson's: the restitution impulse is e times the compression impulse),
+//!    only at contacts that approached faster than [`BOUNCE_STEPS`]·|g|·dt (slower ones are
+//!    resting contact: they do not bounce, which is what keeps a body lying on the ground from
+//!    jittering). With one frictionless contact that is Newton's `j = −(1+e) u_n/k` and loses
+//!    energy for e ≤ 1; with friction or several contacts it can *gain* energy. Along the line
+//!    `Λ_inelastic + s Λ_restitution` the energy is a quadratic `K(s) = a s² + b s + c`, with
+//!    `c = K(Λ_inelastic) ≤ K₀`; if `K(1) > K₀` the restitution part is scaled to the largest
+//!    `s = (−b + √(b² − 4a(c − K₀))) / 2a` with `K(s) = K₀`.
+//!
+//! A last check measures K exactly as the energy panel does and, if round-off alone left it
+//! above K₀, scales P and L by `√(K₀/K)` (K is quadratic in (P, L)).
+//!
+//! # Position correction
+//!
+//! The penetration left by the step is removed by *moving* the body, never by biasing
+//! velocities (a velocity bias — Baumgarte — turns penetration into kinetic energy and makes
+//! resting bodies jitter). The body is translated by the shortest Δx with `nᵢ·Δx ≥ dᵢ` for
+//! every contact (iterated projections; for the ground alone, `Δx = max dᵢ · y`). A translation
+//! changes neither P nor L, so no kinetic energy, and along the contact normal only, so a body
+//! at rest on a face cannot creep sideways. (Rotating the body instead would change
+//! `I⁻¹_world` and so `½ L·I⁻¹L`.)
+
+use super::detect::swept;
+use super::{CollideInput, Contact};
+use crate::physics::snapshot::kinetic_energy;
+use crate::physics::state::State;
+use nalgebra::{Matrix3, Vector3};
+
+/// Contacts approaching slower than this many `|g| dt` do not bounce: one step of free fall
+/// gives an approach speed of `|g| dt`, so a resting body is always below the threshold.
+pub const BOUNCE_STEPS: f64 = 3.0;
+
+/// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
+/// same fraction of the fastest approach speed.
+pub const TOLERANCE: f64 = 1e-10;
+
+/// At most this many Gauss–Seidel sweeps per stage.
+pub const MAX_SWEEPS: usize = 200;
+
+/// One contact as the solver sees it.
+#[derive(Debug, Clone, Copy)]
+struct Row {
+    /// Unit normal n, r × n and I⁻¹(r × n), and k = 1/M + (r×n)·I⁻¹(r×n).
+    normal: Direction,
+    /// Two unit tangents.
+    tangents: [Direction; 2],
+    /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
+    lambda: f64,
+    lambda_tangent: [f64; 2],
+    /// Restitution impulse e λ (scaled by the energy clamp).
+    lambda_restitution: f64,
+    /// Normal velocity before the response, m/s.
+    approach: f64,
+}
+
+/// A direction d at lever arm r: d, r × d, I⁻¹(r × d) and the effective inverse mass along it.
+#[derive(Debug, Clone, Copy)]
+struct Direction {
+    d: Vector3<f64>,
+    rd: Vector3<f64>,
+    w: Vector3<f64>,
+    k: f64,
+}
+
+impl Direction {
+    fn new(
+        d: Vector3<f64>,
+        lever: &Vector3<f64>,
+        inv_inertia: &Matrix3<f64>,
+        inv_mass: f64,
+    ) -> Self {
+        let rd = lever.cross(&d);
+        let w = inv_inertia * rd;
+        Direction {
+            d,
+            rd,
+            w,
+            k: inv_mass + rd.dot(&w),
+        }
+    }
+}
+
+/// The body's velocities while impulses are applied: v, ω and L (ω = I⁻¹ L kept in step).
+#[derive(Debug, Clone, Copy)]
+struct Motion {
+    v: Vector3<f64>,
+    omega: Vector3<f64>,
+    l: Vector3<f64>,
+    inv_mass: f64,
+}
+
+impl Motion {
+    /// Velocity of the contact point along the direction: `d·v + (r×d)·ω`.
+    fn along(&self, dir: &Direction) -> f64 {
+        dir.d.dot(&self.v) + dir.rd.dot(&self.omega)
+    }
+
+    /// Applies the impulse j d at the contact point.
+    fn apply(&mut self, j: f64, dir: &Direction) {
+        self.v += dir.d * (j * self.inv_mass);
+        self.l += dir.rd * j;
+        self.omega += dir.w * j;
+    }
+}
+
+/// Detects contacts (swept test) and runs the response on `state`.
+pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
+    let body = input.body;
+    let rotation_now = state.orientation.matrix();
+    let rotation_before = input.before.orientation.matrix();
+    for (index, obstacle) in input.obstacles.iter().enumerate() {
+        for (vertex, r0) in body.points_body.iter().enumerate() {
+            let a = input.before.position + rotation_before * r0;
+            let b = state.position + rotation_now * r0;
+            if let Some(hit) = swept(obstacle, &a, &b) {
+                contacts.push(Contact {
+                    vertex,
+                    obstacle: index,
+                    point: b,
+                    depth: hit.depth,
+                    normal: hit.normal,
+                    lever: b - state.position,
+                    normal_velocity: 0.0,
+                    denominator: 0.0,
+                    impulse: Vector3::zeros(),
+                });
+            }
+        }
+    }
+    if contacts.is_empty() {
+        return;
+    }
+    let bounce_speed = input
+        .gravity
+        .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
+    let kinetic_before = kinetic_energy(body, state);
+    resolve(
+        input.body.inv_mass,
+        &(rotation_now * body.inv_inertia_body * rotation_now.transpose()),
+        input.model.restitution,
+        input.model.friction,
+        bounce_speed,
+        state,
+        contacts,
+    );
+    // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    for _ in 0..4 {
+        let kinetic_after = kinetic_energy(body, state);
+        if kinetic_after <= kinetic_before {
+            break;
+        }
+        let scale = (kinetic_before / kinetic_after).sqrt() * (1.0 - 4.0 * f64::EPSILON);
+        state.linear_momentum *= scale;
+        state.angular_momentum *= scale;
+    }
+    push_out(state, contacts);
+}
+
+/// The velocity stages (module doc) on `state` for `contacts` (point, depth, normal and lever
+/// filled in); fills in each contact's normal velocity, denominator and impulse.
+fn resolve(
+    inv_mass: f64,
+    inv_inertia: &Matrix3<f64>,
+    restitution: f64,
+    friction: f64,
+    bounce_speed: f64,
+    state: &mut State,
+    contacts: &mut [Contact],
+) {
+    let l = state.angular_momentum;
+    let mut motion = Motion {
+        v: state.linear_momentum * inv_mass,
+        omega: inv_inertia * l,
+        l,
+        inv_mass,
+    };
+    let kinetic_before = motion.kinetic(inv_mass);
+    let mut rows: Vec<Row> = contacts
+        .iter()
+        .map(|c| {
+            let normal = Direction::new(c.normal, &c.lever, inv_inertia, inv_mass);
+            let (t1, t2) = tangents(&c.normal);
+            Row {
+                normal,
+                tangents: [
+                    Direction::new(t1, &c.lever, inv_inertia, inv_mass),
+                    Direction::new(t2, &c.lever, inv_inertia, inv_mass),
+                ],
+                lambda: 0.0,
+                lambda_tangent: [0.0; 2],
+                lambda_restitution: 0.0,
+                approach: motion.along(&normal),
+            }
+        })
+        .collect();
+    let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
+    let tolerance = TOLERANCE * (1.0 + fastest);
+
+    // Stage 1: inelastic normal impulses, λ ≥ 0.
+    for _ in 0..MAX_SWEEPS {
+        let mut largest: f64 = 0.0;
+        for row in rows.iter_mut() {
+            largest = largest.max(normal_update(row, &mut motion));
+        }
+        if largest <= tolerance {
+            break;
+        }
+    }
+
+    // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
+    if friction > 0.0 && rows.iter().any(|r| r.lambda > 0.0) {
+        let bounds: Vec<f64> = rows.iter().map(|r| friction * r.lambda).collect();
+        for _ in 0..MAX_SWEEPS {
+            let mut largest: f64 = 0.0;
+            for (row, &bound) in rows.iter_mut().zip(&bounds) {
+                largest = largest.max(normal_update(row, &mut motion));
+                if bound == 0.0 {
+                    continue;
+                }
+                for axis in 0..2 {
+                    let other = row.lambda_tangent[1 - axis];
+                    let limit = (bound * bound - other * other).max(0.0).sqrt();
+                    let dir = &row.tangents[axis];
+                    let old = row.lambda_tangent[axis];
+                    let new = (old - motion.along(dir) / dir.k).clamp(-limit, limit);
+                    let change = new - old;
+                    if change != 0.0 {
+                        row.lambda_tangent[axis] = new;
+                        motion.apply(change, dir);
+                        largest = largest.max(change.abs() * dir.k);
+                    }
+                }
+            }
+            if largest <= tolerance {
+                break;
+            }
+        }
+    }
+
+    // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀.
+    if restitution > 0.0 {
+        let mut dv = Vector3::zeros();
+        let mut dl = Vector3::zeros();
+        let mut domega = Vector3::zeros();
+        for row in rows.iter_mut() {
+            if row.approach < -bounce_speed && row.lambda > 0.0 {
+                let j = restitution * row.lambda;
+                row.lambda_restitution = j;
+                dv += row.normal.d * (j * inv_mass);
+                dl += row.normal.rd * j;
+                domega += row.normal.w * j;
+            }
+        }
+        if dl != Vector3::zeros() || dv != Vector3::zeros() {
+            // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
+            let a = 0.5 * (dv.norm_squared() / inv_mass + domega.dot(&dl));
+            let b = dv.dot(&motion.v) / inv_mass + motion.omega.dot(&dl);
+            let c = motion.kinetic(inv_mass);
+            let scale = if a + b + c <= kinetic_before || a <= 0.0 {
+                1.0
+            } else {
+                let slack = (kinetic_before - c).max(0.0);
+                ((-b + (b * b + 4.0 * a * slack).sqrt()) / (2.0 * a)).clamp(0.0, 1.0)
+            };
+            motion.v += dv * scale;
+            motion.l += dl * scale;
+            motion.omega += domega * scale;
+            for row in rows.iter_mut() {
+                row.lambda_restitution *= scale;
+            }
+        }
+    }
+
+    state.linear_momentum = motion.v / inv_mass;
+    state.angular_momentum = motion.l;
+    for (contact, row) in contacts.iter_mut().zip(&rows) {
+        contact.normal_velocity = row.approach;
+        contact.denominator = row.normal.k;
+        contact.impulse = row.normal.d * (row.lambda + row.lambda_restitution)
+            + row.tangents[0].d * row.lambda_tangent[0]
+            + row.tangents[1].d * row.lambda_tangent[1];
+    }
+}
+
+/// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
+/// to the contact's normal velocity (m/s).
+fn normal_update(row: &mut Row, motion: &mut Motion) -> f64 {
+    let dir = &row.normal;
+    let new = (row.lambda - motion.along(dir) / dir.k).max(0.0);
+    let change = new - row.lambda;
+    if change == 0.0 {
+        return 0.0;
+    }
+    row.lambda = new;
+    motion.apply(change, dir);
+    change.abs() * dir.k
+}
+
+impl Motion {
+    /// `½ M v·v + ½ ω·L`.
+    fn kinetic(&self, inv_mass: f64) -> f64 {
+        0.5 * self.v.norm_squared() / inv_mass + 0.5 * self.omega.dot(&self.l)
+    }
+}
+
+/// Two unit tangents completing n to an orthonormal basis.
+fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let helper = if n.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let t1 = n.cross(&helper).normalize();
+    (t1, n.cross(&t1))
+}
+
+/// Moves the body by the shortest translation Δx with nᵢ·Δx ≥ dᵢ for every contact (cyclic
+/// projections onto the half-spaces; exact in one pass when all normals agree).
+fn push_out(state: &mut State, contacts: &[Contact]) {
+    let mut shift = Vector3::zeros();
+    for _ in 0..32 {
+        let mut moved = false;
+        for c in contacts {
+            let missing = c.depth - c.normal.dot(&shift);
+            if missing > 1e-12 {
+                shift += c.normal * missing;
+                moved = true;
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+    state.position += shift;
+}

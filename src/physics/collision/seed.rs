@@ -1,0 +1,152 @@
+//! `seed`: the original report's collision response, reproduced on purpose, failures included.
+//!
+//! For each obstacle in turn, with the vertex positions the integrate phase computed:
+//!
+//! ```text
+//! k     = the deepest vertex inside the obstacle (static test only; nothing if none is inside)
+//! d     = its depth,  n = the obstacle's normal there (ground +y, sphere radial, box face)
+//! x ← x + d² n                 pushed out by the SQUARED distance (the report's distance2)
+//! L ← L + (pₖ − x₀) × (−F)     F the forces phase's force, x₀ the INITIAL barycenter
+//! P ← −0.4 P                   the whole momentum reversed and scaled
+//! ```
+//!
+//! What each rule does wrong, and what a class sees:
+//!
+//! - **Horizontal motion reversed.** `P ← −0.4 P` flips every component, not only the normal
+//!   one: a box sliding right that touches the ground bounces back to the left.
+//! - **Energy not conserved, and not only lost.** The 0.4 factor removes 84 % of the kinetic
+//!   energy at each touch whatever the materials; but `L += r × (−F)` adds an angular momentum
+//!   of size |r|·M g (a force, in N, added to a momentum, in N·m·s — the units do not even
+//!   agree): at each touch the body is kicked into spin, and the kick grows with the lever arm.
+//! - **The lever arm is measured from the initial barycenter.** `pₖ − x₀` includes the whole
+//!   displacement of the body since t = 0: a body that has travelled 1 m sideways gets a kick
+//!   five times larger than it would at its start, about an axis that has nothing to do with
+//!   where it touches.
+//! - **Jitter and sinking at rest.** A vertex only 1 mm deep is pushed out by 1 µm (d² ≪ d for
+//!   d < 1 m), so it stays inside; the next step finds it again and reverses P again. Resting on
+//!   the ground, each step does `P ← −0.4 (P + F dt)`, whose fixed point is the small upward
+//!   momentum `P* = 0.4/1.4 · M g dt`: the body never rests, it hovers and shivers with a vertex
+//!   inside the ground, while every touch adds another angular kick.
+//! - **The climbing bug** (the report's own): a falling body whose corner grazes the top edge of
+//!   an obstacle has that corner pushed up by a tiny d², keeps it inside, and every following
+//!   step reverses its momentum again, i.e. turns its fall into a rise, and kicks its angular
+//!   momentum. The body ratchets upward along the obstacle's side instead of falling past it,
+//!   and climbs onto it.
+//! - **No swept test**: a fast vertex that jumps over a thin obstacle within one step is
+//!   never seen.
+//!
+//! Restitution and friction from the scene are ignored: the report's factor is always 0.4.
+
+use super::detect::inside;
+use super::{vertices_into, CollideInput, Contact};
+use crate::physics::derive::derive;
+use crate::physics::state::State;
+
+/// The report's momentum factor: `P ← −0.4 P`.
+pub const MOMENTUM_FACTOR: f64 = -0.4;
+
+/// Runs the report's response on `state`, one obstacle after the other.
+pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
+    let mut points = Vec::with_capacity(input.body.points_body.len());
+    vertices_into(input.body, state, &mut points);
+    for (index, obstacle) in input.obstacles.iter().enumerate() {
+        // The deepest vertex (the first one on a tie).
+        let mut deepest = None;
+        for (vertex, p) in points.iter().enumerate() {
+            if let Some(hit) = inside(obstacle, p) {
+                if deepest.is_none_or(|(_, best): (usize, super::detect::Penetration)| {
+                    hit.depth > best.depth
+                }) {
+                    deepest = Some((vertex, hit));
+                }
+            }
+        }
+        let Some((vertex, hit)) = deepest else {
+            continue;
+        };
+        let point = points[vertex];
+        let kinematics = derive(input.body, state);
+        let point_velocity =
+            kinematics.velocity + kinematics.angular_velocity.cross(&(point - state.position));
+        let lever = point - input.initial_position;
+        let momentum_before = state.linear_momentum;
+        state.position += hit.normal * (hit.depth * hit.depth);
+        state.angular_momentum += lever.cross(&(-input.loads.force));
+        state.linear_momentum *= MOMENTUM_FACTOR;
+        contacts.push(Contact {
+            vertex,
+            obstacle: index,
+            point,
+            depth: hit.depth,
+            normal: hit.normal,
+            lever,
+            normal_velocity: point_velocity.dot(&hit.normal),
+            denominator: 0.0,
+            impulse: state.linear_momentum - momentum_before,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::body::Body;
+    use crate::physics::collision::{ContactModel, Obstacle, Response};
+    use crate::physics::effects::Loads;
+    use crate::physics::state::State;
+    use nalgebra::Vector3;
+
+    #[test]
+    fn the_deepest_vertex_pushes_by_its_squared_depth_and_reverses_the_whole_momentum() {
+        let body = Body::solid_box(Vector3::repeat(0.2), 1.0).unwrap();
+        // Bottom face 5 mm below the ground: the 4 bottom corners tie, the first (index 0,
+        // the −x −y −z corner, at (0.9, −0.005, −0.1)) counts.
+        let mut state = State {
+            position: Vector3::new(1.0, 0.095, 0.0),
+            linear_momentum: Vector3::new(2.0, -3.0, 0.5),
+            ..State::at_rest()
+        };
+        let before = state;
+        let model = ContactModel {
+            response: Response::Seed,
+            restitution: 0.9,
+            friction: 0.9,
+        };
+        let loads = Loads {
+            force: Vector3::new(0.0, -9.81, 0.0),
+            torque: Vector3::zeros(),
+        };
+        let obstacles = [Obstacle::Ground { height: 0.0 }];
+        let input = CollideInput {
+            body: &body,
+            obstacles: &obstacles,
+            model: &model,
+            before: &before,
+            loads: &loads,
+            initial_position: &Vector3::new(0.0, 1.0, 0.0),
+            gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
+            dt: 1e-3,
+        };
+        let mut contacts = Vec::new();
+        respond(&input, &mut state, &mut contacts);
+        // y: 0.095 + 0.005² = 0.095025 (a metre-squared added to metres).
+        assert!(
+            (state.position.y - 0.095025).abs() < 1e-15,
+            "{}",
+            state.position.y
+        );
+        // P ← −0.4 P: every component, the horizontal ones too.
+        let expected_p = Vector3::new(-0.8, 1.2, -0.2);
+        assert!((state.linear_momentum - expected_p).norm() < 1e-15);
+        // L += (p − x₀) × (−F) = (0.9, −1.005, −0.1) × (0, 9.81, 0) = (0.981, 0, 8.829).
+        let expected_l = Vector3::new(0.981, 0.0, 8.829);
+        assert!(
+            (state.angular_momentum - expected_l).norm() < 1e-12,
+            "{:?}",
+            state.angular_momentum
+        );
+        assert_eq!(contacts.len(), 1);
+        assert_eq!(contacts[0].vertex, 0);
+        assert!((contacts[0].impulse - (expected_p - before.linear_momentum)).norm() < 1e-15);
+    }
+}

@@ -1,0 +1,420 @@
+//! Collisions: resting contact, obstacles, fast impacts, the report's climbing bug, and the
+//! `impulse` response's energy guarantee. Bounds from issue 3; dt = 1e-3 unless stated.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use proptest::prelude::*;
+use tumble::physics::body::{box_corners, box_edges};
+use tumble::physics::collision::{collide, CollideInput};
+use tumble::physics::effects::Loads;
+use tumble::physics::snapshot::{deepest_penetration, kinetic_energy};
+use tumble::physics::{
+    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Phase, Response, State,
+    World,
+};
+
+const G: f64 = 9.81;
+const SIDE: f64 = 0.2;
+const GROUND: Obstacle = Obstacle::Ground { height: 0.0 };
+
+fn impulse(restitution: f64, friction: f64) -> ContactModel {
+    ContactModel {
+        response: Response::Impulse,
+        restitution,
+        friction,
+    }
+}
+
+fn cube() -> Body {
+    Body::solid_box(Vector3::repeat(SIDE), 1.0).unwrap()
+}
+
+fn state(position: Vector3<f64>, orientation: UnitQuaternion<f64>) -> State {
+    State {
+        position,
+        orientation: Orientation::Quaternion(orientation),
+        ..State::at_rest()
+    }
+}
+
+fn world(
+    body: Body,
+    initial: State,
+    obstacles: Vec<Obstacle>,
+    model: ContactModel,
+    dt: f64,
+) -> World {
+    World::new(
+        body,
+        Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
+        obstacles,
+        Some(model),
+        Integrator::Rk4,
+        dt,
+        initial,
+    )
+}
+
+/// Rotated 45° about z, then 30° about x: a corner lowest.
+fn corner_down() -> UnitQuaternion<f64> {
+    UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 30f64.to_radians())
+        * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 45f64.to_radians())
+}
+
+/// What a run saw: the deepest vertex after any step (the CSV's `penetration`) and the deepest
+/// contact the collide phase found before correcting it.
+#[derive(Debug, Default)]
+struct Watch {
+    after_step: f64,
+    before_correction: f64,
+}
+
+fn run(world: &mut World, seconds: f64, watch: &mut Watch) {
+    let steps = (seconds / world.dt()).round() as u64;
+    for _ in 0..steps {
+        world.step();
+        assert!(world.divergence().is_none(), "{:?}", world.divergence());
+        watch.after_step = watch
+            .after_step
+            .max(deepest_penetration(world.obstacles(), &world.vertices()));
+        for c in world.contacts() {
+            watch.before_correction = watch.before_correction.max(c.depth);
+        }
+    }
+}
+
+fn speed(world: &World) -> f64 {
+    world.snapshot().velocity.norm()
+}
+
+fn angular_speed(world: &World) -> f64 {
+    world.snapshot().angular_velocity.norm()
+}
+
+#[test]
+fn a_cube_dropped_corner_first_comes_to_rest_on_a_face() {
+    let mut w = world(
+        cube(),
+        state(Vector3::new(0.0, 1.0, 0.0), corner_down()),
+        vec![GROUND],
+        impulse(0.4, 0.5),
+        1e-3,
+    );
+    let mut watch = Watch::default();
+    run(&mut w, 5.0, &mut watch);
+    let y = w.state().position.y;
+    // Resting on a face, the barycenter is half a side above the ground: 0.1 m.
+    assert!((y - 0.1).abs() < 5e-4, "barycenter height {y}");
+    assert!(speed(&w) < 1e-3, "speed {}", speed(&w));
+    assert!(
+        angular_speed(&w) < 1e-2,
+        "angular speed {}",
+        angular_speed(&w)
+    );
+    // Resting on a face: the lowest face's normal is vertical, so some body axis is ±y.
+    let r = w.state().orientation.matrix();
+    let up = (0..3).map(|k| r[(1, k)].abs()).fold(0.0, f64::max);
+    assert!(
+        up > 1.0 - 1e-6,
+        "no body axis is vertical: largest |R_yk| = {up}"
+    );
+    assert!(
+        watch.after_step < 5e-3,
+        "deepest after a step {}",
+        watch.after_step
+    );
+    // Before correction: at most one step of travel, ≈ 4 m/s × 1 ms.
+    assert!(
+        watch.before_correction < 5e-3,
+        "deepest contact {}",
+        watch.before_correction
+    );
+}
+
+/// The 6 orientations that put each face of the cube down.
+fn faces_down() -> Vec<UnitQuaternion<f64>> {
+    let q = UnitQuaternion::from_axis_angle;
+    let half = std::f64::consts::FRAC_PI_2;
+    vec![
+        UnitQuaternion::identity(),
+        q(&Vector3::x_axis(), 2.0 * half),
+        q(&Vector3::x_axis(), half),
+        q(&Vector3::x_axis(), -half),
+        q(&Vector3::z_axis(), half),
+        q(&Vector3::z_axis(), -half),
+    ]
+}
+
+#[test]
+fn a_cube_dropped_flat_on_each_face_rests_without_creeping() {
+    for (face, orientation) in faces_down().into_iter().enumerate() {
+        let mut w = world(
+            cube(),
+            state(Vector3::new(0.0, 1.0, 0.0), orientation),
+            vec![GROUND],
+            impulse(0.4, 0.5),
+            1e-3,
+        );
+        let mut watch = Watch::default();
+        run(&mut w, 2.0, &mut watch);
+        let settled = w.state().position;
+        run(&mut w, 10.0, &mut watch);
+        let drift = (w.state().position - settled).xz().norm();
+        // Nothing pushes sideways: the drift over 10 s of rest must stay below 1 mm.
+        assert!(drift < 1e-3, "face {face}: horizontal drift {drift} m");
+        let y = w.state().position.y;
+        assert!((y - 0.1).abs() < 5e-4, "face {face}: height {y}");
+        assert!(speed(&w) < 1e-3, "face {face}: speed {}", speed(&w));
+        assert!(
+            watch.after_step < 5e-3,
+            "face {face}: depth {}",
+            watch.after_step
+        );
+    }
+}
+
+#[test]
+fn the_result_does_not_depend_on_the_order_of_the_vertices() {
+    // The same cube as 8 equal mass points, once in binary order, once shuffled.
+    let corners = box_corners(Vector3::repeat(SIDE));
+    let order = [5usize, 2, 7, 0, 3, 6, 1, 4];
+    let shuffled: Vec<_> = order.iter().map(|&i| corners[i]).collect();
+    let ends: Vec<State> = [corners, shuffled]
+        .into_iter()
+        .map(|points| {
+            let body = Body::from_points(&points, &[], 1.0, box_edges()).unwrap();
+            let mut w = world(
+                body,
+                state(Vector3::new(0.0, 0.6, 0.0), corner_down()),
+                vec![GROUND],
+                impulse(0.4, 0.5),
+                1e-3,
+            );
+            run(&mut w, 0.6, &mut Watch::default());
+            *w.state()
+        })
+        .collect();
+    // Same landing, same bounce: the Gauss–Seidel sweeps converge to the same velocities
+    // (to their 1e-10 m/s tolerance) whatever order they visit the contacts in.
+    let dx = (ends[0].position - ends[1].position).norm();
+    let dp = (ends[0].linear_momentum - ends[1].linear_momentum).norm();
+    let dl = (ends[0].angular_momentum - ends[1].angular_momentum).norm();
+    assert!(ends[0].position.y < 0.2, "the cube has not landed yet");
+    assert!(
+        dx < 1e-6 && dp < 1e-5 && dl < 1e-6,
+        "dx {dx}, dP {dp}, dL {dl}"
+    );
+}
+
+#[test]
+fn a_cube_dropped_off_centre_on_a_sphere_slides_off_and_rests_on_the_ground() {
+    let sphere = Obstacle::Sphere {
+        center: Vector3::new(0.0, 0.5, 0.0),
+        radius: 0.5,
+    };
+    let mut w = world(
+        cube(),
+        state(Vector3::new(0.3, 2.0, 0.0), UnitQuaternion::identity()),
+        vec![GROUND, sphere],
+        impulse(0.4, 0.5),
+        1e-3,
+    );
+    let mut deepest_in_sphere: f64 = 0.0;
+    let mut deepest_contact: f64 = 0.0;
+    for _ in 0..10_000 {
+        w.step();
+        for p in w.vertices() {
+            deepest_in_sphere = deepest_in_sphere.max(sphere.depth(&p));
+        }
+        for c in w.contacts().iter().filter(|c| c.obstacle == 1) {
+            deepest_contact = deepest_contact.max(c.depth);
+        }
+    }
+    let x = w.state().position;
+    let out = (x - Vector3::new(0.0, x.y, 0.0)).norm();
+    // On the ground: barycenter 0.1 m up; outside the sphere: its axis is > 0.5 + 0.1 m away
+    // (the sphere touches the ground at the origin, and the cube must clear it).
+    assert!((x.y - 0.1).abs() < 5e-4, "height {}", x.y);
+    assert!(
+        out > 0.5,
+        "horizontal distance from the sphere's axis {out}"
+    );
+    assert!(speed(&w) < 1e-3, "speed {}", speed(&w));
+    assert!(
+        deepest_in_sphere <= 5e-3,
+        "sphere depth after a step {deepest_in_sphere}"
+    );
+    assert!(
+        deepest_contact <= 5e-3,
+        "sphere depth before correction {deepest_contact}"
+    );
+}
+
+#[test]
+fn a_cube_landing_on_a_box_top_stays_on_it() {
+    let block = Obstacle::Box {
+        min: Vector3::new(-0.5, 0.0, -0.5),
+        max: Vector3::new(0.5, 0.5, 0.5),
+    };
+    let mut w = world(
+        cube(),
+        state(Vector3::new(0.1, 1.5, -0.05), corner_down()),
+        vec![GROUND, block],
+        impulse(0.4, 0.5),
+        1e-3,
+    );
+    let mut watch = Watch::default();
+    run(&mut w, 5.0, &mut watch);
+    let x = w.state().position;
+    // On the top face (y = 0.5): barycenter at 0.5 + 0.1, inside the top's footprint.
+    assert!((x.y - 0.6).abs() < 5e-4, "height {}", x.y);
+    assert!(x.x.abs() < 0.5 && x.z.abs() < 0.5, "fell off: {x:?}");
+    assert!(speed(&w) < 1e-3, "speed {}", speed(&w));
+    assert!(watch.after_step < 5e-3, "depth {}", watch.after_step);
+}
+
+/// A 50 m/s vertical impact, face down, at `dt`: returns the lowest any vertex got below
+/// `top` after any step, and the barycenter height at the end.
+fn fast_impact(obstacle: Obstacle, top: f64, dt: f64) -> (f64, f64) {
+    let mut initial = state(
+        Vector3::new(0.0, top + 1.0, 0.0),
+        UnitQuaternion::identity(),
+    );
+    initial.linear_momentum = Vector3::new(0.0, -50.0, 0.0);
+    let mut w = world(cube(), initial, vec![obstacle], impulse(0.0, 0.5), dt);
+    let mut lowest = f64::INFINITY;
+    let steps = (1.0 / dt) as usize;
+    for _ in 0..steps {
+        w.step();
+        for p in w.vertices() {
+            lowest = lowest.min(p.y);
+        }
+    }
+    (top - lowest, w.state().position.y)
+}
+
+#[test]
+fn a_50_m_per_s_impact_does_not_pass_through_the_ground_or_a_1_cm_box() {
+    let slab = Obstacle::Box {
+        min: Vector3::new(-1.0, 0.0, -1.0),
+        max: Vector3::new(1.0, 0.01, 1.0),
+    };
+    for dt in [1e-3, 1e-2] {
+        // 50 m/s × dt = 5 cm or 50 cm per step: a static test would miss the slab entirely.
+        for (name, obstacle, top) in [("ground", GROUND, 0.0), ("1 cm box", slab, 0.01)] {
+            let (below, height) = fast_impact(obstacle, top, dt);
+            assert!(
+                below < 1e-9,
+                "{name}, dt {dt}: a vertex ended {below} m below the top"
+            );
+            // e = 0: it stops on the top face and stays there.
+            assert!(
+                (height - (top + 0.1)).abs() < 1e-3,
+                "{name}, dt {dt}: barycenter at {height}"
+            );
+        }
+    }
+}
+
+#[test]
+fn kinetic_energy_never_grows_at_an_impulse_collision_in_a_tumbling_run() {
+    let sphere = Obstacle::Sphere {
+        center: Vector3::new(0.3, 0.3, 0.0),
+        radius: 0.3,
+    };
+    for (e, mu) in [(0.0, 0.0), (0.4, 0.5), (1.0, 0.0), (1.0, 1.0), (0.8, 3.0)] {
+        let mut initial = state(Vector3::new(0.0, 1.0, 0.1), corner_down());
+        initial.linear_momentum = Vector3::new(1.0, 0.0, -0.5);
+        initial.angular_momentum = Vector3::new(0.02, -0.03, 0.05);
+        let mut w = world(cube(), initial, vec![GROUND, sphere], impulse(e, mu), 1e-3);
+        let mut collisions = 0;
+        for _ in 0..3000 {
+            loop {
+                let collide_next = w.next_phase() == Phase::Collide;
+                let before = kinetic_energy(w.body(), w.state());
+                w.step_phase();
+                if collide_next {
+                    let after = kinetic_energy(w.body(), w.state());
+                    if !w.contacts().is_empty() {
+                        collisions += 1;
+                    }
+                    assert!(after <= before, "e {e}, μ {mu}: K {before} → {after}");
+                    break;
+                }
+            }
+        }
+        assert!(
+            collisions > 5,
+            "e {e}, μ {mu}: only {collisions} collisions"
+        );
+    }
+}
+
+fn obstacles_for_property() -> Vec<Obstacle> {
+    vec![
+        GROUND,
+        Obstacle::Sphere {
+            center: Vector3::new(0.15, 0.0, 0.0),
+            radius: 0.12,
+        },
+        Obstacle::Box {
+            min: Vector3::new(-0.3, -0.5, -0.08),
+            max: Vector3::new(-0.05, 0.04, 0.3),
+        },
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// Any state overlapping the ground, a sphere and a box at once, any 0 ≤ e ≤ 1, μ ≥ 0:
+    /// the response never adds kinetic energy (measured exactly as the energy panel does).
+    #[test]
+    fn the_impulse_response_never_adds_kinetic_energy(
+        position in (-0.1..0.1f64, -0.05..0.12f64, -0.1..0.1f64),
+        axis in (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+        angle in 0.0..6.3f64,
+        p in (-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64),
+        l in (-0.1..0.1f64, -0.1..0.1f64, -0.1..0.1f64),
+        restitution in 0.0..=1.0f64,
+        friction in prop_oneof![Just(0.0), 0.0..3.0f64],
+        elongation in 0.2..3.0f64,
+    ) {
+        let body = Body::solid_box(Vector3::new(SIDE * elongation, SIDE, SIDE / elongation), 1.3)
+            .unwrap();
+        let axis = Vector3::new(axis.0, axis.1, axis.2 + 1e-3);
+        let orientation = UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle);
+        let mut now = state(Vector3::new(position.0, position.1, position.2), orientation);
+        now.linear_momentum = Vector3::new(p.0, p.1, p.2);
+        now.angular_momentum = Vector3::new(l.0, l.1, l.2);
+        let mut before = now;
+        before.position -= now.linear_momentum / body.mass * 1e-2;
+        let obstacles = obstacles_for_property();
+        let model = impulse(restitution, friction);
+        let loads = Loads::default();
+        let input = CollideInput {
+            body: &body,
+            obstacles: &obstacles,
+            model: &model,
+            before: &before,
+            loads: &loads,
+            initial_position: &Vector3::zeros(),
+            gravity: Some(Vector3::new(0.0, -G, 0.0)),
+            dt: 1e-2,
+        };
+        let kinetic_before = kinetic_energy(&body, &now);
+        let mut contacts = Vec::new();
+        collide(&input, &mut now, &mut contacts);
+        let kinetic_after = kinetic_energy(&body, &now);
+        prop_assert!(kinetic_after <= kinetic_before,
+            "K {} → {} with {} contacts", kinetic_before, kinetic_after, contacts.len());
+        // And it stopped every approach (to the solver's tolerance), unless restitution
+        // was scaled down: no contact may still be approaching after an inelastic solve.
+        if restitution == 0.0 {
+            let k = tumble::physics::derive::derive(&body, &now);
+            for c in &contacts {
+                let u = k.velocity + k.angular_velocity.cross(&c.lever);
+                prop_assert!(u.dot(&c.normal) > -1e-6, "still approaching at {}: {}", c.vertex, u.dot(&c.normal));
+            }
+        }
+    }
+}
