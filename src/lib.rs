@@ -8,4 +8,5 @@ pub mod cli;
 pub mod lessons;
 pub mod physics;
 pub mod scene;
+pub mod study;
 pub mod tables;

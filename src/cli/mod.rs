@@ -4,6 +4,7 @@
 
 mod check;
 mod run;
+pub mod study;
 
 use crate::physics::{Integrator, Response};
 use crate::scene::{self, Lesson, LoadError};
@@ -41,6 +42,9 @@ pub enum Command {
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
+    /// What accuracy costs in time: every integrator × time step, error against an independent
+    /// reference, drift of conserved quantities, ns per step.
+    Study(study::StudyArgs),
 }
 
 /// Overrides of a scene's settings from the command line.
@@ -132,6 +136,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Run(args)) => run::run(&args),
         Some(Command::Check { files }) => check::check(&files),
+        Some(Command::Study(args)) => study::study(&args),
         None => Err(Failure::bad_input(
             "the terminal app is not built yet: use `tumble run FILE --steps N`".to_string(),
         )),

@@ -8,6 +8,7 @@
 //! | `state` | (x, R or q, P, L) |
 //! | `derive` | the derive phase: I⁻¹_world, ω, v |
 //! | `effects` | the forces phase: gravity and drag, only when declared |
+//! | `free_top` | the torque-free asymmetric top in closed form (a reference) |
 //! | `integrators` | the integrate phase, one file per method |
 //! | `collision` | the collide phase: obstacles, detection, responses |
 //! | `world` | the loop, phase by phase |
@@ -19,6 +20,7 @@ pub mod collision;
 pub mod derive;
 pub mod divergence;
 pub mod effects;
+pub mod free_top;
 pub mod integrators;
 pub mod snapshot;
 pub mod state;

@@ -1,0 +1,92 @@
+//! `tumble study [FILE...] [--format table|csv|json] [--svg PATH]`: what accuracy costs in time.
+//!
+//! Without files, the built-in scenes ([`crate::study::scenes`]). A FILE runs for its own
+//! `duration`; its reference is exact when it has no obstacles and no drag (a torque-free or
+//! gravity-only case), otherwise `rk4` at a tenth of the smallest swept step — the output says
+//! which.
+
+use super::Failure;
+use crate::scene;
+use crate::study::{self, report, Case, Config};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Output formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// A table per scene, sorted by cost, frontier marked, one sentence per scene.
+    Table,
+    /// Raw numbers, one row per run.
+    Csv,
+    /// Everything, including the sentences and fitted orders.
+    Json,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct StudyArgs {
+    /// Scene files (default: the built-in scenes).
+    pub files: Vec<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Also write a log–log SVG plot of error against cost to PATH.
+    #[arg(long, value_name = "PATH")]
+    pub svg: Option<PathBuf>,
+}
+
+/// The cases: the built-in scenes, or the files with their own durations.
+pub fn cases(files: &[PathBuf]) -> Result<Vec<Case>, Failure> {
+    if files.is_empty() {
+        return Ok(study::scenes::builtin());
+    }
+    files
+        .iter()
+        .map(|path| {
+            let lesson = scene::load(path)?;
+            let duration = lesson.scene.duration.ok_or_else(|| {
+                Failure::bad_input(format!(
+                    "{}: [scene] has no `duration`: the study runs each scene for its own duration",
+                    path.display()
+                ))
+            })?;
+            let name = path.file_stem().map_or_else(
+                || path.display().to_string(),
+                |s| s.to_string_lossy().into_owned(),
+            );
+            Ok(Case {
+                name,
+                description: lesson.title,
+                scene: lesson.scene,
+                duration,
+            })
+        })
+        .collect()
+}
+
+/// Runs the study and prints it.
+pub fn study(args: &StudyArgs) -> Result<(), Failure> {
+    let cases = cases(&args.files)?;
+    let config = Config::default();
+    let started = std::time::Instant::now();
+    let studies = study::study(&cases, &config, &mut |_, _| {});
+    let elapsed = started.elapsed().as_secs_f64();
+    let text = match args.format {
+        Format::Table => format!(
+            "{}study: {} runs in {elapsed:.1} s (ns/step: median of {} timed runs after a warm-up)\n",
+            report::table(&studies),
+            studies.iter().map(|s| s.rows.len()).sum::<usize>(),
+            config.timing.repeats
+        ),
+        Format::Csv => report::csv(&studies),
+        Format::Json => report::json(&studies),
+    };
+    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    std::io::stdout()
+        .lock()
+        .write_all(text.as_bytes())
+        .map_err(io)?;
+    if let Some(path) = &args.svg {
+        study::plot::svg(&studies, path).map_err(Failure::bad_input)?;
+    }
+    Ok(())
+}

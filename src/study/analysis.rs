@@ -1,0 +1,153 @@
+//! What the numbers say: the Pareto frontier, the observed orders, one sentence per scene.
+//!
+//! ```text
+//! frontier:  run r is on it  ⇔  no other run s has cost(s) ≤ cost(r) and error(s) ≤ error(r),
+//!            one of them strictly                      (cost = µs per simulated second)
+//! order:     least-squares slope of ln(error) against ln(dt) over the asymptotic range:
+//!            runs that did not diverge with FLOOR ≤ error ≤ CEILING (below the floor round-off
+//!            dominates; above the ceiling the error saturates — angles wrap at π)
+//! ```
+
+use super::measure::Row;
+use crate::physics::Integrator;
+
+/// Errors below this are round-off, not truncation.
+pub const FLOOR: f64 = 1e-11;
+/// Errors above this are not in the asymptotic range any more.
+pub const CEILING: f64 = 1e-1;
+
+/// The fitted order of convergence of one integrator on one scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Order {
+    pub integrator: Integrator,
+    /// The slope, if at least two runs lie in the asymptotic range.
+    pub slope: Option<f64>,
+    /// How many runs the fit used.
+    pub points: usize,
+}
+
+/// Fits the observed order of `integrator` from the rows of one scene.
+pub fn fit_order(integrator: Integrator, rows: &[Row]) -> Order {
+    let points: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.integrator == integrator && r.ok())
+        .filter(|r| (FLOOR..=CEILING).contains(&r.error))
+        .map(|r| (r.dt.ln(), r.error.ln()))
+        .collect();
+    let n = points.len();
+    let slope = (n >= 2).then(|| {
+        let mx = points.iter().map(|p| p.0).sum::<f64>() / n as f64;
+        let my = points.iter().map(|p| p.1).sum::<f64>() / n as f64;
+        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+        sxy / sxx
+    });
+    Order {
+        integrator,
+        slope,
+        points: n,
+    }
+}
+
+/// Marks the runs no other run beats on both error and cost.
+pub fn mark_frontier(rows: &mut [Row]) {
+    let usable = |r: &Row| r.ok() && r.error.is_finite() && r.us_per_simulated_second.is_finite();
+    let candidates: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| usable(r))
+        .map(|r| (r.us_per_simulated_second, r.error))
+        .collect();
+    for row in rows.iter_mut() {
+        let (cost, error) = (row.us_per_simulated_second, row.error);
+        row.frontier = usable(row)
+            && !candidates
+                .iter()
+                .any(|&(c, e)| c <= cost && e <= error && (c < cost || e < error));
+    }
+}
+
+/// Sorts by cost, diverged runs last.
+pub fn sort_by_cost(rows: &mut [Row]) {
+    rows.sort_by(|a, b| {
+        (!a.ok()).cmp(&!b.ok()).then(
+            a.us_per_simulated_second
+                .total_cmp(&b.us_per_simulated_second),
+        )
+    });
+}
+
+/// A time step as `1e-3` (or in full when it is not a power of ten).
+pub fn format_dt(dt: f64) -> String {
+    let exponent = dt.log10().round();
+    if (dt / 10f64.powf(exponent) - 1.0).abs() < 1e-9 {
+        format!("1e{}", exponent as i32)
+    } else {
+        format!("{dt:e}")
+    }
+}
+
+/// A cost in µs, with three significant digits.
+pub fn format_cost(us: f64) -> String {
+    if us >= 100.0 {
+        format!("{us:.0}")
+    } else if us >= 10.0 {
+        format!("{us:.1}")
+    } else {
+        format!("{us:.2}")
+    }
+}
+
+/// One plain sentence: the largest swept dt at which each integrator keeps the error under
+/// `target`, and what that costs; cheapest first, then the integrators that never get there.
+pub fn sentence(rows: &[Row], integrators: &[Integrator], target: f64, duration: f64) -> String {
+    let mut reached = Vec::new();
+    let mut missed = Vec::new();
+    for &integrator in integrators {
+        let best = rows
+            .iter()
+            .filter(|r| r.integrator == integrator && r.ok() && r.error < target)
+            .max_by(|a, b| a.dt.total_cmp(&b.dt));
+        match best {
+            Some(r) => reached.push((r.us_per_simulated_second, integrator, r.dt)),
+            None => {
+                let smallest = rows
+                    .iter()
+                    .filter(|r| r.integrator == integrator)
+                    .min_by(|a, b| a.dt.total_cmp(&b.dt));
+                missed.push((integrator, smallest.cloned()));
+            }
+        }
+    }
+    reached.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut parts: Vec<String> = reached
+        .iter()
+        .map(|(cost, integrator, dt)| {
+            format!(
+                "`{}` needs dt = {} and costs {} µs per simulated second",
+                integrator.name(),
+                format_dt(*dt),
+                format_cost(*cost)
+            )
+        })
+        .collect();
+    for (integrator, smallest) in missed {
+        parts.push(match smallest {
+            Some(r) if r.ok() => format!(
+                "`{}` does not get there even at dt = {} (error {:.1e})",
+                integrator.name(),
+                format_dt(r.dt),
+                r.error
+            ),
+            Some(r) => format!(
+                "`{}` diverges even at dt = {}",
+                integrator.name(),
+                format_dt(r.dt)
+            ),
+            None => format!("`{}` was not run", integrator.name()),
+        });
+    }
+    format!(
+        "To keep the error under {target:.0e} rad over {duration} s, {}.",
+        parts.join("; ")
+    )
+}

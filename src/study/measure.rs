@@ -1,0 +1,245 @@
+//! One run of the study: a scene with one integrator and one time step, measured twice over.
+//!
+//! 1. **Accuracy run** (once, instrumented): at every sample time, the pose is compared with the
+//!    reference and the conserved quantities with their initial values; contact scenes are
+//!    stepped phase by phase to see the energy each collide phase adds. The divergence guard is
+//!    checked at every sample.
+//! 2. **Timed runs** (a warm-up, then `repeats` runs of plain [`World::step`], nothing observed):
+//!    ns per step is the median over the repeats.
+//!
+//! ```text
+//! error           = max over samples of  angle(q_ref⁻¹ q) + |x − x_ref| / radius      (rad)
+//! omega_error     = max |ω_body − ω_body,ref|                                          (rad/s)
+//! energy_drift    = max |E − E₀| / |E₀|       momentum_drift = max | |L| − |L₀| | / |L₀|
+//! orthonormality  = max ‖RᵀR − 𝟙‖
+//! penetration     = deepest vertex depth over every step                               (m)
+//! impact_energy   = Σ max(0, E after collide − E before collide)                       (J)
+//! rest_error      = |v| + radius·|ω| at the end (speed of the fastest point)           (m/s)
+//! ```
+
+use super::reference::Reference;
+use crate::physics::free_top::rotation_angle_between;
+use crate::physics::snapshot::deepest_penetration;
+use crate::physics::{Integrator, Phase, World};
+use crate::scene::Scene;
+use std::time::Instant;
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Status {
+    /// Ran to the end.
+    Ok,
+    /// The divergence guard tripped (the message names step, quantity, integrator and dt).
+    Diverged(String),
+}
+
+/// Everything measured for one (scene, integrator, dt).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    pub scene: String,
+    pub integrator: Integrator,
+    pub dt: f64,
+    /// Steps to cover the scene's duration.
+    pub steps: u64,
+    /// Median wall time per step over the timed repeats, ns.
+    pub ns_per_step: f64,
+    /// Wall time per simulated second, µs (= ns_per_step / dt / 1000).
+    pub us_per_simulated_second: f64,
+    pub error: f64,
+    pub omega_error: f64,
+    pub position_error: f64,
+    pub energy_drift: f64,
+    pub momentum_drift: f64,
+    pub orthonormality: f64,
+    pub penetration: f64,
+    pub impact_energy: f64,
+    pub rest_error: f64,
+    pub status: Status,
+    /// No other run of the scene has both a smaller cost and a smaller error.
+    pub frontier: bool,
+}
+
+impl Row {
+    /// The run finished without diverging.
+    pub fn ok(&self) -> bool {
+        self.status == Status::Ok
+    }
+}
+
+/// How long to run and how to time it.
+#[derive(Debug, Clone, Copy)]
+pub struct Timing {
+    /// Timed repeats after the warm-up (0: time the accuracy run only).
+    pub repeats: usize,
+    /// Simulated seconds between samples (each swept dt should divide it).
+    pub sample_interval: f64,
+}
+
+/// A world of `scene` stepped by `integrator` at `dt`.
+pub fn world_for(scene: &Scene, integrator: Integrator, dt: f64) -> World {
+    World::new(
+        scene.body.clone(),
+        scene.effects.clone(),
+        scene.obstacles.clone(),
+        scene.contact,
+        integrator,
+        dt,
+        scene.initial,
+    )
+}
+
+/// The sample times of a run of length `duration`: every `interval`, and the end.
+pub fn sample_times(duration: f64, interval: f64) -> Vec<f64> {
+    let count = (duration / interval - 1e-9).floor() as usize;
+    let mut times: Vec<f64> = (1..=count).map(|k| k as f64 * interval).collect();
+    times.push(duration);
+    times
+}
+
+/// Measures one run.
+#[allow(clippy::too_many_arguments)]
+pub fn measure(
+    name: &str,
+    scene: &Scene,
+    duration: f64,
+    integrator: Integrator,
+    dt: f64,
+    reference: &mut Reference,
+    times: &[f64],
+    timing: Timing,
+) -> Row {
+    let steps = (duration / dt).round().max(1.0) as u64;
+    let mut row = Row {
+        scene: name.to_string(),
+        integrator,
+        dt,
+        steps,
+        ns_per_step: f64::NAN,
+        us_per_simulated_second: f64::NAN,
+        error: 0.0,
+        omega_error: 0.0,
+        position_error: 0.0,
+        energy_drift: 0.0,
+        momentum_drift: 0.0,
+        orthonormality: 0.0,
+        penetration: 0.0,
+        impact_energy: 0.0,
+        rest_error: f64::NAN,
+        status: Status::Ok,
+        frontier: false,
+    };
+    let started = Instant::now();
+    accuracy_run(scene, integrator, dt, steps, reference, times, &mut row);
+    let accuracy_ns = started.elapsed().as_nanos() as f64 / steps as f64;
+    if !row.ok() {
+        // A diverged run has no meaningful cost: it stopped early.
+        return row;
+    }
+    if timing.repeats > 0 {
+        let mut samples: Vec<f64> = (0..=timing.repeats)
+            .map(|_| timed_run(scene, integrator, dt, steps))
+            .skip(1) // the warm-up
+            .collect();
+        samples.sort_by(f64::total_cmp);
+        row.ns_per_step = samples[samples.len() / 2];
+    } else {
+        // Untimed studies (tests): the instrumented run's time, reference included.
+        row.ns_per_step = accuracy_ns;
+    }
+    row.us_per_simulated_second = row.ns_per_step / dt / 1000.0;
+    row
+}
+
+/// Wall time per step of a plain run, ns.
+fn timed_run(scene: &Scene, integrator: Integrator, dt: f64, steps: u64) -> f64 {
+    let mut world = world_for(scene, integrator, dt);
+    let started = Instant::now();
+    for _ in 0..steps {
+        world.step();
+    }
+    let elapsed = started.elapsed().as_nanos() as f64;
+    std::hint::black_box(world.state());
+    elapsed / steps as f64
+}
+
+/// The instrumented run; fills the row's accuracy columns.
+fn accuracy_run(
+    scene: &Scene,
+    integrator: Integrator,
+    dt: f64,
+    steps: u64,
+    reference: &mut Reference,
+    times: &[f64],
+    row: &mut Row,
+) {
+    let mut world = world_for(scene, integrator, dt);
+    let contact = !scene.obstacles.is_empty();
+    let radius = scene.body.radius.max(f64::MIN_POSITIVE);
+    let start = world.snapshot();
+    let (e0, l0) = (start.energy.total, start.angular_momentum.norm());
+    let relative = |x: f64, x0: f64| {
+        if x0.abs() > 0.0 {
+            (x - x0).abs() / x0.abs()
+        } else {
+            (x - x0).abs()
+        }
+    };
+    let mut sample = 0;
+    while world.step_count() < steps {
+        if contact {
+            let mut before = 0.0;
+            loop {
+                match world.step_phase() {
+                    Phase::Integrate => before = world.energy_of(world.state()).total,
+                    Phase::Collide => break,
+                    _ => {}
+                }
+            }
+            if !world.contacts().is_empty() {
+                let after = world.energy_of(world.state()).total;
+                row.impact_energy += (after - before).max(0.0);
+            }
+            let depth = deepest_penetration(world.obstacles(), &world.vertices());
+            row.penetration = row.penetration.max(depth);
+        } else {
+            world.step();
+        }
+        let step = world.step_count();
+        let now = world.time();
+        let last = times.len() - 1;
+        if step != steps && (sample > last || now < times[sample] - 0.5 * dt) {
+            continue;
+        }
+        while sample < last && times[sample + 1] <= now + 0.5 * dt {
+            sample += 1;
+        }
+        let index = if step == steps {
+            last
+        } else {
+            sample.min(last)
+        };
+        sample = index + 1;
+        if let Some(divergence) = world.divergence() {
+            row.status = Status::Diverged(divergence.to_string());
+            return;
+        }
+        let s = world.snapshot();
+        // Exact references are evaluated at the run's own time, numeric ones at the sample.
+        let truth = reference.at(index, now);
+        let position_error = (s.position - truth.position).norm();
+        let angle = rotation_angle_between(&truth.orientation, &s.quaternion);
+        row.error = row.error.max(angle + position_error / radius);
+        row.position_error = row.position_error.max(position_error);
+        row.omega_error = row
+            .omega_error
+            .max((s.angular_velocity_body - truth.omega_body).norm());
+        row.energy_drift = row.energy_drift.max(relative(s.energy.total, e0));
+        row.momentum_drift = row
+            .momentum_drift
+            .max(relative(s.angular_momentum.norm(), l0));
+        row.orthonormality = row.orthonormality.max(s.orthonormality_error);
+        if step == steps {
+            row.rest_error = s.velocity.norm() + radius * s.angular_velocity.norm();
+        }
+    }
+}

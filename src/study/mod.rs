@@ -1,0 +1,150 @@
+//! `tumble study`: what accuracy costs in time.
+//!
+//! For each scene, each integrator and each time step of a sweep, the scene is run to its
+//! duration and measured against an independent reference ([`reference`]): error, drift of the
+//! conserved quantities, and nanoseconds per step ([`measure`]). [`analysis`] marks the Pareto
+//! frontier, fits the observed orders of convergence and writes one plain sentence per scene;
+//! [`report`] prints the table, CSV or JSON and [`plot`] the log–log SVG of error against cost.
+//!
+//! The study only drives [`crate::physics::World`] and reads its [`crate::physics::Snapshot`]:
+//! it never steps the physics itself.
+
+pub mod analysis;
+pub mod measure;
+pub mod plot;
+pub mod reference;
+pub mod report;
+pub mod scenes;
+
+pub use analysis::{fit_order, mark_frontier, Order};
+pub use measure::{Row, Status, Timing};
+pub use reference::Reference;
+
+use crate::physics::Integrator;
+use crate::scene::Scene;
+
+/// A scene to study.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Short name (the CSV's `scene` column).
+    pub name: String,
+    /// One line saying what it is.
+    pub description: String,
+    pub scene: Scene,
+    /// Simulated time of every run, s.
+    pub duration: f64,
+}
+
+/// What to sweep and how to time it.
+#[derive(Debug, Clone)]
+pub struct Config {
+    pub integrators: Vec<Integrator>,
+    /// Time steps, s.
+    pub dts: Vec<f64>,
+    pub timing: Timing,
+    /// The error the per-scene sentence asks each integrator to stay under.
+    pub target_error: f64,
+}
+
+impl Default for Config {
+    /// Every integrator, dt = 1e-1 … 1e-4, 5 timed repeats, samples every 0.1 s, target 1e-6.
+    fn default() -> Config {
+        Config {
+            integrators: Integrator::ALL.to_vec(),
+            dts: vec![1e-1, 1e-2, 1e-3, 1e-4],
+            timing: Timing {
+                repeats: 5,
+                sample_interval: 0.1,
+            },
+            target_error: 1e-6,
+        }
+    }
+}
+
+/// The study of one scene.
+#[derive(Debug, Clone)]
+pub struct SceneStudy {
+    pub name: String,
+    pub description: String,
+    pub duration: f64,
+    /// What the errors are measured against.
+    pub reference: String,
+    /// "exact" or "numeric".
+    pub reference_kind: &'static str,
+    /// Sorted by cost (µs per simulated second), diverged runs last.
+    pub rows: Vec<Row>,
+    /// The observed order of each integrator.
+    pub orders: Vec<Order>,
+    /// "to keep the error under … over … s, `rk4` needs dt = … and costs …".
+    pub sentence: String,
+}
+
+/// Studies one scene. `progress(done, total)` is called after each run.
+pub fn study_case(
+    case: &Case,
+    config: &Config,
+    progress: &mut dyn FnMut(usize, usize),
+) -> SceneStudy {
+    let times = measure::sample_times(case.duration, config.timing.sample_interval);
+    let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut reference = Reference::for_scene(&case.scene, &times, smallest);
+    let total = config.integrators.len() * config.dts.len();
+    let mut rows = Vec::with_capacity(total);
+    for &integrator in &config.integrators {
+        for &dt in &config.dts {
+            rows.push(measure::measure(
+                &case.name,
+                &case.scene,
+                case.duration,
+                integrator,
+                dt,
+                &mut reference,
+                &times,
+                config.timing,
+            ));
+            progress(rows.len(), total);
+        }
+    }
+    let orders = config
+        .integrators
+        .iter()
+        .map(|&i| fit_order(i, &rows))
+        .collect();
+    let sentence = analysis::sentence(
+        &rows,
+        &config.integrators,
+        config.target_error,
+        case.duration,
+    );
+    mark_frontier(&mut rows);
+    analysis::sort_by_cost(&mut rows);
+    SceneStudy {
+        name: case.name.clone(),
+        description: case.description.clone(),
+        duration: case.duration,
+        reference: reference.describe(),
+        reference_kind: reference.kind(),
+        rows,
+        orders,
+        sentence,
+    }
+}
+
+/// Studies every case in turn; `progress(done, total)` counts runs over all cases.
+pub fn study(
+    cases: &[Case],
+    config: &Config,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Vec<SceneStudy> {
+    let per_case = config.integrators.len() * config.dts.len();
+    let total = per_case * cases.len();
+    cases
+        .iter()
+        .enumerate()
+        .map(|(k, case)| {
+            study_case(case, config, &mut |done, _| {
+                progress(k * per_case + done, total)
+            })
+        })
+        .collect()
+}

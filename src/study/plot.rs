@@ -1,0 +1,119 @@
+//! `--svg PATH`: error against cost on log–log axes, one panel per scene, one line per
+//! integrator (its points in order of dt, each labelled with its dt); frontier runs are ringed.
+
+use super::analysis::format_dt;
+use super::SceneStudy;
+use crate::physics::Integrator;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// The colour of an integrator's line (the same in every panel).
+pub fn color(integrator: Integrator) -> RGBColor {
+    match integrator {
+        Integrator::EulerSeed => RGBColor(200, 30, 30),
+        Integrator::Euler => RGBColor(230, 140, 0),
+        Integrator::SymplecticEuler => RGBColor(30, 150, 60),
+        Integrator::Rk4 => RGBColor(30, 80, 210),
+        Integrator::Splitting => RGBColor(150, 40, 170),
+    }
+}
+
+/// Smallest error drawn (exact zeros are drawn here).
+const FLOOR: f64 = 1e-16;
+
+/// Writes the plot; the error is a one-line message.
+pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
+    let panels = studies.len().max(1);
+    let columns = if panels > 1 { 2 } else { 1 };
+    let rows = panels.div_ceil(columns);
+    let size = (640 * columns as u32, 480 * rows as u32);
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
+    root.fill(&WHITE).map_err(|e| fail(&e))?;
+    let areas = root.split_evenly((rows, columns));
+    for (study, area) in studies.iter().zip(areas.iter()) {
+        panel(study, area).map_err(|e| fail(&e))?;
+    }
+    root.present().map_err(|e| fail(&e))
+}
+
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
+    let ok: Vec<_> = study
+        .rows
+        .iter()
+        .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for r in &ok {
+        x0 = x0.min(r.us_per_simulated_second);
+        x1 = x1.max(r.us_per_simulated_second);
+        y0 = y0.min(r.error.max(FLOOR));
+        y1 = y1.max(r.error.max(FLOOR));
+    }
+    if ok.is_empty() {
+        (x0, x1, y0, y1) = (1.0, 10.0, 1e-6, 1.0);
+    }
+    let mut chart = ChartBuilder::on(area)
+        .caption(
+            format!(
+                "{} ({} s, {} reference)",
+                study.name, study.duration, study.reference_kind
+            ),
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            (x0 / 2.0..x1 * 3.0).log_scale(),
+            (y0 / 10.0..y1 * 10.0).log_scale(),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc("cost: µs of wall time per simulated second")
+        .y_desc("error, rad")
+        .x_label_formatter(&|x| format!("{x:.0e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()?;
+    let mut integrators: Vec<Integrator> = ok.iter().map(|r| r.integrator).collect();
+    integrators.dedup();
+    integrators.sort_by_key(|i| Integrator::ALL.iter().position(|a| a == i));
+    integrators.dedup();
+    for integrator in integrators {
+        let c = color(integrator);
+        let mut points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
+        points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+        let xy: Vec<(f64, f64)> = points
+            .iter()
+            .map(|r| (r.us_per_simulated_second, r.error.max(FLOOR)))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?
+            .label(integrator.name())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+        chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+        chart.draw_series(points.iter().map(|r| {
+            Text::new(
+                format_dt(r.dt),
+                (r.us_per_simulated_second, r.error.max(FLOOR)),
+                ("sans-serif", 11).into_font().color(&c),
+            )
+        }))?;
+    }
+    chart.draw_series(ok.iter().filter(|r| r.frontier).map(|r| {
+        Circle::new(
+            (r.us_per_simulated_second, r.error.max(FLOOR)),
+            7,
+            BLACK.stroke_width(1),
+        )
+    }))?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()?;
+    Ok(())
+}
