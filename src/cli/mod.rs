@@ -3,8 +3,10 @@
 //! Exit codes: 0 ok, 2 bad input (one line on stderr), 3 the simulation diverged.
 
 mod check;
+mod lessons;
 mod run;
 pub mod study;
+pub mod walk;
 
 use crate::physics::{Integrator, Response};
 use crate::scene::{self, Lesson, LoadError};
@@ -45,6 +47,10 @@ pub enum Command {
     /// What accuracy costs in time: every integrator × time step, error against an independent
     /// reference, drift of conserved quantities, ns per step.
     Study(study::StudyArgs),
+    /// List the bundled lessons with their summaries.
+    Lessons,
+    /// Print the loop's numbers frame by frame (or phase by phase) as plain text.
+    Walk(walk::WalkArgs),
 }
 
 /// Overrides of a scene's settings from the command line.
@@ -137,6 +143,8 @@ pub fn main() -> ExitCode {
         Some(Command::Run(args)) => run::run(&args),
         Some(Command::Check { files }) => check::check(&files),
         Some(Command::Study(args)) => study::study(&args),
+        Some(Command::Lessons) => lessons::list(),
+        Some(Command::Walk(args)) => walk::walk(&args),
         None => Err(Failure::bad_input(
             "the terminal app is not built yet: use `tumble run FILE --steps N`".to_string(),
         )),

@@ -95,7 +95,10 @@ impl Snapshot {
         let between_frames = matches!(world.last_phase(), None | Some(Phase::Collide));
         let (kinematics, loads) = if between_frames {
             let kinematics = derive(body, state);
-            (kinematics, world.effects().loads(body, &kinematics))
+            (
+                kinematics,
+                world.integrator().loads(body, world.effects(), &kinematics),
+            )
         } else {
             (*world.kinematics(), *world.loads())
         };

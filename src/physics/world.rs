@@ -113,7 +113,7 @@ impl World {
             ..initial
         };
         let kinematics = derive(&body, &initial);
-        let loads = effects.loads(&body, &kinematics);
+        let loads = integrator.loads(&body, &effects, &kinematics);
         let guard = EnergyGuard::new(&body, &effects, &obstacles, &initial);
         World {
             body,
@@ -171,10 +171,13 @@ impl World {
         self.now.kinematics = derive(&self.body, &self.now.state);
     }
 
-    /// *forces*: F and τ of the declared effects at the derived velocities.
+    /// *forces*: F and τ of the declared effects at the derived velocities (for `euler-seed`,
+    /// plus the report's per-vertex torque sum: see [`Integrator::loads`]).
     #[inline]
     fn forces_phase(&mut self) {
-        self.now.loads = self.effects.loads(&self.body, &self.now.kinematics);
+        self.now.loads = self
+            .integrator
+            .loads(&self.body, &self.effects, &self.now.kinematics);
     }
 
     /// *integrate*: one integrator step (the state before it is kept for swept collisions).
@@ -296,7 +299,7 @@ impl World {
             now.last = Some(Phase::Collide);
         }
         now.kinematics = derive(&self.body, &now.state);
-        now.loads = self.effects.loads(&self.body, &now.kinematics);
+        now.loads = integrator.loads(&self.body, &self.effects, &now.kinematics);
     }
 
     /// Switches the collision response (takes effect at the next collide phase).

@@ -13,27 +13,31 @@
 //!
 //! The torque sum applies the *total* force at every vertex: `Σ rᵢ × F = (Σ rᵢ) × F`, zero only
 //! when the points have equal masses (then `Σ rᵢ = 0`); with unequal point masses the loop
-//! invents a torque that gravity does not exert.
+//! invents a torque that gravity does not exert. As in the report, the sum belongs to the
+//! *forces* phase ([`super::Integrator::loads`] adds it to τ), so the torque panel shows it.
 
 use super::super::body::Body;
 use super::super::derive::Kinematics;
 use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
+use nalgebra::{Matrix3, Vector3};
 
-/// One step of the original loop.
+/// The report's torque: the total force applied at every vertex, `Σᵢ (R r₀ᵢ) × F`, N·m.
+pub fn vertex_torque(body: &Body, rotation: &Matrix3<f64>, force: &Vector3<f64>) -> Vector3<f64> {
+    body.points_body.iter().fold(Vector3::zeros(), |acc, r0| {
+        acc + (rotation * r0).cross(force)
+    })
+}
+
+/// One step of the original loop; `loads` already holds the vertex torque sum
+/// (see [`super::Integrator::loads`]).
 #[inline]
-pub fn step(body: &Body, state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
+pub fn step(_body: &Body, state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
     let r = start.rotation;
-    let vertex_torque = body
-        .points_body
-        .iter()
-        .fold(nalgebra::Vector3::zeros(), |acc, r0| {
-            acc + (r * r0).cross(&loads.force)
-        });
     State {
         position: state.position + start.velocity * dt,
         orientation: Orientation::Matrix(r + start.angular_velocity.cross_matrix() * r * dt),
         linear_momentum: state.linear_momentum + loads.force * dt,
-        angular_momentum: state.angular_momentum + (loads.torque + vertex_torque) * dt,
+        angular_momentum: state.angular_momentum + loads.torque * dt,
     }
 }

@@ -86,6 +86,17 @@ impl Integrator {
         }
     }
 
+    /// The *forces* phase as this integrator's loop computes it: F and τ of the declared effects
+    /// and, for `euler-seed`, the report's per-vertex torque sum `Σᵢ (R r₀ᵢ) × F` added to τ
+    /// (the report computed it in its forces phase, `CalculDeriveeStateX`).
+    pub fn loads(self, body: &Body, effects: &Effects, kinematics: &Kinematics) -> Loads {
+        let mut loads = effects.loads(body, kinematics);
+        if self == Integrator::EulerSeed {
+            loads.torque += euler_seed::vertex_torque(body, &kinematics.rotation, &loads.force);
+        }
+        loads
+    }
+
     /// One step of length `dt` from `state`, given the derive and forces phases' results there.
     #[inline]
     pub fn step(

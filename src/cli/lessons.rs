@@ -1,0 +1,53 @@
+//! `tumble lessons`: the bundled lessons, in teaching order, with their summaries.
+
+use super::Failure;
+use crate::lessons;
+use crate::scene;
+
+/// Prints one line per bundled lesson: file name, title, summary.
+pub fn list() -> Result<(), Failure> {
+    let files = lessons::bundled();
+    if files.is_empty() {
+        return Err(Failure::bad_input(format!(
+            "no lessons found in {} (set TUMBLE_LESSONS to the lessons folder)",
+            lessons::folder().display()
+        )));
+    }
+    let mut rows = Vec::new();
+    let mut broken = 0;
+    for path in &files {
+        let name = path
+            .file_stem()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        match scene::load(path) {
+            Ok(lesson) => rows.push((name, lesson.title, lesson.summary)),
+            Err(e) => {
+                eprintln!("tumble: {e}");
+                broken += 1;
+            }
+        }
+    }
+    let name_width = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
+    let title_width = rows.iter().map(|r| r.1.chars().count()).max().unwrap_or(0);
+    for (name, title, summary) in &rows {
+        let line = format!(
+            "{name}{}  {title}{}  {summary}",
+            " ".repeat(name_width - name.chars().count()),
+            " ".repeat(title_width - title.chars().count()),
+        );
+        println!("{}", line.trim_end());
+    }
+    println!();
+    println!(
+        "Open one in the app with `tumble {}/FILE.toml`, or print it with `tumble walk FILE --frames N`.",
+        lessons::folder().display()
+    );
+    if broken == 0 {
+        Ok(())
+    } else {
+        Err(Failure::bad_input(format!(
+            "{broken} of {} bundled lessons have errors",
+            files.len()
+        )))
+    }
+}

@@ -1,0 +1,182 @@
+//! `tumble walk FILE --frames N [--phases]`: the loop's numbers as plain text, frame by frame
+//! (or phase by phase), for a handout.
+//!
+//! Each block is headed by the time, the frame and the loop phase just completed, then the
+//! lesson page that applies at that time (its full text the first time it applies, its title
+//! afterwards), then the numeric panels of [`crate::tables`], the formatter the terminal app
+//! uses — so the handout and the screen show the same digits.
+
+use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
+use crate::physics::{Snapshot, World};
+use crate::scene::Lesson;
+use crate::tables::{number_plain, panel_text, panels, Frame};
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct WalkArgs {
+    /// The lesson or scene file.
+    pub file: PathBuf,
+    /// Number of frames to walk through.
+    #[arg(long)]
+    pub frames: u64,
+    /// Print the tables after every phase (derive, forces, integrate, collide), not only after
+    /// each frame.
+    #[arg(long)]
+    pub phases: bool,
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// Why a walk stopped early.
+#[derive(Debug)]
+pub enum WalkError {
+    /// The simulation diverged (its message names step, quantity, integrator and dt).
+    Diverged(String),
+    /// The output could not be written.
+    Io(std::io::Error),
+}
+
+impl From<std::io::Error> for WalkError {
+    fn from(e: std::io::Error) -> WalkError {
+        WalkError::Io(e)
+    }
+}
+
+/// Runs `tumble walk`.
+pub fn walk(args: &WalkArgs) -> Result<(), Failure> {
+    let lesson = load_with(&args.file, &args.overrides)?;
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    let result = write_walk(&lesson, args.frames, args.phases, &mut out);
+    let flushed = out.flush();
+    match result {
+        Ok(()) => flushed.map_err(|e| Failure::bad_input(format!("cannot write output: {e}"))),
+        Err(WalkError::Diverged(message)) => Err(Failure {
+            code: EXIT_DIVERGED,
+            message,
+        }),
+        Err(WalkError::Io(e)) => Err(Failure::bad_input(format!("cannot write output: {e}"))),
+    }
+}
+
+/// Writes the walk of `frames` frames of a lesson (every phase when `phases`).
+pub fn write_walk(
+    lesson: &Lesson,
+    frames: u64,
+    phases: bool,
+    out: &mut impl Write,
+) -> Result<(), WalkError> {
+    let mut world = lesson.scene.world();
+    write_header(lesson, &world, out)?;
+    let mut shown_page = None;
+    write_block(lesson, &world.snapshot(), &mut shown_page, out)?;
+    for _ in 0..frames {
+        if phases {
+            for _ in 0..4 {
+                world.step_phase();
+                write_block(lesson, &world.snapshot(), &mut shown_page, out)?;
+            }
+        } else {
+            world.step();
+            write_block(lesson, &world.snapshot(), &mut shown_page, out)?;
+        }
+        if let Some(divergence) = world.divergence() {
+            writeln!(out)?;
+            writeln!(out, "stopped: {divergence}")?;
+            return Err(WalkError::Diverged(divergence.to_string()));
+        }
+    }
+    Ok(())
+}
+
+/// The lesson's title, file name, summary and scene settings.
+fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io::Result<()> {
+    let name = lesson
+        .path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    writeln!(out, "{} ({name})", lesson.title)?;
+    if !lesson.summary.is_empty() {
+        writeln!(out, "{}", lesson.summary)?;
+    }
+    let effects = world.effects().names();
+    let effects = if effects.is_empty() {
+        "none".to_string()
+    } else {
+        effects.join(", ")
+    };
+    let obstacles: Vec<&str> = world.obstacles().iter().map(|o| o.kind()).collect();
+    let obstacles = if obstacles.is_empty() {
+        "none".to_string()
+    } else {
+        obstacles.join(", ")
+    };
+    let mut settings = format!(
+        "integrator {} · dt = {} s · body {} · M = {} kg · effects: {effects} · obstacles: {obstacles}",
+        world.integrator().name(),
+        number_plain(world.dt()),
+        lesson.scene.shape,
+        number_plain(world.body().mass),
+    );
+    if let Some(model) = world.contact_model() {
+        settings.push_str(&format!(" · response {}", model.response.name()));
+    }
+    writeln!(out, "{settings}")
+}
+
+/// One block: time, frame and phase, the page that applies, the panels.
+fn write_block(
+    lesson: &Lesson,
+    snapshot: &Snapshot,
+    shown_page: &mut Option<usize>,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    writeln!(out)?;
+    let when = format!("t = {} s", number_plain(snapshot.time));
+    let line = match snapshot.phase {
+        None => format!(
+            "== {when} · initial state · next phase: {}",
+            snapshot.next_phase
+        ),
+        Some(phase) => {
+            // The frame a phase belongs to: integrate counts the step, so before it the step
+            // count is one behind.
+            let frame = match phase {
+                crate::physics::Phase::Derive | crate::physics::Phase::Forces => snapshot.step + 1,
+                _ => snapshot.step,
+            };
+            format!("== {when} · frame {frame} · phase done: {phase}")
+        }
+    };
+    writeln!(out, "{line}")?;
+    if let Some((index, page)) = lesson.page_at(snapshot.time) {
+        let count = lesson.pages.len();
+        if *shown_page == Some(index) {
+            writeln!(
+                out,
+                "page {}/{count}: {} (text above)",
+                index + 1,
+                page.title
+            )?;
+        } else {
+            writeln!(
+                out,
+                "page {}/{count} (from t = {} s): {}",
+                index + 1,
+                number_plain(page.at),
+                page.title
+            )?;
+            for text_line in page.text.trim_end().lines() {
+                writeln!(out, "{}", format!("  | {text_line}").trim_end())?;
+            }
+            *shown_page = Some(index);
+        }
+    }
+    for panel in panels(snapshot, Frame::World) {
+        for text_line in panel_text(&panel) {
+            writeln!(out, "{text_line}")?;
+        }
+    }
+    Ok(())
+}
