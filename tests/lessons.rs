@@ -1,0 +1,98 @@
+//! Every bundled lesson loads, and runs its whole `duration` without diverging — except the
+//! lessons whose point is a divergence, which must diverge with the message they promise.
+
+use tumble::lessons;
+
+/// Lessons that are meant to diverge, with the start of the message their pages quote.
+const DIVERGING: &[(&str, &str)] = &[(
+    // Lesson 11: explicit Euler pumps energy into a fast spin about the major axis; its pages
+    // say the guard stops the run at step 532 (t = 0.532 s).
+    "11-fast-spin.toml",
+    "simulation diverged at step 532 (t = 0.532000 s): energy ran away",
+)];
+
+fn name(path: &std::path::Path) -> String {
+    path.file_name().unwrap().to_string_lossy().into_owned()
+}
+
+#[test]
+fn there_are_at_least_the_lessons_of_this_branch() {
+    let names: Vec<String> = lessons::bundled().iter().map(|p| name(p)).collect();
+    for expected in [
+        "01-the-loop.toml",
+        "02-rigid-body-from-points.toml",
+        "03-rotation-drift.toml",
+        "04-gravity-no-torque.toml",
+        "09-viscosity.toml",
+        "10-tennis-racket.toml",
+        "11-fast-spin.toml",
+        "12-accuracy-cost.toml",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "{expected} missing from {names:?}"
+        );
+    }
+}
+
+#[test]
+fn every_bundled_lesson_has_a_title_summary_duration_and_pages() {
+    for path in lessons::bundled() {
+        let lesson = tumble::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert!(!lesson.summary.is_empty(), "{}: no summary", path.display());
+        assert!(
+            lesson.scene.duration.is_some(),
+            "{}: no duration",
+            path.display()
+        );
+        assert!(!lesson.pages.is_empty(), "{}: no pages", path.display());
+        assert_eq!(
+            lesson.pages[0].at,
+            0.0,
+            "{}: first page must start at t = 0",
+            path.display()
+        );
+        let duration = lesson.scene.duration.unwrap();
+        for page in &lesson.pages {
+            assert!(
+                page.at < duration,
+                "{}: page `{}` at {} s is after the end ({duration} s)",
+                path.display(),
+                page.title,
+                page.at
+            );
+        }
+    }
+}
+
+#[test]
+fn every_bundled_lesson_runs_its_duration_or_diverges_as_promised() {
+    for path in lessons::bundled() {
+        let lesson = tumble::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let scene = &lesson.scene;
+        let steps = (scene.duration.unwrap() / scene.dt).round() as u64;
+        let mut world = scene.world();
+        let mut diverged = None;
+        for _ in 0..steps {
+            world.step();
+            if let Some(d) = world.divergence() {
+                diverged = Some(d.to_string());
+                break;
+            }
+        }
+        let expected = DIVERGING.iter().find(|(n, _)| *n == name(&path));
+        match (expected, diverged) {
+            (None, None) => {}
+            (None, Some(message)) => panic!("{}: {message}", path.display()),
+            (Some((_, promised)), Some(message)) => assert!(
+                message.starts_with(promised),
+                "{}: diverged with `{message}`, the lesson promises `{promised}`",
+                path.display()
+            ),
+            (Some(_), None) => panic!(
+                "{}: was meant to diverge and ran {steps} steps",
+                path.display()
+            ),
+        }
+    }
+}
