@@ -26,11 +26,13 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
     let panels = studies.len().max(1);
     let columns = if panels > 1 { 2 } else { 1 };
     let rows = panels.div_ceil(columns);
-    let size = (640 * columns as u32, 480 * rows as u32);
+    let size = (640 * columns as u32, HEADER + 480 * rows as u32);
     let root = SVGBackend::new(path, size).into_drawing_area();
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     root.fill(&WHITE).map_err(|e| fail(&e))?;
-    let areas = root.split_evenly((rows, columns));
+    let (header, body) = root.split_vertically(HEADER);
+    legend(&header).map_err(|e| fail(&e))?;
+    let areas = body.split_evenly((rows, columns));
     for (study, area) in studies.iter().zip(areas.iter()) {
         panel(study, area).map_err(|e| fail(&e))?;
     }
@@ -38,6 +40,33 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
 }
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+/// Height of the title and shared legend strip, px.
+const HEADER: u32 = 56;
+
+/// The title and one legend for every panel (a legend inside a panel would hide its points).
+fn legend(area: &Area) -> Result<(), Box<dyn std::error::Error>> {
+    area.draw(&Text::new(
+        "tumble study: error against cost, log–log (lower left is better; ringed = Pareto \
+         frontier; labels = dt in s)",
+        (16, 8),
+        ("sans-serif", 16).into_font(),
+    ))?;
+    for (k, integrator) in Integrator::ALL.into_iter().enumerate() {
+        let x = 16 + 170 * k as i32;
+        let c = color(integrator);
+        area.draw(&PathElement::new(
+            vec![(x, 40), (x + 28, 40)],
+            c.stroke_width(3),
+        ))?;
+        area.draw(&Text::new(
+            integrator.name(),
+            (x + 34, 33),
+            ("sans-serif", 14).into_font().color(&c),
+        ))?;
+    }
+    Ok(())
+}
 
 fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
     let ok: Vec<_> = study
@@ -89,10 +118,7 @@ fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Erro
             .iter()
             .map(|r| (r.us_per_simulated_second, r.error.max(FLOOR)))
             .collect();
-        chart
-            .draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?
-            .label(integrator.name())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+        chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
         chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         chart.draw_series(points.iter().map(|r| {
             Text::new(
@@ -109,11 +135,5 @@ fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Erro
             BLACK.stroke_width(1),
         )
     }))?;
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()?;
     Ok(())
 }
