@@ -12,7 +12,7 @@
 //! omega_error     = max |ω_body − ω_body,ref|                                          (rad/s)
 //! energy_drift    = max |E − E₀| / |E₀|       momentum_drift = max | |L| − |L₀| | / |L₀|
 //! orthonormality  = max ‖RᵀR − 𝟙‖
-//! penetration     = deepest vertex depth over every step                               (m)
+//! penetration     = deepest vertex depth a step reaches, before the response pushes out  (m)
 //! impact_energy   = Σ max(0, E after collide − E before collide)                       (J)
 //! rest_error      = |v| + radius·|ω| at the end (speed of the fastest point)           (m/s)
 //! ```
@@ -190,7 +190,11 @@ fn accuracy_run(
             let mut before = 0.0;
             loop {
                 match world.step_phase() {
-                    Phase::Integrate => before = world.energy_of(world.state()).total,
+                    Phase::Integrate => {
+                        before = world.energy_of(world.state()).total;
+                        let depth = deepest_penetration(world.obstacles(), &world.vertices());
+                        row.penetration = row.penetration.max(depth);
+                    }
                     Phase::Collide => break,
                     _ => {}
                 }
@@ -199,8 +203,6 @@ fn accuracy_run(
                 let after = world.energy_of(world.state()).total;
                 row.impact_energy += (after - before).max(0.0);
             }
-            let depth = deepest_penetration(world.obstacles(), &world.vertices());
-            row.penetration = row.penetration.max(depth);
         } else {
             world.step();
         }

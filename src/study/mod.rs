@@ -10,6 +10,7 @@
 //! it never steps the physics itself.
 
 pub mod analysis;
+pub mod background;
 pub mod measure;
 pub mod plot;
 pub mod reference;

@@ -64,6 +64,13 @@ pub fn table(studies: &[SceneStudy]) -> String {
                 "penetr. m", "gain J", "rest m/s"
             );
         }
+        if contact {
+            let _ = writeln!(
+                out,
+                "contact: penetr. = deepest vertex depth a step reaches before the response; \
+                 gain = energy added by collide phases; rest = |v| + radius·|ω| at the end"
+            );
+        }
         let _ = writeln!(out, "{header}");
         for row in &study.rows {
             let _ = writeln!(out, "{}", table_row(row, contact));

@@ -1,0 +1,122 @@
+//! A study of one scene on a background thread, for front ends that must stay responsive.
+//!
+//! [`Job::spawn`] starts the thread; [`Job::poll`] drains its messages without blocking and
+//! keeps the latest progress and, at the end, the result. Dropping a job detaches the thread: it
+//! finishes its current scene and its messages go nowhere.
+
+use super::{study_case, Case, Config, SceneStudy};
+use std::sync::mpsc::{self, Receiver, TryRecvError};
+use std::thread;
+
+/// What the study thread reports.
+#[derive(Debug)]
+enum Message {
+    Progress { done: usize, total: usize },
+    Done(Box<SceneStudy>),
+}
+
+/// A running (or finished) study of one scene.
+#[derive(Debug)]
+pub struct Job {
+    /// The scene's name.
+    pub name: String,
+    receiver: Receiver<Message>,
+    done: usize,
+    total: usize,
+    result: Option<SceneStudy>,
+    lost: bool,
+}
+
+impl Job {
+    /// Starts studying `case` on a new thread.
+    pub fn spawn(case: Case, config: Config) -> Job {
+        let (sender, receiver) = mpsc::channel();
+        let total = config.integrators.len() * config.dts.len();
+        let name = case.name.clone();
+        thread::spawn(move || {
+            let mut report = |done, total| {
+                let _ = sender.send(Message::Progress { done, total });
+            };
+            let study = study_case(&case, &config, &mut report);
+            let _ = sender.send(Message::Done(Box::new(study)));
+        });
+        Job {
+            name,
+            receiver,
+            done: 0,
+            total,
+            result: None,
+            lost: false,
+        }
+    }
+
+    /// Takes every message waiting; never blocks.
+    pub fn poll(&mut self) {
+        loop {
+            match self.receiver.try_recv() {
+                Ok(Message::Progress { done, total }) => (self.done, self.total) = (done, total),
+                Ok(Message::Done(study)) => {
+                    self.done = self.total;
+                    self.result = Some(*study);
+                }
+                Err(TryRecvError::Empty) => break,
+                Err(TryRecvError::Disconnected) => {
+                    self.lost = self.result.is_none();
+                    break;
+                }
+            }
+        }
+    }
+
+    /// Runs finished and runs in all.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.done, self.total)
+    }
+
+    /// The study, once finished.
+    pub fn result(&self) -> Option<&SceneStudy> {
+        self.result.as_ref()
+    }
+
+    /// The thread ended without a result (it panicked).
+    pub fn failed(&self) -> bool {
+        self.lost
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::Integrator;
+    use crate::study::{scenes, Timing};
+    use std::time::{Duration, Instant};
+
+    #[test]
+    fn a_job_reports_progress_then_its_result_without_blocking() {
+        let mut case = scenes::builtin().remove(2); // the projectile, 1 s
+        case.duration = 0.5;
+        let config = Config {
+            integrators: vec![Integrator::Rk4, Integrator::Splitting],
+            dts: vec![1e-1, 1e-2],
+            timing: Timing {
+                repeats: 0,
+                sample_interval: 0.1,
+            },
+            target_error: 1e-6,
+        };
+        let mut job = Job::spawn(case, config);
+        assert_eq!(job.progress().1, 4, "2 integrators × 2 steps");
+        let started = Instant::now();
+        while job.result().is_none() {
+            job.poll();
+            assert!(!job.failed(), "the study thread died");
+            assert!(
+                started.elapsed() < Duration::from_secs(60),
+                "study never finished"
+            );
+            thread::sleep(Duration::from_millis(5));
+        }
+        assert_eq!(job.progress(), (4, 4));
+        assert_eq!(job.result().map(|s| s.rows.len()), Some(4));
+    }
+}
