@@ -27,14 +27,14 @@ pub struct Kinematics {
 }
 
 /// Runs the derive phase on a state.
-#[inline]
+#[inline(always)]
 pub fn derive(body: &Body, state: &State) -> Kinematics {
     let rotation = state.orientation.matrix();
     derive_with_rotation(body, state, rotation)
 }
 
 /// The derive phase when R is already known.
-#[inline]
+#[inline(always)]
 pub fn derive_with_rotation(body: &Body, state: &State, rotation: Matrix3<f64>) -> Kinematics {
     let inv_inertia_world = congruence(&rotation, &body.inv_inertia_body);
     Kinematics {
@@ -47,7 +47,7 @@ pub fn derive_with_rotation(body: &Body, state: &State, rotation: Matrix3<f64>) 
 
 /// `R S Rᵀ` for a symmetric S: `A = R S`, then only the upper triangle of `A Rᵀ`
 /// (`(A Rᵀ)ᵢⱼ = Aᵢ·Rⱼ`, rows), mirrored — the result is exactly symmetric and a third cheaper.
-#[inline]
+#[inline(always)]
 pub fn congruence(r: &Matrix3<f64>, s: &Matrix3<f64>) -> Matrix3<f64> {
     let a = r * s;
     let entry =

@@ -61,19 +61,40 @@ fn free_rotation(
     // Orientation of the principal frame, and L seen in it.
     let mut qp = *q.quaternion() * body.principal_axes.quaternion();
     let mut pi = UnitQuaternion::new_unchecked(qp).inverse_transform_vector(l);
-    for (axis, h) in [(0, 0.5), (1, 0.5), (2, 1.0), (1, 0.5), (0, 0.5)] {
-        let theta = h * dt * pi[axis] / inertia[axis];
-        let (s, c) = (theta / 2.0).sin_cos();
-        let mut imag = Vector3::zeros();
-        imag[axis] = s;
-        qp *= Quaternion::from_parts(c, imag);
-        // Π ← rotᵢ(−θ) Π : the other two components turn the opposite way.
-        // sin θ = 2 s c, cos θ = c² − s² (double angle: one sin_cos per sub-rotation).
-        let (j, k) = ((axis + 1) % 3, (axis + 2) % 3);
-        let (st, ct) = (2.0 * s * c, c * c - s * s);
-        let (pj, pk) = (pi[j], pi[k]);
-        pi[j] = ct * pj + st * pk;
-        pi[k] = -st * pj + ct * pk;
-    }
+    sub_rotation::<0>(&mut qp, &mut pi, &inertia, 0.5 * dt);
+    sub_rotation::<1>(&mut qp, &mut pi, &inertia, 0.5 * dt);
+    sub_rotation::<2>(&mut qp, &mut pi, &inertia, dt);
+    sub_rotation::<1>(&mut qp, &mut pi, &inertia, 0.5 * dt);
+    sub_rotation::<0>(&mut qp, &mut pi, &inertia, 0.5 * dt);
     normalize(qp * body.principal_axes.quaternion().conjugate())
+}
+
+/// The exact flow `Rᵢ(h)` of `Πᵢ²/2Iᵢ`: the principal frame turns about its axis `I` by
+/// `θ = h Πᵢ/Iᵢ` (`qp ← qp ⊗ (cos θ/2, sin θ/2 eᵢ)`), and Π, seen from the turning frame, turns by
+/// `−θ` (`Π ← rotᵢ(−θ) Π`; Πᵢ itself is unchanged, so the angle is exact).
+///
+/// With (i, j, k) cyclic and `(c, s) = (cos θ/2, sin θ/2)`, the product written out is
+/// `w ← c w − s vᵢ,  vᵢ ← c vᵢ + s w,  vⱼ ← c vⱼ + s vₖ,  vₖ ← c vₖ − s vⱼ`, and
+/// `sin θ = 2 s c`, `cos θ = c² − s²` (one `sin_cos` per sub-rotation).
+#[inline(always)]
+fn sub_rotation<const I: usize>(
+    qp: &mut Quaternion<f64>,
+    pi: &mut Vector3<f64>,
+    inertia: &Vector3<f64>,
+    h: f64,
+) {
+    let (j, k) = ((I + 1) % 3, (I + 2) % 3);
+    let theta = h * pi[I] / inertia[I];
+    let (s, c) = (theta / 2.0).sin_cos();
+    // nalgebra stores a quaternion as (i, j, k, w).
+    let v = &mut qp.coords;
+    let (w, vi, vj, vk) = (v[3], v[I], v[j], v[k]);
+    v[3] = c * w - s * vi;
+    v[I] = c * vi + s * w;
+    v[j] = c * vj + s * vk;
+    v[k] = c * vk - s * vj;
+    let (st, ct) = (2.0 * s * c, c * c - s * s);
+    let (pj, pk) = (pi[j], pi[k]);
+    pi[j] = ct * pj + st * pk;
+    pi[k] = -st * pj + ct * pk;
 }
