@@ -1,0 +1,628 @@
+//! The numbers the bundled lessons quote, checked against closed forms and hand computations.
+//!
+//! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
+//! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
+//! with the formula that gives it in a comment. Lessons: 1–4 and 9–12.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use std::path::PathBuf;
+use tumble::physics::{Integrator, Phase, World};
+use tumble::scene::Lesson;
+
+fn lesson(name: &str) -> Lesson {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("lessons")
+        .join(name);
+    tumble::scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn world_with(lesson: &Lesson, integrator: Integrator, dt: f64) -> World {
+    let mut scene = lesson.scene.clone();
+    scene.integrator = integrator;
+    scene.dt = dt;
+    scene.world()
+}
+
+fn steps_for(duration: f64, dt: f64) -> u64 {
+    (duration / dt).round() as u64
+}
+
+fn assert_near(seen: f64, expected: f64, tolerance: f64, what: &str) {
+    assert!(
+        (seen - expected).abs() <= tolerance,
+        "{what}: expected {expected} ± {tolerance}, seen {seen} (off by {:e})",
+        seen - expected
+    );
+}
+
+/// Times at which a sampled quantity changes sign, linearly interpolated.
+fn sign_changes(samples: &[(f64, f64)]) -> Vec<f64> {
+    samples
+        .windows(2)
+        .filter(|w| (w[0].1 > 0.0) != (w[1].1 > 0.0))
+        .map(|w| w[0].0 + (w[1].0 - w[0].0) * w[0].1 / (w[0].1 - w[1].1))
+        .collect()
+}
+
+/// Complete elliptic integral of the first kind from k'² = 1 − k², by the arithmetic-geometric
+/// mean: K = π / (2 AGM(1, k')).
+fn elliptic_k_from_complement(kc2: f64) -> f64 {
+    let (mut a, mut b) = (1.0_f64, kc2.sqrt());
+    for _ in 0..40 {
+        (a, b) = ((a + b) / 2.0, (a * b).sqrt());
+    }
+    std::f64::consts::PI / (2.0 * a)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 1: the loop
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_1_first_frame_moves_p_then_x_with_the_new_velocity() {
+    let l = lesson("01-the-loop.toml");
+    let mut world = l.scene.world();
+    world.step();
+    let s = world.snapshot();
+    // P ← P + dt F: 3 − 0.01 × 9.81 = 2.9019 kg·m/s.
+    assert_near(s.linear_momentum.y, 2.9019, 1e-12, "P_y after frame 1");
+    // x ← x + dt P/M with the new P: 2 + 0.01 × 2.9019 = 2.029019 m.
+    assert_near(s.position.y, 2.029019, 1e-12, "x_y after frame 1");
+    assert_near(s.position.x, 0.005, 1e-15, "x_x after frame 1");
+}
+
+#[test]
+fn lesson_1_energy_error_follows_the_velocity_change() {
+    // Symplectic Euler in a uniform field loses ½ M g² dt² per frame: summed over frames,
+    // ΔE = ½ M g dt (v_y − v_y₀). The rotational part adds a little (first-order rotation).
+    let l = lesson("01-the-loop.toml");
+    let mut world = l.scene.world();
+    let e0 = world.snapshot().energy.total;
+    assert_near(e0, 24.329832, 5e-7, "E₀ quoted on the page");
+    for _ in 0..100 {
+        world.step();
+    }
+    let s = world.snapshot();
+    let translational = 0.5 * 9.81 * 0.01 * (s.velocity.y - 3.0);
+    assert_near(
+        translational,
+        -0.5 * 9.81 * 9.81 * 0.01,
+        1e-12,
+        "½ g dt Δv over 1 s",
+    );
+    assert_near(
+        s.energy.total - e0,
+        translational,
+        5e-4,
+        "energy drift over 1 s",
+    );
+    // L is unchanged: no torque.
+    assert_near(
+        (s.angular_momentum - world.initial_state().angular_momentum).norm(),
+        0.0,
+        0.0,
+        "ΔL",
+    );
+}
+
+#[test]
+fn lesson_1_top_of_the_flight_is_near_t_0_306() {
+    // v_y = 3 − 9.81 t vanishes at t = 0.3058 s: between frames 30 and 31.
+    let l = lesson("01-the-loop.toml");
+    let mut world = l.scene.world();
+    for _ in 0..30 {
+        world.step();
+    }
+    assert!(world.snapshot().velocity.y > 0.0);
+    world.step();
+    assert!(world.snapshot().velocity.y < 0.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 2: a rigid body from points
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_2_barycenter_inertia_and_angular_momentum_match_the_hand_computation() {
+    let l = lesson("02-rigid-body-from-points.toml");
+    let body = &l.scene.body;
+    // c = Σ mᵢ pᵢ / M = (0.1·0.5 + 0.3·0.5 + 0.3·0.5 + 0.2·0.25, 0, 0.2·0.05) / 1.
+    assert_near(
+        (body.barycenter - Vector3::new(0.4, 0.0, 0.01)).norm(),
+        0.0,
+        1e-15,
+        "c",
+    );
+    assert_near(body.mass, 1.0, 1e-15, "M");
+    let i = body.inertia_body;
+    // Points about c: (−0.4, 0, −0.01), (0.1, 0, −0.01), (0.1, ±0.15, −0.01), (−0.15, 0, 0.04).
+    // I_yy = Σ m (x² + z²) = 0.01601 + 0.00101 + 2 × 0.00303 + 0.00482 = 0.0279.
+    assert_near(i[(1, 1)], 0.0279, 1e-15, "I_yy");
+    // I_xx = Σ m (y² + z²) = 0.1·1e-4 + 0.1·1e-4 + 2·0.3·(0.0225 + 1e-4) + 0.2·0.0016 = 0.0139.
+    assert_near(i[(0, 0)], 0.0139, 1e-15, "I_xx");
+    // I_zz = Σ m (x² + y²) = 0.016 + 0.001 + 2·0.3·(0.01 + 0.0225) + 0.2·0.0225 = 0.041.
+    assert_near(i[(2, 2)], 0.041, 1e-15, "I_zz");
+    // I_xz = −Σ m x z = −(0.0004 − 0.0001 − 0.0006 − 0.0012) = 0.0015.
+    assert_near(i[(0, 2)], 0.0015, 1e-15, "I_xz");
+    // L = I ω with ω = (0, 0, 8): (0.012, 0, 0.328), not parallel to ω.
+    let s = l.scene.world().snapshot();
+    assert_near(
+        (s.angular_momentum - Vector3::new(0.012, 0.0, 0.328)).norm(),
+        0.0,
+        1e-14,
+        "L",
+    );
+    // Σ r₀ᵢ (unweighted) = (−0.25, 0, 0): quoted for lesson 4.
+    let sum: Vector3<f64> = body.points_body.iter().sum();
+    assert_near(
+        (sum - Vector3::new(-0.25, 0.0, 0.0)).norm(),
+        0.0,
+        1e-15,
+        "Σ r₀ᵢ",
+    );
+}
+
+#[test]
+fn lesson_2_barycenter_flies_the_parabola_and_l_stays() {
+    let l = lesson("02-rigid-body-from-points.toml");
+    let mut world = l.scene.world();
+    let l0 = world.initial_state().angular_momentum;
+    for _ in 0..100 {
+        world.step();
+    }
+    // x(0.5) = (0.5, 1 + 4·0.5 − ½·9.81·0.25, 0) = (0.5, 1.77375, 0); rk4 is exact on it.
+    let x = world.state().position;
+    assert_near(
+        (x - Vector3::new(0.5, 1.77375, 0.0)).norm(),
+        0.0,
+        1e-9,
+        "x(0.5 s)",
+    );
+    assert_near((world.state().angular_momentum - l0).norm(), 0.0, 0.0, "ΔL");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 3: rotation drift
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_3_one_euler_seed_step_leaves_dt2_omega2_root2() {
+    // (𝟙 + dt ω*)ᵀ(𝟙 + dt ω*) − 𝟙 = dt² (|ω|² 𝟙 − ω ωᵀ), Frobenius norm dt² |ω|² √2.
+    let l = lesson("03-rotation-drift.toml");
+    let mut world = l.scene.world();
+    world.step();
+    let expected = 1e-4 * (1.0 + 4.0 + 20.25) * 2f64.sqrt();
+    assert_near(
+        world.snapshot().orthonormality_error,
+        expected,
+        1e-12,
+        "‖RᵀR − 1‖ after 1 frame",
+    );
+    assert_near(expected, 0.003571, 5e-7, "the page's rounded value");
+}
+
+#[test]
+fn lesson_3_drift_and_energy_at_the_quoted_times() {
+    let l = lesson("03-rotation-drift.toml");
+    let mut world = l.scene.world();
+    let e0 = world.snapshot().energy.total;
+    // E₀ = ½ ω·Iω = ½ (0.009375·1 + 0.031875·4 + 0.0375·20.25) = 0.448125 J.
+    assert_near(e0, 0.448125, 1e-12, "E₀");
+    let mut at = |steps: u64| {
+        for _ in 0..steps {
+            world.step();
+        }
+        world.snapshot()
+    };
+    let one = at(100);
+    assert_near(one.orthonormality_error, 0.390890, 5e-7, "‖RᵀR − 1‖ at 1 s");
+    assert_near(one.energy.total, 0.452788, 5e-7, "E at 1 s");
+    let three = at(200);
+    assert_near(three.energy.total, 0.487096, 5e-7, "E at 3 s");
+    // "explodes a little after t = 3.9 s".
+    let mut diverged = None;
+    for _ in 0..200 {
+        world.step();
+        if let Some(d) = world.divergence() {
+            diverged = Some(d.time);
+            break;
+        }
+    }
+    let t = diverged.expect("euler-seed should diverge soon after 3.9 s");
+    assert!((3.9..4.0).contains(&t), "diverged at {t} s");
+}
+
+#[test]
+fn lesson_3_halving_dt_roughly_halves_the_drift() {
+    let l = lesson("03-rotation-drift.toml");
+    let drift = |dt: f64| {
+        let mut world = world_with(&l, Integrator::EulerSeed, dt);
+        for _ in 0..steps_for(1.0, dt) {
+            world.step();
+        }
+        world.snapshot().orthonormality_error
+    };
+    let ratio = drift(0.01) / drift(0.005);
+    assert!((2.0..2.3).contains(&ratio), "ratio {ratio}");
+}
+
+#[test]
+fn lesson_3_quaternions_keep_the_rotation_but_euler_still_gains_energy() {
+    let l = lesson("03-rotation-drift.toml");
+    let mut euler = world_with(&l, Integrator::Euler, 0.01);
+    let mut rk4 = world_with(&l, Integrator::Rk4, 0.01);
+    for _ in 0..300 {
+        euler.step();
+        rk4.step();
+    }
+    let (e, r) = (euler.snapshot(), rk4.snapshot());
+    assert!(e.orthonormality_error < 1e-14, "{}", e.orthonormality_error);
+    assert_near(e.energy.total, 0.483954, 5e-7, "euler E at 3 s");
+    assert_near(r.energy.total, 0.448125, 1e-8, "rk4 E at 3 s");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 4: gravity makes no torque
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_4_euler_seed_shows_the_invented_torque_in_the_forces_phase() {
+    let l = lesson("04-gravity-no-torque.toml");
+    let mut world = l.scene.world();
+    world.step_phase();
+    assert_eq!(world.step_phase(), Phase::Forces);
+    // τ_seed = (Σ r₀ᵢ) × M g = (−0.25, 0, 0) × (0, −9.81, 0) = (0, 0, 2.4525) N·m.
+    let tau = world.snapshot().torque;
+    assert_near(
+        (tau - Vector3::new(0.0, 0.0, 2.4525)).norm(),
+        0.0,
+        1e-14,
+        "τ after forces",
+    );
+    world.step_phase();
+    world.step_phase();
+    let s = world.snapshot();
+    // L = dt τ = 0.005 × 2.4525; ω = I⁻¹ L = (I⁻¹_xz, 0, I⁻¹_zz) × 0.0122625.
+    assert_near(s.angular_momentum.z, 0.0122625, 1e-15, "L_z after frame 1");
+    assert_near(s.angular_velocity.x, -0.032403, 5e-7, "ω_x after frame 1");
+    assert_near(s.angular_velocity.z, 0.300271, 5e-7, "ω_z after frame 1");
+}
+
+#[test]
+fn lesson_4_the_invented_torque_swings_the_body_and_makes_energy() {
+    let l = lesson("04-gravity-no-torque.toml");
+    let mut world = l.scene.world();
+    let (mut top, mut fastest_early, mut most_energy) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for step in 1..=200 {
+        world.step();
+        assert!(world.divergence().is_none(), "diverged at step {step}");
+        let s = world.snapshot();
+        top = top.max(s.position.y);
+        if step <= 40 {
+            fastest_early = fastest_early.max(s.angular_velocity.z);
+        }
+        most_energy = most_energy.max(s.energy.total);
+    }
+    assert!(fastest_early > 10.0, "ω_z within 0.2 s: {fastest_early}");
+    // Explicit Euler on x: top at 2.466 m (exact 2 + 9/19.62 = 2.4587 m).
+    assert_near(top, 2.466, 5e-4, "top of the flight");
+    assert!(
+        (26.8..27.5).contains(&most_energy),
+        "largest total energy {most_energy}"
+    );
+}
+
+#[test]
+fn lesson_4_every_other_integrator_sees_no_torque() {
+    let l = lesson("04-gravity-no-torque.toml");
+    for integrator in [
+        Integrator::Euler,
+        Integrator::SymplecticEuler,
+        Integrator::Rk4,
+        Integrator::Splitting,
+    ] {
+        let mut world = world_with(&l, integrator, 0.005);
+        for _ in 0..200 {
+            world.step();
+        }
+        let s = world.snapshot();
+        assert_eq!(s.torque, Vector3::zeros(), "{}", integrator.name());
+        assert_eq!(
+            s.angular_momentum,
+            Vector3::zeros(),
+            "{}",
+            integrator.name()
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 9: viscosity
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_9_drag_follows_the_exponential_closed_forms() {
+    let l = lesson("09-viscosity.toml");
+    let i_zz = l.scene.body.inertia_body[(2, 2)];
+    // 10 vertices of 0.1 kg: I_zz = 2 × 0.1 × (0.0841 + 0.0841 + 0.0481 + 0.0576 + 0.0481).
+    assert_near(i_zz, 0.0644, 1e-8, "I_zz (mesh coordinates are f32)");
+    let mut world = l.scene.world();
+    let s0 = world.snapshot();
+    // F = M g − k v = (−1, −12.31, 0) N; τ = −0.02 × 6 = −0.12 N·m.
+    assert_near(
+        (s0.force - Vector3::new(-1.0, -12.31, 0.0)).norm(),
+        0.0,
+        1e-12,
+        "F₀",
+    );
+    assert_near(s0.torque.z, -0.12, 1e-12, "τ₀");
+    for (t, steps) in [(1.0, 100), (2.0, 100)] {
+        for _ in 0..steps {
+            world.step();
+        }
+        let s = world.snapshot();
+        let decay = (-t / 2.0_f64).exp();
+        // v_x = 2 e^(−t/2); v_y = −19.62 + 24.62 e^(−t/2); ω_z = 6 e^(−k_a t / I_zz).
+        assert_near(s.velocity.x, 2.0 * decay, 1e-9, "v_x");
+        assert_near(s.velocity.y, -19.62 + 24.62 * decay, 1e-9, "v_y");
+        assert_near(
+            s.angular_velocity.z,
+            6.0 * (-0.02 * t / i_zz).exp(),
+            1e-9,
+            "ω_z",
+        );
+    }
+    // The page's rounded numbers at t = 2 s.
+    let s = world.snapshot();
+    assert_near(s.velocity.x, 0.735759, 5e-7, "v_x(2)");
+    assert_near(s.velocity.y, -10.562808, 5e-7, "v_y(2)");
+    assert_near(s.angular_velocity.z, 3.224060, 5e-7, "ω_z(2)");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 10: the tennis racket
+// ---------------------------------------------------------------------------------------------
+
+/// Times at which ωbody_y changes sign over 20 s.
+fn flips(l: &Lesson, integrator: Integrator, dt: f64) -> Vec<f64> {
+    let mut world = world_with(l, integrator, dt);
+    let mut samples = vec![(0.0, world.snapshot().angular_velocity_body.y)];
+    for _ in 0..steps_for(20.0, dt) {
+        world.step();
+        let s = world.snapshot();
+        samples.push((s.time, s.angular_velocity_body.y));
+    }
+    sign_changes(&samples)
+}
+
+#[test]
+fn lesson_10_flip_interval_matches_the_elliptic_closed_form() {
+    let l = lesson("10-tennis-racket.toml");
+    let (i1, i2, i3): (f64, f64, f64) = (0.17 / 12.0, 1.01 / 12.0, 1.16 / 12.0);
+    let w: [f64; 3] = [0.01, 10.0, 0.01];
+    let l2 = (i1 * w[0]).powi(2) + (i2 * w[1]).powi(2) + (i3 * w[2]).powi(2);
+    let e2 = i1 * w[0] * w[0] + i2 * w[1] * w[1] + i3 * w[2] * w[2];
+    let delta = l2 - e2 * i2;
+    // δ = L² − 2E I₂ = 2.17e-8, 3.06e-8 of 2E I₂ (quoted).
+    assert_near(delta, 2.1667e-8, 1e-12, "δ");
+    assert_near(delta / (e2 * i2), 3.06e-8, 1e-10, "δ / 2EI₂");
+    let lambda = ((i3 - i2) * (l2 - e2 * i1) / (i1 * i2 * i3)).sqrt();
+    let kc2 = (i3 - i1) * delta / ((i3 - i2) * (l2 - e2 * i1));
+    let k = elliptic_k_from_complement(kc2);
+    assert_near(lambda, 7.993, 5e-4, "λ");
+    assert_near(kc2, 2.43e-7, 5e-10, "k'²");
+    assert_near(k, 9.002, 5e-4, "K");
+    let interval = 2.0 * k / lambda;
+    assert_near(interval, 2.252351, 5e-7, "Δt = 2K/λ");
+    // The converged run (rk4, dt = 0.0005) flips every Δt.
+    let f = flips(&l, Integrator::Rk4, 0.0005);
+    assert_eq!(f.len(), 9, "{f:?}");
+    assert_near(f[0], 1.3144, 1e-4, "first flip");
+    assert_near((f[8] - f[0]) / 8.0, interval, 2e-5, "mean flip interval");
+    assert_near(f[8], 19.3331, 1e-4, "9th flip, converged");
+}
+
+#[test]
+fn lesson_10_integrators_move_the_ninth_flip_as_the_page_says() {
+    let l = lesson("10-tennis-racket.toml");
+    for (integrator, dt, ninth) in [
+        (Integrator::Rk4, 0.001, 19.3322),
+        (Integrator::Rk4, 0.002, 19.3035),
+        (Integrator::Rk4, 0.005, 18.0424),
+        (Integrator::Splitting, 0.005, 19.3230),
+        (Integrator::Splitting, 0.01, 19.2928),
+    ] {
+        let f = flips(&l, integrator, dt);
+        assert!(f.len() >= 9, "{} dt {dt}: {f:?}", integrator.name());
+        assert_near(
+            f[8],
+            ninth,
+            1e-4,
+            &format!("9th flip, {} dt = {dt}", integrator.name()),
+        );
+    }
+}
+
+#[test]
+fn lesson_10_explicit_euler_flips_faster_and_diverges_at_7_7_s() {
+    let l = lesson("10-tennis-racket.toml");
+    let mut world = world_with(&l, Integrator::Euler, 0.001);
+    let mut samples = vec![(0.0, world.snapshot().angular_velocity_body.y)];
+    let diverged = loop {
+        world.step();
+        let s = world.snapshot();
+        samples.push((s.time, s.angular_velocity_body.y));
+        if let Some(d) = world.divergence() {
+            break d;
+        }
+        assert!(s.time < 20.0);
+    };
+    assert_eq!(diverged.step, 7695);
+    let f = sign_changes(&samples);
+    for (seen, quoted) in f.iter().zip([1.3214, 1.9068, 2.3922]) {
+        assert_near(*seen, quoted, 1e-4, "euler flip");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 11: fast spin
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_11_stable_integrators_keep_the_wobble_and_its_nutation_period() {
+    let l = lesson("11-fast-spin.toml");
+    let (i1, i2, i3): (f64, f64, f64) = (0.17 / 12.0, 1.01 / 12.0, 1.16 / 12.0);
+    // Ω = ω₃ √((I₃ − I₁)(I₃ − I₂) / (I₁ I₂)) = 93.0 rad/s, period 0.06756 s.
+    let nutation = 100.0 * ((i3 - i1) * (i3 - i2) / (i1 * i2)).sqrt();
+    assert_near(
+        2.0 * std::f64::consts::PI / nutation,
+        0.06756,
+        5e-6,
+        "nutation period",
+    );
+    // rk4 keeps the period to 2e-5 s; splitting, second order, is 0.2 % slow at ω dt = 0.1.
+    for (integrator, period_tolerance) in [(Integrator::Rk4, 2e-5), (Integrator::Splitting, 2e-4)] {
+        let mut world = world_with(&l, integrator, 0.001);
+        let e0 = world.snapshot().energy.total;
+        let mut samples = Vec::new();
+        let mut widest: f64 = 0.0;
+        for _ in 0..3000 {
+            world.step();
+            let s = world.snapshot();
+            widest = widest.max(
+                s.angular_velocity_body
+                    .x
+                    .abs()
+                    .max(s.angular_velocity_body.y.abs()),
+            );
+            samples.push((s.time, s.angular_velocity_body.x));
+        }
+        let relative = (world.snapshot().energy.total - e0) / e0;
+        assert!(
+            relative.abs() < 5e-12,
+            "{}: drift/E₀ {relative:e}",
+            integrator.name()
+        );
+        assert!(widest < 0.015, "{}: wobble {widest}", integrator.name());
+        let crossings = sign_changes(&samples);
+        let period =
+            2.0 * (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+        assert_near(
+            period,
+            2.0 * std::f64::consts::PI / nutation,
+            period_tolerance,
+            integrator.name(),
+        );
+    }
+}
+
+#[test]
+fn lesson_11_explicit_euler_energy_gain_per_step_is_half_dt2_omega_cross_l() {
+    // One euler step turns the body about the start-of-step ω by 2 atan(|ω| dt / 2) (the
+    // renormalised q + dt ½ ω ⊗ q). In the body frame L turns the other way about ω; the
+    // energy ½ L·I⁻¹L of the turned L is the exact gain. To second order in dt it is
+    // ΔE ≈ ½ dt² (ω × L)·I⁻¹(ω × L), the page's formula (6 % high at |ω| dt = 0.1).
+    let l = lesson("11-fast-spin.toml");
+    let mut world = l.scene.world();
+    let s0 = world.snapshot();
+    let (w, lb) = (s0.angular_velocity_body, s0.angular_momentum_body);
+    let moments = Vector3::new(0.17 / 12.0, 1.01 / 12.0, 1.16 / 12.0);
+    let energy = |l: &Vector3<f64>| 0.5 * l.component_div(&moments).dot(l);
+    let angle = 2.0 * (w.norm() * 1e-3 / 2.0).atan();
+    let turned = UnitQuaternion::from_scaled_axis(-w.normalize() * angle) * lb;
+    let exact = energy(&turned) - energy(&lb);
+    let c = w.cross(&lb);
+    let second_order = 0.5 * 1e-6 * c.component_div(&moments).dot(&c);
+    world.step();
+    let gained = world.snapshot().energy.total - s0.energy.total;
+    assert!(gained > 0.0);
+    assert_near(gained / exact, 1.0, 1e-5, "ΔE / exact finite rotation");
+    assert_near(
+        second_order / exact,
+        1.061,
+        0.005,
+        "second-order formula / exact",
+    );
+}
+
+#[test]
+fn lesson_11_at_dt_0_01_rk4_kills_the_wobble_and_splitting_keeps_it() {
+    let l = lesson("11-fast-spin.toml");
+    let wobble = |integrator| {
+        let mut world = world_with(&l, integrator, 0.01);
+        for _ in 0..300 {
+            world.step();
+        }
+        let w = world.snapshot().angular_velocity_body;
+        w.x.hypot(w.y)
+    };
+    assert!(
+        wobble(Integrator::Rk4) < 1e-4,
+        "rk4 {}",
+        wobble(Integrator::Rk4)
+    );
+    assert!(
+        wobble(Integrator::Splitting) > 0.008,
+        "splitting {}",
+        wobble(Integrator::Splitting)
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 12: what accuracy costs
+// ---------------------------------------------------------------------------------------------
+
+fn orientation_after_10_s(
+    l: &Lesson,
+    integrator: Integrator,
+    dt: f64,
+) -> Option<UnitQuaternion<f64>> {
+    let mut world = world_with(l, integrator, dt);
+    for _ in 0..steps_for(10.0, dt) {
+        world.step();
+        if world.divergence().is_some() {
+            return None;
+        }
+    }
+    Some(world.snapshot().quaternion)
+}
+
+#[test]
+fn lesson_12_orientation_errors_follow_the_quoted_table() {
+    let l = lesson("12-accuracy-cost.toml");
+    let reference = orientation_after_10_s(&l, Integrator::Rk4, 1e-4).unwrap();
+    let error =
+        |integrator, dt| orientation_after_10_s(&l, integrator, dt).map(|q| reference.angle_to(&q));
+    for (integrator, dt, quoted, tolerance) in [
+        (Integrator::Rk4, 0.01, 6.0e-6, 0.1e-6),
+        (Integrator::Rk4, 0.005, 3.7e-7, 0.05e-7),
+        (Integrator::Splitting, 0.01, 3.3e-3, 0.05e-3),
+        (Integrator::Splitting, 0.005, 8.2e-4, 0.05e-4),
+        (Integrator::Euler, 0.005, 2.7, 0.05),
+        (Integrator::Euler, 0.001, 0.34, 0.005),
+        (Integrator::EulerSeed, 0.001, 0.74, 0.005),
+    ] {
+        let seen = error(integrator, dt)
+            .unwrap_or_else(|| panic!("{} dt {dt} diverged", integrator.name()));
+        assert_near(
+            seen,
+            quoted,
+            tolerance,
+            &format!("{} dt = {dt}", integrator.name()),
+        );
+    }
+    assert!(
+        error(Integrator::Euler, 0.01).is_none(),
+        "euler at dt = 0.01 should diverge"
+    );
+    assert!(
+        error(Integrator::EulerSeed, 0.005).is_none(),
+        "euler-seed at dt = 0.005 should diverge"
+    );
+    // Orders: halving dt divides rk4's error by ≈ 16 and splitting's by ≈ 4.
+    let rk4 = error(Integrator::Rk4, 0.01).unwrap() / error(Integrator::Rk4, 0.005).unwrap();
+    let split =
+        error(Integrator::Splitting, 0.01).unwrap() / error(Integrator::Splitting, 0.005).unwrap();
+    assert!((14.0..18.0).contains(&rk4), "rk4 ratio {rk4}");
+    assert!((3.7..4.3).contains(&split), "splitting ratio {split}");
+}
