@@ -196,8 +196,10 @@ impl World {
             self.dt,
         );
         now.step += 1;
-        now.guard
-            .observe(self.effects.potential_energy(&self.body, &now.state.position));
+        now.guard.observe(
+            self.effects
+                .potential_energy(&self.body, &now.state.position),
+        );
     }
 
     /// *collide*: detection and response, only when the scene declares obstacles.
