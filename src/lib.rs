@@ -10,3 +10,5 @@ pub mod physics;
 pub mod scene;
 pub mod study;
 pub mod tables;
+#[cfg(feature = "tui")]
+pub mod tui;

@@ -30,6 +30,12 @@ pub const EXIT_DIVERGED: u8 = 3;
 pub struct Cli {
     /// A lesson or scene file to open in the terminal app (default: the first bundled lesson).
     pub file: Option<PathBuf>,
+    /// Draw the projection in pure ASCII instead of Braille dots.
+    #[arg(long)]
+    pub ascii: bool,
+    /// Run a second world in lock-step with this integrator or collision response (a ghost).
+    #[arg(long, value_name = "NAME")]
+    pub compare: Option<String>,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -129,6 +135,63 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
     Ok(lesson)
 }
 
+/// The file the terminal app opens: the given one, else the first bundled lesson.
+fn app_file(file: Option<&Path>) -> Result<PathBuf, Failure> {
+    match file {
+        Some(f) => Ok(f.to_path_buf()),
+        None => crate::lessons::bundled().into_iter().next().ok_or_else(|| {
+            Failure::bad_input(format!(
+                "no bundled lessons in {} (set TUMBLE_LESSONS or give a FILE)",
+                crate::lessons::folder().display()
+            ))
+        }),
+    }
+}
+
+/// `tumble [FILE] [--ascii] [--compare NAME]`: the terminal app. The file and the options are
+/// checked before the terminal is touched.
+#[cfg(feature = "tui")]
+fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Failure> {
+    use crate::tui::{Comparison, Options};
+    let path = app_file(file)?;
+    let lesson = scene::load(&path)?;
+    let compare = match compare {
+        None => None,
+        Some(name) => {
+            let comparison = Comparison::from_name(name).ok_or_else(|| {
+                Failure::bad_input(format!(
+                    "unknown --compare `{name}`; valid: integrators {}; responses {}",
+                    Integrator::names(),
+                    Response::names()
+                ))
+            })?;
+            if matches!(comparison, Comparison::Response(_)) && lesson.scene.contact.is_none() {
+                return Err(Failure::bad_input(format!(
+                    "{}: --compare {name} needs a scene with obstacles and a `contact` table",
+                    path.display()
+                )));
+            }
+            Some(comparison)
+        }
+    };
+    let options = Options {
+        ascii,
+        compare,
+        show_timing: true,
+    };
+    crate::tui::run(lesson, options).map_err(|e| Failure::bad_input(format!("terminal error: {e}")))
+}
+
+/// Without the `tui` feature there is no terminal app: the file is still checked.
+#[cfg(not(feature = "tui"))]
+fn app(file: Option<&Path>, _ascii: bool, _compare: Option<&str>) -> Result<(), Failure> {
+    let path = app_file(file)?;
+    scene::load(&path)?;
+    Err(Failure::bad_input(
+        "this build has no terminal app (built without the `tui` feature); use `tumble run`",
+    ))
+}
+
 /// Runs the command line; returns the process exit code.
 pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
@@ -145,9 +208,7 @@ pub fn main() -> ExitCode {
         Some(Command::Study(args)) => study::study(&args),
         Some(Command::Lessons) => lessons::list(),
         Some(Command::Walk(args)) => walk::walk(&args),
-        None => Err(Failure::bad_input(
-            "the terminal app is not built yet: use `tumble run FILE --steps N`".to_string(),
-        )),
+        None => app(cli.file.as_deref(), cli.ascii, cli.compare.as_deref()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

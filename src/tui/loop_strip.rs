@@ -1,0 +1,274 @@
+//! The loop strip: derive → forces → integrate → collide, the phase just run highlighted and
+//! its formulas written out with the numbers it produced (for a collision, the impulse
+//! arithmetic of each contact).
+
+use super::app::App;
+use crate::physics::{Effect, Integrator, Phase, Response, Snapshot, World};
+use crate::tables::number_plain;
+use nalgebra::Vector3;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Paragraph, Widget};
+
+const FORMULA: Style = Style::new().fg(Color::Cyan);
+
+/// A vector as `(x, y, z)` with the shared number formatter.
+pub fn vector(v: &Vector3<f64>) -> String {
+    format!(
+        "({}, {}, {})",
+        number_plain(v.x),
+        number_plain(v.y),
+        number_plain(v.z)
+    )
+}
+
+pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+    let s = &app.snapshot;
+    let title = match s.phase {
+        Some(p) => format!(" the loop — frame {}, after {} ", frame_number(s), p),
+        None => " the loop — t = 0, nothing has run yet ".to_string(),
+    };
+    let block = Block::new()
+        .borders(Borders::TOP)
+        .border_style(Style::new().fg(Color::DarkGray))
+        .title(Line::styled(
+            title,
+            Style::new().fg(Color::White).add_modifier(Modifier::BOLD),
+        ));
+    let inner = block.inner(area);
+    block.render(area, buf);
+    let mut lines = vec![phase_line(s)];
+    lines.extend(formulas(&app.world, s));
+    Paragraph::new(lines).render(inner, buf);
+}
+
+/// The frame the last phase belongs to (1-based).
+fn frame_number(s: &Snapshot) -> u64 {
+    match s.phase {
+        Some(Phase::Derive) | Some(Phase::Forces) => s.step + 1,
+        _ => s.step,
+    }
+}
+
+fn phase_line(s: &Snapshot) -> Line<'static> {
+    let mut spans = vec![Span::raw(" ")];
+    for (i, phase) in Phase::ALL.iter().enumerate() {
+        if i > 0 {
+            spans.push(Span::styled(" → ", Style::new().fg(Color::DarkGray)));
+        }
+        let style = if s.phase == Some(*phase) {
+            Style::new()
+                .fg(Color::Black)
+                .bg(Color::Yellow)
+                .add_modifier(Modifier::BOLD)
+        } else if s.next_phase == *phase {
+            Style::new().fg(Color::Yellow)
+        } else {
+            Style::new().fg(Color::Gray)
+        };
+        let marker = if s.phase == Some(*phase) {
+            "■"
+        } else if s.next_phase == *phase {
+            "▸"
+        } else {
+            " "
+        };
+        spans.push(Span::styled(format!("{marker} {}", phase.name()), style));
+    }
+    spans.push(Span::styled(
+        format!("      next: {}  (n)", s.next_phase),
+        Style::new().fg(Color::DarkGray),
+    ));
+    Line::from(spans)
+}
+
+fn line(formula: impl Into<String>, numbers: impl Into<String>) -> Line<'static> {
+    Line::from(vec![
+        Span::raw("   "),
+        Span::styled(formula.into(), FORMULA),
+        Span::raw(numbers.into()),
+    ])
+}
+
+fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+    match s.phase {
+        None => vec![line(
+            "Press n to run the derive phase, → to run a whole frame, space to run.",
+            "",
+        )],
+        Some(Phase::Derive) => vec![
+            line(
+                "I⁻¹ = R·Ibody⁻¹·Rᵀ",
+                "   (the inertia panel; R from the orientation q)",
+            ),
+            line(
+                "ω = I⁻¹·L",
+                format!(" = {} rad/s", vector(&s.angular_velocity)),
+            ),
+            line(
+                "v = P/M",
+                format!(
+                    " = {} / {} = {} m/s",
+                    vector(&s.linear_momentum),
+                    number_plain(world.body().mass),
+                    vector(&s.velocity)
+                ),
+            ),
+        ],
+        Some(Phase::Forces) => forces(world, s),
+        Some(Phase::Integrate) => integrate(s),
+        Some(Phase::Collide) => collide(world, s),
+    }
+}
+
+fn forces(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+    let mut lines = Vec::new();
+    let mass = world.body().mass;
+    if world.effects().list().is_empty() {
+        lines.push(line("no effects declared: F = 0, τ = 0", ""));
+    }
+    for effect in world.effects().list() {
+        match *effect {
+            Effect::Gravity(g) => lines.push(line(
+                "gravity  F = M·g",
+                format!(
+                    " = {} · {} = {} N",
+                    number_plain(mass),
+                    vector(&g),
+                    vector(&(g * mass))
+                ),
+            )),
+            Effect::Drag { linear, angular } => lines.push(line(
+                "drag  F −= k·v,  τ −= kₐ·ω",
+                format!(
+                    "   k = {}, kₐ = {}: −{}, −{}",
+                    number_plain(linear),
+                    number_plain(angular),
+                    vector(&(s.velocity * linear)),
+                    vector(&(s.angular_velocity * angular))
+                ),
+            )),
+        }
+    }
+    lines.push(line(
+        "F, τ",
+        format!(
+            " = {} N, {} N·m   (τ about the barycenter)",
+            vector(&s.force),
+            vector(&s.torque)
+        ),
+    ));
+    let rate = match s.integrator {
+        Integrator::EulerSeed => "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
+        _ => "q̇ = ½·ω⊗q   (how the orientation turns)",
+    };
+    lines.push(line(rate, ""));
+    lines
+}
+
+fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
+    let method = match s.integrator {
+        Integrator::EulerSeed => "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
+        Integrator::Euler => "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
+        Integrator::SymplecticEuler => "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
+        Integrator::Rk4 => "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
+        Integrator::Splitting => "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
+    };
+    vec![
+        line(method, ""),
+        line(
+            "x, P",
+            format!(
+                " = {} m, {} kg·m/s   (dt = {} s)",
+                vector(&s.position),
+                vector(&s.linear_momentum),
+                number_plain(s.dt)
+            ),
+        ),
+        line(
+            "L",
+            format!(
+                " = {} kg·m²/s,   ‖RᵀR−1‖ = {}",
+                vector(&s.angular_momentum),
+                number_plain(s.orthonormality_error)
+            ),
+        ),
+    ]
+}
+
+fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+    let obstacles = world.obstacles();
+    if obstacles.is_empty() {
+        return vec![line(
+            "no obstacles declared: nothing to detect, the phase costs nothing",
+            "",
+        )];
+    }
+    if s.contacts.is_empty() {
+        return vec![line(
+            format!(
+                "{} obstacle(s), no vertex inside: nothing to do",
+                obstacles.len()
+            ),
+            format!("   (deepest penetration {} m)", number_plain(s.penetration)),
+        )];
+    }
+    let model = world.contact_model();
+    let mut lines = Vec::new();
+    match model.map(|m| m.response) {
+        Some(Response::Impulse) => {
+            let e = model.map_or(0.0, |m| m.restitution);
+            lines.push(line(
+                "j = −(1+e)·(v·n) / (1/M + n·((I⁻¹(r×n))×r)),   J = j·n + friction",
+                format!("   e = {}", number_plain(e)),
+            ));
+            for c in s.contacts.iter().take(2) {
+                lines.push(line(
+                    format!(
+                        "v{} in {}:",
+                        c.vertex,
+                        obstacles.get(c.obstacle).map_or("?", |o| o.kind())
+                    ),
+                    format!(
+                        " n = {}, v·n = {}, denominator = {}, J = {} N·s (J·n = {})",
+                        vector(&c.normal),
+                        number_plain(c.normal_velocity),
+                        number_plain(c.denominator),
+                        vector(&c.impulse),
+                        number_plain(c.impulse.dot(&c.normal))
+                    ),
+                ));
+            }
+        }
+        _ => {
+            lines.push(line(
+                "seed: P ← −0.4·P, pushed out by depth², force added to L (the report's response)",
+                "",
+            ));
+            for c in s.contacts.iter().take(2) {
+                lines.push(line(
+                    format!(
+                        "v{} in {}:",
+                        c.vertex,
+                        obstacles.get(c.obstacle).map_or("?", |o| o.kind())
+                    ),
+                    format!(
+                        " depth = {} m, n = {}, ΔP = {} N·s",
+                        number_plain(c.depth),
+                        vector(&c.normal),
+                        vector(&c.impulse)
+                    ),
+                ));
+            }
+        }
+    }
+    if s.contacts.len() > 2 {
+        lines.push(line(
+            format!("… and {} more contacts", s.contacts.len() - 2),
+            "",
+        ));
+    }
+    lines
+}

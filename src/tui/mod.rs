@@ -1,0 +1,112 @@
+//! The terminal app (ratatui + crossterm): step the animation loop phase by phase and watch the
+//! body and its numbers.
+//!
+//! A thin state machine over the simulation. [`App`] holds the state; a key becomes a
+//! [`keys::Message`] through the one key table, [`App::update`] applies it, and `&App` is a
+//! widget (`screen.rs`) drawn from the world's snapshots — no physics is recomputed here.
+//!
+//! | file | what it shows or does |
+//! |---|---|
+//! | `app` | state and update |
+//! | `keys` | the key table (status-bar hints and help overlay) |
+//! | `history` | the ring of saved frames for stepping back |
+//! | `series` | the energy series behind the graph |
+//! | `viewport` | view axis, region kept in frame, cell mapping |
+//! | `screen` | the whole screen, overlays, the "enlarge" message |
+//! | `header`, `status_bar` | top line; bottom lines |
+//! | `loop_view`, `energy_view` | the views (one file each) |
+//! | `projection`, `panels`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
+//! | `help`, `picker`, `divergence_dialog` | the overlays |
+//!
+//! When paused the app blocks on input; when running it advances on a fixed dt, as many frames
+//! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`]).
+
+pub mod app;
+pub mod divergence_dialog;
+pub mod energy_graph;
+pub mod energy_view;
+pub mod header;
+pub mod help;
+pub mod history;
+pub mod keys;
+pub mod lesson_pane;
+pub mod loop_strip;
+pub mod loop_view;
+pub mod panels;
+pub mod picker;
+pub mod projection;
+pub mod screen;
+pub mod series;
+pub mod status_bar;
+pub mod viewport;
+
+pub use app::{App, Comparison, Options, View};
+
+use crate::scene::Lesson;
+use crossterm::event::{self, Event};
+use ratatui::DefaultTerminal;
+use std::time::{Duration, Instant};
+
+/// Time between renders while running.
+pub const RENDER_INTERVAL: Duration = Duration::from_millis(33);
+/// Most frames simulated per render; beyond that the simulation falls behind the clock.
+pub const MAX_FRAMES_PER_RENDER: u64 = 5_000;
+
+/// Runs the app on the terminal until the user quits; the terminal is always restored.
+pub fn run(lesson: Lesson, options: Options) -> std::io::Result<()> {
+    let mut app = App::new(lesson, options);
+    let terminal = ratatui::init();
+    let result = event_loop(terminal, &mut app);
+    ratatui::restore();
+    result
+}
+
+fn handle(app: &mut App, event: Event) {
+    if let Event::Key(key) = event {
+        app.handle_key(&key);
+    }
+    // Resize: the next draw uses the new size.
+}
+
+fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<()> {
+    let mut last = Instant::now();
+    let mut pending = 0.0_f64;
+    loop {
+        terminal.draw(|frame| frame.render_widget(&*app, frame.area()))?;
+        if app.quit {
+            return Ok(());
+        }
+        if !app.running {
+            // Paused: block until something happens.
+            handle(app, event::read()?);
+            last = Instant::now();
+            pending = 0.0;
+            continue;
+        }
+        let deadline = Instant::now() + RENDER_INTERVAL;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() || !event::poll(left)? {
+                break;
+            }
+            handle(app, event::read()?);
+            if app.quit || !app.running {
+                break;
+            }
+        }
+        if !app.running {
+            continue;
+        }
+        let now = Instant::now();
+        pending += now.duration_since(last).as_secs_f64() * app.frames_per_second();
+        last = now;
+        let frames = (pending.floor() as u64).min(MAX_FRAMES_PER_RENDER);
+        pending -= frames as f64;
+        if pending > MAX_FRAMES_PER_RENDER as f64 {
+            pending = 0.0; // too slow to keep up: drop the backlog rather than stall
+        }
+        if frames > 0 {
+            app.step_frames(frames);
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! The lesson picker: the bundled lessons by title; Enter opens the selected one.
+
+use super::keys::{Context, KEYS};
+use super::screen::centered;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Line;
+use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+use std::path::PathBuf;
+
+pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &mut Buffer) {
+    let mut lines: Vec<Line> = lessons
+        .iter()
+        .enumerate()
+        .map(|(i, (path, title))| {
+            let name = path
+                .file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+            let text = format!(" {name:<26} {title}");
+            if i == selected {
+                Line::styled(
+                    text,
+                    Style::new()
+                        .fg(Color::Black)
+                        .bg(Color::Yellow)
+                        .add_modifier(Modifier::BOLD),
+                )
+            } else {
+                Line::raw(text)
+            }
+        })
+        .collect();
+    if lines.is_empty() {
+        lines.push(Line::raw(format!(
+            " no lessons found in {}",
+            crate::lessons::folder().display()
+        )));
+    }
+    let footer: Vec<String> = KEYS
+        .iter()
+        .filter(|b| b.context == Context::Picker)
+        .map(|b| {
+            format!(
+                "{} {}",
+                b.label,
+                b.help.trim_start_matches("lesson picker: ")
+            )
+        })
+        .collect();
+    let popup = centered(area, 76, lines.len() as u16 + 2);
+    Clear.render(popup, buf);
+    Paragraph::new(lines)
+        .block(
+            Block::bordered()
+                .title(" lessons ")
+                .title_bottom(format!(" {} ", footer.join(" · ")))
+                .border_style(Style::new().fg(Color::Cyan)),
+        )
+        .render(popup, buf);
+}

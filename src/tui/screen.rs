@@ -1,0 +1,98 @@
+//! The whole screen: header, the current view, status bar, and the overlays (help, lesson
+//! picker, divergence dialog) — or, in a terminal too small, a message asking to enlarge it.
+
+use super::app::{App, Overlay, View};
+use super::{divergence_dialog, energy_view, header, help, loop_view, picker, status_bar};
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Line;
+use ratatui::widgets::{Paragraph, Widget, Wrap};
+
+/// The smallest usable terminal.
+pub const MIN_WIDTH: u16 = 80;
+pub const MIN_HEIGHT: u16 = 24;
+
+impl Widget for &App {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+            enlarge_message(area, buf);
+            return;
+        }
+        let [top, main, status] = Layout::vertical([
+            Constraint::Length(1),
+            Constraint::Min(0),
+            Constraint::Length(if area.width >= 134 { 2 } else { 3 }),
+        ])
+        .areas(area);
+        header::render(self, top, buf);
+        match self.view {
+            View::Loop => loop_view::render(self, main, buf),
+            View::Energy => energy_view::render(self, main, buf),
+        }
+        status_bar::render(self, status, buf);
+        if let Some(d) = &self.divergence {
+            divergence_dialog::render(d, area, buf);
+        }
+        match &self.overlay {
+            Overlay::None => {}
+            Overlay::Help => help::render(area, buf),
+            Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
+        }
+    }
+}
+
+/// The areas shared by the views: a left column, the numeric panels on the right, and the loop
+/// strip along the bottom.
+pub struct MainAreas {
+    pub left: Rect,
+    pub panels: Rect,
+    pub strip: Rect,
+}
+
+/// Splits the main area.
+pub fn main_areas(area: Rect) -> MainAreas {
+    let strip_height = if area.height >= 30 { 6 } else { 4 };
+    let [upper, strip] =
+        Layout::vertical([Constraint::Min(0), Constraint::Length(strip_height)]).areas(area);
+    let panels_width = 71.min(area.width * 3 / 5);
+    let [left, panels] =
+        Layout::horizontal([Constraint::Min(0), Constraint::Length(panels_width)]).areas(upper);
+    MainAreas {
+        left,
+        panels,
+        strip,
+    }
+}
+
+/// A rectangle of at most `width × height` centred in `area`.
+pub fn centered(area: Rect, width: u16, height: u16) -> Rect {
+    let w = width.min(area.width);
+    let h = height.min(area.height);
+    Rect {
+        x: area.x + (area.width - w) / 2,
+        y: area.y + (area.height - h) / 2,
+        width: w,
+        height: h,
+    }
+}
+
+fn enlarge_message(area: Rect, buf: &mut Buffer) {
+    let text = vec![
+        Line::styled(
+            "Please enlarge the terminal",
+            Style::new().add_modifier(Modifier::BOLD),
+        ),
+        Line::from(format!(
+            "tumble needs at least {MIN_WIDTH}×{MIN_HEIGHT}; this one is {}×{}.",
+            area.width, area.height
+        )),
+        Line::from("q quits."),
+    ];
+    let box_area = centered(area, area.width, 4);
+    Paragraph::new(text)
+        .style(Style::new().fg(Color::Yellow))
+        .centered()
+        .wrap(Wrap { trim: true })
+        .render(box_area, buf);
+}

@@ -1,0 +1,130 @@
+//! The energy series behind the energy graph: kinetic, potential, total and drift per frame,
+//! thinned by halves when long, with axes that only ever grow (by doubling) so the graph does
+//! not jump while it runs.
+
+use crate::physics::Snapshot;
+
+/// Points kept before the series is thinned to every other point.
+const MAX_POINTS: usize = 4096;
+
+/// One recorded frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    pub t: f64,
+    pub kinetic: f64,
+    pub potential: f64,
+    pub total: f64,
+    /// total − total at t = 0.
+    pub drift: f64,
+    /// The compare world's total energy, if compare mode is on.
+    pub compare_total: Option<f64>,
+}
+
+/// A growing axis range `[lo, hi]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Range {
+    /// Grows (by doubling its span towards the side exceeded) until `x` is inside.
+    pub fn include(&mut self, x: f64) {
+        if !x.is_finite() {
+            return;
+        }
+        for _ in 0..2048 {
+            let span = self.hi - self.lo;
+            if x > self.hi {
+                self.hi += span;
+            } else if x < self.lo {
+                self.lo -= span;
+            } else {
+                return;
+            }
+        }
+    }
+}
+
+/// The recorded energies and the graph's axes.
+#[derive(Debug, Clone)]
+pub struct EnergySeries {
+    samples: Vec<Sample>,
+    /// Record one frame in `stride`.
+    stride: u64,
+    pub time_axis: Range,
+    pub energy_axis: Range,
+    pub drift_axis: Range,
+}
+
+impl EnergySeries {
+    /// A series starting with the snapshot at t = 0; `duration` (if any) sets the time axis.
+    pub fn new(first: &Snapshot, duration: Option<f64>) -> EnergySeries {
+        let e = first.initial_energy;
+        let values = [e.kinetic, e.potential, e.total, 0.0];
+        let lo = values.iter().cloned().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let scale = lo.abs().max(hi.abs()).max(1e-9);
+        let pad = 0.1 * scale;
+        let drift_scale = 1e-6 * scale;
+        let t_end = duration.filter(|d| *d > 0.0).unwrap_or(100.0 * first.dt);
+        let mut series = EnergySeries {
+            samples: Vec::new(),
+            stride: 1,
+            time_axis: Range { lo: 0.0, hi: t_end },
+            energy_axis: Range {
+                lo: lo - pad,
+                hi: hi + pad,
+            },
+            drift_axis: Range {
+                lo: -drift_scale,
+                hi: drift_scale,
+            },
+        };
+        series.record(first, None);
+        series
+    }
+
+    /// Records a frame (the snapshot after a whole frame), keeping one frame in `stride`.
+    pub fn record(&mut self, s: &Snapshot, compare: Option<&Snapshot>) {
+        let sample = Sample {
+            t: s.time,
+            kinetic: s.energy.kinetic,
+            potential: s.energy.potential,
+            total: s.energy.total,
+            drift: s.energy.total - s.initial_energy.total,
+            compare_total: compare.map(|c| c.energy.total),
+        };
+        self.time_axis.include(sample.t);
+        for x in [sample.kinetic, sample.potential, sample.total] {
+            self.energy_axis.include(x);
+        }
+        if let Some(c) = sample.compare_total {
+            self.energy_axis.include(c);
+            if let Some(c0) = compare.map(|c| c.initial_energy.total) {
+                self.drift_axis.include(c - c0);
+            }
+        }
+        self.drift_axis.include(sample.drift);
+        if !s.step.is_multiple_of(self.stride) {
+            return;
+        }
+        self.samples.push(sample);
+        if self.samples.len() > MAX_POINTS {
+            self.stride *= 2;
+            let stride = self.stride;
+            let dt = s.dt;
+            self.samples
+                .retain(|x| ((x.t / dt).round() as u64).is_multiple_of(stride));
+        }
+    }
+
+    /// Forgets samples after time `t` (stepping back); the axes stay as they were.
+    pub fn truncate_after(&mut self, t: f64) {
+        self.samples.retain(|x| x.t <= t + 1e-12);
+    }
+
+    pub fn samples(&self) -> &[Sample] {
+        &self.samples
+    }
+}

@@ -1,0 +1,207 @@
+//! What the projection looks at: the view axis (front x–y, side z–y, top x–z) and the region of
+//! the world kept in frame, which grows (by doubling) whenever the body would leave it, and the
+//! mapping to terminal cells with the right aspect ratio (a cell is about twice as tall as wide).
+
+use crate::physics::{Body, Obstacle};
+use nalgebra::Vector3;
+
+/// The view direction of the orthographic projection.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    /// Looking along −z: x to the right, y up.
+    Front,
+    /// Looking along +x: z to the right, y up.
+    Side,
+    /// Looking down along −y: x to the right, z down the screen.
+    Top,
+}
+
+impl Axis {
+    pub fn next(self) -> Axis {
+        match self {
+            Axis::Front => Axis::Side,
+            Axis::Side => Axis::Top,
+            Axis::Top => Axis::Front,
+        }
+    }
+
+    /// The view's name and screen axes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::Front => "front x–y",
+            Axis::Side => "side z–y",
+            Axis::Top => "top x–z",
+        }
+    }
+
+    /// Which way the world axes point on screen.
+    pub fn legend(self) -> &'static str {
+        match self {
+            Axis::Front => "x→ y↑",
+            Axis::Side => "z→ y↑",
+            Axis::Top => "x→ z↓",
+        }
+    }
+
+    /// Screen coordinates (right, up) of a world point.
+    pub fn project(self, p: &Vector3<f64>) -> (f64, f64) {
+        match self {
+            Axis::Front => (p.x, p.y),
+            Axis::Side => (p.z, p.y),
+            Axis::Top => (p.x, -p.z),
+        }
+    }
+
+    /// Whether the ground plane shows as a line (it does not from above).
+    pub fn shows_ground_line(self) -> bool {
+        self != Axis::Top
+    }
+}
+
+/// An axis-aligned region of the world.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Region {
+    pub min: Vector3<f64>,
+    pub max: Vector3<f64>,
+}
+
+impl Region {
+    /// The initial region: the body where it starts, the obstacles, the ground height, padded by
+    /// the body's size.
+    pub fn initial(body: &Body, vertices: &[Vector3<f64>], obstacles: &[Obstacle]) -> Region {
+        let mut min = Vector3::repeat(f64::INFINITY);
+        let mut max = Vector3::repeat(f64::NEG_INFINITY);
+        let mut add = |p: Vector3<f64>| {
+            min = min.inf(&p);
+            max = max.sup(&p);
+        };
+        for v in vertices {
+            add(*v);
+        }
+        let centre = vertices.iter().sum::<Vector3<f64>>() / vertices.len().max(1) as f64;
+        for o in obstacles {
+            match *o {
+                Obstacle::Ground { height } => add(Vector3::new(centre.x, height, centre.z)),
+                Obstacle::Sphere { center, radius } => {
+                    add(center - Vector3::repeat(radius));
+                    add(center + Vector3::repeat(radius));
+                }
+                Obstacle::Box { min, max } => {
+                    add(min);
+                    add(max);
+                }
+            }
+        }
+        let pad = body.radius.max(1e-3);
+        Region {
+            min: min - Vector3::repeat(pad),
+            max: max + Vector3::repeat(pad),
+        }
+    }
+
+    /// Grows until every point is inside: each side exceeded moves out by the region's extent
+    /// along that axis (doubling it), so the view changes rarely and never shrinks.
+    pub fn include(&mut self, points: &[Vector3<f64>]) {
+        for p in points {
+            if !p.iter().all(|c| c.is_finite()) {
+                continue;
+            }
+            for i in 0..3 {
+                for _ in 0..64 {
+                    let extent = (self.max[i] - self.min[i]).max(1e-9);
+                    if p[i] > self.max[i] {
+                        self.max[i] += extent;
+                    } else if p[i] < self.min[i] {
+                        self.min[i] -= extent;
+                    } else {
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The mapping from screen coordinates (right, up) to a grid of `cols × rows` cells.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mapping {
+    /// World units per column; a row is `2 ·` this tall.
+    pub scale: f64,
+    /// Screen coordinates of the left edge and the top edge.
+    pub left: f64,
+    pub top: f64,
+    pub cols: u16,
+    pub rows: u16,
+}
+
+impl Mapping {
+    /// The region seen along `axis`, centred in the grid, square on screen.
+    pub fn fit(region: &Region, axis: Axis, cols: u16, rows: u16) -> Mapping {
+        let (a0, b0) = axis.project(&region.min);
+        let (a1, b1) = axis.project(&region.max);
+        let (h_lo, h_hi) = (a0.min(a1), a0.max(a1));
+        let (v_lo, v_hi) = (b0.min(b1), b0.max(b1));
+        let c = f64::from(cols.max(1));
+        let r = f64::from(rows.max(1));
+        let scale = ((h_hi - h_lo) / c)
+            .max((v_hi - v_lo) / (2.0 * r))
+            .max(1e-12);
+        let left = 0.5 * (h_lo + h_hi) - 0.5 * c * scale;
+        let top = 0.5 * (v_lo + v_hi) + 0.5 * r * 2.0 * scale;
+        Mapping {
+            scale,
+            left,
+            top,
+            cols,
+            rows,
+        }
+    }
+
+    /// Fractional cell coordinates (column, row) of screen coordinates.
+    pub fn cell(&self, h: f64, v: f64) -> (f64, f64) {
+        (
+            (h - self.left) / self.scale,
+            (self.top - v) / (2.0 * self.scale),
+        )
+    }
+
+    /// Horizontal and vertical screen bounds covered by the grid.
+    pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
+        let right = self.left + f64::from(self.cols) * self.scale;
+        let bottom = self.top - f64::from(self.rows) * 2.0 * self.scale;
+        ([self.left, right], [bottom, self.top])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_square_spans_twice_as_many_columns_as_rows() {
+        // A 1 m × 1 m square in a 40 × 20 grid: the vertical extent (1 m over 2·20 = 40 half
+        // rows) and the horizontal one (1 m over 40 columns) give the same scale 1/40 m per
+        // column, so the square covers 40 columns and 20 rows.
+        let region = Region {
+            min: Vector3::new(0.0, 0.0, 0.0),
+            max: Vector3::new(1.0, 1.0, 1.0),
+        };
+        let m = Mapping::fit(&region, Axis::Front, 40, 20);
+        let (c0, r0) = m.cell(0.0, 0.0);
+        let (c1, r1) = m.cell(1.0, 1.0);
+        assert!(((c1 - c0) - 40.0).abs() < 1e-9, "columns {}", c1 - c0);
+        assert!(((r0 - r1) - 20.0).abs() < 1e-9, "rows {}", r0 - r1);
+    }
+
+    #[test]
+    fn the_region_doubles_towards_a_point_outside() {
+        // Extent 2 along y; a point at y = −3 is 3 below min = −1: one doubling gives −3.
+        let mut region = Region {
+            min: Vector3::new(-1.0, -1.0, -1.0),
+            max: Vector3::new(1.0, 1.0, 1.0),
+        };
+        region.include(&[Vector3::new(0.0, -3.0, 0.0)]);
+        assert_eq!(region.min.y, -3.0, "min {}", region.min.y);
+        assert_eq!(region.max.y, 1.0);
+    }
+}

@@ -1,0 +1,477 @@
+//! The terminal app, driven by key events and rendered to ratatui's `TestBackend`: snapshots of
+//! each numeric panel and of whole screens (ASCII projection, no timing), and the app's logic.
+#![cfg(feature = "tui")]
+
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::Terminal;
+use std::path::Path;
+use tumble::physics::{Integrator, Phase};
+use tumble::tables;
+use tumble::tui::keys::{Context, KEYS};
+use tumble::tui::panels::PanelView;
+use tumble::tui::{App, Comparison, Options, View};
+
+fn fixture(name: &str) -> tumble::scene::Lesson {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name);
+    tumble::scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn app(name: &str) -> App {
+    App::new(
+        fixture(name),
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    )
+}
+
+fn press(app: &mut App, code: KeyCode) {
+    app.handle_key(&KeyEvent::new(code, KeyModifiers::NONE));
+}
+
+fn keys(app: &mut App, text: &str) {
+    for c in text.chars() {
+        let code = match c {
+            '>' => KeyCode::Right,
+            '<' => KeyCode::Left,
+            c => KeyCode::Char(c),
+        };
+        press(app, code);
+    }
+}
+
+/// The buffer as text, trailing spaces trimmed.
+fn text(buf: &Buffer) -> String {
+    let area = buf.area;
+    (0..area.height)
+        .map(|y| {
+            let row: String = (0..area.width).map(|x| buf[(x, y)].symbol()).collect();
+            row.trim_end().to_string()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn screen(app: &App, width: u16, height: u16) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    terminal.draw(|f| f.render_widget(app, f.area())).unwrap();
+    text(terminal.backend().buffer())
+}
+
+/// The fixed key sequence of the snapshots: frame 1 phase by phase, three more frames, then
+/// frame 5 up to its integrate phase (t = 0.05 s, mid-frame).
+const SEQUENCE: &str = "nnn>>>>nnn";
+
+#[test]
+fn whole_screen_at_120x40_after_a_fixed_key_sequence() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, SEQUENCE);
+    assert_eq!(app.snapshot.step, 5);
+    assert_eq!(app.snapshot.phase, Some(Phase::Integrate));
+    insta::assert_snapshot!("screen_120x40", screen(&app, 120, 40));
+}
+
+#[test]
+fn each_numeric_panel_after_a_fixed_key_sequence() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, SEQUENCE);
+    let panels = tables::panels(&app.snapshot, tables::Frame::World);
+    let previous = tables::panels(app.previous.as_ref().unwrap(), tables::Frame::World);
+    assert_eq!(panels.len(), 7);
+    for (panel, before) in panels.iter().zip(&previous) {
+        let view = PanelView {
+            panel,
+            previous: Some(before),
+            compare: None,
+        };
+        let height = view.lines().len() as u16;
+        let mut terminal = Terminal::new(TestBackend::new(72, height)).unwrap();
+        terminal.draw(|f| f.render_widget(view, f.area())).unwrap();
+        let name = format!("panel_{}", panel.title.replace(' ', "_"));
+        insta::assert_snapshot!(name, text(terminal.backend().buffer()));
+    }
+}
+
+#[test]
+fn panels_show_the_same_text_as_the_tables_module() {
+    // The app must not reformat numbers: every line of `tables::panel_text` appears verbatim
+    // on screen (the screen adds only styling).
+    let mut app = app("tui-box.toml");
+    keys(&mut app, SEQUENCE);
+    let panels = tables::panels(&app.snapshot, tables::Frame::World);
+    for panel in &panels {
+        let view = PanelView {
+            panel,
+            previous: None,
+            compare: None,
+        };
+        let mut terminal = Terminal::new(TestBackend::new(80, 12)).unwrap();
+        terminal.draw(|f| f.render_widget(view, f.area())).unwrap();
+        let shown = text(terminal.backend().buffer());
+        for line in tables::panel_text(panel).iter().skip(1) {
+            assert!(
+                shown.contains(line.trim_start()),
+                "`{line}` not in\n{shown}"
+            );
+        }
+    }
+}
+
+#[test]
+fn compare_mode_draws_the_ghost_numbers_under_the_first() {
+    let mut app = App::new(
+        fixture("tui-box.toml"),
+        Options {
+            ascii: true,
+            compare: Some(Comparison::Integrator(Integrator::EulerSeed)),
+            show_timing: false,
+        },
+    );
+    keys(&mut app, ">>>>>>>>>>");
+    let ghost = app.ghost.as_ref().expect("compare mode on");
+    assert_eq!(ghost.snapshot.step, 10, "the ghost runs in lock-step");
+    assert_eq!(ghost.snapshot.integrator, Integrator::EulerSeed);
+    // euler-seed's matrix drifts from a rotation, rk4's quaternion does not.
+    assert!(
+        ghost.snapshot.orthonormality_error > 1e-6,
+        "euler-seed drift {}",
+        ghost.snapshot.orthonormality_error
+    );
+    assert!(app.snapshot.orthonormality_error < 1e-12);
+    insta::assert_snapshot!("screen_compare_120x40", screen(&app, 120, 40));
+}
+
+#[test]
+fn space_runs_and_pauses() {
+    let mut app = app("tui-box.toml");
+    assert!(!app.running);
+    keys(&mut app, " ");
+    assert!(app.running);
+    app.step_frames(3); // what the event loop does while running
+    assert_eq!(app.snapshot.step, 3);
+    keys(&mut app, " ");
+    assert!(!app.running);
+}
+
+#[test]
+fn n_runs_the_phases_in_loop_order() {
+    let mut app = app("tui-box.toml");
+    let mut seen = Vec::new();
+    for _ in 0..5 {
+        keys(&mut app, "n");
+        seen.push((app.snapshot.phase, app.snapshot.step));
+    }
+    use Phase::*;
+    assert_eq!(
+        seen,
+        vec![
+            (Some(Derive), 0),
+            (Some(Forces), 0),
+            (Some(Integrate), 1),
+            (Some(Collide), 1),
+            (Some(Derive), 1)
+        ]
+    );
+}
+
+#[test]
+fn stepping_back_restores_the_exact_previous_state() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, ">>>>");
+    let before = app.world.checkpoint();
+    let snapshot = app.snapshot.clone();
+    keys(&mut app, ">");
+    assert_ne!(app.world.checkpoint(), before);
+    keys(&mut app, "<");
+    assert_eq!(
+        app.world.checkpoint(),
+        before,
+        "bit-for-bit the state of frame 4"
+    );
+    assert_eq!(app.snapshot, snapshot);
+    // Mid-frame, ← goes back to the start of the current frame.
+    keys(&mut app, "nn<");
+    assert_eq!(app.world.checkpoint(), before);
+    // Back to t = 0, then nothing earlier is kept.
+    keys(&mut app, "<<<<<");
+    assert_eq!(app.snapshot.step, 0);
+    assert_eq!(app.notice.as_deref(), Some("no earlier frame kept"));
+}
+
+#[test]
+fn reset_returns_to_t_zero_and_pauses() {
+    let mut app = app("tui-box.toml");
+    let start = app.world.checkpoint();
+    keys(&mut app, ">>>nn ");
+    keys(&mut app, "r");
+    assert!(!app.running);
+    assert_eq!(app.world.checkpoint(), start);
+    assert!(app.history.is_empty());
+}
+
+#[test]
+fn switching_integrator_keeps_time_and_state() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, ">>>>>>>>>>");
+    let before = app.snapshot.clone();
+    keys(&mut app, "i");
+    let after = &app.snapshot;
+    // rk4 → splitting (the next in Integrator::ALL); both use a quaternion, so nothing moves.
+    assert_eq!(after.integrator, Integrator::Splitting);
+    assert_eq!(after.time, before.time);
+    assert_eq!(after.position, before.position);
+    assert_eq!(after.linear_momentum, before.linear_momentum);
+    assert_eq!(after.angular_momentum, before.angular_momentum);
+    // The next switch is euler-seed: R becomes a matrix equal to the rotation of q.
+    keys(&mut app, "i");
+    assert_eq!(app.snapshot.integrator, Integrator::EulerSeed);
+    let dr = (app.snapshot.rotation - before.rotation).abs().max();
+    assert!(dr < 1e-12, "rotation changed by {dr}");
+    keys(&mut app, ">");
+    assert_eq!(app.snapshot.step, 11);
+    assert!(app.snapshot.energy.total.is_finite());
+    // Energy stays within 1 % over one 10 ms frame of a 2 kg box (E ≈ 30 J).
+    let drift = (app.snapshot.energy.total - before.energy.total).abs();
+    assert!(
+        drift < 0.01 * before.energy.total.abs(),
+        "energy changed by {drift} J"
+    );
+}
+
+#[test]
+fn help_overlay_lists_every_bound_key() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, "?");
+    let shown = screen(&app, 120, 40);
+    for b in KEYS {
+        assert!(
+            shown.contains(b.label),
+            "help lacks `{}`:\n{shown}",
+            b.label
+        );
+        assert!(shown.contains(b.help), "help lacks `{}`:\n{shown}", b.help);
+    }
+    keys(&mut app, "?");
+    assert!(!screen(&app, 120, 40).contains("help — ? or Esc closes"));
+}
+
+#[test]
+fn status_bar_hints_come_from_the_key_table() {
+    let app = app("tui-box.toml");
+    let shown = screen(&app, 160, 50);
+    for b in KEYS
+        .iter()
+        .filter(|b| b.context == Context::Main && !b.hint.is_empty())
+    {
+        let (key, what) = b.hint.split_once(' ').unwrap();
+        assert!(
+            shown.contains(&format!("{key} {what}")),
+            "no hint `{}`",
+            b.hint
+        );
+    }
+}
+
+#[test]
+fn works_at_80x24() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, SEQUENCE);
+    let shown = screen(&app, 80, 24);
+    for part in ["front x–y", "state", "integrate", "? help", "t 0.050000 s"] {
+        assert!(shown.contains(part), "no `{part}` at 80×24:\n{shown}");
+    }
+    insta::assert_snapshot!("screen_80x24", shown);
+}
+
+#[test]
+fn below_80x24_asks_to_enlarge_the_terminal() {
+    let app = app("tui-box.toml");
+    let shown = screen(&app, 60, 20);
+    assert!(shown.contains("Please enlarge the terminal"), "{shown}");
+    assert!(shown.contains("60×20"), "{shown}");
+    // Degenerate sizes never panic.
+    for (w, h) in [(0, 0), (1, 1), (79, 40), (200, 23)] {
+        screen(&app, w, h);
+    }
+}
+
+#[test]
+fn a_cube_is_drawn_square() {
+    // A unit cube at rest, seen from the front: a 1 m × 1 m square. Terminal cells are about
+    // twice as tall as wide, so the square must span twice as many columns as rows.
+    let app = app("tui-cube.toml");
+    let shown = screen(&app, 120, 40);
+    let rows: Vec<(usize, &str)> = shown
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| {
+            l.starts_with('│') && l.chars().skip(1).take(46).any(|c| "+-|".contains(c))
+        })
+        .collect();
+    let height = rows.len() as f64;
+    let width = rows
+        .iter()
+        .map(|(_, l)| {
+            l.chars()
+                .skip(1)
+                .take(46)
+                .filter(|c| "+-|".contains(*c))
+                .count()
+        })
+        .max()
+        .unwrap() as f64;
+    let top_edge = rows[0]
+        .1
+        .chars()
+        .skip(1)
+        .take(46)
+        .filter(|c| *c == '-' || *c == '+')
+        .count() as f64;
+    assert!(height >= 5.0, "cube only {height} rows tall:\n{shown}");
+    assert!(
+        (top_edge / height - 2.0).abs() < 0.35,
+        "cube is {top_edge} columns × {height} rows (want 2:1; widest row {width}):\n{shown}"
+    );
+}
+
+#[test]
+fn views_cycle_front_side_top() {
+    let mut app = app("tui-box.toml");
+    for name in ["side z–y", "top x–z", "front x–y"] {
+        keys(&mut app, "v");
+        assert!(screen(&app, 120, 40).contains(name), "no `{name}`");
+    }
+    keys(&mut app, "f");
+    assert!(screen(&app, 120, 40).contains("inertia tensor (body frame)"));
+}
+
+#[test]
+fn energy_graph_replaces_the_projection() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, ">>>>>g");
+    assert_eq!(app.view, View::Energy);
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("energy, J"), "{shown}");
+    assert!(shown.contains("drift: total − total at t = 0"), "{shown}");
+    // The time axis ends at the scene's duration, 2 s, and does not move while running.
+    let axis = app.series.time_axis;
+    keys(&mut app, ">>>>>");
+    assert_eq!(app.series.time_axis, axis);
+    assert_eq!(axis.hi, 2.0);
+    keys(&mut app, "g");
+    assert_eq!(app.view, View::Loop);
+}
+
+#[test]
+fn a_diverging_run_pauses_with_a_dialog_and_the_app_keeps_going() {
+    let mut app = app("tui-diverge.toml");
+    keys(&mut app, " ");
+    app.step_frames(100);
+    let d = app
+        .divergence
+        .clone()
+        .expect("euler-seed at dt = 0.1 with ω = 20 rad/s diverges");
+    assert!(!app.running, "paused by the divergence");
+    assert_eq!(
+        app.snapshot.step, d.step,
+        "stopped at the step that diverged"
+    );
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("The simulation diverged"), "{shown}");
+    assert!(shown.contains("euler-seed"), "{shown}");
+    keys(&mut app, ">");
+    assert_eq!(app.snapshot.step, d.step, "no stepping past a divergence");
+    keys(&mut app, "<");
+    assert!(app.divergence.is_none());
+    assert_eq!(app.snapshot.step, d.step - 1);
+    keys(&mut app, "r");
+    assert_eq!(app.snapshot.step, 0);
+}
+
+#[test]
+fn quit_keys_and_key_releases() {
+    for code in [KeyCode::Char('q'), KeyCode::Esc] {
+        let mut app = app("tui-box.toml");
+        press(&mut app, code);
+        assert!(app.quit);
+    }
+    let mut app = app("tui-box.toml");
+    app.handle_key(&KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(app.quit, "Ctrl-C quits");
+    let mut app = self::app("tui-box.toml");
+    let mut release = KeyEvent::new(KeyCode::Right, KeyModifiers::NONE);
+    release.kind = KeyEventKind::Release;
+    app.handle_key(&release);
+    assert_eq!(app.snapshot.step, 0, "only key presses count");
+}
+
+#[test]
+fn speed_is_bounded_and_starts_at_real_time() {
+    let mut app = app("tui-box.toml");
+    // dt = 0.01 s: real time is 100 frames/s.
+    assert_eq!(app.frames_per_second(), 100.0);
+    keys(&mut app, &"-".repeat(30));
+    assert_eq!(
+        app.frames_per_second(),
+        1.0,
+        "slowest: one frame per second"
+    );
+    keys(&mut app, &"+".repeat(30));
+    assert!(
+        app.frames_per_second() >= 1e4,
+        "fastest: far faster than real time"
+    );
+}
+
+#[test]
+fn lesson_picker_lists_and_opens_bundled_lessons() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, "l");
+    let shown = screen(&app, 120, 40);
+    let first = tumble::lessons::bundled().into_iter().next().unwrap();
+    let name = first.file_name().unwrap().to_string_lossy().into_owned();
+    assert!(shown.contains(&name), "{shown}");
+    // The fixture is not bundled: the first lesson is selected; Enter opens it.
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.lesson.path.file_name(), first.file_name());
+    assert_eq!(app.snapshot.step, 0);
+}
+
+#[test]
+fn cells_changed_by_the_last_action_are_highlighted() {
+    use ratatui::style::Color;
+    let mut app = app("tui-box.toml");
+    keys(&mut app, ">");
+    let panels = tables::panels(&app.snapshot, tables::Frame::World);
+    let previous = tables::panels(app.previous.as_ref().unwrap(), tables::Frame::World);
+    // Panel "force and torque": F = M g did not change over the frame; "state": x did.
+    let style_of_first_cell = |i: usize| {
+        let view = PanelView {
+            panel: &panels[i],
+            previous: Some(&previous[i]),
+            compare: None,
+        };
+        let mut terminal = Terminal::new(TestBackend::new(72, 8)).unwrap();
+        terminal.draw(|f| f.render_widget(view, f.area())).unwrap();
+        let buf = terminal.backend().buffer().clone();
+        // Row 1 is the first data row; the last character of its first number cell.
+        // The label ends at the first space after column 1; the first number follows.
+        let symbol = |x: u16| buf[(x, 1)].symbol().to_string();
+        let label_end = (2..72).find(|&x| symbol(x) == " ").unwrap();
+        let number_start = (label_end..72).find(|&x| symbol(x) != " ").unwrap();
+        let first_cell_end = (number_start..72).find(|&x| symbol(x + 1) == " ").unwrap();
+        buf[(first_cell_end, 1)].fg
+    };
+    assert_eq!(
+        style_of_first_cell(0),
+        Color::Yellow,
+        "x changed: highlighted"
+    );
+    assert_eq!(style_of_first_cell(3), Color::Reset, "F unchanged: plain");
+}
