@@ -475,3 +475,36 @@ fn cells_changed_by_the_last_action_are_highlighted() {
     );
     assert_eq!(style_of_first_cell(3), Color::Reset, "F unchanged: plain");
 }
+
+#[test]
+fn bad_files_and_options_fail_with_one_line_before_the_terminal_is_touched() {
+    use assert_cmd::Command;
+    let missing = Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("no/such/lesson.toml")
+        .assert()
+        .code(2);
+    let out = missing.get_output();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "one line: {stderr}");
+    assert!(stderr.contains("no/such/lesson.toml"), "{stderr}");
+    // No escape sequence (alternate screen, raw mode) was written.
+    assert!(out.stdout.is_empty(), "stdout: {:?}", out.stdout);
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tui-cube.toml");
+    for (flag, expected) in [
+        ("bogus", "unknown --compare `bogus`"),
+        ("seed", "needs a scene with obstacles"),
+    ] {
+        let bad = Command::cargo_bin("tumble")
+            .unwrap()
+            .arg(&fixture)
+            .args(["--compare", flag])
+            .assert()
+            .code(2);
+        let out = bad.get_output();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(expected), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(out.stdout.is_empty());
+    }
+}

@@ -221,7 +221,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         Some(Response::Impulse) => {
             let e = model.map_or(0.0, |m| m.restitution);
             lines.push(line(
-                "j = −(1+e)·(v·n) / (1/M + n·((I⁻¹(r×n))×r)),   J = j·n + friction",
+                "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)",
                 format!("   e = {}", number_plain(e)),
             ));
             for c in s.contacts.iter().take(2) {
@@ -232,19 +232,18 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
                         obstacles.get(c.obstacle).map_or("?", |o| o.kind())
                     ),
                     format!(
-                        " n = {}, v·n = {}, denominator = {}, J = {} N·s (J·n = {})",
+                        " n = {}, uₙ = {}, k = {}, J = {} N·s",
                         vector(&c.normal),
                         number_plain(c.normal_velocity),
                         number_plain(c.denominator),
-                        vector(&c.impulse),
-                        number_plain(c.impulse.dot(&c.normal))
+                        vector(&c.impulse)
                     ),
                 ));
             }
         }
         _ => {
             lines.push(line(
-                "seed: P ← −0.4·P, pushed out by depth², force added to L (the report's response)",
+                "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
                 "",
             ));
             for c in s.contacts.iter().take(2) {
@@ -255,7 +254,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
                         obstacles.get(c.obstacle).map_or("?", |o| o.kind())
                     ),
                     format!(
-                        " depth = {} m, n = {}, ΔP = {} N·s",
+                        " d = {} m, n = {}, ΔP = −1.4·P = {} N·s",
                         number_plain(c.depth),
                         vector(&c.normal),
                         vector(&c.impulse)
