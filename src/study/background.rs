@@ -1,11 +1,13 @@
 //! A study of one scene on a background thread, for front ends that must stay responsive.
 //!
 //! [`Job::spawn`] starts the thread; [`Job::poll`] drains its messages without blocking and
-//! keeps the latest progress and, at the end, the result. Dropping a job detaches the thread: it
-//! finishes its current scene and its messages go nowhere.
+//! keeps the latest progress and, at the end, the result. A job is a cheap handle (clones share
+//! one thread and one result); dropping every handle detaches the thread: it finishes its scene
+//! and its messages go nowhere.
 
 use super::{study_case, Case, Config, SceneStudy};
 use std::sync::mpsc::{self, Receiver, TryRecvError};
+use std::sync::{Arc, Mutex};
 use std::thread;
 
 /// What the study thread reports.
@@ -16,10 +18,15 @@ enum Message {
 }
 
 /// A running (or finished) study of one scene.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Job {
     /// The scene's name.
     pub name: String,
+    inner: Arc<Mutex<Inner>>,
+}
+
+#[derive(Debug)]
+struct Inner {
     receiver: Receiver<Message>,
     done: usize,
     total: usize,
@@ -42,45 +49,60 @@ impl Job {
         });
         Job {
             name,
-            receiver,
-            done: 0,
-            total,
-            result: None,
-            lost: false,
+            inner: Arc::new(Mutex::new(Inner {
+                receiver,
+                done: 0,
+                total,
+                result: None,
+                lost: false,
+            })),
         }
     }
 
+    fn with<T>(&self, f: impl FnOnce(&mut Inner) -> T) -> T {
+        let mut inner = self
+            .inner
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        f(&mut inner)
+    }
+
     /// Takes every message waiting; never blocks.
-    pub fn poll(&mut self) {
-        loop {
-            match self.receiver.try_recv() {
-                Ok(Message::Progress { done, total }) => (self.done, self.total) = (done, total),
+    pub fn poll(&self) {
+        self.with(|inner| loop {
+            match inner.receiver.try_recv() {
+                Ok(Message::Progress { done, total }) => (inner.done, inner.total) = (done, total),
                 Ok(Message::Done(study)) => {
-                    self.done = self.total;
-                    self.result = Some(*study);
+                    inner.done = inner.total;
+                    inner.result = Some(*study);
                 }
                 Err(TryRecvError::Empty) => break,
                 Err(TryRecvError::Disconnected) => {
-                    self.lost = self.result.is_none();
+                    inner.lost = inner.result.is_none();
                     break;
                 }
             }
-        }
+        })
     }
 
     /// Runs finished and runs in all.
     pub fn progress(&self) -> (usize, usize) {
-        (self.done, self.total)
+        self.with(|inner| (inner.done, inner.total))
     }
 
-    /// The study, once finished.
-    pub fn result(&self) -> Option<&SceneStudy> {
-        self.result.as_ref()
+    /// The study, once finished (a copy).
+    pub fn result(&self) -> Option<SceneStudy> {
+        self.with(|inner| inner.result.clone())
+    }
+
+    /// Finished (with a result, or because the thread died).
+    pub fn finished(&self) -> bool {
+        self.with(|inner| inner.result.is_some() || inner.lost)
     }
 
     /// The thread ended without a result (it panicked).
     pub fn failed(&self) -> bool {
-        self.lost
+        self.with(|inner| inner.lost)
     }
 }
 
@@ -104,7 +126,7 @@ mod tests {
             },
             target_error: 1e-6,
         };
-        let mut job = Job::spawn(case, config);
+        let job = Job::spawn(case, config);
         assert_eq!(job.progress().1, 4, "2 integrators × 2 steps");
         let started = Instant::now();
         while job.result().is_none() {
