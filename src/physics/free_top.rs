@@ -47,6 +47,18 @@
 //!
 //! Jacobi functions use the descending Landen (AGM) transformation (Abramowitz & Stegun 16.4),
 //! K uses the arithmetic–geometric mean (A&S 17.6), and F uses Carlson's symmetric integral R_F.
+//!
+//! ```
+//! use nalgebra::Vector3;
+//! use tumble::physics::free_top::FreeTop;
+//! // The box 1.0 × 0.4 × 0.1 m, 1 kg: I = M/12 (b² + c², a² + c², a² + b²), ω_body(0) = (1, 10, 1).
+//! let moments = Vector3::new(0.17, 1.01, 1.16) / 12.0;
+//! let top = FreeTop::new(moments, Vector3::new(1.0, 10.0, 1.0));
+//! let half_period = top.flip_half_period().unwrap(); // 2K(m)/λ, s
+//! assert!((half_period - 1.094917).abs() < 1e-6);
+//! let omega = top.omega(0.25); // ω in the principal frame at t = 0.25 s
+//! assert!(omega.y > 0.0);
+//! ```
 
 use super::body::Body;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
@@ -749,6 +761,33 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn flip_period_near_the_separatrix_is_ill_conditioned_as_minus_one_over_2k() {
+        // P = 2K/λ with K ≈ ln(4/k'), k'² ∝ D = M² − 2EI₂, so d ln P / d ln D ≈ −1/(2K).
+        // Perturb ω₃ of the classic start (0.01, 10, 0.01) by ±0.5 % and compare slopes.
+        let p = |w3: f64| {
+            let top = FreeTop::new(box_moments(), Vector3::new(0.01, 10.0, w3));
+            let w = Vector3::new(0.01, 10.0, w3);
+            let i = box_moments();
+            let d = i.x * (i.x - i.y) * w.x * w.x + i.z * (i.z - i.y) * w.z * w.z;
+            (
+                top.flip_half_period().unwrap(),
+                d,
+                top.complement().unwrap(),
+            )
+        };
+        let (p1, d1, _) = p(0.01 * 0.995);
+        let (p2, d2, _) = p(0.01 * 1.005);
+        let (p0, _, mc) = p(0.01);
+        let slope = (p2 / p1).ln() / (d2 / d1).ln();
+        let k = complete_k_complement(mc);
+        let expected = -1.0 / (2.0 * k);
+        assert!(
+            (slope - expected).abs() < 0.02 * expected.abs(),
+            "d ln P / d ln D = {slope:.5}, −1/(2K) = {expected:.5} (K = {k:.4}, P = {p0:.4} s)"
+        );
     }
 
     #[test]
