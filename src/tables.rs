@@ -4,7 +4,7 @@
 //! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e5, otherwise
 //! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
 
-use crate::physics::Snapshot;
+use crate::physics::{Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 
 /// Width of every formatted number, in characters.
@@ -207,6 +207,35 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         angular_momentum,
         energy,
     ]
+}
+
+/// The contacts the last *collide* phase handled, and the deepest penetration now: one
+/// block of rows per contact (depth, normal velocity before the response, impulse applied).
+/// `obstacles` names each contact's obstacle by its type.
+pub fn contact_panel(s: &Snapshot, obstacles: &[Obstacle]) -> Panel {
+    let mut rows = vec![scalar_row("penetration", s.penetration, "m")];
+    if s.contacts.is_empty() {
+        rows.push(Row {
+            label: "no contact".to_string(),
+            cells: Vec::new(),
+            unit: "",
+        });
+    }
+    for c in &s.contacts {
+        let kind = obstacles.get(c.obstacle).map_or("obstacle", |o| o.kind());
+        rows.push(Row {
+            label: format!("vertex {} in {kind} {}", c.vertex, c.obstacle),
+            cells: Vec::new(),
+            unit: "",
+        });
+        rows.push(scalar_row("  depth", c.depth, "m"));
+        rows.push(scalar_row("  v·n", c.normal_velocity, "m/s"));
+        rows.push(vector_row("  J", &c.impulse, "N·s"));
+    }
+    Panel {
+        title: "contacts (last collide)".to_string(),
+        rows,
+    }
 }
 
 /// A panel as aligned plain-text lines (title first).

@@ -221,3 +221,41 @@ fn check_reports_a_lesson_page_out_of_order_with_exit_code_2() {
     assert!(stdout(&output).contains("01-the-loop.toml: ok (The animation loop)"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn walk_of_a_scene_with_obstacles_shows_each_contact() {
+    // A box (half height 0.1 m) at y = 0.105 m falling at 1 m/s, no gravity: after one frame
+    // (dt = 0.01 s) its 4 bottom corners (vertices 0, 1, 4, 5) are 0.005 m deep. With e = 0
+    // the impulse response stops the box: total impulse M·1 m/s = 1 N·s, 0.25 N·s per corner,
+    // and pushes it out (penetration 0 afterwards).
+    let dir = std::env::temp_dir().join(format!("tumble-walk-contacts-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("drop.toml");
+    std::fs::write(
+        &scene,
+        "title = \"drop\"\n[scene]\ndt = 0.01\nintegrator = \"symplectic-euler\"\n\
+         contact = { response = \"impulse\", restitution = 0.0 }\n[body]\nshape = \"box\"\n\
+         size = [0.4, 0.2, 0.3]\nmass = 1.0\nposition = [0.0, 0.105, 0.0]\nvelocity = [0.0, -1.0, 0.0]\n\
+         [[obstacle]]\ntype = \"ground\"\nheight = 0.0\n",
+    )
+    .unwrap();
+    let output = tumble()
+        .args(["walk", scene.to_str().unwrap(), "--frames", "1"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let text = stdout(&output);
+    let (before, after) = text.split_once("frame 1 · phase done: collide").unwrap();
+    assert!(
+        before.contains("contacts (last collide)\n  penetration     0.000000  m\n  no contact"),
+        "{before}"
+    );
+    for vertex in [0, 1, 4, 5] {
+        let block = format!(
+            "  vertex {vertex} in ground 0\n    depth                  0.005000  m\n    v·n                   -1.000000  m/s\n    J                      0.000000    0.250000    0.000000  N·s"
+        );
+        assert!(after.contains(&block), "missing\n{block}\nin\n{after}");
+    }
+    assert_eq!(after.matches("  vertex ").count(), 4, "{after}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -4,12 +4,14 @@
 //! Each block is headed by the time, the frame and the loop phase just completed, then the
 //! lesson page that applies at that time (its full text the first time it applies, its title
 //! afterwards), then the numeric panels of [`crate::tables`], the formatter the terminal app
-//! uses — so the handout and the screen show the same digits.
+//! uses — so the handout and the screen show the same digits. Scenes with obstacles also get
+//! the contacts panel.
 
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
+use crate::physics::Obstacle;
 use crate::physics::{Snapshot, World};
 use crate::scene::Lesson;
-use crate::tables::{number_plain, panel_text, panels, Frame};
+use crate::tables::{contact_panel, number_plain, panel_text, panels, Frame};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -70,16 +72,34 @@ pub fn write_walk(
     let mut world = lesson.scene.world();
     write_header(lesson, &world, out)?;
     let mut shown_page = None;
-    write_block(lesson, &world.snapshot(), &mut shown_page, out)?;
+    write_block(
+        lesson,
+        world.obstacles(),
+        &world.snapshot(),
+        &mut shown_page,
+        out,
+    )?;
     for _ in 0..frames {
         if phases {
             for _ in 0..4 {
                 world.step_phase();
-                write_block(lesson, &world.snapshot(), &mut shown_page, out)?;
+                write_block(
+                    lesson,
+                    world.obstacles(),
+                    &world.snapshot(),
+                    &mut shown_page,
+                    out,
+                )?;
             }
         } else {
             world.step();
-            write_block(lesson, &world.snapshot(), &mut shown_page, out)?;
+            write_block(
+                lesson,
+                world.obstacles(),
+                &world.snapshot(),
+                &mut shown_page,
+                out,
+            )?;
         }
         if let Some(divergence) = world.divergence() {
             writeln!(out)?;
@@ -128,6 +148,7 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
 /// One block: time, frame and phase, the page that applies, the panels.
 fn write_block(
     lesson: &Lesson,
+    obstacles: &[Obstacle],
     snapshot: &Snapshot,
     shown_page: &mut Option<usize>,
     out: &mut impl Write,
@@ -173,7 +194,11 @@ fn write_block(
             *shown_page = Some(index);
         }
     }
-    for panel in panels(snapshot, Frame::World) {
+    let mut all = panels(snapshot, Frame::World);
+    if !obstacles.is_empty() {
+        all.push(contact_panel(snapshot, obstacles));
+    }
+    for panel in all {
         for text_line in panel_text(&panel) {
             writeln!(out, "{text_line}")?;
         }
