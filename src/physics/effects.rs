@@ -60,6 +60,12 @@ impl Effects {
         })
     }
 
+    /// Whether some declared effect depends on v or ω (drag): then F and τ change within a step
+    /// even when x and R do not.
+    pub fn depends_on_velocity(&self) -> bool {
+        self.list.iter().any(|e| matches!(e, Effect::Drag { .. }))
+    }
+
     /// Short names of the declared effects, for status lines.
     pub fn names(&self) -> Vec<&'static str> {
         self.list

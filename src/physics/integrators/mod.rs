@@ -113,7 +113,7 @@ impl Integrator {
             Integrator::Euler => euler::step(state, start, loads, dt),
             Integrator::SymplecticEuler => symplectic_euler::step(body, state, start, loads, dt),
             Integrator::Rk4 => rk4::step(body, effects, state, start, loads, dt),
-            Integrator::Splitting => splitting::step(body, effects, state, loads, dt),
+            Integrator::Splitting => splitting::step(body, effects, state, start, loads, dt),
         }
     }
 }
