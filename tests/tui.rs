@@ -304,40 +304,41 @@ fn below_80x24_asks_to_enlarge_the_terminal() {
 #[test]
 fn a_cube_is_drawn_square() {
     // A unit cube at rest, seen from the front: a 1 m × 1 m square. Terminal cells are about
-    // twice as tall as wide, so the square must span twice as many columns as rows.
+    // twice as tall as wide, so the square must span twice as many columns as rows, give or
+    // take the rounding of each corner to a cell (±1 cell on each side of the ratio).
     let app = app("tui-cube.toml");
-    let shown = screen(&app, 120, 40);
-    let rows: Vec<(usize, &str)> = shown
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| {
-            l.starts_with('│') && l.chars().skip(1).take(46).any(|c| "+-|".contains(c))
-        })
-        .collect();
-    let height = rows.len() as f64;
-    let width = rows
-        .iter()
-        .map(|(_, l)| {
-            l.chars()
-                .skip(1)
-                .take(46)
-                .filter(|c| "+-|".contains(*c))
-                .count()
-        })
-        .max()
-        .unwrap() as f64;
-    let top_edge = rows[0]
-        .1
-        .chars()
-        .skip(1)
-        .take(46)
-        .filter(|c| *c == '-' || *c == '+')
-        .count() as f64;
-    assert!(height >= 5.0, "cube only {height} rows tall:\n{shown}");
-    assert!(
-        (top_edge / height - 2.0).abs() < 0.35,
-        "cube is {top_edge} columns × {height} rows (want 2:1; widest row {width}):\n{shown}"
-    );
+    for (width, height) in [(120, 40), (160, 50), (80, 24)] {
+        let shown = screen(&app, width, height);
+        // Only inside the projection's box: from its top line to its bottom line, between
+        // its two side borders.
+        let lines: Vec<Vec<char>> = shown.lines().map(|l| l.chars().collect()).collect();
+        let top = lines
+            .iter()
+            .position(|l| l.starts_with(&['┌', ' ', 'f']))
+            .unwrap();
+        let bottom = top + lines[top..].iter().position(|l| l[0] == '└').unwrap();
+        let right = lines[top].iter().position(|c| *c == '┐').unwrap();
+        let corners: Vec<(usize, usize)> = (top + 1..bottom)
+            .flat_map(|row| {
+                (1..right)
+                    .filter(|&col| lines[row][col] == '+')
+                    .map(|col| (row, col))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let rows =
+            corners.iter().map(|c| c.0).max().unwrap() - corners.iter().map(|c| c.0).min().unwrap();
+        let cols =
+            corners.iter().map(|c| c.1).max().unwrap() - corners.iter().map(|c| c.1).min().unwrap();
+        assert!(
+            rows >= if width >= 120 { 4 } else { 2 },
+            "{width}×{height}: cube only {rows} rows tall:\n{shown}"
+        );
+        assert!(
+            (cols as i64 - 2 * rows as i64).abs() <= 2,
+            "{width}×{height}: cube spans {cols} columns × {rows} rows, want 2:1:\n{shown}"
+        );
+    }
 }
 
 #[test]
@@ -507,4 +508,17 @@ fn bad_files_and_options_fail_with_one_line_before_the_terminal_is_touched() {
         assert_eq!(stderr.lines().count(), 1, "{stderr}");
         assert!(out.stdout.is_empty());
     }
+}
+
+#[test]
+fn the_lesson_page_follows_time_and_scrolls() {
+    // The fixture has one page from t = 0; scrolling is clamped to the text, and a reset keeps
+    // the same page (so the scroll stays where it was).
+    let mut app = app("tui-box.toml");
+    press(&mut app, KeyCode::PageDown);
+    assert_eq!(app.lesson_scroll, 3);
+    assert!(screen(&app, 120, 40).contains("page 1/1: Fixture"));
+    press(&mut app, KeyCode::PageUp);
+    press(&mut app, KeyCode::PageUp);
+    assert_eq!(app.lesson_scroll, 0);
 }

@@ -106,6 +106,8 @@ pub struct App {
     /// A one-line notice (e.g. "no earlier frame kept").
     pub notice: Option<String>,
     pub lesson_scroll: u16,
+    /// The lesson page shown (the scroll starts over when it changes).
+    pub page: Option<usize>,
     pub ascii: bool,
     pub show_timing: bool,
     /// Measured physics cost, ns per frame (all four phases), when running.
@@ -143,6 +145,7 @@ impl App {
             divergence: None,
             notice: None,
             lesson_scroll: 0,
+            page: None,
             ascii: options.ascii,
             show_timing: options.show_timing,
             ns_per_step: None,
@@ -151,6 +154,7 @@ impl App {
         if let Some(comparison) = options.compare {
             app.start_compare(comparison);
         }
+        app.refresh();
         app
     }
 
@@ -274,6 +278,11 @@ impl App {
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot();
             self.region.include(&ghost.snapshot.vertices);
+        }
+        let page = self.lesson.page_at(self.snapshot.time).map(|(i, _)| i);
+        if page != self.page {
+            self.page = page;
+            self.lesson_scroll = 0;
         }
     }
 

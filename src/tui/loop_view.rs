@@ -9,7 +9,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let areas = main_areas(area);
-    let lesson_height = (areas.left.height / 3).clamp(4, 12);
+    let lesson_height = (areas.left.height * 2 / 5).clamp(4, 16);
     let [stage, lesson] =
         Layout::vertical([Constraint::Min(0), Constraint::Length(lesson_height)]).areas(areas.left);
     projection::render(app, stage, buf);
