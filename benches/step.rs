@@ -5,6 +5,9 @@
 //!   no effects at all, so the forces phase evaluates nothing;
 //! - `falling`: the same box under gravity;
 //! - `falling+drag`: gravity and viscous drag: adding effects is what adds cost.
+//! - `resting-cube`: a cube (side 0.2 m, 1 kg) lying on the ground under gravity, `impulse`
+//!   response (e = 0.4, μ = 0.5): every step tests its 8 vertices and resolves the 4 resting
+//!   contacts (issue 3's target: under 300 ns/step with `rk4`).
 //!
 //! Each world is stepped in place and put back at its start every [`RESTART_EVERY`] steps (so
 //! `euler-seed`'s drifting matrix and a falling body's speed stay in a representative range).
@@ -15,7 +18,9 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use nalgebra::{UnitQuaternion, Vector3};
 use std::hint::black_box;
 use std::time::Duration;
-use tumble::physics::{Body, Effect, Effects, Integrator, Orientation, State, World};
+use tumble::physics::{
+    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State, World,
+};
 
 /// Steps between two restarts from the initial state (restoring costs one `Vec` clone).
 const RESTART_EVERY: u64 = 10_000;
@@ -51,6 +56,28 @@ fn box_world(effects: Vec<Effect>, integrator: Integrator) -> World {
     )
 }
 
+/// A 0.2 m cube at rest on the ground y = 0 (barycenter 0.1 m up), `impulse` contact.
+fn resting_cube(integrator: Integrator) -> World {
+    let body = Body::solid_box(Vector3::repeat(0.2), 1.0).expect("valid box");
+    let state = State {
+        position: Vector3::new(0.0, 0.1, 0.0),
+        ..State::at_rest()
+    };
+    World::new(
+        body,
+        Effects::new(vec![GRAVITY]),
+        vec![Obstacle::Ground { height: 0.0 }],
+        Some(ContactModel {
+            response: Response::Impulse,
+            restitution: 0.4,
+            friction: 0.5,
+        }),
+        integrator,
+        1e-3,
+        state,
+    )
+}
+
 const GRAVITY: Effect = Effect::Gravity(Vector3::new(0.0, -9.81, 0.0));
 const DRAG: Effect = Effect::Drag {
     linear: 0.05,
@@ -77,6 +104,10 @@ fn scenes() -> Vec<Case> {
         Case {
             name: "falling+drag",
             build: |i| box_world(vec![GRAVITY, DRAG], i),
+        },
+        Case {
+            name: "resting-cube",
+            build: resting_cube,
         },
     ]
 }

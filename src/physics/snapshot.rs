@@ -36,8 +36,26 @@ pub fn energy(body: &Body, effects: &Effects, state: &State) -> Energy {
 /// Kinetic energy `½ M v·v + ½ ω·L` of a state, J.
 pub fn kinetic_energy(body: &Body, state: &State) -> f64 {
     let kinematics = derive(body, state);
-    0.5 * body.mass * kinematics.velocity.norm_squared()
-        + 0.5 * kinematics.angular_velocity.dot(&state.angular_momentum)
+    kinetic_energy_with(
+        body,
+        &kinematics.inv_inertia_world,
+        &state.linear_momentum,
+        &state.angular_momentum,
+    )
+}
+
+/// `½ M v·v + ½ ω·L` with `v = P/M`, `ω = I⁻¹_world L` for a known `I⁻¹_world`: the same
+/// arithmetic as [`kinetic_energy`], so the two agree to the last bit.
+#[inline]
+pub fn kinetic_energy_with(
+    body: &Body,
+    inv_inertia_world: &Matrix3<f64>,
+    linear_momentum: &Vector3<f64>,
+    angular_momentum: &Vector3<f64>,
+) -> f64 {
+    let velocity = linear_momentum * body.inv_mass;
+    let angular_velocity = inv_inertia_world * angular_momentum;
+    0.5 * body.mass * velocity.norm_squared() + 0.5 * angular_velocity.dot(angular_momentum)
 }
 
 /// Every loop quantity after a phase.

@@ -24,7 +24,10 @@
 //!    The kinetic energy after a set of impulses Λ is a convex quadratic in Λ,
 //!    `K(Λ) = K₀ + Λ·u₀ + ½ Λᵀ A Λ` (A the contact-space inverse mass, positive semi-definite),
 //!    and each update is the exact minimisation of K along one coordinate over an interval
-//!    that contains the current value: K can only go down.
+//!    that contains the current value: K can only go down. When the answer is "every
+//!    approaching contact stops and pushes" (a face landing, a body at rest: the usual case),
+//!    the same minimum is computed at once by a small Cholesky solve and checked against the
+//!    conditions above (`direct_inelastic`); the sweeps run only when that check fails.
 //! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
 //!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
 //!    The sweep updates the normal impulse as in stage 1, then each tangent direction in turn,
@@ -55,7 +58,8 @@
 
 use super::detect::swept;
 use super::{CollideInput, Contact};
-use crate::physics::snapshot::kinetic_energy;
+use crate::physics::derive::derive_with_rotation;
+use crate::physics::snapshot::kinetic_energy_with;
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -80,6 +84,8 @@ struct Row {
     /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
     lambda: f64,
     lambda_tangent: [f64; 2],
+    /// μ λ from stage 1: the radius of the friction disk.
+    friction_bound: f64,
     /// Restitution impulse e λ (scaled by the energy clamp).
     lambda_restitution: f64,
     /// Normal velocity before the response, m/s.
@@ -93,9 +99,20 @@ struct Direction {
     rd: Vector3<f64>,
     w: Vector3<f64>,
     k: f64,
+    /// 1/k.
+    inv_k: f64,
 }
 
 impl Direction {
+    /// Unused (tangents when friction does not run).
+    const ZERO: Direction = Direction {
+        d: Vector3::new(0.0, 0.0, 0.0),
+        rd: Vector3::new(0.0, 0.0, 0.0),
+        w: Vector3::new(0.0, 0.0, 0.0),
+        k: 0.0,
+        inv_k: 0.0,
+    };
+
     fn new(
         d: Vector3<f64>,
         lever: &Vector3<f64>,
@@ -104,11 +121,13 @@ impl Direction {
     ) -> Self {
         let rd = lever.cross(&d);
         let w = inv_inertia * rd;
+        let k = inv_mass + rd.dot(&w);
         Direction {
             d,
             rd,
             w,
-            k: inv_mass + rd.dot(&w),
+            k,
+            inv_k: 1.0 / k,
         }
     }
 }
@@ -166,10 +185,15 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     let bounce_speed = input
         .gravity
         .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
-    let kinetic_before = kinetic_energy(body, state);
+    // I⁻¹_world exactly as the derive phase (and the energy panel) computes it.
+    let inv_inertia = derive_with_rotation(body, state, rotation_now).inv_inertia_world;
+    let kinetic = |s: &State| {
+        kinetic_energy_with(body, &inv_inertia, &s.linear_momentum, &s.angular_momentum)
+    };
+    let kinetic_before = kinetic(state);
     resolve(
-        input.body.inv_mass,
-        &(rotation_now * body.inv_inertia_body * rotation_now.transpose()),
+        body.inv_mass,
+        &inv_inertia,
         input.model.restitution,
         input.model.friction,
         bounce_speed,
@@ -178,7 +202,7 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     );
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
     for _ in 0..4 {
-        let kinetic_after = kinetic_energy(body, state);
+        let kinetic_after = kinetic(state);
         if kinetic_after <= kinetic_before {
             break;
         }
@@ -212,15 +236,12 @@ fn resolve(
         .iter()
         .map(|c| {
             let normal = Direction::new(c.normal, &c.lever, inv_inertia, inv_mass);
-            let (t1, t2) = tangents(&c.normal);
             Row {
                 normal,
-                tangents: [
-                    Direction::new(t1, &c.lever, inv_inertia, inv_mass),
-                    Direction::new(t2, &c.lever, inv_inertia, inv_mass),
-                ],
+                tangents: [Direction::ZERO; 2],
                 lambda: 0.0,
                 lambda_tangent: [0.0; 2],
+                friction_bound: 0.0,
                 lambda_restitution: 0.0,
                 approach: motion.along(&normal),
             }
@@ -229,23 +250,39 @@ fn resolve(
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
     let tolerance = TOLERANCE * (1.0 + fastest);
 
-    // Stage 1: inelastic normal impulses, λ ≥ 0.
-    for _ in 0..MAX_SWEEPS {
-        let mut largest: f64 = 0.0;
-        for row in rows.iter_mut() {
-            largest = largest.max(normal_update(row, &mut motion));
-        }
-        if largest <= tolerance {
-            break;
+    // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
+    // projected Gauss–Seidel from λ = 0.
+    if !direct_inelastic(&mut rows, &mut motion, tolerance) {
+        for _ in 0..MAX_SWEEPS {
+            let mut largest: f64 = 0.0;
+            for row in rows.iter_mut() {
+                largest = largest.max(normal_update(row, &mut motion));
+            }
+            if largest <= tolerance {
+                break;
+            }
         }
     }
 
     // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
-    if friction > 0.0 && rows.iter().any(|r| r.lambda > 0.0) {
-        let bounds: Vec<f64> = rows.iter().map(|r| friction * r.lambda).collect();
+    // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
+    let sliding = |row: &Row, contact: &Contact| {
+        let u = motion.v + motion.omega.cross(&contact.lever);
+        row.lambda > 0.0 && (u - contact.normal * u.dot(&contact.normal)).norm() > tolerance
+    };
+    if friction > 0.0 && rows.iter().zip(contacts.iter()).any(|(r, c)| sliding(r, c)) {
+        for (row, contact) in rows.iter_mut().zip(contacts.iter()) {
+            row.friction_bound = friction * row.lambda;
+            let (t1, t2) = tangents(&contact.normal);
+            row.tangents = [
+                Direction::new(t1, &contact.lever, inv_inertia, inv_mass),
+                Direction::new(t2, &contact.lever, inv_inertia, inv_mass),
+            ];
+        }
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
-            for (row, &bound) in rows.iter_mut().zip(&bounds) {
+            for row in rows.iter_mut() {
+                let bound = row.friction_bound;
                 largest = largest.max(normal_update(row, &mut motion));
                 if bound == 0.0 {
                     continue;
@@ -255,7 +292,7 @@ fn resolve(
                     let limit = (bound * bound - other * other).max(0.0).sqrt();
                     let dir = &row.tangents[axis];
                     let old = row.lambda_tangent[axis];
-                    let new = (old - motion.along(dir) / dir.k).clamp(-limit, limit);
+                    let new = (old - motion.along(dir) * dir.inv_k).clamp(-limit, limit);
                     let change = new - old;
                     if change != 0.0 {
                         row.lambda_tangent[axis] = new;
@@ -315,11 +352,106 @@ fn resolve(
     }
 }
 
+/// Most contacts in a step to try the direct solve for.
+pub const DIRECT_MAX: usize = 8;
+
+/// The inelastic problem solved directly, when its answer is "every approaching contact
+/// stops": with the approaching contacts as the active set, solve
+///
+/// ```text
+/// (A + ε𝟙) λ = −u,   A_ij = nᵢ·nⱼ/M + (rᵢ×nᵢ)·I⁻¹(rⱼ×nⱼ),  ε = 1e-10 · max Aᵢᵢ
+/// ```
+///
+/// by Cholesky (A is only semi-definite: 4 coplanar contacts constrain 3 motions; the tiny ε
+/// picks the minimum-norm λ, which shares the load symmetrically whatever the vertex order).
+/// The result is accepted only if it is the solution of the whole problem — every λᵢ ≥ 0 and
+/// no contact, active or not, still approaching — so it is the same minimum of K that the
+/// sweeps converge to, reached at once. Returns false (and changes nothing) otherwise.
+fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bool {
+    let mut active = [0usize; DIRECT_MAX];
+    let mut m = 0;
+    for (i, row) in rows.iter().enumerate() {
+        if row.approach < 0.0 {
+            if m == DIRECT_MAX {
+                return false;
+            }
+            active[m] = i;
+            m += 1;
+        }
+    }
+    if m == 0 {
+        return true;
+    }
+    let mut a = [[0.0f64; DIRECT_MAX]; DIRECT_MAX];
+    let mut rhs = [0.0f64; DIRECT_MAX];
+    let mut largest: f64 = 0.0;
+    for p in 0..m {
+        let ni = &rows[active[p]].normal;
+        rhs[p] = -motion.along(ni);
+        for q in 0..=p {
+            let nj = &rows[active[q]].normal;
+            let value = ni.d.dot(&nj.d) * motion.inv_mass + ni.rd.dot(&nj.w);
+            a[p][q] = value;
+        }
+        largest = largest.max(a[p][p]);
+    }
+    let epsilon = 1e-10 * largest;
+    // Cholesky A + ε𝟙 = C Cᵀ, lower triangle in place.
+    for p in 0..m {
+        a[p][p] += epsilon;
+        for q in 0..=p {
+            let mut sum = a[p][q];
+            for k in 0..q {
+                sum -= a[p][k] * a[q][k];
+            }
+            if p == q {
+                if sum <= 0.0 {
+                    return false;
+                }
+                a[p][p] = sum.sqrt();
+            } else {
+                a[p][q] = sum / a[q][q];
+            }
+        }
+    }
+    // C y = rhs, then Cᵀ λ = y.
+    let mut lambda = rhs;
+    for p in 0..m {
+        let mut sum = lambda[p];
+        for k in 0..p {
+            sum -= a[p][k] * lambda[k];
+        }
+        lambda[p] = sum / a[p][p];
+    }
+    for p in (0..m).rev() {
+        let mut sum = lambda[p];
+        for k in p + 1..m {
+            sum -= a[k][p] * lambda[k];
+        }
+        lambda[p] = sum / a[p][p];
+        if lambda[p] < 0.0 {
+            return false;
+        }
+    }
+    let start = *motion;
+    for p in 0..m {
+        motion.apply(lambda[p], &rows[active[p]].normal);
+    }
+    if rows.iter().any(|r| motion.along(&r.normal) < -tolerance) {
+        *motion = start;
+        return false;
+    }
+    for p in 0..m {
+        rows[active[p]].lambda = lambda[p];
+    }
+    true
+}
+
 /// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
 /// to the contact's normal velocity (m/s).
 fn normal_update(row: &mut Row, motion: &mut Motion) -> f64 {
     let dir = &row.normal;
-    let new = (row.lambda - motion.along(dir) / dir.k).max(0.0);
+    let new = (row.lambda - motion.along(dir) * dir.inv_k).max(0.0);
     let change = new - row.lambda;
     if change == 0.0 {
         return 0.0;
