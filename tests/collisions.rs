@@ -418,3 +418,48 @@ proptest! {
         }
     }
 }
+
+/// Lesson 8: the cube leaving the ground at (0.35, 0.1001) m with v = (0.2, 2.5) m/s grazes
+/// the edge of a step (x ≥ 0.5 m, 0.3 m high) on its way down, at t = 0.317 s.
+fn climbing_world(response: Response) -> World {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/lessons/08-climbing-bug.toml");
+    let lesson = tumble::scene::load(std::path::Path::new(path)).unwrap();
+    let mut world = lesson.scene.world();
+    let model = *world.contact_model().unwrap();
+    world.set_contact_model(ContactModel { response, ..model });
+    world
+}
+
+#[test]
+fn the_climbing_scene_climbs_with_seed_and_not_with_impulse() {
+    const STEP_TOP: f64 = 0.3;
+    const STEP_SIDE: f64 = 0.5;
+    // seed: once it has grazed the edge, the barycenter never drops below the step's top
+    // (on the ground it would be at 0.1 m): the cube hangs on the edge.
+    let mut seed = climbing_world(Response::Seed);
+    let mut lowest_after_graze = f64::INFINITY;
+    for step in 1..=2000 {
+        seed.step();
+        if step >= 400 {
+            lowest_after_graze = lowest_after_graze.min(seed.state().position.y);
+        }
+    }
+    assert!(
+        lowest_after_graze > STEP_TOP,
+        "seed: barycenter went down to {lowest_after_graze} m after the graze"
+    );
+    // impulse: it falls beside the step and rests on a face on the ground, all of it left
+    // of the step's side (x + half a side < 0.5).
+    let mut impulse = climbing_world(Response::Impulse);
+    for _ in 0..2000 {
+        impulse.step();
+    }
+    let x = impulse.state().position;
+    assert!((x.y - 0.1).abs() < 1e-3, "impulse: height {}", x.y);
+    assert!(
+        x.x + 0.1 < STEP_SIDE,
+        "impulse: x = {} is over the step",
+        x.x
+    );
+    assert!(speed(&impulse) < 1e-3, "impulse: speed {}", speed(&impulse));
+}

@@ -479,20 +479,41 @@ fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     (t1, n.cross(&t1))
 }
 
-/// Moves the body by the shortest translation Δx with nᵢ·Δx ≥ dᵢ for every contact (cyclic
-/// projections onto the half-spaces; exact in one pass when all normals agree).
+/// Moves the body by the shortest translation Δx with nᵢ·Δx ≥ dᵢ for every contact:
+///
+/// ```text
+/// minimise ½|Δx|²  subject to  nᵢ·Δx ≥ dᵢ     →   Δx = Σ μᵢ nᵢ,  μᵢ ≥ 0
+/// μᵢ ← max(0, μᵢ + dᵢ − nᵢ·Δx)                   (Hildreth's method: Gauss–Seidel on the μᵢ)
+/// ```
+///
+/// The shortest Δx is unique, so it does not depend on the contact order (projecting onto one
+/// half-space after the other would: two radial normals on a sphere would push the body
+/// sideways). With one normal direction (the ground) it is exactly `max dᵢ · n`.
 fn push_out(state: &mut State, contacts: &[Contact]) {
     let mut shift = Vector3::zeros();
-    for _ in 0..32 {
-        let mut moved = false;
-        for c in contacts {
-            let missing = c.depth - c.normal.dot(&shift);
-            if missing > 1e-12 {
-                shift += c.normal * missing;
-                moved = true;
+    let mut multipliers = [0.0f64; DIRECT_MAX];
+    let mut extra = Vec::new();
+    if contacts.len() > DIRECT_MAX {
+        extra = vec![0.0f64; contacts.len()];
+    }
+    let multipliers: &mut [f64] = if extra.is_empty() {
+        &mut multipliers[..contacts.len()]
+    } else {
+        &mut extra
+    };
+    let deepest = contacts.iter().map(|c| c.depth).fold(0.0, f64::max);
+    for _ in 0..MAX_SWEEPS {
+        let mut largest: f64 = 0.0;
+        for (c, mu) in contacts.iter().zip(multipliers.iter_mut()) {
+            let new = (*mu + c.depth - c.normal.dot(&shift)).max(0.0);
+            let change = new - *mu;
+            if change != 0.0 {
+                shift += c.normal * change;
+                *mu = new;
+                largest = largest.max(change.abs());
             }
         }
-        if !moved {
+        if largest <= 1e-12 * (1.0 + deepest) {
             break;
         }
     }
