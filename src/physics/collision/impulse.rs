@@ -400,10 +400,8 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
     for p in 0..m {
         a[p][p] += epsilon;
         for q in 0..=p {
-            let mut sum = a[p][q];
-            for k in 0..q {
-                sum -= a[p][k] * a[q][k];
-            }
+            let dot: f64 = a[p][..q].iter().zip(&a[q][..q]).map(|(x, y)| x * y).sum();
+            let sum = a[p][q] - dot;
             if p == q {
                 if sum <= 0.0 {
                     return false;
