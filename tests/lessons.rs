@@ -96,3 +96,41 @@ fn every_bundled_lesson_runs_its_duration_or_diverges_as_promised() {
         }
     }
 }
+
+#[test]
+fn the_readme_table_lists_every_bundled_lesson_with_its_summary() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    for path in lessons::bundled() {
+        let lesson = tumble::scene::load(&path).unwrap();
+        let row = format!("| {} | {} |", lesson.title, lesson.summary);
+        assert!(
+            readme.contains(&row),
+            "README.md's lesson table has no row ending `{row}` for {}",
+            path.display()
+        );
+    }
+}
+
+#[test]
+fn the_complete_example_of_the_lesson_format_doc_is_a_valid_lesson() {
+    let doc = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/lesson-format.md"
+    ))
+    .unwrap();
+    let (_, rest) = doc
+        .split_once("## A complete example")
+        .expect("docs/lesson-format.md has a complete example");
+    let start = rest.find("```toml\n").unwrap() + "```toml\n".len();
+    let source = &rest[start..start + rest[start..].find("```").unwrap()];
+    let lesson = tumble::scene::parse(source, std::path::Path::new("example.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    // Its page says L stays constant: drag without `angular` makes no torque.
+    let mut world = lesson.scene.world();
+    let l0 = world.state().angular_momentum;
+    for _ in 0..400 {
+        world.step();
+    }
+    assert_eq!(world.state().angular_momentum, l0);
+}
