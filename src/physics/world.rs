@@ -187,10 +187,10 @@ impl World {
         if !self.obstacles.is_empty() {
             now.before = now.state;
         }
-        now.state = self.integrator.step(
+        self.integrator.advance(
             &self.body,
             &self.effects,
-            &now.state,
+            &mut now.state,
             &now.kinematics,
             &now.loads,
             self.dt,

@@ -17,17 +17,15 @@ use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
 use super::{advance_quaternion, quaternion_of};
 
-/// One explicit Euler step.
+/// One explicit Euler step, in place.
 #[inline]
-pub fn step(state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
-    State {
-        position: state.position + start.velocity * dt,
-        orientation: Orientation::Quaternion(advance_quaternion(
-            &quaternion_of(state),
-            &start.angular_velocity,
-            dt,
-        )),
-        linear_momentum: state.linear_momentum + loads.force * dt,
-        angular_momentum: state.angular_momentum + loads.torque * dt,
-    }
+pub fn step(state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
+    state.position += start.velocity * dt;
+    state.orientation = Orientation::Quaternion(advance_quaternion(
+        &quaternion_of(state),
+        &start.angular_velocity,
+        dt,
+    ));
+    state.linear_momentum += loads.force * dt;
+    state.angular_momentum += loads.torque * dt;
 }

@@ -29,15 +29,13 @@ pub fn vertex_torque(body: &Body, rotation: &Matrix3<f64>, force: &Vector3<f64>)
     })
 }
 
-/// One step of the original loop; `loads` already holds the vertex torque sum
+/// One step of the original loop, in place; `loads` already holds the vertex torque sum
 /// (see [`super::Integrator::loads`]).
 #[inline]
-pub fn step(_body: &Body, state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
+pub fn step(state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
     let r = start.rotation;
-    State {
-        position: state.position + start.velocity * dt,
-        orientation: Orientation::Matrix(r + start.angular_velocity.cross_matrix() * r * dt),
-        linear_momentum: state.linear_momentum + loads.force * dt,
-        angular_momentum: state.angular_momentum + loads.torque * dt,
-    }
+    state.position += start.velocity * dt;
+    state.orientation = Orientation::Matrix(r + start.angular_velocity.cross_matrix() * r * dt);
+    state.linear_momentum += loads.force * dt;
+    state.angular_momentum += loads.torque * dt;
 }

@@ -108,12 +108,31 @@ impl Integrator {
         loads: &Loads,
         dt: f64,
     ) -> State {
+        let mut next = *state;
+        self.advance(body, effects, &mut next, start, loads, dt);
+        next
+    }
+
+    /// [`Integrator::step`] in place: `state` becomes the state one step `dt` later (the loop's
+    /// integrate phase uses this, so the state is not copied through a temporary).
+    #[inline]
+    pub fn advance(
+        self,
+        body: &Body,
+        effects: &Effects,
+        state: &mut State,
+        start: &Kinematics,
+        loads: &Loads,
+        dt: f64,
+    ) {
         match self {
-            Integrator::EulerSeed => euler_seed::step(body, state, start, loads, dt),
+            Integrator::EulerSeed => euler_seed::step(state, start, loads, dt),
             Integrator::Euler => euler::step(state, start, loads, dt),
             Integrator::SymplecticEuler => symplectic_euler::step(body, state, start, loads, dt),
-            Integrator::Rk4 => rk4::step(body, effects, state, start, loads, dt),
-            Integrator::Splitting => splitting::step(body, effects, state, start, loads, dt),
+            Integrator::Rk4 => *state = rk4::step(body, effects, state, start, loads, dt),
+            Integrator::Splitting => {
+                *state = splitting::step(body, effects, state, start, loads, dt)
+            }
         }
     }
 }

@@ -17,21 +17,17 @@ use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
 use super::{advance_quaternion, quaternion_of};
 
-/// One semi-implicit Euler step.
+/// One semi-implicit Euler step, in place.
 #[inline]
-pub fn step(body: &Body, state: &State, start: &Kinematics, loads: &Loads, dt: f64) -> State {
-    let linear_momentum = state.linear_momentum + loads.force * dt;
-    let angular_momentum = state.angular_momentum + loads.torque * dt;
-    let velocity = linear_momentum * body.inv_mass;
-    let angular_velocity = start.inv_inertia_world * angular_momentum;
-    State {
-        position: state.position + velocity * dt,
-        orientation: Orientation::Quaternion(advance_quaternion(
-            &quaternion_of(state),
-            &angular_velocity,
-            dt,
-        )),
-        linear_momentum,
-        angular_momentum,
-    }
+pub fn step(body: &Body, state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
+    state.linear_momentum += loads.force * dt;
+    state.angular_momentum += loads.torque * dt;
+    let velocity = state.linear_momentum * body.inv_mass;
+    let angular_velocity = start.inv_inertia_world * state.angular_momentum;
+    state.position += velocity * dt;
+    state.orientation = Orientation::Quaternion(advance_quaternion(
+        &quaternion_of(state),
+        &angular_velocity,
+        dt,
+    ));
 }
