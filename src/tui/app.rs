@@ -44,6 +44,8 @@ pub enum View {
     Loop,
     /// The energy graph in place of the projection.
     Energy,
+    /// Error against cost of every integrator × dt (computed in the background).
+    Study,
 }
 
 /// A window over the main screen.
@@ -112,6 +114,8 @@ pub struct App {
     pub show_timing: bool,
     /// Measured physics cost, ns per frame (all four phases), when running.
     pub ns_per_step: Option<f64>,
+    /// The study of this scene, once asked for (key `s`); it runs on its own thread.
+    pub study: Option<crate::study::background::Job>,
     pub quit: bool,
 }
 
@@ -149,6 +153,7 @@ impl App {
             ascii: options.ascii,
             show_timing: options.show_timing,
             ns_per_step: None,
+            study: None,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -171,6 +176,18 @@ impl App {
         if let Some(message) = keys::message(event, self.context()) {
             self.update(message);
         }
+    }
+
+    /// Takes the study thread's news (progress, result); never blocks.
+    pub fn poll_study(&mut self) {
+        if let Some(job) = &self.study {
+            job.poll();
+        }
+    }
+
+    /// A study is running: the event loop must wake up to show its progress.
+    pub fn study_running(&self) -> bool {
+        self.study.as_ref().is_some_and(|job| !job.finished())
     }
 
     /// Frames per wall-clock second while running.
@@ -224,6 +241,16 @@ impl App {
                 self.view = match self.view {
                     View::Energy => View::Loop,
                     _ => View::Energy,
+                }
+            }
+            Message::ToggleStudy => {
+                if self.view == View::Study {
+                    self.view = View::Loop;
+                } else {
+                    if self.study.is_none() {
+                        self.study = Some(super::study_view::spawn(self));
+                    }
+                    self.view = View::Study;
                 }
             }
             Message::OpenPicker => self.open_picker(),

@@ -1,6 +1,6 @@
 //! The key table: every binding with its status-bar hint and its help line. The status bar and
 //! the help overlay are both generated from [`KEYS`], so they can never drift from what the keys
-//! really do. (`s` is reserved for the study view.)
+//! really do.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
@@ -21,6 +21,7 @@ pub enum Message {
     ToggleFrame,
     ToggleTrail,
     ToggleEnergy,
+    ToggleStudy,
     OpenPicker,
     ScrollUp,
     ScrollDown,
@@ -206,6 +207,13 @@ pub const KEYS: &[Binding] = &[
         Message::ToggleEnergy,
     ),
     bind(
+        &[Char('s')],
+        "s",
+        "",
+        "study: error against cost of every integrator × dt on this scene (runs in the background)",
+        Message::ToggleStudy,
+    ),
+    bind(
         &[Char('l')],
         "l",
         "l lessons",
@@ -289,7 +297,12 @@ mod tests {
     }
 
     #[test]
-    fn s_stays_free_for_the_study_view() {
-        assert!(KEYS.iter().all(|b| !b.keys.contains(&Char('s'))));
+    fn s_opens_the_study_view() {
+        let study: Vec<_> = KEYS
+            .iter()
+            .filter(|b| b.keys.contains(&Char('s')))
+            .collect();
+        assert_eq!(study.len(), 1);
+        assert_eq!(study[0].message, Message::ToggleStudy);
     }
 }

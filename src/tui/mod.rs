@@ -38,6 +38,7 @@ pub mod projection;
 pub mod screen;
 pub mod series;
 pub mod status_bar;
+pub mod study_view;
 pub mod viewport;
 
 pub use app::{App, Comparison, Options, View};
@@ -72,12 +73,17 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
     let mut last = Instant::now();
     let mut pending = 0.0_f64;
     loop {
+        app.poll_study();
         terminal.draw(|frame| frame.render_widget(&*app, frame.area()))?;
         if app.quit {
             return Ok(());
         }
         if !app.running {
-            // Paused: block until something happens.
+            // Paused: block until something happens (or, while a study runs, until its
+            // progress is worth redrawing).
+            if app.study_running() && !event::poll(RENDER_INTERVAL * 3)? {
+                continue;
+            }
             handle(app, event::read()?);
             last = Instant::now();
             pending = 0.0;

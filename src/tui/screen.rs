@@ -2,7 +2,9 @@
 //! picker, divergence dialog) — or, in a terminal too small, a message asking to enlarge it.
 
 use super::app::{App, Overlay, View};
-use super::{divergence_dialog, energy_view, header, help, loop_view, picker, status_bar};
+use super::{
+    divergence_dialog, energy_view, header, help, loop_view, picker, status_bar, study_view,
+};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
@@ -29,6 +31,7 @@ impl Widget for &App {
         match self.view {
             View::Loop => loop_view::render(self, main, buf),
             View::Energy => energy_view::render(self, main, buf),
+            View::Study => study_view::render(self, main, buf),
         }
         status_bar::render(self, status, buf);
         if let Some(d) = &self.divergence {

@@ -1,0 +1,233 @@
+//! The study view (key `s`): error against cost of every integrator × time step on the current
+//! scene, as a log–log chart — the same numbers as `tumble study FILE`, computed on a background
+//! thread ([`crate::study::background`]) while the rest of the app keeps running. Until the
+//! study is done, a gauge shows its progress; the view can be left and re-entered meanwhile.
+
+use super::app::App;
+use crate::physics::Integrator;
+use crate::study::analysis::format_dt;
+use crate::study::background::Job;
+use crate::study::{plot, Case, Config, SceneStudy};
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::Line;
+use ratatui::widgets::{
+    Axis, Block, Chart, Dataset, Gauge, GraphType, LegendPosition, Paragraph, Widget, Wrap,
+};
+
+/// How long a lesson without a `duration` is studied, s.
+pub const DEFAULT_DURATION: f64 = 5.0;
+
+/// Starts the study of a lesson's scene (every integrator, dt = 1e-1 … 1e-4).
+pub fn spawn(app: &App) -> Job {
+    let lesson = &app.lesson;
+    let name = lesson.path.file_stem().map_or_else(
+        || lesson.title.clone(),
+        |s| s.to_string_lossy().into_owned(),
+    );
+    let case = Case {
+        name,
+        description: lesson.title.clone(),
+        scene: lesson.scene.clone(),
+        duration: lesson.scene.duration.unwrap_or(DEFAULT_DURATION),
+    };
+    Job::spawn(case, Config::default())
+}
+
+/// The colour of an integrator, as in the SVG plot.
+fn colour(integrator: Integrator) -> Color {
+    let plotters::style::RGBColor(r, g, b) = plot::color(integrator);
+    Color::Rgb(r, g, b)
+}
+
+pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+    let Some(job) = &app.study else {
+        Paragraph::new("press s to study this scene")
+            .block(Block::bordered().title(" study "))
+            .render(area, buf);
+        return;
+    };
+    match job.result() {
+        Some(study) => render_study(app, &study, area, buf),
+        None => render_progress(job, area, buf),
+    }
+}
+
+fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
+    let block = Block::bordered().title(format!(" study of {} ", job.name));
+    let inner = block.inner(area);
+    block.render(area, buf);
+    let [gauge, text] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(inner);
+    let (done, total) = job.progress();
+    if job.failed() {
+        Paragraph::new("the study stopped unexpectedly (see the terminal after quitting)")
+            .style(Style::new().fg(Color::Red))
+            .render(inner, buf);
+        return;
+    }
+    Gauge::default()
+        .gauge_style(Style::new().fg(Color::Cyan))
+        .ratio(if total == 0 {
+            0.0
+        } else {
+            done as f64 / total as f64
+        })
+        .label(format!("{done} of {total} runs"))
+        .render(gauge, buf);
+    Paragraph::new(vec![
+        Line::from(""),
+        Line::from(
+            "Every integrator at dt = 1e-1 … 1e-4, each run measured against an independent \
+             reference and timed (median of 5 runs): the chart appears when all are done.",
+        ),
+        Line::from(
+            "The simulation and every other key keep working meanwhile; s leaves this view.",
+        ),
+    ])
+    .wrap(Wrap { trim: true })
+    .render(text, buf);
+}
+
+/// Integer decades covering [lo, hi] (log10 values), at least one decade wide.
+fn decades(lo: f64, hi: f64) -> (f64, f64) {
+    let (a, b) = (lo.floor(), hi.ceil());
+    if b > a {
+        (a, b)
+    } else {
+        (a, a + 1.0)
+    }
+}
+
+/// Axis labels at a few decades: "1e-3" …
+fn labels(lo: f64, hi: f64) -> Vec<String> {
+    let span = (hi - lo).round() as i32;
+    let stride = (span / 5 + 1).max(1);
+    let mut out = Vec::new();
+    let mut e = lo.round() as i32;
+    while e <= hi.round() as i32 {
+        out.push(format!("1e{e}"));
+        e += stride;
+    }
+    if out.len() == 1 {
+        out.push(format!("1e{}", hi.round() as i32));
+    }
+    out
+}
+
+fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
+    let text_height = (area.height / 3).clamp(4, 9);
+    let [chart_area, text_area] =
+        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
+    let points = |integrator: Option<Integrator>, frontier_only: bool| -> Vec<(f64, f64)> {
+        let mut rows: Vec<_> = study
+            .rows
+            .iter()
+            .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
+            .filter(|r| integrator.is_none_or(|i| r.integrator == i))
+            .filter(|r| !frontier_only || r.frontier)
+            .collect();
+        rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+        rows.iter()
+            .map(|r| {
+                (
+                    r.us_per_simulated_second.log10(),
+                    r.error.max(1e-16).log10(),
+                )
+            })
+            .collect()
+    };
+    let all = points(None, false);
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in &all {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    if all.is_empty() {
+        (x0, x1, y0, y1) = (0.0, 1.0, -1.0, 0.0);
+    }
+    let (x0, x1) = decades(x0, x1);
+    let (y0, y1) = decades(y0, y1);
+    let marker = if app.ascii {
+        Marker::Dot
+    } else {
+        Marker::Braille
+    };
+    let lines: Vec<(Integrator, Vec<(f64, f64)>)> = Integrator::ALL
+        .into_iter()
+        .map(|i| (i, points(Some(i), false)))
+        .filter(|(_, p)| !p.is_empty())
+        .collect();
+    let frontier = points(None, true);
+    let mut datasets: Vec<Dataset> = lines
+        .iter()
+        .map(|(i, p)| {
+            Dataset::default()
+                .name(i.name())
+                .marker(marker)
+                .graph_type(GraphType::Line)
+                .style(Style::new().fg(colour(*i)))
+                .data(p)
+        })
+        .collect();
+    datasets.push(
+        Dataset::default()
+            .name("frontier")
+            .marker(Marker::Block)
+            .graph_type(GraphType::Scatter)
+            .style(Style::new().fg(Color::White))
+            .data(&frontier),
+    );
+    let axis = |title: &'static str, lo: f64, hi: f64| {
+        Axis::default()
+            .title(title)
+            .style(Style::new().fg(Color::Gray))
+            .bounds([lo, hi])
+            .labels(labels(lo, hi))
+    };
+    Chart::new(datasets)
+        .block(Block::bordered().title(format!(
+            " study of {} ({} s, {} reference): error against cost, log–log ",
+            study.name, study.duration, study.reference_kind
+        )))
+        .x_axis(axis("µs per simulated s", x0, x1))
+        .y_axis(axis("error, rad", y0, y1))
+        .legend_position(Some(LegendPosition::TopRight))
+        .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
+        .render(chart_area, buf);
+    let orders: Vec<String> = study
+        .orders
+        .iter()
+        .map(|o| match o.slope {
+            Some(s) => format!("{} {:.1}", o.integrator.name(), s),
+            None => format!("{} –", o.integrator.name()),
+        })
+        .collect();
+    let best = study
+        .rows
+        .iter()
+        .filter(|r| r.frontier)
+        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)));
+    Paragraph::new(vec![
+        Line::from(study.sentence.clone()),
+        Line::styled(
+            format!("observed orders: {}", orders.join(", ")),
+            Style::new().add_modifier(Modifier::DIM),
+        ),
+        Line::styled(
+            format!(
+                "frontier (█ on the chart, cheapest first): {}",
+                best.collect::<Vec<_>>().join(", ")
+            ),
+            Style::new().add_modifier(Modifier::DIM),
+        ),
+    ])
+    .block(Block::bordered().title(format!(" reference: {} ", study.reference_kind)))
+    .wrap(Wrap { trim: true })
+    .render(text_area, buf);
+}

@@ -1,0 +1,122 @@
+//! The app's study view (key `s`): the study runs on its own thread while the app stays usable,
+//! the view can be left and re-entered, and the finished chart shows every integrator. Content
+//! checks only: the cost axis is measured time, so no snapshot of it can be deterministic.
+#![cfg(feature = "tui")]
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::backend::TestBackend;
+use ratatui::Terminal;
+use std::path::Path;
+use std::time::{Duration, Instant};
+use tumble::physics::Integrator;
+use tumble::tui::{App, Options, View};
+
+fn app(name: &str) -> App {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name);
+    let lesson = tumble::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    App::new(
+        lesson,
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    )
+}
+
+fn press(app: &mut App, code: KeyCode) {
+    app.handle_key(&KeyEvent::new(code, KeyModifiers::NONE));
+}
+
+fn screen(app: &App, width: u16, height: u16) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    terminal.draw(|f| f.render_widget(app, f.area())).unwrap();
+    let buf = terminal.backend().buffer();
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn wait_for_study(app: &mut App) {
+    let started = Instant::now();
+    while app.study_running() {
+        app.poll_study();
+        assert!(
+            started.elapsed() < Duration::from_secs(120),
+            "the study never finished"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    app.poll_study();
+}
+
+#[test]
+fn the_study_runs_in_the_background_while_the_app_keeps_working() {
+    let mut app = app("study/short-tumble.toml");
+    assert!(app.study.is_none(), "nothing is studied before `s`");
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.view, View::Study);
+    let job = app.study.clone().expect("`s` starts a study");
+    assert_eq!(job.progress().1, 20, "5 integrators × 4 time steps");
+    // The first frame is drawn at once (progress or, on a fast machine, the finished chart).
+    let first = screen(&app, 120, 40);
+    assert!(first.contains("study of short-tumble"), "{first}");
+
+    // The rest of the app answers meanwhile: a frame steps, another view opens.
+    press(&mut app, KeyCode::Right);
+    assert_eq!(app.snapshot.step, 1, "stepping works while the study runs");
+    press(&mut app, KeyCode::Char('g'));
+    assert_eq!(
+        app.view,
+        View::Energy,
+        "the study view can be left while it runs"
+    );
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.view, View::Study);
+    assert_eq!(
+        app.study.as_ref().map(|j| j.name.clone()),
+        Some(job.name.clone())
+    );
+    assert!(
+        !app.study_running() || app.study.as_ref().unwrap().progress().0 <= 20,
+        "re-entering keeps the same study"
+    );
+
+    wait_for_study(&mut app);
+    let result = app
+        .study
+        .as_ref()
+        .unwrap()
+        .result()
+        .expect("a finished study");
+    assert_eq!(result.rows.len(), 20);
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("error against cost, log–log"), "{shown}");
+    assert!(
+        shown.contains("To keep the error under 1e-6 rad over 0.2 s"),
+        "{shown}"
+    );
+    assert!(shown.contains("observed orders"), "{shown}");
+    for integrator in Integrator::ALL {
+        assert!(
+            shown.contains(integrator.name()),
+            "legend lacks {}:\n{shown}",
+            integrator.name()
+        );
+    }
+    // `s` again goes back to the loop view; the finished study is kept for next time.
+    press(&mut app, KeyCode::Char('s'));
+    assert_eq!(app.view, View::Loop);
+    assert!(app.study.as_ref().unwrap().result().is_some());
+    // The small terminal still renders the view.
+    press(&mut app, KeyCode::Char('s'));
+    let small = screen(&app, 80, 24);
+    assert!(small.contains("study of short-tumble"), "{small}");
+}
