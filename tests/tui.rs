@@ -522,3 +522,12 @@ fn the_lesson_page_follows_time_and_scrolls() {
     press(&mut app, KeyCode::PageUp);
     assert_eq!(app.lesson_scroll, 0);
 }
+
+#[test]
+fn the_first_screen_explains_the_loop_before_anything_runs() {
+    let app = app("tui-box.toml");
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("t = 0, nothing has run yet"), "{shown}");
+    assert!(shown.contains("Press n to run one phase"), "{shown}");
+    insta::assert_snapshot!("screen_start_120x40", shown);
+}

@@ -334,9 +334,13 @@ impl App {
 
     /// Records the frame just finished in the energy series.
     fn record_frame(&mut self) {
-        let snapshot = self.world.snapshot();
-        let ghost = self.ghost.as_ref().map(|g| g.world.snapshot());
-        self.series.record(&snapshot, ghost.as_ref());
+        let energy = self.world.energy_of(self.world.state());
+        let ghost = self
+            .ghost
+            .as_ref()
+            .map(|g| g.world.energy_of(g.world.state()).total);
+        self.series
+            .record(self.world.step_count(), self.world.dt(), &energy, ghost);
     }
 
     /// Runs up to `frames` whole frames (both worlds); stops at a divergence.
@@ -504,6 +508,16 @@ impl App {
         apply(&mut world, comparison);
         while world.last_phase() != self.world.last_phase() {
             world.step_phase();
+        }
+        let same = match comparison {
+            Comparison::Integrator(i) => i == self.world.integrator(),
+            Comparison::Response(r) => Some(r) == self.world.contact_model().map(|m| m.response),
+        };
+        if same {
+            self.notice = Some(format!(
+                "the ghost runs `{}` too: press k for another",
+                comparison.name()
+            ));
         }
         let snapshot = world.snapshot();
         self.ghost = Some(Ghost {

@@ -94,10 +94,11 @@ fn line(formula: impl Into<String>, numbers: impl Into<String>) -> Line<'static>
 
 fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     match s.phase {
-        None => vec![line(
-            "Press n to run the derive phase, → to run a whole frame, space to run.",
-            "",
-        )],
+        None => vec![
+            line("derive ", "I⁻¹ = R·Ibody⁻¹·Rᵀ, ω = I⁻¹·L, v = P/M        forces  F and τ of the declared effects"),
+            line("integrate ", format!("one {} step of (x, orientation, P, L)   collide  push vertices out of obstacles", s.integrator.name())),
+            line("Press n to run one phase, → a whole frame, space to run; ? lists every key.", ""),
+        ],
         Some(Phase::Derive) => vec![
             line(
                 "I⁻¹ = R·Ibody⁻¹·Rᵀ",

@@ -10,6 +10,14 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 use std::path::PathBuf;
 
 pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &mut Buffer) {
+    let name_width = lessons
+        .iter()
+        .map(|(p, _)| {
+            p.file_name()
+                .map_or(0, |n| n.to_string_lossy().chars().count())
+        })
+        .max()
+        .unwrap_or(0);
     let mut lines: Vec<Line> = lessons
         .iter()
         .enumerate()
@@ -17,7 +25,7 @@ pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &
             let name = path
                 .file_name()
                 .map_or(String::new(), |n| n.to_string_lossy().into_owned());
-            let text = format!(" {name:<26} {title}");
+            let text = format!(" {name:<name_width$}  {title} ");
             if i == selected {
                 Line::styled(
                     text,
@@ -48,13 +56,21 @@ pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &
             )
         })
         .collect();
-    let popup = centered(area, 76, lines.len() as u16 + 2);
+    let footer_text = format!(" {} ", footer.join(" · "));
+    let width = lines
+        .iter()
+        .map(|l| l.width())
+        .chain([footer_text.chars().count()])
+        .max()
+        .unwrap_or(0) as u16
+        + 2;
+    let popup = centered(area, width, lines.len() as u16 + 2);
     Clear.render(popup, buf);
     Paragraph::new(lines)
         .block(
             Block::bordered()
                 .title(" lessons ")
-                .title_bottom(format!(" {} ", footer.join(" · ")))
+                .title_bottom(footer_text)
                 .border_style(Style::new().fg(Color::Cyan)),
         )
         .render(popup, buf);

@@ -2,7 +2,7 @@
 //! thinned by halves when long, with axes that only ever grow (by doubling) so the graph does
 //! not jump while it runs.
 
-use crate::physics::Snapshot;
+use crate::physics::{Energy, Snapshot};
 
 /// Points kept before the series is thinned to every other point.
 const MAX_POINTS: usize = 4096;
@@ -55,6 +55,8 @@ pub struct EnergySeries {
     pub time_axis: Range,
     pub energy_axis: Range,
     pub drift_axis: Range,
+    /// Total energy at t = 0, J.
+    initial_total: f64,
 }
 
 impl EnergySeries {
@@ -80,20 +82,22 @@ impl EnergySeries {
                 lo: -drift_scale,
                 hi: drift_scale,
             },
+            initial_total: e.total,
         };
-        series.record(first, None);
+        series.record(first.step, first.dt, &first.energy, None);
         series
     }
 
-    /// Records a frame (the snapshot after a whole frame), keeping one frame in `stride`.
-    pub fn record(&mut self, s: &Snapshot, compare: Option<&Snapshot>) {
+    /// Records the energy after frame `step` (and the compare world's total energy), keeping
+    /// one frame in `stride`.
+    pub fn record(&mut self, step: u64, dt: f64, energy: &Energy, compare_total: Option<f64>) {
         let sample = Sample {
-            t: s.time,
-            kinetic: s.energy.kinetic,
-            potential: s.energy.potential,
-            total: s.energy.total,
-            drift: s.energy.total - s.initial_energy.total,
-            compare_total: compare.map(|c| c.energy.total),
+            t: step as f64 * dt,
+            kinetic: energy.kinetic,
+            potential: energy.potential,
+            total: energy.total,
+            drift: energy.total - self.initial_total,
+            compare_total,
         };
         self.time_axis.include(sample.t);
         for x in [sample.kinetic, sample.potential, sample.total] {
@@ -101,19 +105,16 @@ impl EnergySeries {
         }
         if let Some(c) = sample.compare_total {
             self.energy_axis.include(c);
-            if let Some(c0) = compare.map(|c| c.initial_energy.total) {
-                self.drift_axis.include(c - c0);
-            }
+            self.drift_axis.include(c - self.initial_total);
         }
         self.drift_axis.include(sample.drift);
-        if !s.step.is_multiple_of(self.stride) {
+        if !step.is_multiple_of(self.stride) {
             return;
         }
         self.samples.push(sample);
         if self.samples.len() > MAX_POINTS {
             self.stride *= 2;
             let stride = self.stride;
-            let dt = s.dt;
             self.samples
                 .retain(|x| ((x.t / dt).round() as u64).is_multiple_of(stride));
         }
