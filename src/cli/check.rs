@@ -4,8 +4,15 @@ use super::Failure;
 use crate::scene;
 use std::path::PathBuf;
 
-/// Validates every file; prints `ok` lines on stdout and errors on stderr.
+/// Validates every file; prints `ok` lines on stdout and errors on stderr (for several files,
+/// then a summary line).
 pub fn check(files: &[PathBuf]) -> Result<(), Failure> {
+    if let [path] = files {
+        // One file: its error is the one line (no summary line after it).
+        let lesson = scene::load(path)?;
+        println!("{}: ok ({})", path.display(), lesson.title);
+        return Ok(());
+    }
     let mut failed = 0;
     for path in files {
         match scene::load(path) {

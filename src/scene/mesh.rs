@@ -13,6 +13,10 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
     if !path.is_file() {
         return Err("no such file".to_string());
     }
+    let text = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
+    let text = String::from_utf8(text)
+        .map_err(|_| "malformed .obj: not a text file (invalid UTF-8)".to_string())?;
+    check_vertex_lines(&text)?;
     let options = tobj::LoadOptions {
         single_index: true,
         triangulate: false,
@@ -59,4 +63,30 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         return Err("malformed .obj: a vertex coordinate is not finite".to_string());
     }
     Ok((points, edges.into_iter().collect()))
+}
+
+/// Every `v x y z [w]` line has at least three numbers: names the first line that does not
+/// (the .obj reader itself only says "position parse error").
+fn check_vertex_lines(text: &str) -> Result<(), String> {
+    for (index, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("v") {
+            continue;
+        }
+        let coordinates: Vec<&str> = words.take(3).collect();
+        if let Some(bad) = coordinates.iter().find(|w| w.parse::<f64>().is_err()) {
+            return Err(format!(
+                "malformed .obj: line {}: vertex coordinate `{bad}` is not a number",
+                index + 1
+            ));
+        }
+        if coordinates.len() < 3 {
+            return Err(format!(
+                "malformed .obj: line {}: a vertex needs 3 coordinates, found {}",
+                index + 1,
+                coordinates.len()
+            ));
+        }
+    }
+    Ok(())
 }

@@ -6,6 +6,7 @@
 
 mod error;
 mod mesh;
+mod messages;
 mod raw;
 
 pub use error::{did_you_mean, LoadError};
@@ -118,35 +119,27 @@ pub fn parse(source: &str, path: &Path) -> Result<Lesson, LoadError> {
             "not a text file (contains NUL bytes): expected a TOML scene",
         ));
     }
-    let raw: RawLesson = toml::from_str(source).map_err(|e| toml_error(&e, source, path))?;
+    // Syntax first, so that a syntax error is called one, then the shape of a scene.
+    if let Err(e) = source.parse::<toml::Table>() {
+        let token = e.span().and_then(|s| source.get(s)).unwrap_or("");
+        return Err(located(
+            path,
+            source,
+            e.span(),
+            messages::syntax(e.message(), token),
+        ));
+    }
+    let raw: RawLesson = toml::from_str(source)
+        .map_err(|e| located(path, source, e.span(), messages::shape(e.message())))?;
     Validator { source, path }.lesson(raw)
 }
 
-/// A TOML or shape error turned into one line, with a suggestion for unknown keys.
-fn toml_error(error: &toml::de::Error, source: &str, path: &Path) -> LoadError {
-    let message = improve_message(error.message());
-    match error.span() {
+/// An error at a span when the parser gave one, else about the whole file.
+fn located(path: &Path, source: &str, span: Option<Range<usize>>, message: String) -> LoadError {
+    match span {
         Some(span) => LoadError::at(path, source, span, message),
         None => LoadError::file(path, message),
     }
-}
-
-/// Rewrites serde's "unknown field `x`, expected one of `a`, `b`" with a suggestion.
-fn improve_message(message: &str) -> String {
-    let Some(rest) = message.strip_prefix("unknown field `") else {
-        return message.trim().to_string();
-    };
-    let Some((word, expected)) = rest.split_once('`') else {
-        return message.trim().to_string();
-    };
-    let valid: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
-    let hint = did_you_mean(word, valid.iter().copied())
-        .map(|s| format!(" (did you mean `{s}`?)"))
-        .unwrap_or_default();
-    format!(
-        "unknown key `{word}`{hint}; valid keys here: {}",
-        valid.join(", ")
-    )
 }
 
 struct Validator<'a> {
@@ -458,10 +451,13 @@ impl Validator<'_> {
             "box" => {
                 let size_raw = b.size.as_ref().ok_or_else(|| needs("size"))?;
                 let size = self.vector(size_raw, "size")?;
-                if let Some(bad) = size.iter().find(|s| **s <= 0.0) {
+                if size.iter().any(|s| *s <= 0.0) {
                     return Err(self.error(
                         size_raw.span(),
-                        format!("box sides must be > 0, found {bad}"),
+                        format!(
+                            "box `size` needs three sides > 0 m, found {:?}",
+                            size_raw.get_ref()
+                        ),
                     ));
                 }
                 let mass = mass.ok_or_else(|| needs("mass"))?;

@@ -1,0 +1,390 @@
+//! Bad input: every malformed file gives one line on stderr naming file:line:column (where the
+//! file has a place at fault), what was expected and what was found; exit code 2; never a panic.
+//!
+//! Table-driven over `tests/fixtures/invalid/*.toml` (every fixture must be in the table), plus
+//! the cases a fixture cannot hold (a missing file, a directory, an empty file, a binary file),
+//! plus a fuzz-style proptest of the loader over arbitrary text and mutated bundled lessons.
+
+use assert_cmd::Command;
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+
+const INVALID: &str = "tests/fixtures/invalid";
+
+/// (fixture, the one line `tumble check` prints on stderr after `tumble: `).
+const TABLE: &[(&str, &str)] = &[
+    (
+        "syntax-error.toml",
+        "5:18: TOML syntax error: invalid basic string, expected `\"`",
+    ),
+    (
+        "wrong-type.toml",
+        "4:6: wrong type: expected a number, found the string \"fast\"",
+    ),
+    (
+        "unknown-key.toml",
+        "6:1: unknown key `gravty` (did you mean `gravity`?); valid keys here: dt, duration, \
+         integrator, gravity, drag, contact",
+    ),
+    (
+        "unknown-integrator.toml",
+        "5:14: unknown integrator `runge-kutta`; valid integrators: euler-seed, euler, \
+         symplectic-euler, rk4, splitting",
+    ),
+    (
+        "unknown-response.toml",
+        "6:24: unknown collision response `bounce`; valid responses: seed, impulse",
+    ),
+    ("negative-mass.toml", "10:8: mass must be > 0, found -1"),
+    ("zero-mass.toml", "10:8: mass must be > 0, found 0"),
+    (
+        "nan-mass.toml",
+        "10:8: mass must be a finite number, found NaN",
+    ),
+    (
+        "zero-size.toml",
+        "9:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 0.1]",
+    ),
+    ("zero-dt.toml", "4:6: dt must be > 0, found 0"),
+    ("negative-dt.toml", "4:6: dt must be > 0, found -0.01"),
+    (
+        "infinite-dt.toml",
+        "4:6: dt must be a finite number, found inf",
+    ),
+    (
+        "infinite-gravity.toml",
+        "6:11: gravity must have finite components, found [0.0, -inf, 0.0]",
+    ),
+    (
+        "zero-axis.toml",
+        "11:24: orientation axis has zero length: give a non-zero axis",
+    ),
+    (
+        "collinear-points.toml",
+        "9:10: the inertia tensor is singular (principal moments -1.480e-16, 2.000e0, 2.000e0 \
+         kg·m²): the points lie on one line or at one spot, so nothing resists rotation about \
+         that line; add a point off the line or use a box",
+    ),
+    (
+        "missing-mesh.toml",
+        "9:8: mesh `tests/fixtures/invalid/meshes/nowhere.obj`: no such file",
+    ),
+    (
+        "malformed-obj.toml",
+        "9:8: mesh `tests/fixtures/invalid/meshes/broken.obj`: malformed .obj: line 3: vertex \
+         coordinate `zero` is not a number",
+    ),
+    (
+        "obstacles-without-contact.toml",
+        "14:1: obstacles need a collision response: add `contact = { response = \"impulse\", \
+         restitution = 0.4, friction = 0.5 }` to [scene]",
+    ),
+    (
+        "negative-page-time.toml",
+        "13:6: page time `at` must be ≥ 0 s, found -1",
+    ),
+    (
+        "missing-body.toml",
+        "1:1: missing table `[body]`: a scene file needs `title`, [scene] and [body]",
+    ),
+];
+
+fn tumble() -> Command {
+    let mut command = Command::cargo_bin("tumble").expect("the tumble binary");
+    command.current_dir(env!("CARGO_MANIFEST_DIR"));
+    command
+}
+
+/// Runs `tumble ARGS` and returns (exit code, stdout, stderr).
+fn outcome(args: &[&str]) -> (Option<i32>, String, String) {
+    let output = tumble().args(args).output().expect("tumble runs");
+    (
+        output.status.code(),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// `check` and `run` both fail with exactly `expected` as the only stderr line, exit code 2.
+fn assert_rejected(file: &str, expected: &str) {
+    for args in [vec!["check", file], vec!["run", file, "--steps", "1"]] {
+        let (code, stdout, stderr) = outcome(&args);
+        assert_eq!(
+            stderr,
+            format!("{expected}\n"),
+            "tumble {}: stderr differs",
+            args.join(" ")
+        );
+        assert_eq!(code, Some(2), "tumble {}: exit code", args.join(" "));
+        assert!(
+            stdout.is_empty(),
+            "tumble {}: printed {stdout:?}",
+            args.join(" ")
+        );
+    }
+}
+
+#[test]
+fn every_invalid_fixture_is_in_the_table() {
+    let mut fixtures: Vec<String> =
+        std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(INVALID))
+            .expect("fixtures folder")
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|name| name.ends_with(".toml"))
+            .collect();
+    fixtures.sort();
+    let mut listed: Vec<String> = TABLE.iter().map(|(f, _)| f.to_string()).collect();
+    listed.sort();
+    assert_eq!(fixtures, listed);
+}
+
+#[test]
+fn each_invalid_fixture_gives_its_one_line_and_exit_code_2() {
+    for (fixture, message) in TABLE {
+        let file = format!("{INVALID}/{fixture}");
+        assert_rejected(&file, &format!("tumble: {file}:{message}"));
+    }
+}
+
+/// A scratch folder for files a fixture cannot hold.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bad_input");
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir.join(name)
+}
+
+#[test]
+fn a_missing_file_is_named() {
+    let file = scratch("does-not-exist.toml");
+    let _ = std::fs::remove_file(&file);
+    let file = file.to_string_lossy().into_owned();
+    assert_rejected(&file, &format!("tumble: {file}: cannot read: no such file"));
+}
+
+#[test]
+fn a_directory_is_not_a_scene() {
+    let dir = scratch("a-folder.toml");
+    std::fs::create_dir_all(&dir).expect("folder");
+    let dir = dir.to_string_lossy().into_owned();
+    assert_rejected(
+        &dir,
+        &format!("tumble: {dir}: is a directory, not a scene file"),
+    );
+}
+
+#[test]
+fn an_empty_file_says_what_a_scene_needs() {
+    let file = scratch("empty.toml");
+    std::fs::write(&file, "  \n\n").expect("write");
+    let file = file.to_string_lossy().into_owned();
+    assert_rejected(
+        &file,
+        &format!(
+            "tumble: {file}: empty file: expected a TOML scene with at least `title`, [scene] \
+             and [body]"
+        ),
+    );
+}
+
+#[test]
+fn a_binary_file_is_not_text() {
+    let file = scratch("binary.toml");
+    std::fs::write(&file, [0x7f, b'E', b'L', b'F', 0, 1, 0xff, 0xfe, 0x80]).expect("write");
+    let file = file.to_string_lossy().into_owned();
+    assert_rejected(
+        &file,
+        &format!("tumble: {file}: not a text file (invalid UTF-8): expected a TOML scene"),
+    );
+    // Valid UTF-8 with NUL bytes is not a scene either.
+    let file = scratch("nul.toml");
+    std::fs::write(&file, "title = \"x\"\0\0\n").expect("write");
+    let file = file.to_string_lossy().into_owned();
+    assert_rejected(
+        &file,
+        &format!("tumble: {file}: not a text file (contains NUL bytes): expected a TOML scene"),
+    );
+}
+
+#[test]
+fn several_files_get_one_line_each_and_a_summary() {
+    let bad = format!("{INVALID}/zero-dt.toml");
+    let good = "lessons/01-the-loop.toml";
+    let (code, stdout, stderr) = outcome(&["check", good, &bad]);
+    assert_eq!(code, Some(2));
+    assert!(stdout.starts_with(&format!("{good}: ok (")), "{stdout}");
+    assert_eq!(
+        stderr,
+        format!("tumble: {bad}:4:6: dt must be > 0, found 0\ntumble: 1 of 2 files have errors\n")
+    );
+}
+
+#[test]
+fn bad_command_line_overrides_are_one_line_and_exit_code_2() {
+    let lesson = "lessons/01-the-loop.toml";
+    for (args, expected) in [
+        (
+            vec!["run", lesson, "--steps", "1", "--dt", "0"],
+            "tumble: --dt must be > 0 and finite, found 0\n",
+        ),
+        (
+            vec!["run", lesson, "--steps", "1", "--integrator", "verlet"],
+            "tumble: unknown integrator `verlet`; valid integrators: euler-seed, euler, \
+             symplectic-euler, rk4, splitting\n",
+        ),
+    ] {
+        let (code, _, stderr) = outcome(&args);
+        assert_eq!(stderr, expected);
+        assert_eq!(code, Some(2));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fuzz: the loader never panics
+// ---------------------------------------------------------------------------------------------
+
+/// The bundled lessons' sources, the seeds of the mutations.
+fn lesson_sources() -> Vec<(PathBuf, String)> {
+    tumble::lessons::bundled()
+        .into_iter()
+        .map(|p| {
+            let source = std::fs::read_to_string(&p).expect("lesson text");
+            (p, source)
+        })
+        .collect()
+}
+
+/// Tokens that make a TOML scene interesting: numbers at the edges, wrong types, structure.
+const TOKENS: &[&str] = &[
+    "nan",
+    "inf",
+    "-inf",
+    "0",
+    "-1",
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "\"x\"",
+    "[",
+    "]",
+    "{",
+    "}",
+    "=",
+    ",",
+    "\n",
+    "[[obstacle]]\ntype = \"box\"\n",
+    "[[obstacle]]\ntype = \"ground\"\nheight = 0\n",
+    "[[page]]\nat = -1\n",
+    "[body]\n",
+    "[scene]\n",
+    "\"\"\"",
+    "#",
+    "é",
+    "\u{0}",
+    "true",
+    "[0.0, 0.0, 0.0]",
+    "[1e308, 1e308, 1e308]",
+    "shape = \"points\"",
+    "shape = \"mesh\"",
+    "file = \"/\"",
+    "file = \"../lessons\"",
+    "inertia = \"points\"",
+    "integrator = \"euler-seed\"",
+    "contact = { response = \"seed\" }",
+    "{ quaternion = [0, 0, 0, 0] }",
+];
+
+/// A mutation of a source text: cut a range, insert a token, or duplicate a line.
+#[derive(Debug, Clone)]
+enum Mutation {
+    Cut { at: usize, len: usize },
+    Insert { at: usize, token: usize },
+    DuplicateLine { line: usize },
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    prop_oneof![
+        (any::<usize>(), 1usize..40).prop_map(|(at, len)| Mutation::Cut { at, len }),
+        (any::<usize>(), 0..TOKENS.len()).prop_map(|(at, token)| Mutation::Insert { at, token }),
+        any::<usize>().prop_map(|line| Mutation::DuplicateLine { line }),
+    ]
+}
+
+fn boundary(source: &str, at: usize) -> usize {
+    let mut i = at % (source.len() + 1);
+    while !source.is_char_boundary(i) {
+        i -= 1;
+    }
+    i
+}
+
+fn apply(source: &str, mutation: &Mutation) -> String {
+    match *mutation {
+        Mutation::Cut { at, len } => {
+            let start = boundary(source, at);
+            let end = boundary(source, (start + len).min(source.len()));
+            format!("{}{}", &source[..start], &source[end.max(start)..])
+        }
+        Mutation::Insert { at, token } => {
+            let at = boundary(source, at);
+            format!("{}{}{}", &source[..at], TOKENS[token], &source[at..])
+        }
+        Mutation::DuplicateLine { line } => {
+            let lines: Vec<&str> = source.lines().collect();
+            if lines.is_empty() {
+                return source.to_string();
+            }
+            let k = line % lines.len();
+            let mut out: Vec<&str> = lines[..=k].to_vec();
+            out.extend_from_slice(&lines[k..]);
+            out.join("\n")
+        }
+    }
+}
+
+/// Loads a text; if it is a valid scene, also builds its world and steps it a little: neither
+/// may panic, and an error is one line.
+fn load_never_panics(source: &str, path: &Path) -> Result<(), TestCaseError> {
+    match tumble::scene::parse(source, path) {
+        Ok(lesson) => {
+            let mut world = lesson.scene.world();
+            for _ in 0..3 {
+                world.step();
+                let _ = world.divergence();
+            }
+            let _ = world.snapshot();
+        }
+        Err(e) => {
+            let line = e.to_string();
+            prop_assert!(!line.contains('\n'), "a two-line error: {line:?}");
+            prop_assert!(line.starts_with(&path.display().to_string()), "{line}");
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1500, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn the_loader_never_panics_on_arbitrary_text(source in any::<String>()) {
+        load_never_panics(&source, Path::new("fuzz.toml"))?;
+    }
+
+    #[test]
+    fn the_loader_never_panics_on_toml_like_text(source in "([a-z_]{1,8} = (-?[0-9.e]{1,6}|\"[a-z]{0,6}\"|\\[[0-9., -]{0,12}\\]|nan|inf)\n|\\[{1,2}[a-z]{1,8}\\]{1,2}\n){0,12}") {
+        load_never_panics(&source, Path::new("fuzz.toml"))?;
+    }
+
+    #[test]
+    fn the_loader_never_panics_on_mutated_lessons(
+        lesson in any::<prop::sample::Index>(),
+        mutations in prop::collection::vec(mutation(), 1..6),
+    ) {
+        let sources = lesson_sources();
+        prop_assume!(!sources.is_empty());
+        let (path, source) = &sources[lesson.index(sources.len())];
+        let mutated = mutations.iter().fold(source.clone(), |s, m| apply(&s, m));
+        load_never_panics(&mutated, path)?;
+    }
+}
