@@ -622,3 +622,363 @@ fn a_thin_rod_with_inertia_ratio_2e4_and_a_flat_plate_follow_the_symmetric_top()
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Contact: resting, fast impacts, wedged, large steps (the `impulse` response)
+// ---------------------------------------------------------------------------------------------
+
+mod contact {
+    use nalgebra::{UnitQuaternion, Vector3};
+    use tumble::physics::snapshot::deepest_penetration;
+    use tumble::physics::{
+        Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State,
+        World,
+    };
+
+    const GROUND: Obstacle = Obstacle::Ground { height: 0.0 };
+
+    /// The box of lesson 1: 0.4 × 0.2 × 0.3 m, 1 kg.
+    fn brick() -> Body {
+        Body::solid_box(Vector3::new(0.4, 0.2, 0.3), 1.0).expect("valid box")
+    }
+
+    fn impulse(restitution: f64, friction: f64) -> ContactModel {
+        ContactModel {
+            response: Response::Impulse,
+            restitution,
+            friction,
+        }
+    }
+
+    fn tilted(degrees: f64, axis: Vector3<f64>) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(axis), degrees.to_radians())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn scene(
+        body: Body,
+        obstacles: Vec<Obstacle>,
+        model: ContactModel,
+        integrator: Integrator,
+        dt: f64,
+        position: Vector3<f64>,
+        orientation: UnitQuaternion<f64>,
+        velocity: Vector3<f64>,
+        omega: Vector3<f64>,
+    ) -> World {
+        let r = orientation.to_rotation_matrix().into_inner();
+        let state = State {
+            position,
+            orientation: Orientation::Quaternion(orientation),
+            linear_momentum: velocity * body.mass,
+            angular_momentum: r * body.inertia_body * r.transpose() * omega,
+        };
+        World::new(
+            body,
+            Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -9.81, 0.0))]),
+            obstacles,
+            Some(model),
+            integrator,
+            dt,
+            state,
+        )
+    }
+
+    #[test]
+    fn a_box_resting_on_the_ground_for_60_s_gains_no_energy_does_not_creep_and_stays_still() {
+        // Measured (symplectic-euler): E max − E₀ ≤ 0 (1e-15 J), creep 6e-10 m, fastest point
+        // 2e-11 m/s after 1 s.
+        resting_box(&[Integrator::SymplecticEuler]);
+    }
+
+    /// KNOWN FAILURE, reported to the lead (collisions): with rk4 and splitting the brick keeps
+    /// turning about the vertical at 0.1 rad/s (v = 3.4e-3 m/s) on its face from t = 0.3 s to
+    /// about 20 s before it stops: friction does not stop a yaw spin in resting contact. Measured:
+    /// creep 5.5 mm (bound 1 mm), fastest point 5.7e-2 m/s after 1 s (bound 1e-4); energy is fine
+    /// (1e-15 J above E₀).
+    #[test]
+    #[ignore = "known failure in the impulse response: resting yaw spin not stopped by friction (rk4, splitting)"]
+    fn a_box_resting_on_the_ground_for_60_s_with_rk4_and_splitting() {
+        resting_box(&[Integrator::Rk4, Integrator::Splitting]);
+    }
+
+    fn resting_box(integrators: &[Integrator]) {
+        // Dropped from 2 cm with a 3° tilt (lowest corner 1.9 cm up), it settles on its
+        // 0.4 × 0.3 face within a second;
+        // then 59 s of resting contact. Bounds: E never above E₀; < 1 mm sideways after
+        // settling; speed < 1e-4 m/s after settling.
+        for &integrator in integrators {
+            let mut world = scene(
+                brick(),
+                vec![GROUND],
+                impulse(0.4, 0.5),
+                integrator,
+                1e-3,
+                Vector3::new(0.0, 0.13, 0.0),
+                tilted(3.0, Vector3::new(1.0, 0.0, 0.3)),
+                Vector3::zeros(),
+                Vector3::zeros(),
+            );
+            let e0 = world.energy_of(world.state()).total;
+            let (mut highest, mut fastest, mut creep) = (f64::NEG_INFINITY, 0.0_f64, 0.0_f64);
+            let mut settled = None;
+            for step in 1..=60_000 {
+                world.step();
+                let snapshot_energy = world.energy_of(world.state()).total;
+                highest = highest.max(snapshot_energy);
+                if step == 1_000 {
+                    settled = Some(world.state().position);
+                }
+                if let Some(x) = settled {
+                    let v = world.state().linear_momentum / world.body().mass;
+                    let w = world.kinematics().angular_velocity;
+                    fastest = fastest.max(v.norm() + w.norm() * world.body().radius);
+                    let d = world.state().position - x;
+                    creep = creep.max((d.x * d.x + d.z * d.z).sqrt());
+                }
+            }
+            eprintln!(
+                "resting {}: E max − E₀ = {:.3e} J, fastest point {:.3e} m/s, creep {:.3e} m, y = {}",
+                integrator.name(),
+                highest - e0,
+                fastest,
+                creep,
+                world.state().position.y
+            );
+            assert!(
+                highest <= e0 + 1e-12,
+                "{}: E rose by {} J",
+                integrator.name(),
+                highest - e0
+            );
+            assert!(creep < 1e-3, "{}: crept {creep} m", integrator.name());
+            assert!(
+                fastest < 1e-4,
+                "{}: a point moved at {fastest} m/s",
+                integrator.name()
+            );
+            assert!(world.divergence().is_none());
+        }
+    }
+
+    #[test]
+    fn a_tumbling_50_m_per_s_impact_does_not_tunnel_into_the_ground() {
+        // Measured: no vertex ever below the ground (0 m) for rk4 and splitting at dt 1e-3 and
+        // 1e-2; E max − E₀ ≤ 1.4e-12 J.
+        tumbling_impact(&[("ground", GROUND, 0.0)]);
+    }
+
+    /// KNOWN FAILURE, reported to the lead (collisions): the corner-first impact on the 1 cm
+    /// slab is handled (bounce at step 15), but the brick leaves spinning fast and, on landing
+    /// again at t ≈ 0.76 s, a vertex turning at ~11 m/s crosses the whole slab in one step
+    /// without a contact being found; the body then falls through (barycenter at −0.89 m after
+    /// 1 s). The face-down impact of tests/collisions.rs passes.
+    #[test]
+    #[ignore = "known failure in swept detection: a fast-turning vertex crosses a 1 cm box in one step"]
+    fn a_tumbling_50_m_per_s_impact_does_not_tunnel_into_a_1_cm_slab() {
+        let slab = Obstacle::Box {
+            min: Vector3::new(-2.0, 0.0, -2.0),
+            max: Vector3::new(2.0, 0.01, 2.0),
+        };
+        tumbling_impact(&[("1 cm slab", slab, 0.01)]);
+    }
+
+    fn tumbling_impact(cases: &[(&str, Obstacle, f64)]) {
+        for &(name, obstacle, top) in cases {
+            for integrator in [Integrator::Rk4, Integrator::Splitting] {
+                for dt in [1e-3, 1e-2] {
+                    let mut world = scene(
+                        brick(),
+                        vec![obstacle],
+                        impulse(0.4, 0.5),
+                        integrator,
+                        dt,
+                        Vector3::new(0.0, top + 1.0, 0.0),
+                        tilted(35.0, Vector3::new(1.0, 0.2, 0.7)),
+                        Vector3::new(0.0, -50.0, 0.0),
+                        Vector3::new(5.0, -3.0, 8.0),
+                    );
+                    let e0 = world.energy_of(world.state()).total;
+                    let mut deepest: f64 = 0.0;
+                    let mut highest = f64::NEG_INFINITY;
+                    let mut lowest_barycenter = f64::INFINITY;
+                    for _ in 0..(1.0 / dt) as usize {
+                        world.step();
+                        let lowest = world
+                            .vertices()
+                            .iter()
+                            .map(|p| p.y)
+                            .fold(f64::INFINITY, f64::min);
+                        deepest = deepest.max(top - lowest);
+                        lowest_barycenter = lowest_barycenter.min(world.state().position.y);
+                        highest = highest.max(world.energy_of(world.state()).total);
+                    }
+                    eprintln!(
+                        "impact {name} {} dt {dt}: deepest {deepest:.3e} m, E max − E₀ {:.3e} J, y end {:.4}",
+                        integrator.name(),
+                        highest - e0,
+                        world.state().position.y
+                    );
+                    assert!(
+                        deepest < 1e-6,
+                        "{name}, {} dt {dt}: {deepest} m deep",
+                        integrator.name()
+                    );
+                    assert!(
+                        lowest_barycenter > top,
+                        "{name}: tunnelled ({lowest_barycenter})"
+                    );
+                    assert!(highest <= e0 + 1e-9 * e0.abs(), "{name}: energy rose");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_box_wedged_between_a_sphere_and_the_ground_does_not_explode() {
+        // A sphere of radius 0.3 m resting on the ground at x = 0; the brick, released clear of
+        // both (nearest corner 0.4 m from the sphere's centre) at (0.45, 0.8) m moving towards
+        // the sphere, falls into the wedge between them. Total energy must never rise above E₀.
+        // Measured: E max − E₀ ≤ 2e-15 J, fastest 3.2 m/s, 134 steps touching both (rk4, e = 0).
+        wedged(&[(0.0, 0.5), (0.4, 0.5)]);
+    }
+
+    /// KNOWN FAILURE, reported to the lead (collisions): with e = 1, μ = 0 the brick bounces off
+    /// the sphere and the ground with 0.214 J more than E₀ (of 8.0 J) under rk4.
+    #[test]
+    #[ignore = "known failure in the impulse response: e = 1 gains 0.21 J against the sphere"]
+    fn a_box_bouncing_elastically_between_a_sphere_and_the_ground_gains_no_energy() {
+        wedged(&[(1.0, 0.0)]);
+    }
+
+    fn wedged(models: &[(f64, f64)]) {
+        let sphere = Obstacle::Sphere {
+            center: Vector3::new(0.0, 0.3, 0.0),
+            radius: 0.3,
+        };
+        for integrator in [
+            Integrator::Rk4,
+            Integrator::Splitting,
+            Integrator::SymplecticEuler,
+        ] {
+            for &(e, mu) in models {
+                let mut world = scene(
+                    brick(),
+                    vec![GROUND, sphere],
+                    impulse(e, mu),
+                    integrator,
+                    1e-3,
+                    Vector3::new(0.45, 0.8, 0.0),
+                    tilted(20.0, Vector3::new(0.0, 0.0, 1.0)),
+                    Vector3::new(-0.5, 0.0, 0.0),
+                    Vector3::zeros(),
+                );
+                let e0 = world.energy_of(world.state()).total;
+                let (mut highest, mut fastest, mut both) = (f64::NEG_INFINITY, 0.0_f64, 0);
+                for _ in 0..5_000 {
+                    world.step();
+                    assert!(world.divergence().is_none(), "{:?}", world.divergence());
+                    highest = highest.max(world.energy_of(world.state()).total);
+                    fastest = fastest.max(world.state().linear_momentum.norm() / world.body().mass);
+                    let vertices = world.vertices();
+                    let on_ground = vertices.iter().any(|p| p.y < 1e-3);
+                    let on_sphere = vertices
+                        .iter()
+                        .any(|p| (p - Vector3::new(0.0, 0.3, 0.0)).norm() < 0.3 + 1e-3);
+                    if on_ground && on_sphere {
+                        both += 1;
+                    }
+                }
+                let depth = deepest_penetration(world.obstacles(), &world.vertices());
+                eprintln!(
+                    "wedged {} e {e} μ {mu}: E max − E₀ {:.3e} J, fastest {fastest:.3} m/s, steps touching both {both}, depth {depth:.2e}, x {:?}",
+                    integrator.name(),
+                    highest - e0,
+                    world.state().position
+                );
+                assert!(
+                    highest <= e0 + 1e-9,
+                    "{} e {e}: E rose {} J",
+                    integrator.name(),
+                    highest - e0
+                );
+                // Free fall from 0.8 m reaches √(0.5² + 2 g 0.8) = 4.0 m/s; an explosion would
+                // exceed it.
+                assert!(fastest < 4.0, "{} e {e}: {fastest} m/s", integrator.name());
+                if e == 0.0 {
+                    // Measured: 134 steps touching both (rk4); with e > 0 it bounces clear.
+                    assert!(
+                        both > 50,
+                        "{} e {e}: never wedged ({both} steps)",
+                        integrator.name()
+                    );
+                }
+                assert!(
+                    depth < 1e-3,
+                    "{} e {e}: {depth} m deep at the end",
+                    integrator.name()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_tenth_of_a_second_step_with_impulses_stays_finite_and_bounded() {
+        // dt = 0.1 s: a drop from 2 m takes 6 steps; the spin turns 0.5 rad per step.
+        for integrator in [
+            Integrator::Euler,
+            Integrator::SymplecticEuler,
+            Integrator::Rk4,
+            Integrator::Splitting,
+        ] {
+            let mut world = scene(
+                brick(),
+                vec![GROUND],
+                impulse(0.4, 0.5),
+                integrator,
+                0.1,
+                Vector3::new(0.0, 2.0, 0.0),
+                tilted(30.0, Vector3::new(1.0, 0.0, 1.0)),
+                Vector3::new(0.5, 0.0, 0.0),
+                Vector3::new(0.0, 5.0, 2.0),
+            );
+            let e0 = world.energy_of(world.state()).total;
+            let mut highest = f64::NEG_INFINITY;
+            let mut diverged = None;
+            for _ in 0..200 {
+                world.step();
+                assert!(world.state().is_finite(), "{}: NaN", integrator.name());
+                highest = highest.max(world.energy_of(world.state()).total);
+                if diverged.is_none() {
+                    diverged = world.divergence();
+                }
+            }
+            eprintln!(
+                "dt 0.1 {}: E max − E₀ {:.3e} J (E₀ {e0:.3}), end y {:.4}, speed {:.3e}, {:?}",
+                integrator.name(),
+                highest - e0,
+                world.state().position.y,
+                world.state().linear_momentum.norm(),
+                diverged
+            );
+            assert!(diverged.is_none(), "{:?}", diverged);
+            // Contacts never add energy; explicit euler's own flight error is ½ M g² dt per
+            // second of fall: 0.5 · 96.24 · 0.1 · √(2·2/9.81) = 3.07 J before the first impact
+            // (measured 2.91 J). rk4 and symplectic-euler: ≤ E₀ (measured −3.0e-6 and −0.48 J).
+            // splitting's rotational energy oscillates by O((|ω| dt)²) of the spin energy:
+            // K_rot = ½(25 · 0.02083 + 4 · 0.01667) = 0.294 J, (|ω| dt)² = 0.29 → 0.085 J
+            // (measured 1.1e-3 J).
+            let allowed = match integrator {
+                Integrator::Euler => 3.1,
+                Integrator::Splitting => 0.085,
+                _ => 1e-9,
+            };
+            assert!(
+                highest <= e0 + allowed,
+                "{}: E rose {} J",
+                integrator.name(),
+                highest - e0
+            );
+        }
+    }
+}
