@@ -51,13 +51,13 @@
 //! The penetration left by the step is removed by *moving* the body, never by biasing
 //! velocities (a velocity bias — Baumgarte — turns penetration into kinetic energy and makes
 //! resting bodies jitter). The body is translated by the shortest Δx with `nᵢ·Δx ≥ dᵢ` for
-//! every contact (iterated projections; for the ground alone, `Δx = max dᵢ · y`). A translation
+//! every contact (the unique shortest one, by Hildreth's method; for the ground alone, `Δx = max dᵢ · y`). A translation
 //! changes neither P nor L, so no kinetic energy, and along the contact normal only, so a body
 //! at rest on a face cannot creep sideways. (Rotating the body instead would change
 //! `I⁻¹_world` and so `½ L·I⁻¹L`.)
 
-use super::detect::swept;
-use super::{CollideInput, Contact};
+use super::detect::{inside, swept};
+use super::{CollideInput, Contact, Obstacle};
 use crate::physics::derive::derive_with_rotation;
 use crate::physics::snapshot::kinetic_energy_with;
 use crate::physics::state::State;
@@ -79,8 +79,6 @@ pub const MAX_SWEEPS: usize = 200;
 struct Row {
     /// Unit normal n, r × n and I⁻¹(r × n), and k = 1/M + (r×n)·I⁻¹(r×n).
     normal: Direction,
-    /// Two unit tangents.
-    tangents: [Direction; 2],
     /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
     lambda: f64,
     lambda_tangent: [f64; 2],
@@ -104,15 +102,6 @@ struct Direction {
 }
 
 impl Direction {
-    /// Unused (tangents when friction does not run).
-    const ZERO: Direction = Direction {
-        d: Vector3::new(0.0, 0.0, 0.0),
-        rd: Vector3::new(0.0, 0.0, 0.0),
-        w: Vector3::new(0.0, 0.0, 0.0),
-        k: 0.0,
-        inv_k: 0.0,
-    };
-
     fn new(
         d: Vector3<f64>,
         lever: &Vector3<f64>,
@@ -162,9 +151,18 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     let rotation_before = input.before.orientation.matrix();
     for (index, obstacle) in input.obstacles.iter().enumerate() {
         for (vertex, r0) in body.points_body.iter().enumerate() {
-            let a = input.before.position + rotation_before * r0;
             let b = state.position + rotation_now * r0;
-            if let Some(hit) = swept(obstacle, &a, &b) {
+            // The ground needs no sweep (see `detect`): skip the vertex's start point.
+            let hit = if let Obstacle::Ground { .. } = obstacle {
+                inside(obstacle, &b)
+            } else {
+                swept(
+                    obstacle,
+                    &(input.before.position + rotation_before * r0),
+                    &b,
+                )
+            };
+            if let Some(hit) = hit {
                 contacts.push(Contact {
                     vertex,
                     obstacle: index,
@@ -238,7 +236,6 @@ fn resolve(
             let normal = Direction::new(c.normal, &c.lever, inv_inertia, inv_mass);
             Row {
                 normal,
-                tangents: [Direction::ZERO; 2],
                 lambda: 0.0,
                 lambda_tangent: [0.0; 2],
                 friction_bound: 0.0,
@@ -270,27 +267,27 @@ fn resolve(
         let u = motion.v + motion.omega.cross(&contact.lever);
         row.lambda > 0.0 && (u - contact.normal * u.dot(&contact.normal)).norm() > tolerance
     };
+    let mut tangent_directions: Vec<[Direction; 2]> = Vec::new();
     if friction > 0.0 && rows.iter().zip(contacts.iter()).any(|(r, c)| sliding(r, c)) {
         for (row, contact) in rows.iter_mut().zip(contacts.iter()) {
             row.friction_bound = friction * row.lambda;
             let (t1, t2) = tangents(&contact.normal);
-            row.tangents = [
+            tangent_directions.push([
                 Direction::new(t1, &contact.lever, inv_inertia, inv_mass),
                 Direction::new(t2, &contact.lever, inv_inertia, inv_mass),
-            ];
+            ]);
         }
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
-            for row in rows.iter_mut() {
+            for (row, directions) in rows.iter_mut().zip(&tangent_directions) {
                 let bound = row.friction_bound;
                 largest = largest.max(normal_update(row, &mut motion));
                 if bound == 0.0 {
                     continue;
                 }
-                for axis in 0..2 {
+                for (axis, dir) in directions.iter().enumerate() {
                     let other = row.lambda_tangent[1 - axis];
                     let limit = (bound * bound - other * other).max(0.0).sqrt();
-                    let dir = &row.tangents[axis];
                     let old = row.lambda_tangent[axis];
                     let new = (old - motion.along(dir) * dir.inv_k).clamp(-limit, limit);
                     let change = new - old;
@@ -343,12 +340,13 @@ fn resolve(
 
     state.linear_momentum = motion.v / inv_mass;
     state.angular_momentum = motion.l;
-    for (contact, row) in contacts.iter_mut().zip(&rows) {
+    for (index, (contact, row)) in contacts.iter_mut().zip(&rows).enumerate() {
         contact.normal_velocity = row.approach;
         contact.denominator = row.normal.k;
-        contact.impulse = row.normal.d * (row.lambda + row.lambda_restitution)
-            + row.tangents[0].d * row.lambda_tangent[0]
-            + row.tangents[1].d * row.lambda_tangent[1];
+        contact.impulse = row.normal.d * (row.lambda + row.lambda_restitution);
+        if let Some([t1, t2]) = tangent_directions.get(index) {
+            contact.impulse += t1.d * row.lambda_tangent[0] + t2.d * row.lambda_tangent[1];
+        }
     }
 }
 
@@ -396,7 +394,8 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
         largest = largest.max(a[p][p]);
     }
     let epsilon = 1e-10 * largest;
-    // Cholesky A + ε𝟙 = C Cᵀ, lower triangle in place.
+    // A + ε𝟙 = C Cᵀ (Cholesky, lower triangle in place), keeping 1/Cₚₚ to multiply by.
+    let mut inv_diagonal = [0.0f64; DIRECT_MAX];
     for p in 0..m {
         a[p][p] += epsilon;
         for q in 0..=p {
@@ -406,27 +405,21 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
                 if sum <= 0.0 {
                     return false;
                 }
-                a[p][p] = sum.sqrt();
+                inv_diagonal[p] = 1.0 / sum.sqrt();
             } else {
-                a[p][q] = sum / a[q][q];
+                a[p][q] = sum * inv_diagonal[q];
             }
         }
     }
     // C y = rhs, then Cᵀ λ = y.
     let mut lambda = rhs;
     for p in 0..m {
-        let mut sum = lambda[p];
-        for k in 0..p {
-            sum -= a[p][k] * lambda[k];
-        }
-        lambda[p] = sum / a[p][p];
+        let dot: f64 = a[p][..p].iter().zip(&lambda[..p]).map(|(x, y)| x * y).sum();
+        lambda[p] = (lambda[p] - dot) * inv_diagonal[p];
     }
     for p in (0..m).rev() {
-        let mut sum = lambda[p];
-        for k in p + 1..m {
-            sum -= a[k][p] * lambda[k];
-        }
-        lambda[p] = sum / a[p][p];
+        let dot: f64 = (p + 1..m).map(|k| a[k][p] * lambda[k]).sum();
+        lambda[p] = (lambda[p] - dot) * inv_diagonal[p];
         if lambda[p] < 0.0 {
             return false;
         }
