@@ -51,7 +51,8 @@
 //! The penetration left by the step is removed by *moving* the body, never by biasing
 //! velocities (a velocity bias — Baumgarte — turns penetration into kinetic energy and makes
 //! resting bodies jitter). The body is translated by the shortest Δx with `nᵢ·Δx ≥ dᵢ` for
-//! every contact (the unique shortest one, by Hildreth's method; for the ground alone, `Δx = max dᵢ · y`). A translation
+//! every contact (the unique shortest one, by Hildreth's method; for the ground alone,
+//! `Δx = max dᵢ · y`). A translation
 //! changes neither P nor L, so no kinetic energy, and along the contact normal only, so a body
 //! at rest on a face cannot creep sideways. (Rotating the body instead would change
 //! `I⁻¹_world` and so `½ L·I⁻¹L`.)
