@@ -30,11 +30,14 @@
 //!    conditions above (`direct_inelastic`); the sweeps run only when that check fails.
 //! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
 //!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
-//!    The sweep updates the normal impulse as in stage 1, then each tangent direction in turn,
-//!    `λ_t1 ← clamp(λ_t1 − u_t1 / k_t1, ±√((μλ)² − λ_t2²))` (the current slice of the disk), and
-//!    the same for t2. Still exact coordinate minimisations of the same convex K over an
-//!    interval containing the current value: K still only goes down.
-//! 3. **Restitution** (Poisson's: the restitution impulse is e times the compression impulse),
+//!    The sweep updates the normal impulse as in stage 1, then both tangent impulses at once:
+//!    the exact minimum of K over the contact's disk (`friction_update`). Still exact block
+//!    minimisations of the same convex K over a convex set containing the current value: K
+//!    still only goes down, and block coordinate descent reaches the unique minimising
+//!    velocity whatever the order of the contacts.
+//! 3. **Restitution** (Poisson's: the restitution impulse is e times the compression impulse,
+//!    the frictionless λᵢ of stage 1 — unique, unlike the stage-2 λᵢ when several contacts share
+//!    a load, so the bounce cannot depend on the vertex order),
 //!    only at contacts that approached faster than [`BOUNCE_STEPS`]·|g|·dt (slower ones are
 //!    resting contact: they do not bounce, which is what keeps a body lying on the ground from
 //!    jittering). With one frictionless contact that is Newton's `j = −(1+e) u_n/k` and loses
@@ -83,6 +86,8 @@ struct Row {
     /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
     lambda: f64,
     lambda_tangent: [f64; 2],
+    /// λ at the end of stage 1 (the frictionless compression impulse).
+    compression: f64,
     /// μ λ from stage 1: the radius of the friction disk.
     friction_bound: f64,
     /// Restitution impulse e λ (scaled by the energy clamp).
@@ -239,6 +244,7 @@ fn resolve(
                 normal,
                 lambda: 0.0,
                 lambda_tangent: [0.0; 2],
+                compression: 0.0,
                 friction_bound: 0.0,
                 lambda_restitution: 0.0,
                 approach: motion.along(&normal),
@@ -260,6 +266,10 @@ fn resolve(
                 break;
             }
         }
+    }
+
+    for row in rows.iter_mut() {
+        row.compression = row.lambda;
     }
 
     // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
@@ -286,18 +296,8 @@ fn resolve(
                 if bound == 0.0 {
                     continue;
                 }
-                for (axis, dir) in directions.iter().enumerate() {
-                    let other = row.lambda_tangent[1 - axis];
-                    let limit = (bound * bound - other * other).max(0.0).sqrt();
-                    let old = row.lambda_tangent[axis];
-                    let new = (old - motion.along(dir) * dir.inv_k).clamp(-limit, limit);
-                    let change = new - old;
-                    if change != 0.0 {
-                        row.lambda_tangent[axis] = new;
-                        motion.apply(change, dir);
-                        largest = largest.max(change.abs() * dir.k);
-                    }
-                }
+                let change = friction_update(row, directions, bound, &mut motion);
+                largest = largest.max(change);
             }
             if largest <= tolerance {
                 break;
@@ -311,8 +311,8 @@ fn resolve(
         let mut dl = Vector3::zeros();
         let mut domega = Vector3::zeros();
         for row in rows.iter_mut() {
-            if row.approach < -bounce_speed && row.lambda > 0.0 {
-                let j = restitution * row.lambda;
+            if row.approach < -bounce_speed && row.compression > 0.0 {
+                let j = restitution * row.compression;
                 row.lambda_restitution = j;
                 dv += row.normal.d * (j * inv_mass);
                 dl += row.normal.rd * j;
@@ -437,6 +437,81 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
         rows[active[p]].lambda = lambda[p];
     }
     true
+}
+
+/// The exact minimisation of K over one contact's friction disk `|λ_t| ≤ bound`, the other
+/// impulses fixed (a block of block coordinate descent); returns the largest change it made to
+/// a tangent velocity (m/s).
+///
+/// ```text
+/// K_t = [[k₁, c], [c, k₂]],  c = (r×t₁)·I⁻¹(r×t₂)        tangent inverse mass (t₁ ⟂ t₂)
+/// x*  = λ_t − K_t⁻¹ u_t                                  the unconstrained minimum
+/// |x*| ≤ bound: x = x*;  else x(ν) = (K_t + ν𝟙)⁻¹ K_t x*  with ν ≥ 0 and |x(ν)| = bound
+/// ```
+///
+/// (|x(ν)| decreases with ν: ν is found by bisection, keeping the feasible end.) Updating the
+/// two tangent directions one at a time instead can stall on the disk's edge at a point that is
+/// not the minimum, and where it stalls depends on the contact order. The step is taken only
+/// if it does not raise K.
+fn friction_update(
+    row: &mut Row,
+    directions: &[Direction; 2],
+    bound: f64,
+    motion: &mut Motion,
+) -> f64 {
+    let [t1, t2] = directions;
+    let u = [motion.along(t1), motion.along(t2)];
+    let (k1, k2, c) = (t1.k, t2.k, t1.rd.dot(&t2.w));
+    let det = k1 * k2 - c * c;
+    if det <= 0.0 {
+        return 0.0;
+    }
+    let old = row.lambda_tangent;
+    // x* = λ − K⁻¹ u
+    let target = [
+        old[0] - (k2 * u[0] - c * u[1]) / det,
+        old[1] - (k1 * u[1] - c * u[0]) / det,
+    ];
+    let norm = |x: [f64; 2]| (x[0] * x[0] + x[1] * x[1]).sqrt();
+    let new = if norm(target) <= bound {
+        target
+    } else {
+        // K x* once, then x(ν) = (K + ν𝟙)⁻¹ K x*.
+        let kx = [
+            k1 * target[0] + c * target[1],
+            c * target[0] + k2 * target[1],
+        ];
+        let at = |nu: f64| {
+            let (a, d) = (k1 + nu, k2 + nu);
+            let det = a * d - c * c;
+            [(d * kx[0] - c * kx[1]) / det, (a * kx[1] - c * kx[0]) / det]
+        };
+        let (mut low, mut high) = (0.0, k1.max(k2));
+        while norm(at(high)) > bound {
+            high *= 2.0;
+        }
+        for _ in 0..40 {
+            let mid = 0.5 * (low + high);
+            if norm(at(mid)) > bound {
+                low = mid;
+            } else {
+                high = mid;
+            }
+        }
+        at(high)
+    };
+    let step = [new[0] - old[0], new[1] - old[1]];
+    // ΔK = Δλ·u + ½ Δλᵀ K Δλ: never accept a step that raises K.
+    let gain = step[0] * u[0]
+        + step[1] * u[1]
+        + 0.5 * (k1 * step[0] * step[0] + 2.0 * c * step[0] * step[1] + k2 * step[1] * step[1]);
+    if gain >= 0.0 || gain.is_nan() {
+        return 0.0;
+    }
+    row.lambda_tangent = new;
+    motion.apply(step[0], t1);
+    motion.apply(step[1], t2);
+    (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
 }
 
 /// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
