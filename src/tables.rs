@@ -1,7 +1,7 @@
 //! The numeric panels, as text: one number formatter and one table builder shared by the
 //! terminal app and `tumble walk`, so a panel and its text walkthrough never disagree.
 //!
-//! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e5, otherwise
+//! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e3, otherwise
 //! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
 
 use crate::physics::{Obstacle, Snapshot};
@@ -24,7 +24,7 @@ pub fn number_plain(x: f64) -> String {
         return if x > 0.0 { "inf" } else { "-inf" }.to_string();
     }
     let magnitude = x.abs();
-    let text = if magnitude == 0.0 || (1e-3..1e5).contains(&magnitude) {
+    let text = if magnitude == 0.0 || (1e-3..1e3).contains(&magnitude) {
         format!("{x:.6}")
     } else {
         format!("{x:.4e}")
@@ -274,5 +274,10 @@ mod tests {
         assert_eq!(number(f64::NAN), "         NaN");
         assert_eq!(number(f64::NEG_INFINITY), "        -inf");
         assert_eq!(number_plain(-0.0000001), "-1.0000e-7");
+        // The widest texts (exponents within ±99) leave one space, so cells joined without
+        // separators stay apart.
+        assert_eq!(number(-999.9999994), " -999.999999");
+        assert_eq!(number(-18941.203691), "   -1.8941e4");
+        assert_eq!(number(-1.2345e-99), " -1.2345e-99");
     }
 }

@@ -22,6 +22,16 @@
 //! (E₀ = |L|²/2I₃) towards the minor axis, and E > 2E₀ says the body is no longer spinning the
 //! way it was started. (`euler-seed`'s matrix grows without bound instead, and E with it.)
 //! `M|g|·radius` — lifting the body by its own size — is the floor for a body started at rest.
+//!
+//! Energy cannot see a `seed` collision that keeps injecting spin (its budget grows with every
+//! injection), so the guard also watches the rotation per step:
+//!
+//! ```text
+//! unresolved  ⇔  |ω|·dt > π
+//! ```
+//!
+//! Past half a turn per step no integrator can tell the motion from a slower turn the other way
+//! (aliasing): the time step no longer resolves the rotation, whatever produced it.
 use super::body::Body;
 use super::collision::Obstacle;
 use super::effects::Effects;
@@ -29,6 +39,9 @@ use super::integrators::Integrator;
 use super::snapshot::{energy, Energy};
 use super::state::State;
 use std::fmt;
+
+/// Largest rotation per step the guard accepts, rad: half a turn.
+pub const MAX_TURN_PER_STEP: f64 = std::f64::consts::PI;
 
 /// A diverged simulation: where, what and how.
 #[derive(Debug, Clone, PartialEq)]
@@ -102,7 +115,8 @@ impl EnergyGuard {
     }
 
     /// The diverged quantity, if any.
-    pub fn check(&self, state: &State, energy: &Energy) -> Option<String> {
+    /// `turn_per_step` is |ω|·dt, rad.
+    pub fn check(&self, state: &State, energy: &Energy, turn_per_step: f64) -> Option<String> {
         let finite = |v: &nalgebra::Vector3<f64>| v.iter().all(|c| c.is_finite());
         if !finite(&state.position) {
             return Some("position is not finite".into());
@@ -118,6 +132,12 @@ impl EnergyGuard {
         }
         if !energy.total.is_finite() {
             return Some("energy is not finite".into());
+        }
+        if turn_per_step > MAX_TURN_PER_STEP {
+            return Some(format!(
+                "rotation no longer resolved: |ω|·dt = {turn_per_step:.4e} rad per step, \
+                 more than half a turn (π)"
+            ));
         }
         let excess = energy.total - self.allowed;
         if excess > self.reference {

@@ -350,9 +350,10 @@ impl World {
     /// A non-finite or runaway state, if the simulation has diverged.
     pub fn divergence(&self) -> Option<Divergence> {
         let energy = self.energy_of(&self.now.state);
+        let turn_per_step = derive(&self.body, &self.now.state).angular_velocity.norm() * self.dt;
         self.now
             .guard
-            .check(&self.now.state, &energy)
+            .check(&self.now.state, &energy, turn_per_step)
             .map(|quantity| Divergence {
                 step: self.now.step,
                 time: self.time(),

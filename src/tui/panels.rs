@@ -74,10 +74,6 @@ fn row_line(
             (None, true) => CHANGED,
             (None, false) => Style::new(),
         };
-        // A number that fills its whole width (e.g. -12345.678901) would touch its neighbour.
-        if j > 0 && !cell.starts_with(' ') {
-            spans.push(Span::raw(" "));
-        }
         spans.push(Span::styled(cell.clone(), style));
     }
     if !row.unit.is_empty() && ghost.is_none() {
@@ -146,25 +142,4 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ));
     }
     Paragraph::new(lines).render(inner, buf);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn full_width_numbers_do_not_touch_their_neighbours() {
-        // 18941.203691 fills all 12 columns of `tables::number`: a space must still separate it.
-        let row = Row {
-            label: "L".into(),
-            cells: vec![tables::number(0.0), tables::number(18941.203691)],
-            unit: "",
-        };
-        let text: String = row_line(&row, None, 1, None)
-            .spans
-            .iter()
-            .map(|s| s.content.as_ref())
-            .collect();
-        assert!(text.contains("0.000000 18941.203691"), "{text:?}");
-    }
 }
