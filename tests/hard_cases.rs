@@ -9,7 +9,7 @@ use common::{
     elliptic_k_from_complement, flip_spacing, free_world, omega_body, racket, sign_changes,
 };
 use nalgebra::Vector3;
-use tumble::physics::{Body, Effect, Effects, Integrator, State, World};
+use tumble::physics::{Body, ContactModel, Effect, Effects, Integrator, Response, State, World};
 
 /// Spacings between successive sign changes of ω_y (body frame) over `seconds`.
 fn flip_spacings(integrator: Integrator, dt: f64, omega0: Vector3<f64>, seconds: f64) -> Vec<f64> {
@@ -233,12 +233,22 @@ fn explicit_euler_on_a_fast_spin_is_reported_as_diverging_not_a_panic() {
         assert!(divergence.step <= by_step, "tripped late: {divergence}");
         assert_eq!(divergence.integrator, Integrator::Euler);
         assert_eq!(divergence.dt, dt);
-        assert!(
-            divergence.quantity.starts_with("energy ran away"),
-            "{divergence}"
-        );
+        // Either rule may see it first: the energy more than doubled, or (at dt = 1e-2, where
+        // the spin heads for the minor axis at up to |L|/I₁ = 682 rad/s) more than half a
+        // turn per step.
         let e = world.energy_of(world.state()).total;
-        assert!(e > 2.0 * e0 && e.is_finite(), "E = {e}, E₀ = {e0}");
+        if divergence.quantity.starts_with("energy ran away") {
+            assert!(e > 2.0 * e0 && e.is_finite(), "E = {e}, E₀ = {e0}");
+        } else {
+            assert!(
+                divergence
+                    .quantity
+                    .starts_with("rotation no longer resolved"),
+                "{divergence}"
+            );
+            let omega = world.snapshot().angular_velocity.norm();
+            assert!(omega * dt > std::f64::consts::PI, "|ω| = {omega}");
+        }
     }
 }
 
@@ -295,6 +305,14 @@ fn the_guard_stays_quiet_on_every_bundled_lesson_run_by_a_sound_integrator() {
         for integrator in integrators {
             let mut world = scene.world();
             world.set_integrator(integrator);
+            // The report's seed response is not sound: it adds a force to L and spins bodies
+            // up until the guard stops them (lessons 5 and 8 show it). Sound runs use impulse.
+            if let Some(model) = world.contact_model().copied() {
+                world.set_contact_model(ContactModel {
+                    response: Response::Impulse,
+                    ..model
+                });
+            }
             let steps = (scene.duration.unwrap_or(10.0) / scene.dt).round() as u64;
             for _ in 0..steps {
                 world.step();

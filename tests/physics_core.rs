@@ -1089,19 +1089,19 @@ fn run_overrides_dt_and_integrator() {
         "--steps",
         "4",
         "--dt",
-        "0.25",
+        "0.125",
         "--integrator",
         "euler",
     ]);
     let rows: Vec<Vec<f64>> = csv.lines().skip(1).map(parse_row).collect();
     assert_eq!(rows.len(), 5);
-    assert_eq!(rows[4][1], 1.0, "t = 4 · 0.25");
+    assert_eq!(rows[4][1], 0.5, "t = 4 · 0.125");
     // The same scene stepped in the library with those settings.
     let mut scene =
         tumble::scene::load(Path::new(env!("CARGO_MANIFEST_DIR")).join(RACKET).as_path())
             .unwrap()
             .scene;
-    scene.dt = 0.25;
+    scene.dt = 0.125;
     scene.integrator = Integrator::Euler;
     let mut world = scene.world();
     for _ in 0..4 {
@@ -1111,7 +1111,7 @@ fn run_overrides_dt_and_integrator() {
     assert_eq!(rows[4][5], q.w, "qw after 4 explicit Euler steps");
     assert_eq!(rows[4][18], world.snapshot().energy.total);
     // And it differs from rk4 at the same dt: the override took effect.
-    let rk4 = run_ok(&["run", RACKET, "--steps", "4", "--dt", "0.25"]);
+    let rk4 = run_ok(&["run", RACKET, "--steps", "4", "--dt", "0.125"]);
     assert_ne!(rk4.lines().last(), csv.lines().last());
 }
 
