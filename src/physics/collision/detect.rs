@@ -38,6 +38,9 @@
 //!
 //! A vertex that was already inside at the start of the step (a resting contact, corrected to
 //! depth 0 up to round-off) has no entry this step: it gets the static test at `b`.
+//!
+//! [`near`] finds the vertices just *outside* an obstacle (the `impulse` response's speculative
+//! contacts): the gap to the nearest surface point and the outward normal there.
 
 use super::Obstacle;
 use nalgebra::Vector3;
@@ -175,6 +178,39 @@ pub fn swept(obstacle: &Obstacle, a: &Vector3<f64>, b: &Vector3<f64>) -> Option<
     }
 }
 
+/// A vertex just *outside* an obstacle, less than `margin` from its surface: the gap ≥ 0 (m)
+/// and the outward normal of the nearest surface point (a speculative contact, see `impulse`).
+///
+/// ```text
+/// ground:  gap = p.y − h,         n = +y
+/// sphere:  gap = |p − c| − ρ,     n = (p − c)/|p − c|
+/// box:     q = clamp(p, min, max) the nearest point of the box, gap = |p − q|, n = (p − q)/gap
+/// ```
+///
+/// Returns None for a vertex inside (that is [`inside`]'s case) or farther than `margin`.
+pub fn near(obstacle: &Obstacle, p: &Vector3<f64>, margin: f64) -> Option<(f64, Vector3<f64>)> {
+    let (gap, normal) = match *obstacle {
+        Obstacle::Ground { height } => (p.y - height, Vector3::y()),
+        Obstacle::Sphere { center, radius } => {
+            let offset = p - center;
+            let distance = offset.norm();
+            if distance == 0.0 {
+                return None;
+            }
+            (distance - radius, offset / distance)
+        }
+        Obstacle::Box { min, max } => {
+            let offset = p - p.sup(&min).inf(&max);
+            let gap = offset.norm();
+            if gap == 0.0 {
+                return None;
+            }
+            (gap, offset / gap)
+        }
+    };
+    (gap >= 0.0 && gap < margin).then_some((gap, normal))
+}
+
 /// ±1 along one axis.
 fn unit(axis: usize, sign: f64) -> Vector3<f64> {
     let mut v = Vector3::zeros();
@@ -256,6 +292,33 @@ mod tests {
         let hit = inside(&obstacle, &Vector3::new(0.05, 0.5, 1.0)).unwrap();
         assert_eq!(hit.normal, -Vector3::x());
         assert!((hit.depth - 0.05).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_vertex_just_outside_gets_the_gap_and_normal_of_the_nearest_surface_point() {
+        let obstacle = Obstacle::Box {
+            min: Vector3::zeros(),
+            max: Vector3::new(1.0, 1.0, 1.0),
+        };
+        // Beyond the edge x = 1, y = 1 by 3e-4 and 4e-4: gap 5e-4 along (3, 4, 0)/5.
+        let (gap, normal) = near(&obstacle, &Vector3::new(1.0003, 1.0004, 0.5), 1e-3).unwrap();
+        assert!((gap - 5e-4).abs() < 1e-12, "gap {gap}");
+        assert!(
+            (normal - Vector3::new(0.6, 0.8, 0.0)).norm() < 1e-9,
+            "{normal:?}"
+        );
+        // Farther than the margin, or inside: not near.
+        assert!(near(&obstacle, &Vector3::new(1.0, 1.002, 0.5), 1e-3).is_none());
+        assert!(near(&obstacle, &Vector3::new(0.5, 0.5, 0.5), 1e-3).is_none());
+        let sphere = Obstacle::Sphere {
+            center: Vector3::zeros(),
+            radius: 0.5,
+        };
+        let (gap, normal) = near(&sphere, &Vector3::new(0.0, 0.0, -0.5002), 1e-3).unwrap();
+        assert!(
+            (gap - 2e-4).abs() < 1e-12 && normal == -Vector3::z(),
+            "{gap} {normal:?}"
+        );
     }
 
     #[test]

@@ -46,8 +46,28 @@
 //!    `c = K(Λ_inelastic) ≤ K₀`; if `K(1) > K₀` the restitution part is scaled to the largest
 //!    `s = (−b + √(b² − 4a(c − K₀))) / 2a` with `K(s) = K₀`.
 //!
+//!    The push-out below lifts the body against gravity by Δx: its work `ΔV = −M g·Δx` is paid
+//!    from the bounce, so the clamp's target is `K₀ − max(0, ΔV)`, not K₀. Otherwise an elastic
+//!    bounce keeps K while the push-out adds M g d per bounce (d the depth reached within the
+//!    step): a body bouncing with e = 1 would gain energy at every bounce.
+//!
 //! A last check measures K exactly as the energy panel does and, if round-off alone left it
 //! above K₀, scales P and L by `√(K₀/K)` (K is quadratic in (P, L)).
+//!
+//! # Speculative contacts
+//!
+//! A resting body falls only ½|g|dt² per step under `rk4` and `splitting` (free fall from
+//! rest), |g|dt² under `symplectic-euler`. A body a few µrad off flat then touches with one
+//! edge only, the other edge being still a few µm up; that edge's impulse alone tips the body
+//! over onto the other edge, which then touches alone, and so on: it rocks for ever. So once a
+//! vertex touches, every vertex closer to a surface than
+//! `BOUNCE_STEPS·|g|·dt²` (the distance a non-bouncing contact covers in a step) and approaching
+//! slower than the bounce speed joins the solve as a *speculative* contact with gap g ≥ 0 and
+//! the condition `u_n ≥ −g/dt`: it may close its gap within the next step, no more. In the
+//! stages above its update is `λ ← max(0, λ − (u_n + g/dt)/k)`. That minimises
+//! `K(Λ) + Σ λᵢ gᵢ/dt ≥ K(Λ)` (λ, g ≥ 0), which starts at K₀, so K still never rises; it never
+//! bounces (it is below the bounce speed) and is never pushed out (it is not inside). One that
+//! received no impulse is dropped from the reported contacts.
 //!
 //! # Position correction
 //!
@@ -60,7 +80,7 @@
 //! at rest on a face cannot creep sideways. (Rotating the body instead would change
 //! `I⁻¹_world` and so `½ L·I⁻¹L`.)
 
-use super::detect::{inside, swept};
+use super::detect::{inside, near, swept};
 use super::{CollideInput, Contact, Obstacle};
 use crate::physics::derive::derive_with_rotation;
 use crate::physics::snapshot::kinetic_energy_with;
@@ -69,6 +89,7 @@ use nalgebra::{Matrix3, Vector3};
 
 /// Contacts approaching slower than this many `|g| dt` do not bounce: one step of free fall
 /// gives an approach speed of `|g| dt`, so a resting body is always below the threshold.
+/// Vertices within `BOUNCE_STEPS·|g|·dt²` of a surface are speculative contacts.
 pub const BOUNCE_STEPS: f64 = 3.0;
 
 /// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
@@ -94,6 +115,9 @@ struct Row {
     lambda_restitution: f64,
     /// Normal velocity before the response, m/s.
     approach: f64,
+    /// The normal velocity the contact may keep: gap/dt for a speculative contact (it may
+    /// close its gap within the next step, no more), 0 for a touching one, m/s.
+    bias: f64,
 }
 
 /// A direction d at lever arm r: d, r × d, I⁻¹(r × d) and the effective inverse mass along it.
@@ -150,11 +174,17 @@ impl Motion {
     }
 }
 
-/// Detects contacts (swept test) and runs the response on `state`.
+/// Detects contacts (swept test, plus the speculative ones) and runs the response on `state`.
 pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
     let body = input.body;
     let rotation_now = state.orientation.matrix();
     let rotation_before = input.before.orientation.matrix();
+    let bounce_speed = input
+        .gravity
+        .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
+    // Vertices closer than this to a surface are speculative contacts (module doc).
+    let margin = bounce_speed * input.dt;
+    let mut speculative = false;
     for (index, obstacle) in input.obstacles.iter().enumerate() {
         for (vertex, r0) in body.points_body.iter().enumerate() {
             let b = state.position + rotation_now * r0;
@@ -168,42 +198,66 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
                     &b,
                 )
             };
-            if let Some(hit) = hit {
-                contacts.push(Contact {
-                    vertex,
-                    obstacle: index,
-                    point: b,
-                    depth: hit.depth,
-                    normal: hit.normal,
-                    lever: b - state.position,
-                    normal_velocity: 0.0,
-                    denominator: 0.0,
-                    impulse: Vector3::zeros(),
-                });
-            }
+            let (depth, normal) = match hit {
+                Some(hit) => (hit.depth, hit.normal),
+                None => match near(obstacle, &b, margin) {
+                    Some((gap, normal)) => {
+                        speculative = true;
+                        (-gap, normal)
+                    }
+                    None => continue,
+                },
+            };
+            contacts.push(Contact {
+                vertex,
+                obstacle: index,
+                point: b,
+                depth,
+                normal,
+                lever: b - state.position,
+                normal_velocity: 0.0,
+                denominator: 0.0,
+                impulse: Vector3::zeros(),
+            });
         }
     }
-    if contacts.is_empty() {
+    if !contacts.iter().any(|c| c.depth > 0.0) {
+        // Nothing has touched: speculative contacts alone never act.
+        contacts.clear();
         return;
     }
-    let bounce_speed = input
-        .gravity
-        .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
     // I⁻¹_world exactly as the derive phase (and the energy panel) computes it.
     let inv_inertia = derive_with_rotation(body, state, rotation_now).inv_inertia_world;
+    if speculative {
+        // A vertex approaching at bouncing speed is left to touch and bounce next step.
+        let v = state.linear_momentum * body.inv_mass;
+        let omega = inv_inertia * state.angular_momentum;
+        contacts.retain(|c| {
+            c.depth > 0.0 || (v + omega.cross(&c.lever)).dot(&c.normal) >= -bounce_speed
+        });
+    }
     let kinetic = |s: &State| {
         kinetic_energy_with(body, &inv_inertia, &s.linear_momentum, &s.angular_momentum)
     };
+    let potential = |x: &Vector3<f64>| input.gravity.map_or(0.0, |g| -body.mass * g.dot(x));
     let kinetic_before = kinetic(state);
+    let potential_before = potential(&state.position);
+    // The push-out depends on the geometry only: known before the velocities are solved, so
+    // the work it does against gravity can be paid from the kinetic energy.
+    let shift = push_out(contacts);
+    let lift = (potential(&(state.position + shift)) - potential_before).max(0.0);
     resolve(
         body.inv_mass,
         &inv_inertia,
         input.model.restitution,
         input.model.friction,
         bounce_speed,
+        input.dt,
+        lift,
         state,
         contacts,
     );
+    state.position += shift;
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
     for _ in 0..4 {
         let kinetic_after = kinetic(state);
@@ -214,7 +268,8 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
         state.linear_momentum *= scale;
         state.angular_momentum *= scale;
     }
-    push_out(state, contacts);
+    // Speculative contacts that were not needed are not contacts.
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
 }
 
 /// The velocity stages (module doc) on `state` for `contacts` (point, depth, normal and lever
@@ -225,6 +280,8 @@ fn resolve(
     restitution: f64,
     friction: f64,
     bounce_speed: f64,
+    dt: f64,
+    lift: f64,
     state: &mut State,
     contacts: &mut [Contact],
 ) {
@@ -235,7 +292,8 @@ fn resolve(
         l,
         inv_mass,
     };
-    let kinetic_before = motion.kinetic(inv_mass);
+    // The energy the velocities may keep: K₀ less the push-out's work against gravity.
+    let kinetic_allowed = motion.kinetic(inv_mass) - lift;
     let mut rows: Vec<Row> = contacts
         .iter()
         .map(|c| {
@@ -248,6 +306,7 @@ fn resolve(
                 friction_bound: 0.0,
                 lambda_restitution: 0.0,
                 approach: motion.along(&normal),
+                bias: (-c.depth).max(0.0) / dt,
             }
         })
         .collect();
@@ -324,10 +383,10 @@ fn resolve(
             let a = 0.5 * (dv.norm_squared() / inv_mass + domega.dot(&dl));
             let b = dv.dot(&motion.v) / inv_mass + motion.omega.dot(&dl);
             let c = motion.kinetic(inv_mass);
-            let scale = if a + b + c <= kinetic_before || a <= 0.0 {
+            let scale = if a + b + c <= kinetic_allowed || a <= 0.0 {
                 1.0
             } else {
-                let slack = (kinetic_before - c).max(0.0);
+                let slack = (kinetic_allowed - c).max(0.0);
                 ((-b + (b * b + 4.0 * a * slack).sqrt()) / (2.0 * a)).clamp(0.0, 1.0)
             };
             motion.v += dv * scale;
@@ -370,7 +429,7 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
     let mut active = [0usize; DIRECT_MAX];
     let mut m = 0;
     for (i, row) in rows.iter().enumerate() {
-        if row.approach < 0.0 {
+        if row.approach + row.bias < 0.0 {
             if m == DIRECT_MAX {
                 return false;
             }
@@ -386,7 +445,7 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
     let mut largest: f64 = 0.0;
     for p in 0..m {
         let ni = &rows[active[p]].normal;
-        rhs[p] = -motion.along(ni);
+        rhs[p] = -motion.along(ni) - rows[active[p]].bias;
         for q in 0..=p {
             let nj = &rows[active[q]].normal;
             let value = ni.d.dot(&nj.d) * motion.inv_mass + ni.rd.dot(&nj.w);
@@ -429,7 +488,10 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
     for p in 0..m {
         motion.apply(lambda[p], &rows[active[p]].normal);
     }
-    if rows.iter().any(|r| motion.along(&r.normal) < -tolerance) {
+    if rows
+        .iter()
+        .any(|r| motion.along(&r.normal) + r.bias < -tolerance)
+    {
         *motion = start;
         return false;
     }
@@ -518,7 +580,7 @@ fn friction_update(
 /// to the contact's normal velocity (m/s).
 fn normal_update(row: &mut Row, motion: &mut Motion) -> f64 {
     let dir = &row.normal;
-    let new = (row.lambda - motion.along(dir) * dir.inv_k).max(0.0);
+    let new = (row.lambda - (motion.along(dir) + row.bias) * dir.inv_k).max(0.0);
     let change = new - row.lambda;
     if change == 0.0 {
         return 0.0;
@@ -556,7 +618,7 @@ fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
 /// The shortest Δx is unique, so it does not depend on the contact order (projecting onto one
 /// half-space after the other would: two radial normals on a sphere would push the body
 /// sideways). With one normal direction (the ground) it is exactly `max dᵢ · n`.
-fn push_out(state: &mut State, contacts: &[Contact]) {
+fn push_out(contacts: &[Contact]) -> Vector3<f64> {
     let mut shift = Vector3::zeros();
     let mut multipliers = [0.0f64; DIRECT_MAX];
     let mut extra = Vec::new();
@@ -584,5 +646,5 @@ fn push_out(state: &mut State, contacts: &[Contact]) {
             break;
         }
     }
-    state.position += shift;
+    shift
 }

@@ -103,7 +103,8 @@ pub struct Contact {
     pub obstacle: usize,
     /// Vertex position (world), m.
     pub point: Vector3<f64>,
-    /// Penetration depth ≥ 0, m.
+    /// Penetration depth, m: > 0 inside the obstacle; ≤ 0 (minus the gap) for a vertex just
+    /// outside that the `impulse` response held back (a speculative contact, see `impulse`).
     pub depth: f64,
     /// Unit contact normal, pointing out of the obstacle.
     pub normal: Vector3<f64>,
