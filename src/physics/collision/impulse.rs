@@ -246,17 +246,14 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     // the work it does against gravity can be paid from the kinetic energy.
     let shift = push_out(contacts);
     let lift = (potential(&(state.position + shift)) - potential_before).max(0.0);
-    resolve(
-        body.inv_mass,
-        &inv_inertia,
-        input.model.restitution,
-        input.model.friction,
+    let settings = Settings {
+        restitution: input.model.restitution,
+        friction: input.model.friction,
         bounce_speed,
-        input.dt,
+        dt: input.dt,
         lift,
-        state,
-        contacts,
-    );
+    };
+    resolve(body.inv_mass, &inv_inertia, &settings, state, contacts);
     state.position += shift;
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
     for _ in 0..4 {
@@ -272,19 +269,36 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
 }
 
+/// What the velocity stages need besides the body and the contacts.
+#[derive(Debug, Clone, Copy)]
+struct Settings {
+    /// Coefficient of restitution e and Coulomb friction μ.
+    restitution: f64,
+    friction: f64,
+    /// Contacts approaching slower than this do not bounce, m/s.
+    bounce_speed: f64,
+    /// Time step, s (a speculative contact may close its gap within it).
+    dt: f64,
+    /// The push-out's work against gravity, J: paid from the bounce.
+    lift: f64,
+}
+
 /// The velocity stages (module doc) on `state` for `contacts` (point, depth, normal and lever
 /// filled in); fills in each contact's normal velocity, denominator and impulse.
 fn resolve(
     inv_mass: f64,
     inv_inertia: &Matrix3<f64>,
-    restitution: f64,
-    friction: f64,
-    bounce_speed: f64,
-    dt: f64,
-    lift: f64,
+    settings: &Settings,
     state: &mut State,
     contacts: &mut [Contact],
 ) {
+    let Settings {
+        restitution,
+        friction,
+        bounce_speed,
+        dt,
+        lift,
+    } = *settings;
     let l = state.angular_momentum;
     let mut motion = Motion {
         v: state.linear_momentum * inv_mass,
