@@ -9,7 +9,7 @@
 //! [`World::snapshot`] and never recompute physics.
 
 use super::body::Body;
-use super::collision::{collide, CollideInput, Contact, ContactModel, Obstacle};
+use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
 use super::derive::{derive, Kinematics};
 use super::divergence::{Divergence, EnergyGuard};
 use super::effects::{Effects, Loads};
@@ -217,12 +217,17 @@ impl World {
                 gravity: self.effects.gravity(),
                 dt: self.dt,
             };
-            let energy_before = energy(&self.body, &self.effects, &now.state).total;
             let state_before = now.state;
-            collide(&input, &mut now.state, &mut now.contacts);
+            let measured = collide(&input, &mut now.state, &mut now.contacts);
             if now.state != state_before {
-                let energy_after = energy(&self.body, &self.effects, &now.state);
-                now.guard.after_collision(energy_before, &energy_after);
+                // The response's own measurement when it has one (the same numbers `energy`
+                // gives), else measured here.
+                let change = measured.unwrap_or_else(|| EnergyChange {
+                    before: energy(&self.body, &self.effects, &state_before),
+                    after: energy(&self.body, &self.effects, &now.state),
+                });
+                now.guard
+                    .after_collision(change.before.total, &change.after);
             }
         }
     }

@@ -53,6 +53,7 @@ pub struct Penetration {
 }
 
 /// Static test: is `p` inside `obstacle`? Depth and normal as in the module doc.
+#[inline]
 pub fn inside(obstacle: &Obstacle, p: &Vector3<f64>) -> Option<Penetration> {
     match *obstacle {
         Obstacle::Ground { height } => {
@@ -188,6 +189,7 @@ pub fn swept(obstacle: &Obstacle, a: &Vector3<f64>, b: &Vector3<f64>) -> Option<
 /// ```
 ///
 /// Returns None for a vertex inside (that is [`inside`]'s case) or farther than `margin`.
+#[inline]
 pub fn near(obstacle: &Obstacle, p: &Vector3<f64>, margin: f64) -> Option<(f64, Vector3<f64>)> {
     let (gap, normal) = match *obstacle {
         Obstacle::Ground { height } => (p.y - height, Vector3::y()),

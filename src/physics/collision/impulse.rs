@@ -81,9 +81,9 @@
 //! `I⁻¹_world` and so `½ L·I⁻¹L`.)
 
 use super::detect::{inside, near, swept};
-use super::{CollideInput, Contact, Obstacle};
+use super::{CollideInput, Contact, EnergyChange, Obstacle};
 use crate::physics::derive::derive_with_rotation;
-use crate::physics::snapshot::kinetic_energy_with;
+use crate::physics::snapshot::{kinetic_energy_with, Energy};
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -100,7 +100,7 @@ pub const TOLERANCE: f64 = 1e-10;
 pub const MAX_SWEEPS: usize = 200;
 
 /// One contact as the solver sees it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Row {
     /// Unit normal n, r × n and I⁻¹(r × n), and k = 1/M + (r×n)·I⁻¹(r×n).
     normal: Direction,
@@ -121,7 +121,7 @@ struct Row {
 }
 
 /// A direction d at lever arm r: d, r × d, I⁻¹(r × d) and the effective inverse mass along it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Direction {
     d: Vector3<f64>,
     rd: Vector3<f64>,
@@ -175,10 +175,25 @@ impl Motion {
 }
 
 /// Detects contacts (swept test, plus the speculative ones) and runs the response on `state`.
-pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
+///
+/// Returns the energy before and after (None when there was no contact: the state is unchanged).
+pub fn respond(
+    input: &CollideInput,
+    state: &mut State,
+    contacts: &mut Vec<Contact>,
+) -> Option<EnergyChange> {
     let body = input.body;
     let rotation_now = state.orientation.matrix();
-    let rotation_before = input.before.orientation.matrix();
+    // The start of the step, for the swept tests (the ground needs none).
+    let swept_tests = input
+        .obstacles
+        .iter()
+        .any(|o| !matches!(o, Obstacle::Ground { .. }));
+    let rotation_before = if swept_tests {
+        input.before.orientation.matrix()
+    } else {
+        Matrix3::identity()
+    };
     let bounce_speed = input
         .gravity
         .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
@@ -224,7 +239,7 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     if !contacts.iter().any(|c| c.depth > 0.0) {
         // Nothing has touched: speculative contacts alone never act.
         contacts.clear();
-        return;
+        return None;
     }
     // I⁻¹_world exactly as the derive phase (and the energy panel) computes it.
     let inv_inertia = derive_with_rotation(body, state, rotation_now).inv_inertia_world;
@@ -256,17 +271,29 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
     resolve(body.inv_mass, &inv_inertia, &settings, state, contacts);
     state.position += shift;
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    let mut kinetic_after = kinetic(state);
     for _ in 0..4 {
-        let kinetic_after = kinetic(state);
         if kinetic_after <= kinetic_before {
             break;
         }
         let scale = (kinetic_before / kinetic_after).sqrt() * (1.0 - 4.0 * f64::EPSILON);
         state.linear_momentum *= scale;
         state.angular_momentum *= scale;
+        kinetic_after = kinetic(state);
     }
     // Speculative contacts that were not needed are not contacts.
-    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    if speculative {
+        contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    }
+    let measured = |kinetic: f64, potential: f64| Energy {
+        kinetic,
+        potential,
+        total: kinetic + potential,
+    };
+    Some(EnergyChange {
+        before: measured(kinetic_before, potential_before),
+        after: measured(kinetic_after, potential(&state.position)),
+    })
 }
 
 /// What the velocity stages need besides the body and the contacts.
@@ -308,28 +335,37 @@ fn resolve(
     };
     // The energy the velocities may keep: K₀ less the push-out's work against gravity.
     let kinetic_allowed = motion.kinetic(inv_mass) - lift;
-    let mut rows: Vec<Row> = contacts
-        .iter()
-        .map(|c| {
-            let normal = Direction::new(c.normal, &c.lever, inv_inertia, inv_mass);
-            Row {
-                normal,
-                lambda: 0.0,
-                lambda_tangent: [0.0; 2],
-                compression: 0.0,
-                friction_bound: 0.0,
-                lambda_restitution: 0.0,
-                approach: motion.along(&normal),
-                bias: (-c.depth).max(0.0) / dt,
-            }
-        })
-        .collect();
+    let row = |c: &Contact| {
+        let normal = Direction::new(c.normal, &c.lever, inv_inertia, inv_mass);
+        Row {
+            normal,
+            lambda: 0.0,
+            lambda_tangent: [0.0; 2],
+            compression: 0.0,
+            friction_bound: 0.0,
+            lambda_restitution: 0.0,
+            approach: motion.along(&normal),
+            bias: (-c.depth).max(0.0) / dt,
+        }
+    };
+    // The rows on the stack when they fit (the usual case: no allocation per step).
+    let mut stack_rows = [Row::default(); DIRECT_MAX];
+    let mut heap_rows = Vec::new();
+    let rows: &mut [Row] = if contacts.len() <= DIRECT_MAX {
+        for (slot, c) in stack_rows.iter_mut().zip(contacts.iter()) {
+            *slot = row(c);
+        }
+        &mut stack_rows[..contacts.len()]
+    } else {
+        heap_rows.extend(contacts.iter().map(row));
+        &mut heap_rows
+    };
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
     let tolerance = TOLERANCE * (1.0 + fastest);
 
     // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
     // projected Gauss–Seidel from λ = 0.
-    if !direct_inelastic(&mut rows, &mut motion, tolerance) {
+    if !direct_inelastic(rows, &mut motion, tolerance) {
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
             for row in rows.iter_mut() {
@@ -349,7 +385,8 @@ fn resolve(
     // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
     let sliding = |row: &Row, contact: &Contact| {
         let u = motion.v + motion.omega.cross(&contact.lever);
-        row.lambda > 0.0 && (u - contact.normal * u.dot(&contact.normal)).norm() > tolerance
+        row.lambda > 0.0
+            && (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
     };
     let mut tangent_directions: Vec<[Direction; 2]> = Vec::new();
     if friction > 0.0 && rows.iter().zip(contacts.iter()).any(|(r, c)| sliding(r, c)) {
@@ -414,7 +451,7 @@ fn resolve(
 
     state.linear_momentum = motion.v / inv_mass;
     state.angular_momentum = motion.l;
-    for (index, (contact, row)) in contacts.iter_mut().zip(&rows).enumerate() {
+    for (index, (contact, row)) in contacts.iter_mut().zip(rows.iter()).enumerate() {
         contact.normal_velocity = row.approach;
         contact.denominator = row.normal.k;
         contact.impulse = row.normal.d * (row.lambda + row.lambda_restitution);

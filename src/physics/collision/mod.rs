@@ -15,6 +15,7 @@ pub mod seed;
 
 use super::body::Body;
 use super::effects::Loads;
+use super::snapshot::Energy;
 use super::state::State;
 use nalgebra::Vector3;
 
@@ -138,12 +139,30 @@ pub struct CollideInput<'a> {
     pub dt: f64,
 }
 
+/// The energy of the state before and after a response, measured as [`energy`] measures it
+/// (same arithmetic, to the last bit), by a response that had the numbers at hand.
+///
+/// [`energy`]: super::snapshot::energy
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyChange {
+    pub before: Energy,
+    pub after: Energy,
+}
+
 /// Runs detection and the chosen response on `state`; `contacts` is cleared and filled with the
-/// contacts it handled (a buffer reused from step to step).
-pub fn collide(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
+/// contacts it handled (a buffer reused from step to step). Returns the energy before and after
+/// when the response measured it (`impulse`, when it changed the state); None otherwise.
+pub fn collide(
+    input: &CollideInput,
+    state: &mut State,
+    contacts: &mut Vec<Contact>,
+) -> Option<EnergyChange> {
     contacts.clear();
     match input.model.response {
-        Response::Seed => seed::respond(input, state, contacts),
+        Response::Seed => {
+            seed::respond(input, state, contacts);
+            None
+        }
         Response::Impulse => impulse::respond(input, state, contacts),
     }
 }
