@@ -26,7 +26,7 @@
 //!    and each update is the exact minimisation of K along one coordinate over an interval
 //!    that contains the current value: K can only go down. When the answer is "every
 //!    approaching contact stops and pushes" (a face landing, a body at rest: the usual case),
-//!    the same minimum is computed at once by a small Cholesky solve and checked against the
+//!    the same minimum is computed at once by a small LDLᵀ solve and checked against the
 //!    conditions above (`direct_inelastic`); the sweeps run only when that check fails.
 //! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
 //!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
@@ -471,7 +471,7 @@ pub const DIRECT_MAX: usize = 8;
 /// (A + ε𝟙) λ = −u,   A_ij = nᵢ·nⱼ/M + (rᵢ×nᵢ)·I⁻¹(rⱼ×nⱼ),  ε = 1e-10 · max Aᵢᵢ
 /// ```
 ///
-/// by Cholesky (A is only semi-definite: 4 coplanar contacts constrain 3 motions; the tiny ε
+/// by LDLᵀ (A is only semi-definite: 4 coplanar contacts constrain 3 motions; the tiny ε
 /// picks the minimum-norm λ, which shares the load symmetrically whatever the vertex order).
 /// The result is accepted only if it is the solution of the whole problem — every λᵢ ≥ 0 and
 /// no contact, active or not, still approaching — so it is the same minimum of K that the
@@ -505,32 +505,33 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
         largest = largest.max(a[p][p]);
     }
     let epsilon = 1e-10 * largest;
-    // A + ε𝟙 = C Cᵀ (Cholesky, lower triangle in place), keeping 1/Cₚₚ to multiply by.
+    // A + ε𝟙 = L D Lᵀ (L unit lower triangular, in place below the diagonal; D kept as 1/Dₚ):
+    // no square roots. wₖ = L_pk D_k for the row being factored.
     let mut inv_diagonal = [0.0f64; DIRECT_MAX];
     for p in 0..m {
-        a[p][p] += epsilon;
-        for q in 0..=p {
-            let dot: f64 = a[p][..q].iter().zip(&a[q][..q]).map(|(x, y)| x * y).sum();
-            let sum = a[p][q] - dot;
-            if p == q {
-                if sum <= 0.0 {
-                    return false;
-                }
-                inv_diagonal[p] = 1.0 / sum.sqrt();
-            } else {
-                a[p][q] = sum * inv_diagonal[q];
-            }
+        let mut w = [0.0f64; DIRECT_MAX];
+        let mut pivot = a[p][p] + epsilon;
+        for q in 0..p {
+            let dot: f64 = w[..q].iter().zip(&a[q][..q]).map(|(x, y)| x * y).sum();
+            w[q] = a[p][q] - dot;
+            let l = w[q] * inv_diagonal[q];
+            pivot -= w[q] * l;
+            a[p][q] = l;
         }
+        if pivot <= 0.0 {
+            return false;
+        }
+        inv_diagonal[p] = 1.0 / pivot;
     }
-    // C y = rhs, then Cᵀ λ = y.
+    // L y = rhs, then Lᵀ λ = D⁻¹ y.
     let mut lambda = rhs;
     for p in 0..m {
         let dot: f64 = a[p][..p].iter().zip(&lambda[..p]).map(|(x, y)| x * y).sum();
-        lambda[p] = (lambda[p] - dot) * inv_diagonal[p];
+        lambda[p] -= dot;
     }
     for p in (0..m).rev() {
         let dot: f64 = (p + 1..m).map(|k| a[k][p] * lambda[k]).sum();
-        lambda[p] = (lambda[p] - dot) * inv_diagonal[p];
+        lambda[p] = lambda[p] * inv_diagonal[p] - dot;
         if lambda[p] < 0.0 {
             return false;
         }
