@@ -127,7 +127,8 @@ struct Direction {
     rd: Vector3<f64>,
     w: Vector3<f64>,
     k: f64,
-    /// 1/k.
+    /// 1/k, for the sweeps only: NaN until [`Direction::with_inverse`] (the direct solve, the
+    /// usual resting step, never divides by k).
     inv_k: f64,
 }
 
@@ -146,8 +147,13 @@ impl Direction {
             rd,
             w,
             k,
-            inv_k: 1.0 / k,
+            inv_k: f64::NAN,
         }
+    }
+
+    /// Fills in 1/k.
+    fn with_inverse(&mut self) {
+        self.inv_k = 1.0 / self.k;
     }
 }
 
@@ -366,6 +372,9 @@ fn resolve(
     // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
     // projected Gauss–Seidel from λ = 0.
     if !direct_inelastic(rows, &mut motion, tolerance) {
+        for row in rows.iter_mut() {
+            row.normal.with_inverse();
+        }
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
             for row in rows.iter_mut() {
@@ -391,6 +400,7 @@ fn resolve(
     let mut tangent_directions: Vec<[Direction; 2]> = Vec::new();
     if friction > 0.0 && rows.iter().zip(contacts.iter()).any(|(r, c)| sliding(r, c)) {
         for (row, contact) in rows.iter_mut().zip(contacts.iter()) {
+            row.normal.with_inverse();
             row.friction_bound = friction * row.lambda;
             let (t1, t2) = tangents(&contact.normal);
             tangent_directions.push([
