@@ -79,20 +79,15 @@ pub fn write_walk(
         &mut shown_page,
         out,
     )?;
+    // One block per frame, or one per phase of every frame.
+    let blocks_per_frame = if phases { 4 } else { 1 };
     for _ in 0..frames {
-        if phases {
-            for _ in 0..4 {
+        for _ in 0..blocks_per_frame {
+            if phases {
                 world.step_phase();
-                write_block(
-                    lesson,
-                    world.obstacles(),
-                    &world.snapshot(),
-                    &mut shown_page,
-                    out,
-                )?;
+            } else {
+                world.step();
             }
-        } else {
-            world.step();
             write_block(
                 lesson,
                 world.obstacles(),
