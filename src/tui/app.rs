@@ -301,10 +301,12 @@ impl App {
     /// Re-reads the snapshots and keeps the bodies in frame.
     fn refresh(&mut self) {
         self.snapshot = self.world.snapshot();
-        self.region.include(&self.snapshot.vertices);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot();
-            self.region.include(&ghost.snapshot.vertices);
+            let both = [&self.snapshot.vertices[..], &ghost.snapshot.vertices[..]].concat();
+            self.region.include(&both);
+        } else {
+            self.region.include(&self.snapshot.vertices);
         }
         let page = self.lesson.page_at(self.snapshot.time).map(|(i, _)| i);
         if page != self.page {

@@ -63,7 +63,13 @@ impl Axis {
 pub struct Region {
     pub min: Vector3<f64>,
     pub max: Vector3<f64>,
+    /// The region grows (by doubling) up to this extent along each axis, then slides instead,
+    /// so a body that falls for ever stays drawn at a readable size, m.
+    pub max_extent: f64,
 }
+
+/// How many body diameters the view may grow to before it slides instead of zooming out.
+pub const MAX_BODY_DIAMETERS: f64 = 8.0;
 
 impl Region {
     /// The initial region: the body where it starts, the obstacles, the ground height, padded by
@@ -93,29 +99,48 @@ impl Region {
             }
         }
         let pad = body.radius.max(1e-3);
+        let (min, max) = (min - Vector3::repeat(pad), max + Vector3::repeat(pad));
         Region {
-            min: min - Vector3::repeat(pad),
-            max: max + Vector3::repeat(pad),
+            min,
+            max,
+            max_extent: (max - min).max().max(MAX_BODY_DIAMETERS * 2.0 * pad),
         }
     }
 
-    /// Grows until every point is inside: each side exceeded moves out by the region's extent
-    /// along that axis (doubling it), so the view changes rarely and never shrinks.
+    /// Moves until every point is inside. While the extent along an axis stays within
+    /// `max_extent`, each side exceeded moves out by the region's extent (doubling it); past
+    /// that the region keeps its size and re-centres on the points. The view changes rarely,
+    /// never shrinks, and a body that falls for ever stays drawn at a readable size.
     pub fn include(&mut self, points: &[Vector3<f64>]) {
-        for p in points {
-            if !p.iter().all(|c| c.is_finite()) {
-                continue;
+        let finite = points.iter().filter(|p| p.iter().all(|c| c.is_finite()));
+        let (mut lo, mut hi) = (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        );
+        for p in finite {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        for i in 0..3 {
+            if lo[i] > hi[i] {
+                return;
             }
-            for i in 0..3 {
-                for _ in 0..64 {
-                    let extent = (self.max[i] - self.min[i]).max(1e-9);
-                    if p[i] > self.max[i] {
-                        self.max[i] += extent;
-                    } else if p[i] < self.min[i] {
-                        self.min[i] -= extent;
-                    } else {
-                        break;
-                    }
+            for _ in 0..64 {
+                let extent = (self.max[i] - self.min[i]).max(1e-9);
+                let outside = hi[i] > self.max[i] || lo[i] < self.min[i];
+                if !outside {
+                    break;
+                }
+                if 2.0 * extent > self.max_extent {
+                    let shift = 0.5 * (lo[i] + hi[i]) - 0.5 * (self.min[i] + self.max[i]);
+                    self.min[i] += shift;
+                    self.max[i] += shift;
+                    break;
+                }
+                if hi[i] > self.max[i] {
+                    self.max[i] += extent;
+                } else {
+                    self.min[i] -= extent;
                 }
             }
         }
@@ -185,6 +210,7 @@ mod tests {
         let region = Region {
             min: Vector3::new(0.0, 0.0, 0.0),
             max: Vector3::new(1.0, 1.0, 1.0),
+            max_extent: 1.0,
         };
         let m = Mapping::fit(&region, Axis::Front, 40, 20);
         let (c0, r0) = m.cell(0.0, 0.0);
@@ -199,9 +225,24 @@ mod tests {
         let mut region = Region {
             min: Vector3::new(-1.0, -1.0, -1.0),
             max: Vector3::new(1.0, 1.0, 1.0),
+            max_extent: 4.0,
         };
         region.include(&[Vector3::new(0.0, -3.0, 0.0)]);
         assert_eq!(region.min.y, -3.0, "min {}", region.min.y);
         assert_eq!(region.max.y, 1.0);
+    }
+
+    #[test]
+    fn past_its_largest_extent_the_region_recentres_at_the_same_scale() {
+        // Extent 4 = max_extent along y: a point at y = −5 is below min = −3; doubling would
+        // give extent 8, so the region keeps its extent 4 and centres on y = −5: [−7, −3].
+        let mut region = Region {
+            min: Vector3::new(-1.0, -3.0, -1.0),
+            max: Vector3::new(1.0, 1.0, 1.0),
+            max_extent: 4.0,
+        };
+        region.include(&[Vector3::new(0.0, -5.0, 0.0)]);
+        assert_eq!((region.min.y, region.max.y), (-7.0, -3.0));
+        assert_eq!((region.min.x, region.max.x), (-1.0, 1.0), "x untouched");
     }
 }
