@@ -33,7 +33,6 @@
 //! Past half a turn per step no integrator can tell the motion from a slower turn the other way
 //! (aliasing): the time step no longer resolves the rotation, whatever produced it.
 use super::body::Body;
-use super::collision::Obstacle;
 use super::effects::Effects;
 use super::integrators::Integrator;
 use super::snapshot::{energy, Energy};
@@ -83,12 +82,7 @@ pub struct EnergyGuard {
 
 impl EnergyGuard {
     /// The budget at t = 0.
-    pub fn new(
-        body: &Body,
-        effects: &Effects,
-        _obstacles: &[Obstacle],
-        state: &State,
-    ) -> EnergyGuard {
+    pub fn new(body: &Body, effects: &Effects, state: &State) -> EnergyGuard {
         let Energy { kinetic, total, .. } = energy(body, effects, state);
         let weight = effects
             .gravity()

@@ -114,7 +114,7 @@ impl World {
         };
         let kinematics = derive(&body, &initial);
         let loads = integrator.loads(&body, &effects, &kinematics);
-        let guard = EnergyGuard::new(&body, &effects, &obstacles, &initial);
+        let guard = EnergyGuard::new(&body, &effects, &initial);
         World {
             body,
             effects,

@@ -154,8 +154,7 @@ impl Validator<'_> {
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let title = raw.title.into_inner();
-        let scene_span = raw.scene.span();
-        let mut scene = self.scene(raw.scene.into_inner(), raw.body, &raw.obstacles, scene_span)?;
+        let mut scene = self.scene(raw.scene.into_inner(), raw.body, &raw.obstacles)?;
         scene.obstacles = raw
             .obstacles
             .iter()
@@ -243,7 +242,6 @@ impl Validator<'_> {
         raw: RawScene,
         body: Spanned<RawBody>,
         obstacles: &[Spanned<RawObstacle>],
-        scene_span: Range<usize>,
     ) -> Result<Scene, LoadError> {
         let dt = self.positive(&raw.dt, "dt")?;
         let duration = raw
@@ -293,7 +291,6 @@ impl Validator<'_> {
                 ));
             }
         }
-        let _ = scene_span;
         let (body_model, shape, initial) = self.body(body)?;
         Ok(Scene {
             dt,
