@@ -4,7 +4,7 @@
 //! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e3, otherwise
 //! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
 
-use crate::physics::{Obstacle, Snapshot};
+use crate::physics::{Against, BodyView, Contact, Feature, Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 
 /// Width of every formatted number, in characters.
@@ -221,10 +221,9 @@ pub fn contact_panel(s: &Snapshot, obstacles: &[Obstacle]) -> Panel {
             unit: "",
         });
     }
-    for c in &s.contacts {
-        let kind = obstacles.get(c.obstacle).map_or("obstacle", |o| o.kind());
+    for c in s.contacts.iter().filter(|c| involves(c, s.body_index)) {
         rows.push(Row {
-            label: format!("vertex {} in {kind} {}", c.vertex, c.obstacle),
+            label: contact_label(c, obstacles, &s.bodies, false),
             cells: Vec::new(),
             unit: "",
         });
@@ -258,6 +257,45 @@ pub fn panel_text(panel: &Panel) -> Vec<String> {
         lines.push(line.trim_end().to_string());
     }
     lines
+}
+
+/// Whether a contact row involves body `index` (as A or as B).
+pub fn involves(c: &Contact, index: usize) -> bool {
+    c.body == index || c.other_body() == Some(index)
+}
+
+/// What touches what at a contact: `vertex 3 in ground 0` (the report's vertex test), or
+/// `face–face: box1 on ground 0`; `short` gives `v3 in ground` and `face–face box1/box2`.
+pub fn contact_label(
+    c: &Contact,
+    obstacles: &[Obstacle],
+    bodies: &[BodyView],
+    short: bool,
+) -> String {
+    let name = |i: usize| bodies.get(i).map_or("?", |b| b.name.as_str());
+    let against = match c.against {
+        Against::Obstacle(i) => {
+            let kind = obstacles.get(i).map_or("obstacle", |o| o.kind());
+            if short {
+                kind.to_string()
+            } else {
+                format!("{kind} {i}")
+            }
+        }
+        Against::Body(j) => name(j).to_string(),
+    };
+    let feature = match c.feature {
+        Feature::Vertex(v) if short => return format!("v{v} in {against}"),
+        Feature::Vertex(v) => return format!("vertex {v} in {against}"),
+        Feature::VertexFace => "vertex–face",
+        Feature::EdgeEdge => "edge–edge",
+        Feature::FaceFace => "face–face",
+    };
+    if short {
+        format!("{feature} {}/{against}", name(c.body))
+    } else {
+        format!("{feature}: {} on {against}", name(c.body))
+    }
 }
 
 #[cfg(test)]

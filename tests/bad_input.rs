@@ -85,7 +85,7 @@ const TABLE: &[(&str, &str)] = &[
     ),
     (
         "missing-body.toml",
-        "1:1: missing table `[body]`: a scene file needs `title`, [scene] and [body]",
+        "1:1: missing table `[body]`: a scene file needs `title`, [scene] and [body] (or [[body]])",
     ),
 ];
 

@@ -4,7 +4,7 @@
 use nalgebra::{UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use tumble::physics::body::{box_corners, box_edges};
-use tumble::physics::collision::{collide, CollideInput};
+use tumble::physics::collision::{collide, Against, CollideInput};
 use tumble::physics::effects::Loads;
 use tumble::physics::snapshot::{deepest_penetration, kinetic_energy};
 use tumble::physics::{
@@ -230,7 +230,11 @@ fn a_cube_dropped_off_centre_on_a_sphere_slides_off_and_rests_on_the_ground() {
         for p in w.vertices() {
             deepest_in_sphere = deepest_in_sphere.max(sphere.depth(&p));
         }
-        for c in w.contacts().iter().filter(|c| c.obstacle == 1) {
+        for c in w
+            .contacts()
+            .iter()
+            .filter(|c| c.against == Against::Obstacle(1))
+        {
             deepest_contact = deepest_contact.max(c.depth);
         }
     }
@@ -397,18 +401,18 @@ proptest! {
         let model = impulse(restitution, friction);
         let loads = Loads::default();
         let input = CollideInput {
-            body: &body,
+            bodies: std::slice::from_ref(&body),
             obstacles: &obstacles,
             model: &model,
-            before: &before,
-            loads: &loads,
-            initial_position: &Vector3::zeros(),
+            before: std::slice::from_ref(&before),
+            loads: std::slice::from_ref(&loads),
+            initial_positions: &[Vector3::zeros()],
             gravity: Some(Vector3::new(0.0, -G, 0.0)),
             dt: 1e-2,
         };
         let kinetic_before = kinetic_energy(&body, &now);
         let mut contacts = Vec::new();
-        collide(&input, &mut now, &mut contacts);
+        collide(&input, std::slice::from_mut(&mut now), &mut contacts, &mut Default::default());
         let kinetic_after = kinetic_energy(&body, &now);
         prop_assert!(kinetic_after <= kinetic_before,
             "K {} → {} with {} contacts", kinetic_before, kinetic_after, contacts.len());
@@ -418,7 +422,7 @@ proptest! {
             let k = tumble::physics::derive::derive(&body, &now);
             for c in &contacts {
                 let u = k.velocity + k.angular_velocity.cross(&c.lever);
-                prop_assert!(u.dot(&c.normal) > -1e-6, "still approaching at {}: {}", c.vertex, u.dot(&c.normal));
+                prop_assert!(u.dot(&c.normal) > -1e-6, "still approaching at {:?}: {}", c.feature, u.dot(&c.normal));
             }
         }
     }

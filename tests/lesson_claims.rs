@@ -125,7 +125,7 @@ fn lesson_1_top_of_the_flight_is_near_t_0_306() {
 #[test]
 fn lesson_2_barycenter_inertia_and_angular_momentum_match_the_hand_computation() {
     let l = lesson("02-rigid-body-from-points.toml");
-    let body = &l.scene.body;
+    let body = &l.scene.first().body;
     // c = Σ mᵢ pᵢ / M = (0.1·0.5 + 0.3·0.5 + 0.3·0.5 + 0.2·0.25, 0, 0.2·0.05) / 1.
     assert_near(
         (body.barycenter - Vector3::new(0.4, 0.0, 0.01)).norm(),
@@ -343,7 +343,7 @@ fn lesson_4_every_other_integrator_sees_no_torque() {
 #[test]
 fn lesson_9_drag_follows_the_exponential_closed_forms() {
     let l = lesson("09-viscosity.toml");
-    let i_zz = l.scene.body.inertia_body[(2, 2)];
+    let i_zz = l.scene.first().body.inertia_body[(2, 2)];
     // 10 vertices of 0.1 kg: I_zz = 2 × 0.1 × (0.0841 + 0.0841 + 0.0481 + 0.0576 + 0.0481).
     assert_near(i_zz, 0.0644, 1e-8, "I_zz (mesh coordinates are f32)");
     let mut world = l.scene.world();

@@ -374,8 +374,8 @@ fn a_mesh_body_loaded_through_a_scene_file_has_the_hand_computed_mass_properties
     // I_c = I_O − M|c|² 𝟙 + M c cᵀ, M|c|² = 4·3/16 = 0.75, M c cᵀ = ones/4:
     // I_c = 1.25·𝟙 + ones/4 → diagonal 1.5, products 0.25; principal moments 1.25, 1.25, 2.
     let lesson = tumble::scene::load(&fixtures().join("tetrahedron.toml")).unwrap();
-    let body = &lesson.scene.body;
-    assert_eq!(lesson.scene.shape, "mesh");
+    let body = &lesson.scene.first().body;
+    assert_eq!(lesson.scene.first().shape, "mesh");
     assert_eq!(body.mass, 4.0);
     assert_eq!(body.points_body.len(), 4);
     assert_eq!(body.edges.len(), 6, "a tetrahedron has 6 edges");
@@ -933,13 +933,13 @@ fn orientation_as_axis_and_degrees_equals_the_same_quaternion() {
     let by_quaternion = box_scene(&format!(
         "orientation = {{ quaternion = [{h}, 0.0, 0.0, {h}] }}"
     ));
-    let a = by_angle.initial.orientation.quaternion();
-    let b = by_quaternion.initial.orientation.quaternion();
+    let a = by_angle.first().initial.orientation.quaternion();
+    let b = by_quaternion.first().initial.orientation.quaternion();
     assert!(a.angle_to(&b) < 1e-15, "{a:?} vs {b:?}");
     assert!((a.w - h).abs() < 1e-15 && (a.k - h).abs() < 1e-15, "{a:?}");
     // A non-unit quaternion is normalised.
     let scaled = box_scene("orientation = { quaternion = [2.0, 0.0, 0.0, 2.0] }");
-    assert!(scaled.initial.orientation.quaternion().angle_to(&a) < 1e-15);
+    assert!(scaled.first().initial.orientation.quaternion().angle_to(&a) < 1e-15);
 }
 
 #[test]
@@ -953,14 +953,14 @@ fn angular_velocity_body_is_turned_into_the_world_frame() {
     let world_frame = box_scene(&format!("{quarter}\nangular_velocity = [0.0, 1.0, 0.0]"));
     let i_xx = 0.17 / 12.0;
     assert_vector_near(
-        &body_frame.initial.angular_momentum,
+        &body_frame.first().initial.angular_momentum,
         &Vector3::new(0.0, i_xx, 0.0),
         1e-16,
         "L",
     );
     assert_vector_near(
-        &body_frame.initial.angular_momentum,
-        &world_frame.initial.angular_momentum,
+        &body_frame.first().initial.angular_momentum,
+        &world_frame.first().initial.angular_momentum,
         1e-16,
         "same L either way",
     );
@@ -994,11 +994,16 @@ velocity = [1.0, 0.0, 0.0]
 "#,
     );
     let (barycenter, inertia) = off_centre_expected();
-    assert_eq!(scene.body.mass, 8.0);
-    assert_vector_near(&scene.body.barycenter, &barycenter, 1e-15, "barycenter");
-    assert_matrix_near(&scene.body.inertia_body, &inertia, 1e-14, "inertia");
+    assert_eq!(scene.first().body.mass, 8.0);
+    assert_vector_near(
+        &scene.first().body.barycenter,
+        &barycenter,
+        1e-15,
+        "barycenter",
+    );
+    assert_matrix_near(&scene.first().body.inertia_body, &inertia, 1e-14, "inertia");
     assert_eq!(
-        scene.initial.linear_momentum,
+        scene.first().initial.linear_momentum,
         Vector3::new(8.0, 0.0, 0.0),
         "P = M v"
     );

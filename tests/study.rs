@@ -98,7 +98,7 @@ fn splitting_is_second_order_on_a_projectile_spinning_off_axis() {
     // the cube no longer commute, so the orientation error is O(dt²) (position stays exact).
     let mut case = builtin("projectile");
     let omega = Vector3::new(1.0, 2.0, 3.0);
-    case.scene.initial.angular_momentum = case.scene.body.inertia_body * omega;
+    case.scene.bodies[0].initial.angular_momentum = case.scene.bodies[0].body.inertia_body * omega;
     let config = untimed(
         &[Integrator::Splitting, Integrator::Rk4],
         &[1e-1, 1e-2, 1e-3],
@@ -148,7 +148,7 @@ fn rk4_is_fourth_order_on_a_tumble_near_the_minor_axis() {
     // (ω₁ ∝ dn, ω₃ ∝ cn). 10 s at dt = 5e-2 … 6.25e-3.
     let mut case = builtin("tumbling-box");
     let omega = Vector3::new(3.0, 1.0, 0.5);
-    case.scene.initial.angular_momentum = case.scene.body.inertia_body * omega;
+    case.scene.bodies[0].initial.angular_momentum = case.scene.bodies[0].body.inertia_body * omega;
     let config = untimed(
         &[Integrator::Rk4, Integrator::Splitting],
         &[5e-2, 2.5e-2, 1.25e-2, 6.25e-3],

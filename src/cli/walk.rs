@@ -131,7 +131,7 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
         "integrator {} · dt = {} s · body {} · M = {} kg · effects: {effects} · obstacles: {obstacles}",
         world.integrator().name(),
         number_plain(world.dt()),
-        lesson.scene.shape,
+        lesson.scene.first().shape,
         number_plain(world.body().mass),
     );
     if let Some(model) = world.contact_model() {

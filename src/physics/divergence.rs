@@ -32,10 +32,8 @@
 //!
 //! Past half a turn per step no integrator can tell the motion from a slower turn the other way
 //! (aliasing): the time step no longer resolves the rotation, whatever produced it.
-use super::body::Body;
-use super::effects::Effects;
+use super::energy::Energy;
 use super::integrators::Integrator;
-use super::snapshot::{energy, Energy};
 use super::state::State;
 use std::fmt;
 
@@ -81,12 +79,10 @@ pub struct EnergyGuard {
 }
 
 impl EnergyGuard {
-    /// The budget at t = 0.
-    pub fn new(body: &Body, effects: &Effects, state: &State) -> EnergyGuard {
-        let Energy { kinetic, total, .. } = energy(body, effects, state);
-        let weight = effects
-            .gravity()
-            .map_or(0.0, |g| body.mass * g.norm() * body.radius);
+    /// The budget at t = 0, from the scene's energy then and `weight`, the work that would
+    /// lift every body by its own size (Σ M|g|·radius; 0 without gravity).
+    pub fn new(energy: &Energy, weight: f64) -> EnergyGuard {
+        let Energy { kinetic, total, .. } = *energy;
         EnergyGuard {
             allowed: total,
             reference: kinetic.max(weight).max(f64::MIN_POSITIVE),
@@ -108,22 +104,9 @@ impl EnergyGuard {
         self.reference = self.reference.max(after.kinetic);
     }
 
-    /// The diverged quantity, if any.
-    /// `turn_per_step` is |ω|·dt, rad.
-    pub fn check(&self, state: &State, energy: &Energy, turn_per_step: f64) -> Option<String> {
-        let finite = |v: &nalgebra::Vector3<f64>| v.iter().all(|c| c.is_finite());
-        if !finite(&state.position) {
-            return Some("position is not finite".into());
-        }
-        if !state.orientation.matrix().iter().all(|c| c.is_finite()) {
-            return Some("orientation is not finite".into());
-        }
-        if !finite(&state.linear_momentum) {
-            return Some("linear momentum is not finite".into());
-        }
-        if !finite(&state.angular_momentum) {
-            return Some("angular momentum is not finite".into());
-        }
+    /// The diverged quantity, if any: `energy` is the scene's, `turn_per_step` the largest
+    /// |ω|·dt of its bodies, rad (check each state with [`not_finite`] first).
+    pub fn check(&self, energy: &Energy, turn_per_step: f64) -> Option<String> {
         if !energy.total.is_finite() {
             return Some("energy is not finite".into());
         }
@@ -144,4 +127,22 @@ impl EnergyGuard {
         }
         None
     }
+}
+
+/// The first quantity of a state that is no longer finite, if any.
+pub fn not_finite(state: &State) -> Option<&'static str> {
+    let finite = |v: &nalgebra::Vector3<f64>| v.iter().all(|c| c.is_finite());
+    if !finite(&state.position) {
+        return Some("position is not finite");
+    }
+    if !state.orientation.matrix().iter().all(|c| c.is_finite()) {
+        return Some("orientation is not finite");
+    }
+    if !finite(&state.linear_momentum) {
+        return Some("linear momentum is not finite");
+    }
+    if !finite(&state.angular_momentum) {
+        return Some("angular momentum is not finite");
+    }
+    None
 }

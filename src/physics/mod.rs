@@ -1,4 +1,4 @@
-//! The physics core: a rigid body of mass points stepped through the animation loop.
+//! The physics core: rigid bodies of mass points stepped through the animation loop.
 //!
 //! Depends on nalgebra only: no terminal, no file formats, no printing. One file per idea:
 //!
@@ -8,10 +8,11 @@
 //! | `state` | (x, R or q, P, L) |
 //! | `derive` | the derive phase: I⁻¹_world, ω, v |
 //! | `effects` | the forces phase: gravity and drag, only when declared |
+//! | `energy` | kinetic, potential, total: of a body and of a world |
 //! | `free_top` | the torque-free asymmetric top in closed form (a reference) |
 //! | `integrators` | the integrate phase, one file per method |
 //! | `collision` | the collide phase: obstacles, detection, responses |
-//! | `world` | the loop, phase by phase |
+//! | `world` | the loop, phase by phase, over every body |
 //! | `snapshot` | every quantity a user is shown |
 //! | `divergence` | the guard against non-finite or runaway states |
 
@@ -20,6 +21,7 @@ pub mod collision;
 pub mod derive;
 pub mod divergence;
 pub mod effects;
+pub mod energy;
 pub mod free_top;
 pub mod integrators;
 pub mod snapshot;
@@ -27,10 +29,11 @@ pub mod state;
 pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
-pub use collision::{Contact, ContactModel, Obstacle, Response};
+pub use collision::{Against, Contact, ContactModel, Feature, Obstacle, Response};
 pub use divergence::Divergence;
 pub use effects::{Effect, Effects};
+pub use energy::Energy;
 pub use integrators::Integrator;
-pub use snapshot::{Energy, Snapshot};
+pub use snapshot::{BodyView, Snapshot, SystemTotals};
 pub use state::{Orientation, State};
-pub use world::{Checkpoint, Phase, World};
+pub use world::{Checkpoint, NamedBody, Phase, World};

@@ -5,58 +5,12 @@
 //! is exactly why the phase order matters. Between frames (after *collide*, or at t = 0) they
 //! are those of the current state, i.e. what the next *derive* will compute.
 
-use super::body::Body;
 use super::collision::{Contact, Obstacle};
 use super::derive::{congruence, derive};
-use super::effects::Effects;
+pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
 use super::integrators::Integrator;
-use super::state::State;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
-
-/// Kinetic `½ M v·v + ½ ω·L`, potential `−M g·x` and their sum, J.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Energy {
-    pub kinetic: f64,
-    pub potential: f64,
-    pub total: f64,
-}
-
-/// The energy of a state, measured from the state itself.
-pub fn energy(body: &Body, effects: &Effects, state: &State) -> Energy {
-    let kinetic = kinetic_energy(body, state);
-    let potential = effects.potential_energy(body, &state.position);
-    Energy {
-        kinetic,
-        potential,
-        total: kinetic + potential,
-    }
-}
-
-/// Kinetic energy `½ M v·v + ½ ω·L` of a state, J.
-pub fn kinetic_energy(body: &Body, state: &State) -> f64 {
-    let kinematics = derive(body, state);
-    kinetic_energy_with(
-        body,
-        &kinematics.inv_inertia_world,
-        &state.linear_momentum,
-        &state.angular_momentum,
-    )
-}
-
-/// `½ M v·v + ½ ω·L` with `v = P/M`, `ω = I⁻¹_world L` for a known `I⁻¹_world`: the same
-/// arithmetic as [`kinetic_energy`], so the two agree to the last bit.
-#[inline]
-pub fn kinetic_energy_with(
-    body: &Body,
-    inv_inertia_world: &Matrix3<f64>,
-    linear_momentum: &Vector3<f64>,
-    angular_momentum: &Vector3<f64>,
-) -> f64 {
-    let velocity = linear_momentum * body.inv_mass;
-    let angular_velocity = inv_inertia_world * angular_momentum;
-    0.5 * body.mass * velocity.norm_squared() + 0.5 * angular_velocity.dot(angular_momentum)
-}
 
 /// Every loop quantity after a phase.
 #[derive(Debug, Clone, PartialEq)]
@@ -101,15 +55,69 @@ pub struct Snapshot {
     pub vertices: Vec<Vector3<f64>>,
     /// Contacts handled by the last collide phase.
     pub contacts: Vec<Contact>,
-    /// Deepest vertex depth inside any obstacle, ≥ 0, m.
+    /// Deepest depth of the body inside any obstacle or other body, ≥ 0, m.
     pub penetration: f64,
+    /// Which body the fields above describe: its index and name.
+    pub body_index: usize,
+    pub body_name: String,
+    /// Every body, for drawing (the one above included).
+    pub bodies: Vec<BodyView>,
+    /// The whole scene: total momenta and energy.
+    pub system: SystemTotals,
+}
+
+/// What a view needs to draw one body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyView {
+    pub name: String,
+    /// Barycenter x, m.
+    pub position: Vector3<f64>,
+    /// Vertex positions pᵢ = x + R r₀ᵢ, m.
+    pub vertices: Vec<Vector3<f64>>,
+}
+
+/// The scene as a whole.
+///
+/// ```text
+/// P_total = Σ P_b                     L_total = Σ (x_b × P_b + L_b)   about the origin
+/// E_total = Σ E_b
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SystemTotals {
+    pub linear_momentum: Vector3<f64>,
+    pub angular_momentum: Vector3<f64>,
+    pub energy: Energy,
+    pub initial_energy: Energy,
+}
+
+impl SystemTotals {
+    /// The totals of a world now.
+    pub fn of(world: &World) -> SystemTotals {
+        let mut linear_momentum = Vector3::zeros();
+        let mut angular_momentum = Vector3::zeros();
+        for s in world.states() {
+            linear_momentum += s.linear_momentum;
+            angular_momentum += s.position.cross(&s.linear_momentum) + s.angular_momentum;
+        }
+        SystemTotals {
+            linear_momentum,
+            angular_momentum,
+            energy: world.total_energy(),
+            initial_energy: world.initial_total_energy(),
+        }
+    }
 }
 
 impl Snapshot {
-    /// The snapshot of a world after its last phase.
+    /// The snapshot of a world after its last phase, the panels showing the first body.
     pub fn of(world: &World) -> Snapshot {
-        let state = world.state();
-        let body = world.body();
+        Snapshot::of_body(world, 0)
+    }
+
+    /// The snapshot of a world after its last phase, the panels showing body `index`.
+    pub fn of_body(world: &World, index: usize) -> Snapshot {
+        let state = &world.states()[index];
+        let body = &world.bodies()[index];
         let between_frames = matches!(world.last_phase(), None | Some(Phase::Collide));
         let (kinematics, loads) = if between_frames {
             let kinematics = derive(body, state);
@@ -118,11 +126,22 @@ impl Snapshot {
                 world.integrator().loads(body, world.effects(), &kinematics),
             )
         } else {
-            (*world.kinematics(), *world.loads())
+            (*world.kinematics_of(index), *world.loads_of(index))
         };
         let rotation = state.orientation.matrix();
-        let vertices = world.vertices();
+        let vertices = world.vertices_of(index);
         let penetration = deepest_penetration(world.obstacles(), &vertices);
+        let bodies = (0..world.body_count())
+            .map(|i| BodyView {
+                name: world.body_names()[i].clone(),
+                position: world.states()[i].position,
+                vertices: if i == index {
+                    vertices.clone()
+                } else {
+                    world.vertices_of(i)
+                },
+            })
+            .collect();
         Snapshot {
             phase: world.last_phase(),
             next_phase: world.next_phase(),
@@ -144,12 +163,16 @@ impl Snapshot {
             inv_inertia_world: kinematics.inv_inertia_world,
             force: loads.force,
             torque: loads.torque,
-            energy: world.energy_of(state),
-            initial_energy: world.energy_of(world.initial_state()),
+            energy: energy(body, world.effects(), state),
+            initial_energy: energy(body, world.effects(), &world.initial_states()[index]),
             orthonormality_error: state.orientation.orthonormality_error(),
             vertices,
             contacts: world.contacts().to_vec(),
             penetration,
+            body_index: index,
+            body_name: world.body_names()[index].clone(),
+            bodies,
+            system: SystemTotals::of(world),
         }
     }
 }

@@ -1,5 +1,6 @@
-//! The world: one body, its declared effects and obstacles, stepped through the animation loop
-//! one phase at a time.
+//! The world: its bodies, their declared effects and obstacles, stepped through the animation
+//! loop one phase at a time. Every phase runs over every body; the collide phase sees them all
+//! at once (bodies touch each other).
 //!
 //! ```text
 //! derive → forces → integrate → collide      (one frame, dt)
@@ -9,12 +10,14 @@
 //! [`World::snapshot`] and never recompute physics.
 
 use super::body::Body;
+use super::collision::impulse::Scratch;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
 use super::derive::{derive, Kinematics};
-use super::divergence::{Divergence, EnergyGuard};
+use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effects, Loads};
+use super::energy::{energy, Energy};
 use super::integrators::Integrator;
-use super::snapshot::{energy, Energy, Snapshot};
+use super::snapshot::Snapshot;
 use super::state::State;
 use nalgebra::Vector3;
 use std::fmt;
@@ -28,7 +31,7 @@ pub enum Phase {
     Forces,
     /// One integrator step; vertex positions `pᵢ = x + R r₀ᵢ` (Solve).
     Integrate,
-    /// Collision detection and response (a no-op without obstacles).
+    /// Collision detection and response (a no-op when nothing can touch).
     Collide,
 }
 
@@ -71,34 +74,47 @@ impl fmt::Display for Phase {
 /// Everything needed to put a world back exactly where it was (for stepping back in time).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Checkpoint {
-    state: State,
-    /// The state at the start of the last integrate phase (kept only when there are obstacles:
-    /// the collide phase's swept tests are its only reader).
-    before: State,
+    /// One state per body.
+    states: Vec<State>,
+    /// The states at the start of the last integrate phase (kept only when something can
+    /// touch: the collide phase's swept tests and position fix are their only readers).
+    before: Vec<State>,
     step: u64,
     last: Option<Phase>,
-    kinematics: Kinematics,
-    loads: Loads,
+    kinematics: Vec<Kinematics>,
+    loads: Vec<Loads>,
     contacts: Vec<Contact>,
     guard: EnergyGuard,
 }
 
-/// A body in a scene, stepped through the loop.
+/// A body of a world, with its name and its state at t = 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedBody {
+    /// Unique in the world (scene files: `name`, default body1, body2, …).
+    pub name: String,
+    pub body: Body,
+    pub initial: State,
+}
+
+/// Bodies in a scene, stepped through the loop.
 #[derive(Debug, Clone)]
 pub struct World {
-    body: Body,
+    bodies: Vec<Body>,
+    names: Vec<String>,
     effects: Effects,
     obstacles: Vec<Obstacle>,
     contact: Option<ContactModel>,
     integrator: Integrator,
     dt: f64,
-    initial: State,
+    initial: Vec<State>,
+    initial_positions: Vec<Vector3<f64>>,
     now: Checkpoint,
+    scratch: Scratch,
 }
 
 impl World {
-    /// A world at its initial state. `contact` must be given when there are obstacles; the
-    /// orientation is converted to what `integrator` steps.
+    /// A world of one body (named `body1`) at its initial state. `contact` must be given when
+    /// there are obstacles; the orientation is converted to what `integrator` steps.
     pub fn new(
         body: Body,
         effects: Effects,
@@ -108,31 +124,48 @@ impl World {
         dt: f64,
         initial: State,
     ) -> World {
-        let initial = State {
-            orientation: integrator.orientation_for(&initial.orientation),
-            ..initial
-        };
-        let kinematics = derive(&body, &initial);
-        let loads = integrator.loads(&body, &effects, &kinematics);
-        let guard = EnergyGuard::new(&body, &effects, &initial);
-        World {
+        let one = NamedBody {
+            name: "body1".into(),
             body,
+            initial,
+        };
+        World::with_bodies(vec![one], effects, obstacles, contact, integrator, dt)
+    }
+
+    /// A world of several bodies at their initial states. `contact` must be given when
+    /// something can touch (obstacles, or more than one body).
+    pub fn with_bodies(
+        bodies: Vec<NamedBody>,
+        effects: Effects,
+        obstacles: Vec<Obstacle>,
+        contact: Option<ContactModel>,
+        integrator: Integrator,
+        dt: f64,
+    ) -> World {
+        let mut names = Vec::with_capacity(bodies.len());
+        let mut models = Vec::with_capacity(bodies.len());
+        let mut initial = Vec::with_capacity(bodies.len());
+        for b in bodies {
+            names.push(b.name);
+            initial.push(State {
+                orientation: integrator.orientation_for(&b.initial.orientation),
+                ..b.initial
+            });
+            models.push(b.body);
+        }
+        let now = fresh(&models, &effects, integrator, &initial);
+        World {
+            initial_positions: initial.iter().map(|s| s.position).collect(),
+            bodies: models,
+            names,
             effects,
             obstacles,
             contact,
             integrator,
             dt,
             initial,
-            now: Checkpoint {
-                state: initial,
-                before: initial,
-                step: 0,
-                last: None,
-                kinematics,
-                loads,
-                contacts: Vec::new(),
-                guard,
-            },
+            now,
+            scratch: Scratch::default(),
         }
     }
 
@@ -165,71 +198,111 @@ impl World {
         phase
     }
 
-    /// *derive*: I⁻¹_world, ω and v from the current state.
+    /// *derive*: I⁻¹_world, ω and v of every body from its state.
     #[inline]
     fn derive_phase(&mut self) {
-        self.now.kinematics = derive(&self.body, &self.now.state);
+        let now = &mut self.now;
+        for ((k, body), state) in now.kinematics.iter_mut().zip(&self.bodies).zip(&now.states) {
+            *k = derive(body, state);
+        }
     }
 
     /// *forces*: F and τ of the declared effects at the derived velocities (for `euler-seed`,
     /// plus the report's per-vertex torque sum: see [`Integrator::loads`]).
     #[inline]
     fn forces_phase(&mut self) {
-        self.now.loads = self
-            .integrator
-            .loads(&self.body, &self.effects, &self.now.kinematics);
+        let now = &mut self.now;
+        for ((loads, body), k) in now.loads.iter_mut().zip(&self.bodies).zip(&now.kinematics) {
+            *loads = self.integrator.loads(body, &self.effects, k);
+        }
     }
 
-    /// *integrate*: one integrator step (the state before it is kept for swept collisions).
+    /// *integrate*: one integrator step per body (the states before it are kept for the
+    /// collide phase).
     #[inline]
     fn integrate_phase(&mut self) {
+        let can_touch = self.can_touch();
         let now = &mut self.now;
-        if !self.obstacles.is_empty() {
-            now.before = now.state;
+        if can_touch {
+            now.before.clone_from(&now.states);
         }
-        self.integrator.advance(
-            &self.body,
-            &self.effects,
-            &mut now.state,
-            &now.kinematics,
-            &now.loads,
-            self.dt,
-        );
+        let mut potential = 0.0;
+        for (i, body) in self.bodies.iter().enumerate() {
+            let state = &mut now.states[i];
+            self.integrator.advance(
+                body,
+                &self.effects,
+                state,
+                &now.kinematics[i],
+                &now.loads[i],
+                self.dt,
+            );
+            potential += self.effects.potential_energy(body, &state.position);
+        }
         now.step += 1;
-        now.guard.observe(
-            self.effects
-                .potential_energy(&self.body, &now.state.position),
-        );
+        now.guard.observe(potential);
     }
 
-    /// *collide*: detection and response, only when the scene declares obstacles.
+    /// *collide*: detection and response, only when something can touch (obstacles, or
+    /// several bodies) and the scene gives a response.
     #[inline]
     fn collide_phase(&mut self) {
+        let (true, Some(model)) = (self.can_touch(), &self.contact) else {
+            return;
+        };
         let now = &mut self.now;
-        if let (false, Some(model)) = (self.obstacles.is_empty(), &self.contact) {
-            let input = CollideInput {
-                body: &self.body,
-                obstacles: &self.obstacles,
-                model,
-                before: &now.before,
-                loads: &now.loads,
-                initial_position: &self.initial.position,
-                gravity: self.effects.gravity(),
-                dt: self.dt,
-            };
-            let state_before = now.state;
-            let measured = collide(&input, &mut now.state, &mut now.contacts);
-            if now.state != state_before {
-                // The response's own measurement when it has one (the same numbers `energy`
-                // gives), else measured here.
-                let change = measured.unwrap_or_else(|| EnergyChange {
-                    before: energy(&self.body, &self.effects, &state_before),
-                    after: energy(&self.body, &self.effects, &now.state),
-                });
-                now.guard
-                    .after_collision(change.before.total, &change.after);
-            }
+        let input = CollideInput {
+            bodies: &self.bodies,
+            obstacles: &self.obstacles,
+            model,
+            before: &now.before,
+            loads: &now.loads,
+            initial_positions: &self.initial_positions,
+            gravity: self.effects.gravity(),
+            dt: self.dt,
+        };
+        let states_before = if model.response == super::collision::Response::Seed {
+            Some(now.states[0])
+        } else {
+            None
+        };
+        let measured = collide(
+            &input,
+            &mut now.states,
+            &mut now.contacts,
+            &mut self.scratch,
+        );
+        let change = match (measured, states_before) {
+            (Some(change), _) => Some(change),
+            // `seed` measures nothing: measured here when it changed the state.
+            (None, Some(before)) if before != now.states[0] => Some(EnergyChange {
+                before: energy(&self.bodies[0], &self.effects, &before) + self.others_energy(),
+                after: self.total_energy(),
+            }),
+            _ => None,
+        };
+        if let Some(change) = change {
+            self.now
+                .guard
+                .after_collision(change.before.total, &change.after);
         }
+    }
+
+    /// The energy of every body but the first (`seed` changes the first only).
+    fn others_energy(&self) -> Energy {
+        self.bodies
+            .iter()
+            .zip(&self.now.states)
+            .skip(1)
+            .fold(Energy::default(), |e, (b, s)| {
+                e + energy(b, &self.effects, s)
+            })
+    }
+
+    /// Whether anything can touch: obstacles, or more than one body.
+    #[inline]
+    fn can_touch(&self) -> bool {
+        !self.obstacles.is_empty() || self.bodies.len() > 1
     }
 
     /// The phase that [`World::step_phase`] will run next.
@@ -257,19 +330,49 @@ impl World {
         self.dt
     }
 
-    /// The current state.
-    pub fn state(&self) -> &State {
-        &self.now.state
+    /// How many bodies.
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
     }
 
-    /// The state at t = 0.
+    /// The bodies' names, in order.
+    pub fn body_names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The index of the body with this name.
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+
+    /// The current state of the first body.
+    pub fn state(&self) -> &State {
+        &self.now.states[0]
+    }
+
+    /// The current states, one per body.
+    pub fn states(&self) -> &[State] {
+        &self.now.states
+    }
+
+    /// The state of the first body at t = 0.
     pub fn initial_state(&self) -> &State {
+        &self.initial[0]
+    }
+
+    /// The states at t = 0, one per body.
+    pub fn initial_states(&self) -> &[State] {
         &self.initial
     }
 
-    /// The body.
+    /// The first body.
     pub fn body(&self) -> &Body {
-        &self.body
+        &self.bodies[0]
+    }
+
+    /// The bodies, in order.
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
     }
 
     /// The declared effects.
@@ -303,12 +406,15 @@ impl World {
     pub fn set_integrator(&mut self, integrator: Integrator) {
         self.integrator = integrator;
         let now = &mut self.now;
-        now.state.orientation = integrator.orientation_for(&now.state.orientation);
         if now.last != Some(Phase::Collide) && now.last.is_some() {
             now.last = Some(Phase::Collide);
         }
-        now.kinematics = derive(&self.body, &now.state);
-        now.loads = integrator.loads(&self.body, &self.effects, &now.kinematics);
+        for (i, body) in self.bodies.iter().enumerate() {
+            let state = &mut now.states[i];
+            state.orientation = integrator.orientation_for(&state.orientation);
+            now.kinematics[i] = derive(body, state);
+            now.loads[i] = integrator.loads(body, &self.effects, &now.kinematics[i]);
+        }
     }
 
     /// Switches the collision response (takes effect at the next collide phase).
@@ -323,63 +429,163 @@ impl World {
 
     /// Puts the world back exactly at a checkpoint taken from it.
     pub fn restore(&mut self, checkpoint: &Checkpoint) {
-        self.now = checkpoint.clone();
+        self.now.clone_from(checkpoint);
     }
 
     /// Back to t = 0.
     pub fn reset(&mut self) {
-        let fresh = World::new(
-            self.body.clone(),
-            self.effects.clone(),
-            self.obstacles.clone(),
-            self.contact,
-            self.integrator,
-            self.dt,
-            self.initial,
-        );
-        self.now = fresh.now;
+        self.now = fresh(&self.bodies, &self.effects, self.integrator, &self.initial);
     }
 
-    /// Vertex positions `pᵢ = x + R r₀ᵢ` of the current state.
+    /// Vertex positions `pᵢ = x + R r₀ᵢ` of the first body's current state.
     pub fn vertices(&self) -> Vec<Vector3<f64>> {
-        let r = self.now.state.orientation.matrix();
-        let x = self.now.state.position;
-        self.body.points_body.iter().map(|r0| x + r * r0).collect()
+        self.vertices_of(0)
     }
 
-    /// Kinetic, potential and total energy of a state (measured from the state itself).
+    /// Vertex positions `pᵢ = x + R r₀ᵢ` of body `index`'s current state.
+    pub fn vertices_of(&self, index: usize) -> Vec<Vector3<f64>> {
+        let state = &self.now.states[index];
+        let r = state.orientation.matrix();
+        let x = state.position;
+        self.bodies[index]
+            .points_body
+            .iter()
+            .map(|r0| x + r * r0)
+            .collect()
+    }
+
+    /// Kinetic, potential and total energy of a state of the first body (measured from the
+    /// state itself).
     pub fn energy_of(&self, state: &State) -> Energy {
-        energy(&self.body, &self.effects, state)
+        energy(&self.bodies[0], &self.effects, state)
+    }
+
+    /// Energy of body `index` now.
+    pub fn body_energy(&self, index: usize) -> Energy {
+        energy(&self.bodies[index], &self.effects, &self.now.states[index])
+    }
+
+    /// The whole scene's energy now: the sum over its bodies.
+    pub fn total_energy(&self) -> Energy {
+        total_energy(&self.bodies, &self.effects, &self.now.states)
+    }
+
+    /// The whole scene's energy at t = 0.
+    pub fn initial_total_energy(&self) -> Energy {
+        total_energy(&self.bodies, &self.effects, &self.initial)
     }
 
     /// A non-finite or runaway state, if the simulation has diverged.
     pub fn divergence(&self) -> Option<Divergence> {
-        let energy = self.energy_of(&self.now.state);
-        let turn_per_step = derive(&self.body, &self.now.state).angular_velocity.norm() * self.dt;
-        self.now
-            .guard
-            .check(&self.now.state, &energy, turn_per_step)
-            .map(|quantity| Divergence {
-                step: self.now.step,
-                time: self.time(),
-                quantity,
-                integrator: self.integrator,
-                dt: self.dt,
-            })
+        let named = |quantity: String, body: usize| {
+            if self.bodies.len() > 1 {
+                format!("{quantity} (body {})", self.names[body])
+            } else {
+                quantity
+            }
+        };
+        let quantity = self
+            .now
+            .states
+            .iter()
+            .enumerate()
+            .find_map(|(i, s)| not_finite(s).map(|q| named(q.to_string(), i)))
+            .or_else(|| {
+                let (turn, fastest) = self
+                    .bodies
+                    .iter()
+                    .zip(&self.now.states)
+                    .map(|(b, s)| derive(b, s).angular_velocity.norm() * self.dt)
+                    .enumerate()
+                    .fold(
+                        (0.0, 0),
+                        |best, (i, t)| if t > best.0 { (t, i) } else { best },
+                    );
+                self.now.guard.check(&self.total_energy(), turn).map(|q| {
+                    if q.starts_with("rotation") {
+                        named(q, fastest)
+                    } else {
+                        q
+                    }
+                })
+            })?;
+        Some(Divergence {
+            step: self.now.step,
+            time: self.time(),
+            quantity,
+            integrator: self.integrator,
+            dt: self.dt,
+        })
     }
 
-    /// Every quantity a user is shown, after the last phase.
+    /// Every quantity a user is shown, after the last phase (the panels show the first body).
     pub fn snapshot(&self) -> Snapshot {
         Snapshot::of(self)
     }
 
-    /// The derive phase's results for the current frame.
-    pub fn kinematics(&self) -> &Kinematics {
-        &self.now.kinematics
+    /// The same, with the panels showing body `index`.
+    pub fn snapshot_of(&self, index: usize) -> Snapshot {
+        Snapshot::of_body(self, index)
     }
 
-    /// The forces phase's results for the current frame.
+    /// The derive phase's results for the current frame (first body).
+    pub fn kinematics(&self) -> &Kinematics {
+        &self.now.kinematics[0]
+    }
+
+    /// The derive phase's results for body `index`.
+    pub fn kinematics_of(&self, index: usize) -> &Kinematics {
+        &self.now.kinematics[index]
+    }
+
+    /// The forces phase's results for the current frame (first body).
     pub fn loads(&self) -> &Loads {
-        &self.now.loads
+        &self.now.loads[0]
+    }
+
+    /// The forces phase's results for body `index`.
+    pub fn loads_of(&self, index: usize) -> &Loads {
+        &self.now.loads[index]
+    }
+}
+
+/// Σ over bodies of their energies.
+fn total_energy(bodies: &[Body], effects: &Effects, states: &[State]) -> Energy {
+    bodies
+        .iter()
+        .zip(states)
+        .fold(Energy::default(), |e, (b, s)| e + energy(b, effects, s))
+}
+
+/// The checkpoint of a world at its initial states.
+fn fresh(
+    bodies: &[Body],
+    effects: &Effects,
+    integrator: Integrator,
+    initial: &[State],
+) -> Checkpoint {
+    let kinematics: Vec<Kinematics> = bodies
+        .iter()
+        .zip(initial)
+        .map(|(b, s)| derive(b, s))
+        .collect();
+    let loads = bodies
+        .iter()
+        .zip(&kinematics)
+        .map(|(b, k)| integrator.loads(b, effects, k))
+        .collect();
+    let weight = effects.gravity().map_or(0.0, |g| {
+        bodies.iter().map(|b| b.mass * g.norm() * b.radius).sum()
+    });
+    let guard = EnergyGuard::new(&total_energy(bodies, effects, initial), weight);
+    Checkpoint {
+        states: initial.to_vec(),
+        before: initial.to_vec(),
+        step: 0,
+        last: None,
+        kinematics,
+        loads,
+        contacts: Vec::new(),
+        guard,
     }
 }

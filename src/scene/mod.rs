@@ -12,10 +12,11 @@ mod raw;
 pub use error::{did_you_mean, LoadError};
 
 use crate::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State, World,
+    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
+    State, World,
 };
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
-use raw::{RawBody, RawLesson, RawObstacle, RawScene, Vec3};
+use raw::{RawBodies, RawBody, RawLesson, RawObstacle, RawScene, Vec3};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -40,6 +41,15 @@ pub struct Scene {
     pub effects: Effects,
     pub contact: Option<ContactModel>,
     pub obstacles: Vec<Obstacle>,
+    /// The bodies, in file order (at least one).
+    pub bodies: Vec<SceneBody>,
+}
+
+/// A body of a scene: `[body]` or one `[[body]]`.
+#[derive(Debug, Clone)]
+pub struct SceneBody {
+    /// Unique in the file (default body1, body2, …).
+    pub name: String,
     pub body: Body,
     /// The body's shape name as written (box, points, mesh).
     pub shape: String,
@@ -47,17 +57,40 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// A world at the scene's initial state.
+    /// A world at the scene's initial state: the one place a scene becomes a world.
     pub fn world(&self) -> World {
-        World::new(
-            self.body.clone(),
+        self.world_with(self.integrator, self.dt)
+    }
+
+    /// The same world stepped by another integrator or time step (the study's runs).
+    pub fn world_with(&self, integrator: Integrator, dt: f64) -> World {
+        let bodies = self
+            .bodies
+            .iter()
+            .map(|b| NamedBody {
+                name: b.name.clone(),
+                body: b.body.clone(),
+                initial: b.initial,
+            })
+            .collect();
+        World::with_bodies(
+            bodies,
             self.effects.clone(),
             self.obstacles.clone(),
             self.contact,
-            self.integrator,
-            self.dt,
-            self.initial,
+            integrator,
+            dt,
         )
+    }
+
+    /// The first body (the one `run` prints by default).
+    pub fn first(&self) -> &SceneBody {
+        &self.bodies[0]
+    }
+
+    /// The index of the body with this name.
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.name == name)
     }
 }
 
@@ -153,8 +186,9 @@ impl Validator<'_> {
     }
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
+        let bodies = self.bodies(raw.body)?;
         let title = raw.title.into_inner();
-        let mut scene = self.scene(raw.scene.into_inner(), raw.body, &raw.obstacles)?;
+        let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
         scene.obstacles = raw
             .obstacles
             .iter()
@@ -237,12 +271,77 @@ impl Validator<'_> {
             .map_or(Ok(Vector3::zeros()), |v| self.vector(v, what))
     }
 
+    /// `[body]` or `[[body]]`: names unique (default body1, body2, …).
+    fn bodies(
+        &self,
+        raw: Option<Spanned<RawBodies>>,
+    ) -> Result<Vec<(SceneBody, Range<usize>)>, LoadError> {
+        let Some(raw) = raw else {
+            return Err(self.error(
+                0..0,
+                "missing table `[body]`: a scene file needs `title`, [scene] and [body] (or [[body]])",
+            ));
+        };
+        let span = raw.span();
+        let list = match raw.into_inner() {
+            RawBodies::One(body) => vec![Spanned::new(span.clone(), *body)],
+            RawBodies::Many(list) => list,
+        };
+        if list.is_empty() {
+            return Err(self.error(span, "`body` is empty: give at least one [[body]]"));
+        }
+        let mut bodies: Vec<(SceneBody, Range<usize>)> = Vec::with_capacity(list.len());
+        for (i, raw) in list.into_iter().enumerate() {
+            let span = raw.span();
+            let name = raw
+                .get_ref()
+                .name
+                .as_ref()
+                .map(|n| (n.get_ref().clone(), n.span()));
+            let name = match name {
+                Some((name, at)) => {
+                    if name.trim().is_empty() {
+                        return Err(self.error(at, "body `name` must not be empty"));
+                    }
+                    if bodies.iter().any(|(b, _)| b.name == name) {
+                        return Err(self.error(
+                            at,
+                            format!(
+                                "duplicate body name `{name}`: each [[body]] needs its own name"
+                            ),
+                        ));
+                    }
+                    name
+                }
+                None => {
+                    let mut n = i + 1;
+                    while bodies.iter().any(|(b, _)| b.name == format!("body{n}")) {
+                        n += 1;
+                    }
+                    format!("body{n}")
+                }
+            };
+            let (body, shape, initial) = self.body(raw)?;
+            bodies.push((
+                SceneBody {
+                    name,
+                    body,
+                    shape,
+                    initial,
+                },
+                span,
+            ));
+        }
+        Ok(bodies)
+    }
+
     fn scene(
         &self,
-        raw: RawScene,
-        body: Spanned<RawBody>,
+        raw: Spanned<RawScene>,
+        bodies: Vec<(SceneBody, Range<usize>)>,
         obstacles: &[Spanned<RawObstacle>],
     ) -> Result<Scene, LoadError> {
+        let raw = raw.into_inner();
         let dt = self.positive(&raw.dt, "dt")?;
         let duration = raw
             .duration
@@ -290,8 +389,27 @@ impl Validator<'_> {
                      restitution = 0.4, friction = 0.5 }` to [scene]",
                 ));
             }
+            if let Some((_, second)) = bodies.get(1) {
+                return Err(self.error(
+                    second.clone(),
+                    "several bodies need a collision response: add `contact = { response = \
+                     \"impulse\", restitution = 0.4, friction = 0.5 }` to [scene]",
+                ));
+            }
         }
-        let (body_model, shape, initial) = self.body(body)?;
+        if let (Some(model), Some(c)) = (&contact, &raw.contact) {
+            if model.response == Response::Seed && bodies.len() > 1 {
+                let at = c.get_ref().response.span();
+                return Err(self.error(
+                    at,
+                    format!(
+                        "the `seed` response knows one body and fixed obstacles only, and this \
+                         scene has {} bodies: use response = \"impulse\"",
+                        bodies.len()
+                    ),
+                ));
+            }
+        }
         Ok(Scene {
             dt,
             duration,
@@ -299,9 +417,7 @@ impl Validator<'_> {
             effects: Effects::new(effects),
             contact,
             obstacles: Vec::new(),
-            body: body_model,
-            shape,
-            initial,
+            bodies: bodies.into_iter().map(|(b, _)| b).collect(),
         })
     }
 

@@ -13,7 +13,8 @@ pub struct RawLesson {
     pub title: Spanned<String>,
     pub summary: Option<String>,
     pub scene: Spanned<RawScene>,
-    pub body: Spanned<RawBody>,
+    /// `[body]` (one) or `[[body]]` (one or more).
+    pub body: Option<Spanned<RawBodies>>,
     #[serde(default, rename = "obstacle")]
     pub obstacles: Vec<Spanned<RawObstacle>>,
     #[serde(default, rename = "page")]
@@ -46,9 +47,45 @@ pub struct RawContact {
     pub friction: Option<Spanned<f64>>,
 }
 
+/// `[body]`, a table, or `[[body]]`, an array of tables.
+#[derive(Debug)]
+pub enum RawBodies {
+    One(Box<RawBody>),
+    Many(Vec<Spanned<RawBody>>),
+}
+
+impl<'de> Deserialize<'de> for RawBodies {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+        struct Either;
+        impl<'de> serde::de::Visitor<'de> for Either {
+            type Value = RawBodies;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a table [body] or an array of tables [[body]]")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<RawBodies, A::Error> {
+                RawBody::deserialize(MapAccessDeserializer::new(map))
+                    .map(|b| RawBodies::One(Box::new(b)))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> Result<RawBodies, A::Error> {
+                Vec::deserialize(SeqAccessDeserializer::new(seq)).map(RawBodies::Many)
+            }
+        }
+        deserializer.deserialize_any(Either)
+    }
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawBody {
+    /// `[[body]]` only: unique in the file (default body1, body2, …).
+    pub name: Option<Spanned<String>>,
     pub shape: Spanned<String>,
     pub size: Option<Vec3>,
     pub points: Option<Spanned<Vec<[f64; 3]>>>,

@@ -78,15 +78,7 @@ pub struct Timing {
 
 /// A world of `scene` stepped by `integrator` at `dt`.
 pub fn world_for(scene: &Scene, integrator: Integrator, dt: f64) -> World {
-    World::new(
-        scene.body.clone(),
-        scene.effects.clone(),
-        scene.obstacles.clone(),
-        scene.contact,
-        integrator,
-        dt,
-        scene.initial,
-    )
+    scene.world_with(integrator, dt)
 }
 
 /// The sample times of a run of length `duration`: every `interval`, and the end.
@@ -191,7 +183,7 @@ fn accuracy_run(
 ) {
     let mut world = world_for(scene, integrator, dt);
     let contact = !scene.obstacles.is_empty();
-    let radius = scene.body.radius.max(f64::MIN_POSITIVE);
+    let radius = scene.first().body.radius.max(f64::MIN_POSITIVE);
     let start = world.snapshot();
     let (e0, l0) = (start.energy.total, start.angular_momentum.norm());
     let relative = |x: f64, x0: f64| {

@@ -8,7 +8,7 @@
 //!   Not independent of the integrators under study — the output says so.
 
 use crate::physics::free_top::FreeBody;
-use crate::physics::{Effect, Integrator, World};
+use crate::physics::{Effect, Integrator};
 use crate::scene::Scene;
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -52,9 +52,9 @@ pub fn has_closed_form(scene: &Scene) -> bool {
 impl Reference {
     /// The reference for `scene`, sampled at `times` (numeric references only).
     pub fn for_scene(scene: &Scene, times: &[f64], smallest_dt: f64) -> Reference {
-        let initial = &scene.initial;
+        let initial = &scene.first().initial;
         if has_closed_form(scene) {
-            let body = &scene.body;
+            let body = &scene.first().body;
             Reference::Exact {
                 free: Box::new(FreeBody::new(
                     body,
@@ -68,15 +68,7 @@ impl Reference {
         } else {
             let integrator = Integrator::Rk4;
             let dt = smallest_dt / 10.0;
-            let mut world = World::new(
-                scene.body.clone(),
-                scene.effects.clone(),
-                scene.obstacles.clone(),
-                scene.contact,
-                integrator,
-                dt,
-                *initial,
-            );
+            let mut world = scene.world_with(integrator, dt);
             let samples = times
                 .iter()
                 .map(|&t| {

@@ -123,7 +123,11 @@ impl App {
     pub fn new(lesson: Lesson, options: Options) -> App {
         let world = lesson.scene.world();
         let snapshot = world.snapshot();
-        let region = Region::initial(&lesson.scene.body, &snapshot.vertices, world.obstacles());
+        let region = Region::initial(
+            &lesson.scene.first().body,
+            &snapshot.vertices,
+            world.obstacles(),
+        );
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
         let real_time = 1.0 / lesson.scene.dt;
         let speed = SPEEDS
@@ -434,7 +438,7 @@ impl App {
         self.running = false;
         self.snapshot = self.world.snapshot();
         self.region = Region::initial(
-            &self.lesson.scene.body,
+            &self.lesson.scene.first().body,
             &self.snapshot.vertices,
             self.world.obstacles(),
         );

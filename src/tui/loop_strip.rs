@@ -4,7 +4,7 @@
 
 use super::app::App;
 use crate::physics::{Effect, Integrator, Phase, Response, Snapshot, World};
-use crate::tables::number_plain;
+use crate::tables::{contact_label, number_plain};
 use nalgebra::Vector3;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -227,11 +227,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             ));
             for c in s.contacts.iter().take(2) {
                 lines.push(line(
-                    format!(
-                        "v{} in {}:",
-                        c.vertex,
-                        obstacles.get(c.obstacle).map_or("?", |o| o.kind())
-                    ),
+                    format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
                     format!(
                         " n = {}, uₙ = {}, k = {}, J = {} N·s",
                         vector(&c.normal),
@@ -249,11 +245,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             ));
             for c in s.contacts.iter().take(2) {
                 lines.push(line(
-                    format!(
-                        "v{} in {}:",
-                        c.vertex,
-                        obstacles.get(c.obstacle).map_or("?", |o| o.kind())
-                    ),
+                    format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
                     format!(
                         " d = {} m, n = {}, ΔP = −1.4·P = {} N·s",
                         number_plain(c.depth),

@@ -3,7 +3,7 @@
 //!
 //! # One contact
 //!
-//! A vertex at lever arm r from the barycenter, contact normal n (out of the obstacle). An
+//! A point at lever arm r from the barycenter, contact normal n (out of the obstacle). An
 //! impulse j n there changes the momenta by `ΔP = j n`, `ΔL = r × (j n)`, so the normal velocity
 //! of the point `u_n = (v + ω × r)·n` changes by `j·k` with
 //!
@@ -11,6 +11,21 @@
 //! k = 1/M + n·((I⁻¹(r×n)) × r) = 1/M + (r×n)·I⁻¹(r×n)       (the denominator, 1/kg)
 //! j = −(1 + e) u_n / k                                      (Newton's law for one contact)
 //! ```
+//!
+//! # Two bodies
+//!
+//! Between bodies A and B (n from B to A) the impulse is j n on A at r_A and −j n on B at r_B:
+//! equal and opposite, so the total linear momentum `P_A + P_B` is unchanged, and the total
+//! angular momentum about any point too (`r_A × jn + x_A × jn − r_B × jn − x_B × jn = 0` since
+//! both act at the same point). The relative normal velocity
+//! `u_n = (v_A + ω_A × r_A − v_B − ω_B × r_B)·n` changes by `j·k` with
+//!
+//! ```text
+//! k = 1/M_A + (r_A×n)·I_A⁻¹(r_A×n) + 1/M_B + (r_B×n)·I_B⁻¹(r_B×n)
+//! ```
+//!
+//! and every stage below is written for such two-sided rows (an obstacle is a B of infinite
+//! mass). A resting body, a stack, a body on a body: one solver.
 //!
 //! # Many contacts (a face landing flat has 4), in three stages
 //!
@@ -69,27 +84,23 @@
 //! bounces (it is below the bounce speed) and is never pushed out (it is not inside). One that
 //! received no impulse is dropped from the reported contacts.
 //!
-//! # Position correction
+//! # Positions
 //!
-//! The penetration left by the step is removed by *moving* the body, never by biasing
-//! velocities (a velocity bias — Baumgarte — turns penetration into kinetic energy and makes
-//! resting bodies jitter). The body is translated by the shortest Δx with `nᵢ·Δx ≥ dᵢ` for
-//! every contact (the unique shortest one, by Hildreth's method; for the ground alone,
-//! `Δx = max dᵢ · y`). A translation
-//! changes neither P nor L, so no kinetic energy, and along the contact normal only, so a body
-//! at rest on a face cannot creep sideways. (Rotating the body instead would change
-//! `I⁻¹_world` and so `½ L·I⁻¹L`.)
+//! After the velocities, `position` moves the bodies: a body that did not bounce advances from
+//! where it was at the start of the step with its *corrected* velocity (no creep at rest, on a
+//! slope or on a sphere), and what penetration is left is removed by translation (see there).
 
-use super::detect::{inside, near, swept};
-use super::{CollideInput, Contact, EnergyChange, Obstacle};
-use crate::physics::derive::derive_with_rotation;
-use crate::physics::snapshot::{kinetic_energy_with, Energy};
+use super::contacts;
+use super::position::{self, Fix};
+use super::{CollideInput, Contact, EnergyChange};
+use crate::physics::derive::derive;
+use crate::physics::energy::{kinetic_energy_with, Energy};
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
 /// Contacts approaching slower than this many `|g| dt` do not bounce: one step of free fall
 /// gives an approach speed of `|g| dt`, so a resting body is always below the threshold.
-/// Vertices within `BOUNCE_STEPS·|g|·dt²` of a surface are speculative contacts.
+/// Points within `BOUNCE_STEPS·|g|·dt²` of a surface are speculative contacts.
 pub const BOUNCE_STEPS: f64 = 3.0;
 
 /// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
@@ -99,10 +110,139 @@ pub const TOLERANCE: f64 = 1e-10;
 /// At most this many Gauss–Seidel sweeps per stage.
 pub const MAX_SWEEPS: usize = 200;
 
+/// Most contacts in a step to try the direct solve for.
+pub const DIRECT_MAX: usize = 8;
+
+/// Buffers reused from step to step (nothing in them outlives a collide phase).
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    rows: Vec<Row>,
+    tangents: Vec<[Direction; 2]>,
+    motions: Vec<Motion>,
+    previous: Vec<Contact>,
+    fix: position::Scratch,
+}
+
+/// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
+#[derive(Debug, Clone, Copy, Default)]
+struct End {
+    body: usize,
+    rd: Vector3<f64>,
+    w: Vector3<f64>,
+}
+
+/// A direction d at a contact: +d on body A at lever r_A, −d on body B (if any) at r_B, and the
+/// effective inverse mass k along it.
+#[derive(Debug, Clone, Copy, Default)]
+struct Direction {
+    d: Vector3<f64>,
+    a: End,
+    b: Option<End>,
+    k: f64,
+    /// 1/k, for the sweeps only: NaN until [`Direction::with_inverse`] (the direct solve, the
+    /// usual resting step, never divides by k).
+    inv_k: f64,
+}
+
+impl Direction {
+    fn new(d: Vector3<f64>, contact: &Contact, motions: &[Motion]) -> Self {
+        let end = |body: usize, lever: &Vector3<f64>, d: Vector3<f64>| {
+            let m = &motions[body];
+            let rd = lever.cross(&d);
+            let w = m.inv_inertia * rd;
+            (End { body, rd, w }, m.inv_mass + rd.dot(&w))
+        };
+        let (a, mut k) = end(contact.body, &contact.lever, d);
+        let b = contact.other_body().map(|b| {
+            let (end, kb) = end(b, &contact.lever_other, -d);
+            k += kb;
+            end
+        });
+        Direction {
+            d,
+            a,
+            b,
+            k,
+            inv_k: f64::NAN,
+        }
+    }
+
+    /// Fills in 1/k.
+    fn with_inverse(&mut self) {
+        self.inv_k = 1.0 / self.k;
+    }
+
+    /// `Σ over the ends both directions share a body: (±d)·(±d')/M + rd·w'`: the coupling of
+    /// two rows in the contact-space inverse mass A.
+    fn coupling(&self, other: &Direction, motions: &[Motion]) -> f64 {
+        let mut sum = 0.0;
+        for (e, se) in self.ends() {
+            for (f, sf) in other.ends() {
+                if e.body == f.body {
+                    sum +=
+                        se * sf * self.d.dot(&other.d) * motions[e.body].inv_mass + e.rd.dot(&f.w);
+                }
+            }
+        }
+        sum
+    }
+
+    /// The ends with the sign of d at each.
+    fn ends(&self) -> impl Iterator<Item = (&End, f64)> {
+        std::iter::once((&self.a, 1.0)).chain(self.b.as_ref().map(|b| (b, -1.0)))
+    }
+}
+
+/// A body's velocities while impulses are applied: v, ω and L (ω = I⁻¹ L kept in step).
+#[derive(Debug, Clone, Copy)]
+struct Motion {
+    v: Vector3<f64>,
+    omega: Vector3<f64>,
+    l: Vector3<f64>,
+    inv_mass: f64,
+    inv_inertia: Matrix3<f64>,
+    /// Whether an impulse touched this body.
+    touched: bool,
+    /// Whether a restitution impulse acted on it (then its position is not re-advanced).
+    bounced: bool,
+}
+
+impl Motion {
+    /// `½ M v·v + ½ ω·L`.
+    fn kinetic(&self) -> f64 {
+        0.5 * self.v.norm_squared() / self.inv_mass + 0.5 * self.omega.dot(&self.l)
+    }
+}
+
+/// Velocity of the contact point along the direction, A relative to B:
+/// `d·v_A + (r_A×d)·ω_A − d·v_B + (r_B×(−d))·ω_B`.
+#[inline]
+fn along(dir: &Direction, motions: &[Motion]) -> f64 {
+    let a = &motions[dir.a.body];
+    let mut u = dir.d.dot(&a.v) + dir.a.rd.dot(&a.omega);
+    if let Some(b) = &dir.b {
+        let m = &motions[b.body];
+        u += -dir.d.dot(&m.v) + b.rd.dot(&m.omega);
+    }
+    u
+}
+
+/// Applies the impulse j d at the contact: +j d to A, −j d to B.
+#[inline]
+fn apply(j: f64, dir: &Direction, motions: &mut [Motion]) {
+    for (end, sign) in dir.ends() {
+        let m = &mut motions[end.body];
+        m.v += dir.d * (sign * j * m.inv_mass);
+        m.l += end.rd * j;
+        m.omega += end.w * j;
+        m.touched |= j != 0.0;
+    }
+}
+
 /// One contact as the solver sees it.
 #[derive(Debug, Clone, Copy, Default)]
 struct Row {
-    /// Unit normal n, r × n and I⁻¹(r × n), and k = 1/M + (r×n)·I⁻¹(r×n).
+    /// Unit normal n with its ends and k.
     normal: Direction,
     /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
     lambda: f64,
@@ -118,155 +258,88 @@ struct Row {
     /// The normal velocity the contact may keep: gap/dt for a speculative contact (it may
     /// close its gap within the next step, no more), 0 for a touching one, m/s.
     bias: f64,
+    /// The last step's normal impulse at the same contact, if any (warm start of the sweeps).
+    warm: f64,
 }
 
-/// A direction d at lever arm r: d, r × d, I⁻¹(r × d) and the effective inverse mass along it.
-#[derive(Debug, Clone, Copy, Default)]
-struct Direction {
-    d: Vector3<f64>,
-    rd: Vector3<f64>,
-    w: Vector3<f64>,
-    k: f64,
-    /// 1/k, for the sweeps only: NaN until [`Direction::with_inverse`] (the direct solve, the
-    /// usual resting step, never divides by k).
-    inv_k: f64,
-}
-
-impl Direction {
-    fn new(
-        d: Vector3<f64>,
-        lever: &Vector3<f64>,
-        inv_inertia: &Matrix3<f64>,
-        inv_mass: f64,
-    ) -> Self {
-        let rd = lever.cross(&d);
-        let w = inv_inertia * rd;
-        let k = inv_mass + rd.dot(&w);
-        Direction {
-            d,
-            rd,
-            w,
-            k,
-            inv_k: f64::NAN,
-        }
-    }
-
-    /// Fills in 1/k.
-    fn with_inverse(&mut self) {
-        self.inv_k = 1.0 / self.k;
-    }
-}
-
-/// The body's velocities while impulses are applied: v, ω and L (ω = I⁻¹ L kept in step).
-#[derive(Debug, Clone, Copy)]
-struct Motion {
-    v: Vector3<f64>,
-    omega: Vector3<f64>,
-    l: Vector3<f64>,
-    inv_mass: f64,
-}
-
-impl Motion {
-    /// Velocity of the contact point along the direction: `d·v + (r×d)·ω`.
-    fn along(&self, dir: &Direction) -> f64 {
-        dir.d.dot(&self.v) + dir.rd.dot(&self.omega)
-    }
-
-    /// Applies the impulse j d at the contact point.
-    fn apply(&mut self, j: f64, dir: &Direction) {
-        self.v += dir.d * (j * self.inv_mass);
-        self.l += dir.rd * j;
-        self.omega += dir.w * j;
-    }
-}
-
-/// Detects contacts (swept test, plus the speculative ones) and runs the response on `state`.
+/// Detects contacts (swept vertex tests, contact geometry, speculative rows) and runs the
+/// response on `states`. On entry `contacts` holds the last step's contacts (they warm-start
+/// the sweeps).
 ///
-/// Returns the energy before and after (None when there was no contact: the state is unchanged).
+/// Returns the energy of all bodies before and after (None when nothing touched: the states
+/// are unchanged).
 pub fn respond(
     input: &CollideInput,
-    state: &mut State,
+    states: &mut [State],
     contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
 ) -> Option<EnergyChange> {
-    let body = input.body;
-    let rotation_now = state.orientation.matrix();
-    // The start of the step, for the swept tests (the ground needs none).
-    let swept_tests = input
-        .obstacles
-        .iter()
-        .any(|o| !matches!(o, Obstacle::Ground { .. }));
-    let rotation_before = if swept_tests {
-        input.before.orientation.matrix()
-    } else {
-        Matrix3::identity()
-    };
     let bounce_speed = input
         .gravity
         .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
-    // Vertices closer than this to a surface are speculative contacts (module doc).
+    // Points closer than this to a surface are speculative contacts (module doc).
     let margin = bounce_speed * input.dt;
-    let mut speculative = false;
-    for (index, obstacle) in input.obstacles.iter().enumerate() {
-        for (vertex, r0) in body.points_body.iter().enumerate() {
-            let b = state.position + rotation_now * r0;
-            // The ground needs no sweep (see `detect`): skip the vertex's start point.
-            let hit = if let Obstacle::Ground { .. } = obstacle {
-                inside(obstacle, &b)
-            } else {
-                swept(
-                    obstacle,
-                    &(input.before.position + rotation_before * r0),
-                    &b,
-                )
-            };
-            let (depth, normal) = match hit {
-                Some(hit) => (hit.depth, hit.normal),
-                None => match near(obstacle, &b, margin) {
-                    Some((gap, normal)) => {
-                        speculative = true;
-                        (-gap, normal)
-                    }
-                    None => continue,
-                },
-            };
-            contacts.push(Contact {
-                vertex,
-                obstacle: index,
-                point: b,
-                depth,
-                normal,
-                lever: b - state.position,
-                normal_velocity: 0.0,
-                denominator: 0.0,
-                impulse: Vector3::zeros(),
-            });
-        }
-    }
-    if !contacts.iter().any(|c| c.depth > 0.0) {
+    std::mem::swap(&mut scratch.previous, contacts);
+    if !contacts::find(input, states, margin, contacts) {
         // Nothing has touched: speculative contacts alone never act.
         contacts.clear();
         return None;
     }
-    // I⁻¹_world exactly as the derive phase (and the energy panel) computes it.
-    let inv_inertia = derive_with_rotation(body, state, rotation_now).inv_inertia_world;
-    if speculative {
-        // A vertex approaching at bouncing speed is left to touch and bounce next step.
-        let v = state.linear_momentum * body.inv_mass;
-        let omega = inv_inertia * state.angular_momentum;
-        contacts.retain(|c| {
-            c.depth > 0.0 || (v + omega.cross(&c.lever)).dot(&c.normal) >= -bounce_speed
-        });
+    // Every body's velocities, with I⁻¹_world exactly as the derive phase (and the energy
+    // panel) computes it.
+    let motions = &mut scratch.motions;
+    motions.clear();
+    motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
+        let k = derive(body, state);
+        Motion {
+            v: k.velocity,
+            omega: k.angular_velocity,
+            l: state.angular_momentum,
+            inv_mass: body.inv_mass,
+            inv_inertia: k.inv_inertia_world,
+            touched: false,
+            bounced: false,
+        }
+    }));
+    if contacts.iter().any(|c| c.depth <= 0.0) {
+        // A point approaching at bouncing speed is left to touch and bounce next step.
+        contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
     }
-    let kinetic = |s: &State| {
-        kinetic_energy_with(body, &inv_inertia, &s.linear_momentum, &s.angular_momentum)
+    let kinetic = |i: usize, s: &State, inv_inertia: &Matrix3<f64>| {
+        kinetic_energy_with(
+            &input.bodies[i],
+            inv_inertia,
+            &s.linear_momentum,
+            &s.angular_momentum,
+        )
     };
-    let potential = |x: &Vector3<f64>| input.gravity.map_or(0.0, |g| -body.mass * g.dot(x));
-    let kinetic_before = kinetic(state);
-    let potential_before = potential(&state.position);
+    let potential = |i: usize, x: &Vector3<f64>| {
+        input
+            .gravity
+            .map_or(0.0, |g| -input.bodies[i].mass * g.dot(x))
+    };
+    let total = |states: &[State], motions: &[Motion]| {
+        let mut e = Energy::default();
+        for (i, s) in states.iter().enumerate() {
+            let k = kinetic(i, s, &motions[i].inv_inertia);
+            let v = potential(i, &s.position);
+            e = e + Energy {
+                kinetic: k,
+                potential: v,
+                total: k + v,
+            };
+        }
+        e
+    };
+    let before = total(states, motions);
     // The push-out depends on the geometry only: known before the velocities are solved, so
     // the work it does against gravity can be paid from the kinetic energy.
-    let shift = push_out(contacts);
-    let lift = (potential(&(state.position + shift)) - potential_before).max(0.0);
+    let fix = Fix {
+        bodies: input.bodies,
+        before: input.before,
+        dt: input.dt,
+    };
+    let lift = fix.lift(contacts, states, &potential, &mut scratch.fix);
     let settings = Settings {
         restitution: input.model.restitution,
         friction: input.model.friction,
@@ -274,35 +347,66 @@ pub fn respond(
         dt: input.dt,
         lift,
     };
-    resolve(body.inv_mass, &inv_inertia, &settings, state, contacts);
-    state.position += shift;
+    let Scratch {
+        rows,
+        tangents,
+        motions,
+        previous,
+        fix: fs,
+    } = scratch;
+    let buffers = Buffers {
+        rows,
+        tangents,
+        motions,
+    };
+    resolve(&settings, contacts, previous, buffers);
+    for (state, m) in states.iter_mut().zip(motions.iter()) {
+        if m.touched {
+            state.linear_momentum = m.v / m.inv_mass;
+            state.angular_momentum = m.l;
+        }
+    }
+    let advanced: Vec<bool> = motions.iter().map(|m| m.touched && !m.bounced).collect();
+    fix.apply(contacts, states, &advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
-    let mut kinetic_after = kinetic(state);
+    let mut after = total(states, motions);
     for _ in 0..4 {
-        if kinetic_after <= kinetic_before {
+        if after.kinetic <= before.kinetic {
             break;
         }
-        let scale = (kinetic_before / kinetic_after).sqrt() * (1.0 - 4.0 * f64::EPSILON);
-        state.linear_momentum *= scale;
-        state.angular_momentum *= scale;
-        kinetic_after = kinetic(state);
+        let scale = (before.kinetic / after.kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
+        for (state, m) in states.iter_mut().zip(motions.iter()) {
+            if m.touched {
+                state.linear_momentum *= scale;
+                state.angular_momentum *= scale;
+            }
+        }
+        after = total(states, motions);
     }
     // Speculative contacts that were not needed are not contacts.
-    if speculative {
-        contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
-    }
-    let measured = |kinetic: f64, potential: f64| Energy {
-        kinetic,
-        potential,
-        total: kinetic + potential,
-    };
-    Some(EnergyChange {
-        before: measured(kinetic_before, potential_before),
-        after: measured(kinetic_after, potential(&state.position)),
-    })
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    Some(EnergyChange { before, after })
 }
 
-/// What the velocity stages need besides the body and the contacts.
+/// The relative velocity of a contact point along its normal (A relative to B).
+fn relative_velocity(c: &Contact, motions: &[Motion]) -> f64 {
+    let a = &motions[c.body];
+    let mut u = a.v + a.omega.cross(&c.lever);
+    if let Some(b) = c.other_body() {
+        let m = &motions[b];
+        u -= m.v + m.omega.cross(&c.lever_other);
+    }
+    u.dot(&c.normal)
+}
+
+/// The scratch buffers the velocity stages use.
+struct Buffers<'a> {
+    rows: &'a mut Vec<Row>,
+    tangents: &'a mut Vec<[Direction; 2]>,
+    motions: &'a mut Vec<Motion>,
+}
+
+/// What the velocity stages need besides the bodies and the contacts.
 #[derive(Debug, Clone, Copy)]
 struct Settings {
     /// Coefficient of restitution e and Coulomb friction μ.
@@ -316,15 +420,9 @@ struct Settings {
     lift: f64,
 }
 
-/// The velocity stages (module doc) on `state` for `contacts` (point, depth, normal and lever
-/// filled in); fills in each contact's normal velocity, denominator and impulse.
-fn resolve(
-    inv_mass: f64,
-    inv_inertia: &Matrix3<f64>,
-    settings: &Settings,
-    state: &mut State,
-    contacts: &mut [Contact],
-) {
+/// The velocity stages (module doc) for `contacts` (point, depth, normal and levers filled
+/// in); fills in each contact's normal velocity, denominator and impulse, and the motions.
+fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], buffers: Buffers) {
     let Settings {
         restitution,
         friction,
@@ -332,17 +430,16 @@ fn resolve(
         dt,
         lift,
     } = *settings;
-    let l = state.angular_momentum;
-    let mut motion = Motion {
-        v: state.linear_momentum * inv_mass,
-        omega: inv_inertia * l,
-        l,
-        inv_mass,
-    };
+    let Buffers {
+        rows,
+        tangents: tangent_directions,
+        motions,
+    } = buffers;
     // The energy the velocities may keep: K₀ less the push-out's work against gravity.
-    let kinetic_allowed = motion.kinetic(inv_mass) - lift;
-    let row = |c: &Contact| {
-        let normal = Direction::new(c.normal, &c.lever, inv_inertia, inv_mass);
+    let kinetic_allowed = motions.iter().map(Motion::kinetic).sum::<f64>() - lift;
+    rows.clear();
+    rows.extend(contacts.iter().map(|c| {
+        let normal = Direction::new(c.normal, c, motions);
         Row {
             normal,
             lambda: 0.0,
@@ -350,35 +447,28 @@ fn resolve(
             compression: 0.0,
             friction_bound: 0.0,
             lambda_restitution: 0.0,
-            approach: motion.along(&normal),
+            approach: along(&normal, motions),
             bias: (-c.depth).max(0.0) / dt,
+            warm: warm_start(c, previous),
         }
-    };
-    // The rows on the stack when they fit (the usual case: no allocation per step).
-    let mut stack_rows = [Row::default(); DIRECT_MAX];
-    let mut heap_rows = Vec::new();
-    let rows: &mut [Row] = if contacts.len() <= DIRECT_MAX {
-        for (slot, c) in stack_rows.iter_mut().zip(contacts.iter()) {
-            *slot = row(c);
-        }
-        &mut stack_rows[..contacts.len()]
-    } else {
-        heap_rows.extend(contacts.iter().map(row));
-        &mut heap_rows
-    };
+    }));
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
     let tolerance = TOLERANCE * (1.0 + fastest);
 
     // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
-    // projected Gauss–Seidel from λ = 0.
-    if !direct_inelastic(rows, &mut motion, tolerance) {
+    // projected Gauss–Seidel, warm-started from the last step's impulses.
+    if !direct_inelastic(rows, motions, tolerance) {
         for row in rows.iter_mut() {
             row.normal.with_inverse();
+            if row.warm > 0.0 {
+                row.lambda = row.warm;
+                apply(row.warm, &row.normal, motions);
+            }
         }
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
             for row in rows.iter_mut() {
-                largest = largest.max(normal_update(row, &mut motion));
+                largest = largest.max(normal_update(row, motions));
             }
             if largest <= tolerance {
                 break;
@@ -392,31 +482,41 @@ fn resolve(
 
     // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
     // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
-    let sliding = |row: &Row, contact: &Contact| {
-        let u = motion.v + motion.omega.cross(&contact.lever);
+    let sliding = |row: &Row, contact: &Contact, motions: &[Motion]| {
+        let a = &motions[contact.body];
+        let mut u = a.v + a.omega.cross(&contact.lever);
+        if let Some(b) = contact.other_body() {
+            let m = &motions[b];
+            u -= m.v + m.omega.cross(&contact.lever_other);
+        }
         row.lambda > 0.0
             && (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
     };
-    let mut tangent_directions: Vec<[Direction; 2]> = Vec::new();
-    if friction > 0.0 && rows.iter().zip(contacts.iter()).any(|(r, c)| sliding(r, c)) {
+    tangent_directions.clear();
+    if friction > 0.0
+        && rows
+            .iter()
+            .zip(contacts.iter())
+            .any(|(r, c)| sliding(r, c, motions))
+    {
         for (row, contact) in rows.iter_mut().zip(contacts.iter()) {
             row.normal.with_inverse();
             row.friction_bound = friction * row.lambda;
             let (t1, t2) = tangents(&contact.normal);
             tangent_directions.push([
-                Direction::new(t1, &contact.lever, inv_inertia, inv_mass),
-                Direction::new(t2, &contact.lever, inv_inertia, inv_mass),
+                Direction::new(t1, contact, motions),
+                Direction::new(t2, contact, motions),
             ]);
         }
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
-            for (row, directions) in rows.iter_mut().zip(&tangent_directions) {
+            for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
                 let bound = row.friction_bound;
-                largest = largest.max(normal_update(row, &mut motion));
+                largest = largest.max(normal_update(row, motions));
                 if bound == 0.0 {
                     continue;
                 }
-                let change = friction_update(row, directions, bound, &mut motion);
+                let change = friction_update(row, directions, bound, motions);
                 largest = largest.max(change);
             }
             if largest <= tolerance {
@@ -426,41 +526,49 @@ fn resolve(
     }
 
     // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀.
-    if restitution > 0.0 {
-        let mut dv = Vector3::zeros();
-        let mut dl = Vector3::zeros();
-        let mut domega = Vector3::zeros();
+    if restitution > 0.0 && rows.iter().any(|r| bounces(r, bounce_speed)) {
+        // The restitution impulses' changes to each body: Δv, ΔL, Δω.
+        let mut change =
+            vec![(Vector3::zeros(), Vector3::zeros(), Vector3::zeros()); motions.len()];
         for row in rows.iter_mut() {
-            if row.approach < -bounce_speed && row.compression > 0.0 {
+            if bounces(row, bounce_speed) {
                 let j = restitution * row.compression;
                 row.lambda_restitution = j;
-                dv += row.normal.d * (j * inv_mass);
-                dl += row.normal.rd * j;
-                domega += row.normal.w * j;
+                for (end, sign) in row.normal.ends() {
+                    let m = &motions[end.body];
+                    let c = &mut change[end.body];
+                    c.0 += row.normal.d * (sign * j * m.inv_mass);
+                    c.1 += end.rd * j;
+                    c.2 += end.w * j;
+                }
             }
         }
-        if dl != Vector3::zeros() || dv != Vector3::zeros() {
-            // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
-            let a = 0.5 * (dv.norm_squared() / inv_mass + domega.dot(&dl));
-            let b = dv.dot(&motion.v) / inv_mass + motion.omega.dot(&dl);
-            let c = motion.kinetic(inv_mass);
-            let scale = if a + b + c <= kinetic_allowed || a <= 0.0 {
-                1.0
-            } else {
-                let slack = (kinetic_allowed - c).max(0.0);
-                ((-b + (b * b + 4.0 * a * slack).sqrt()) / (2.0 * a)).clamp(0.0, 1.0)
-            };
-            motion.v += dv * scale;
-            motion.l += dl * scale;
-            motion.omega += domega * scale;
-            for row in rows.iter_mut() {
-                row.lambda_restitution *= scale;
+        // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
+        let (mut a, mut b) = (0.0, 0.0);
+        for (m, (dv, dl, domega)) in motions.iter().zip(&change) {
+            a += 0.5 * (dv.norm_squared() / m.inv_mass + domega.dot(dl));
+            b += dv.dot(&m.v) / m.inv_mass + m.omega.dot(dl);
+        }
+        let c: f64 = motions.iter().map(Motion::kinetic).sum();
+        let scale = if a + b + c <= kinetic_allowed || a <= 0.0 {
+            1.0
+        } else {
+            let slack = (kinetic_allowed - c).max(0.0);
+            ((-b + (b * b + 4.0 * a * slack).sqrt()) / (2.0 * a)).clamp(0.0, 1.0)
+        };
+        for (m, (dv, dl, domega)) in motions.iter_mut().zip(&change) {
+            if *dl != Vector3::zeros() || *dv != Vector3::zeros() {
+                m.v += dv * scale;
+                m.l += dl * scale;
+                m.omega += domega * scale;
+                m.bounced = true;
             }
+        }
+        for row in rows.iter_mut() {
+            row.lambda_restitution *= scale;
         }
     }
 
-    state.linear_momentum = motion.v / inv_mass;
-    state.angular_momentum = motion.l;
     for (index, (contact, row)) in contacts.iter_mut().zip(rows.iter()).enumerate() {
         contact.normal_velocity = row.approach;
         contact.denominator = row.normal.k;
@@ -471,22 +579,39 @@ fn resolve(
     }
 }
 
-/// Most contacts in a step to try the direct solve for.
-pub const DIRECT_MAX: usize = 8;
+/// Whether a row bounces: it approached faster than the bounce speed and pushed.
+fn bounces(row: &Row, bounce_speed: f64) -> bool {
+    row.approach < -bounce_speed && row.compression > 0.0
+}
+
+/// The last step's normal impulse at the same contact: same bodies, same feature, a point
+/// within 1 mm (a vertex keeps its index; a manifold point is matched by where it is).
+fn warm_start(c: &Contact, previous: &[Contact]) -> f64 {
+    previous
+        .iter()
+        .find(|p| {
+            p.body == c.body
+                && p.against == c.against
+                && p.feature == c.feature
+                && (p.point - c.point).norm_squared() < 1e-6
+        })
+        .map_or(0.0, |p| p.impulse.dot(&p.normal).max(0.0))
+}
 
 /// The inelastic problem solved directly, when its answer is "every approaching contact
 /// stops": with the approaching contacts as the active set, solve
 ///
 /// ```text
-/// (A + ε𝟙) λ = −u,   A_ij = nᵢ·nⱼ/M + (rᵢ×nᵢ)·I⁻¹(rⱼ×nⱼ),  ε = 1e-10 · max Aᵢᵢ
+/// (A + ε𝟙) λ = −u,   A_ij = Σ_shared bodies (±nᵢ)·(±nⱼ)/M + (r×(±nᵢ))·I⁻¹(r×(±nⱼ)),
+///                    ε = 1e-10 · max Aᵢᵢ
 /// ```
 ///
 /// by LDLᵀ (A is only semi-definite: 4 coplanar contacts constrain 3 motions; the tiny ε
-/// picks the minimum-norm λ, which shares the load symmetrically whatever the vertex order).
+/// picks the minimum-norm λ, which shares the load symmetrically whatever the contact order).
 /// The result is accepted only if it is the solution of the whole problem — every λᵢ ≥ 0 and
 /// no contact, active or not, still approaching — so it is the same minimum of K that the
 /// sweeps converge to, reached at once. Returns false (and changes nothing) otherwise.
-fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bool {
+fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) -> bool {
     let mut active = [0usize; DIRECT_MAX];
     let mut m = 0;
     for (i, row) in rows.iter().enumerate() {
@@ -506,11 +631,9 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
     let mut largest: f64 = 0.0;
     for p in 0..m {
         let ni = &rows[active[p]].normal;
-        rhs[p] = -motion.along(ni) - rows[active[p]].bias;
+        rhs[p] = -along(ni, motions) - rows[active[p]].bias;
         for q in 0..=p {
-            let nj = &rows[active[q]].normal;
-            let value = ni.d.dot(&nj.d) * motion.inv_mass + ni.rd.dot(&nj.w);
-            a[p][q] = value;
+            a[p][q] = ni.coupling(&rows[active[q]].normal, motions);
         }
         largest = largest.max(a[p][p]);
     }
@@ -546,15 +669,15 @@ fn direct_inelastic(rows: &mut [Row], motion: &mut Motion, tolerance: f64) -> bo
             return false;
         }
     }
-    let start = *motion;
+    let start: Vec<Motion> = motions.to_vec();
     for p in 0..m {
-        motion.apply(lambda[p], &rows[active[p]].normal);
+        apply(lambda[p], &rows[active[p]].normal, motions);
     }
     if rows
         .iter()
-        .any(|r| motion.along(&r.normal) + r.bias < -tolerance)
+        .any(|r| along(&r.normal, motions) + r.bias < -tolerance)
     {
-        *motion = start;
+        motions.copy_from_slice(&start);
         return false;
     }
     for p in 0..m {
@@ -581,11 +704,11 @@ fn friction_update(
     row: &mut Row,
     directions: &[Direction; 2],
     bound: f64,
-    motion: &mut Motion,
+    motions: &mut [Motion],
 ) -> f64 {
     let [t1, t2] = directions;
-    let u = [motion.along(t1), motion.along(t2)];
-    let (k1, k2, c) = (t1.k, t2.k, t1.rd.dot(&t2.w));
+    let u = [along(t1, motions), along(t2, motions)];
+    let (k1, k2, c) = (t1.k, t2.k, t1.coupling(t2, motions));
     let det = k1 * k2 - c * c;
     if det <= 0.0 {
         return 0.0;
@@ -633,30 +756,23 @@ fn friction_update(
         return 0.0;
     }
     row.lambda_tangent = new;
-    motion.apply(step[0], t1);
-    motion.apply(step[1], t2);
+    apply(step[0], t1, motions);
+    apply(step[1], t2, motions);
     (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
 }
 
 /// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
 /// to the contact's normal velocity (m/s).
-fn normal_update(row: &mut Row, motion: &mut Motion) -> f64 {
+fn normal_update(row: &mut Row, motions: &mut [Motion]) -> f64 {
     let dir = &row.normal;
-    let new = (row.lambda - (motion.along(dir) + row.bias) * dir.inv_k).max(0.0);
+    let new = (row.lambda - (along(dir, motions) + row.bias) * dir.inv_k).max(0.0);
     let change = new - row.lambda;
     if change == 0.0 {
         return 0.0;
     }
     row.lambda = new;
-    motion.apply(change, dir);
+    apply(change, dir, motions);
     change.abs() * dir.k
-}
-
-impl Motion {
-    /// `½ M v·v + ½ ω·L`.
-    fn kinetic(&self, inv_mass: f64) -> f64 {
-        0.5 * self.v.norm_squared() / inv_mass + 0.5 * self.omega.dot(&self.l)
-    }
 }
 
 /// Two unit tangents completing n to an orthonormal basis.
@@ -668,45 +784,4 @@ fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     };
     let t1 = n.cross(&helper).normalize();
     (t1, n.cross(&t1))
-}
-
-/// Moves the body by the shortest translation Δx with nᵢ·Δx ≥ dᵢ for every contact:
-///
-/// ```text
-/// minimise ½|Δx|²  subject to  nᵢ·Δx ≥ dᵢ     →   Δx = Σ μᵢ nᵢ,  μᵢ ≥ 0
-/// μᵢ ← max(0, μᵢ + dᵢ − nᵢ·Δx)                   (Hildreth's method: Gauss–Seidel on the μᵢ)
-/// ```
-///
-/// The shortest Δx is unique, so it does not depend on the contact order (projecting onto one
-/// half-space after the other would: two radial normals on a sphere would push the body
-/// sideways). With one normal direction (the ground) it is exactly `max dᵢ · n`.
-fn push_out(contacts: &[Contact]) -> Vector3<f64> {
-    let mut shift = Vector3::zeros();
-    let mut multipliers = [0.0f64; DIRECT_MAX];
-    let mut extra = Vec::new();
-    if contacts.len() > DIRECT_MAX {
-        extra = vec![0.0f64; contacts.len()];
-    }
-    let multipliers: &mut [f64] = if extra.is_empty() {
-        &mut multipliers[..contacts.len()]
-    } else {
-        &mut extra
-    };
-    let deepest = contacts.iter().map(|c| c.depth).fold(0.0, f64::max);
-    for _ in 0..MAX_SWEEPS {
-        let mut largest: f64 = 0.0;
-        for (c, mu) in contacts.iter().zip(multipliers.iter_mut()) {
-            let new = (*mu + c.depth - c.normal.dot(&shift)).max(0.0);
-            let change = new - *mu;
-            if change != 0.0 {
-                shift += c.normal * change;
-                *mu = new;
-                largest = largest.max(change.abs());
-            }
-        }
-        if largest <= 1e-12 * (1.0 + deepest) {
-            break;
-        }
-    }
-    shift
 }

@@ -1,21 +1,26 @@
-//! The *collide* phase: obstacles, contact detection per body vertex, and the two responses.
+//! The *collide* phase: obstacles, contact detection, and the two responses.
 //!
-//! Detection follows the report: every body vertex `pᵢ = x + R r₀ᵢ` is tested against every
-//! declared obstacle. The phase runs only when the scene declares obstacles.
+//! Detection produces contact *rows* — body A; body B or an obstacle; point; normal; depth;
+//! lever arms — and a response turns rows into impulses and position fixes. The phase runs
+//! only when something can touch: obstacles, or several bodies.
 //!
 //! | file | idea |
 //! |---|---|
-//! | `detect` | is a vertex inside an obstacle (depth, normal); the swept test along its motion |
-//! | `seed` | the report's response, reproduced with its failures |
-//! | `impulse` | impulses with restitution and Coulomb friction, energy never added |
+//! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion |
+//! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
+//! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
+//! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added |
+//! | `position` | the position fix: no creep at rest, penetration removed by translation |
 
+pub mod contacts;
 pub mod detect;
 pub mod impulse;
+pub mod position;
 pub mod seed;
 
 use super::body::Body;
 use super::effects::Loads;
-use super::snapshot::Energy;
+use super::energy::Energy;
 use super::state::State;
 use nalgebra::Vector3;
 
@@ -95,75 +100,144 @@ pub struct ContactModel {
     pub friction: f64,
 }
 
-/// One body vertex found inside an obstacle, and what the response did there.
+/// What body A touches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Against {
+    /// A fixed obstacle: its index in the scene's list.
+    Obstacle(usize),
+    /// Another body: its index in the world.
+    Body(usize),
+}
+
+/// Which features of the two surfaces meet at a contact point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Feature {
+    /// Body A's vertex inside B (the report's per-vertex test), with the vertex index.
+    Vertex(usize),
+    /// A vertex of one shape inside a face of the other (found by the contact geometry).
+    VertexFace,
+    /// An edge of A crossing an edge of B.
+    EdgeEdge,
+    /// Two faces flat against each other: one point of their contact manifold.
+    FaceFace,
+}
+
+/// One contact row, two-sided: body A against an obstacle or body B, and what the response
+/// did there.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
-    /// Index of the body vertex.
-    pub vertex: usize,
-    /// Index of the obstacle in the scene's list.
-    pub obstacle: usize,
-    /// Vertex position (world), m.
+    /// Body A: its index in the world.
+    pub body: usize,
+    /// B: an obstacle or another body.
+    pub against: Against,
+    /// The features that meet.
+    pub feature: Feature,
+    /// Contact point (world), m.
     pub point: Vector3<f64>,
-    /// Penetration depth, m: > 0 inside the obstacle; ≤ 0 (minus the gap) for a vertex just
-    /// outside that the `impulse` response held back (a speculative contact, see `impulse`).
+    /// Penetration depth, m: > 0 overlapping; ≤ 0 (minus the gap) for a point just outside
+    /// that the `impulse` response held back (a speculative contact, see `impulse`).
     pub depth: f64,
-    /// Unit contact normal, pointing out of the obstacle.
+    /// Unit contact normal, pointing from B to A (out of the obstacle): the way A must move
+    /// to separate.
     pub normal: Vector3<f64>,
-    /// Lever arm r to the point, m: from the current barycenter (`impulse`), or from the
-    /// *initial* barycenter x₀ as the report measures it (`seed`).
+    /// Lever arm r_A from A's barycenter to the point, m: from the current barycenter
+    /// (`impulse`), or from the *initial* barycenter x₀ as the report measures it (`seed`).
     pub lever: Vector3<f64>,
-    /// Normal velocity of the point `(v + ω × (p − x))·n` before the response, m/s
-    /// (negative: approaching).
+    /// Lever arm r_B from B's barycenter to the point, m (zero for an obstacle).
+    pub lever_other: Vector3<f64>,
+    /// Relative normal velocity of the point `(v_A + ω_A × r_A − v_B − ω_B × r_B)·n` before
+    /// the response, m/s (negative: approaching).
     pub normal_velocity: f64,
-    /// 1/M + n·((I⁻¹(r×n))×r), 1/kg: the denominator of the impulse formula (`impulse`;
-    /// 0 for `seed`, which has no impulse formula).
+    /// k = 1/M_A + (r_A×n)·I_A⁻¹(r_A×n) [+ the same for B], 1/kg: the denominator of the
+    /// impulse formula (`impulse`; 0 for `seed`, which has no impulse formula).
     pub denominator: f64,
-    /// Impulse applied at this point, N·s: normal (with restitution) plus friction for
-    /// `impulse`; for `seed`, the change it made to the whole momentum, −1.4 P.
+    /// Impulse applied to A at this point, N·s (B receives its opposite): normal (with
+    /// restitution) plus friction for `impulse`; for `seed`, the change it made to the whole
+    /// momentum, −1.4 P.
     pub impulse: Vector3<f64>,
 }
 
-/// Everything the collide phase needs besides the state it corrects.
+impl Contact {
+    /// A contact of body A against B at a point, before any response: no velocity, no
+    /// impulse yet.
+    pub fn new(
+        body: usize,
+        against: Against,
+        feature: Feature,
+        point: Vector3<f64>,
+        depth: f64,
+        normal: Vector3<f64>,
+    ) -> Contact {
+        Contact {
+            body,
+            against,
+            feature,
+            point,
+            depth,
+            normal,
+            lever: Vector3::zeros(),
+            lever_other: Vector3::zeros(),
+            normal_velocity: 0.0,
+            denominator: 0.0,
+            impulse: Vector3::zeros(),
+        }
+    }
+
+    /// The other body, if B is one.
+    pub fn other_body(&self) -> Option<usize> {
+        match self.against {
+            Against::Body(b) => Some(b),
+            Against::Obstacle(_) => None,
+        }
+    }
+}
+
+/// Everything the collide phase reads besides the states it corrects.
 pub struct CollideInput<'a> {
-    pub body: &'a Body,
+    /// The world's bodies, in order (contact rows name them by index).
+    pub bodies: &'a [Body],
     pub obstacles: &'a [Obstacle],
     pub model: &'a ContactModel,
-    /// The state at the start of the step (for swept tests).
-    pub before: &'a State,
-    /// The forces phase's loads (the `seed` response adds a force to L).
-    pub loads: &'a Loads,
-    /// The barycenter at t = 0 (the `seed` response measures its lever arm from there).
-    pub initial_position: &'a Vector3<f64>,
+    /// The states at the start of the step (for swept tests and the position fix).
+    pub before: &'a [State],
+    /// The forces phase's loads, per body (the `seed` response adds a force to L).
+    pub loads: &'a [Loads],
+    /// The barycenters at t = 0 (the `seed` response measures its lever arm from there).
+    pub initial_positions: &'a [Vector3<f64>],
     /// Declared gravity, if any (sets the speed below which contacts do not bounce).
     pub gravity: Option<Vector3<f64>>,
     pub dt: f64,
 }
 
-/// The energy of the state before and after a response, measured as [`energy`] measures it
+/// The energy of the bodies before and after a response, measured as [`energy`] measures it
 /// (same arithmetic, to the last bit), by a response that had the numbers at hand.
 ///
-/// [`energy`]: super::snapshot::energy
+/// [`energy`]: super::energy::energy
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergyChange {
     pub before: Energy,
     pub after: Energy,
 }
 
-/// Runs detection and the chosen response on `state`; `contacts` is cleared and filled with the
-/// contacts it handled (a buffer reused from step to step). Returns the energy before and after
-/// when the response measured it (`impulse`, when it changed the state); None otherwise.
+/// Runs detection and the chosen response on `states`; `contacts` is cleared and filled with
+/// the contacts it handled (a buffer reused from step to step; on entry it holds the last
+/// step's contacts, which warm-start the solver). Returns the energy before and after when the
+/// response measured it (`impulse`, when it changed a state); None otherwise.
+///
+/// `seed` knows one body and obstacles only (the scene loader refuses more).
 pub fn collide(
     input: &CollideInput,
-    state: &mut State,
+    states: &mut [State],
     contacts: &mut Vec<Contact>,
+    scratch: &mut impulse::Scratch,
 ) -> Option<EnergyChange> {
-    contacts.clear();
     match input.model.response {
         Response::Seed => {
-            seed::respond(input, state, contacts);
+            contacts.clear();
+            seed::respond(input, &mut states[0], contacts);
             None
         }
-        Response::Impulse => impulse::respond(input, state, contacts),
+        Response::Impulse => impulse::respond(input, states, contacts, scratch),
     }
 }
 

@@ -38,7 +38,7 @@
 //! Restitution and friction from the scene are ignored: the report's factor is always 0.4.
 
 use super::detect::inside;
-use super::{vertices_into, CollideInput, Contact};
+use super::{vertices_into, Against, CollideInput, Contact, Feature};
 use crate::physics::derive::derive;
 use crate::physics::state::State;
 
@@ -46,9 +46,11 @@ use crate::physics::state::State;
 pub const MOMENTUM_FACTOR: f64 = -0.4;
 
 /// Runs the report's response on `state`, one obstacle after the other.
+/// Body 0 is the body: `seed` knows one.
 pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
-    let mut points = Vec::with_capacity(input.body.points_body.len());
-    vertices_into(input.body, state, &mut points);
+    let body = &input.bodies[0];
+    let mut points = Vec::with_capacity(body.points_body.len());
+    vertices_into(body, state, &mut points);
     for (index, obstacle) in input.obstacles.iter().enumerate() {
         // The deepest vertex (the first one on a tie).
         let mut deepest = None;
@@ -65,24 +67,26 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
             continue;
         };
         let point = points[vertex];
-        let kinematics = derive(input.body, state);
+        let kinematics = derive(body, state);
         let point_velocity =
             kinematics.velocity + kinematics.angular_velocity.cross(&(point - state.position));
-        let lever = point - input.initial_position;
+        let lever = point - input.initial_positions[0];
         let momentum_before = state.linear_momentum;
         state.position += hit.normal * (hit.depth * hit.depth);
-        state.angular_momentum += lever.cross(&(-input.loads.force));
+        state.angular_momentum += lever.cross(&(-input.loads[0].force));
         state.linear_momentum *= MOMENTUM_FACTOR;
         contacts.push(Contact {
-            vertex,
-            obstacle: index,
-            point,
-            depth: hit.depth,
-            normal: hit.normal,
             lever,
             normal_velocity: point_velocity.dot(&hit.normal),
-            denominator: 0.0,
             impulse: state.linear_momentum - momentum_before,
+            ..Contact::new(
+                0,
+                Against::Obstacle(index),
+                Feature::Vertex(vertex),
+                point,
+                hit.depth,
+                hit.normal,
+            )
         });
     }
 }
@@ -118,12 +122,12 @@ mod tests {
         };
         let obstacles = [Obstacle::Ground { height: 0.0 }];
         let input = CollideInput {
-            body: &body,
+            bodies: std::slice::from_ref(&body),
             obstacles: &obstacles,
             model: &model,
-            before: &before,
-            loads: &loads,
-            initial_position: &Vector3::new(0.0, 1.0, 0.0),
+            before: std::slice::from_ref(&before),
+            loads: std::slice::from_ref(&loads),
+            initial_positions: &[Vector3::new(0.0, 1.0, 0.0)],
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             dt: 1e-3,
         };
@@ -146,7 +150,7 @@ mod tests {
             state.angular_momentum
         );
         assert_eq!(contacts.len(), 1);
-        assert_eq!(contacts[0].vertex, 0);
+        assert_eq!(contacts[0].feature, Feature::Vertex(0));
         assert!((contacts[0].impulse - (expected_p - before.linear_momentum)).norm() < 1e-15);
     }
 }

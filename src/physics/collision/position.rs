@@ -1,0 +1,171 @@
+//! The position fix after the `impulse` response's velocities: where the bodies end the step.
+//!
+//! # No creep: advance with the corrected velocity
+//!
+//! The integrate phase advanced every body with the velocity it had *before* the contacts
+//! acted: a body at rest on a slope slid by `½ g_t dt²` (`rk4`) or `g_t dt²` (symplectic
+//! Euler) in that step, and cancelling its velocity afterwards does not bring it back — it
+//! creeps down the slope at every step. So a body the contacts acted on, and that did not
+//! bounce, ends the step where its corrected velocity takes it from the start of the step:
+//!
+//! ```text
+//! x_{n+1} = x_n + dt · v_{n+1}          (velocity-level time stepping; the rotation is kept)
+//! ```
+//!
+//! A body held by static friction has `v_{n+1} = 0` and stays exactly where it was. The
+//! contacts' depths move with the bodies: `d ← d − n·(Δx_A − Δx_B)`. A bouncing body keeps
+//! the integrator's position (re-advancing it with its rebound velocity would lift it by
+//! `2 |u| dt` at every bounce, energy from nothing).
+//!
+//! # Penetration removed by translation
+//!
+//! What penetration is left is removed by *moving* the bodies, never by biasing velocities (a
+//! velocity bias — Baumgarte — turns penetration into kinetic energy and makes resting bodies
+//! jitter). The bodies move by the mass-weighted shortest translations that separate every
+//! contact (Hildreth's method, Gauss–Seidel on the multipliers):
+//!
+//! ```text
+//! minimise ½ Σ_b M_b |Δx_b|²   subject to   nᵢ·(Δx_A − Δx_B) ≥ dᵢ
+//! M_b Δx_b = Σ_{i: b is A} μᵢ nᵢ − Σ_{i: b is B} μᵢ nᵢ,   μᵢ ≥ 0
+//! μᵢ ← max(0, μᵢ + (dᵢ − nᵢ·(Δx_A − Δx_B)) / kᵢ),        kᵢ = 1/M_A + 1/M_B
+//! ```
+//!
+//! The answer is unique, so it does not depend on the contact order (projecting onto one
+//! half-space after the other would: two radial normals on a sphere would push the body
+//! sideways); for one body on the ground it is exactly `max dᵢ · n`. Between two bodies,
+//! `M_A Δx_A + M_B Δx_B = 0`: their common barycenter does not move. A translation changes
+//! neither P nor L, so no kinetic energy, and along the contact normals only, so a body at
+//! rest on a face cannot creep sideways. (Rotating the body instead would change `I⁻¹_world`
+//! and so `½ L·I⁻¹L`.)
+
+use super::Contact;
+use crate::physics::body::Body;
+use crate::physics::state::State;
+use nalgebra::Vector3;
+
+/// At most this many Gauss–Seidel sweeps of the push-out.
+pub const MAX_SWEEPS: usize = 200;
+
+/// Buffers reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    multipliers: Vec<f64>,
+    shifts: Vec<Vector3<f64>>,
+    depths: Vec<f64>,
+}
+
+/// What the position fix reads: the bodies, their states at the start of the step, dt.
+pub struct Fix<'a> {
+    pub bodies: &'a [Body],
+    pub before: &'a [State],
+    pub dt: f64,
+}
+
+impl Fix<'_> {
+    /// The work the push-out of the current depths would do against gravity (≥ 0), J: the
+    /// response pays it from the bounce. `potential(b, x)` is body b's potential energy at x.
+    pub fn lift(
+        &self,
+        contacts: &[Contact],
+        states: &[State],
+        potential: &dyn Fn(usize, &Vector3<f64>) -> f64,
+        scratch: &mut Scratch,
+    ) -> f64 {
+        scratch.depths.clear();
+        scratch.depths.extend(contacts.iter().map(|c| c.depth));
+        self.push_out(contacts, scratch);
+        let mut work = 0.0;
+        for (b, (state, shift)) in states.iter().zip(&scratch.shifts).enumerate() {
+            if *shift != Vector3::zeros() {
+                work += potential(b, &(state.position + shift)) - potential(b, &state.position);
+            }
+        }
+        work.max(0.0)
+    }
+
+    /// Moves the bodies (module doc): bodies marked `advanced` go from their start-of-step
+    /// position with their new velocity, then every body is pushed out of what it still
+    /// penetrates.
+    pub fn apply(
+        &self,
+        contacts: &[Contact],
+        states: &mut [State],
+        advanced: &[bool],
+        scratch: &mut Scratch,
+    ) {
+        let mut moved = false;
+        scratch.shifts.clear();
+        scratch.shifts.resize(states.len(), Vector3::zeros());
+        for (b, state) in states.iter_mut().enumerate() {
+            if advanced[b] {
+                let body = &self.bodies[b];
+                let x = self.before[b].position + state.linear_momentum * (body.inv_mass * self.dt);
+                scratch.shifts[b] = x - state.position;
+                state.position = x;
+                moved = true;
+            }
+        }
+        scratch.depths.clear();
+        scratch.depths.extend(contacts.iter().map(|c| {
+            if !moved {
+                return c.depth;
+            }
+            let mut delta = scratch.shifts[c.body];
+            if let Some(other) = c.other_body() {
+                delta -= scratch.shifts[other];
+            }
+            c.depth - c.normal.dot(&delta)
+        }));
+        self.push_out(contacts, scratch);
+        for (state, shift) in states.iter_mut().zip(&scratch.shifts) {
+            state.position += shift;
+        }
+    }
+
+    /// The mass-weighted shortest translations for `scratch.depths` (module doc), into
+    /// `scratch.shifts`.
+    fn push_out(&self, contacts: &[Contact], scratch: &mut Scratch) {
+        let Scratch {
+            multipliers,
+            shifts,
+            depths,
+        } = scratch;
+        shifts.clear();
+        shifts.resize(self.bodies.len(), Vector3::zeros());
+        multipliers.clear();
+        multipliers.resize(contacts.len(), 0.0);
+        let deepest = depths.iter().copied().fold(0.0, f64::max);
+        if deepest <= 0.0 {
+            return;
+        }
+        let inv_mass = |b: usize| self.bodies[b].inv_mass;
+        for _ in 0..MAX_SWEEPS {
+            let mut largest: f64 = 0.0;
+            for ((c, mu), depth) in contacts
+                .iter()
+                .zip(multipliers.iter_mut())
+                .zip(depths.iter())
+            {
+                let mut separation = shifts[c.body];
+                let mut k = inv_mass(c.body);
+                if let Some(other) = c.other_body() {
+                    separation -= shifts[other];
+                    k += inv_mass(other);
+                }
+                let new = (*mu + (depth - c.normal.dot(&separation)) / k).max(0.0);
+                let change = new - *mu;
+                if change != 0.0 {
+                    shifts[c.body] += c.normal * (change * inv_mass(c.body));
+                    if let Some(other) = c.other_body() {
+                        shifts[other] -= c.normal * (change * inv_mass(other));
+                    }
+                    *mu = new;
+                    largest = largest.max((change * k).abs());
+                }
+            }
+            if largest <= 1e-12 * (1.0 + deepest) {
+                break;
+            }
+        }
+    }
+}
