@@ -10,6 +10,7 @@
 //! | `impulse` | impulses with restitution and Coulomb friction, energy never added |
 
 pub mod detect;
+pub mod geometry;
 pub mod impulse;
 pub mod seed;
 
