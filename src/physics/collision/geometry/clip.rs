@@ -17,60 +17,75 @@
 
 use super::polyhedron::Polygon;
 use nalgebra::Vector3;
+use smallvec::SmallVec;
 
-/// Clips `polygon` in place by the half-space s·(p − o) ≤ 0; `scratch` is a reused buffer.
-pub fn clip_by_plane(
-    polygon: &mut Polygon,
-    scratch: &mut Polygon,
-    s: &Vector3<f64>,
-    o: &Vector3<f64>,
-) {
-    scratch.clear();
-    let n = polygon.len();
-    for i in 0..n {
-        let p = polygon[i];
-        let q = polygon[(i + 1) % n];
-        let dp = s.dot(&(p - o));
+/// Clips `input` by the half-space s·(p − o) ≤ 0 into `output` (cleared first).
+pub fn clip_by_plane(input: &Polygon, output: &mut Polygon, s: &Vector3<f64>, o: &Vector3<f64>) {
+    output.clear();
+    let Some(&last) = input.last() else {
+        return;
+    };
+    // Each edge p → q, starting with the closing edge (last → first).
+    let (mut p, mut dp) = (last, s.dot(&(last - o)));
+    for &q in input {
         let dq = s.dot(&(q - o));
-        if dp <= 0.0 {
-            scratch.push(p);
-        }
         if (dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0) {
-            scratch.push(p + (q - p) * (dp / (dp - dq)));
+            output.push(p + (q - p) * (dp / (dp - dq)));
         }
+        if dq <= 0.0 {
+            output.push(q);
+        }
+        (p, dp) = (q, dq);
     }
-    std::mem::swap(polygon, scratch);
 }
 
-/// Clips `incident` to the prism over the `reference` loop of outward normal `n`.
+/// Clips `incident` to the prism over the `reference` loop of outward normal `n`. The two
+/// buffers take turns as input and output; the result is left in `incident`.
 pub fn clip_to_face(
     incident: &mut Polygon,
     scratch: &mut Polygon,
     reference: &Polygon,
     n: &Vector3<f64>,
 ) {
-    let m = reference.len();
-    for i in 0..m {
-        if incident.is_empty() {
-            return;
-        }
-        let (v, w) = (reference[i], reference[(i + 1) % m]);
+    let Some(&last) = reference.last() else {
+        return;
+    };
+    let mut in_scratch = false;
+    let mut v = last;
+    for &w in reference {
         let side = (w - v).cross(n);
-        clip_by_plane(incident, scratch, &side, &v);
+        let (from, to) = if in_scratch {
+            (&*scratch, &mut *incident)
+        } else {
+            (&*incident, &mut *scratch)
+        };
+        clip_by_plane(from, to, &side, &v);
+        in_scratch = !in_scratch;
+        v = w;
+        if to.is_empty() {
+            break;
+        }
+    }
+    if in_scratch {
+        incident.clear();
+        incident.extend_from_slice(scratch);
     }
 }
 
 /// Thins `points` (with their depths) to at most 4 (see the module doc); `n` is the face normal.
-pub fn reduce_to_four(
-    points: &mut Polygon,
-    depths: &mut smallvec::SmallVec<[f64; 16]>,
-    n: &Vector3<f64>,
-) {
+pub fn reduce_to_four(points: &mut Polygon, depths: &mut SmallVec<[f64; 16]>, n: &Vector3<f64>) {
     if points.len() <= 4 {
         return;
     }
     let argmax = |score: &dyn Fn(usize) -> f64| {
-        (0..points.len()).fold(0, |best, i| if score(i) > score(best) { i } else { best })
+        let mut best = (0, f64::NEG_INFINITY);
+        for i in 0..points.len() {
+            let x = score(i);
+            if x > best.1 {
+                best = (i, x);
+            }
+        }
+        best.0
     };
     let first = argmax(&|i| depths[i]);
     let p1 = points[first];
@@ -81,17 +96,18 @@ pub fn reduce_to_four(
     let fourth = argmax(&|i| -area(i));
     let mut chosen = [first, second, third, fourth];
     chosen.sort_unstable();
-    let mut kept = Polygon::new();
-    let mut kept_depths = smallvec::SmallVec::new();
+    // Move the chosen ones to the front, in order (each goes to a slot at or before its own).
+    let mut kept = 0;
     for (k, &i) in chosen.iter().enumerate() {
         if k > 0 && chosen[k - 1] == i {
             continue;
         }
-        kept.push(points[i]);
-        kept_depths.push(depths[i]);
+        points[kept] = points[i];
+        depths[kept] = depths[i];
+        kept += 1;
     }
-    *points = kept;
-    *depths = kept_depths;
+    points.truncate(kept);
+    depths.truncate(kept);
 }
 
 #[cfg(test)]
@@ -147,7 +163,7 @@ mod tests {
                 Vector3::new(t.cos(), t.sin(), 0.0)
             })
             .collect();
-        let mut depths: smallvec::SmallVec<[f64; 16]> =
+        let mut depths: SmallVec<[f64; 16]> =
             (0..8).map(|k| if k == 0 { 0.02 } else { 0.01 }).collect();
         reduce_to_four(&mut points, &mut depths, &Vector3::z());
         assert_eq!(points.len(), 4);

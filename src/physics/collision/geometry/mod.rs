@@ -61,7 +61,7 @@ pub fn shape_shape(
     use polyhedra::contact;
     match (a, b) {
         (Shape::Box { half: ha }, Shape::Box { half: hb }) => {
-            contact(&BoxView::new(ha, pa), &BoxView::new(hb, pb), margin, out)
+            polyhedra::box_box(&BoxView::new(ha, pa), &BoxView::new(hb, pb), margin, out)
         }
         (Shape::Box { half }, Shape::Hull(hull)) => contact(
             &BoxView::new(half, pa),
@@ -103,7 +103,7 @@ pub fn shape_obstacle(
             let closest = closest_point(a, pa, &center);
             out.extend(obstacles::against_sphere(&closest, &center, radius, margin));
         }
-        (Obstacle::Box { min, max }, Shape::Box { half }) => polyhedra::contact(
+        (Obstacle::Box { min, max }, Shape::Box { half }) => polyhedra::box_box(
             &BoxView::new(half, pa),
             &BoxView::aligned(&min, &max),
             margin,

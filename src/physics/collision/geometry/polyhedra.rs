@@ -16,8 +16,8 @@
 //! ```
 
 use super::clip::{clip_to_face, reduce_to_four};
-use super::polyhedron::{Polygon, Polyhedron};
-use super::sat::{least_penetration, Axis};
+use super::polyhedron::{BoxView, Polygon, Polyhedron};
+use super::sat::{least_penetration, least_penetration_boxes, Axis, Query};
 use super::segments::closest_points;
 use super::shape::{ContactPoint, Feature};
 use smallvec::SmallVec;
@@ -25,9 +25,26 @@ use smallvec::SmallVec;
 /// Appends the contact points between A and B to `out` (nothing when apart by more than
 /// `margin`).
 pub fn contact(a: &impl Polyhedron, b: &impl Polyhedron, margin: f64, out: &mut Vec<ContactPoint>) {
-    let Some(query) = least_penetration(a, b, margin) else {
-        return;
-    };
+    if let Some(query) = least_penetration(a, b, margin) {
+        contact_along(a, b, &query, margin, out);
+    }
+}
+
+/// The same for two boxes, with the separating-axis test in closed form.
+pub fn box_box(a: &BoxView, b: &BoxView, margin: f64, out: &mut Vec<ContactPoint>) {
+    if let Some(query) = least_penetration_boxes(a, b, margin) {
+        contact_along(a, b, &query, margin, out);
+    }
+}
+
+/// Step 2 of the module doc: the contact points along the chosen axis.
+fn contact_along(
+    a: &impl Polyhedron,
+    b: &impl Polyhedron,
+    query: &Query,
+    margin: f64,
+    out: &mut Vec<ContactPoint>,
+) {
     match query.axis {
         Axis::FaceA { face } => face_contact(a, face, b, margin, false, out),
         Axis::FaceB { face } => face_contact(b, face, a, margin, true, out),
