@@ -14,6 +14,7 @@
 
 pub mod contacts;
 pub mod detect;
+pub mod geometry;
 pub mod impulse;
 pub mod position;
 pub mod seed;

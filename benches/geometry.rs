@@ -1,0 +1,91 @@
+//! What one contact-geometry query costs, in ns/call (`physics::collision::geometry`).
+//!
+//! Cases (unit cubes unless said otherwise, the contact buffer reused):
+//! - `box-box/face`: a cube resting 1 cm into a cube, turned 0.3 rad about y (8-point overlap
+//!   thinned to 4): SAT over 15 axes and the clipping;
+//! - `box-box/edge`: two cubes crossed edge to edge (one point);
+//! - `box-box/apart`: two cubes 0.1 m apart (SAT stops at the first separating axis);
+//! - `box-ground`: a cube resting flat on the ground (4 points);
+//! - `box-sphere`: a plate on a sphere obstacle (1 point);
+//! - `hull-hull/face`: the face case with both cubes as hulls of their 8 corners.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use nalgebra::{Rotation3, Vector3};
+use std::f64::consts::{FRAC_PI_4, SQRT_2};
+use std::hint::black_box;
+use tumble::physics::collision::geometry::{
+    shape_obstacle, shape_shape, ContactPoint, ConvexHull, Pose, Shape,
+};
+use tumble::physics::Obstacle;
+
+fn rotated(axis: Vector3<f64>, angle: f64, position: Vector3<f64>) -> Pose {
+    Pose {
+        position,
+        rotation: Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle)
+            .into_inner(),
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let half = Vector3::repeat(0.5);
+    let cube = Shape::Box { half };
+    let hull = Shape::Hull(ConvexHull::cuboid(&half));
+    let base = Pose::at(Vector3::zeros());
+    let resting = rotated(Vector3::y(), 0.3, Vector3::new(0.0, 0.99, 0.0));
+    let crossed_a = rotated(
+        Vector3::x(),
+        FRAC_PI_4,
+        Vector3::new(0.0, SQRT_2 - 0.02, 0.0),
+    );
+    let crossed_b = rotated(Vector3::z(), FRAC_PI_4, Vector3::zeros());
+    let apart = Pose::at(Vector3::new(0.0, 1.1, 0.0));
+    let mut out: Vec<ContactPoint> = Vec::with_capacity(16);
+
+    let mut group = c.benchmark_group("geometry");
+    let mut pair = |name: &str, a: &Shape, pa: &Pose, b: &Shape, pb: &Pose| {
+        group.bench_function(name, |bench| {
+            bench.iter(|| {
+                out.clear();
+                shape_shape(
+                    black_box(a),
+                    black_box(pa),
+                    black_box(b),
+                    black_box(pb),
+                    0.01,
+                    &mut out,
+                );
+                black_box(out.len())
+            })
+        });
+    };
+    pair("box-box/face", &cube, &resting, &cube, &base);
+    pair("box-box/edge", &cube, &crossed_a, &cube, &crossed_b);
+    pair("box-box/apart", &cube, &apart, &cube, &base);
+    pair("hull-hull/face", &hull, &resting, &hull, &base);
+
+    let ground = Obstacle::Ground { height: 0.0 };
+    let on_ground = Pose::at(Vector3::new(0.0, 0.4999, 0.0));
+    let plate = Shape::Box {
+        half: Vector3::new(0.5, 0.05, 0.5),
+    };
+    let sphere = Obstacle::Sphere {
+        center: Vector3::zeros(),
+        radius: 0.5,
+    };
+    let on_sphere = Pose::at(Vector3::new(0.0, 0.54, 0.0));
+    let mut obstacle = |name: &str, a: &Shape, pa: &Pose, o: &Obstacle| {
+        group.bench_function(name, |bench| {
+            bench.iter(|| {
+                out.clear();
+                shape_obstacle(black_box(a), black_box(pa), black_box(o), 0.01, &mut out);
+                black_box(out.len())
+            })
+        });
+    };
+    obstacle("box-ground", &cube, &on_ground, &ground);
+    obstacle("box-sphere", &plate, &on_sphere, &sphere);
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
