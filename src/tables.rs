@@ -265,7 +265,7 @@ pub fn involves(c: &Contact, index: usize) -> bool {
 }
 
 /// What touches what at a contact: `vertex 3 in ground 0` (the report's vertex test), or
-/// `face–face: box1 on ground 0`; `short` gives `v3 in ground` and `face–face box1/box2`.
+/// `face-face: box1 on box 0`; `short` gives `v3 in ground` and `face-face box1/box2`.
 pub fn contact_label(
     c: &Contact,
     obstacles: &[Obstacle],
@@ -287,9 +287,7 @@ pub fn contact_label(
     let feature = match c.feature {
         Feature::Vertex(v) if short => return format!("v{v} in {against}"),
         Feature::Vertex(v) => return format!("vertex {v} in {against}"),
-        Feature::VertexFace => "vertex–face",
-        Feature::EdgeEdge => "edge–edge",
-        Feature::FaceFace => "face–face",
+        Feature::Geometry(f) => f.name(),
     };
     if short {
         format!("{feature} {}/{against}", name(c.body))

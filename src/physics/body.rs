@@ -14,6 +14,7 @@
 //! drawing and collisions). The inertia tensor must be invertible: points on one line (or a single
 //! point) cannot resist rotation about that line, so `from_points` refuses them.
 
+use super::collision::geometry::{ConvexHull, Shape};
 use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 
 /// How the inertia of a body is obtained.
@@ -48,6 +49,10 @@ pub struct Body {
     pub principal_axes: UnitQuaternion<f64>,
     /// Largest distance of a point from the barycenter, m (a length scale for views and guards).
     pub radius: f64,
+    /// The convex shape contacts are computed on: the box itself, or the convex hull of the
+    /// points (None when the points have no volume: then only the report's vertex test sees
+    /// them).
+    pub shape: Option<Shape>,
 }
 
 /// Why a body could not be built.
@@ -108,7 +113,8 @@ impl Body {
             / total;
         let points_body: Vec<Vector3<f64>> = points.iter().map(|p| p - barycenter).collect();
         let inertia = point_inertia(&points_body, &masses);
-        Body::assemble(total, points_body, barycenter, edges, inertia)
+        let shape = ConvexHull::from_points(&points_body).ok().map(Shape::Hull);
+        Body::assemble(total, points_body, barycenter, edges, inertia, shape)
     }
 
     /// A uniform solid box of full side lengths `size` and mass `mass`, centred on the origin.
@@ -125,13 +131,18 @@ impl Body {
             Vector3::zeros(),
             box_edges(),
             inertia,
+            Some(Shape::Box { half: size / 2.0 }),
         )
     }
 
     /// A box whose 8 corners are equal mass points (`inertia = "points"`).
     pub fn box_of_corners(size: Vector3<f64>, mass: f64) -> Result<Body, BodyError> {
         check_size(size)?;
-        Body::from_points(&box_corners(size), &[], mass, box_edges())
+        let body = Body::from_points(&box_corners(size), &[], mass, box_edges())?;
+        Ok(Body {
+            shape: Some(Shape::Box { half: size / 2.0 }),
+            ..body
+        })
     }
 
     /// Finishes a body from its mass, points about the barycenter and inertia tensor.
@@ -141,6 +152,7 @@ impl Body {
         barycenter: Vector3<f64>,
         edges: Vec<(usize, usize)>,
         inertia_body: Matrix3<f64>,
+        shape: Option<Shape>,
     ) -> Result<Body, BodyError> {
         let (principal_moments, principal_axes) = principal_frame(&inertia_body);
         let largest = principal_moments.z;
@@ -175,6 +187,7 @@ impl Body {
             principal_moments,
             principal_axes,
             radius,
+            shape,
         })
     }
 }

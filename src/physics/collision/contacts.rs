@@ -16,13 +16,21 @@
 //! the solver may keep them from closing their gap within the next step (see `impulse`).
 
 use super::detect::{inside, near, swept};
+use super::geometry::{shape_obstacle, shape_shape, ContactPoint, Pose};
 use super::{Against, CollideInput, Contact, Feature, Obstacle};
 use crate::physics::state::State;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Matrix3;
 
 /// Finds the rows for `states` (after the integrate phase) into `out`; returns whether any
-/// row touches (depth > 0). Levers are filled in from the current barycenters.
-pub fn find(input: &CollideInput, states: &[State], margin: f64, out: &mut Vec<Contact>) -> bool {
+/// row touches (depth > 0). Levers are filled in from the current barycenters; `points` is a
+/// buffer for the contact geometry.
+pub fn find(
+    input: &CollideInput,
+    states: &[State],
+    margin: f64,
+    out: &mut Vec<Contact>,
+    points: &mut Vec<ContactPoint>,
+) -> bool {
     out.clear();
     for (index, (body, state)) in input.bodies.iter().zip(states).enumerate() {
         let rotation_now = state.orientation.matrix();
@@ -37,7 +45,12 @@ pub fn find(input: &CollideInput, states: &[State], margin: f64, out: &mut Vec<C
         } else {
             Matrix3::identity()
         };
+        let pose = Pose {
+            position: state.position,
+            rotation: rotation_now,
+        };
         for (obstacle_index, obstacle) in input.obstacles.iter().enumerate() {
+            let first = out.len();
             for (vertex, r0) in body.points_body.iter().enumerate() {
                 let b = state.position + rotation_now * r0;
                 // The ground needs no sweep (see `detect`): skip the vertex's start point.
@@ -65,13 +78,76 @@ pub fn find(input: &CollideInput, states: &[State], margin: f64, out: &mut Vec<C
                     )
                 });
             }
+            // No vertex inside: what do faces and edges see?
+            let touched = out[first..].iter().any(|c| c.depth > 0.0);
+            if let (false, false, Some(shape)) = (
+                touched,
+                matches!(obstacle, Obstacle::Ground { .. }),
+                &body.shape,
+            ) {
+                points.clear();
+                shape_obstacle(shape, &pose, obstacle, margin, points);
+                if !points.is_empty() {
+                    out.truncate(first);
+                    let against = Against::Obstacle(obstacle_index);
+                    out.extend(points.iter().map(|p| row(index, state, against, p, None)));
+                }
+            }
+        }
+    }
+    // Body against body: pairs whose bounding spheres meet.
+    for a in 0..states.len() {
+        let Some(shape_a) = &input.bodies[a].shape else {
+            continue;
+        };
+        for b in a + 1..states.len() {
+            let Some(shape_b) = &input.bodies[b].shape else {
+                continue;
+            };
+            let (sa, sb) = (&states[a], &states[b]);
+            let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;
+            if (sa.position - sb.position).norm_squared() > reach * reach {
+                continue;
+            }
+            points.clear();
+            shape_shape(shape_a, &pose_of(sa), shape_b, &pose_of(sb), margin, points);
+            out.extend(
+                points
+                    .iter()
+                    .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
+            );
         }
     }
     out.iter().any(|c| c.depth > 0.0)
 }
 
-/// The lever arm from a barycenter to a point.
-#[inline]
-pub fn lever(point: &Vector3<f64>, state: &State) -> Vector3<f64> {
-    point - state.position
+/// Where a body's shape is.
+fn pose_of(state: &State) -> Pose {
+    Pose {
+        position: state.position,
+        rotation: state.orientation.matrix(),
+    }
+}
+
+/// A row from a point of the contact geometry: A is body `a` (at `state`), B the other body's
+/// state if it is one.
+fn row(
+    a: usize,
+    state: &State,
+    against: Against,
+    p: &ContactPoint,
+    other: Option<&State>,
+) -> Contact {
+    Contact {
+        lever: p.point - state.position,
+        lever_other: other.map_or_else(nalgebra::Vector3::zeros, |s| p.point - s.position),
+        ..Contact::new(
+            a,
+            against,
+            Feature::Geometry(p.feature),
+            p.point,
+            p.depth,
+            p.normal,
+        )
+    }
 }

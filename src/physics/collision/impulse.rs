@@ -120,6 +120,7 @@ pub struct Scratch {
     tangents: Vec<[Direction; 2]>,
     motions: Vec<Motion>,
     previous: Vec<Contact>,
+    points: Vec<super::geometry::ContactPoint>,
     fix: position::Scratch,
 }
 
@@ -280,7 +281,7 @@ pub fn respond(
     // Points closer than this to a surface are speculative contacts (module doc).
     let margin = bounce_speed * input.dt;
     std::mem::swap(&mut scratch.previous, contacts);
-    if !contacts::find(input, states, margin, contacts) {
+    if !contacts::find(input, states, margin, contacts, &mut scratch.points) {
         // Nothing has touched: speculative contacts alone never act.
         contacts.clear();
         return None;
@@ -353,6 +354,7 @@ pub fn respond(
         motions,
         previous,
         fix: fs,
+        ..
     } = scratch;
     let buffers = Buffers {
         rows,

@@ -115,12 +115,8 @@ pub enum Against {
 pub enum Feature {
     /// Body A's vertex inside B (the report's per-vertex test), with the vertex index.
     Vertex(usize),
-    /// A vertex of one shape inside a face of the other (found by the contact geometry).
-    VertexFace,
-    /// An edge of A crossing an edge of B.
-    EdgeEdge,
-    /// Two faces flat against each other: one point of their contact manifold.
-    FaceFace,
+    /// Found by the contact geometry: vertex–face, edge–face, edge–edge, face–face, sphere.
+    Geometry(geometry::Feature),
 }
 
 /// One contact row, two-sided: body A against an obstacle or body B, and what the response
