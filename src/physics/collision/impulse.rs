@@ -259,8 +259,8 @@ struct Row {
     /// The normal velocity the contact may keep: gap/dt for a speculative contact (it may
     /// close its gap within the next step, no more), 0 for a touching one, m/s.
     bias: f64,
-    /// The last step's normal impulse at the same contact, if any (warm start of the sweeps).
-    warm: f64,
+    /// The last step's impulse at the same contact, if any (warm start of the sweeps).
+    warm: Vector3<f64>,
 }
 
 /// Detects contacts (swept vertex tests, contact geometry, speculative rows) and runs the
@@ -451,7 +451,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             lambda_restitution: 0.0,
             approach: along(&normal, motions),
             bias: (-c.depth).max(0.0) / dt,
-            warm: warm_start(c, previous),
+            warm: warm_start(c, previous, bounce_speed),
         }
     }));
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
@@ -462,9 +462,10 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
     if !direct_inelastic(rows, motions, tolerance) {
         for row in rows.iter_mut() {
             row.normal.with_inverse();
-            if row.warm > 0.0 {
-                row.lambda = row.warm;
-                apply(row.warm, &row.normal, motions);
+            let warm = row.warm.dot(&row.normal.d).max(0.0);
+            if warm > 0.0 {
+                row.lambda = warm;
+                apply(warm, &row.normal, motions);
             }
         }
         for _ in 0..MAX_SWEEPS {
@@ -502,7 +503,6 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             .any(|(r, c)| sliding(r, c, motions))
     {
         for (row, contact) in rows.iter_mut().zip(contacts.iter()) {
-            row.normal.with_inverse();
             row.friction_bound = friction * row.lambda;
             let (t1, t2) = tangents(&contact.normal);
             tangent_directions.push([
@@ -510,7 +510,27 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
                 Direction::new(t2, contact, motions),
             ]);
         }
-        for _ in 0..MAX_SWEEPS {
+        // The direct solve first (everything sticks); else the sweeps, warm-started from the
+        // last step's friction impulses (kept in their disks).
+        let solved = direct_sticking(rows, tangent_directions, motions, tolerance);
+        if !solved {
+            for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
+                row.normal.with_inverse();
+                let [t1, t2] = directions;
+                let mut warm = [row.warm.dot(&t1.d), row.warm.dot(&t2.d)];
+                let size = (warm[0] * warm[0] + warm[1] * warm[1]).sqrt();
+                if size > row.friction_bound {
+                    let scale = row.friction_bound / size;
+                    warm = [warm[0] * scale, warm[1] * scale];
+                }
+                if warm != [0.0; 2] {
+                    row.lambda_tangent = warm;
+                    apply(warm[0], t1, motions);
+                    apply(warm[1], t2, motions);
+                }
+            }
+        }
+        for _ in 0..if solved { 0 } else { MAX_SWEEPS } {
             let mut largest: f64 = 0.0;
             for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
                 let bound = row.friction_bound;
@@ -586,9 +606,10 @@ fn bounces(row: &Row, bounce_speed: f64) -> bool {
     row.approach < -bounce_speed && row.compression > 0.0
 }
 
-/// The last step's normal impulse at the same contact: same bodies, same feature, a point
-/// within 1 mm (a vertex keeps its index; a manifold point is matched by where it is).
-fn warm_start(c: &Contact, previous: &[Contact]) -> f64 {
+/// The last step's impulse at the same contact: same bodies, same feature, a point within
+/// 1 mm (a vertex keeps its index; a manifold point is matched by where it is). Zero for a new
+/// contact, or one that bounced (a bounce says nothing about the next step's load).
+fn warm_start(c: &Contact, previous: &[Contact], bounce_speed: f64) -> Vector3<f64> {
     previous
         .iter()
         .find(|p| {
@@ -597,7 +618,8 @@ fn warm_start(c: &Contact, previous: &[Contact]) -> f64 {
                 && p.feature == c.feature
                 && (p.point - c.point).norm_squared() < 1e-6
         })
-        .map_or(0.0, |p| p.impulse.dot(&p.normal).max(0.0))
+        .filter(|p| p.normal_velocity >= -bounce_speed)
+        .map_or_else(Vector3::zeros, |p| p.impulse)
 }
 
 /// The inelastic problem solved directly, when its answer is "every approaching contact
@@ -628,48 +650,19 @@ fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) ->
     if m == 0 {
         return true;
     }
-    let mut a = [[0.0f64; DIRECT_MAX]; DIRECT_MAX];
-    let mut rhs = [0.0f64; DIRECT_MAX];
-    let mut largest: f64 = 0.0;
+    let mut system = Dense::new(m);
     for p in 0..m {
         let ni = &rows[active[p]].normal;
-        rhs[p] = -along(ni, motions) - rows[active[p]].bias;
+        system.rhs[p] = -along(ni, motions) - rows[active[p]].bias;
         for q in 0..=p {
-            a[p][q] = ni.coupling(&rows[active[q]].normal, motions);
+            system.a[p][q] = ni.coupling(&rows[active[q]].normal, motions);
         }
-        largest = largest.max(a[p][p]);
     }
-    let epsilon = 1e-10 * largest;
-    // A + ε𝟙 = L D Lᵀ (L unit lower triangular, in place below the diagonal; D kept as 1/Dₚ):
-    // no square roots. wₖ = L_pk D_k for the row being factored.
-    let mut inv_diagonal = [0.0f64; DIRECT_MAX];
-    for p in 0..m {
-        let mut w = [0.0f64; DIRECT_MAX];
-        let mut pivot = a[p][p] + epsilon;
-        for q in 0..p {
-            let dot: f64 = w[..q].iter().zip(&a[q][..q]).map(|(x, y)| x * y).sum();
-            w[q] = a[p][q] - dot;
-            let l = w[q] * inv_diagonal[q];
-            pivot -= w[q] * l;
-            a[p][q] = l;
-        }
-        if pivot <= 0.0 {
-            return false;
-        }
-        inv_diagonal[p] = 1.0 / pivot;
-    }
-    // L y = rhs, then Lᵀ λ = D⁻¹ y.
-    let mut lambda = rhs;
-    for p in 0..m {
-        let dot: f64 = a[p][..p].iter().zip(&lambda[..p]).map(|(x, y)| x * y).sum();
-        lambda[p] -= dot;
-    }
-    for p in (0..m).rev() {
-        let dot: f64 = (p + 1..m).map(|k| a[k][p] * lambda[k]).sum();
-        lambda[p] = lambda[p] * inv_diagonal[p] - dot;
-        if lambda[p] < 0.0 {
-            return false;
-        }
+    let Some(lambda) = system.solve() else {
+        return false;
+    };
+    if lambda[..m].iter().any(|l| *l < 0.0) {
+        return false;
     }
     let start: Vec<Motion> = motions.to_vec();
     for p in 0..m {
@@ -686,6 +679,148 @@ fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) ->
         rows[active[p]].lambda = lambda[p];
     }
     true
+}
+
+/// Friction solved directly, when its answer is "every pushing contact sticks" (a body at rest
+/// on a slope, the usual case with friction): with the contacts that push after stage 1, find
+/// the increments of their normal impulses and their tangent impulses that stop every tangent
+/// velocity and keep every normal one,
+///
+/// ```text
+/// (A + ε𝟙) Δλ = −u      over the rows (n, t₁, t₂) of each pushing contact
+/// ```
+///
+/// (the same minimum-norm LDLᵀ as the inelastic solve). Accepted only if it is the solution
+/// of the stage-2 problem: every λₙ ≥ 0, every |λ_t| inside its disk μ λ_stage1, and no
+/// contact approaching; then it is the minimum of K the sweeps converge to, reached at once.
+/// Returns false (and changes nothing) otherwise.
+fn direct_sticking(
+    rows: &mut [Row],
+    directions: &[[Direction; 2]],
+    motions: &mut [Motion],
+    tolerance: f64,
+) -> bool {
+    let mut active = [0usize; DIRECT_MAX];
+    let mut m = 0;
+    for (i, row) in rows.iter().enumerate() {
+        if row.lambda > 0.0 {
+            if m == DIRECT_MAX {
+                return false;
+            }
+            active[m] = i;
+            m += 1;
+        }
+    }
+    if m == 0 {
+        return false;
+    }
+    // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact.
+    let direction = |k: usize| -> &Direction {
+        let i = active[k / 3];
+        match k % 3 {
+            0 => &rows[i].normal,
+            t => &directions[i][t - 1],
+        }
+    };
+    let mut system = Dense::new(3 * m);
+    for p in 0..3 * m {
+        let dp = direction(p);
+        system.rhs[p] = -along(dp, motions)
+            - if p % 3 == 0 {
+                rows[active[p / 3]].bias
+            } else {
+                0.0
+            };
+        for q in 0..=p {
+            system.a[p][q] = dp.coupling(direction(q), motions);
+        }
+    }
+    let Some(delta) = system.solve() else {
+        return false;
+    };
+    for k in 0..m {
+        let row = &rows[active[k]];
+        let (dn, t1, t2) = (delta[3 * k], delta[3 * k + 1], delta[3 * k + 2]);
+        if row.lambda + dn < 0.0 || (t1 * t1 + t2 * t2).sqrt() > row.friction_bound {
+            return false;
+        }
+    }
+    let start: Vec<Motion> = motions.to_vec();
+    for (p, d) in delta[..3 * m].iter().enumerate() {
+        apply(*d, direction(p), motions);
+    }
+    if rows
+        .iter()
+        .any(|r| along(&r.normal, motions) + r.bias < -tolerance)
+    {
+        motions.copy_from_slice(&start);
+        return false;
+    }
+    for k in 0..m {
+        let row = &mut rows[active[k]];
+        row.lambda += delta[3 * k];
+        row.lambda_tangent = [delta[3 * k + 1], delta[3 * k + 2]];
+    }
+    true
+}
+
+/// Largest dense system the direct solves build: three rows per contact.
+const DENSE_MAX: usize = 3 * DIRECT_MAX;
+
+/// A small dense symmetric system `(A + ε𝟙) x = rhs` (lower triangle of A filled in), solved
+/// by LDLᵀ without square roots; ε = 1e-10 · max Aᵢᵢ picks the minimum-norm x when A is only
+/// semi-definite.
+struct Dense {
+    m: usize,
+    a: [[f64; DENSE_MAX]; DENSE_MAX],
+    rhs: [f64; DENSE_MAX],
+}
+
+impl Dense {
+    fn new(m: usize) -> Dense {
+        Dense {
+            m,
+            a: [[0.0; DENSE_MAX]; DENSE_MAX],
+            rhs: [0.0; DENSE_MAX],
+        }
+    }
+
+    /// x, or None if a pivot is not positive (A not positive definite even with ε).
+    fn solve(mut self) -> Option<[f64; DENSE_MAX]> {
+        let m = self.m;
+        let a = &mut self.a;
+        let largest = (0..m).map(|p| a[p][p]).fold(0.0, f64::max);
+        let epsilon = 1e-10 * largest;
+        // A + ε𝟙 = L D Lᵀ (L unit lower triangular, in place below the diagonal; D kept as
+        // 1/Dₚ): no square roots. wₖ = L_pk D_k for the row being factored.
+        let mut inv_diagonal = [0.0f64; DENSE_MAX];
+        for p in 0..m {
+            let mut w = [0.0f64; DENSE_MAX];
+            let mut pivot = a[p][p] + epsilon;
+            for q in 0..p {
+                let dot: f64 = w[..q].iter().zip(&a[q][..q]).map(|(x, y)| x * y).sum();
+                w[q] = a[p][q] - dot;
+                let l = w[q] * inv_diagonal[q];
+                pivot -= w[q] * l;
+                a[p][q] = l;
+            }
+            if pivot <= 0.0 {
+                return None;
+            }
+            inv_diagonal[p] = 1.0 / pivot;
+        }
+        // L y = rhs, then Lᵀ x = D⁻¹ y.
+        let mut x = self.rhs;
+        for p in 0..m {
+            let dot: f64 = a[p][..p].iter().zip(&x[..p]).map(|(x, y)| x * y).sum();
+            x[p] -= dot;
+        }
+        for p in (0..m).rev() {
+            let dot: f64 = (p + 1..m).map(|k| a[k][p] * x[k]).sum();
+            x[p] = x[p] * inv_diagonal[p] - dot;
+        }
+        Some(x)
+    }
 }
 
 /// The exact minimisation of K over one contact's friction disk `|λ_t| ≤ bound`, the other
