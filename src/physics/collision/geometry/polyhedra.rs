@@ -16,11 +16,11 @@
 //! ```
 
 use super::clip::{clip_to_face, reduce_to_four};
+use super::polygon::CAPACITY;
 use super::polyhedron::{BoxView, Polygon, Polyhedron};
 use super::sat::{least_penetration, least_penetration_boxes, Axis, Query};
 use super::segments::closest_points;
 use super::shape::{ContactPoint, Feature};
-use smallvec::SmallVec;
 
 /// Appends the contact points between A and B to `out` (nothing when apart by more than
 /// `margin`).
@@ -84,10 +84,19 @@ fn face_contact(
     let mut scratch = Polygon::new();
     clip_to_face(&mut points, &mut scratch, &reference_loop, &n);
 
-    let mut depths: SmallVec<[f64; 16]> = SmallVec::new();
-    points.retain(|p| d - n.dot(p) >= -margin);
-    depths.extend(points.iter().map(|p| d - n.dot(p)));
-    reduce_to_four(&mut points, &mut depths, &n);
+    // Keep the points below the reference face (or within the margin), with their depths.
+    let mut depths = [0.0; CAPACITY];
+    let mut kept = 0;
+    for i in 0..points.len() {
+        let depth = d - n.dot(&points[i]);
+        if depth >= -margin {
+            points[kept] = points[i];
+            depths[kept] = depth;
+            kept += 1;
+        }
+    }
+    points.truncate(kept);
+    reduce_to_four(&mut points, &mut depths[..kept], &n);
 
     let feature = Feature::of_face_contact(points.len());
     let normal = if reference_is_b { n } else { -n };

@@ -15,13 +15,9 @@
 //! ```
 
 use super::hull::ConvexHull;
+pub use super::polygon::Polygon;
 use super::shape::Pose;
 use nalgebra::{Matrix3, Vector3};
-use smallvec::SmallVec;
-
-/// A polygon's vertex loop; 16 points stay on the stack (a box face clipped by a box face has at
-/// most 8), more spill to the heap.
-pub type Polygon = SmallVec<[Vector3<f64>; 16]>;
 
 /// A convex polyhedron placed in the world.
 pub trait Polyhedron {
