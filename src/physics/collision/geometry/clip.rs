@@ -58,6 +58,11 @@ pub fn clip_to_face(
         } else {
             (&*incident, &mut *scratch)
         };
+        // Nothing outside this side plane (a box on a larger box): nothing to cut.
+        if from.iter().all(|p| side.dot(&(p - v)) <= 0.0) {
+            v = w;
+            continue;
+        }
         clip_by_plane(from, to, &side, &v);
         in_scratch = !in_scratch;
         v = w;
