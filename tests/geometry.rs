@@ -590,3 +590,44 @@ fn a_particle_off_a_hull_edge_is_nearest_to_that_edge() {
     assert!((c.normal - Vector3::new(0.0, -1.0, -1.0) / SQRT_2).norm() < 1e-12);
     assert!((c.point - Vector3::new(0.5, 0.0, 0.0)).norm() < 1e-12);
 }
+
+#[test]
+fn the_house_mesh_hull_is_a_pentagonal_prism_standing_on_its_floor() {
+    // lessons/meshes/house.obj: a pentagon (square 0.4 × 0.3 with a roof to y = 0.45) extruded
+    // 0.2 along z: 10 corners, 7 faces (2 pentagons, 5 quads), 15 edges, and 5 edge directions
+    // (z; the floor's x; the walls' y; the two roof slopes).
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/lessons/meshes/house.obj"
+    ))
+    .expect("house mesh");
+    let points: Vec<Vector3<f64>> = text
+        .lines()
+        .filter_map(|line| line.strip_prefix("v "))
+        .map(|xyz| {
+            let v: Vec<f64> = xyz.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            Vector3::new(v[0], v[1], v[2])
+        })
+        .collect();
+    let hull = ConvexHull::from_points(&points).expect("the house has volume");
+    assert_eq!(hull.vertices.len(), 10);
+    assert_eq!(hull.faces.len(), 7);
+    assert_eq!(
+        hull.faces.iter().filter(|f| f.vertices.len() == 5).count(),
+        2
+    );
+    assert_eq!(hull.edges.len(), 15);
+    assert_eq!(hull.directions.len(), 5);
+    // Floor y = 0 lowered 0.01 into the ground: the floor's 4 corners (±0.2, ·, ±0.1).
+    let contacts = obstacle(
+        &Shape::Hull(hull),
+        &Pose::at(Vector3::new(0.0, -0.01, 0.0)),
+        &Obstacle::Ground { height: 0.0 },
+        0.0,
+    );
+    let expected: Vec<Vector3<f64>> = [(-0.2, -0.1), (-0.2, 0.1), (0.2, -0.1), (0.2, 0.1)]
+        .iter()
+        .map(|&(x, z)| Vector3::new(x, -0.005, z))
+        .collect();
+    assert_manifold(&contacts, Vector3::y(), 0.01, &expected, 1e-12);
+}
