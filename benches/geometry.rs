@@ -1,8 +1,9 @@
 //! What one contact-geometry query costs, in ns/call (`physics::collision::geometry`).
 //!
 //! Cases (unit cubes unless said otherwise, the contact buffer reused):
-//! - `box-box/face`: a cube resting 1 cm into a cube, turned 0.3 rad about y (8-point overlap
-//!   thinned to 4): SAT over 15 axes and the clipping;
+//! - `box-box/stacked`: a cube resting 1 cm into an equal cube, aligned (a stack): SAT over the
+//!   15 axes, 4 points, no cut;
+//! - `box-box/face`: the same turned 0.3 rad about y (8-point overlap thinned to 4);
 //! - `box-box/edge`: two cubes crossed edge to edge (one point);
 //! - `box-box/apart`: two cubes 0.1 m apart (SAT stops at the first separating axis);
 //! - `box-ground`: a cube resting flat on the ground (4 points);
@@ -31,6 +32,7 @@ fn bench(c: &mut Criterion) {
     let cube = Shape::Box { half };
     let hull = Shape::Hull(ConvexHull::cuboid(&half));
     let base = Pose::at(Vector3::zeros());
+    let stacked = Pose::at(Vector3::new(0.0, 0.99, 0.0));
     let resting = rotated(Vector3::y(), 0.3, Vector3::new(0.0, 0.99, 0.0));
     let crossed_a = rotated(
         Vector3::x(),
@@ -58,6 +60,7 @@ fn bench(c: &mut Criterion) {
             })
         });
     };
+    pair("box-box/stacked", &cube, &stacked, &cube, &base);
     pair("box-box/face", &cube, &resting, &cube, &base);
     pair("box-box/edge", &cube, &crossed_a, &cube, &crossed_b);
     pair("box-box/apart", &cube, &apart, &cube, &base);

@@ -457,7 +457,7 @@ fn overlap(a: &[Vector3<f64>], b: &[Vector3<f64>], u: &Vector3<f64>) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(ProptestConfig::with_cases(1000))]
     #[test]
     fn random_box_pairs_give_sane_contacts(
         (ha, xa, ra) in arbitrary_box(),
@@ -495,9 +495,139 @@ proptest! {
         if local.abs().iter().zip(ha.iter()).all(|(l, h)| l < h) {
             prop_assert!(deepest(&contacts) > 0.0, "{contacts:?}");
         }
+        // The generic polyhedron test on the boxes as hulls agrees with the closed form.
+        let hulls = pair(&as_hull(&a), &pa, &as_hull(&b), &pb, margin);
+        prop_assert_eq!(hulls.is_empty(), contacts.is_empty());
+        prop_assert!((deepest(&hulls) - deepest(&contacts)).abs() <= 0.03 * deepest(&contacts) + 2e-5,
+            "hulls {hulls:?} boxes {contacts:?}");
         // Swapping flips the normal and keeps the deepest depth.
         let swapped = pair(&b, &pb, &a, &pa, margin);
         prop_assert_eq!(swapped.is_empty(), contacts.is_empty());
         prop_assert!((deepest(&swapped) - deepest(&contacts)).abs() <= 0.03 * deepest(&contacts) + 2e-5);
     }
+}
+
+/// The corner tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1) as a hull.
+fn corner_tetrahedron() -> Shape {
+    let points = [
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(1.0, 0.0, 0.0),
+        Vector3::new(0.0, 1.0, 0.0),
+        Vector3::new(0.0, 0.0, 1.0),
+    ];
+    Shape::Hull(ConvexHull::from_points(&points).expect("a tetrahedron has volume"))
+}
+
+#[test]
+fn a_tetrahedron_on_the_ground_touches_at_its_three_base_corners() {
+    // Base y = 0 lowered 0.01 into the ground: its three corners, midway y = −0.005.
+    let pose = Pose::at(Vector3::new(0.0, -0.01, 0.0));
+    let contacts = obstacle(
+        &corner_tetrahedron(),
+        &pose,
+        &Obstacle::Ground { height: 0.0 },
+        0.0,
+    );
+    let expected = [
+        Vector3::new(0.0, -0.005, 0.0),
+        Vector3::new(0.0, -0.005, 1.0),
+        Vector3::new(1.0, -0.005, 0.0),
+    ];
+    assert_manifold(&contacts, Vector3::y(), 0.01, &expected, 1e-12);
+    assert!(contacts.iter().all(|c| c.feature == Feature::FaceFace));
+}
+
+#[test]
+fn a_tetrahedron_apex_down_on_a_cube_touches_at_one_point() {
+    // Turned 180° about x, the apex (0, 1, 0) points down, 1 below the pose's origin; origin at
+    // y = 0.5 + 1 − 0.02 puts it 0.02 into the unit cube's top face: one point (0, 0.49, 0).
+    let pose = rotated(
+        Vector3::x(),
+        std::f64::consts::PI,
+        Vector3::new(0.0, 1.48, 0.0),
+    );
+    let contacts = pair(
+        &corner_tetrahedron(),
+        &pose,
+        &cube(1.0),
+        &Pose::at(Vector3::zeros()),
+        0.0,
+    );
+    assert_manifold(
+        &contacts,
+        Vector3::y(),
+        0.02,
+        &[Vector3::new(0.0, 0.49, 0.0)],
+        1e-12,
+    );
+    assert_eq!(contacts[0].feature, Feature::VertexFace);
+    // Seen from the cube: the normal flips.
+    let swapped = pair(
+        &cube(1.0),
+        &Pose::at(Vector3::zeros()),
+        &corner_tetrahedron(),
+        &pose,
+        0.0,
+    );
+    assert_manifold(
+        &swapped,
+        -Vector3::y(),
+        0.02,
+        &[Vector3::new(0.0, 0.49, 0.0)],
+        1e-12,
+    );
+}
+
+#[test]
+fn a_particle_off_a_hull_edge_is_nearest_to_that_edge() {
+    // p = (0.5, −0.1, −0.1) is beside the edge (0,0,0)–(1,0,0): distance √0.02, normal
+    // (0, −1, −1)/√2, nearest point (0.5, 0, 0).
+    let p = Vector3::new(0.5, -0.1, -0.1);
+    let pose = Pose::at(Vector3::zeros());
+    assert!(point_shape(&p, &corner_tetrahedron(), &pose, 0.1).is_none());
+    let c = point_shape(&p, &corner_tetrahedron(), &pose, 0.2).expect("within margin");
+    assert!((c.depth + 0.02f64.sqrt()).abs() < 1e-12, "{c:?}");
+    assert!((c.normal - Vector3::new(0.0, -1.0, -1.0) / SQRT_2).norm() < 1e-12);
+    assert!((c.point - Vector3::new(0.5, 0.0, 0.0)).norm() < 1e-12);
+}
+
+#[test]
+fn the_house_mesh_hull_is_a_pentagonal_prism_standing_on_its_floor() {
+    // lessons/meshes/house.obj: a pentagon (square 0.4 × 0.3 with a roof to y = 0.45) extruded
+    // 0.2 along z: 10 corners, 7 faces (2 pentagons, 5 quads), 15 edges, and 5 edge directions
+    // (z; the floor's x; the walls' y; the two roof slopes).
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/lessons/meshes/house.obj"
+    ))
+    .expect("house mesh");
+    let points: Vec<Vector3<f64>> = text
+        .lines()
+        .filter_map(|line| line.strip_prefix("v "))
+        .map(|xyz| {
+            let v: Vec<f64> = xyz.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            Vector3::new(v[0], v[1], v[2])
+        })
+        .collect();
+    let hull = ConvexHull::from_points(&points).expect("the house has volume");
+    assert_eq!(hull.vertices.len(), 10);
+    assert_eq!(hull.faces.len(), 7);
+    assert_eq!(
+        hull.faces.iter().filter(|f| f.vertices.len() == 5).count(),
+        2
+    );
+    assert_eq!(hull.edges.len(), 15);
+    assert_eq!(hull.directions.len(), 5);
+    // Floor y = 0 lowered 0.01 into the ground: the floor's 4 corners (±0.2, ·, ±0.1).
+    let contacts = obstacle(
+        &Shape::Hull(hull),
+        &Pose::at(Vector3::new(0.0, -0.01, 0.0)),
+        &Obstacle::Ground { height: 0.0 },
+        0.0,
+    );
+    let expected: Vec<Vector3<f64>> = [(-0.2, -0.1), (-0.2, 0.1), (0.2, -0.1), (0.2, 0.1)]
+        .iter()
+        .map(|&(x, z)| Vector3::new(x, -0.005, z))
+        .collect();
+    assert_manifold(&contacts, Vector3::y(), 0.01, &expected, 1e-12);
 }

@@ -17,7 +17,6 @@
 
 use super::polyhedron::Polygon;
 use nalgebra::Vector3;
-use smallvec::SmallVec;
 
 /// Clips `input` by the half-space s·(p − o) ≤ 0 into `output` (cleared first).
 pub fn clip_by_plane(input: &Polygon, output: &mut Polygon, s: &Vector3<f64>, o: &Vector3<f64>) {
@@ -27,7 +26,7 @@ pub fn clip_by_plane(input: &Polygon, output: &mut Polygon, s: &Vector3<f64>, o:
     };
     // Each edge p → q, starting with the closing edge (last → first).
     let (mut p, mut dp) = (last, s.dot(&(last - o)));
-    for &q in input {
+    for &q in input.iter() {
         let dq = s.dot(&(q - o));
         if (dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0) {
             output.push(p + (q - p) * (dp / (dp - dq)));
@@ -52,13 +51,18 @@ pub fn clip_to_face(
     };
     let mut in_scratch = false;
     let mut v = last;
-    for &w in reference {
+    for &w in reference.iter() {
         let side = (w - v).cross(n);
         let (from, to) = if in_scratch {
             (&*scratch, &mut *incident)
         } else {
             (&*incident, &mut *scratch)
         };
+        // Nothing outside this side plane (a box on a larger box): nothing to cut.
+        if from.iter().all(|p| side.dot(&(p - v)) <= 0.0) {
+            v = w;
+            continue;
+        }
         clip_by_plane(from, to, &side, &v);
         in_scratch = !in_scratch;
         v = w;
@@ -67,33 +71,34 @@ pub fn clip_to_face(
         }
     }
     if in_scratch {
-        incident.clear();
-        incident.extend_from_slice(scratch);
+        *incident = *scratch;
     }
 }
 
-/// Thins `points` (with their depths) to at most 4 (see the module doc); `n` is the face normal.
-pub fn reduce_to_four(points: &mut Polygon, depths: &mut SmallVec<[f64; 16]>, n: &Vector3<f64>) {
+/// Thins `points` and their `depths` (same order) to at most 4 (see the module doc); `n` is
+/// the face normal.
+pub fn reduce_to_four(points: &mut Polygon, depths: &mut [f64], n: &Vector3<f64>) {
     if points.len() <= 4 {
         return;
     }
-    let argmax = |score: &dyn Fn(usize) -> f64| {
+    fn argmax(count: usize, score: impl Fn(usize) -> f64) -> usize {
         let mut best = (0, f64::NEG_INFINITY);
-        for i in 0..points.len() {
+        for i in 0..count {
             let x = score(i);
             if x > best.1 {
                 best = (i, x);
             }
         }
         best.0
-    };
-    let first = argmax(&|i| depths[i]);
+    }
+    let count = points.len();
+    let first = argmax(count, |i| depths[i]);
     let p1 = points[first];
-    let second = argmax(&|i| (points[i] - p1).norm_squared());
+    let second = argmax(count, |i| (points[i] - p1).norm_squared());
     let p2 = points[second];
     let area = |i: usize| n.dot(&(p2 - p1).cross(&(points[i] - p1)));
-    let third = argmax(&|i| area(i));
-    let fourth = argmax(&|i| -area(i));
+    let third = argmax(count, area);
+    let fourth = argmax(count, |i| -area(i));
     let mut chosen = [first, second, third, fourth];
     chosen.sort_unstable();
     // Move the chosen ones to the front, in order (each goes to a slot at or before its own).
@@ -107,7 +112,6 @@ pub fn reduce_to_four(points: &mut Polygon, depths: &mut SmallVec<[f64; 16]>, n:
         kept += 1;
     }
     points.truncate(kept);
-    depths.truncate(kept);
 }
 
 #[cfg(test)]
@@ -150,7 +154,7 @@ mod tests {
         let mut incident = square(0.2, -0.01);
         let mut scratch = Polygon::new();
         clip_to_face(&mut incident, &mut scratch, &reference, &Vector3::z());
-        assert_eq!(incident, square(0.2, -0.01));
+        assert_eq!(*incident, *square(0.2, -0.01));
     }
 
     #[test]
@@ -163,8 +167,8 @@ mod tests {
                 Vector3::new(t.cos(), t.sin(), 0.0)
             })
             .collect();
-        let mut depths: SmallVec<[f64; 16]> =
-            (0..8).map(|k| if k == 0 { 0.02 } else { 0.01 }).collect();
+        let mut depths = [0.01; 8];
+        depths[0] = 0.02;
         reduce_to_four(&mut points, &mut depths, &Vector3::z());
         assert_eq!(points.len(), 4);
         let expected = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];

@@ -72,17 +72,17 @@ pub fn closest_on_polyhedron(shape: &impl Polyhedron, p: &Vector3<f64>) -> Close
             let (v, w) = (polygon[j], polygon[(j + 1) % m]);
             (w - v).cross(&n).dot(&(projection - v)) <= 0.0
         });
-        let candidates = if within {
-            vec![projection]
-        } else {
-            (0..m)
-                .map(|j| closest_points(&polygon[j], &polygon[(j + 1) % m], p, p).0)
-                .collect()
-        };
-        for q in candidates {
+        let mut consider = |q: Vector3<f64>| {
             let dist = (p - q).norm();
             if nearest.is_none_or(|(best, _)| dist < best) {
                 nearest = Some((dist, q));
+            }
+        };
+        if within {
+            consider(projection);
+        } else {
+            for j in 0..m {
+                consider(closest_points(&polygon[j], &polygon[(j + 1) % m], p, p).0);
             }
         }
     }

@@ -20,6 +20,7 @@
 //! |---|---|
 //! | `shape` | shapes, poses, contact points |
 //! | `hull` | the convex hull of a point set (incremental construction, coplanar faces merged) |
+//! | `polygon` | a short list of points on the stack (no allocation per contact) |
 //! | `polyhedron` | boxes and hulls answering the same questions (shadow on an axis, faces, edges) |
 //! | `sat` | the separating-axis test and the axis of least penetration |
 //! | `clip` | Sutherland–Hodgman clipping of the incident face; thinning to 4 points |
@@ -35,6 +36,7 @@ pub mod clip;
 pub mod closest;
 pub mod hull;
 pub mod obstacles;
+pub mod polygon;
 pub mod polyhedra;
 pub mod polyhedron;
 pub mod sat;

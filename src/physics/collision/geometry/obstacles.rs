@@ -14,10 +14,10 @@
 
 use super::clip::reduce_to_four;
 use super::closest::Closest;
+use super::polygon::CAPACITY;
 use super::polyhedron::{Polygon, Polyhedron};
 use super::shape::{ContactPoint, Feature};
 use nalgebra::Vector3;
-use smallvec::SmallVec;
 
 /// The vertices of `shape` at or below `height + margin`.
 pub fn against_ground(
@@ -27,16 +27,17 @@ pub fn against_ground(
     out: &mut Vec<ContactPoint>,
 ) {
     let mut points = Polygon::new();
-    let mut depths: SmallVec<[f64; 16]> = SmallVec::new();
+    let mut depths = [0.0; CAPACITY];
     shape.for_each_vertex(&mut |v| {
         let depth = height - v.y;
-        if depth >= -margin {
+        if depth >= -margin && points.len() < CAPACITY {
+            depths[points.len()] = depth;
             points.push(v);
-            depths.push(depth);
         }
     });
     let up = Vector3::y();
-    reduce_to_four(&mut points, &mut depths, &up);
+    let count = points.len();
+    reduce_to_four(&mut points, &mut depths[..count], &up);
     let feature = Feature::of_face_contact(points.len());
     out.extend(points.iter().zip(&depths).map(|(v, &depth)| ContactPoint {
         point: v + up * (depth / 2.0),

@@ -9,18 +9,20 @@
 //!     clip the incident face to the reference face's prism (clip.rs);
 //!     keep the points p with depth = d − n·p ≥ −margin; thin to ≤ 4;
 //!     contact point = p + (depth/2) n  (midway between the incident point and its projection
-//!     on the reference plane); normal B → A = −n if the reference is A's face, +n if B's
+//!     on the reference plane); normal B → A = −n if the reference is A's face, +n if B's;
+//!     if clipping leaves nothing (rare, deep overlaps), the incident shape's deepest vertex
 //! 2b. edge axis (normal u from B toward A): A's edge of that direction deepest toward B
 //!     (support along −u), B's edge of its direction farthest along +u; their closest points
 //!     a, b (segments.rs); contact point = (a + b)/2, depth = −s (the SAT overlap)
 //! ```
 
 use super::clip::{clip_to_face, reduce_to_four};
+use super::polygon::CAPACITY;
 use super::polyhedron::{BoxView, Polygon, Polyhedron};
 use super::sat::{least_penetration, least_penetration_boxes, Axis, Query};
 use super::segments::closest_points;
 use super::shape::{ContactPoint, Feature};
-use smallvec::SmallVec;
+use nalgebra::Vector3;
 
 /// Appends the contact points between A and B to `out` (nothing when apart by more than
 /// `margin`).
@@ -84,10 +86,35 @@ fn face_contact(
     let mut scratch = Polygon::new();
     clip_to_face(&mut points, &mut scratch, &reference_loop, &n);
 
-    let mut depths: SmallVec<[f64; 16]> = SmallVec::new();
-    points.retain(|p| d - n.dot(p) >= -margin);
-    depths.extend(points.iter().map(|p| d - n.dot(p)));
-    reduce_to_four(&mut points, &mut depths, &n);
+    // Keep the points below the reference face (or within the margin), with their depths.
+    let mut depths = [0.0; CAPACITY];
+    let mut kept = 0;
+    for i in 0..points.len() {
+        let depth = d - n.dot(&points[i]);
+        if depth >= -margin {
+            points[kept] = points[i];
+            depths[kept] = depth;
+            kept += 1;
+        }
+    }
+    points.truncate(kept);
+    if kept == 0 {
+        // Clipping left nothing (a deep overlap where the incident face lies outside the
+        // reference prism): fall back on the incident shape's deepest vertex.
+        let mut deepest = (f64::NEG_INFINITY, Vector3::zeros());
+        incident.for_each_vertex(&mut |v| {
+            let depth = d - n.dot(&v);
+            if depth > deepest.0 {
+                deepest = (depth, v);
+            }
+        });
+        if deepest.0 >= -margin {
+            points.push(deepest.1);
+            depths[0] = deepest.0;
+            kept = 1;
+        }
+    }
+    reduce_to_four(&mut points, &mut depths[..kept], &n);
 
     let feature = Feature::of_face_contact(points.len());
     let normal = if reference_is_b { n } else { -n };

@@ -15,13 +15,9 @@
 //! ```
 
 use super::hull::ConvexHull;
+pub use super::polygon::Polygon;
 use super::shape::Pose;
 use nalgebra::{Matrix3, Vector3};
-use smallvec::SmallVec;
-
-/// A polygon's vertex loop; 16 points stay on the stack (a box face clipped by a box face has at
-/// most 8), more spill to the heap.
-pub type Polygon = SmallVec<[Vector3<f64>; 16]>;
 
 /// A convex polyhedron placed in the world.
 pub trait Polyhedron {
@@ -117,7 +113,7 @@ impl Polyhedron for BoxView {
 
     fn face_plane(&self, i: usize) -> (Vector3<f64>, f64) {
         let k = i / 2;
-        let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+        let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
         let n = self.axis(k) * sign;
         (n, n.dot(&self.center) + self.half[k])
     }
@@ -126,7 +122,7 @@ impl Polyhedron for BoxView {
         // With (k, k+1, k+2) cyclic, eₖ₊₁ × eₖ₊₂ = eₖ: the loop (+u+v, −u+v, −u−v, +u−v) turns
         // counter-clockwise about +eₖ; the −eₖ face runs it backwards.
         let k = i / 2;
-        let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+        let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
         let (j, l) = ((k + 1) % 3, (k + 2) % 3);
         let c = self.center + self.axis(k) * (sign * self.half[k]);
         let u = self.axis(j) * self.half[j];

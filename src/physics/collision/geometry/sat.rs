@@ -156,7 +156,7 @@ pub fn least_penetration_boxes(a: &BoxView, b: &BoxView, margin: f64) -> Option<
 
     let mut face_a = (0, f64::NEG_INFINITY);
     for k in 0..3 {
-        let rb = hb.dot(&abs_c.row(k).transpose());
+        let rb = hb.x * abs_c[(k, 0)] + hb.y * abs_c[(k, 1)] + hb.z * abs_c[(k, 2)];
         let s = t[k].abs() - ha[k] - rb;
         if s > margin {
             return None;
@@ -168,48 +168,55 @@ pub fn least_penetration_boxes(a: &BoxView, b: &BoxView, margin: f64) -> Option<
     }
     let mut face_b = (0, f64::NEG_INFINITY);
     for j in 0..3 {
-        let tj = c.column(j).dot(&t);
-        let ra = ha.dot(&abs_c.column(j));
+        let tj = c[(0, j)] * t.x + c[(1, j)] * t.y + c[(2, j)] * t.z;
+        let ra = ha.x * abs_c[(0, j)] + ha.y * abs_c[(1, j)] + ha.z * abs_c[(2, j)];
         let s = tj.abs() - hb[j] - ra;
         if s > margin {
             return None;
         }
         if s > face_b.1 {
-            // A lies along −bⱼ from B when tⱼ ≥ 0: B's −bⱼ face (2j + 1) faces it.
+            // A lies along −bⱼ from B when tⱼ > 0: B's −bⱼ face (2j + 1) faces it.
             face_b = (if tj > 0.0 { 2 * j + 1 } else { 2 * j }, s);
         }
     }
-    let mut best_edge: Option<Query> = None;
+    // Best edge pair: (separation, i, j, L·t, |L|).
+    let mut edge = (f64::NEG_INFINITY, 0, 0, 0.0, 1.0);
     for i in 0..3 {
         let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
         for j in 0..3 {
             let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
-            let mut l = Vector3::zeros();
-            l[i1] = -c[(i2, j)];
-            l[i2] = c[(i1, j)];
-            let length = l.norm();
+            // L = aᵢ × bⱼ in A's frame: Lᵢ₊₁ = −Cᵢ₊₂,ⱼ, Lᵢ₊₂ = Cᵢ₊₁,ⱼ.
+            let length = (c[(i1, j)] * c[(i1, j)] + c[(i2, j)] * c[(i2, j)]).sqrt();
             if length < PARALLEL {
                 continue;
             }
             let ra = ha[i1] * abs_c[(i2, j)] + ha[i2] * abs_c[(i1, j)];
             let rb = hb[j1] * abs_c[(i, j2)] + hb[j2] * abs_c[(i, j1)];
-            let lt = l.dot(&t);
+            let lt = c[(i1, j)] * t[i2] - c[(i2, j)] * t[i1];
             let s = (lt.abs() - ra - rb) / length;
             if s > margin {
                 return None;
             }
-            if best_edge.is_none_or(|e| s > e.separation) {
-                let sign = if lt > 0.0 { -1.0 } else { 1.0 };
-                best_edge = Some(Query {
-                    axis: Axis::Edges {
-                        a: i,
-                        b: j,
-                        normal: a.axes * l * (sign / length),
-                    },
-                    separation: s,
-                });
+            if s > edge.0 {
+                edge = (s, i, j, lt, length);
             }
         }
     }
+    let best_edge = (edge.0 > f64::NEG_INFINITY).then(|| {
+        let (s, i, j, lt, length) = edge;
+        let mut l = Vector3::zeros();
+        l[(i + 1) % 3] = -c[((i + 2) % 3, j)];
+        l[(i + 2) % 3] = c[((i + 1) % 3, j)];
+        // B lies along +L from A when L·t > 0: the normal from B toward A is then −L.
+        let sign = if lt > 0.0 { -1.0 } else { 1.0 };
+        Query {
+            axis: Axis::Edges {
+                a: i,
+                b: j,
+                normal: a.axes * l * (sign / length),
+            },
+            separation: s,
+        }
+    });
     Some(choose(face_a, face_b, best_edge))
 }

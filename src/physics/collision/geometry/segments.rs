@@ -6,6 +6,7 @@
 //! unclamped minimum of |P(s) − Q(t)|²:  s = (b f − c e)/(a e − b²)    (s = 0 if parallel)
 //! then clamp s to [0, 1], t = (b s + f)/e; if t leaves [0, 1] clamp it and recompute
 //! s = clamp((b t − c)/a)
+//! a segment of length 0 (a point): the other's parameter alone, e.g. e = 0: s = clamp(−c/a)
 //! ```
 //!
 //! (Ericson, *Real-Time Collision Detection*, §5.1.9.)
@@ -27,27 +28,32 @@ pub fn closest_points(
     let b = d1.dot(&d2);
     let c = d1.dot(&r);
     let f = d2.dot(&r);
+    let tiny = 1e-300;
+    if a <= tiny && e <= tiny {
+        return (*p0, *q0); // both segments are points
+    }
+    if e <= tiny {
+        // The second segment is a point: project it on the first.
+        let s = (-c / a).clamp(0.0, 1.0);
+        return (p0 + d1 * s, *q0);
+    }
+    if a <= tiny {
+        let t = (f / e).clamp(0.0, 1.0);
+        return (*p0, q0 + d2 * t);
+    }
     let denominator = a * e - b * b;
     let mut s = if denominator > 1e-12 * a * e {
         ((b * f - c * e) / denominator).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    let mut t = if e > 0.0 { (b * s + f) / e } else { 0.0 };
+    let mut t = (b * s + f) / e;
     if t < 0.0 {
         t = 0.0;
-        s = if a > 0.0 {
-            (-c / a).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
+        s = (-c / a).clamp(0.0, 1.0);
     } else if t > 1.0 {
         t = 1.0;
-        s = if a > 0.0 {
-            ((b - c) / a).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
+        s = ((b - c) / a).clamp(0.0, 1.0);
     }
     (p0 + d1 * s, q0 + d2 * t)
 }
@@ -68,6 +74,15 @@ mod tests {
         );
         assert!((p - Vector3::new(0.2, 0.3, 0.0)).norm() < 1e-15, "{p:?}");
         assert!((q - Vector3::new(0.2, 0.0, 0.0)).norm() < 1e-15, "{q:?}");
+    }
+
+    #[test]
+    fn a_point_projects_on_a_segment() {
+        // Point (0.5, −0.1, −0.1) against the x-axis segment [0, 1]: foot (0.5, 0, 0).
+        let p = Vector3::new(0.5, -0.1, -0.1);
+        let (on, q) = closest_points(&Vector3::zeros(), &Vector3::x(), &p, &p);
+        assert_eq!(on, Vector3::new(0.5, 0.0, 0.0));
+        assert_eq!(q, p);
     }
 
     #[test]
