@@ -534,7 +534,7 @@ impl App {
         let lessons: Vec<(PathBuf, String)> = crate::lessons::bundled()
             .into_iter()
             .map(|path| {
-                let title = match crate::scene::load(&path) {
+                let title = match crate::lessons::load(&path) {
                     Ok(l) => l.title,
                     Err(e) => format!("(cannot load: {e})"),
                 };
@@ -556,7 +556,7 @@ impl App {
             self.overlay = Overlay::None;
             return;
         };
-        match crate::scene::load(path) {
+        match crate::lessons::load(path) {
             Ok(lesson) => {
                 let options = Options {
                     ascii: self.ascii,
