@@ -247,7 +247,11 @@ impl App {
                 if self.view == View::Study {
                     self.view = View::Loop;
                 } else {
-                    if self.study.is_none() {
+                    if !self
+                        .study
+                        .as_ref()
+                        .is_some_and(|job| super::study_view::is_current(job, self))
+                    {
                         self.study = Some(super::study_view::spawn(self));
                     }
                     self.view = View::Study;
