@@ -39,7 +39,10 @@ fn walk_accepts_a_lesson_name_from_a_folder_without_lessons() {
     // The compiled-in lesson is the repository's file, byte for byte.
     let (_, by_path, _) = outcome(&["walk", "lessons/01-the-loop.toml", "--frames", "3"]);
     assert_eq!(by_name, by_path);
-    assert!(by_name.starts_with("The animation loop (01-the-loop.toml)"), "{by_name}");
+    assert!(
+        by_name.starts_with("The animation loop (01-the-loop.toml)"),
+        "{by_name}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -65,7 +68,14 @@ fn every_command_accepts_the_names_lessons_prints_with_or_without_toml() {
     assert!(stdout.contains("09-viscosity: ok (Viscosity)"), "{stdout}");
     let (code, csv, stderr) = outcome_in(
         &dir,
-        &["run", "05-ground-collision", "--steps", "2", "--response", "seed"],
+        &[
+            "run",
+            "05-ground-collision",
+            "--steps",
+            "2",
+            "--response",
+            "seed",
+        ],
     );
     assert_eq!(code, Some(0), "{stderr}");
     assert_eq!(csv.lines().count(), 4, "header + rows 0, 1, 2: {csv}");
@@ -80,7 +90,11 @@ fn a_lesson_file_on_disk_wins_over_the_compiled_in_copy() {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/01-the-loop.toml"),
     )
     .unwrap()
-    .replacen("title = \"The animation loop\"", "title = \"My own loop\"", 1);
+    .replacen(
+        "title = \"The animation loop\"",
+        "title = \"My own loop\"",
+        1,
+    );
     std::fs::write(dir.join("lessons/01-the-loop.toml"), text).unwrap();
     let (code, stdout, stderr) = outcome_in(&dir, &["check", "01-the-loop"]);
     assert_eq!(code, Some(0), "{stderr}");
@@ -94,7 +108,10 @@ fn a_lesson_file_on_disk_wins_over_the_compiled_in_copy() {
     .unwrap();
     let (code, _, stderr) = outcome_in(&dir, &["walk", "01-the-loop", "--frames", "1"]);
     assert_eq!(code, Some(2));
-    assert_eq!(stderr, "tumble: lessons/01-the-loop.toml:3:6: dt must be > 0, found 0\n");
+    assert_eq!(
+        stderr,
+        "tumble: lessons/01-the-loop.toml:3:6: dt must be > 0, found 0\n"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -128,7 +145,14 @@ fn command_line_names_get_did_you_mean_like_files() {
              euler-seed, euler, symplectic-euler, rk4, splitting\n",
         ),
         (
-            vec!["walk", "05-ground-collision", "--frames", "1", "--response", "sed"],
+            vec![
+                "walk",
+                "05-ground-collision",
+                "--frames",
+                "1",
+                "--response",
+                "sed",
+            ],
             "tumble: unknown collision response `sed` (did you mean `seed`?); valid responses: \
              seed, impulse\n",
         ),
@@ -195,7 +219,10 @@ fn check_reports_every_independent_error_one_line_each() {
     // With another file: the same lines, then the summary.
     let (code, _, stderr) = outcome(&["check", "01-the-loop", file]);
     assert_eq!(code, Some(2));
-    assert_eq!(stderr, format!("{expected}tumble: 1 of 2 files have errors\n"));
+    assert_eq!(
+        stderr,
+        format!("{expected}tumble: 1 of 2 files have errors\n")
+    );
 }
 
 #[test]
@@ -225,7 +252,10 @@ fn study_response_seed_on_the_ground_blames_the_response_when_every_integrator_d
         "{stdout}"
     );
     // Short DIVERGED lines: no line of the table is longer than its header.
-    let header = stdout.lines().find(|l| l.starts_with("  integrator")).unwrap();
+    let header = stdout
+        .lines()
+        .find(|l| l.starts_with("  integrator"))
+        .unwrap();
     for line in stdout.lines().filter(|l| l.contains("DIVERGED")) {
         assert!(line.chars().count() < header.chars().count(), "{line}");
     }

@@ -64,7 +64,10 @@ fn free_motion_table() {
             ),
         ),
     ];
-    insta::assert_snapshot!("study_table_free_motion", report::table(&[study(rows, None)]));
+    insta::assert_snapshot!(
+        "study_table_free_motion",
+        report::table(&[study(rows, None)])
+    );
 }
 
 #[test]

@@ -58,36 +58,51 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
         let Some(section) = section_at(&text, offset) else {
             break;
         };
+        // A table missing from the file as a whole has no part to blank.
+        let whole_file = current.message.starts_with("missing table")
+            || (section.bare && current.message.starts_with("this table has no"));
+        if whole_file {
+            break;
+        }
         let caused = caused_by(&touched, &section, offset, &current.message);
+        let untouched = |r: &Range<usize>| !touched.iter().any(|t| t.entry == *r);
         let entry = section
             .entries
             .iter()
             .find(|e| e.contains(&offset))
-            .filter(|e| !touched.iter().any(|t| t.entry == **e));
-        match entry {
-            Some(entry) if !caused => {
-                let entry = entry.clone();
-                let written = text[entry.clone()].to_string();
-                let key = key_name(&written);
+            .filter(|e| untouched(e))
+            .cloned();
+        // The innermost value at fault (inside an inline table too), and a value that passes.
+        let value = section
+            .values
+            .iter()
+            .filter(|(span, _)| span.contains(&offset))
+            .min_by_key(|(span, _)| span.len())
+            .filter(|(span, _)| untouched(span))
+            .and_then(|(span, key)| {
+                let value = neutral(&text[span.clone()], &current.message)?;
+                (value.len() <= span.len()).then(|| (span.clone(), key.clone(), value))
+            })
+            .filter(|_| !current.message.starts_with("unknown key"));
+        match (value, entry) {
+            (Some((span, key, value)), _) if !caused => {
+                blank(&mut text, span.clone());
+                text.replace_range(span.start..span.start + value.len(), &value);
+                touched.push(Touched {
+                    header: section.header.clone(),
+                    entry: span,
+                    key,
+                    renamed: value.starts_with('"'),
+                });
+            }
+            (None, Some(entry)) if !caused => {
+                let key = key_name(&text[entry.clone()]);
                 blank(&mut text, entry.clone());
-                let mut renamed = false;
-                if !current.message.starts_with("unknown key") {
-                    if let Some(value) = neutral(&written, &current.message) {
-                        let replacement = format!("{key}={value}");
-                        if replacement.len() <= entry.len() {
-                            text.replace_range(
-                                entry.start..entry.start + replacement.len(),
-                                &replacement,
-                            );
-                            renamed = value.starts_with('"');
-                        }
-                    }
-                }
                 touched.push(Touched {
                     header: section.header.clone(),
                     entry,
                     key,
-                    renamed,
+                    renamed: false,
                 });
             }
             _ => {
@@ -147,12 +162,21 @@ fn caused_by(touched: &[Touched], section: &Section, offset: usize, message: &st
 }
 
 /// A value that passes validation in place of a wrong one, where one is obvious: a number
-/// becomes 1, an array of numbers as many 1s, a misspelt name the suggested one.
-fn neutral(entry: &str, message: &str) -> Option<String> {
-    let value = entry.split_once('=')?.1.trim();
+/// becomes 1, an array of numbers as many 1s, an unknown name the suggested one (else the
+/// first valid one the message lists).
+fn neutral(value: &str, message: &str) -> Option<String> {
+    let value = value.trim();
     if value.starts_with('"') {
-        let (_, rest) = message.split_once("(did you mean `")?;
-        let (name, _) = rest.split_once('`')?;
+        let suggested = message
+            .split_once("(did you mean `")
+            .and_then(|(_, rest)| rest.split_once('`'))
+            .map(|(name, _)| name);
+        let first_valid = message
+            .starts_with("unknown ")
+            .then(|| message.rsplit_once(": "))
+            .flatten()
+            .and_then(|(_, list)| list.split(", ").next());
+        let name = suggested.or(first_valid)?;
         return Some(format!("\"{name}\""));
     }
     if let Some(inner) = value.strip_prefix('[').and_then(|v| v.strip_suffix(']')) {
@@ -221,8 +245,12 @@ struct Section {
     entries: Vec<Range<usize>>,
     /// Other headers of the section (`[scene.sub]`).
     headers: Vec<Range<usize>>,
+    /// Every value with its key, inline tables' included.
+    values: Vec<(Range<usize>, String)>,
     /// Blanking it leaves the file without a required section.
     required_alone: bool,
+    /// A top-level `key = value`, not a table.
+    bare: bool,
 }
 
 impl Section {
@@ -275,11 +303,13 @@ fn sections(document: &DeTable<'_>) -> Vec<Section> {
                 }
             }
             _ => out.push(Section {
+                values: vec![(value.span(), name.clone())],
                 name,
                 header: key.span().start..value.span().end,
                 entries: Vec::new(),
                 headers: Vec::new(),
                 required_alone: false,
+                bare: true,
             }),
         }
     }
@@ -292,7 +322,9 @@ fn table_section(name: &str, header: Range<usize>, table: &DeTable<'_>, required
         header,
         entries: Vec::new(),
         headers: Vec::new(),
+        values: Vec::new(),
         required_alone: required,
+        bare: false,
     };
     collect(table, &mut section);
     section
@@ -316,7 +348,26 @@ fn collect_entry(
             section.headers.push(value.span());
             collect(sub, section);
         }
-        _ => section.entries.push(key.span().start..value.span().end),
+        _ => {
+            section.entries.push(key.span().start..value.span().end);
+            inline_values(key, value, section);
+        }
+    }
+}
+
+/// A value and, in an inline table, the values inside it.
+fn inline_values(
+    key: &Spanned<std::borrow::Cow<'_, str>>,
+    value: &Spanned<DeValue<'_>>,
+    section: &mut Section,
+) {
+    section
+        .values
+        .push((value.span(), key.get_ref().to_string()));
+    if let DeValue::Table(table) = value.get_ref() {
+        for (k, v) in table.iter() {
+            inline_values(k, v, section);
+        }
     }
 }
 
@@ -385,6 +436,12 @@ mod tests {
     }
 
     #[test]
+    fn a_missing_table_is_one_error() {
+        let source = "title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n";
+        assert_eq!(lines(source).len(), 1, "{:?}", lines(source));
+    }
+
+    #[test]
     fn a_syntax_error_stops_at_the_first() {
         let source = "title = \"t\n[scene]\ndt = =\n";
         assert_eq!(lines(source).len(), 1);
@@ -400,8 +457,8 @@ mod tests {
         assert_eq!(
             lines(&source),
             [
-                "s.toml:8:8: mass must be > 0, found -1",
                 "s.toml:7:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
+                "s.toml:8:8: mass must be > 0, found -1",
             ]
         );
     }

@@ -295,6 +295,8 @@ fn accuracy_run(
         row.orthonormality = row.orthonormality.max(s.orthonormality_error);
         if step == steps {
             row.rest_error = s.velocity.norm() + radius * s.angular_velocity.norm();
+        }
+        if step == steps && contact {
             let up = scene
                 .effects
                 .gravity()
