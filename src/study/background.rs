@@ -71,6 +71,11 @@ impl Job {
         f(&mut inner)
     }
 
+    /// Both handles are the same study (one thread, one result).
+    pub fn same(&self, other: &Job) -> bool {
+        Arc::ptr_eq(&self.inner, &other.inner)
+    }
+
     /// Takes every message waiting; never blocks.
     pub fn poll(&self) {
         self.with(|inner| loop {

@@ -269,6 +269,12 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             Style::new().fg(Color::Yellow),
         ));
     }
+    if !study.contact() {
+        text.push(Line::styled(
+            format!("observed orders: {}", orders.join(", ")),
+            Style::new().add_modifier(Modifier::DIM),
+        ));
+    }
     text.push(Line::from(in_use_line));
     text.push(Line::styled(
         format!(
@@ -277,12 +283,6 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         ),
         Style::new().add_modifier(Modifier::DIM),
     ));
-    if !study.contact() {
-        text.push(Line::styled(
-            format!("observed orders: {}", orders.join(", ")),
-            Style::new().add_modifier(Modifier::DIM),
-        ));
-    }
     Paragraph::new(text)
         .block(Block::bordered().title(format!(" reference: {} ", study.reference_kind)))
         .wrap(Wrap { trim: true })
