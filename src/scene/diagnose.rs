@@ -450,12 +450,10 @@ mod tests {
     #[test]
     fn an_error_caused_by_blanking_is_not_reported() {
         // Blanking `size` would make "a box body needs `size`": a consequence, not an error.
-        let source = format!(
-            "title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n\
-             [body]\nshape = \"box\"\nsize = [1.0, 0.0, 1.0]\nmass = -1.0\n"
-        );
+        let source = "title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n\
+             [body]\nshape = \"box\"\nsize = [1.0, 0.0, 1.0]\nmass = -1.0\n";
         assert_eq!(
-            lines(&source),
+            lines(source),
             [
                 "s.toml:7:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
                 "s.toml:8:8: mass must be > 0, found -1",
