@@ -460,4 +460,39 @@ mod tests {
             ]
         );
     }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// Any mutation of a bundled lesson: `check` never panics, finds nothing exactly when
+        /// the loader accepts the file, and its first line is the loader's own error when there
+        /// is a single one.
+        #[test]
+        fn check_agrees_with_the_loader_on_mutated_lessons(
+            lesson in 0usize..12,
+            at in 0.0f64..1.0,
+            cut in 0usize..40,
+            insert in "[ -~]{0,12}",
+        ) {
+            let paths = crate::lessons::bundled();
+            let path = &paths[lesson % paths.len()];
+            let text = crate::lessons::embedded(path).unwrap();
+            let mut start = (at * text.len() as f64) as usize;
+            while !text.is_char_boundary(start) {
+                start -= 1;
+            }
+            let mut end = (start + cut).min(text.len());
+            while !text.is_char_boundary(end) {
+                end -= 1;
+            }
+            let mutated = format!("{}{insert}{}", &text[..start], &text[end..]);
+            let found = check(&mutated, path);
+            match parse(&mutated, path) {
+                Ok(_) => proptest::prop_assert!(found.is_empty(), "{found:?}"),
+                Err(e) => {
+                    proptest::prop_assert!(!found.is_empty());
+                    proptest::prop_assert!(found.contains(&e), "{e} not in {found:?}");
+                }
+            }
+        }
+    }
 }
