@@ -44,24 +44,6 @@ fn lessons_lists_every_bundled_lesson_with_its_title_and_summary() {
 }
 
 #[test]
-fn lessons_with_an_empty_folder_is_an_error_with_exit_code_2() {
-    let empty = std::env::temp_dir().join(format!("tumble-no-lessons-{}", std::process::id()));
-    std::fs::create_dir_all(&empty).unwrap();
-    let output = tumble()
-        .arg("lessons")
-        .env("TUMBLE_LESSONS", &empty)
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(2));
-    assert!(
-        stderr(&output).contains("no lessons found"),
-        "{}",
-        stderr(&output)
-    );
-    std::fs::remove_dir_all(&empty).unwrap();
-}
-
-#[test]
 fn walk_prints_the_page_the_phase_and_the_panels() {
     let output = tumble()
         .args([

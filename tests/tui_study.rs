@@ -120,3 +120,60 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
     let small = screen(&app, 80, 24);
     assert!(small.contains("study of short-tumble"), "{small}");
 }
+
+#[test]
+fn the_study_follows_the_response_in_use_and_blames_it_when_every_integrator_diverges() {
+    // Lesson 5 starts with the report's `seed` response: every run of its study diverges (as
+    // `tumble study 05-ground-collision` shows), and the view says the response is the cause
+    // instead of blaming each integrator. After `c` (seed → impulse), entering the view again
+    // studies the new response.
+    let lesson = tumble::lessons::load(Path::new("05-ground-collision")).unwrap();
+    let mut app = App::new(
+        lesson,
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    press(&mut app, KeyCode::Char('s'));
+    let first = app.study.clone().expect("a study started");
+    assert_eq!(first.response, Some(tumble::physics::Response::Seed));
+    wait_for_study(&mut app);
+    let shown = screen(&app, 160, 50);
+    for expected in [
+        "Every integrator diverges at every time step with the `seed` collision response",
+        "the response, not the integration, is the cause",
+        "press c for another collision response",
+    ] {
+        assert!(
+            shown.contains(expected),
+            "missing `{expected}` in:\n{shown}"
+        );
+    }
+    press(&mut app, KeyCode::Char('s')); // leave the view
+    press(&mut app, KeyCode::Char('c')); // seed → impulse
+    press(&mut app, KeyCode::Char('s')); // the study is made again, with impulse
+    let job = app.study.clone().unwrap();
+    assert_eq!(job.response, Some(tumble::physics::Response::Impulse));
+    press(&mut app, KeyCode::Char('s'));
+    press(&mut app, KeyCode::Char('s')); // re-entering with the same response keeps the study
+    assert!(job.same(app.study.as_ref().unwrap()));
+}
+
+#[test]
+fn the_chart_marks_the_integrator_in_use() {
+    let mut app = app("study/short-tumble.toml");
+    press(&mut app, KeyCode::Char('s'));
+    wait_for_study(&mut app);
+    let in_use = app.world.integrator().name();
+    let shown = screen(&app, 160, 50);
+    assert!(
+        shown.contains(&format!("{in_use} (in use)")),
+        "no `(in use)` mark in:\n{shown}"
+    );
+    assert!(
+        shown.contains(&format!("in use: {in_use} at dt = ")),
+        "{shown}"
+    );
+}

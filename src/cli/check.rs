@@ -1,24 +1,52 @@
-//! `tumble check FILE...`: validate scene files, one line per file.
+//! `tumble check FILE...`: validate scene files (or bundled lessons by name). Every independent
+//! error of a file is one line on stderr ([`crate::scene::check_every_error`]); a valid file is
+//! an `ok` line on stdout.
 
 use super::Failure;
-use crate::scene;
+use crate::lessons;
+use crate::scene::{self, LoadError};
 use std::path::PathBuf;
+
+/// Every error of one file (at least one when it does not load).
+fn errors(path: &std::path::Path, first: LoadError) -> Vec<LoadError> {
+    let all = lessons::source(path)
+        .map(|(path, text)| scene::check_every_error(&text, &path))
+        .unwrap_or_default();
+    if all.is_empty() {
+        vec![first]
+    } else {
+        all
+    }
+}
 
 /// Validates every file; prints `ok` lines on stdout and errors on stderr (for several files,
 /// then a summary line).
 pub fn check(files: &[PathBuf]) -> Result<(), Failure> {
     if let [path] = files {
-        // One file: its error is the one line (no summary line after it).
-        let lesson = scene::load(path)?;
-        println!("{}: ok ({})", path.display(), lesson.title);
-        return Ok(());
+        // One file: its errors are the lines (no summary line after them).
+        return match lessons::load(path) {
+            Ok(lesson) => {
+                println!("{}: ok ({})", path.display(), lesson.title);
+                Ok(())
+            }
+            Err(first) => {
+                let mut all = errors(path, first);
+                let last = all.pop().map(|e| e.to_string()).unwrap_or_default();
+                for e in all {
+                    eprintln!("tumble: {e}");
+                }
+                Err(Failure::bad_input(last))
+            }
+        };
     }
     let mut failed = 0;
     for path in files {
-        match scene::load(path) {
+        match lessons::load(path) {
             Ok(lesson) => println!("{}: ok ({})", path.display(), lesson.title),
-            Err(e) => {
-                eprintln!("tumble: {e}");
+            Err(first) => {
+                for e in errors(path, first) {
+                    eprintln!("tumble: {e}");
+                }
                 failed += 1;
             }
         }

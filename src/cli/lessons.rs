@@ -1,17 +1,14 @@
-//! `tumble lessons`: the bundled lessons, in teaching order, with their summaries.
+//! `tumble lessons`: the bundled lessons, in teaching order, with their summaries and the names
+//! every command accepts.
 
 use super::Failure;
 use crate::lessons;
-use crate::scene;
 
 /// Prints one line per bundled lesson: file name, title, summary.
 pub fn list() -> Result<(), Failure> {
     let files = lessons::bundled();
     if files.is_empty() {
-        return Err(Failure::bad_input(format!(
-            "no lessons found in {} (set TUMBLE_LESSONS to the lessons folder)",
-            lessons::folder().display()
-        )));
+        return Err(Failure::bad_input("this build has no bundled lessons"));
     }
     let mut rows = Vec::new();
     let mut broken = 0;
@@ -19,7 +16,7 @@ pub fn list() -> Result<(), Failure> {
         let name = path
             .file_stem()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-        match scene::load(path) {
+        match lessons::load(path) {
             Ok(lesson) => rows.push((name, lesson.title, lesson.summary)),
             Err(e) => {
                 eprintln!("tumble: {e}");
@@ -38,9 +35,10 @@ pub fn list() -> Result<(), Failure> {
         println!("{}", line.trim_end());
     }
     println!();
+    let example = rows.first().map_or("01-the-loop", |r| r.0.as_str());
     println!(
-        "Open one in the app with `tumble {}/FILE.toml`, or print it with `tumble walk FILE --frames N`.",
-        lessons::folder().display()
+        "Open one in the app with `tumble NAME` (say `tumble {example}`), print it with \
+         `tumble walk NAME --frames N`; a file lessons/NAME.toml in this folder is used instead."
     );
     if broken == 0 {
         Ok(())

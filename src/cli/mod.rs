@@ -9,7 +9,7 @@ pub mod study;
 pub mod walk;
 
 use crate::physics::{Integrator, Response};
-use crate::scene::{self, Lesson, LoadError};
+use crate::scene::{did_you_mean, Lesson, LoadError};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -28,7 +28,8 @@ pub const EXIT_DIVERGED: u8 = 3;
     args_conflicts_with_subcommands = true
 )]
 pub struct Cli {
-    /// A lesson or scene file to open in the terminal app (default: the first bundled lesson).
+    /// A lesson or scene file, or a bundled lesson's name (`tumble lessons`), to open in the
+    /// terminal app (default: the first bundled lesson).
     pub file: Option<PathBuf>,
     /// Draw the projection in pure ASCII instead of Braille dots.
     #[arg(long)]
@@ -46,7 +47,7 @@ pub enum Command {
     Run(run::RunArgs),
     /// Validate scene files; errors name file:line:column.
     Check {
-        /// Files to validate.
+        /// Files (or bundled lessons' names) to validate.
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
@@ -95,9 +96,48 @@ impl From<LoadError> for Failure {
     }
 }
 
-/// Loads a lesson and applies command-line overrides.
+/// "unknown integrator `rk5` (did you mean `rk4`?); valid integrators: …": the wording of a
+/// scene file's unknown names, for a name given on the command line.
+pub fn unknown_name<'a>(
+    what: &str,
+    valid: &str,
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str> + Clone,
+) -> String {
+    let hint = did_you_mean(name, candidates.clone())
+        .map(|s| format!(" (did you mean `{s}`?)"))
+        .unwrap_or_default();
+    let names: Vec<&str> = candidates.into_iter().collect();
+    format!(
+        "unknown {what} `{name}`{hint}; {valid}: {}",
+        names.join(", ")
+    )
+}
+
+/// An integrator named on the command line.
+pub fn integrator_named(name: &str) -> Result<Integrator, Failure> {
+    Integrator::from_name(name).ok_or_else(|| {
+        let names = Integrator::ALL.map(Integrator::name);
+        Failure::bad_input(unknown_name("integrator", "valid integrators", name, names))
+    })
+}
+
+/// A collision response named on the command line.
+pub fn response_named(name: &str) -> Result<Response, Failure> {
+    Response::from_name(name).ok_or_else(|| {
+        let names = Response::ALL.map(Response::name);
+        Failure::bad_input(unknown_name(
+            "collision response",
+            "valid responses",
+            name,
+            names,
+        ))
+    })
+}
+
+/// Loads a lesson (a file, or a bundled lesson by name) and applies command-line overrides.
 pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> {
-    let mut lesson = scene::load(path)?;
+    let mut lesson = crate::lessons::load(path)?;
     let scene = &mut lesson.scene;
     if let Some(dt) = overrides.dt {
         if !(dt > 0.0 && dt.is_finite()) {
@@ -108,20 +148,10 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
         scene.dt = dt;
     }
     if let Some(name) = &overrides.integrator {
-        scene.integrator = Integrator::from_name(name).ok_or_else(|| {
-            Failure::bad_input(format!(
-                "unknown integrator `{name}`; valid integrators: {}",
-                Integrator::names()
-            ))
-        })?;
+        scene.integrator = integrator_named(name)?;
     }
     if let Some(name) = &overrides.response {
-        let response = Response::from_name(name).ok_or_else(|| {
-            Failure::bad_input(format!(
-                "unknown collision response `{name}`; valid responses: {}",
-                Response::names()
-            ))
-        })?;
+        let response = response_named(name)?;
         match &mut scene.contact {
             Some(model) => model.response = response,
             None => {
@@ -139,12 +169,10 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
 fn app_file(file: Option<&Path>) -> Result<PathBuf, Failure> {
     match file {
         Some(f) => Ok(f.to_path_buf()),
-        None => crate::lessons::bundled().into_iter().next().ok_or_else(|| {
-            Failure::bad_input(format!(
-                "no bundled lessons in {} (set TUMBLE_LESSONS or give a FILE)",
-                crate::lessons::folder().display()
-            ))
-        }),
+        None => crate::lessons::bundled()
+            .into_iter()
+            .next()
+            .ok_or_else(|| Failure::bad_input("this build has no bundled lessons: give a FILE")),
     }
 }
 
@@ -153,16 +181,22 @@ fn app_file(file: Option<&Path>) -> Result<PathBuf, Failure> {
 #[cfg(feature = "tui")]
 fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Failure> {
     use crate::tui::{Comparison, Options};
+    use std::io::IsTerminal;
     let path = app_file(file)?;
-    let lesson = scene::load(&path)?;
+    let lesson = crate::lessons::load(&path)?;
     let compare = match compare {
         None => None,
         Some(name) => {
             let comparison = Comparison::from_name(name).ok_or_else(|| {
-                Failure::bad_input(format!(
-                    "unknown --compare `{name}`; valid: integrators {}; responses {}",
-                    Integrator::names(),
-                    Response::names()
+                let names = Integrator::ALL
+                    .map(Integrator::name)
+                    .into_iter()
+                    .chain(Response::ALL.map(Response::name));
+                Failure::bad_input(unknown_name(
+                    "--compare",
+                    "valid: integrators and responses",
+                    name,
+                    names,
                 ))
             })?;
             if matches!(comparison, Comparison::Response(_)) && lesson.scene.contact.is_none() {
@@ -174,6 +208,12 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
             Some(comparison)
         }
     };
+    if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
+        return Err(Failure::bad_input(
+            "the app needs a terminal (stdin and stdout are not one); for text use \
+             `tumble walk FILE --frames N` or `tumble run FILE --steps N`",
+        ));
+    }
     let options = Options {
         ascii,
         compare,
@@ -186,7 +226,7 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
 #[cfg(not(feature = "tui"))]
 fn app(file: Option<&Path>, _ascii: bool, _compare: Option<&str>) -> Result<(), Failure> {
     let path = app_file(file)?;
-    scene::load(&path)?;
+    crate::lessons::load(&path)?;
     Err(Failure::bad_input(
         "this build has no terminal app (built without the `tui` feature); use `tumble run`",
     ))

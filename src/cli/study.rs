@@ -1,12 +1,12 @@
 //! `tumble study [FILE...] [--format table|csv|json] [--svg PATH]`: what accuracy costs in time.
 //!
-//! Without files, the built-in scenes ([`crate::study::scenes`]). A FILE runs for its own
-//! `duration`; its reference is exact when it has no obstacles and no drag (a torque-free or
+//! Without files, the built-in scenes ([`crate::study::scenes`]). A FILE (or a bundled lesson's
+//! name) runs for its own `duration` ([`crate::study::DEFAULT_DURATION`] without one); its
+//! reference is exact when it has no obstacles and no drag (a torque-free or
 //! gravity-only case), otherwise `rk4` at a tenth of the smallest swept step — the output says
 //! which.
 
-use super::Failure;
-use crate::scene;
+use super::{response_named, Failure};
 use crate::study::{self, report, Case, Config};
 use std::io::Write;
 use std::path::PathBuf;
@@ -32,40 +32,45 @@ pub struct StudyArgs {
     /// Also write a log–log SVG plot of error against cost to PATH.
     #[arg(long, value_name = "PATH")]
     pub svg: Option<PathBuf>,
+    /// Collision response of the scenes with contact (overrides `contact.response`).
+    #[arg(long, value_name = "NAME")]
+    pub response: Option<String>,
 }
 
-/// The cases: the built-in scenes, or the files with their own durations.
-pub fn cases(files: &[PathBuf]) -> Result<Vec<Case>, Failure> {
+/// The cases: the built-in scenes, or the files (with their own durations); `response`
+/// replaces the collision response of every case with contact (a file without contact is an
+/// error, as with `tumble run --response`).
+pub fn cases(files: &[PathBuf], response: Option<&str>) -> Result<Vec<Case>, Failure> {
+    let response = response.map(response_named).transpose()?;
     if files.is_empty() {
-        return Ok(study::scenes::builtin());
+        let builtin = study::scenes::builtin().into_iter();
+        return Ok(match response {
+            None => builtin.collect(),
+            Some(r) => builtin
+                .map(|case| case.clone().with_response(r).unwrap_or(case))
+                .collect(),
+        });
     }
     files
         .iter()
         .map(|path| {
-            let lesson = scene::load(path)?;
-            let duration = lesson.scene.duration.ok_or_else(|| {
-                Failure::bad_input(format!(
-                    "{}: [scene] has no `duration`: the study runs each scene for its own duration",
-                    path.display()
-                ))
-            })?;
-            let name = path.file_stem().map_or_else(
-                || path.display().to_string(),
-                |s| s.to_string_lossy().into_owned(),
-            );
-            Ok(Case {
-                name,
-                description: lesson.title,
-                scene: lesson.scene,
-                duration,
-            })
+            let case = Case::from_lesson(&crate::lessons::load(path)?);
+            match response {
+                None => Ok(case),
+                Some(r) => case.with_response(r).ok_or_else(|| {
+                    Failure::bad_input(format!(
+                        "{}: --response needs a scene with obstacles and a `contact` table",
+                        path.display()
+                    ))
+                }),
+            }
         })
         .collect()
 }
 
 /// Runs the study and prints it.
 pub fn study(args: &StudyArgs) -> Result<(), Failure> {
-    let cases = cases(&args.files)?;
+    let cases = cases(&args.files, args.response.as_deref())?;
     let config = Config::default();
     let started = std::time::Instant::now();
     let studies = study::study(&cases, &config, &mut |_, _| {});

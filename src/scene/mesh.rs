@@ -8,14 +8,18 @@ use std::path::Path;
 /// A mesh's vertices and its unique edges (pairs of vertex indices).
 pub type Mesh = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
 
-/// Vertices and unique edges of every model in an `.obj` file.
+/// Vertices and unique edges of every model in an `.obj` file: on disk, or else one that a
+/// bundled lesson refers to (compiled in, see [`crate::lessons`]).
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
-    if !path.is_file() {
-        return Err("no such file".to_string());
-    }
-    let text = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
-    let text = String::from_utf8(text)
-        .map_err(|_| "malformed .obj: not a text file (invalid UTF-8)".to_string())?;
+    let text = if path.is_file() {
+        let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
+        String::from_utf8(bytes)
+            .map_err(|_| "malformed .obj: not a text file (invalid UTF-8)".to_string())?
+    } else {
+        crate::lessons::embedded(path)
+            .ok_or_else(|| "no such file".to_string())?
+            .to_string()
+    };
     check_vertex_lines(&text)?;
     let options = tobj::LoadOptions {
         single_index: true,
@@ -23,7 +27,10 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         ignore_points: true,
         ignore_lines: false,
     };
-    let (models, _) = tobj::load_obj(path, &options).map_err(|e| format!("malformed .obj: {e}"))?;
+    // Materials are not read (`mtllib` lines are ignored): only the geometry matters.
+    let no_materials = |_: &Path| Err(tobj::LoadError::OpenFileFailed);
+    let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, no_materials)
+        .map_err(|e| format!("malformed .obj: {e}"))?;
     let mut points = Vec::new();
     let mut edges = BTreeSet::new();
     for model in &models {

@@ -4,11 +4,13 @@
 //! Every error is one line naming file:line:column, what was expected and what was found.
 //! A missing effect key means the effect is absent; missing initial conditions mean rest.
 
+mod diagnose;
 mod error;
 mod mesh;
 mod messages;
 mod raw;
 
+pub use diagnose::check as check_every_error;
 pub use error::{did_you_mean, LoadError};
 
 use crate::physics::{

@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! frontier:  run r is on it  ⇔  no other run s has cost(s) ≤ cost(r) and error(s) ≤ error(r),
-//!            one of them strictly                      (cost = µs per simulated second)
+//!            one of them strictly    (cost = µs per simulated second; error = Row::measure:
+//!            the pose error, or in a scene with contact the contact error)
 //! order:     least-squares slope of ln(error) against ln(dt) over the asymptotic range:
 //!            runs that did not diverge with FLOOR ≤ error ≤ CEILING (below the floor round-off
 //!            dominates; above the ceiling the error saturates — angles wrap at π)
@@ -15,6 +16,9 @@ use crate::physics::Integrator;
 pub const FLOOR: f64 = 1e-11;
 /// Errors above this are not in the asymptotic range any more.
 pub const CEILING: f64 = 1e-1;
+/// The contact error the sentence of a contact scene asks for: a thousandth of the body's
+/// radius at rest (0.3 mm for the dropped box), no more deformation, sinking or energy gained.
+pub const CONTACT_TARGET: f64 = 1e-3;
 
 /// The fitted order of convergence of one integrator on one scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,14 +55,15 @@ pub fn fit_order(integrator: Integrator, rows: &[Row]) -> Order {
 
 /// Marks the runs no other run beats on both error and cost.
 pub fn mark_frontier(rows: &mut [Row]) {
-    let usable = |r: &Row| r.ok() && r.error.is_finite() && r.us_per_simulated_second.is_finite();
+    let usable =
+        |r: &Row| r.ok() && r.measure().is_finite() && r.us_per_simulated_second.is_finite();
     let candidates: Vec<(f64, f64)> = rows
         .iter()
         .filter(|r| usable(r))
-        .map(|r| (r.us_per_simulated_second, r.error))
+        .map(|r| (r.us_per_simulated_second, r.measure()))
         .collect();
     for row in rows.iter_mut() {
-        let (cost, error) = (row.us_per_simulated_second, row.error);
+        let (cost, error) = (row.us_per_simulated_second, row.measure());
         row.frontier = usable(row)
             && !candidates
                 .iter()
@@ -86,6 +91,22 @@ pub fn format_dt(dt: f64) -> String {
     }
 }
 
+/// A measured number in a table: three significant digits, in plain decimals where that
+/// takes at most 7 characters (0.00123 … 9999), else as `1.23e-8`; 0 as `0`, NaN as `—`.
+pub fn format_number(x: f64) -> String {
+    let a = x.abs();
+    if x.is_nan() {
+        "—".to_string()
+    } else if x == 0.0 {
+        "0".to_string()
+    } else if (1e-3..9999.5).contains(&a) {
+        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
 /// A cost in µs, with three significant digits.
 pub fn format_cost(us: f64) -> String {
     if us >= 100.0 {
@@ -100,12 +121,14 @@ pub fn format_cost(us: f64) -> String {
 /// One plain sentence: the largest swept dt at which each integrator keeps the error under
 /// `target`, and what that costs; cheapest first, then the integrators that never get there.
 pub fn sentence(rows: &[Row], integrators: &[Integrator], target: f64, duration: f64) -> String {
+    let contact = rows.iter().any(|r| !r.contact_error.is_nan());
+    let target = if contact { CONTACT_TARGET } else { target };
     let mut reached = Vec::new();
     let mut missed = Vec::new();
     for &integrator in integrators {
         let best = rows
             .iter()
-            .filter(|r| r.integrator == integrator && r.ok() && r.error < target)
+            .filter(|r| r.integrator == integrator && r.ok() && r.measure() < target)
             .max_by(|a, b| a.dt.total_cmp(&b.dt));
         match best {
             Some(r) => reached.push((r.us_per_simulated_second, integrator, r.dt)),
@@ -133,10 +156,10 @@ pub fn sentence(rows: &[Row], integrators: &[Integrator], target: f64, duration:
     for (integrator, smallest) in missed {
         parts.push(match smallest {
             Some(r) if r.ok() => format!(
-                "`{}` does not get there even at dt = {} (error {:.1e})",
+                "`{}` does not get there even at dt = {} (error {})",
                 integrator.name(),
                 format_dt(r.dt),
-                r.error
+                format_number(r.measure())
             ),
             Some(r) => format!(
                 "`{}` diverges even at dt = {}",
@@ -146,8 +169,34 @@ pub fn sentence(rows: &[Row], integrators: &[Integrator], target: f64, duration:
             None => format!("`{}` was not run", integrator.name()),
         });
     }
-    format!(
-        "To keep the error under {target:.0e} rad over {duration} s, {}.",
-        parts.join("; ")
-    )
+    if contact {
+        format!(
+            "To keep the contact error (end pose, shape, penetration, energy gained) under \
+             {target:.0e} over {duration} s, {}.",
+            parts.join("; ")
+        )
+    } else {
+        format!(
+            "To keep the error under {target:.0e} rad over {duration} s, {}.",
+            parts.join("; ")
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_plain_where_they_fit() {
+        assert_eq!(format_number(3.114), "3.11");
+        assert_eq!(format_number(0.0167), "0.0167");
+        assert_eq!(format_number(0.00311), "0.00311");
+        assert_eq!(format_number(130.4), "130");
+        assert_eq!(format_number(-0.5), "-0.500");
+        assert_eq!(format_number(1.38e-15), "1.38e-15");
+        assert_eq!(format_number(2.5e5), "2.50e5");
+        assert_eq!(format_number(0.0), "0");
+        assert_eq!(format_number(f64::NAN), "—");
+    }
 }

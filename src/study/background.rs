@@ -22,6 +22,8 @@ enum Message {
 pub struct Job {
     /// The scene's name.
     pub name: String,
+    /// The collision response the scene was studied with (scenes with contact).
+    pub response: Option<crate::physics::Response>,
     inner: Arc<Mutex<Inner>>,
 }
 
@@ -40,6 +42,7 @@ impl Job {
         let (sender, receiver) = mpsc::channel();
         let total = config.integrators.len() * config.dts.len();
         let name = case.name.clone();
+        let response = case.scene.contact.map(|m| m.response);
         thread::spawn(move || {
             let mut report = |done, total| {
                 let _ = sender.send(Message::Progress { done, total });
@@ -49,6 +52,7 @@ impl Job {
         });
         Job {
             name,
+            response,
             inner: Arc::new(Mutex::new(Inner {
                 receiver,
                 done: 0,
@@ -65,6 +69,11 @@ impl Job {
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
         f(&mut inner)
+    }
+
+    /// Both handles are the same study (one thread, one result).
+    pub fn same(&self, other: &Job) -> bool {
+        Arc::ptr_eq(&self.inner, &other.inner)
     }
 
     /// Takes every message waiting; never blocks.

@@ -21,8 +21,12 @@ pub use analysis::{fit_order, mark_frontier, Order};
 pub use measure::{Row, Status, Timing};
 pub use reference::Reference;
 
-use crate::physics::Integrator;
-use crate::scene::Scene;
+use crate::physics::{Integrator, Response};
+use crate::scene::{Lesson, Scene};
+use std::path::Path;
+
+/// How long a scene without a `duration` is studied, s.
+pub const DEFAULT_DURATION: f64 = 5.0;
 
 /// A scene to study.
 #[derive(Debug, Clone)]
@@ -34,6 +38,43 @@ pub struct Case {
     pub scene: Scene,
     /// Simulated time of every run, s.
     pub duration: f64,
+}
+
+impl Case {
+    /// The one way a lesson becomes a study case (the command line, the app and the built-in
+    /// scenes): named after its file, described by its title, run for its `duration` or, when
+    /// it has none, [`DEFAULT_DURATION`] (the description says so).
+    pub fn from_lesson(lesson: &Lesson) -> Case {
+        let name = file_name(&lesson.path).unwrap_or_else(|| lesson.title.clone());
+        let (duration, description) = match lesson.scene.duration {
+            Some(d) => (d, lesson.title.clone()),
+            None => (
+                DEFAULT_DURATION,
+                format!(
+                    "{} (no `duration` in [scene]: studied over {DEFAULT_DURATION} s)",
+                    lesson.title
+                ),
+            ),
+        };
+        Case {
+            name,
+            description,
+            scene: lesson.scene.clone(),
+            duration,
+        }
+    }
+
+    /// The same case with another collision response; `None` if the scene has no contact.
+    pub fn with_response(mut self, response: Response) -> Option<Case> {
+        let model = self.scene.contact.as_mut()?;
+        model.response = response;
+        Some(self)
+    }
+}
+
+/// A file's name without its extension.
+fn file_name(path: &Path) -> Option<String> {
+    path.file_stem().map(|s| s.to_string_lossy().into_owned())
 }
 
 /// What to sweep and how to time it.
@@ -78,6 +119,15 @@ pub struct SceneStudy {
     pub orders: Vec<Order>,
     /// "to keep the error under … over … s, `rk4` needs dt = … and costs …".
     pub sentence: String,
+    /// The collision response of a scene with contact (measured by the contact error).
+    pub response: Option<Response>,
+}
+
+impl SceneStudy {
+    /// The scene has contact: runs are ranked by the contact error.
+    pub fn contact(&self) -> bool {
+        self.response.is_some()
+    }
 }
 
 /// Studies one scene. `progress(done, total)` is called after each run.
@@ -111,12 +161,24 @@ pub fn study_case(
         .iter()
         .map(|&i| fit_order(i, &rows))
         .collect();
-    let sentence = analysis::sentence(
-        &rows,
-        &config.integrators,
-        config.target_error,
-        case.duration,
-    );
+    let response = case
+        .scene
+        .contact
+        .filter(|_| !case.scene.obstacles.is_empty())
+        .map(|m| m.response);
+    let sentence = match response {
+        Some(response) if rows.iter().all(|r| !r.ok()) => format!(
+            "Every integrator diverges at every time step with the `{}` collision response: \
+             the response, not the integration, is the cause.",
+            response.name()
+        ),
+        _ => analysis::sentence(
+            &rows,
+            &config.integrators,
+            config.target_error,
+            case.duration,
+        ),
+    };
     mark_frontier(&mut rows);
     analysis::sort_by_cost(&mut rows);
     SceneStudy {
@@ -128,6 +190,7 @@ pub fn study_case(
         rows,
         orders,
         sentence,
+        response,
     }
 }
 

@@ -3,7 +3,7 @@
 //! CSV header (a contract; extra columns only ever go after the first nine):
 //! `scene,integrator,dt,steps,ns_per_step,error,energy_drift,momentum_drift,orthonormality,…`
 
-use super::analysis::{format_cost, format_dt};
+use super::analysis::{format_cost, format_dt, format_number};
 use super::measure::{Row, Status};
 use super::SceneStudy;
 use std::fmt::Write;
@@ -11,16 +11,27 @@ use std::fmt::Write;
 /// The CSV header.
 pub const CSV_HEADER: &str = "scene,integrator,dt,steps,ns_per_step,error,energy_drift,\
 momentum_drift,orthonormality,us_per_simulated_second,omega_error,position_error,penetration,\
-impact_energy,rest_error,frontier,status,reference";
+impact_energy,rest_error,frontier,status,reference,angle_error,end_pose_error,contact_error";
 
-/// A measured number in the table: 3 significant digits, NaN as `—`.
+/// A measured number in the table.
 fn sci(x: f64) -> String {
-    if x.is_nan() {
-        "—".to_string()
-    } else if x == 0.0 {
-        "0".to_string()
-    } else {
-        format!("{x:.2e}")
+    format_number(x)
+}
+
+/// A divergence in a few words: "DIVERGED at t = 1.2 s: rotation no longer resolved" (the CSV
+/// and JSON keep the whole message).
+pub fn short_divergence(message: &str) -> String {
+    let time = message
+        .split_once("(t = ")
+        .and_then(|(_, rest)| rest.split_once(" s)"))
+        .and_then(|(t, _)| t.parse::<f64>().ok());
+    let what = message
+        .split_once("): ")
+        .map(|(_, rest)| rest.rsplit_once(" (integrator").map_or(rest, |(w, _)| w))
+        .map(|w| w.split(':').next().unwrap_or(w).trim());
+    match (time, what) {
+        (Some(t), Some(what)) => format!("DIVERGED at t = {} s: {what}", format_number(t)),
+        _ => format!("DIVERGED: {message}"),
     }
 }
 
@@ -28,31 +39,52 @@ fn sci(x: f64) -> String {
 pub fn table(studies: &[SceneStudy]) -> String {
     let mut out = String::new();
     for study in studies {
-        let contact = study
-            .rows
-            .iter()
-            .any(|r| r.penetration > 0.0 || r.impact_energy > 0.0)
-            || study.reference_kind == "numeric";
+        let contact = study.contact();
+        let response = study
+            .response
+            .map(|r| format!(", response {}", r.name()))
+            .unwrap_or_default();
         let _ = writeln!(
             out,
-            "== {} ({} s): {}",
+            "== {} ({} s{response}): {}",
             study.name, study.duration, study.description
         );
         let _ = writeln!(out, "reference: {}", study.reference);
         let _ = writeln!(
             out,
-            "error = max over samples every 0.1 s of angle(q_ref⁻¹q) + |x − x_ref|/radius (rad); \
-             drifts are relative maxima; * = Pareto frontier (no run is both cheaper and more accurate)"
+            "angle = max angle(q_ref⁻¹q) (rad), pos = max |x − x_ref| (m), ω = max |ω − ω_ref| \
+             (rad/s), over samples every 0.1 s; drifts are relative maxima"
+        );
+        if contact {
+            let _ = writeln!(
+                out,
+                "contact: end pose = largest vertex height error at the end, in radii (the rest pose; \
+                 where it slid and its heading are left out); penetr. = deepest \
+                 depth a step reaches before the response (m); gain = energy added by collide \
+                 phases (J); rest = |v| + radius·|ω| at the end (m/s); contact err = end + \
+                 ‖RᵀR−I‖ + penetr./radius + gain/(M·g·radius): the pose along the way depends on \
+                 when each impact falls, so * ranks by the contact error"
+            );
+        }
+        let _ = writeln!(
+            out,
+            "* = Pareto frontier: no run is both cheaper and more accurate (by {})",
+            if contact {
+                "the contact error"
+            } else {
+                "angle + pos/radius"
+            }
         );
         let mut header = format!(
-            "  {:<17}{:>6}{:>9}{:>9}{:>11}{:>10}{:>10}{:>10}{:>10}{:>10}",
+            "  {:<17}{:>6}{:>9}{:>9}{:>11}{:>10}{:>10}{:>10}{:>10}{:>10}{:>10}",
             "integrator",
             "dt",
             "steps",
             "ns/step",
             "µs/sim-s",
-            "error",
-            "ω error",
+            "angle rad",
+            "pos m",
+            "ω rad/s",
             "ΔE/E",
             "Δ|L|/|L|",
             "‖RᵀR−I‖"
@@ -60,15 +92,8 @@ pub fn table(studies: &[SceneStudy]) -> String {
         if contact {
             let _ = write!(
                 header,
-                "{:>11}{:>11}{:>10}",
-                "penetr. m", "gain J", "rest m/s"
-            );
-        }
-        if contact {
-            let _ = writeln!(
-                out,
-                "contact: penetr. = deepest vertex depth a step reaches before the response; \
-                 gain = energy added by collide phases; rest = |v| + radius·|ω| at the end"
+                "{:>10}{:>10}{:>10}{:>10}{:>12}",
+                "end pose", "penetr. m", "gain J", "rest m/s", "contact err"
             );
         }
         let _ = writeln!(out, "{header}");
@@ -84,11 +109,13 @@ pub fn table(studies: &[SceneStudy]) -> String {
                 None => format!("{} not resolved", o.integrator.name()),
             })
             .collect();
-        let _ = writeln!(
-            out,
-            "observed order (slope of log error vs log dt, errors in [1e-11, 1e-1]): {}",
-            orders.join(", ")
-        );
+        if !contact {
+            let _ = writeln!(
+                out,
+                "observed order (slope of log error vs log dt, errors in [1e-11, 1e-1]): {}",
+                orders.join(", ")
+            );
+        }
         let _ = writeln!(out);
     }
     out
@@ -116,8 +143,9 @@ fn table_row(row: &Row, contact: bool) -> String {
         Status::Ok => {
             let _ = write!(
                 line,
-                "{:>10}{:>10}{:>10}{:>10}{:>10}",
-                sci(row.error),
+                "{:>10}{:>10}{:>10}{:>10}{:>10}{:>10}",
+                sci(row.angle_error),
+                sci(row.position_error),
                 sci(row.omega_error),
                 sci(row.energy_drift),
                 sci(row.momentum_drift),
@@ -126,15 +154,17 @@ fn table_row(row: &Row, contact: bool) -> String {
             if contact {
                 let _ = write!(
                     line,
-                    "{:>11}{:>11}{:>10}",
+                    "{:>10}{:>10}{:>10}{:>10}{:>12}",
+                    sci(row.end_pose_error),
                     sci(row.penetration),
                     sci(row.impact_energy),
-                    sci(row.rest_error)
+                    sci(row.rest_error),
+                    sci(row.contact_error)
                 );
             }
         }
         Status::Diverged(message) => {
-            let _ = write!(line, "  DIVERGED: {message}");
+            let _ = write!(line, "  {}", short_divergence(message));
         }
     }
     line
@@ -152,7 +182,7 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             };
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 r.scene,
                 r.integrator.name(),
                 r.dt,
@@ -170,7 +200,10 @@ pub fn csv(studies: &[SceneStudy]) -> String {
                 r.rest_error,
                 r.frontier,
                 status,
-                study.reference_kind
+                study.reference_kind,
+                r.angle_error,
+                r.end_pose_error,
+                r.contact_error
             );
         }
     }
@@ -193,6 +226,9 @@ pub fn json(studies: &[SceneStudy]) -> String {
                         "ns_per_step": r.ns_per_step,
                         "us_per_simulated_second": r.us_per_simulated_second,
                         "error": r.error,
+                        "angle_error": r.angle_error,
+                        "end_pose_error": r.end_pose_error,
+                        "contact_error": r.contact_error,
                         "omega_error": r.omega_error,
                         "position_error": r.position_error,
                         "energy_drift": r.energy_drift,

@@ -93,12 +93,9 @@ pub fn builtin() -> Vec<Case> {
     .map(|(name, source)| {
         let lesson = scene::parse(source, Path::new(name))
             .unwrap_or_else(|e| panic!("built-in scene {name} is invalid: {e}"));
-        let duration = lesson.scene.duration.unwrap_or(1.0);
         Case {
-            name: name.to_string(),
-            description: lesson.summary,
-            scene: lesson.scene,
-            duration,
+            description: lesson.summary.clone(),
+            ..Case::from_lesson(&lesson)
         }
     })
     .collect()

@@ -251,7 +251,11 @@ impl App {
                 if self.view == View::Study {
                     self.view = View::Loop;
                 } else {
-                    if self.study.is_none() {
+                    if !self
+                        .study
+                        .as_ref()
+                        .is_some_and(|job| super::study_view::is_current(job, self))
+                    {
                         self.study = Some(super::study_view::spawn(self));
                     }
                     self.view = View::Study;
@@ -538,7 +542,7 @@ impl App {
         let lessons: Vec<(PathBuf, String)> = crate::lessons::bundled()
             .into_iter()
             .map(|path| {
-                let title = match crate::scene::load(&path) {
+                let title = match crate::lessons::load(&path) {
                     Ok(l) => l.title,
                     Err(e) => format!("(cannot load: {e})"),
                 };
@@ -560,7 +564,7 @@ impl App {
             self.overlay = Overlay::None;
             return;
         };
-        match crate::scene::load(path) {
+        match crate::lessons::load(path) {
             Ok(lesson) => {
                 let options = Options {
                     ascii: self.ascii,

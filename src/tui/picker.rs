@@ -40,10 +40,7 @@ pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &
         })
         .collect();
     if lines.is_empty() {
-        lines.push(Line::raw(format!(
-            " no lessons found in {}",
-            crate::lessons::folder().display()
-        )));
+        lines.push(Line::raw(" this build has no bundled lessons "));
     }
     let footer: Vec<String> = KEYS
         .iter()

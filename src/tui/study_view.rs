@@ -2,10 +2,12 @@
 //! scene, as a log–log chart — the same numbers as `tumble study FILE`, computed on a background
 //! thread ([`crate::study::background`]) while the rest of the app keeps running. Until the
 //! study is done, a gauge shows its progress; the view can be left and re-entered meanwhile.
+//! The study uses the collision response in use (after `c`, entering the view again studies
+//! the new one) and marks the integrator in use.
 
 use super::app::App;
 use crate::physics::Integrator;
-use crate::study::analysis::format_dt;
+use crate::study::analysis::{format_dt, format_number};
 use crate::study::background::Job;
 use crate::study::{plot, Case, Config, SceneStudy};
 use ratatui::buffer::Buffer;
@@ -17,23 +19,17 @@ use ratatui::widgets::{
     Axis, Block, Chart, Dataset, Gauge, GraphType, LegendPosition, Paragraph, Widget, Wrap,
 };
 
-/// How long a lesson without a `duration` is studied, s.
-pub const DEFAULT_DURATION: f64 = 5.0;
-
-/// Starts the study of a lesson's scene (every integrator, dt = 1e-1 … 1e-4).
+/// Starts the study of a lesson's scene (every integrator, dt = 1e-1 … 1e-4) with the
+/// collision response in use.
 pub fn spawn(app: &App) -> Job {
-    let lesson = &app.lesson;
-    let name = lesson.path.file_stem().map_or_else(
-        || lesson.title.clone(),
-        |s| s.to_string_lossy().into_owned(),
-    );
-    let case = Case {
-        name,
-        description: lesson.title.clone(),
-        scene: lesson.scene.clone(),
-        duration: lesson.scene.duration.unwrap_or(DEFAULT_DURATION),
-    };
+    let mut case = Case::from_lesson(&app.lesson);
+    case.scene.contact = app.world.contact_model().copied();
     Job::spawn(case, Config::default())
+}
+
+/// The study was made with the collision response in use (else it must be made again).
+pub fn is_current(job: &Job, app: &App) -> bool {
+    job.response == app.world.contact_model().map(|m| m.response)
 }
 
 /// The colour of an integrator, as in the SVG plot.
@@ -124,7 +120,7 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         let mut rows: Vec<_> = study
             .rows
             .iter()
-            .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
+            .filter(|r| r.ok() && r.measure().is_finite() && r.us_per_simulated_second > 0.0)
             .filter(|r| integrator.is_none_or(|i| r.integrator == i))
             .filter(|r| !frontier_only || r.frontier)
             .collect();
@@ -133,7 +129,7 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             .map(|r| {
                 (
                     r.us_per_simulated_second.log10(),
-                    r.error.max(1e-16).log10(),
+                    r.measure().max(1e-16).log10(),
                 )
             })
             .collect()
@@ -158,6 +154,17 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
     } else {
         Marker::Braille
     };
+    let in_use = app.world.integrator();
+    let names: Vec<String> = Integrator::ALL
+        .into_iter()
+        .map(|i| {
+            if i == in_use {
+                format!("{} (in use)", i.name())
+            } else {
+                i.name().to_string()
+            }
+        })
+        .collect();
     let lines: Vec<(Integrator, Vec<(f64, f64)>)> = Integrator::ALL
         .into_iter()
         .map(|i| (i, points(Some(i), false)))
@@ -167,11 +174,17 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
     let mut datasets: Vec<Dataset> = lines
         .iter()
         .map(|(i, p)| {
+            let index = Integrator::ALL.iter().position(|x| x == i).unwrap_or(0);
+            let style = Style::new().fg(colour(*i));
             Dataset::default()
-                .name(i.name())
+                .name(names[index].clone())
                 .marker(marker)
                 .graph_type(GraphType::Line)
-                .style(Style::new().fg(colour(*i)))
+                .style(if *i == in_use {
+                    style.add_modifier(Modifier::BOLD)
+                } else {
+                    style
+                })
                 .data(p)
         })
         .collect();
@@ -196,7 +209,15 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             study.name, study.duration, study.reference_kind
         )))
         .x_axis(axis("µs per simulated s", x0, x1))
-        .y_axis(axis("error, rad", y0, y1))
+        .y_axis(axis(
+            if study.contact() {
+                "contact error"
+            } else {
+                "error, rad"
+            },
+            y0,
+            y1,
+        ))
         .legend_position(Some(LegendPosition::TopRight))
         .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
         .render(chart_area, buf);
@@ -213,21 +234,57 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         .iter()
         .filter(|r| r.frontier)
         .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)));
-    Paragraph::new(vec![
-        Line::from(study.sentence.clone()),
-        Line::styled(
+    let dt = app.world.dt();
+    let nearest = study
+        .rows
+        .iter()
+        .filter(|r| r.integrator == in_use)
+        .min_by(|a, b| (a.dt / dt).ln().abs().total_cmp(&(b.dt / dt).ln().abs()));
+    let in_use_line = match nearest {
+        Some(r) if r.ok() => format!(
+            "in use: {} at dt = {} s; the study's nearest run (dt = {}): {} {}",
+            in_use.name(),
+            format_number(dt),
+            format_dt(r.dt),
+            if study.contact() {
+                "contact error"
+            } else {
+                "error"
+            },
+            format_number(r.measure()),
+        ),
+        Some(r) => format!(
+            "in use: {} at dt = {} s; the study's nearest run (dt = {}) diverged",
+            in_use.name(),
+            format_number(dt),
+            format_dt(r.dt)
+        ),
+        None => format!("in use: {} (not in the study)", in_use.name()),
+    };
+    let all_diverged = study.rows.iter().all(|r| !r.ok());
+    let mut text = vec![Line::from(study.sentence.clone())];
+    if all_diverged && study.contact() {
+        text.push(Line::styled(
+            "press c for another collision response, then s twice to study it",
+            Style::new().fg(Color::Yellow),
+        ));
+    }
+    if !study.contact() {
+        text.push(Line::styled(
             format!("observed orders: {}", orders.join(", ")),
             Style::new().add_modifier(Modifier::DIM),
+        ));
+    }
+    text.push(Line::from(in_use_line));
+    text.push(Line::styled(
+        format!(
+            "frontier (█ on the chart, cheapest first): {}",
+            best.collect::<Vec<_>>().join(", ")
         ),
-        Line::styled(
-            format!(
-                "frontier (█ on the chart, cheapest first): {}",
-                best.collect::<Vec<_>>().join(", ")
-            ),
-            Style::new().add_modifier(Modifier::DIM),
-        ),
-    ])
-    .block(Block::bordered().title(format!(" reference: {} ", study.reference_kind)))
-    .wrap(Wrap { trim: true })
-    .render(text_area, buf);
+        Style::new().add_modifier(Modifier::DIM),
+    ));
+    Paragraph::new(text)
+        .block(Block::bordered().title(format!(" reference: {} ", study.reference_kind)))
+        .wrap(Wrap { trim: true })
+        .render(text_area, buf);
 }

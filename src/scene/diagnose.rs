@@ -1,0 +1,498 @@
+//! Every independent error of a scene file, for `tumble check`: one line each.
+//!
+//! The loader ([`super::parse`]) stops at the first error. To find the next, the part of the
+//! file at fault is blanked out (its bytes become spaces, so every other line and column stays
+//! where it was) and the file is parsed again:
+//!
+//! ```text
+//! error inside a key of a section ([scene], [body], an [[obstacle]], a [[page]], …)
+//!     → blank that key = value (an unknown key), or write a value that passes in its place
+//!       (a number → 1, numbers → as many 1s, a misspelt name → the suggested one)
+//! error at a section itself, or caused by blanking one of its keys ("needs `size`")
+//!     → blank the whole section; a required one ([scene], [body]) is replaced by a
+//!       placeholder appended after the end of the file
+//! ```
+//!
+//! An error that only the blanking caused is never reported: it names a blanked key, or has
+//! no place in the file, or lies in the appended placeholder (the search stops there). An
+//! error whose message was already reported (obstacles that need a `contact`) is reported once.
+//! A TOML syntax error stops the search: nothing after it can be trusted.
+
+use super::{parse, LoadError};
+use std::ops::Range;
+use std::path::Path;
+use toml::de::{DeTable, DeValue};
+use toml::Spanned;
+
+/// Placeholders for required sections, appended when a broken one is blanked out.
+const PLACEHOLDERS: &[(&str, &str)] = &[
+    (
+        "scene",
+        "\n[scene]\ndt = 0.001\nintegrator = \"symplectic-euler\"\n\
+         contact = { response = \"impulse\" }\n",
+    ),
+    (
+        "body",
+        "\n[body]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\nmass = 1.0\n\
+         position = [1.0e6, 1.0e6, 1.0e6]\n",
+    ),
+];
+
+/// Every independent error of `source` (empty if it loads), in the order of the file.
+pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
+    let first = match parse(source, path) {
+        Ok(_) => return Vec::new(),
+        Err(e) => e,
+    };
+    if first.location.is_none() || DeTable::parse(source).is_err() {
+        return vec![first];
+    }
+    let mut text = source.to_string();
+    let mut errors = vec![first.clone()];
+    let mut current = first;
+    let mut touched: Vec<Touched> = Vec::new();
+    for _ in 0..200 {
+        let Some(offset) = offset_of(&text, current.location) else {
+            break;
+        };
+        let Some(section) = section_at(&text, offset) else {
+            break;
+        };
+        // A table missing from the file as a whole has no part to blank.
+        let whole_file = current.message.starts_with("missing table")
+            || (section.bare && current.message.starts_with("this table has no"));
+        if whole_file {
+            break;
+        }
+        let caused = caused_by(&touched, &section, offset, &current.message);
+        let untouched = |r: &Range<usize>| !touched.iter().any(|t| t.entry == *r);
+        let entry = section
+            .entries
+            .iter()
+            .find(|e| e.contains(&offset))
+            .filter(|e| untouched(e))
+            .cloned();
+        // The innermost value at fault (inside an inline table too), and a value that passes.
+        let value = section
+            .values
+            .iter()
+            .filter(|(span, _)| span.contains(&offset))
+            .min_by_key(|(span, _)| span.len())
+            .filter(|(span, _)| untouched(span))
+            .and_then(|(span, key)| {
+                let value = neutral(&text[span.clone()], &current.message)?;
+                (value.len() <= span.len()).then(|| (span.clone(), key.clone(), value))
+            })
+            .filter(|_| !current.message.starts_with("unknown key"));
+        match (value, entry) {
+            (Some((span, key, value)), _) if !caused => {
+                blank(&mut text, span.clone());
+                text.replace_range(span.start..span.start + value.len(), &value);
+                touched.push(Touched {
+                    header: section.header.clone(),
+                    entry: span,
+                    key,
+                    renamed: value.starts_with('"'),
+                });
+            }
+            (None, Some(entry)) if !caused => {
+                let key = key_name(&text[entry.clone()]);
+                blank(&mut text, entry.clone());
+                touched.push(Touched {
+                    header: section.header.clone(),
+                    entry,
+                    key,
+                    renamed: false,
+                });
+            }
+            _ => {
+                for region in section.regions() {
+                    blank(&mut text, region);
+                }
+                if section.required_alone {
+                    match PLACEHOLDERS.iter().find(|(name, _)| *name == section.name) {
+                        Some((_, placeholder)) => text.push_str(placeholder),
+                        None => break,
+                    }
+                }
+            }
+        }
+        let next = match parse(&text, path) {
+            Ok(_) => break,
+            Err(e) => e,
+        };
+        let Some(next_offset) = offset_of(&text, next.location).filter(|&o| o < source.len())
+        else {
+            break;
+        };
+        if DeTable::parse(&text).is_err() {
+            break;
+        }
+        let caused = section_at(&text, next_offset)
+            .is_some_and(|s| caused_by(&touched, &s, next_offset, &next.message));
+        if !caused && !errors.iter().any(|e| e.message == next.message) {
+            errors.push(next.clone());
+        }
+        current = next;
+    }
+    errors.sort_by_key(|e| e.location);
+    errors
+}
+
+/// An entry blanked or replaced by a value that passes.
+struct Touched {
+    /// The header of its section.
+    header: Range<usize>,
+    entry: Range<usize>,
+    key: String,
+    /// Replaced by the suggested name (say `type = "ground"`): what the section needs then is
+    /// not the author's error.
+    renamed: bool,
+}
+
+/// An error that blanking or replacing an entry made: it lies in a replaced entry, names a key
+/// blanked in the same section, or is about the section of a replaced name.
+fn caused_by(touched: &[Touched], section: &Section, offset: usize, message: &str) -> bool {
+    touched.iter().any(|t| {
+        t.header == section.header
+            && (t.entry.contains(&offset)
+                || message.contains(&format!("`{}`", t.key))
+                || (t.renamed && section.header.contains(&offset)))
+    })
+}
+
+/// A value that passes validation in place of a wrong one, where one is obvious: a number
+/// becomes 1, an array of numbers as many 1s, an unknown name the suggested one (else the
+/// first valid one the message lists).
+fn neutral(value: &str, message: &str) -> Option<String> {
+    let value = value.trim();
+    if value.starts_with('"') {
+        let suggested = message
+            .split_once("(did you mean `")
+            .and_then(|(_, rest)| rest.split_once('`'))
+            .map(|(name, _)| name);
+        let first_valid = message
+            .starts_with("unknown ")
+            .then(|| message.rsplit_once(": "))
+            .flatten()
+            .and_then(|(_, list)| list.split(", ").next());
+        let name = suggested.or(first_valid)?;
+        return Some(format!("\"{name}\""));
+    }
+    if let Some(inner) = value.strip_prefix('[').and_then(|v| v.strip_suffix(']')) {
+        let items: Vec<&str> = inner.split(',').map(str::trim).collect();
+        let numeric = items.iter().all(|i| looks_numeric(i));
+        return numeric.then(|| format!("[{}]", vec!["1"; items.len()].join(",")));
+    }
+    looks_numeric(value).then(|| "1".to_string())
+}
+
+fn looks_numeric(value: &str) -> bool {
+    let v = value.trim_start_matches(['+', '-']);
+    !v.is_empty() && (v.parse::<f64>().is_ok() || v == "inf" || v == "nan")
+}
+
+/// A key's name from its `key = value` text.
+fn key_name(entry: &str) -> String {
+    entry
+        .split('=')
+        .next()
+        .unwrap_or("")
+        .trim()
+        .trim_matches('"')
+        .to_string()
+}
+
+/// Replaces the bytes of `range` by spaces, keeping line breaks.
+fn blank(text: &mut String, range: Range<usize>) {
+    let replaced: String = text[range.clone()]
+        .chars()
+        .map(|c| {
+            if c == '\n' {
+                "\n".to_string()
+            } else {
+                " ".repeat(c.len_utf8())
+            }
+        })
+        .collect();
+    text.replace_range(range, &replaced);
+}
+
+/// The byte offset of a 1-based (line, column in characters).
+fn offset_of(text: &str, location: Option<(usize, usize)>) -> Option<usize> {
+    let (line, column) = location?;
+    let start = if line == 1 {
+        0
+    } else {
+        text.match_indices('\n').nth(line - 2)?.0 + 1
+    };
+    let rest = &text[start..];
+    let within = rest
+        .char_indices()
+        .nth(column - 1)
+        .map_or(rest.len(), |(i, _)| i);
+    Some(start + within)
+}
+
+/// A part of the file that is checked on its own: a top-level `key = value`, a `[table]`, or
+/// one element of an `[[array]]`.
+#[derive(Debug)]
+struct Section {
+    name: String,
+    /// The `[header]` (or the top-level `key = value`).
+    header: Range<usize>,
+    /// Each `key = value` of the section (and of its sub-tables).
+    entries: Vec<Range<usize>>,
+    /// Other headers of the section (`[scene.sub]`).
+    headers: Vec<Range<usize>>,
+    /// Every value with its key, inline tables' included.
+    values: Vec<(Range<usize>, String)>,
+    /// Blanking it leaves the file without a required section.
+    required_alone: bool,
+    /// A top-level `key = value`, not a table.
+    bare: bool,
+}
+
+impl Section {
+    fn regions(&self) -> Vec<Range<usize>> {
+        let mut all = vec![self.header.clone()];
+        all.extend(self.entries.iter().cloned());
+        all.extend(self.headers.iter().cloned());
+        all
+    }
+
+    fn contains(&self, offset: usize) -> bool {
+        self.regions().iter().any(|r| r.contains(&offset))
+    }
+}
+
+/// The section of the file that holds `offset`.
+fn section_at(text: &str, offset: usize) -> Option<Section> {
+    let document = DeTable::parse(text).ok()?;
+    sections(document.get_ref())
+        .into_iter()
+        .find(|s| s.contains(offset))
+}
+
+/// Every section of a document.
+fn sections(document: &DeTable<'_>) -> Vec<Section> {
+    let mut out = Vec::new();
+    for (key, value) in document.iter() {
+        let name = key.get_ref().to_string();
+        let required = PLACEHOLDERS.iter().any(|(n, _)| *n == name);
+        match value.get_ref() {
+            DeValue::Table(table) if value.span().start < key.span().start => {
+                out.push(table_section(&name, value.span(), table, required));
+            }
+            DeValue::Array(array)
+                if array
+                    .iter()
+                    .all(|e| matches!(e.get_ref(), DeValue::Table(_)))
+                    && value.span().start < key.span().start =>
+            {
+                let alone = array.len() == 1;
+                for element in array.iter() {
+                    if let DeValue::Table(table) = element.get_ref() {
+                        out.push(table_section(
+                            &name,
+                            element.span(),
+                            table,
+                            required && alone,
+                        ));
+                    }
+                }
+            }
+            _ => out.push(Section {
+                values: vec![(value.span(), name.clone())],
+                name,
+                header: key.span().start..value.span().end,
+                entries: Vec::new(),
+                headers: Vec::new(),
+                required_alone: false,
+                bare: true,
+            }),
+        }
+    }
+    out
+}
+
+fn table_section(name: &str, header: Range<usize>, table: &DeTable<'_>, required: bool) -> Section {
+    let mut section = Section {
+        name: name.to_string(),
+        header,
+        entries: Vec::new(),
+        headers: Vec::new(),
+        values: Vec::new(),
+        required_alone: required,
+        bare: false,
+    };
+    collect(table, &mut section);
+    section
+}
+
+/// The entries and sub-table headers of a table defined by a header.
+fn collect(table: &DeTable<'_>, section: &mut Section) {
+    for (key, value) in table.iter() {
+        collect_entry(key, value, section);
+    }
+}
+
+fn collect_entry(
+    key: &Spanned<std::borrow::Cow<'_, str>>,
+    value: &Spanned<DeValue<'_>>,
+    section: &mut Section,
+) {
+    let header_defined = value.span().start < key.span().start;
+    match value.get_ref() {
+        DeValue::Table(sub) if header_defined => {
+            section.headers.push(value.span());
+            collect(sub, section);
+        }
+        _ => {
+            section.entries.push(key.span().start..value.span().end);
+            inline_values(key, value, section);
+        }
+    }
+}
+
+/// A value and, in an inline table, the values inside it.
+fn inline_values(
+    key: &Spanned<std::borrow::Cow<'_, str>>,
+    value: &Spanned<DeValue<'_>>,
+    section: &mut Section,
+) {
+    section
+        .values
+        .push((value.span(), key.get_ref().to_string()));
+    if let DeValue::Table(table) = value.get_ref() {
+        for (k, v) in table.iter() {
+            inline_values(k, v, section);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lines(source: &str) -> Vec<String> {
+        check(source, Path::new("s.toml"))
+            .iter()
+            .map(|e| e.to_string())
+            .collect()
+    }
+
+    const GOOD_BODY: &str = "[body]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\nmass = 1.0\n";
+
+    #[test]
+    fn a_valid_file_has_no_errors() {
+        let source =
+            format!("title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n{GOOD_BODY}");
+        assert!(lines(&source).is_empty());
+    }
+
+    #[test]
+    fn independent_errors_in_scene_body_obstacles_and_pages_are_all_reported() {
+        let source = "title = \"t\"\n\
+            [scene]\n\
+            dt = -0.01\n\
+            integrator = \"rk5\"\n\
+            gravty = [0.0, -9.81, 0.0]\n\
+            contact = { response = \"impulse\" }\n\
+            [body]\n\
+            shape = \"box\"\n\
+            size = [1.0, 0.0, 1.0]\n\
+            mass = 1.0\n\
+            [[obstacle]]\n\
+            type = \"grund\"\n\
+            [[obstacle]]\n\
+            type = \"sphere\"\n\
+            center = [0.0, 0.0, 0.0]\n\
+            radius = -1.0\n\
+            [[page]]\n\
+            at = -1.0\n\
+            title = \"p\"\n\
+            text = \"p\"\n";
+        let found = lines(source);
+        let expected = [
+            "s.toml:5:1: unknown key `gravty` (did you mean `gravity`?); valid keys here: dt, \
+             duration, integrator, gravity, drag, contact",
+            "s.toml:3:6: dt must be > 0, found -0.01",
+            "s.toml:4:14: unknown integrator `rk5` (did you mean `rk4`?); valid integrators: \
+             euler-seed, euler, symplectic-euler, rk4, splitting",
+            "s.toml:9:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
+            "s.toml:12:8: unknown obstacle type `grund` (did you mean `ground`?); valid types: \
+             ground, sphere, box",
+            "s.toml:16:10: radius must be > 0, found -1",
+            "s.toml:18:6: page time `at` must be ≥ 0 s, found -1",
+        ];
+        for line in expected {
+            assert!(
+                found.iter().any(|f| f == line),
+                "missing {line} in {found:#?}"
+            );
+        }
+        assert_eq!(found.len(), expected.len(), "{found:#?}");
+    }
+
+    #[test]
+    fn a_missing_table_is_one_error() {
+        let source = "title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n";
+        assert_eq!(lines(source).len(), 1, "{:?}", lines(source));
+    }
+
+    #[test]
+    fn a_syntax_error_stops_at_the_first() {
+        let source = "title = \"t\n[scene]\ndt = =\n";
+        assert_eq!(lines(source).len(), 1);
+    }
+
+    #[test]
+    fn an_error_caused_by_blanking_is_not_reported() {
+        // Blanking `size` would make "a box body needs `size`": a consequence, not an error.
+        let source = "title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n\
+             [body]\nshape = \"box\"\nsize = [1.0, 0.0, 1.0]\nmass = -1.0\n";
+        assert_eq!(
+            lines(source),
+            [
+                "s.toml:7:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
+                "s.toml:8:8: mass must be > 0, found -1",
+            ]
+        );
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// Any mutation of a bundled lesson: `check` never panics, finds nothing exactly when
+        /// the loader accepts the file, and its first line is the loader's own error when there
+        /// is a single one.
+        #[test]
+        fn check_agrees_with_the_loader_on_mutated_lessons(
+            lesson in 0usize..12,
+            at in 0.0f64..1.0,
+            cut in 0usize..40,
+            insert in "[ -~]{0,12}",
+        ) {
+            let paths = crate::lessons::bundled();
+            let path = &paths[lesson % paths.len()];
+            let text = crate::lessons::embedded(path).unwrap();
+            let mut start = (at * text.len() as f64) as usize;
+            while !text.is_char_boundary(start) {
+                start -= 1;
+            }
+            let mut end = (start + cut).min(text.len());
+            while !text.is_char_boundary(end) {
+                end -= 1;
+            }
+            let mutated = format!("{}{insert}{}", &text[..start], &text[end..]);
+            let found = check(&mutated, path);
+            match parse(&mutated, path) {
+                Ok(_) => proptest::prop_assert!(found.is_empty(), "{found:?}"),
+                Err(e) => {
+                    proptest::prop_assert!(!found.is_empty());
+                    proptest::prop_assert!(found.contains(&e), "{e} not in {found:?}");
+                }
+            }
+        }
+    }
+}
