@@ -481,14 +481,22 @@ proptest! {
         }
         let bound = axes.iter().map(|u| overlap(&ca, &cb, u)).fold(f64::INFINITY, f64::min);
         if bound < -margin {
-            prop_assert!(contacts.is_empty(), "apart by {} > margin {margin}: {contacts:?}", -bound);
+            // Apart by more than the margin along some axis. The separating-axis test's 15
+            // axes need not include that axis (for separated boxes the best separating
+            // direction can lie between them), so a near point may still be reported, its gap
+            // a lower bound of the true distance: it must never claim penetration.
+            prop_assert!(
+                contacts.iter().all(|c| c.depth <= 0.0),
+                "apart by {} > margin {margin}: {contacts:?}",
+                -bound
+            );
         }
         prop_assert!(contacts.len() <= 4);
         for c in &contacts {
             prop_assert!(c.point.iter().all(|x| x.is_finite()));
             prop_assert!((c.normal.norm() - 1.0).abs() < 1e-9, "{c:?}");
             prop_assert!(c.depth >= -margin - 1e-12, "{c:?}");
-            prop_assert!(c.depth <= 1.03 * bound + 2e-5, "depth {} > bound {bound}", c.depth);
+            prop_assert!(c.depth <= 1.03 * bound.max(0.0) + 2e-5, "depth {} > bound {bound}", c.depth);
         }
         // B's centre inside A: they must touch.
         let local = pa.rotation.transpose() * (xb - xa);

@@ -298,7 +298,7 @@ fn accuracy_run(
             row.end_pose_error = world
                 .vertices()
                 .iter()
-                .zip(&scene.body.points_body)
+                .zip(&scene.first().body.points_body)
                 .map(|(p, r0)| ((p - (truth.position + rotation * r0)).dot(&up)).abs())
                 .fold(0.0, f64::max)
                 / radius;
@@ -306,7 +306,8 @@ fn accuracy_run(
     }
     if contact {
         // The work that lifts the body by its radius (or, without gravity, its initial energy).
-        let lift = scene.body.mass * scene.effects.gravity().map_or(0.0, |g| g.norm()) * radius;
+        let lift =
+            scene.first().body.mass * scene.effects.gravity().map_or(0.0, |g| g.norm()) * radius;
         let scale = if lift > 0.0 { lift } else { e0.abs() };
         let gained = if scale > 0.0 {
             row.impact_energy / scale
