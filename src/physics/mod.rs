@@ -9,6 +9,7 @@
 //! | `derive` | the derive phase: I⁻¹_world, ω, v |
 //! | `effects` | the forces phase: gravity and drag, only when declared |
 //! | `free_top` | the torque-free asymmetric top in closed form (a reference) |
+//! | `free_flow` | the exact torque-free flow over one step (the drift of `exact-splitting`) |
 //! | `integrators` | the integrate phase, one file per method |
 //! | `collision` | the collide phase: obstacles, detection, responses |
 //! | `world` | the loop, phase by phase |
@@ -20,6 +21,7 @@ pub mod collision;
 pub mod derive;
 pub mod divergence;
 pub mod effects;
+pub mod free_flow;
 pub mod free_top;
 pub mod integrators;
 pub mod snapshot;
