@@ -7,15 +7,10 @@ use crate::physics::Integrator;
 use plotters::prelude::*;
 use std::path::Path;
 
-/// The colour of an integrator's line (the same in every panel).
+/// The colour of an integrator's line (the same in every panel): its descriptor's.
 pub fn color(integrator: Integrator) -> RGBColor {
-    match integrator {
-        Integrator::EulerSeed => RGBColor(200, 30, 30),
-        Integrator::Euler => RGBColor(230, 140, 0),
-        Integrator::SymplecticEuler => RGBColor(30, 150, 60),
-        Integrator::Rk4 => RGBColor(30, 80, 210),
-        Integrator::Splitting => RGBColor(150, 40, 170),
-    }
+    let (r, g, b) = integrator.descriptor().colour;
+    RGBColor(r, g, b)
 }
 
 /// Smallest error drawn (exact zeros are drawn here).
