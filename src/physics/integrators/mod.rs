@@ -39,6 +39,10 @@ pub struct Descriptor {
     pub formula: &'static str,
     /// Its colour in the study's chart and SVG, (r, g, b).
     pub colour: (u8, u8, u8),
+    /// Exact (to round-off, at any dt) when nothing exerts a torque and no drag acts: a free
+    /// body, or one under uniform gravity. Its error there is round-off, not truncation, and
+    /// has no order to fit.
+    pub exact_without_torque: bool,
 }
 
 /// Declares the enum and [`Integrator::ALL`] from one list, so that no variant can be left out
@@ -91,6 +95,7 @@ impl Integrator {
                 rate: "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
                 formula: "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
                 colour: (200, 30, 30),
+                exact_without_torque: false,
             },
             Integrator::Euler => &Descriptor {
                 name: "euler",
@@ -100,6 +105,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
                 colour: (230, 140, 0),
+                exact_without_torque: false,
             },
             Integrator::SymplecticEuler => &Descriptor {
                 name: "symplectic-euler",
@@ -109,6 +115,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
                 colour: (30, 150, 60),
+                exact_without_torque: false,
             },
             Integrator::Rk4 => &Descriptor {
                 name: "rk4",
@@ -118,6 +125,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
                 colour: (30, 80, 210),
+                exact_without_torque: false,
             },
             Integrator::Splitting => &Descriptor {
                 name: "splitting",
@@ -127,6 +135,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
                 colour: (150, 40, 170),
+                exact_without_torque: false,
             },
             Integrator::ExactSplitting => &Descriptor {
                 name: "exact-splitting",
@@ -136,6 +145,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "exact-splitting: kick P,L by dt/2; drift x and the exact free rotation (sn, cn, dn); kick dt/2",
                 colour: (0, 160, 170),
+                exact_without_torque: true,
             },
             Integrator::ExactSplitting4 => &Descriptor {
                 name: "exact-splitting-4",
@@ -145,6 +155,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "exact-splitting-4: kicks ξ,χ,1−2(ξ+χ),χ,ξ·dt around exact free rotations (1−2λ)/2,λ,λ,(1−2λ)/2·dt",
                 colour: (120, 90, 20),
+                exact_without_torque: true,
             },
         }
     }
