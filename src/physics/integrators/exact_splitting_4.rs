@@ -23,7 +23,7 @@ use super::exact_splitting::{drift, Kick};
 
 const XI: f64 = 0.178_617_895_844_809_1;
 const LAMBDA: f64 = -0.212_341_831_062_605_4;
-const CHI: f64 = -0.066_264_582_669_818_49;
+const CHI: f64 = -0.066_264_582_669_818_5;
 
 /// Fractions of dt of the five kicks.
 const KICKS: [f64; 5] = [XI, CHI, 1.0 - 2.0 * (CHI + XI), CHI, XI];
