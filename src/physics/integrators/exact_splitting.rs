@@ -20,8 +20,9 @@
 //!
 //! The rotation leaves the world L untouched (L is what the free flow keeps), so torque-free
 //! |L| is kept to the last bit and the energy `½ ω·L` to round-off — no drift, no oscillation.
-//! The price is one exact flow per step: a Jacobi evaluation and Carlson integrals, a few
-//! times an `rk4` step; it pays as soon as it lets dt grow.
+//! The price is one exact flow per step: a Jacobi evaluation and Carlson integrals, six to
+//! seven `rk4` steps here; it pays as soon as it lets dt grow (on a free tumble, at 1e-9 rad
+//! over 10 s, a simulated second costs about 60 times less than with `rk4`: `benches/step.rs`).
 
 use super::super::body::Body;
 use super::super::derive::Kinematics;
