@@ -187,16 +187,27 @@ fn fast_tumble_error(integrator: Integrator, dt: f64) -> f64 {
 /// The largest dt = 0.1/n at which `integrator` (order `order`) keeps the error ≤ `target`,
 /// found from its order and checked; with the error there.
 fn step_for_error(integrator: Integrator, order: f64, target: f64) -> (f64, f64) {
-    let mut n = 1u64;
-    loop {
-        let dt = 0.1 / n as f64;
-        let error = fast_tumble_error(integrator, dt);
-        if error <= target {
-            return (dt, error);
-        }
+    let error_at = |n: u64| fast_tumble_error(integrator, 0.1 / n as f64);
+    // Grow n by the order's estimate until the error is under the target…
+    let (mut failing, mut n) = (0u64, 1u64);
+    let mut error = error_at(n);
+    while error > target {
+        failing = n;
         let guess = (n as f64 * (error / target).powf(1.0 / order)).ceil() as u64;
         n = guess.max(n + 1);
+        error = error_at(n);
     }
+    // …then bisect down to the fewest steps that still get there.
+    while n - failing > 1 {
+        let mid = (n + failing) / 2;
+        let e = error_at(mid);
+        if e <= target {
+            (n, error) = (mid, e);
+        } else {
+            failing = mid;
+        }
+    }
+    (0.1 / n as f64, error)
 }
 
 fn equal_error(c: &mut Criterion) {
