@@ -29,7 +29,7 @@ const TABLE: &[(&str, &str)] = &[
     (
         "unknown-integrator.toml",
         "5:14: unknown integrator `runge-kutta`; valid integrators: euler-seed, euler, \
-         symplectic-euler, rk4, splitting",
+         symplectic-euler, rk4, splitting, exact-splitting, exact-splitting-4",
     ),
     (
         "unknown-response.toml",
@@ -230,7 +230,7 @@ fn bad_command_line_overrides_are_one_line_and_exit_code_2() {
         (
             vec!["run", lesson, "--steps", "1", "--integrator", "verlet"],
             "tumble: unknown integrator `verlet`; valid integrators: euler-seed, euler, \
-             symplectic-euler, rk4, splitting\n",
+             symplectic-euler, rk4, splitting, exact-splitting, exact-splitting-4\n",
         ),
     ] {
         let (code, _, stderr) = outcome(&args);

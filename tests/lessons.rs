@@ -126,6 +126,23 @@ fn the_readme_table_lists_every_bundled_lesson_with_its_summary() {
 }
 
 #[test]
+fn the_readme_integrator_table_has_every_integrators_descriptor_row() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    for integrator in tumble::physics::Integrator::ALL {
+        let d = integrator.descriptor();
+        let row = format!(
+            "| `{}` | {} | {} | {} |",
+            d.name, d.summary, d.order, d.keeps
+        );
+        assert!(
+            readme.contains(&row),
+            "README.md's integrator table has no row `{row}`"
+        );
+    }
+}
+
+#[test]
 fn the_complete_example_of_the_lesson_format_doc_is_a_valid_lesson() {
     let doc = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),

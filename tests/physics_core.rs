@@ -1137,7 +1137,8 @@ fn run_and_check_exit_codes() {
     };
     bad(
         &["run", RACKET, "--steps", "1", "--integrator", "verlet"],
-        "valid integrators: euler-seed, euler, symplectic-euler, rk4, splitting",
+        "valid integrators: euler-seed, euler, symplectic-euler, rk4, splitting, exact-splitting, \
+         exact-splitting-4",
     );
     bad(&["run", RACKET, "--steps", "1", "--dt=-1"], "--dt");
     bad(

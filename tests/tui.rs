@@ -228,7 +228,10 @@ fn switching_integrator_keeps_time_and_state() {
     assert_eq!(after.position, before.position);
     assert_eq!(after.linear_momentum, before.linear_momentum);
     assert_eq!(after.angular_momentum, before.angular_momentum);
-    // The next switch is euler-seed: R becomes a matrix equal to the rotation of q.
+    // Then exact-splitting, exact-splitting-4, and euler-seed: R becomes a matrix equal to the
+    // rotation of q.
+    keys(&mut app, "ii");
+    assert_eq!(app.snapshot.integrator, Integrator::ExactSplitting4);
     keys(&mut app, "i");
     assert_eq!(app.snapshot.integrator, Integrator::EulerSeed);
     let dr = (app.snapshot.rotation - before.rotation).abs().max();

@@ -64,7 +64,11 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
     press(&mut app, KeyCode::Char('s'));
     assert_eq!(app.view, View::Study);
     let job = app.study.clone().expect("`s` starts a study");
-    assert_eq!(job.progress().1, 20, "5 integrators × 4 time steps");
+    assert_eq!(
+        job.progress().1,
+        Integrator::ALL.len() * 4,
+        "every integrator × 4 time steps"
+    );
     // The first frame is drawn at once (progress or, on a fast machine, the finished chart).
     let first = screen(&app, 120, 40);
     assert!(first.contains("study of short-tumble"), "{first}");
@@ -96,7 +100,7 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
         .unwrap()
         .result()
         .expect("a finished study");
-    assert_eq!(result.rows.len(), 20);
+    assert_eq!(result.rows.len(), Integrator::ALL.len() * 4);
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("error against cost, log–log"), "{shown}");
     assert!(

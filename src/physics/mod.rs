@@ -10,6 +10,7 @@
 //! | `effects` | the forces phase: gravity and drag, only when declared |
 //! | `energy` | kinetic, potential, total: of a body and of a world |
 //! | `free_top` | the torque-free asymmetric top in closed form (a reference) |
+//! | `free_flow` | the exact torque-free flow over one step (the drift of `exact-splitting`) |
 //! | `integrators` | the integrate phase, one file per method |
 //! | `collision` | the collide phase: obstacles, detection, responses |
 //! | `world` | the loop, phase by phase, over every body |
@@ -22,6 +23,7 @@ pub mod derive;
 pub mod divergence;
 pub mod effects;
 pub mod energy;
+pub mod free_flow;
 pub mod free_top;
 pub mod integrators;
 pub mod snapshot;

@@ -419,7 +419,8 @@ mod tests {
              duration, integrator, gravity, drag, contact",
             "s.toml:3:6: dt must be > 0, found -0.01",
             "s.toml:4:14: unknown integrator `rk5` (did you mean `rk4`?); valid integrators: \
-             euler-seed, euler, symplectic-euler, rk4, splitting",
+             euler-seed, euler, symplectic-euler, rk4, splitting, exact-splitting, \
+             exact-splitting-4",
             "s.toml:9:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
             "s.toml:12:8: unknown obstacle type `grund` (did you mean `ground`?); valid types: \
              ground, sphere, box",

@@ -6,7 +6,8 @@
 //!            the pose error, or in a scene with contact the contact error)
 //! order:     least-squares slope of ln(error) against ln(dt) over the asymptotic range:
 //!            runs that did not diverge with FLOOR ≤ error ≤ CEILING (below the floor round-off
-//!            dominates; above the ceiling the error saturates — angles wrap at π)
+//!            dominates; above the ceiling the error saturates — angles wrap at π);
+//!            none for an integrator exact on the scene (its error is round-off)
 //! ```
 
 use super::measure::Row;
@@ -28,6 +29,10 @@ pub struct Order {
     pub slope: Option<f64>,
     /// How many runs the fit used.
     pub points: usize,
+    /// The integrator is exact on this scene (no torque, no drag: see
+    /// [`crate::physics::integrators::Descriptor::exact_without_torque`]): its error is
+    /// round-off, which grows with the number of steps, so no order is fitted.
+    pub exact: bool,
 }
 
 /// Fits the observed order of `integrator` from the rows of one scene.
@@ -50,6 +55,17 @@ pub fn fit_order(integrator: Integrator, rows: &[Row]) -> Order {
         integrator,
         slope,
         points: n,
+        exact: false,
+    }
+}
+
+/// The order of an integrator that is exact on the scene: none to fit.
+pub fn exact_order(integrator: Integrator) -> Order {
+    Order {
+        integrator,
+        slope: None,
+        points: 0,
+        exact: true,
     }
 }
 

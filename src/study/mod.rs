@@ -156,10 +156,17 @@ pub fn study_case(
             progress(rows.len(), total);
         }
     }
+    let exact_reference = reference.kind() == "exact";
     let orders = config
         .integrators
         .iter()
-        .map(|&i| fit_order(i, &rows))
+        .map(|&i| {
+            if exact_reference && i.descriptor().exact_without_torque {
+                analysis::exact_order(i)
+            } else {
+                fit_order(i, &rows)
+            }
+        })
         .collect();
     let response = case
         .scene

@@ -7,15 +7,10 @@ use crate::physics::Integrator;
 use plotters::prelude::*;
 use std::path::Path;
 
-/// The colour of an integrator's line (the same in every panel).
+/// The colour of an integrator's line (the same in every panel): its descriptor's.
 pub fn color(integrator: Integrator) -> RGBColor {
-    match integrator {
-        Integrator::EulerSeed => RGBColor(200, 30, 30),
-        Integrator::Euler => RGBColor(230, 140, 0),
-        Integrator::SymplecticEuler => RGBColor(30, 150, 60),
-        Integrator::Rk4 => RGBColor(30, 80, 210),
-        Integrator::Splitting => RGBColor(150, 40, 170),
-    }
+    let (r, g, b) = integrator.descriptor().colour;
+    RGBColor(r, g, b)
 }
 
 /// Smallest error drawn (exact zeros are drawn here).
@@ -26,11 +21,13 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
     let panels = studies.len().max(1);
     let columns = if panels > 1 { 2 } else { 1 };
     let rows = panels.div_ceil(columns);
-    let size = (640 * columns as u32, HEADER + 480 * rows as u32);
+    let width = 640 * columns as u32;
+    let header = header_height(width);
+    let size = (width, header + 480 * rows as u32);
     let root = SVGBackend::new(path, size).into_drawing_area();
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     root.fill(&WHITE).map_err(|e| fail(&e))?;
-    let (header, body) = root.split_vertically(HEADER);
+    let (header, body) = root.split_vertically(header);
     legend(&header).map_err(|e| fail(&e))?;
     let areas = body.split_evenly((rows, columns));
     for (study, area) in studies.iter().zip(areas.iter()) {
@@ -41,8 +38,19 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
-/// Height of the title and shared legend strip, px.
-const HEADER: u32 = 56;
+/// Width of one legend entry, px.
+const LEGEND_ENTRY: u32 = 170;
+
+/// Legend entries per row in a picture `width` px wide.
+fn legend_per_row(width: u32) -> usize {
+    ((width - 16) / LEGEND_ENTRY).max(1) as usize
+}
+
+/// Height of the title and shared legend strip, px: the title, then rows of legend entries.
+fn header_height(width: u32) -> u32 {
+    let rows = Integrator::ALL.len().div_ceil(legend_per_row(width)) as u32;
+    36 + 20 * rows
+}
 
 /// The title and one legend for every panel (a legend inside a panel would hide its points).
 fn legend(area: &Area) -> Result<(), Box<dyn std::error::Error>> {
@@ -52,16 +60,18 @@ fn legend(area: &Area) -> Result<(), Box<dyn std::error::Error>> {
         (16, 8),
         ("sans-serif", 16).into_font(),
     ))?;
+    let per_row = legend_per_row(area.dim_in_pixel().0);
     for (k, integrator) in Integrator::ALL.into_iter().enumerate() {
-        let x = 16 + 170 * k as i32;
+        let x = 16 + (LEGEND_ENTRY * (k % per_row) as u32) as i32;
+        let y = 40 + 20 * (k / per_row) as i32;
         let c = color(integrator);
         area.draw(&PathElement::new(
-            vec![(x, 40), (x + 28, 40)],
+            vec![(x, y), (x + 28, y)],
             c.stroke_width(3),
         ))?;
         area.draw(&Text::new(
             integrator.name(),
-            (x + 34, 33),
+            (x + 34, y - 7),
             ("sans-serif", 14).into_font().color(&c),
         ))?;
     }

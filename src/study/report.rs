@@ -105,6 +105,7 @@ pub fn table(studies: &[SceneStudy]) -> String {
             .orders
             .iter()
             .map(|o| match o.slope {
+                _ if o.exact => format!("{} exact (error = round-off)", o.integrator.name()),
                 Some(s) => format!("{} {:.2} ({} runs)", o.integrator.name(), s, o.points),
                 None => format!("{} not resolved", o.integrator.name()),
             })
@@ -253,6 +254,7 @@ pub fn json(studies: &[SceneStudy]) -> String {
                         "integrator": o.integrator.name(),
                         "order": o.slope,
                         "points": o.points,
+                        "exact": o.exact,
                     })
                 })
                 .collect();

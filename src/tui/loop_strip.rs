@@ -3,7 +3,7 @@
 //! arithmetic of each contact).
 
 use super::app::App;
-use crate::physics::{Effect, Integrator, Phase, Response, Snapshot, World};
+use crate::physics::{Effect, Phase, Response, Snapshot, World};
 use crate::tables::{contact_label, number_plain};
 use nalgebra::Vector3;
 use ratatui::buffer::Buffer;
@@ -161,22 +161,13 @@ fn forces(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             vector(&s.torque)
         ),
     ));
-    let rate = match s.integrator {
-        Integrator::EulerSeed => "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
-        _ => "q̇ = ½·ω⊗q   (how the orientation turns)",
-    };
+    let rate = s.integrator.descriptor().rate;
     lines.push(line(rate, ""));
     lines
 }
 
 fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
-    let method = match s.integrator {
-        Integrator::EulerSeed => "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
-        Integrator::Euler => "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
-        Integrator::SymplecticEuler => "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
-        Integrator::Rk4 => "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
-        Integrator::Splitting => "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
-    };
+    let method = s.integrator.descriptor().formula;
     vec![
         line(method, ""),
         line(

@@ -225,6 +225,7 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         .orders
         .iter()
         .map(|o| match o.slope {
+            _ if o.exact => format!("{} exact", o.integrator.name()),
             Some(s) => format!("{} {:.1}", o.integrator.name(), s),
             None => format!("{} –", o.integrator.name()),
         })

@@ -7,6 +7,8 @@
 
 mod euler;
 mod euler_seed;
+mod exact_splitting;
+mod exact_splitting_4;
 mod rk4;
 mod splitting;
 mod symplectic_euler;
@@ -17,9 +19,51 @@ use super::effects::{Effects, Loads};
 use super::state::{Orientation, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
-/// The integrators `tumble` offers, selectable by name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Integrator {
+/// Everything the front ends say about an integrator, in one place: the scene-file name, the
+/// order, the formulas the loop strip shows, the README's row, the study's colour. Adding an
+/// integrator is its file, one variant in [`integrators!`] and one descriptor in
+/// [`Integrator::descriptor`] (a missing one does not compile).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Descriptor {
+    /// The name used in scene files and on the command line.
+    pub name: &'static str,
+    /// Order of accuracy of the global error when torques act.
+    pub order: u32,
+    /// What it is, in one line (the README's integrator table).
+    pub summary: &'static str,
+    /// What it keeps (the README's integrator table).
+    pub keeps: &'static str,
+    /// How the orientation turns, as the loop strip's forces phase shows it.
+    pub rate: &'static str,
+    /// The update, as the loop strip's integrate phase shows it.
+    pub formula: &'static str,
+    /// Its colour in the study's chart and SVG, (r, g, b).
+    pub colour: (u8, u8, u8),
+    /// Exact (to round-off, at any dt) when nothing exerts a torque and no drag acts: a free
+    /// body, or one under uniform gravity. Its error there is round-off, not truncation, and
+    /// has no order to fit.
+    pub exact_without_torque: bool,
+}
+
+/// Declares the enum and [`Integrator::ALL`] from one list, so that no variant can be left out
+/// of `ALL` (and so out of the `i` cycle, the study and the name lookup).
+macro_rules! integrators {
+    ($($(#[$doc:meta])* $variant:ident,)*) => {
+        /// The integrators `tumble` offers, selectable by name.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Integrator {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl Integrator {
+            /// Every integrator, in teaching order.
+            pub const ALL: [Integrator; [$(Integrator::$variant,)*].len()] =
+                [$(Integrator::$variant,)*];
+        }
+    };
+}
+
+integrators! {
     /// The original loop: explicit Euler on (x, R, P, L), R a plain matrix.
     EulerSeed,
     /// Explicit Euler with a unit quaternion, renormalised each step.
@@ -30,27 +74,95 @@ pub enum Integrator {
     Rk4,
     /// Kick–drift–kick with the free rotation split into exact rotations about the principal axes.
     Splitting,
+    /// Kick–drift–kick whose drift is the exact torque-free flow (Jacobi elliptic functions).
+    ExactSplitting,
+    /// A fourth-order composition of `exact-splitting` (Omelyan, Mryglod & Folk 2002).
+    ExactSplitting4,
 }
 
+/// The quaternion integrators' orientation rate, as the loop strip shows it.
+const QUATERNION_RATE: &str = "q̇ = ½·ω⊗q   (how the orientation turns)";
+
 impl Integrator {
-    /// Every integrator, in teaching order.
-    pub const ALL: [Integrator; 5] = [
-        Integrator::EulerSeed,
-        Integrator::Euler,
-        Integrator::SymplecticEuler,
-        Integrator::Rk4,
-        Integrator::Splitting,
-    ];
+    /// Its descriptor.
+    pub fn descriptor(self) -> &'static Descriptor {
+        match self {
+            Integrator::EulerSeed => &Descriptor {
+                name: "euler-seed",
+                order: 1,
+                summary: "the original report's loop: explicit Euler on x, the rotation *matrix* R, P and L",
+                keeps: "nothing: R drifts away from a rotation",
+                rate: "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
+                formula: "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
+                colour: (200, 30, 30),
+                exact_without_torque: false,
+            },
+            Integrator::Euler => &Descriptor {
+                name: "euler",
+                order: 1,
+                summary: "explicit Euler with a unit quaternion",
+                keeps: "L when torque-free; energy grows",
+                rate: QUATERNION_RATE,
+                formula: "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
+                colour: (230, 140, 0),
+                exact_without_torque: false,
+            },
+            Integrator::SymplecticEuler => &Descriptor {
+                name: "symplectic-euler",
+                order: 1,
+                summary: "momenta first, then positions with the new velocities",
+                keeps: "bounded energy error in translation",
+                rate: QUATERNION_RATE,
+                formula: "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
+                colour: (30, 150, 60),
+                exact_without_torque: false,
+            },
+            Integrator::Rk4 => &Descriptor {
+                name: "rk4",
+                order: 4,
+                summary: "classical Runge–Kutta over the whole state",
+                keeps: "very small drift at moderate dt",
+                rate: QUATERNION_RATE,
+                formula: "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
+                colour: (30, 80, 210),
+                exact_without_torque: false,
+            },
+            Integrator::Splitting => &Descriptor {
+                name: "splitting",
+                order: 2,
+                summary: "kick–drift–kick with the free rotation split into exact rotations about the principal axes",
+                keeps: "L exactly, energy bounded (symplectic)",
+                rate: QUATERNION_RATE,
+                formula: "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
+                colour: (150, 40, 170),
+                exact_without_torque: false,
+            },
+            Integrator::ExactSplitting => &Descriptor {
+                name: "exact-splitting",
+                order: 2,
+                summary: "kick–drift–kick whose drift is the exact torque-free rotation (Jacobi elliptic functions)",
+                keeps: "L and energy to round-off when torque-free, at any dt; exact under gravity",
+                rate: QUATERNION_RATE,
+                formula: "exact-splitting: kick P,L by dt/2; drift x and the exact free rotation (sn, cn, dn); kick dt/2",
+                colour: (0, 160, 170),
+                exact_without_torque: true,
+            },
+            Integrator::ExactSplitting4 => &Descriptor {
+                name: "exact-splitting-4",
+                order: 4,
+                summary: "exact-splitting composed fourth order: five kicks, four exact free rotations (Omelyan–Mryglod–Folk)",
+                keeps: "as exact-splitting; fourth order under drag",
+                rate: QUATERNION_RATE,
+                formula: "exact-splitting-4: kicks ξ,χ,1−2(ξ+χ),χ,ξ·dt around exact free rotations (1−2λ)/2,λ,λ,(1−2λ)/2·dt",
+                colour: (120, 90, 20),
+                exact_without_torque: true,
+            },
+        }
+    }
 
     /// The name used in scene files and on the command line.
     pub fn name(self) -> &'static str {
-        match self {
-            Integrator::EulerSeed => "euler-seed",
-            Integrator::Euler => "euler",
-            Integrator::SymplecticEuler => "symplectic-euler",
-            Integrator::Rk4 => "rk4",
-            Integrator::Splitting => "splitting",
-        }
+        self.descriptor().name
     }
 
     /// The integrator with this name.
@@ -65,11 +177,7 @@ impl Integrator {
 
     /// Order of accuracy of the global error.
     pub fn order(self) -> u32 {
-        match self {
-            Integrator::EulerSeed | Integrator::Euler | Integrator::SymplecticEuler => 1,
-            Integrator::Splitting => 2,
-            Integrator::Rk4 => 4,
-        }
+        self.descriptor().order
     }
 
     /// The next integrator in [`Integrator::ALL`], wrapping around.
@@ -133,6 +241,8 @@ impl Integrator {
             Integrator::Splitting => {
                 *state = splitting::step(body, effects, state, start, loads, dt)
             }
+            Integrator::ExactSplitting => exact_splitting::step(body, effects, state, start, dt),
+            Integrator::ExactSplitting4 => exact_splitting_4::step(body, effects, state, start, dt),
         }
     }
 }
