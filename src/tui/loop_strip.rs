@@ -12,7 +12,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
-const FORMULA: Style = Style::new().fg(Color::Cyan);
+const FORMULA: Style = super::theme::FORMULA;
 
 /// A vector as `(x, y, z)` with the shared number formatter.
 pub fn vector(v: &Vector3<f64>) -> String {
@@ -39,9 +39,34 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ));
     let inner = block.inner(area);
     block.render(area, buf);
+    Paragraph::new(fit(lines(app), inner.width)).render(inner, buf);
+}
+
+/// The strip's lines before wrapping: the phase line, then the formulas with their numbers.
+pub fn lines(app: &App) -> Vec<Line<'static>> {
+    let s = &app.snapshot;
     let mut lines = vec![phase_line(s)];
     lines.extend(formulas(&app.world, s));
-    Paragraph::new(lines).render(inner, buf);
+    lines
+}
+
+/// Lines wider than `width` are wrapped at spaces (formula-aware, like lesson pages), so no
+/// number or unit is cut at the pane's edge; the pieces lose their colours.
+pub fn fit(lines: Vec<Line<'static>>, width: u16) -> Vec<Line<'static>> {
+    let mut out = Vec::new();
+    for line in lines {
+        if line.width() <= usize::from(width) {
+            out.push(line);
+            continue;
+        }
+        let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+        out.extend(
+            super::lesson_pane::wrap(&text, usize::from(width))
+                .into_iter()
+                .map(Line::from),
+        );
+    }
+    out
 }
 
 /// The frame the last phase belongs to (1-based).
