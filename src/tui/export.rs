@@ -65,8 +65,12 @@ fn escape(text: &str) -> String {
     out
 }
 
-/// Foreground and background of a cell, reversed video applied, defaults resolved.
-fn colours(cell: &Cell) -> ((u8, u8, u8), Option<(u8, u8, u8)>) {
+/// An RGB colour.
+type Rgb = (u8, u8, u8);
+
+/// Foreground and background of a cell, reversed video applied, defaults resolved (no
+/// background: the terminal's).
+fn colours(cell: &Cell) -> (Rgb, Option<Rgb>) {
     let fg = theme::rgb(cell.fg).unwrap_or(FOREGROUND);
     let bg = theme::rgb(cell.bg);
     if cell.modifier.contains(Modifier::REVERSED) {

@@ -34,7 +34,7 @@ pub fn line_count(app: &App, width: u16) -> u16 {
     let (_, text) = page(app);
     wrap(
         &text,
-        usize::from(width.min(super::layout::PAGE_WIDTH).max(1)),
+        usize::from(width.clamp(1, super::layout::PAGE_WIDTH)),
     )
     .len() as u16
 }
@@ -48,7 +48,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let inner = block.inner(area);
     let lines: Vec<Line> = wrap(
         &text,
-        usize::from(inner.width.min(super::layout::PAGE_WIDTH).max(1)),
+        usize::from(inner.width.clamp(1, super::layout::PAGE_WIDTH)),
     )
     .into_iter()
     .map(Line::from)
@@ -189,13 +189,15 @@ mod tests {
 
     #[test]
     fn continuation_lines_hang_under_the_text_after_a_double_space() {
+        // The second line has room for 19 columns: "turned (a unit" would break inside the
+        // brackets; the break outside them, after "turned", still fills a third of the line.
         let lines = wrap("  q  how the body is turned (a unit quaternion)", 24);
         assert_eq!(
             lines,
             vec![
                 "  q  how the body is",
-                "     turned (a unit",
-                "     quaternion)",
+                "     turned",
+                "     (a unit quaternion)",
             ]
         );
     }

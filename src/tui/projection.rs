@@ -411,7 +411,8 @@ fn arrow(
         ascii: None,
         dashed: false,
     });
-    let head = if dx.abs() >= 2.0 * dy.abs() {
+    // The head by the arrow's direction as seen (screen units are square).
+    let head = if dx.abs() >= dy.abs() {
         if dx > 0.0 {
             '>'
         } else {

@@ -13,9 +13,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::Line;
-use ratatui::widgets::{
-    Axis, Block, Chart, Dataset, Gauge, GraphType, LegendPosition, Paragraph, Widget, Wrap,
-};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, Gauge, GraphType, Paragraph, Widget, Wrap};
 
 /// How long a lesson without a `duration` is studied, s.
 pub const DEFAULT_DURATION: f64 = 5.0;
@@ -197,9 +195,17 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         )))
         .x_axis(axis("µs per simulated s", x0, x1))
         .y_axis(axis("error, rad", y0, y1))
-        .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
+        // The legend goes under the chart, where it cannot cover a curve.
+        .legend_position(None)
         .render(chart_area, buf);
+    let mut legend: Vec<ratatui::text::Span> = vec![ratatui::text::Span::raw(" ")];
+    for (i, _) in &lines {
+        legend.push(ratatui::text::Span::styled(
+            format!("── {}  ", i.name()),
+            Style::new().fg(colour(*i)),
+        ));
+    }
+    legend.push(ratatui::text::Span::raw("█ frontier"));
     let orders: Vec<String> = study
         .orders
         .iter()
@@ -214,6 +220,7 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         .filter(|r| r.frontier)
         .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)));
     Paragraph::new(vec![
+        Line::from(legend),
         Line::from(study.sentence.clone()),
         Line::styled(
             format!("observed orders: {}", orders.join(", ")),
