@@ -3,16 +3,17 @@
 //! arithmetic of each contact).
 
 use super::app::App;
+use super::theme;
 use crate::physics::{Effect, Integrator, Phase, Response, Snapshot, World};
 use crate::tables::number_plain;
 use nalgebra::Vector3;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
-const FORMULA: Style = super::theme::FORMULA;
+const FORMULA: Style = theme::FORMULA;
 
 /// A vector as `(x, y, z)` with the shared number formatter.
 pub fn vector(v: &Vector3<f64>) -> String {
@@ -32,11 +33,8 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     };
     let block = Block::new()
         .borders(Borders::TOP)
-        .border_style(Style::new().fg(Color::DarkGray))
-        .title(Line::styled(
-            title,
-            Style::new().fg(Color::White).add_modifier(Modifier::BOLD),
-        ));
+        .border_style(theme::DIM)
+        .title(Line::styled(title, theme::STRIP_TITLE));
     let inner = block.inner(area);
     block.render(area, buf);
     Paragraph::new(fit(lines(app), inner.width)).render(inner, buf);
@@ -81,17 +79,14 @@ fn phase_line(s: &Snapshot) -> Line<'static> {
     let mut spans = vec![Span::raw(" ")];
     for (i, phase) in Phase::ALL.iter().enumerate() {
         if i > 0 {
-            spans.push(Span::styled(" → ", Style::new().fg(Color::DarkGray)));
+            spans.push(Span::styled(" → ", theme::DIM));
         }
         let style = if s.phase == Some(*phase) {
-            Style::new()
-                .fg(Color::Black)
-                .bg(Color::Yellow)
-                .add_modifier(Modifier::BOLD)
+            theme::SELECTED
         } else if s.next_phase == *phase {
-            Style::new().fg(Color::Yellow)
+            theme::ACCENT
         } else {
-            Style::new().fg(Color::Gray)
+            theme::SOFT
         };
         let marker = if s.phase == Some(*phase) {
             "■"
@@ -104,7 +99,7 @@ fn phase_line(s: &Snapshot) -> Line<'static> {
     }
     spans.push(Span::styled(
         format!("      next: {}  (n)", s.next_phase),
-        Style::new().fg(Color::DarkGray),
+        theme::DIM,
     ));
     Line::from(spans)
 }

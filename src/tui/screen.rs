@@ -3,13 +3,14 @@
 
 use super::app::{App, Overlay, View};
 use super::layout::{self, Areas, ScreenLayout};
+use super::theme;
 use super::{
     divergence_dialog, energy_view, header, help, lesson_pane, loop_view, panels, picker,
     status_bar, study_view,
 };
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 
@@ -90,7 +91,7 @@ fn enlarge_message(area: Rect, buf: &mut Buffer) {
     ];
     let box_area = centered(area, area.width, 4);
     Paragraph::new(text)
-        .style(Style::new().fg(Color::Yellow))
+        .style(theme::ACCENT)
         .centered()
         .wrap(Wrap { trim: true })
         .render(box_area, buf);

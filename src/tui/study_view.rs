@@ -4,6 +4,7 @@
 //! study is done, a gauge shows its progress; the view can be left and re-entered meanwhile.
 
 use super::app::App;
+use super::theme;
 use crate::physics::Integrator;
 use crate::study::analysis::format_dt;
 use crate::study::background::Job;
@@ -61,12 +62,12 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
     let (done, total) = job.progress();
     if job.failed() {
         Paragraph::new("the study stopped unexpectedly (see the terminal after quitting)")
-            .style(Style::new().fg(Color::Red))
+            .style(theme::ERROR)
             .render(inner, buf);
         return;
     }
     Gauge::default()
-        .gauge_style(Style::new().fg(Color::Cyan))
+        .gauge_style(theme::GAUGE)
         .ratio(if total == 0 {
             0.0
         } else {
@@ -178,13 +179,13 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             .name("frontier")
             .marker(Marker::Block)
             .graph_type(GraphType::Scatter)
-            .style(Style::new().fg(Color::White))
+            .style(theme::FRONTIER)
             .data(&frontier),
     );
     let axis = |title: &'static str, lo: f64, hi: f64| {
         Axis::default()
             .title(title)
-            .style(Style::new().fg(Color::Gray))
+            .style(theme::CHART_AXIS)
             .bounds([lo, hi])
             .labels(labels(lo, hi))
     };

@@ -44,6 +44,29 @@ pub const KEY: Style = Style::new().fg(Color::Black).bg(Color::Gray);
 /// Formulas in the loop strip.
 pub const FORMULA: Style = Style::new().fg(Color::Cyan);
 
+/// Header badges: the app's name, and whether it runs, is paused or diverged.
+pub const BRAND: Style = Style::new().fg(Color::Black).bg(Color::Cyan);
+pub const RUNNING: Style = Style::new().fg(Color::Black).bg(Color::Green);
+pub const PAUSED: Style = Style::new().fg(Color::Black).bg(Color::Yellow);
+pub const DIVERGED: Style = Style::new().fg(Color::White).bg(Color::Red);
+/// Secondary text that must stay readable (the lesson summary, the phases not run).
+pub const SOFT: Style = Style::new().fg(Color::Gray);
+/// A highlighted line or the phase just run: black on yellow, bold.
+pub const SELECTED: Style = Style::new()
+    .fg(Color::Black)
+    .bg(Color::Yellow)
+    .add_modifier(Modifier::BOLD);
+/// Keys in the help overlay, the phase to come, the "enlarge" message.
+pub const ACCENT: Style = Style::new().fg(Color::Yellow);
+/// Borders of overlays: help (accent), lesson picker, divergence dialog (error).
+pub const PICKER_BORDER: Style = Style::new().fg(Color::Cyan);
+pub const ERROR: Style = Style::new().fg(Color::Red);
+/// The loop strip's title.
+pub const STRIP_TITLE: Style = Style::new().fg(Color::White).add_modifier(Modifier::BOLD);
+/// The study's progress gauge and frontier marks.
+pub const GAUGE: Style = Style::new().fg(Color::Cyan);
+pub const FRONTIER: Style = Style::new().fg(Color::White);
+
 /// Energy curves.
 pub const KINETIC: Color = Color::Green;
 pub const POTENTIAL: Color = Color::Blue;
