@@ -191,11 +191,17 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     ] {
         assert!(shown.contains(&field), "{context}: no `{field}`:\n{shown}");
     }
-    if let Some(top) = lines.iter().position(|l| l.starts_with(" the loop —")) {
+    // The strip: under its title line, from the title's column to the right edge, down to
+    // the lesson page or the status line.
+    let title = lines.iter().enumerate().find_map(|(i, l)| {
+        l.find(" the loop —")
+            .map(|byte| (i, l[..byte].chars().count()))
+    });
+    if let Some((top, col)) = title {
         let strip: Vec<String> = lines[top + 1..]
             .iter()
-            .take_while(|l| !l.starts_with(" t "))
-            .map(|l| l.to_string())
+            .take_while(|l| !l.starts_with(" t ") && !l.starts_with('┌'))
+            .map(|l| l.chars().skip(col).collect::<String>())
             .collect();
         let full: Vec<String> = loop_strip::lines(app)
             .iter()

@@ -4,9 +4,10 @@
 //!   panel on the right, the loop strip along the bottom. When the left column is at least
 //!   [`PAGE_WIDTH`] + 2 wide the page sits under the drawing; otherwise it keeps the left column
 //!   and wraps without breaking formulas.
-//! - [`ScreenLayout::Stage`]: a large drawing with the essential numbers beside it (or under it
-//!   in a narrow terminal), and the lesson page across the whole width below — wide enough for
-//!   its authors' lines from 88 columns on. For a class.
+//! - [`ScreenLayout::Stage`]: a large drawing with the essential numbers beside it (the loop
+//!   strip under them where there is room) or under it in a narrow terminal, and the lesson page
+//!   across the whole width below — wide enough for its authors' lines from 88 columns on. For a
+//!   class.
 //!
 //! Panels never get cut: a panel wider or taller than its room is left out whole (and named).
 
@@ -96,20 +97,28 @@ pub fn areas(
                 Layout::vertical([Constraint::Min(0), Constraint::Length(lesson_height)])
                     .areas(area);
             let (ew, eh) = essentials;
-            let (drawing, panels) = if upper.width >= ew + 40 {
-                let [d, p] =
+            let lesson = (lesson_height > 0).then_some(lesson);
+            if upper.width >= ew + 40 {
+                // Side by side: the essentials, then the loop strip under them if it has room.
+                let [drawing, right] =
                     Layout::horizontal([Constraint::Min(0), Constraint::Length(ew)]).areas(upper);
-                (d, p)
+                let [panels, rest] =
+                    Layout::vertical([Constraint::Length(eh), Constraint::Min(0)]).areas(right);
+                Areas {
+                    drawing,
+                    lesson,
+                    panels: Some(panels),
+                    strip: (rest.height >= 4).then_some(rest),
+                }
             } else {
-                let [d, p] =
+                let [drawing, panels] =
                     Layout::vertical([Constraint::Min(0), Constraint::Length(eh)]).areas(upper);
-                (d, p)
-            };
-            Areas {
-                drawing,
-                lesson: (lesson_height > 0).then_some(lesson),
-                panels: Some(panels),
-                strip: None,
+                Areas {
+                    drawing,
+                    lesson,
+                    panels: Some(panels),
+                    strip: None,
+                }
             }
         }
     }
