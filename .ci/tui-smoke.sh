@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Real-terminal smoke test of the terminal app: start the release binary in a 120×40 tmux pane,
-# press keys, check that the panels and changing numbers appear, quit with q, and check the
-# process exited 0 and left the terminal in cooked mode on the main screen.
+# press keys, check that the panels and changing numbers appear, export an SVG (x), quit with q,
+# and check the process exited 0 and left the terminal in cooked mode on the main screen.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v tmux >/dev/null || { echo "tui-smoke: tmux is required" >&2; exit 1; }
@@ -30,7 +30,7 @@ wait_for() {
 
 # After the app exits, the pane's shell records the exit code and the tty mode, then waits.
 tmux new-session -d -s "$session" -x 120 -y 40 \
-  "bash -c '\"$bin\" --ascii; echo EXIT=\$? > \"$work/exit\"; stty -a > \"$work/stty\"; echo SHELL-AFTER-APP; sleep 60'"
+  "bash -c 'cd \"$work\"; \"$bin\" --ascii; echo EXIT=\$? > \"$work/exit\"; stty -a > \"$work/stty\"; echo SHELL-AFTER-APP; sleep 60'"
 
 wait_for "the loop"
 for part in "state" "inertia tensor" "angular velocity" "angular momentum" "energy" \
@@ -68,6 +68,13 @@ tmux send-keys -t "$session" v
 wait_for "side z–y"
 tmux send-keys -t "$session" i
 wait_for "integrator rk4"
+
+# Export the screen as SVG (key x): written in the current folder, named in the status line.
+tmux send-keys -t "$session" x
+wait_for "wrote tumble-"
+svg="$(ls "$work"/tumble-*.svg 2>/dev/null | head -1)"
+[[ -n "$svg" ]] || fail "x wrote no SVG in the current folder"
+grep -q "<svg" "$svg" && grep -qF "inertia tensor" "$svg" || fail "the SVG lacks the screen's text"
 
 # Quit: exit code 0, cooked mode, main screen back.
 tmux send-keys -t "$session" q

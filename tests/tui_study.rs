@@ -101,7 +101,7 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
         .result()
         .expect("a finished study");
     assert_eq!(result.rows.len(), Integrator::ALL.len() * 4);
-    let shown = screen(&app, 120, 40);
+    let shown = screen(&app, 160, 50);
     assert!(shown.contains("error against cost, log–log"), "{shown}");
     assert!(
         shown.contains("To keep the error under 1e-6 rad over 0.2 s"),

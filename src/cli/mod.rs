@@ -1,10 +1,15 @@
-//! The command line: `tumble [FILE]`, `run`, `check`, `lessons`, `walk`, `study`.
+//! The command line: `tumble [FILE]`, `run`, `check`, `lessons`, `walk`, `study`, `shot`,
+//! `record`.
 //!
 //! Exit codes: 0 ok, 2 bad input (one line on stderr), 3 the simulation diverged.
 
 mod check;
 mod lessons;
+#[cfg(feature = "tui")]
+mod record;
 mod run;
+#[cfg(feature = "tui")]
+mod shot;
 pub mod study;
 pub mod walk;
 
@@ -58,6 +63,12 @@ pub enum Command {
     Lessons,
     /// Print the loop's numbers frame by frame (or phase by phase) as plain text.
     Walk(walk::WalkArgs),
+    /// The app's screen at time T as an SVG (for slides and handouts).
+    #[cfg(feature = "tui")]
+    Shot(shot::ShotArgs),
+    /// A run of the app as an asciicast v2 recording (for players and GIF converters).
+    #[cfg(feature = "tui")]
+    Record(record::RecordArgs),
 }
 
 /// Overrides of a scene's settings from the command line.
@@ -248,6 +259,10 @@ pub fn main() -> ExitCode {
         Some(Command::Study(args)) => study::study(&args),
         Some(Command::Lessons) => lessons::list(),
         Some(Command::Walk(args)) => walk::walk(&args),
+        #[cfg(feature = "tui")]
+        Some(Command::Shot(args)) => shot::shot(&args),
+        #[cfg(feature = "tui")]
+        Some(Command::Record(args)) => record::record(&args),
         None => app(cli.file.as_deref(), cli.ascii, cli.compare.as_deref()),
     };
     match result {

@@ -116,6 +116,12 @@ pub struct App {
     pub ns_per_step: Option<f64>,
     /// The study of this scene, once asked for (key `s`); it runs on its own thread.
     pub study: Option<crate::study::background::Job>,
+    /// Body axes and the ω and L arrows drawn (key `a`).
+    pub arrows: bool,
+    /// The screen layout (key `L`).
+    pub layout: super::layout::ScreenLayout,
+    /// Key `x` asked for an SVG of the screen; the event loop writes it (it knows the size).
+    pub export_requested: bool,
     pub quit: bool,
 }
 
@@ -158,6 +164,9 @@ impl App {
             show_timing: options.show_timing,
             ns_per_step: None,
             study: None,
+            arrows: true,
+            layout: Default::default(),
+            export_requested: false,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -278,6 +287,9 @@ impl App {
             }
             Message::PickerOpen => self.open_selected(),
             Message::Close => self.overlay = Overlay::None,
+            Message::ToggleArrows => self.arrows = !self.arrows,
+            Message::NextLayout => self.layout = self.layout.next(),
+            Message::ExportSvg => self.export_requested = true,
         }
     }
 
@@ -572,9 +584,11 @@ impl App {
                     show_timing: self.show_timing,
                 };
                 let (axis, frame) = (self.axis, self.frame);
+                let (arrows, layout) = (self.arrows, self.layout);
                 *self = App::new(lesson, options);
                 self.axis = axis;
                 self.frame = frame;
+                (self.arrows, self.layout) = (arrows, layout);
             }
             Err(e) => {
                 self.overlay = Overlay::None;

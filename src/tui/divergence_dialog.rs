@@ -3,10 +3,11 @@
 
 use super::keys::{Message, KEYS};
 use super::screen::centered;
+use super::theme;
 use crate::physics::Divergence;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph, Widget, Wrap};
 
@@ -27,7 +28,7 @@ pub fn render(d: &Divergence, area: Rect, buf: &mut Buffer) {
                 label(Message::Reset),
                 label(Message::Quit)
             ),
-            Style::new().fg(Color::Yellow),
+            theme::ACCENT,
         ),
     ];
     let popup = centered(area, 72, 9);
@@ -37,7 +38,7 @@ pub fn render(d: &Divergence, area: Rect, buf: &mut Buffer) {
         .block(
             Block::bordered()
                 .title(" diverged ")
-                .border_style(Style::new().fg(Color::Red)),
+                .border_style(theme::ERROR),
         )
         .render(popup, buf);
 }

@@ -2,15 +2,16 @@
 
 use super::keys::{Context, KEYS};
 use super::screen::centered;
+use super::theme;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 /// The help text, one line per binding (also what the tests read).
 pub fn lines() -> Vec<Line<'static>> {
-    let key = Style::new().fg(Color::Yellow).add_modifier(Modifier::BOLD);
+    let key = theme::ACCENT.add_modifier(Modifier::BOLD);
     let mut lines = Vec::new();
     for (context, heading) in [
         (Context::Main, "Keys"),
@@ -42,7 +43,7 @@ pub fn render(area: Rect, buf: &mut Buffer) {
         .block(
             Block::bordered()
                 .title(" help — ? or Esc closes ")
-                .border_style(Style::new().fg(Color::Yellow)),
+                .border_style(theme::ACCENT),
         )
         .render(popup, buf);
 }

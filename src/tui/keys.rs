@@ -31,6 +31,9 @@ pub enum Message {
     PickerDown,
     PickerOpen,
     Close,
+    ToggleArrows,
+    NextLayout,
+    ExportSvg,
 }
 
 /// Where a binding applies.
@@ -219,6 +222,27 @@ pub const KEYS: &[Binding] = &[
         "l lessons",
         "lesson picker",
         Message::OpenPicker,
+    ),
+    bind(
+        &[Char('a')],
+        "a",
+        "a arrows",
+        "body axes and the ω and L arrows on / off",
+        Message::ToggleArrows,
+    ),
+    bind(
+        &[Char('L')],
+        "L",
+        "L layout",
+        "layout: all the numbers, or a large drawing with the essential numbers",
+        Message::NextLayout,
+    ),
+    bind(
+        &[Char('x')],
+        "x",
+        "x svg",
+        "export the screen as SVG (tumble-<lesson>-t<time>.svg in the current folder)",
+        Message::ExportSvg,
     ),
     bind(
         &[PageUp, Char('[')],

@@ -1,16 +1,19 @@
-//! The lesson pane: the page that applies at the current time (`Lesson::page_at`), wrapped with
-//! hanging indents (so indented formulas and tables stay readable in a narrow pane), scrollable.
+//! The lesson pane: the page that applies at the current time (`Lesson::page_at`), wrapped at
+//! the width pages are written for (86 columns) or the pane's when narrower — with hanging
+//! indents, and never inside a formula when a better break exists — scrollable.
 
 use super::app::App;
+use super::theme;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Paragraph, Widget};
 
-pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+/// The page's title and text at the app's time.
+fn page(app: &App) -> (String, String) {
     let lesson = &app.lesson;
-    let (title, text) = match lesson.page_at(app.snapshot.time) {
+    match lesson.page_at(app.snapshot.time) {
         Some((i, page)) => (
             format!(" page {}/{}: {} ", i + 1, lesson.pages.len(), page.title),
             page.text.trim_matches('\n').to_string(),
@@ -23,18 +26,33 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
                 lesson.summary.clone()
             },
         ),
-    };
+    }
+}
+
+/// How many lines the page takes in a pane `width` columns wide (inside its border).
+pub fn line_count(app: &App, width: u16) -> u16 {
+    let (_, text) = page(app);
+    wrap(
+        &text,
+        usize::from(width.clamp(1, super::layout::PAGE_WIDTH)),
+    )
+    .len() as u16
+}
+
+pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+    let (title, text) = page(app);
     let block = Block::bordered()
         .title(title)
-        .title_bottom(
-            Line::styled(" PgUp/PgDn scroll ", Style::new().fg(Color::DarkGray)).right_aligned(),
-        )
+        .title_bottom(Line::styled(" PgUp/PgDn scroll ", theme::DIM).right_aligned())
         .title_style(Style::new().add_modifier(Modifier::BOLD));
     let inner = block.inner(area);
-    let lines: Vec<Line> = wrap(&text, usize::from(inner.width.max(1)))
-        .into_iter()
-        .map(Line::from)
-        .collect();
+    let lines: Vec<Line> = wrap(
+        &text,
+        usize::from(inner.width.clamp(1, super::layout::PAGE_WIDTH)),
+    )
+    .into_iter()
+    .map(Line::from)
+    .collect();
     let total = lines.len() as u16;
     let scroll = app.lesson_scroll.min(total.saturating_sub(inner.height));
     let mut block = block;
@@ -47,7 +65,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
                     (scroll + inner.height).min(total),
                     total
                 ),
-                Style::new().fg(Color::Yellow),
+                theme::NOTICE,
             )
             .left_aligned(),
         );
@@ -58,10 +76,23 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         .render(area, buf);
 }
 
-/// Word-wraps `text` to `width` columns. A continuation line is indented like the text after
-/// the first gap of two or more spaces on its line (`  x  where the…` continues under
-/// `where`), or like the line itself when there is no such gap in the first half.
+/// Characters that make a space next to them part of a formula (`a = b`, `x + y`).
+const OPERATORS: &str = "=+−-×·/<>≤≥≈→⊗∝";
+
+/// Word-wraps `text` to `width` columns without breaking formulas where it can help it.
+///
+/// A continuation line is indented like the text after the first gap of two or more spaces on
+/// its line (`  x  where the…` continues under `where`), or, for an indented line (a formula),
+/// two columns deeper than the line. Where a line breaks, best first:
+/// 1. an indented line: at a gap of two or more spaces, or before a `=` outside brackets;
+/// 2. a space outside brackets, not next to an operator (`=`, `+`, `×`, …);
+/// 3. a space not next to an operator;
+/// 4. any space;
+/// 5. mid-word (a word longer than the line).
+///
+/// Choices 2–4 are taken only if they keep at least a third of the line filled.
 pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let width = width.max(1);
     let mut out = Vec::new();
     for line in text.lines() {
         let chars: Vec<char> = line.trim_end().chars().collect();
@@ -70,12 +101,18 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
             continue;
         }
         let lead = chars.iter().take_while(|c| **c == ' ').count();
-        let hang = (lead..chars.len().saturating_sub(2))
+        let formula = lead > 0;
+        let gap = (lead..chars.len().saturating_sub(2))
             .find(|&i| chars[i] == ' ' && chars[i + 1] == ' ' && i > lead)
-            .map(|i| i + chars[i..].iter().take_while(|c| **c == ' ').count())
+            .map(|i| i + chars[i..].iter().take_while(|c| **c == ' ').count());
+        let gap = gap.filter(|&h| h < width / 2);
+        let hang = gap
+            .or(formula.then_some(lead + 2))
             .filter(|&h| h < width / 2)
             .unwrap_or(lead.min(width / 2));
-        let mut rest: &[char] = &chars;
+        let mut rest: Vec<char> = chars.clone();
+        // Where `rest` starts in `chars` (breaks before the hanging gap are no use).
+        let mut offset = 0usize;
         let mut indent = 0;
         loop {
             let room = width - indent;
@@ -83,17 +120,15 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
                 out.push(" ".repeat(indent) + &rest.iter().collect::<String>());
                 break;
             }
-            // Break at the last space that fits (not inside the indentation).
-            let cut = (1..=room)
-                .rev()
-                .find(|&i| rest[i] == ' ' && rest[..i].iter().any(|c| *c != ' '))
-                .unwrap_or(room);
+            let cut = break_at(&rest, room, formula, gap.map(|g| g.saturating_sub(offset)));
             let head: String = rest[..cut].iter().collect();
             out.push(" ".repeat(indent) + head.trim_end());
-            rest = &rest[cut..];
-            while rest.first() == Some(&' ') {
-                rest = &rest[1..];
+            let mut skip = cut;
+            while rest.get(skip) == Some(&' ') {
+                skip += 1;
             }
+            rest.drain(..skip);
+            offset += skip;
             if rest.is_empty() {
                 break;
             }
@@ -103,21 +138,97 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
     out
 }
 
+/// Where to break `chars` so that at most `room` characters stay on the line (see [`wrap`]).
+fn break_at(chars: &[char], room: usize, formula: bool, gap_end: Option<usize>) -> usize {
+    let mut depth = vec![0i32; chars.len() + 1];
+    for (i, c) in chars.iter().enumerate() {
+        depth[i + 1] = depth[i]
+            + match c {
+                '(' | '[' | '{' => 1,
+                ')' | ']' | '}' => -1,
+                _ => 0,
+            };
+    }
+    let is_op = |i: usize| chars.get(i).is_some_and(|c| OPERATORS.contains(*c));
+    let first_text = chars.iter().position(|c| *c != ' ').unwrap_or(0);
+    // Spaces where a break leaves text on the line, nearest the end first.
+    let spaces: Vec<usize> = (1..=room.min(chars.len() - 1))
+        .rev()
+        .filter(|&i| chars[i] == ' ' && i > first_text)
+        .filter(|&i| gap_end.is_none_or(|g| i >= g))
+        .collect();
+    let flat = |i: usize| depth[i] <= 0;
+    // Next to an operator, or between a number and what follows it (its unit).
+    let near_op = |i: usize| is_op(i - 1) || is_op(i + 1) || chars[i - 1].is_ascii_digit();
+    if formula {
+        let preferred = spaces.iter().find(|&&i| {
+            flat(i)
+                && ((chars[i - 1] == ' ' || chars.get(i + 1) == Some(&' '))
+                    || chars.get(i + 1) == Some(&'='))
+        });
+        if let Some(&i) = preferred {
+            return i;
+        }
+    }
+    let third = room / 3;
+    let choices: [&dyn Fn(usize) -> bool; 3] =
+        [&|i| flat(i) && !near_op(i), &|i| !near_op(i), &|_| true];
+    for ok in choices {
+        if let Some(&i) = spaces.iter().find(|&&i| ok(i)) {
+            if i >= third {
+                return i;
+            }
+        }
+    }
+    spaces.first().copied().unwrap_or(room)
+}
+
 #[cfg(test)]
 mod tests {
     use super::wrap;
 
     #[test]
     fn continuation_lines_hang_under_the_text_after_a_double_space() {
+        // The second line has room for 19 columns: "turned (a unit" would break inside the
+        // brackets; the break outside them, after "turned", still fills a third of the line.
         let lines = wrap("  q  how the body is turned (a unit quaternion)", 24);
         assert_eq!(
             lines,
             vec![
                 "  q  how the body is",
-                "     turned (a unit",
-                "     quaternion)",
+                "     turned",
+                "     (a unit quaternion)",
             ]
         );
+    }
+
+    #[test]
+    fn a_formula_breaks_before_an_equals_sign_not_inside_brackets() {
+        // Lesson 2's line is 71 characters; in 50 columns it breaks before the `=` outside the
+        // brackets that keeps most on the first line, and continues 2 deeper than the line.
+        let line = "  L = I ω = (0.0015 × 8, 0, 0.041 × 8) = (0.012, 0, 0.328) kg·m²/s,";
+        assert_eq!(
+            wrap(line, 50),
+            vec![
+                "  L = I ω = (0.0015 × 8, 0, 0.041 × 8)",
+                "    = (0.012, 0, 0.328) kg·m²/s,",
+            ]
+        );
+    }
+
+    #[test]
+    fn prose_avoids_breaking_next_to_an_operator() {
+        // Width 30: the last space that fits is after `=` (col 30 would split `= 0.0279`);
+        // the break moves back to the space before `I_yy`.
+        let lines = wrap("Check by hand I_yy = 0.0279 kg·m² against the panel", 30);
+        assert_eq!(lines[0], "Check by hand");
+        assert!(lines[1].starts_with("I_yy = 0.0279"), "{lines:?}");
+    }
+
+    #[test]
+    fn lines_within_the_page_width_are_kept_whole() {
+        let line = "x".repeat(86);
+        assert_eq!(wrap(&line, 86), vec![line.clone()]);
     }
 
     #[test]

@@ -3,16 +3,17 @@
 //! arithmetic of each contact).
 
 use super::app::App;
+use super::theme;
 use crate::physics::{Effect, Phase, Response, Snapshot, World};
 use crate::tables::{contact_label, number_plain};
 use nalgebra::Vector3;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
-const FORMULA: Style = Style::new().fg(Color::Cyan);
+const FORMULA: Style = theme::FORMULA;
 
 /// A vector as `(x, y, z)` with the shared number formatter.
 pub fn vector(v: &Vector3<f64>) -> String {
@@ -32,16 +33,38 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     };
     let block = Block::new()
         .borders(Borders::TOP)
-        .border_style(Style::new().fg(Color::DarkGray))
-        .title(Line::styled(
-            title,
-            Style::new().fg(Color::White).add_modifier(Modifier::BOLD),
-        ));
+        .border_style(theme::DIM)
+        .title(Line::styled(title, theme::STRIP_TITLE));
     let inner = block.inner(area);
     block.render(area, buf);
+    Paragraph::new(fit(lines(app), inner.width)).render(inner, buf);
+}
+
+/// The strip's lines before wrapping: the phase line, then the formulas with their numbers.
+pub fn lines(app: &App) -> Vec<Line<'static>> {
+    let s = &app.snapshot;
     let mut lines = vec![phase_line(s)];
     lines.extend(formulas(&app.world, s));
-    Paragraph::new(lines).render(inner, buf);
+    lines
+}
+
+/// Lines wider than `width` are wrapped at spaces (formula-aware, like lesson pages), so no
+/// number or unit is cut at the pane's edge; the pieces lose their colours.
+pub fn fit(lines: Vec<Line<'static>>, width: u16) -> Vec<Line<'static>> {
+    let mut out = Vec::new();
+    for line in lines {
+        if line.width() <= usize::from(width) {
+            out.push(line);
+            continue;
+        }
+        let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+        out.extend(
+            super::lesson_pane::wrap(&text, usize::from(width))
+                .into_iter()
+                .map(Line::from),
+        );
+    }
+    out
 }
 
 /// The frame the last phase belongs to (1-based).
@@ -56,17 +79,14 @@ fn phase_line(s: &Snapshot) -> Line<'static> {
     let mut spans = vec![Span::raw(" ")];
     for (i, phase) in Phase::ALL.iter().enumerate() {
         if i > 0 {
-            spans.push(Span::styled(" → ", Style::new().fg(Color::DarkGray)));
+            spans.push(Span::styled(" → ", theme::DIM));
         }
         let style = if s.phase == Some(*phase) {
-            Style::new()
-                .fg(Color::Black)
-                .bg(Color::Yellow)
-                .add_modifier(Modifier::BOLD)
+            theme::SELECTED
         } else if s.next_phase == *phase {
-            Style::new().fg(Color::Yellow)
+            theme::ACCENT
         } else {
-            Style::new().fg(Color::Gray)
+            theme::SOFT
         };
         let marker = if s.phase == Some(*phase) {
             "■"
@@ -79,7 +99,7 @@ fn phase_line(s: &Snapshot) -> Line<'static> {
     }
     spans.push(Span::styled(
         format!("      next: {}  (n)", s.next_phase),
-        Style::new().fg(Color::DarkGray),
+        theme::DIM,
     ));
     Line::from(spans)
 }

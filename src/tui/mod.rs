@@ -12,6 +12,9 @@
 //! | `history` | the ring of saved frames for stepping back |
 //! | `series` | the energy series behind the graph |
 //! | `viewport` | view axis, region kept in frame, cell mapping |
+//! | `layout` | where each pane goes (key `L`: all numbers, or a large drawing) |
+//! | `theme` | every colour and text style |
+//! | `export` | the screen as SVG (key `x`, `tumble shot`) and a run as asciicast (`tumble record`) |
 //! | `screen` | the whole screen, overlays, the "enlarge" message |
 //! | `header`, `status_bar` | top line; bottom lines |
 //! | `loop_view`, `energy_view` | the views (one file each) |
@@ -25,10 +28,12 @@ pub mod app;
 pub mod divergence_dialog;
 pub mod energy_graph;
 pub mod energy_view;
+pub mod export;
 pub mod header;
 pub mod help;
 pub mod history;
 pub mod keys;
+pub mod layout;
 pub mod lesson_pane;
 pub mod loop_strip;
 pub mod loop_view;
@@ -39,6 +44,7 @@ pub mod screen;
 pub mod series;
 pub mod status_bar;
 pub mod study_view;
+pub mod theme;
 pub mod viewport;
 
 pub use app::{App, Comparison, Options, View};
@@ -74,6 +80,11 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
     let mut pending = 0.0_f64;
     loop {
         app.poll_study();
+        if app.export_requested {
+            app.export_requested = false;
+            let size = terminal.size()?;
+            app.notice = Some(export::save_screen(app, size.width, size.height));
+        }
         terminal.draw(|frame| frame.render_widget(&*app, frame.area()))?;
         if app.quit {
             return Ok(());

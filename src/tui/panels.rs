@@ -3,18 +3,20 @@
 //! compare mode the ghost's numbers on a line under each of the first's.
 
 use super::app::App;
-use crate::tables::{self, Panel, Row};
+use super::theme;
+use crate::physics::Snapshot;
+use crate::tables::{self, Frame, Panel, Row};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
-const LABEL: Style = Style::new().fg(Color::Cyan);
-const UNIT: Style = Style::new().fg(Color::DarkGray);
-const CHANGED: Style = Style::new().fg(Color::Yellow).add_modifier(Modifier::BOLD);
-const GHOST: Style = Style::new().fg(Color::Magenta);
-const TITLE: Style = Style::new().add_modifier(Modifier::BOLD);
+const LABEL: Style = theme::LABEL;
+const UNIT: Style = theme::DIM;
+const CHANGED: Style = theme::CHANGED;
+const GHOST: Style = theme::GHOST_TEXT;
+const TITLE: Style = theme::TITLE;
 
 /// One panel: its rows, the same panel before the last action (to highlight changes) and the
 /// compare world's panel with the comparison's name.
@@ -88,53 +90,191 @@ impl Widget for PanelView<'_> {
     }
 }
 
-/// Panel order in compare mode: what differs between two integrators first.
-const COMPARE_ORDER: [usize; 7] = [0, 2, 5, 6, 4, 3, 1];
+/// The numeric panels of `tables::panels`, by name (their index there is the variant's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PanelId {
+    State,
+    Inertia,
+    AngularVelocity,
+    Forces,
+    Momentum,
+    AngularMomentum,
+    Energy,
+}
 
-/// All panels, stacked; what does not fit is named on the last line.
-pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let block = Block::new()
-        .borders(Borders::LEFT)
-        .border_style(Style::new().fg(Color::DarkGray));
-    let inner = block.inner(area);
-    block.render(area, buf);
+impl PanelId {
+    /// Display order: the order of `tables::panels`.
+    pub const ALL: [PanelId; 7] = [
+        PanelId::State,
+        PanelId::Inertia,
+        PanelId::AngularVelocity,
+        PanelId::Forces,
+        PanelId::Momentum,
+        PanelId::AngularMomentum,
+        PanelId::Energy,
+    ];
+    /// Order in compare mode: what differs between two integrators first.
+    pub const COMPARE_ORDER: [PanelId; 7] = [
+        PanelId::State,
+        PanelId::AngularVelocity,
+        PanelId::AngularMomentum,
+        PanelId::Energy,
+        PanelId::Momentum,
+        PanelId::Forces,
+        PanelId::Inertia,
+    ];
+
+    /// Its index in `tables::panels`.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// Indices into `tables::panels` in the order they are stacked; panels beyond the named ones
+/// (a panel added to `tables` later) come last, never silently dropped.
+fn order(count: usize, compare: bool) -> Vec<usize> {
+    let named = if compare {
+        PanelId::COMPARE_ORDER
+    } else {
+        PanelId::ALL
+    };
+    let mut order: Vec<usize> = named
+        .iter()
+        .map(|p| p.index())
+        .filter(|&i| i < count)
+        .collect();
+    order.extend(PanelId::ALL.len()..count);
+    order
+}
+
+/// Every panel's lines with its title, in stacking order.
+fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
     let panels = tables::panels(&app.snapshot, app.frame);
     let previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
     let compare = app
         .ghost
         .as_ref()
         .map(|g| (tables::panels(&g.snapshot, app.frame), g.comparison.name()));
-    let order: Vec<usize> = if compare.is_some() {
-        COMPARE_ORDER.to_vec()
-    } else {
-        (0..panels.len()).collect()
-    };
-    let views: Vec<(Vec<Line>, &str)> = order
-        .iter()
-        .map(|&i| {
+    order(panels.len(), compare.is_some())
+        .into_iter()
+        .map(|i| {
             let view = PanelView {
                 panel: &panels[i],
-                previous: previous.as_ref().map(|p| &p[i]),
-                compare: compare.as_ref().map(|(c, name)| (&c[i], *name)),
+                previous: previous.as_ref().and_then(|p| p.get(i)),
+                compare: compare
+                    .as_ref()
+                    .and_then(|(c, name)| c.get(i).map(|p| (p, *name))),
             };
-            (view.lines(), panels[i].title.as_str())
+            (view.lines(), panels[i].title.clone())
         })
-        .collect();
-    // Stack in order, skipping panels that do not fit; if any is skipped, keep a line to say so.
-    let stack = |room: usize| {
-        let mut lines: Vec<Line> = Vec::new();
-        let mut left_out: Vec<&str> = Vec::new();
-        for (panel_lines, title) in &views {
-            if lines.len() + panel_lines.len() <= room {
-                lines.extend(panel_lines.iter().cloned());
-            } else {
-                left_out.push(title);
-            }
-        }
-        (lines, left_out)
+        .collect()
+}
+
+fn widest(lines: &[Line]) -> u16 {
+    lines.iter().map(|l| l.width()).max().unwrap_or(0) as u16
+}
+
+/// The width the panels column asks for: its widest line and the border.
+pub fn width(app: &App) -> u16 {
+    views(app)
+        .iter()
+        .map(|(lines, _)| widest(lines))
+        .max()
+        .unwrap_or(0)
+        + 1
+}
+
+/// The essential numbers (the stage layout): position, velocity, ω, L, total energy and its
+/// change since t = 0 — rows of `tables::panels`, formatted by it.
+pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
+    let panels = tables::panels(s, frame);
+    let pick = |id: PanelId, labels: &[&str]| -> Vec<Row> {
+        panels
+            .get(id.index())
+            .map(|p| {
+                p.rows
+                    .iter()
+                    .filter(|r| labels.contains(&r.label.as_str()))
+                    .cloned()
+                    .collect()
+            })
+            .unwrap_or_default()
     };
+    let mut rows = pick(PanelId::State, &["x"]);
+    rows.extend(pick(PanelId::Momentum, &["v"]));
+    rows.extend(pick(PanelId::AngularVelocity, &["ω"]));
+    rows.extend(pick(PanelId::AngularMomentum, &["L"]));
+    rows.extend(pick(PanelId::Energy, &["total", "drift"]));
+    Panel {
+        title: match frame {
+            Frame::World => "essentials".to_string(),
+            Frame::Body => "essentials (body frame: v, L)".to_string(),
+        },
+        rows,
+    }
+}
+
+/// The essentials panel's lines (with the ghost's in compare mode).
+fn essentials_lines(app: &App) -> Vec<Line<'static>> {
+    let panel = essentials(&app.snapshot, app.frame);
+    let previous = app.previous.as_ref().map(|p| essentials(p, app.frame));
+    let compare = app
+        .ghost
+        .as_ref()
+        .map(|g| (essentials(&g.snapshot, app.frame), g.comparison.name()));
+    PanelView {
+        panel: &panel,
+        previous: previous.as_ref(),
+        compare: compare.as_ref().map(|(p, name)| (p, *name)),
+    }
+    .lines()
+}
+
+/// The essentials panel's size with its border: (width, height); its title goes in the border.
+pub fn essentials_size(app: &App) -> (u16, u16) {
+    let lines = essentials_lines(app);
+    (widest(&lines) + 2, lines.len() as u16 + 1)
+}
+
+/// The essentials, in the stage layout, in a box titled by the panel's title line (whole, or
+/// not at all when they do not fit).
+pub fn render_essentials(app: &App, area: Rect, buf: &mut Buffer) {
+    let mut lines = essentials_lines(app);
+    let title = if lines.is_empty() {
+        Line::raw("")
+    } else {
+        lines.remove(0)
+    };
+    let mut title = title;
+    title.spans.insert(0, Span::raw(" "));
+    title.spans.push(Span::raw(" "));
+    let block = Block::bordered().title(title);
+    let inner = block.inner(area);
+    block.render(area, buf);
+    if widest(&lines) <= inner.width && lines.len() <= usize::from(inner.height) {
+        Paragraph::new(lines).render(inner, buf);
+    } else {
+        Paragraph::new(Line::styled("… enlarge for the numbers", UNIT)).render(inner, buf);
+    }
+}
+
+/// All panels, stacked; a panel that does not fit (in height or in width) is left out whole,
+/// and what is left out is named on the last line.
+pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+    let block = Block::new().borders(Borders::LEFT).border_style(theme::DIM);
+    let inner = block.inner(area);
+    block.render(area, buf);
+    let views = views(app);
     let height = usize::from(inner.height);
-    let (mut lines, left_out) = stack(height);
+    let mut lines: Vec<Line> = Vec::new();
+    let mut left_out: Vec<&str> = Vec::new();
+    for (panel_lines, title) in &views {
+        if lines.len() + panel_lines.len() <= height && widest(panel_lines) <= inner.width {
+            lines.extend(panel_lines.iter().cloned());
+        } else {
+            left_out.push(title);
+        }
+    }
     if !left_out.is_empty() && lines.len() < height {
         lines.push(Line::styled(
             format!("… not shown (enlarge): {}", left_out.join(", ")),

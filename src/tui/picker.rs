@@ -2,9 +2,9 @@
 
 use super::keys::{Context, KEYS};
 use super::screen::centered;
+use super::theme;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 use std::path::PathBuf;
@@ -27,13 +27,7 @@ pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &
                 .map_or(String::new(), |n| n.to_string_lossy().into_owned());
             let text = format!(" {name:<name_width$}  {title} ");
             if i == selected {
-                Line::styled(
-                    text,
-                    Style::new()
-                        .fg(Color::Black)
-                        .bg(Color::Yellow)
-                        .add_modifier(Modifier::BOLD),
-                )
+                Line::styled(text, theme::SELECTED)
             } else {
                 Line::raw(text)
             }
@@ -68,7 +62,7 @@ pub fn render(lessons: &[(PathBuf, String)], selected: usize, area: Rect, buf: &
             Block::bordered()
                 .title(" lessons ")
                 .title_bottom(footer_text)
-                .border_style(Style::new().fg(Color::Cyan)),
+                .border_style(theme::PICKER_BORDER),
         )
         .render(popup, buf);
 }

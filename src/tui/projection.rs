@@ -1,10 +1,22 @@
-//! The side projection: an orthographic view of the body's edges (or points), the ground line,
-//! sphere and box obstacles, the contact points of the last collide phase, the barycenter trail
-//! and, in compare mode, the ghost body. Pure ASCII (`--ascii`) or Braille dots.
+//! The side projection: an orthographic view of the body's edges (or mass points), the ground
+//! line, sphere and box obstacles, the contact points of the last collide phase, the barycenter
+//! trail and, in compare mode, the ghost body. Pure ASCII (`--ascii`) or Braille dots.
+//!
+//! Depth cue: an edge whose two faces both turn away from the viewer is hidden behind the body
+//! and drawn dimmed and dashed (dotted `.` in ASCII) (a box's faces come from its corner numbering; for other shapes
+//! the edges behind the barycenter are dimmed). With arrows on (key `a`), the body axes x, y, z
+//! are drawn from the barycenter in red, green, blue, and ω and L as labelled arrows of fixed
+//! length (their directions matter: lesson 2 is about L not being parallel to ω).
+//!
+//! One body is drawn by [`add_body`] from a [`BodyPicture`] (vertices, edges, pose, colour),
+//! so a scene with several bodies calls it once per body.
 
 use super::app::App;
+use super::theme;
 use super::viewport::{Axis, Mapping};
+use crate::physics::body::box_edges;
 use crate::physics::{Obstacle, Snapshot};
+use nalgebra::{Matrix3, Vector3};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
@@ -16,12 +28,11 @@ use ratatui::widgets::{Block, Widget};
 /// How many past barycenter positions the trail shows.
 pub const TRAIL_LENGTH: usize = 400;
 
-const BODY: Color = Color::White;
-const GHOST: Color = Color::Magenta;
-const OBSTACLE: Color = Color::Blue;
-const GROUND: Color = Color::Green;
-const CONTACT: Color = Color::Red;
-const TRAIL: Color = Color::DarkGray;
+/// Length of the body axes, in body radii (they poke out of the body).
+pub const AXIS_LENGTH: f64 = 1.25;
+/// Length of the ω arrow, in body radii (L's is longer, so both tips show when parallel).
+pub const OMEGA_LENGTH: f64 = 1.6;
+pub const MOMENTUM_LENGTH: f64 = 2.0;
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let title = format!(" {} ({}) ", app.axis.name(), app.axis.legend());
@@ -36,10 +47,11 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ..inner
     };
     let mapping = Mapping::fit(&app.region, app.axis, drawing.width, drawing.height);
+    let scene = scene_2d(app);
     if app.ascii {
-        draw_ascii(app, &mapping, drawing, buf);
+        draw_ascii(&scene, &mapping, drawing, buf);
     } else {
-        draw_braille(app, &mapping, drawing, buf);
+        draw_braille(&scene, &mapping, drawing, buf);
     }
     legend(
         app,
@@ -53,77 +65,384 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     );
 }
 
+/// A round length (1, 2 or 5 × 10ⁿ m) that spans between 4 and 10 columns at `scale` m per
+/// column, and its width in columns.
+pub fn scale_bar(scale: f64) -> (f64, usize) {
+    let target = 6.0 * scale;
+    let decade = 10f64.powf(target.log10().floor());
+    let length = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * decade)
+        .min_by(|a, b| (a / target).ln().abs().total_cmp(&(b / target).ln().abs()))
+        .unwrap_or(decade);
+    (length, (length / scale).round().max(1.0) as usize)
+}
+
+/// A length with the digits it needs: `0.5`, `20`, `1e-4`.
+pub fn short_length(x: f64) -> String {
+    if x != 0.0 && !(1e-3..1e4).contains(&x.abs()) {
+        return format!("{x:e}");
+    }
+    let s = format!("{x:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
-    let dim = Style::new().fg(Color::DarkGray);
-    let mut spans = vec![
-        Span::styled("@", Style::new().fg(BODY)),
-        Span::styled(" center ", dim),
-        Span::styled("*", Style::new().fg(CONTACT)),
-        Span::styled(" contact ", dim),
-    ];
+    let dim = theme::DIM;
+    let item = |mark: &str, colour: Color, what: String| {
+        vec![
+            Span::styled(mark.to_string(), Style::new().fg(colour)),
+            Span::styled(format!(" {what} "), dim),
+        ]
+    };
+    let mut items = Vec::new();
+    if app.arrows {
+        items.push(item("ω", theme::OMEGA, "ang. vel.".into()));
+        items.push(item("L", theme::MOMENTUM, "ang. mom.".into()));
+    }
+    items.push(item("@", theme::BODY, "center".into()));
+    if !app.world.body().edges.is_empty() {
+        let mark = if app.ascii { "..." } else { "- -" };
+        items.push(item(mark, theme::HIDDEN, "hidden".into()));
+    }
+    if app.arrows {
+        items.push(vec![
+            Span::styled("x", Style::new().fg(theme::AXES[0])),
+            Span::styled("y", Style::new().fg(theme::AXES[1])),
+            Span::styled("z", Style::new().fg(theme::AXES[2])),
+            Span::styled(" body axes ", dim),
+        ]);
+    }
+    items.push(item("*", theme::CONTACT, "contact".into()));
     if app.trail {
-        spans.push(Span::styled(".", Style::new().fg(TRAIL)));
-        spans.push(Span::styled(" trail ", dim));
+        items.push(item(".", theme::TRAIL, "trail".into()));
     }
     if let Some(g) = &app.ghost {
-        spans.push(Span::styled(":", Style::new().fg(GHOST)));
-        spans.push(Span::styled(format!(" {} ", g.comparison.name()), dim));
+        items.push(item(":", theme::GHOST, g.comparison.name().into()));
     }
-    let scale = format!(
-        "10 cols = {} m ",
-        crate::tables::number_plain(10.0 * mapping.scale)
+    let (length, cols) = scale_bar(mapping.scale);
+    let bar = format!(
+        "├{}┤ {} m ",
+        "─".repeat(cols.saturating_sub(2)),
+        short_length(length)
     );
-    let width = scale.chars().count() as u16;
-    let legend = Line::from(spans);
-    if area.width > width + legend.width() as u16 {
-        buf.set_string(area.x + area.width - width, area.y, scale, dim);
+    let bar_width = bar.chars().count() as u16;
+    // Whole items only, left to right, as many as fit beside the scale bar.
+    let mut spans = Vec::new();
+    let mut used = 0u16;
+    let room = area.width.saturating_sub(bar_width + 1);
+    for it in items {
+        let w = Line::from(it.clone()).width() as u16;
+        if used + w > room {
+            break;
+        }
+        used += w;
+        spans.extend(it);
     }
-    buf.set_line(area.x, area.y, &legend, area.width);
+    buf.set_line(area.x, area.y, &Line::from(spans), area.width);
+    if area.width > bar_width {
+        buf.set_string(area.x + area.width - bar_width, area.y, bar, dim);
+    }
 }
 
-/// A segment: from, to, colour, and its ASCII character (None: chosen by slope).
-type Segment = ((f64, f64), (f64, f64), Color, Option<char>);
+/// A screen segment: ends, colour, its ASCII character (None: chosen by slope), dashed.
+#[derive(Debug, Clone, Copy)]
+pub struct Segment {
+    pub from: (f64, f64),
+    pub to: (f64, f64),
+    pub colour: Color,
+    pub ascii: Option<char>,
+    pub dashed: bool,
+}
 
-/// Everything drawn, as 2-D screen segments and points (shared by both renderers).
-struct Scene2d {
-    segments: Vec<Segment>,
+/// Everything drawn, as 2-D screen segments, points and labels (shared by both renderers).
+#[derive(Debug, Default)]
+pub struct Scene2d {
+    pub segments: Vec<Segment>,
     /// (centre, radius, colour).
-    circles: Vec<((f64, f64), f64, Color)>,
-    /// (point, colour, ASCII char).
-    points: Vec<((f64, f64), Color, char)>,
+    pub circles: Vec<((f64, f64), f64, Color)>,
+    /// (point, colour, ASCII char): `@ % * O` print as characters in Braille too; others are
+    /// dots.
+    pub points: Vec<((f64, f64), Color, char)>,
+    /// Text printed at a point (arrow labels, arrow heads), in both renderers: point, colour,
+    /// text, and a screen direction to move it one cell along (a label past an arrow's head).
+    pub labels: Vec<Label>,
     /// y of the ground line, if visible.
-    ground: Option<f64>,
+    pub ground: Option<f64>,
 }
 
-fn body_segments(
+/// Text at a point of the drawing.
+#[derive(Debug, Clone)]
+pub struct Label {
+    pub at: (f64, f64),
+    pub colour: Color,
+    pub text: String,
+    /// Move the text one cell this way (screen right, up) from `at`.
+    pub past: Option<(f64, f64)>,
+    /// Then move it by whole cells (columns, rows down).
+    pub shift: (i16, i16),
+}
+
+/// The cell a label starts at.
+fn label_cell(mapping: &Mapping, label: &Label) -> (f64, f64) {
+    let (c, r) = mapping.cell(label.at.0, label.at.1);
+    let (c, r) = (c + f64::from(label.shift.0), r + f64::from(label.shift.1));
+    match label.past {
+        None => (c, r),
+        Some((dx, dy)) => {
+            let n = dx.hypot(dy).max(1e-300);
+            (c + (1.4 * dx / n).round(), r - (dy / n).round())
+        }
+    }
+}
+
+/// One body to draw.
+#[derive(Debug, Clone, Copy)]
+pub struct BodyPicture<'a> {
+    /// World positions of the body's points.
+    pub vertices: &'a [Vector3<f64>],
+    /// Edges between points (empty: a bare point set, drawn as mass points).
+    pub edges: &'a [(usize, usize)],
+    /// Barycenter.
+    pub position: Vector3<f64>,
+    /// Body → world rotation (its columns are the body axes).
+    pub rotation: Matrix3<f64>,
+    /// Largest distance of a point from the barycenter, m (arrow lengths are in these).
+    pub radius: f64,
+    pub colour: Color,
+    /// The ghost: every edge drawn with this ASCII character, no mass points.
+    pub ascii: Option<char>,
+    /// Body axes and the ω and L arrows (world frame), when shown.
+    pub arrows: Option<(Vector3<f64>, Vector3<f64>)>,
+}
+
+impl<'a> BodyPicture<'a> {
+    /// The picture of a snapshot of a body with these edges.
+    pub fn of(s: &'a Snapshot, edges: &'a [(usize, usize)], radius: f64) -> BodyPicture<'a> {
+        BodyPicture {
+            vertices: &s.vertices,
+            edges,
+            position: s.position,
+            rotation: s.rotation,
+            radius,
+            colour: theme::BODY,
+            ascii: None,
+            arrows: None,
+        }
+    }
+}
+
+/// Which edges are hidden behind the body, seen from `toward` (unit vector to the viewer).
+///
+/// A box (8 corners numbered as in `box_corners`, its 12 edges): an edge joins two faces, and
+/// is hidden when both face away from the viewer (outward normal · toward < 0, the normal
+/// being the face centre minus the box centre). Other shapes: an edge is hidden when both its
+/// ends lie behind the barycenter by more than a tenth of the body's radius.
+pub fn hidden_edges(
+    vertices: &[Vector3<f64>],
+    edges: &[(usize, usize)],
+    position: &Vector3<f64>,
+    toward: &Vector3<f64>,
+    radius: f64,
+) -> Vec<bool> {
+    let is_box = vertices.len() == 8 && edges == box_edges().as_slice();
+    if is_box {
+        let centre = vertices.iter().sum::<Vector3<f64>>() / 8.0;
+        // Face (bit, side): the 4 corners whose `bit` is `side`.
+        let faces_toward = |bit: usize, side: usize| {
+            let c = (0..8)
+                .filter(|k| (k >> bit) & 1 == side)
+                .map(|k| vertices[k])
+                .sum::<Vector3<f64>>()
+                / 4.0;
+            let n = c - centre;
+            n.dot(toward) > 1e-9 * n.norm().max(1e-300)
+        };
+        edges
+            .iter()
+            .map(|&(i, j)| {
+                let along = (0..3).find(|b| ((i ^ j) >> b) & 1 == 1).unwrap_or(0);
+                !(0..3)
+                    .filter(|&b| b != along)
+                    .any(|b| faces_toward(b, (i >> b) & 1))
+            })
+            .collect()
+    } else {
+        let behind = |v: &Vector3<f64>| (v - position).dot(toward) < -0.1 * radius;
+        edges
+            .iter()
+            .map(|&(i, j)| match (vertices.get(i), vertices.get(j)) {
+                (Some(a), Some(b)) => behind(a) && behind(b),
+                _ => false,
+            })
+            .collect()
+    }
+}
+
+/// Adds one body to the scene: hidden edges first (dimmed, dashed), then the visible ones, the
+/// mass points of a point set, the barycenter, and the arrows when asked for.
+pub fn add_body(scene: &mut Scene2d, axis: Axis, body: &BodyPicture) {
+    let p: Vec<(f64, f64)> = body.vertices.iter().map(|v| axis.project(v)).collect();
+    let hidden = hidden_edges(
+        body.vertices,
+        body.edges,
+        &body.position,
+        &axis.toward_viewer(),
+        body.radius,
+    );
+    let centre = axis.project(&body.position);
+    for pass_hidden in [true, false] {
+        for (k, &(a, b)) in body.edges.iter().enumerate() {
+            if hidden[k] != pass_hidden {
+                continue;
+            }
+            if let (Some(&pa), Some(&pb)) = (p.get(a), p.get(b)) {
+                let (colour, ascii) = match (pass_hidden, body.ascii) {
+                    (true, None) => (theme::HIDDEN, Some('.')),
+                    _ => (body.colour, body.ascii),
+                };
+                scene.segments.push(Segment {
+                    from: pa,
+                    to: pb,
+                    colour,
+                    ascii,
+                    dashed: pass_hidden,
+                });
+            }
+        }
+    }
+    if body.edges.is_empty() {
+        // A point set: spokes from the barycenter (the body is rigid), the points as discs.
+        for &q in &p {
+            if body.ascii.is_none() {
+                scene.segments.push(Segment {
+                    from: centre,
+                    to: q,
+                    colour: theme::HIDDEN,
+                    ascii: Some('.'),
+                    dashed: false,
+                });
+            }
+        }
+        let (colour, mark) = match body.ascii {
+            Some(c) => (body.colour, c),
+            None => (theme::MASS_POINT, 'O'),
+        };
+        for &q in &p {
+            scene.points.push((q, colour, mark));
+        }
+    } else if body.ascii.is_none() {
+        for &q in &p {
+            scene.points.push((q, body.colour, '+'));
+        }
+    }
+    if let Some((omega, momentum)) = body.arrows {
+        let r = body.radius.max(1e-6);
+        for (i, name) in ["x", "y", "z"].iter().enumerate() {
+            let d = body.rotation.column(i).into_owned();
+            arrow(
+                scene,
+                axis,
+                body.position,
+                d,
+                AXIS_LENGTH * r,
+                theme::AXES[i],
+                name,
+                -1,
+            );
+        }
+        for (v, length, colour, name, row) in [
+            (omega, OMEGA_LENGTH, theme::OMEGA, "ω", 1),
+            (momentum, MOMENTUM_LENGTH, theme::MOMENTUM, "L", 2),
+        ] {
+            if v.norm() > 1e-12 {
+                arrow(
+                    scene,
+                    axis,
+                    body.position,
+                    v.normalize(),
+                    length * r,
+                    colour,
+                    name,
+                    row,
+                );
+            }
+        }
+    }
+    let mark = if body.ascii.is_some() { '%' } else { '@' };
+    scene.points.push((centre, body.colour, mark));
+}
+
+/// An arrow from `from` along the unit vector `d`, `length` long, labelled at its tip. Seen
+/// end-on (shorter on screen than a tenth of its length) only the label is drawn, beside the
+/// base, `end_on_row` rows below it (so end-on labels do not cover each other), with ⊙ when it
+/// points towards the viewer, ⊗ away.
+#[allow(clippy::too_many_arguments)]
+fn arrow(
     scene: &mut Scene2d,
     axis: Axis,
-    s: &Snapshot,
-    edges: &[(usize, usize)],
+    from: Vector3<f64>,
+    d: Vector3<f64>,
+    length: f64,
     colour: Color,
-    ascii: Option<char>,
+    name: &str,
+    end_on_row: i16,
 ) {
-    let p: Vec<(f64, f64)> = s.vertices.iter().map(|v| axis.project(v)).collect();
-    for &(a, b) in edges {
-        if let (Some(&pa), Some(&pb)) = (p.get(a), p.get(b)) {
-            scene.segments.push((pa, pb, colour, ascii));
-        }
+    let a = axis.project(&from);
+    let b = axis.project(&(from + d * length));
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let shown = (dx * dx + dy * dy).sqrt();
+    if shown < 0.1 * length {
+        let toward = d.dot(&axis.toward_viewer());
+        let mark = if toward > 0.0 { "⊙" } else { "⊗" };
+        scene.labels.push(Label {
+            at: a,
+            colour,
+            text: format!("{name}{mark}"),
+            past: None,
+            shift: (1, end_on_row),
+        });
+        return;
     }
-    if edges.is_empty() {
-        for &q in &p {
-            scene.points.push((q, colour, ascii.unwrap_or('o')));
+    scene.segments.push(Segment {
+        from: a,
+        to: b,
+        colour,
+        ascii: None,
+        dashed: false,
+    });
+    // The head by the arrow's direction as seen (screen units are square).
+    let head = if dx.abs() >= dy.abs() {
+        if dx > 0.0 {
+            '>'
+        } else {
+            '<'
         }
-    }
+    } else if dy > 0.0 {
+        '^'
+    } else {
+        'v'
+    };
+    scene.labels.push(Label {
+        at: b,
+        colour,
+        text: head.to_string(),
+        past: None,
+        shift: (0, 0),
+    });
+    // The name one cell past the head.
+    scene.labels.push(Label {
+        at: b,
+        colour,
+        text: name.to_string(),
+        past: Some((dx, dy)),
+        shift: (0, 0),
+    });
 }
 
 fn scene_2d(app: &App) -> Scene2d {
     let axis = app.axis;
-    let mut scene = Scene2d {
-        segments: Vec::new(),
-        circles: Vec::new(),
-        points: Vec::new(),
-        ground: None,
-    };
+    let mut scene = Scene2d::default();
     for o in app.world.obstacles() {
         match *o {
             Obstacle::Ground { height } => {
@@ -134,45 +453,45 @@ fn scene_2d(app: &App) -> Scene2d {
             Obstacle::Sphere { center, radius } => {
                 scene
                     .circles
-                    .push((axis.project(&center), radius, OBSTACLE))
+                    .push((axis.project(&center), radius, theme::OBSTACLE))
             }
             Obstacle::Box { min, max } => {
                 let (a0, b0) = axis.project(&min);
                 let (a1, b1) = axis.project(&max);
                 let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)];
                 for i in 0..4 {
-                    scene
-                        .segments
-                        .push((corners[i], corners[(i + 1) % 4], OBSTACLE, Some('#')));
+                    scene.segments.push(Segment {
+                        from: corners[i],
+                        to: corners[(i + 1) % 4],
+                        colour: theme::OBSTACLE,
+                        ascii: Some('#'),
+                        dashed: false,
+                    });
                 }
             }
         }
     }
     if app.trail {
         for p in app.history.trail(TRAIL_LENGTH) {
-            scene.points.push((axis.project(p), TRAIL, '.'));
+            scene.points.push((axis.project(p), theme::TRAIL, '.'));
         }
     }
-    let edges = &app.world.body().edges;
+    let body = app.world.body();
     if let Some(g) = &app.ghost {
-        body_segments(&mut scene, axis, &g.snapshot, edges, GHOST, Some(':'));
+        let mut ghost = BodyPicture::of(&g.snapshot, &body.edges, body.radius);
+        ghost.colour = theme::GHOST;
+        ghost.ascii = Some(':');
+        add_body(&mut scene, axis, &ghost);
+    }
+    let mut picture = BodyPicture::of(&app.snapshot, &body.edges, body.radius);
+    if app.arrows {
+        picture.arrows = Some((app.snapshot.angular_velocity, app.snapshot.angular_momentum));
+    }
+    add_body(&mut scene, axis, &picture);
+    for c in &app.snapshot.contacts {
         scene
             .points
-            .push((axis.project(&g.snapshot.position), GHOST, '%'));
-    }
-    body_segments(&mut scene, axis, &app.snapshot, edges, BODY, None);
-    if edges.is_empty() {
-        // Bare points are drawn as points already.
-    } else {
-        for v in &app.snapshot.vertices {
-            scene.points.push((axis.project(v), BODY, '+'));
-        }
-    }
-    scene
-        .points
-        .push((axis.project(&app.snapshot.position), BODY, '@'));
-    for c in &app.snapshot.contacts {
-        scene.points.push((axis.project(&c.point), CONTACT, '*'));
+            .push((axis.project(&c.point), theme::CONTACT, '*'));
     }
     scene
 }
@@ -187,6 +506,13 @@ fn put(buf: &mut Buffer, area: Rect, col: f64, row: f64, ch: char, colour: Color
     }
     if let Some(cell) = buf.cell_mut((area.x + c as u16, area.y + r as u16)) {
         cell.set_char(ch).set_style(Style::new().fg(colour));
+    }
+}
+
+/// Text at a cell, clipped to the area (whole characters).
+fn put_text(buf: &mut Buffer, area: Rect, col: f64, row: f64, text: &str, colour: Color) {
+    for (i, ch) in text.chars().enumerate() {
+        put(buf, area, col + i as f64, row, ch, colour);
     }
 }
 
@@ -205,12 +531,11 @@ fn slope_char(dc: f64, dr: f64) -> char {
     }
 }
 
-fn draw_ascii(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
-    let scene = scene_2d(app);
+fn draw_ascii(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
     if let Some(height) = scene.ground {
         let (_, row) = mapping.cell(0.0, height);
         for col in 0..area.width {
-            put(buf, area, f64::from(col), row, '=', GROUND);
+            put(buf, area, f64::from(col), row, '=', theme::GROUND);
         }
     }
     for &(centre, radius, colour) in &scene.circles {
@@ -221,25 +546,44 @@ fn draw_ascii(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
             put(buf, area, c, r, 'o', colour);
         }
     }
-    for &(a, b, colour, ch) in &scene.segments {
-        let (c0, r0) = mapping.cell(a.0, a.1);
-        let (c1, r1) = mapping.cell(b.0, b.1);
+    for s in &scene.segments {
+        let (c0, r0) = mapping.cell(s.from.0, s.from.1);
+        let (c1, r1) = mapping.cell(s.to.0, s.to.1);
         let (dc, dr) = (c1 - c0, r1 - r0);
         let n = (dc.abs().max(dr.abs()) * 2.0).ceil().clamp(1.0, 4096.0) as usize;
-        let ch = ch.unwrap_or_else(|| slope_char(dc, dr));
+        let ch = s.ascii.unwrap_or_else(|| slope_char(dc, dr));
         for i in 0..=n {
+            // Dashed: every other cell along the segment (a dotted `.` line stays whole).
+            if s.dashed && s.ascii != Some('.') && (i / 2) % 2 == 1 {
+                continue;
+            }
             let f = i as f64 / n as f64;
-            put(buf, area, c0 + f * dc, r0 + f * dr, ch, colour);
+            put(buf, area, c0 + f * dc, r0 + f * dr, ch, s.colour);
         }
     }
     for &(p, colour, ch) in &scene.points {
         let (c, r) = mapping.cell(p.0, p.1);
         put(buf, area, c, r, ch, colour);
     }
+    for label in &scene.labels {
+        let (c, r) = label_cell(mapping, label);
+        put_text(buf, area, c, r, &ascii_label(&label.text), label.colour);
+    }
 }
 
-fn draw_braille(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
-    let scene = scene_2d(app);
+/// Labels in pure ASCII: ω is `w`, ⊙/⊗ (seen end-on, towards/away from the viewer) `o`/`x`.
+fn ascii_label(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            'ω' => 'w',
+            '⊙' => 'o',
+            '⊗' => 'x',
+            c => c,
+        })
+        .collect()
+}
+
+fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
     let (x_bounds, y_bounds) = mapping.bounds();
     let canvas = Canvas::default()
         .marker(Marker::Braille)
@@ -252,7 +596,7 @@ fn draw_braille(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
                     height,
                     x_bounds[1],
                     height,
-                    GROUND,
+                    theme::GROUND,
                 ));
             }
             for &(centre, radius, colour) in &scene.circles {
@@ -263,8 +607,27 @@ fn draw_braille(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
                     color: colour,
                 });
             }
-            for &(a, b, colour, _) in &scene.segments {
-                ctx.draw(&canvas::Line::new(a.0, a.1, b.0, b.1, colour));
+            for s in &scene.segments {
+                if s.dashed {
+                    // Pieces of one column, every other one.
+                    let (dx, dy) = (s.to.0 - s.from.0, s.to.1 - s.from.1);
+                    let cells = (dx.abs() / mapping.scale).max(dy.abs() / (2.0 * mapping.scale));
+                    let n = (cells.ceil() as usize).clamp(1, 4096);
+                    for i in (0..n).step_by(2) {
+                        let (f0, f1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+                        ctx.draw(&canvas::Line::new(
+                            s.from.0 + f0 * dx,
+                            s.from.1 + f0 * dy,
+                            s.from.0 + f1 * dx,
+                            s.from.1 + f1 * dy,
+                            s.colour,
+                        ));
+                    }
+                } else {
+                    ctx.draw(&canvas::Line::new(
+                        s.from.0, s.from.1, s.to.0, s.to.1, s.colour,
+                    ));
+                }
             }
             for &(p, colour, ch) in &scene.points {
                 match ch {
@@ -273,6 +636,7 @@ fn draw_braille(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
                         p.1,
                         Span::styled(ch.to_string(), Style::new().fg(colour)),
                     ),
+                    'O' => ctx.print(p.0, p.1, Span::styled("●", Style::new().fg(colour))),
                     '+' => {}
                     _ => ctx.draw(&Points {
                         coords: &[p],
@@ -282,4 +646,69 @@ fn draw_braille(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
             }
         });
     canvas.render(area, buf);
+    // Labels on top, at whole cells (as in the ASCII drawing).
+    for label in &scene.labels {
+        let (c, r) = label_cell(mapping, label);
+        put_text(buf, area, c, r, &label.text, label.colour);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::body::box_corners;
+
+    #[test]
+    fn a_box_seen_face_on_hides_only_its_back_face_edges() {
+        // An axis-aligned box seen from the front (viewer at +z): the face z = −h faces
+        // away, as do the four side faces (their normals are ⟂ to the view: n·toward = 0, not
+        // > 0). An edge is hidden when both its faces face away: the 4 edges of the back face
+        // (both of its faces are the back face and a side face). The 4 front edges border the
+        // front face, and the 4 edges along z border two side faces: hidden too. So 8 hidden,
+        // the 4 front-face edges visible.
+        let v = box_corners(Vector3::new(1.0, 0.4, 0.1));
+        let hidden = hidden_edges(&v, &box_edges(), &Vector3::zeros(), &Vector3::z(), 0.5);
+        let visible: Vec<_> = box_edges()
+            .into_iter()
+            .zip(&hidden)
+            .filter(|(_, h)| !**h)
+            .map(|(e, _)| e)
+            .collect();
+        assert_eq!(visible.len(), 4, "{visible:?}");
+        for (i, j) in visible {
+            assert!(
+                i & 4 != 0 && j & 4 != 0,
+                "edge {i}-{j} not on the z = +h face"
+            );
+        }
+    }
+
+    #[test]
+    fn a_turned_box_shows_nine_edges_and_hides_three() {
+        // Seen along a body diagonal (viewer at (1, 1, 1)/√3), three faces face the viewer;
+        // the 3 edges meeting at the far corner (0, all bits clear) are hidden, the other 9
+        // are visible — the classic picture of a cube.
+        let v = box_corners(Vector3::new(1.0, 1.0, 1.0));
+        let toward = Vector3::new(1.0, 1.0, 1.0).normalize();
+        let hidden = hidden_edges(&v, &box_edges(), &Vector3::zeros(), &toward, 0.87);
+        let hidden_edges: Vec<_> = box_edges()
+            .into_iter()
+            .zip(&hidden)
+            .filter(|(_, h)| **h)
+            .map(|(e, _)| e)
+            .collect();
+        assert_eq!(hidden_edges, vec![(0, 1), (0, 2), (0, 4)]);
+    }
+
+    #[test]
+    fn scale_bars_are_round_lengths_of_a_few_columns() {
+        // 0.0315451 m per column: 6 columns ≈ 0.19 m, the nearest round length is 0.2 m,
+        // 0.2 / 0.0315451 = 6.3 → 6 columns.
+        assert_eq!(scale_bar(0.0315451), (0.2, 6));
+        // 1 m per column: 6 m → 5 m in 5 columns.
+        assert_eq!(scale_bar(1.0), (5.0, 5));
+        assert_eq!(short_length(0.2), "0.2");
+        assert_eq!(short_length(20.0), "20");
+        assert_eq!(short_length(1e-4), "1e-4");
+    }
 }

@@ -2,12 +2,15 @@
 //! picker, divergence dialog) — or, in a terminal too small, a message asking to enlarge it.
 
 use super::app::{App, Overlay, View};
+use super::layout::{self, Areas, ScreenLayout};
+use super::theme;
 use super::{
-    divergence_dialog, energy_view, header, help, loop_view, picker, status_bar, study_view,
+    divergence_dialog, energy_view, header, help, lesson_pane, loop_view, panels, picker,
+    status_bar, study_view,
 };
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 
@@ -24,7 +27,7 @@ impl Widget for &App {
         let [top, main, status] = Layout::vertical([
             Constraint::Length(1),
             Constraint::Min(0),
-            Constraint::Length(if area.width >= 134 { 2 } else { 3 }),
+            Constraint::Length(status_bar::height(self, area.width, area.height)),
         ])
         .areas(area);
         header::render(self, top, buf);
@@ -45,27 +48,21 @@ impl Widget for &App {
     }
 }
 
-/// The areas shared by the views: a left column, the numeric panels on the right, and the loop
-/// strip along the bottom.
-pub struct MainAreas {
-    pub left: Rect,
-    pub panels: Rect,
-    pub strip: Rect,
-}
-
-/// Splits the main area.
-pub fn main_areas(area: Rect) -> MainAreas {
-    let strip_height = if area.height >= 30 { 6 } else { 4 };
-    let [upper, strip] =
-        Layout::vertical([Constraint::Min(0), Constraint::Length(strip_height)]).areas(area);
-    let panels_width = 71.min(area.width * 3 / 5);
-    let [left, panels] =
-        Layout::horizontal([Constraint::Min(0), Constraint::Length(panels_width)]).areas(upper);
-    MainAreas {
-        left,
-        panels,
-        strip,
-    }
+/// The panes of the main area in the app's layout (see [`super::layout`]).
+pub fn main_areas(app: &App, area: Rect) -> Areas {
+    let essentials = match app.layout {
+        ScreenLayout::Stage => panels::essentials_size(app),
+        ScreenLayout::Numbers => (0, 0),
+    };
+    let panels_width = match app.layout {
+        ScreenLayout::Numbers => panels::width(app),
+        ScreenLayout::Stage => 0,
+    };
+    let page_lines = match app.layout {
+        ScreenLayout::Stage => lesson_pane::line_count(app, area.width.saturating_sub(2)),
+        ScreenLayout::Numbers => 0,
+    };
+    layout::areas(area, app.layout, panels_width, essentials, page_lines)
 }
 
 /// A rectangle of at most `width × height` centred in `area`.
@@ -94,7 +91,7 @@ fn enlarge_message(area: Rect, buf: &mut Buffer) {
     ];
     let box_area = centered(area, area.width, 4);
     Paragraph::new(text)
-        .style(Style::new().fg(Color::Yellow))
+        .style(theme::ACCENT)
         .centered()
         .wrap(Wrap { trim: true })
         .render(box_area, buf);

@@ -3,16 +3,18 @@
 
 use super::app::App;
 use super::keys::{Context, KEYS};
+use super::theme;
 use crate::tables::number_plain;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 
-const KEY: Style = Style::new().fg(Color::Black).bg(Color::Gray);
-const DIM: Style = Style::new().fg(Color::DarkGray);
+const KEY: Style = theme::KEY;
+const DIM: Style = theme::DIM;
 
-pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+/// The status fields, each a group of spans.
+fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
     let s = &app.snapshot;
     let effects = app.world.effects().names();
     let response = app.world.contact_model().map_or("—", |m| m.response.name());
@@ -42,27 +44,68 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
             fields.push(("", format!("{ns:.0} ns/step")));
         }
     }
-    let mut spans = vec![Span::raw(" ")];
-    for (i, (name, value)) in fields.into_iter().enumerate() {
-        if i > 0 {
-            spans.push(Span::styled(" · ", DIM));
-        }
+    let mut items: Vec<Vec<Span<'static>>> = Vec::new();
+    for (name, value) in fields {
+        let mut item = Vec::new();
         if !name.is_empty() {
-            spans.push(Span::styled(format!("{name} "), DIM));
+            item.push(Span::styled(format!("{name} "), DIM));
         }
-        spans.push(Span::styled(
+        item.push(Span::styled(
             value,
             Style::new().add_modifier(Modifier::BOLD),
         ));
+        items.push(item);
     }
     if let Some(notice) = &app.notice {
-        spans.push(Span::styled(" · ", DIM));
-        spans.push(Span::styled(notice.clone(), Style::new().fg(Color::Yellow)));
+        items.push(vec![Span::styled(notice.clone(), theme::NOTICE)]);
     }
-    buf.set_line(area.x, area.y, &Line::from(spans), area.width);
-    let rows = usize::from(area.height.saturating_sub(1));
-    for (i, line) in hints(area.width, rows).iter().enumerate() {
-        buf.set_line(area.x, area.y + 1 + i as u16, line, area.width);
+    items
+}
+
+/// The status fields, whole, on as many lines of `width` columns as they need (a field is
+/// never cut; one wider than the line is the only one on its line).
+pub fn field_lines(app: &App, width: u16) -> Vec<Line<'static>> {
+    let mut lines: Vec<Line<'static>> = vec![Line::raw(" ")];
+    for item in fields(app) {
+        let w: usize = item.iter().map(|s| s.width()).sum();
+        let line = lines.last_mut().expect("one line at least");
+        let used = line.width();
+        if used > 1 && used + 3 + w > usize::from(width) {
+            lines.push(Line::from(vec![Span::raw(" ")]));
+        } else if used > 1 {
+            line.push_span(Span::styled(" · ", DIM));
+        }
+        let line = lines.last_mut().expect("one line at least");
+        for span in item {
+            line.push_span(span);
+        }
+    }
+    lines
+}
+
+/// Rows the status bar takes at this size: the fields, then one or two lines of hints (the
+/// whole bar at most 3 rows in a terminal under 30 rows).
+pub fn height(app: &App, width: u16, screen_height: u16) -> u16 {
+    let fields = field_lines(app, width).len();
+    let hints = hints(width, 2).len();
+    let cap = if screen_height < 30 { 3 } else { 4 };
+    (fields + hints).min(cap).max(fields.min(cap)) as u16
+}
+
+pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
+    let fields = field_lines(app, area.width);
+    let mut row = area.y;
+    for line in fields.iter().take(usize::from(area.height)) {
+        buf.set_line(area.x, row, line, area.width);
+        row += 1;
+    }
+    let rows = usize::from(area.y + area.height - row);
+    for line in hints(area.width, rows) {
+        if row >= area.y + area.height {
+            break;
+        }
+        buf.set_line(area.x, row, &line, area.width);
+        row += 1;
     }
 }
 

@@ -6,6 +6,7 @@
 //! the new one) and marks the integrator in use.
 
 use super::app::App;
+use super::theme;
 use crate::physics::Integrator;
 use crate::study::analysis::{format_dt, format_number};
 use crate::study::background::Job;
@@ -15,9 +16,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::Line;
-use ratatui::widgets::{
-    Axis, Block, Chart, Dataset, Gauge, GraphType, LegendPosition, Paragraph, Widget, Wrap,
-};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, Gauge, GraphType, Paragraph, Widget, Wrap};
 
 /// Starts the study of a lesson's scene (every integrator, dt = 1e-1 … 1e-4) with the
 /// collision response in use.
@@ -59,12 +58,12 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
     let (done, total) = job.progress();
     if job.failed() {
         Paragraph::new("the study stopped unexpectedly (see the terminal after quitting)")
-            .style(Style::new().fg(Color::Red))
+            .style(theme::ERROR)
             .render(inner, buf);
         return;
     }
     Gauge::default()
-        .gauge_style(Style::new().fg(Color::Cyan))
+        .gauge_style(theme::GAUGE)
         .ratio(if total == 0 {
             0.0
         } else {
@@ -193,13 +192,13 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             .name("frontier")
             .marker(Marker::Block)
             .graph_type(GraphType::Scatter)
-            .style(Style::new().fg(Color::White))
+            .style(theme::FRONTIER)
             .data(&frontier),
     );
     let axis = |title: &'static str, lo: f64, hi: f64| {
         Axis::default()
             .title(title)
-            .style(Style::new().fg(Color::Gray))
+            .style(theme::CHART_AXIS)
             .bounds([lo, hi])
             .labels(labels(lo, hi))
     };
@@ -218,9 +217,18 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             y0,
             y1,
         ))
-        .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
+        // The legend goes under the chart, where it cannot cover a curve.
+        .legend_position(None)
         .render(chart_area, buf);
+    let mut legend: Vec<ratatui::text::Span> = vec![ratatui::text::Span::raw(" ")];
+    for (i, _) in &lines {
+        let mark = if *i == in_use { " (in use)" } else { "" };
+        legend.push(ratatui::text::Span::styled(
+            format!("── {}{mark}  ", i.name()),
+            Style::new().fg(colour(*i)),
+        ));
+    }
+    legend.push(ratatui::text::Span::raw("█ frontier"));
     let orders: Vec<String> = study
         .orders
         .iter()
@@ -263,7 +271,7 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
         None => format!("in use: {} (not in the study)", in_use.name()),
     };
     let all_diverged = study.rows.iter().all(|r| !r.ok());
-    let mut text = vec![Line::from(study.sentence.clone())];
+    let mut text = vec![Line::from(legend), Line::from(study.sentence.clone())];
     if all_diverged && study.contact() {
         text.push(Line::styled(
             "press c for another collision response, then s twice to study it",

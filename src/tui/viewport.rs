@@ -52,6 +52,15 @@ impl Axis {
         }
     }
 
+    /// The unit vector from the scene towards the viewer (depth grows along it).
+    pub fn toward_viewer(self) -> Vector3<f64> {
+        match self {
+            Axis::Front => Vector3::z(),
+            Axis::Side => -Vector3::x(),
+            Axis::Top => Vector3::y(),
+        }
+    }
+
     /// Whether the ground plane shows as a line (it does not from above).
     pub fn shows_ground_line(self) -> bool {
         self != Axis::Top

@@ -1,0 +1,64 @@
+//! `tumble record FILE --duration T --out OUT.cast [--size COLSxROWS]`: a run of the app as an
+//! asciicast v2 recording (header line, then `[time, "o", data]` events with increasing times),
+//! rendered without a terminal, at real time.
+
+use super::{load_with, Failure, Overrides};
+use crate::tui::export;
+use crate::tui::layout::ScreenLayout;
+use crate::tui::{App, Options};
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct RecordArgs {
+    /// The lesson or scene file.
+    pub file: PathBuf,
+    /// Simulated time to record, s (played back at real time).
+    #[arg(long)]
+    pub duration: f64,
+    /// Where to write the recording (.cast).
+    #[arg(long, value_name = "OUT.cast")]
+    pub out: PathBuf,
+    /// Screen size, COLSxROWS.
+    #[arg(long, default_value = "120x40", value_parser = export::parse_size)]
+    pub size: (u16, u16),
+    /// Draw the projection in pure ASCII instead of Braille dots.
+    #[arg(long)]
+    pub ascii: bool,
+    /// The large-drawing layout (key `L` in the app) instead of every panel.
+    #[arg(long)]
+    pub stage: bool,
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+pub fn record(args: &RecordArgs) -> Result<(), Failure> {
+    if !(args.duration > 0.0 && args.duration.is_finite()) {
+        return Err(Failure::bad_input(format!(
+            "--duration must be > 0 and finite, found {}",
+            args.duration
+        )));
+    }
+    let lesson = load_with(&args.file, &args.overrides)?;
+    let mut app = App::new(
+        lesson,
+        Options {
+            ascii: args.ascii,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    if args.stage {
+        app.layout = ScreenLayout::Stage;
+    }
+    let (cols, rows) = args.size;
+    let cast = export::record(&mut app, args.duration, cols, rows);
+    std::fs::write(&args.out, &cast)
+        .map_err(|e| Failure::bad_input(format!("cannot write {}: {e}", args.out.display())))?;
+    eprintln!(
+        "tumble: wrote {} ({cols}x{rows}, {} frames, t = {} s)",
+        args.out.display(),
+        cast.lines().count() - 1,
+        crate::tables::number_plain(app.snapshot.time)
+    );
+    Ok(())
+}

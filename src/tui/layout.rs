@@ -1,0 +1,125 @@
+//! Where each pane goes, for each screen layout (key `L` switches):
+//!
+//! - [`ScreenLayout::Numbers`]: the drawing above the lesson page on the left, every numeric
+//!   panel on the right, the loop strip along the bottom. When the left column is at least
+//!   [`PAGE_WIDTH`] + 2 wide the page sits under the drawing; otherwise it keeps the left column
+//!   and wraps without breaking formulas.
+//! - [`ScreenLayout::Stage`]: a large drawing with the essential numbers beside it (the loop
+//!   strip under them where there is room) or under it in a narrow terminal, and the lesson page
+//!   across the whole width below — wide enough for its authors' lines from 88 columns on. For a
+//!   class.
+//!
+//! Panels never get cut: a panel wider or taller than its room is left out whole (and named).
+
+use ratatui::layout::{Constraint, Layout, Rect};
+
+/// The width lesson pages are written for (`docs/lesson-format.md`: lines under about 86
+/// characters); pages wrap at this width or the pane's, whichever is narrower.
+pub const PAGE_WIDTH: u16 = 86;
+
+/// The narrowest drawing beside the panels, columns.
+pub const MIN_DRAWING_WIDTH: u16 = 26;
+
+/// The arrangement of the main area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ScreenLayout {
+    /// Every panel, the loop strip and the lesson page beside the drawing.
+    #[default]
+    Numbers,
+    /// A large drawing, the essential numbers, the lesson page at full width.
+    Stage,
+}
+
+impl ScreenLayout {
+    pub fn next(self) -> ScreenLayout {
+        match self {
+            ScreenLayout::Numbers => ScreenLayout::Stage,
+            ScreenLayout::Stage => ScreenLayout::Numbers,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            ScreenLayout::Numbers => "numbers",
+            ScreenLayout::Stage => "stage",
+        }
+    }
+}
+
+/// The panes of the main area (an absent pane is not drawn).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Areas {
+    /// The projection (or, in the energy view, the graph).
+    pub drawing: Rect,
+    pub lesson: Option<Rect>,
+    /// The numeric panels (all of them, or the essentials in the stage layout).
+    pub panels: Option<Rect>,
+    pub strip: Option<Rect>,
+}
+
+/// Splits the main area. `panels_width` is the width the numeric panels ask for (their widest
+/// line plus the border); `essentials` the width and height of the essentials panel;
+/// `page_lines` how many lines the lesson page takes at the full width (stage layout).
+pub fn areas(
+    area: Rect,
+    layout: ScreenLayout,
+    panels_width: u16,
+    essentials: (u16, u16),
+    page_lines: u16,
+) -> Areas {
+    match layout {
+        ScreenLayout::Numbers => {
+            let strip_height = if area.height >= 30 { 6 } else { 4 };
+            let [upper, strip] =
+                Layout::vertical([Constraint::Min(0), Constraint::Length(strip_height)])
+                    .areas(area);
+            let panels = panels_width.min(upper.width.saturating_sub(MIN_DRAWING_WIDTH));
+            let [left, right] =
+                Layout::horizontal([Constraint::Min(0), Constraint::Length(panels)]).areas(upper);
+            let lesson_height = (left.height * 2 / 5).clamp(4, 16);
+            let [drawing, lesson] =
+                Layout::vertical([Constraint::Min(0), Constraint::Length(lesson_height)])
+                    .areas(left);
+            Areas {
+                drawing,
+                lesson: Some(lesson),
+                panels: Some(right),
+                strip: Some(strip),
+            }
+        }
+        ScreenLayout::Stage => {
+            let lesson_height = if area.height >= 30 {
+                (page_lines + 2).clamp(4, (area.height / 3).max(4))
+            } else {
+                0
+            };
+            let [upper, lesson] =
+                Layout::vertical([Constraint::Min(0), Constraint::Length(lesson_height)])
+                    .areas(area);
+            let (ew, eh) = essentials;
+            let lesson = (lesson_height > 0).then_some(lesson);
+            if upper.width >= ew + 40 {
+                // Side by side: the essentials, then the loop strip under them if it has room.
+                let [drawing, right] =
+                    Layout::horizontal([Constraint::Min(0), Constraint::Length(ew)]).areas(upper);
+                let [panels, rest] =
+                    Layout::vertical([Constraint::Length(eh), Constraint::Min(0)]).areas(right);
+                Areas {
+                    drawing,
+                    lesson,
+                    panels: Some(panels),
+                    strip: (rest.height >= 4).then_some(rest),
+                }
+            } else {
+                let [drawing, panels] =
+                    Layout::vertical([Constraint::Min(0), Constraint::Length(eh)]).areas(upper);
+                Areas {
+                    drawing,
+                    lesson,
+                    panels: Some(panels),
+                    strip: None,
+                }
+            }
+        }
+    }
+}

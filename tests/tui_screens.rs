@@ -1,0 +1,489 @@
+//! The app's screens at several sizes and in both layouts (key `L`), the drawing (depth cue,
+//! arrows, mass points), and the pictures for slides: the SVG of a screen (key `x`,
+//! `tumble shot`) and the asciicast of a run (`tumble record`).
+#![cfg(feature = "tui")]
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::buffer::Buffer;
+use std::path::{Path, PathBuf};
+use tumble::tables::{self, Frame};
+use tumble::tui::export;
+use tumble::tui::layout::ScreenLayout;
+use tumble::tui::{loop_strip, panels, App, Comparison, Options};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn load(path: &Path) -> tumble::scene::Lesson {
+    tumble::scene::load(path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn app_of(path: &Path, compare: Option<Comparison>) -> App {
+    App::new(
+        load(path),
+        Options {
+            ascii: true,
+            compare,
+            show_timing: false,
+        },
+    )
+}
+
+fn fixture(name: &str) -> App {
+    app_of(&root().join("tests/fixtures").join(name), None)
+}
+
+fn lesson(name: &str) -> App {
+    app_of(&root().join("lessons").join(name), None)
+}
+
+fn keys(app: &mut App, text: &str) {
+    for c in text.chars() {
+        let code = match c {
+            '>' => KeyCode::Right,
+            c => KeyCode::Char(c),
+        };
+        app.handle_key(&KeyEvent::new(code, KeyModifiers::NONE));
+    }
+}
+
+fn text(buf: &Buffer) -> String {
+    let area = buf.area;
+    (0..area.height)
+        .map(|y| {
+            let row: String = (0..area.width).map(|x| buf[(x, y)].symbol()).collect();
+            row.trim_end().to_string()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn screen(app: &App, width: u16, height: u16) -> String {
+    text(&export::render(app, width, height))
+}
+
+/// Lesson 2 (mass points, L not parallel to ω) after 30 frames (t = 0.15 s).
+fn lesson_two() -> App {
+    let mut app = lesson("02-rigid-body-from-points.toml");
+    app.step_frames(30);
+    app
+}
+
+#[test]
+fn screens_at_80x24_120x40_and_200x60() {
+    let mut app = fixture("tui-box.toml");
+    keys(&mut app, "nnn>>>>nnn");
+    for (w, h) in [(80, 24), (120, 40), (200, 60)] {
+        insta::assert_snapshot!(format!("numbers_{w}x{h}"), screen(&app, w, h));
+    }
+    keys(&mut app, "L");
+    assert_eq!(app.layout, ScreenLayout::Stage);
+    for (w, h) in [(80, 24), (120, 40)] {
+        insta::assert_snapshot!(format!("stage_{w}x{h}"), screen(&app, w, h));
+    }
+    keys(&mut app, "L");
+    assert_eq!(app.layout, ScreenLayout::Numbers);
+}
+
+#[test]
+fn lesson_two_shows_its_mass_points_and_the_omega_and_l_arrows() {
+    let mut app = lesson_two();
+    keys(&mut app, "L");
+    let shown = screen(&app, 120, 40);
+    insta::assert_snapshot!("lesson2_stage_120x40", shown);
+    // Five mass points, drawn as `O` (ASCII) — not single dots.
+    let drawing: String = shown
+        .lines()
+        .take_while(|l| !l.starts_with('└'))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let points = drawing.matches('O').count();
+    assert!(
+        (3..=5).contains(&points),
+        "{points} mass points (5, some may overlap):\n{drawing}"
+    );
+    // ω and L labelled (ω is `w` in ASCII), and told apart in the legend.
+    assert!(drawing.contains('w') && drawing.contains('L'), "{drawing}");
+    assert!(shown.contains("ω ang. vel.") && shown.contains("L ang. mom."));
+    // `a` hides the arrows and the body axes.
+    keys(&mut app, "a");
+    let plain = screen(&app, 120, 40);
+    assert!(!plain.contains("ang. vel."), "{plain}");
+}
+
+#[test]
+fn the_omega_and_l_arrows_point_along_their_vectors() {
+    // Lesson 2 at t = 0: ω = (0, 0, 8) rad/s and L = (0.012, 0, 0.328) kg·m²/s both point
+    // (nearly) along z. From the front (looking along −z) both are seen end-on, towards the
+    // viewer: labels `wo` and `Lo` (ω is `w` in ASCII). From the side (z to the right) both
+    // are arrows pointing right: heads `>` followed by their labels.
+    let mut app = lesson("02-rigid-body-from-points.toml");
+    let front = screen(&app, 200, 60);
+    assert!(front.contains("wo") && front.contains("Lo"), "{front}");
+    keys(&mut app, "v");
+    let side = screen(&app, 200, 60);
+    for label in [">w", ">L"] {
+        let found = side.lines().any(|l| {
+            let t: String = l
+                .split(' ')
+                .filter(|w| !w.is_empty())
+                .collect::<Vec<_>>()
+                .join("");
+            t.contains(label)
+        });
+        assert!(found, "no arrow head then `{label}` from the side:\n{side}");
+    }
+}
+
+#[test]
+fn hidden_edges_of_the_box_are_dashed() {
+    // The fixture's box is turned about z and x: seen from the front, some edges are behind
+    // the body and drawn dimmed (dark grey) and dashed.
+    let mut app = fixture("tui-box.toml");
+    keys(&mut app, ">>>>>t"); // no trail: its dots are grey too
+    let buf = export::render(&app, 200, 60);
+    let grey = (0..buf.area.height)
+        .flat_map(|y| (0..buf.area.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let c = &buf[(x, y)];
+            c.fg == tumble::tui::theme::HIDDEN && c.symbol() == "."
+        })
+        .count();
+    assert!(grey > 0, "no hidden edge drawn:\n{}", text(&buf));
+}
+
+/// Words of `lines`, in order.
+fn words(lines: &[String]) -> Vec<String> {
+    lines
+        .iter()
+        .flat_map(|l| l.split_whitespace().map(str::to_string))
+        .collect::<Vec<_>>()
+}
+
+/// Checks that no number or unit is cut on `shown`: every panel whose title line is shown has
+/// every row of `tables::panel_text` in full; the status fields are whole; and the loop strip's
+/// words, as far as shown, are the words of its full text (a cut word would differ).
+fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
+    let lines: Vec<&str> = shown.lines().collect();
+    let mut all = tables::panels(&app.snapshot, app.frame);
+    all.push(panels::essentials(&app.snapshot, app.frame));
+    for panel in &all {
+        let title = format!("│{}", panel.title);
+        if !lines.iter().any(|l| l.ends_with(&title)) {
+            continue;
+        }
+        for row in tables::panel_text(panel).iter().skip(1) {
+            assert!(
+                shown.contains(row.trim_start()),
+                "{context}: panel `{}` shown without `{}` in full:\n{shown}",
+                panel.title,
+                row.trim_start()
+            );
+        }
+    }
+    let s = &app.snapshot;
+    for field in [
+        format!("t {} s", tables::number_plain(s.time)),
+        format!("dt {} s", tables::number_plain(s.dt)),
+        format!("step {}", s.step),
+        format!("integrator {}", s.integrator.name()),
+    ] {
+        assert!(shown.contains(&field), "{context}: no `{field}`:\n{shown}");
+    }
+    // The strip: under its title line, from the title's column to the right edge, down to
+    // the lesson page or the status line.
+    let title = lines.iter().enumerate().find_map(|(i, l)| {
+        l.find(" the loop —")
+            .map(|byte| (i, l[..byte].chars().count()))
+    });
+    if let Some((top, col)) = title {
+        let strip: Vec<String> = lines[top + 1..]
+            .iter()
+            .take_while(|l| !l.starts_with(" t ") && !l.starts_with('┌'))
+            .map(|l| l.chars().skip(col).collect::<String>())
+            .collect();
+        let full: Vec<String> = loop_strip::lines(app)
+            .iter()
+            .map(|l| l.spans.iter().map(|s| s.content.as_ref()).collect())
+            .collect();
+        let (shown_words, full_words) = (words(&strip), words(&full));
+        for (i, w) in shown_words.iter().enumerate() {
+            assert_eq!(
+                Some(w),
+                full_words.get(i),
+                "{context}: loop strip word {i} cut or changed:\n{shown}"
+            );
+        }
+    }
+}
+
+#[test]
+fn no_number_or_unit_is_cut_at_any_width_from_80_to_240() {
+    let mut box_app = fixture("tui-box.toml");
+    keys(&mut box_app, "nnn>>>>nnn");
+    let mut compare = app_of(
+        &root().join("tests/fixtures/tui-box.toml"),
+        Some(Comparison::Integrator(
+            tumble::physics::Integrator::EulerSeed,
+        )),
+    );
+    keys(&mut compare, ">>>>>nn");
+    let mut apps = vec![
+        ("box", box_app),
+        ("compare", compare),
+        ("lesson 2", lesson_two()),
+    ];
+    for (name, app) in &mut apps {
+        for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
+            app.layout = layout;
+            for height in [24, 31, 40, 60] {
+                for width in 80..=240 {
+                    let shown = screen(app, width, height);
+                    let context = format!("{name}, {layout:?}, {width}×{height}");
+                    assert_nothing_cut(app, &shown, &context);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn at_120x40_the_status_line_is_whole_even_in_compare_mode() {
+    let mut app = app_of(
+        &root().join("tests/fixtures/tui-box.toml"),
+        Some(Comparison::Integrator(
+            tumble::physics::Integrator::EulerSeed,
+        )),
+    );
+    keys(&mut app, ">");
+    let shown = screen(&app, 120, 40);
+    for field in [
+        "integrator rk4 vs euler-seed",
+        "response impulse",
+        "effects gravity",
+    ] {
+        assert!(shown.contains(field), "no `{field}`:\n{shown}");
+    }
+}
+
+#[test]
+fn lesson_pages_keep_their_86_column_lines_where_the_pane_allows() {
+    // Lesson 2's second page has a 71-character formula line; at 200 columns the page pane is
+    // wider than 86 and the line shows whole, as written.
+    let mut app = lesson("02-rigid-body-from-points.toml");
+    app.step_frames(5); // t = 0.025 s ≥ 0.02: the page "L is not parallel to ω"
+    let line = "L = I ω = (0.0015 × 8, 0, 0.041 × 8) = (0.012, 0, 0.328) kg·m²/s,";
+    assert!(screen(&app, 200, 60).contains(line));
+    // In the stage layout the page spans the whole width: whole at 120 columns too.
+    keys(&mut app, "L");
+    assert!(screen(&app, 120, 40).contains(line));
+}
+
+#[test]
+fn the_scale_bar_prints_a_round_length() {
+    let app = fixture("tui-box.toml");
+    let shown = screen(&app, 120, 40);
+    let bar = shown
+        .lines()
+        .find_map(|l| {
+            l.find('├').map(|i| {
+                l[i..]
+                    .split('│')
+                    .next()
+                    .unwrap_or("")
+                    .trim_end()
+                    .to_string()
+            })
+        })
+        .expect("a scale bar");
+    let length = bar
+        .split_whitespace()
+        .nth(1)
+        .unwrap_or_else(|| panic!("{bar}"));
+    // 1, 2 or 5 times a power of ten, at most 3 characters after the point.
+    let digits: String = length.chars().filter(|c| c.is_ascii_digit()).collect();
+    let first = digits.trim_start_matches('0');
+    assert!(
+        ["1", "2", "5"].contains(&first.trim_end_matches('0')),
+        "{bar}"
+    );
+    assert!(bar.ends_with(" m"), "{bar}");
+}
+
+/// A tiny XML well-formedness check: tags nest and close, attributes are quoted, `&` only
+/// starts the five predefined entities. Returns the text content.
+fn xml_text(doc: &str) -> String {
+    let mut stack: Vec<String> = Vec::new();
+    let mut content = String::new();
+    let mut rest = doc;
+    while let Some(open) = rest.find('<') {
+        content.push_str(&check_text(&rest[..open]));
+        let close = rest[open..].find('>').expect("unclosed tag") + open;
+        let tag = &rest[open + 1..close];
+        if let Some(name) = tag.strip_prefix('/') {
+            assert_eq!(
+                stack.pop().as_deref(),
+                Some(name.trim()),
+                "mismatched </{name}>"
+            );
+        } else {
+            let name: String = tag
+                .chars()
+                .take_while(|c| !c.is_whitespace() && *c != '/')
+                .collect();
+            assert!(!name.is_empty(), "empty tag name in <{tag}>");
+            assert_eq!(
+                tag.matches('"').count() % 2,
+                0,
+                "unbalanced quotes in <{tag}>"
+            );
+            assert!(!tag.contains('<'), "`<` inside <{tag}>");
+            if !tag.ends_with('/') {
+                stack.push(name);
+            }
+        }
+        rest = &rest[close + 1..];
+        if stack.is_empty() {
+            assert!(rest.trim().is_empty(), "content after the root element");
+        }
+    }
+    assert!(stack.is_empty(), "unclosed elements {stack:?}");
+    content
+}
+
+fn check_text(text: &str) -> String {
+    assert!(
+        !text.contains('>'),
+        "raw `>` in text (escaped by the exporter)"
+    );
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(i) = rest.find('&') {
+        out.push_str(&rest[..i]);
+        let end = rest[i..].find(';').expect("unterminated entity") + i;
+        out.push(match &rest[i + 1..end] {
+            "amp" => '&',
+            "lt" => '<',
+            "gt" => '>',
+            "quot" => '"',
+            "apos" => '\'',
+            e => panic!("unknown entity &{e};"),
+        });
+        rest = &rest[end + 1..];
+    }
+    out.push_str(rest);
+    out
+}
+
+#[test]
+fn the_svg_of_a_screen_parses_and_holds_the_panel_text() {
+    let mut app = fixture("tui-box.toml");
+    keys(&mut app, ">>>>>");
+    let svg = export::svg(&export::render(&app, 120, 40));
+    assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+    let content = xml_text(&svg);
+    // Every number of the state and energy panels, as the panel prints it.
+    let panels = tables::panels(&app.snapshot, Frame::World);
+    for panel in [&panels[0], &panels[6]] {
+        for row in &panel.rows {
+            for cell in &row.cells {
+                assert!(
+                    content.contains(cell.trim()),
+                    "`{}` not in the SVG",
+                    cell.trim()
+                );
+            }
+        }
+    }
+    // Colours as in the terminal: the ghost-free body is white, contacts red; the header's
+    // "tumble" sits on cyan.
+    assert!(svg.contains(r##"fill="#00cdcd""##), "no cyan (the header)");
+    // 120 × 40 cells of 8.4 × 17 px.
+    assert!(svg.contains(r#"width="1008.0" height="680.0""#));
+}
+
+#[test]
+fn x_asks_for_an_export_and_the_file_name_names_lesson_and_time() {
+    let mut app = fixture("tui-box.toml");
+    keys(&mut app, ">>>x");
+    assert!(app.export_requested);
+    assert_eq!(export::screen_file_name(&app), "tumble-tui-box-t0.030.svg");
+    // Rendering is untouched by the request; the event loop writes the file at the
+    // terminal's size and clears the request.
+    assert_eq!(app.snapshot.step, 3);
+}
+
+#[test]
+fn a_recording_has_an_asciicast_header_and_increasing_event_times() {
+    let mut app = fixture("tui-box.toml");
+    let cast = export::record(&mut app, 0.2, 100, 30);
+    let mut lines = cast.lines();
+    let header: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
+    assert_eq!(header["version"], 2);
+    assert_eq!(header["width"], 100);
+    assert_eq!(header["height"], 30);
+    let mut last = -1.0;
+    let mut events = 0;
+    for line in lines {
+        let e: serde_json::Value = serde_json::from_str(line).unwrap();
+        let t = e[0].as_f64().expect("time");
+        assert!(t > last, "time {t} after {last}");
+        last = t;
+        assert_eq!(e[1], "o");
+        let data = e[2].as_str().expect("data");
+        assert!(data.contains("\x1b[H") && data.contains("the loop"));
+        events += 1;
+    }
+    // 0.2 s at real time, 30 frames per second: frames at 0, 1/30, …, 6/30 s: 7 events, and
+    // the last frame shows t = 0.2 s (dt = 0.01 s: 20 steps).
+    assert_eq!(events, 7);
+    assert!((last - 0.2).abs() < 1e-6, "{last}");
+    assert_eq!(app.snapshot.step, 20);
+}
+
+#[test]
+fn shot_and_record_on_the_command_line() {
+    use assert_cmd::Command;
+    let dir = std::env::temp_dir().join(format!("tumble-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = root().join("tests/fixtures/tui-box.toml");
+    let svg = dir.join("box.svg");
+    Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("shot")
+        .arg(&file)
+        .args(["--at", "0.5", "--size", "100x30", "--svg"])
+        .arg(&svg)
+        .assert()
+        .success();
+    let content = xml_text(&std::fs::read_to_string(&svg).unwrap());
+    assert!(content.contains("0.500000 s"), "{content}");
+    let cast = dir.join("box.cast");
+    Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("record")
+        .arg(&file)
+        .args(["--duration", "0.1", "--out"])
+        .arg(&cast)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let header: serde_json::Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    assert_eq!(
+        (header["width"].clone(), header["height"].clone()),
+        (120.into(), 40.into())
+    );
+    // Bad sizes are one-line errors, exit 2.
+    let bad = Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("shot")
+        .arg(&file)
+        .args(["--size", "60x20", "--svg"])
+        .arg(&svg)
+        .assert()
+        .code(2);
+    let stderr = String::from_utf8_lossy(&bad.get_output().stderr).into_owned();
+    assert!(stderr.contains("80x24"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
