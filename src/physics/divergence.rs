@@ -1,16 +1,16 @@
 //! The divergence guard: a state that is no longer finite, or energy that grew far beyond
 //! anything the scene can supply.
 //!
-//! Gravity is conservative and drag and the `impulse` response only dissipate, so the total
-//! energy E of a scene can only grow by what a `seed` collision injects (its push-out and its
-//! force-as-impulse). The guard keeps that budget, and the largest kinetic energy the scene's own
-//! physics could have given the body so far — the energy an exact integrator would show as
-//! kinetic at the position the body has reached:
+//! Gravity is conservative; drag and contacts move energy in or out, and the energy ledger
+//! ([`super::energy_ledger`]) books both. So the energy an exact integrator would show is the
+//! ledger's `E_accounted = E₀ + W_drag + ΔE_contacts`, and whatever the total energy E has
+//! beyond it is the integrator's own creation — the ledger's drift. The guard compares that
+//! with the largest kinetic energy the scene's own physics could have given the body so far —
+//! the energy an exact integrator would show as kinetic at the position the body has reached:
 //!
 //! ```text
-//! E_allowed(t) = E₀ + Σ max(0, ΔE_collide)                 budget
-//! K_scale(t)   = max( M|g|·radius,  max_{s ≤ t} (E_allowed(s) − V(x(s))) )
-//! runaway  ⇔  E(t) − E_allowed(t) > K_scale(t)
+//! K_scale(t)   = max( M|g|·radius,  max_{s ≤ t} (E_accounted(s) − V(x(s))),  K after a collide )
+//! runaway  ⇔  drift(t) = E(t) − E_accounted(t) > K_scale(t)
 //! ```
 //!
 //! That is: the integrator alone has created more energy than the most kinetic energy the body
@@ -23,8 +23,8 @@
 //! way it was started. (`euler-seed`'s matrix grows without bound instead, and E with it.)
 //! `M|g|·radius` — lifting the body by its own size — is the floor for a body started at rest.
 //!
-//! Energy cannot see a `seed` collision that keeps injecting spin (its budget grows with every
-//! injection), so the guard also watches the rotation per step:
+//! Energy cannot see a `seed` collision that keeps injecting spin (the ledger books every
+//! injection as the contacts' doing), so the guard also watches the rotation per step:
 //!
 //! ```text
 //! unresolved  ⇔  |ω|·dt > π
@@ -34,6 +34,7 @@
 //! (aliasing): the time step no longer resolves the rotation, whatever produced it.
 use super::body::Body;
 use super::effects::Effects;
+use super::energy_ledger::EnergyLedger;
 use super::integrators::Integrator;
 use super::snapshot::{energy, Energy};
 use super::state::State;
@@ -71,46 +72,49 @@ impl fmt::Display for Divergence {
     }
 }
 
-/// The energy budget of a world.
+/// The kinetic-energy scale a world's drift is measured against (the energy budget itself is
+/// the ledger's).
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnergyGuard {
-    /// E_allowed: E₀ plus what collisions injected, J.
-    allowed: f64,
     /// K_scale: the largest kinetic energy the scene could have supplied so far, J.
     reference: f64,
 }
 
 impl EnergyGuard {
-    /// The budget at t = 0.
+    /// The scale at t = 0.
     pub fn new(body: &Body, effects: &Effects, state: &State) -> EnergyGuard {
-        let Energy { kinetic, total, .. } = energy(body, effects, state);
+        let Energy { kinetic, .. } = energy(body, effects, state);
         let weight = effects
             .gravity()
             .map_or(0.0, |g| body.mass * g.norm() * body.radius);
         EnergyGuard {
-            allowed: total,
             reference: kinetic.max(weight).max(f64::MIN_POSITIVE),
         }
     }
 
-    /// Accounts for the position reached: an exact integrator would show `E_allowed − V(x)` as
-    /// kinetic energy there, so errors are measured against at least that much.
-    pub fn observe(&mut self, potential: f64) {
-        let kinetic = self.allowed - potential;
+    /// Accounts for the position reached: an exact integrator would show `E_accounted − V(x)`
+    /// as kinetic energy there, so errors are measured against at least that much.
+    pub fn observe(&mut self, ledger: &EnergyLedger, potential: f64) {
+        let kinetic = ledger.accounted() - potential;
         if kinetic > self.reference {
             self.reference = kinetic;
         }
     }
 
-    /// Accounts for the energy a collision response changed.
-    pub fn after_collision(&mut self, total_before: f64, after: &Energy) {
-        self.allowed += (after.total - total_before).max(0.0);
+    /// Accounts for the kinetic energy a collision response left (the ledger books the change).
+    pub fn after_collision(&mut self, after: &Energy) {
         self.reference = self.reference.max(after.kinetic);
     }
 
     /// The diverged quantity, if any.
     /// `turn_per_step` is |ω|·dt, rad.
-    pub fn check(&self, state: &State, energy: &Energy, turn_per_step: f64) -> Option<String> {
+    pub fn check(
+        &self,
+        state: &State,
+        energy: &Energy,
+        ledger: &EnergyLedger,
+        turn_per_step: f64,
+    ) -> Option<String> {
         let finite = |v: &nalgebra::Vector3<f64>| v.iter().all(|c| c.is_finite());
         if !finite(&state.position) {
             return Some("position is not finite".into());
@@ -133,13 +137,14 @@ impl EnergyGuard {
                  more than half a turn (π)"
             ));
         }
-        let excess = energy.total - self.allowed;
+        let accounted = ledger.accounted();
+        let excess = energy.total - accounted;
         if excess > self.reference {
             return Some(format!(
-                "energy ran away: E = {:.4e} J against a budget of {:.4e} J; the integrator \
-                 created {:.4e} J, more than the largest kinetic energy the scene supplied \
-                 ({:.4e} J)",
-                energy.total, self.allowed, excess, self.reference
+                "energy ran away: E = {:.4e} J against {:.4e} J accounted for (E₀, drag, \
+                 contacts); the integrator created {:.4e} J, more than the largest kinetic \
+                 energy the scene supplied ({:.4e} J)",
+                energy.total, accounted, excess, self.reference
             ));
         }
         None

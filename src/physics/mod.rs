@@ -14,12 +14,14 @@
 //! | `world` | the loop, phase by phase |
 //! | `snapshot` | every quantity a user is shown |
 //! | `divergence` | the guard against non-finite or runaway states |
+//! | `energy_ledger` | where the energy went: drag work, contacts, and the remainder (drift) |
 
 pub mod body;
 pub mod collision;
 pub mod derive;
 pub mod divergence;
 pub mod effects;
+pub mod energy_ledger;
 pub mod free_top;
 pub mod integrators;
 pub mod snapshot;
@@ -30,6 +32,7 @@ pub use body::{Body, BodyError, InertiaModel};
 pub use collision::{Contact, ContactModel, Obstacle, Response};
 pub use divergence::Divergence;
 pub use effects::{Effect, Effects};
+pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
 pub use snapshot::{Energy, Snapshot};
 pub use state::{Orientation, State};

@@ -9,6 +9,7 @@ use super::body::Body;
 use super::collision::{Contact, Obstacle};
 use super::derive::{congruence, derive};
 use super::effects::Effects;
+use super::energy_ledger::EnergyBalance;
 use super::integrators::Integrator;
 use super::state::State;
 use super::world::{Phase, World};
@@ -95,6 +96,8 @@ pub struct Snapshot {
     /// Energy now and at t = 0.
     pub energy: Energy,
     pub initial_energy: Energy,
+    /// E − E₀ split into drag work, contacts and the numerical drift (the energy ledger).
+    pub energy_balance: EnergyBalance,
     /// ‖RᵀR − 𝟙‖.
     pub orthonormality_error: f64,
     /// Vertex positions pᵢ = x + R r₀ᵢ, m.
@@ -123,6 +126,14 @@ impl Snapshot {
         let rotation = state.orientation.matrix();
         let vertices = world.vertices();
         let penetration = deepest_penetration(world.obstacles(), &vertices);
+        let energy = world.energy_of(state);
+        let initial_energy = world.energy_of(world.initial_state());
+        let energy_balance = world.energy_ledger().balance(
+            &initial_energy,
+            &energy,
+            world.effects().depends_on_velocity(),
+            !world.obstacles().is_empty(),
+        );
         Snapshot {
             phase: world.last_phase(),
             next_phase: world.next_phase(),
@@ -144,8 +155,9 @@ impl Snapshot {
             inv_inertia_world: kinematics.inv_inertia_world,
             force: loads.force,
             torque: loads.torque,
-            energy: world.energy_of(state),
-            initial_energy: world.energy_of(world.initial_state()),
+            energy,
+            initial_energy,
+            energy_balance,
             orthonormality_error: state.orientation.orthonormality_error(),
             vertices,
             contacts: world.contacts().to_vec(),

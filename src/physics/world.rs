@@ -13,6 +13,7 @@ use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChang
 use super::derive::{derive, Kinematics};
 use super::divergence::{Divergence, EnergyGuard};
 use super::effects::{Effects, Loads};
+use super::energy_ledger::{drag_power, EnergyBalance, EnergyLedger};
 use super::integrators::Integrator;
 use super::snapshot::{energy, Energy, Snapshot};
 use super::state::State;
@@ -81,6 +82,8 @@ pub struct Checkpoint {
     loads: Loads,
     contacts: Vec<Contact>,
     guard: EnergyGuard,
+    /// Drag work and contact energy booked since t = 0 (see `energy_ledger`).
+    ledger: EnergyLedger,
 }
 
 /// A body in a scene, stepped through the loop.
@@ -115,6 +118,7 @@ impl World {
         let kinematics = derive(&body, &initial);
         let loads = integrator.loads(&body, &effects, &kinematics);
         let guard = EnergyGuard::new(&body, &effects, &initial);
+        let ledger = EnergyLedger::new(energy(&body, &effects, &initial).total);
         World {
             body,
             effects,
@@ -132,6 +136,7 @@ impl World {
                 loads,
                 contacts: Vec::new(),
                 guard,
+                ledger,
             },
         }
     }
@@ -187,6 +192,16 @@ impl World {
         if !self.obstacles.is_empty() {
             now.before = now.state;
         }
+        // Energy ledger: the drag power at the start of the step (see `energy_ledger`).
+        let drag = self.effects.depends_on_velocity();
+        let drag_start = drag.then(|| {
+            drag_power(
+                &self.body,
+                &self.effects,
+                &now.kinematics,
+                &now.state.angular_momentum,
+            )
+        });
         self.integrator.advance(
             &self.body,
             &self.effects,
@@ -196,7 +211,18 @@ impl World {
             self.dt,
         );
         now.step += 1;
+        // Energy ledger: the drag work of this step, from its start and end states.
+        if let Some(start) = drag_start {
+            let end = drag_power(
+                &self.body,
+                &self.effects,
+                &derive(&self.body, &now.state),
+                &now.state.angular_momentum,
+            );
+            now.ledger.book_drag(&start, &end, self.dt);
+        }
         now.guard.observe(
+            &now.ledger,
             self.effects
                 .potential_energy(&self.body, &now.state.position),
         );
@@ -226,8 +252,10 @@ impl World {
                     before: energy(&self.body, &self.effects, &state_before),
                     after: energy(&self.body, &self.effects, &now.state),
                 });
-                now.guard
-                    .after_collision(change.before.total, &change.after);
+                // Energy ledger: what the response took or gave.
+                now.ledger
+                    .book_contact(change.before.total, change.after.total);
+                now.guard.after_collision(&change.after);
             }
         }
     }
@@ -358,7 +386,7 @@ impl World {
         let turn_per_step = derive(&self.body, &self.now.state).angular_velocity.norm() * self.dt;
         self.now
             .guard
-            .check(&self.now.state, &energy, turn_per_step)
+            .check(&self.now.state, &energy, &self.now.ledger, turn_per_step)
             .map(|quantity| Divergence {
                 step: self.now.step,
                 time: self.time(),
@@ -366,6 +394,22 @@ impl World {
                 integrator: self.integrator,
                 dt: self.dt,
             })
+    }
+
+    /// Drag work and contact energy booked since t = 0.
+    pub fn energy_ledger(&self) -> &EnergyLedger {
+        &self.now.ledger
+    }
+
+    /// The change of energy since t = 0 split into drag work, contacts and the remainder, the
+    /// numerical drift.
+    pub fn energy_balance(&self) -> EnergyBalance {
+        self.now.ledger.balance(
+            &self.energy_of(&self.initial),
+            &self.energy_of(&self.now.state),
+            self.effects.depends_on_velocity(),
+            !self.obstacles.is_empty(),
+        )
     }
 
     /// Every quantity a user is shown, after the last phase.
