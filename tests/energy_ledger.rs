@@ -160,6 +160,11 @@ fn a_lossy_bounce_books_the_measured_loss_as_contacts_and_leaves_no_drift() {
     }
     let b = world.energy_balance();
     let contacts = b.contacts.expect("obstacles declared");
+    assert_eq!(
+        world.energy_ledger().contact_gain,
+        0.0,
+        "impulse never adds energy here"
+    );
     assert!(
         (contacts - measured).abs() < 1e-12,
         "ledger {contacts} J, measured {measured} J"

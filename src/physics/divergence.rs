@@ -1,17 +1,20 @@
 //! The divergence guard: a state that is no longer finite, or energy that grew far beyond
 //! anything the scene can supply.
 //!
-//! Gravity is conservative; drag and contacts move energy in or out, and the energy ledger
-//! ([`super::energy_ledger`]) books both. So the energy an exact integrator would show is the
-//! ledger's `E_accounted = E₀ + W_drag + ΔE_contacts`, and whatever the total energy E has
-//! beyond it is the integrator's own creation — the ledger's drift. The guard compares that
-//! with the largest kinetic energy the scene's own physics could have given the body so far —
-//! the energy an exact integrator would show as kinetic at the position the body has reached:
+//! Gravity is conservative and drag only dissipates, so the total energy E of a scene can only
+//! grow by what a collision response gives (the `seed` response's push-out and
+//! force-as-impulse). The energy ledger ([`super::energy_ledger`]) books that, `E_supplied =
+//! E₀ + Σ max(0, ΔE_collide)`; the guard adds the largest kinetic energy the scene's own
+//! physics could have given the body so far — the energy an exact integrator would show as
+//! kinetic at the position the body has reached:
 //!
 //! ```text
-//! K_scale(t)   = max( M|g|·radius,  max_{s ≤ t} (E_accounted(s) − V(x(s))),  K after a collide )
-//! runaway  ⇔  drift(t) = E(t) − E_accounted(t) > K_scale(t)
+//! K_scale(t)   = max( M|g|·radius,  max_{s ≤ t} (E_supplied(s) − V(x(s))),  K after a collide )
+//! runaway  ⇔  E(t) − E_supplied(t) > K_scale(t)
 //! ```
+//!
+//! (Losses are not subtracted: energy an integrator creates and a contact or drag takes again
+//! is the ledger's drift, shown in the energy panel, but the body does not hold it.)
 //!
 //! That is: the integrator alone has created more energy than the most kinetic energy the body
 //! has legitimately had — a relative energy error above 100 %. No correct run comes near it
@@ -23,8 +26,8 @@
 //! way it was started. (`euler-seed`'s matrix grows without bound instead, and E with it.)
 //! `M|g|·radius` — lifting the body by its own size — is the floor for a body started at rest.
 //!
-//! Energy cannot see a `seed` collision that keeps injecting spin (the ledger books every
-//! injection as the contacts' doing), so the guard also watches the rotation per step:
+//! Energy cannot see a `seed` collision that keeps injecting spin (its budget grows with every
+//! injection), so the guard also watches the rotation per step:
 //!
 //! ```text
 //! unresolved  ⇔  |ω|·dt > π
@@ -92,10 +95,10 @@ impl EnergyGuard {
         }
     }
 
-    /// Accounts for the position reached: an exact integrator would show `E_accounted − V(x)`
-    /// as kinetic energy there, so errors are measured against at least that much.
+    /// Accounts for the position reached: an exact integrator would show at most
+    /// `E_supplied − V(x)` as kinetic energy there, so errors are measured against that much.
     pub fn observe(&mut self, ledger: &EnergyLedger, potential: f64) {
-        let kinetic = ledger.accounted() - potential;
+        let kinetic = ledger.supplied() - potential;
         if kinetic > self.reference {
             self.reference = kinetic;
         }
@@ -137,14 +140,14 @@ impl EnergyGuard {
                  more than half a turn (π)"
             ));
         }
-        let accounted = ledger.accounted();
-        let excess = energy.total - accounted;
+        let supplied = ledger.supplied();
+        let excess = energy.total - supplied;
         if excess > self.reference {
             return Some(format!(
-                "energy ran away: E = {:.4e} J against {:.4e} J accounted for (E₀, drag, \
-                 contacts); the integrator created {:.4e} J, more than the largest kinetic \
-                 energy the scene supplied ({:.4e} J)",
-                energy.total, accounted, excess, self.reference
+                "energy ran away: E = {:.4e} J against a budget of {:.4e} J; the integrator \
+                 created {:.4e} J, more than the largest kinetic energy the scene supplied \
+                 ({:.4e} J)",
+                energy.total, supplied, excess, self.reference
             ));
         }
         None

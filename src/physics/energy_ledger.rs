@@ -32,9 +32,13 @@
 //! E(t) = ½ M v₀² e^{−2kt/M} + ½ I ω₀² e^{−2 k_a t/I}        (the drag work is E(t) − E₀)
 //! ```
 //!
-//! The divergence guard ([`super::divergence`]) measures the energy the integrator created
-//! against [`EnergyLedger::accounted`], `E₀ + W_drag + ΔE_contacts`, and the study measures
-//! its energy drift as the ledger's drift: one bookkeeping everywhere.
+//! Contacts are booked as what they gave and what they took, separately: the divergence guard
+//! ([`super::divergence`]) asks whether the body holds more energy than the scene ever
+//! supplied, [`EnergyLedger::supplied`] = `E₀ + Σ max(0, ΔE_collide)`. Energy an integrator
+//! creates and a contact then takes again (explicit Euler on a body at rest creates
+//! `½ M g² dt²` per step, which the contact absorbs) is drift, and shown as such, but not a
+//! runaway. The study measures its energy drift as the ledger's drift: one bookkeeping
+//! everywhere.
 
 use super::body::Body;
 use super::derive::Kinematics;
@@ -49,8 +53,10 @@ pub struct EnergyLedger {
     pub initial: f64,
     /// W_drag: work done by drag since t = 0 (≤ 0), J.
     pub drag_work: f64,
-    /// ΔE_contacts: sum of the energy changes of every collide phase (< 0: energy taken), J.
-    pub contacts: f64,
+    /// Energy the collide phases gave: Σ max(0, ΔE_collide) ≥ 0, J.
+    pub contact_gain: f64,
+    /// Energy the collide phases took: Σ min(0, ΔE_collide) ≤ 0, J.
+    pub contact_loss: f64,
 }
 
 /// The change of energy since t = 0, split by cause.
@@ -110,7 +116,8 @@ impl EnergyLedger {
         EnergyLedger {
             initial,
             drag_work: 0.0,
-            contacts: 0.0,
+            contact_gain: 0.0,
+            contact_loss: 0.0,
         }
     }
 
@@ -123,13 +130,28 @@ impl EnergyLedger {
 
     /// Books the energy change of one collide phase.
     pub fn book_contact(&mut self, total_before: f64, total_after: f64) {
-        self.contacts += total_after - total_before;
+        let change = total_after - total_before;
+        if change > 0.0 {
+            self.contact_gain += change;
+        } else {
+            self.contact_loss += change;
+        }
     }
 
-    /// `E₀ + W_drag + ΔE_contacts`: the energy the world should have if the integrator were
+    /// ΔE_contacts: the net energy change of every collide phase so far (< 0: taken), J.
+    pub fn contacts(&self) -> f64 {
+        self.contact_gain + self.contact_loss
+    }
+
+    /// `E₀ + W_drag + ΔE_contacts`: the energy the world would have if the integrator were
     /// exact, J.
     pub fn accounted(&self) -> f64 {
-        self.initial + self.drag_work + self.contacts
+        self.initial + self.drag_work + self.contacts()
+    }
+
+    /// `E₀ + Σ max(0, ΔE_collide)`: the most energy the scene has supplied (drag only takes), J.
+    pub fn supplied(&self) -> f64 {
+        self.initial + self.contact_gain
     }
 
     /// The split of `E − E₀`. `initial` and `now` are the energies at t = 0 and now; `has_drag`
@@ -148,7 +170,7 @@ impl EnergyLedger {
         EnergyBalance {
             change,
             drag_work: has_drag.then_some(self.drag_work),
-            contacts: has_contacts.then_some(self.contacts),
+            contacts: has_contacts.then_some(self.contacts()),
             springs: None,
             drift,
             relative_drift: if scale > 0.0 { drift / scale } else { 0.0 },
