@@ -184,9 +184,14 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     // E − E₀ split by cause (the energy ledger); only the unbooked remainder is drift.
     let b = &s.energy_balance;
     let mut energy_rows = vec![
-        scalar_row("kinetic", s.energy.kinetic, "J"),
-        scalar_row("potential", s.energy.potential, "J"),
-        scalar_row("total", s.energy.total, "J"),
+        Row {
+            label: "K, V, E".to_string(),
+            cells: [s.energy.kinetic, s.energy.potential, s.energy.total]
+                .iter()
+                .map(|x| number(*x))
+                .collect(),
+            unit: "J",
+        },
         scalar_row("E − E₀", b.change, "J"),
     ];
     for (label, value) in [

@@ -4,11 +4,13 @@
 //! Every error is one line naming file:line:column, what was expected and what was found.
 //! A missing effect key means the effect is absent; missing initial conditions mean rest.
 
+pub mod edit;
 mod error;
 mod mesh;
 mod messages;
 mod raw;
 
+pub use edit::SceneEdits;
 pub use error::{did_you_mean, LoadError};
 
 use crate::physics::{
