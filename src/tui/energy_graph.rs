@@ -72,7 +72,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
         .render(top, buf);
     Chart::new(vec![dataset("drift".into(), &drift, Color::Red)])
-        .block(Block::bordered().title(" drift: total − total at t = 0, J "))
+        .block(Block::bordered().title(" drift: E − E₀ − drag work − contacts, J "))
         .x_axis(axis("t, s", series.time_axis))
         .y_axis(axis("J", series.drift_axis))
         .legend_position(None)

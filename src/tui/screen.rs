@@ -3,7 +3,8 @@
 
 use super::app::{App, Overlay, View};
 use super::{
-    divergence_dialog, energy_view, header, help, loop_view, picker, status_bar, study_view,
+    divergence_dialog, energy_view, header, help, jump_prompt, loop_view, picker, settings_view,
+    status_bar, study_view,
 };
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -41,6 +42,8 @@ impl Widget for &App {
             Overlay::None => {}
             Overlay::Help => help::render(area, buf),
             Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
+            Overlay::Settings(form) => settings_view::render(form, area, buf),
+            Overlay::Jump { text } => jump_prompt::render(text, self.snapshot.time, area, buf),
         }
     }
 }
