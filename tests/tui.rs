@@ -604,7 +604,9 @@ fn a_run_pauses_at_each_page_and_at_the_duration_and_enter_continues() {
     assert_eq!(app.snapshot.step, 50);
     let notice = app.notice.clone().unwrap();
     assert!(notice.contains("page 2/2 “Halfway”"), "{notice}");
-    assert!(screen(&app, 120, 40).contains("Half a second has passed."));
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("Half a second has passed."), "{shown}");
+    assert!(shown.contains("❚❚ page 2/2"), "{shown}");
     press(&mut app, KeyCode::Enter);
     assert!(app.running, "Enter continues");
     app.step_frames(500);

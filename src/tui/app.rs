@@ -128,6 +128,8 @@ pub struct App {
     pub divergence: Option<Divergence>,
     /// A one-line notice (e.g. "no earlier frame kept").
     pub notice: Option<String>,
+    /// Where the run paused by itself (a page, the scene's end), until the next key.
+    pub stop: Option<timeline::Stop>,
     pub lesson_scroll: u16,
     /// The lesson page shown (the scroll starts over when it changes).
     pub page: Option<usize>,
@@ -171,6 +173,7 @@ impl App {
             trail: true,
             divergence: None,
             notice: None,
+            stop: None,
             lesson_scroll: 0,
             page: None,
             ascii: options.ascii,
@@ -227,6 +230,7 @@ impl App {
     /// Applies a message; returns what the outside world must do, if anything (see [`Effect`]).
     pub fn update(&mut self, message: Message) -> Option<Effect> {
         self.notice = None;
+        self.stop = None;
         if self.overlay == Overlay::Help && matches!(message, Message::ToggleHelp | Message::Back) {
             // `?` and Esc close the help.
             self.overlay = Overlay::None;
@@ -611,9 +615,10 @@ impl App {
             if self.running {
                 let stop =
                     timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
-                if let Some(why) = stop {
+                if let Some(stop) = stop {
                     self.running = false;
-                    self.notice = Some(why);
+                    self.notice = Some(stop.notice.clone());
+                    self.stop = Some(stop);
                     break;
                 }
             }

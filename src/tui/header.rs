@@ -11,6 +11,11 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let real = fps * app.snapshot.dt;
     let state = if app.divergence.is_some() {
         Span::styled(" ✖ diverged ", Style::new().fg(Color::White).bg(Color::Red))
+    } else if let (false, Some(stop)) = (app.running, &app.stop) {
+        Span::styled(
+            format!(" ❚❚ {} ", stop.label),
+            Style::new().fg(Color::Black).bg(Color::Yellow),
+        )
     } else if app.running {
         Span::styled(
             " ▶ running ",

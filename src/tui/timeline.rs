@@ -10,17 +10,29 @@ pub fn step_at(t: f64, dt: f64) -> u64 {
     (t / dt - 1e-9).ceil().max(0.0) as u64
 }
 
-/// Why a run pauses after reaching `step` (None: it runs on). The text says what continues.
-pub fn stop_at(lesson: &Lesson, dt: f64, step: u64) -> Option<String> {
+/// Where a run paused by itself.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stop {
+    /// A few words for the header, e.g. `end of scene`, `page 2/3`.
+    pub label: String,
+    /// The status line's notice: where, and what continues.
+    pub notice: String,
+}
+
+/// Why a run pauses after reaching `step` (None: it runs on).
+pub fn stop_at(lesson: &Lesson, dt: f64, step: u64) -> Option<Stop> {
     if step == 0 {
         return None;
     }
     if let Some(duration) = lesson.scene.duration {
         if step == step_at(duration, dt) {
-            return Some(format!(
-                "end of the scene (t = {} s): Enter runs on, r restarts",
-                tidy(duration)
-            ));
+            return Some(Stop {
+                label: "end of scene".into(),
+                notice: format!(
+                    "end of the scene (t = {} s): Enter runs on, r restarts",
+                    tidy(duration)
+                ),
+            });
         }
     }
     let count = lesson.pages.len();
@@ -29,13 +41,14 @@ pub fn stop_at(lesson: &Lesson, dt: f64, step: u64) -> Option<String> {
         .iter()
         .enumerate()
         .find(|(_, page)| page.at > 0.0 && step == step_at(page.at, dt))
-        .map(|(i, page)| {
-            format!(
+        .map(|(i, page)| Stop {
+            label: format!("page {}/{count}", i + 1),
+            notice: format!(
                 "page {}/{count} “{}” (t = {} s): Enter continues",
                 i + 1,
                 page.title,
                 tidy(page.at)
-            )
+            ),
         })
 }
 
