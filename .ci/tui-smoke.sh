@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Real-terminal smoke test of the terminal app: start the release binary in a 120×40 tmux pane,
-# press keys, check that the panels and changing numbers appear, quit with q, and check the
+# press keys, check that the panels and changing numbers appear, that Esc closes the graph and
+# the settings form without quitting, that the form applies a change, quit with q, and check the
 # process exited 0 and left the terminal in cooked mode on the main screen.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -45,12 +46,9 @@ tmux send-keys -t "$session" Right
 wait_for "step 1 "
 before="$(screen)"
 
-# Run for a second: time and numbers change.
+# Run: the run pauses by itself at the next page of the lesson; time and numbers change.
 tmux send-keys -t "$session" Space
-wait_for "running"
-sleep 1
-tmux send-keys -t "$session" Space
-wait_for "paused"
+wait_for "paused: page"
 after="$(screen)"
 t_before="$(grep -o 't [0-9.]* s' <<<"$before" | head -1)"
 t_after="$(grep -o 't [0-9.]* s' <<<"$after" | head -1)"
@@ -68,6 +66,29 @@ tmux send-keys -t "$session" v
 wait_for "side z–y"
 tmux send-keys -t "$session" i
 wait_for "integrator rk4"
+
+# Esc closes the graph and never quits.
+tmux send-keys -t "$session" g
+wait_for "energy, J"
+tmux send-keys -t "$session" Escape
+wait_for "inertia tensor"
+screen | grep -qF "energy, J" && fail "Esc did not close the energy graph"
+tmux send-keys -t "$session" Escape
+wait_for "nothing to close: q quits"
+[[ -s "$work/exit" ]] && fail "Esc quit the app"
+
+# The settings form: change the third field, apply (the scene restarts), then Esc closes a reopened form.
+tmux send-keys -t "$session" e
+wait_for "settings — Esc closes"
+for _ in 1 2; do tmux send-keys -t "$session" Down; done
+tmux send-keys -t "$session" 3 Enter
+wait_for "settings applied ("
+wait_for "step 0 "
+tmux send-keys -t "$session" e
+wait_for "settings — Esc closes"
+tmux send-keys -t "$session" Escape
+wait_for "settings closed: nothing applied"
+[[ -s "$work/exit" ]] && fail "Esc quit the app from the form"
 
 # Quit: exit code 0, cooked mode, main screen back.
 tmux send-keys -t "$session" q

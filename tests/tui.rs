@@ -606,7 +606,7 @@ fn a_run_pauses_at_each_page_and_at_the_duration_and_enter_continues() {
     assert!(notice.contains("page 2/2 “Halfway”"), "{notice}");
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("Half a second has passed."), "{shown}");
-    assert!(shown.contains("❚❚ page 2/2"), "{shown}");
+    assert!(shown.contains("❚❚ paused: page 2/2"), "{shown}");
     press(&mut app, KeyCode::Enter);
     assert!(app.running, "Enter continues");
     app.step_frames(500);

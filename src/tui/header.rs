@@ -13,7 +13,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         Span::styled(" ✖ diverged ", Style::new().fg(Color::White).bg(Color::Red))
     } else if let (false, Some(stop)) = (app.running, &app.stop) {
         Span::styled(
-            format!(" ❚❚ {} ", stop.label),
+            format!(" ❚❚ paused: {} ", stop.label),
             Style::new().fg(Color::Black).bg(Color::Yellow),
         )
     } else if app.running {

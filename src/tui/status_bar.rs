@@ -64,14 +64,23 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
             Style::new().add_modifier(Modifier::BOLD),
         ));
     }
-    if let Some(notice) = &app.notice {
-        spans.push(Span::styled(" · ", DIM));
-        spans.push(Span::styled(notice.clone(), Style::new().fg(Color::Yellow)));
-    }
     buf.set_line(area.x, area.y, &Line::from(spans), area.width);
-    let rows = usize::from(area.height.saturating_sub(1));
-    for (i, line) in hints(area.width, rows).iter().enumerate() {
-        buf.set_line(area.x, area.y + 1 + i as u16, line, area.width);
+    // A notice (a pause, an applied setting, a file written) takes the first hint line, so it
+    // is never cut off the end of a long status line; the hints come back at the next key.
+    let mut y = area.y + 1;
+    if let Some(notice) = &app.notice {
+        if y < area.y + area.height {
+            let line = Line::from(vec![
+                Span::raw(" "),
+                Span::styled(notice.clone(), Style::new().fg(Color::Yellow)),
+            ]);
+            buf.set_line(area.x, y, &line, area.width);
+            y += 1;
+        }
+    }
+    let rows = usize::from(area.y + area.height - y);
+    for (i, line) in hints(area.width, rows).iter().take(rows).enumerate() {
+        buf.set_line(area.x, y + i as u16, line, area.width);
     }
 }
 
