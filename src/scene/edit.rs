@@ -238,7 +238,7 @@ text = """Two
 lines."""
 "#;
 
-    fn edits(scene: &Scene) -> SceneEdits {
+    fn edits() -> SceneEdits {
         SceneEdits {
             dt: 0.005,
             restitution: Some(0.8),
@@ -246,7 +246,6 @@ lines."""
             mass: 3.0,
             velocity: Vector3::new(1.0, 2.0, 0.0),
             angular_velocity: Vector3::new(0.5, 0.0, -1.0),
-            ..SceneEdits::of(scene)
         }
     }
 
@@ -254,7 +253,7 @@ lines."""
     fn the_written_file_loads_as_the_scene_applied_in_memory() {
         let path = Path::new("drop.toml");
         let lesson = parse(SOURCE, path).unwrap();
-        let edits = edits(&lesson.scene);
+        let edits = edits();
         let text = edits.write_into(SOURCE, 0, None).unwrap();
         let written = parse(&text, path).unwrap_or_else(|e| panic!("{e}\n{text}"));
         let applied = edits.apply(&lesson.scene).unwrap();

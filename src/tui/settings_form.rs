@@ -198,16 +198,15 @@ impl SettingsForm {
         }
         note("mass", b.mass, edits.mass, "kg");
         note("dt", b.dt, edits.dt, "s");
-        const AXES: [&str; 3] = ["x", "y", "z"];
-        for i in 0..3 {
+        for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
             note(
-                &format!("v₀{}", AXES[i]),
+                &format!("v₀{axis}"),
                 b.velocity[i],
                 edits.velocity[i],
                 "m/s",
             );
             note(
-                &format!("ω₀{}", AXES[i]),
+                &format!("ω₀{axis}"),
                 b.angular_velocity[i],
                 edits.angular_velocity[i],
                 "rad/s",
