@@ -375,10 +375,7 @@ fn energy_graph_replaces_the_projection() {
     assert_eq!(app.view, View::Energy);
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("energy, J"), "{shown}");
-    assert!(
-        shown.contains("drift: E − E₀ − drag work − contacts"),
-        "{shown}"
-    );
+    assert!(shown.contains("drift (E − E₀ not booked), J"), "{shown}");
     // The time axis ends at the scene's duration, 2 s, and does not move while running.
     let axis = app.series.time_axis;
     keys(&mut app, ">>>>>");
