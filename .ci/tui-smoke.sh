@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Real-terminal smoke test of the terminal app: start the release binary in a 120×40 tmux pane,
-# press keys, check that the panels and changing numbers appear, export an SVG (x), quit with q,
-# and check the process exited 0 and left the terminal in cooked mode on the main screen.
+# press keys, check that the panels and changing numbers appear, export an SVG (x), that Esc
+# closes the graph and the settings form without quitting, that the form applies a change, quit
+# with q, and check the process exited 0 and left the terminal in cooked mode on the main screen.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v tmux >/dev/null || { echo "tui-smoke: tmux is required" >&2; exit 1; }
@@ -45,12 +46,9 @@ tmux send-keys -t "$session" Right
 wait_for "step 1 "
 before="$(screen)"
 
-# Run for a second: time and numbers change.
+# Run: the run pauses by itself at the next page of the lesson; time and numbers change.
 tmux send-keys -t "$session" Space
-wait_for "running"
-sleep 1
-tmux send-keys -t "$session" Space
-wait_for "paused"
+wait_for "paused: page"
 after="$(screen)"
 t_before="$(grep -o 't [0-9.]* s' <<<"$before" | head -1)"
 t_after="$(grep -o 't [0-9.]* s' <<<"$after" | head -1)"
@@ -75,6 +73,29 @@ wait_for "wrote tumble-"
 svg="$(ls "$work"/tumble-*.svg 2>/dev/null | head -1)"
 [[ -n "$svg" ]] || fail "x wrote no SVG in the current folder"
 grep -q "<svg" "$svg" && grep -qF "inertia tensor" "$svg" || fail "the SVG lacks the screen's text"
+
+# Esc closes the graph and never quits.
+tmux send-keys -t "$session" g
+wait_for "energy, J"
+tmux send-keys -t "$session" Escape
+wait_for "inertia tensor"
+screen | grep -qF "energy, J" && fail "Esc did not close the energy graph"
+tmux send-keys -t "$session" Escape
+wait_for "nothing to close: q quits"
+[[ -s "$work/exit" ]] && fail "Esc quit the app"
+
+# The settings form: change the third field, apply (the scene restarts), then Esc closes a reopened form.
+tmux send-keys -t "$session" e
+wait_for "settings — Esc closes"
+for _ in 1 2; do tmux send-keys -t "$session" Down; done
+tmux send-keys -t "$session" 3 Enter
+wait_for "settings applied ("
+wait_for "step 0 "
+tmux send-keys -t "$session" e
+wait_for "settings — Esc closes"
+tmux send-keys -t "$session" Escape
+wait_for "settings closed: nothing applied"
+[[ -s "$work/exit" ]] && fail "Esc quit the app from the form"
 
 # Quit: exit code 0, cooked mode, main screen back.
 tmux send-keys -t "$session" q

@@ -181,22 +181,33 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
             scalar_row("|L|", s.angular_momentum.norm(), "kg·m²/s"),
         ],
     };
-    let drift = s.energy.total - s.initial_energy.total;
-    let scale = s
-        .initial_energy
-        .total
-        .abs()
-        .max(s.initial_energy.kinetic.abs());
-    let relative = if scale > 0.0 { drift / scale } else { 0.0 };
+    // E − E₀ split by cause (the energy ledger); only the unbooked remainder is drift.
+    let b = &s.energy_balance;
+    let mut energy_rows = vec![
+        Row {
+            label: "K, V, E".to_string(),
+            cells: [s.energy.kinetic, s.energy.potential, s.energy.total]
+                .iter()
+                .map(|x| number(*x))
+                .collect(),
+            unit: "J",
+        },
+        scalar_row("E − E₀", b.change, "J"),
+    ];
+    for (label, value) in [
+        ("  drag work", b.drag_work),
+        ("  contacts", b.contacts),
+        ("  springs", b.springs),
+    ] {
+        if let Some(value) = value {
+            energy_rows.push(scalar_row(label, value, "J"));
+        }
+    }
+    energy_rows.push(scalar_row("  drift", b.drift, "J"));
+    energy_rows.push(scalar_row("drift/E₀", b.relative_drift, ""));
     let energy = Panel {
         title: "energy".to_string(),
-        rows: vec![
-            scalar_row("kinetic", s.energy.kinetic, "J"),
-            scalar_row("potential", s.energy.potential, "J"),
-            scalar_row("total", s.energy.total, "J"),
-            scalar_row("drift", drift, "J"),
-            scalar_row("drift/E₀", relative, ""),
-        ],
+        rows: energy_rows,
     };
     vec![
         state,

@@ -249,17 +249,33 @@ fn switching_integrator_keeps_time_and_state() {
 
 #[test]
 fn help_overlay_lists_every_bound_key() {
+    // The main screen's keys in the help; the picker's, the form's and the prompt's in their
+    // own windows.
     let mut app = app("tui-box.toml");
-    keys(&mut app, "?");
-    let shown = screen(&app, 120, 40);
+    let shown_in = |context: Context, app: &mut App| {
+        press(app, KeyCode::Esc);
+        let open = match context {
+            Context::Main => "?",
+            Context::Picker => "l",
+            Context::Form => "e",
+            Context::Prompt => "J",
+        };
+        keys(app, open);
+        screen(app, 120, 40)
+    };
     for b in KEYS {
+        let shown = shown_in(b.context, &mut app);
         assert!(
             shown.contains(b.label),
             "help lacks `{}`:\n{shown}",
             b.label
         );
-        assert!(shown.contains(b.help), "help lacks `{}`:\n{shown}", b.help);
+        let help = b.help.split_once(": ").map_or(b.help, |(_, rest)| rest);
+        assert!(shown.contains(help), "help lacks `{}`:\n{shown}", b.help);
     }
+    press(&mut app, KeyCode::Esc);
+    keys(&mut app, "?");
+    assert!(screen(&app, 120, 40).contains("help — ? or Esc closes"));
     keys(&mut app, "?");
     assert!(!screen(&app, 120, 40).contains("help — ? or Esc closes"));
 }
@@ -267,7 +283,7 @@ fn help_overlay_lists_every_bound_key() {
 #[test]
 fn status_bar_hints_come_from_the_key_table() {
     let app = app("tui-box.toml");
-    let shown = screen(&app, 160, 50);
+    let shown = screen(&app, 200, 60);
     for b in KEYS
         .iter()
         .filter(|b| b.context == Context::Main && !b.hint.is_empty())
@@ -362,7 +378,7 @@ fn energy_graph_replaces_the_projection() {
     assert_eq!(app.view, View::Energy);
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("energy, J"), "{shown}");
-    assert!(shown.contains("drift: total − total at t = 0"), "{shown}");
+    assert!(shown.contains("drift (E − E₀ not booked), J"), "{shown}");
     // The time axis ends at the scene's duration, 2 s, and does not move while running.
     let axis = app.series.time_axis;
     keys(&mut app, ">>>>>");
@@ -400,12 +416,14 @@ fn a_diverging_run_pauses_with_a_dialog_and_the_app_keeps_going() {
 
 #[test]
 fn quit_keys_and_key_releases() {
-    for code in [KeyCode::Char('q'), KeyCode::Esc] {
-        let mut app = app("tui-box.toml");
-        press(&mut app, code);
-        assert!(app.quit);
-    }
     let mut app = app("tui-box.toml");
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit);
+    let mut app = self::app("tui-box.toml");
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit, "Esc never quits");
+    assert_eq!(app.notice.as_deref(), Some("nothing to close: q quits"));
+    let mut app = self::app("tui-box.toml");
     app.handle_key(&KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
     assert!(app.quit, "Ctrl-C quits");
     let mut app = self::app("tui-box.toml");
@@ -533,4 +551,228 @@ fn the_first_screen_explains_the_loop_before_anything_runs() {
     assert!(shown.contains("t = 0, nothing has run yet"), "{shown}");
     assert!(shown.contains("Press n to run one phase"), "{shown}");
     insta::assert_snapshot!("screen_start_120x40", shown);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Esc, pauses, jumps and the settings form (issue 13)
+
+use tumble::tui::keys::Message;
+use tumble::tui::{Effect, Overlay};
+
+#[test]
+fn esc_closes_what_is_open_innermost_first_and_never_quits() {
+    let mut app = app("tui-box.toml");
+    // The help over the graph: Esc closes the help, then the graph, then nothing.
+    keys(&mut app, "g?");
+    assert_eq!(app.overlay, Overlay::Help);
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.overlay, Overlay::None);
+    assert_eq!(app.view, View::Energy);
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.view, View::Loop);
+    // The study view (set directly: `s` would start the background study).
+    app.view = View::Study;
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.view, View::Loop);
+    // The picker, the form, the jump prompt.
+    for open in ["l", "e", "J"] {
+        keys(&mut app, open);
+        assert_ne!(app.overlay, Overlay::None, "`{open}` opens a window");
+        press(&mut app, KeyCode::Esc);
+        assert_eq!(
+            app.overlay,
+            Overlay::None,
+            "Esc closes what `{open}` opened"
+        );
+    }
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit);
+    insta::assert_snapshot!("screen_after_esc_120x40", screen(&app, 120, 40));
+    // q quits from any window.
+    keys(&mut app, "e");
+    keys(&mut app, "q");
+    assert!(app.quit, "q quits from the form");
+}
+
+#[test]
+fn a_run_pauses_at_each_page_and_at_the_duration_and_enter_continues() {
+    // dt = 0.01: the page at 0.5 s is step 50, the duration 1 s step 100.
+    let mut app = app("tui-pages.toml");
+    keys(&mut app, " ");
+    app.step_frames(500); // what the event loop does while running
+    assert!(!app.running);
+    assert_eq!(app.snapshot.step, 50);
+    let notice = app.notice.clone().unwrap();
+    assert!(notice.contains("page 2/2 “Halfway”"), "{notice}");
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("Half a second has passed."), "{shown}");
+    assert!(shown.contains("❚❚ paused: page 2/2"), "{shown}");
+    press(&mut app, KeyCode::Enter);
+    assert!(app.running, "Enter continues");
+    app.step_frames(500);
+    assert_eq!(app.snapshot.step, 100);
+    assert!(!app.running);
+    insta::assert_snapshot!("screen_end_of_scene_120x40", screen(&app, 120, 40));
+    // Past the end it runs on when asked.
+    keys(&mut app, " ");
+    app.step_frames(10);
+    assert_eq!(app.snapshot.step, 110);
+    assert!(app.running);
+}
+
+#[test]
+fn j_jumps_forward_and_back_to_a_typed_time() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, "nJ1.25");
+    assert_eq!(
+        app.overlay,
+        Overlay::Jump {
+            text: "1.25".into()
+        }
+    );
+    insta::assert_snapshot!("screen_jump_prompt_80x24", screen(&app, 80, 24));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.snapshot.step, 125, "t = 1.25 s at dt = 0.01 s");
+    assert_eq!(
+        app.notice.as_deref(),
+        Some("jumped to t = 1.25 s (step 125)")
+    );
+    // Back to 0.3 s: replayed from t = 0, bit for bit the state 30 plain frames reach.
+    keys(&mut app, "J0.3");
+    press(&mut app, KeyCode::Enter);
+    let mut plain = self::app("tui-box.toml");
+    plain.step_frames(30);
+    assert_eq!(app.snapshot.step, 30);
+    assert_eq!(app.world.checkpoint(), plain.world.checkpoint());
+    keys(&mut app, "J");
+    press(&mut app, KeyCode::Enter);
+    assert!(app.notice.unwrap().contains("is not a time"));
+}
+
+#[test]
+fn the_settings_form_changes_the_body_and_restarts_the_scene() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, ">>>v");
+    keys(&mut app, "e");
+    let Overlay::Settings(form) = &app.overlay else {
+        panic!("e opens the form");
+    };
+    assert_eq!(form.fields[0].text, "0.5", "restitution of the fixture");
+    // restitution → 0.8, then down to the mass → 3.
+    keys(&mut app, "0.8");
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    keys(&mut app, "3");
+    insta::assert_snapshot!("screen_settings_form_120x40", screen(&app, 120, 40));
+    insta::assert_snapshot!("screen_settings_form_80x24", screen(&app, 80, 24));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.overlay, Overlay::None);
+    assert_eq!(app.snapshot.step, 0, "restarted at t = 0");
+    assert_eq!(app.world.body().mass, 3.0);
+    assert_eq!(app.world.contact_model().unwrap().restitution, 0.8);
+    // The velocity was kept: P₀ = M' v₀ = 3 · (0.3, 1, 0).
+    let p = app.snapshot.linear_momentum;
+    assert!(
+        (p - nalgebra::Vector3::new(0.9, 3.0, 0.0)).norm() < 1e-12,
+        "{p}"
+    );
+    assert_eq!(
+        app.notice.as_deref(),
+        Some("settings applied (e 0.5 → 0.8, mass 2 → 3 kg): the scene restarted at t = 0")
+    );
+    assert_eq!(
+        app.axis,
+        tumble::tui::viewport::Axis::Side,
+        "the view axis is kept"
+    );
+}
+
+#[test]
+fn a_bad_value_stays_in_the_form_with_the_reason() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, "e2");
+    press(&mut app, KeyCode::Enter);
+    let Overlay::Settings(form) = &app.overlay else {
+        panic!("the form stays open");
+    };
+    assert_eq!(
+        form.error.as_deref(),
+        Some("restitution must be between 0 and 1, found 2")
+    );
+    assert!(screen(&app, 120, 40).contains("✖ restitution must be between 0 and 1"));
+    assert_eq!(app.world.contact_model().unwrap().restitution, 0.5);
+}
+
+#[test]
+fn w_asks_for_a_write_and_the_written_scene_loads() {
+    let dir = std::env::temp_dir().join(format!("tumble-tui-write-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut app = app("tui-box.toml");
+    app.write_dir = dir.clone();
+    keys(&mut app, "e");
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    keys(&mut app, "3");
+    // `update` only asks; nothing is written until the effect is performed.
+    let effect = app.update(Message::WriteScene).expect("W asks for a write");
+    let Effect::WriteScene { edits, to } = &effect;
+    assert_eq!(edits.mass, 3.0);
+    assert_eq!(*to, dir.join("tui-box-edited.toml"));
+    assert!(!to.exists());
+    app.perform(effect.clone());
+    assert_eq!(
+        app.notice,
+        Some(format!("wrote {} (tumble check accepts it)", to.display()))
+    );
+    let written = tumble::scene::load(to).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(written.scene.first().body.mass, 3.0);
+    assert_eq!(written.title, "Fixture: a tossed box");
+    let text = std::fs::read_to_string(to).unwrap();
+    assert!(
+        text.starts_with("# Fixture for tests/tui.rs"),
+        "comments kept:\n{text}"
+    );
+    // `tumble check` accepts it.
+    assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("check")
+        .arg(to)
+        .assert()
+        .code(0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_compare_label_names_what_differs() {
+    let mut app = App::new(
+        fixture("tui-box.toml"),
+        Options {
+            ascii: true,
+            compare: Some(Comparison::Response(tumble::physics::Response::Seed)),
+            show_timing: false,
+        },
+    );
+    let shown = screen(&app, 160, 50);
+    assert!(shown.contains("integrator rk4 ·"), "{shown}");
+    assert!(shown.contains("response impulse vs seed"), "{shown}");
+    app.start_compare(Comparison::Integrator(Integrator::Euler));
+    let shown = screen(&app, 160, 50);
+    assert!(shown.contains("integrator rk4 vs euler"), "{shown}");
+    assert!(shown.contains("response impulse ·"), "{shown}");
+}
+
+#[test]
+fn another_lesson_keeps_the_speed_relative_to_real_time() {
+    let mut app = app("tui-box.toml");
+    keys(&mut app, "++f");
+    let ratio = app.frames_per_second() * app.world.dt();
+    keys(&mut app, "l");
+    press(&mut app, KeyCode::Enter);
+    let after = app.frames_per_second() * app.world.dt();
+    // SPEEDS steps by ×2 or ×2.5, so the nearest is within a factor 1.6.
+    assert!(
+        after / ratio < 1.6 && ratio / after < 1.6,
+        "×{ratio} real time before, ×{after} after"
+    );
+    assert_eq!(app.frame, tumble::tables::Frame::Body, "the frame is kept");
 }

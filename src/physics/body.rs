@@ -145,6 +145,21 @@ impl Body {
         })
     }
 
+    /// The same body with total mass `mass`: every point mass (or the uniform solid's density)
+    /// scaled by `mass / M`, so the points and the barycenter stay where they are and the
+    /// inertia tensor scales by the same ratio, `I_body' = (mass / M) I_body`.
+    pub fn with_mass(&self, mass: f64) -> Result<Body, BodyError> {
+        check_mass(mass)?;
+        Body::assemble(
+            mass,
+            self.points_body.clone(),
+            self.barycenter,
+            self.edges.clone(),
+            self.inertia_body * (mass / self.mass),
+            self.shape.clone(),
+        )
+    }
+
     /// Finishes a body from its mass, points about the barycenter and inertia tensor.
     fn assemble(
         mass: f64,

@@ -1,17 +1,20 @@
 //! The divergence guard: a state that is no longer finite, or energy that grew far beyond
 //! anything the scene can supply.
 //!
-//! Gravity is conservative and drag and the `impulse` response only dissipate, so the total
-//! energy E of a scene can only grow by what a `seed` collision injects (its push-out and its
-//! force-as-impulse). The guard keeps that budget, and the largest kinetic energy the scene's own
+//! Gravity is conservative and drag only dissipates, so the total energy E of a scene can only
+//! grow by what a collision response gives (the `seed` response's push-out and
+//! force-as-impulse). The energy ledger ([`super::energy_ledger`]) books that, `E_supplied =
+//! E₀ + Σ max(0, ΔE_collide)`; the guard adds the largest kinetic energy the scene's own
 //! physics could have given the body so far — the energy an exact integrator would show as
 //! kinetic at the position the body has reached:
 //!
 //! ```text
-//! E_allowed(t) = E₀ + Σ max(0, ΔE_collide)                 budget
-//! K_scale(t)   = max( M|g|·radius,  max_{s ≤ t} (E_allowed(s) − V(x(s))) )
-//! runaway  ⇔  E(t) − E_allowed(t) > K_scale(t)
+//! K_scale(t)   = max( M|g|·radius,  max_{s ≤ t} (E_supplied(s) − V(x(s))),  K after a collide )
+//! runaway  ⇔  E(t) − E_supplied(t) > K_scale(t)
 //! ```
+//!
+//! (Losses are not subtracted: energy an integrator creates and a contact or drag takes again
+//! is the ledger's drift, shown in the energy panel, but the body does not hold it.)
 //!
 //! That is: the integrator alone has created more energy than the most kinetic energy the body
 //! has legitimately had — a relative energy error above 100 %. No correct run comes near it
@@ -33,6 +36,7 @@
 //! Past half a turn per step no integrator can tell the motion from a slower turn the other way
 //! (aliasing): the time step no longer resolves the rotation, whatever produced it.
 use super::energy::Energy;
+use super::energy_ledger::EnergyLedger;
 use super::integrators::Integrator;
 use super::state::State;
 use std::fmt;
@@ -69,44 +73,46 @@ impl fmt::Display for Divergence {
     }
 }
 
-/// The energy budget of a world.
+/// The kinetic-energy scale a world's drift is measured against (the energy budget itself is
+/// the ledger's).
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnergyGuard {
-    /// E_allowed: E₀ plus what collisions injected, J.
-    allowed: f64,
     /// K_scale: the largest kinetic energy the scene could have supplied so far, J.
     reference: f64,
 }
 
 impl EnergyGuard {
-    /// The budget at t = 0, from the scene's energy then and `weight`, the work that would
+    /// The scale at t = 0, from the scene's energy then and `weight`, the work that would
     /// lift every body by its own size (Σ M|g|·radius; 0 without gravity).
     pub fn new(energy: &Energy, weight: f64) -> EnergyGuard {
-        let Energy { kinetic, total, .. } = *energy;
+        let Energy { kinetic, .. } = *energy;
         EnergyGuard {
-            allowed: total,
             reference: kinetic.max(weight).max(f64::MIN_POSITIVE),
         }
     }
 
-    /// Accounts for the position reached: an exact integrator would show `E_allowed − V(x)` as
-    /// kinetic energy there, so errors are measured against at least that much.
-    pub fn observe(&mut self, potential: f64) {
-        let kinetic = self.allowed - potential;
+    /// Accounts for the position reached: an exact integrator would show at most
+    /// `E_supplied − V(x)` as kinetic energy there, so errors are measured against that much.
+    pub fn observe(&mut self, ledger: &EnergyLedger, potential: f64) {
+        let kinetic = ledger.supplied() - potential;
         if kinetic > self.reference {
             self.reference = kinetic;
         }
     }
 
-    /// Accounts for the energy a collision response changed.
-    pub fn after_collision(&mut self, total_before: f64, after: &Energy) {
-        self.allowed += (after.total - total_before).max(0.0);
+    /// Accounts for the kinetic energy a collision response left (the ledger books the change).
+    pub fn after_collision(&mut self, after: &Energy) {
         self.reference = self.reference.max(after.kinetic);
     }
 
     /// The diverged quantity, if any: `energy` is the scene's, `turn_per_step` the largest
     /// |ω|·dt of its bodies, rad (check each state with [`not_finite`] first).
-    pub fn check(&self, energy: &Energy, turn_per_step: f64) -> Option<String> {
+    pub fn check(
+        &self,
+        energy: &Energy,
+        ledger: &EnergyLedger,
+        turn_per_step: f64,
+    ) -> Option<String> {
         if !energy.total.is_finite() {
             return Some("energy is not finite".into());
         }
@@ -116,13 +122,14 @@ impl EnergyGuard {
                  more than half a turn (π)"
             ));
         }
-        let excess = energy.total - self.allowed;
+        let supplied = ledger.supplied();
+        let excess = energy.total - supplied;
         if excess > self.reference {
             return Some(format!(
                 "energy ran away: E = {:.4e} J against a budget of {:.4e} J; the integrator \
                  created {:.4e} J, more than the largest kinetic energy the scene supplied \
                  ({:.4e} J)",
-                energy.total, self.allowed, excess, self.reference
+                energy.total, supplied, excess, self.reference
             ));
         }
         None

@@ -16,6 +16,7 @@
 //! | `world` | the loop, phase by phase, over every body |
 //! | `snapshot` | every quantity a user is shown |
 //! | `divergence` | the guard against non-finite or runaway states |
+//! | `energy_ledger` | where the energy went: drag work, contacts, and the remainder (drift) |
 
 pub mod body;
 pub mod collision;
@@ -23,6 +24,7 @@ pub mod derive;
 pub mod divergence;
 pub mod effects;
 pub mod energy;
+pub mod energy_ledger;
 pub mod free_flow;
 pub mod free_top;
 pub mod integrators;
@@ -35,6 +37,7 @@ pub use collision::{Against, Contact, ContactModel, Feature, Obstacle, Response}
 pub use divergence::Divergence;
 pub use effects::{Effect, Effects};
 pub use energy::Energy;
+pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
 pub use snapshot::{BodyView, Snapshot, SystemTotals};
 pub use state::{Orientation, State};

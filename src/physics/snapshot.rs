@@ -8,6 +8,7 @@
 use super::collision::{Contact, Obstacle};
 use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
+use super::energy_ledger::EnergyBalance;
 use super::integrators::Integrator;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -49,6 +50,9 @@ pub struct Snapshot {
     /// Energy now and at t = 0.
     pub energy: Energy,
     pub initial_energy: Energy,
+    /// The whole scene's E − E₀ split into drag work, contacts and the numerical drift (the
+    /// energy ledger).
+    pub energy_balance: EnergyBalance,
     /// ‖RᵀR − 𝟙‖.
     pub orthonormality_error: f64,
     /// Vertex positions pᵢ = x + R r₀ᵢ, m.
@@ -165,6 +169,7 @@ impl Snapshot {
             torque: loads.torque,
             energy: energy(body, world.effects(), state),
             initial_energy: energy(body, world.effects(), &world.initial_states()[index]),
+            energy_balance: world.energy_balance(),
             orthonormality_error: state.orientation.orthonormality_error(),
             vertices,
             contacts: world.contacts().to_vec(),

@@ -16,6 +16,7 @@ use super::derive::{derive, Kinematics};
 use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effects, Loads};
 use super::energy::{energy, Energy};
+use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::Integrator;
 use super::snapshot::Snapshot;
 use super::state::State;
@@ -85,6 +86,8 @@ pub struct Checkpoint {
     loads: Vec<Loads>,
     contacts: Vec<Contact>,
     guard: EnergyGuard,
+    /// Drag work and contact energy booked since t = 0 (see `energy_ledger`).
+    ledger: EnergyLedger,
 }
 
 /// A body of a world, with its name and its state at t = 0.
@@ -221,6 +224,9 @@ impl World {
     /// collide phase).
     #[inline]
     fn integrate_phase(&mut self) {
+        // Energy ledger: the drag power at the start of the step (see `energy_ledger`).
+        let drag = self.effects.depends_on_velocity();
+        let drag_start = drag.then(|| self.drag_power());
         let can_touch = self.can_touch();
         let now = &mut self.now;
         if can_touch {
@@ -240,7 +246,28 @@ impl World {
             potential += self.effects.potential_energy(body, &state.position);
         }
         now.step += 1;
-        now.guard.observe(potential);
+        now.guard.observe(&now.ledger, potential);
+        // Energy ledger: the drag work of this step, from its start and end states.
+        if let Some(start) = drag_start {
+            let end = self.drag_power();
+            self.now.ledger.book_drag(&start, &end, self.dt);
+        }
+    }
+
+    /// The drag power of every body together, at the current states.
+    fn drag_power(&self) -> DragPower {
+        let mut sum = DragPower::default();
+        for (body, state) in self.bodies.iter().zip(&self.now.states) {
+            let p = drag_power(
+                body,
+                &self.effects,
+                &derive(body, state),
+                &state.angular_momentum,
+            );
+            sum.power += p.power;
+            sum.rate += p.rate;
+        }
+        sum
     }
 
     /// *collide*: detection and response, only when something can touch (obstacles, or
@@ -282,9 +309,11 @@ impl World {
             _ => None,
         };
         if let Some(change) = change {
-            self.now
-                .guard
-                .after_collision(change.before.total, &change.after);
+            // Energy ledger: what the response took or gave.
+            let now = &mut self.now;
+            now.ledger
+                .book_contact(change.before.total, change.after.total);
+            now.guard.after_collision(&change.after);
         }
     }
 
@@ -470,6 +499,22 @@ impl World {
         total_energy(&self.bodies, &self.effects, &self.now.states)
     }
 
+    /// Drag work and contact energy booked since t = 0.
+    pub fn energy_ledger(&self) -> &EnergyLedger {
+        &self.now.ledger
+    }
+
+    /// The change of the scene's energy since t = 0 split into drag work, contacts and the
+    /// remainder, the numerical drift.
+    pub fn energy_balance(&self) -> EnergyBalance {
+        self.now.ledger.balance(
+            &self.initial_total_energy(),
+            &self.total_energy(),
+            self.effects.depends_on_velocity(),
+            self.can_touch(),
+        )
+    }
+
     /// The whole scene's energy at t = 0.
     pub fn initial_total_energy(&self) -> Energy {
         total_energy(&self.bodies, &self.effects, &self.initial)
@@ -501,13 +546,16 @@ impl World {
                         (0.0, 0),
                         |best, (i, t)| if t > best.0 { (t, i) } else { best },
                     );
-                self.now.guard.check(&self.total_energy(), turn).map(|q| {
-                    if q.starts_with("rotation") {
-                        named(q, fastest)
-                    } else {
-                        q
-                    }
-                })
+                self.now
+                    .guard
+                    .check(&self.total_energy(), &self.now.ledger, turn)
+                    .map(|q| {
+                        if q.starts_with("rotation") {
+                            named(q, fastest)
+                        } else {
+                            q
+                        }
+                    })
             })?;
         Some(Divergence {
             step: self.now.step,
@@ -577,8 +625,10 @@ fn fresh(
     let weight = effects.gravity().map_or(0.0, |g| {
         bodies.iter().map(|b| b.mass * g.norm() * b.radius).sum()
     });
-    let guard = EnergyGuard::new(&total_energy(bodies, effects, initial), weight);
+    let energy = total_energy(bodies, effects, initial);
+    let guard = EnergyGuard::new(&energy, weight);
     Checkpoint {
+        ledger: EnergyLedger::new(energy.total),
         states: initial.to_vec(),
         before: initial.to_vec(),
         step: 0,

@@ -5,12 +5,14 @@
 //! A missing effect key means the effect is absent; missing initial conditions mean rest.
 
 mod diagnose;
+pub mod edit;
 mod error;
 mod mesh;
 mod messages;
 mod raw;
 
 pub use diagnose::check as check_every_error;
+pub use edit::SceneEdits;
 pub use error::{did_you_mean, LoadError};
 
 use crate::physics::{

@@ -6,9 +6,11 @@
 use super::history::{Entry, History, DEFAULT_CAPACITY};
 use super::keys::{self, Context, Message};
 use super::series::EnergySeries;
+use super::settings_form::{tidy, SettingsForm};
+use super::timeline;
 use super::viewport::{Axis, Region};
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
-use crate::scene::Lesson;
+use crate::scene::{Lesson, SceneEdits};
 use crate::tables::Frame;
 use crossterm::event::KeyEvent;
 use std::path::PathBuf;
@@ -58,7 +60,26 @@ pub enum Overlay {
         lessons: Vec<(PathBuf, String)>,
         selected: usize,
     },
+    /// The settings form (key `e`).
+    Settings(SettingsForm),
+    /// The jump-to-time prompt (key `J`) and the time typed so far.
+    Jump {
+        text: String,
+    },
 }
+
+/// What [`App::update`] asks of the world outside the app state (files); [`App::perform`]
+/// does it. `update` itself only changes the state, so tests can drive it without touching
+/// the disk.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Effect {
+    /// Write the scene file with these values to `to` (the lesson's own file is the source, so
+    /// its comments and pages are kept), then load it back to check it.
+    WriteScene { edits: SceneEdits, to: PathBuf },
+}
+
+/// Most frames a jump (`J`) runs at once.
+pub const MAX_JUMP_FRAMES: u64 = 10_000_000;
 
 /// Start-up options.
 #[derive(Debug, Clone, Default)]
@@ -107,6 +128,8 @@ pub struct App {
     pub divergence: Option<Divergence>,
     /// A one-line notice (e.g. "no earlier frame kept").
     pub notice: Option<String>,
+    /// Where the run paused by itself (a page, the scene's end), until the next key.
+    pub stop: Option<timeline::Stop>,
     pub lesson_scroll: u16,
     /// The lesson page shown (the scroll starts over when it changes).
     pub page: Option<usize>,
@@ -122,6 +145,8 @@ pub struct App {
     pub layout: super::layout::ScreenLayout,
     /// Key `x` asked for an SVG of the screen; the event loop writes it (it knows the size).
     pub export_requested: bool,
+    /// Where `W` writes the edited scene (the working folder).
+    pub write_dir: PathBuf,
     pub quit: bool,
 }
 
@@ -158,6 +183,7 @@ impl App {
             trail: true,
             divergence: None,
             notice: None,
+            stop: None,
             lesson_scroll: 0,
             page: None,
             ascii: options.ascii,
@@ -167,6 +193,7 @@ impl App {
             arrows: true,
             layout: Default::default(),
             export_requested: false,
+            write_dir: PathBuf::from("."),
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -180,14 +207,19 @@ impl App {
     pub fn context(&self) -> Context {
         match self.overlay {
             Overlay::Picker { .. } => Context::Picker,
+            Overlay::Settings(_) => Context::Form,
+            Overlay::Jump { .. } => Context::Prompt,
             _ => Context::Main,
         }
     }
 
-    /// A key event: looked up in the key table, then applied.
+    /// A key event: looked up in the key table, applied, and what it asks of the outside world
+    /// performed.
     pub fn handle_key(&mut self, event: &KeyEvent) {
         if let Some(message) = keys::message(event, self.context()) {
-            self.update(message);
+            if let Some(effect) = self.update(message) {
+                self.perform(effect);
+            }
         }
     }
 
@@ -208,15 +240,69 @@ impl App {
         SPEEDS[self.speed]
     }
 
-    /// Applies a message.
-    pub fn update(&mut self, message: Message) {
+    /// Applies a message; returns what the outside world must do, if anything (see [`Effect`]).
+    pub fn update(&mut self, message: Message) -> Option<Effect> {
         self.notice = None;
-        if self.overlay == Overlay::Help && matches!(message, Message::ToggleHelp | Message::Quit) {
-            // `?`, q and Esc close the help first.
+        self.stop = None;
+        if self.overlay == Overlay::Help && matches!(message, Message::ToggleHelp | Message::Back) {
+            // `?` and Esc close the help.
             self.overlay = Overlay::None;
-            return;
+            return None;
         }
         match message {
+            Message::Back => self.back(),
+            Message::Continue => {
+                if self.divergence.is_some() {
+                    self.blocked();
+                } else {
+                    self.running = true;
+                }
+            }
+            Message::OpenJump => {
+                self.running = false;
+                self.overlay = Overlay::Jump {
+                    text: String::new(),
+                };
+            }
+            Message::OpenSettings => {
+                self.running = false;
+                self.overlay =
+                    Overlay::Settings(SettingsForm::new(SceneEdits::of(&self.lesson.scene)));
+            }
+            Message::WriteScene => return self.write_scene(),
+            Message::Type(c) => match &mut self.overlay {
+                Overlay::Settings(form) => form.type_char(c),
+                Overlay::Jump { text } if text.chars().count() < 16 => text.push(c),
+                _ => {}
+            },
+            Message::Erase => match &mut self.overlay {
+                Overlay::Settings(form) => form.erase(),
+                Overlay::Jump { text } => {
+                    text.pop();
+                }
+                _ => {}
+            },
+            Message::FieldUp | Message::FieldDown => {
+                if let Overlay::Settings(form) = &mut self.overlay {
+                    if message == Message::FieldUp {
+                        form.up();
+                    } else {
+                        form.down();
+                    }
+                }
+            }
+            Message::Submit => match &self.overlay {
+                Overlay::Settings(_) => self.apply_settings(),
+                Overlay::Jump { text } => {
+                    let text = text.clone();
+                    self.overlay = Overlay::None;
+                    match text.trim().parse::<f64>() {
+                        Ok(t) if t >= 0.0 && t.is_finite() => self.jump_to(t),
+                        _ => self.notice = Some(format!("jump: `{text}` is not a time ≥ 0 s")),
+                    }
+                }
+                _ => {}
+            },
             Message::TogglePause => {
                 if self.divergence.is_some() {
                     self.blocked();
@@ -291,6 +377,159 @@ impl App {
             Message::NextLayout => self.layout = self.layout.next(),
             Message::ExportSvg => self.export_requested = true,
         }
+        None
+    }
+
+    /// Does what [`App::update`] asked of the outside world; the status line says how it went.
+    pub fn perform(&mut self, effect: Effect) {
+        match effect {
+            Effect::WriteScene { edits, to } => {
+                let source = &self.lesson.path;
+                let written = std::fs::read_to_string(source)
+                    .map_err(|e| format!("cannot read {}: {e}", source.display()))
+                    .and_then(|text| edits.write_into(&text, 0, source.parent()))
+                    .and_then(|text| std::fs::write(&to, text).map_err(|e| e.to_string()))
+                    .and_then(|()| crate::scene::load(&to).map_err(|e| e.to_string()));
+                self.notice = Some(match written {
+                    Ok(_) => format!("wrote {} (tumble check accepts it)", to.display()),
+                    Err(e) => format!("could not write {}: {e}", to.display()),
+                });
+            }
+        }
+    }
+
+    /// Esc: closes the innermost window, else the graph or the study; never quits.
+    fn back(&mut self) {
+        if let Overlay::Settings(_) = self.overlay {
+            self.notice = Some("settings closed: nothing applied".into());
+        }
+        if self.overlay != Overlay::None {
+            self.overlay = Overlay::None;
+        } else if self.view != View::Loop {
+            self.view = View::Loop;
+        } else {
+            self.notice = Some("nothing to close: q quits".into());
+        }
+    }
+
+    /// The file `W` writes: `NAME-edited.toml` in [`App::write_dir`].
+    pub fn write_path(&self) -> PathBuf {
+        let stem = self
+            .lesson
+            .path
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+        let stem = stem.strip_suffix("-edited").unwrap_or(&stem).to_string();
+        self.write_dir.join(format!("{stem}-edited.toml"))
+    }
+
+    /// `W`: the form's values (when it is open and they are valid), else the scene as it runs.
+    fn write_scene(&mut self) -> Option<Effect> {
+        let edits = match &mut self.overlay {
+            Overlay::Settings(form) => match form.edits() {
+                Ok(edits) => edits,
+                Err(e) => {
+                    form.error = Some(e);
+                    return None;
+                }
+            },
+            _ => SceneEdits::of(&self.lesson.scene),
+        };
+        Some(Effect::WriteScene {
+            edits,
+            to: self.write_path(),
+        })
+    }
+
+    /// Enter in the form: the scene restarts at t = 0 with the new values (the other settings
+    /// are kept as when opening another lesson).
+    fn apply_settings(&mut self) {
+        let Overlay::Settings(form) = &mut self.overlay else {
+            return;
+        };
+        let edits = match form.edits() {
+            Ok(edits) => edits,
+            Err(e) => {
+                form.error = Some(e);
+                return;
+            }
+        };
+        let changes = form.changes(&edits);
+        match edits.apply(&self.lesson.scene) {
+            Ok(scene) => {
+                let mut lesson = self.lesson.clone();
+                lesson.scene = scene;
+                self.open(lesson);
+                self.notice = Some(format!(
+                    "settings applied ({changes}): the scene restarted at t = 0"
+                ));
+            }
+            Err(e) => form.error = Some(e),
+        }
+    }
+
+    /// Replaces the lesson, keeping what carries across lessons: the view axis, the numbers'
+    /// frame, the trail, the graph view, the compare ghost (when the new scene offers it), the
+    /// speed relative to real time, ASCII and timing. The run starts paused at t = 0.
+    fn open(&mut self, lesson: Lesson) {
+        let options = Options {
+            ascii: self.ascii,
+            compare: self.ghost.as_ref().map(|g| g.comparison),
+            show_timing: self.show_timing,
+        };
+        let real_time = self.frames_per_second() * self.world.dt();
+        let (axis, frame, trail, write_dir) =
+            (self.axis, self.frame, self.trail, self.write_dir.clone());
+        let (arrows, layout) = (self.arrows, self.layout);
+        let view = if self.view == View::Energy {
+            View::Energy
+        } else {
+            View::Loop
+        };
+        *self = App::new(lesson, options);
+        self.axis = axis;
+        self.frame = frame;
+        self.trail = trail;
+        self.view = view;
+        self.write_dir = write_dir;
+        (self.arrows, self.layout) = (arrows, layout);
+        let dt = self.world.dt();
+        self.speed = (0..SPEEDS.len())
+            .min_by(|&a, &b| {
+                let off = |i: usize| (SPEEDS[i] * dt / real_time).ln().abs();
+                off(a).total_cmp(&off(b))
+            })
+            .unwrap_or(self.speed);
+    }
+
+    /// Goes to time t (rounded to a step): forward from here, or replayed from t = 0 when t is
+    /// earlier; paused there. A frame in progress is finished first.
+    pub fn jump_to(&mut self, t: f64) {
+        self.running = false;
+        while !self.at_frame_start() && self.divergence.is_none() {
+            self.step_phase();
+        }
+        let target = (t / self.world.dt()).round() as u64;
+        if target < self.world.step_count() {
+            self.reset();
+        }
+        let frames = target - self.world.step_count();
+        if frames > MAX_JUMP_FRAMES {
+            self.notice = Some(format!(
+                "jump: t = {} s is {frames} frames away, more than {MAX_JUMP_FRAMES}: \
+                 choose a larger dt (e) or a nearer time",
+                tidy(t)
+            ));
+            return;
+        }
+        self.step_frames(frames);
+        if self.divergence.is_none() {
+            self.notice = Some(format!(
+                "jumped to t = {} s (step {})",
+                tidy(self.world.time()),
+                self.world.step_count()
+            ));
+        }
     }
 
     fn blocked(&mut self) {
@@ -357,12 +596,18 @@ impl App {
     /// Records the frame just finished in the energy series.
     fn record_frame(&mut self) {
         let energy = self.world.energy_of(self.world.state());
+        let drift = self.world.energy_balance().drift;
         let ghost = self
             .ghost
             .as_ref()
             .map(|g| g.world.energy_of(g.world.state()).total);
-        self.series
-            .record(self.world.step_count(), self.world.dt(), &energy, ghost);
+        self.series.record(
+            self.world.step_count(),
+            self.world.dt(),
+            &energy,
+            drift,
+            ghost,
+        );
     }
 
     /// Runs up to `frames` whole frames (both worlds); stops at a divergence.
@@ -388,6 +633,16 @@ impl App {
             self.record_frame();
             if self.check_divergence() {
                 break;
+            }
+            if self.running {
+                let stop =
+                    timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
+                if let Some(stop) = stop {
+                    self.running = false;
+                    self.notice = Some(stop.notice.clone());
+                    self.stop = Some(stop);
+                    break;
+                }
             }
         }
         if frames > 1 && done > 0 {
@@ -577,19 +832,7 @@ impl App {
             return;
         };
         match crate::lessons::load(path) {
-            Ok(lesson) => {
-                let options = Options {
-                    ascii: self.ascii,
-                    compare: self.ghost.as_ref().map(|g| g.comparison),
-                    show_timing: self.show_timing,
-                };
-                let (axis, frame) = (self.axis, self.frame);
-                let (arrows, layout) = (self.arrows, self.layout);
-                *self = App::new(lesson, options);
-                self.axis = axis;
-                self.frame = frame;
-                (self.arrows, self.layout) = (arrows, layout);
-            }
+            Ok(lesson) => self.open(lesson),
             Err(e) => {
                 self.overlay = Overlay::None;
                 self.notice = Some(e.to_string());

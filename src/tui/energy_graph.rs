@@ -1,5 +1,6 @@
 //! The energy graph: kinetic, potential and total energy over time (and the compare world's
-//! total), with their drift since t = 0 below on its own scale; axes only grow, by doubling.
+//! total), with their drift (E − E₀ less the drag work and contact energy the energy ledger
+//! booked) below on its own scale; axes only grow, by doubling.
 
 use super::app::App;
 use super::series::Range;
@@ -96,7 +97,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
         .render(top, buf);
     Chart::new(vec![dataset("drift".into(), &drift, theme::DRIFT)])
-        .block(Block::bordered().title(" drift: total − total at t = 0, J "))
+        .block(Block::bordered().title(" drift (E − E₀ not booked), J "))
         .x_axis(axis("t, s", series.time_axis))
         .y_axis(axis("J", series.drift_axis))
         .legend_position(None)

@@ -12,6 +12,8 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let real = fps * app.snapshot.dt;
     let state = if app.divergence.is_some() {
         Span::styled(" ✖ diverged ", theme::DIVERGED)
+    } else if let (false, Some(stop)) = (app.running, &app.stop) {
+        Span::styled(format!(" ❚❚ paused: {} ", stop.label), theme::PAUSED)
     } else if app.running {
         Span::styled(" ▶ running ", theme::RUNNING)
     } else {

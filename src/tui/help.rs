@@ -1,4 +1,6 @@
-//! The help overlay: every binding of the key table, with what it does.
+//! The help overlay: every binding of the main screen's key table, with what it does, and what
+//! another lesson keeps. (The picker, the settings form and the jump prompt list their own keys,
+//! from the same table, at their bottom.)
 
 use super::keys::{Context, KEYS};
 use super::screen::centered;
@@ -9,14 +11,17 @@ use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
+/// What another lesson (or applying the settings form) keeps, and what starts over.
+pub const CARRIED: [&str; 2] = [
+    "Another lesson (l) or new settings (e) keep: view (v), frame (f), trail (t), graph (g),",
+    "compare ghost (k), speed relative to real time, ASCII. They start paused at t = 0.",
+];
+
 /// The help text, one line per binding (also what the tests read).
 pub fn lines() -> Vec<Line<'static>> {
     let key = theme::ACCENT.add_modifier(Modifier::BOLD);
     let mut lines = Vec::new();
-    for (context, heading) in [
-        (Context::Main, "Keys"),
-        (Context::Picker, "In the lesson picker"),
-    ] {
+    for (context, heading) in [(Context::Main, "Keys")] {
         if !lines.is_empty() {
             lines.push(Line::raw(""));
         }
@@ -31,19 +36,54 @@ pub fn lines() -> Vec<Line<'static>> {
             ]));
         }
     }
+    lines.push(Line::raw(""));
+    for line in CARRIED {
+        lines.push(Line::styled(line, theme::SOFT));
+    }
     lines
 }
 
+/// The help in one column, or in two side by side when one is taller than the screen.
 pub fn render(area: Rect, buf: &mut Buffer) {
     let lines = lines();
-    let width = lines.iter().map(|l| l.width()).max().unwrap_or(0) as u16 + 4;
-    let popup = centered(area, width, lines.len() as u16 + 2);
+    let room = usize::from(area.height.saturating_sub(2));
+    let columns: Vec<Vec<Line>> = if lines.len() <= room {
+        vec![lines]
+    } else {
+        // Split at a blank line (between sections) near the middle, if there is one.
+        let middle = lines.len().div_ceil(2);
+        let split = (middle..lines.len())
+            .find(|&i| lines[i].width() == 0)
+            .filter(|&i| i <= room)
+            .unwrap_or(middle);
+        let mut left = lines;
+        let right = left.split_off(split);
+        vec![left, right]
+    };
+    let widths: Vec<u16> = columns
+        .iter()
+        .map(|c| c.iter().map(|l| l.width()).max().unwrap_or(0) as u16 + 2)
+        .collect();
+    let height = columns.iter().map(Vec::len).max().unwrap_or(0) as u16;
+    let popup = centered(area, widths.iter().sum::<u16>() + 2, height + 2);
     Clear.render(popup, buf);
-    Paragraph::new(lines)
-        .block(
-            Block::bordered()
-                .title(" help — ? or Esc closes ")
-                .border_style(theme::ACCENT),
-        )
-        .render(popup, buf);
+    let block = Block::bordered()
+        .title(" help — ? or Esc closes ")
+        .border_style(theme::ACCENT);
+    let inner = block.inner(popup);
+    block.render(popup, buf);
+    let mut x = inner.x;
+    for (column, width) in columns.into_iter().zip(widths) {
+        let width = width.min(inner.x + inner.width - x);
+        Paragraph::new(column).render(
+            Rect {
+                x,
+                y: inner.y,
+                width,
+                height: inner.height,
+            },
+            buf,
+        );
+        x += width;
+    }
 }

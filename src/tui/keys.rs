@@ -34,6 +34,27 @@ pub enum Message {
     ToggleArrows,
     NextLayout,
     ExportSvg,
+    /// Esc: closes the innermost window (help, picker, form, prompt), else the graph or the
+    /// study; never quits.
+    Back,
+    /// Enter on the main screen: run on after a pause (at a page or the scene's end).
+    Continue,
+    /// `J`: the prompt for a time to jump to.
+    OpenJump,
+    /// `e`: the settings form.
+    OpenSettings,
+    /// `W`: write the scene (as run, or as in the form) to a TOML file.
+    WriteScene,
+    /// A character typed into the form or the prompt (the key table binds a placeholder; the
+    /// character is the key's).
+    Type(char),
+    /// Backspace in the form or the prompt.
+    Erase,
+    /// Previous / next field of the form.
+    FieldUp,
+    FieldDown,
+    /// Enter in the form (apply and restart) or the prompt (jump).
+    Submit,
 }
 
 /// Where a binding applies.
@@ -43,6 +64,10 @@ pub enum Context {
     Main,
     /// The lesson picker.
     Picker,
+    /// The settings form (`e`).
+    Form,
+    /// The jump-to-time prompt (`J`).
+    Prompt,
 }
 
 /// One row of the key table.
@@ -83,17 +108,61 @@ const fn pick(
     help: &'static str,
     message: Message,
 ) -> Binding {
+    within(Context::Picker, keys, label, help, message)
+}
+
+const fn within(
+    context: Context,
+    keys: &'static [KeyCode],
+    label: &'static str,
+    help: &'static str,
+    message: Message,
+) -> Binding {
     Binding {
         keys,
         label,
         hint: "",
         help,
         message,
-        context: Context::Picker,
+        context,
     }
 }
 
-use KeyCode::{Char, Down, Enter, Esc, Left, PageDown, PageUp, Right, Up};
+/// The characters a number is typed with (the form also takes exponents, `1e-4`).
+const NUMBER_KEYS: &[KeyCode] = &[
+    Char('0'),
+    Char('1'),
+    Char('2'),
+    Char('3'),
+    Char('4'),
+    Char('5'),
+    Char('6'),
+    Char('7'),
+    Char('8'),
+    Char('9'),
+    Char('.'),
+    Char('-'),
+    Char('+'),
+    Char('e'),
+    Char('E'),
+];
+
+/// The characters a time is typed with.
+const TIME_KEYS: &[KeyCode] = &[
+    Char('0'),
+    Char('1'),
+    Char('2'),
+    Char('3'),
+    Char('4'),
+    Char('5'),
+    Char('6'),
+    Char('7'),
+    Char('8'),
+    Char('9'),
+    Char('.'),
+];
+
+use KeyCode::{Backspace, Char, Down, Enter, Esc, Left, PageDown, PageUp, Right, Up};
 
 /// Every binding, in the order the status bar and the help overlay list them.
 pub const KEYS: &[Binding] = &[
@@ -105,18 +174,39 @@ pub const KEYS: &[Binding] = &[
         Message::ToggleHelp,
     ),
     bind(
-        &[Char('q'), Esc],
-        "q Esc",
+        &[Char('q')],
+        "q",
         "q quit",
-        "quit (also Ctrl-C)",
+        "quit (also Ctrl-C), from every window",
         Message::Quit,
+    ),
+    bind(
+        &[Esc],
+        "Esc",
+        "",
+        "close the help, picker, form, graph or study (never quits)",
+        Message::Back,
     ),
     bind(
         &[Char(' ')],
         "space",
         "space run",
-        "run / pause",
+        "run / pause (a run pauses at each page and at the end)",
         Message::TogglePause,
+    ),
+    bind(
+        &[Enter],
+        "Enter",
+        "",
+        "continue after such a pause",
+        Message::Continue,
+    ),
+    bind(
+        &[Char('J')],
+        "J",
+        "",
+        "jump to a typed time (an earlier one is replayed from 0)",
+        Message::OpenJump,
     ),
     bind(
         &[Right, Char('.')],
@@ -245,6 +335,20 @@ pub const KEYS: &[Binding] = &[
         Message::ExportSvg,
     ),
     bind(
+        &[Char('e')],
+        "e",
+        "e settings",
+        "settings: e, μ, mass, dt, v₀, ω₀ (applying restarts)",
+        Message::OpenSettings,
+    ),
+    bind(
+        &[Char('W')],
+        "W",
+        "",
+        "write the scene as it runs to ./NAME-edited.toml",
+        Message::WriteScene,
+    ),
+    bind(
         &[PageUp, Char('[')],
         "PgUp [",
         "",
@@ -277,11 +381,91 @@ pub const KEYS: &[Binding] = &[
         Message::PickerOpen,
     ),
     pick(
-        &[Esc, Char('q'), Char('l')],
+        &[Esc, Char('l')],
         "Esc",
         "lesson picker: close",
         Message::Close,
     ),
+    pick(&[Char('q')], "q", "quit", Message::Quit),
+    within(
+        Context::Form,
+        &[Up],
+        "↑",
+        "settings: previous field",
+        Message::FieldUp,
+    ),
+    within(
+        Context::Form,
+        &[Down],
+        "↓",
+        "settings: next field",
+        Message::FieldDown,
+    ),
+    within(
+        Context::Form,
+        NUMBER_KEYS,
+        "0-9 . - e",
+        "settings: type a number",
+        Message::Type(' '),
+    ),
+    within(
+        Context::Form,
+        &[Backspace],
+        "Backspace",
+        "settings: erase",
+        Message::Erase,
+    ),
+    within(
+        Context::Form,
+        &[Enter],
+        "Enter",
+        "settings: apply, restart at t = 0",
+        Message::Submit,
+    ),
+    within(
+        Context::Form,
+        &[Char('W')],
+        "W",
+        "settings: write them to a file",
+        Message::WriteScene,
+    ),
+    within(
+        Context::Form,
+        &[Esc],
+        "Esc",
+        "settings: close, nothing applied",
+        Message::Back,
+    ),
+    within(Context::Form, &[Char('q')], "q", "quit", Message::Quit),
+    within(
+        Context::Prompt,
+        TIME_KEYS,
+        "0-9 .",
+        "jump: type t in s",
+        Message::Type(' '),
+    ),
+    within(
+        Context::Prompt,
+        &[Backspace],
+        "Backspace",
+        "jump: erase",
+        Message::Erase,
+    ),
+    within(
+        Context::Prompt,
+        &[Enter],
+        "Enter",
+        "jump: go there",
+        Message::Submit,
+    ),
+    within(
+        Context::Prompt,
+        &[Esc],
+        "Esc",
+        "jump: cancel",
+        Message::Back,
+    ),
+    within(Context::Prompt, &[Char('q')], "q", "quit", Message::Quit),
 ];
 
 /// The message a key event sends in a context (None: unbound, or not a key press).
@@ -295,7 +479,10 @@ pub fn message(event: &KeyEvent, context: Context) -> Option<Message> {
     KEYS.iter()
         .filter(|b| b.context == context)
         .find(|b| b.keys.contains(&event.code))
-        .map(|b| b.message)
+        .map(|b| match (b.message, event.code) {
+            (Message::Type(_), Char(c)) => Message::Type(c),
+            (message, _) => message,
+        })
 }
 
 #[cfg(test)]
@@ -318,6 +505,49 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn esc_never_quits_and_q_always_does() {
+        let press = |code| KeyEvent::new(code, KeyModifiers::NONE);
+        for context in [
+            Context::Main,
+            Context::Picker,
+            Context::Form,
+            Context::Prompt,
+        ] {
+            let esc = message(&press(Esc), context);
+            assert!(
+                matches!(esc, Some(Message::Back | Message::Close)),
+                "{context:?}: Esc sends {esc:?}"
+            );
+            assert_eq!(message(&press(Char('q')), context), Some(Message::Quit));
+            let ctrl_c = KeyEvent::new(Char('c'), KeyModifiers::CONTROL);
+            assert_eq!(message(&ctrl_c, context), Some(Message::Quit));
+        }
+    }
+
+    #[test]
+    fn typed_characters_reach_the_form_and_the_prompt() {
+        let press = |c| KeyEvent::new(Char(c), KeyModifiers::NONE);
+        assert_eq!(
+            message(&press('7'), Context::Form),
+            Some(Message::Type('7'))
+        );
+        assert_eq!(
+            message(&press('e'), Context::Form),
+            Some(Message::Type('e')),
+            "an exponent in the form, not the form key"
+        );
+        assert_eq!(
+            message(&press('e'), Context::Main),
+            Some(Message::OpenSettings)
+        );
+        assert_eq!(
+            message(&press('.'), Context::Prompt),
+            Some(Message::Type('.'))
+        );
+        assert_eq!(message(&press('x'), Context::Prompt), None);
     }
 
     #[test]

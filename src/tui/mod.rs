@@ -20,6 +20,8 @@
 //! | `loop_view`, `energy_view` | the views (one file each) |
 //! | `projection`, `panels`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
 //! | `help`, `picker`, `divergence_dialog` | the overlays |
+//! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
+//! | `jump_prompt`, `timeline` | the jump prompt (`J`); where a run pauses by itself |
 //!
 //! When paused the app blocks on input; when running it advances on a fixed dt, as many frames
 //! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`]).
@@ -32,6 +34,7 @@ pub mod export;
 pub mod header;
 pub mod help;
 pub mod history;
+pub mod jump_prompt;
 pub mod keys;
 pub mod layout;
 pub mod lesson_pane;
@@ -42,12 +45,15 @@ pub mod picker;
 pub mod projection;
 pub mod screen;
 pub mod series;
+pub mod settings_form;
+pub mod settings_view;
 pub mod status_bar;
 pub mod study_view;
 pub mod theme;
+pub mod timeline;
 pub mod viewport;
 
-pub use app::{App, Comparison, Options, View};
+pub use app::{App, Comparison, Effect, Options, Overlay, View};
 
 use crate::scene::Lesson;
 use crossterm::event::{self, Event};

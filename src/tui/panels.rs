@@ -204,7 +204,7 @@ pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
     rows.extend(pick(PanelId::Momentum, &["v"]));
     rows.extend(pick(PanelId::AngularVelocity, &["ω"]));
     rows.extend(pick(PanelId::AngularMomentum, &["L"]));
-    rows.extend(pick(PanelId::Energy, &["total", "drift"]));
+    rows.extend(pick(PanelId::Energy, &["K, V, E", "  drift"]));
     Panel {
         title: match frame {
             Frame::World => "essentials".to_string(),

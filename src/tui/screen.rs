@@ -5,8 +5,8 @@ use super::app::{App, Overlay, View};
 use super::layout::{self, Areas, ScreenLayout};
 use super::theme;
 use super::{
-    divergence_dialog, energy_view, header, help, lesson_pane, loop_view, panels, picker,
-    status_bar, study_view,
+    divergence_dialog, energy_view, header, help, jump_prompt, lesson_pane, loop_view, panels,
+    picker, settings_view, status_bar, study_view,
 };
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -44,6 +44,8 @@ impl Widget for &App {
             Overlay::None => {}
             Overlay::Help => help::render(area, buf),
             Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
+            Overlay::Settings(form) => settings_view::render(form, area, buf),
+            Overlay::Jump { text } => jump_prompt::render(text, self.snapshot.time, area, buf),
         }
     }
 }

@@ -1,4 +1,5 @@
-//! The energy series behind the energy graph: kinetic, potential, total and drift per frame,
+//! The energy series behind the energy graph: kinetic, potential, total and drift (the energy
+//! ledger's remainder: E − E₀ less drag work and contacts) per frame,
 //! thinned by halves when long, with axes that only ever grow (by doubling) so the graph does
 //! not jump while it runs.
 
@@ -14,7 +15,7 @@ pub struct Sample {
     pub kinetic: f64,
     pub potential: f64,
     pub total: f64,
-    /// total − total at t = 0.
+    /// The numerical drift: E − E₀ − drag work − contact energy (the energy ledger's), J.
     pub drift: f64,
     /// The compare world's total energy, if compare mode is on.
     pub compare_total: Option<f64>,
@@ -84,19 +85,32 @@ impl EnergySeries {
             },
             initial_total: e.total,
         };
-        series.record(first.step, first.dt, &first.energy, None);
+        series.record(
+            first.step,
+            first.dt,
+            &first.energy,
+            first.energy_balance.drift,
+            None,
+        );
         series
     }
 
-    /// Records the energy after frame `step` (and the compare world's total energy), keeping
-    /// one frame in `stride`.
-    pub fn record(&mut self, step: u64, dt: f64, energy: &Energy, compare_total: Option<f64>) {
+    /// Records the energy and the drift after frame `step` (and the compare world's total
+    /// energy), keeping one frame in `stride`.
+    pub fn record(
+        &mut self,
+        step: u64,
+        dt: f64,
+        energy: &Energy,
+        drift: f64,
+        compare_total: Option<f64>,
+    ) {
         let sample = Sample {
             t: step as f64 * dt,
             kinetic: energy.kinetic,
             potential: energy.potential,
             total: energy.total,
-            drift: energy.total - self.initial_total,
+            drift,
             compare_total,
         };
         self.time_axis.include(sample.t);

@@ -1,7 +1,7 @@
 //! The status bar: t, step, dt, integrator, collision response, declared effects, measured
 //! cost per step, then key hints generated from the key table.
 
-use super::app::App;
+use super::app::{App, Comparison};
 use super::keys::{Context, KEYS};
 use super::theme;
 use crate::tables::number_plain;
@@ -22,14 +22,23 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         ("t", format!("{} s", number_plain(s.time))),
         ("step", s.step.to_string()),
         ("dt", format!("{} s", number_plain(s.dt))),
+        // In compare mode, "A vs B" on the setting the ghost differs by, and only there.
         (
             "integrator",
-            match &app.ghost {
-                Some(g) => format!("{} vs {}", s.integrator.name(), g.comparison.name()),
-                None => s.integrator.name().to_string(),
+            match app.ghost.as_ref().map(|g| g.comparison) {
+                Some(Comparison::Integrator(i)) => {
+                    format!("{} vs {}", s.integrator.name(), i.name())
+                }
+                _ => s.integrator.name().to_string(),
             },
         ),
-        ("response", response.to_string()),
+        (
+            "response",
+            match app.ghost.as_ref().map(|g| g.comparison) {
+                Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
+                _ => response.to_string(),
+            },
+        ),
         (
             "effects",
             if effects.is_empty() {

@@ -1,0 +1,360 @@
+//! The settings a teacher can change on a loaded scene (the app's settings form): applied to a
+//! [`Scene`] in memory, and written back into the scene file's text with every other key,
+//! comment and page kept as written.
+//!
+//! ```text
+//! dt                     [scene] dt
+//! restitution, friction  [scene] contact = { restitution, friction }   (scenes with obstacles)
+//! mass M                 [body] mass; with `masses`, each point mass × M'/M (their sum is M')
+//! velocity v             [body] velocity
+//! angular velocity ω     [body] angular_velocity (world frame; replaces angular_velocity_body)
+//! ```
+//!
+//! In memory the body keeps its points and its inertia scales with the mass
+//! (`I_body' = (M'/M) I_body`, see [`Body::with_mass`]); the initial momenta follow from the
+//! new velocities: `P₀ = M' v`, `L₀ = R I_body' Rᵀ ω`. Loading the written file gives the same
+//! scene (the tests check it).
+//!
+//! [`Body::with_mass`]: crate::physics::Body::with_mass
+
+use super::Scene;
+use crate::physics::derive::derive;
+use nalgebra::Vector3;
+use std::path::Path;
+use toml_edit::{Array, DocumentMut, Item, TableLike, Value};
+
+/// The values the settings form edits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneEdits {
+    /// Which body the body values belong to (its index in the scene).
+    pub body: usize,
+    /// Time step, s (> 0).
+    pub dt: f64,
+    /// Coefficient of restitution, 0 ≤ e ≤ 1 (None: the scene has no contact model).
+    pub restitution: Option<f64>,
+    /// Coulomb friction coefficient ≥ 0 (None: no contact model).
+    pub friction: Option<f64>,
+    /// Total mass of the body, kg (> 0).
+    pub mass: f64,
+    /// Initial velocity of the barycenter, m/s.
+    pub velocity: Vector3<f64>,
+    /// Initial angular velocity, world frame, rad/s.
+    pub angular_velocity: Vector3<f64>,
+}
+
+impl SceneEdits {
+    /// The values a scene has now, for its first body.
+    pub fn of(scene: &Scene) -> SceneEdits {
+        SceneEdits::of_body(scene, 0)
+    }
+
+    /// The values a scene has now, for body `index`.
+    pub fn of_body(scene: &Scene, index: usize) -> SceneEdits {
+        let b = &scene.bodies[index];
+        let kinematics = derive(&b.body, &b.initial);
+        SceneEdits {
+            body: index,
+            dt: scene.dt,
+            restitution: scene.contact.map(|c| c.restitution),
+            friction: scene.contact.map(|c| c.friction),
+            mass: b.body.mass,
+            velocity: kinematics.velocity,
+            angular_velocity: kinematics.angular_velocity,
+        }
+    }
+
+    /// Why these values cannot make a scene (the loader's own rules), if they cannot.
+    pub fn problem(&self) -> Option<String> {
+        let finite = |v: &Vector3<f64>| v.iter().all(|c| c.is_finite());
+        if !(self.dt > 0.0 && self.dt.is_finite()) {
+            return Some(format!("dt must be > 0, found {}", self.dt));
+        }
+        if !(self.mass > 0.0 && self.mass.is_finite()) {
+            return Some(format!("mass must be > 0, found {}", self.mass));
+        }
+        if let Some(e) = self.restitution {
+            if !(0.0..=1.0).contains(&e) {
+                return Some(format!("restitution must be between 0 and 1, found {e}"));
+            }
+        }
+        if let Some(mu) = self.friction {
+            if !(mu >= 0.0 && mu.is_finite()) {
+                return Some(format!("friction must be ≥ 0, found {mu}"));
+            }
+        }
+        if !finite(&self.velocity) || !finite(&self.angular_velocity) {
+            return Some("velocities must be finite".into());
+        }
+        None
+    }
+
+    /// The scene with these values (the body rescaled to the new mass, the initial momenta
+    /// recomputed from the velocities).
+    pub fn apply(&self, scene: &Scene) -> Result<Scene, String> {
+        if let Some(problem) = self.problem() {
+            return Err(problem);
+        }
+        let mut out = scene.clone();
+        out.dt = self.dt;
+        if let Some(contact) = &mut out.contact {
+            if let Some(e) = self.restitution {
+                contact.restitution = e;
+            }
+            if let Some(mu) = self.friction {
+                contact.friction = mu;
+            }
+        }
+        let edited = &mut out.bodies[self.body];
+        edited.body = edited
+            .body
+            .with_mass(self.mass)
+            .map_err(|e| e.to_string())?;
+        let rotation = edited.initial.orientation.matrix();
+        let inertia_world = rotation * edited.body.inertia_body * rotation.transpose();
+        edited.initial.linear_momentum = self.velocity * edited.body.mass;
+        edited.initial.angular_momentum = inertia_world * self.angular_velocity;
+        Ok(out)
+    }
+
+    /// The scene file's text with these values written in; everything else (keys, comments,
+    /// pages) stays as written. `body` is the index of the edited body in `[[body]]` (0 for a
+    /// single `[body]`). With `mesh_from`, a relative mesh `file` is rewritten as an absolute
+    /// path from that folder (the written file may live elsewhere).
+    pub fn write_into(
+        &self,
+        source: &str,
+        body: usize,
+        mesh_from: Option<&Path>,
+    ) -> Result<String, String> {
+        if let Some(problem) = self.problem() {
+            return Err(problem);
+        }
+        let mut doc: DocumentMut = source
+            .parse()
+            .map_err(|e: toml_edit::TomlError| format!("the scene file is not TOML: {e}"))?;
+        let scene = doc
+            .get_mut("scene")
+            .and_then(Item::as_table_like_mut)
+            .ok_or("the scene file has no [scene] table")?;
+        set(scene, "dt", Value::from(self.dt));
+        if let Some(contact) = scene.get_mut("contact").and_then(Item::as_table_like_mut) {
+            if let Some(e) = self.restitution {
+                set(contact, "restitution", Value::from(e));
+            }
+            if let Some(mu) = self.friction {
+                set(contact, "friction", Value::from(mu));
+            }
+        }
+        let body_table: &mut dyn TableLike = match doc.get_mut("body") {
+            Some(Item::ArrayOfTables(bodies)) => bodies
+                .get_mut(body)
+                .map(|t| t as &mut dyn TableLike)
+                .ok_or_else(|| format!("the scene file has no body number {}", body + 1))?,
+            Some(item) => item.as_table_like_mut().ok_or("[body] is not a table")?,
+            None => return Err("the scene file has no [body]".into()),
+        };
+        let masses = body_table
+            .get("masses")
+            .and_then(Item::as_array)
+            .map(|a| a.iter().filter_map(number).collect::<Vec<f64>>());
+        match masses {
+            Some(masses) if !masses.is_empty() => {
+                let ratio = self.mass / masses.iter().sum::<f64>();
+                let scaled: Array = masses.iter().map(|m| m * ratio).collect();
+                set(body_table, "masses", Value::Array(scaled));
+                if body_table.contains_key("mass") {
+                    set(body_table, "mass", Value::from(self.mass));
+                }
+            }
+            _ => set(body_table, "mass", Value::from(self.mass)),
+        }
+        set(body_table, "velocity", vector(&self.velocity));
+        body_table.remove("angular_velocity_body");
+        set(
+            body_table,
+            "angular_velocity",
+            vector(&self.angular_velocity),
+        );
+        if let Some(folder) = mesh_from {
+            if let Some(file) = body_table.get("file").and_then(Item::as_str) {
+                let path = Path::new(file);
+                if path.is_relative() {
+                    let absolute = std::path::absolute(folder.join(path))
+                        .map_err(|e| format!("mesh `{file}`: {e}"))?;
+                    set(
+                        body_table,
+                        "file",
+                        Value::from(absolute.to_string_lossy().into_owned()),
+                    );
+                }
+            }
+        }
+        Ok(doc.to_string())
+    }
+}
+
+/// A number as TOML holds it (an integer counts).
+fn number(v: &Value) -> Option<f64> {
+    v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+}
+
+/// `[x, y, z]` as a TOML array.
+fn vector(v: &Vector3<f64>) -> Value {
+    Value::Array(v.iter().copied().collect())
+}
+
+/// Sets `key` to `value`, keeping the comment and spacing around the old value if there was one.
+fn set(table: &mut dyn TableLike, key: &str, mut value: Value) {
+    match table.get_mut(key) {
+        Some(Item::Value(old)) => {
+            let decor = old.decor().clone();
+            *value.decor_mut() = decor;
+            *old = value;
+        }
+        _ => {
+            table.insert(key, Item::Value(value));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::parse;
+
+    const SOURCE: &str = r#"# A teacher's file: comments stay.
+title = "Drop"
+
+[scene]
+dt = 0.01   # s
+duration = 2.0
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.5, friction = 0.3 }
+
+[body]
+shape = "box"
+size = [0.6, 0.3, 0.2]
+mass = 2.0
+position = [0.0, 1.5, 0.0]
+orientation = { axis = [0.0, 0.0, 1.0], degrees = 30.0 }
+angular_velocity_body = [0.0, 0.0, 2.0]
+
+[[obstacle]]
+type = "ground"
+height = 0.0
+
+[[page]]
+at = 0.0
+title = "Page"
+text = """Two
+lines."""
+"#;
+
+    fn edits() -> SceneEdits {
+        SceneEdits {
+            body: 0,
+            dt: 0.005,
+            restitution: Some(0.8),
+            friction: Some(0.0),
+            mass: 3.0,
+            velocity: Vector3::new(1.0, 2.0, 0.0),
+            angular_velocity: Vector3::new(0.5, 0.0, -1.0),
+        }
+    }
+
+    #[test]
+    fn the_written_file_loads_as_the_scene_applied_in_memory() {
+        let path = Path::new("drop.toml");
+        let lesson = parse(SOURCE, path).unwrap();
+        let edits = edits();
+        let text = edits.write_into(SOURCE, 0, None).unwrap();
+        let written = parse(&text, path).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let applied = edits.apply(&lesson.scene).unwrap();
+        assert_eq!(SceneEdits::of(&written.scene).dt, 0.005);
+        assert_eq!(written.scene.contact, applied.contact);
+        let (a, b) = (&written.scene.bodies[0].initial, &applied.bodies[0].initial);
+        assert!((a.linear_momentum - b.linear_momentum).norm() < 1e-12);
+        assert!(
+            (a.angular_momentum - b.angular_momentum).norm() < 1e-12,
+            "{} vs {}",
+            a.angular_momentum,
+            b.angular_momentum
+        );
+        let inertia = (written.scene.bodies[0].body.inertia_body
+            - applied.bodies[0].body.inertia_body)
+            .norm();
+        assert!(inertia < 1e-12, "inertia differs by {inertia}");
+        // P₀ = M' v = 3 (1, 2, 0).
+        assert_eq!(a.linear_momentum, Vector3::new(3.0, 6.0, 0.0));
+        // Everything else is kept as written.
+        assert!(
+            text.starts_with("# A teacher's file: comments stay."),
+            "{text}"
+        );
+        assert!(text.contains("dt = 0.005   # s"), "{text}");
+        assert!(!text.contains("angular_velocity_body"), "{text}");
+        assert_eq!(written.pages, lesson.pages);
+        assert_eq!(written.title, "Drop");
+    }
+
+    #[test]
+    fn point_masses_scale_to_the_new_total() {
+        // Masses 1, 2, 1 (total 4) → total 2: each halves, 0.5, 1, 0.5.
+        let source = r#"title = "Pair"
+[scene]
+dt = 0.01
+integrator = "rk4"
+[body]
+shape = "points"
+points = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+masses = [1.0, 2.0, 1.0]
+"#;
+        let lesson = parse(source, Path::new("pair.toml")).unwrap();
+        let edits = SceneEdits {
+            mass: 2.0,
+            ..SceneEdits::of(&lesson.scene)
+        };
+        let text = edits.write_into(source, 0, None).unwrap();
+        assert!(text.contains("masses = [0.5, 1.0, 0.5]"), "{text}");
+        let written = parse(&text, Path::new("pair.toml")).unwrap();
+        assert_eq!(written.scene.bodies[0].body.mass, 2.0);
+        let applied = edits.apply(&lesson.scene).unwrap();
+        let diff = (written.scene.bodies[0].body.inertia_body
+            - applied.bodies[0].body.inertia_body)
+            .norm();
+        assert!(diff < 1e-12, "{diff}");
+    }
+
+    #[test]
+    fn values_the_loader_refuses_are_refused_here_too() {
+        let lesson = parse(SOURCE, Path::new("drop.toml")).unwrap();
+        for (bad, message) in [
+            (
+                SceneEdits {
+                    restitution: Some(1.5),
+                    ..SceneEdits::of(&lesson.scene)
+                },
+                "restitution must be between 0 and 1",
+            ),
+            (
+                SceneEdits {
+                    dt: 0.0,
+                    ..SceneEdits::of(&lesson.scene)
+                },
+                "dt must be > 0",
+            ),
+            (
+                SceneEdits {
+                    mass: -1.0,
+                    ..SceneEdits::of(&lesson.scene)
+                },
+                "mass must be > 0",
+            ),
+        ] {
+            let error = bad.apply(&lesson.scene).unwrap_err();
+            assert!(error.contains(message), "{error}");
+            assert!(bad.write_into(SOURCE, 0, None).is_err());
+        }
+    }
+}

@@ -1,0 +1,69 @@
+//! The settings form overlay: each field with its unit, the selected one highlighted, the
+//! problem found (if any) and the form's keys from the key table.
+
+use super::keys::{Context, KEYS};
+use super::screen::centered;
+use super::settings_form::SettingsForm;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+
+pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
+    let label_width = form
+        .fields
+        .iter()
+        .map(|f| f.kind.label().0.chars().count())
+        .max()
+        .unwrap_or(0);
+    let selected = Style::new()
+        .fg(Color::Black)
+        .bg(Color::Yellow)
+        .add_modifier(Modifier::BOLD);
+    let mut lines = vec![Line::styled(
+        " The body's settings: Enter restarts the scene with them.",
+        Style::new().fg(Color::Gray),
+    )];
+    for (i, field) in form.fields.iter().enumerate() {
+        let (label, unit) = field.kind.label();
+        let value = format!(" {:<14}", field.text);
+        lines.push(Line::from(vec![
+            Span::styled(
+                format!(" {label:>label_width$} "),
+                Style::new().fg(Color::Cyan),
+            ),
+            if i == form.selected {
+                Span::styled(value, selected)
+            } else {
+                Span::raw(value)
+            },
+            Span::styled(format!(" {unit}"), Style::new().fg(Color::DarkGray)),
+        ]));
+    }
+    lines.push(match &form.error {
+        Some(e) => Line::styled(format!(" ✖ {e}"), Style::new().fg(Color::Red)),
+        None => Line::raw(""),
+    });
+    let keys: Vec<String> = KEYS
+        .iter()
+        .filter(|b| b.context == Context::Form && b.label != "q")
+        .map(|b| format!("{} {}", b.label, b.help.trim_start_matches("settings: ")))
+        .collect();
+    for pair in keys.chunks(2) {
+        lines.push(Line::styled(
+            format!(" {}", pair.join(" · ")),
+            Style::new().fg(Color::DarkGray),
+        ));
+    }
+    let width = lines.iter().map(|l| l.width()).max().unwrap_or(0) as u16 + 3;
+    let popup = centered(area, width, lines.len() as u16 + 2);
+    Clear.render(popup, buf);
+    Paragraph::new(lines)
+        .block(
+            Block::bordered()
+                .title(" settings — Esc closes, nothing applied ")
+                .border_style(Style::new().fg(Color::Yellow)),
+        )
+        .render(popup, buf);
+}
