@@ -2,11 +2,11 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4 and 9–12.
+//! with the formula that gives it in a comment. Lessons: 1–4 and 9–15.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
-use tumble::physics::{Integrator, Phase, World};
+use tumble::physics::{Against, Feature, Integrator, Phase, SystemTotals, World};
 use tumble::scene::Lesson;
 
 fn lesson(name: &str) -> Lesson {
@@ -662,4 +662,420 @@ fn lesson_12_exact_splitting_is_exact_at_every_quoted_dt() {
         let error = reference.angle_to(&q);
         assert!(error < bound, "exact-splitting dt = {dt}: {error:e} rad");
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lessons 13–15: several bodies and contact geometry
+// ---------------------------------------------------------------------------------------------
+
+const G: f64 = 9.81;
+
+/// A bundled lesson with some of its text replaced (the experiments its pages suggest).
+fn lesson_edited(name: &str, edits: &[(&str, &str)]) -> Lesson {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("lessons")
+        .join(name);
+    let mut source = std::fs::read_to_string(&path).unwrap();
+    for (from, to) in edits {
+        assert!(source.contains(from), "{name} has no `{from}`");
+        source = source.replacen(from, to, 1);
+    }
+    tumble::scene::parse(&source, &path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn velocity(world: &World, name: &str) -> Vector3<f64> {
+    let i = world.body_index(name).unwrap();
+    world.states()[i].linear_momentum / world.bodies()[i].mass
+}
+
+fn position(world: &World, name: &str) -> Vector3<f64> {
+    world.states()[world.body_index(name).unwrap()].position
+}
+
+/// The name the panels give a row's features (vertex rows: "vertex").
+fn feature(f: Feature) -> &'static str {
+    match f {
+        Feature::Vertex(_) => "vertex",
+        Feature::Geometry(g) => g.name(),
+    }
+}
+
+/// Rows of the last collide phase that overlap (depth > 0; speculative rows excluded).
+fn touching(world: &World) -> Vec<tumble::physics::Contact> {
+    world
+        .contacts()
+        .iter()
+        .filter(|c| c.depth > 0.0)
+        .copied()
+        .collect()
+}
+
+#[test]
+fn lesson_13_the_plate_lands_face_on_face_on_the_pillar_during_step_303() {
+    let l = lesson("13-what-vertices-miss.toml");
+    let mut world = l.scene.world();
+    // The bottom face (y − 0.05) reaches the pillar's top y = 1 at t = √(2 × 0.45 / g) =
+    // 0.302891 s: inside step 303, and no row touches before it.
+    assert_near((0.9_f64 / G).sqrt(), 0.3029, 5e-5, "contact time");
+    for step in 1..=302 {
+        world.step();
+        assert!(
+            touching(&world).is_empty(),
+            "step {step}: {:?}",
+            world.contacts()
+        );
+    }
+    world.step();
+    let rows = touching(&world);
+    // The manifold: the pillar's top square, 4 face-face rows against the box (obstacle 1).
+    assert_eq!(rows.len(), 4, "{rows:?}");
+    let t = 0.303;
+    // rk4 is exact in a uniform field: v_n = −g t, depth = ½ g t² − 0.45 (the bottom started
+    // 0.45 m above the top).
+    let v_n = -G * t;
+    let mut total = Vector3::zeros();
+    for row in &rows {
+        assert_eq!(feature(row.feature), "face-face");
+        assert_eq!(row.against, Against::Obstacle(1));
+        assert_near(row.normal_velocity, v_n, 1e-9, "v·n");
+        assert_near(row.depth, 0.5 * G * t * t - 0.45, 1e-9, "depth");
+        assert_near(row.impulse.y, 1.04035, 5e-6, "J per row (quoted)");
+        total += row.impulse;
+    }
+    assert_near(v_n, -2.972430, 5e-7, "v·n quoted");
+    // Σ J = (1 + e) M |v_n| = 1.4 × 2.972430 = 4.161402 N·s, all along +y.
+    assert_near(total.y, 1.4 * G * t, 1e-9, "Σ J");
+    assert_near(total.y, 4.161402, 5e-7, "Σ J quoted");
+    assert_near(total.x.hypot(total.z), 0.0, 1e-12, "no sideways impulse");
+    // The plate leaves at e |v_n| = 1.188972 m/s.
+    assert_near(velocity(&world, "body1").y, 0.4 * G * t, 1e-9, "v after");
+    assert_near(
+        velocity(&world, "body1").y,
+        1.188972,
+        5e-7,
+        "v after quoted",
+    );
+}
+
+#[test]
+fn lesson_13_the_plate_rests_on_the_pillar_top() {
+    let l = lesson("13-what-vertices-miss.toml");
+    let mut world = l.scene.world();
+    for step in 1..=3000 {
+        world.step();
+        assert!(world.divergence().is_none());
+        if step >= 720 {
+            // At rest from t ≈ 0.72 s on the pillar: 1 m + 0.05 m, with the position fix's
+            // few µm of margin (the page quotes 1.050003 m).
+            let s = &world.states()[0];
+            assert_near(s.position.y, 1.050003, 5e-7, "rest height");
+            assert!(s.linear_momentum.norm() < 1e-9, "step {step}: still moving");
+            assert!(
+                s.position.x.hypot(s.position.z) < 1e-9,
+                "step {step}: drifted"
+            );
+        }
+    }
+    let q = world.states()[0].orientation.quaternion();
+    assert!(q.angle() < 1e-9, "tilted by {} rad", q.angle());
+}
+
+#[test]
+fn lesson_13_with_seed_no_corner_enters_the_pillar_and_the_plate_falls_through() {
+    let l = lesson("13-what-vertices-miss.toml");
+    let mut scene = l.scene.clone();
+    scene.contact.as_mut().unwrap().response = tumble::physics::Response::Seed;
+    let mut world = scene.world();
+    // The bottom reaches the ground when 1.45 = ½ g t²: t = 0.54372 s, inside step 544.
+    assert_near((2.9_f64 / G).sqrt(), 0.5437, 5e-5, "landing time");
+    for step in 1..=543 {
+        world.step();
+        assert!(
+            world.contacts().is_empty(),
+            "step {step}: {:?}",
+            world.contacts()
+        );
+        // Free fall all the way (rk4 exact): y = 1.5 − ½ g t², through the pillar's top.
+        let t = step as f64 * 1e-3;
+        assert_near(
+            world.states()[0].position.y,
+            1.5 - 0.5 * G * t * t,
+            1e-9,
+            "free fall",
+        );
+    }
+    assert!(
+        world.states()[0].position.y < 0.06,
+        "the pillar is through the plate"
+    );
+    world.step();
+    // The ground (obstacle 0) catches a corner; seed's kick L += r × (−F), r = corner − x₀
+    // with corners at x, z = ±0.5: L = (∓4.905, 0, ±4.905), ω = L / I with
+    // I_xx = I_zz = M (1 + 0.01)/12: |ω_x| = |ω_z| = 58.2772 rad/s (the page: 58 rad/s).
+    assert!(world
+        .contacts()
+        .iter()
+        .all(|c| c.against == Against::Obstacle(0)));
+    let w = world.snapshot().angular_velocity;
+    let expected = 0.5 * G / (1.01 / 12.0);
+    assert_near(w.x.abs(), expected, 1e-6, "ω_x");
+    assert_near(w.z.abs(), expected, 1e-6, "ω_z");
+    assert_near(expected, 58.2772, 5e-5, "quoted");
+}
+
+#[test]
+fn lesson_13_tilted_plate_meets_the_pillar_edge_on_and_slides_off_to_the_ground() {
+    let l = lesson_edited(
+        "13-what-vertices-miss.toml",
+        &[(
+            "position = [0.0, 1.5, 0.0]",
+            "position = [0.0, 1.5, 0.0]\norientation = { axis = [0.0, 0.0, 1.0], degrees = 10.0 }",
+        )],
+    );
+    let mut world = l.scene.world();
+    let first = loop {
+        world.step();
+        let rows = touching(&world);
+        if !rows.is_empty() {
+            break rows;
+        }
+        assert!(world.time() < 1.0, "never touched");
+    };
+    assert!(
+        first
+            .iter()
+            .all(|r| feature(r.feature) == "edge-face" && r.against == Against::Obstacle(1)),
+        "{first:?}"
+    );
+    for _ in world.step_count()..3000 {
+        world.step();
+    }
+    // Off the pillar (|x| > 0.1 + 0.5) and flat on the ground (half thickness 0.05 m).
+    let s = &world.states()[0];
+    assert!(s.position.x > 0.6, "x = {}", s.position.x);
+    assert_near(s.position.y, 0.05, 1e-5, "on the ground");
+}
+
+#[test]
+fn lesson_14_equal_cubes_exchange_velocities_and_keep_p_and_e() {
+    let l = lesson("14-head-on.toml");
+    let mut world = l.scene.world();
+    for step in 1..=2000 {
+        world.step();
+        let totals = SystemTotals::of(&world);
+        // No external force: P = 1 kg·m/s and, with e = 1, E = ½ M v² = 0.5 J throughout.
+        assert_near(
+            (totals.linear_momentum - Vector3::x()).norm(),
+            0.0,
+            1e-12,
+            "total P",
+        );
+        assert_near(totals.energy.total, 0.5, 1e-9, "total E");
+        if step == 500 {
+            // Faces meet at t = 0.5 s: J = (1 + e)|v_n| / (1/M + 1/M) = 1 N·s over 4 rows.
+            let rows = touching(&world);
+            assert_eq!(rows.len(), 4, "{rows:?}");
+            let j: f64 = rows.iter().map(|r| r.impulse.x).sum();
+            assert_near(j.abs(), 1.0, 1e-9, "Σ J");
+            assert!(rows.iter().all(|r| feature(r.feature) == "face-face"));
+            // Exchange: left stops (the page: P reads 1e-10), middle leaves at 1 m/s.
+            assert_near(velocity(&world, "left").x, 0.0, 2e-10, "left after");
+            assert_near(velocity(&world, "middle").x, 1.0, 2e-10, "middle after");
+        }
+    }
+    // Middle crossed the 1 cm gap in 10 steps and handed its velocity on to right.
+    assert_near(
+        velocity(&world, "middle").norm(),
+        0.0,
+        1e-9,
+        "middle at the end",
+    );
+    assert_near(velocity(&world, "right").x, 1.0, 1e-9, "right at the end");
+    assert_near(
+        position(&world, "left").x,
+        -0.2,
+        1e-6,
+        "left stopped at contact",
+    );
+}
+
+#[test]
+fn lesson_14_touching_cubes_keep_p_and_e_but_are_no_cradle() {
+    let l = lesson_edited(
+        "14-head-on.toml",
+        &[("position = [0.21, 0.0, 0.0]", "position = [0.2, 0.0, 0.0]")],
+    );
+    let mut world = l.scene.world();
+    for _ in 0..1000 {
+        world.step();
+    }
+    let v = [
+        velocity(&world, "left").x,
+        velocity(&world, "middle").x,
+        velocity(&world, "right").x,
+    ];
+    // The velocities the page quotes; they keep P = Σ vᵢ = 1 and 2E = Σ vᵢ² = 1.
+    for (seen, quoted) in v.iter().zip([-0.244017, 0.333333, 0.910684]) {
+        assert_near(*seen, quoted, 5e-7, "velocity");
+    }
+    assert_near(v.iter().sum::<f64>(), 1.0, 1e-9, "P");
+    assert_near(v.iter().map(|x| x * x).sum::<f64>(), 1.0, 1e-9, "2E");
+    assert!(v[0] < 0.0, "left bounces back");
+}
+
+#[test]
+fn lesson_14_with_e_0_the_cubes_share_and_lose_half_then_two_thirds() {
+    let l = lesson_edited(
+        "14-head-on.toml",
+        &[("restitution = 1.0", "restitution = 0.0")],
+    );
+    let mut world = l.scene.world();
+    for _ in 0..500 {
+        world.step();
+    }
+    // Perfectly inelastic, equal masses: v' = (1 + 0)/2 = 0.5 m/s each; E = 2 × ½ × 0.25.
+    assert_near(velocity(&world, "left").x, 0.5, 1e-9, "left");
+    assert_near(velocity(&world, "middle").x, 0.5, 1e-9, "middle");
+    assert_near(SystemTotals::of(&world).energy.total, 0.25, 1e-9, "E");
+    for _ in 500..2000 {
+        world.step();
+    }
+    // All three at P/3M = 1/3 m/s: E = 3 × ½ × 1/9 = 1/6 J.
+    for name in ["left", "middle", "right"] {
+        assert_near(velocity(&world, name).x, 1.0 / 3.0, 1e-9, name);
+    }
+    let totals = SystemTotals::of(&world);
+    assert_near(totals.energy.total, 1.0 / 6.0, 1e-9, "E");
+    assert_near(totals.linear_momentum.x, 1.0, 1e-12, "P");
+}
+
+#[test]
+fn lesson_15_each_contact_carries_the_weight_above_it() {
+    let l = lesson("15-stack.toml");
+    let mut world = l.scene.world();
+    // At rest (the top stops at step 102; see below) the sums are exact. While the top slides
+    // the friction solve is iterative: within 5e-5 of them.
+    for _ in 0..500 {
+        world.step();
+    }
+    // Per step, the rows give back the g dt gravity took: Σ J_y on the ground = 3 M g dt,
+    // from middle onto bottom −2 M g dt, from top onto middle −M g dt (J acts on body A).
+    let (bottom, middle, top) = (0, 1, 2);
+    let mut sums = [0.0; 3];
+    for row in world.contacts() {
+        match (row.body, row.against) {
+            (b, Against::Obstacle(0)) if b == bottom => sums[0] += row.impulse.y,
+            (a, Against::Body(b)) if (a, b) == (bottom, middle) => sums[1] += row.impulse.y,
+            (a, Against::Body(b)) if (a, b) == (middle, bottom) => sums[1] -= row.impulse.y,
+            (a, Against::Body(b)) if (a, b) == (middle, top) => sums[2] += row.impulse.y,
+            (a, Against::Body(b)) if (a, b) == (top, middle) => sums[2] -= row.impulse.y,
+            other => panic!("unexpected row {other:?}"),
+        }
+    }
+    let dt = 1e-3;
+    assert_near(sums[0], 3.0 * G * dt, 1e-9, "ground");
+    assert_near(sums[0], 0.02943, 1e-9, "ground quoted");
+    assert_near(sums[1], -2.0 * G * dt, 1e-9, "bottom–middle");
+    assert_near(sums[2], -G * dt, 1e-9, "middle–top");
+}
+
+#[test]
+fn lesson_15_friction_stops_the_top_and_the_stack_stands_still() {
+    let l = lesson("15-stack.toml");
+    let mut world = l.scene.world();
+    let (mu, dt, v0) = (0.5, 1e-3, 0.5);
+    let mut stopped_at = None;
+    let mut highest_offset: f64 = 0.0;
+    for step in 1..=3000u64 {
+        world.step();
+        assert!(world.divergence().is_none());
+        let v = velocity(&world, "top").x;
+        if step <= 101 {
+            // Kinetic friction μ M g: v = v₀ − μ g t (to the iterative solve's 5e-6).
+            assert_near(v, v0 - mu * G * step as f64 * dt, 5e-6, "top v_x");
+        } else if stopped_at.is_none() && v.abs() < 1e-4 {
+            stopped_at = Some(step);
+        }
+        // Static friction holds them: they give a few tens of nm, the residue of the
+        // iterative friction solve while the top slides (the page: 33 nm).
+        for (name, bound) in [("bottom", 1.5e-8), ("middle", 3.5e-8)] {
+            let x = position(&world, name);
+            assert!(
+                x.x.hypot(x.z) < bound,
+                "{name} moved {} m at step {step}",
+                x.x.hypot(x.z)
+            );
+        }
+        highest_offset = highest_offset.max((position(&world, "top").y - 0.5).abs());
+    }
+    // Stops (below 0.1 mm/s; a few µm/s of wobble die out by step 105) at v₀/(μ g) =
+    // 0.10194 s: step 102, as quoted (0.102 s).
+    assert_eq!(stopped_at, Some(102));
+    // Each step advances with the velocity after friction: d = dt Σ_{k=1}^{101} (v₀ − k μ g dt)
+    // = 25.234 mm, against the continuous v₀²/(2 μ g) = 25.484 mm.
+    let discrete: f64 = (1..=101).map(|k| (v0 - k as f64 * mu * G * dt) * dt).sum();
+    assert_near(position(&world, "top").x, discrete, 5e-7, "distance");
+    assert_near(discrete, 0.0252, 5e-5, "25.2 mm quoted");
+    assert_near(v0 * v0 / (2.0 * mu * G), 0.0255, 5e-5, "25.5 mm quoted");
+    // Within 20 nm of 0.5 m for the whole 3 s.
+    assert!(
+        highest_offset < 2e-8,
+        "top height off by {highest_offset:e} m"
+    );
+    for name in ["bottom", "middle", "top"] {
+        assert!(velocity(&world, name).norm() < 1e-9, "{name} still moving");
+    }
+}
+
+#[test]
+fn lesson_15_without_friction_the_top_falls_off_and_p_x_is_kept() {
+    let l = lesson_edited("15-stack.toml", &[("friction = 0.5", "friction = 0.0")]);
+    let mut world = l.scene.world();
+    for step in 1..=1000u64 {
+        world.step();
+        // No horizontal force from a frictionless ground: P_x = M × 0.5 throughout.
+        let p = SystemTotals::of(&world).linear_momentum.x;
+        assert_near(p, 0.5, 1e-9, &format!("P_x at step {step}"));
+        if step == 200 {
+            // Untouched until its barycenter reaches the middle's edge x = 0.1 m at 0.2 s.
+            assert_near(position(&world, "top").x, 0.1, 1e-9, "top x at 0.2 s");
+        }
+    }
+    assert_near(velocity(&world, "middle").x, -0.092935, 5e-7, "middle");
+    assert_near(velocity(&world, "top").x, 0.592935, 5e-7, "top");
+    assert_near(position(&world, "top").y, 0.1, 1e-4, "top on the ground");
+    assert!(velocity(&world, "bottom").norm() < 1e-9);
+}
+
+#[test]
+fn lesson_15_seed_refuses_the_stack_and_cannot_rest_one_cube() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lessons/15-stack.toml");
+    let source = std::fs::read_to_string(&path).unwrap();
+    let error = tumble::scene::parse(
+        &source.replacen("response = \"impulse\"", "response = \"seed\"", 1),
+        &path,
+    )
+    .unwrap_err();
+    assert!(
+        error
+            .message
+            .contains("the `seed` response knows one body and fixed obstacles only"),
+        "{error}"
+    );
+    // One cube of the stack, alone on the ground, with seed.
+    let one = "title = \"one\"\n[scene]\ndt = 0.001\nintegrator = \"rk4\"\n\
+               gravity = [0.0, -9.81, 0.0]\ncontact = { response = \"seed\" }\n\
+               [body]\nshape = \"box\"\nsize = [0.2, 0.2, 0.2]\nmass = 1.0\n\
+               position = [0.0, 0.1, 0.0]\n[[obstacle]]\ntype = \"ground\"\nheight = 0.0\n";
+    let l = tumble::scene::parse(one, &path).unwrap_or_else(|e| panic!("{e}"));
+    let mut world = l.scene.world();
+    world.step();
+    let s = world.snapshot();
+    // P ← −0.4 (P + F dt): v_y = 0.4 g dt = 3.924 mm/s up.
+    assert_near(s.velocity.y, 0.4 * G * 1e-3, 1e-12, "v_y");
+    // L ← r × (−F), r = (±0.1, −0.1, ±0.1): |L_x| = |L_z| = 0.981; I = M s²/6.
+    let i = 0.04 / 6.0;
+    assert_near(s.angular_velocity.x.abs(), 0.981 / i, 1e-6, "ω_x");
+    assert_near(s.angular_velocity.z.abs(), 0.981 / i, 1e-6, "ω_z");
+    assert_near(s.angular_velocity.norm(), 208.1, 0.05, "|ω| quoted");
 }

@@ -164,3 +164,41 @@ fn the_complete_example_of_the_lesson_format_doc_is_a_valid_lesson() {
     }
     assert_eq!(world.state().angular_momentum, l0);
 }
+
+/// Pages written before the 11-line limit, which scroll in the app's lesson pane.
+const LONG_PAGES: &[(&str, &str)] = &[
+    ("10-tennis-racket.toml", "Integrators compared"),
+    ("12-accuracy-cost.toml", "The orders, measured"),
+    ("12-accuracy-cost.toml", "What an answer costs"),
+    (
+        "12-accuracy-cost.toml",
+        "Measure it yourself: the study view",
+    ),
+];
+
+#[test]
+fn every_page_fits_86_columns_and_11_lines() {
+    for path in lessons::bundled() {
+        let lesson = tumble::scene::load(&path).unwrap();
+        for page in &lesson.pages {
+            let text = page.text.trim_matches('\n');
+            for line in text.lines() {
+                assert!(
+                    line.chars().count() <= 86,
+                    "{}: page `{}` has a line of {} columns: {line}",
+                    path.display(),
+                    page.title,
+                    line.chars().count()
+                );
+            }
+            let long = LONG_PAGES.contains(&(name(&path).as_str(), page.title.as_str()));
+            assert!(
+                long || text.lines().count() <= 11,
+                "{}: page `{}` has {} lines (at most 11)",
+                path.display(),
+                page.title,
+                text.lines().count()
+            );
+        }
+    }
+}
