@@ -181,12 +181,15 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
             scalar_row("|L|", s.angular_momentum.norm(), "kg·m²/s"),
         ],
     };
-    // E − E₀ split by cause (the energy ledger); only the unbooked remainder is drift.
+    // The scene's energy (every body: contacts pass energy from one to another), E − E₀ split
+    // by cause (the energy ledger); only the unbooked remainder is drift.
     let b = &s.energy_balance;
+    let e = &s.system.energy;
+    let several = s.bodies.len() > 1;
     let mut energy_rows = vec![
         Row {
             label: "K, V, E".to_string(),
-            cells: [s.energy.kinetic, s.energy.potential, s.energy.total]
+            cells: [e.kinetic, e.potential, e.total]
                 .iter()
                 .map(|x| number(*x))
                 .collect(),
@@ -206,10 +209,14 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     energy_rows.push(scalar_row("  drift", b.drift, "J"));
     energy_rows.push(scalar_row("drift/E₀", b.relative_drift, ""));
     let energy = Panel {
-        title: "energy".to_string(),
+        title: if several {
+            "energy (all bodies)".to_string()
+        } else {
+            "energy".to_string()
+        },
         rows: energy_rows,
     };
-    vec![
+    let mut panels = vec![
         state,
         inertia_panel,
         angular_velocity,
@@ -217,7 +224,30 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         momentum,
         angular_momentum,
         energy,
-    ]
+    ];
+    if several {
+        panels.push(system_panel(s));
+    }
+    panels
+}
+
+/// How many of [`panels`] describe the body the snapshot shows (the rest — energy, and the
+/// system panel with several bodies — describe the whole scene).
+pub const BODY_PANELS: usize = 6;
+
+/// The whole scene (several bodies): total momenta, which contacts between bodies keep.
+///
+/// ```text
+/// P = Σ P_b        L = Σ (x_b × P_b + L_b)   about the origin, world frame
+/// ```
+pub fn system_panel(s: &Snapshot) -> Panel {
+    Panel {
+        title: format!("system: {} bodies", s.bodies.len()),
+        rows: vec![
+            vector_row("P total", &s.system.linear_momentum, "kg·m/s"),
+            vector_row("L about O", &s.system.angular_momentum, "kg·m²/s"),
+        ],
+    }
 }
 
 /// The contacts the last *collide* phase handled, and the deepest penetration now: one

@@ -126,6 +126,27 @@ pub fn unknown_name<'a>(
 }
 
 /// An integrator named on the command line.
+/// The index of the body named `name` in a lesson's scene, or a one-line error listing the
+/// names (with a "did you mean").
+pub fn body_named(lesson: &Lesson, name: &str) -> Result<usize, Failure> {
+    lesson.scene.body_index(name).ok_or_else(|| {
+        let names: Vec<&str> = lesson
+            .scene
+            .bodies
+            .iter()
+            .map(|b| b.name.as_str())
+            .collect();
+        let hint = crate::scene::did_you_mean(name, names.iter().copied())
+            .map(|s| format!(" (did you mean `{s}`?)"))
+            .unwrap_or_default();
+        Failure::bad_input(format!(
+            "{}: no body named `{name}`{hint}; bodies: {}",
+            lesson.path.display(),
+            names.join(", ")
+        ))
+    })
+}
+
 pub fn integrator_named(name: &str) -> Result<Integrator, Failure> {
     Integrator::from_name(name).ok_or_else(|| {
         let names = Integrator::ALL.map(Integrator::name);

@@ -2,6 +2,8 @@
 //!
 //! Header (a contract): `step,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Lx,Ly,Lz,energy,penetration`.
 //! Row 0 is the initial state; numbers are printed in full (shortest round-trip) precision.
+//! With several bodies, `--body NAME` picks the body whose row is printed (default: the first);
+//! `energy` is always the whole scene's.
 
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
 use crate::physics::Snapshot;
@@ -21,6 +23,9 @@ pub struct RunArgs {
     /// Print one row every K steps.
     #[arg(long, default_value_t = 1)]
     pub every: u64,
+    /// The body whose row is printed (default: the first).
+    #[arg(long)]
+    pub body: Option<String>,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -31,6 +36,10 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
         return Err(Failure::bad_input("--every must be ≥ 1"));
     }
     let lesson = load_with(&args.file, &args.overrides)?;
+    let body = match &args.body {
+        Some(name) => super::body_named(&lesson, name)?,
+        None => 0,
+    };
     let mut world = lesson.scene.world();
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
@@ -39,7 +48,7 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
     };
     let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
     writeln!(out, "{HEADER}").map_err(io)?;
-    write(&mut out, &world.snapshot()).map_err(io)?;
+    write(&mut out, &world.snapshot_of(body)).map_err(io)?;
     for step in 1..=args.steps {
         world.step();
         if let Some(divergence) = world.divergence() {
@@ -50,13 +59,13 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
             });
         }
         if step % args.every == 0 || step == args.steps {
-            write(&mut out, &world.snapshot()).map_err(io)?;
+            write(&mut out, &world.snapshot_of(body)).map_err(io)?;
         }
     }
     out.flush().map_err(io)
 }
 
-/// One CSV row of a snapshot.
+/// One CSV row of a snapshot (`energy`: the whole scene's).
 pub fn row(s: &Snapshot) -> String {
     let q = s.quaternion.quaternion();
     let values = [
@@ -77,7 +86,7 @@ pub fn row(s: &Snapshot) -> String {
         s.angular_momentum.x,
         s.angular_momentum.y,
         s.angular_momentum.z,
-        s.energy.total,
+        s.system.energy.total,
         s.penetration,
     ];
     let mut line = s.step.to_string();

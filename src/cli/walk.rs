@@ -8,10 +8,9 @@
 //! the contacts panel.
 
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
-use crate::physics::Obstacle;
-use crate::physics::{Snapshot, World};
+use crate::physics::World;
 use crate::scene::Lesson;
-use crate::tables::{contact_panel, number_plain, panel_text, panels, Frame};
+use crate::tables::{contact_panel, number_plain, panel_text, panels, Frame, BODY_PANELS};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -26,6 +25,9 @@ pub struct WalkArgs {
     /// each frame.
     #[arg(long)]
     pub phases: bool,
+    /// With several bodies, print only this body's tables (default: every body's, in turn).
+    #[arg(long)]
+    pub body: Option<String>,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -48,9 +50,19 @@ impl From<std::io::Error> for WalkError {
 /// Runs `tumble walk`.
 pub fn walk(args: &WalkArgs) -> Result<(), Failure> {
     let lesson = load_with(&args.file, &args.overrides)?;
+    let bodies = match &args.body {
+        None => None,
+        Some(name) => Some(vec![super::body_named(&lesson, name)?]),
+    };
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
-    let result = write_walk(&lesson, args.frames, args.phases, &mut out);
+    let result = write_walk_bodies(
+        &lesson,
+        args.frames,
+        args.phases,
+        bodies.as_deref(),
+        &mut out,
+    );
     let flushed = out.flush();
     match result {
         Ok(()) => flushed.map_err(|e| Failure::bad_input(format!("cannot write output: {e}"))),
@@ -62,23 +74,31 @@ pub fn walk(args: &WalkArgs) -> Result<(), Failure> {
     }
 }
 
-/// Writes the walk of `frames` frames of a lesson (every phase when `phases`).
+/// Writes the walk of `frames` frames of a lesson (every phase when `phases`), every body's
+/// tables.
 pub fn write_walk(
     lesson: &Lesson,
     frames: u64,
     phases: bool,
     out: &mut impl Write,
 ) -> Result<(), WalkError> {
+    write_walk_bodies(lesson, frames, phases, None, out)
+}
+
+/// [`write_walk`] with the tables of the given bodies only (None: every body).
+pub fn write_walk_bodies(
+    lesson: &Lesson,
+    frames: u64,
+    phases: bool,
+    bodies: Option<&[usize]>,
+    out: &mut impl Write,
+) -> Result<(), WalkError> {
     let mut world = lesson.scene.world();
+    let every: Vec<usize> = (0..world.body_count()).collect();
+    let bodies = bodies.unwrap_or(&every);
     write_header(lesson, &world, out)?;
     let mut shown_page = None;
-    write_block(
-        lesson,
-        world.obstacles(),
-        &world.snapshot(),
-        &mut shown_page,
-        out,
-    )?;
+    write_block(lesson, &world, bodies, &mut shown_page, out)?;
     // One block per frame, or one per phase of every frame.
     let blocks_per_frame = if phases { 4 } else { 1 };
     for _ in 0..frames {
@@ -88,13 +108,7 @@ pub fn write_walk(
             } else {
                 world.step();
             }
-            write_block(
-                lesson,
-                world.obstacles(),
-                &world.snapshot(),
-                &mut shown_page,
-                out,
-            )?;
+            write_block(lesson, &world, bodies, &mut shown_page, out)?;
         }
         if let Some(divergence) = world.divergence() {
             writeln!(out)?;
@@ -127,12 +141,28 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
     } else {
         obstacles.join(", ")
     };
+    let bodies: Vec<String> = lesson
+        .scene
+        .bodies
+        .iter()
+        .map(|b| {
+            if lesson.scene.bodies.len() > 1 {
+                format!(
+                    "{} {} · M = {} kg",
+                    b.name,
+                    b.shape,
+                    number_plain(b.body.mass)
+                )
+            } else {
+                format!("body {} · M = {} kg", b.shape, number_plain(b.body.mass))
+            }
+        })
+        .collect();
     let mut settings = format!(
-        "integrator {} · dt = {} s · body {} · M = {} kg · effects: {effects} · obstacles: {obstacles}",
+        "integrator {} · dt = {} s · {} · effects: {effects} · obstacles: {obstacles}",
         world.integrator().name(),
         number_plain(world.dt()),
-        lesson.scene.first().shape,
-        number_plain(world.body().mass),
+        bodies.join(" · "),
     );
     if let Some(model) = world.contact_model() {
         settings.push_str(&format!(" · response {}", model.response.name()));
@@ -140,14 +170,17 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
     writeln!(out, "{settings}")
 }
 
-/// One block: time, frame and phase, the page that applies, the panels.
+/// One block: time, frame and phase, the page that applies, the panels of each body in
+/// `bodies` (headed by its name when the scene has several), then the scene's.
 fn write_block(
     lesson: &Lesson,
-    obstacles: &[Obstacle],
-    snapshot: &Snapshot,
+    world: &World,
+    bodies: &[usize],
     shown_page: &mut Option<usize>,
     out: &mut impl Write,
 ) -> std::io::Result<()> {
+    let snapshot = &world.snapshot_of(bodies[0]);
+    let obstacles = world.obstacles();
     writeln!(out)?;
     let when = format!("t = {} s", number_plain(snapshot.time));
     let line = match snapshot.phase {
@@ -189,14 +222,35 @@ fn write_block(
             *shown_page = Some(index);
         }
     }
-    let mut all = panels(snapshot, Frame::World);
-    if !obstacles.is_empty() {
-        all.push(contact_panel(snapshot, obstacles));
-    }
-    for panel in all {
-        for text_line in panel_text(&panel) {
+    let several = world.body_count() > 1;
+    let mut write = |panel: &crate::tables::Panel| -> std::io::Result<()> {
+        for text_line in panel_text(panel) {
             writeln!(out, "{text_line}")?;
         }
+        Ok(())
+    };
+    let mut scene_panels = Vec::new();
+    for &index in bodies {
+        let snapshot = world.snapshot_of(index);
+        if several {
+            write(&crate::tables::Panel {
+                title: format!("-- body {} --", snapshot.body_name),
+                rows: Vec::new(),
+            })?;
+        }
+        let mut all = panels(&snapshot, Frame::World);
+        if several {
+            scene_panels = all.split_off(BODY_PANELS);
+        }
+        if !obstacles.is_empty() || several {
+            all.push(contact_panel(&snapshot, obstacles));
+        }
+        for panel in &all {
+            write(panel)?;
+        }
+    }
+    for panel in &scene_panels {
+        write(panel)?;
     }
     Ok(())
 }
