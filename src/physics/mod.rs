@@ -5,6 +5,7 @@
 //! | file | idea |
 //! |---|---|
 //! | `body` | mass points, barycenter, inertia tensor |
+//! | `cloth` | mass–spring sheets: particles, springs, their integrators |
 //! | `state` | (x, R or q, P, L) |
 //! | `derive` | the derive phase: I⁻¹_world, ω, v |
 //! | `effects` | the forces phase: gravity and drag, only when declared |
@@ -16,6 +17,7 @@
 //! | `divergence` | the guard against non-finite or runaway states |
 
 pub mod body;
+pub mod cloth;
 pub mod collision;
 pub mod derive;
 pub mod divergence;
