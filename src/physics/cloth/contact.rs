@@ -1,8 +1,21 @@
 //! Particles against fixed obstacles (ground, sphere, box), and the cloth's side of a contact
 //! with a body.
 //!
-//! Each free particle is tested along its motion over the step (the swept test of
-//! `collision::detect`, so a fast particle cannot jump a thin box); one found inside gets:
+//! # Two passes per step, on velocities first
+//!
+//! A step that moves a resting particle into the obstacle and a contact that pushes it back
+//! out trade energy every step (the step lowers the springs' and gravity's energy, the
+//! push-out raises it again): an artifact, not a loss. So, as rigid engines do, contacts act
+//! on the velocities *before* the positions move ([`Cloth::step_with_obstacles`]):
+//!
+//! 1. [`Cloth::contact_velocities`], after the velocity half of the step: a free particle at
+//!    gap g ≥ 0 from an obstacle (`detect::near`, normal n) whose new velocity would carry it
+//!    inside, `h v·n < −g`, gets v·n ← −g/h (it arrives on the surface, no further), and
+//!    Coulomb friction on the tangential velocity with the impulse that took (below).
+//!    Fast approaches (−v·n > the bounce speed) with e > 0 are left to pass 2, to bounce.
+//! 2. [`Cloth::collide_obstacles`], after the positions moved: a particle found inside
+//!    (swept test, so a fast one cannot jump a thin box; or inside by the curvature of a
+//!    sphere) is projected out and its approach removed, with restitution when fast:
 //!
 //! ```text
 //! x ← x + depth n                                  projected onto the surface
@@ -27,7 +40,7 @@
 //! opposite impulse to the body.
 
 use super::loads::ClothLoads;
-use super::sheet::Cloth;
+use super::sheet::{Cloth, StepReport};
 use crate::physics::collision::detect;
 use crate::physics::collision::impulse::BOUNCE_STEPS;
 use crate::physics::collision::Obstacle;
@@ -39,12 +52,48 @@ pub struct ParticleContact {
     pub particle: usize,
     /// Index of the obstacle in the scene's list.
     pub obstacle: usize,
-    /// Penetration depth before the projection, m.
+    /// Penetration depth before the projection, m (pass 1: minus the gap, ≤ 0).
     pub depth: f64,
     /// Unit normal out of the obstacle.
     pub normal: Vector3<f64>,
     /// v·n before the response, m/s (negative: approaching).
     pub normal_velocity: f64,
+}
+
+/// The speed below which approaches do not bounce: `BOUNCE_STEPS·|g|·dt`, as for bodies.
+fn bounce_speed(loads: &ClothLoads, dt: f64) -> f64 {
+    loads.gravity.map_or(0.0, |g| BOUNCE_STEPS * g.norm() * dt)
+}
+
+/// The tangential velocity after Coulomb friction with a normal velocity change `stop` ≥ 0.
+#[inline]
+fn coulomb(v: &Vector3<f64>, n: &Vector3<f64>, friction: f64, stop: f64) -> Vector3<f64> {
+    let tangential = v - n * v.dot(n);
+    let slip = tangential.norm();
+    if slip <= friction * stop {
+        Vector3::zeros()
+    } else {
+        tangential * (1.0 - friction * stop / slip)
+    }
+}
+
+/// A start this close to a surface (m) counts as on it.
+const ON_SURFACE: f64 = 1e-9;
+
+/// Is a particle that moved from `a` to `b` inside `obstacle`? The swept test when `a` is
+/// clearly outside; the static test at `b` when `a` is on the surface (a resting particle:
+/// `detect::swept` takes its start to be outside, and for a sphere a start on the surface up
+/// to round-off can give the far side's entry point).
+fn penetration(
+    obstacle: &Obstacle,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+) -> Option<detect::Penetration> {
+    if obstacle.depth(a) > 0.0 || detect::near(obstacle, a, ON_SURFACE).is_some() {
+        detect::inside(obstacle, b)
+    } else {
+        detect::swept(obstacle, a, b)
+    }
 }
 
 /// What one contact pass did.
@@ -58,8 +107,111 @@ pub struct ContactReport {
 }
 
 impl Cloth {
-    /// Tests every free particle against every obstacle and responds (module doc); the
-    /// contacts found are in `contacts` (cleared first). Adds the energy taken to
+    /// One whole step among fixed obstacles: the velocity half, pass 1 (velocities), the
+    /// position half, pass 2 (projection). Contacts of both passes are in `contacts`.
+    pub fn step_with_obstacles(
+        &mut self,
+        loads: &ClothLoads,
+        dt: f64,
+        obstacles: &[Obstacle],
+        restitution: f64,
+        friction: f64,
+        contacts: &mut Vec<ParticleContact>,
+    ) -> (StepReport, ContactReport) {
+        let mut report = self.velocity_step(loads, dt);
+        let first = self.contact_velocities(obstacles, restitution, friction, loads, dt, contacts);
+        report.dissipated = self.advance_positions(loads, dt);
+        let mut second = Vec::new();
+        let after =
+            self.collide_obstacles(obstacles, restitution, friction, loads, dt, &mut second);
+        contacts.extend(second);
+        (
+            report,
+            ContactReport {
+                contacts: first.contacts + after.contacts,
+                deepest: after.deepest,
+                energy_taken: first.energy_taken + after.energy_taken,
+            },
+        )
+    }
+
+    /// Pass 1 (module doc): between the velocity half of a step and the positions' update,
+    /// stops each free particle whose velocity would carry it into an obstacle at the surface,
+    /// with friction. `contacts` is cleared and filled. Adds the energy taken to
+    /// `losses.contact`: across n the kinetic energy friction removed; along n the kinetic
+    /// energy of the approach the particle had at the start of the step, ½ m (min(0, v₀·n)² −
+    /// (g/h)²) — what the step's forces pushed into the surface within the step, a resting
+    /// contact cancels as it arises (counting it would book a resting sheet's weight as a loss
+    /// every step).
+    pub fn contact_velocities(
+        &mut self,
+        obstacles: &[Obstacle],
+        restitution: f64,
+        friction: f64,
+        loads: &ClothLoads,
+        dt: f64,
+        contacts: &mut Vec<ParticleContact>,
+    ) -> ContactReport {
+        contacts.clear();
+        let bounce_speed = bounce_speed(loads, dt);
+        let mut taken = 0.0;
+        for i in 0..self.len() {
+            if self.pinned[i] {
+                continue;
+            }
+            for (k, obstacle) in obstacles.iter().enumerate() {
+                let x = self.positions[i];
+                let v = self.velocities[i];
+                let reach = v.norm() * dt;
+                let (gap, n) = match detect::inside(obstacle, &x) {
+                    Some(p) => (0.0, p.normal),
+                    None => match detect::near(obstacle, &x, reach) {
+                        Some(near) => near,
+                        None => continue,
+                    },
+                };
+                let un = v.dot(&n);
+                let target = -gap / dt;
+                if un >= target || (restitution > 0.0 && -un > bounce_speed) {
+                    continue;
+                }
+                let stop = target - un;
+                let tangential = coulomb(&v, &n, friction, stop);
+                let after = tangential + n * target;
+                // Along n, only the approach the particle had at the start of the step is
+                // taken (what the forces added within the step, a resting contact cancels
+                // before it exists); across n, what friction removed.
+                let approach = self
+                    .scratch
+                    .start_velocity
+                    .get(i)
+                    .map_or(un, |v0| v0.dot(&n))
+                    .min(0.0);
+                taken += 0.5
+                    * self.masses[i]
+                    * (approach * approach - target * target + (v - n * un).norm_squared()
+                        - tangential.norm_squared());
+                self.velocities[i] = after;
+                contacts.push(ParticleContact {
+                    particle: i,
+                    obstacle: k,
+                    depth: -gap,
+                    normal: n,
+                    normal_velocity: un,
+                });
+            }
+        }
+        self.losses.contact += taken;
+        ContactReport {
+            contacts: contacts.len(),
+            deepest: 0.0,
+            energy_taken: taken,
+        }
+    }
+
+    /// Pass 2 (module doc): after the positions moved, tests every free particle against
+    /// every obstacle along its motion and responds; the contacts found are in `contacts`
+    /// (cleared first). Adds the energy taken to
     /// `losses.contact`.
     pub fn collide_obstacles(
         &mut self,
@@ -85,7 +237,7 @@ impl Cloth {
                 continue;
             }
             for (k, obstacle) in obstacles.iter().enumerate() {
-                let Some(hit) = detect::swept(obstacle, &start[i], &self.positions[i]) else {
+                let Some(hit) = penetration(obstacle, &start[i], &self.positions[i]) else {
                     continue;
                 };
                 if before.last().is_none_or(|b| b.0 != i) {
@@ -108,13 +260,7 @@ impl Cloth {
                 }
                 // Inelastic part: stop the approach, then friction within μ Δu_n.
                 let stop = -un;
-                let mut tangential = v - n * un;
-                let slip = tangential.norm();
-                if slip <= friction * stop {
-                    tangential = Vector3::zeros();
-                } else {
-                    tangential *= 1.0 - friction * stop / slip;
-                }
+                let tangential = coulomb(&v, &n, friction, stop);
                 // Restitution, paid for the push-out's work against gravity.
                 let mut bounce = if -un > bounce_speed {
                     restitution * stop

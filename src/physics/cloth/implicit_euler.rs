@@ -29,8 +29,8 @@
 //! linearisation and the solver's tolerance) — it falls, which is the method's known artifact.
 //!
 //! Losses: damping and drag enter the step evaluated at the *new* velocities (at the start's
-//! directions d̂₀, the linearisation of the damping force, exact for it); their work along
-//! Δx = h v₁ is what they took, never negative:
+//! directions d̂₀: the linearisation of the damping force, exact for it); their work along the
+//! step's displacement is what they took (`sheet`), with Δx = h v₁ never negative:
 //! `W = h Σ_springs c ((v₁_j − v₁_i)·d̂₀)² + h Σ_i k_drag,i |v₁_i|²`.
 
 use super::energy::Losses;
@@ -38,12 +38,13 @@ use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
 use nalgebra::Vector3;
 
-/// One step of length `h`, in place.
-pub(super) fn step(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepReport {
+/// The velocity half of a step of length `h`: v ← v₀ + Δv (positions move in
+/// [`Cloth::advance_positions`]). Leaves in the scratch the damping magnitudes
+/// `c (v₁_j − v₁_i)·d̂₀` and drag velocities v₁ the step used, for the loss accounting.
+pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepReport {
     cloth.compute_forces(loads);
     let n = cloth.positions.len();
     let scratch = &mut cloth.scratch;
-    scratch.start.clone_from(&cloth.positions);
     let work = &mut scratch.solver;
     work.resize(n);
     // a_i = m_i + h k_drag,i;  b = h f₀ − h² K v₀.
@@ -79,29 +80,28 @@ pub(super) fn step(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepReport 
         work.solution.iter_mut().for_each(|x| *x += shift);
     }
     for i in 0..n {
-        if cloth.pinned[i] {
-            continue;
+        if !cloth.pinned[i] {
+            cloth.velocities[i] += work.solution[i];
         }
-        cloth.velocities[i] += work.solution[i];
-        cloth.positions[i] += cloth.velocities[i] * h;
     }
-    let mut dissipated = Losses::default();
+    // What the step's damping and drag forces were: at v₁, along d̂₀.
     let v1 = &cloth.velocities;
-    if loads.drag.is_some() {
-        for i in 0..n {
-            let k = loads.particle_drag(cloth.masses[i], cloth.total_mass);
-            dissipated.drag += h * k * v1[i].norm_squared();
+    for ((s, axis), c) in cloth
+        .springs
+        .iter()
+        .zip(&scratch.axes)
+        .zip(scratch.damping.iter_mut())
+    {
+        if s.damping > 0.0 {
+            *c = s.damping_magnitude(axis, v1);
         }
     }
-    for (s, axis) in cloth.springs.iter().zip(&scratch.axes) {
-        if s.damping > 0.0 {
-            let rate: f64 = (v1[s.j] - v1[s.i]).dot(&axis.direction);
-            dissipated.damping += h * s.damping * rate * rate;
-        }
+    if loads.drag.is_some() {
+        scratch.drag_velocity.clone_from(v1);
     }
     StepReport {
         iterations: outcome.iterations,
         residual: outcome.relative_residual,
-        dissipated,
+        dissipated: Losses::default(),
     }
 }

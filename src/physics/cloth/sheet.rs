@@ -58,8 +58,13 @@ pub struct StepReport {
 pub(super) struct Scratch {
     pub force: Vec<Vector3<f64>>,
     pub axes: Vec<Axis>,
-    /// Per spring: the damping magnitude c (v_j − v_i)·d̂ at the start of the step.
+    /// Per spring: the damping magnitude the step used, c (v_j − v_i)·d̂₀ (v at the start for
+    /// the explicit step, at the end for the implicit one).
     pub damping: Vec<f64>,
+    /// The velocities at the start of the step.
+    pub start_velocity: Vec<Vector3<f64>>,
+    /// The velocities the step's drag used (only when drag is declared).
+    pub drag_velocity: Vec<Vector3<f64>>,
     pub start: Vec<Vector3<f64>>,
     pub solver: Workspace,
 }
@@ -280,16 +285,66 @@ impl Cloth {
         self.velocities.iter().map(|v| v.norm()).fold(0.0, f64::max)
     }
 
-    /// One step of length `dt` with the sheet's integrator, under the declared loads.
-    /// Accumulates the damping and drag losses into [`Cloth::losses`].
+    /// One whole step of length `dt` with the sheet's integrator under the declared loads,
+    /// without contacts: [`Cloth::velocity_step`] then [`Cloth::advance_positions`].
     pub fn step(&mut self, loads: &ClothLoads, dt: f64) -> StepReport {
-        let report = match self.integrator {
-            ClothIntegrator::SymplecticEuler => symplectic_euler::step(self, loads, dt),
-            ClothIntegrator::ImplicitEuler => implicit_euler::step(self, loads, dt),
-        };
-        self.losses.damping += report.dissipated.damping;
-        self.losses.drag += report.dissipated.drag;
+        let mut report = self.velocity_step(loads, dt);
+        report.dissipated = self.advance_positions(loads, dt);
         report
+    }
+
+    /// The velocity half of a step: v₀ → v₁ by the sheet's integrator (positions unchanged).
+    /// Contact impulses on velocities (obstacles, bodies) go between this and
+    /// [`Cloth::advance_positions`].
+    pub fn velocity_step(&mut self, loads: &ClothLoads, dt: f64) -> StepReport {
+        self.scratch.start_velocity.clone_from(&self.velocities);
+        match self.integrator {
+            ClothIntegrator::SymplecticEuler => symplectic_euler::velocities(self, loads, dt),
+            ClothIntegrator::ImplicitEuler => implicit_euler::velocities(self, loads, dt),
+        }
+    }
+
+    /// The position half: x ← x + h v for the free particles. Returns what the step's damping
+    /// and drag took, and adds it to [`Cloth::losses`]: the work of the forces the velocity
+    /// half used along the displacement, negated,
+    ///
+    /// ```text
+    /// W_damping = −Σ_springs f_i·(Δx_i − Δx_j),   f_i = c_used d̂₀
+    /// W_drag    = Σ_i k_drag,i v_used,i·Δx_i
+    /// ```
+    pub fn advance_positions(&mut self, loads: &ClothLoads, dt: f64) -> Losses {
+        self.scratch.start.clone_from(&self.positions);
+        for i in 0..self.positions.len() {
+            if !self.pinned[i] {
+                self.positions[i] += self.velocities[i] * dt;
+            }
+        }
+        let mut dissipated = Losses::default();
+        let start = &self.scratch.start;
+        if self.scratch.damping.len() == self.springs.len() {
+            for ((s, axis), &c) in self
+                .springs
+                .iter()
+                .zip(&self.scratch.axes)
+                .zip(&self.scratch.damping)
+            {
+                if c != 0.0 {
+                    let relative =
+                        (self.positions[s.i] - start[s.i]) - (self.positions[s.j] - start[s.j]);
+                    dissipated.damping -= c * axis.direction.dot(&relative);
+                }
+            }
+        }
+        if loads.drag.is_some() && self.scratch.drag_velocity.len() == self.len() {
+            for i in 0..self.len() {
+                let k = loads.particle_drag(self.masses[i], self.total_mass);
+                dissipated.drag +=
+                    k * self.scratch.drag_velocity[i].dot(&(self.positions[i] - start[i]));
+            }
+        }
+        self.losses.damping += dissipated.damping;
+        self.losses.drag += dissipated.drag;
+        dissipated
     }
 
     /// Positions at the start of the last step (for swept contact tests); the current

@@ -10,44 +10,30 @@
 //! |λ| > 1 every step and the sheet explodes within a few hundred steps.
 //!
 //! Losses: the damping and drag forces the step used were evaluated at v₀; their work along
-//! the step's displacement Δx_i = h v_i(new) is what they took:
+//! the step's displacement Δx_i = h v_i(new) is what they took (`sheet`):
 //! `W = Σ_springs c((v₀_j − v₀_i)·d̂) d̂·(Δx_j − Δx_i) + Σ_i k_i v₀_i·Δx_i`.
 
 use super::energy::Losses;
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
 
-/// One step of length `h`, in place.
-pub(super) fn step(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepReport {
+/// The velocity half of a step of length `h`: v ← v₀ + h f(x₀, v₀)/m (positions move in
+/// [`Cloth::advance_positions`]). The damping magnitudes at v₀ stay in the scratch, and the
+/// drag velocities v₀, for the loss accounting.
+pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepReport {
     cloth.compute_forces(loads);
-    let mut dissipated = Losses::default();
     let scratch = &mut cloth.scratch;
-    scratch.start.clone_from(&cloth.positions);
-    for i in 0..cloth.positions.len() {
-        if cloth.pinned[i] {
-            continue;
-        }
-        let v0 = cloth.velocities[i];
-        let v1 = v0 + scratch.force[i] * (h / cloth.masses[i]);
-        cloth.velocities[i] = v1;
-        cloth.positions[i] += v1 * h;
-        if loads.drag.is_some() {
-            let k = loads.particle_drag(cloth.masses[i], cloth.total_mass);
-            dissipated.drag += k * v0.dot(&v1) * h;
-        }
+    if loads.drag.is_some() {
+        scratch.drag_velocity.clone_from(&cloth.velocities);
     }
-    if cloth.springs.iter().any(|s| s.damping > 0.0) {
-        for (k, s) in cloth.springs.iter().enumerate() {
-            let dx_i = cloth.positions[s.i] - scratch.start[s.i];
-            let dx_j = cloth.positions[s.j] - scratch.start[s.j];
-            let f_i = scratch.axes[k].direction * scratch.damping[k];
-            // The force f_i on i and −f_i on j did work f_i·(Δx_i − Δx_j); the loss is minus it.
-            dissipated.damping -= f_i.dot(&(dx_i - dx_j));
+    for i in 0..cloth.positions.len() {
+        if !cloth.pinned[i] {
+            cloth.velocities[i] += scratch.force[i] * (h / cloth.masses[i]);
         }
     }
     StepReport {
         iterations: 0,
         residual: 0.0,
-        dissipated,
+        dissipated: Losses::default(),
     }
 }
