@@ -533,3 +533,76 @@ fn a_cloth_dropped_on_a_sphere_drapes_with_no_particle_inside() {
         assert!(taken > 0.0);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Scene files
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn a_cloth_table_becomes_its_spec() {
+    let source = r#"
+title = "Trampoline"
+[scene]
+dt = 0.001
+integrator = "symplectic-euler"
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+[body]
+shape = "box"
+size = [0.2, 0.2, 0.2]
+mass = 1.0
+[[cloth]]
+name = "trampoline"
+size = [2.0, 1.5]
+count = [21, 16]
+position = [0.0, 1.0, 0.0]
+mass = 2.0
+stretch = 5000.0
+shear = 1000.0
+damping = 0.5
+pinned = "edges"
+velocity = [0.0, 0.5, 0.0]
+integrator = "implicit-euler"
+[[cloth]]
+size = [1.0, 1.0]
+count = [3, 2]
+mass = 0.1
+stretch = 10.0
+pinned = [[0, 0], [2, 1]]
+"#;
+    let lesson = tumble::scene::parse(source, std::path::Path::new("t.toml")).unwrap();
+    let cloths = &lesson.scene.cloths;
+    assert_eq!(cloths.len(), 2);
+    let a = &cloths[0];
+    assert_eq!(
+        (
+            a.name.as_str(),
+            a.size,
+            a.count,
+            a.mass,
+            a.stretch,
+            a.shear,
+            a.bend,
+            a.damping
+        ),
+        (
+            "trampoline",
+            [2.0, 1.5],
+            [21, 16],
+            2.0,
+            5000.0,
+            1000.0,
+            0.0,
+            0.5
+        )
+    );
+    assert_eq!(a.pinned, Pinning::Edges);
+    assert_eq!(a.position, Vector3::new(0.0, 1.0, 0.0));
+    assert_eq!(a.velocity, Vector3::new(0.0, 0.5, 0.0));
+    assert_eq!(a.integrator, ClothIntegrator::ImplicitEuler);
+    // The second: default name, the scene's integrator, a list of pinned particles.
+    let b = &cloths[1];
+    assert_eq!(b.name, "cloth2");
+    assert_eq!(b.integrator, ClothIntegrator::SymplecticEuler);
+    assert_eq!(b.pinned, Pinning::List(vec![[0, 0], [2, 1]]));
+    assert!(Cloth::new(b).is_ok());
+}

@@ -4,6 +4,7 @@
 //! Every error is one line naming file:line:column, what was expected and what was found.
 //! A missing effect key means the effect is absent; missing initial conditions mean rest.
 
+mod cloth;
 mod error;
 mod mesh;
 mod messages;
@@ -11,6 +12,7 @@ mod raw;
 
 pub use error::{did_you_mean, LoadError};
 
+use crate::physics::cloth::ClothSpec;
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State, World,
 };
@@ -44,6 +46,8 @@ pub struct Scene {
     /// The body's shape name as written (box, points, mesh).
     pub shape: String,
     pub initial: State,
+    /// The `[[cloth]]` sheets, in file order.
+    pub cloths: Vec<ClothSpec>,
 }
 
 impl Scene {
@@ -154,7 +158,9 @@ impl Validator<'_> {
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let title = raw.title.into_inner();
+        let scene_integrator = raw.scene.get_ref().integrator.clone();
         let mut scene = self.scene(raw.scene.into_inner(), raw.body, &raw.obstacles)?;
+        scene.cloths = self.cloths(&raw.cloths, &scene_integrator, scene.contact.is_some())?;
         scene.obstacles = raw
             .obstacles
             .iter()
@@ -302,6 +308,7 @@ impl Validator<'_> {
             body: body_model,
             shape,
             initial,
+            cloths: Vec::new(),
         })
     }
 
