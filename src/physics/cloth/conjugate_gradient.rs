@@ -7,6 +7,7 @@
 //! A = diag(a_i I) + Σ_springs (i, j)  [  S_s  −S_s ]   rows/columns i, j
 //!                                     [ −S_s   S_s ]
 //! a_i = m_i + h k_drag,i,     S_s = h c d̂d̂ᵀ + h² k J           (see `spring`, `implicit_euler`)
+//!     = (h c + h² k (1 − t)) d̂d̂ᵀ + h² k t I,   t = max(0, 1 − ℓ₀/ℓ)   (stored as d̂ and 2 numbers)
 //! (A p)_i = a_i p_i + Σ_{s ∋ i} ±S_s (p_i − p_j)
 //! ```
 //!
@@ -40,11 +41,33 @@
 use super::spring::Spring;
 use nalgebra::{Matrix3, Vector3};
 
+/// One spring's block `S = along·d̂d̂ᵀ + across·I` (module doc): 5 numbers, not 9.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Block {
+    pub direction: Vector3<f64>,
+    pub along: f64,
+    pub across: f64,
+}
+
+impl Block {
+    /// S r.
+    #[inline]
+    fn apply(&self, r: &Vector3<f64>) -> Vector3<f64> {
+        self.direction * (self.along * self.direction.dot(r)) + r * self.across
+    }
+
+    /// S as a matrix.
+    #[inline]
+    fn matrix(&self) -> Matrix3<f64> {
+        self.direction * self.direction.transpose() * self.along + Matrix3::identity() * self.across
+    }
+}
+
 /// The solve's buffers, reused from step to step; `solution` is the last Δv (the warm start).
 #[derive(Debug, Clone, Default)]
 pub struct Workspace {
     /// S_s, one per spring.
-    pub blocks: Vec<Matrix3<f64>>,
+    pub blocks: Vec<Block>,
     /// a_i, one per particle.
     pub diagonal: Vec<f64>,
     /// P_i⁻¹, one per particle.
@@ -88,7 +111,7 @@ impl Workspace {
     /// out = filter(A p).
     fn multiply(
         springs: &[Spring],
-        blocks: &[Matrix3<f64>],
+        blocks: &[Block],
         diagonal: &[f64],
         pinned: &[bool],
         p: &[Vector3<f64>],
@@ -98,7 +121,7 @@ impl Workspace {
             *o = p * a;
         }
         for (s, block) in springs.iter().zip(blocks) {
-            let y = block * (p[s.i] - p[s.j]);
+            let y = block.apply(&(p[s.i] - p[s.j]));
             out[s.i] += y;
             out[s.j] -= y;
         }
@@ -124,8 +147,9 @@ impl Workspace {
             *p = Matrix3::identity() * a;
         }
         for (s, block) in springs.iter().zip(&self.blocks) {
-            self.preconditioner[s.i] += block;
-            self.preconditioner[s.j] += block;
+            let m = block.matrix();
+            self.preconditioner[s.i] += m;
+            self.preconditioner[s.j] += m;
         }
         for (p, &held) in self.preconditioner.iter_mut().zip(pinned) {
             *p = if held {

@@ -33,6 +33,7 @@
 //! step's displacement is what they took (`sheet`), with Δx = h v₁ never negative:
 //! `W = h Σ_springs c ((v₁_j − v₁_i)·d̂₀)² + h Σ_i k_drag,i |v₁_i|²`.
 
+use super::conjugate_gradient::Block;
 use super::energy::Losses;
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
@@ -56,12 +57,16 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
     work.blocks.clear();
     let v0 = &cloth.velocities;
     for (s, axis) in cloth.springs.iter().zip(&scratch.axes) {
-        let stiffness = s.stiffness_block(axis);
-        let kv = stiffness * (v0[s.i] - v0[s.j]);
-        work.rhs[s.i] -= kv * (h * h);
-        work.rhs[s.j] += kv * (h * h);
-        work.blocks
-            .push(s.damping_block(axis) * h + stiffness * (h * h));
+        let kv = s.stiffness_times(axis, &(v0[s.i] - v0[s.j])) * (h * h);
+        work.rhs[s.i] -= kv;
+        work.rhs[s.j] += kv;
+        // S = h c d̂d̂ᵀ + h² k ((1 − t) d̂d̂ᵀ + t I)
+        let t = s.transverse(axis);
+        work.blocks.push(Block {
+            direction: axis.direction,
+            along: h * s.damping + h * h * s.stiffness * (1.0 - t),
+            across: h * h * s.stiffness * t,
+        });
     }
     let outcome = work.solve(
         &cloth.springs,

@@ -92,16 +92,28 @@ impl Spring {
         0.5 * self.stiffness * stretch * stretch
     }
 
+    /// t = max(0, 1 − ℓ₀/ℓ), the transverse factor of J = (1 − t) d̂d̂ᵀ + t I.
+    #[inline]
+    pub fn transverse(&self, axis: &Axis) -> f64 {
+        if axis.length > 0.0 {
+            (1.0 - self.rest_length / axis.length).max(0.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// k J w = k ((1 − t)(d̂·w) d̂ + t w), without forming the matrix.
+    #[inline]
+    pub fn stiffness_times(&self, axis: &Axis, w: &Vector3<f64>) -> Vector3<f64> {
+        let t = self.transverse(axis);
+        (axis.direction * ((1.0 - t) * axis.direction.dot(w)) + w * t) * self.stiffness
+    }
+
     /// k J, the clamped stiffness block (module doc), N/m.
     #[inline]
     pub fn stiffness_block(&self, axis: &Axis) -> Matrix3<f64> {
         let dd = axis.direction * axis.direction.transpose();
-        let transverse = if axis.length > 0.0 {
-            (1.0 - self.rest_length / axis.length).max(0.0)
-        } else {
-            0.0
-        };
-        (dd + (Matrix3::identity() - dd) * transverse) * self.stiffness
+        (dd + (Matrix3::identity() - dd) * self.transverse(axis)) * self.stiffness
     }
 
     /// c d̂d̂ᵀ, the damping block, N·s/m.
