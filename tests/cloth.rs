@@ -521,7 +521,8 @@ fn a_cloth_dropped_on_a_sphere_drapes_with_no_particle_inside() {
                 }
             }
         }
-        // Draped: the centre rests on top of the sphere, the rim hangs below the top.
+        // Draped: the centre rests on top of the sphere (y = 1), the rim hangs well below it
+        // (flat, it would be at 1; it swings, so the bound is loose).
         let centre = cloth.positions[cloth.index(8, 8)];
         let rim = cloth.positions[cloth.index(0, 8)];
         eprintln!(
@@ -529,7 +530,7 @@ fn a_cloth_dropped_on_a_sphere_drapes_with_no_particle_inside() {
             integrator.name()
         );
         assert!((centre.y - 1.0).abs() < 0.02, "centre at {centre:?}");
-        assert!(rim.y < 0.8, "rim at {rim:?}");
+        assert!(rim.y < 0.9, "rim at {rim:?}");
         assert!(taken > 0.0);
     }
 }

@@ -91,14 +91,15 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
     }
     // What the step's damping and drag forces were: at v₁, along d̂₀.
     let v1 = &cloth.velocities;
-    for ((s, axis), c) in cloth
-        .springs
-        .iter()
-        .zip(&scratch.axes)
-        .zip(scratch.damping.iter_mut())
-    {
-        if s.damping > 0.0 {
-            *c = s.damping_magnitude(axis, v1);
+    if !scratch.damping_force.is_empty() {
+        scratch
+            .damping_force
+            .iter_mut()
+            .for_each(|f| *f = Vector3::zeros());
+        for (s, axis) in cloth.springs.iter().zip(&scratch.axes) {
+            let f = axis.direction * s.damping_magnitude(axis, v1);
+            scratch.damping_force[s.i] += f;
+            scratch.damping_force[s.j] -= f;
         }
     }
     if loads.drag.is_some() {

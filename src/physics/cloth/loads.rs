@@ -15,6 +15,7 @@
 //! Pinned particles feel forces but never move: their rows are ignored by the integrators.
 
 use super::sheet::Cloth;
+use super::spring::Axis;
 use crate::physics::effects::{Effect, Effects};
 use nalgebra::Vector3;
 
@@ -51,8 +52,9 @@ impl ClothLoads {
 }
 
 impl Cloth {
-    /// f at the current (x, v) into the scratch force buffer, and each spring's d̂ and ℓ into
-    /// the scratch axes (the integrators reuse them).
+    /// f at the current (x, v) into the scratch force buffer, each spring's d̂ and ℓ into the
+    /// scratch axes (the integrators reuse them), and the springs' damping force on each
+    /// particle into the scratch damping forces (when some spring is damped; for the losses).
     pub(super) fn compute_forces(&mut self, loads: &ClothLoads) {
         let x = &self.positions;
         let v = &self.velocities;
@@ -67,23 +69,29 @@ impl Cloth {
                 *f -= v * loads.particle_drag(m, self.total_mass);
             }
         }
+        let damped = self.springs.iter().any(|s| s.damping > 0.0);
         let axes = &mut self.scratch.axes;
-        let damping = &mut self.scratch.damping;
-        axes.clear();
-        damping.clear();
-        for s in &self.springs {
-            let axis = s.axis(x);
-            let mut f = s.elastic_force(&axis);
-            let c = if s.damping > 0.0 {
-                s.damping_magnitude(&axis, v)
-            } else {
-                0.0
-            };
-            f += axis.direction * c;
-            damping.push(c);
+        let damping_force = &mut self.scratch.damping_force;
+        axes.resize(self.springs.len(), Axis::default());
+        damping_force.clear();
+        if damped {
+            damping_force.resize(x.len(), Vector3::zeros());
+        }
+        for (s, axis) in self.springs.iter().zip(axes.iter_mut()) {
+            let d = x[s.j] - x[s.i];
+            let length = d.norm();
+            let direction = if length > 0.0 { d * (1.0 / length) } else { d };
+            *axis = Axis { direction, length };
+            let f = direction * (s.stiffness * (length - s.rest_length));
             force[s.i] += f;
             force[s.j] -= f;
-            axes.push(axis);
+            if damped {
+                let damping = direction * s.damping_magnitude(axis, v);
+                force[s.i] += damping;
+                force[s.j] -= damping;
+                damping_force[s.i] += damping;
+                damping_force[s.j] -= damping;
+            }
         }
     }
 }

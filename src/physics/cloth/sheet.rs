@@ -58,9 +58,10 @@ pub struct StepReport {
 pub(super) struct Scratch {
     pub force: Vec<Vector3<f64>>,
     pub axes: Vec<Axis>,
-    /// Per spring: the damping magnitude the step used, c (v_j − v_i)·d̂₀ (v at the start for
-    /// the explicit step, at the end for the implicit one).
-    pub damping: Vec<f64>,
+    /// Per particle: the springs' damping force the step used, Σ ±c ((v_j − v_i)·d̂₀) d̂₀ (v at
+    /// the start for the explicit step, at the end for the implicit one); empty when no spring
+    /// is damped.
+    pub damping_force: Vec<Vector3<f64>>,
     /// The velocities at the start of the step.
     pub start_velocity: Vec<Vector3<f64>>,
     /// The velocities the step's drag used (only when drag is declared).
@@ -309,7 +310,7 @@ impl Cloth {
     /// half used along the displacement, negated,
     ///
     /// ```text
-    /// W_damping = −Σ_springs f_i·(Δx_i − Δx_j),   f_i = c_used d̂₀
+    /// W_damping = −Σ_i f_damping,i·Δx_i,   f_damping,i = Σ_springs ±c_used d̂₀
     /// W_drag    = Σ_i k_drag,i v_used,i·Δx_i
     /// ```
     pub fn advance_positions(&mut self, loads: &ClothLoads, dt: f64) -> Losses {
@@ -321,18 +322,9 @@ impl Cloth {
         }
         let mut dissipated = Losses::default();
         let start = &self.scratch.start;
-        if self.scratch.damping.len() == self.springs.len() {
-            for ((s, axis), &c) in self
-                .springs
-                .iter()
-                .zip(&self.scratch.axes)
-                .zip(&self.scratch.damping)
-            {
-                if c != 0.0 {
-                    let relative =
-                        (self.positions[s.i] - start[s.i]) - (self.positions[s.j] - start[s.j]);
-                    dissipated.damping -= c * axis.direction.dot(&relative);
-                }
+        if self.scratch.damping_force.len() == self.len() {
+            for (i, f) in self.scratch.damping_force.iter().enumerate() {
+                dissipated.damping -= f.dot(&(self.positions[i] - start[i]));
             }
         }
         if loads.drag.is_some() && self.scratch.drag_velocity.len() == self.len() {
