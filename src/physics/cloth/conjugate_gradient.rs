@@ -162,15 +162,15 @@ impl Workspace {
             a.iter().zip(b).map(|(a, b)| a.dot(b)).sum()
         };
         // δ₀ from the filtered right-hand side.
-        for i in 0..n {
-            if pinned[i] {
+        for (i, &held) in pinned.iter().enumerate() {
+            if held {
                 self.rhs[i] = Vector3::zeros();
                 self.solution[i] = Vector3::zeros();
             }
             self.preconditioned[i] = self.preconditioner[i] * self.rhs[i];
         }
         let delta0 = dot(&self.rhs, &self.preconditioned);
-        if !(delta0 > 0.0) || !delta0.is_finite() {
+        if !delta0.is_finite() || delta0 <= 0.0 {
             self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
             return Outcome {
                 iterations: 0,
@@ -213,7 +213,7 @@ impl Workspace {
                 &mut self.product,
             );
             let curvature = dot(&self.direction, &self.product);
-            if !(curvature > 0.0) {
+            if curvature.is_nan() || curvature <= 0.0 {
                 break;
             }
             let alpha = delta / curvature;

@@ -232,12 +232,12 @@ impl Cloth {
         }
         let start = std::mem::take(&mut self.scratch.start);
         let mut before: Vec<(usize, Vector3<f64>, Vector3<f64>)> = Vec::new();
-        for i in 0..self.len() {
+        for (i, a) in start.iter().enumerate() {
             if self.pinned[i] {
                 continue;
             }
             for (k, obstacle) in obstacles.iter().enumerate() {
-                let Some(hit) = penetration(obstacle, &start[i], &self.positions[i]) else {
+                let Some(hit) = penetration(obstacle, a, &self.positions[i]) else {
                     continue;
                 };
                 if before.last().is_none_or(|b| b.0 != i) {

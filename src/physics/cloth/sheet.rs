@@ -328,10 +328,9 @@ impl Cloth {
             }
         }
         if loads.drag.is_some() && self.scratch.drag_velocity.len() == self.len() {
-            for i in 0..self.len() {
+            for (i, (v, x0)) in self.scratch.drag_velocity.iter().zip(start).enumerate() {
                 let k = loads.particle_drag(self.masses[i], self.total_mass);
-                dissipated.drag +=
-                    k * self.scratch.drag_velocity[i].dot(&(self.positions[i] - start[i]));
+                dissipated.drag += k * v.dot(&(self.positions[i] - x0));
             }
         }
         self.losses.damping += dissipated.damping;

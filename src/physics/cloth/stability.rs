@@ -233,7 +233,8 @@ mod tests {
         let (nx, nz) = (5usize, 4usize);
         let m = 2.0 / 20.0;
         let at = |i: usize, j: usize| Vector3::new(i as f64 * 1.0 / 4.0, 0.0, j as f64 * 0.6 / 3.0);
-        let mut pairs: Vec<((usize, usize), (usize, usize), f64)> = Vec::new();
+        type Pair = ((usize, usize), (usize, usize), f64);
+        let mut pairs: Vec<Pair> = Vec::new();
         for j in 0..nz {
             for i in 0..nx {
                 let mut push = |a, b, k| pairs.push(((i, j), (a, b), k));
