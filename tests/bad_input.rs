@@ -87,6 +87,44 @@ const TABLE: &[(&str, &str)] = &[
         "missing-body.toml",
         "1:1: missing table `[body]`: a scene file needs `title`, [scene] and [body] (or [[body]])",
     ),
+    (
+        "cloth-count-below-two.toml",
+        "18:9: cloth `count` needs at least 2 particles along x and along z, found [1, 21]",
+    ),
+    (
+        "cloth-duplicate-name.toml",
+        "24:8: duplicate cloth name `trampoline`: cloth names must be unique in the file",
+    ),
+    (
+        "cloth-negative-shear.toml",
+        "21:9: shear must be ≥ 0, found -1",
+    ),
+    (
+        "cloth-negative-stretch.toml",
+        "20:11: stretch must be > 0, found -5000",
+    ),
+    (
+        "cloth-no-particle-integrator.toml",
+        "15:1: cloth `trampoline` has no `integrator` and the scene's `rk4` is not a particle \
+         integrator: add `integrator = \"implicit-euler\"` to the cloth (valid: symplectic-euler, \
+         implicit-euler)",
+    ),
+    (
+        "cloth-pinned-out-of-range.toml",
+        "21:10: pinned particle [21, 3] is outside the 21×21 grid: i must be in 0..21 and j in \
+         0..21",
+    ),
+    (
+        "cloth-unknown-integrator.toml",
+        "21:14: unknown cloth integrator `rk4`; valid cloth integrators: symplectic-euler, \
+         implicit-euler",
+    ),
+    (
+        "cloth-unknown-pinned.toml",
+        "21:10: unknown pinned `corner` (did you mean `corners`?); valid: corners, edges, none, \
+         or a list [[i, j], …]",
+    ),
+    ("cloth-zero-mass.toml", "19:8: mass must be > 0, found 0"),
 ];
 
 fn tumble() -> Command {

@@ -5,6 +5,7 @@
 //! | file | idea |
 //! |---|---|
 //! | `body` | mass points, barycenter, inertia tensor |
+//! | `cloth` | mass–spring sheets: particles, springs, their integrators |
 //! | `state` | (x, R or q, P, L) |
 //! | `derive` | the derive phase: I⁻¹_world, ω, v |
 //! | `effects` | the forces phase: gravity and drag, only when declared |
@@ -19,6 +20,7 @@
 //! | `energy_ledger` | where the energy went: drag work, contacts, and the remainder (drift) |
 
 pub mod body;
+pub mod cloth;
 pub mod collision;
 pub mod derive;
 pub mod divergence;

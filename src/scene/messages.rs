@@ -91,6 +91,8 @@ fn expected_kind(expected: &str) -> String {
         }
         "struct RawObstacle" => "an [[obstacle]] table".to_string(),
         "struct RawPage" => "a [[page]] table".to_string(),
+        "struct RawCloth" => "a [[cloth]] table".to_string(),
+        "i64" | "u64" | "usize" => "an integer".to_string(),
         other => match other.strip_prefix("an array of length ") {
             Some(n) => format!("an array of {n} numbers"),
             None => other.trim_start_matches("struct ").to_string(),

@@ -4,6 +4,7 @@
 //! Every error is one line naming file:line:column, what was expected and what was found.
 //! A missing effect key means the effect is absent; missing initial conditions mean rest.
 
+mod cloth;
 mod diagnose;
 pub mod edit;
 mod error;
@@ -15,6 +16,7 @@ pub use diagnose::check as check_every_error;
 pub use edit::SceneEdits;
 pub use error::{did_you_mean, LoadError};
 
+use crate::physics::cloth::ClothSpec;
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
     State, World,
@@ -47,6 +49,8 @@ pub struct Scene {
     pub obstacles: Vec<Obstacle>,
     /// The bodies, in file order (at least one).
     pub bodies: Vec<SceneBody>,
+    /// The `[[cloth]]` sheets, in file order.
+    pub cloths: Vec<ClothSpec>,
 }
 
 /// A body of a scene: `[body]` or one `[[body]]`.
@@ -192,7 +196,9 @@ impl Validator<'_> {
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let bodies = self.bodies(raw.body)?;
         let title = raw.title.into_inner();
+        let scene_integrator = raw.scene.get_ref().integrator.clone();
         let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
+        scene.cloths = self.cloths(&raw.cloths, &scene_integrator, scene.contact.is_some())?;
         scene.obstacles = raw
             .obstacles
             .iter()
@@ -422,6 +428,7 @@ impl Validator<'_> {
             contact,
             obstacles: Vec::new(),
             bodies: bodies.into_iter().map(|(b, _)| b).collect(),
+            cloths: Vec::new(),
         })
     }
 

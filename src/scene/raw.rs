@@ -19,6 +19,8 @@ pub struct RawLesson {
     pub obstacles: Vec<Spanned<RawObstacle>>,
     #[serde(default, rename = "page")]
     pub pages: Vec<Spanned<RawPage>>,
+    #[serde(default, rename = "cloth")]
+    pub cloths: Vec<Spanned<RawCloth>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -126,4 +128,24 @@ pub struct RawPage {
     pub at: Spanned<f64>,
     pub title: String,
     pub text: String,
+}
+
+/// A `[[cloth]]` table: a mass–spring sheet.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCloth {
+    pub name: Option<Spanned<String>>,
+    pub size: Spanned<[f64; 2]>,
+    /// Integers, signed so that a negative count gets our message, not serde's.
+    pub count: Spanned<[i64; 2]>,
+    pub position: Option<Vec3>,
+    pub mass: Spanned<f64>,
+    pub stretch: Spanned<f64>,
+    pub shear: Option<Spanned<f64>>,
+    pub bend: Option<Spanned<f64>>,
+    pub damping: Option<Spanned<f64>>,
+    /// A keyword (corners, edges, none) or an array of [i, j]: read by hand for clear errors.
+    pub pinned: Option<Spanned<toml::Value>>,
+    pub velocity: Option<Vec3>,
+    pub integrator: Option<Spanned<String>>,
 }

@@ -1,0 +1,87 @@
+//! What one step of a sheet costs, per particle integrator, in µs/step.
+//!
+//! The sheet: the design's trampoline, 21 × 21 particles, 2 m × 2 m, 2 kg, stretch 5000 N/m,
+//! shear 1000 N/m, damping 0.5 N·s/m, edges pinned, under gravity (no cube: the particle ↔
+//! body coupling belongs to the world). It starts flat and sags; the world is put back at its
+//! start every [`RESTART_EVERY`] steps.
+//!
+//! - `implicit-euler` at dt = 1e-3 s (the step) and 5e-3 s (more CG iterations);
+//! - `symplectic-euler` at 0.9× its explicit limit (≈ 0.53 ms: dt = 1e-3 is past the limit of
+//!   this sheet, where it diverges); an explicit step's cost does not depend on dt.
+//!
+//! `explicit-limit`: the power iteration for 2/ω_max on the same sheet (done once per scene).
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use nalgebra::Vector3;
+use std::hint::black_box;
+use std::time::Duration;
+use tumble::physics::cloth::{Cloth, ClothIntegrator, ClothLoads, ClothSpec, Pinning};
+
+const RESTART_EVERY: u64 = 2_000;
+
+fn trampoline(integrator: ClothIntegrator) -> Cloth {
+    let mut spec = ClothSpec::new([2.0, 2.0], [21, 21], 2.0, 5000.0);
+    spec.position = Vector3::new(0.0, 1.0, 0.0);
+    spec.shear = 1000.0;
+    spec.damping = 0.5;
+    spec.pinned = Pinning::Edges;
+    spec.integrator = integrator;
+    Cloth::new(&spec).expect("valid sheet")
+}
+
+fn loads() -> ClothLoads {
+    ClothLoads {
+        gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
+        drag: None,
+    }
+}
+
+fn step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("cloth/trampoline-21x21");
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let explicit_dt = 0.9
+        * trampoline(ClothIntegrator::SymplecticEuler)
+            .explicit_limit(&loads())
+            .dt();
+    for (name, integrator, dt) in [
+        (
+            "symplectic-euler",
+            ClothIntegrator::SymplecticEuler,
+            explicit_dt,
+        ),
+        (
+            "implicit-euler/dt=1e-3",
+            ClothIntegrator::ImplicitEuler,
+            1e-3,
+        ),
+        (
+            "implicit-euler/dt=5e-3",
+            ClothIntegrator::ImplicitEuler,
+            5e-3,
+        ),
+    ] {
+        let start = trampoline(integrator);
+        let mut cloth = start.clone();
+        let loads = loads();
+        let mut steps = 0u64;
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                steps += 1;
+                if steps.is_multiple_of(RESTART_EVERY) {
+                    cloth.clone_from(&start);
+                }
+                black_box(black_box(&mut cloth).step(&loads, dt));
+            })
+        });
+    }
+    let sheet = trampoline(ClothIntegrator::SymplecticEuler);
+    group.bench_function("explicit-limit", |b| {
+        b.iter(|| black_box(black_box(&sheet).explicit_limit(&loads())))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, step);
+criterion_main!(benches);

@@ -1,0 +1,97 @@
+//! The forces on the particles: the springs, and the scene's declared effects (gravity and
+//! linear drag) — nothing else.
+//!
+//! ```text
+//! f_i = Σ_springs ±[k (ℓ − ℓ₀) d̂ + c ((v_j − v_i)·d̂) d̂]  +  m_i g  −  k_drag (m_i/M) v_i
+//! ```
+//!
+//! **Drag means what it means for a body.** `drag.linear` = k_drag is a force coefficient in
+//! kg/s on the *whole object*: a body feels F = −k_drag v (`effects`). A sheet shares it among
+//! its particles by mass, −k_drag (m_i/M) v_i, so a sheet moving as a whole at v feels the same
+//! total force −k_drag v as a body, and its velocity decays at the same rate k_drag/M as a body
+//! of the same mass (with equal particle masses, m_i/M = 1/N). `drag.angular` has no meaning
+//! for points and is not used by a sheet.
+//!
+//! Pinned particles feel forces but never move: their rows are ignored by the integrators.
+
+use super::sheet::Cloth;
+use super::spring::Axis;
+use crate::physics::effects::{Effect, Effects};
+use nalgebra::Vector3;
+
+/// The declared effects that act on particles.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClothLoads {
+    /// Uniform gravity g, m/s², if declared.
+    pub gravity: Option<Vector3<f64>>,
+    /// Linear drag k_drag on the whole sheet, kg/s, if declared (and > 0).
+    pub drag: Option<f64>,
+}
+
+impl ClothLoads {
+    /// Gravity and linear drag as the scene declares them for bodies.
+    pub fn from_effects(effects: &Effects) -> ClothLoads {
+        let mut loads = ClothLoads::default();
+        for effect in effects.list() {
+            match *effect {
+                Effect::Gravity(g) => loads.gravity = Some(g),
+                Effect::Drag { linear, .. } => {
+                    loads.drag = (linear > 0.0).then_some(linear);
+                }
+            }
+        }
+        loads
+    }
+
+    /// The drag coefficient of one particle of mass m in a sheet of total mass M,
+    /// k_drag·m/M, kg/s (0 without drag).
+    #[inline]
+    pub fn particle_drag(&self, mass: f64, total_mass: f64) -> f64 {
+        self.drag.map_or(0.0, |k| k * mass / total_mass)
+    }
+}
+
+impl Cloth {
+    /// f at the current (x, v) into the scratch force buffer, each spring's d̂ and ℓ into the
+    /// scratch axes (the integrators reuse them), and the springs' damping force on each
+    /// particle into the scratch damping forces (when some spring is damped; for the losses).
+    pub(super) fn compute_forces(&mut self, loads: &ClothLoads) {
+        let x = &self.positions;
+        let v = &self.velocities;
+        let force = &mut self.scratch.force;
+        force.clear();
+        match loads.gravity {
+            Some(g) => force.extend(self.masses.iter().map(|&m| g * m)),
+            None => force.resize(x.len(), Vector3::zeros()),
+        }
+        if loads.drag.is_some() {
+            for ((f, &m), v) in force.iter_mut().zip(&self.masses).zip(v) {
+                *f -= v * loads.particle_drag(m, self.total_mass);
+            }
+        }
+        let damped = self.springs.iter().any(|s| s.damping > 0.0);
+        let axes = &mut self.scratch.axes;
+        let damping_force = &mut self.scratch.damping_force;
+        axes.resize(self.springs.len(), Axis::default());
+        damping_force.clear();
+        if damped {
+            damping_force.resize(x.len(), Vector3::zeros());
+        }
+        for (s, axis) in self.springs.iter().zip(axes.iter_mut()) {
+            let d = x[s.j] - x[s.i];
+            let length = d.norm();
+            let direction = if length > 0.0 { d * (1.0 / length) } else { d };
+            *axis = Axis { direction, length };
+            let f = direction * (s.stiffness * (length - s.rest_length));
+            force[s.i] += f;
+            force[s.j] -= f;
+            if damped {
+                let damping = direction * s.damping_magnitude(axis, v);
+                force[s.i] += damping;
+                force[s.j] -= damping;
+                damping_force[s.i] += damping;
+                damping_force[s.j] -= damping;
+            }
+        }
+    }
+}

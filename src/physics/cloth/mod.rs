@@ -1,0 +1,37 @@
+//! Mass–spring sheets (`[[cloth]]`): particles on a grid joined by stretch, shear and bend
+//! springs, stepped by their own particle integrator — the report's proposed next step.
+//!
+//! | file | idea |
+//! |---|---|
+//! | `spec` | the validated parameters of a sheet, pinning |
+//! | `sheet` | particles and springs built from a spec; impulses for contacts with bodies |
+//! | `spring` | one damped Hooke spring: force, energy, Jacobians |
+//! | `loads` | the forces: springs, declared gravity and drag, nothing else |
+//! | `integrator` | the particle integrators by name |
+//! | `symplectic_euler` | the explicit step |
+//! | `implicit_euler` | backward Euler linearised once (Baraff & Witkin 1998) |
+//! | `conjugate_gradient` | the implicit step's solve: filtered block-Jacobi PCG |
+//! | `stability` | the explicit limit 2/ω_max by power iteration |
+//! | `energy` | kinetic, spring and gravitational energy; losses |
+//! | `contact` | particles against fixed obstacles |
+
+mod conjugate_gradient;
+pub mod contact;
+pub mod energy;
+pub mod implicit_euler;
+pub mod integrator;
+pub mod loads;
+pub mod sheet;
+pub mod spec;
+pub mod spring;
+pub mod stability;
+pub mod symplectic_euler;
+
+pub use contact::{ContactReport, ParticleContact};
+pub use energy::{ClothEnergy, Losses};
+pub use integrator::ClothIntegrator;
+pub use loads::ClothLoads;
+pub use sheet::{Cloth, SolverSettings, StepReport};
+pub use spec::{ClothSpec, ClothSpecError, Pinning};
+pub use spring::{Spring, SpringKind};
+pub use stability::ExplicitLimit;

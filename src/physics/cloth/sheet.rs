@@ -1,0 +1,350 @@
+//! A sheet: the particles (x, v, m, pinned) and springs built from a [`ClothSpec`].
+//!
+//! ```text
+//! particle (i, j) ↦ index j·nx + i
+//! x(i, j) = position + (−size.x/2 + i·size.x/(nx − 1), 0, −size.z/2 + j·size.z/(nz − 1))
+//! m_i = mass/(nx·nz);   v_i = velocity (free) or 0 (pinned)
+//! springs, ℓ₀ = the initial distance:
+//!   stretch (i, j)–(i+1, j), (i, j)–(i, j+1)            k = stretch
+//!   shear   (i, j)–(i+1, j+1), (i+1, j)–(i, j+1)        k = shear   (if > 0)
+//!   bend    (i, j)–(i+2, j), (i, j)–(i, j+2)            k = bend    (if > 0)
+//!   every spring has damping c = damping
+//! ```
+//!
+//! Pinned particles keep their place and zero velocity for ever: the integrators skip them,
+//! their inverse mass is 0 and an impulse on them does nothing.
+
+use super::conjugate_gradient::Workspace;
+use super::energy::Losses;
+use super::integrator::ClothIntegrator;
+use super::loads::ClothLoads;
+use super::spec::{ClothSpec, ClothSpecError};
+use super::spring::{Axis, Spring, SpringKind};
+use super::{implicit_euler, symplectic_euler};
+use nalgebra::Vector3;
+
+/// Settings of the implicit step's conjugate-gradient solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Stop when the preconditioned residual norm falls below this fraction of the right-hand
+    /// side's: √(rᵀP⁻¹r) ≤ tolerance·√(bᵀP⁻¹b).
+    pub tolerance: f64,
+    /// At most this many iterations per step.
+    pub max_iterations: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            tolerance: 1e-6,
+            max_iterations: 500,
+        }
+    }
+}
+
+/// What one step did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepReport {
+    /// Conjugate-gradient iterations (0 for an explicit step).
+    pub iterations: usize,
+    /// Final relative residual of the solve (0 for an explicit step).
+    pub residual: f64,
+    /// Energy the damping and the drag took during this step, J (≥ 0 when they dissipate).
+    pub dissipated: Losses,
+}
+
+/// Buffers reused from step to step (not part of the state).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Scratch {
+    pub force: Vec<Vector3<f64>>,
+    pub axes: Vec<Axis>,
+    /// Per particle: the springs' damping force the step used, Σ ±c ((v_j − v_i)·d̂₀) d̂₀ (v at
+    /// the start for the explicit step, at the end for the implicit one); empty when no spring
+    /// is damped.
+    pub damping_force: Vec<Vector3<f64>>,
+    /// The velocities at the start of the step.
+    pub start_velocity: Vec<Vector3<f64>>,
+    /// The velocities the step's drag used (only when drag is declared).
+    pub drag_velocity: Vec<Vector3<f64>>,
+    pub start: Vec<Vector3<f64>>,
+    pub solver: Workspace,
+}
+
+/// A mass–spring sheet.
+#[derive(Debug, Clone)]
+pub struct Cloth {
+    pub name: String,
+    /// Particles along x and z.
+    pub count: [usize; 2],
+    /// Positions x_i, m (index j·nx + i).
+    pub positions: Vec<Vector3<f64>>,
+    /// Velocities v_i, m/s (0 for pinned particles).
+    pub velocities: Vec<Vector3<f64>>,
+    /// Particle masses m_i, kg.
+    pub masses: Vec<f64>,
+    /// Pinned particles never move.
+    pub pinned: Vec<bool>,
+    pub springs: Vec<Spring>,
+    pub integrator: ClothIntegrator,
+    pub solver: SolverSettings,
+    /// Energy taken by damping, drag and contacts since the start, J.
+    pub losses: Losses,
+    /// Σ m_i, kg.
+    pub total_mass: f64,
+    pub(super) scratch: Scratch,
+}
+
+impl Cloth {
+    /// Builds the sheet of a spec (module doc), after validating it.
+    pub fn new(spec: &ClothSpec) -> Result<Cloth, ClothSpecError> {
+        spec.validate()?;
+        let [nx, nz] = spec.count;
+        let n = nx * nz;
+        let m = spec.mass / n as f64;
+        let mut positions = Vec::with_capacity(n);
+        let mut pinned = Vec::with_capacity(n);
+        for j in 0..nz {
+            for i in 0..nx {
+                positions.push(
+                    spec.position
+                        + Vector3::new(
+                            -spec.size[0] / 2.0 + i as f64 * spec.size[0] / (nx - 1) as f64,
+                            0.0,
+                            -spec.size[1] / 2.0 + j as f64 * spec.size[1] / (nz - 1) as f64,
+                        ),
+                );
+                pinned.push(spec.pinned.holds(i, j, spec.count));
+            }
+        }
+        let velocities = pinned
+            .iter()
+            .map(|&p| if p { Vector3::zeros() } else { spec.velocity })
+            .collect();
+        let index = |i: usize, j: usize| j * nx + i;
+        let mut springs = Vec::new();
+        let mut add = |a: usize, b: usize, stiffness: f64, kind: SpringKind| {
+            springs.push(Spring {
+                i: a,
+                j: b,
+                rest_length: (positions[b] - positions[a]).norm(),
+                stiffness,
+                damping: spec.damping,
+                kind,
+            })
+        };
+        for j in 0..nz {
+            for i in 0..nx {
+                if i + 1 < nx {
+                    add(
+                        index(i, j),
+                        index(i + 1, j),
+                        spec.stretch,
+                        SpringKind::Stretch,
+                    );
+                }
+                if j + 1 < nz {
+                    add(
+                        index(i, j),
+                        index(i, j + 1),
+                        spec.stretch,
+                        SpringKind::Stretch,
+                    );
+                }
+            }
+        }
+        if spec.shear > 0.0 {
+            for j in 0..nz - 1 {
+                for i in 0..nx - 1 {
+                    add(
+                        index(i, j),
+                        index(i + 1, j + 1),
+                        spec.shear,
+                        SpringKind::Shear,
+                    );
+                    add(
+                        index(i + 1, j),
+                        index(i, j + 1),
+                        spec.shear,
+                        SpringKind::Shear,
+                    );
+                }
+            }
+        }
+        if spec.bend > 0.0 {
+            for j in 0..nz {
+                for i in 0..nx {
+                    if i + 2 < nx {
+                        add(index(i, j), index(i + 2, j), spec.bend, SpringKind::Bend);
+                    }
+                    if j + 2 < nz {
+                        add(index(i, j), index(i, j + 2), spec.bend, SpringKind::Bend);
+                    }
+                }
+            }
+        }
+        Ok(Cloth {
+            name: spec.name.clone(),
+            count: spec.count,
+            positions,
+            velocities,
+            masses: vec![m; n],
+            pinned,
+            springs,
+            integrator: spec.integrator,
+            solver: SolverSettings::default(),
+            losses: Losses::default(),
+            total_mass: spec.mass,
+            scratch: Scratch::default(),
+        })
+    }
+
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Whether the sheet has no particles (never, for a built sheet).
+    pub fn is_empty(&self) -> bool {
+        self.positions.is_empty()
+    }
+
+    /// The index of particle (i, j).
+    pub fn index(&self, i: usize, j: usize) -> usize {
+        j * self.count[0] + i
+    }
+
+    /// The (i, j) of a particle index.
+    pub fn grid(&self, index: usize) -> (usize, usize) {
+        (index % self.count[0], index / self.count[0])
+    }
+
+    /// 1/m_i, 1/kg: 0 for a pinned particle (it does not move, whatever the impulse).
+    #[inline]
+    pub fn inv_mass(&self, i: usize) -> f64 {
+        if self.pinned[i] {
+            0.0
+        } else {
+            1.0 / self.masses[i]
+        }
+    }
+
+    /// v_i, m/s.
+    #[inline]
+    pub fn particle_velocity(&self, i: usize) -> Vector3<f64> {
+        self.velocities[i]
+    }
+
+    /// Applies impulse J (N·s) to particle i: v_i ← v_i + J/m_i (nothing if pinned). Returns
+    /// the particle's kinetic-energy change, J (for the caller's energy bookkeeping).
+    #[inline]
+    pub fn apply_impulse(&mut self, i: usize, impulse: &Vector3<f64>) -> f64 {
+        let w = self.inv_mass(i);
+        if w == 0.0 {
+            return 0.0;
+        }
+        let before = self.velocities[i].norm_squared();
+        self.velocities[i] += impulse * w;
+        0.5 * self.masses[i] * (self.velocities[i].norm_squared() - before)
+    }
+
+    /// Moves particle i by `offset` (a contact's push-out; nothing if pinned).
+    #[inline]
+    pub fn displace(&mut self, i: usize, offset: &Vector3<f64>) {
+        if !self.pinned[i] {
+            self.positions[i] += offset;
+        }
+    }
+
+    /// Linear momentum Σ m_i v_i, kg·m/s.
+    pub fn linear_momentum(&self) -> Vector3<f64> {
+        self.masses
+            .iter()
+            .zip(&self.velocities)
+            .map(|(&m, v)| v * m)
+            .sum()
+    }
+
+    /// Angular momentum about the origin Σ x_i × m_i v_i, kg·m²/s.
+    pub fn angular_momentum(&self) -> Vector3<f64> {
+        self.masses
+            .iter()
+            .zip(self.positions.iter().zip(&self.velocities))
+            .map(|(&m, (x, v))| x.cross(&(v * m)))
+            .sum()
+    }
+
+    /// Largest spring stretch (ℓ − ℓ₀)/ℓ₀ over the springs (negative: all compressed).
+    pub fn max_stretch(&self) -> f64 {
+        self.springs
+            .iter()
+            .map(|s| (self.positions[s.j] - self.positions[s.i]).norm() / s.rest_length - 1.0)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Largest particle speed, m/s.
+    pub fn max_speed(&self) -> f64 {
+        self.velocities.iter().map(|v| v.norm()).fold(0.0, f64::max)
+    }
+
+    /// One whole step of length `dt` with the sheet's integrator under the declared loads,
+    /// without contacts: [`Cloth::velocity_step`] then [`Cloth::advance_positions`].
+    pub fn step(&mut self, loads: &ClothLoads, dt: f64) -> StepReport {
+        let mut report = self.velocity_step(loads, dt);
+        report.dissipated = self.advance_positions(loads, dt);
+        report
+    }
+
+    /// The velocity half of a step: v₀ → v₁ by the sheet's integrator (positions unchanged).
+    /// Contact impulses on velocities (obstacles, bodies) go between this and
+    /// [`Cloth::advance_positions`].
+    pub fn velocity_step(&mut self, loads: &ClothLoads, dt: f64) -> StepReport {
+        self.scratch.start_velocity.clone_from(&self.velocities);
+        match self.integrator {
+            ClothIntegrator::SymplecticEuler => symplectic_euler::velocities(self, loads, dt),
+            ClothIntegrator::ImplicitEuler => implicit_euler::velocities(self, loads, dt),
+        }
+    }
+
+    /// The position half: x ← x + h v for the free particles. Returns what the step's damping
+    /// and drag took, and adds it to [`Cloth::losses`]: the work of the forces the velocity
+    /// half used along the displacement, negated,
+    ///
+    /// ```text
+    /// W_damping = −Σ_i f_damping,i·Δx_i,   f_damping,i = Σ_springs ±c_used d̂₀
+    /// W_drag    = Σ_i k_drag,i v_used,i·Δx_i
+    /// ```
+    pub fn advance_positions(&mut self, loads: &ClothLoads, dt: f64) -> Losses {
+        self.scratch.start.clone_from(&self.positions);
+        for i in 0..self.positions.len() {
+            if !self.pinned[i] {
+                self.positions[i] += self.velocities[i] * dt;
+            }
+        }
+        let mut dissipated = Losses::default();
+        let start = &self.scratch.start;
+        if self.scratch.damping_force.len() == self.len() {
+            for (i, f) in self.scratch.damping_force.iter().enumerate() {
+                dissipated.damping -= f.dot(&(self.positions[i] - start[i]));
+            }
+        }
+        if loads.drag.is_some() && self.scratch.drag_velocity.len() == self.len() {
+            for (i, (v, x0)) in self.scratch.drag_velocity.iter().zip(start).enumerate() {
+                let k = loads.particle_drag(self.masses[i], self.total_mass);
+                dissipated.drag += k * v.dot(&(self.positions[i] - x0));
+            }
+        }
+        self.losses.damping += dissipated.damping;
+        self.losses.drag += dissipated.drag;
+        dissipated
+    }
+
+    /// Positions at the start of the last step (for swept contact tests); the current
+    /// positions before any step.
+    pub fn start_positions(&self) -> &[Vector3<f64>] {
+        if self.scratch.start.len() == self.positions.len() {
+            &self.scratch.start
+        } else {
+            &self.positions
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! `[[cloth]]` tables validated into [`ClothSpec`]s: every rule of `physics::cloth::spec`,
+//! each broken rule a one-line error at the key at fault.
+//!
+//! | rule | error |
+//! |---|---|
+//! | `count` ≥ 2 along x and z | cloth `count` needs at least 2 particles along x and along z, found [1, 5] |
+//! | at most 250 000 particles | cloth `count` [100000, 100000] is too large: at most 250000 particles |
+//! | `size` > 0 | cloth `size` needs two sides > 0 m, found [2.0, 0.0] |
+//! | `mass`, `stretch` > 0; `shear`, `bend`, `damping` ≥ 0 | stretch must be > 0, found -5 |
+//! | `pinned` keyword | unknown pinned `corner` (did you mean `corners`?); valid: corners, edges, none, or [[i, j], …] |
+//! | `pinned` list in the grid | pinned particle [21, 0] is outside the 21×21 grid: i must be in 0..21 and j in 0..21 |
+//! | `integrator` a particle integrator | unknown cloth integrator `rk4`; valid cloth integrators: … |
+//! | absent `integrator`: the scene's must be one | cloth `sheet` has no `integrator` and the scene's `rk4` is not a particle integrator: … |
+//! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
+//! | a cloth touches things | a cloth needs a collision response: add `contact = …` to [scene] |
+
+use super::error::did_you_mean;
+use super::raw::RawCloth;
+use super::{LoadError, Validator};
+use crate::physics::cloth::{ClothIntegrator, ClothSpec, Pinning};
+use toml::Spanned;
+
+/// The most particles a sheet may have (500 × 500): beyond, a typo, not a lesson.
+const MAX_PARTICLES: i64 = 250_000;
+
+impl Validator<'_> {
+    /// Every `[[cloth]]` table, in file order. `scene_integrator` is the scene's (a cloth
+    /// without its own takes it); `has_contact` whether [scene] declares a response.
+    pub(super) fn cloths(
+        &self,
+        raw: &[Spanned<RawCloth>],
+        scene_integrator: &Spanned<String>,
+        has_contact: bool,
+    ) -> Result<Vec<ClothSpec>, LoadError> {
+        if let (Some(first), false) = (raw.first(), has_contact) {
+            return Err(self.error(
+                first.span(),
+                "a cloth needs a collision response (its particles touch bodies and obstacles): \
+                 add `contact = { response = \"impulse\", restitution = 0.4, friction = 0.5 }` \
+                 to [scene]",
+            ));
+        }
+        let mut specs: Vec<ClothSpec> = Vec::with_capacity(raw.len());
+        for (k, table) in raw.iter().enumerate() {
+            let spec = self.cloth(table, k, scene_integrator)?;
+            if specs.iter().any(|s| s.name == spec.name) {
+                let span = table
+                    .get_ref()
+                    .name
+                    .as_ref()
+                    .map_or(table.span(), |n| n.span());
+                return Err(self.error(
+                    span,
+                    format!(
+                        "duplicate cloth name `{}`: cloth names must be unique in the file",
+                        spec.name
+                    ),
+                ));
+            }
+            specs.push(spec);
+        }
+        Ok(specs)
+    }
+
+    /// One `[[cloth]]` table, the `index`-th (0-based) of the file.
+    fn cloth(
+        &self,
+        table: &Spanned<RawCloth>,
+        index: usize,
+        scene_integrator: &Spanned<String>,
+    ) -> Result<ClothSpec, LoadError> {
+        let c = table.get_ref();
+        let name = c
+            .name
+            .as_ref()
+            .map_or_else(|| format!("cloth{}", index + 1), |n| n.get_ref().clone());
+        let [nx, nz] = *c.count.get_ref();
+        if nx < 2 || nz < 2 {
+            return Err(self.error(
+                c.count.span(),
+                format!(
+                    "cloth `count` needs at least 2 particles along x and along z, found [{nx}, {nz}]"
+                ),
+            ));
+        }
+        if nx.saturating_mul(nz) > MAX_PARTICLES {
+            return Err(self.error(
+                c.count.span(),
+                format!(
+                    "cloth `count` [{nx}, {nz}] is too large: at most {MAX_PARTICLES} particles"
+                ),
+            ));
+        }
+        let count = [nx as usize, nz as usize];
+        let size = *c.size.get_ref();
+        if !size.iter().all(|s| s.is_finite() && *s > 0.0) {
+            return Err(self.error(
+                c.size.span(),
+                format!("cloth `size` needs two sides > 0 m, found {size:?}"),
+            ));
+        }
+        let optional = |value: &Option<Spanned<f64>>, what: &str| {
+            value
+                .as_ref()
+                .map_or(Ok(0.0), |v| self.non_negative(v, what))
+        };
+        let integrator = match &c.integrator {
+            Some(i) => ClothIntegrator::from_name(i.get_ref()).ok_or_else(|| {
+                let word = i.get_ref();
+                let hint = did_you_mean(word, ClothIntegrator::ALL.map(ClothIntegrator::name))
+                    .map(|s| format!(" (did you mean `{s}`?)"))
+                    .unwrap_or_default();
+                self.error(
+                    i.span(),
+                    format!(
+                        "unknown cloth integrator `{word}`{hint}; valid cloth integrators: {}",
+                        ClothIntegrator::names()
+                    ),
+                )
+            })?,
+            None => ClothIntegrator::from_name(scene_integrator.get_ref()).ok_or_else(|| {
+                self.error(
+                    table.span(),
+                    format!(
+                        "cloth `{name}` has no `integrator` and the scene's `{}` is not a particle \
+                         integrator: add `integrator = \"implicit-euler\"` to the cloth (valid: {})",
+                        scene_integrator.get_ref(),
+                        ClothIntegrator::names()
+                    ),
+                )
+            })?,
+        };
+        let spec = ClothSpec {
+            name,
+            size,
+            count,
+            position: self.optional_vector(&c.position, "position")?,
+            mass: self.positive(&c.mass, "mass")?,
+            stretch: self.positive(&c.stretch, "stretch")?,
+            shear: optional(&c.shear, "shear")?,
+            bend: optional(&c.bend, "bend")?,
+            damping: optional(&c.damping, "damping")?,
+            pinned: match &c.pinned {
+                None => Pinning::None,
+                Some(p) => self.pinned(p, count)?,
+            },
+            velocity: self.optional_vector(&c.velocity, "velocity")?,
+            integrator,
+        };
+        // Every rule is checked above with its place; this is the physics core's own check.
+        spec.validate()
+            .map_err(|e| self.error(table.span(), e.to_string()))?;
+        Ok(spec)
+    }
+
+    /// `pinned`: a keyword or a list of [i, j] inside the grid.
+    fn pinned(&self, raw: &Spanned<toml::Value>, count: [usize; 2]) -> Result<Pinning, LoadError> {
+        let valid = "valid: corners, edges, none, or a list [[i, j], …]";
+        match raw.get_ref() {
+            toml::Value::String(word) => Pinning::from_keyword(word).ok_or_else(|| {
+                let hint = did_you_mean(word, Pinning::KEYWORDS)
+                    .map(|s| format!(" (did you mean `{s}`?)"))
+                    .unwrap_or_default();
+                self.error(
+                    raw.span(),
+                    format!("unknown pinned `{word}`{hint}; {valid}"),
+                )
+            }),
+            toml::Value::Array(items) => {
+                let mut list = Vec::with_capacity(items.len());
+                for item in items {
+                    let pair = item.as_array().and_then(|a| match a.as_slice() {
+                        [i, j] => Some((i.as_integer()?, j.as_integer()?)),
+                        _ => None,
+                    });
+                    let Some((i, j)) = pair else {
+                        return Err(self.error(
+                            raw.span(),
+                            format!(
+                                "each pinned particle is a pair of integers [i, j], found {item}"
+                            ),
+                        ));
+                    };
+                    if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
+                        return Err(self.error(
+                            raw.span(),
+                            format!(
+                                "pinned particle [{i}, {j}] is outside the {}×{} grid: i must be \
+                                 in 0..{} and j in 0..{}",
+                                count[0], count[1], count[0], count[1]
+                            ),
+                        ));
+                    }
+                    list.push([i as usize, j as usize]);
+                }
+                Ok(Pinning::List(list))
+            }
+            other => Err(self.error(
+                raw.span(),
+                format!(
+                    "`pinned` must be a keyword or a list of [i, j] pairs, found {other}; {valid}"
+                ),
+            )),
+        }
+    }
+}
