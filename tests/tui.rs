@@ -776,3 +776,77 @@ fn another_lesson_keeps_the_speed_relative_to_real_time() {
     );
     assert_eq!(app.frame, tumble::tables::Frame::Body, "the frame is kept");
 }
+
+/// Lesson 14: three cubes in a row.
+fn head_on_app() -> App {
+    App::new(
+        tumble::lessons::load(Path::new("14-head-on")).unwrap_or_else(|e| panic!("{e}")),
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    )
+}
+
+#[test]
+fn tab_picks_the_body_the_panels_show_and_every_body_is_drawn() {
+    let mut app = head_on_app();
+    assert_eq!(app.snapshot.body_name, "left");
+    let shown = screen(&app, 160, 50);
+    assert!(shown.contains("body left (1/3)"), "{shown}");
+    assert!(shown.contains("system: 3 bodies"), "{shown}");
+    // left starts at x = −0.7, middle at 0, right at 0.21: the panels show left's x.
+    assert!(shown.contains("-0.700000"), "{shown}");
+    press(&mut app, KeyCode::Tab);
+    assert_eq!(app.snapshot.body_name, "middle");
+    assert_eq!(app.snapshot.position.x, 0.0);
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    assert_eq!(app.snapshot.body_name, "left", "Tab wraps around");
+    // Every body is in the drawing: 3 boxes of 12 edges, drawn in ASCII as '+' corners.
+    let drawing_corners = shown
+        .lines()
+        .take(30)
+        .map(|l| l.matches('+').count())
+        .sum::<usize>();
+    assert!(
+        drawing_corners >= 3 * 4,
+        "{drawing_corners} corners drawn:\n{shown}"
+    );
+}
+
+#[test]
+fn with_several_bodies_c_keeps_the_impulse_response_and_says_why() {
+    let mut app = head_on_app();
+    press(&mut app, KeyCode::Char('c'));
+    assert_eq!(
+        app.world.contact_model().map(|m| m.response.name()),
+        Some("impulse")
+    );
+    assert!(
+        app.notice
+            .as_deref()
+            .unwrap_or("")
+            .contains("seed knows one body"),
+        "{:?}",
+        app.notice
+    );
+}
+
+#[test]
+fn stepping_back_restores_every_body_after_a_collision() {
+    let mut app = head_on_app();
+    // left meets middle at t = 0.5 s (step 500); run past it, then one frame back.
+    for _ in 0..520 {
+        press(&mut app, KeyCode::Right);
+    }
+    let later = app.world.states().to_vec();
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Left);
+    assert_eq!(
+        app.world.states(),
+        &later[..],
+        "one frame back is exact for every body"
+    );
+}

@@ -147,6 +147,8 @@ pub struct App {
     pub export_requested: bool,
     /// Where `W` writes the edited scene (the working folder).
     pub write_dir: PathBuf,
+    /// The body the panels show (Tab picks the next one).
+    pub selected: usize,
     pub quit: bool,
 }
 
@@ -194,6 +196,7 @@ impl App {
             layout: Default::default(),
             export_requested: false,
             write_dir: PathBuf::from("."),
+            selected: 0,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -332,6 +335,21 @@ impl App {
                 self.refresh();
             }
             Message::NextResponse => self.next_response(),
+            Message::NextBody => {
+                let count = self.world.body_count();
+                if count > 1 {
+                    self.selected = (self.selected + 1) % count;
+                    self.previous = None;
+                    self.refresh();
+                    self.notice = Some(format!(
+                        "the panels show body {} ({} of {count})",
+                        self.snapshot.body_name,
+                        self.selected + 1
+                    ));
+                } else {
+                    self.notice = Some("one body in this scene: Tab has nothing to pick".into());
+                }
+            }
             Message::NextCompare => self.next_compare(),
             Message::NextAxis => self.axis = self.axis.next(),
             Message::ToggleFrame => self.frame = self.frame.toggle(),
@@ -559,14 +577,18 @@ impl App {
 
     /// Re-reads the snapshots and keeps the bodies in frame.
     fn refresh(&mut self) {
-        self.snapshot = self.world.snapshot();
+        self.snapshot = self.world.snapshot_of(self.selected);
+        let mut shown: Vec<_> = self
+            .snapshot
+            .bodies
+            .iter()
+            .flat_map(|b| b.vertices.iter().copied())
+            .collect();
         if let Some(ghost) = &mut self.ghost {
-            ghost.snapshot = ghost.world.snapshot();
-            let both = [&self.snapshot.vertices[..], &ghost.snapshot.vertices[..]].concat();
-            self.region.include(&both);
-        } else {
-            self.region.include(&self.snapshot.vertices);
+            ghost.snapshot = ghost.world.snapshot_of(self.selected);
+            shown.extend_from_slice(&ghost.snapshot.vertices);
         }
+        self.region.include(&shown);
         let page = self.lesson.page_at(self.snapshot.time).map(|(i, _)| i);
         if page != self.page {
             self.page = page;
@@ -707,7 +729,7 @@ impl App {
         self.history.clear();
         self.divergence = None;
         self.running = false;
-        self.snapshot = self.world.snapshot();
+        self.snapshot = self.world.snapshot_of(self.selected);
         self.region = Region::initial(
             &self.lesson.scene.first().body,
             &self.snapshot.vertices,
@@ -719,6 +741,13 @@ impl App {
 
     fn next_response(&mut self) {
         match self.world.contact_model().copied() {
+            Some(_) if self.world.body_count() > 1 => {
+                self.notice = Some(
+                    "seed knows one body and fixed obstacles: with several bodies the response \
+                     stays impulse"
+                        .into(),
+                )
+            }
             Some(mut model) => {
                 model.response = model.response.next();
                 self.world.set_contact_model(model);

@@ -16,6 +16,8 @@ pub enum Message {
     Reset,
     NextIntegrator,
     NextResponse,
+    /// Tab: the next body in the panels (scenes with several bodies).
+    NextBody,
     NextCompare,
     NextAxis,
     ToggleFrame,
@@ -162,7 +164,7 @@ const TIME_KEYS: &[KeyCode] = &[
     Char('.'),
 ];
 
-use KeyCode::{Backspace, Char, Down, Enter, Esc, Left, PageDown, PageUp, Right, Up};
+use KeyCode::{Backspace, Char, Down, Enter, Esc, Left, PageDown, PageUp, Right, Tab, Up};
 
 /// Every binding, in the order the status bar and the help overlay list them.
 pub const KEYS: &[Binding] = &[
@@ -263,6 +265,13 @@ pub const KEYS: &[Binding] = &[
         "c response",
         "next collision response",
         Message::NextResponse,
+    ),
+    bind(
+        &[Tab],
+        "Tab",
+        "Tab body",
+        "next body in the panels (several bodies); the system panel shows them all",
+        Message::NextBody,
     ),
     bind(
         &[Char('k')],

@@ -476,7 +476,25 @@ fn scene_2d(app: &App) -> Scene2d {
             scene.points.push((axis.project(p), theme::TRAIL, '.'));
         }
     }
-    let body = app.world.body();
+    // Every other body, in its own colour (the panels show the selected one).
+    for (i, view) in app.snapshot.bodies.iter().enumerate() {
+        if i == app.selected {
+            continue;
+        }
+        let other = &app.world.bodies()[i];
+        let picture = BodyPicture {
+            vertices: &view.vertices,
+            edges: &other.edges,
+            position: view.position,
+            rotation: app.world.states()[i].orientation.matrix(),
+            radius: other.radius,
+            colour: theme::OTHER_BODY,
+            ascii: None,
+            arrows: None,
+        };
+        add_body(&mut scene, axis, &picture);
+    }
+    let body = &app.world.bodies()[app.selected];
     if let Some(g) = &app.ghost {
         let mut ghost = BodyPicture::of(&g.snapshot, &body.edges, body.radius);
         ghost.colour = theme::GHOST;

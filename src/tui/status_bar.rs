@@ -18,7 +18,14 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
     let s = &app.snapshot;
     let effects = app.world.effects().names();
     let response = app.world.contact_model().map_or("—", |m| m.response.name());
-    let mut fields: Vec<(&str, String)> = vec![
+    let mut fields: Vec<(&str, String)> = Vec::new();
+    if s.bodies.len() > 1 {
+        fields.push((
+            "body",
+            format!("{} ({}/{})", s.body_name, s.body_index + 1, s.bodies.len()),
+        ));
+    }
+    fields.extend([
         ("t", format!("{} s", number_plain(s.time))),
         ("step", s.step.to_string()),
         ("dt", format!("{} s", number_plain(s.dt))),
@@ -47,7 +54,7 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
                 effects.join(", ")
             },
         ),
-    ];
+    ]);
     if app.show_timing {
         if let Some(ns) = app.ns_per_step {
             fields.push(("", format!("{ns:.0} ns/step")));

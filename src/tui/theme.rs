@@ -6,6 +6,8 @@ use ratatui::style::{Color, Modifier, Style};
 
 /// The body's edges and points, and its barycenter `@`.
 pub const BODY: Color = Color::White;
+/// Bodies other than the one the panels show.
+pub const OTHER_BODY: Color = Color::LightCyan;
 /// The body's hidden edges (behind the body, seen from the view direction): dimmed and dashed.
 pub const HIDDEN: Color = Color::DarkGray;
 /// The compare world (ghost body, its numbers, its energy curve).
