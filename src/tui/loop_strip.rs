@@ -212,18 +212,21 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
 
 fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let obstacles = world.obstacles();
-    if obstacles.is_empty() {
+    let bodies = world.body_count();
+    if obstacles.is_empty() && bodies < 2 {
         return vec![line(
             "no obstacles declared: nothing to detect, the phase costs nothing",
             "",
         )];
     }
     if s.contacts.is_empty() {
+        let what = match (obstacles.len(), bodies) {
+            (n, 1) => format!("{n} obstacle(s), nothing inside: nothing to do"),
+            (0, b) => format!("{b} bodies, no pair touching: nothing to do"),
+            (n, b) => format!("{n} obstacle(s) and {b} bodies, nothing touching: nothing to do"),
+        };
         return vec![line(
-            format!(
-                "{} obstacle(s), no vertex inside: nothing to do",
-                obstacles.len()
-            ),
+            what,
             format!("   (deepest penetration {} m)", number_plain(s.penetration)),
         )];
     }
@@ -233,7 +236,11 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         Some(Response::Impulse) => {
             let e = model.map_or(0.0, |m| m.restitution);
             lines.push(line(
-                "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)",
+                if bodies > 1 {
+                    "uₙ = (v_A + ω_A×r_A − v_B − ω_B×r_B)·n,  k = Σ 1/M + (r×n)·I⁻¹(r×n),  j = −(1+e)·uₙ/k  on A, −j on B (all contacts together, + friction)"
+                } else {
+                    "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)"
+                },
                 format!("   e = {}", number_plain(e)),
             ));
             for c in s.contacts.iter().take(2) {
