@@ -30,6 +30,8 @@ pub struct Dense {
     first: Vec<usize>,
     inv_diagonal: Vec<f64>,
     w: Vec<f64>,
+    /// The first row that acts on each body (usize::MAX: none yet).
+    body_first: Vec<usize>,
 }
 
 impl Dense {
@@ -45,22 +47,29 @@ impl Dense {
         }
         self.first.clear();
         self.first.resize(m, 0);
+        self.body_first.fill(usize::MAX);
     }
 
-    /// Fills row p of the lower triangle: `entry(q)` for q ≤ p, None where the rows are
-    /// known to be uncoupled (an exact zero). Records where the row's envelope starts.
-    pub fn fill_row(&mut self, p: usize, mut entry: impl FnMut(usize) -> Option<f64>) {
-        let m = self.m;
-        let row = &mut self.a[p * m..p * m + p + 1];
+    /// Fills row p of the lower triangle, rows filled in order 0, 1, …: the row acts on
+    /// `bodies` (one or two); its envelope starts at the first earlier row that acts on one of
+    /// them, and `entry(q)` is asked for every q from there to p (None: an exact zero).
+    pub fn fill_row(
+        &mut self,
+        p: usize,
+        bodies: [Option<usize>; 2],
+        mut entry: impl FnMut(usize) -> Option<f64>,
+    ) {
         let mut first = p;
-        for (q, slot) in row.iter_mut().enumerate() {
-            match entry(q) {
-                Some(v) => {
-                    *slot = v;
-                    first = first.min(q);
-                }
-                None => *slot = 0.0,
+        for b in bodies.into_iter().flatten() {
+            if b >= self.body_first.len() {
+                self.body_first.resize(b + 1, usize::MAX);
             }
+            first = first.min(self.body_first[b]);
+            self.body_first[b] = self.body_first[b].min(p);
+        }
+        let m = self.m;
+        for (q, slot) in (first..=p).zip(&mut self.a[p * m + first..p * m + p + 1]) {
+            *slot = entry(q).unwrap_or(0.0);
         }
         self.first[p] = first;
     }

@@ -117,6 +117,14 @@ pub const MAX_SWEEPS: usize = 2000;
 /// the system is banded there, see [`Dense`]).
 pub const DIRECT_MAX: usize = 64;
 
+/// Gaps up to this are round-off of touching, m: positions of order 1 m carry errors of
+/// about 1e-14 m after a few operations, so the corners of a face lying flat on another come
+/// out ±1e-14 m apart. Their bias (gap/dt) would make the four rows of a face manifold —
+/// which constrain three motions — inconsistent by 1e-11 m/s, and the direct solve's
+/// minimum-norm answer would blow that up by 1/ε into impulses of ±100 N·s of opposite signs.
+/// Treated as touching (no bias), the rows stay consistent.
+pub const GAP_ROUND_OFF: f64 = 1e-12;
+
 /// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
 pub const STICKING_MAX: usize = 8;
 
@@ -202,10 +210,15 @@ impl Direction {
         sum
     }
 
+    /// The bodies the direction acts on.
+    fn bodies(&self) -> [Option<usize>; 2] {
+        [Some(self.a.body), self.b.map(|b| b.body)]
+    }
+
     /// Whether the two directions act on a common body (else their coupling is 0).
     fn shares_a_body(&self, other: &Direction) -> bool {
-        self.ends()
-            .any(|(e, _)| other.ends().any(|(f, _)| e.body == f.body))
+        let ([a, b], [c, d]) = (self.bodies(), other.bodies());
+        a == c || a == d || (b.is_some() && (b == c || b == d))
     }
 
     /// The ends with the sign of d at each.
@@ -484,7 +497,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             friction_bound: 0.0,
             lambda_restitution: 0.0,
             approach: along(&normal, motions),
-            bias: (-c.depth).max(0.0) / dt,
+            bias: (-c.depth - GAP_ROUND_OFF).max(0.0) / dt,
             warm: warm_start(c, previous, bounce_speed),
         }
     }));
@@ -697,7 +710,7 @@ fn direct_inelastic(
     for p in 0..m {
         let ni = &rows[active[p]].normal;
         system.rhs[p] = -along(ni, motions) - rows[active[p]].bias;
-        system.fill_row(p, |q| {
+        system.fill_row(p, ni.bodies(), |q| {
             let nj = &rows[active[q]].normal;
             ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
         });
@@ -778,7 +791,7 @@ fn direct_sticking(
             } else {
                 0.0
             };
-        system.fill_row(p, |q| Some(dp.coupling(direction(q), motions)));
+        system.fill_row(p, dp.bodies(), |q| Some(dp.coupling(direction(q), motions)));
     }
     let Some(delta) = system.solve() else {
         return false;

@@ -44,8 +44,10 @@
 //! the same translation: only the deepest one counts, so they merge into one row of depth
 //! `max dᵢ`, exactly. What is left — one row per pair in a stack — is solved at once with the
 //! rows that penetrate as the active set: `B μ = d`, `B_ij = Σ_shared b (±nᵢ)·(±nⱼ)/M_b`
-//! (`dense`), and accepted if every μ ≥ 0 and every row is separated; otherwise (and for a
-//! single body, which the sweeps finish in one or two) Hildreth's sweeps run. Hildreth on a
+//! (`dense`); a row the answer leaves penetrating joins the set and it is solved again (a
+//! cube pushed up pushes the one above). Accepted when every μ ≥ 0 and every row is
+//! separated; otherwise (and for a single body, which the sweeps finish in one or two)
+//! Hildreth's sweeps run. Hildreth on a
 //! stack of n bodies converges by a factor about cos²(π/(n+1)) a sweep: hundreds of sweeps
 //! for 10 cubes.
 
@@ -55,8 +57,8 @@ use crate::physics::body::Body;
 use crate::physics::state::State;
 use nalgebra::Vector3;
 
-/// Active sets the direct push-out tries before it leaves the problem to the sweeps.
-pub const ACTIVE_SET_PASSES: usize = 4;
+/// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10).
+pub const DIRECT_MAX: usize = 64;
 
 /// At most this many Gauss–Seidel sweeps of the push-out.
 pub const MAX_SWEEPS: usize = 200;
@@ -197,7 +199,7 @@ impl Fix<'_> {
     }
 
     /// The push-out solved directly (module doc), into `scratch.shifts`; false (shifts left
-    /// at zero) when the active set of penetrating rows is not the answer.
+    /// at zero) when no active set of penetrating rows gives the answer.
     fn push_out_directly(
         &self,
         contacts: &[Contact],
@@ -224,6 +226,9 @@ impl Fix<'_> {
                 None => merged.push((i, depth)),
             }
         }
+        if merged.len() > DIRECT_MAX {
+            return false;
+        }
         active.clear();
         active.extend((0..merged.len()).filter(|&r| merged[r].1 > 0.0));
         let inv_mass = |b: usize| self.bodies[b].inv_mass;
@@ -233,14 +238,16 @@ impl Fix<'_> {
                 .into_iter()
                 .flatten()
         };
-        for _ in 0..ACTIVE_SET_PASSES {
+        // Each pass adds a row or ends: a cube pushed up pushes the next one, so a stack of
+        // n takes up to n passes.
+        for _ in 0..=merged.len() {
             let m = active.len();
             dense.reset(m);
             for p in 0..m {
                 let (i, depth) = merged[active[p]];
                 let ci = &contacts[i];
                 dense.rhs[p] = depth;
-                dense.fill_row(p, |q| {
+                dense.fill_row(p, [Some(ci.body), ci.other_body()], |q| {
                     let cj = &contacts[merged[active[q]].0];
                     let mut sum = None;
                     for (a, sa) in ends(ci) {
