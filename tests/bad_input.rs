@@ -84,6 +84,30 @@ const TABLE: &[(&str, &str)] = &[
         "13:6: page time `at` must be ≥ 0 s, found -1",
     ),
     (
+        "bodies-overlapping.toml",
+        "15:1: body `right` starts inside body `left` (overlap 5.000e-2 m): move them apart so \
+         that they at most touch",
+    ),
+    (
+        "bodies-duplicate-name.toml",
+        "15:8: duplicate body name `cube`: each [[body]] needs its own name",
+    ),
+    (
+        "body-and-bodies.toml",
+        "13:3: TOML syntax error: duplicate key `body`: give one [body], or a [[body]] for each \
+         of several bodies, never both",
+    ),
+    (
+        "bodies-with-seed.toml",
+        "6:24: the `seed` response knows one body and fixed obstacles only, and this scene has 2 \
+         bodies: use response = \"impulse\"",
+    ),
+    (
+        "bodies-without-contact.toml",
+        "12:1: several bodies need a collision response: add `contact = { response = \
+         \"impulse\", restitution = 0.4, friction = 0.5 }` to [scene]",
+    ),
+    (
         "missing-body.toml",
         "1:1: missing table `[body]`: a scene file needs `title`, [scene] and [body] (or [[body]])",
     ),

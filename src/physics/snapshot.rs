@@ -5,11 +5,13 @@
 //! is exactly why the phase order matters. Between frames (after *collide*, or at t = 0) they
 //! are those of the current state, i.e. what the next *derive* will compute.
 
+use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose};
 use super::collision::{Contact, Obstacle};
 use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
 use super::energy_ledger::EnergyBalance;
 use super::integrators::Integrator;
+use super::state::State;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
@@ -134,7 +136,7 @@ impl Snapshot {
         };
         let rotation = state.orientation.matrix();
         let vertices = world.vertices_of(index);
-        let penetration = deepest_penetration(world.obstacles(), &vertices);
+        let penetration = geometric_penetration(world, index, &vertices);
         let bodies = (0..world.body_count())
             .map(|i| BodyView {
                 name: world.body_names()[i].clone(),
@@ -182,7 +184,52 @@ impl Snapshot {
     }
 }
 
-/// Deepest depth of any vertex inside any obstacle (0 when none is inside).
+/// Deepest geometric depth of body `index` inside any obstacle or other body, ≥ 0, m: the
+/// contact geometry's depth (vertices, edges and faces alike, so a pillar inside a plate's
+/// face counts). A body without a convex shape falls back to its vertices against obstacles.
+///
+/// ```text
+/// penetration = max(0, max over obstacles and other bodies B of depth(shape ∩ B))
+/// ```
+pub fn geometric_penetration(world: &World, index: usize, vertices: &[Vector3<f64>]) -> f64 {
+    let bodies = world.bodies();
+    let states = world.states();
+    let Some(shape) = &bodies[index].shape else {
+        return deepest_penetration(world.obstacles(), vertices);
+    };
+    let pose = pose_of(&states[index]);
+    let mut points: Vec<ContactPoint> = Vec::new();
+    let mut depth: f64 = 0.0;
+    for obstacle in world.obstacles() {
+        points.clear();
+        shape_obstacle(shape, &pose, obstacle, 0.0, &mut points);
+        depth = depth.max(deepest(&points));
+    }
+    for (other, (body, state)) in bodies.iter().zip(states).enumerate() {
+        let Some(other_shape) = body.shape.as_ref().filter(|_| other != index) else {
+            continue;
+        };
+        let reach = shape.bounding_radius() + other_shape.bounding_radius();
+        if (state.position - pose.position).norm_squared() > reach * reach {
+            continue;
+        }
+        points.clear();
+        shape_shape(shape, &pose, other_shape, &pose_of(state), 0.0, &mut points);
+        depth = depth.max(deepest(&points));
+    }
+    depth
+}
+
+/// Where a body's shape is.
+fn pose_of(state: &State) -> Pose {
+    Pose {
+        position: state.position,
+        rotation: state.orientation.matrix(),
+    }
+}
+
+/// Deepest depth of any vertex inside any obstacle (0 when none is inside): the report's
+/// per-vertex measure (what `seed` sees; faces and edges escape it).
 pub fn deepest_penetration(obstacles: &[Obstacle], vertices: &[Vector3<f64>]) -> f64 {
     let mut deepest: f64 = 0.0;
     for obstacle in obstacles {

@@ -151,13 +151,16 @@ struct Touched {
 }
 
 /// An error that blanking or replacing an entry made: it lies in a replaced entry, names a key
-/// blanked in the same section, or is about the section of a replaced name.
+/// blanked in the same section, or is about the section of a replaced name. An error asking
+/// to add a blanked key (`contact = { … }`, which several bodies need) is caused by the
+/// blanking wherever it lies.
 fn caused_by(touched: &[Touched], section: &Section, offset: usize, message: &str) -> bool {
     touched.iter().any(|t| {
-        t.header == section.header
+        (t.header == section.header
             && (t.entry.contains(&offset)
                 || message.contains(&format!("`{}`", t.key))
-                || (t.renamed && section.header.contains(&offset)))
+                || (t.renamed && section.header.contains(&offset))))
+            || message.contains(&format!("add `{} = ", t.key))
     })
 }
 

@@ -15,6 +15,11 @@ use super::error::did_you_mean;
 /// A TOML syntax error's message; `token` is the source text the error points at.
 pub fn syntax(message: &str, token: &str) -> String {
     let message = message.trim();
+    if message == "duplicate key" && token.trim() == "body" {
+        return "TOML syntax error: duplicate key `body`: give one [body], or a [[body]] for each \
+                of several bodies, never both"
+            .to_string();
+    }
     if message == "duplicate key" && !token.trim().is_empty() {
         return format!("TOML syntax error: duplicate key `{}`", token.trim());
     }

@@ -195,6 +195,7 @@ impl Validator<'_> {
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let bodies = self.bodies(raw.body)?;
+        self.no_overlap(&bodies)?;
         let title = raw.title.into_inner();
         let scene_integrator = raw.scene.get_ref().integrator.clone();
         let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
@@ -343,6 +344,48 @@ impl Validator<'_> {
             ));
         }
         Ok(bodies)
+    }
+
+    /// No body may start inside another: the first pair whose shapes overlap at their initial
+    /// poses (geometric depth > 1e-9 m; touching is fine) is an error at the later body.
+    fn no_overlap(&self, bodies: &[(SceneBody, Range<usize>)]) -> Result<(), LoadError> {
+        use crate::physics::collision::geometry::{deepest, shape_shape, Pose};
+        let pose = |b: &SceneBody| Pose {
+            position: b.initial.position,
+            rotation: b.initial.orientation.matrix(),
+        };
+        let mut points = Vec::new();
+        for (j, (later, span)) in bodies.iter().enumerate() {
+            let Some(shape_j) = &later.body.shape else {
+                continue;
+            };
+            for (earlier, _) in &bodies[..j] {
+                let Some(shape_i) = &earlier.body.shape else {
+                    continue;
+                };
+                points.clear();
+                shape_shape(
+                    shape_j,
+                    &pose(later),
+                    shape_i,
+                    &pose(earlier),
+                    0.0,
+                    &mut points,
+                );
+                let depth = deepest(&points);
+                if depth > 1e-9 {
+                    return Err(self.error(
+                        span.clone(),
+                        format!(
+                            "body `{}` starts inside body `{}` (overlap {depth:.3e} m): move \
+                             them apart so that they at most touch",
+                            later.name, earlier.name
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
     }
 
     fn scene(

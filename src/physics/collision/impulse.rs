@@ -91,6 +91,7 @@
 //! slope or on a sphere), and what penetration is left is removed by translation (see there).
 
 use super::contacts;
+use super::dense::Dense;
 use super::position::{self, Fix};
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
@@ -107,11 +108,25 @@ pub const BOUNCE_STEPS: f64 = 3.0;
 /// same fraction of the fastest approach speed.
 pub const TOLERANCE: f64 = 1e-10;
 
-/// At most this many Gauss–Seidel sweeps per stage.
-pub const MAX_SWEEPS: usize = 200;
+/// At most this many Gauss–Seidel sweeps per stage. A stack of 10 cubes needs about 800 the
+/// first time it is loaded, then 1 to 10 a step from the warm start; a cap below the first
+/// number would leave every later step unconverged too.
+pub const MAX_SWEEPS: usize = 2000;
 
-/// Most contacts in a step to try the direct solve for.
-pub const DIRECT_MAX: usize = 8;
+/// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40;
+/// the system is banded there, see [`Dense`]).
+pub const DIRECT_MAX: usize = 64;
+
+/// Gaps up to this are round-off of touching, m: positions of order 1 m carry errors of
+/// about 1e-14 m after a few operations, so the corners of a face lying flat on another come
+/// out ±1e-14 m apart. Their bias (gap/dt) would make the four rows of a face manifold —
+/// which constrain three motions — inconsistent by 1e-11 m/s, and the direct solve's
+/// minimum-norm answer would blow that up by 1/ε into impulses of ±100 N·s of opposite signs.
+/// Treated as touching (no bias), the rows stay consistent.
+pub const GAP_ROUND_OFF: f64 = 1e-12;
+
+/// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
+pub const STICKING_MAX: usize = 8;
 
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
@@ -122,6 +137,13 @@ pub struct Scratch {
     previous: Vec<Contact>,
     points: Vec<super::geometry::ContactPoint>,
     fix: position::Scratch,
+    /// The direct solves' system, and the motions saved to undo a rejected solve.
+    dense: Dense,
+    saved: Vec<Motion>,
+    /// The restitution impulses' change to each body: Δv, ΔL, Δω.
+    change: Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    /// Which bodies the position fix advances from the start of the step.
+    advanced: Vec<bool>,
 }
 
 /// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
@@ -188,6 +210,17 @@ impl Direction {
         sum
     }
 
+    /// The bodies the direction acts on.
+    fn bodies(&self) -> [Option<usize>; 2] {
+        [Some(self.a.body), self.b.map(|b| b.body)]
+    }
+
+    /// Whether the two directions act on a common body (else their coupling is 0).
+    fn shares_a_body(&self, other: &Direction) -> bool {
+        let ([a, b], [c, d]) = (self.bodies(), other.bodies());
+        a == c || a == d || (b.is_some() && (b == c || b == d))
+    }
+
     /// The ends with the sign of d at each.
     fn ends(&self) -> impl Iterator<Item = (&End, f64)> {
         std::iter::once((&self.a, 1.0)).chain(self.b.as_ref().map(|b| (b, -1.0)))
@@ -195,7 +228,7 @@ impl Direction {
 }
 
 /// A body's velocities while impulses are applied: v, ω and L (ω = I⁻¹ L kept in step).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Motion {
     v: Vector3<f64>,
     omega: Vector3<f64>,
@@ -354,12 +387,19 @@ pub fn respond(
         motions,
         previous,
         fix: fs,
+        dense,
+        saved,
+        change,
+        advanced,
         ..
     } = scratch;
     let buffers = Buffers {
         rows,
         tangents,
         motions,
+        dense,
+        saved,
+        change,
     };
     resolve(&settings, contacts, previous, buffers);
     for (state, m) in states.iter_mut().zip(motions.iter()) {
@@ -368,8 +408,9 @@ pub fn respond(
             state.angular_momentum = m.l;
         }
     }
-    let advanced: Vec<bool> = motions.iter().map(|m| m.touched && !m.bounced).collect();
-    fix.apply(contacts, states, &advanced, fs);
+    advanced.clear();
+    advanced.extend(motions.iter().map(|m| m.touched && !m.bounced));
+    fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
     let mut after = total(states, motions);
     for _ in 0..4 {
@@ -406,6 +447,9 @@ struct Buffers<'a> {
     rows: &'a mut Vec<Row>,
     tangents: &'a mut Vec<[Direction; 2]>,
     motions: &'a mut Vec<Motion>,
+    dense: &'a mut Dense,
+    saved: &'a mut Vec<Motion>,
+    change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
 }
 
 /// What the velocity stages need besides the bodies and the contacts.
@@ -436,6 +480,9 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
         rows,
         tangents: tangent_directions,
         motions,
+        dense,
+        saved,
+        change,
     } = buffers;
     // The energy the velocities may keep: K₀ less the push-out's work against gravity.
     let kinetic_allowed = motions.iter().map(Motion::kinetic).sum::<f64>() - lift;
@@ -450,7 +497,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             friction_bound: 0.0,
             lambda_restitution: 0.0,
             approach: along(&normal, motions),
-            bias: (-c.depth).max(0.0) / dt,
+            bias: (-c.depth - GAP_ROUND_OFF).max(0.0) / dt,
             warm: warm_start(c, previous, bounce_speed),
         }
     }));
@@ -459,7 +506,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
 
     // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
     // projected Gauss–Seidel, warm-started from the last step's impulses.
-    if !direct_inelastic(rows, motions, tolerance) {
+    if !direct_inelastic(rows, motions, tolerance, dense, saved) {
         for row in rows.iter_mut() {
             row.normal.with_inverse();
             let warm = row.warm.dot(&row.normal.d).max(0.0);
@@ -512,7 +559,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
         }
         // The direct solve first (everything sticks); else the sweeps, warm-started from the
         // last step's friction impulses (kept in their disks).
-        let solved = direct_sticking(rows, tangent_directions, motions, tolerance);
+        let solved = direct_sticking(rows, tangent_directions, motions, tolerance, dense, saved);
         if !solved {
             for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
                 row.normal.with_inverse();
@@ -550,8 +597,11 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
     // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀.
     if restitution > 0.0 && rows.iter().any(|r| bounces(r, bounce_speed)) {
         // The restitution impulses' changes to each body: Δv, ΔL, Δω.
-        let mut change =
-            vec![(Vector3::zeros(), Vector3::zeros(), Vector3::zeros()); motions.len()];
+        change.clear();
+        change.resize(
+            motions.len(),
+            (Vector3::zeros(), Vector3::zeros(), Vector3::zeros()),
+        );
         for row in rows.iter_mut() {
             if bounces(row, bounce_speed) {
                 let j = restitution * row.compression;
@@ -567,7 +617,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
         }
         // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
         let (mut a, mut b) = (0.0, 0.0);
-        for (m, (dv, dl, domega)) in motions.iter().zip(&change) {
+        for (m, (dv, dl, domega)) in motions.iter().zip(change.iter()) {
             a += 0.5 * (dv.norm_squared() / m.inv_mass + domega.dot(dl));
             b += dv.dot(&m.v) / m.inv_mass + m.omega.dot(dl);
         }
@@ -578,7 +628,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             let slack = (kinetic_allowed - c).max(0.0);
             ((-b + (b * b + 4.0 * a * slack).sqrt()) / (2.0 * a)).clamp(0.0, 1.0)
         };
-        for (m, (dv, dl, domega)) in motions.iter_mut().zip(&change) {
+        for (m, (dv, dl, domega)) in motions.iter_mut().zip(change.iter()) {
             if *dl != Vector3::zeros() || *dv != Vector3::zeros() {
                 m.v += dv * scale;
                 m.l += dl * scale;
@@ -635,7 +685,13 @@ fn warm_start(c: &Contact, previous: &[Contact], bounce_speed: f64) -> Vector3<f
 /// The result is accepted only if it is the solution of the whole problem — every λᵢ ≥ 0 and
 /// no contact, active or not, still approaching — so it is the same minimum of K that the
 /// sweeps converge to, reached at once. Returns false (and changes nothing) otherwise.
-fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) -> bool {
+fn direct_inelastic(
+    rows: &mut [Row],
+    motions: &mut [Motion],
+    tolerance: f64,
+    system: &mut Dense,
+    saved: &mut Vec<Motion>,
+) -> bool {
     let mut active = [0usize; DIRECT_MAX];
     let mut m = 0;
     for (i, row) in rows.iter().enumerate() {
@@ -650,13 +706,14 @@ fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) ->
     if m == 0 {
         return true;
     }
-    let mut system = Dense::new(m);
+    system.reset(m);
     for p in 0..m {
         let ni = &rows[active[p]].normal;
         system.rhs[p] = -along(ni, motions) - rows[active[p]].bias;
-        for q in 0..=p {
-            system.a[p][q] = ni.coupling(&rows[active[q]].normal, motions);
-        }
+        system.fill_row(p, ni.bodies(), |q| {
+            let nj = &rows[active[q]].normal;
+            ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
+        });
     }
     let Some(lambda) = system.solve() else {
         return false;
@@ -664,7 +721,8 @@ fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) ->
     if lambda[..m].iter().any(|l| *l < 0.0) {
         return false;
     }
-    let start: Vec<Motion> = motions.to_vec();
+    saved.clear();
+    saved.extend_from_slice(motions);
     for p in 0..m {
         apply(lambda[p], &rows[active[p]].normal, motions);
     }
@@ -672,7 +730,7 @@ fn direct_inelastic(rows: &mut [Row], motions: &mut [Motion], tolerance: f64) ->
         .iter()
         .any(|r| along(&r.normal, motions) + r.bias < -tolerance)
     {
-        motions.copy_from_slice(&start);
+        motions.copy_from_slice(saved);
         return false;
     }
     for p in 0..m {
@@ -699,12 +757,14 @@ fn direct_sticking(
     directions: &[[Direction; 2]],
     motions: &mut [Motion],
     tolerance: f64,
+    system: &mut Dense,
+    saved: &mut Vec<Motion>,
 ) -> bool {
-    let mut active = [0usize; DIRECT_MAX];
+    let mut active = [0usize; STICKING_MAX];
     let mut m = 0;
     for (i, row) in rows.iter().enumerate() {
         if row.lambda > 0.0 {
-            if m == DIRECT_MAX {
+            if m == STICKING_MAX {
                 return false;
             }
             active[m] = i;
@@ -722,7 +782,7 @@ fn direct_sticking(
             t => &directions[i][t - 1],
         }
     };
-    let mut system = Dense::new(3 * m);
+    system.reset(3 * m);
     for p in 0..3 * m {
         let dp = direction(p);
         system.rhs[p] = -along(dp, motions)
@@ -731,9 +791,7 @@ fn direct_sticking(
             } else {
                 0.0
             };
-        for q in 0..=p {
-            system.a[p][q] = dp.coupling(direction(q), motions);
-        }
+        system.fill_row(p, dp.bodies(), |q| Some(dp.coupling(direction(q), motions)));
     }
     let Some(delta) = system.solve() else {
         return false;
@@ -745,7 +803,8 @@ fn direct_sticking(
             return false;
         }
     }
-    let start: Vec<Motion> = motions.to_vec();
+    saved.clear();
+    saved.extend_from_slice(motions);
     for (p, d) in delta[..3 * m].iter().enumerate() {
         apply(*d, direction(p), motions);
     }
@@ -753,7 +812,7 @@ fn direct_sticking(
         .iter()
         .any(|r| along(&r.normal, motions) + r.bias < -tolerance)
     {
-        motions.copy_from_slice(&start);
+        motions.copy_from_slice(saved);
         return false;
     }
     for k in 0..m {
@@ -762,65 +821,6 @@ fn direct_sticking(
         row.lambda_tangent = [delta[3 * k + 1], delta[3 * k + 2]];
     }
     true
-}
-
-/// Largest dense system the direct solves build: three rows per contact.
-const DENSE_MAX: usize = 3 * DIRECT_MAX;
-
-/// A small dense symmetric system `(A + ε𝟙) x = rhs` (lower triangle of A filled in), solved
-/// by LDLᵀ without square roots; ε = 1e-10 · max Aᵢᵢ picks the minimum-norm x when A is only
-/// semi-definite.
-struct Dense {
-    m: usize,
-    a: [[f64; DENSE_MAX]; DENSE_MAX],
-    rhs: [f64; DENSE_MAX],
-}
-
-impl Dense {
-    fn new(m: usize) -> Dense {
-        Dense {
-            m,
-            a: [[0.0; DENSE_MAX]; DENSE_MAX],
-            rhs: [0.0; DENSE_MAX],
-        }
-    }
-
-    /// x, or None if a pivot is not positive (A not positive definite even with ε).
-    fn solve(mut self) -> Option<[f64; DENSE_MAX]> {
-        let m = self.m;
-        let a = &mut self.a;
-        let largest = (0..m).map(|p| a[p][p]).fold(0.0, f64::max);
-        let epsilon = 1e-10 * largest;
-        // A + ε𝟙 = L D Lᵀ (L unit lower triangular, in place below the diagonal; D kept as
-        // 1/Dₚ): no square roots. wₖ = L_pk D_k for the row being factored.
-        let mut inv_diagonal = [0.0f64; DENSE_MAX];
-        for p in 0..m {
-            let mut w = [0.0f64; DENSE_MAX];
-            let mut pivot = a[p][p] + epsilon;
-            for q in 0..p {
-                let dot: f64 = w[..q].iter().zip(&a[q][..q]).map(|(x, y)| x * y).sum();
-                w[q] = a[p][q] - dot;
-                let l = w[q] * inv_diagonal[q];
-                pivot -= w[q] * l;
-                a[p][q] = l;
-            }
-            if pivot <= 0.0 {
-                return None;
-            }
-            inv_diagonal[p] = 1.0 / pivot;
-        }
-        // L y = rhs, then Lᵀ x = D⁻¹ y.
-        let mut x = self.rhs;
-        for p in 0..m {
-            let dot: f64 = a[p][..p].iter().zip(&x[..p]).map(|(x, y)| x * y).sum();
-            x[p] -= dot;
-        }
-        for p in (0..m).rev() {
-            let dot: f64 = (p + 1..m).map(|k| a[k][p] * x[k]).sum();
-            x[p] = x[p] * inv_diagonal[p] - dot;
-        }
-        Some(x)
-    }
 }
 
 /// The exact minimisation of K over one contact's friction disk `|λ_t| ≤ bound`, the other

@@ -11,8 +11,10 @@
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
+//! | `dense` | the direct solves' small symmetric systems (LDLᵀ in each row's envelope) |
 
 pub mod contacts;
+pub mod dense;
 pub mod detect;
 pub mod geometry;
 pub mod impulse;

@@ -37,11 +37,28 @@
 //! neither P nor L, so no kinetic energy, and along the contact normals only, so a body at
 //! rest on a face cannot creep sideways. (Rotating the body instead would change `I⁻¹_world`
 //! and so `½ L·I⁻¹L`.)
+//!
+//! # Several bodies: the same answer, solved directly
+//!
+//! Rows of one pair of bodies with the same normal (a face manifold's 3–4 points) constrain
+//! the same translation: only the deepest one counts, so they merge into one row of depth
+//! `max dᵢ`, exactly. What is left — one row per pair in a stack — is solved at once with the
+//! rows that penetrate as the active set: `B μ = d`, `B_ij = Σ_shared b (±nᵢ)·(±nⱼ)/M_b`
+//! (`dense`); a row the answer leaves penetrating joins the set and it is solved again (a
+//! cube pushed up pushes the one above). Accepted when every μ ≥ 0 and every row is
+//! separated; otherwise (and for a single body, which the sweeps finish in one or two)
+//! Hildreth's sweeps run. Hildreth on a
+//! stack of n bodies converges by a factor about cos²(π/(n+1)) a sweep: hundreds of sweeps
+//! for 10 cubes.
 
+use super::dense::Dense;
 use super::Contact;
 use crate::physics::body::Body;
 use crate::physics::state::State;
 use nalgebra::Vector3;
+
+/// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10).
+pub const DIRECT_MAX: usize = 64;
 
 /// At most this many Gauss–Seidel sweeps of the push-out.
 pub const MAX_SWEEPS: usize = 200;
@@ -52,6 +69,10 @@ pub struct Scratch {
     multipliers: Vec<f64>,
     shifts: Vec<Vector3<f64>>,
     depths: Vec<f64>,
+    /// The direct solve: merged rows (first contact, depth), the active ones, the system.
+    merged: Vec<(usize, f64)>,
+    active: Vec<usize>,
+    dense: Dense,
 }
 
 /// What the position fix reads: the bodies, their states at the start of the step, dt.
@@ -125,19 +146,27 @@ impl Fix<'_> {
     /// The mass-weighted shortest translations for `scratch.depths` (module doc), into
     /// `scratch.shifts`.
     fn push_out(&self, contacts: &[Contact], scratch: &mut Scratch) {
+        scratch.shifts.clear();
+        scratch.shifts.resize(self.bodies.len(), Vector3::zeros());
+        let deepest = scratch.depths.iter().copied().fold(0.0, f64::max);
+        if deepest <= 0.0 {
+            return;
+        }
+        let tolerance = 1e-12 * (1.0 + deepest);
+        if contacts.iter().any(|c| c.other_body().is_some())
+            && self.push_out_directly(contacts, scratch, tolerance)
+        {
+            return;
+        }
         let Scratch {
             multipliers,
             shifts,
             depths,
+            ..
         } = scratch;
-        shifts.clear();
-        shifts.resize(self.bodies.len(), Vector3::zeros());
+        shifts.fill(Vector3::zeros());
         multipliers.clear();
         multipliers.resize(contacts.len(), 0.0);
-        let deepest = depths.iter().copied().fold(0.0, f64::max);
-        if deepest <= 0.0 {
-            return;
-        }
         let inv_mass = |b: usize| self.bodies[b].inv_mass;
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
@@ -163,9 +192,107 @@ impl Fix<'_> {
                     largest = largest.max((change * k).abs());
                 }
             }
-            if largest <= 1e-12 * (1.0 + deepest) {
+            if largest <= tolerance {
                 break;
             }
         }
+    }
+
+    /// The push-out solved directly (module doc), into `scratch.shifts`; false (shifts left
+    /// at zero) when no active set of penetrating rows gives the answer.
+    fn push_out_directly(
+        &self,
+        contacts: &[Contact],
+        scratch: &mut Scratch,
+        tolerance: f64,
+    ) -> bool {
+        let Scratch {
+            shifts,
+            depths,
+            merged,
+            active,
+            dense,
+            ..
+        } = scratch;
+        // One row per pair and normal, with the deepest depth.
+        merged.clear();
+        for (i, (c, &depth)) in contacts.iter().zip(depths.iter()).enumerate() {
+            let same = merged.iter_mut().find(|(j, _)| {
+                let o = &contacts[*j];
+                o.body == c.body && o.against == c.against && o.normal == c.normal
+            });
+            match same {
+                Some((_, d)) => *d = d.max(depth),
+                None => merged.push((i, depth)),
+            }
+        }
+        if merged.len() > DIRECT_MAX {
+            return false;
+        }
+        active.clear();
+        active.extend((0..merged.len()).filter(|&r| merged[r].1 > 0.0));
+        let inv_mass = |b: usize| self.bodies[b].inv_mass;
+        // The ends of a row: (body, sign of n on it).
+        let ends = |c: &Contact| {
+            [Some((c.body, 1.0)), c.other_body().map(|b| (b, -1.0))]
+                .into_iter()
+                .flatten()
+        };
+        // Each pass adds a row or ends: a cube pushed up pushes the next one, so a stack of
+        // n takes up to n passes.
+        for _ in 0..=merged.len() {
+            let m = active.len();
+            dense.reset(m);
+            for p in 0..m {
+                let (i, depth) = merged[active[p]];
+                let ci = &contacts[i];
+                dense.rhs[p] = depth;
+                dense.fill_row(p, [Some(ci.body), ci.other_body()], |q| {
+                    let cj = &contacts[merged[active[q]].0];
+                    let mut sum = None;
+                    for (a, sa) in ends(ci) {
+                        for (b, sb) in ends(cj) {
+                            if a == b {
+                                let term = sa * sb * ci.normal.dot(&cj.normal) * inv_mass(a);
+                                sum = Some(sum.unwrap_or(0.0) + term);
+                            }
+                        }
+                    }
+                    sum
+                });
+            }
+            let Some(mu) = dense.solve() else {
+                return false;
+            };
+            if mu.iter().any(|&x| x < 0.0) {
+                return false;
+            }
+            shifts.fill(Vector3::zeros());
+            for (p, &x) in mu.iter().enumerate() {
+                let c = &contacts[merged[active[p]].0];
+                for (b, sign) in ends(c) {
+                    shifts[b] += c.normal * (sign * x * inv_mass(b));
+                }
+            }
+            // A merged row left penetrating joins the active set (kept in row order).
+            let before = active.len();
+            for (r, &(i, depth)) in merged.iter().enumerate() {
+                let c = &contacts[i];
+                let mut separation = shifts[c.body];
+                if let Some(other) = c.other_body() {
+                    separation -= shifts[other];
+                }
+                if c.normal.dot(&separation) < depth - tolerance && !active.contains(&r) {
+                    active.push(r);
+                }
+            }
+            if active.len() == before {
+                // Every merged row holds, so does every row it stands for.
+                return true;
+            }
+            active.sort_unstable();
+        }
+        shifts.fill(Vector3::zeros());
+        false
     }
 }
