@@ -158,7 +158,7 @@ impl App {
         let snapshot = world.snapshot();
         let region = Region::initial(
             &lesson.scene.first().body,
-            &snapshot.vertices,
+            &every_vertex(&snapshot),
             world.obstacles(),
         );
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
@@ -578,12 +578,7 @@ impl App {
     /// Re-reads the snapshots and keeps the bodies in frame.
     fn refresh(&mut self) {
         self.snapshot = self.world.snapshot_of(self.selected);
-        let mut shown: Vec<_> = self
-            .snapshot
-            .bodies
-            .iter()
-            .flat_map(|b| b.vertices.iter().copied())
-            .collect();
+        let mut shown = every_vertex(&self.snapshot);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot_of(self.selected);
             shown.extend_from_slice(&ghost.snapshot.vertices);
@@ -732,7 +727,7 @@ impl App {
         self.snapshot = self.world.snapshot_of(self.selected);
         self.region = Region::initial(
             &self.lesson.scene.first().body,
-            &self.snapshot.vertices,
+            &every_vertex(&self.snapshot),
             self.world.obstacles(),
         );
         self.series = EnergySeries::new(&self.snapshot, self.lesson.scene.duration);
@@ -881,4 +876,13 @@ fn apply(world: &mut World, comparison: Comparison) {
             }
         }
     }
+}
+
+/// The vertices of every body of a snapshot (what the view must keep in frame).
+fn every_vertex(snapshot: &Snapshot) -> Vec<nalgebra::Vector3<f64>> {
+    snapshot
+        .bodies
+        .iter()
+        .flat_map(|b| b.vertices.iter().copied())
+        .collect()
 }
