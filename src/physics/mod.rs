@@ -21,6 +21,7 @@
 
 pub mod body;
 pub mod cloth;
+pub mod cloth_coupling;
 pub mod collision;
 pub mod derive;
 pub mod divergence;

@@ -8,9 +8,21 @@
 //!
 //! [`World::step`] runs a whole frame; [`World::step_phase`] runs one phase. Front ends read
 //! [`World::snapshot`] and never recompute physics.
+//!
+//! **Cloths** ([`World::with_cloths`]) are stepped in the integrate phase, each by its own
+//! particle integrator under the declared gravity and drag (`ClothLoads::from_effects`):
+//! the velocity half, the obstacles' first contact pass (on velocities), the position half.
+//! Their second obstacle pass and their contacts with bodies (`cloth_coupling`) run in the
+//! collide phase. The particles' kinetic, spring and gravitational energy is part of the
+//! scene's energy; the ledger books the springs' damping and the drag on particles as drag
+//! work, and what the contacts took or gave as contact energy. A world without cloths does
+//! none of this (one emptiness test per phase).
 
 use super::body::Body;
+use super::cloth::{Cloth, ClothLoads, ParticleContact};
+use super::cloth_coupling::collide_bodies;
 use super::collision::impulse::Scratch;
+use super::collision::impulse::BOUNCE_STEPS;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
 use super::derive::{derive, Kinematics};
 use super::divergence::{not_finite, Divergence, EnergyGuard};
@@ -88,6 +100,25 @@ pub struct Checkpoint {
     guard: EnergyGuard,
     /// Drag work and contact energy booked since t = 0 (see `energy_ledger`).
     ledger: EnergyLedger,
+    /// The cloths, whole (positions, velocities, losses and the implicit step's warm-start
+    /// buffers: restoring them makes the next step exactly the same).
+    cloths: Cloths,
+    /// Per cloth: particle–body contacts in the last collide phase.
+    cloth_body_contacts: Vec<usize>,
+}
+
+/// The cloths of a checkpoint; two are equal when every particle's position and velocity and
+/// the losses are (the solver's scratch buffers are not compared).
+#[derive(Debug, Clone, Default)]
+struct Cloths(Vec<Cloth>);
+
+impl PartialEq for Cloths {
+    fn eq(&self, other: &Cloths) -> bool {
+        self.0.len() == other.0.len()
+            && self.0.iter().zip(&other.0).all(|(a, b)| {
+                a.positions == b.positions && a.velocities == b.velocities && a.losses == b.losses
+            })
+    }
 }
 
 /// A body of a world, with its name and its state at t = 0.
@@ -113,6 +144,12 @@ pub struct World {
     initial_positions: Vec<Vector3<f64>>,
     now: Checkpoint,
     scratch: Scratch,
+    /// The cloths at t = 0.
+    initial_cloths: Vec<Cloth>,
+    /// Gravity and drag as they act on particles.
+    cloth_loads: ClothLoads,
+    /// Reused by the cloths' obstacle contact passes.
+    particle_contacts: Vec<ParticleContact>,
 }
 
 impl World {
@@ -156,7 +193,7 @@ impl World {
             });
             models.push(b.body);
         }
-        let now = fresh(&models, &effects, integrator, &initial);
+        let now = fresh(&models, &effects, integrator, &initial, &[]);
         World {
             initial_positions: initial.iter().map(|s| s.position).collect(),
             bodies: models,
@@ -169,7 +206,19 @@ impl World {
             initial,
             now,
             scratch: Scratch::default(),
+            initial_cloths: Vec::new(),
+            cloth_loads: ClothLoads::default(),
+            particle_contacts: Vec::new(),
         }
+    }
+
+    /// The same world with these cloths at their initial states (particles under the declared
+    /// gravity and drag; `contact` must be given when they can touch an obstacle or a body).
+    pub fn with_cloths(mut self, cloths: Vec<Cloth>) -> World {
+        self.cloth_loads = ClothLoads::from_effects(&self.effects);
+        self.initial_cloths = cloths;
+        self.reset();
+        self
     }
 
     /// Runs the rest of the current frame (all four phases from the start of a frame).
@@ -245,12 +294,99 @@ impl World {
             );
             potential += self.effects.potential_energy(body, &state.position);
         }
+        if !now.cloths.0.is_empty() {
+            potential += self.integrate_cloths();
+        }
+        let now = &mut self.now;
         now.step += 1;
         now.guard.observe(&now.ledger, potential);
         // Energy ledger: the drag work of this step, from its start and end states.
         if let Some(start) = drag_start {
             let end = self.drag_power();
             self.now.ledger.book_drag(&start, &end, self.dt);
+        }
+    }
+
+    /// One step of every cloth but its last contact pass: velocity half, the obstacles'
+    /// velocity pass, position half. Books the damping and drag losses as drag work and the
+    /// velocity pass's energy as contact energy; returns the cloths' spring and gravitational
+    /// energy after the step (for the guard).
+    fn integrate_cloths(&mut self) -> f64 {
+        let (restitution, friction) = self
+            .contact
+            .as_ref()
+            .map_or((0.0, 0.0), |m| (m.restitution, m.friction));
+        let loads = &self.cloth_loads;
+        let now = &mut self.now;
+        let mut potential = 0.0;
+        for cloth in &mut now.cloths.0 {
+            cloth.velocity_step(loads, self.dt);
+            if !self.obstacles.is_empty() {
+                let taken = cloth
+                    .contact_velocities(
+                        &self.obstacles,
+                        restitution,
+                        friction,
+                        loads,
+                        self.dt,
+                        &mut self.particle_contacts,
+                    )
+                    .energy_taken;
+                if taken != 0.0 {
+                    now.ledger.book_contact(taken, 0.0);
+                }
+            }
+            let lost = cloth.advance_positions(loads, self.dt);
+            now.ledger.drag_work -= lost.damping + lost.drag;
+            let e = cloth.energy(loads);
+            potential += e.spring + e.gravitational;
+        }
+        potential
+    }
+
+    /// The collide phase of the cloths: the obstacles' position pass, then the particles
+    /// against the bodies (`cloth_coupling`). Books the measured energy change as contact
+    /// energy.
+    fn collide_cloths(&mut self) {
+        let Some(model) = self.contact else {
+            return;
+        };
+        if self.obstacles.is_empty() && self.bodies.is_empty() {
+            return;
+        }
+        let before = self.total_energy();
+        let bounce_speed = self
+            .effects
+            .gravity()
+            .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
+        let now = &mut self.now;
+        now.cloth_body_contacts.clear();
+        for cloth in &mut now.cloths.0 {
+            if !self.obstacles.is_empty() {
+                cloth.collide_obstacles(
+                    &self.obstacles,
+                    model.restitution,
+                    model.friction,
+                    &self.cloth_loads,
+                    self.dt,
+                    &mut self.particle_contacts,
+                );
+            }
+            let touching = collide_bodies(
+                cloth,
+                &self.bodies,
+                &mut now.states,
+                model.restitution,
+                model.friction,
+                bounce_speed,
+            );
+            now.cloth_body_contacts.push(touching);
+        }
+        let after = self.total_energy();
+        if after.total != before.total {
+            let now = &mut self.now;
+            now.ledger.book_contact(before.total, after.total);
+            now.guard.after_collision(&after);
         }
     }
 
@@ -274,6 +410,9 @@ impl World {
     /// several bodies) and the scene gives a response.
     #[inline]
     fn collide_phase(&mut self) {
+        if !self.now.cloths.0.is_empty() {
+            self.collide_cloths();
+        }
         let (true, Some(model)) = (self.can_touch(), &self.contact) else {
             return;
         };
@@ -317,15 +456,52 @@ impl World {
         }
     }
 
-    /// The energy of every body but the first (`seed` changes the first only).
+    /// The energy of every body but the first, and of the cloths (`seed` changes the first
+    /// body only).
     fn others_energy(&self) -> Energy {
         self.bodies
             .iter()
             .zip(&self.now.states)
             .skip(1)
-            .fold(Energy::default(), |e, (b, s)| {
+            .fold(self.cloths_energy(&self.now.cloths.0), |e, (b, s)| {
                 e + energy(b, &self.effects, s)
             })
+    }
+
+    /// Σ over cloths of T (kinetic) and U + V (potential).
+    fn cloths_energy(&self, cloths: &[Cloth]) -> Energy {
+        cloths.iter().fold(Energy::default(), |sum, c| {
+            let e = c.energy(&self.cloth_loads);
+            sum + Energy {
+                kinetic: e.kinetic,
+                potential: e.spring + e.gravitational,
+                total: e.total(),
+            }
+        })
+    }
+
+    /// The cloths, in order.
+    pub fn cloths(&self) -> &[Cloth] {
+        &self.now.cloths.0
+    }
+
+    /// The index of the cloth with this name.
+    pub fn cloth_index(&self, name: &str) -> Option<usize> {
+        self.now.cloths.0.iter().position(|c| c.name == name)
+    }
+
+    /// Gravity and drag as they act on particles.
+    pub fn cloth_loads(&self) -> &ClothLoads {
+        &self.cloth_loads
+    }
+
+    /// Particle–body contacts of cloth `index` in the last collide phase.
+    pub fn cloth_body_contacts(&self, index: usize) -> usize {
+        self.now
+            .cloth_body_contacts
+            .get(index)
+            .copied()
+            .unwrap_or(0)
     }
 
     /// Whether anything can touch: obstacles, or more than one body.
@@ -463,7 +639,30 @@ impl World {
 
     /// Back to t = 0.
     pub fn reset(&mut self) {
-        self.now = fresh(&self.bodies, &self.effects, self.integrator, &self.initial);
+        let mut now = fresh(
+            &self.bodies,
+            &self.effects,
+            self.integrator,
+            &self.initial,
+            &self.initial_cloths,
+        );
+        if !self.initial_cloths.is_empty() {
+            let cloths = self.cloths_energy(&self.initial_cloths);
+            let energy = total_energy(&self.bodies, &self.effects, &self.initial) + cloths;
+            let weight = self.effects.gravity().map_or(0.0, |g| {
+                self.bodies
+                    .iter()
+                    .map(|b| b.mass * g.norm() * b.radius)
+                    .chain(self.initial_cloths.iter().map(|c| {
+                        let span = c.positions.iter().map(|x| (x - c.positions[0]).norm());
+                        c.total_mass * g.norm() * span.fold(0.0, f64::max)
+                    }))
+                    .sum()
+            });
+            now.ledger = EnergyLedger::new(energy.total);
+            now.guard = EnergyGuard::new(&energy, weight);
+        }
+        self.now = now;
     }
 
     /// Vertex positions `pᵢ = x + R r₀ᵢ` of the first body's current state.
@@ -496,7 +695,12 @@ impl World {
 
     /// The whole scene's energy now: the sum over its bodies.
     pub fn total_energy(&self) -> Energy {
-        total_energy(&self.bodies, &self.effects, &self.now.states)
+        let bodies = total_energy(&self.bodies, &self.effects, &self.now.states);
+        if self.now.cloths.0.is_empty() {
+            bodies
+        } else {
+            bodies + self.cloths_energy(&self.now.cloths.0)
+        }
     }
 
     /// Drag work and contact energy booked since t = 0.
@@ -507,17 +711,27 @@ impl World {
     /// The change of the scene's energy since t = 0 split into drag work, contacts and the
     /// remainder, the numerical drift.
     pub fn energy_balance(&self) -> EnergyBalance {
-        self.now.ledger.balance(
+        let cloths = &self.now.cloths.0;
+        let damped = cloths
+            .iter()
+            .any(|c| c.springs.iter().any(|s| s.damping > 0.0));
+        let mut balance = self.now.ledger.balance(
             &self.initial_total_energy(),
             &self.total_energy(),
-            self.effects.depends_on_velocity(),
-            self.can_touch(),
-        )
+            self.effects.depends_on_velocity() || damped,
+            self.can_touch() || (!cloths.is_empty() && self.contact.is_some()),
+        );
+        if !cloths.is_empty() {
+            // Shown, not subtracted: the springs' energy is part of E already.
+            balance.springs = Some(cloths.iter().map(Cloth::spring_energy).sum());
+        }
+        balance
     }
 
     /// The whole scene's energy at t = 0.
     pub fn initial_total_energy(&self) -> Energy {
         total_energy(&self.bodies, &self.effects, &self.initial)
+            + self.cloths_energy(&self.initial_cloths)
     }
 
     /// A non-finite or runaway state, if the simulation has diverged.
@@ -611,6 +825,7 @@ fn fresh(
     effects: &Effects,
     integrator: Integrator,
     initial: &[State],
+    cloths: &[Cloth],
 ) -> Checkpoint {
     let kinematics: Vec<Kinematics> = bodies
         .iter()
@@ -637,5 +852,7 @@ fn fresh(
         loads,
         contacts: Vec::new(),
         guard,
+        cloths: Cloths(cloths.to_vec()),
+        cloth_body_contacts: vec![0; cloths.len()],
     }
 }

@@ -16,7 +16,7 @@ pub use diagnose::check as check_every_error;
 pub use edit::SceneEdits;
 pub use error::{did_you_mean, LoadError};
 
-use crate::physics::cloth::ClothSpec;
+use crate::physics::cloth::{Cloth, ClothSpec};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
     State, World,
@@ -81,13 +81,23 @@ impl Scene {
                 initial: b.initial,
             })
             .collect();
-        World::with_bodies(
+        let world = World::with_bodies(
             bodies,
             self.effects.clone(),
             self.obstacles.clone(),
             self.contact,
             integrator,
             dt,
+        );
+        if self.cloths.is_empty() {
+            return world;
+        }
+        // Specs were validated when the scene was loaded: `Cloth::new` cannot fail here.
+        world.with_cloths(
+            self.cloths
+                .iter()
+                .filter_map(|s| Cloth::new(s).ok())
+                .collect(),
         )
     }
 

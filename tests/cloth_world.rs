@@ -1,0 +1,269 @@
+//! Cloths in the world (issue 11): stepped with the bodies, part of the checkpoint, of the
+//! scene's energy, and touching bodies both ways (equal and opposite impulses). Scenes are
+//! written as scene files, as a teacher would.
+//!
+//! Everything runs in release in well under a second per test (CI budget).
+
+use nalgebra::Vector3;
+use std::path::Path;
+use tumble::physics::collision::geometry::{point_shape, Pose};
+use tumble::physics::World;
+use tumble::scene::parse;
+
+fn world(source: &str) -> World {
+    parse(source, Path::new("test.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
+        .world()
+}
+
+fn run(world: &mut World, seconds: f64) {
+    let steps = (seconds / world.dt()).round() as u64;
+    for _ in 0..steps {
+        world.step();
+        if let Some(d) = world.divergence() {
+            panic!("{d}");
+        }
+    }
+}
+
+/// P of every body and particle, kg·m/s.
+fn total_momentum(world: &World) -> Vector3<f64> {
+    let bodies: Vector3<f64> = world.states().iter().map(|s| s.linear_momentum).sum();
+    bodies
+        + world
+            .cloths()
+            .iter()
+            .map(|c| c.linear_momentum())
+            .sum::<Vector3<f64>>()
+}
+
+/// The deepest particle inside body `index`, m (≤ 0: none inside).
+fn deepest_particle_in_body(world: &World, index: usize) -> f64 {
+    let state = &world.states()[index];
+    let pose = Pose {
+        position: state.position,
+        rotation: state.orientation.matrix(),
+    };
+    let shape = world.bodies()[index].shape.as_ref().unwrap();
+    world
+        .cloths()
+        .iter()
+        .flat_map(|c| c.positions.iter())
+        .filter_map(|p| point_shape(p, shape, &pose, 1.0).map(|c| c.depth))
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+const SHEET_AND_CUBE_ZERO_G: &str = r#"
+title = "A cube thrown at a free sheet, no gravity"
+[scene]
+dt = 0.001
+integrator = "rk4"
+contact = { response = "impulse", restitution = 0.5, friction = 0.4 }
+
+[body]
+shape = "box"
+size = [0.3, 0.3, 0.3]
+mass = 1.0
+position = [0.05, 0.5, 0.02]
+velocity = [0.3, -2.0, 0.1]
+angular_velocity = [1.0, 0.0, 2.0]
+
+[[cloth]]
+name = "sheet"
+size = [1.0, 1.0]
+count = [11, 11]
+mass = 0.5
+stretch = 500.0
+shear = 100.0
+damping = 0.1
+pinned = "none"
+integrator = "implicit-euler"
+"#;
+
+#[test]
+fn cube_and_free_sheet_keep_their_total_momentum_through_contact() {
+    let mut w = world(SHEET_AND_CUBE_ZERO_G);
+    // P₀ = M v₀ = 1 kg · (0.3, −2, 0.1) m/s; the sheet is at rest. Only contact impulses act,
+    // each applied as J on a particle and −J on the cube: Σ P stays P₀ to round-off.
+    let p0 = Vector3::new(0.3, -2.0, 0.1);
+    assert!((total_momentum(&w) - p0).norm() < 1e-15);
+    let mut touched = 0;
+    let mut drift: f64 = 0.0;
+    for _ in 0..600 {
+        w.step();
+        touched += w.cloth_body_contacts(0);
+        drift = drift.max((total_momentum(&w) - p0).norm());
+    }
+    // The sheet took momentum from the cube (it moves down with it, at a fair fraction).
+    let sheet = w.cloths()[0].linear_momentum();
+    assert!(touched > 10, "contacts seen: {touched}");
+    assert!(sheet.y < -0.3, "sheet momentum {sheet:?}");
+    assert!(drift < 1e-12, "total momentum drifted by {drift:e} kg·m/s");
+    eprintln!("momentum drift through {touched} contacts: {drift:e} kg·m/s");
+}
+
+const TRAMPOLINE: &str = r#"
+title = "A cube on a trampoline"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+
+[body]
+shape = "box"
+size = [0.4, 0.4, 0.4]
+mass = 1.0
+position = [0.0, 0.8, 0.0]
+
+[[cloth]]
+name = "trampoline"
+size = [2.0, 2.0]
+count = [21, 21]
+mass = 2.0
+stretch = 5000.0
+shear = 1000.0
+damping = 5.0
+pinned = "edges"
+integrator = "implicit-euler"
+"#;
+
+#[test]
+fn a_cube_dropped_on_a_trampoline_bounces_up_and_rests_in_the_dip() {
+    let mut w = world(TRAMPOLINE);
+    let centre = w.cloths()[0].index(10, 10);
+    let mut lowest = f64::INFINITY;
+    let mut rising_after_contact: f64 = 0.0;
+    let mut deepest: f64 = f64::NEG_INFINITY;
+    for step in 0..3000 {
+        w.step();
+        let s = w.states()[0];
+        lowest = lowest.min(s.position.y);
+        if lowest < 0.2 {
+            rising_after_contact = rising_after_contact.max(s.linear_momentum.y);
+        }
+        if step % 10 == 0 {
+            deepest = deepest.max(deepest_particle_in_body(&w, 0));
+        }
+        if let Some(d) = w.divergence() {
+            panic!("{d}");
+        }
+    }
+    let s = w.states()[0];
+    let bottom = s.position.y - 0.2;
+    let dip = w.cloths()[0].positions[centre].y;
+    eprintln!(
+        "lowest centre {lowest:.4}, max rise {rising_after_contact:.4}, rest bottom {bottom:.5}, \
+         sheet centre {dip:.5}, speed {:.2e}, deepest {deepest:e}",
+        s.linear_momentum.norm()
+    );
+    // It falls 0.4 m onto the sheet (v ≈ √(2·9.81·0.4) ≈ 2.8 m/s), the sheet throws it back up.
+    assert!(
+        rising_after_contact > 0.3,
+        "upward momentum {rising_after_contact}"
+    );
+    // At rest in the dip: below the flat sheet (y = 0), slow, above the sheet's centre.
+    assert!(bottom < -0.01, "cube bottom {bottom}");
+    assert!(
+        s.linear_momentum.norm() < 0.05,
+        "still moving: {:?}",
+        s.linear_momentum
+    );
+    assert!(
+        dip <= bottom + 1e-9,
+        "sheet centre {dip} above cube bottom {bottom}"
+    );
+    // No particle inside the cube after any collide phase.
+    assert!(deepest <= 1e-12, "a particle {deepest} m inside the cube");
+}
+
+#[test]
+fn stepping_back_then_forward_repeats_a_cloth_world_exactly() {
+    let mut w = world(TRAMPOLINE);
+    run(&mut w, 0.45);
+    let mark = w.checkpoint();
+    run(&mut w, 0.05);
+    let (cube, sheet) = (w.states()[0], w.cloths()[0].positions.clone());
+    w.restore(&mark);
+    run(&mut w, 0.05);
+    assert_eq!(w.states()[0], cube);
+    assert_eq!(w.cloths()[0].positions, sheet);
+}
+
+const DRAPE: &str = r#"
+title = "A cloth dropped on the sphere"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.0, friction = 0.6 }
+
+[body]
+shape = "box"
+size = [0.2, 0.2, 0.2]
+mass = 1.0
+position = [3.0, 0.1, 0.0]
+
+[[obstacle]]
+type = "ground"
+height = 0.0
+
+[[obstacle]]
+type = "sphere"
+center = [0.0, 0.5, 0.0]
+radius = 0.5
+
+[[cloth]]
+name = "cloth"
+size = [1.6, 1.6]
+count = [17, 17]
+position = [0.0, 1.2, 0.0]
+mass = 0.5
+stretch = 800.0
+shear = 100.0
+bend = 5.0
+damping = 0.2
+pinned = "none"
+integrator = "implicit-euler"
+"#;
+
+#[test]
+fn a_cloth_dropped_on_the_sphere_drapes_over_it() {
+    let mut w = world(DRAPE);
+    run(&mut w, 1.5);
+    let c = &w.cloths()[0];
+    let centre = c.positions[c.index(8, 8)];
+    let corner = c.positions[c.index(0, 0)];
+    let inside = c
+        .positions
+        .iter()
+        .map(|p| 0.5 - (p - Vector3::new(0.0, 0.5, 0.0)).norm())
+        .fold(f64::NEG_INFINITY, f64::max);
+    eprintln!("drape: centre {centre:?}, corner {corner:?}, deepest {inside:e}");
+    // The centre rests on the top of the sphere (y = 1), the corners hang well below it.
+    assert!((centre.y - 1.0).abs() < 0.01, "centre {centre:?}");
+    assert!(corner.y < 0.75, "corner {corner:?}");
+    assert!(inside <= 1e-9, "a particle {inside} m inside the sphere");
+}
+
+#[test]
+#[ignore]
+fn trace_trampoline() {
+    let mut w = world(TRAMPOLINE);
+    for step in 0..6000 {
+        w.step();
+        if step % 100 == 0 {
+            let s = w.states()[0];
+            let k = tumble::physics::derive::derive(&w.bodies()[0], &s);
+            eprintln!(
+                "{:.2} y {:.4} v {:.3?} w {:.3?} E {:.4}",
+                w.time(),
+                s.position.y,
+                k.velocity.as_slice(),
+                k.angular_velocity.as_slice(),
+                w.total_energy().total
+            );
+        }
+    }
+}
