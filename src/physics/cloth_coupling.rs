@@ -107,8 +107,14 @@ pub fn collide_bodies(
             });
         }
         count += touches.len();
-        for _ in 0..SWEEPS {
-            for t in &mut touches {
+        for sweep in 0..SWEEPS {
+            // Forward, then backward: no particle of the grid is favoured by its index.
+            let order: Box<dyn Iterator<Item = &mut Touch>> = if sweep % 2 == 0 {
+                Box::new(touches.iter_mut())
+            } else {
+                Box::new(touches.iter_mut().rev())
+            };
+            for t in order {
                 let (i, n, r) = (t.particle, t.normal, t.arm);
                 let w_p = cloth.inv_mass(i);
                 let k = |d: &Vector3<f64>| {
