@@ -83,8 +83,8 @@ pub struct BodyView {
 /// The scene as a whole.
 ///
 /// ```text
-/// P_total = Σ P_b                     L_total = Σ (x_b × P_b + L_b)   about the origin
-/// E_total = Σ E_b
+/// P_total = Σ P_b + Σ m_i v_i         L_total = Σ (x_b × P_b + L_b) + Σ x_i × m_i v_i
+/// E_total = Σ E_b + Σ (T + U + V) of the cloths                        (about the origin)
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SystemTotals {
@@ -103,6 +103,10 @@ impl SystemTotals {
             linear_momentum += s.linear_momentum;
             angular_momentum += s.position.cross(&s.linear_momentum) + s.angular_momentum;
         }
+        for c in world.cloths() {
+            linear_momentum += c.linear_momentum();
+            angular_momentum += c.angular_momentum();
+        }
         SystemTotals {
             linear_momentum,
             angular_momentum,
@@ -120,6 +124,9 @@ impl Snapshot {
 
     /// The snapshot of a world after its last phase, the panels showing body `index`.
     pub fn of_body(world: &World, index: usize) -> Snapshot {
+        if world.body_count() == 0 {
+            return Snapshot::without_body(world);
+        }
         let state = &world.states()[index];
         let body = &world.bodies()[index];
         let between_frames = matches!(world.last_phase(), None | Some(Phase::Collide));
@@ -177,6 +184,48 @@ impl Snapshot {
             body_index: index,
             body_name: world.body_names()[index].clone(),
             bodies,
+            system: SystemTotals::of(world),
+        }
+    }
+}
+
+impl Snapshot {
+    /// A world of cloths only: the body fields are zeros (a body at rest at the origin, no
+    /// mass), the scene's fields are the world's.
+    fn without_body(world: &World) -> Snapshot {
+        let zero = Vector3::zeros();
+        let state = world.state();
+        Snapshot {
+            phase: world.last_phase(),
+            next_phase: world.next_phase(),
+            step: world.step_count(),
+            time: world.time(),
+            dt: world.dt(),
+            integrator: world.integrator(),
+            position: state.position,
+            rotation: Matrix3::identity(),
+            quaternion: UnitQuaternion::identity(),
+            linear_momentum: zero,
+            angular_momentum: zero,
+            angular_momentum_body: zero,
+            velocity: zero,
+            angular_velocity: zero,
+            angular_velocity_body: zero,
+            inertia_body: Matrix3::zeros(),
+            inertia_world: Matrix3::zeros(),
+            inv_inertia_world: Matrix3::zeros(),
+            force: zero,
+            torque: zero,
+            energy: Energy::default(),
+            initial_energy: Energy::default(),
+            energy_balance: world.energy_balance(),
+            orthonormality_error: 0.0,
+            vertices: Vec::new(),
+            contacts: Vec::new(),
+            penetration: 0.0,
+            body_index: 0,
+            body_name: String::new(),
+            bodies: Vec::new(),
             system: SystemTotals::of(world),
         }
     }

@@ -507,7 +507,7 @@ impl World {
     /// Whether anything can touch: obstacles, or more than one body.
     #[inline]
     fn can_touch(&self) -> bool {
-        !self.obstacles.is_empty() || self.bodies.len() > 1
+        (!self.obstacles.is_empty() && !self.bodies.is_empty()) || self.bodies.len() > 1
     }
 
     /// The phase that [`World::step_phase`] will run next.
@@ -550,9 +550,9 @@ impl World {
         self.names.iter().position(|n| n == name)
     }
 
-    /// The current state of the first body.
+    /// The current state of the first body (a world of cloths only: at rest at the origin).
     pub fn state(&self) -> &State {
-        &self.now.states[0]
+        self.now.states.first().unwrap_or(&REST)
     }
 
     /// The current states, one per body.
@@ -560,9 +560,9 @@ impl World {
         &self.now.states
     }
 
-    /// The state of the first body at t = 0.
+    /// The state of the first body at t = 0 (a world of cloths only: at rest at the origin).
     pub fn initial_state(&self) -> &State {
-        &self.initial[0]
+        self.initial.first().unwrap_or(&REST)
     }
 
     /// The states at t = 0, one per body.
@@ -570,7 +570,7 @@ impl World {
         &self.initial
     }
 
-    /// The first body.
+    /// The first body (a world of cloths only has none: check [`World::body_count`]).
     pub fn body(&self) -> &Body {
         &self.bodies[0]
     }
@@ -672,7 +672,9 @@ impl World {
 
     /// Vertex positions `pᵢ = x + R r₀ᵢ` of body `index`'s current state.
     pub fn vertices_of(&self, index: usize) -> Vec<Vector3<f64>> {
-        let state = &self.now.states[index];
+        let Some(state) = self.now.states.get(index) else {
+            return Vec::new();
+        };
         let r = state.orientation.matrix();
         let x = state.position;
         self.bodies[index]
@@ -685,7 +687,9 @@ impl World {
     /// Kinetic, potential and total energy of a state of the first body (measured from the
     /// state itself).
     pub fn energy_of(&self, state: &State) -> Energy {
-        energy(&self.bodies[0], &self.effects, state)
+        self.bodies
+            .first()
+            .map_or(Energy::default(), |b| energy(b, &self.effects, state))
     }
 
     /// Energy of body `index` now.
@@ -810,6 +814,16 @@ impl World {
         &self.now.loads[index]
     }
 }
+
+/// What [`World::state`] shows for a world of cloths only.
+static REST: State = State {
+    position: Vector3::new(0.0, 0.0, 0.0),
+    orientation: super::state::Orientation::Quaternion(nalgebra::UnitQuaternion::new_unchecked(
+        nalgebra::Quaternion::new(1.0, 0.0, 0.0, 0.0),
+    )),
+    linear_momentum: Vector3::new(0.0, 0.0, 0.0),
+    angular_momentum: Vector3::new(0.0, 0.0, 0.0),
+};
 
 /// Σ over bodies of their energies.
 fn total_energy(bodies: &[Body], effects: &Effects, states: &[State]) -> Energy {
