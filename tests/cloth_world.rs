@@ -313,3 +313,56 @@ fn a_scene_of_cloths_only_loads_steps_and_books_its_losses() {
     let p = w.snapshot().system.linear_momentum;
     assert_eq!(p, w.cloths()[0].linear_momentum());
 }
+
+const EXPLICIT: &str = r#"
+title = "The explicit limit"
+[scene]
+dt = 0.001
+integrator = "symplectic-euler"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+
+[[cloth]]
+name = "sheet"
+size = [1.0, 1.0]
+count = [11, 11]
+position = [0.0, 1.0, 0.0]
+mass = 0.5
+stretch = 2000.0
+shear = 500.0
+pinned = "edges"
+"#;
+
+/// Steps until the guard stops the run (None: it ran `steps` steps).
+fn steps_to_divergence(w: &mut World, steps: u64) -> Option<(u64, String)> {
+    for _ in 0..steps {
+        w.step();
+        if let Some(d) = w.divergence() {
+            return Some((d.step, d.to_string()));
+        }
+    }
+    None
+}
+
+#[test]
+fn symplectic_euler_above_the_explicit_limit_is_stopped_naming_the_cloth() {
+    let lesson = parse(EXPLICIT, Path::new("test.toml")).unwrap();
+    let w = lesson.scene.world();
+    let limit = w.cloths()[0].explicit_limit(w.cloth_loads()).dt();
+    // A pinned 11 × 11 grid, m = 0.5/121 kg, stretch 2000 and shear 500 N/m: the rule of thumb
+    // (references.md) for stretch + shear of equal k gives ≈ 0.71 √(m/k) ≈ 1.0e-3 s; the
+    // shear here is softer, so the limit lies a little above.
+    assert!(limit > 0.9e-3 && limit < 1.6e-3, "limit {limit}");
+    let mut below = lesson.scene.world_with(w.integrator(), 0.9 * limit);
+    assert_eq!(steps_to_divergence(&mut below, 3000), None, "0.9× limit");
+    let mut above = lesson.scene.world_with(w.integrator(), 1.1 * limit);
+    let (step, message) = steps_to_divergence(&mut above, 3000).expect("1.1× limit diverges");
+    eprintln!("limit {limit:.6e} s: 1.1× stopped at step {step}: {message}");
+    assert!(step < 500, "stopped only at step {step}");
+    assert!(message.contains("cloth sheet"), "{message}");
+    assert!(message.contains("integrator symplectic-euler"), "{message}");
+    assert!(
+        message.contains(&format!("dt = {} s", 1.1 * limit)),
+        "{message}"
+    );
+}

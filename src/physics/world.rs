@@ -738,7 +738,9 @@ impl World {
             + self.cloths_energy(&self.initial_cloths)
     }
 
-    /// A non-finite or runaway state, if the simulation has diverged.
+    /// A non-finite or runaway state, if the simulation has diverged. With cloths, a
+    /// non-finite particle or a runaway the cloths hold most of is named after its cloth and
+    /// its particle integrator.
     pub fn divergence(&self) -> Option<Divergence> {
         let named = |quantity: String, body: usize| {
             if self.bodies.len() > 1 {
@@ -747,12 +749,18 @@ impl World {
                 quantity
             }
         };
+        let mut subject = None;
         let quantity = self
             .now
             .states
             .iter()
             .enumerate()
             .find_map(|(i, s)| not_finite(s).map(|q| named(q.to_string(), i)))
+            .or_else(|| {
+                let (cloth, quantity) = self.cloth_not_finite()?;
+                subject = Some(cloth_subject(cloth));
+                Some(quantity)
+            })
             .or_else(|| {
                 let (turn, fastest) = self
                     .bodies
@@ -764,12 +772,19 @@ impl World {
                         (0.0, 0),
                         |best, (i, t)| if t > best.0 { (t, i) } else { best },
                     );
+                let total = self.total_energy();
                 self.now
                     .guard
-                    .check(&self.total_energy(), &self.now.ledger, turn)
+                    .check(&total, &self.now.ledger, turn)
                     .map(|q| {
                         if q.starts_with("rotation") {
                             named(q, fastest)
+                        } else if let Some(cloth) = self.runaway_cloth(&total) {
+                            subject = Some(cloth_subject(cloth));
+                            format!(
+                                "{q}, held as kinetic + spring energy by cloth {}",
+                                cloth.name
+                            )
                         } else {
                             q
                         }
@@ -781,7 +796,36 @@ impl World {
             quantity,
             integrator: self.integrator,
             dt: self.dt,
+            subject,
         })
+    }
+
+    /// The first cloth with a non-finite particle, and what is not finite.
+    fn cloth_not_finite(&self) -> Option<(&Cloth, String)> {
+        let finite = |v: &Vector3<f64>| v.iter().all(|c| c.is_finite());
+        self.now.cloths.0.iter().find_map(|c| {
+            let what = if !c.positions.iter().all(finite) {
+                "particle position"
+            } else if !c.velocities.iter().all(finite) {
+                "particle velocity"
+            } else {
+                return None;
+            };
+            Some((c, format!("{what} is not finite (cloth {})", c.name)))
+        })
+    }
+
+    /// The cloth holding the most kinetic and spring energy, when the cloths hold more of it
+    /// than the bodies hold kinetic energy (then a runaway is theirs).
+    fn runaway_cloth(&self, total: &Energy) -> Option<&Cloth> {
+        let held = |c: &Cloth| c.kinetic_energy() + c.spring_energy();
+        let cloths = &self.now.cloths.0;
+        let all: f64 = cloths.iter().map(held).sum();
+        let bodies = total.kinetic - cloths.iter().map(Cloth::kinetic_energy).sum::<f64>();
+        if cloths.is_empty() || all <= bodies {
+            return None;
+        }
+        cloths.iter().max_by(|a, b| held(a).total_cmp(&held(b)))
     }
 
     /// Every quantity a user is shown, after the last phase (the panels show the first body).
@@ -813,6 +857,15 @@ impl World {
     pub fn loads_of(&self, index: usize) -> &Loads {
         &self.now.loads[index]
     }
+}
+
+/// "cloth `NAME`, integrator NAME": a cloth's divergence names its own integrator.
+fn cloth_subject(cloth: &Cloth) -> String {
+    format!(
+        "cloth {}, integrator {}",
+        cloth.name,
+        cloth.integrator.name()
+    )
 }
 
 /// What [`World::state`] shows for a world of cloths only.
