@@ -68,6 +68,58 @@ pub struct Snapshot {
     pub bodies: Vec<BodyView>,
     /// The whole scene: total momenta and energy.
     pub system: SystemTotals,
+    /// Every cloth's numbers (empty without cloths).
+    pub cloths: Vec<ClothView>,
+}
+
+/// What a table shows of one cloth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClothView {
+    pub name: String,
+    pub integrator: &'static str,
+    pub particles: usize,
+    pub springs: usize,
+    pub pinned: usize,
+    /// Largest (ℓ − ℓ₀)/ℓ₀ over the springs, as a percentage.
+    pub max_stretch_percent: f64,
+    /// T and U, J.
+    pub kinetic: f64,
+    pub spring: f64,
+    /// Largest particle speed, m/s.
+    pub max_speed: f64,
+    /// 2/ω_max at rest, s, and the damped limit h* (see `cloth::stability`), s.
+    pub stiffness_limit: f64,
+    pub explicit_limit: f64,
+    /// Particle–body contacts in the last collide phase.
+    pub body_contacts: usize,
+}
+
+impl ClothView {
+    /// The views of every cloth of a world now.
+    pub fn all(world: &World) -> Vec<ClothView> {
+        world
+            .cloths()
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let limit = world.cloth_limit(k);
+                ClothView {
+                    name: c.name.clone(),
+                    integrator: c.integrator.name(),
+                    particles: c.len(),
+                    springs: c.springs.len(),
+                    pinned: c.pinned.iter().filter(|&&p| p).count(),
+                    max_stretch_percent: 100.0 * c.max_stretch(),
+                    kinetic: c.kinetic_energy(),
+                    spring: c.spring_energy(),
+                    max_speed: c.max_speed(),
+                    stiffness_limit: limit.stiffness_limit(),
+                    explicit_limit: limit.dt(),
+                    body_contacts: world.cloth_body_contacts(k),
+                }
+            })
+            .collect()
+    }
 }
 
 /// What a view needs to draw one body.
@@ -185,6 +237,7 @@ impl Snapshot {
             body_name: world.body_names()[index].clone(),
             bodies,
             system: SystemTotals::of(world),
+            cloths: ClothView::all(world),
         }
     }
 }
@@ -227,6 +280,7 @@ impl Snapshot {
             body_name: String::new(),
             bodies: Vec::new(),
             system: SystemTotals::of(world),
+            cloths: ClothView::all(world),
         }
     }
 }

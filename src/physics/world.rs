@@ -19,7 +19,7 @@
 //! none of this (one emptiness test per phase).
 
 use super::body::Body;
-use super::cloth::{Cloth, ClothLoads, ParticleContact};
+use super::cloth::{Cloth, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::collide_bodies;
 use super::collision::impulse::Scratch;
 use super::collision::impulse::BOUNCE_STEPS;
@@ -150,6 +150,8 @@ pub struct World {
     cloth_loads: ClothLoads,
     /// Reused by the cloths' obstacle contact passes.
     particle_contacts: Vec<ParticleContact>,
+    /// Each cloth's explicit limit at rest (computed once: a few ms of power iterations).
+    cloth_limits: Vec<ExplicitLimit>,
 }
 
 impl World {
@@ -209,6 +211,7 @@ impl World {
             initial_cloths: Vec::new(),
             cloth_loads: ClothLoads::default(),
             particle_contacts: Vec::new(),
+            cloth_limits: Vec::new(),
         }
     }
 
@@ -216,6 +219,10 @@ impl World {
     /// gravity and drag; `contact` must be given when they can touch an obstacle or a body).
     pub fn with_cloths(mut self, cloths: Vec<Cloth>) -> World {
         self.cloth_loads = ClothLoads::from_effects(&self.effects);
+        self.cloth_limits = cloths
+            .iter()
+            .map(|c| c.explicit_limit(&self.cloth_loads))
+            .collect();
         self.initial_cloths = cloths;
         self.reset();
         self
@@ -488,6 +495,12 @@ impl World {
     /// The index of the cloth with this name.
     pub fn cloth_index(&self, name: &str) -> Option<usize> {
         self.now.cloths.0.iter().position(|c| c.name == name)
+    }
+
+    /// The explicit stability limit of cloth `index` at rest (`symplectic-euler` is stable
+    /// for dt below its [`ExplicitLimit::dt`]).
+    pub fn cloth_limit(&self, index: usize) -> &ExplicitLimit {
+        &self.cloth_limits[index]
     }
 
     /// Gravity and drag as they act on particles.
