@@ -199,10 +199,16 @@ fn override_integrators(
     let body = Integrator::from_name(name);
     let cloth = ClothIntegrator::from_name(name);
     if body.is_none() && cloth.is_none() {
-        let names = Integrator::ALL
-            .map(Integrator::name)
-            .into_iter()
-            .chain(ClothIntegrator::ALL.map(ClothIntegrator::name));
+        if scene.cloths.is_empty() {
+            return integrator_named(name).map(|_| ());
+        }
+        let body_names = Integrator::ALL.map(Integrator::name);
+        let names = body_names.into_iter().chain(
+            ClothIntegrator::ALL
+                .map(ClothIntegrator::name)
+                .into_iter()
+                .filter(move |n| !body_names.contains(n)),
+        );
         return Err(Failure::bad_input(unknown_name(
             "integrator",
             "valid integrators",
