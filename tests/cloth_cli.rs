@@ -109,3 +109,21 @@ fn a_sheet_above_its_explicit_limit_exits_3_naming_the_cloth_its_integrator_and_
     // A sheet alone prints its particles: header, then 121 rows per step.
     assert!(stdout.starts_with("step,t,i,j,x,y,z,vx,vy,vz,energy\n"));
 }
+
+#[test]
+fn walk_shows_a_cloth_table_with_the_explicit_limit_next_to_dt() {
+    let (code, stdout, stderr) = tumble(&["walk", CUBE, "--frames", "1"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        stdout.contains("cloth sheet: 9 particles (8 pinned), 12 springs · implicit-euler"),
+        "{stdout}"
+    );
+    // The one free particle (the centre) has two stretch springs of k = 500 N/m along x (and
+    // two along z), m = 0.9/9 = 0.1 kg: ω_max² = 2k/m = 10⁴ s⁻², 2/ω_max = 0.02 s; no damping,
+    // so h* = 2/ω_max; dt = 0.001 s.
+    assert!(
+        stdout.contains("  2/ω_max, h*, dt             0.020000    0.020000    0.001000  s"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("  contacts with bodies: 0"), "{stdout}");
+}
