@@ -10,6 +10,11 @@
 //!   this sheet, where it diverges); an explicit step's cost does not depend on dt.
 //!
 //! `explicit-limit`: the power iteration for 2/ω_max on the same sheet (done once per scene).
+//!
+//! `world/cube-on-trampoline-21x21/*`: one `World::step()` of the same sheet (damping 20 N·s/m)
+//! with a 0.35 m, 1 kg cube dropped from 0.1 m above it, through the world's phases: body
+//! step, sheet step, particle–body contacts (the issue's benchmark; its aim ≤ 50 µs/step at
+//! dt = 1e-3). Restarted every [`RESTART_EVERY`] steps (2 s: the fall, the bounces, the rest).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
@@ -83,5 +88,65 @@ fn step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step);
+/// The cube on the trampoline as a scene file, with the sheet's integrator and dt.
+fn cube_on_trampoline(integrator: &str, dt: f64) -> tumble::physics::World {
+    let source = format!(
+        r#"
+title = "bench"
+[scene]
+dt = {dt}
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = {{ response = "impulse", restitution = 0.4, friction = 0.5 }}
+[body]
+shape = "box"
+size = [0.35, 0.35, 0.35]
+mass = 1.0
+position = [0.0, 1.275, 0.0]
+[[cloth]]
+size = [2.0, 2.0]
+count = [21, 21]
+position = [0.0, 1.0, 0.0]
+mass = 2.0
+stretch = 5000.0
+shear = 1000.0
+damping = 20.0
+pinned = "edges"
+integrator = "{integrator}"
+"#
+    );
+    tumble::scene::parse(&source, std::path::Path::new("bench.toml"))
+        .expect("valid scene")
+        .scene
+        .world()
+}
+
+fn world(c: &mut Criterion) {
+    let mut group = c.benchmark_group("world/cube-on-trampoline-21x21");
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    let probe = cube_on_trampoline("symplectic-euler", 1e-3);
+    let explicit_dt = 0.9 * probe.cloth_limit(0).dt();
+    for (name, integrator, dt) in [
+        ("symplectic-euler", "symplectic-euler", explicit_dt),
+        ("implicit-euler/dt=1e-3", "implicit-euler", 1e-3),
+    ] {
+        let mut w = cube_on_trampoline(integrator, dt);
+        let start = w.checkpoint();
+        let mut steps = 0u64;
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                steps += 1;
+                if steps.is_multiple_of(RESTART_EVERY) {
+                    w.restore(&start);
+                }
+                black_box(&mut w).step();
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, step, world);
 criterion_main!(benches);

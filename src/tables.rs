@@ -4,7 +4,7 @@
 //! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e3, otherwise
 //! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
 
-use crate::physics::{Against, BodyView, Contact, Feature, Obstacle, Snapshot};
+use crate::physics::{Against, BodyView, ClothView, Contact, Feature, Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 
 /// Width of every formatted number, in characters.
@@ -246,6 +246,46 @@ pub fn system_panel(s: &Snapshot) -> Panel {
         rows: vec![
             vector_row("P total", &s.system.linear_momentum, "kg·m/s"),
             vector_row("L about O", &s.system.angular_momentum, "kg·m²/s"),
+        ],
+    }
+}
+
+/// One cloth: its size, how stretched and how fast, its energies, the explicit limit next to
+/// the dt in use, and its contacts with bodies.
+///
+/// ```text
+/// max stretch = max over springs of (ℓ − ℓ₀)/ℓ₀ · 100 %
+/// T = Σ ½ m_i |v_i|²      U = Σ ½ k (ℓ − ℓ₀)²
+/// 2/ω_max: the undamped limit, h* = 4/(γ + √(γ² + 4ω²)) with damping (symplectic-euler
+/// is stable for dt < h*; implicit-euler at any dt)
+/// ```
+pub fn cloth_panel(c: &ClothView, dt: f64) -> Panel {
+    let row = |label: &str, cells: &[f64], unit| Row {
+        label: label.to_string(),
+        cells: cells.iter().map(|x| number(*x)).collect(),
+        unit,
+    };
+    let text = |label: String| Row {
+        label,
+        cells: Vec::new(),
+        unit: "",
+    };
+    Panel {
+        title: format!(
+            "cloth {}: {} particles ({} pinned), {} springs · {}",
+            c.name, c.particles, c.pinned, c.springs, c.integrator
+        ),
+        rows: vec![
+            row("max stretch", &[c.max_stretch_percent], "%"),
+            row("T, U", &[c.kinetic, c.spring], "J"),
+            row("max speed", &[c.max_speed], "m/s"),
+            row(
+                "2/ω_max, h*, dt",
+                &[c.stiffness_limit, c.explicit_limit, dt],
+                "s",
+            ),
+            row("dt/h*", &[dt / c.explicit_limit], ""),
+            text(format!("contacts with bodies: {}", c.body_contacts)),
         ],
     }
 }

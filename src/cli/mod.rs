@@ -13,6 +13,7 @@ mod shot;
 pub mod study;
 pub mod walk;
 
+use crate::physics::cloth::ClothIntegrator;
 use crate::physics::{Integrator, Response};
 use crate::scene::{did_you_mean, Lesson, LoadError};
 use clap::{Parser, Subcommand};
@@ -147,6 +148,40 @@ pub fn body_named(lesson: &Lesson, name: &str) -> Result<usize, Failure> {
     })
 }
 
+/// The index of the cloth named `name` in a lesson's scene, or a one-line error listing the
+/// names (with a "did you mean").
+pub fn cloth_named(lesson: &Lesson, name: &str) -> Result<usize, Failure> {
+    let cloths = &lesson.scene.cloths;
+    cloths.iter().position(|c| c.name == name).ok_or_else(|| {
+        let names: Vec<&str> = cloths.iter().map(|c| c.name.as_str()).collect();
+        let hint = did_you_mean(name, names.iter().copied())
+            .map(|s| format!(" (did you mean `{s}`?)"))
+            .unwrap_or_default();
+        let list = if names.is_empty() {
+            "the scene has none".to_string()
+        } else {
+            format!("cloths: {}", names.join(", "))
+        };
+        Failure::bad_input(format!(
+            "{}: no cloth named `{name}`{hint}; {list}",
+            lesson.path.display()
+        ))
+    })
+}
+
+/// The app (and `shot`, `record`) draws scenes with at least one body; a scene of cloths only
+/// is for `walk` and `run --cloth` (the app does not draw cloths yet).
+pub fn drawable(lesson: &Lesson) -> Result<(), Failure> {
+    if lesson.scene.bodies.is_empty() {
+        return Err(Failure::bad_input(format!(
+            "{}: the app draws scenes with at least one body, and this one holds only cloths; \
+             use `tumble walk FILE --frames N` or `tumble run FILE --steps N --cloth NAME`",
+            lesson.path.display()
+        )));
+    }
+    Ok(())
+}
+
 pub fn integrator_named(name: &str) -> Result<Integrator, Failure> {
     Integrator::from_name(name).ok_or_else(|| {
         let names = Integrator::ALL.map(Integrator::name);
@@ -167,6 +202,61 @@ pub fn response_named(name: &str) -> Result<Response, Failure> {
     })
 }
 
+/// `--integrator NAME`: replaces the scene's integrator (its bodies') and every cloth's own.
+/// A body or a cloth that has no such integrator is an error.
+fn override_integrators(
+    path: &Path,
+    scene: &mut crate::scene::Scene,
+    name: &str,
+) -> Result<(), Failure> {
+    let body = Integrator::from_name(name);
+    let cloth = ClothIntegrator::from_name(name);
+    if body.is_none() && cloth.is_none() {
+        if scene.cloths.is_empty() {
+            return integrator_named(name).map(|_| ());
+        }
+        let body_names = Integrator::ALL.map(Integrator::name);
+        let names = body_names.into_iter().chain(
+            ClothIntegrator::ALL
+                .map(ClothIntegrator::name)
+                .into_iter()
+                .filter(move |n| !body_names.contains(n)),
+        );
+        return Err(Failure::bad_input(unknown_name(
+            "integrator",
+            "valid integrators",
+            name,
+            names,
+        )));
+    }
+    if let Some(first) = scene.bodies.first() {
+        let Some(integrator) = body else {
+            return Err(Failure::bad_input(format!(
+                "{}: body `{}` has no integrator `{name}` (a particle integrator); valid \
+                 integrators: {}",
+                path.display(),
+                first.name,
+                Integrator::names()
+            )));
+        };
+        scene.integrator = integrator;
+    }
+    if let Some(first) = scene.cloths.first() {
+        let Some(integrator) = cloth else {
+            return Err(Failure::bad_input(format!(
+                "{}: cloth `{}` has no integrator `{name}`; particle integrators: {}",
+                path.display(),
+                first.name,
+                ClothIntegrator::names()
+            )));
+        };
+        for c in &mut scene.cloths {
+            c.integrator = integrator;
+        }
+    }
+    Ok(())
+}
+
 /// Loads a lesson (a file, or a bundled lesson by name) and applies command-line overrides.
 pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> {
     let mut lesson = crate::lessons::load(path)?;
@@ -180,7 +270,7 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
         scene.dt = dt;
     }
     if let Some(name) = &overrides.integrator {
-        scene.integrator = integrator_named(name)?;
+        override_integrators(path, scene, name)?;
     }
     if let Some(name) = &overrides.response {
         let response = response_named(name)?;
@@ -216,6 +306,7 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
     use std::io::IsTerminal;
     let path = app_file(file)?;
     let lesson = crate::lessons::load(&path)?;
+    drawable(&lesson)?;
     let compare = match compare {
         None => None,
         Some(name) => {

@@ -4,6 +4,10 @@
 //! Row 0 is the initial state; numbers are printed in full (shortest round-trip) precision.
 //! With several bodies, `--body NAME` picks the body whose row is printed (default: the first);
 //! `energy` is always the whole scene's.
+//!
+//! `--cloth NAME` prints instead one row per particle per kept step (a contract):
+//! `step,t,i,j,x,y,z,vx,vy,vz,energy`, `energy` again the whole scene's. A scene of cloths
+//! only prints its first cloth's rows without `--cloth`.
 
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
 use crate::physics::Snapshot;
@@ -12,6 +16,9 @@ use std::path::PathBuf;
 
 /// The CSV header of `tumble run`.
 pub const HEADER: &str = "step,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Lx,Ly,Lz,energy,penetration";
+
+/// The CSV header of `tumble run --cloth NAME`.
+pub const CLOTH_HEADER: &str = "step,t,i,j,x,y,z,vx,vy,vz,energy";
 
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
@@ -24,8 +31,11 @@ pub struct RunArgs {
     #[arg(long, default_value_t = 1)]
     pub every: u64,
     /// The body whose row is printed (default: the first).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "cloth")]
     pub body: Option<String>,
+    /// Print the particles of this cloth instead, one row each.
+    #[arg(long)]
+    pub cloth: Option<String>,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -36,6 +46,14 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
         return Err(Failure::bad_input("--every must be ≥ 1"));
     }
     let lesson = load_with(&args.file, &args.overrides)?;
+    let cloth = match &args.cloth {
+        Some(name) => Some(super::cloth_named(&lesson, name)?),
+        None if lesson.scene.bodies.is_empty() => Some(0),
+        None => None,
+    };
+    if let Some(cloth) = cloth {
+        return run_cloth(args, lesson.scene.world(), cloth);
+    }
     let body = match &args.body {
         Some(name) => super::body_named(&lesson, name)?,
         None => 0,
@@ -60,6 +78,53 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
         }
         if step % args.every == 0 || step == args.steps {
             write(&mut out, &world.snapshot_of(body)).map_err(io)?;
+        }
+    }
+    out.flush().map_err(io)
+}
+
+/// The `--cloth` rows: every particle of cloth `index`, every kept step.
+fn run_cloth(
+    args: &RunArgs,
+    mut world: crate::physics::World,
+    index: usize,
+) -> Result<(), Failure> {
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    let write = |out: &mut BufWriter<_>, world: &crate::physics::World| -> std::io::Result<()> {
+        let cloth = &world.cloths()[index];
+        let energy = world.total_energy().total;
+        for (k, (x, v)) in cloth.positions.iter().zip(&cloth.velocities).enumerate() {
+            let (i, j) = cloth.grid(k);
+            writeln!(
+                out,
+                "{},{},{i},{j},{},{},{},{},{},{},{energy}",
+                world.step_count(),
+                world.time(),
+                x.x,
+                x.y,
+                x.z,
+                v.x,
+                v.y,
+                v.z
+            )?;
+        }
+        Ok(())
+    };
+    writeln!(out, "{CLOTH_HEADER}").map_err(io)?;
+    write(&mut out, &world).map_err(io)?;
+    for step in 1..=args.steps {
+        world.step();
+        if let Some(divergence) = world.divergence() {
+            out.flush().map_err(io)?;
+            return Err(Failure {
+                code: EXIT_DIVERGED,
+                message: divergence.to_string(),
+            });
+        }
+        if step % args.every == 0 || step == args.steps {
+            write(&mut out, &world).map_err(io)?;
         }
     }
     out.flush().map_err(io)

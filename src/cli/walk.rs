@@ -10,7 +10,9 @@
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
 use crate::physics::World;
 use crate::scene::Lesson;
-use crate::tables::{contact_panel, number_plain, panel_text, panels, Frame, BODY_PANELS};
+use crate::tables::{
+    cloth_panel, contact_panel, number_plain, panel_text, panels, Frame, BODY_PANELS,
+};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -179,7 +181,7 @@ fn write_block(
     shown_page: &mut Option<usize>,
     out: &mut impl Write,
 ) -> std::io::Result<()> {
-    let snapshot = &world.snapshot_of(bodies[0]);
+    let snapshot = &world.snapshot_of(bodies.first().copied().unwrap_or(0));
     let obstacles = world.obstacles();
     writeln!(out)?;
     let when = format!("t = {} s", number_plain(snapshot.time));
@@ -230,6 +232,10 @@ fn write_block(
         Ok(())
     };
     let mut scene_panels = Vec::new();
+    if world.body_count() == 0 {
+        // Cloths only: the scene's panels (energy), no body's.
+        scene_panels = panels(snapshot, Frame::World).split_off(BODY_PANELS);
+    }
     for &index in bodies {
         let snapshot = world.snapshot_of(index);
         if several {
@@ -248,6 +254,9 @@ fn write_block(
         for panel in &all {
             write(panel)?;
         }
+    }
+    for cloth in &snapshot.cloths {
+        write(&cloth_panel(cloth, snapshot.dt))?;
     }
     for panel in &scene_panels {
         write(panel)?;

@@ -57,18 +57,21 @@ pub struct Divergence {
     pub integrator: Integrator,
     /// The time step, s.
     pub dt: f64,
+    /// What diverged when it is not a body: e.g. "cloth `sheet`, integrator symplectic-euler"
+    /// (then shown instead of the bodies' integrator).
+    pub subject: Option<String>,
 }
 
 impl fmt::Display for Divergence {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let integrator = match &self.subject {
+            Some(subject) => subject.clone(),
+            None => format!("integrator {}", self.integrator.name()),
+        };
         write!(
             f,
-            "simulation diverged at step {} (t = {:.6} s): {} (integrator {}, dt = {} s)",
-            self.step,
-            self.time,
-            self.quantity,
-            self.integrator.name(),
-            self.dt
+            "simulation diverged at step {} (t = {:.6} s): {} ({integrator}, dt = {} s)",
+            self.step, self.time, self.quantity, self.dt
         )
     }
 }

@@ -21,6 +21,7 @@
 
 pub mod body;
 pub mod cloth;
+pub mod cloth_coupling;
 pub mod collision;
 pub mod derive;
 pub mod divergence;
@@ -41,6 +42,6 @@ pub use effects::{Effect, Effects};
 pub use energy::Energy;
 pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
-pub use snapshot::{BodyView, Snapshot, SystemTotals};
+pub use snapshot::{BodyView, ClothView, Snapshot, SystemTotals};
 pub use state::{Orientation, State};
 pub use world::{Checkpoint, NamedBody, Phase, World};

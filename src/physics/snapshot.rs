@@ -70,6 +70,58 @@ pub struct Snapshot {
     pub bodies: Vec<BodyView>,
     /// The whole scene: total momenta and energy.
     pub system: SystemTotals,
+    /// Every cloth's numbers (empty without cloths).
+    pub cloths: Vec<ClothView>,
+}
+
+/// What a table shows of one cloth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClothView {
+    pub name: String,
+    pub integrator: &'static str,
+    pub particles: usize,
+    pub springs: usize,
+    pub pinned: usize,
+    /// Largest (ℓ − ℓ₀)/ℓ₀ over the springs, as a percentage.
+    pub max_stretch_percent: f64,
+    /// T and U, J.
+    pub kinetic: f64,
+    pub spring: f64,
+    /// Largest particle speed, m/s.
+    pub max_speed: f64,
+    /// 2/ω_max at rest, s, and the damped limit h* (see `cloth::stability`), s.
+    pub stiffness_limit: f64,
+    pub explicit_limit: f64,
+    /// Particle–body contacts in the last collide phase.
+    pub body_contacts: usize,
+}
+
+impl ClothView {
+    /// The views of every cloth of a world now.
+    pub fn all(world: &World) -> Vec<ClothView> {
+        world
+            .cloths()
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let limit = world.cloth_limit(k);
+                ClothView {
+                    name: c.name.clone(),
+                    integrator: c.integrator.name(),
+                    particles: c.len(),
+                    springs: c.springs.len(),
+                    pinned: c.pinned.iter().filter(|&&p| p).count(),
+                    max_stretch_percent: 100.0 * c.max_stretch(),
+                    kinetic: c.kinetic_energy(),
+                    spring: c.spring_energy(),
+                    max_speed: c.max_speed(),
+                    stiffness_limit: limit.stiffness_limit(),
+                    explicit_limit: limit.dt(),
+                    body_contacts: world.cloth_body_contacts(k),
+                }
+            })
+            .collect()
+    }
 }
 
 /// What a view needs to draw one body.
@@ -85,8 +137,8 @@ pub struct BodyView {
 /// The scene as a whole.
 ///
 /// ```text
-/// P_total = Σ P_b                     L_total = Σ (x_b × P_b + L_b)   about the origin
-/// E_total = Σ E_b
+/// P_total = Σ P_b + Σ m_i v_i         L_total = Σ (x_b × P_b + L_b) + Σ x_i × m_i v_i
+/// E_total = Σ E_b + Σ (T + U + V) of the cloths                        (about the origin)
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SystemTotals {
@@ -105,6 +157,10 @@ impl SystemTotals {
             linear_momentum += s.linear_momentum;
             angular_momentum += s.position.cross(&s.linear_momentum) + s.angular_momentum;
         }
+        for c in world.cloths() {
+            linear_momentum += c.linear_momentum();
+            angular_momentum += c.angular_momentum();
+        }
         SystemTotals {
             linear_momentum,
             angular_momentum,
@@ -122,6 +178,9 @@ impl Snapshot {
 
     /// The snapshot of a world after its last phase, the panels showing body `index`.
     pub fn of_body(world: &World, index: usize) -> Snapshot {
+        if world.body_count() == 0 {
+            return Snapshot::without_body(world);
+        }
         let state = &world.states()[index];
         let body = &world.bodies()[index];
         let between_frames = matches!(world.last_phase(), None | Some(Phase::Collide));
@@ -180,6 +239,50 @@ impl Snapshot {
             body_name: world.body_names()[index].clone(),
             bodies,
             system: SystemTotals::of(world),
+            cloths: ClothView::all(world),
+        }
+    }
+}
+
+impl Snapshot {
+    /// A world of cloths only: the body fields are zeros (a body at rest at the origin, no
+    /// mass), the scene's fields are the world's.
+    fn without_body(world: &World) -> Snapshot {
+        let zero = Vector3::zeros();
+        let state = world.state();
+        Snapshot {
+            phase: world.last_phase(),
+            next_phase: world.next_phase(),
+            step: world.step_count(),
+            time: world.time(),
+            dt: world.dt(),
+            integrator: world.integrator(),
+            position: state.position,
+            rotation: Matrix3::identity(),
+            quaternion: UnitQuaternion::identity(),
+            linear_momentum: zero,
+            angular_momentum: zero,
+            angular_momentum_body: zero,
+            velocity: zero,
+            angular_velocity: zero,
+            angular_velocity_body: zero,
+            inertia_body: Matrix3::zeros(),
+            inertia_world: Matrix3::zeros(),
+            inv_inertia_world: Matrix3::zeros(),
+            force: zero,
+            torque: zero,
+            energy: Energy::default(),
+            initial_energy: Energy::default(),
+            energy_balance: world.energy_balance(),
+            orthonormality_error: 0.0,
+            vertices: Vec::new(),
+            contacts: Vec::new(),
+            penetration: 0.0,
+            body_index: 0,
+            body_name: String::new(),
+            bodies: Vec::new(),
+            system: SystemTotals::of(world),
+            cloths: ClothView::all(world),
         }
     }
 }

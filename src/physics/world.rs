@@ -8,9 +8,21 @@
 //!
 //! [`World::step`] runs a whole frame; [`World::step_phase`] runs one phase. Front ends read
 //! [`World::snapshot`] and never recompute physics.
+//!
+//! **Cloths** ([`World::with_cloths`]) are stepped in the integrate phase, each by its own
+//! particle integrator under the declared gravity and drag (`ClothLoads::from_effects`):
+//! the velocity half, the obstacles' first contact pass (on velocities), the position half.
+//! Their second obstacle pass and their contacts with bodies (`cloth_coupling`) run in the
+//! collide phase. The particles' kinetic, spring and gravitational energy is part of the
+//! scene's energy; the ledger books the springs' damping and the drag on particles as drag
+//! work, and what the contacts took or gave as contact energy. A world without cloths does
+//! none of this (one emptiness test per phase).
 
 use super::body::Body;
+use super::cloth::{Cloth, ClothLoads, ExplicitLimit, ParticleContact};
+use super::cloth_coupling::collide_bodies;
 use super::collision::impulse::Scratch;
+use super::collision::impulse::BOUNCE_STEPS;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
 use super::derive::{derive, Kinematics};
 use super::divergence::{not_finite, Divergence, EnergyGuard};
@@ -88,6 +100,25 @@ pub struct Checkpoint {
     guard: EnergyGuard,
     /// Drag work and contact energy booked since t = 0 (see `energy_ledger`).
     ledger: EnergyLedger,
+    /// The cloths, whole (positions, velocities, losses and the implicit step's warm-start
+    /// buffers: restoring them makes the next step exactly the same).
+    cloths: Cloths,
+    /// Per cloth: particle–body contacts in the last collide phase.
+    cloth_body_contacts: Vec<usize>,
+}
+
+/// The cloths of a checkpoint; two are equal when every particle's position and velocity and
+/// the losses are (the solver's scratch buffers are not compared).
+#[derive(Debug, Clone, Default)]
+struct Cloths(Vec<Cloth>);
+
+impl PartialEq for Cloths {
+    fn eq(&self, other: &Cloths) -> bool {
+        self.0.len() == other.0.len()
+            && self.0.iter().zip(&other.0).all(|(a, b)| {
+                a.positions == b.positions && a.velocities == b.velocities && a.losses == b.losses
+            })
+    }
 }
 
 /// A body of a world, with its name and its state at t = 0.
@@ -113,6 +144,14 @@ pub struct World {
     initial_positions: Vec<Vector3<f64>>,
     now: Checkpoint,
     scratch: Scratch,
+    /// The cloths at t = 0.
+    initial_cloths: Vec<Cloth>,
+    /// Gravity and drag as they act on particles.
+    cloth_loads: ClothLoads,
+    /// Reused by the cloths' obstacle contact passes.
+    particle_contacts: Vec<ParticleContact>,
+    /// Each cloth's explicit limit at rest (computed once: a few ms of power iterations).
+    cloth_limits: Vec<ExplicitLimit>,
 }
 
 impl World {
@@ -156,7 +195,7 @@ impl World {
             });
             models.push(b.body);
         }
-        let now = fresh(&models, &effects, integrator, &initial);
+        let now = fresh(&models, &effects, integrator, &initial, &[]);
         World {
             initial_positions: initial.iter().map(|s| s.position).collect(),
             bodies: models,
@@ -169,7 +208,24 @@ impl World {
             initial,
             now,
             scratch: Scratch::default(),
+            initial_cloths: Vec::new(),
+            cloth_loads: ClothLoads::default(),
+            particle_contacts: Vec::new(),
+            cloth_limits: Vec::new(),
         }
+    }
+
+    /// The same world with these cloths at their initial states (particles under the declared
+    /// gravity and drag; `contact` must be given when they can touch an obstacle or a body).
+    pub fn with_cloths(mut self, cloths: Vec<Cloth>) -> World {
+        self.cloth_loads = ClothLoads::from_effects(&self.effects);
+        self.cloth_limits = cloths
+            .iter()
+            .map(|c| c.explicit_limit(&self.cloth_loads))
+            .collect();
+        self.initial_cloths = cloths;
+        self.reset();
+        self
     }
 
     /// Runs the rest of the current frame (all four phases from the start of a frame).
@@ -245,12 +301,99 @@ impl World {
             );
             potential += self.effects.potential_energy(body, &state.position);
         }
+        if !now.cloths.0.is_empty() {
+            potential += self.integrate_cloths();
+        }
+        let now = &mut self.now;
         now.step += 1;
         now.guard.observe(&now.ledger, potential);
         // Energy ledger: the drag work of this step, from its start and end states.
         if let Some(start) = drag_start {
             let end = self.drag_power();
             self.now.ledger.book_drag(&start, &end, self.dt);
+        }
+    }
+
+    /// One step of every cloth but its last contact pass: velocity half, the obstacles'
+    /// velocity pass, position half. Books the damping and drag losses as drag work and the
+    /// velocity pass's energy as contact energy; returns the cloths' spring and gravitational
+    /// energy after the step (for the guard).
+    fn integrate_cloths(&mut self) -> f64 {
+        let (restitution, friction) = self
+            .contact
+            .as_ref()
+            .map_or((0.0, 0.0), |m| (m.restitution, m.friction));
+        let loads = &self.cloth_loads;
+        let now = &mut self.now;
+        let mut potential = 0.0;
+        for cloth in &mut now.cloths.0 {
+            cloth.velocity_step(loads, self.dt);
+            if !self.obstacles.is_empty() {
+                let taken = cloth
+                    .contact_velocities(
+                        &self.obstacles,
+                        restitution,
+                        friction,
+                        loads,
+                        self.dt,
+                        &mut self.particle_contacts,
+                    )
+                    .energy_taken;
+                if taken != 0.0 {
+                    now.ledger.book_contact(taken, 0.0);
+                }
+            }
+            let lost = cloth.advance_positions(loads, self.dt);
+            now.ledger.drag_work -= lost.damping + lost.drag;
+            let e = cloth.energy(loads);
+            potential += e.spring + e.gravitational;
+        }
+        potential
+    }
+
+    /// The collide phase of the cloths: the obstacles' position pass, then the particles
+    /// against the bodies (`cloth_coupling`). Books the measured energy change as contact
+    /// energy.
+    fn collide_cloths(&mut self) {
+        let Some(model) = self.contact else {
+            return;
+        };
+        if self.obstacles.is_empty() && self.bodies.is_empty() {
+            return;
+        }
+        let before = self.total_energy();
+        let bounce_speed = self
+            .effects
+            .gravity()
+            .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
+        let now = &mut self.now;
+        now.cloth_body_contacts.clear();
+        for cloth in &mut now.cloths.0 {
+            if !self.obstacles.is_empty() {
+                cloth.collide_obstacles(
+                    &self.obstacles,
+                    model.restitution,
+                    model.friction,
+                    &self.cloth_loads,
+                    self.dt,
+                    &mut self.particle_contacts,
+                );
+            }
+            let touching = collide_bodies(
+                cloth,
+                &self.bodies,
+                &mut now.states,
+                model.restitution,
+                model.friction,
+                bounce_speed,
+            );
+            now.cloth_body_contacts.push(touching);
+        }
+        let after = self.total_energy();
+        if after.total != before.total {
+            let now = &mut self.now;
+            now.ledger.book_contact(before.total, after.total);
+            now.guard.after_collision(&after);
         }
     }
 
@@ -274,6 +417,9 @@ impl World {
     /// several bodies) and the scene gives a response.
     #[inline]
     fn collide_phase(&mut self) {
+        if !self.now.cloths.0.is_empty() {
+            self.collide_cloths();
+        }
         let (true, Some(model)) = (self.can_touch(), &self.contact) else {
             return;
         };
@@ -317,21 +463,64 @@ impl World {
         }
     }
 
-    /// The energy of every body but the first (`seed` changes the first only).
+    /// The energy of every body but the first, and of the cloths (`seed` changes the first
+    /// body only).
     fn others_energy(&self) -> Energy {
         self.bodies
             .iter()
             .zip(&self.now.states)
             .skip(1)
-            .fold(Energy::default(), |e, (b, s)| {
+            .fold(self.cloths_energy(&self.now.cloths.0), |e, (b, s)| {
                 e + energy(b, &self.effects, s)
             })
+    }
+
+    /// Σ over cloths of T (kinetic) and U + V (potential).
+    fn cloths_energy(&self, cloths: &[Cloth]) -> Energy {
+        cloths.iter().fold(Energy::default(), |sum, c| {
+            let e = c.energy(&self.cloth_loads);
+            sum + Energy {
+                kinetic: e.kinetic,
+                potential: e.spring + e.gravitational,
+                total: e.total(),
+            }
+        })
+    }
+
+    /// The cloths, in order.
+    pub fn cloths(&self) -> &[Cloth] {
+        &self.now.cloths.0
+    }
+
+    /// The index of the cloth with this name.
+    pub fn cloth_index(&self, name: &str) -> Option<usize> {
+        self.now.cloths.0.iter().position(|c| c.name == name)
+    }
+
+    /// The explicit stability limit of cloth `index` at rest (`symplectic-euler` is stable
+    /// for dt below its [`ExplicitLimit::dt`]).
+    pub fn cloth_limit(&self, index: usize) -> &ExplicitLimit {
+        &self.cloth_limits[index]
+    }
+
+    /// Gravity and drag as they act on particles.
+    pub fn cloth_loads(&self) -> &ClothLoads {
+        &self.cloth_loads
+    }
+
+    /// Particle–body contacts of cloth `index` in the last collide phase.
+    pub fn cloth_body_contacts(&self, index: usize) -> usize {
+        self.now
+            .cloth_body_contacts
+            .get(index)
+            .copied()
+            .unwrap_or(0)
     }
 
     /// Whether anything can touch: obstacles, or more than one body.
     #[inline]
     fn can_touch(&self) -> bool {
-        !self.obstacles.is_empty() || self.bodies.len() > 1
+        (!self.obstacles.is_empty() && !self.bodies.is_empty()) || self.bodies.len() > 1
     }
 
     /// The phase that [`World::step_phase`] will run next.
@@ -374,9 +563,9 @@ impl World {
         self.names.iter().position(|n| n == name)
     }
 
-    /// The current state of the first body.
+    /// The current state of the first body (a world of cloths only: at rest at the origin).
     pub fn state(&self) -> &State {
-        &self.now.states[0]
+        self.now.states.first().unwrap_or(&REST)
     }
 
     /// The current states, one per body.
@@ -384,9 +573,9 @@ impl World {
         &self.now.states
     }
 
-    /// The state of the first body at t = 0.
+    /// The state of the first body at t = 0 (a world of cloths only: at rest at the origin).
     pub fn initial_state(&self) -> &State {
-        &self.initial[0]
+        self.initial.first().unwrap_or(&REST)
     }
 
     /// The states at t = 0, one per body.
@@ -394,7 +583,7 @@ impl World {
         &self.initial
     }
 
-    /// The first body.
+    /// The first body (a world of cloths only has none: check [`World::body_count`]).
     pub fn body(&self) -> &Body {
         &self.bodies[0]
     }
@@ -463,7 +652,30 @@ impl World {
 
     /// Back to t = 0.
     pub fn reset(&mut self) {
-        self.now = fresh(&self.bodies, &self.effects, self.integrator, &self.initial);
+        let mut now = fresh(
+            &self.bodies,
+            &self.effects,
+            self.integrator,
+            &self.initial,
+            &self.initial_cloths,
+        );
+        if !self.initial_cloths.is_empty() {
+            let cloths = self.cloths_energy(&self.initial_cloths);
+            let energy = total_energy(&self.bodies, &self.effects, &self.initial) + cloths;
+            let weight = self.effects.gravity().map_or(0.0, |g| {
+                self.bodies
+                    .iter()
+                    .map(|b| b.mass * g.norm() * b.radius)
+                    .chain(self.initial_cloths.iter().map(|c| {
+                        let span = c.positions.iter().map(|x| (x - c.positions[0]).norm());
+                        c.total_mass * g.norm() * span.fold(0.0, f64::max)
+                    }))
+                    .sum()
+            });
+            now.ledger = EnergyLedger::new(energy.total);
+            now.guard = EnergyGuard::new(&energy, weight);
+        }
+        self.now = now;
     }
 
     /// Vertex positions `pᵢ = x + R r₀ᵢ` of the first body's current state.
@@ -473,7 +685,9 @@ impl World {
 
     /// Vertex positions `pᵢ = x + R r₀ᵢ` of body `index`'s current state.
     pub fn vertices_of(&self, index: usize) -> Vec<Vector3<f64>> {
-        let state = &self.now.states[index];
+        let Some(state) = self.now.states.get(index) else {
+            return Vec::new();
+        };
         let r = state.orientation.matrix();
         let x = state.position;
         self.bodies[index]
@@ -486,7 +700,9 @@ impl World {
     /// Kinetic, potential and total energy of a state of the first body (measured from the
     /// state itself).
     pub fn energy_of(&self, state: &State) -> Energy {
-        energy(&self.bodies[0], &self.effects, state)
+        self.bodies
+            .first()
+            .map_or(Energy::default(), |b| energy(b, &self.effects, state))
     }
 
     /// Energy of body `index` now.
@@ -496,7 +712,12 @@ impl World {
 
     /// The whole scene's energy now: the sum over its bodies.
     pub fn total_energy(&self) -> Energy {
-        total_energy(&self.bodies, &self.effects, &self.now.states)
+        let bodies = total_energy(&self.bodies, &self.effects, &self.now.states);
+        if self.now.cloths.0.is_empty() {
+            bodies
+        } else {
+            bodies + self.cloths_energy(&self.now.cloths.0)
+        }
     }
 
     /// Drag work and contact energy booked since t = 0.
@@ -507,20 +728,32 @@ impl World {
     /// The change of the scene's energy since t = 0 split into drag work, contacts and the
     /// remainder, the numerical drift.
     pub fn energy_balance(&self) -> EnergyBalance {
-        self.now.ledger.balance(
+        let cloths = &self.now.cloths.0;
+        let damped = cloths
+            .iter()
+            .any(|c| c.springs.iter().any(|s| s.damping > 0.0));
+        let mut balance = self.now.ledger.balance(
             &self.initial_total_energy(),
             &self.total_energy(),
-            self.effects.depends_on_velocity(),
-            self.can_touch(),
-        )
+            self.effects.depends_on_velocity() || damped,
+            self.can_touch() || (!cloths.is_empty() && self.contact.is_some()),
+        );
+        if !cloths.is_empty() {
+            // Shown, not subtracted: the springs' energy is part of E already.
+            balance.springs = Some(cloths.iter().map(Cloth::spring_energy).sum());
+        }
+        balance
     }
 
     /// The whole scene's energy at t = 0.
     pub fn initial_total_energy(&self) -> Energy {
         total_energy(&self.bodies, &self.effects, &self.initial)
+            + self.cloths_energy(&self.initial_cloths)
     }
 
-    /// A non-finite or runaway state, if the simulation has diverged.
+    /// A non-finite or runaway state, if the simulation has diverged. With cloths, a
+    /// non-finite particle or a runaway the cloths hold most of is named after its cloth and
+    /// its particle integrator.
     pub fn divergence(&self) -> Option<Divergence> {
         let named = |quantity: String, body: usize| {
             if self.bodies.len() > 1 {
@@ -529,12 +762,18 @@ impl World {
                 quantity
             }
         };
+        let mut subject = None;
         let quantity = self
             .now
             .states
             .iter()
             .enumerate()
             .find_map(|(i, s)| not_finite(s).map(|q| named(q.to_string(), i)))
+            .or_else(|| {
+                let (cloth, quantity) = self.cloth_not_finite()?;
+                subject = Some(cloth_subject(cloth));
+                Some(quantity)
+            })
             .or_else(|| {
                 let (turn, fastest) = self
                     .bodies
@@ -546,12 +785,19 @@ impl World {
                         (0.0, 0),
                         |best, (i, t)| if t > best.0 { (t, i) } else { best },
                     );
+                let total = self.total_energy();
                 self.now
                     .guard
-                    .check(&self.total_energy(), &self.now.ledger, turn)
+                    .check(&total, &self.now.ledger, turn)
                     .map(|q| {
                         if q.starts_with("rotation") {
                             named(q, fastest)
+                        } else if let Some(cloth) = self.runaway_cloth(&total) {
+                            subject = Some(cloth_subject(cloth));
+                            format!(
+                                "{q}, held as kinetic + spring energy by cloth {}",
+                                cloth.name
+                            )
                         } else {
                             q
                         }
@@ -563,7 +809,36 @@ impl World {
             quantity,
             integrator: self.integrator,
             dt: self.dt,
+            subject,
         })
+    }
+
+    /// The first cloth with a non-finite particle, and what is not finite.
+    fn cloth_not_finite(&self) -> Option<(&Cloth, String)> {
+        let finite = |v: &Vector3<f64>| v.iter().all(|c| c.is_finite());
+        self.now.cloths.0.iter().find_map(|c| {
+            let what = if !c.positions.iter().all(finite) {
+                "particle position"
+            } else if !c.velocities.iter().all(finite) {
+                "particle velocity"
+            } else {
+                return None;
+            };
+            Some((c, format!("{what} is not finite (cloth {})", c.name)))
+        })
+    }
+
+    /// The cloth holding the most kinetic and spring energy, when the cloths hold more of it
+    /// than the bodies hold kinetic energy (then a runaway is theirs).
+    fn runaway_cloth(&self, total: &Energy) -> Option<&Cloth> {
+        let held = |c: &Cloth| c.kinetic_energy() + c.spring_energy();
+        let cloths = &self.now.cloths.0;
+        let all: f64 = cloths.iter().map(held).sum();
+        let bodies = total.kinetic - cloths.iter().map(Cloth::kinetic_energy).sum::<f64>();
+        if cloths.is_empty() || all <= bodies {
+            return None;
+        }
+        cloths.iter().max_by(|a, b| held(a).total_cmp(&held(b)))
     }
 
     /// Every quantity a user is shown, after the last phase (the panels show the first body).
@@ -597,6 +872,25 @@ impl World {
     }
 }
 
+/// "cloth `NAME`, integrator NAME": a cloth's divergence names its own integrator.
+fn cloth_subject(cloth: &Cloth) -> String {
+    format!(
+        "cloth {}, integrator {}",
+        cloth.name,
+        cloth.integrator.name()
+    )
+}
+
+/// What [`World::state`] shows for a world of cloths only.
+static REST: State = State {
+    position: Vector3::new(0.0, 0.0, 0.0),
+    orientation: super::state::Orientation::Quaternion(nalgebra::UnitQuaternion::new_unchecked(
+        nalgebra::Quaternion::new(1.0, 0.0, 0.0, 0.0),
+    )),
+    linear_momentum: Vector3::new(0.0, 0.0, 0.0),
+    angular_momentum: Vector3::new(0.0, 0.0, 0.0),
+};
+
 /// Σ over bodies of their energies.
 fn total_energy(bodies: &[Body], effects: &Effects, states: &[State]) -> Energy {
     bodies
@@ -611,6 +905,7 @@ fn fresh(
     effects: &Effects,
     integrator: Integrator,
     initial: &[State],
+    cloths: &[Cloth],
 ) -> Checkpoint {
     let kinematics: Vec<Kinematics> = bodies
         .iter()
@@ -637,5 +932,7 @@ fn fresh(
         loads,
         contacts: Vec::new(),
         guard,
+        cloths: Cloths(cloths.to_vec()),
+        cloth_body_contacts: vec![0; cloths.len()],
     }
 }

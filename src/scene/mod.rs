@@ -16,7 +16,7 @@ pub use diagnose::check as check_every_error;
 pub use edit::SceneEdits;
 pub use error::{did_you_mean, LoadError};
 
-use crate::physics::cloth::ClothSpec;
+use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
     State, World,
@@ -47,7 +47,7 @@ pub struct Scene {
     pub effects: Effects,
     pub contact: Option<ContactModel>,
     pub obstacles: Vec<Obstacle>,
-    /// The bodies, in file order (at least one).
+    /// The bodies, in file order (at least one, unless the scene has a cloth).
     pub bodies: Vec<SceneBody>,
     /// The `[[cloth]]` sheets, in file order.
     pub cloths: Vec<ClothSpec>,
@@ -81,13 +81,23 @@ impl Scene {
                 initial: b.initial,
             })
             .collect();
-        World::with_bodies(
+        let world = World::with_bodies(
             bodies,
             self.effects.clone(),
             self.obstacles.clone(),
             self.contact,
             integrator,
             dt,
+        );
+        if self.cloths.is_empty() {
+            return world;
+        }
+        // Specs were validated when the scene was loaded: `Cloth::new` cannot fail here.
+        world.with_cloths(
+            self.cloths
+                .iter()
+                .filter_map(|s| Cloth::new(s).ok())
+                .collect(),
         )
     }
 
@@ -194,7 +204,7 @@ impl Validator<'_> {
     }
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
-        let bodies = self.bodies(raw.body)?;
+        let bodies = self.bodies(raw.body, !raw.cloths.is_empty())?;
         self.no_overlap(&bodies)?;
         let title = raw.title.into_inner();
         let scene_integrator = raw.scene.get_ref().integrator.clone();
@@ -282,12 +292,17 @@ impl Validator<'_> {
             .map_or(Ok(Vector3::zeros()), |v| self.vector(v, what))
     }
 
-    /// `[body]` or `[[body]]`: names unique (default body1, body2, …).
+    /// `[body]` or `[[body]]`: names unique (default body1, body2, …). None at all only when
+    /// the file has a cloth (`has_cloth`).
     fn bodies(
         &self,
         raw: Option<Spanned<RawBodies>>,
+        has_cloth: bool,
     ) -> Result<Vec<(SceneBody, Range<usize>)>, LoadError> {
         let Some(raw) = raw else {
+            if has_cloth {
+                return Ok(Vec::new());
+            }
             return Err(self.error(
                 0..0,
                 "missing table `[body]`: a scene file needs `title`, [scene] and [body] (or [[body]])",
@@ -401,7 +416,15 @@ impl Validator<'_> {
             .as_ref()
             .map(|d| self.positive(d, "duration"))
             .transpose()?;
-        let integrator = Integrator::from_name(raw.integrator.get_ref()).ok_or_else(|| {
+        // A scene of cloths only may name a particle integrator: no body uses the scene's.
+        let cloths_only =
+            bodies.is_empty() && ClothIntegrator::from_name(raw.integrator.get_ref()).is_some();
+        let integrator = if cloths_only {
+            Some(Integrator::ALL[0])
+        } else {
+            Integrator::from_name(raw.integrator.get_ref())
+        };
+        let integrator = integrator.ok_or_else(|| {
             let name = raw.integrator.get_ref();
             let hint = did_you_mean(name, Integrator::ALL.map(Integrator::name))
                 .map(|s| format!(" (did you mean `{s}`?)"))
