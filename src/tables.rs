@@ -186,22 +186,20 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     let b = &s.energy_balance;
     let e = &s.system.energy;
     let several = s.bodies.len() > 1;
-    let mut energy_rows = vec![
-        Row {
-            label: "K, V, E".to_string(),
-            cells: [e.kinetic, e.potential, e.total]
-                .iter()
-                .map(|x| number(*x))
-                .collect(),
-            unit: "J",
-        },
-        scalar_row("E − E₀", b.change, "J"),
-    ];
-    for (label, value) in [
-        ("  drag work", b.drag_work),
-        ("  contacts", b.contacts),
-        ("  springs", b.springs),
-    ] {
+    let mut energy_rows = vec![Row {
+        label: "K, V, E".to_string(),
+        cells: [e.kinetic, e.potential, e.total]
+            .iter()
+            .map(|x| number(*x))
+            .collect(),
+        unit: "J",
+    }];
+    // Energy stored in cloth springs is part of E (not a cause of E − E₀): shown with E.
+    if let Some(springs) = b.springs {
+        energy_rows.push(scalar_row("U springs", springs, "J"));
+    }
+    energy_rows.push(scalar_row("E − E₀", b.change, "J"));
+    for (label, value) in [("  drag work", b.drag_work), ("  contacts", b.contacts)] {
         if let Some(value) = value {
             energy_rows.push(scalar_row(label, value, "J"));
         }
