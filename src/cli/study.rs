@@ -4,7 +4,9 @@
 //! name) runs for its own `duration` ([`crate::study::DEFAULT_DURATION`] without one); its
 //! reference is exact when it has no obstacles and no drag (a torque-free or
 //! gravity-only case), otherwise `rk4` at a tenth of the smallest swept step — the output says
-//! which.
+//! which. A FILE with `[[cloth]]` is a cloth case ([`crate::study::cloth`]): the particle
+//! integrators over a ladder of dt around the sheets' explicit limit, against a converged
+//! `symplectic-euler` reference.
 
 use super::{response_named, Failure};
 use crate::study::{self, report, Case, Config};
@@ -80,7 +82,10 @@ pub fn study(args: &StudyArgs) -> Result<(), Failure> {
             "{}study: {} runs in {elapsed:.1} s (ns/step: median of {} timed runs after a warm-up, \
              each the median of its 1000-step chunks)\n",
             report::table(&studies),
-            studies.iter().map(|s| s.rows.len()).sum::<usize>(),
+            studies
+                .iter()
+                .map(|s| s.rows.len() + s.cloth.as_ref().map_or(0, |c| c.rows.len()))
+                .sum::<usize>(),
             config.timing.repeats
         ),
         Format::Csv => report::csv(&studies),

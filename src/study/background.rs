@@ -40,7 +40,7 @@ impl Job {
     /// Starts studying `case` on a new thread.
     pub fn spawn(case: Case, config: Config) -> Job {
         let (sender, receiver) = mpsc::channel();
-        let total = config.integrators.len() * config.dts.len();
+        let total = super::runs(&case, &config);
         let name = case.name.clone();
         let response = case.scene.contact.map(|m| m.response);
         thread::spawn(move || {

@@ -185,7 +185,12 @@ const CHUNK: u64 = 1000;
 /// that the moments another process holds the CPU (one chunk in many on a shared machine) do
 /// not count as the integrator's cost.
 fn timed_run(scene: &Scene, integrator: Integrator, dt: f64, steps: u64) -> f64 {
-    let mut world = world_for(scene, integrator, dt);
+    time_steps(world_for(scene, integrator, dt), steps)
+}
+
+/// Wall time per step of `steps` plain steps of `world` from where it is, ns (the median
+/// chunk, as [`timed_run`]).
+pub(super) fn time_steps(mut world: World, steps: u64) -> f64 {
     let mut chunks = Vec::with_capacity((steps / CHUNK + 1) as usize);
     let mut left = steps;
     while left > 0 {
@@ -202,7 +207,7 @@ fn timed_run(scene: &Scene, integrator: Integrator, dt: f64, steps: u64) -> f64 
 }
 
 /// The median of a non-empty list (sorts it).
-fn median(values: &mut [f64]) -> f64 {
+pub(super) fn median(values: &mut [f64]) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
 }

@@ -11,6 +11,7 @@
 
 pub mod analysis;
 pub mod background;
+pub mod cloth;
 pub mod measure;
 pub mod plot;
 pub mod reference;
@@ -18,6 +19,7 @@ pub mod report;
 pub mod scenes;
 
 pub use analysis::{fit_order, mark_frontier, Order};
+pub use cloth::{ClothConfig, ClothRow, ClothStudy};
 pub use measure::{Row, Status, Timing};
 pub use reference::Reference;
 
@@ -121,6 +123,9 @@ pub struct SceneStudy {
     pub sentence: String,
     /// The collision response of a scene with contact (measured by the contact error).
     pub response: Option<Response>,
+    /// The cloth case: a scene with `[[cloth]]` sweeps the particle integrators instead of the
+    /// bodies' (its `rows` and `orders` are then empty, its `sentence` is the cloth case's).
+    pub cloth: Option<ClothStudy>,
 }
 
 impl SceneStudy {
@@ -136,6 +141,9 @@ pub fn study_case(
     config: &Config,
     progress: &mut dyn FnMut(usize, usize),
 ) -> SceneStudy {
+    if !case.scene.cloths.is_empty() {
+        return study_cloth_case(case, config, progress);
+    }
     let times = measure::sample_times(case.duration, config.timing.sample_interval);
     let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
     let mut reference = Reference::for_scene(&case.scene, &times, smallest);
@@ -198,6 +206,53 @@ pub fn study_case(
         orders,
         sentence,
         response,
+        cloth: None,
+    }
+}
+
+/// The cloth settings a study with `config` uses: its timing, the default ladder.
+pub fn cloth_config(config: &Config) -> ClothConfig {
+    ClothConfig {
+        timing: config.timing,
+        ..ClothConfig::default()
+    }
+}
+
+/// How many runs studying `case` with `config` makes.
+pub fn runs(case: &Case, config: &Config) -> usize {
+    if case.scene.cloths.is_empty() {
+        config.integrators.len() * config.dts.len()
+    } else {
+        cloth::runs(&case.scene, &cloth_config(config))
+    }
+}
+
+/// The cloth case of a scene with `[[cloth]]` ([`cloth`]): the particle integrators over a
+/// ladder of dt around the sheets' explicit limit; the bodies (if any) keep the scene's
+/// integrator.
+fn study_cloth_case(
+    case: &Case,
+    config: &Config,
+    progress: &mut dyn FnMut(usize, usize),
+) -> SceneStudy {
+    let cloth = cloth::study(
+        &case.name,
+        &case.scene,
+        case.duration,
+        &cloth_config(config),
+        progress,
+    );
+    SceneStudy {
+        name: case.name.clone(),
+        description: case.description.clone(),
+        duration: case.duration,
+        reference: cloth.reference.clone(),
+        reference_kind: "numeric",
+        rows: Vec::new(),
+        orders: Vec::new(),
+        sentence: cloth.sentence.clone(),
+        response: None,
+        cloth: Some(cloth),
     }
 }
 
@@ -207,15 +262,16 @@ pub fn study(
     config: &Config,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Vec<SceneStudy> {
-    let per_case = config.integrators.len() * config.dts.len();
-    let total = per_case * cases.len();
+    let counts: Vec<usize> = cases.iter().map(|c| runs(c, config)).collect();
+    let total = counts.iter().sum();
+    let mut before = 0;
     cases
         .iter()
-        .enumerate()
-        .map(|(k, case)| {
-            study_case(case, config, &mut |done, _| {
-                progress(k * per_case + done, total)
-            })
+        .zip(&counts)
+        .map(|(case, &count)| {
+            let study = study_case(case, config, &mut |done, _| progress(before + done, total));
+            before += count;
+            study
         })
         .collect()
 }

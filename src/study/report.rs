@@ -2,8 +2,14 @@
 //!
 //! CSV header (a contract; extra columns only ever go after the first nine):
 //! `scene,integrator,dt,steps,ns_per_step,error,energy_drift,momentum_drift,orthonormality,…`
+//!
+//! The cloth case ([`super::cloth`]) prints its own section in the table; in the CSV its rows
+//! have `case` = `cloth`, the particle integrator in `integrator`, the largest particle
+//! distance from the reference (m) in `error` and `position_error`, NaN in the columns of a
+//! body's rotation and contact, and its own columns at the end (NaN in a body's row).
 
 use super::analysis::{format_cost, format_dt, format_number};
+use super::cloth::{ClothRow, ClothStudy};
 use super::measure::{Row, Status};
 use super::SceneStudy;
 use std::fmt::Write;
@@ -11,7 +17,8 @@ use std::fmt::Write;
 /// The CSV header.
 pub const CSV_HEADER: &str = "scene,integrator,dt,steps,ns_per_step,error,energy_drift,\
 momentum_drift,orthonormality,us_per_simulated_second,omega_error,position_error,penetration,\
-impact_energy,rest_error,frontier,status,reference,angle_error,end_pose_error,contact_error";
+impact_energy,rest_error,frontier,status,reference,angle_error,end_pose_error,contact_error,\
+case,limit_ratio,drift_j,booked_losses,numerical_damping,energy_rise";
 
 /// A measured number in the table.
 fn sci(x: f64) -> String {
@@ -27,7 +34,11 @@ pub fn short_divergence(message: &str) -> String {
         .and_then(|(t, _)| t.parse::<f64>().ok());
     let what = message
         .split_once("): ")
-        .map(|(_, rest)| rest.rsplit_once(" (integrator").map_or(rest, |(w, _)| w))
+        .map(|(_, rest)| {
+            rest.rsplit_once(" (integrator")
+                .or_else(|| rest.rsplit_once(" (cloth "))
+                .map_or(rest, |(w, _)| w)
+        })
         .map(|w| w.split(':').next().unwrap_or(w).trim());
     match (time, what) {
         (Some(t), Some(what)) => format!("DIVERGED at t = {} s: {what}", format_number(t)),
@@ -39,6 +50,10 @@ pub fn short_divergence(message: &str) -> String {
 pub fn table(studies: &[SceneStudy]) -> String {
     let mut out = String::new();
     for study in studies {
+        if let Some(cloth) = &study.cloth {
+            cloth_table(&mut out, study, cloth);
+            continue;
+        }
         let contact = study.contact();
         let response = study
             .response
@@ -122,6 +137,120 @@ pub fn table(studies: &[SceneStudy]) -> String {
     out
 }
 
+/// The cloth case's section of the table.
+fn cloth_table(out: &mut String, study: &SceneStudy, cloth: &ClothStudy) {
+    let _ = writeln!(
+        out,
+        "== {} ({} s, cloth case): {}",
+        study.name, study.duration, study.description
+    );
+    let _ = writeln!(out, "reference: {}", cloth.reference);
+    let _ = writeln!(
+        out,
+        "cloth `{}`: 2/ω_max = {} s{}; ×lim = dt / (2/ω_max); the bodies (if any) keep the \
+         scene's integrator",
+        cloth.limiting_cloth,
+        format_number(cloth.limit),
+        if (cloth.damped_limit - cloth.limit).abs() > 1e-12 * cloth.limit {
+            format!(
+                ", with damping stable below h* = {} s",
+                format_number(cloth.damped_limit)
+            )
+        } else {
+            String::new()
+        }
+    );
+    let _ = writeln!(
+        out,
+        "error = max particle distance from the reference over samples every 0.1 s (m); E drift \
+         = max |E − E₀ − booked| (J), ΔE/E = that over |E₀|; booked = energy the ledger booked \
+         as taken (spring damping, drag, contacts, J); num. damp = energy lost by the end that \
+         nothing booked (J); E rise = largest rise of E + booked in one step (J)"
+    );
+    let _ = writeln!(
+        out,
+        "* = Pareto frontier: no run is both cheaper and more accurate (by the particle error)"
+    );
+    let _ = writeln!(
+        out,
+        "  {:<17}{:>12}{:>7}{:>8}{:>9}{:>11}{:>10}{:>10}{:>10}{:>10}{:>11}{:>10}",
+        "integrator",
+        "dt",
+        "×lim",
+        "steps",
+        "ns/step",
+        "µs/sim-s",
+        "error m",
+        "ΔE/E",
+        "E drift J",
+        "booked J",
+        "num.damp J",
+        "E rise J"
+    );
+    for row in &cloth.rows {
+        let _ = writeln!(out, "{}", cloth_row(row, cloth.damped_limit));
+    }
+    let _ = writeln!(out, "{}", cloth.sentence);
+    let orders: Vec<String> = cloth
+        .orders
+        .iter()
+        .map(|o| match o.slope {
+            Some(s) => format!("{} {:.2} ({} runs)", o.integrator.name(), s, o.points),
+            None => format!("{} not resolved", o.integrator.name()),
+        })
+        .collect();
+    let _ = writeln!(
+        out,
+        "observed order (slope of log error vs log dt, runs below 2/ω_max): {}",
+        orders.join(", ")
+    );
+    let _ = writeln!(out);
+}
+
+fn cloth_row(row: &ClothRow, damped_limit: f64) -> String {
+    let mark = if row.frontier { '*' } else { ' ' };
+    let (ns, cost) = if row.ns_per_step.is_finite() {
+        (
+            format!("{:.0}", row.ns_per_step),
+            format_cost(row.us_per_simulated_second),
+        )
+    } else {
+        ("—".to_string(), "—".to_string())
+    };
+    let mut line = format!(
+        "{mark} {:<17}{:>12}{:>7}{:>8}{:>9}{:>11}",
+        row.integrator.name(),
+        format_dt(row.dt),
+        format_number(row.limit_ratio),
+        row.steps,
+        ns,
+        cost,
+    );
+    match &row.status {
+        Status::Ok => {
+            let _ = write!(
+                line,
+                "{:>10}{:>10}{:>10}{:>10}{:>11}{:>10}",
+                sci(row.error),
+                sci(row.energy_drift),
+                sci(row.drift_j),
+                sci(row.booked_losses),
+                sci(row.numerical_damping),
+                sci(row.energy_rise)
+            );
+        }
+        Status::Diverged(message) => {
+            let past = match (row.integrator.is_explicit(), row.past_limit()) {
+                (true, true) => " (past 2/ω_max)",
+                (true, false) if row.dt > damped_limit => " (past h*)",
+                _ => "",
+            };
+            let _ = write!(line, "  {}{past}", short_divergence(message));
+        }
+    }
+    line
+}
+
 fn table_row(row: &Row, contact: bool) -> String {
     let mark = if row.frontier { '*' } else { ' ' };
     let (ns, cost) = if row.ns_per_step.is_finite() {
@@ -183,7 +312,7 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             };
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},body,NaN,NaN,NaN,NaN,NaN",
                 r.scene,
                 r.integrator.name(),
                 r.dt,
@@ -205,6 +334,35 @@ pub fn csv(studies: &[SceneStudy]) -> String {
                 r.angle_error,
                 r.end_pose_error,
                 r.contact_error
+            );
+        }
+        for r in study.cloth.iter().flat_map(|c| &c.rows) {
+            let status = match &r.status {
+                Status::Ok => "ok".to_string(),
+                Status::Diverged(m) => format!("\"diverged: {}\"", m.replace('"', "'")),
+            };
+            let nan = f64::NAN;
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{nan},{nan},{},{nan},{},{nan},{nan},{nan},{},{},{},{nan},\
+                 {nan},{nan},cloth,{},{},{},{},{}",
+                r.scene,
+                r.integrator.name(),
+                r.dt,
+                r.steps,
+                r.ns_per_step,
+                r.error,
+                r.energy_drift,
+                r.us_per_simulated_second,
+                r.error,
+                r.frontier,
+                status,
+                study.reference_kind,
+                r.limit_ratio,
+                r.drift_j,
+                r.booked_losses,
+                r.numerical_damping,
+                r.energy_rise
             );
         }
     }
@@ -258,7 +416,7 @@ pub fn json(studies: &[SceneStudy]) -> String {
                     })
                 })
                 .collect();
-            serde_json::json!({
+            let mut scene = serde_json::json!({
                 "scene": s.name,
                 "description": s.description,
                 "duration": s.duration,
@@ -267,11 +425,110 @@ pub fn json(studies: &[SceneStudy]) -> String {
                 "sentence": s.sentence,
                 "orders": orders,
                 "runs": rows,
-            })
+            });
+            if let Some(cloth) = &s.cloth {
+                scene["cloth"] = cloth_json(cloth);
+            }
+            scene
         })
         .collect();
     let mut text = serde_json::to_string_pretty(&serde_json::json!({ "scenes": scenes }))
         .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
     text.push('\n');
     text
+}
+
+/// The cloth case as JSON (NaN as null).
+fn cloth_json(cloth: &ClothStudy) -> serde_json::Value {
+    use super::cloth::SameError;
+    let runs: Vec<serde_json::Value> = cloth
+        .rows
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "integrator": r.integrator.name(),
+                "dt": r.dt,
+                "steps": r.steps,
+                "limit_ratio": r.limit_ratio,
+                "past_limit": r.past_limit(),
+                "ns_per_step": r.ns_per_step,
+                "us_per_simulated_second": r.us_per_simulated_second,
+                "error": r.error,
+                "energy_drift": r.energy_drift,
+                "drift_j": r.drift_j,
+                "booked_losses": r.booked_losses,
+                "numerical_damping": r.numerical_damping,
+                "energy_rise": r.energy_rise,
+                "frontier": r.frontier,
+                "diverged": match &r.status {
+                    Status::Ok => serde_json::Value::Null,
+                    Status::Diverged(m) => m.clone().into(),
+                },
+            })
+        })
+        .collect();
+    let orders: Vec<serde_json::Value> = cloth
+        .orders
+        .iter()
+        .map(|o| {
+            serde_json::json!({
+                "integrator": o.integrator.name(),
+                "order": o.slope,
+                "points": o.points,
+            })
+        })
+        .collect();
+    let same_error = match &cloth.comparison.same_error {
+        SameError::Reached {
+            target,
+            explicit_dt,
+            implicit_dt,
+            ratio,
+        } => serde_json::json!({
+            "kind": "reached", "target": target, "explicit_dt": explicit_dt,
+            "implicit_dt": implicit_dt, "ratio": ratio,
+        }),
+        SameError::AtLeast {
+            target,
+            explicit_dt,
+            implicit_dt,
+            implicit_error,
+            ratio,
+        } => serde_json::json!({
+            "kind": "at_least", "target": target, "explicit_dt": explicit_dt,
+            "implicit_dt": implicit_dt, "implicit_error": implicit_error, "ratio": ratio,
+        }),
+        SameError::NotReached {
+            target,
+            explicit_dt,
+            best_error,
+            best_dt,
+            extrapolated,
+        } => serde_json::json!({
+            "kind": "not_reached", "target": target, "explicit_dt": explicit_dt,
+            "best_error": best_error, "best_dt": best_dt,
+            "extrapolated_dt": extrapolated.map(|e| e.0),
+            "extrapolated_ratio": extrapolated.map(|e| e.1),
+        }),
+        SameError::Missing(why) => serde_json::json!({ "kind": "missing", "why": why }),
+    };
+    let past_limit = cloth.comparison.past_limit.map(|p| {
+        serde_json::json!({
+            "implicit_dt": p.implicit_dt, "implicit_error": p.implicit_error,
+            "explicit_dt": p.explicit_dt, "explicit_error": p.explicit_error, "ratio": p.ratio,
+        })
+    });
+    serde_json::json!({
+        "limit": cloth.limit,
+        "damped_limit": cloth.damped_limit,
+        "limiting_cloth": cloth.limiting_cloth,
+        "ladder": cloth.ladder,
+        "reference": cloth.reference,
+        "reference_spread": cloth.reference_spread,
+        "orders": orders,
+        "same_error": same_error,
+        "past_limit": past_limit,
+        "sentence": cloth.sentence,
+        "runs": runs,
+    })
 }

@@ -6,6 +6,7 @@
 //! | `near-separatrix` | the same box at ω_body(0) = (0.01, 10, 0.01): the flip period is ill-conditioned, errors are amplified |
 //! | `projectile` | a spinning 0.2 m cube thrown under gravity: exact reference for translation and rotation |
 //! | `dropped-box` | a tilted box dropped on the ground: contact (penetration, energy gained at impacts, rest) |
+//! | `trampoline` | the cloth case: an 8 × 8 sheet held by its edges sagging under gravity, for the particle integrators around their explicit limit |
 
 use super::Case;
 use crate::scene;
@@ -81,6 +82,27 @@ type = "ground"
 height = 0.0
 "#;
 
+const TRAMPOLINE: &str = r#"
+title = "Trampoline"
+summary = "Sheet 0.5 × 0.5 m, 8 × 8 particles, 0.2 kg, stretch 200 N/m, shear 50 N/m, damping 0.1 N·s/m, edges pinned, falling flat into its sag under gravity"
+[scene]
+dt = 0.001
+duration = 1.0
+integrator = "symplectic-euler"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+[[cloth]]
+name = "trampoline"
+size = [0.5, 0.5]
+count = [8, 8]
+position = [0.0, 1.0, 0.0]
+mass = 0.2
+stretch = 200.0
+shear = 50.0
+damping = 0.1
+pinned = "edges"
+"#;
+
 /// The built-in scenes, in the order they are studied.
 pub fn builtin() -> Vec<Case> {
     [
@@ -88,6 +110,7 @@ pub fn builtin() -> Vec<Case> {
         ("near-separatrix", NEAR_SEPARATRIX),
         ("projectile", PROJECTILE),
         ("dropped-box", DROPPED_BOX),
+        ("trampoline", TRAMPOLINE),
     ]
     .into_iter()
     .map(|(name, source)| {
