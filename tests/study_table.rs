@@ -1,8 +1,10 @@
 //! The study table's layout, from hand-made rows (measured tables vary with the machine's
 //! timings, so they are not snapshotted): separate angle and position columns, plain numbers
-//! where they fit, short DIVERGED lines, the contact columns.
+//! where they fit, short DIVERGED lines, the contact columns, the cloth case's section.
 
+use tumble::physics::cloth::ClothIntegrator;
 use tumble::physics::{Integrator, Response};
+use tumble::study::cloth::{self, ClothOrder, ClothRow, ClothStudy};
 use tumble::study::{report, Row, SceneStudy, Status};
 
 fn row(integrator: Integrator, dt: f64, ns_per_step: f64, error: f64, status: Status) -> Row {
@@ -41,6 +43,7 @@ fn study(rows: Vec<Row>, response: Option<Response>) -> SceneStudy {
         orders: Vec::new(),
         sentence: "One sentence.".to_string(),
         response,
+        cloth: None,
     }
 }
 
@@ -80,4 +83,102 @@ fn contact_table() {
     (seed.end_pose_error, seed.contact_error) = (9.7e-4, 0.00436);
     let table = report::table(&[study(vec![good, seed], Some(Response::Impulse))]);
     insta::assert_snapshot!("study_table_contact", table);
+}
+
+fn cloth_row(integrator: ClothIntegrator, dt: f64, error: f64, status: Status) -> ClothRow {
+    let limit = 3.69e-3;
+    ClothRow {
+        scene: "t".to_string(),
+        integrator,
+        dt,
+        steps: (1.0 / dt).round() as u64,
+        limit_ratio: dt / limit,
+        ns_per_step: if status == Status::Ok {
+            2500.0
+        } else {
+            f64::NAN
+        },
+        us_per_simulated_second: 2500.0 / dt / 1000.0,
+        error,
+        energy_drift: 2.6e-4,
+        drift_j: 5.2e-4,
+        numerical_damping: 1.3e-4,
+        booked_losses: 0.00836,
+        energy_rise: -3.2e-6,
+        status,
+        frontier: false,
+    }
+}
+
+#[test]
+fn cloth_table() {
+    // Hand-made rows of a sheet with 2/ω_max = 3.69e-3 s and h* = 3.01e-3 s: one explicit run
+    // past 2/ω_max, one between h* and 2/ω_max (both diverged), one stable; two implicit runs.
+    let diverged = |dt: f64, t: f64| {
+        Status::Diverged(format!(
+            "simulation diverged at step 7 (t = {t:.6} s): energy ran away: E = 1.1e0 J \
+             against a budget of 1.9e0 J, held as kinetic + spring energy by cloth t (cloth t, \
+             integrator symplectic-euler, dt = {dt} s)"
+        ))
+    };
+    let mut stable = cloth_row(
+        ClothIntegrator::SymplecticEuler,
+        1.5625e-3,
+        0.00135,
+        Status::Ok,
+    );
+    stable.frontier = true;
+    let rows = vec![
+        cloth_row(
+            ClothIntegrator::SymplecticEuler,
+            6.25e-3,
+            f64::NAN,
+            diverged(6.25e-3, 0.04375),
+        ),
+        cloth_row(
+            ClothIntegrator::SymplecticEuler,
+            3.125e-3,
+            f64::NAN,
+            diverged(3.125e-3, 0.121875),
+        ),
+        stable,
+        cloth_row(ClothIntegrator::ImplicitEuler, 5e-2, 0.0576, Status::Ok),
+        cloth_row(
+            ClothIntegrator::ImplicitEuler,
+            3.90625e-4,
+            0.0103,
+            Status::Ok,
+        ),
+    ];
+    let (limit, damped_limit) = (3.69e-3, 3.01e-3);
+    let comparison = cloth::compare(&rows, limit);
+    let sentence = cloth::sentence(&rows, &comparison, limit, damped_limit, 1.0);
+    let orders = ClothIntegrator::ALL
+        .map(|i| cloth::fit_order(i, &rows, limit))
+        .to_vec();
+    assert_eq!(
+        orders[0],
+        ClothOrder {
+            integrator: ClothIntegrator::SymplecticEuler,
+            slope: None,
+            points: 1
+        }
+    );
+    let study = SceneStudy {
+        cloth: Some(ClothStudy {
+            limit,
+            damped_limit,
+            limiting_cloth: "t".to_string(),
+            ladder: vec![5e-2, 6.25e-3, 3.125e-3, 1.5625e-3, 3.90625e-4],
+            reference: "numeric: by hand".to_string(),
+            reference_spread: 1.9e-5,
+            rows,
+            orders,
+            comparison,
+            sentence: sentence.clone(),
+        }),
+        sentence,
+        ..study(Vec::new(), None)
+    };
+    insta::assert_snapshot!("study_table_cloth", report::table(&[study]));
 }
