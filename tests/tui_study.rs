@@ -181,3 +181,17 @@ fn the_chart_marks_the_integrator_in_use() {
         "{shown}"
     );
 }
+
+#[test]
+fn a_scene_with_a_cloth_shows_the_cloth_case() {
+    // A cube on a 3 × 3 trampoline: the study sweeps the particle integrators (the cube keeps
+    // rk4) and the chart has one line per particle integrator.
+    let mut app = app("cloth/cube-on-sheet.toml");
+    press(&mut app, KeyCode::Char('s'));
+    wait_for_study(&mut app);
+    let text = screen(&app, 140, 40);
+    assert!(text.contains("cloth case"), "{text}");
+    assert!(text.contains("── symplectic-euler"), "{text}");
+    assert!(text.contains("── implicit-euler"), "{text}");
+    assert!(text.contains("Explicit limit 2/ω_max ="), "{text}");
+}

@@ -3,13 +3,16 @@
 //! thread ([`crate::study::background`]) while the rest of the app keeps running. Until the
 //! study is done, a gauge shows its progress; the view can be left and re-entered meanwhile.
 //! The study uses the collision response in use (after `c`, entering the view again studies
-//! the new one) and marks the integrator in use.
+//! the new one) and marks the integrator in use. A scene with cloths shows the cloth case: one
+//! line per particle integrator ([`crate::study::cloth`]).
 
 use super::app::App;
 use super::theme;
+use crate::physics::cloth::ClothIntegrator;
 use crate::physics::Integrator;
 use crate::study::analysis::{format_dt, format_number};
 use crate::study::background::Job;
+use crate::study::cloth::ClothStudy;
 use crate::study::{plot, Case, Config, SceneStudy};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -111,7 +114,149 @@ fn labels(lo: f64, hi: f64) -> Vec<String> {
     out
 }
 
+/// The colour of a particle integrator, as in the SVG plot.
+fn cloth_colour(integrator: ClothIntegrator) -> Color {
+    let plotters::style::RGBColor(r, g, b) = plot::cloth_color(integrator);
+    Color::Rgb(r, g, b)
+}
+
+/// The cloth case: max particle error against cost, one line per particle integrator.
+fn render_cloth_study(
+    app: &App,
+    study: &SceneStudy,
+    cloth: &ClothStudy,
+    area: Rect,
+    buf: &mut Buffer,
+) {
+    let text_height = (area.height / 3).clamp(4, 9);
+    let [chart_area, text_area] =
+        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
+    let points = |integrator: Option<ClothIntegrator>, frontier_only: bool| -> Vec<(f64, f64)> {
+        let mut rows: Vec<_> = cloth
+            .rows
+            .iter()
+            .filter(|r| r.ok() && r.error > 0.0 && r.us_per_simulated_second > 0.0)
+            .filter(|r| integrator.is_none_or(|i| r.integrator == i))
+            .filter(|r| !frontier_only || r.frontier)
+            .collect();
+        rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+        rows.iter()
+            .map(|r| (r.us_per_simulated_second.log10(), r.error.log10()))
+            .collect()
+    };
+    let all = points(None, false);
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in &all {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    if all.is_empty() {
+        (x0, x1, y0, y1) = (0.0, 1.0, -1.0, 0.0);
+    }
+    let (x0, x1) = decades(x0, x1);
+    let (y0, y1) = decades(y0, y1);
+    let marker = if app.ascii {
+        Marker::Dot
+    } else {
+        Marker::Braille
+    };
+    let lines: Vec<(ClothIntegrator, Vec<(f64, f64)>)> = ClothIntegrator::ALL
+        .into_iter()
+        .map(|i| (i, points(Some(i), false)))
+        .filter(|(_, p)| !p.is_empty())
+        .collect();
+    let frontier = points(None, true);
+    let mut datasets: Vec<Dataset> = lines
+        .iter()
+        .map(|(i, p)| {
+            Dataset::default()
+                .name(i.name())
+                .marker(marker)
+                .graph_type(GraphType::Line)
+                .style(Style::new().fg(cloth_colour(*i)))
+                .data(p)
+        })
+        .collect();
+    datasets.push(
+        Dataset::default()
+            .name("frontier")
+            .marker(Marker::Block)
+            .graph_type(GraphType::Scatter)
+            .style(theme::FRONTIER)
+            .data(&frontier),
+    );
+    let axis = |title: &'static str, lo: f64, hi: f64| {
+        Axis::default()
+            .title(title)
+            .style(theme::CHART_AXIS)
+            .bounds([lo, hi])
+            .labels(labels(lo, hi))
+    };
+    Chart::new(datasets)
+        .block(Block::bordered().title(format!(
+            " study of {} ({} s, cloth case, 2/ω_max = {} s): particle error against cost, \
+             log–log ",
+            study.name,
+            study.duration,
+            format_number(cloth.limit)
+        )))
+        .x_axis(axis("µs per simulated s", x0, x1))
+        .y_axis(axis("error, m", y0, y1))
+        .legend_position(None)
+        .render(chart_area, buf);
+    let mut legend: Vec<ratatui::text::Span> = vec![ratatui::text::Span::raw(" ")];
+    for (i, _) in &lines {
+        legend.push(ratatui::text::Span::styled(
+            format!("── {}  ", i.name()),
+            Style::new().fg(cloth_colour(*i)),
+        ));
+    }
+    legend.push(ratatui::text::Span::raw("█ frontier"));
+    let orders: Vec<String> = cloth
+        .orders
+        .iter()
+        .map(|o| match o.slope {
+            Some(s) => format!("{} {:.1}", o.integrator.name(), s),
+            None => format!("{} –", o.integrator.name()),
+        })
+        .collect();
+    let diverged: Vec<String> = cloth
+        .rows
+        .iter()
+        .filter(|r| !r.ok())
+        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+        .collect();
+    let text = vec![
+        Line::from(legend),
+        Line::from(cloth.sentence.clone()),
+        Line::styled(
+            format!(
+                "observed orders below 2/ω_max: {}; diverged (no point): {}",
+                orders.join(", "),
+                if diverged.is_empty() {
+                    "none".to_string()
+                } else {
+                    diverged.join(", ")
+                }
+            ),
+            Style::new().add_modifier(Modifier::DIM),
+        ),
+    ];
+    Paragraph::new(text)
+        .block(Block::bordered().title(" reference: numeric (converged symplectic-euler) "))
+        .wrap(Wrap { trim: true })
+        .render(text_area, buf);
+}
+
 fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
+    if let Some(cloth) = &study.cloth {
+        render_cloth_study(app, study, cloth, area, buf);
+        return;
+    }
     let text_height = (area.height / 3).clamp(4, 9);
     let [chart_area, text_area] =
         Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
