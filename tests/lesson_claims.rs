@@ -1079,3 +1079,402 @@ fn lesson_15_seed_refuses_the_stack_and_cannot_rest_one_cube() {
     assert_near(s.angular_velocity.z.abs(), 0.981 / i, 1e-6, "ω_z");
     assert_near(s.angular_velocity.norm(), 208.1, 0.05, "|ω| quoted");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Lessons 16–18: cloths (mass–spring sheets)
+// ---------------------------------------------------------------------------------------------
+
+/// The test's own square sheet: a grid of n × n particles of equal mass on the plane y = 0,
+/// side `size`, centred on the origin, with stretch and shear springs (rest lengths from the
+/// grid), edges pinned — built from the design's placement rule, not by `Cloth::new`.
+struct Sheet {
+    n: usize,
+    rest: Vec<Vector3<f64>>,
+    springs: Vec<(usize, usize, f64, f64)>,
+    pinned: Vec<bool>,
+    mass: f64,
+}
+
+fn sheet(n: usize, size: f64, mass: f64, stretch: f64, shear: f64) -> Sheet {
+    let h = size / (n - 1) as f64;
+    let id = |i: usize, j: usize| j * n + i;
+    let mut rest = Vec::new();
+    let mut pinned = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            rest.push(Vector3::new(
+                -size / 2.0 + i as f64 * h,
+                0.0,
+                -size / 2.0 + j as f64 * h,
+            ));
+            pinned.push(i == 0 || j == 0 || i == n - 1 || j == n - 1);
+        }
+    }
+    let mut springs = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let mut spring = |a: usize, b: usize, k: f64| {
+                springs.push((a, b, k, (rest[b] - rest[a]).norm()));
+            };
+            if i + 1 < n {
+                spring(id(i, j), id(i + 1, j), stretch);
+            }
+            if j + 1 < n {
+                spring(id(i, j), id(i, j + 1), stretch);
+            }
+            if i + 1 < n && j + 1 < n {
+                spring(id(i, j), id(i + 1, j + 1), shear);
+                spring(id(i + 1, j), id(i, j + 1), shear);
+            }
+        }
+    }
+    Sheet {
+        n,
+        rest,
+        springs,
+        pinned,
+        mass: mass / (n * n) as f64,
+    }
+}
+
+/// A static equilibrium of a sheet and what it carries.
+struct Equilibrium {
+    positions: Vec<Vector3<f64>>,
+    /// The height shared by the particles under the cube's bottom face, m.
+    bottom: f64,
+    /// The upward force each of those particles gives the cube, N (all ≥ 0 if it rests on them).
+    contact_forces: Vec<f64>,
+}
+
+/// Solves a banded linear system A x = b by Gaussian elimination without pivoting; `a` holds
+/// row i's entries A(i, j) at `a[i][j + w - i]`, |i − j| ≤ w.
+fn solve_banded(mut a: Vec<Vec<f64>>, mut b: Vec<f64>, w: usize) -> Vec<f64> {
+    let n = b.len();
+    for k in 0..n {
+        let pivot = a[k][w];
+        assert!(pivot.abs() > 1e-300, "zero pivot at {k}");
+        for i in k + 1..n.min(k + w + 1) {
+            let factor = a[i][k + w - i] / pivot;
+            if factor == 0.0 {
+                continue;
+            }
+            for j in k..n.min(k + w + 1) {
+                let value = a[k][j + w - k];
+                a[i][j + w - i] -= factor * value;
+            }
+            b[i] -= factor * b[k];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for j in i + 1..n.min(i + w + 1) {
+            s -= a[i][j + w - i] * x[j];
+        }
+        x[i] = s / a[i][w];
+    }
+    x
+}
+
+/// Static equilibrium of `sheet` under gravity by Newton's method (exact spring Jacobian,
+/// backtracking on |R|), optionally carrying a cube of mass `cube.0` whose flat bottom face
+/// (half side `cube.1`, centred over the sheet) rests on the particles under it: those share
+/// one height (unknown) and their upward forces sum to the cube's weight; they may slide
+/// sideways freely (no friction). Unknowns: 3 coordinates per particle; residual rows:
+///
+/// ```text
+/// pinned:                   x − x_rest = 0
+/// free, and under the cube along x and z:   f = Σ springs + m g = 0
+/// under the cube, y, the centre particle:   Σ_under f_y − M g = 0   (λ_q = f_q,y: q's push)
+/// under the cube, y, the others:            y_q − y_centre = 0
+/// ```
+fn trampoline_equilibrium(
+    sheet: &Sheet,
+    cube: Option<(f64, f64)>,
+    free_centre: bool,
+) -> Equilibrium {
+    let n = sheet.rest.len();
+    let under: Vec<usize> = match cube {
+        Some((_, half)) => (0..n)
+            .filter(|&p| sheet.rest[p].x.abs() < half && sheet.rest[p].z.abs() < half)
+            .filter(|&p| !(free_centre && p == (sheet.n / 2) * sheet.n + sheet.n / 2))
+            .collect(),
+        None => Vec::new(),
+    };
+    let centre = under.first().copied().unwrap_or(0);
+    let weight = cube.map_or(0.0, |(m, _)| m * G);
+    let forces = |x: &[Vector3<f64>]| {
+        let mut f = vec![Vector3::new(0.0, -G * sheet.mass, 0.0); n];
+        for &(a, b, k, l0) in &sheet.springs {
+            let d = x[b] - x[a];
+            let l = d.norm();
+            let force = d * (k * (l - l0) / l);
+            f[a] += force;
+            f[b] -= force;
+        }
+        f
+    };
+    let residual = |x: &[Vector3<f64>]| {
+        let f = forces(x);
+        let mut r = vec![0.0; 3 * n];
+        for p in 0..n {
+            for c in 0..3 {
+                r[3 * p + c] = if sheet.pinned[p] {
+                    x[p][c] - sheet.rest[p][c]
+                } else {
+                    f[p][c]
+                };
+            }
+        }
+        if !under.is_empty() {
+            r[3 * centre + 1] = under.iter().map(|&q| f[q].y).sum::<f64>() - weight;
+            for &q in under.iter().filter(|&&q| q != centre) {
+                r[3 * q + 1] = x[q].y - x[centre].y;
+            }
+        }
+        r
+    };
+    let norm = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
+    // Start from a dip (a flat sheet has no transverse stiffness: a singular Jacobian).
+    let mut x: Vec<Vector3<f64>> = (0..n)
+        .map(|p| {
+            let r = sheet.rest[p];
+            let bump = (1.0 - r.x * r.x) * (1.0 - r.z * r.z);
+            r - Vector3::y() * (0.1 * bump)
+        })
+        .collect();
+    for _ in 0..60 {
+        let r = residual(&x);
+        if norm(&r) < 1e-10 {
+            let f = forces(&x);
+            return Equilibrium {
+                bottom: x[centre].y,
+                contact_forces: under.iter().map(|&q| f[q].y).collect(),
+                positions: x,
+            };
+        }
+        // The Jacobian of f, row by row: Σ over springs of ±B, B = k ûûᵀ + k (1 − ℓ₀/ℓ)(𝟙 − ûûᵀ).
+        let mut jf: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 3 * n];
+        for &(a, b, k, l0) in &sheet.springs {
+            let d = x[b] - x[a];
+            let l = d.norm();
+            let u = d / l;
+            let block = (u * u.transpose()) * k
+                + (nalgebra::Matrix3::identity() - u * u.transpose()) * (k * (1.0 - l0 / l));
+            for (row, col, sign) in [(a, a, -1.0), (a, b, 1.0), (b, a, 1.0), (b, b, -1.0)] {
+                for rr in 0..3 {
+                    for cc in 0..3 {
+                        jf[3 * row + rr].push((3 * col + cc, sign * block[(rr, cc)]));
+                    }
+                }
+            }
+        }
+        let mut rows: Vec<Vec<(usize, f64)>> = (0..3 * n)
+            .map(|i| {
+                if sheet.pinned[i / 3] {
+                    vec![(i, 1.0)]
+                } else {
+                    jf[i].clone()
+                }
+            })
+            .collect();
+        if !under.is_empty() {
+            rows[3 * centre + 1] = under.iter().flat_map(|&q| jf[3 * q + 1].clone()).collect();
+            for &q in under.iter().filter(|&&q| q != centre) {
+                rows[3 * q + 1] = vec![(3 * q + 1, 1.0), (3 * centre + 1, -1.0)];
+            }
+        }
+        let w = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(i, row)| row.iter().map(move |&(j, _)| i.abs_diff(j)))
+            .max()
+            .unwrap();
+        let mut band = vec![vec![0.0; 2 * w + 1]; 3 * n];
+        for (i, row) in rows.iter().enumerate() {
+            for &(j, v) in row {
+                band[i][j + w - i] += v;
+            }
+        }
+        let step = solve_banded(band, r.iter().map(|v| -v).collect(), w);
+        let mut t = 1.0;
+        loop {
+            let trial: Vec<Vector3<f64>> = (0..n)
+                .map(|p| x[p] + Vector3::new(step[3 * p], step[3 * p + 1], step[3 * p + 2]) * t)
+                .collect();
+            if norm(&residual(&trial)) < norm(&r) || t < 1e-6 {
+                x = trial;
+                break;
+            }
+            t *= 0.5;
+        }
+    }
+    panic!("Newton did not converge");
+}
+
+/// One frame of `world` phase by phase: (P before the collide phase, P after it) of the cube
+/// and of the sheet.
+fn frame_with_collide_momenta(world: &mut World) -> [Vector3<f64>; 4] {
+    while world.step_phase() != Phase::Integrate {}
+    let cube = world.states()[0].linear_momentum;
+    let sheet = world.cloths()[0].linear_momentum();
+    assert_eq!(world.step_phase(), Phase::Collide);
+    [
+        cube,
+        world.states()[0].linear_momentum,
+        sheet,
+        world.cloths()[0].linear_momentum(),
+    ]
+}
+
+#[test]
+fn lesson_16_the_sheet_is_particles_and_springs_and_explicit_steps_cannot_follow() {
+    let l = lesson("16-trampoline.toml");
+    let world = l.scene.world();
+    let c = &world.cloths()[0];
+    // 21 × 21 particles of 2/441 kg = 4.535 g; the 4·20 edge particles pinned.
+    assert_eq!(c.len(), 441);
+    assert_near(c.masses[0], 0.004535, 5e-7, "m");
+    assert_eq!(c.pinned.iter().filter(|&&p| p).count(), 80);
+    // Stretch: 20 links per row and column, 21 of each: 2·20·21 = 840 at ℓ₀ = 2/20 = 0.1 m;
+    // shear: 2 per cell, 20·20 cells: 800 at 0.1·√2 = 0.1414 m.
+    let stretch: Vec<_> = c.springs.iter().filter(|s| s.stiffness == 5000.0).collect();
+    let shear: Vec<_> = c.springs.iter().filter(|s| s.stiffness == 1000.0).collect();
+    assert_eq!(
+        (stretch.len(), shear.len(), c.springs.len()),
+        (840, 800, 1640)
+    );
+    assert!(stretch.iter().all(|s| (s.rest_length - 0.1).abs() < 1e-12));
+    assert!(shear.iter().all(|s| (s.rest_length - 0.1414).abs() < 5e-5));
+    assert!(c.springs.iter().all(|s| s.damping == 50.0));
+    // The cloth table's numbers: 2/ω_max = 0.873 ms (ω_max = 2292 rad/s), γ_max = 87394 1/s,
+    // h* = 4/(γ + √(γ² + 4ω²)) = 22.9 µs; dt/h* = 43.7: 44 explicit steps per step, 175000
+    // for 4 s.
+    let limit = world.cloth_limit(0);
+    assert_near(limit.omega_max, 2292.0, 0.5, "ω_max");
+    assert_near(limit.stiffness_limit(), 0.873e-3, 5e-7, "2/ω_max");
+    assert_near(limit.damping_rate, 87394.0, 0.5, "γ_max");
+    let h = 4.0 / (87394.14 + (87394.14f64.powi(2) + 4.0 * 2292.04f64.powi(2)).sqrt());
+    assert_near(limit.dt(), h, 1e-9, "h* by its formula");
+    assert_near(limit.dt(), 22.9e-6, 5e-8, "h*");
+    assert_eq!((1e-3 / limit.dt()).round(), 44.0);
+    assert_near(4.0 / limit.dt(), 175000.0, 500.0, "explicit steps for 4 s");
+    // `run --integrator symplectic-euler` (cube and sheet): the guard stops it at step 6.
+    let mut scene = l.scene.clone();
+    scene.integrator = Integrator::SymplecticEuler;
+    scene.cloths[0].integrator = tumble::physics::cloth::ClothIntegrator::SymplecticEuler;
+    let mut explicit = scene.world();
+    let mut stopped = None;
+    for _ in 0..100 {
+        explicit.step();
+        if let Some(d) = explicit.divergence() {
+            stopped = Some(d);
+            break;
+        }
+    }
+    let d = stopped.expect("symplectic-euler diverges past h*");
+    assert_eq!(d.step, 6, "{d}");
+    assert!(d.to_string().contains("cloth trampoline"), "{d}");
+}
+
+#[test]
+fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
+    let l = lesson("16-trampoline.toml");
+    let mut world = l.scene.world();
+    let (mut touch, mut leave, mut apex) = (None, None, None);
+    let (mut arrival, mut landing, mut worst) = (0.0, 0.0, 0.0f64);
+    let mut rising = false;
+    let mut heights = Vec::new();
+    let mut trembling = 0.0f64;
+    for step in 1..=4000u64 {
+        let [cube0, cube1, sheet0, sheet1] = frame_with_collide_momenta(&mut world);
+        assert!(world.divergence().is_none());
+        // Each contact gives a particle J and the cube −J: the collide phase keeps Σ P.
+        worst = worst.max(((cube1 - cube0) + (sheet1 - sheet0)).norm());
+        let contacts = world.cloth_body_contacts(0);
+        let y = world.states()[0].position.y;
+        if touch.is_none() && contacts > 0 {
+            touch = Some(step);
+            arrival = cube0.y;
+        }
+        if touch.is_some() && apex.is_none() {
+            landing += cube1.y - cube0.y;
+            if contacts > 0 {
+                leave = Some((step, landing, cube1.y));
+            }
+            if cube1.y > 0.0 {
+                rising = true;
+            } else if rising {
+                apex = Some((step, y));
+            }
+        }
+        if step >= 2500 {
+            heights.push(y);
+        }
+        if step >= 3000 {
+            trembling = trembling.max(world.cloths()[0].max_speed());
+        }
+    }
+    assert!(worst < 1e-14, "Σ P changed by {worst:e} in a collide phase");
+    // First touch at step 272, after a free fall: P_y = −M g t = −9.81 × 0.272 (rk4 is exact).
+    assert_eq!(touch, Some(272));
+    assert_near(arrival, -2.66832, 1e-12, "arrival P_y");
+    // Last contact of the landing at step 551; the momentum theorem over steps 272–551: the
+    // sheet's impulse is ΔP + M g T = 0.5744 + 2.66832 + 9.81 × 0.279 = 5.9797 N·s.
+    let (last, impulse, departure) = leave.unwrap();
+    assert_eq!(last, 551);
+    assert_near(departure, 0.5744, 5e-5, "P_y leaving");
+    assert_near(
+        impulse,
+        departure - arrival + G * 0.279,
+        1e-12,
+        "momentum theorem",
+    );
+    assert_near(impulse, 5.9797, 5e-5, "the sheet's impulse");
+    // The top of the rebound: v_y changes sign at step 610, y = 0.1510 m.
+    let (top, height) = apex.unwrap();
+    assert_eq!(top, 610);
+    assert_near(height, 0.1510, 5e-5, "rebound height");
+    // Energy: E₀ = 1 × 9.81 × 0.5 = 4.905 J (the flat sheet at y = 0: none); the ledger.
+    let b = world.energy_balance();
+    assert_near(world.initial_total_energy().total, 4.905, 1e-12, "E₀");
+    assert_near(world.total_energy().total, 0.330, 5e-4, "E(4 s)");
+    assert_near(b.change, -4.575, 5e-4, "E − E₀");
+    assert_near(b.drag_work.unwrap(), -21.14, 5e-3, "damping");
+    assert_near(b.contacts.unwrap(), 26.54, 5e-3, "contacts");
+    assert_near(b.drift, -9.98, 5e-3, "drift");
+    // At rest: from 2.5 s on within 2 mm of its final height; bottom at −0.1196 m on the 8
+    // particles under its face; the centre particle just below the face.
+    let s = world.states()[0];
+    let bottom = s.position.y - 0.175;
+    let band = heights
+        .iter()
+        .map(|h| (h - s.position.y).abs())
+        .fold(0.0, f64::max);
+    assert!(band < 2e-3, "moves {band} m after 2.5 s");
+    assert_near(bottom, -0.1196, 5e-5, "resting bottom");
+    assert_eq!(world.cloth_body_contacts(0), 8);
+    let c = &world.cloths()[0];
+    assert!(c.positions[c.index(10, 10)].y < bottom);
+    assert!(
+        (0.08..0.12).contains(&trembling),
+        "particles tremble at {trembling} m/s"
+    );
+    // The static equilibrium by Newton's method (no friction): the 8 particles at one height
+    // carry M g = 9.81 N (corners of the face 1.760 N each, the others 0.693 N: 4 × 1.760 +
+    // 4 × 0.693 = 9.81), bottom at −0.1162 m; the sheet alone sags 6.84 cm at its centre.
+    let sheet = sheet(21, 2.0, 2.0, 5000.0, 1000.0);
+    let alone = trampoline_equilibrium(&sheet, None, false);
+    assert_near(alone.positions[220].y, -0.0684, 5e-5, "the sheet's own sag");
+    let resting = trampoline_equilibrium(&sheet, Some((1.0, 0.175)), true);
+    assert_near(resting.bottom, -0.1162, 5e-5, "static bottom");
+    let mut forces = resting.contact_forces.clone();
+    forces.sort_by(f64::total_cmp);
+    assert_near(forces.iter().sum::<f64>(), G, 1e-9, "Σ λ = M g");
+    for (k, f) in forces.iter().enumerate() {
+        let expected = if k < 4 { 0.693 } else { 1.760 };
+        assert_near(*f, expected, 5e-4, "a particle's share");
+    }
+    // The cube sits 3.4 mm below the static equilibrium.
+    assert_near(resting.bottom - bottom, 0.0034, 5e-5, "below static");
+}
