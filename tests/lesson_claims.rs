@@ -1478,3 +1478,146 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
     // The cube sits 3.4 mm below the static equilibrium.
     assert_near(resting.bottom - bottom, 0.0034, 5e-5, "below static");
 }
+
+/// Lesson 18's scene with the settings form's edits: dt and the sheet's integrator.
+fn explicit_limit_world(dt: f64, integrator: tumble::physics::cloth::ClothIntegrator) -> World {
+    let mut scene = lesson("18-explicit-limit.toml").scene;
+    scene.dt = dt;
+    scene.cloths[0].integrator = integrator;
+    scene.world()
+}
+
+#[test]
+fn lesson_18_the_limit_is_the_highest_chain_mode_and_0_9_runs_bounded() {
+    // Stretch springs only: at rest a particle's x moves only the springs along x, so each
+    // row of 9 free particles between two pins is a chain: ω_p = 2 √(k/m) sin(pπ/20), the
+    // highest p = 9: 2 √(1000/0.001) sin(81°) = 1975.377 rad/s; 2/ω_max = 1.012465 ms.
+    let omega = 2.0 * (1000.0f64 / 0.001).sqrt() * (9.0 * std::f64::consts::PI / 20.0).sin();
+    assert_near(omega, 1975.4, 0.05, "ω_max quoted");
+    assert_near(2.0 / omega, 1.0125e-3, 5e-8, "2/ω_max quoted");
+    let mut world = lesson("18-explicit-limit.toml").scene.world();
+    assert_near(world.cloths()[0].masses[0], 0.001, 1e-15, "m");
+    let limit = world.cloth_limit(0);
+    assert_near(limit.omega_max, omega, 1e-6 * omega, "power iteration");
+    assert_eq!(limit.damping_rate, 0.0);
+    // The file's dt = 0.911 ms = 0.8998 × the limit.
+    assert_near(world.dt() / limit.dt(), 0.8998, 5e-5, "dt/h*");
+    // 3 s: E within 0.3 mJ of E₀ = 0.121 × 9.81 × 1 = 1.18701 J.
+    let e0 = world.total_energy().total;
+    assert_near(e0, 1.18701, 1e-12, "E₀");
+    let (mut low, mut high, mut swing) = (e0, e0, 0.0f64);
+    for _ in 0..steps_for(3.0, world.dt()) {
+        world.step();
+        assert!(world.divergence().is_none());
+        let e = world.total_energy().total;
+        (low, high) = (low.min(e), high.max(e));
+        let c = &world.cloths()[0];
+        swing = swing.max(c.kinetic_energy() + c.spring_energy());
+    }
+    assert!(high - e0 < 3e-4 && e0 - low < 3e-4, "E in [{low}, {high}]");
+    // Meanwhile T + U (taken from the height) reaches 22.6 mJ: "up to 23 mJ".
+    assert_near(swing, 0.023, 5e-4, "T + U at most");
+}
+
+#[test]
+fn lesson_18_at_1_1_times_the_limit_the_guard_stops_step_29() {
+    use tumble::physics::cloth::ClothIntegrator;
+    // h ω_max = 0.001114 × 1975.377 = 2.2006: trace 2 − h²ω² = −2.84, and the highest mode's
+    // factor per step is the root of λ² − tλ + 1 = 0 of modulus > 1: (t − √(t² − 4))/2 = −2.43.
+    let h = 0.001114;
+    let omega = 1975.377;
+    assert_near(h * omega / 2.0, 1.1, 5e-4, "1.1 × the limit");
+    let t = 2.0 - (h * omega).powi(2);
+    assert_near(t, -2.84, 5e-3, "trace");
+    assert_near(
+        (t - (t * t - 4.0).sqrt()) / 2.0,
+        -2.43,
+        5e-3,
+        "growth per step",
+    );
+    let mut world = explicit_limit_world(h, ClothIntegrator::SymplecticEuler);
+    let mut stopped = None;
+    for _ in 0..1000 {
+        world.step();
+        if let Some(d) = world.divergence() {
+            stopped = Some(d);
+            break;
+        }
+    }
+    let d = stopped.expect("1.1 × the limit diverges");
+    assert_eq!(d.step, 29);
+    let message = d.to_string();
+    for quoted in [
+        "simulation diverged at step 29 (t = 0.032306 s): energy ran away: E = 3.7045e0 J",
+        "against a budget of 1.1870e0 J;",
+        "held as kinetic + spring energy by cloth sheet",
+        "(cloth sheet, integrator symplectic-euler, dt = 0.001114 s)",
+    ] {
+        assert!(message.contains(quoted), "{message} lacks {quoted}");
+    }
+    // The command line: the same line on stderr, exit code 3.
+    let output = assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "run",
+            "18-explicit-limit",
+            "--steps",
+            "1000",
+            "--dt",
+            "0.001114",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr, format!("tumble: {message}\n"));
+}
+
+#[test]
+fn lesson_18_backward_euler_at_10_times_damps_what_no_physics_damps() {
+    use tumble::physics::cloth::ClothIntegrator;
+    let mut world = explicit_limit_world(0.01, ClothIntegrator::ImplicitEuler);
+    assert_near(
+        0.01 / world.cloth_limit(0).stiffness_limit(),
+        9.9,
+        0.05,
+        "× the limit",
+    );
+    let e0 = world.total_energy().total;
+    let mut previous = e0;
+    let mut settled = None;
+    for step in 1..=300u64 {
+        world.step();
+        assert!(world.divergence().is_none());
+        let e = world.total_energy().total;
+        // Never rising from one step to the next (round-off aside).
+        assert!(
+            e - previous < 1e-14,
+            "E rose by {:e} at step {step}",
+            e - previous
+        );
+        previous = e;
+        if settled.is_none() && (e - 1.17590).abs() < 5e-6 {
+            settled = Some(step);
+        }
+    }
+    // E: 1.18701 → 1.17590 J within about 1 s; the whole fall, −11.11 mJ, is drift.
+    assert_near(previous, 1.17590, 5e-6, "E at rest");
+    let settled = settled.unwrap();
+    assert!((60..=110).contains(&settled), "settled at step {settled}");
+    let b = world.energy_balance();
+    assert_near(b.change, -0.01111, 5e-6, "E − E₀");
+    assert_near(b.drift, b.change, 1e-15, "all of it drift");
+    assert!(b.drag_work.is_none());
+    // At rest at the static sag (3.05 cm at the centre); U = 3.70 mJ, a quarter of what the
+    // sag released (V₀ − V = 14.81 mJ).
+    let c = &world.cloths()[0];
+    assert!(c.max_speed() < 1e-6);
+    assert_near(1.0 - c.positions[c.index(5, 5)].y, 0.0305, 5e-5, "sag");
+    let u = c.spring_energy();
+    let released = e0 - (world.total_energy().total - u - c.kinetic_energy());
+    assert_near(u, 3.70e-3, 5e-6, "U");
+    assert_near(released, 14.81e-3, 5e-6, "released");
+    assert_near(u / released, 0.25, 2e-3, "a quarter");
+}
