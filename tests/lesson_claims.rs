@@ -1621,3 +1621,206 @@ fn lesson_18_backward_euler_at_10_times_damps_what_no_physics_damps() {
     assert_near(released, 14.81e-3, 5e-6, "released");
     assert_near(u / released, 0.25, 2e-3, "a quarter");
 }
+
+/// Where the drape stands: (edge midpoint (0, 8), corner (0, 0), max particle speed).
+fn drape_shape(world: &World) -> (Vector3<f64>, Vector3<f64>, f64) {
+    let c = &world.cloths()[0];
+    (
+        c.positions[c.index(0, 8)],
+        c.positions[c.index(0, 0)],
+        c.max_speed(),
+    )
+}
+
+#[test]
+fn lesson_17_the_cloth_and_its_fall() {
+    let l = lesson("17-drape.toml");
+    let world = l.scene.world();
+    let c = &world.cloths()[0];
+    // 17 × 17 particles of 0.5/289 kg = 1.730 g, none pinned. Springs: stretch 2·16·17 = 544,
+    // shear 2·16² = 512, bend 2·15·17 = 510.
+    assert_eq!(c.len(), 289);
+    assert_near(c.masses[0], 0.001730, 5e-7, "m");
+    assert!(c.pinned.iter().all(|&p| !p));
+    let count = |k: f64| c.springs.iter().filter(|s| s.stiffness == k).count();
+    assert_eq!((count(800.0), count(100.0), count(5.0)), (544, 512, 510));
+    // The cloth table: 2/ω_max = 1.393 ms, h* = 0.943 ms with damping and drag.
+    let limit = world.cloth_limit(0);
+    assert_near(limit.stiffness_limit(), 1.393e-3, 5e-7, "2/ω_max");
+    assert_near(limit.dt(), 0.943e-3, 5e-7, "h*");
+    // Free fall of 0.2 m with drag rate k/M = 1/s: y₀ − y = g (t − τ + τ e^(−t/τ)), τ = 1 s,
+    // solved by bisection: t = 0.2088 s (√(2 · 0.2/g) = 0.2019 s in a vacuum).
+    let fall = |t: f64| G * (t - 1.0 + (-t).exp()) - 0.2;
+    let (mut lo, mut hi) = (0.1, 0.3);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if fall(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    assert_near(lo, 0.209, 5e-4, "touch with drag");
+    assert_near((0.4f64 / G).sqrt(), 0.202, 5e-4, "touch in a vacuum");
+}
+
+#[test]
+fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
+    let l = lesson("17-drape.toml");
+    let mut world = l.scene.world();
+    let centre = Vector3::new(0.0, 0.5, 0.0);
+    let (mut first_touch, mut first_ground) = (None, None);
+    let mut corner_at_1_25 = Vector3::zeros();
+    let mut closest_corner = f64::INFINITY;
+    for step in 1..=3000u64 {
+        world.step();
+        assert!(world.divergence().is_none());
+        let c = &world.cloths()[0];
+        // No particle inside the sphere after any step, beyond round-off.
+        let deepest = c
+            .positions
+            .iter()
+            .map(|p| 0.5 - (p - centre).norm())
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(deepest <= 1e-15, "{deepest:e} m inside at step {step}");
+        if first_touch.is_none() && deepest > -1e-9 {
+            first_touch = Some(step);
+        }
+        let grounded: Vec<_> = (0..c.len()).filter(|&p| c.positions[p].y < 1e-9).collect();
+        if first_ground.is_none() && !grounded.is_empty() {
+            first_ground = Some((
+                step,
+                grounded.iter().map(|&p| c.grid(p)).collect::<Vec<_>>(),
+            ));
+        }
+        if step == 1250 {
+            corner_at_1_25 = c.positions[0];
+        }
+        if first_ground.is_some() {
+            closest_corner = closest_corner.min(c.positions[0].x.hypot(c.positions[0].z));
+        }
+        if step > 1250 {
+            assert_eq!(
+                c.positions[0], corner_at_1_25,
+                "the corner moved at step {step}"
+            );
+        }
+    }
+    // The centre touches at step 209 (t = 0.209 s, the closed form above); the four corners
+    // reach the ground together at step 538 and stay the only particles there.
+    assert_eq!(first_touch, Some(209));
+    let corners = vec![(0, 0), (16, 0), (0, 16), (16, 16)];
+    assert_eq!(first_ground, Some((538, corners.clone())));
+    let c = &world.cloths()[0];
+    let grounded: Vec<_> = (0..c.len())
+        .filter(|&p| c.positions[p].y < 1e-9)
+        .map(|p| c.grid(p))
+        .collect();
+    assert_eq!(grounded, corners);
+    // On the ground they slide in to 0.68 m from the axis and back out; stuck from 1.25 s at
+    // 0.820 m.
+    assert_near(closest_corner, 0.68, 5e-3, "closest corner");
+    assert_near(
+        corner_at_1_25.x.hypot(corner_at_1_25.z),
+        0.820,
+        5e-4,
+        "corner",
+    );
+    // Chords: a spring with both ends on the sphere has its middle ρ − √(ρ² − ℓ²/4) inside;
+    // the deepest: ≈ 4 mm for stretch springs (ℓ ≈ 0.127 m), 16 mm for bend ones (0.252 m).
+    let on = |p: usize| ((c.positions[p] - centre).norm() - 0.5).abs() < 1e-9;
+    let chord = |k: f64| {
+        c.springs
+            .iter()
+            .filter(|s| s.stiffness == k && on(s.i) && on(s.j))
+            .map(|s| {
+                let l = (c.positions[s.j] - c.positions[s.i]).norm();
+                let inside = 0.5 - ((c.positions[s.i] + c.positions[s.j]) / 2.0 - centre).norm();
+                assert_near(inside, 0.5 - (0.25 - l * l / 4.0).sqrt(), 1e-12, "chord");
+                (inside, l)
+            })
+            .fold((0.0, 0.0), |a: (f64, f64), b| if b.0 > a.0 { b } else { a })
+    };
+    let (stretch_depth, stretch_length) = chord(800.0);
+    let (bend_depth, bend_length) = chord(5.0);
+    assert_near(stretch_depth, 0.004, 2e-4, "stretch chord");
+    assert_near(stretch_length, 0.127, 5e-4, "stretch length");
+    assert_near(bend_depth, 0.016, 5e-4, "bend chord");
+    assert_near(bend_length, 0.252, 5e-4, "bend length");
+    // At rest: the centre on the top, E and the ledger at 3 s.
+    assert_near(c.positions[c.index(8, 8)].y, 1.0, 5e-5, "centre");
+    let b = world.energy_balance();
+    assert_near(
+        world.initial_total_energy().total,
+        0.5 * G * 1.2,
+        1e-12,
+        "E₀",
+    );
+    assert_near(0.5 * G * 1.2, 5.886, 1e-12, "E₀ quoted");
+    assert_near(world.total_energy().total, 2.831, 5e-4, "E(3 s)");
+    assert_near(b.drag_work.unwrap(), -2.102, 5e-4, "drag and damping");
+    assert_near(b.contacts.unwrap(), -0.570, 5e-4, "contacts");
+    assert_near(b.drift, -0.383, 5e-4, "drift");
+    assert_near(c.max_stretch(), 0.025, 5e-4, "2.5 % stretch");
+}
+
+#[test]
+fn lesson_17_friction_shear_and_bend_change_the_drape_as_quoted() {
+    // (edit, edge midpoint (0, 8): y and distance from the axis, corner distance, max stretch)
+    // at t = 2 s.
+    for (edit, y, out, corner, stretch) in [
+        (
+            ("friction = 0.6", "friction = 0.6"),
+            0.609,
+            0.920,
+            0.820,
+            0.025,
+        ),
+        (
+            ("shear = 100.0", "shear = 0.0"),
+            0.293,
+            0.572,
+            0.887,
+            0.0033,
+        ),
+        (("bend = 5.0", "bend = 0.0"), 0.545, 0.872, 0.495, 0.021),
+    ] {
+        let l = lesson_edited("17-drape.toml", &[edit]);
+        let mut w = l.scene.world();
+        for _ in 0..2000 {
+            w.step();
+        }
+        let (mid, c, _) = drape_shape(&w);
+        let what = format!("{edit:?}");
+        assert_near(mid.y, y, 5e-4, &what);
+        assert_near(mid.x.hypot(mid.z), out, 5e-4, &what);
+        assert_near(c.x.hypot(c.z), corner, 5e-4, &what);
+        if stretch < 0.01 {
+            assert_near(w.cloths()[0].max_stretch(), stretch, 5e-5, &what);
+        } else {
+            assert!(w.cloths()[0].max_stretch() <= stretch + 5e-4, "{what}");
+        }
+    }
+    // Without friction it still slides at 2 s: particles at up to 0.66 m/s, corners at 0.80 m.
+    let l = lesson_edited("17-drape.toml", &[("friction = 0.6", "friction = 0.0")]);
+    let mut w = l.scene.world();
+    for _ in 0..2000 {
+        w.step();
+    }
+    let (_, c, speed) = drape_shape(&w);
+    assert_near(speed, 0.66, 5e-3, "still sliding");
+    assert_near(c.x.hypot(c.z), 0.80, 5e-3, "corners");
+    // The cloth's integrator set to symplectic-euler (dt = 1 ms > h*): it runs the 3 s; E at
+    // 3 s = 2.829 J, drift +0.173 J, contacts −0.658 J.
+    let mut scene = lesson("17-drape.toml").scene;
+    scene.cloths[0].integrator = tumble::physics::cloth::ClothIntegrator::SymplecticEuler;
+    let mut w = scene.world();
+    for _ in 0..3000 {
+        w.step();
+        assert!(w.divergence().is_none());
+    }
+    let b = w.energy_balance();
+    assert_near(w.total_energy().total, 2.829, 5e-4, "E, symplectic");
+    assert_near(b.drift, 0.173, 5e-4, "drift, symplectic");
+    assert_near(b.contacts.unwrap(), -0.658, 5e-4, "contacts, symplectic");
+}
