@@ -1699,6 +1699,13 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
         if first_ground.is_some() {
             closest_corner = closest_corner.min(c.positions[0].x.hypot(c.positions[0].z));
         }
+        if step == 2000 {
+            // The page's table, "as given" at t = 2 s.
+            let (mid, corner, _) = drape_shape(&world);
+            assert_near(mid.y, 0.609, 5e-4, "edge midpoint y at 2 s");
+            assert_near(mid.x.hypot(mid.z), 0.920, 5e-4, "edge midpoint out at 2 s");
+            assert_near(corner.x.hypot(corner.z), 0.820, 5e-4, "corner at 2 s");
+        }
         if step > 1250 {
             assert_eq!(
                 c.positions[0], corner_at_1_25,
@@ -1767,15 +1774,8 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
 #[test]
 fn lesson_17_friction_shear_and_bend_change_the_drape_as_quoted() {
     // (edit, edge midpoint (0, 8): y and distance from the axis, corner distance, max stretch)
-    // at t = 2 s.
+    // at t = 2 s (the lesson as given: in the test above).
     for (edit, y, out, corner, stretch) in [
-        (
-            ("friction = 0.6", "friction = 0.6"),
-            0.609,
-            0.920,
-            0.820,
-            0.025,
-        ),
         (
             ("shear = 100.0", "shear = 0.0"),
             0.293,
