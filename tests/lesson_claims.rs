@@ -2,7 +2,7 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4 and 9–15.
+//! with the formula that gives it in a comment. Lessons: 1–4, 9–18.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
