@@ -2,7 +2,7 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4 and 9–15.
+//! with the formula that gives it in a comment. Lessons: 1–4, 9–18.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
@@ -1078,4 +1078,749 @@ fn lesson_15_seed_refuses_the_stack_and_cannot_rest_one_cube() {
     assert_near(s.angular_velocity.x.abs(), 0.981 / i, 1e-6, "ω_x");
     assert_near(s.angular_velocity.z.abs(), 0.981 / i, 1e-6, "ω_z");
     assert_near(s.angular_velocity.norm(), 208.1, 0.05, "|ω| quoted");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lessons 16–18: cloths (mass–spring sheets)
+// ---------------------------------------------------------------------------------------------
+
+/// The test's own square sheet: a grid of n × n particles of equal mass on the plane y = 0,
+/// side `size`, centred on the origin, with stretch and shear springs (rest lengths from the
+/// grid), edges pinned — built from the design's placement rule, not by `Cloth::new`.
+struct Sheet {
+    n: usize,
+    rest: Vec<Vector3<f64>>,
+    springs: Vec<(usize, usize, f64, f64)>,
+    pinned: Vec<bool>,
+    mass: f64,
+}
+
+fn sheet(n: usize, size: f64, mass: f64, stretch: f64, shear: f64) -> Sheet {
+    let h = size / (n - 1) as f64;
+    let id = |i: usize, j: usize| j * n + i;
+    let mut rest = Vec::new();
+    let mut pinned = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            rest.push(Vector3::new(
+                -size / 2.0 + i as f64 * h,
+                0.0,
+                -size / 2.0 + j as f64 * h,
+            ));
+            pinned.push(i == 0 || j == 0 || i == n - 1 || j == n - 1);
+        }
+    }
+    let mut springs = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let mut spring = |a: usize, b: usize, k: f64| {
+                springs.push((a, b, k, (rest[b] - rest[a]).norm()));
+            };
+            if i + 1 < n {
+                spring(id(i, j), id(i + 1, j), stretch);
+            }
+            if j + 1 < n {
+                spring(id(i, j), id(i, j + 1), stretch);
+            }
+            if i + 1 < n && j + 1 < n {
+                spring(id(i, j), id(i + 1, j + 1), shear);
+                spring(id(i + 1, j), id(i, j + 1), shear);
+            }
+        }
+    }
+    Sheet {
+        n,
+        rest,
+        springs,
+        pinned,
+        mass: mass / (n * n) as f64,
+    }
+}
+
+/// A static equilibrium of a sheet and what it carries.
+struct Equilibrium {
+    positions: Vec<Vector3<f64>>,
+    /// The height shared by the particles under the cube's bottom face, m.
+    bottom: f64,
+    /// The upward force each of those particles gives the cube, N (all ≥ 0 if it rests on them).
+    contact_forces: Vec<f64>,
+}
+
+/// Solves a banded linear system A x = b by Gaussian elimination without pivoting; `a` holds
+/// row i's entries A(i, j) at `a[i][j + w - i]`, |i − j| ≤ w.
+fn solve_banded(mut a: Vec<Vec<f64>>, mut b: Vec<f64>, w: usize) -> Vec<f64> {
+    let n = b.len();
+    for k in 0..n {
+        let pivot = a[k][w];
+        assert!(pivot.abs() > 1e-300, "zero pivot at {k}");
+        for i in k + 1..n.min(k + w + 1) {
+            let factor = a[i][k + w - i] / pivot;
+            if factor == 0.0 {
+                continue;
+            }
+            for j in k..n.min(k + w + 1) {
+                let value = a[k][j + w - k];
+                a[i][j + w - i] -= factor * value;
+            }
+            b[i] -= factor * b[k];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for j in i + 1..n.min(i + w + 1) {
+            s -= a[i][j + w - i] * x[j];
+        }
+        x[i] = s / a[i][w];
+    }
+    x
+}
+
+/// Static equilibrium of `sheet` under gravity by Newton's method (exact spring Jacobian,
+/// backtracking on |R|), optionally carrying a cube of mass `cube.0` whose flat bottom face
+/// (half side `cube.1`, centred over the sheet) rests on the particles under it: those share
+/// one height (unknown) and their upward forces sum to the cube's weight; they may slide
+/// sideways freely (no friction). Unknowns: 3 coordinates per particle; residual rows:
+///
+/// ```text
+/// pinned:                   x − x_rest = 0
+/// free, and under the cube along x and z:   f = Σ springs + m g = 0
+/// under the cube, y, the centre particle:   Σ_under f_y − M g = 0   (λ_q = f_q,y: q's push)
+/// under the cube, y, the others:            y_q − y_centre = 0
+/// ```
+fn trampoline_equilibrium(
+    sheet: &Sheet,
+    cube: Option<(f64, f64)>,
+    free_centre: bool,
+) -> Equilibrium {
+    let n = sheet.rest.len();
+    let under: Vec<usize> = match cube {
+        Some((_, half)) => (0..n)
+            .filter(|&p| sheet.rest[p].x.abs() < half && sheet.rest[p].z.abs() < half)
+            .filter(|&p| !(free_centre && p == (sheet.n / 2) * sheet.n + sheet.n / 2))
+            .collect(),
+        None => Vec::new(),
+    };
+    let centre = under.first().copied().unwrap_or(0);
+    let weight = cube.map_or(0.0, |(m, _)| m * G);
+    let forces = |x: &[Vector3<f64>]| {
+        let mut f = vec![Vector3::new(0.0, -G * sheet.mass, 0.0); n];
+        for &(a, b, k, l0) in &sheet.springs {
+            let d = x[b] - x[a];
+            let l = d.norm();
+            let force = d * (k * (l - l0) / l);
+            f[a] += force;
+            f[b] -= force;
+        }
+        f
+    };
+    let residual = |x: &[Vector3<f64>]| {
+        let f = forces(x);
+        let mut r = vec![0.0; 3 * n];
+        for p in 0..n {
+            for c in 0..3 {
+                r[3 * p + c] = if sheet.pinned[p] {
+                    x[p][c] - sheet.rest[p][c]
+                } else {
+                    f[p][c]
+                };
+            }
+        }
+        if !under.is_empty() {
+            r[3 * centre + 1] = under.iter().map(|&q| f[q].y).sum::<f64>() - weight;
+            for &q in under.iter().filter(|&&q| q != centre) {
+                r[3 * q + 1] = x[q].y - x[centre].y;
+            }
+        }
+        r
+    };
+    let norm = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
+    // Start from a dip (a flat sheet has no transverse stiffness: a singular Jacobian).
+    let mut x: Vec<Vector3<f64>> = (0..n)
+        .map(|p| {
+            let r = sheet.rest[p];
+            let bump = (1.0 - r.x * r.x) * (1.0 - r.z * r.z);
+            r - Vector3::y() * (0.1 * bump)
+        })
+        .collect();
+    for _ in 0..60 {
+        let r = residual(&x);
+        if norm(&r) < 1e-10 {
+            let f = forces(&x);
+            return Equilibrium {
+                bottom: x[centre].y,
+                contact_forces: under.iter().map(|&q| f[q].y).collect(),
+                positions: x,
+            };
+        }
+        // The Jacobian of f, row by row: Σ over springs of ±B, B = k ûûᵀ + k (1 − ℓ₀/ℓ)(𝟙 − ûûᵀ).
+        let mut jf: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 3 * n];
+        for &(a, b, k, l0) in &sheet.springs {
+            let d = x[b] - x[a];
+            let l = d.norm();
+            let u = d / l;
+            let block = (u * u.transpose()) * k
+                + (nalgebra::Matrix3::identity() - u * u.transpose()) * (k * (1.0 - l0 / l));
+            for (row, col, sign) in [(a, a, -1.0), (a, b, 1.0), (b, a, 1.0), (b, b, -1.0)] {
+                for rr in 0..3 {
+                    for cc in 0..3 {
+                        jf[3 * row + rr].push((3 * col + cc, sign * block[(rr, cc)]));
+                    }
+                }
+            }
+        }
+        let mut rows: Vec<Vec<(usize, f64)>> = (0..3 * n)
+            .map(|i| {
+                if sheet.pinned[i / 3] {
+                    vec![(i, 1.0)]
+                } else {
+                    jf[i].clone()
+                }
+            })
+            .collect();
+        if !under.is_empty() {
+            rows[3 * centre + 1] = under.iter().flat_map(|&q| jf[3 * q + 1].clone()).collect();
+            for &q in under.iter().filter(|&&q| q != centre) {
+                rows[3 * q + 1] = vec![(3 * q + 1, 1.0), (3 * centre + 1, -1.0)];
+            }
+        }
+        let w = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(i, row)| row.iter().map(move |&(j, _)| i.abs_diff(j)))
+            .max()
+            .unwrap();
+        let mut band = vec![vec![0.0; 2 * w + 1]; 3 * n];
+        for (i, row) in rows.iter().enumerate() {
+            for &(j, v) in row {
+                band[i][j + w - i] += v;
+            }
+        }
+        let step = solve_banded(band, r.iter().map(|v| -v).collect(), w);
+        let mut t = 1.0;
+        loop {
+            let trial: Vec<Vector3<f64>> = (0..n)
+                .map(|p| x[p] + Vector3::new(step[3 * p], step[3 * p + 1], step[3 * p + 2]) * t)
+                .collect();
+            if norm(&residual(&trial)) < norm(&r) || t < 1e-6 {
+                x = trial;
+                break;
+            }
+            t *= 0.5;
+        }
+    }
+    panic!("Newton did not converge");
+}
+
+/// One frame of `world` phase by phase: (P before the collide phase, P after it) of the cube
+/// and of the sheet.
+fn frame_with_collide_momenta(world: &mut World) -> [Vector3<f64>; 4] {
+    while world.step_phase() != Phase::Integrate {}
+    let cube = world.states()[0].linear_momentum;
+    let sheet = world.cloths()[0].linear_momentum();
+    assert_eq!(world.step_phase(), Phase::Collide);
+    [
+        cube,
+        world.states()[0].linear_momentum,
+        sheet,
+        world.cloths()[0].linear_momentum(),
+    ]
+}
+
+#[test]
+fn lesson_16_the_sheet_is_particles_and_springs_and_explicit_steps_cannot_follow() {
+    let l = lesson("16-trampoline.toml");
+    let world = l.scene.world();
+    let c = &world.cloths()[0];
+    // 21 × 21 particles of 2/441 kg = 4.535 g; the 4·20 edge particles pinned.
+    assert_eq!(c.len(), 441);
+    assert_near(c.masses[0], 0.004535, 5e-7, "m");
+    assert_eq!(c.pinned.iter().filter(|&&p| p).count(), 80);
+    // Stretch: 20 links per row and column, 21 of each: 2·20·21 = 840 at ℓ₀ = 2/20 = 0.1 m;
+    // shear: 2 per cell, 20·20 cells: 800 at 0.1·√2 = 0.1414 m.
+    let stretch: Vec<_> = c.springs.iter().filter(|s| s.stiffness == 5000.0).collect();
+    let shear: Vec<_> = c.springs.iter().filter(|s| s.stiffness == 1000.0).collect();
+    assert_eq!(
+        (stretch.len(), shear.len(), c.springs.len()),
+        (840, 800, 1640)
+    );
+    assert!(stretch.iter().all(|s| (s.rest_length - 0.1).abs() < 1e-12));
+    assert!(shear.iter().all(|s| (s.rest_length - 0.1414).abs() < 5e-5));
+    assert!(c.springs.iter().all(|s| s.damping == 50.0));
+    // The cloth table's numbers: 2/ω_max = 0.873 ms (ω_max = 2292 rad/s), γ_max = 87394 1/s,
+    // h* = 4/(γ + √(γ² + 4ω²)) = 22.9 µs; dt/h* = 43.7: 44 explicit steps per step, 175000
+    // for 4 s.
+    let limit = world.cloth_limit(0);
+    assert_near(limit.omega_max, 2292.0, 0.5, "ω_max");
+    assert_near(limit.stiffness_limit(), 0.873e-3, 5e-7, "2/ω_max");
+    assert_near(limit.damping_rate, 87394.0, 0.5, "γ_max");
+    let h = 4.0 / (87394.14 + (87394.14f64.powi(2) + 4.0 * 2292.04f64.powi(2)).sqrt());
+    assert_near(limit.dt(), h, 1e-9, "h* by its formula");
+    assert_near(limit.dt(), 22.9e-6, 5e-8, "h*");
+    assert_eq!((1e-3 / limit.dt()).round(), 44.0);
+    assert_near(4.0 / limit.dt(), 175000.0, 500.0, "explicit steps for 4 s");
+    // `run --integrator symplectic-euler` (cube and sheet): the guard stops it at step 6.
+    let mut scene = l.scene.clone();
+    scene.integrator = Integrator::SymplecticEuler;
+    scene.cloths[0].integrator = tumble::physics::cloth::ClothIntegrator::SymplecticEuler;
+    let mut explicit = scene.world();
+    let mut stopped = None;
+    for _ in 0..100 {
+        explicit.step();
+        if let Some(d) = explicit.divergence() {
+            stopped = Some(d);
+            break;
+        }
+    }
+    let d = stopped.expect("symplectic-euler diverges past h*");
+    assert_eq!(d.step, 6, "{d}");
+    assert!(d.to_string().contains("cloth trampoline"), "{d}");
+}
+
+#[test]
+fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
+    let l = lesson("16-trampoline.toml");
+    let mut world = l.scene.world();
+    let (mut touch, mut leave, mut apex) = (None, None, None);
+    let (mut arrival, mut landing, mut worst) = (0.0, 0.0, 0.0f64);
+    let mut rising = false;
+    let mut heights = Vec::new();
+    let mut trembling = 0.0f64;
+    for step in 1..=4000u64 {
+        let [cube0, cube1, sheet0, sheet1] = frame_with_collide_momenta(&mut world);
+        assert!(world.divergence().is_none());
+        // Each contact gives a particle J and the cube −J: the collide phase keeps Σ P.
+        worst = worst.max(((cube1 - cube0) + (sheet1 - sheet0)).norm());
+        let contacts = world.cloth_body_contacts(0);
+        let y = world.states()[0].position.y;
+        if touch.is_none() && contacts > 0 {
+            touch = Some(step);
+            arrival = cube0.y;
+        }
+        if touch.is_some() && apex.is_none() {
+            landing += cube1.y - cube0.y;
+            if contacts > 0 {
+                leave = Some((step, landing, cube1.y));
+            }
+            if cube1.y > 0.0 {
+                rising = true;
+            } else if rising {
+                apex = Some((step, y));
+            }
+        }
+        if step >= 2500 {
+            heights.push(y);
+        }
+        if step >= 3000 {
+            trembling = trembling.max(world.cloths()[0].max_speed());
+        }
+    }
+    assert!(worst < 1e-14, "Σ P changed by {worst:e} in a collide phase");
+    // First touch at step 272, after a free fall: P_y = −M g t = −9.81 × 0.272 (rk4 is exact).
+    assert_eq!(touch, Some(272));
+    assert_near(arrival, -2.66832, 1e-12, "arrival P_y");
+    // Last contact of the landing at step 551; the momentum theorem over steps 272–551: the
+    // sheet's impulse is ΔP + M g T = 0.5744 + 2.66832 + 9.81 × 0.279 = 5.9797 N·s.
+    let (last, impulse, departure) = leave.unwrap();
+    assert_eq!(last, 551);
+    assert_near(departure, 0.5744, 5e-5, "P_y leaving");
+    assert_near(
+        impulse,
+        departure - arrival + G * 0.279,
+        1e-12,
+        "momentum theorem",
+    );
+    assert_near(impulse, 5.9797, 5e-5, "the sheet's impulse");
+    // The top of the rebound: v_y changes sign at step 610, y = 0.1510 m.
+    let (top, height) = apex.unwrap();
+    assert_eq!(top, 610);
+    assert_near(height, 0.1510, 5e-5, "rebound height");
+    // Energy: E₀ = 1 × 9.81 × 0.5 = 4.905 J (the flat sheet at y = 0: none); the ledger.
+    let b = world.energy_balance();
+    assert_near(world.initial_total_energy().total, 4.905, 1e-12, "E₀");
+    assert_near(world.total_energy().total, 0.330, 5e-4, "E(4 s)");
+    assert_near(b.change, -4.575, 5e-4, "E − E₀");
+    assert_near(b.drag_work.unwrap(), -21.14, 5e-3, "damping");
+    assert_near(b.contacts.unwrap(), 26.54, 5e-3, "contacts");
+    assert_near(b.drift, -9.98, 5e-3, "drift");
+    // At rest: from 2.5 s on within 2 mm of its final height; bottom at −0.1196 m on the 8
+    // particles under its face; the centre particle just below the face.
+    let s = world.states()[0];
+    let bottom = s.position.y - 0.175;
+    let band = heights
+        .iter()
+        .map(|h| (h - s.position.y).abs())
+        .fold(0.0, f64::max);
+    assert!(band < 2e-3, "moves {band} m after 2.5 s");
+    assert_near(bottom, -0.1196, 5e-5, "resting bottom");
+    assert_eq!(world.cloth_body_contacts(0), 8);
+    let c = &world.cloths()[0];
+    assert!(c.positions[c.index(10, 10)].y < bottom);
+    assert!(
+        (0.08..0.12).contains(&trembling),
+        "particles tremble at {trembling} m/s"
+    );
+    // The static equilibrium by Newton's method (no friction): the 8 particles at one height
+    // carry M g = 9.81 N (corners of the face 1.760 N each, the others 0.693 N: 4 × 1.760 +
+    // 4 × 0.693 = 9.81), bottom at −0.1162 m; the sheet alone sags 6.84 cm at its centre.
+    let sheet = sheet(21, 2.0, 2.0, 5000.0, 1000.0);
+    let alone = trampoline_equilibrium(&sheet, None, false);
+    assert_near(alone.positions[220].y, -0.0684, 5e-5, "the sheet's own sag");
+    let resting = trampoline_equilibrium(&sheet, Some((1.0, 0.175)), true);
+    assert_near(resting.bottom, -0.1162, 5e-5, "static bottom");
+    let mut forces = resting.contact_forces.clone();
+    forces.sort_by(f64::total_cmp);
+    assert_near(forces.iter().sum::<f64>(), G, 1e-9, "Σ λ = M g");
+    for (k, f) in forces.iter().enumerate() {
+        let expected = if k < 4 { 0.693 } else { 1.760 };
+        assert_near(*f, expected, 5e-4, "a particle's share");
+    }
+    // The cube sits 3.4 mm below the static equilibrium.
+    assert_near(resting.bottom - bottom, 0.0034, 5e-5, "below static");
+}
+
+/// Lesson 18's scene with the settings form's edits: dt and the sheet's integrator.
+fn explicit_limit_world(dt: f64, integrator: tumble::physics::cloth::ClothIntegrator) -> World {
+    let mut scene = lesson("18-explicit-limit.toml").scene;
+    scene.dt = dt;
+    scene.cloths[0].integrator = integrator;
+    scene.world()
+}
+
+#[test]
+fn lesson_18_the_limit_is_the_highest_chain_mode_and_0_9_runs_bounded() {
+    // Stretch springs only: at rest a particle's x moves only the springs along x, so each
+    // row of 9 free particles between two pins is a chain: ω_p = 2 √(k/m) sin(pπ/20), the
+    // highest p = 9: 2 √(1000/0.001) sin(81°) = 1975.377 rad/s; 2/ω_max = 1.012465 ms.
+    let omega = 2.0 * (1000.0f64 / 0.001).sqrt() * (9.0 * std::f64::consts::PI / 20.0).sin();
+    assert_near(omega, 1975.4, 0.05, "ω_max quoted");
+    assert_near(2.0 / omega, 1.0125e-3, 5e-8, "2/ω_max quoted");
+    let mut world = lesson("18-explicit-limit.toml").scene.world();
+    assert_near(world.cloths()[0].masses[0], 0.001, 1e-15, "m");
+    let limit = world.cloth_limit(0);
+    assert_near(limit.omega_max, omega, 1e-6 * omega, "power iteration");
+    assert_eq!(limit.damping_rate, 0.0);
+    // The file's dt = 0.911 ms = 0.8998 × the limit.
+    assert_near(world.dt() / limit.dt(), 0.8998, 5e-5, "dt/h*");
+    // 3 s: E within 0.3 mJ of E₀ = 0.121 × 9.81 × 1 = 1.18701 J.
+    let e0 = world.total_energy().total;
+    assert_near(e0, 1.18701, 1e-12, "E₀");
+    let (mut low, mut high, mut swing) = (e0, e0, 0.0f64);
+    for _ in 0..steps_for(3.0, world.dt()) {
+        world.step();
+        assert!(world.divergence().is_none());
+        let e = world.total_energy().total;
+        (low, high) = (low.min(e), high.max(e));
+        let c = &world.cloths()[0];
+        swing = swing.max(c.kinetic_energy() + c.spring_energy());
+    }
+    assert!(high - e0 < 3e-4 && e0 - low < 3e-4, "E in [{low}, {high}]");
+    // Meanwhile T + U (taken from the height) reaches 22.6 mJ: "up to 23 mJ".
+    assert_near(swing, 0.023, 5e-4, "T + U at most");
+}
+
+#[test]
+fn lesson_18_at_1_1_times_the_limit_the_guard_stops_step_29() {
+    use tumble::physics::cloth::ClothIntegrator;
+    // h ω_max = 0.001114 × 1975.377 = 2.2006: trace 2 − h²ω² = −2.84, and the highest mode's
+    // factor per step is the root of λ² − tλ + 1 = 0 of modulus > 1: (t − √(t² − 4))/2 = −2.43.
+    let h = 0.001114;
+    let omega = 1975.377;
+    assert_near(h * omega / 2.0, 1.1, 5e-4, "1.1 × the limit");
+    let t = 2.0 - (h * omega).powi(2);
+    assert_near(t, -2.84, 5e-3, "trace");
+    assert_near(
+        (t - (t * t - 4.0).sqrt()) / 2.0,
+        -2.43,
+        5e-3,
+        "growth per step",
+    );
+    let mut world = explicit_limit_world(h, ClothIntegrator::SymplecticEuler);
+    let mut stopped = None;
+    for _ in 0..1000 {
+        world.step();
+        if let Some(d) = world.divergence() {
+            stopped = Some(d);
+            break;
+        }
+    }
+    let d = stopped.expect("1.1 × the limit diverges");
+    assert_eq!(d.step, 29);
+    let message = d.to_string();
+    for quoted in [
+        "simulation diverged at step 29 (t = 0.032306 s): energy ran away: E = 3.7045e0 J",
+        "against a budget of 1.1870e0 J;",
+        "held as kinetic + spring energy by cloth sheet",
+        "(cloth sheet, integrator symplectic-euler, dt = 0.001114 s)",
+    ] {
+        assert!(message.contains(quoted), "{message} lacks {quoted}");
+    }
+    // The command line: the same line on stderr, exit code 3.
+    let output = assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "run",
+            "18-explicit-limit",
+            "--steps",
+            "1000",
+            "--dt",
+            "0.001114",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr, format!("tumble: {message}\n"));
+}
+
+#[test]
+fn lesson_18_backward_euler_at_10_times_damps_what_no_physics_damps() {
+    use tumble::physics::cloth::ClothIntegrator;
+    let mut world = explicit_limit_world(0.01, ClothIntegrator::ImplicitEuler);
+    assert_near(
+        0.01 / world.cloth_limit(0).stiffness_limit(),
+        9.9,
+        0.05,
+        "× the limit",
+    );
+    let e0 = world.total_energy().total;
+    let mut previous = e0;
+    let mut settled = None;
+    for step in 1..=300u64 {
+        world.step();
+        assert!(world.divergence().is_none());
+        let e = world.total_energy().total;
+        // Never rising from one step to the next (round-off aside).
+        assert!(
+            e - previous < 1e-14,
+            "E rose by {:e} at step {step}",
+            e - previous
+        );
+        previous = e;
+        if settled.is_none() && (e - 1.17590).abs() < 5e-6 {
+            settled = Some(step);
+        }
+    }
+    // E: 1.18701 → 1.17590 J within about 1 s; the whole fall, −11.11 mJ, is drift.
+    assert_near(previous, 1.17590, 5e-6, "E at rest");
+    let settled = settled.unwrap();
+    assert!((60..=110).contains(&settled), "settled at step {settled}");
+    let b = world.energy_balance();
+    assert_near(b.change, -0.01111, 5e-6, "E − E₀");
+    assert_near(b.drift, b.change, 1e-15, "all of it drift");
+    assert!(b.drag_work.is_none());
+    // At rest at the static sag (3.05 cm at the centre); U = 3.70 mJ, a quarter of what the
+    // sag released (V₀ − V = 14.81 mJ).
+    let c = &world.cloths()[0];
+    assert!(c.max_speed() < 1e-6);
+    assert_near(1.0 - c.positions[c.index(5, 5)].y, 0.0305, 5e-5, "sag");
+    let u = c.spring_energy();
+    let released = e0 - (world.total_energy().total - u - c.kinetic_energy());
+    assert_near(u, 3.70e-3, 5e-6, "U");
+    assert_near(released, 14.81e-3, 5e-6, "released");
+    assert_near(u / released, 0.25, 2e-3, "a quarter");
+}
+
+/// Where the drape stands: (edge midpoint (0, 8), corner (0, 0), max particle speed).
+fn drape_shape(world: &World) -> (Vector3<f64>, Vector3<f64>, f64) {
+    let c = &world.cloths()[0];
+    (
+        c.positions[c.index(0, 8)],
+        c.positions[c.index(0, 0)],
+        c.max_speed(),
+    )
+}
+
+#[test]
+fn lesson_17_the_cloth_and_its_fall() {
+    let l = lesson("17-drape.toml");
+    let world = l.scene.world();
+    let c = &world.cloths()[0];
+    // 17 × 17 particles of 0.5/289 kg = 1.730 g, none pinned. Springs: stretch 2·16·17 = 544,
+    // shear 2·16² = 512, bend 2·15·17 = 510.
+    assert_eq!(c.len(), 289);
+    assert_near(c.masses[0], 0.001730, 5e-7, "m");
+    assert!(c.pinned.iter().all(|&p| !p));
+    let count = |k: f64| c.springs.iter().filter(|s| s.stiffness == k).count();
+    assert_eq!((count(800.0), count(100.0), count(5.0)), (544, 512, 510));
+    // The cloth table: 2/ω_max = 1.393 ms, h* = 0.943 ms with damping and drag.
+    let limit = world.cloth_limit(0);
+    assert_near(limit.stiffness_limit(), 1.393e-3, 5e-7, "2/ω_max");
+    assert_near(limit.dt(), 0.943e-3, 5e-7, "h*");
+    // Free fall of 0.2 m with drag rate k/M = 1/s: y₀ − y = g (t − τ + τ e^(−t/τ)), τ = 1 s,
+    // solved by bisection: t = 0.2088 s (√(2 · 0.2/g) = 0.2019 s in a vacuum).
+    let fall = |t: f64| G * (t - 1.0 + (-t).exp()) - 0.2;
+    let (mut lo, mut hi) = (0.1, 0.3);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if fall(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    assert_near(lo, 0.209, 5e-4, "touch with drag");
+    assert_near((0.4f64 / G).sqrt(), 0.202, 5e-4, "touch in a vacuum");
+}
+
+#[test]
+fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
+    let l = lesson("17-drape.toml");
+    let mut world = l.scene.world();
+    let centre = Vector3::new(0.0, 0.5, 0.0);
+    let (mut first_touch, mut first_ground) = (None, None);
+    let mut corner_at_1_25 = Vector3::zeros();
+    let mut closest_corner = f64::INFINITY;
+    for step in 1..=3000u64 {
+        world.step();
+        assert!(world.divergence().is_none());
+        let c = &world.cloths()[0];
+        // No particle inside the sphere after any step, beyond round-off.
+        let deepest = c
+            .positions
+            .iter()
+            .map(|p| 0.5 - (p - centre).norm())
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(deepest <= 1e-15, "{deepest:e} m inside at step {step}");
+        if first_touch.is_none() && deepest > -1e-9 {
+            first_touch = Some(step);
+        }
+        let grounded: Vec<_> = (0..c.len()).filter(|&p| c.positions[p].y < 1e-9).collect();
+        if first_ground.is_none() && !grounded.is_empty() {
+            first_ground = Some((
+                step,
+                grounded.iter().map(|&p| c.grid(p)).collect::<Vec<_>>(),
+            ));
+        }
+        if step == 1250 {
+            corner_at_1_25 = c.positions[0];
+        }
+        if first_ground.is_some() {
+            closest_corner = closest_corner.min(c.positions[0].x.hypot(c.positions[0].z));
+        }
+        if step == 2000 {
+            // The page's table, "as given" at t = 2 s.
+            let (mid, corner, _) = drape_shape(&world);
+            assert_near(mid.y, 0.609, 5e-4, "edge midpoint y at 2 s");
+            assert_near(mid.x.hypot(mid.z), 0.920, 5e-4, "edge midpoint out at 2 s");
+            assert_near(corner.x.hypot(corner.z), 0.820, 5e-4, "corner at 2 s");
+        }
+        if step > 1250 {
+            assert_eq!(
+                c.positions[0], corner_at_1_25,
+                "the corner moved at step {step}"
+            );
+        }
+    }
+    // The centre touches at step 209 (t = 0.209 s, the closed form above); the four corners
+    // reach the ground together at step 538 and stay the only particles there.
+    assert_eq!(first_touch, Some(209));
+    let corners = vec![(0, 0), (16, 0), (0, 16), (16, 16)];
+    assert_eq!(first_ground, Some((538, corners.clone())));
+    let c = &world.cloths()[0];
+    let grounded: Vec<_> = (0..c.len())
+        .filter(|&p| c.positions[p].y < 1e-9)
+        .map(|p| c.grid(p))
+        .collect();
+    assert_eq!(grounded, corners);
+    // On the ground they slide in to 0.68 m from the axis and back out; stuck from 1.25 s at
+    // 0.820 m.
+    assert_near(closest_corner, 0.68, 5e-3, "closest corner");
+    assert_near(
+        corner_at_1_25.x.hypot(corner_at_1_25.z),
+        0.820,
+        5e-4,
+        "corner",
+    );
+    // Chords: a spring with both ends on the sphere has its middle ρ − √(ρ² − ℓ²/4) inside;
+    // the deepest: ≈ 4 mm for stretch springs (ℓ ≈ 0.127 m), 16 mm for bend ones (0.252 m).
+    let on = |p: usize| ((c.positions[p] - centre).norm() - 0.5).abs() < 1e-9;
+    let chord = |k: f64| {
+        c.springs
+            .iter()
+            .filter(|s| s.stiffness == k && on(s.i) && on(s.j))
+            .map(|s| {
+                let l = (c.positions[s.j] - c.positions[s.i]).norm();
+                let inside = 0.5 - ((c.positions[s.i] + c.positions[s.j]) / 2.0 - centre).norm();
+                assert_near(inside, 0.5 - (0.25 - l * l / 4.0).sqrt(), 1e-12, "chord");
+                (inside, l)
+            })
+            .fold((0.0, 0.0), |a: (f64, f64), b| if b.0 > a.0 { b } else { a })
+    };
+    let (stretch_depth, stretch_length) = chord(800.0);
+    let (bend_depth, bend_length) = chord(5.0);
+    assert_near(stretch_depth, 0.004, 2e-4, "stretch chord");
+    assert_near(stretch_length, 0.127, 5e-4, "stretch length");
+    assert_near(bend_depth, 0.016, 5e-4, "bend chord");
+    assert_near(bend_length, 0.252, 5e-4, "bend length");
+    // At rest: the centre on the top, E and the ledger at 3 s.
+    assert_near(c.positions[c.index(8, 8)].y, 1.0, 5e-5, "centre");
+    let b = world.energy_balance();
+    assert_near(
+        world.initial_total_energy().total,
+        0.5 * G * 1.2,
+        1e-12,
+        "E₀",
+    );
+    assert_near(0.5 * G * 1.2, 5.886, 1e-12, "E₀ quoted");
+    assert_near(world.total_energy().total, 2.831, 5e-4, "E(3 s)");
+    assert_near(b.drag_work.unwrap(), -2.102, 5e-4, "drag and damping");
+    assert_near(b.contacts.unwrap(), -0.570, 5e-4, "contacts");
+    assert_near(b.drift, -0.383, 5e-4, "drift");
+    assert_near(c.max_stretch(), 0.025, 5e-4, "2.5 % stretch");
+}
+
+#[test]
+fn lesson_17_friction_shear_and_bend_change_the_drape_as_quoted() {
+    // (edit, edge midpoint (0, 8): y and distance from the axis, corner distance, max stretch)
+    // at t = 2 s (the lesson as given: in the test above).
+    for (edit, y, out, corner, stretch) in [
+        (
+            ("shear = 100.0", "shear = 0.0"),
+            0.293,
+            0.572,
+            0.887,
+            0.0033,
+        ),
+        (("bend = 5.0", "bend = 0.0"), 0.545, 0.872, 0.495, 0.021),
+    ] {
+        let l = lesson_edited("17-drape.toml", &[edit]);
+        let mut w = l.scene.world();
+        for _ in 0..2000 {
+            w.step();
+        }
+        let (mid, c, _) = drape_shape(&w);
+        let what = format!("{edit:?}");
+        assert_near(mid.y, y, 5e-4, &what);
+        assert_near(mid.x.hypot(mid.z), out, 5e-4, &what);
+        assert_near(c.x.hypot(c.z), corner, 5e-4, &what);
+        if stretch < 0.01 {
+            assert_near(w.cloths()[0].max_stretch(), stretch, 5e-5, &what);
+        } else {
+            assert!(w.cloths()[0].max_stretch() <= stretch + 5e-4, "{what}");
+        }
+    }
+    // Without friction it still slides at 2 s: particles at up to 0.66 m/s, corners at 0.80 m.
+    let l = lesson_edited("17-drape.toml", &[("friction = 0.6", "friction = 0.0")]);
+    let mut w = l.scene.world();
+    for _ in 0..2000 {
+        w.step();
+    }
+    let (_, c, speed) = drape_shape(&w);
+    assert_near(speed, 0.66, 5e-3, "still sliding");
+    assert_near(c.x.hypot(c.z), 0.80, 5e-3, "corners");
+    // The cloth's integrator set to symplectic-euler (dt = 1 ms > h*): it runs the 3 s; E at
+    // 3 s = 2.829 J, drift +0.173 J, contacts −0.658 J.
+    let mut scene = lesson("17-drape.toml").scene;
+    scene.cloths[0].integrator = tumble::physics::cloth::ClothIntegrator::SymplecticEuler;
+    let mut w = scene.world();
+    for _ in 0..3000 {
+        w.step();
+        assert!(w.divergence().is_none());
+    }
+    let b = w.energy_balance();
+    assert_near(w.total_energy().total, 2.829, 5e-4, "E, symplectic");
+    assert_near(b.drift, 0.173, 5e-4, "drift, symplectic");
+    assert_near(b.contacts.unwrap(), -0.658, 5e-4, "contacts, symplectic");
 }

@@ -160,12 +160,26 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
             }
         })
         .collect();
-    let mut settings = format!(
-        "integrator {} · dt = {} s · {} · effects: {effects} · obstacles: {obstacles}",
-        world.integrator().name(),
-        number_plain(world.dt()),
-        bodies.join(" · "),
-    );
+    let mut settings = if bodies.is_empty() {
+        // A scene of cloths only: no body uses the scene's integrator; each cloth has its own.
+        let cloths: Vec<String> = world
+            .cloths()
+            .iter()
+            .map(|c| format!("cloth {}, {}", c.name, c.integrator.name()))
+            .collect();
+        format!(
+            "dt = {} s · {} · effects: {effects} · obstacles: {obstacles}",
+            number_plain(world.dt()),
+            cloths.join(" · "),
+        )
+    } else {
+        format!(
+            "integrator {} · dt = {} s · {} · effects: {effects} · obstacles: {obstacles}",
+            world.integrator().name(),
+            number_plain(world.dt()),
+            bodies.join(" · "),
+        )
+    };
     if let Some(model) = world.contact_model() {
         settings.push_str(&format!(" · response {}", model.response.name()));
     }
