@@ -18,7 +18,7 @@
 //! | `screen` | the whole screen, overlays, the "enlarge" message |
 //! | `header`, `status_bar` | top line; bottom lines |
 //! | `loop_view`, `energy_view` | the views (one file each) |
-//! | `projection`, `panels`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
+//! | `projection`, `panels`, `cloth_panel`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
 //! | `help`, `picker`, `divergence_dialog` | the overlays |
 //! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
 //! | `jump_prompt`, `timeline` | the jump prompt (`J`); where a run pauses by itself |
@@ -27,6 +27,7 @@
 //! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`]).
 
 pub mod app;
+pub mod cloth_panel;
 pub mod divergence_dialog;
 pub mod energy_graph;
 pub mod energy_view;
