@@ -150,8 +150,9 @@ fn order(count: usize, compare: bool) -> Vec<usize> {
     order
 }
 
-/// Every panel's lines with its title, in stacking order: the body's panels (with no body,
-/// one line saying so, then the scene's energy), then one panel per cloth.
+/// Every panel's lines with its title, in stacking order: the body's state, one panel per
+/// cloth, the body's other panels (with no body: one line saying so, the cloth panels, the
+/// scene's energy).
 fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
     let panels = tables::panels(&app.snapshot, app.frame);
     let previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
@@ -182,15 +183,20 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
         };
         (view.lines(), panels[i].title.clone())
     }));
+    // The cloth panels come second: after the body's state, or after the line saying there
+    // is no body (a scene with a cloth is about it: in a small terminal the other panels are
+    // left out before them).
     let s = &app.snapshot;
-    for (k, c) in s.cloths.iter().enumerate() {
+    let at = views.len().min(1);
+    let cloths = s.cloths.iter().enumerate().map(|(k, c)| {
         let before = app.previous.as_ref().and_then(|p| p.cloths.get(k));
         let ghost = app
             .ghost
             .as_ref()
             .and_then(|g| g.snapshot.cloths.get(k).map(|c| (c, g.comparison.name())));
-        views.push(cloth_panel::lines(c, s.dt, before, ghost));
-    }
+        cloth_panel::lines(c, s.dt, before, ghost)
+    });
+    views.splice(at..at, cloths.collect::<Vec<_>>());
     views
 }
 
