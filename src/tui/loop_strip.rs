@@ -224,6 +224,9 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
 /// Collide: each cloth's particles against obstacles (pushed out) and bodies (both ways).
 fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
+    if world.cloths().is_empty() {
+        return lines;
+    }
     if world.contact_model().is_none() {
         return vec![line(
             "cloths: no contact declared: nothing to detect, the phase costs nothing",
