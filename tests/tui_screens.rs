@@ -162,7 +162,8 @@ fn words(lines: &[String]) -> Vec<String> {
 }
 
 /// Checks that no number or unit is cut on `shown`: every panel whose title line is shown has
-/// every row of `tables::panel_text` in full; the status fields are whole; and the loop strip's
+/// every row of `tables::panel_text` in full (the cloth panels too, and their text lines); the
+/// status fields are whole; and the loop strip's
 /// words, as far as shown, are the words of its full text (a cut word would differ).
 fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     let lines: Vec<&str> = shown.lines().collect();
@@ -217,7 +218,11 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     if let Some((top, col)) = title {
         let strip: Vec<String> = lines[top + 1..]
             .iter()
-            .take_while(|l| !l.starts_with(" t ") && !l.starts_with('┌'))
+            .take_while(|l| {
+                !l.starts_with(" t ")
+                    && !l.starts_with(&format!(" {}", panels::NO_BODY))
+                    && !l.starts_with('┌')
+            })
             .map(|l| l.chars().skip(col).collect::<String>())
             .collect();
         let full: Vec<String> = loop_strip::lines(app)
