@@ -238,7 +238,7 @@ fn a_scene_of_cloths_only_works_in_every_view_without_a_panic() {
         Some("no rigid body in this scene: Tab has nothing to pick")
     );
     // Phases, frames, step back, axes, frame, trail, arrows, layouts, compare, graph, study.
-    keys(&mut app, "nnnn>>>>vvvftaic,,");
+    keys(&mut app, "nnnn>>>>vvvftaic,,eW");
     for (w, h) in [(80, 24), (120, 40), (200, 60)] {
         for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
             app.layout = layout;

@@ -163,8 +163,8 @@ fn words(lines: &[String]) -> Vec<String> {
 
 /// Checks that no number or unit is cut on `shown`: every panel whose title line is shown has
 /// every row of `tables::panel_text` in full (the cloth panels too, and their text lines); the
-/// status fields are whole; and the loop strip's
-/// words, as far as shown, are the words of its full text (a cut word would differ).
+/// status fields are whole; and the loop strip's words, as far as shown, are the words of its
+/// full text (a cut word would differ).
 fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     let lines: Vec<&str> = shown.lines().collect();
     let mut all = tables::panels(&app.snapshot, app.frame);

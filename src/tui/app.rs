@@ -263,6 +263,10 @@ impl App {
                     text: String::new(),
                 };
             }
+            Message::OpenSettings | Message::WriteScene if self.lesson.scene.bodies.is_empty() => {
+                self.notice =
+                    Some("no rigid body in this scene: the settings form edits a body's".into());
+            }
             Message::OpenSettings => {
                 self.running = false;
                 self.overlay =
