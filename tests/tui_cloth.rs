@@ -125,6 +125,12 @@ fn a_cube_over_a_trampoline_at_120x40_and_80x24() {
     insta::assert_snapshot!("trampoline_80x24", screen_text(&app, 80, 24));
     keys(&mut app, "L");
     insta::assert_snapshot!("trampoline_stage_120x40", screen_text(&app, 120, 40));
+    // Both methods in the strip after integrate: the body's, then the sheet's particle step.
+    keys(&mut app, "Lnnn");
+    insta::assert_snapshot!(
+        "trampoline_after_integrate_120x40",
+        screen_text(&app, 120, 40)
+    );
 }
 
 #[test]

@@ -147,9 +147,13 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         Some(Phase::Integrate) => integrate(s),
         Some(Phase::Collide) => collide(world, s),
     };
-    // The cloths' particle step (integrate) and contacts (collide), after the body's.
+    // The cloths' particle step (integrate: under the body's method, before its numbers, so
+    // that a short strip shows both methods) and contacts (collide, after the body's).
     match s.phase {
-        Some(Phase::Integrate) => lines.extend(cloth_steps(world, s)),
+        Some(Phase::Integrate) => {
+            let at = lines.len().min(1);
+            lines.splice(at..at, cloth_steps(world, s));
+        }
         Some(Phase::Collide) => lines.extend(cloth_contacts(world, s)),
         _ => {}
     }
@@ -192,7 +196,7 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         lines.push(line(
             format!("cloth {}: ", view.name),
             format!(
-                "one {} step of its {} free particles, f = springs (+ damping) + declared effects, h = dt = {} s",
+                "{} on its {} free particles, h = dt = {} s   (f: springs, damping, effects)",
                 view.integrator,
                 view.particles - view.pinned,
                 number_plain(s.dt)
