@@ -1,6 +1,7 @@
 //! What the projection looks at: the view axis (front x–y, side z–y, top x–z) and the region of
-//! the world kept in frame, which grows (by doubling) whenever the body would leave it, and the
-//! mapping to terminal cells with the right aspect ratio (a cell is about twice as tall as wide).
+//! the world kept in frame, which grows (by doubling) whenever a body or a cloth would leave it,
+//! and the mapping to terminal cells with the right aspect ratio (a cell is about twice as tall
+//! as wide).
 
 use crate::physics::{Body, Obstacle, World};
 use nalgebra::Vector3;
