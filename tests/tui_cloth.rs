@@ -369,3 +369,56 @@ fn the_view_keeps_every_particle_in_frame() {
         }
     }
 }
+
+#[test]
+fn a_sheet_resting_on_the_ground_counts_every_particle_as_an_obstacle_contact() {
+    // A free 5 × 5 sheet (nothing pinned) dropped from 5 cm lies flat on the ground after 1 s:
+    // each step, gravity's velocity half pushes every particle into the ground and the
+    // velocity pass stops all 25 at the surface; the position pass then finds none inside.
+    // The panel says so.
+    let dir = std::env::temp_dir().join(format!("tumble-rest-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("rest.toml");
+    std::fs::write(
+        &path,
+        r#"title = "A sheet on the ground"
+[scene]
+dt = 0.002
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.0, friction = 0.5 }
+[[obstacle]]
+type = "ground"
+height = 0.0
+[[cloth]]
+name = "rest"
+size = [1.0, 1.0]
+count = [5, 5]
+position = [0.0, 0.05, 0.0]
+mass = 0.25
+stretch = 400.0
+damping = 0.2
+pinned = "none"
+integrator = "implicit-euler"
+"#,
+    )
+    .unwrap();
+    let lesson = tumble::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let mut app = App::new(
+        lesson,
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    app.step_frames(500);
+    assert_eq!(app.world.cloth_obstacle_contacts(0), [25, 0]);
+    assert_eq!(app.snapshot.cloths[0].obstacle_contacts, [25, 0]);
+    let shown = screen_text(&app, 120, 40);
+    assert!(
+        shown.contains("with obstacles: 25 integrate, 0 collide"),
+        "{shown}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
