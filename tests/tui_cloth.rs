@@ -193,6 +193,11 @@ fn the_explicit_limit_is_named_when_dt_exceeds_it() {
     assert!(screen_text(&above, 160, 60).contains("above the limit: dt = 1.10 × h*"));
 }
 
+/// The sheet drawn in Braille.
+fn app_of_braille() -> App {
+    app(SHEET, false)
+}
+
 /// The rectangle the projection draws in (inside its border, above its legend line).
 fn drawing_rect(app: &App, width: u16, height: u16) -> Rect {
     let status = status_bar::height(app, width, height);
@@ -232,6 +237,30 @@ fn pinned_particles_are_drawn_where_their_positions_project() {
         .filter(|&p| buf[p].fg == theme::PINNED)
         .count();
     assert_eq!(marks, 4, "{}", text(&buf));
+    // In Braille the marks are printed by the canvas, which rounds positions its own way:
+    // each corner's `x` is within one cell of where its position maps.
+    let mut braille = app_of_braille();
+    braille.step_frames(25);
+    keys(&mut braille, "vv");
+    let buf = export::render(&braille, width, height);
+    let cloth = &braille.world.cloths()[0];
+    for (k, _) in cloth.pinned.iter().enumerate().filter(|(_, p)| **p) {
+        let (h, v) = braille.axis.project(&cloth.positions[k]);
+        let (c, r) = mapping.cell(h, v);
+        let near = (-1..=1).any(|dc: i32| {
+            (-1..=1).any(|dr: i32| {
+                let x = (i32::from(area.x) + c.floor() as i32 + dc) as u16;
+                let y = (i32::from(area.y) + r.floor() as i32 + dr) as u16;
+                let cell = &buf[(x, y)];
+                cell.symbol() == "x" && cell.fg == theme::PINNED
+            })
+        });
+        assert!(
+            near,
+            "Braille: no pinned mark near particle {k}:\n{}",
+            text(&buf)
+        );
+    }
 }
 
 #[test]
