@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use tumble::tables::{self, Frame};
 use tumble::tui::export;
 use tumble::tui::layout::ScreenLayout;
-use tumble::tui::{loop_strip, panels, App, Comparison, Options};
+use tumble::tui::{cloth_panel, loop_strip, panels, App, Comparison, Options};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -162,12 +162,26 @@ fn words(lines: &[String]) -> Vec<String> {
 }
 
 /// Checks that no number or unit is cut on `shown`: every panel whose title line is shown has
-/// every row of `tables::panel_text` in full; the status fields are whole; and the loop strip's
-/// words, as far as shown, are the words of its full text (a cut word would differ).
+/// every row of `tables::panel_text` in full (the cloth panels too, and their text lines); the
+/// status fields are whole; and the loop strip's words, as far as shown, are the words of its
+/// full text (a cut word would differ).
 fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     let lines: Vec<&str> = shown.lines().collect();
     let mut all = tables::panels(&app.snapshot, app.frame);
     all.push(panels::essentials(&app.snapshot, app.frame));
+    for c in &app.snapshot.cloths {
+        let (panel, text) = cloth_panel::panel(c, app.snapshot.dt);
+        let title = format!("│{}", panel.title);
+        if lines.iter().any(|l| l.ends_with(&title)) {
+            for t in &text {
+                assert!(
+                    shown.contains(t.as_str()),
+                    "{context}: cloth panel shown without `{t}` in full:\n{shown}"
+                );
+            }
+        }
+        all.push(panel);
+    }
     for panel in &all {
         let title = format!("│{}", panel.title);
         if !lines.iter().any(|l| l.ends_with(&title)) {
@@ -187,7 +201,11 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
         format!("t {} s", tables::number_plain(s.time)),
         format!("dt {} s", tables::number_plain(s.dt)),
         format!("step {}", s.step),
-        format!("integrator {}", s.integrator.name()),
+        if s.bodies.is_empty() {
+            format!("integrator {}", s.cloths[0].integrator)
+        } else {
+            format!("integrator {}", s.integrator.name())
+        },
     ] {
         assert!(shown.contains(&field), "{context}: no `{field}`:\n{shown}");
     }
@@ -200,7 +218,11 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     if let Some((top, col)) = title {
         let strip: Vec<String> = lines[top + 1..]
             .iter()
-            .take_while(|l| !l.starts_with(" t ") && !l.starts_with('┌'))
+            .take_while(|l| {
+                !l.starts_with(" t ")
+                    && !l.starts_with(&format!(" {}", panels::NO_BODY))
+                    && !l.starts_with('┌')
+            })
             .map(|l| l.chars().skip(col).collect::<String>())
             .collect();
         let full: Vec<String> = loop_strip::lines(app)
@@ -229,10 +251,18 @@ fn no_number_or_unit_is_cut_at_any_width_from_80_to_240() {
         )),
     );
     keys(&mut compare, ">>>>>nn");
+    let mut sheet = fixture("tui-cloth-sheet.toml");
+    sheet.step_frames(25);
+    let mut trampoline = fixture("tui-cloth-trampoline.toml");
+    keys(&mut trampoline, "k");
+    trampoline.step_frames(150);
+    keys(&mut trampoline, "nnn");
     let mut apps = vec![
         ("box", box_app),
         ("compare", compare),
         ("lesson 2", lesson_two()),
+        ("cloth alone", sheet),
+        ("cube over a trampoline, compare", trampoline),
     ];
     for (name, app) in &mut apps {
         for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {

@@ -169,19 +169,6 @@ pub fn cloth_named(lesson: &Lesson, name: &str) -> Result<usize, Failure> {
     })
 }
 
-/// The app (and `shot`, `record`) draws scenes with at least one body; a scene of cloths only
-/// is for `walk` and `run --cloth` (the app does not draw cloths yet).
-pub fn drawable(lesson: &Lesson) -> Result<(), Failure> {
-    if lesson.scene.bodies.is_empty() {
-        return Err(Failure::bad_input(format!(
-            "{}: the app draws scenes with at least one body, and this one holds only cloths; \
-             use `tumble walk FILE --frames N` or `tumble run FILE --steps N --cloth NAME`",
-            lesson.path.display()
-        )));
-    }
-    Ok(())
-}
-
 pub fn integrator_named(name: &str) -> Result<Integrator, Failure> {
     Integrator::from_name(name).ok_or_else(|| {
         let names = Integrator::ALL.map(Integrator::name);
@@ -306,7 +293,6 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
     use std::io::IsTerminal;
     let path = app_file(file)?;
     let lesson = crate::lessons::load(&path)?;
-    drawable(&lesson)?;
     let compare = match compare {
         None => None,
         Some(name) => {

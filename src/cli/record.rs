@@ -39,7 +39,6 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
         )));
     }
     let lesson = load_with(&args.file, &args.overrides)?;
-    super::drawable(&lesson)?;
     let mut app = App::new(
         lesson,
         Options {

@@ -44,7 +44,6 @@ pub fn app_at(
         )));
     }
     let lesson = load_with(file, overrides)?;
-    super::drawable(&lesson)?;
     let mut app = App::new(
         lesson,
         Options {

@@ -94,6 +94,11 @@ pub struct ClothView {
     pub explicit_limit: f64,
     /// Particle–body contacts in the last collide phase.
     pub body_contacts: usize,
+    /// Particle–obstacle contacts in the last step: velocity pass (integrate), position pass
+    /// (collide).
+    pub obstacle_contacts: [usize; 2],
+    /// Whether the particle integrator is explicit (then bounded by `explicit_limit`).
+    pub explicit: bool,
 }
 
 impl ClothView {
@@ -118,6 +123,8 @@ impl ClothView {
                     stiffness_limit: limit.stiffness_limit(),
                     explicit_limit: limit.dt(),
                     body_contacts: world.cloth_body_contacts(k),
+                    obstacle_contacts: world.cloth_obstacle_contacts(k),
+                    explicit: c.integrator.is_explicit(),
                 }
             })
             .collect()

@@ -105,6 +105,9 @@ pub struct Checkpoint {
     cloths: Cloths,
     /// Per cloth: particle–body contacts in the last collide phase.
     cloth_body_contacts: Vec<usize>,
+    /// Per cloth: particle–obstacle contacts of the last step's velocity pass (integrate)
+    /// and position pass (collide).
+    cloth_obstacle_contacts: Vec<[usize; 2]>,
 }
 
 /// The cloths of a checkpoint; two are equal when every particle's position and velocity and
@@ -326,19 +329,21 @@ impl World {
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
-        for cloth in &mut now.cloths.0 {
+        now.cloth_obstacle_contacts
+            .resize(now.cloths.0.len(), [0, 0]);
+        for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             cloth.velocity_step(loads, self.dt);
             if !self.obstacles.is_empty() {
-                let taken = cloth
-                    .contact_velocities(
-                        &self.obstacles,
-                        restitution,
-                        friction,
-                        loads,
-                        self.dt,
-                        &mut self.particle_contacts,
-                    )
-                    .energy_taken;
+                let report = cloth.contact_velocities(
+                    &self.obstacles,
+                    restitution,
+                    friction,
+                    loads,
+                    self.dt,
+                    &mut self.particle_contacts,
+                );
+                now.cloth_obstacle_contacts[k] = [report.contacts, 0];
+                let taken = report.energy_taken;
                 if taken != 0.0 {
                     now.ledger.book_contact(taken, 0.0);
                 }
@@ -368,16 +373,20 @@ impl World {
             .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
         let now = &mut self.now;
         now.cloth_body_contacts.clear();
-        for cloth in &mut now.cloths.0 {
+        now.cloth_obstacle_contacts
+            .resize(now.cloths.0.len(), [0, 0]);
+        for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             if !self.obstacles.is_empty() {
-                cloth.collide_obstacles(
-                    &self.obstacles,
-                    model.restitution,
-                    model.friction,
-                    &self.cloth_loads,
-                    self.dt,
-                    &mut self.particle_contacts,
-                );
+                now.cloth_obstacle_contacts[k][1] = cloth
+                    .collide_obstacles(
+                        &self.obstacles,
+                        model.restitution,
+                        model.friction,
+                        &self.cloth_loads,
+                        self.dt,
+                        &mut self.particle_contacts,
+                    )
+                    .contacts;
             }
             let touching = collide_bodies(
                 cloth,
@@ -515,6 +524,17 @@ impl World {
             .get(index)
             .copied()
             .unwrap_or(0)
+    }
+
+    /// Particle–obstacle contacts of cloth `index` in the last step: `[velocity pass,
+    /// position pass]` — particles stopped at an obstacle's surface within the integrate
+    /// phase, and particles pushed back out by the collide phase.
+    pub fn cloth_obstacle_contacts(&self, index: usize) -> [usize; 2] {
+        self.now
+            .cloth_obstacle_contacts
+            .get(index)
+            .copied()
+            .unwrap_or([0, 0])
     }
 
     /// Whether anything can touch: obstacles, or more than one body.
@@ -934,5 +954,6 @@ fn fresh(
         guard,
         cloths: Cloths(cloths.to_vec()),
         cloth_body_contacts: vec![0; cloths.len()],
+        cloth_obstacle_contacts: vec![[0, 0]; cloths.len()],
     }
 }

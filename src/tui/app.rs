@@ -5,10 +5,10 @@
 
 use super::history::{Entry, History, DEFAULT_CAPACITY};
 use super::keys::{self, Context, Message};
-use super::series::EnergySeries;
+use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
-use super::viewport::{Axis, Region};
+use super::viewport::{shown_points, Axis, Region};
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
 use crate::scene::{Lesson, SceneEdits};
 use crate::tables::Frame;
@@ -156,11 +156,7 @@ impl App {
     pub fn new(lesson: Lesson, options: Options) -> App {
         let world = lesson.scene.world();
         let snapshot = world.snapshot();
-        let region = Region::initial(
-            &lesson.scene.first().body,
-            &every_vertex(&snapshot),
-            world.obstacles(),
-        );
+        let region = Region::of_world(&world);
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
         let real_time = 1.0 / lesson.scene.dt;
         let speed = SPEEDS
@@ -267,6 +263,10 @@ impl App {
                     text: String::new(),
                 };
             }
+            Message::OpenSettings | Message::WriteScene if self.lesson.scene.bodies.is_empty() => {
+                self.notice =
+                    Some("no rigid body in this scene: the settings form edits a body's".into());
+            }
             Message::OpenSettings => {
                 self.running = false;
                 self.overlay =
@@ -346,8 +346,11 @@ impl App {
                         self.snapshot.body_name,
                         self.selected + 1
                     ));
-                } else {
+                } else if count == 1 {
                     self.notice = Some("one body in this scene: Tab has nothing to pick".into());
+                } else {
+                    self.notice =
+                        Some("no rigid body in this scene: Tab has nothing to pick".into());
                 }
             }
             Message::NextCompare => self.next_compare(),
@@ -363,6 +366,8 @@ impl App {
             Message::ToggleStudy => {
                 if self.view == View::Study {
                     self.view = View::Loop;
+                } else if self.world.body_count() == 0 {
+                    self.view = View::Study;
                 } else {
                     if !self
                         .study
@@ -578,10 +583,10 @@ impl App {
     /// Re-reads the snapshots and keeps the bodies in frame.
     fn refresh(&mut self) {
         self.snapshot = self.world.snapshot_of(self.selected);
-        let mut shown = every_vertex(&self.snapshot);
+        let mut shown = shown_points(&self.world);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot_of(self.selected);
-            shown.extend_from_slice(&ghost.snapshot.vertices);
+            shown.extend(shown_points(&ghost.world));
         }
         self.region.include(&shown);
         let page = self.lesson.page_at(self.snapshot.time).map(|(i, _)| i);
@@ -612,12 +617,9 @@ impl App {
 
     /// Records the frame just finished in the energy series.
     fn record_frame(&mut self) {
-        let energy = self.world.energy_of(self.world.state());
+        let energy = graphed_energy(&self.world);
         let drift = self.world.energy_balance().drift;
-        let ghost = self
-            .ghost
-            .as_ref()
-            .map(|g| g.world.energy_of(g.world.state()).total);
+        let ghost = self.ghost.as_ref().map(|g| graphed_energy(&g.world).total);
         self.series.record(
             self.world.step_count(),
             self.world.dt(),
@@ -725,11 +727,7 @@ impl App {
         self.divergence = None;
         self.running = false;
         self.snapshot = self.world.snapshot_of(self.selected);
-        self.region = Region::initial(
-            &self.lesson.scene.first().body,
-            &every_vertex(&self.snapshot),
-            self.world.obstacles(),
-        );
+        self.region = Region::of_world(&self.world);
         self.series = EnergySeries::new(&self.snapshot, self.lesson.scene.duration);
         self.refresh();
     }
@@ -876,13 +874,4 @@ fn apply(world: &mut World, comparison: Comparison) {
             }
         }
     }
-}
-
-/// The vertices of every body of a snapshot (what the view must keep in frame).
-fn every_vertex(snapshot: &Snapshot) -> Vec<nalgebra::Vector3<f64>> {
-    snapshot
-        .bodies
-        .iter()
-        .flat_map(|b| b.vertices.iter().copied())
-        .collect()
 }

@@ -1,6 +1,8 @@
 //! The loop strip: derive → forces → integrate → collide, the phase just run highlighted and
 //! its formulas written out with the numbers it produced (for a collision, the impulse
-//! arithmetic of each contact).
+//! arithmetic of each contact). With cloths, integrate also shows each cloth's particle step
+//! (its integrator's formulas) and collide the particles' contacts with obstacles and bodies;
+//! a scene of cloths only has no body phases to show.
 
 use super::app::App;
 use super::theme;
@@ -113,7 +115,10 @@ fn line(formula: impl Into<String>, numbers: impl Into<String>) -> Line<'static>
 }
 
 fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
-    match s.phase {
+    if world.body_count() == 0 {
+        return cloth_formulas(world, s);
+    }
+    let mut lines = match s.phase {
         None => vec![
             line("derive ", "I⁻¹ = R·Ibody⁻¹·Rᵀ, ω = I⁻¹·L, v = P/M        forces  F and τ of the declared effects"),
             line("integrate ", format!("one {} step of (x, orientation, P, L)   collide  push vertices out of obstacles", s.integrator.name())),
@@ -133,7 +138,7 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
                 format!(
                     " = {} / {} = {} m/s",
                     vector(&s.linear_momentum),
-                    number_plain(world.body().mass),
+                    number_plain(body_mass(world, s)),
                     vector(&s.velocity)
                 ),
             ),
@@ -141,12 +146,130 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         Some(Phase::Forces) => forces(world, s),
         Some(Phase::Integrate) => integrate(s),
         Some(Phase::Collide) => collide(world, s),
+    };
+    // The cloths' particle step (integrate: under the body's method, before its numbers, so
+    // that a short strip shows both methods) and contacts (collide, after the body's).
+    match s.phase {
+        Some(Phase::Integrate) => {
+            let at = lines.len().min(1);
+            lines.splice(at..at, cloth_steps(world, s));
+        }
+        Some(Phase::Collide) => lines.extend(cloth_contacts(world, s)),
+        _ => {}
     }
+    lines
+}
+
+/// The mass of the body the panels show.
+fn body_mass(world: &World, s: &Snapshot) -> f64 {
+    world.bodies().get(s.body_index).map_or(0.0, |b| b.mass)
+}
+
+/// A scene of cloths only: derive and forces have no body to work on; integrate is the
+/// particle step, collide the particles' contacts.
+fn cloth_formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+    match s.phase {
+        None => vec![
+            line(
+                "no rigid body in this scene: ",
+                "derive and forces have nothing to do; the particles' forces are found inside their step",
+            ),
+            line(
+                "integrate ",
+                "one step of every cloth's particle integrator        collide  particles against obstacles",
+            ),
+            line("Press n to run one phase, → a whole frame, space to run; ? lists every key.", ""),
+        ],
+        Some(Phase::Derive) | Some(Phase::Forces) => vec![line(
+            "no rigid body: nothing to do in this phase",
+            "   (the springs', gravity's and drag's forces on the particles are found inside the particle step, in integrate)",
+        )],
+        Some(Phase::Integrate) => cloth_steps(world, s),
+        Some(Phase::Collide) => cloth_contacts(world, s),
+    }
+}
+
+/// Integrate: each cloth's particle step, its formulas and what it produced.
+fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+    let mut lines = Vec::new();
+    for (c, view) in world.cloths().iter().zip(&s.cloths) {
+        lines.push(line(
+            format!("cloth {}: ", view.name),
+            format!(
+                "{} on its {} free particles, h = dt = {} s   (f: springs, damping, effects)",
+                view.integrator,
+                view.particles - view.pinned,
+                number_plain(s.dt)
+            ),
+        ));
+        for formula in c.integrator.formula() {
+            lines.push(line(format!("  {formula}"), ""));
+        }
+        let [stopped, _] = view.obstacle_contacts;
+        let obstacles = if world.obstacles().is_empty() {
+            String::new()
+        } else {
+            format!(", {stopped} stopped at an obstacle's surface")
+        };
+        lines.push(line(
+            "  ",
+            format!(
+                "max speed = {} m/s, max stretch = {} %, T = {} J, U = {} J{obstacles}",
+                number_plain(view.max_speed),
+                number_plain(view.max_stretch_percent),
+                number_plain(view.kinetic),
+                number_plain(view.spring)
+            ),
+        ));
+    }
+    lines
+}
+
+/// Collide: each cloth's particles against obstacles (pushed out) and bodies (both ways).
+fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+    let mut lines = Vec::new();
+    if world.cloths().is_empty() {
+        return lines;
+    }
+    if world.contact_model().is_none() {
+        return vec![line(
+            "cloths: no contact declared: nothing to detect, the phase costs nothing",
+            "",
+        )];
+    }
+    let (obstacles, bodies) = (!world.obstacles().is_empty(), world.body_count() > 0);
+    if obstacles {
+        lines.push(line(
+            "particle in an obstacle: x ← x + depth·n,  v·n ← −(1+e)·v·n if fast, else 0  (+ friction)",
+            "",
+        ));
+    }
+    if bodies {
+        lines.push(line(
+            "particle in a body: u = v_p − (v_b + ω×r),  j = −(1+e)·uₙ/k,  +J on the particle, −J on the body",
+            "",
+        ));
+    }
+    for view in &s.cloths {
+        let [_, pushed] = view.obstacle_contacts;
+        let mut what = Vec::new();
+        if obstacles {
+            what.push(format!("{pushed} pushed out of obstacles"));
+        }
+        if bodies {
+            what.push(format!("{} touching bodies", view.body_contacts));
+        }
+        if what.is_empty() {
+            what.push("nothing to touch".to_string());
+        }
+        lines.push(line(format!("cloth {}: ", view.name), what.join(", ")));
+    }
+    lines
 }
 
 fn forces(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
-    let mass = world.body().mass;
+    let mass = body_mass(world, s);
     if world.effects().list().is_empty() {
         lines.push(line("no effects declared: F = 0, τ = 0", ""));
     }
@@ -213,7 +336,7 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
 fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let obstacles = world.obstacles();
     let bodies = world.body_count();
-    if obstacles.is_empty() && bodies < 2 {
+    if obstacles.is_empty() && bodies < 2 && world.cloths().is_empty() {
         return vec![line(
             "no obstacles declared: nothing to detect, the phase costs nothing",
             "",

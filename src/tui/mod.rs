@@ -18,15 +18,18 @@
 //! | `screen` | the whole screen, overlays, the "enlarge" message |
 //! | `header`, `status_bar` | top line; bottom lines |
 //! | `loop_view`, `energy_view` | the views (one file each) |
-//! | `projection`, `panels`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
+//! | `projection`, `panels`, `cloth_panel`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
 //! | `help`, `picker`, `divergence_dialog` | the overlays |
 //! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
 //! | `jump_prompt`, `timeline` | the jump prompt (`J`); where a run pauses by itself |
 //!
 //! When paused the app blocks on input; when running it advances on a fixed dt, as many frames
-//! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`]).
+//! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`], and
+//! at most [`MAX_STEP_TIME_PER_RENDER`] of measured physics: a heavy scene runs slower than
+//! asked rather than freeze the screen).
 
 pub mod app;
+pub mod cloth_panel;
 pub mod divergence_dialog;
 pub mod energy_graph;
 pub mod energy_view;
@@ -64,6 +67,22 @@ use std::time::{Duration, Instant};
 pub const RENDER_INTERVAL: Duration = Duration::from_millis(33);
 /// Most frames simulated per render; beyond that the simulation falls behind the clock.
 pub const MAX_FRAMES_PER_RENDER: u64 = 5_000;
+
+/// Most physics time between two renders while running: a scene whose frames cost more than
+/// the clock gives them falls behind real time rather than leave keys and screen waiting.
+pub const MAX_STEP_TIME_PER_RENDER: Duration = Duration::from_millis(50);
+
+/// How many frames fit in [`MAX_STEP_TIME_PER_RENDER`] at the measured cost per frame (at
+/// least one; unbounded before anything is measured).
+pub fn affordable_frames(ns_per_step: Option<f64>) -> u64 {
+    match ns_per_step {
+        Some(ns) if ns > 0.0 => {
+            let budget = MAX_STEP_TIME_PER_RENDER.as_secs_f64() * 1e9;
+            ((budget / ns).floor() as u64).max(1)
+        }
+        _ => MAX_FRAMES_PER_RENDER,
+    }
+}
 
 /// Runs the app on the terminal until the user quits; the terminal is always restored.
 pub fn run(lesson: Lesson, options: Options) -> std::io::Result<()> {
@@ -128,8 +147,33 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
         if pending > MAX_FRAMES_PER_RENDER as f64 {
             pending = 0.0; // too slow to keep up: drop the backlog rather than stall
         }
+        // A heavy scene (a large cloth) must not freeze the screen: at most
+        // MAX_STEP_TIME_PER_RENDER of physics between renders, the backlog dropped.
+        let affordable = affordable_frames(app.ns_per_step);
+        let frames = if frames > affordable {
+            pending = 0.0;
+            affordable
+        } else {
+            frames
+        };
         if frames > 0 {
             app.step_frames(frames);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_render_affords_the_frames_that_fit_in_its_physics_budget() {
+        // 50 ms per render: at 1.25 ms per frame (a 30 × 30 implicit sheet), 40 frames; at
+        // 1 µs, 50 000 (the cap MAX_FRAMES_PER_RENDER applies separately); a frame slower
+        // than the budget still runs, one per render; nothing measured yet: no bound.
+        assert_eq!(affordable_frames(Some(1.25e6)), 40);
+        assert_eq!(affordable_frames(Some(1e3)), 50_000);
+        assert_eq!(affordable_frames(Some(1e9)), 1);
+        assert_eq!(affordable_frames(None), MAX_FRAMES_PER_RENDER);
     }
 }

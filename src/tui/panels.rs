@@ -1,8 +1,11 @@
 //! The numeric panels: the tables of `tables::panels` (state, inertia tensor, angular velocity,
-//! force and torque, momenta, energy), cells changed by the last action highlighted, and in
-//! compare mode the ghost's numbers on a line under each of the first's.
+//! force and torque, momenta, energy), then one cloth panel per cloth (`cloth_panel`), cells
+//! changed by the last action highlighted, and in compare mode the ghost's numbers on a line
+//! under each of the first's. A scene of cloths only shows one line saying it has no rigid
+//! body, the scene's energy and the cloth panels.
 
 use super::app::App;
+use super::cloth_panel;
 use super::theme;
 use crate::physics::Snapshot;
 use crate::tables::{self, Frame, Panel, Row};
@@ -147,7 +150,9 @@ fn order(count: usize, compare: bool) -> Vec<usize> {
     order
 }
 
-/// Every panel's lines with its title, in stacking order.
+/// Every panel's lines with its title, in stacking order: the body's state, one panel per
+/// cloth, the body's other panels (with no body: one line saying so, the cloth panels, the
+/// scene's energy).
 fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
     let panels = tables::panels(&app.snapshot, app.frame);
     let previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
@@ -155,20 +160,48 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
         .ghost
         .as_ref()
         .map(|g| (tables::panels(&g.snapshot, app.frame), g.comparison.name()));
-    order(panels.len(), compare.is_some())
-        .into_iter()
-        .map(|i| {
-            let view = PanelView {
-                panel: &panels[i],
-                previous: previous.as_ref().and_then(|p| p.get(i)),
-                compare: compare
-                    .as_ref()
-                    .and_then(|(c, name)| c.get(i).map(|p| (p, *name))),
-            };
-            (view.lines(), panels[i].title.clone())
-        })
-        .collect()
+    let no_body = app.snapshot.bodies.is_empty();
+    let shown: Vec<usize> = if no_body {
+        vec![PanelId::Energy.index()]
+    } else {
+        order(panels.len(), compare.is_some())
+    };
+    let mut views: Vec<(Vec<Line<'static>>, String)> = Vec::new();
+    if no_body {
+        views.push((
+            vec![Line::styled(NO_BODY.to_string(), UNIT)],
+            NO_BODY.to_string(),
+        ));
+    }
+    views.extend(shown.into_iter().map(|i| {
+        let view = PanelView {
+            panel: &panels[i],
+            previous: previous.as_ref().and_then(|p| p.get(i)),
+            compare: compare
+                .as_ref()
+                .and_then(|(c, name)| c.get(i).map(|p| (p, *name))),
+        };
+        (view.lines(), panels[i].title.clone())
+    }));
+    // The cloth panels come second: after the body's state, or after the line saying there
+    // is no body (a scene with a cloth is about it: in a small terminal the other panels are
+    // left out before them).
+    let s = &app.snapshot;
+    let at = views.len().min(1);
+    let cloths = s.cloths.iter().enumerate().map(|(k, c)| {
+        let before = app.previous.as_ref().and_then(|p| p.cloths.get(k));
+        let ghost = app
+            .ghost
+            .as_ref()
+            .and_then(|g| g.snapshot.cloths.get(k).map(|c| (c, g.comparison.name())));
+        cloth_panel::lines(c, s.dt, before, ghost)
+    });
+    views.splice(at..at, cloths.collect::<Vec<_>>());
+    views
 }
+
+/// What the panels say in a scene of cloths only.
+pub const NO_BODY: &str = "no rigid body in this scene";
 
 fn widest(lines: &[Line]) -> u16 {
     lines.iter().map(|l| l.width()).max().unwrap_or(0) as u16
@@ -200,11 +233,24 @@ pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
             })
             .unwrap_or_default()
     };
-    let mut rows = pick(PanelId::State, &["x"]);
-    rows.extend(pick(PanelId::Momentum, &["v"]));
-    rows.extend(pick(PanelId::AngularVelocity, &["ω"]));
-    rows.extend(pick(PanelId::AngularMomentum, &["L"]));
+    let mut rows = Vec::new();
+    if !s.bodies.is_empty() {
+        rows.extend(pick(PanelId::State, &["x"]));
+        rows.extend(pick(PanelId::Momentum, &["v"]));
+        rows.extend(pick(PanelId::AngularVelocity, &["ω"]));
+        rows.extend(pick(PanelId::AngularMomentum, &["L"]));
+    }
     rows.extend(pick(PanelId::Energy, &["K, V, E", "  drift"]));
+    // Each cloth: how stretched, how fast, and dt against its explicit limit.
+    for c in &s.cloths {
+        let (panel, _) = cloth_panel::panel(c, s.dt);
+        rows.extend(
+            panel
+                .rows
+                .into_iter()
+                .filter(|r| ["max stretch", "max speed", "dt/h*"].contains(&r.label.as_str())),
+        );
+    }
     Panel {
         title: match frame {
             Frame::World => "essentials".to_string(),

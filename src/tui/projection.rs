@@ -1,5 +1,5 @@
-//! The side projection: an orthographic view of the body's edges (or mass points), the ground
-//! line, sphere and box obstacles, the contact points of the last collide phase, the barycenter
+//! The side projection: an orthographic view of the body's edges (or mass points), the cloths'
+//! grids, the ground line, sphere and box obstacles, the contact points of the last collide phase, the barycenter
 //! trail and, in compare mode, the ghost body. Pure ASCII (`--ascii`) or Braille dots.
 //!
 //! Depth cue: an edge whose two faces both turn away from the viewer is hidden behind the body
@@ -9,12 +9,15 @@
 //! length (their directions matter: lesson 2 is about L not being parallel to ω).
 //!
 //! One body is drawn by [`add_body`] from a [`BodyPicture`] (vertices, edges, pose, colour),
-//! so a scene with several bodies calls it once per body.
+//! so a scene with several bodies calls it once per body. A cloth is drawn by [`add_cloth`]:
+//! its grid of particles joined along x and z, pinned particles marked `x`; in compare mode
+//! the ghost's cloths too, in the ghost's colour.
 
 use super::app::App;
 use super::theme;
 use super::viewport::{Axis, Mapping};
 use crate::physics::body::box_edges;
+use crate::physics::cloth::Cloth;
 use crate::physics::{Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 use ratatui::buffer::Buffer;
@@ -96,16 +99,25 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
         ]
     };
     let mut items = Vec::new();
-    if app.arrows {
+    let body = app.world.bodies().get(app.selected);
+    if app.arrows && body.is_some() {
         items.push(item("ω", theme::OMEGA, "ang. vel.".into()));
         items.push(item("L", theme::MOMENTUM, "ang. mom.".into()));
     }
-    items.push(item("@", theme::BODY, "center".into()));
-    if !app.world.body().edges.is_empty() {
+    if body.is_some() {
+        items.push(item("@", theme::BODY, "center".into()));
+    }
+    if !app.world.cloths().is_empty() {
+        items.push(item("#", theme::CLOTH, "cloth".into()));
+        if app.world.cloths().iter().any(|c| c.pinned.contains(&true)) {
+            items.push(item("x", theme::PINNED, "pinned".into()));
+        }
+    }
+    if body.is_some_and(|b| !b.edges.is_empty()) {
         let mark = if app.ascii { "..." } else { "- -" };
         items.push(item(mark, theme::HIDDEN, "hidden".into()));
     }
-    if app.arrows {
+    if app.arrows && body.is_some() {
         items.push(vec![
             Span::styled("x", Style::new().fg(theme::AXES[0])),
             Span::styled("y", Style::new().fg(theme::AXES[1])),
@@ -114,7 +126,7 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
         ]);
     }
     items.push(item("*", theme::CONTACT, "contact".into()));
-    if app.trail {
+    if app.trail && body.is_some() {
         items.push(item(".", theme::TRAIL, "trail".into()));
     }
     if let Some(g) = &app.ghost {
@@ -161,8 +173,8 @@ pub struct Scene2d {
     pub segments: Vec<Segment>,
     /// (centre, radius, colour).
     pub circles: Vec<((f64, f64), f64, Color)>,
-    /// (point, colour, ASCII char): `@ % * O` print as characters in Braille too; others are
-    /// dots.
+    /// (point, colour, ASCII char): `@ % * x O` print as characters in Braille too; others
+    /// are dots.
     pub points: Vec<((f64, f64), Color, char)>,
     /// Text printed at a point (arrow labels, arrow heads), in both renderers: point, colour,
     /// text, and a screen direction to move it one cell along (a label past an arrow's head).
@@ -440,6 +452,49 @@ fn arrow(
     });
 }
 
+/// Adds one cloth: its grid (a segment between each particle and its neighbour along x and
+/// along z, the stretch springs' rest pattern — not the shear or bend springs), and its
+/// pinned particles as `x` in [`theme::PINNED`]. `ascii`: the ghost's cloth, every segment
+/// drawn with this character in `colour`, pinned particles not marked.
+pub fn add_cloth(
+    scene: &mut Scene2d,
+    axis: Axis,
+    cloth: &Cloth,
+    colour: Color,
+    ascii: Option<char>,
+) {
+    let [nx, nz] = cloth.count;
+    let p: Vec<(f64, f64)> = cloth.positions.iter().map(|x| axis.project(x)).collect();
+    scene.segments.reserve(2 * nx * nz);
+    for j in 0..nz {
+        for i in 0..nx {
+            let a = p[cloth.index(i, j)];
+            let mut to = |b: usize| {
+                scene.segments.push(Segment {
+                    from: a,
+                    to: p[b],
+                    colour,
+                    ascii,
+                    dashed: false,
+                })
+            };
+            if i + 1 < nx {
+                to(cloth.index(i + 1, j));
+            }
+            if j + 1 < nz {
+                to(cloth.index(i, j + 1));
+            }
+        }
+    }
+    if ascii.is_none() {
+        for (k, &pinned) in cloth.pinned.iter().enumerate() {
+            if pinned {
+                scene.points.push((p[k], theme::PINNED, 'x'));
+            }
+        }
+    }
+}
+
 fn scene_2d(app: &App) -> Scene2d {
     let axis = app.axis;
     let mut scene = Scene2d::default();
@@ -471,10 +526,19 @@ fn scene_2d(app: &App) -> Scene2d {
             }
         }
     }
-    if app.trail {
+    if app.trail && app.world.body_count() > 0 {
         for p in app.history.trail(TRAIL_LENGTH) {
             scene.points.push((axis.project(p), theme::TRAIL, '.'));
         }
+    }
+    // The cloths under the bodies (a body resting on a sheet is drawn on top of it).
+    if let Some(g) = &app.ghost {
+        for cloth in g.world.cloths() {
+            add_cloth(&mut scene, axis, cloth, theme::GHOST, Some(':'));
+        }
+    }
+    for cloth in app.world.cloths() {
+        add_cloth(&mut scene, axis, cloth, theme::CLOTH, None);
     }
     // Every other body, in its own colour (the panels show the selected one).
     for (i, view) in app.snapshot.bodies.iter().enumerate() {
@@ -494,18 +558,19 @@ fn scene_2d(app: &App) -> Scene2d {
         };
         add_body(&mut scene, axis, &picture);
     }
-    let body = &app.world.bodies()[app.selected];
-    if let Some(g) = &app.ghost {
-        let mut ghost = BodyPicture::of(&g.snapshot, &body.edges, body.radius);
-        ghost.colour = theme::GHOST;
-        ghost.ascii = Some(':');
-        add_body(&mut scene, axis, &ghost);
+    if let Some(body) = app.world.bodies().get(app.selected) {
+        if let Some(g) = &app.ghost {
+            let mut ghost = BodyPicture::of(&g.snapshot, &body.edges, body.radius);
+            ghost.colour = theme::GHOST;
+            ghost.ascii = Some(':');
+            add_body(&mut scene, axis, &ghost);
+        }
+        let mut picture = BodyPicture::of(&app.snapshot, &body.edges, body.radius);
+        if app.arrows {
+            picture.arrows = Some((app.snapshot.angular_velocity, app.snapshot.angular_momentum));
+        }
+        add_body(&mut scene, axis, &picture);
     }
-    let mut picture = BodyPicture::of(&app.snapshot, &body.edges, body.radius);
-    if app.arrows {
-        picture.arrows = Some((app.snapshot.angular_velocity, app.snapshot.angular_momentum));
-    }
-    add_body(&mut scene, axis, &picture);
     for c in &app.snapshot.contacts {
         scene
             .points
@@ -649,7 +714,7 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
             }
             for &(p, colour, ch) in &scene.points {
                 match ch {
-                    '@' | '%' | '*' => ctx.print(
+                    '@' | '%' | '*' | 'x' => ctx.print(
                         p.0,
                         p.1,
                         Span::styled(ch.to_string(), Style::new().fg(colour)),

@@ -3,7 +3,17 @@
 //! thinned by halves when long, with axes that only ever grow (by doubling) so the graph does
 //! not jump while it runs.
 
-use crate::physics::{Energy, Snapshot};
+use crate::physics::{Energy, Snapshot, World};
+
+/// The energy the graph follows in a world now: the first body's, or with cloths the whole
+/// scene's (bodies, particles and springs — a sheet's energy is what its lessons are about).
+pub fn graphed_energy(world: &World) -> Energy {
+    if world.cloths().is_empty() {
+        world.energy_of(world.state())
+    } else {
+        world.total_energy()
+    }
+}
 
 /// Points kept before the series is thinned to every other point.
 const MAX_POINTS: usize = 4096;
@@ -63,7 +73,11 @@ pub struct EnergySeries {
 impl EnergySeries {
     /// A series starting with the snapshot at t = 0; `duration` (if any) sets the time axis.
     pub fn new(first: &Snapshot, duration: Option<f64>) -> EnergySeries {
-        let e = first.initial_energy;
+        let (e, now) = if first.cloths.is_empty() {
+            (first.initial_energy, first.energy)
+        } else {
+            (first.system.initial_energy, first.system.energy)
+        };
         let values = [e.kinetic, e.potential, e.total, 0.0];
         let lo = values.iter().cloned().fold(f64::INFINITY, f64::min);
         let hi = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -85,13 +99,7 @@ impl EnergySeries {
             },
             initial_total: e.total,
         };
-        series.record(
-            first.step,
-            first.dt,
-            &first.energy,
-            first.energy_balance.drift,
-            None,
-        );
+        series.record(first.step, first.dt, &now, first.energy_balance.drift, None);
         series
     }
 

@@ -19,6 +19,10 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
     let effects = app.world.effects().names();
     let response = app.world.contact_model().map_or("—", |m| m.response.name());
     let mut fields: Vec<(&str, String)> = Vec::new();
+    let no_body = app.world.body_count() == 0;
+    if no_body {
+        fields.push(("", super::panels::NO_BODY.to_string()));
+    }
     if s.bodies.len() > 1 {
         fields.push((
             "body",
@@ -33,6 +37,7 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         (
             "integrator",
             match app.ghost.as_ref().map(|g| g.comparison) {
+                _ if no_body => cloth_integrators(app),
                 Some(Comparison::Integrator(i)) => {
                     format!("{} vs {}", s.integrator.name(), i.name())
                 }
@@ -55,6 +60,9 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
             },
         ),
     ]);
+    if !no_body && !s.cloths.is_empty() {
+        fields.push(("cloth", cloth_integrators(app)));
+    }
     if app.show_timing {
         if let Some(ns) = app.ns_per_step {
             fields.push(("", format!("{ns:.0} ns/step")));
@@ -76,6 +84,22 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         items.push(vec![Span::styled(notice.clone(), theme::NOTICE)]);
     }
     items
+}
+
+/// The cloths' particle integrators: `implicit-euler`, or `sheet implicit-euler, flag
+/// symplectic-euler` when several cloths use different ones.
+pub fn cloth_integrators(app: &App) -> String {
+    let cloths = &app.snapshot.cloths;
+    let first = cloths.first().map_or("—", |c| c.integrator);
+    if cloths.iter().all(|c| c.integrator == first) {
+        first.to_string()
+    } else {
+        cloths
+            .iter()
+            .map(|c| format!("{} {}", c.name, c.integrator))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
 }
 
 /// The status fields, whole, on as many lines of `width` columns as they need (a field is

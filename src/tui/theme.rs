@@ -28,6 +28,10 @@ pub const OMEGA: Color = Color::Yellow;
 pub const MOMENTUM: Color = Color::Cyan;
 /// Mass points of a `points` body.
 pub const MASS_POINT: Color = Color::LightYellow;
+/// A cloth's grid: the springs between neighbouring particles along x and z.
+pub const CLOTH: Color = Color::LightGreen;
+/// A cloth's pinned particles (held in place), drawn as `x`.
+pub const PINNED: Color = Color::LightRed;
 
 /// Row labels of the numeric panels.
 pub const LABEL: Style = Style::new().fg(Color::Cyan);

@@ -1,8 +1,9 @@
 //! What the projection looks at: the view axis (front x–y, side z–y, top x–z) and the region of
-//! the world kept in frame, which grows (by doubling) whenever the body would leave it, and the
-//! mapping to terminal cells with the right aspect ratio (a cell is about twice as tall as wide).
+//! the world kept in frame, which grows (by doubling) whenever a body or a cloth would leave it,
+//! and the mapping to terminal cells with the right aspect ratio (a cell is about twice as tall
+//! as wide).
 
-use crate::physics::{Body, Obstacle};
+use crate::physics::{Body, Obstacle, World};
 use nalgebra::Vector3;
 
 /// The view direction of the orthographic projection.
@@ -84,6 +85,11 @@ impl Region {
     /// The initial region: the body where it starts, the obstacles, the ground height, padded by
     /// the body's size.
     pub fn initial(body: &Body, vertices: &[Vector3<f64>], obstacles: &[Obstacle]) -> Region {
+        Region::padded(body.radius, vertices, obstacles)
+    }
+
+    /// The region around `vertices` and the obstacles, padded by `pad` (at least 1 mm).
+    fn padded(pad: f64, vertices: &[Vector3<f64>], obstacles: &[Obstacle]) -> Region {
         let mut min = Vector3::repeat(f64::INFINITY);
         let mut max = Vector3::repeat(f64::NEG_INFINITY);
         let mut add = |p: Vector3<f64>| {
@@ -107,13 +113,33 @@ impl Region {
                 }
             }
         }
-        let pad = body.radius.max(1e-3);
+        let pad = if pad.is_finite() { pad.max(1e-3) } else { 1e-3 };
         let (min, max) = (min - Vector3::repeat(pad), max + Vector3::repeat(pad));
         Region {
             min,
             max,
             max_extent: (max - min).max().max(MAX_BODY_DIAMETERS * 2.0 * pad),
         }
+    }
+
+    /// The initial region of a whole world: every body's vertices and every cloth's particles
+    /// where they start, the obstacles, padded by the first body's radius — or, with cloths
+    /// only, by a tenth of the cloths' largest extent.
+    pub fn of_world(world: &World) -> Region {
+        let points = shown_points(world);
+        let pad = if let Some(body) = world.bodies().first() {
+            body.radius
+        } else {
+            let (lo, hi) = points.iter().fold(
+                (
+                    Vector3::repeat(f64::INFINITY),
+                    Vector3::repeat(f64::NEG_INFINITY),
+                ),
+                |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+            );
+            0.1 * (hi - lo).max()
+        };
+        Region::padded(pad, &points, world.obstacles())
     }
 
     /// Moves until every point is inside. While the extent along an axis stays within
@@ -154,6 +180,17 @@ impl Region {
             }
         }
     }
+}
+
+/// What the view keeps in frame: every body's vertices and every cloth's particles.
+pub fn shown_points(world: &World) -> Vec<Vector3<f64>> {
+    let mut points: Vec<Vector3<f64>> = (0..world.body_count())
+        .flat_map(|i| world.vertices_of(i))
+        .collect();
+    for c in world.cloths() {
+        points.extend_from_slice(&c.positions);
+    }
+    points
 }
 
 /// The mapping from screen coordinates (right, up) to a grid of `cols × rows` cells.
