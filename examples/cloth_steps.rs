@@ -86,14 +86,12 @@ fn main() {
             }
             let c = &w.cloths()[0];
             println!(
-                "{case} dt={dt:.6e} steps={steps} y_min={:.9} cube_y={:.9} cg={}",
+                "{case} dt={dt:.6e} steps={steps} y_min={:.9} cube_y={:.9}",
                 c.positions
                     .iter()
                     .map(|x| x.y)
                     .fold(f64::INFINITY, f64::min),
                 w.state().position.y,
-                tumble::physics::cloth::implicit_euler::CG_ITER
-                    .load(std::sync::atomic::Ordering::Relaxed)
             );
         }
         "sheet-symplectic" | "sheet-implicit-1e-3" | "sheet-implicit-5e-3" => {
