@@ -79,17 +79,27 @@ impl Symmetric3 {
         Symmetric3([a, a, a, 0.0, 0.0, 0.0])
     }
 
-    /// self += S of a block.
+    /// S of a block as a matrix.
     #[inline(always)]
-    pub fn add(&mut self, b: &Block) {
+    pub fn of(b: &Block) -> Symmetric3 {
         let d = &b.direction;
-        let m = &mut self.0;
-        m[0] += b.along * d.x * d.x + b.across;
-        m[1] += b.along * d.y * d.y + b.across;
-        m[2] += b.along * d.z * d.z + b.across;
-        m[3] += b.along * d.x * d.y;
-        m[4] += b.along * d.x * d.z;
-        m[5] += b.along * d.y * d.z;
+        let ad = d * b.along;
+        Symmetric3([
+            ad.x * d.x + b.across,
+            ad.y * d.y + b.across,
+            ad.z * d.z + b.across,
+            ad.x * d.y,
+            ad.x * d.z,
+            ad.y * d.z,
+        ])
+    }
+
+    /// self += other.
+    #[inline(always)]
+    pub fn add(&mut self, other: &Symmetric3) {
+        for (a, b) in self.0.iter_mut().zip(&other.0) {
+            *a += b;
+        }
     }
 
     /// The inverse (adjugate over determinant); 0 when singular or not finite.
@@ -208,7 +218,6 @@ impl Workspace {
     /// Solves A Δv = rhs for the particles not pinned, A built from `blocks` and `diagonal`,
     /// P from `preconditioner` (inverted here); the result is in `solution`.
     pub fn solve(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
-        let n = self.diagonal.len();
         // P_i⁻¹ (pinned rows: 0, and the right-hand side and warm start filtered).
         for p in &mut self.preconditioner {
             *p = p.inverse();
@@ -239,17 +248,24 @@ impl Workspace {
             &mut self.product,
         );
         let mut delta = 0.0;
-        for i in 0..n {
-            self.residual[i] = self.rhs[i] - self.product[i];
-            self.preconditioned[i] = self.preconditioner[i].apply(&self.residual[i]);
-            delta += self.residual[i].dot(&self.preconditioned[i]);
+        for (((r, z), (b, q)), inverse) in (self.residual.iter_mut())
+            .zip(self.preconditioned.iter_mut())
+            .zip(self.rhs.iter().zip(&self.product))
+            .zip(&self.preconditioner)
+        {
+            *r = b - q;
+            *z = inverse.apply(r);
+            delta += r.dot(z);
         }
         if delta > delta0 {
             // A warm start worse than zero: start from zero.
             self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
             self.residual.clone_from(&self.rhs);
-            for i in 0..n {
-                self.preconditioned[i] = self.preconditioner[i].apply(&self.residual[i]);
+            for ((z, r), inverse) in (self.preconditioned.iter_mut())
+                .zip(&self.residual)
+                .zip(&self.preconditioner)
+            {
+                *z = inverse.apply(r);
             }
             delta = delta0;
         }
@@ -275,11 +291,16 @@ impl Workspace {
             }
             let alpha = delta / curvature;
             let mut next = 0.0;
-            for i in 0..n {
-                self.solution[i] += self.direction[i] * alpha;
-                self.residual[i] -= self.product[i] * alpha;
-                self.preconditioned[i] = self.preconditioner[i].apply(&self.residual[i]);
-                next += self.residual[i].dot(&self.preconditioned[i]);
+            for ((((x, r), z), (p, q)), inverse) in (self.solution.iter_mut())
+                .zip(self.residual.iter_mut())
+                .zip(self.preconditioned.iter_mut())
+                .zip(self.direction.iter().zip(&self.product))
+                .zip(&self.preconditioner)
+            {
+                *x += p * alpha;
+                *r -= q * alpha;
+                *z = inverse.apply(r);
+                next += r.dot(z);
             }
             let beta = next / delta;
             for (p, z) in self.direction.iter_mut().zip(&self.preconditioned) {
@@ -303,13 +324,13 @@ mod tests {
     #[test]
     fn the_symmetric_inverse_is_the_inverse() {
         let mut m = Symmetric3::diagonal(2.0);
-        m.add(&Block {
+        m.add(&Symmetric3::of(&Block {
             i: 0,
             j: 1,
             along: 3.0,
             across: 0.5,
             direction: Vector3::new(1.0, 2.0, -2.0) / 3.0,
-        });
+        }));
         let [a, e, i, b, c, f] = m.0;
         let full = Matrix3::new(a, b, c, b, e, f, c, f, i);
         let inv = m.inverse();

@@ -117,16 +117,11 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
                 direction,
             }
         };
-        preconditioner[i].add(block);
-        preconditioner[j].add(block);
+        let sum = Symmetric3::of(block);
+        preconditioner[i].add(&sum);
+        preconditioner[j].add(&sum);
     }
-    let outcome = work.solve(
-        std::env::var("TUMBLE_CG_TOL")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(cloth.solver.tolerance),
-        cloth.solver.max_iterations,
-    ); // TEMP
+    let outcome = work.solve(cloth.solver.tolerance, cloth.solver.max_iterations);
     if work.pinned.is_empty() {
         // Translation correction (module doc): Σ a_i Δv_i = Σ b_i exactly.
         let a: f64 = work.diagonal.iter().sum();

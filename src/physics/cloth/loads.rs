@@ -72,8 +72,11 @@ impl Cloth {
         let damped = self.springs.iter().any(|s| s.damping > 0.0);
         let damping_force = &mut self.scratch.damping_force;
         damping_force.clear();
+        // Slices of one length: the loops below index nothing else.
+        let (x, v, force) = (&x[..n], &v[..n], &mut force[..n]);
         if damped {
             damping_force.resize(n, Vector3::zeros());
+            let damping_force = &mut damping_force[..n];
             for s in &self.springs {
                 let d = x[s.j] - x[s.i];
                 let length = d.norm();
