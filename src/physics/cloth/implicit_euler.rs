@@ -68,12 +68,15 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
     let (x, v0) = (&cloth.positions, &cloth.velocities);
     // a_i = m_i + h k_drag,i;  b_i = h (m_i g − k_drag,i v₀_i);  P_i = a_i I.
     let gravity = loads.gravity.unwrap_or_else(Vector3::zeros);
-    for i in 0..n {
-        let m = cloth.masses[i];
+    for (((a, b), p), (&m, v)) in (work.diagonal.iter_mut())
+        .zip(work.rhs.iter_mut())
+        .zip(work.preconditioner.iter_mut())
+        .zip(cloth.masses.iter().zip(v0))
+    {
         let drag = loads.particle_drag(m, cloth.total_mass);
-        work.diagonal[i] = m + h * drag;
-        work.rhs[i] = (gravity * m - v0[i] * drag) * h;
-        work.preconditioner[i] = Symmetric3::diagonal(work.diagonal[i]);
+        *a = m + h * drag;
+        *b = (gravity * m - v * drag) * h;
+        *p = Symmetric3::diagonal(*a);
     }
     // One pass over the springs: b += h f₀ − h² K v₀ (f₀ with the damping at v₀), the block
     // S = h c d̂d̂ᵀ + h² k ((1 − t) d̂d̂ᵀ + t I), and P_i += S, P_j += S. A spring with both ends
