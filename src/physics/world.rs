@@ -108,6 +108,9 @@ pub struct Checkpoint {
     /// Per cloth: particle–obstacle contacts of the last step's velocity pass (integrate)
     /// and position pass (collide).
     cloth_obstacle_contacts: Vec<[usize; 2]>,
+    /// Per cloth: its energy after the last integrate phase (the collide phase starts from it
+    /// instead of measuring it again).
+    cloth_energies: Vec<Energy>,
 }
 
 /// The cloths of a checkpoint; two are equal when every particle's position and velocity and
@@ -331,6 +334,7 @@ impl World {
         let mut potential = 0.0;
         now.cloth_obstacle_contacts
             .resize(now.cloths.0.len(), [0, 0]);
+        now.cloth_energies.clear();
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             cloth.velocity_step(loads, self.dt);
             if !self.obstacles.is_empty() {
@@ -350,8 +354,9 @@ impl World {
             }
             let lost = cloth.advance_positions(loads, self.dt);
             now.ledger.drag_work -= lost.damping + lost.drag;
-            let e = cloth.energy(loads);
-            potential += e.spring + e.gravitational;
+            let e = cloth_energy(cloth, loads);
+            potential += e.potential;
+            now.cloth_energies.push(e);
         }
         potential
     }
@@ -366,7 +371,16 @@ impl World {
         if self.obstacles.is_empty() && self.bodies.is_empty() {
             return;
         }
-        let before = self.total_energy();
+        // The cloths' energy as the integrate phase left it (measured there).
+        let bodies_before = total_energy(&self.bodies, &self.effects, &self.now.states);
+        let before = if self.now.cloth_energies.len() == self.now.cloths.0.len() {
+            let cloths =
+                (self.now.cloth_energies.iter()).fold(Energy::default(), |sum, &e| sum + e);
+            bodies_before + cloths
+        } else {
+            self.total_energy()
+        };
+        let mut touched = false;
         let bounce_speed = self
             .effects
             .gravity()
@@ -387,6 +401,7 @@ impl World {
                         &mut self.particle_contacts,
                     )
                     .contacts;
+                touched |= !self.particle_contacts.is_empty();
             }
             let touching = collide_bodies(
                 cloth,
@@ -397,8 +412,10 @@ impl World {
                 bounce_speed,
             );
             now.cloth_body_contacts.push(touching);
+            touched |= touching > 0;
         }
-        let after = self.total_energy();
+        // Nothing touched: nothing changed.
+        let after = if touched { self.total_energy() } else { before };
         if after.total != before.total {
             let now = &mut self.now;
             now.ledger.book_contact(before.total, after.total);
@@ -487,12 +504,7 @@ impl World {
     /// Σ over cloths of T (kinetic) and U + V (potential).
     fn cloths_energy(&self, cloths: &[Cloth]) -> Energy {
         cloths.iter().fold(Energy::default(), |sum, c| {
-            let e = c.energy(&self.cloth_loads);
-            sum + Energy {
-                kinetic: e.kinetic,
-                potential: e.spring + e.gravitational,
-                total: e.total(),
-            }
+            sum + cloth_energy(c, &self.cloth_loads)
         })
     }
 
@@ -919,6 +931,16 @@ fn total_energy(bodies: &[Body], effects: &Effects, states: &[State]) -> Energy 
         .fold(Energy::default(), |e, (b, s)| e + energy(b, effects, s))
 }
 
+/// A cloth's T and U + V as the scene's energy.
+fn cloth_energy(cloth: &Cloth, loads: &ClothLoads) -> Energy {
+    let e = cloth.energy(loads);
+    Energy {
+        kinetic: e.kinetic,
+        potential: e.spring + e.gravitational,
+        total: e.total(),
+    }
+}
+
 /// The checkpoint of a world at its initial states.
 fn fresh(
     bodies: &[Body],
@@ -955,5 +977,6 @@ fn fresh(
         cloths: Cloths(cloths.to_vec()),
         cloth_body_contacts: vec![0; cloths.len()],
         cloth_obstacle_contacts: vec![[0, 0]; cloths.len()],
+        cloth_energies: Vec::new(),
     }
 }

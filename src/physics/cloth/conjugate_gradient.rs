@@ -1,35 +1,41 @@
 //! Preconditioned conjugate gradients on the implicit step's matrix, with Baraff & Witkin's
 //! filter for pinned particles.
 //!
-//! # The matrix: one 3×3 block per spring, matrix-free
+//! # The matrix: one compact block per spring, assembled once per step
 //!
 //! ```text
 //! A = diag(a_i I) + Σ_springs (i, j)  [  S_s  −S_s ]   rows/columns i, j
 //!                                     [ −S_s   S_s ]
 //! a_i = m_i + h k_drag,i,     S_s = h c d̂d̂ᵀ + h² k J           (see `spring`, `implicit_euler`)
-//!     = (h c + h² k (1 − t)) d̂d̂ᵀ + h² k t I,   t = max(0, 1 − ℓ₀/ℓ)   (stored as d̂ and 2 numbers)
+//!     = (h c + h² k (1 − t)) d̂d̂ᵀ + h² k t I,   t = max(0, 1 − ℓ₀/ℓ)
 //! (A p)_i = a_i p_i + Σ_{s ∋ i} ±S_s (p_i − p_j)
 //! ```
 //!
-//! Every spring's block is built once per step and used twice per product (for i and for j).
-//! Why not assemble a sparse matrix (CSR by 3×3 blocks): each particle's row would hold its
-//! ~13 neighbour blocks, i.e. the same blocks stored twice plus index arrays, built every step
-//! because the blocks change with the deformation; the spring loop does the same arithmetic
-//! with half the memory and no assembly. A is symmetric positive definite (M > 0 and every
-//! S_s positive semi-definite), which is what conjugate gradients need. A direct sparse
-//! factorisation would have to be redone every step (the blocks change), and on a 2-D grid
-//! its fill-in costs more than the ~10–30 iterations CG needs at the step sizes of interest.
+//! Every spring's block is built once per step, in the same pass over the springs as the
+//! forces and the right-hand side (`implicit_euler`), and stored compactly next to its two
+//! particle indices: `[i, j: u32; along, across: f64; d̂]`, 48 bytes, so that a product is one
+//! stream over the blocks (S r = along (d̂·r) d̂ + across r: 14 flops; ±(p_i − p_j) gathered
+//! and scattered: ~55 instructions a spring). A spring whose two ends are pinned has an empty
+//! block: it acts on no free particle. Why not a CSR matrix of 3×3 blocks by rows: each
+//! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
+//! twice as a full 3×3 plus index arrays, ~2× the flops per product (a full 3×3 product per
+//! neighbour against one compact product per spring). A is symmetric positive definite
+//! (M > 0 and every S_s positive semi-definite), which is what conjugate gradients need. A
+//! direct sparse factorisation would have to be redone every step (the blocks change), and on
+//! a 2-D grid its fill-in (bandwidth 3·nx) costs more than the few iterations CG needs.
 //!
 //! # Preconditioner: Jacobi by 3×3 particle blocks
 //!
-//! `P_i = a_i I + Σ_{s ∋ i} S_s` (the diagonal block of A), inverted once per step. It is the
-//! Jacobi preconditioner taken per particle rather than per scalar, so that a particle whose
-//! springs are much stiffer along one direction than across is scaled in each direction.
+//! `P_i = a_i I + Σ_{s ∋ i} S_s` (the diagonal block of A, symmetric: 6 numbers), summed in the
+//! spring pass and inverted once per step (adjugate over determinant). It is the Jacobi
+//! preconditioner taken per particle rather than per scalar, so that a particle whose springs
+//! are much stiffer along one direction than across is scaled in each direction.
 //!
 //! # The filter (Baraff & Witkin 1998, §5.3)
 //!
 //! A pinned particle's Δv is prescribed (0): the filter zeroes its rows in every residual and
-//! search direction, so CG works on the free particles only and never moves a pinned one.
+//! search direction (its P⁻¹ is 0, and its rows of every product are zeroed), so CG works on
+//! the free particles only and never moves a pinned one.
 //!
 //! ```text
 //! Δv ← filter(warm start);  r = filter(b − A Δv);  z = P⁻¹ r;  p = z;  δ = rᵀz
@@ -37,41 +43,110 @@
 //! while δ > ε² δ₀:   q = filter(A p);  α = δ / pᵀq;  Δv += α p;  r −= α q
 //!                    z = P⁻¹ r;  δ' = rᵀz;  p = z + (δ'/δ) p;  δ = δ'
 //! ```
+//!
+//! The stopping test is relative to the right-hand side, in the norm of P⁻¹ (ε is
+//! [`SolverSettings::tolerance`](super::sheet::SolverSettings); why its default is enough:
+//! `implicit_euler`).
 
-use super::spring::Spring;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 
-/// One spring's block `S = along·d̂d̂ᵀ + across·I` (module doc): 5 numbers, not 9.
+/// One spring's block `S = along·d̂d̂ᵀ + across·I` (module doc) and its particles.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Block {
-    pub direction: Vector3<f64>,
+    pub i: u32,
+    pub j: u32,
     pub along: f64,
     pub across: f64,
+    pub direction: Vector3<f64>,
 }
 
 impl Block {
     /// S r.
-    #[inline]
+    #[inline(always)]
     fn apply(&self, r: &Vector3<f64>) -> Vector3<f64> {
         self.direction * (self.along * self.direction.dot(r)) + r * self.across
     }
+}
 
-    /// S as a matrix.
+/// A symmetric 3×3 matrix by its 6 entries `[xx, yy, zz, xy, xz, yz]`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Symmetric3(pub [f64; 6]);
+
+impl Symmetric3 {
+    /// a I.
     #[inline]
-    fn matrix(&self) -> Matrix3<f64> {
-        self.direction * self.direction.transpose() * self.along + Matrix3::identity() * self.across
+    pub fn diagonal(a: f64) -> Symmetric3 {
+        Symmetric3([a, a, a, 0.0, 0.0, 0.0])
+    }
+
+    /// S of a block as a matrix.
+    #[inline(always)]
+    pub fn of(b: &Block) -> Symmetric3 {
+        let d = &b.direction;
+        let ad = d * b.along;
+        Symmetric3([
+            ad.x * d.x + b.across,
+            ad.y * d.y + b.across,
+            ad.z * d.z + b.across,
+            ad.x * d.y,
+            ad.x * d.z,
+            ad.y * d.z,
+        ])
+    }
+
+    /// self += other.
+    #[inline(always)]
+    pub fn add(&mut self, other: &Symmetric3) {
+        for (a, b) in self.0.iter_mut().zip(&other.0) {
+            *a += b;
+        }
+    }
+
+    /// The inverse (adjugate over determinant); 0 when singular or not finite.
+    #[inline]
+    pub fn inverse(&self) -> Symmetric3 {
+        let [a, e, i, b, c, f] = self.0;
+        // [[a b c] [b e f] [c f i]]
+        let (ca, cb, cc) = (e * i - f * f, c * f - b * i, b * f - c * e);
+        let det = a * ca + b * cb + c * cc;
+        if det.is_finite() && det != 0.0 {
+            let s = 1.0 / det;
+            Symmetric3([
+                ca * s,
+                (a * i - c * c) * s,
+                (a * e - b * b) * s,
+                cb * s,
+                cc * s,
+                (b * c - a * f) * s,
+            ])
+        } else {
+            Symmetric3::default()
+        }
+    }
+
+    /// M v.
+    #[inline(always)]
+    pub fn apply(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        let m = &self.0;
+        Vector3::new(
+            m[0] * v.x + m[3] * v.y + m[4] * v.z,
+            m[3] * v.x + m[1] * v.y + m[5] * v.z,
+            m[4] * v.x + m[5] * v.y + m[2] * v.z,
+        )
     }
 }
 
 /// The solve's buffers, reused from step to step; `solution` is the last Δv (the warm start).
 #[derive(Debug, Clone, Default)]
 pub struct Workspace {
-    /// S_s, one per spring.
+    /// S_s with its particles, one per spring (0 when both ends are pinned).
     pub blocks: Vec<Block>,
     /// a_i, one per particle.
     pub diagonal: Vec<f64>,
-    /// P_i⁻¹, one per particle.
-    pub preconditioner: Vec<Matrix3<f64>>,
+    /// P_i (summed by the caller), inverted by [`Workspace::solve`] (0 for pinned particles).
+    pub preconditioner: Vec<Symmetric3>,
+    /// The pinned particles' indices.
+    pub pinned: Vec<u32>,
     pub rhs: Vec<Vector3<f64>>,
     pub solution: Vec<Vector3<f64>>,
     residual: Vec<Vector3<f64>>,
@@ -89,9 +164,10 @@ pub struct Outcome {
 }
 
 impl Workspace {
-    /// Sizes every per-particle buffer for `n` particles; the warm start is reset to 0 when the
-    /// size changed.
-    pub fn resize(&mut self, n: usize) {
+    /// Sizes every per-particle buffer for `n` particles and lists the pinned ones; the warm
+    /// start is reset to 0 when the size changed.
+    pub fn resize(&mut self, pinned: &[bool]) {
+        let n = pinned.len();
         if self.solution.len() != n {
             self.solution = vec![Vector3::zeros(); n];
         }
@@ -104,72 +180,58 @@ impl Workspace {
         ] {
             buffer.resize(n, Vector3::zeros());
         }
-        self.preconditioner.resize(n, Matrix3::zeros());
+        self.preconditioner.resize(n, Symmetric3::default());
         self.diagonal.resize(n, 0.0);
+        self.pinned.clear();
+        self.pinned.extend(
+            pinned
+                .iter()
+                .enumerate()
+                .filter(|(_, &p)| p)
+                .map(|(i, _)| i as u32),
+        );
     }
 
     /// out = filter(A p).
+    #[inline]
     fn multiply(
-        springs: &[Spring],
         blocks: &[Block],
         diagonal: &[f64],
-        pinned: &[bool],
+        pinned: &[u32],
         p: &[Vector3<f64>],
         out: &mut [Vector3<f64>],
     ) {
         for ((o, &a), p) in out.iter_mut().zip(diagonal).zip(p) {
             *o = p * a;
         }
-        for (s, block) in springs.iter().zip(blocks) {
-            let y = block.apply(&(p[s.i] - p[s.j]));
-            out[s.i] += y;
-            out[s.j] -= y;
+        for b in blocks {
+            let (i, j) = (b.i as usize, b.j as usize);
+            let y = b.apply(&(p[i] - p[j]));
+            out[i] += y;
+            out[j] -= y;
         }
-        for (o, &held) in out.iter_mut().zip(pinned) {
-            if held {
-                *o = Vector3::zeros();
-            }
+        for &i in pinned {
+            out[i as usize] = Vector3::zeros();
         }
     }
 
-    /// Solves A Δv = rhs for the particles not `pinned`, A built from `blocks` and
-    /// `diagonal`; the result is in `solution`. Inverts the preconditioner blocks first.
-    pub fn solve(
-        &mut self,
-        springs: &[Spring],
-        pinned: &[bool],
-        tolerance: f64,
-        max_iterations: usize,
-    ) -> Outcome {
-        let n = pinned.len();
-        // P_i = a_i I + Σ S_s, inverted (free particles only; pinned rows stay 0).
-        for (p, &a) in self.preconditioner.iter_mut().zip(&self.diagonal) {
-            *p = Matrix3::identity() * a;
+    /// Solves A Δv = rhs for the particles not pinned, A built from `blocks` and `diagonal`,
+    /// P from `preconditioner` (inverted here); the result is in `solution`.
+    pub fn solve(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
+        // P_i⁻¹ (pinned rows: 0, and the right-hand side and warm start filtered).
+        for p in &mut self.preconditioner {
+            *p = p.inverse();
         }
-        for (s, block) in springs.iter().zip(&self.blocks) {
-            let m = block.matrix();
-            self.preconditioner[s.i] += m;
-            self.preconditioner[s.j] += m;
+        for &i in &self.pinned {
+            let i = i as usize;
+            self.preconditioner[i] = Symmetric3::default();
+            self.rhs[i] = Vector3::zeros();
+            self.solution[i] = Vector3::zeros();
         }
-        for (p, &held) in self.preconditioner.iter_mut().zip(pinned) {
-            *p = if held {
-                Matrix3::zeros()
-            } else {
-                p.try_inverse().unwrap_or_else(Matrix3::zeros)
-            };
+        let mut delta0 = 0.0;
+        for (b, p) in self.rhs.iter().zip(&self.preconditioner) {
+            delta0 += b.dot(&p.apply(b));
         }
-        let dot = |a: &[Vector3<f64>], b: &[Vector3<f64>]| -> f64 {
-            a.iter().zip(b).map(|(a, b)| a.dot(b)).sum()
-        };
-        // δ₀ from the filtered right-hand side.
-        for (i, &held) in pinned.iter().enumerate() {
-            if held {
-                self.rhs[i] = Vector3::zeros();
-                self.solution[i] = Vector3::zeros();
-            }
-            self.preconditioned[i] = self.preconditioner[i] * self.rhs[i];
-        }
-        let delta0 = dot(&self.rhs, &self.preconditioned);
         if !delta0.is_finite() || delta0 <= 0.0 {
             self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
             return Outcome {
@@ -179,24 +241,31 @@ impl Workspace {
         }
         // r = filter(b − A Δv) from the warm start.
         Self::multiply(
-            springs,
             &self.blocks,
             &self.diagonal,
-            pinned,
+            &self.pinned,
             &self.solution,
             &mut self.product,
         );
-        for i in 0..n {
-            self.residual[i] = self.rhs[i] - self.product[i];
-            self.preconditioned[i] = self.preconditioner[i] * self.residual[i];
+        let mut delta = 0.0;
+        for (((r, z), (b, q)), inverse) in (self.residual.iter_mut())
+            .zip(self.preconditioned.iter_mut())
+            .zip(self.rhs.iter().zip(&self.product))
+            .zip(&self.preconditioner)
+        {
+            *r = b - q;
+            *z = inverse.apply(r);
+            delta += r.dot(z);
         }
-        let mut delta = dot(&self.residual, &self.preconditioned);
         if delta > delta0 {
             // A warm start worse than zero: start from zero.
             self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
             self.residual.clone_from(&self.rhs);
-            for i in 0..n {
-                self.preconditioned[i] = self.preconditioner[i] * self.residual[i];
+            for ((z, r), inverse) in (self.preconditioned.iter_mut())
+                .zip(&self.residual)
+                .zip(&self.preconditioner)
+            {
+                *z = inverse.apply(r);
             }
             delta = delta0;
         }
@@ -205,28 +274,37 @@ impl Workspace {
         let mut iterations = 0;
         while delta > target && iterations < max_iterations {
             Self::multiply(
-                springs,
                 &self.blocks,
                 &self.diagonal,
-                pinned,
+                &self.pinned,
                 &self.direction,
                 &mut self.product,
             );
-            let curvature = dot(&self.direction, &self.product);
+            let curvature: f64 = self
+                .direction
+                .iter()
+                .zip(&self.product)
+                .map(|(p, q)| p.dot(q))
+                .sum();
             if curvature.is_nan() || curvature <= 0.0 {
                 break;
             }
             let alpha = delta / curvature;
             let mut next = 0.0;
-            for i in 0..n {
-                self.solution[i] += self.direction[i] * alpha;
-                self.residual[i] -= self.product[i] * alpha;
-                self.preconditioned[i] = self.preconditioner[i] * self.residual[i];
-                next += self.residual[i].dot(&self.preconditioned[i]);
+            for ((((x, r), z), (p, q)), inverse) in (self.solution.iter_mut())
+                .zip(self.residual.iter_mut())
+                .zip(self.preconditioned.iter_mut())
+                .zip(self.direction.iter().zip(&self.product))
+                .zip(&self.preconditioner)
+            {
+                *x += p * alpha;
+                *r -= q * alpha;
+                *z = inverse.apply(r);
+                next += r.dot(z);
             }
             let beta = next / delta;
-            for i in 0..n {
-                self.direction[i] = self.preconditioned[i] + self.direction[i] * beta;
+            for (p, z) in self.direction.iter_mut().zip(&self.preconditioned) {
+                *p = z + *p * beta;
             }
             delta = next;
             iterations += 1;
@@ -235,5 +313,31 @@ impl Workspace {
             iterations,
             relative_residual: (delta / delta0).max(0.0).sqrt(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Matrix3;
+
+    #[test]
+    fn the_symmetric_inverse_is_the_inverse() {
+        let mut m = Symmetric3::diagonal(2.0);
+        m.add(&Symmetric3::of(&Block {
+            i: 0,
+            j: 1,
+            along: 3.0,
+            across: 0.5,
+            direction: Vector3::new(1.0, 2.0, -2.0) / 3.0,
+        }));
+        let [a, e, i, b, c, f] = m.0;
+        let full = Matrix3::new(a, b, c, b, e, f, c, f, i);
+        let inv = m.inverse();
+        for v in [Vector3::x(), Vector3::y(), Vector3::z()] {
+            // M (M⁻¹ v) = v.
+            assert!((full * inv.apply(&v) - v).norm() < 1e-14);
+        }
+        assert_eq!(Symmetric3::default().inverse(), Symmetric3::default());
     }
 }

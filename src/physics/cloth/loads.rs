@@ -15,7 +15,6 @@
 //! Pinned particles feel forces but never move: their rows are ignored by the integrators.
 
 use super::sheet::Cloth;
-use super::spring::Axis;
 use crate::physics::effects::{Effect, Effects};
 use nalgebra::Vector3;
 
@@ -52,17 +51,18 @@ impl ClothLoads {
 }
 
 impl Cloth {
-    /// f at the current (x, v) into the scratch force buffer, each spring's d̂ and ℓ into the
-    /// scratch axes (the integrators reuse them), and the springs' damping force on each
-    /// particle into the scratch damping forces (when some spring is damped; for the losses).
+    /// f at the current (x, v) into the scratch force buffer, and the springs' damping force
+    /// on each particle into the scratch damping forces (when some spring is damped; for the
+    /// losses). One pass over the springs: one square root and one division each.
     pub(super) fn compute_forces(&mut self, loads: &ClothLoads) {
         let x = &self.positions;
         let v = &self.velocities;
+        let n = x.len();
         let force = &mut self.scratch.force;
         force.clear();
         match loads.gravity {
             Some(g) => force.extend(self.masses.iter().map(|&m| g * m)),
-            None => force.resize(x.len(), Vector3::zeros()),
+            None => force.resize(n, Vector3::zeros()),
         }
         if loads.drag.is_some() {
             for ((f, &m), v) in force.iter_mut().zip(&self.masses).zip(v) {
@@ -70,27 +70,33 @@ impl Cloth {
             }
         }
         let damped = self.springs.iter().any(|s| s.damping > 0.0);
-        let axes = &mut self.scratch.axes;
         let damping_force = &mut self.scratch.damping_force;
-        axes.resize(self.springs.len(), Axis::default());
         damping_force.clear();
+        // Slices of one length: the loops below index nothing else.
+        let (x, v, force) = (&x[..n], &v[..n], &mut force[..n]);
         if damped {
-            damping_force.resize(x.len(), Vector3::zeros());
-        }
-        for (s, axis) in self.springs.iter().zip(axes.iter_mut()) {
-            let d = x[s.j] - x[s.i];
-            let length = d.norm();
-            let direction = if length > 0.0 { d * (1.0 / length) } else { d };
-            *axis = Axis { direction, length };
-            let f = direction * (s.stiffness * (length - s.rest_length));
-            force[s.i] += f;
-            force[s.j] -= f;
-            if damped {
-                let damping = direction * s.damping_magnitude(axis, v);
-                force[s.i] += damping;
-                force[s.j] -= damping;
-                damping_force[s.i] += damping;
-                damping_force[s.j] -= damping;
+            damping_force.resize(n, Vector3::zeros());
+            let damping_force = &mut damping_force[..n];
+            for s in &self.springs {
+                let d = x[s.j] - x[s.i];
+                let length = d.norm();
+                let direction = if length > 0.0 { d * (1.0 / length) } else { d };
+                let damping = s.damping * (v[s.j] - v[s.i]).dot(&direction);
+                let f = direction * (s.stiffness * (length - s.rest_length) + damping);
+                force[s.i] += f;
+                force[s.j] -= f;
+                let f = direction * damping;
+                damping_force[s.i] += f;
+                damping_force[s.j] -= f;
+            }
+        } else {
+            for s in &self.springs {
+                let d = x[s.j] - x[s.i];
+                let length = d.norm();
+                let direction = if length > 0.0 { d * (1.0 / length) } else { d };
+                let f = direction * (s.stiffness * (length - s.rest_length));
+                force[s.i] += f;
+                force[s.j] -= f;
             }
         }
     }

@@ -1,0 +1,124 @@
+//! Steps the benches' cloth cases a given number of times, for instruction counts under
+//! `valgrind --tool=callgrind` (stable where wall-clock times are not):
+//!
+//! ```text
+//! cargo build --release --example cloth_steps
+//! valgrind --tool=callgrind target/release/examples/cloth_steps CASE STEPS
+//! ```
+//!
+//! CASE: `world-symplectic`, `world-implicit` (the cube on the 21 × 21 trampoline, as in
+//! `benches/cloth.rs`: symplectic-euler at 0.9× its explicit limit, implicit-euler at 1e-3 s),
+//! `sheet-symplectic`, `sheet-implicit-1e-3`, `sheet-implicit-5e-3` (the sheet alone).
+//! Instructions per step = (count at STEPS − count at 0)/STEPS; 2000 steps is one restart
+//! cycle of the benches (fall, bounces, rest).
+
+use nalgebra::Vector3;
+use std::hint::black_box;
+use tumble::physics::cloth::{Cloth, ClothIntegrator, ClothLoads, ClothSpec, Pinning};
+
+fn trampoline(integrator: ClothIntegrator) -> Cloth {
+    let mut spec = ClothSpec::new([2.0, 2.0], [21, 21], 2.0, 5000.0);
+    spec.position = Vector3::new(0.0, 1.0, 0.0);
+    spec.shear = 1000.0;
+    spec.damping = 0.5;
+    spec.pinned = Pinning::Edges;
+    spec.integrator = integrator;
+    Cloth::new(&spec).expect("valid sheet")
+}
+
+fn cube_on_trampoline(integrator: &str, dt: f64) -> tumble::physics::World {
+    let source = format!(
+        r#"
+title = "bench"
+[scene]
+dt = {dt}
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = {{ response = "impulse", restitution = 0.4, friction = 0.5 }}
+[body]
+shape = "box"
+size = [0.35, 0.35, 0.35]
+mass = 1.0
+position = [0.0, 1.275, 0.0]
+[[cloth]]
+size = [2.0, 2.0]
+count = [21, 21]
+position = [0.0, 1.0, 0.0]
+mass = 2.0
+stretch = 5000.0
+shear = 1000.0
+damping = 20.0
+pinned = "edges"
+integrator = "{integrator}"
+"#
+    );
+    tumble::scene::parse(&source, std::path::Path::new("bench.toml"))
+        .expect("valid scene")
+        .scene
+        .world()
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let case = args.get(1).map_or("world-implicit", String::as_str);
+    let steps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2000);
+    let loads = ClothLoads {
+        gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
+        drag: None,
+    };
+    match case {
+        "world-symplectic" | "world-implicit" => {
+            let probe = cube_on_trampoline("symplectic-euler", 1e-3);
+            let (name, dt) = if case == "world-symplectic" {
+                ("symplectic-euler", 0.9 * probe.cloth_limit(0).dt())
+            } else {
+                (
+                    "implicit-euler",
+                    std::env::var("DT")
+                        .ok()
+                        .and_then(|s| s.parse().ok())
+                        .unwrap_or(1e-3),
+                )
+            };
+            let mut w = cube_on_trampoline(name, dt);
+            for _ in 0..steps {
+                black_box(&mut w).step();
+            }
+            let c = &w.cloths()[0];
+            println!(
+                "{case} dt={dt:.6e} steps={steps} y_min={:.9} cube_y={:.9}",
+                c.positions
+                    .iter()
+                    .map(|x| x.y)
+                    .fold(f64::INFINITY, f64::min),
+                w.state().position.y,
+            );
+        }
+        "sheet-symplectic" | "sheet-implicit-1e-3" | "sheet-implicit-5e-3" => {
+            let (integrator, dt) = match case {
+                "sheet-symplectic" => (
+                    ClothIntegrator::SymplecticEuler,
+                    0.9 * trampoline(ClothIntegrator::SymplecticEuler)
+                        .explicit_limit(&loads)
+                        .dt(),
+                ),
+                "sheet-implicit-1e-3" => (ClothIntegrator::ImplicitEuler, 1e-3),
+                _ => (ClothIntegrator::ImplicitEuler, 5e-3),
+            };
+            let mut cloth = trampoline(integrator);
+            let mut iterations = 0;
+            for _ in 0..steps {
+                iterations += black_box(&mut cloth).step(&loads, dt).iterations;
+            }
+            println!(
+                "{case} dt={dt:.6e} steps={steps} cg_iterations={iterations} y_min={:.9}",
+                cloth
+                    .positions
+                    .iter()
+                    .map(|x| x.y)
+                    .fold(f64::INFINITY, f64::min)
+            );
+        }
+        _ => eprintln!("unknown case {case}"),
+    }
+}
