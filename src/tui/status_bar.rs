@@ -25,14 +25,19 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
             format!("{} ({}/{})", s.body_name, s.body_index + 1, s.bodies.len()),
         ));
     }
+    let comparison = app.ghost.as_ref().map(|g| g.comparison);
     fields.extend([
         ("t", format!("{} s", number_plain(s.time))),
         ("step", s.step.to_string()),
         ("dt", format!("{} s", number_plain(s.dt))),
-        // In compare mode, "A vs B" on the setting the ghost differs by, and only there.
+    ]);
+    // In compare mode, "A vs B" on the setting the ghost differs by, and only there. The
+    // body settings only when there are bodies, the particle integrator only with cloths.
+    let bodies = app.world.body_count() > 0;
+    fields.extend([
         (
             "integrator",
-            match app.ghost.as_ref().map(|g| g.comparison) {
+            match comparison {
                 Some(Comparison::Integrator(i)) => {
                     format!("{} vs {}", s.integrator.name(), i.name())
                 }
@@ -41,20 +46,31 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         ),
         (
             "response",
-            match app.ghost.as_ref().map(|g| g.comparison) {
+            match comparison {
                 Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
                 _ => response.to_string(),
             },
         ),
-        (
-            "effects",
-            if effects.is_empty() {
-                "none".to_string()
-            } else {
-                effects.join(", ")
+    ]
+    .into_iter()
+    .filter(|_| bodies));
+    if let Some(own) = cloth_integrators(app) {
+        fields.push((
+            "cloth",
+            match comparison {
+                Some(Comparison::ClothIntegrator(c)) => format!("{own} vs {}", c.name()),
+                _ => own,
             },
-        ),
-    ]);
+        ));
+    }
+    fields.push((
+        "effects",
+        if effects.is_empty() {
+            "none".to_string()
+        } else {
+            effects.join(", ")
+        },
+    ));
     if app.show_timing {
         if let Some(ns) = app.ns_per_step {
             fields.push(("", format!("{ns:.0} ns/step")));
@@ -76,6 +92,18 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         items.push(vec![Span::styled(notice.clone(), theme::NOTICE)]);
     }
     items
+}
+
+/// The particle integrators of the cloths, each named once in cloth order (None without
+/// cloths).
+fn cloth_integrators(app: &App) -> Option<String> {
+    let mut names: Vec<&str> = Vec::new();
+    for c in app.world.cloths() {
+        if !names.contains(&c.integrator.name()) {
+            names.push(c.integrator.name());
+        }
+    }
+    (!names.is_empty()).then(|| names.join(" + "))
 }
 
 /// The status fields, whole, on as many lines of `width` columns as they need (a field is
