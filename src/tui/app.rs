@@ -823,9 +823,7 @@ impl App {
     pub fn start_compare(&mut self, comparison: Comparison) {
         let missing = match comparison {
             Comparison::Response(_) if self.world.contact_model().is_none() => Some("obstacles"),
-            Comparison::Integrator(_) | Comparison::Response(_)
-                if self.world.body_count() == 0 =>
-            {
+            Comparison::Integrator(_) | Comparison::Response(_) if self.world.body_count() == 0 => {
                 Some("bodies")
             }
             Comparison::ClothIntegrator(_) if self.world.cloths().is_empty() => Some("cloths"),

@@ -11,7 +11,8 @@
 //! bytes  = heap bytes of a keyframe (world, and compare world if on) + its own size
 //! avail  = budget − capacity · size_of(Entry)                 (the ring's per-frame part)
 //! K      = 1                                  without cloths (every frame whole, as before)
-//!        = ⌈capacity · bytes / avail⌉          with cloths   (≤ budget when the ring is full)
+//!        = ⌈capacity / ⌊avail / bytes⌋⌉        with cloths: any `capacity` frames in a row
+//!                                              hold at most ⌊avail / bytes⌋ keyframes
 //! replay = n − k < K frames per step back
 //! ```
 //!
@@ -85,7 +86,7 @@ impl History {
     /// A ring of `capacity` frames under `budget` bytes.
     pub fn with_budget(capacity: usize, budget: usize) -> History {
         History {
-            entries: VecDeque::with_capacity(capacity.min(1024)),
+            entries: VecDeque::with_capacity(capacity.max(1)),
             capacity: capacity.max(1),
             budget,
             interval: 1,
@@ -117,9 +118,9 @@ impl History {
             self.interval = if checkpoint.has_cloths() {
                 let avail = self
                     .budget
-                    .saturating_sub(self.capacity * size_of::<Entry>())
-                    .max(1);
-                (self.capacity * bytes).div_ceil(avail).clamp(1, self.capacity)
+                    .saturating_sub(self.capacity * size_of::<Entry>());
+                let keys = (avail / bytes).max(1);
+                self.capacity.div_ceil(keys)
             } else {
                 1
             };
@@ -132,8 +133,13 @@ impl History {
                 bytes,
             })
         });
+        if self.entries.len() == self.capacity {
+            self.drop_oldest();
+        }
         self.entries.push_back(Entry { position, key });
-        self.trim();
+        while self.heap_bytes() > self.budget && self.keyframes() > 1 {
+            self.drop_oldest();
+        }
     }
 
     /// The next frame start pushed is kept whole (the compare world was rebuilt or replaced:
@@ -142,22 +148,14 @@ impl History {
         self.fresh = true;
     }
 
-    /// Drops the oldest frames while the ring is over its capacity or (with more than one
-    /// keyframe) over its byte budget; frames left before the oldest keyframe go with it.
-    fn trim(&mut self) {
-        while self.entries.len() > self.capacity
-            || (self.heap_bytes() > self.budget && self.keyframes() > 1)
-        {
-            self.drop_front();
-            while self.entries.front().is_some_and(|e| e.key.is_none()) {
-                self.entries.pop_front();
-            }
-        }
-    }
-
-    fn drop_front(&mut self) {
+    /// Drops the oldest frame, and the frames after it up to the next keyframe (they cannot be
+    /// rebuilt without it).
+    fn drop_oldest(&mut self) {
         if let Some(Entry { key: Some(key), .. }) = self.entries.pop_front() {
             self.key_bytes -= key.bytes;
+        }
+        while self.entries.front().is_some_and(|e| e.key.is_none()) {
+            self.entries.pop_front();
         }
     }
 
@@ -255,7 +253,8 @@ impl History {
         self.entries.iter().filter(|e| e.key.is_some()).count()
     }
 
-    /// The bytes the ring holds: its entries (at their capacity) and its keyframes.
+    /// The bytes the ring holds: its entries (allocated for `capacity` frames at the start;
+    /// the ring never holds more) and its keyframes.
     pub fn heap_bytes(&self) -> usize {
         self.entries.capacity() * size_of::<Entry>() + self.key_bytes
     }

@@ -34,26 +34,28 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
     // In compare mode, "A vs B" on the setting the ghost differs by, and only there. The
     // body settings only when there are bodies, the particle integrator only with cloths.
     let bodies = app.world.body_count() > 0;
-    fields.extend([
-        (
-            "integrator",
-            match comparison {
-                Some(Comparison::Integrator(i)) => {
-                    format!("{} vs {}", s.integrator.name(), i.name())
-                }
-                _ => s.integrator.name().to_string(),
-            },
-        ),
-        (
-            "response",
-            match comparison {
-                Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
-                _ => response.to_string(),
-            },
-        ),
-    ]
-    .into_iter()
-    .filter(|_| bodies));
+    fields.extend(
+        [
+            (
+                "integrator",
+                match comparison {
+                    Some(Comparison::Integrator(i)) => {
+                        format!("{} vs {}", s.integrator.name(), i.name())
+                    }
+                    _ => s.integrator.name().to_string(),
+                },
+            ),
+            (
+                "response",
+                match comparison {
+                    Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
+                    _ => response.to_string(),
+                },
+            ),
+        ]
+        .into_iter()
+        .filter(|_| bodies),
+    );
     if let Some(own) = cloth_integrators(app) {
         fields.push((
             "cloth",
