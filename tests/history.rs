@@ -1,8 +1,10 @@
-//! The app's history with cloths (issue 11, item 7): keyframes plus exact replay keep the
-//! step-back ring under its byte budget, and stepping back gives bit for bit the states the
-//! forward run had. Compare mode with another particle integrator.
+//! The app with cloths (issue 11, item 7): keyframes plus exact replay keep the step-back ring
+//! under its byte budget, and stepping back gives bit for bit the states the forward run had;
+//! compare mode with another particle integrator; the settings form's cloth integrator,
+//! applied and written.
 #![cfg(feature = "tui")]
 
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::path::Path;
@@ -10,7 +12,7 @@ use tumble::physics::cloth::ClothIntegrator;
 use tumble::physics::{Checkpoint, Integrator, World};
 use tumble::scene::Lesson;
 use tumble::tui::history::{History, DEFAULT_BUDGET};
-use tumble::tui::{App, Comparison, Options};
+use tumble::tui::{App, Comparison, Effect, Options, Overlay};
 
 /// Counts the bytes this thread allocates (the other tests run on other threads).
 struct Counting;
@@ -392,4 +394,126 @@ fn status(app: &App) -> String {
         })
         .collect::<Vec<_>>()
         .join("\n")
+}
+
+fn press(app: &mut App, code: KeyCode) {
+    app.handle_key(&KeyEvent::new(code, KeyModifiers::NONE));
+}
+
+fn typed(app: &mut App, text: &str) {
+    for c in text.chars() {
+        press(app, KeyCode::Char(c));
+    }
+}
+
+#[test]
+fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
+    let dir = std::env::temp_dir().join(format!("tumble-history-form-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let source = dir.join("sheet.toml");
+    std::fs::write(&source, SHEET.replace("INTEGRATOR", "symplectic-euler")).unwrap();
+    let mut app = App::new(
+        tumble::scene::load(&source).unwrap(),
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    app.write_dir = dir.clone();
+    app.step_frames(10);
+    typed(&mut app, "e");
+    let Overlay::Settings(form) = &app.overlay else {
+        panic!("e opens the form");
+    };
+    // restitution, friction, mass, dt, v₀ ×3, ω₀ ×3, then the cloth.
+    assert_eq!(form.fields.len(), 11);
+    assert_eq!(form.label(&form.fields[10]).0, "cloth sheet integrator");
+    press(&mut app, KeyCode::Up);
+    typed(&mut app, "implicit-eulr");
+    press(&mut app, KeyCode::Enter);
+    let Overlay::Settings(form) = &app.overlay else {
+        panic!("a bad name keeps the form open");
+    };
+    assert!(
+        form.error
+            .as_deref()
+            .unwrap()
+            .contains("(did you mean `implicit-euler`?)"),
+        "{:?}",
+        form.error
+    );
+    press(&mut app, KeyCode::Backspace);
+    typed(&mut app, "er");
+    let Some(effect) = app.update(tumble::tui::keys::Message::WriteScene) else {
+        panic!("W asks for a write");
+    };
+    let Effect::WriteScene { to, .. } = &effect;
+    let to = to.clone();
+    app.perform(effect);
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.overlay, Overlay::None);
+    assert_eq!(app.world.step_count(), 0, "restarted at t = 0");
+    assert_eq!(
+        app.world.cloths()[0].integrator,
+        ClothIntegrator::ImplicitEuler
+    );
+    assert_eq!(
+        app.notice.as_deref(),
+        Some(
+            "settings applied (cloth sheet symplectic-euler → implicit-euler): the scene \
+             restarted at t = 0"
+        )
+    );
+    let written = tumble::scene::load(&to).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        written.scene.cloths[0].integrator,
+        ClothIntegrator::ImplicitEuler
+    );
+    assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("check")
+        .arg(&to)
+        .assert()
+        .code(0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn lesson_18_in_the_form_past_the_limit_then_implicit_at_ten_times() {
+    // The fixture sheet runs symplectic-euler at 1.1 × 2/ω_max (2/ω_max = 1.3047e-3 s): the
+    // guard stops it. The form's values — implicit-euler at dt = 10 × 1.3047e-3 s — run
+    // without divergence over the same simulated time.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/cloth/sheet-alone.toml");
+    let lesson = tumble::scene::load(&path).unwrap();
+    let mut world = lesson.scene.world();
+    let limit = world.cloth_limit(0).dt();
+    assert!((world.dt() / limit - 1.1).abs() < 1e-3);
+    let steps = (0..2000).find(|_| {
+        world.step();
+        world.divergence().is_some()
+    });
+    assert!(steps.is_some(), "symplectic-euler past its limit diverges");
+    let mut form =
+        tumble::tui::settings_form::SettingsForm::new(tumble::scene::SceneEdits::of(&lesson.scene));
+    let dt = form
+        .fields
+        .iter()
+        .position(|f| f.kind == tumble::tui::settings_form::FieldKind::Dt)
+        .unwrap();
+    form.selected = dt;
+    for c in format!("{}", 10.0 * limit).chars() {
+        form.type_char(c);
+    }
+    form.down();
+    for c in "implicit-euler".chars() {
+        form.type_char(c);
+    }
+    let scene = form.edits().unwrap().apply(&lesson.scene).unwrap();
+    let mut world = scene.world();
+    assert_eq!(world.cloths()[0].integrator, ClothIntegrator::ImplicitEuler);
+    for _ in 0..200 {
+        world.step();
+        assert!(world.divergence().is_none(), "{:?}", world.divergence());
+    }
 }
