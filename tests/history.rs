@@ -360,7 +360,7 @@ fn switching_the_particle_integrator_starts_the_solver_cold() {
             .unwrap();
     fresh.positions.clone_from(&world.cloths()[0].positions);
     fresh.velocities.clone_from(&world.cloths()[0].velocities);
-    let loads = world.cloth_loads().clone();
+    let loads = *world.cloth_loads();
     fresh.step(&loads, world.dt());
     // Twice switched (implicit → symplectic → implicit) gives the same again.
     let mut again = world.clone();
