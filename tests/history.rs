@@ -11,7 +11,7 @@ use std::path::Path;
 use tumble::physics::cloth::ClothIntegrator;
 use tumble::physics::{Checkpoint, Integrator, World};
 use tumble::scene::Lesson;
-use tumble::tui::history::{History, DEFAULT_BUDGET};
+use tumble::tui::history::{History, DEFAULT_BUDGET, DEFAULT_CAPACITY};
 use tumble::tui::{App, Comparison, Effect, Options, Overlay};
 
 /// Counts the bytes this thread allocates (the other tests run on other threads).
@@ -515,5 +515,32 @@ fn lesson_18_in_the_form_past_the_limit_then_implicit_at_ten_times() {
     for _ in 0..200 {
         world.step();
         assert!(world.divergence().is_none(), "{:?}", world.divergence());
+    }
+}
+
+#[test]
+fn a_switch_of_particle_integrator_mid_segment_is_replayed_with_the_old_one() {
+    // 30 frames symplectic, then implicit: K is far above 30, so without the break the frames
+    // after the switch would be rebuilt from frame 0 with the integrator the checkpoint holds.
+    let mut world = lesson(ClothIntegrator::SymplecticEuler).scene.world();
+    let mut history = History::new(DEFAULT_CAPACITY);
+    let mut kept = Vec::new();
+    for frame in 0..40 {
+        if frame == 30 {
+            world.set_cloth_integrator(0, ClothIntegrator::ImplicitEuler);
+            history.break_segment();
+        }
+        history.push(world.state().position, &world, None);
+        kept.push(bits(&world));
+        world.step();
+    }
+    assert!(history.interval() > 40);
+    assert_eq!(history.keyframes(), 2, "frames 0 and 30");
+    for back in [3, 12, 25] {
+        let mut w = world.clone();
+        let mut h = history.clone();
+        h.pop_frames_into(back, &mut w, None).unwrap();
+        assert_eq!(w.step_count(), 40 - back as u64);
+        assert_eq!(bits(&w), kept[40 - back], "{back} frames back");
     }
 }

@@ -705,7 +705,8 @@ impl World {
     /// keeps it), keeping its particles, velocities and losses. The step's scratch, the
     /// implicit step's warm start among it, starts over empty as for a new sheet: the next
     /// step sizes it and starts the solve from Δv = 0. As with [`World::set_integrator`], a
-    /// frame in progress counts as done.
+    /// frame in progress counts as done. (The integrator is part of the checkpoint: a history
+    /// replaying frames from an earlier checkpoint must start anew from here.)
     pub fn set_cloth_integrator(&mut self, index: usize, integrator: ClothIntegrator) {
         self.initial_cloths[index].integrator = integrator;
         let now = &mut self.now;

@@ -333,6 +333,19 @@ impl App {
             Message::Faster => self.speed = (self.speed + 1).min(SPEEDS.len() - 1),
             Message::Slower => self.speed = self.speed.saturating_sub(1),
             Message::Reset => self.reset(),
+            Message::NextIntegrator if self.world.body_count() == 0 => {
+                // Cloths only: the particle integrator of every cloth.
+                let next = self
+                    .world
+                    .cloths()
+                    .first()
+                    .map_or(ClothIntegrator::SymplecticEuler, |c| c.integrator.next());
+                self.before_change();
+                apply(&mut self.world, Comparison::ClothIntegrator(next));
+                // Replay from an earlier keyframe would step the old integrator.
+                self.history.break_segment();
+                self.refresh();
+            }
             Message::NextIntegrator => {
                 let next = self.world.integrator().next();
                 self.before_change();
@@ -753,6 +766,13 @@ impl App {
 
     fn next_response(&mut self) {
         match self.world.contact_model().copied() {
+            Some(_) if self.world.body_count() == 0 => {
+                self.notice = Some(
+                    "no bodies in this scene: the collision response acts on bodies (particles \
+                     use the restitution and friction)"
+                        .into(),
+                )
+            }
             Some(_) if self.world.body_count() > 1 => {
                 self.notice = Some(
                     "seed knows one body and fixed obstacles: with several bodies the response \
