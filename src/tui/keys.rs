@@ -588,7 +588,7 @@ mod tests {
     fn s_opens_the_study_view() {
         let study: Vec<_> = KEYS
             .iter()
-            .filter(|b| b.keys.contains(&Char('s')))
+            .filter(|b| b.context == Context::Main && b.keys.contains(&Char('s')))
             .collect();
         assert_eq!(study.len(), 1);
         assert_eq!(study[0].message, Message::ToggleStudy);
