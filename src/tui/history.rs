@@ -98,6 +98,9 @@ impl History {
     /// Saves a frame start: the barycenter `position`, and the worlds whole when the frame is
     /// a keyframe (module doc). `compare` is the compare world, if compare mode is on.
     pub fn push(&mut self, position: Vector3<f64>, world: &World, compare: Option<&World>) {
+        if self.entries.len() == self.capacity {
+            self.drop_oldest();
+        }
         let stepping = world.stepping();
         let compare_stepping = compare.map(World::stepping);
         let keyframe = self.fresh
@@ -133,9 +136,6 @@ impl History {
                 bytes,
             })
         });
-        if self.entries.len() == self.capacity {
-            self.drop_oldest();
-        }
         self.entries.push_back(Entry { position, key });
         while self.heap_bytes() > self.budget && self.keyframes() > 1 {
             self.drop_oldest();
