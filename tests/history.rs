@@ -185,7 +185,8 @@ fn a_30x30_sheet_keeps_the_ring_under_budget_and_steps_back_exactly() {
     assert!(FRAMES as usize * one > 10 * DEFAULT_BUDGET);
     assert!(history.heap_bytes() <= DEFAULT_BUDGET);
     assert_eq!(history.len(), FRAMES as usize, "every frame start is kept");
-    // K = ⌈capacity / ⌊(budget − capacity · 32) / bytes⌋⌉ > 1; keyframes at 0, K, 2K, …
+    // K > 1 (history.rs: ⌈capacity / K⌉ + ⌈√K⌉ ≤ ⌊(budget − capacity · 32) / bytes⌋);
+    // keyframes at 0, K, 2K, …
     assert!(history.interval() > 1);
     assert_eq!(
         history.keyframes(),
@@ -215,28 +216,34 @@ fn a_30x30_sheet_keeps_the_ring_under_budget_and_steps_back_exactly() {
     let mut plain = lesson(ClothIntegrator::SymplecticEuler).scene.world();
     let frames: Vec<u64> = (last_key - 3..FRAMES).collect();
     let expected = forward(&mut plain, FRAMES, &frames);
+    // The rewind marks the first step back leaves: at most ⌈√K⌉ checkpoints.
+    let marks = (k as f64).sqrt().ceil() as usize;
     for (frame, (_, bits_then)) in frames.iter().zip(&expected).rev() {
         app.step_back();
         assert_eq!(app.world.step_count(), *frame);
         assert_eq!(bits(&app.world), *bits_then, "frame {frame}");
+        assert!(app.history.rewind_bytes() <= marks * (one + 1024));
     }
+    // A frame pushed drops the marks.
+    app.step_frames(1);
+    assert_eq!(app.history.rewind_bytes(), 0);
 }
 
 #[test]
 fn a_small_budget_drops_the_oldest_frames_with_their_keyframe() {
-    // A budget of five keyframes and 100 frames: K ≈ 20, the ring keeps whole segments.
+    // Room for ten checkpoints and 100 frames: K = 20 (5 keyframes in any 100 frames in a
+    // row, and ⌈√20⌉ = 5 rewind marks; K = 17 would need 6 + 5).
     let mut world = lesson(ClothIntegrator::SymplecticEuler).scene.world();
     let one = world.checkpoint().heap_bytes();
     let capacity = 100;
-    // Each keyframe also counts its own size (< 1 kB): room for exactly five.
-    let budget = capacity * 32 + 5 * (one + 1024);
+    // Each checkpoint kept also counts its own size (< 1 kB): room for exactly ten.
+    let budget = capacity * 32 + 10 * (one + 1024);
     let mut history = History::with_budget(capacity, budget);
     for _ in 0..400 {
         history.push(world.state().position, &world, None);
         world.step();
     }
     let k = history.interval();
-    // K = ⌈100 / 5⌉ = 20.
     assert_eq!(k, 20);
     assert!(history.heap_bytes() <= budget, "{}", history.heap_bytes());
     assert!(
@@ -249,6 +256,11 @@ fn a_small_budget_drops_the_oldest_frames_with_their_keyframe() {
     let oldest = 400 - history.len() as u64;
     let mut plain = lesson(ClothIntegrator::SymplecticEuler).scene.world();
     let expected = forward(&mut plain, 400, &[oldest]);
+    // Stepping back into the newest segment leaves rewind marks: still under budget.
+    let mut back = world.clone();
+    history.pop_into(&mut back, None).unwrap();
+    assert!(history.rewind_bytes() > 0);
+    assert!(history.heap_bytes() <= budget, "{}", history.heap_bytes());
     history
         .pop_frames_into(history.len(), &mut world, None)
         .unwrap();
@@ -323,9 +335,13 @@ fn compare_ghost_with_implicit_euler_on_a_symplectic_sheet_runs_and_differs() {
     );
     // Stepping back rebuilds the ghost too, bit for bit.
     let mut alone = lesson(ClothIntegrator::ImplicitEuler).scene.world();
-    let expected = forward(&mut alone, 200, &[150]);
+    let expected = forward(&mut alone, 200, &[147, 148, 149, 150]);
     app.step_back_frames(50);
-    assert_eq!(bits(&app.ghost.as_ref().unwrap().world), expected[0].1);
+    assert_eq!(bits(&app.ghost.as_ref().unwrap().world), expected[3].1);
+    for back in (0..3).rev() {
+        app.step_back();
+        assert_eq!(bits(&app.ghost.as_ref().unwrap().world), expected[back].1);
+    }
 }
 
 #[test]

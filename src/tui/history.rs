@@ -10,10 +10,14 @@
 //! ```text
 //! bytes  = heap bytes of a keyframe (world, and compare world if on) + its own size
 //! avail  = budget − capacity · size_of(Entry)                 (the ring's per-frame part)
+//! room   = ⌊avail / bytes⌋                                    (checkpoints that fit)
 //! K      = 1                                  without cloths (every frame whole, as before)
-//!        = ⌈capacity / ⌊avail / bytes⌋⌉        with cloths: any `capacity` frames in a row
-//!                                              hold at most ⌊avail / bytes⌋ keyframes
-//! replay = n − k < K frames per step back
+//!        = the least ⌈capacity / keys⌉ with   with cloths: any `capacity` frames in a row
+//!          ⌈capacity / K⌉ + ⌈√K⌉ ≤ room                 hold ⌈capacity / K⌉ keyframes, and
+//!                                                       stepping back adds ⌈√K⌉ marks
+//! replay = n − k < K frames per step back; the first one into a segment leaves rewind marks
+//!          every ⌈√(n − k)⌉ frames (at most ⌈√K⌉ checkpoints, dropped by the next frame
+//!          pushed), so ← held replays at most that many frames each time after
 //! ```
 //!
 //! A keyframe is also taken at the first frame start after anything that replay could not
@@ -75,6 +79,18 @@ pub struct History {
     key_bytes: usize,
     /// The next frame start is kept whole.
     fresh: bool,
+    /// Rewind marks: checkpoints after the keyframe of the segment last stepped back into,
+    /// in frame order; dropped by the next push.
+    rewind: Vec<Mark>,
+}
+
+/// A frame start kept whole for a while, so that ← held through a segment replays about
+/// √K frames each time, not about K/2 (see [`History::pop_frames_into`]).
+#[derive(Debug, Clone)]
+struct Mark {
+    index: usize,
+    world: Checkpoint,
+    compare: Option<Checkpoint>,
 }
 
 impl History {
@@ -92,12 +108,14 @@ impl History {
             interval: 1,
             key_bytes: 0,
             fresh: true,
+            rewind: Vec::new(),
         }
     }
 
     /// Saves a frame start: the barycenter `position`, and the worlds whole when the frame is
     /// a keyframe (module doc). `compare` is the compare world, if compare mode is on.
     pub fn push(&mut self, position: Vector3<f64>, world: &World, compare: Option<&World>) {
+        self.rewind.clear();
         if self.entries.len() == self.capacity {
             self.drop_oldest();
         }
@@ -122,8 +140,7 @@ impl History {
                 let avail = self
                     .budget
                     .saturating_sub(self.capacity * size_of::<Entry>());
-                let keys = (avail / bytes).max(1);
-                self.capacity.div_ceil(keys)
+                interval(self.capacity, avail / bytes)
             } else {
                 1
             };
@@ -169,31 +186,79 @@ impl History {
     }
 
     /// Puts `world` (and `compare`, if given and kept) at frame start `index`: the newest
-    /// keyframe at or before it restored, then stepped again up to it under the keyframe's
-    /// settings; the worlds keep their own settings afterwards. Returns whether `compare` was
-    /// restored, or None if there is no such frame.
+    /// keyframe at or before it (or a rewind mark after that keyframe) restored, then stepped
+    /// again up to it under the keyframe's settings; the worlds keep their own settings
+    /// afterwards. A replay of 16 frames or more from the keyframe leaves rewind marks every
+    /// ⌈√frames⌉ frames. Returns whether `compare` was restored, or None if there is no such
+    /// frame.
     fn rebuild(
-        &self,
+        &mut self,
         index: usize,
         world: &mut World,
-        compare: Option<&mut World>,
+        mut compare: Option<&mut World>,
     ) -> Option<Restored> {
-        let (k, key) = self
-            .entries
+        let History {
+            entries, rewind, ..
+        } = self;
+        let (k, key) = entries
             .iter()
             .enumerate()
             .take(index + 1)
             .rev()
             .find_map(|(i, e)| e.key.as_deref().map(|key| (i, key)))?;
-        replay(world, &key.world, key.stepping, index - k);
-        let compare = match (compare, &key.compare) {
-            (Some(w), Some((checkpoint, stepping))) => {
-                replay(w, checkpoint, *stepping, index - k);
-                true
+        let with_compare = compare.is_some() && key.compare.is_some();
+        rewind
+            .retain(|m| m.index > k && m.index <= index && (m.compare.is_some() || !with_compare));
+        let own = world.stepping();
+        let compare_own = compare.as_deref().map(World::stepping);
+        world.set_stepping(key.stepping);
+        let start = match rewind.last() {
+            Some(mark) => {
+                world.restore(&mark.world);
+                mark.index
             }
-            _ => false,
+            None => {
+                world.restore(&key.world);
+                k
+            }
         };
-        Some(Restored { compare })
+        let compare = match (compare.as_deref_mut(), &key.compare) {
+            (Some(w), Some((checkpoint, stepping))) => {
+                w.set_stepping(*stepping);
+                match rewind.last().and_then(|m| m.compare.as_ref()) {
+                    Some(c) => w.restore(c),
+                    None => w.restore(checkpoint),
+                }
+                Some(w)
+            }
+            _ => None,
+        };
+        let frames = index - start;
+        let stride = if start == k && frames >= 16 {
+            (frames as f64).sqrt().ceil() as usize
+        } else {
+            0
+        };
+        let mut compare = compare;
+        for done in 0..frames {
+            if stride > 0 && done > 0 && done % stride == 0 {
+                rewind.push(Mark {
+                    index: start + done,
+                    world: world.checkpoint(),
+                    compare: compare.as_deref().map(World::checkpoint),
+                });
+            }
+            world.step();
+            if let Some(w) = compare.as_deref_mut() {
+                w.step();
+            }
+        }
+        world.set_stepping(own);
+        let restored = compare.is_some();
+        if let (Some(w), Some(own)) = (compare, compare_own) {
+            w.set_stepping(own);
+        }
+        Some(Restored { compare: restored })
     }
 
     /// Puts the worlds at the newest frame start and removes it from the ring (stepping
@@ -225,12 +290,17 @@ impl History {
     }
 
     /// Puts the worlds at the newest frame start, keeping it in the ring; None when empty.
-    pub fn restore_last(&self, world: &mut World, compare: Option<&mut World>) -> Option<Restored> {
+    pub fn restore_last(
+        &mut self,
+        world: &mut World,
+        compare: Option<&mut World>,
+    ) -> Option<Restored> {
         self.rebuild(self.entries.len().checked_sub(1)?, world, compare)
     }
 
     pub fn clear(&mut self) {
         self.entries.clear();
+        self.rewind.clear();
         self.key_bytes = 0;
         self.fresh = true;
     }
@@ -254,9 +324,22 @@ impl History {
     }
 
     /// The bytes the ring holds: its entries (allocated for `capacity` frames at the start;
-    /// the ring never holds more) and its keyframes.
+    /// the ring never holds more), its keyframes and its rewind marks (while stepping back).
     pub fn heap_bytes(&self) -> usize {
-        self.entries.capacity() * size_of::<Entry>() + self.key_bytes
+        self.entries.capacity() * size_of::<Entry>() + self.key_bytes + self.rewind_bytes()
+    }
+
+    /// The bytes of the rewind marks: at most ⌈√K⌉ checkpoints, held only while stepping
+    /// back (the next frame pushed drops them).
+    pub fn rewind_bytes(&self) -> usize {
+        self.rewind
+            .iter()
+            .map(|m| {
+                size_of::<Mark>()
+                    + m.world.heap_bytes()
+                    + m.compare.as_ref().map_or(0, Checkpoint::heap_bytes)
+            })
+            .sum()
     }
 
     /// The last `n` barycenter positions, oldest first.
@@ -266,16 +349,17 @@ impl History {
     }
 }
 
-/// Restores `checkpoint` and steps `frames` whole frames under `stepping`; the world keeps
-/// its own settings afterwards.
-fn replay(world: &mut World, checkpoint: &Checkpoint, stepping: Stepping, frames: usize) {
-    let own = world.stepping();
-    world.set_stepping(stepping);
-    world.restore(checkpoint);
-    for _ in 0..frames {
-        world.step();
-    }
-    world.set_stepping(own);
+/// K for a ring of `capacity` frames with room for `room` checkpoints: the fewest frames
+/// between keyframes such that any `capacity` frames in a row hold `keys` = ⌈capacity/K⌉
+/// keyframes and the ⌈√K⌉ rewind marks fit, keys + ⌈√K⌉ ≤ room (K = capacity when not even
+/// one keyframe and its marks fit).
+fn interval(capacity: usize, room: usize) -> usize {
+    let marks = |k: usize| (k as f64).sqrt().ceil() as usize;
+    (1..=capacity)
+        .rev()
+        .map(|keys| capacity.div_ceil(keys))
+        .find(|&k| capacity.div_ceil(k) + marks(k) <= room)
+        .unwrap_or(capacity)
 }
 
 #[cfg(test)]
