@@ -195,7 +195,7 @@ impl History {
         &mut self,
         index: usize,
         world: &mut World,
-        mut compare: Option<&mut World>,
+        compare: Option<&mut World>,
     ) -> Option<Restored> {
         let History {
             entries, rewind, ..
@@ -222,7 +222,7 @@ impl History {
                 k
             }
         };
-        let compare = match (compare.as_deref_mut(), &key.compare) {
+        let compare = match (compare, &key.compare) {
             (Some(w), Some((checkpoint, stepping))) => {
                 w.set_stepping(*stepping);
                 match rewind.last().and_then(|m| m.compare.as_ref()) {
