@@ -44,4 +44,4 @@ pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
 pub use snapshot::{BodyView, ClothView, Snapshot, SystemTotals};
 pub use state::{Orientation, State};
-pub use world::{Checkpoint, NamedBody, Phase, World};
+pub use world::{Checkpoint, NamedBody, Phase, Stepping, World};

@@ -19,7 +19,7 @@
 //! none of this (one emptiness test per phase).
 
 use super::body::Body;
-use super::cloth::{Cloth, ClothLoads, ExplicitLimit, ParticleContact};
+use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::collide_bodies;
 use super::collision::impulse::Scratch;
 use super::collision::impulse::BOUNCE_STEPS;
@@ -113,6 +113,60 @@ pub struct Checkpoint {
     cloth_energies: Vec<Energy>,
 }
 
+impl Checkpoint {
+    /// The heap bytes this checkpoint holds (what keeping it costs beyond its own
+    /// `size_of`): every `Vec`'s capacity × its element size. Of a cloth, the particles, the
+    /// springs and its name are counted exactly; its step's scratch buffers (private to the
+    /// cloth module) are counted as what a step fills — per particle the force, the start
+    /// positions and velocities, the damping force and drag velocities, per spring its axis,
+    /// and with `implicit-euler` the solver's blocks, preconditioner and six vectors — an upper
+    /// bound on them once the cloth has stepped (`tests/history.rs` measures it against the
+    /// allocator).
+    pub fn heap_bytes(&self) -> usize {
+        bytes_of(&self.states)
+            + bytes_of(&self.before)
+            + bytes_of(&self.kinematics)
+            + bytes_of(&self.loads)
+            + bytes_of(&self.contacts)
+            + bytes_of(&self.cloths.0)
+            + self.cloths.0.iter().map(cloth_heap_bytes).sum::<usize>()
+            + bytes_of(&self.cloth_body_contacts)
+    }
+
+    /// Whether the checkpoint holds any cloth.
+    pub fn has_cloths(&self) -> bool {
+        !self.cloths.0.is_empty()
+    }
+}
+
+/// A `Vec`'s heap bytes: its capacity × its element size.
+fn bytes_of<T>(v: &Vec<T>) -> usize {
+    v.capacity() * std::mem::size_of::<T>()
+}
+
+/// A cloth's heap bytes (see [`Checkpoint::heap_bytes`]).
+fn cloth_heap_bytes(c: &Cloth) -> usize {
+    use std::mem::size_of;
+    type V = Vector3<f64>;
+    let (n, springs) = (c.len(), c.springs.len());
+    let exact = c.name.capacity()
+        + bytes_of(&c.positions)
+        + bytes_of(&c.velocities)
+        + bytes_of(&c.masses)
+        + bytes_of(&c.pinned)
+        + bytes_of(&c.springs);
+    // Scratch: force, start, start velocity, damping force, drag velocity; the spring axes.
+    let mut scratch = n * 5 * size_of::<V>() + springs * size_of::<super::cloth::spring::Axis>();
+    if c.integrator == ClothIntegrator::ImplicitEuler {
+        // Solver: per spring a block (direction, along, across); per particle the diagonal, a
+        // 3 × 3 preconditioner block and six vectors (rhs, solution, residual,
+        // preconditioned, direction, product).
+        scratch += springs * (size_of::<V>() + 2 * size_of::<f64>())
+            + n * (size_of::<f64>() + size_of::<nalgebra::Matrix3<f64>>() + 6 * size_of::<V>());
+    }
+    exact + scratch
+}
+
 /// The cloths of a checkpoint; two are equal when every particle's position and velocity and
 /// the losses are (the solver's scratch buffers are not compared).
 #[derive(Debug, Clone, Default)]
@@ -125,6 +179,13 @@ impl PartialEq for Cloths {
                 a.positions == b.positions && a.velocities == b.velocities && a.losses == b.losses
             })
     }
+}
+
+/// The settings a world steps with beside its checkpoint ([`World::stepping`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stepping {
+    pub integrator: Integrator,
+    pub contact: Option<ContactModel>,
 }
 
 /// A body of a world, with its name and its state at t = 0.
@@ -670,6 +731,49 @@ impl World {
     /// Switches the collision response (takes effect at the next collide phase).
     pub fn set_contact_model(&mut self, model: ContactModel) {
         self.contact = Some(model);
+    }
+
+    /// Switches the particle integrator of cloth `index` (and of its t = 0 state, so a reset
+    /// keeps it), keeping its particles, velocities and losses. The step's scratch, the
+    /// implicit step's warm start among it, starts over empty as for a new sheet: the next
+    /// step sizes it and starts the solve from Δv = 0. As with [`World::set_integrator`], a
+    /// frame in progress counts as done. (The integrator is part of the checkpoint: a history
+    /// replaying frames from an earlier checkpoint must start anew from here.)
+    pub fn set_cloth_integrator(&mut self, index: usize, integrator: ClothIntegrator) {
+        self.initial_cloths[index].integrator = integrator;
+        let now = &mut self.now;
+        if now.cloths.0[index].integrator == integrator {
+            return;
+        }
+        if now.last != Some(Phase::Collide) && now.last.is_some() {
+            now.last = Some(Phase::Collide);
+        }
+        // The t = 0 sheet has never stepped: its scratch is empty.
+        let mut fresh = self.initial_cloths[index].clone();
+        let running = &mut now.cloths.0[index];
+        std::mem::swap(&mut fresh.positions, &mut running.positions);
+        std::mem::swap(&mut fresh.velocities, &mut running.velocities);
+        fresh.losses = running.losses;
+        fresh.solver = running.solver;
+        *running = fresh;
+    }
+
+    /// What the world steps with besides its checkpoint: the body integrator and the contact
+    /// model (both can be switched while it runs). A checkpoint and these replay the frames
+    /// after it exactly.
+    pub fn stepping(&self) -> Stepping {
+        Stepping {
+            integrator: self.integrator,
+            contact: self.contact,
+        }
+    }
+
+    /// Sets what the world steps with, leaving the state alone (unlike
+    /// [`World::set_integrator`], which converts the orientation): for replaying frames from a
+    /// checkpoint taken under these settings.
+    pub fn set_stepping(&mut self, stepping: Stepping) {
+        self.integrator = stepping.integrator;
+        self.contact = stepping.contact;
     }
 
     /// A copy of everything that changes as the world steps.

@@ -23,6 +23,18 @@ use toml::Spanned;
 /// The most particles a sheet may have (500 × 500): beyond, a typo, not a lesson.
 const MAX_PARTICLES: i64 = 250_000;
 
+/// "unknown cloth integrator `WORD` (did you mean `…`?); valid cloth integrators: …" (the
+/// settings form checks a typed name with the same words).
+pub(super) fn unknown_cloth_integrator(word: &str) -> String {
+    let hint = did_you_mean(word, ClothIntegrator::ALL.map(ClothIntegrator::name))
+        .map(|s| format!(" (did you mean `{s}`?)"))
+        .unwrap_or_default();
+    format!(
+        "unknown cloth integrator `{word}`{hint}; valid cloth integrators: {}",
+        ClothIntegrator::names()
+    )
+}
+
 impl Validator<'_> {
     /// Every `[[cloth]]` table, in file order. `scene_integrator` is the scene's (a cloth
     /// without its own takes it); `has_contact` whether [scene] declares a response.
@@ -105,19 +117,8 @@ impl Validator<'_> {
                 .map_or(Ok(0.0), |v| self.non_negative(v, what))
         };
         let integrator = match &c.integrator {
-            Some(i) => ClothIntegrator::from_name(i.get_ref()).ok_or_else(|| {
-                let word = i.get_ref();
-                let hint = did_you_mean(word, ClothIntegrator::ALL.map(ClothIntegrator::name))
-                    .map(|s| format!(" (did you mean `{s}`?)"))
-                    .unwrap_or_default();
-                self.error(
-                    i.span(),
-                    format!(
-                        "unknown cloth integrator `{word}`{hint}; valid cloth integrators: {}",
-                        ClothIntegrator::names()
-                    ),
-                )
-            })?,
+            Some(i) => ClothIntegrator::from_name(i.get_ref())
+                .ok_or_else(|| self.error(i.span(), unknown_cloth_integrator(i.get_ref())))?,
             None => ClothIntegrator::from_name(scene_integrator.get_ref()).ok_or_else(|| {
                 self.error(
                     table.span(),

@@ -8,7 +8,12 @@
 //! mass M                 [body] mass; with `masses`, each point mass × M'/M (their sum is M')
 //! velocity v             [body] velocity
 //! angular velocity ω     [body] angular_velocity (world frame; replaces angular_velocity_body)
+//! cloth NAME integrator  [[cloth]] integrator of the cloth named NAME (written only when it
+//!                        differs from what the file gives the cloth, its own or the scene's)
 //! ```
+//!
+//! A scene of cloths only has no body values: `body` is None and only dt, the contact values
+//! and the cloths' integrators are edited.
 //!
 //! In memory the body keeps its points and its inertia scales with the mass
 //! (`I_body' = (M'/M) I_body`, see [`Body::with_mass`]); the initial momenta follow from the
@@ -18,16 +23,18 @@
 //! [`Body::with_mass`]: crate::physics::Body::with_mass
 
 use super::Scene;
+use crate::physics::cloth::ClothIntegrator;
 use crate::physics::derive::derive;
 use nalgebra::Vector3;
 use std::path::Path;
 use toml_edit::{Array, DocumentMut, Item, TableLike, Value};
 
 /// The values the settings form edits.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SceneEdits {
-    /// Which body the body values belong to (its index in the scene).
-    pub body: usize,
+    /// Which body the body values belong to (its index in the scene); None for a scene of
+    /// cloths only (then mass and velocities are not used).
+    pub body: Option<usize>,
     /// Time step, s (> 0).
     pub dt: f64,
     /// Coefficient of restitution, 0 ≤ e ≤ 1 (None: the scene has no contact model).
@@ -40,6 +47,22 @@ pub struct SceneEdits {
     pub velocity: Vector3<f64>,
     /// Initial angular velocity, world frame, rad/s.
     pub angular_velocity: Vector3<f64>,
+    /// Each cloth's particle integrator, in scene order.
+    pub cloths: Vec<ClothEdit>,
+}
+
+/// The edited value of one cloth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClothEdit {
+    /// The cloth's name (unique in the scene).
+    pub name: String,
+    pub integrator: ClothIntegrator,
+}
+
+/// A particle integrator by name, with the loader's own message (and its "did you mean")
+/// when there is none by that name.
+pub fn cloth_integrator(word: &str) -> Result<ClothIntegrator, String> {
+    ClothIntegrator::from_name(word).ok_or_else(|| super::cloth::unknown_cloth_integrator(word))
 }
 
 impl SceneEdits {
@@ -48,19 +71,35 @@ impl SceneEdits {
         SceneEdits::of_body(scene, 0)
     }
 
-    /// The values a scene has now, for body `index`.
+    /// The values a scene has now, for body `index` (none if the scene has no such body:
+    /// a scene of cloths only).
     pub fn of_body(scene: &Scene, index: usize) -> SceneEdits {
-        let b = &scene.bodies[index];
-        let kinematics = derive(&b.body, &b.initial);
-        SceneEdits {
-            body: index,
+        let cloths = scene
+            .cloths
+            .iter()
+            .map(|c| ClothEdit {
+                name: c.name.clone(),
+                integrator: c.integrator,
+            })
+            .collect();
+        let mut edits = SceneEdits {
+            body: None,
             dt: scene.dt,
             restitution: scene.contact.map(|c| c.restitution),
             friction: scene.contact.map(|c| c.friction),
-            mass: b.body.mass,
-            velocity: kinematics.velocity,
-            angular_velocity: kinematics.angular_velocity,
+            mass: 0.0,
+            velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+            cloths,
+        };
+        if let Some(b) = scene.bodies.get(index) {
+            let kinematics = derive(&b.body, &b.initial);
+            edits.body = Some(index);
+            edits.mass = b.body.mass;
+            edits.velocity = kinematics.velocity;
+            edits.angular_velocity = kinematics.angular_velocity;
         }
+        edits
     }
 
     /// Why these values cannot make a scene (the loader's own rules), if they cannot.
@@ -69,7 +108,7 @@ impl SceneEdits {
         if !(self.dt > 0.0 && self.dt.is_finite()) {
             return Some(format!("dt must be > 0, found {}", self.dt));
         }
-        if !(self.mass > 0.0 && self.mass.is_finite()) {
+        if self.body.is_some() && !(self.mass > 0.0 && self.mass.is_finite()) {
             return Some(format!("mass must be > 0, found {}", self.mass));
         }
         if let Some(e) = self.restitution {
@@ -82,7 +121,7 @@ impl SceneEdits {
                 return Some(format!("friction must be ≥ 0, found {mu}"));
             }
         }
-        if !finite(&self.velocity) || !finite(&self.angular_velocity) {
+        if self.body.is_some() && (!finite(&self.velocity) || !finite(&self.angular_velocity)) {
             return Some("velocities must be finite".into());
         }
         None
@@ -104,7 +143,21 @@ impl SceneEdits {
                 contact.friction = mu;
             }
         }
-        let edited = &mut out.bodies[self.body];
+        for edit in &self.cloths {
+            let cloth = out
+                .cloths
+                .iter_mut()
+                .find(|c| c.name == edit.name)
+                .ok_or_else(|| format!("the scene has no cloth named `{}`", edit.name))?;
+            cloth.integrator = edit.integrator;
+        }
+        let Some(index) = self.body else {
+            return Ok(out);
+        };
+        let edited = out
+            .bodies
+            .get_mut(index)
+            .ok_or_else(|| format!("the scene has no body number {}", index + 1))?;
         edited.body = edited
             .body
             .with_mass(self.mass)
@@ -118,7 +171,7 @@ impl SceneEdits {
 
     /// The scene file's text with these values written in; everything else (keys, comments,
     /// pages) stays as written. `body` is the index of the edited body in `[[body]]` (0 for a
-    /// single `[body]`). With `mesh_from`, a relative mesh `file` is rewritten as an absolute
+    /// single `[body]`; unused when [`SceneEdits::body`] is None). With `mesh_from`, a relative mesh `file` is rewritten as an absolute
     /// path from that folder (the written file may live elsewhere).
     pub fn write_into(
         &self,
@@ -145,6 +198,57 @@ impl SceneEdits {
                 set(contact, "friction", Value::from(mu));
             }
         }
+        self.write_cloths(&mut doc)?;
+        if let Some(body) = self.body.map(|_| body) {
+            self.write_body(&mut doc, body, mesh_from)?;
+        }
+        Ok(doc.to_string())
+    }
+
+    /// Each cloth's `integrator`, where it differs from what the file gives the cloth.
+    fn write_cloths(&self, doc: &mut DocumentMut) -> Result<(), String> {
+        if self.cloths.is_empty() {
+            return Ok(());
+        }
+        let scene_integrator = doc
+            .get("scene")
+            .and_then(|s| s.get("integrator"))
+            .and_then(Item::as_str)
+            .map(str::to_owned);
+        let tables = doc
+            .get_mut("cloth")
+            .and_then(Item::as_array_of_tables_mut)
+            .ok_or("the scene file has no [[cloth]]")?;
+        for edit in &self.cloths {
+            let table = tables
+                .iter_mut()
+                .enumerate()
+                .find(|(k, t)| {
+                    t.get("name")
+                        .and_then(Item::as_str)
+                        .map_or_else(|| format!("cloth{}", k + 1), str::to_owned)
+                        == edit.name
+                })
+                .map(|(_, t)| t)
+                .ok_or_else(|| format!("the scene file has no cloth named `{}`", edit.name))?;
+            let current = table
+                .get("integrator")
+                .and_then(Item::as_str)
+                .or(scene_integrator.as_deref());
+            if current != Some(edit.integrator.name()) {
+                set(table, "integrator", Value::from(edit.integrator.name()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The body values into `[body]` or the `body`-th `[[body]]`.
+    fn write_body(
+        &self,
+        doc: &mut DocumentMut,
+        body: usize,
+        mesh_from: Option<&Path>,
+    ) -> Result<(), String> {
         let body_table: &mut dyn TableLike = match doc.get_mut("body") {
             Some(Item::ArrayOfTables(bodies)) => bodies
                 .get_mut(body)
@@ -189,7 +293,7 @@ impl SceneEdits {
                 }
             }
         }
-        Ok(doc.to_string())
+        Ok(())
     }
 }
 
@@ -253,13 +357,14 @@ lines."""
 
     fn edits() -> SceneEdits {
         SceneEdits {
-            body: 0,
+            body: Some(0),
             dt: 0.005,
             restitution: Some(0.8),
             friction: Some(0.0),
             mass: 3.0,
             velocity: Vector3::new(1.0, 2.0, 0.0),
             angular_velocity: Vector3::new(0.5, 0.0, -1.0),
+            cloths: Vec::new(),
         }
     }
 
@@ -324,6 +429,66 @@ masses = [1.0, 2.0, 1.0]
             - applied.bodies[0].body.inertia_body)
             .norm();
         assert!(diff < 1e-12, "{diff}");
+    }
+
+    /// A sheet alone; it takes the scene's particle integrator (no `integrator` of its own).
+    const SHEET: &str = r#"# The explicit limit, by hand.
+title = "Sheet"
+
+[scene]
+dt = 0.0014352   # 1.1 × 2/ω_max
+integrator = "symplectic-euler"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+
+[[cloth]]
+name = "sheet"   # the only one
+size = [1.0, 1.0]
+count = [11, 11]
+position = [0.0, 1.0, 0.0]
+mass = 0.5
+stretch = 2000.0
+shear = 500.0
+pinned = "edges"
+"#;
+
+    #[test]
+    fn a_cloth_integrator_is_written_into_its_table_and_reads_back() {
+        let path = Path::new("sheet.toml");
+        let lesson = parse(SHEET, path).unwrap();
+        let mut edits = SceneEdits::of(&lesson.scene);
+        assert_eq!(edits.body, None, "a scene of cloths only");
+        assert_eq!(edits.cloths[0].integrator, ClothIntegrator::SymplecticEuler);
+        // Unchanged: the file is written as it was (no `integrator` added to the cloth).
+        let same = edits.write_into(SHEET, 0, None).unwrap();
+        assert_eq!(same, SHEET);
+        edits.cloths[0].integrator = ClothIntegrator::ImplicitEuler;
+        edits.dt = 0.013;
+        let text = edits.write_into(SHEET, 0, None).unwrap();
+        assert!(text.contains("integrator = \"implicit-euler\""), "{text}");
+        assert!(text.contains("name = \"sheet\"   # the only one"), "{text}");
+        assert!(text.contains("dt = 0.013   # 1.1 × 2/ω_max"), "{text}");
+        assert!(!text.contains("[body]"), "{text}");
+        let written = parse(&text, path).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        assert_eq!(
+            written.scene.cloths[0].integrator,
+            ClothIntegrator::ImplicitEuler
+        );
+        assert_eq!(written.scene.dt, 0.013);
+        let applied = edits.apply(&lesson.scene).unwrap();
+        assert_eq!(applied.cloths, written.scene.cloths);
+        // Back to the scene's own integrator: the cloth's key is rewritten, not dropped.
+        edits.cloths[0].integrator = ClothIntegrator::SymplecticEuler;
+        let back = edits.write_into(&text, 0, None).unwrap();
+        let cloth_table = back.split("[[cloth]]").nth(1).unwrap();
+        assert!(
+            cloth_table.contains("integrator = \"symplectic-euler\""),
+            "{back}"
+        );
+        assert_eq!(
+            parse(&back, path).unwrap().scene.cloths[0].integrator,
+            ClothIntegrator::SymplecticEuler
+        );
     }
 
     #[test]

@@ -13,7 +13,7 @@ mod messages;
 mod raw;
 
 pub use diagnose::check as check_every_error;
-pub use edit::SceneEdits;
+pub use edit::{ClothEdit, SceneEdits};
 pub use error::{did_you_mean, LoadError};
 
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};

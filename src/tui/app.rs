@@ -3,12 +3,13 @@
 //! function of the state. The simulation is a [`World`] (and, in compare mode, a second one in
 //! lock-step); every number shown comes from their snapshots.
 
-use super::history::{Entry, History, DEFAULT_CAPACITY};
+use super::history::{History, DEFAULT_CAPACITY};
 use super::keys::{self, Context, Message};
 use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
 use super::viewport::{shown_points, Axis, Region};
+use crate::physics::cloth::ClothIntegrator;
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
 use crate::scene::{Lesson, SceneEdits};
 use crate::tables::Frame;
@@ -21,20 +22,24 @@ use std::time::Instant;
 pub enum Comparison {
     Integrator(Integrator),
     Response(Response),
+    /// Another particle integrator for every cloth.
+    ClothIntegrator(ClothIntegrator),
 }
 
 impl Comparison {
-    /// An integrator or a collision response, by name.
+    /// An integrator, a collision response or a particle integrator, by name.
     pub fn from_name(name: &str) -> Option<Comparison> {
         Integrator::from_name(name)
             .map(Comparison::Integrator)
             .or_else(|| Response::from_name(name).map(Comparison::Response))
+            .or_else(|| ClothIntegrator::from_name(name).map(Comparison::ClothIntegrator))
     }
 
     pub fn name(self) -> &'static str {
         match self {
             Comparison::Integrator(i) => i.name(),
             Comparison::Response(r) => r.name(),
+            Comparison::ClothIntegrator(c) => c.name(),
         }
     }
 }
@@ -328,6 +333,19 @@ impl App {
             Message::Faster => self.speed = (self.speed + 1).min(SPEEDS.len() - 1),
             Message::Slower => self.speed = self.speed.saturating_sub(1),
             Message::Reset => self.reset(),
+            Message::NextIntegrator if self.world.body_count() == 0 => {
+                // Cloths only: the particle integrator of every cloth.
+                let next = self
+                    .world
+                    .cloths()
+                    .first()
+                    .map_or(ClothIntegrator::SymplecticEuler, |c| c.integrator.next());
+                self.before_change();
+                apply(&mut self.world, Comparison::ClothIntegrator(next));
+                // Replay from an earlier keyframe would step the old integrator.
+                self.history.break_segment();
+                self.refresh();
+            }
             Message::NextIntegrator => {
                 let next = self.world.integrator().next();
                 self.before_change();
@@ -565,14 +583,15 @@ impl App {
         matches!(self.world.last_phase(), None | Some(Phase::Collide))
     }
 
-    /// Saves the current frame start in the history (if at one).
+    /// Saves the current frame start in the history (if at one): whole at a keyframe, else
+    /// its barycenter only (see `history`).
     fn remember(&mut self) {
         if self.at_frame_start() {
-            self.history.push(Entry {
-                world: self.world.checkpoint(),
-                compare: self.ghost.as_ref().map(|g| g.world.checkpoint()),
-                position: self.world.state().position,
-            });
+            self.history.push(
+                self.world.state().position,
+                &self.world,
+                self.ghost.as_ref().map(|g| &g.world),
+            );
         }
     }
 
@@ -695,19 +714,30 @@ impl App {
 
     /// Back to the start of the previous frame (or of the current one, mid-frame).
     pub fn step_back(&mut self) {
-        let Some(entry) = self.history.pop() else {
+        self.step_back_frames(1);
+    }
+
+    /// `frames` steps back at once (at most to the oldest frame kept); with cloths this costs
+    /// one replay from a keyframe, not `frames` of them.
+    pub fn step_back_frames(&mut self, frames: usize) {
+        if self.history.is_empty() {
             self.notice = Some("no earlier frame kept".into());
             return;
-        };
+        }
+        if frames == 0 {
+            return;
+        }
         self.before_change();
-        self.world.restore(&entry.world);
+        let restored = self.history.pop_frames_into(
+            frames,
+            &mut self.world,
+            self.ghost.as_mut().map(|g| &mut g.world),
+        );
         if let Some(ghost) = &mut self.ghost {
-            match &entry.compare {
-                Some(c) => ghost.world.restore(c),
-                None => {
-                    ghost.world = self.world.clone();
-                    apply(&mut ghost.world, ghost.comparison);
-                }
+            if !restored.is_some_and(|r| r.compare) {
+                ghost.world = self.world.clone();
+                apply(&mut ghost.world, ghost.comparison);
+                self.history.break_segment();
             }
         }
         self.divergence = None;
@@ -734,6 +764,13 @@ impl App {
 
     fn next_response(&mut self) {
         match self.world.contact_model().copied() {
+            Some(_) if self.world.body_count() == 0 => {
+                self.notice = Some(
+                    "no bodies in this scene: the collision response acts on bodies (particles \
+                     use the restitution and friction)"
+                        .into(),
+                )
+            }
             Some(_) if self.world.body_count() > 1 => {
                 self.notice = Some(
                     "seed knows one body and fixed obstacles: with several bodies the response \
@@ -749,21 +786,33 @@ impl App {
         }
     }
 
-    /// The comparisons this scene offers, in cycling order.
-    fn comparisons(&self) -> Vec<Comparison> {
-        let mut list: Vec<Comparison> = Integrator::ALL
-            .into_iter()
-            .filter(|&i| i != self.world.integrator())
-            .map(Comparison::Integrator)
-            .collect();
-        if let Some(model) = self.world.contact_model() {
+    /// The comparisons this scene offers, in cycling order: the other body integrators and
+    /// collision responses when it has bodies (and obstacles), the other particle integrators
+    /// when it has cloths.
+    pub fn comparisons(&self) -> Vec<Comparison> {
+        let mut list: Vec<Comparison> = Vec::new();
+        if self.world.body_count() > 0 {
             list.extend(
-                Response::ALL
+                Integrator::ALL
                     .into_iter()
-                    .filter(|&r| r != model.response)
-                    .map(Comparison::Response),
+                    .filter(|&i| i != self.world.integrator())
+                    .map(Comparison::Integrator),
             );
+            if let Some(model) = self.world.contact_model() {
+                list.extend(
+                    Response::ALL
+                        .into_iter()
+                        .filter(|&r| r != model.response)
+                        .map(Comparison::Response),
+                );
+            }
         }
+        list.extend(
+            ClothIntegrator::ALL
+                .into_iter()
+                .filter(|&c| !same_cloth_integrator(&self.world, c))
+                .map(Comparison::ClothIntegrator),
+        );
         list
     }
 
@@ -780,6 +829,7 @@ impl App {
             Some(c) => self.start_compare(c),
             None => {
                 self.ghost = None;
+                self.history.break_segment();
                 self.before_change();
                 self.refresh();
             }
@@ -789,20 +839,24 @@ impl App {
     /// Starts a compare world at the current moment: a copy of the world with `comparison`
     /// applied at the start of the current frame, brought to the same phase.
     pub fn start_compare(&mut self, comparison: Comparison) {
-        if let Comparison::Response(_) = comparison {
-            if self.world.contact_model().is_none() {
-                self.notice = Some(format!(
-                    "no obstacles in this scene: nothing to compare with `{}`",
-                    comparison.name()
-                ));
-                return;
+        let missing = match comparison {
+            Comparison::Response(_) if self.world.contact_model().is_none() => Some("obstacles"),
+            Comparison::Integrator(_) | Comparison::Response(_) if self.world.body_count() == 0 => {
+                Some("bodies")
             }
+            Comparison::ClothIntegrator(_) if self.world.cloths().is_empty() => Some("cloths"),
+            _ => None,
+        };
+        if let Some(missing) = missing {
+            self.notice = Some(format!(
+                "no {missing} in this scene: nothing to compare with `{}`",
+                comparison.name()
+            ));
+            return;
         }
         let mut world = self.world.clone();
         if !self.at_frame_start() {
-            if let Some(entry) = self.history.last() {
-                world.restore(&entry.world);
-            }
+            self.history.restore_last(&mut world, None);
         }
         apply(&mut world, comparison);
         while world.last_phase() != self.world.last_phase() {
@@ -811,6 +865,7 @@ impl App {
         let same = match comparison {
             Comparison::Integrator(i) => i == self.world.integrator(),
             Comparison::Response(r) => Some(r) == self.world.contact_model().map(|m| m.response),
+            Comparison::ClothIntegrator(c) => same_cloth_integrator(&self.world, c),
         };
         if same {
             self.notice = Some(format!(
@@ -824,6 +879,7 @@ impl App {
             world,
             snapshot,
         });
+        self.history.break_segment();
         self.refresh();
     }
 
@@ -863,10 +919,20 @@ impl App {
     }
 }
 
+/// Whether every cloth of the world runs `integrator` already (true without cloths).
+fn same_cloth_integrator(world: &World, integrator: ClothIntegrator) -> bool {
+    world.cloths().iter().all(|c| c.integrator == integrator)
+}
+
 /// Applies a comparison to a world.
 fn apply(world: &mut World, comparison: Comparison) {
     match comparison {
         Comparison::Integrator(i) => world.set_integrator(i),
+        Comparison::ClothIntegrator(c) => {
+            for i in 0..world.cloths().len() {
+                world.set_cloth_integrator(i, c);
+            }
+        }
         Comparison::Response(r) => {
             if let Some(mut model) = world.contact_model().copied() {
                 model.response = r;

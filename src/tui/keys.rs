@@ -130,8 +130,8 @@ const fn within(
     }
 }
 
-/// The characters a number is typed with (the form also takes exponents, `1e-4`).
-const NUMBER_KEYS: &[KeyCode] = &[
+/// The characters a value is typed with: numbers (with exponents, `1e-4`) and names.
+const VALUE_KEYS: &[KeyCode] = &[
     Char('0'),
     Char('1'),
     Char('2'),
@@ -147,6 +147,31 @@ const NUMBER_KEYS: &[KeyCode] = &[
     Char('+'),
     Char('e'),
     Char('E'),
+    // Names (a cloth's particle integrator): every lowercase letter but `q` (quit).
+    Char('a'),
+    Char('b'),
+    Char('c'),
+    Char('d'),
+    Char('f'),
+    Char('g'),
+    Char('h'),
+    Char('i'),
+    Char('j'),
+    Char('k'),
+    Char('l'),
+    Char('m'),
+    Char('n'),
+    Char('o'),
+    Char('p'),
+    Char('r'),
+    Char('s'),
+    Char('t'),
+    Char('u'),
+    Char('v'),
+    Char('w'),
+    Char('x'),
+    Char('y'),
+    Char('z'),
 ];
 
 /// The characters a time is typed with.
@@ -412,9 +437,9 @@ pub const KEYS: &[Binding] = &[
     ),
     within(
         Context::Form,
-        NUMBER_KEYS,
-        "0-9 . - e",
-        "settings: type a number",
+        VALUE_KEYS,
+        "0-9 . - a-z",
+        "settings: type a number or a name",
         Message::Type(' '),
     ),
     within(
@@ -563,7 +588,7 @@ mod tests {
     fn s_opens_the_study_view() {
         let study: Vec<_> = KEYS
             .iter()
-            .filter(|b| b.keys.contains(&Char('s')))
+            .filter(|b| b.context == Context::Main && b.keys.contains(&Char('s')))
             .collect();
         assert_eq!(study.len(), 1);
         assert_eq!(study[0].message, Message::ToggleStudy);

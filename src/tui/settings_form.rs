@@ -1,8 +1,10 @@
 //! The settings form's state (key `e`): one text field per value of [`SceneEdits`] — restitution,
-//! friction, mass, dt, and the body's initial velocity and angular velocity component by
-//! component. Typing replaces the selected field's value (then appends); the values are read
-//! and checked only when the form is applied or written, with the loader's own rules.
+//! friction, mass, dt, the body's initial velocity and angular velocity component by
+//! component, and each cloth's particle integrator by name. A scene of cloths only has no body
+//! fields. Typing replaces the selected field's value (then appends); the values are read and
+//! checked only when the form is applied or written, with the loader's own rules.
 
+use crate::scene::edit::cloth_integrator;
 use crate::scene::SceneEdits;
 
 /// What a field holds.
@@ -16,10 +18,12 @@ pub enum FieldKind {
     Velocity(usize),
     /// Initial angular velocity (world frame), component 0, 1 or 2.
     AngularVelocity(usize),
+    /// The particle integrator of cloth `i` (its index in [`SceneEdits::cloths`]), by name.
+    ClothIntegrator(usize),
 }
 
 impl FieldKind {
-    /// The field's label and unit.
+    /// The field's label and unit (a cloth's field: see [`SettingsForm::label`]).
     pub fn label(self) -> (&'static str, &'static str) {
         match self {
             FieldKind::Restitution => ("restitution e", ""),
@@ -31,6 +35,7 @@ impl FieldKind {
                 ["angular velocity ω₀ x", "ω₀ y", "ω₀ z"][i],
                 ["rad/s (world frame)", "rad/s", "rad/s"][i],
             ),
+            FieldKind::ClothIntegrator(_) => ("cloth integrator", ""),
         }
     }
 }
@@ -84,13 +89,24 @@ impl SettingsForm {
         if let Some(mu) = base.friction {
             add(FieldKind::Friction, mu);
         }
-        add(FieldKind::Mass, base.mass);
-        add(FieldKind::Dt, base.dt);
-        for i in 0..3 {
-            add(FieldKind::Velocity(i), base.velocity[i]);
+        let body = base.body.is_some();
+        if body {
+            add(FieldKind::Mass, base.mass);
         }
-        for i in 0..3 {
-            add(FieldKind::AngularVelocity(i), base.angular_velocity[i]);
+        add(FieldKind::Dt, base.dt);
+        if body {
+            for i in 0..3 {
+                add(FieldKind::Velocity(i), base.velocity[i]);
+            }
+            for i in 0..3 {
+                add(FieldKind::AngularVelocity(i), base.angular_velocity[i]);
+            }
+        }
+        for (i, cloth) in base.cloths.iter().enumerate() {
+            fields.push(Field {
+                kind: FieldKind::ClothIntegrator(i),
+                text: cloth.integrator.name().into(),
+            });
         }
         SettingsForm {
             base,
@@ -134,6 +150,35 @@ impl SettingsForm {
         self.error = None;
     }
 
+    /// A field's label and unit: a cloth's names the cloth, "cloth NAME integrator".
+    pub fn label(&self, field: &Field) -> (String, &'static str) {
+        match field.kind {
+            FieldKind::ClothIntegrator(i) => (
+                format!(
+                    "cloth {} integrator",
+                    self.base.cloths.get(i).map_or("?", |c| c.name.as_str())
+                ),
+                "",
+            ),
+            kind => {
+                let (label, unit) = kind.label();
+                (label.to_string(), unit)
+            }
+        }
+    }
+
+    /// The text a field started from.
+    fn base_text(&self, kind: FieldKind) -> String {
+        match kind {
+            FieldKind::ClothIntegrator(i) => self
+                .base
+                .cloths
+                .get(i)
+                .map_or_else(String::new, |c| c.integrator.name().to_string()),
+            kind => tidy(self.base_value(kind)),
+        }
+    }
+
     /// The value a field started from.
     fn base_value(&self, kind: FieldKind) -> f64 {
         let b = &self.base;
@@ -144,18 +189,27 @@ impl SettingsForm {
             FieldKind::Dt => b.dt,
             FieldKind::Velocity(i) => b.velocity[i],
             FieldKind::AngularVelocity(i) => b.angular_velocity[i],
+            FieldKind::ClothIntegrator(_) => f64::NAN,
         }
     }
 
     /// The values typed, checked with the loader's rules; the error names the field. A field
     /// whose text was left as shown keeps its value exactly (not its rounded text).
     pub fn edits(&self) -> Result<SceneEdits, String> {
-        let mut edits = self.base;
+        let mut edits = self.base.clone();
         for field in &self.fields {
-            if field.text == tidy(self.base_value(field.kind)) {
+            if field.text == self.base_text(field.kind) {
                 continue;
             }
-            let label = field.kind.label().0;
+            let label = self.label(field).0;
+            if let FieldKind::ClothIntegrator(i) = field.kind {
+                let integrator =
+                    cloth_integrator(field.text.trim()).map_err(|e| format!("{label}: {e}"))?;
+                if let Some(cloth) = edits.cloths.get_mut(i) {
+                    cloth.integrator = integrator;
+                }
+                continue;
+            }
             let value: f64 = field
                 .text
                 .trim()
@@ -168,6 +222,7 @@ impl SettingsForm {
                 FieldKind::Dt => edits.dt = value,
                 FieldKind::Velocity(i) => edits.velocity[i] = value,
                 FieldKind::AngularVelocity(i) => edits.angular_velocity[i] = value,
+                FieldKind::ClothIntegrator(_) => {}
             }
         }
         match edits.problem() {
@@ -196,9 +251,15 @@ impl SettingsForm {
         if let (Some(old), Some(new)) = (b.friction, edits.friction) {
             note("μ", old, new, "");
         }
-        note("mass", b.mass, edits.mass, "kg");
+        if b.body.is_some() {
+            note("mass", b.mass, edits.mass, "kg");
+        }
         note("dt", b.dt, edits.dt, "s");
-        for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        for (i, axis) in ["x", "y", "z"]
+            .into_iter()
+            .enumerate()
+            .filter(|_| b.body.is_some())
+        {
             note(
                 &format!("v₀{axis}"),
                 b.velocity[i],
@@ -212,6 +273,16 @@ impl SettingsForm {
                 "rad/s",
             );
         }
+        for (old, new) in b.cloths.iter().zip(&edits.cloths) {
+            if old.integrator != new.integrator {
+                parts.push(format!(
+                    "cloth {} {} → {}",
+                    old.name,
+                    old.integrator.name(),
+                    new.integrator.name()
+                ));
+            }
+        }
         if parts.is_empty() {
             "no value changed".into()
         } else {
@@ -223,17 +294,20 @@ impl SettingsForm {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::cloth::ClothIntegrator;
+    use crate::scene::ClothEdit;
     use nalgebra::Vector3;
 
     fn base() -> SceneEdits {
         SceneEdits {
-            body: 0,
+            body: Some(0),
             dt: 0.01,
             restitution: Some(0.5),
             friction: Some(0.3),
             mass: 2.0,
             velocity: Vector3::new(0.3, 1.0, 0.0),
             angular_velocity: Vector3::new(0.5, 1.0, 2.0),
+            cloths: Vec::new(),
         }
     }
 
@@ -282,6 +356,68 @@ mod tests {
         });
         assert_eq!(form.fields.len(), 8);
         assert_eq!(form.fields[0].kind, FieldKind::Mass);
+    }
+
+    fn cloths_only() -> SceneEdits {
+        SceneEdits {
+            body: None,
+            mass: 0.0,
+            velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+            cloths: vec![ClothEdit {
+                name: "sheet".into(),
+                integrator: ClothIntegrator::SymplecticEuler,
+            }],
+            ..base()
+        }
+    }
+
+    #[test]
+    fn a_scene_of_cloths_only_has_dt_and_a_field_per_cloth_but_no_body_field() {
+        let mut form = SettingsForm::new(cloths_only());
+        let kinds: Vec<FieldKind> = form.fields.iter().map(|f| f.kind).collect();
+        assert_eq!(
+            kinds,
+            vec![
+                FieldKind::Restitution,
+                FieldKind::Friction,
+                FieldKind::Dt,
+                FieldKind::ClothIntegrator(0)
+            ]
+        );
+        assert_eq!(form.label(&form.fields[3]).0, "cloth sheet integrator");
+        assert_eq!(form.fields[3].text, "symplectic-euler");
+        // Untouched, nothing changes (the absent body's zero mass is not checked).
+        assert_eq!(form.edits().unwrap(), cloths_only());
+        form.down();
+        form.down(); // dt
+        for c in "0.013".chars() {
+            form.type_char(c);
+        }
+        form.down(); // the cloth's integrator
+        for c in "implicit-euler".chars() {
+            form.type_char(c);
+        }
+        let edits = form.edits().unwrap();
+        assert_eq!(edits.cloths[0].integrator, ClothIntegrator::ImplicitEuler);
+        assert_eq!(
+            form.changes(&edits),
+            "dt 0.01 → 0.013 s, cloth sheet symplectic-euler → implicit-euler"
+        );
+    }
+
+    #[test]
+    fn a_misspelt_integrator_is_refused_with_the_loaders_words() {
+        let mut form = SettingsForm::new(cloths_only());
+        form.selected = 3;
+        for c in "implict-euler".chars() {
+            form.type_char(c);
+        }
+        assert_eq!(
+            form.edits().unwrap_err(),
+            "cloth sheet integrator: unknown cloth integrator `implict-euler` (did you mean \
+             `implicit-euler`?); valid cloth integrators: symplectic-euler, implicit-euler"
+        );
     }
 
     #[test]

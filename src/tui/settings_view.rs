@@ -14,19 +14,24 @@ pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
     let label_width = form
         .fields
         .iter()
-        .map(|f| f.kind.label().0.chars().count())
+        .map(|f| form.label(f).0.chars().count())
         .max()
         .unwrap_or(0);
     let selected = Style::new()
         .fg(Color::Black)
         .bg(Color::Yellow)
         .add_modifier(Modifier::BOLD);
+    let whose = if form.base.cloths.is_empty() {
+        "The body's"
+    } else {
+        "The scene's"
+    };
     let mut lines = vec![Line::styled(
-        " The body's settings: Enter restarts the scene with them.",
+        format!(" {whose} settings: Enter restarts the scene with them."),
         Style::new().fg(Color::Gray),
     )];
     for (i, field) in form.fields.iter().enumerate() {
-        let (label, unit) = field.kind.label();
+        let (label, unit) = form.label(field);
         let value = format!(" {:<14}", field.text);
         lines.push(Line::from(vec![
             Span::styled(

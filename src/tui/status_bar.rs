@@ -29,40 +29,54 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
             format!("{} ({}/{})", s.body_name, s.body_index + 1, s.bodies.len()),
         ));
     }
+    let comparison = app.ghost.as_ref().map(|g| g.comparison);
     fields.extend([
         ("t", format!("{} s", number_plain(s.time))),
         ("step", s.step.to_string()),
         ("dt", format!("{} s", number_plain(s.dt))),
-        // In compare mode, "A vs B" on the setting the ghost differs by, and only there.
-        (
-            "integrator",
-            match app.ghost.as_ref().map(|g| g.comparison) {
-                _ if no_body => cloth_integrators(app),
-                Some(Comparison::Integrator(i)) => {
-                    format!("{} vs {}", s.integrator.name(), i.name())
-                }
-                _ => s.integrator.name().to_string(),
-            },
-        ),
-        (
-            "response",
-            match app.ghost.as_ref().map(|g| g.comparison) {
-                Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
-                _ => response.to_string(),
-            },
-        ),
-        (
-            "effects",
-            if effects.is_empty() {
-                "none".to_string()
-            } else {
-                effects.join(", ")
-            },
-        ),
     ]);
-    if !no_body && !s.cloths.is_empty() {
-        fields.push(("cloth", cloth_integrators(app)));
+    // In compare mode, "A vs B" on the setting the ghost differs by, and only there. The
+    // body settings only when there are bodies, the particle integrator only with cloths.
+    let bodies = app.world.body_count() > 0;
+    fields.extend(
+        [
+            (
+                "integrator",
+                match comparison {
+                    Some(Comparison::Integrator(i)) => {
+                        format!("{} vs {}", s.integrator.name(), i.name())
+                    }
+                    _ => s.integrator.name().to_string(),
+                },
+            ),
+            (
+                "response",
+                match comparison {
+                    Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
+                    _ => response.to_string(),
+                },
+            ),
+        ]
+        .into_iter()
+        .filter(|_| bodies),
+    );
+    if let Some(own) = cloth_integrators(app) {
+        fields.push((
+            "cloth",
+            match comparison {
+                Some(Comparison::ClothIntegrator(c)) => format!("{own} vs {}", c.name()),
+                _ => own,
+            },
+        ));
     }
+    fields.push((
+        "effects",
+        if effects.is_empty() {
+            "none".to_string()
+        } else {
+            effects.join(", ")
+        },
+    ));
     if app.show_timing {
         if let Some(ns) = app.ns_per_step {
             fields.push(("", format!("{ns:.0} ns/step")));
@@ -86,20 +100,16 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
     items
 }
 
-/// The cloths' particle integrators: `implicit-euler`, or `sheet implicit-euler, flag
-/// symplectic-euler` when several cloths use different ones.
-pub fn cloth_integrators(app: &App) -> String {
-    let cloths = &app.snapshot.cloths;
-    let first = cloths.first().map_or("—", |c| c.integrator);
-    if cloths.iter().all(|c| c.integrator == first) {
-        first.to_string()
-    } else {
-        cloths
-            .iter()
-            .map(|c| format!("{} {}", c.name, c.integrator))
-            .collect::<Vec<_>>()
-            .join(", ")
+/// The particle integrators of the cloths, each named once in cloth order (None without
+/// cloths).
+fn cloth_integrators(app: &App) -> Option<String> {
+    let mut names: Vec<&str> = Vec::new();
+    for c in app.world.cloths() {
+        if !names.contains(&c.integrator.name()) {
+            names.push(c.integrator.name());
+        }
     }
+    (!names.is_empty()).then(|| names.join(" + "))
 }
 
 /// The status fields, whole, on as many lines of `width` columns as they need (a field is
