@@ -20,7 +20,7 @@
 
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
-use super::cloth_coupling::collide_bodies;
+use super::cloth_coupling::{approach_bodies, collide_bodies};
 use super::collision::impulse::Scratch;
 use super::collision::impulse::BOUNCE_STEPS;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
@@ -352,7 +352,7 @@ impl World {
         let drag_start = drag.then(|| self.drag_power());
         let can_touch = self.can_touch();
         let now = &mut self.now;
-        if can_touch {
+        if can_touch || !now.cloths.0.is_empty() {
             now.before.clone_from(&now.states);
         }
         let mut potential = 0.0;
@@ -390,12 +390,18 @@ impl World {
             .contact
             .as_ref()
             .map_or((0.0, 0.0), |m| (m.restitution, m.friction));
+        let bounce_speed = self
+            .effects
+            .gravity()
+            .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
         now.cloth_obstacle_contacts
             .resize(now.cloths.0.len(), [0, 0]);
         now.cloth_energies.clear();
+        now.cloth_body_contacts.clear();
+        now.cloth_body_contacts.resize(now.cloths.0.len(), 0);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             cloth.velocity_step(loads, self.dt);
             if !self.obstacles.is_empty() {
@@ -411,6 +417,23 @@ impl World {
                 let taken = report.energy_taken;
                 if taken != 0.0 {
                     now.ledger.book_contact(taken, 0.0);
+                }
+            }
+            if self.contact.is_some() && !self.bodies.is_empty() {
+                let approach = approach_bodies(
+                    cloth,
+                    &self.bodies,
+                    &now.before,
+                    &mut now.states,
+                    restitution,
+                    friction,
+                    bounce_speed,
+                    self.dt,
+                );
+                // Counted with the collide phase's own (`cloth_body_contacts`).
+                now.cloth_body_contacts[k] = approach.contacts;
+                if approach.energy_taken != 0.0 {
+                    now.ledger.book_contact(approach.energy_taken, 0.0);
                 }
             }
             let lost = cloth.advance_positions(loads, self.dt);
@@ -447,7 +470,6 @@ impl World {
             .gravity()
             .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
         let now = &mut self.now;
-        now.cloth_body_contacts.clear();
         now.cloth_obstacle_contacts
             .resize(now.cloths.0.len(), [0, 0]);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
@@ -472,7 +494,7 @@ impl World {
                 model.friction,
                 bounce_speed,
             );
-            now.cloth_body_contacts.push(touching);
+            now.cloth_body_contacts[k] += touching;
             touched |= touching > 0;
         }
         // Nothing touched: nothing changed.
@@ -590,7 +612,8 @@ impl World {
         &self.cloth_loads
     }
 
-    /// Particle–body contacts of cloth `index` in the last collide phase.
+    /// Particle–body contacts of cloth `index` in the last step: the velocity pass of the
+    /// integrate phase and the collide phase together (`cloth_coupling`).
     pub fn cloth_body_contacts(&self, index: usize) -> usize {
         self.now
             .cloth_body_contacts

@@ -338,6 +338,16 @@ impl Cloth {
         dissipated
     }
 
+    /// Velocity of particle `i` at the start of the current step (after
+    /// [`Cloth::velocity_step`]); its current velocity before any step.
+    pub fn start_velocity(&self, i: usize) -> Vector3<f64> {
+        self.scratch
+            .start_velocity
+            .get(i)
+            .copied()
+            .unwrap_or(self.velocities[i])
+    }
+
     /// Positions at the start of the last step (for swept contact tests); the current
     /// positions before any step.
     pub fn start_positions(&self) -> &[Vector3<f64>] {
