@@ -202,7 +202,7 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
         format!("dt {} s", tables::number_plain(s.dt)),
         format!("step {}", s.step),
         if s.bodies.is_empty() {
-            format!("integrator {}", s.cloths[0].integrator)
+            format!("cloth {}", s.cloths[0].integrator)
         } else {
             format!("integrator {}", s.integrator.name())
         },

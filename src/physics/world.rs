@@ -129,8 +129,10 @@ impl Checkpoint {
             + bytes_of(&self.loads)
             + bytes_of(&self.contacts)
             + bytes_of(&self.cloths.0)
-            + self.cloths.0.iter().map(cloth_heap_bytes).sum::<usize>()
+            + self.cloths.0.iter().map(Cloth::heap_bytes).sum::<usize>()
             + bytes_of(&self.cloth_body_contacts)
+            + bytes_of(&self.cloth_obstacle_contacts)
+            + bytes_of(&self.cloth_energies)
     }
 
     /// Whether the checkpoint holds any cloth.
@@ -142,29 +144,6 @@ impl Checkpoint {
 /// A `Vec`'s heap bytes: its capacity × its element size.
 fn bytes_of<T>(v: &Vec<T>) -> usize {
     v.capacity() * std::mem::size_of::<T>()
-}
-
-/// A cloth's heap bytes (see [`Checkpoint::heap_bytes`]).
-fn cloth_heap_bytes(c: &Cloth) -> usize {
-    use std::mem::size_of;
-    type V = Vector3<f64>;
-    let (n, springs) = (c.len(), c.springs.len());
-    let exact = c.name.capacity()
-        + bytes_of(&c.positions)
-        + bytes_of(&c.velocities)
-        + bytes_of(&c.masses)
-        + bytes_of(&c.pinned)
-        + bytes_of(&c.springs);
-    // Scratch: force, start, start velocity, damping force, drag velocity; the spring axes.
-    let mut scratch = n * 5 * size_of::<V>() + springs * size_of::<super::cloth::spring::Axis>();
-    if c.integrator == ClothIntegrator::ImplicitEuler {
-        // Solver: per spring a block (direction, along, across); per particle the diagonal, a
-        // 3 × 3 preconditioner block and six vectors (rhs, solution, residual,
-        // preconditioned, direction, product).
-        scratch += springs * (size_of::<V>() + 2 * size_of::<f64>())
-            + n * (size_of::<f64>() + size_of::<nalgebra::Matrix3<f64>>() + 6 * size_of::<V>());
-    }
-    exact + scratch
 }
 
 /// The cloths of a checkpoint; two are equal when every particle's position and velocity and

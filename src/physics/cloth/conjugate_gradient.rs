@@ -163,7 +163,32 @@ pub struct Outcome {
     pub relative_residual: f64,
 }
 
+/// A `Vec`'s heap bytes: its capacity × its element size.
+pub(crate) fn bytes_of<T>(v: &[T], capacity: usize) -> usize {
+    debug_assert!(capacity >= v.len());
+    capacity * std::mem::size_of::<T>()
+}
+
 impl Workspace {
+    /// The bytes its buffers hold on the heap.
+    pub fn heap_bytes(&self) -> usize {
+        bytes_of(&self.blocks, self.blocks.capacity())
+            + bytes_of(&self.diagonal, self.diagonal.capacity())
+            + bytes_of(&self.preconditioner, self.preconditioner.capacity())
+            + bytes_of(&self.pinned, self.pinned.capacity())
+            + [
+                &self.rhs,
+                &self.solution,
+                &self.residual,
+                &self.preconditioned,
+                &self.direction,
+                &self.product,
+            ]
+            .iter()
+            .map(|v| bytes_of(v, v.capacity()))
+            .sum::<usize>()
+    }
+
     /// Sizes every per-particle buffer for `n` particles and lists the pinned ones; the warm
     /// start is reset to 0 when the size changed.
     pub fn resize(&mut self, pinned: &[bool]) {

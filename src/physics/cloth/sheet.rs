@@ -95,6 +95,30 @@ pub struct Cloth {
 }
 
 impl Cloth {
+    /// The bytes it holds on the heap: particles, springs, and the buffers reused from step
+    /// to step (what a copy of it costs; a history of the world counts them).
+    pub fn heap_bytes(&self) -> usize {
+        use super::conjugate_gradient::bytes_of;
+        let sc = &self.scratch;
+        self.name.capacity()
+            + bytes_of(&self.positions, self.positions.capacity())
+            + bytes_of(&self.velocities, self.velocities.capacity())
+            + bytes_of(&self.masses, self.masses.capacity())
+            + bytes_of(&self.pinned, self.pinned.capacity())
+            + bytes_of(&self.springs, self.springs.capacity())
+            + [
+                &sc.force,
+                &sc.damping_force,
+                &sc.start_velocity,
+                &sc.drag_velocity,
+                &sc.start,
+            ]
+            .iter()
+            .map(|v| bytes_of(v, v.capacity()))
+            .sum::<usize>()
+            + sc.solver.heap_bytes()
+    }
+
     /// Builds the sheet of a spec (module doc), after validating it.
     pub fn new(spec: &ClothSpec) -> Result<Cloth, ClothSpecError> {
         spec.validate()?;
