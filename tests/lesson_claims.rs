@@ -1728,12 +1728,7 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
     // On the ground they slide in to 0.68 m from the axis and back out; stuck from 1.31 s at
     // 0.818 m.
     assert_near(closest_corner, 0.68, 5e-3, "closest corner");
-    assert_near(
-        corner_stuck.x.hypot(corner_stuck.z),
-        0.818,
-        5e-4,
-        "corner",
-    );
+    assert_near(corner_stuck.x.hypot(corner_stuck.z), 0.818, 5e-4, "corner");
     // Chords: a spring with both ends on the sphere has its middle ρ − √(ρ² − ℓ²/4) inside;
     // the deepest: ≈ 4 mm for stretch springs (ℓ ≈ 0.127 m), 16 mm for bend ones (0.252 m).
     let on = |p: usize| ((c.positions[p] - centre).norm() - 0.5).abs() < 1e-9;

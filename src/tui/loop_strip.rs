@@ -205,6 +205,13 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         for formula in c.integrator.formula() {
             lines.push(line(format!("  {formula}"), ""));
         }
+        if world.body_count() > 0 && world.contact_model().is_some() {
+            lines.push(line(
+                "  before x moves: a particle headed into a body gets +J, the body −J, so that \
+                 vₚ·n ≥ −gap/h (it ends on the surface)",
+                "",
+            ));
+        }
         let [stopped, _] = view.obstacle_contacts;
         let obstacles = if world.obstacles().is_empty() {
             String::new()
@@ -246,7 +253,7 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     }
     if bodies {
         lines.push(line(
-            "particle in a body: u = v_p − (v_b + ω×r),  j = −(1+e)·uₙ/k,  +J on the particle, −J on the body",
+            "particle still in a body: u = v_p − (v_b + ω×r),  j = −(1+e)·uₙ/k,  +J on the particle, −J on the body",
             "",
         ));
     }
