@@ -91,8 +91,18 @@ const OPERATORS: &str = "=+−-×·/<>≤≥≈→⊗∝";
 /// 5. mid-word (a word longer than the line).
 ///
 /// Choices 2–4 are taken only if they keep at least a third of the line filled.
+///
+/// When a line is wider than `width`, the prose is reflowed first ([`reflow`]): the author's
+/// line breaks inside a paragraph would otherwise leave a short orphan after every wrapped line.
 pub fn wrap(text: &str, width: usize) -> Vec<String> {
     let width = width.max(1);
+    let reflowed;
+    let text = if text.lines().all(|l| l.trim_end().chars().count() <= width) {
+        text
+    } else {
+        reflowed = reflow(text);
+        &reflowed
+    };
     let mut out = Vec::new();
     for line in text.lines() {
         let chars: Vec<char> = line.trim_end().chars().collect();
@@ -136,6 +146,38 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
         }
     }
     out
+}
+
+/// Joins the lines of each prose paragraph into one line. Prose is a line that starts with a
+/// letter, a digit or an opening quote or bracket and is not a list item (`- `, `• `, `1. `);
+/// an indented line (a formula, a table row), an empty line or a list item is kept as it is
+/// and ends the paragraph.
+fn reflow(text: &str) -> String {
+    let prose = |l: &str| {
+        let first = l.chars().next();
+        let item = l.starts_with("- ")
+            || l.starts_with("• ")
+            || l
+                .split_once(". ")
+                .is_some_and(|(n, _)| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()));
+        first.is_some_and(|c| !c.is_whitespace()) && !item
+    };
+    let mut out: Vec<String> = Vec::new();
+    let mut open = false;
+    for line in text.lines() {
+        let line = line.trim_end();
+        let continues = open && prose(line);
+        match out.last_mut() {
+            Some(last) if continues => {
+                last.push(' ');
+                last.push_str(line);
+            }
+            _ => out.push(line.to_string()),
+        }
+        // A list item's own continuation lines are prose too.
+        open = !line.is_empty() && !line.starts_with(' ');
+    }
+    out.join("\n")
 }
 
 /// Where to break `chars` so that at most `room` characters stay on the line (see [`wrap`]).
@@ -229,6 +271,24 @@ mod tests {
     fn lines_within_the_page_width_are_kept_whole() {
         let line = "x".repeat(86);
         assert_eq!(wrap(&line, 86), vec![line.clone()]);
+    }
+
+    #[test]
+    fn prose_is_reflowed_in_a_narrow_pane_and_formulas_stay_on_their_lines() {
+        let page = "A cube falls from 1 m and\nhits the ground.\n  v = g t\nThen it rests.";
+        // Wide enough: the author's lines are kept.
+        assert_eq!(wrap(page, 30).len(), 4);
+        // 20 columns: the first paragraph is one paragraph, the formula its own line.
+        assert_eq!(
+            wrap(page, 20),
+            vec![
+                "A cube falls from",
+                "1 m and hits the",
+                "ground.",
+                "  v = g t",
+                "Then it rests."
+            ]
+        );
     }
 
     #[test]
