@@ -1558,9 +1558,10 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
         "the friction coefficient the held particles need",
     );
     // The simulated sheet is not in static balance: its springs (and the particles' weight)
-    // push the 8 up with 25.3 N while the cube weighs 9.81 N. A contact stops a particle's
-    // own velocity (its 4.5 g, k(n) above), and what the implicit step asked of the springs
-    // behind it is never passed to the cube.
+    // push the 8 up with 25.3 N while the cube weighs 9.81 N (Σ of the spring forces' y on
+    // them, less their weight 8 m g). A contact stops a particle's own velocity (its 4.5 g in
+    // k(n)); presumably what the implicit step asked of the springs behind it (a quasi-static
+    // velocity of the whole patch) is cancelled there each step and never reaches the cube.
     let mut push = 0.0;
     for s in &c.springs {
         let d = c.positions[s.j] - c.positions[s.i];
