@@ -157,8 +157,7 @@ fn reflow(text: &str) -> String {
         let first = l.chars().next();
         let item = l.starts_with("- ")
             || l.starts_with("• ")
-            || l
-                .split_once(". ")
+            || l.split_once(". ")
                 .is_some_and(|(n, _)| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()));
         first.is_some_and(|c| !c.is_whitespace()) && !item
     };
