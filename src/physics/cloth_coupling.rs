@@ -6,11 +6,21 @@
 //! contact, taken again by the springs' damping a step later — a resting cube would trade
 //! millijoules with the sheet every step and tremble. So contacts act on the velocities
 //! *before* the particles move ([`approach_bodies`], in the integrate phase, after the bodies
-//! and the particles' velocities were stepped): a free particle at gap g ≥ 0 from a body at
-//! its new pose, whose relative normal velocity would carry it inside within the step,
-//! `h u·n < −g`, is given the two-body impulse that makes `u·n = −g/h` (it arrives on the
-//! surface, no further), with friction, by the sweeps below. Fast approaches that bounce
-//! (e > 0) are left to the second pass, like any particle still found inside.
+//! and the particles' velocities were stepped). The body is then already where it ends the
+//! step, so a free particle at signed gap g from the body's new pose (g < 0: inside it) must
+//! end outside it:
+//!
+//! ```text
+//! v_p·n ≥ −g/h + b,   b = −e u₀,n if it touches (g ≤ 0) after a fast approach u₀,n, else 0
+//! ```
+//!
+//! with u₀,n the relative normal velocity at the start of the step (a particle carrying the
+//! body's weight is driven into it within every step, and that is no impact). The sweeps
+//! below reach it with impulses +J on the particle (Δv_p·n = Δj/m_p) and −J on the body at
+//! the contact point, friction on the relative slip within μ j_n. Known limit: the particle's
+//! own mass takes the impulse, not the sheet the implicit step couples it to, so the springs
+//! behind a particle reach the body only through later steps (Baraff–Witkin's constraint
+//! filtering inside the linear solve would do it within the step).
 //!
 //! # The second pass, after the positions moved
 //!
@@ -223,9 +233,9 @@ pub struct Approach {
 
 /// Pass 1 against bodies (module doc): between the particles' velocity half-step and their
 /// positions' update, with every body already at the end of its step (`states`; `start` are
-/// the bodies' states at the start of the step). Each free particle whose relative velocity
-/// would carry it into a body within the step is stopped on its surface by equal and
-/// opposite impulses.
+/// the bodies' states at the start of the step). Each free particle whose velocity would
+/// carry it into a body within the step is stopped on its surface (or bounces off it) by
+/// equal and opposite impulses.
 ///
 /// Energy taken, as for obstacles: the measured kinetic energy the impulses removed from the
 /// touched particles and the body, less what the step's own forces added to the approach
@@ -305,7 +315,7 @@ pub fn approach_bodies(
                 continue;
             }
             let k_n = inverse_mass(cloth, i, body, &inv_inertia, &arm, &n);
-            within += 0.5 * (un * un - approach * approach) / k_n;
+            within += 0.5 * (un.min(0.0).powi(2) - approach * approach) / k_n;
             touches.push(Touch {
                 particle: i,
                 normal: n,
