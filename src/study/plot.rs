@@ -103,30 +103,28 @@ fn legend(area: &Area, cloth: bool) -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
-    let ok: Vec<_> = study
-        .rows
-        .iter()
-        .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
-        .collect();
+/// Error against cost, both axes logarithmic.
+type CostChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// A log–log chart of error against cost, framed around (µs per simulated second, error)
+/// `points` (errors below [`FLOOR`] drawn at it), with its caption and axes drawn.
+fn cost_chart<'a, 'b>(
+    area: &'a Area<'b>,
+    caption: &str,
+    error: &str,
+    points: impl Iterator<Item = (f64, f64)>,
+) -> Result<CostChart<'a, 'b>, Box<dyn std::error::Error>> {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-    for r in &ok {
-        x0 = x0.min(r.us_per_simulated_second);
-        x1 = x1.max(r.us_per_simulated_second);
-        y0 = y0.min(r.error.max(FLOOR));
-        y1 = y1.max(r.error.max(FLOOR));
+    for (cost, e) in points {
+        (x0, x1) = (x0.min(cost), x1.max(cost));
+        (y0, y1) = (y0.min(e.max(FLOOR)), y1.max(e.max(FLOOR)));
     }
-    if ok.is_empty() {
+    if x0 > x1 {
         (x0, x1, y0, y1) = (1.0, 10.0, 1e-6, 1.0);
     }
     let mut chart = ChartBuilder::on(area)
-        .caption(
-            format!(
-                "{} ({} s, {} reference)",
-                study.name, study.duration, study.reference_kind
-            ),
-            ("sans-serif", 18),
-        )
+        .caption(caption, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(60)
@@ -137,10 +135,25 @@ fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Erro
     chart
         .configure_mesh()
         .x_desc("cost: µs of wall time per simulated second")
-        .y_desc("error, rad")
+        .y_desc(error)
         .x_label_formatter(&|x| format!("{x:.0e}"))
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()?;
+    Ok(chart)
+}
+
+fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
+    let ok: Vec<_> = study
+        .rows
+        .iter()
+        .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
+        .collect();
+    let caption = format!(
+        "{} ({} s, {} reference)",
+        study.name, study.duration, study.reference_kind
+    );
+    let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
+    let mut chart = cost_chart(area, &caption, "error, rad", points)?;
     let mut integrators: Vec<Integrator> = ok.iter().map(|r| r.integrator).collect();
     integrators.dedup();
     integrators.sort_by_key(|i| Integrator::ALL.iter().position(|a| a == i));
@@ -184,38 +197,12 @@ fn cloth_panel(
         .iter()
         .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
         .collect();
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-    for r in &ok {
-        x0 = x0.min(r.us_per_simulated_second);
-        x1 = x1.max(r.us_per_simulated_second);
-        y0 = y0.min(r.error.max(FLOOR));
-        y1 = y1.max(r.error.max(FLOOR));
-    }
-    if ok.is_empty() {
-        (x0, x1, y0, y1) = (1.0, 10.0, 1e-6, 1.0);
-    }
-    let mut chart = ChartBuilder::on(area)
-        .caption(
-            format!(
-                "{} ({} s, cloth case, 2/ω_max = {:.3e} s)",
-                study.name, study.duration, cloth.limit
-            ),
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(
-            (x0 / 2.0..x1 * 3.0).log_scale(),
-            (y0 / 10.0..y1 * 10.0).log_scale(),
-        )?;
-    chart
-        .configure_mesh()
-        .x_desc("cost: µs of wall time per simulated second")
-        .y_desc("max particle error, m")
-        .x_label_formatter(&|x| format!("{x:.0e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
-        .draw()?;
+    let caption = format!(
+        "{} ({} s, cloth case, 2/ω_max = {:.3e} s)",
+        study.name, study.duration, cloth.limit
+    );
+    let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
+    let mut chart = cost_chart(area, &caption, "max particle error, m", points)?;
     for integrator in ClothIntegrator::ALL {
         let c = cloth_color(integrator);
         let points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();

@@ -109,6 +109,23 @@ fn decades(lo: f64, hi: f64) -> (f64, f64) {
     }
 }
 
+/// The whole decades around (log₁₀ cost, log₁₀ error) points: x range, y range.
+fn bounds(points: &[(f64, f64)]) -> ((f64, f64), (f64, f64)) {
+    if points.is_empty() {
+        return ((0.0, 1.0), (-1.0, 0.0));
+    }
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in points {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    (decades(x0, x1), decades(y0, y1))
+}
+
 /// Axis labels at a few decades: "1e-3" …
 fn labels(lo: f64, hi: f64) -> Vec<String> {
     let span = (hi - lo).round() as i32;
@@ -156,20 +173,7 @@ fn render_cloth_study(
             .collect()
     };
     let all = points(None, false);
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in &all {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    if all.is_empty() {
-        (x0, x1, y0, y1) = (0.0, 1.0, -1.0, 0.0);
-    }
-    let (x0, x1) = decades(x0, x1);
-    let (y0, y1) = decades(y0, y1);
+    let ((x0, x1), (y0, y1)) = bounds(&all);
     let marker = if app.ascii {
         Marker::Dot
     } else {
@@ -290,20 +294,7 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             .collect()
     };
     let all = points(None, false);
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in &all {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    if all.is_empty() {
-        (x0, x1, y0, y1) = (0.0, 1.0, -1.0, 0.0);
-    }
-    let (x0, x1) = decades(x0, x1);
-    let (y0, y1) = decades(y0, y1);
+    let ((x0, x1), (y0, y1)) = bounds(&all);
     let marker = if app.ascii {
         Marker::Dot
     } else {
