@@ -5,9 +5,7 @@
 //! is exactly why the phase order matters. Between frames (after *collide*, or at t = 0) they
 //! are those of the current state, i.e. what the next *derive* will compute.
 
-use super::collision::geometry::{
-    deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape,
-};
+use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape};
 use super::collision::{Contact, Obstacle};
 use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};

@@ -429,9 +429,8 @@ impl Validator<'_> {
             let Some(shape) = &body.body.shape else {
                 continue;
             };
-            let unsupported = |other: &crate::physics::collision::geometry::Shape| {
-                !supports(shape, other)
-            };
+            let unsupported =
+                |other: &crate::physics::collision::geometry::Shape| !supports(shape, other);
             for other in &scene.bodies[..i] {
                 let Some(other_shape) = &other.body.shape else {
                     continue;
@@ -697,7 +696,10 @@ impl Validator<'_> {
                     Some(orientation) => Ok(Obstacle::RotatedBox {
                         center: (min + max) / 2.0,
                         half: (max - min) / 2.0,
-                        rotation: self.orientation(orientation)?.to_rotation_matrix().into_inner(),
+                        rotation: self
+                            .orientation(orientation)?
+                            .to_rotation_matrix()
+                            .into_inner(),
                     }),
                 }
             }
@@ -716,7 +718,11 @@ impl Validator<'_> {
             .map(|m| self.positive(m, "mass"))
             .transpose()?;
         // A fixed body's mass is ignored (it never moves): any positive number builds it.
-        let mass = if fixed { Some(mass.unwrap_or(1.0)) } else { mass };
+        let mass = if fixed {
+            Some(mass.unwrap_or(1.0))
+        } else {
+            mass
+        };
         let inertia = match &b.inertia {
             None => None,
             Some(i) => match i.get_ref().as_str() {
@@ -751,7 +757,14 @@ impl Validator<'_> {
             Some(("points", at)) if round => {
                 return Err(self.error(
                     at,
-                    format!("a {shape} has no mass points: use `inertia = \"solid\"`{}", if shape == "capsule" { "" } else { " or \"shell\"" }),
+                    format!(
+                        "a {shape} has no mass points: use `inertia = \"solid\"`{}",
+                        if shape == "capsule" {
+                            ""
+                        } else {
+                            " or \"shell\""
+                        }
+                    ),
                 ))
             }
             _ => {}

@@ -571,7 +571,10 @@ fn scene_2d(app: &App) -> Scene2d {
             continue;
         }
         let other = &app.world.bodies()[i];
-        let wire = view.shape.as_ref().and_then(|s| wire(s, &view.position, &view.rotation));
+        let wire = view
+            .shape
+            .as_ref()
+            .and_then(|s| wire(s, &view.position, &view.rotation));
         let (vertices, edges) = match &wire {
             Some((v, e)) => (v.as_slice(), e.as_slice()),
             None => (view.vertices.as_slice(), other.edges.as_slice()),

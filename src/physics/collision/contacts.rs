@@ -92,11 +92,7 @@ pub fn find(
             }
             // No vertex inside: what do faces and edges see?
             let touched = out[first..].iter().any(|c| c.depth > 0.0);
-            if let (false, false, Some(shape)) = (
-                touched,
-                obstacle.is_half_space(),
-                &body.shape,
-            ) {
+            if let (false, false, Some(shape)) = (touched, obstacle.is_half_space(), &body.shape) {
                 points.clear();
                 shape_obstacle(shape, &pose, obstacle, margin, points);
                 if !points.is_empty() {

@@ -121,9 +121,13 @@ pub fn inside(obstacle: &Obstacle, p: &Vector3<f64>) -> Option<Penetration> {
 /// A rotated box as the axis-aligned box of its own frame, and its rotation box → world.
 fn boxed(obstacle: &Obstacle) -> (Obstacle, nalgebra::Matrix3<f64>) {
     match *obstacle {
-        Obstacle::RotatedBox { half, rotation, .. } => {
-            (Obstacle::Box { min: -half, max: half }, rotation)
-        }
+        Obstacle::RotatedBox { half, rotation, .. } => (
+            Obstacle::Box {
+                min: -half,
+                max: half,
+            },
+            rotation,
+        ),
         _ => (*obstacle, nalgebra::Matrix3::identity()),
     }
 }
@@ -153,8 +157,12 @@ pub fn swept(obstacle: &Obstacle, a: &Vector3<f64>, b: &Vector3<f64>) -> Option<
         Obstacle::RotatedBox { .. } => {
             let (local, rotation) = boxed(obstacle);
             let c = center_of(obstacle);
-            swept(&local, &rotation.tr_mul(&(a - c)), &rotation.tr_mul(&(b - c)))
-                .map(|hit| turned(hit, &rotation))
+            swept(
+                &local,
+                &rotation.tr_mul(&(a - c)),
+                &rotation.tr_mul(&(b - c)),
+            )
+            .map(|hit| turned(hit, &rotation))
         }
         Obstacle::Sphere { center, radius } => {
             if obstacle.depth(a) > 0.0 {

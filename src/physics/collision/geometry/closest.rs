@@ -13,8 +13,8 @@
 //! ```
 
 use super::polyhedron::{BoxView, Polygon, Polyhedron};
-use super::shape::Pose;
 use super::segments::closest_points;
+use super::shape::Pose;
 use nalgebra::Vector3;
 
 /// The surface point nearest to a query point.

@@ -138,14 +138,7 @@ pub fn supports(a: &Shape, b: &Shape) -> bool {
 }
 
 /// One pair of the table, rank(a) ≤ rank(b), polyhedron pairs excepted (handled above).
-fn ordered(
-    a: &Shape,
-    pa: &Pose,
-    b: &Shape,
-    pb: &Pose,
-    margin: f64,
-    out: &mut Vec<ContactPoint>,
-) {
+fn ordered(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64, out: &mut Vec<ContactPoint>) {
     match a {
         Shape::Ball { radius } => {
             let closest = closest_point(b, pb, &pa.position);
