@@ -779,13 +779,15 @@ fn add_plane(
         (-n.0 - along.0) * std::f64::consts::FRAC_1_SQRT_2,
         (-n.1 - along.1) * std::f64::consts::FRAC_1_SQRT_2,
     );
+    // In ASCII each hatch is one character leaning its way (screen y is up).
+    let lean = if slant.0 * slant.1 < 0.0 { '\\' } else { '/' };
     for k in -40..=40 {
         let from = at(k as f64 * reach / 40.0);
         scene.segments.push(Segment {
             from,
             to: (from.0 + slant.0 * hatch, from.1 + slant.1 * hatch),
             colour: theme::OBSTACLE,
-            ascii: Some('/'),
+            ascii: Some(lean),
             dashed: false,
         });
     }
@@ -951,7 +953,47 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::body::box_corners;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn a_balls_equator_and_meridian_turn_with_it() {
+        // Turned 90° about z: the meridian's body point (r, 0, 0) (its first point) is carried
+        // to (0, r, 0) above the centre; the equator stays a circle of radius r about it.
+        let r = 0.1;
+        let c = Vector3::new(1.0, 2.0, 3.0);
+        let q = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), FRAC_PI_2).into_inner();
+        let (points, edges) = wire(&Shape::Ball { radius: r }, &c, &q).unwrap();
+        assert_eq!(
+            (points.len(), edges.len()),
+            (2 * WIRE_STEPS, 2 * WIRE_STEPS)
+        );
+        let meridian_start = points[WIRE_STEPS];
+        assert!(
+            (meridian_start - (c + Vector3::y() * r)).norm() < 1e-12,
+            "{meridian_start}"
+        );
+        assert!(points.iter().all(|p| ((p - c).norm() - r).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_plane_is_a_line_through_its_point_with_hatches_on_the_solid_side() {
+        // A 45° ramp seen from the front: its trace passes through the origin along (1, −1)/√2,
+        // and every hatch goes below-left of the line (into the solid, n = (1, 1)/√2).
+        let mut scene = Scene2d::default();
+        let n = Vector3::new(1.0, 1.0, 0.0).normalize();
+        add_plane(&mut scene, Axis::Front, &Vector3::zeros(), &n, 1.0);
+        let line = &scene.segments[0];
+        let cross = line.from.0 * line.to.1 - line.from.1 * line.to.0;
+        assert!(cross.abs() < 1e-9, "the line passes through the origin");
+        assert_eq!(scene.segments.len(), 1 + 81);
+        for hatch in &scene.segments[1..] {
+            let d = (hatch.to.0 - hatch.from.0, hatch.to.1 - hatch.from.1);
+            assert!(
+                d.0 * n.x + d.1 * n.y < 0.0,
+                "hatch {d:?} points out of the solid"
+            );
+        }
+    }
 
     #[test]
     fn a_box_seen_face_on_hides_only_its_back_face_edges() {
