@@ -639,6 +639,9 @@ fn scene_2d(app: &App) -> Scene2d {
     scene
 }
 
+/// A wire drawing: world points and the segments between them (indices).
+pub type Wire = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
+
 /// Points per circle of a round body's wire.
 const WIRE_STEPS: usize = 24;
 
@@ -651,7 +654,7 @@ pub fn wire(
     shape: &Shape,
     position: &Vector3<f64>,
     rotation: &Matrix3<f64>,
-) -> Option<(Vec<Vector3<f64>>, Vec<(usize, usize)>)> {
+) -> Option<Wire> {
     let mut points: Vec<Vector3<f64>> = Vec::new();
     let mut edges = Vec::new();
     let to_world = |p: Vector3<f64>| position + rotation * p;

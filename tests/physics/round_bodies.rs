@@ -18,10 +18,10 @@ fn world(source: &str) -> World {
 }
 
 fn error(source: &str) -> String {
-    parse(source, Path::new("t.toml"))
-        .err()
-        .expect("the scene must be refused")
-        .to_string()
+    match parse(source, Path::new("t.toml")) {
+        Ok(_) => panic!("the scene must be refused"),
+        Err(e) => e.to_string(),
+    }
 }
 
 /// A ramp at `degrees` descending toward +x: normal (sin θ, cos θ, 0), through the origin.

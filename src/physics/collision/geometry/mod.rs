@@ -147,13 +147,32 @@ fn ordered(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64, out: &mut Ve
         Shape::Capsule {
             radius,
             half_length,
-        } => round::capsule_against(
-            &core_segment(pa, *half_length),
-            *radius,
-            margin,
-            |p| closest_point(b, pb, p),
-            out,
-        ),
+        } => {
+            let core = core_segment(pa, *half_length);
+            // The parameter along the core of its point nearest to `p`.
+            let along = |p: &Vector3<f64>| {
+                let d = core.1 - core.0;
+                ((p - core.0).dot(&d) / d.norm_squared()).clamp(0.0, 1.0)
+            };
+            let nearest = match b {
+                Shape::Plane { .. } => round::Nearest::Ends,
+                Shape::Ball { .. } => round::Nearest::At(along(&pb.position)),
+                Shape::Capsule { half_length, .. } => {
+                    let other = core_segment(pb, *half_length);
+                    let on_a = segments::closest_points(&core.0, &core.1, &other.0, &other.1).0;
+                    round::Nearest::At(along(&on_a))
+                }
+                _ => round::Nearest::Search,
+            };
+            round::capsule_against(
+                &core,
+                *radius,
+                margin,
+                nearest,
+                |p| closest_point(b, pb, p),
+                out,
+            )
+        }
         Shape::Cylinder {
             radius,
             half_length,
