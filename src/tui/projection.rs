@@ -650,11 +650,7 @@ const WIRE_STEPS: usize = 24;
 /// ball is seen to roll. A cylinder: its two rims and four generators. A capsule: the rims of
 /// its cylindrical part, four generators and the two meridian half-circles of each cap. None
 /// for a polyhedron (drawn by its own vertices and edges).
-pub fn wire(
-    shape: &Shape,
-    position: &Vector3<f64>,
-    rotation: &Matrix3<f64>,
-) -> Option<Wire> {
+pub fn wire(shape: &Shape, position: &Vector3<f64>, rotation: &Matrix3<f64>) -> Option<Wire> {
     let mut points: Vec<Vector3<f64>> = Vec::new();
     let mut edges = Vec::new();
     let to_world = |p: Vector3<f64>| position + rotation * p;
