@@ -3,9 +3,9 @@
 //!
 //! | rule | error |
 //! |---|---|
-//! | `count` ≥ 2 along x and z | cloth `count` needs at least 2 particles along x and along z, found [1, 5] |
+//! | `count` ≥ 1 along x and z, ≥ 2 particles in all (1 along an axis: a rope) | cloth `count` needs at least 1 particle along x and along z and 2 in all (a rope is [n, 1] or [1, n]), found [0, 5] |
 //! | at most 250 000 particles | cloth `count` [100000, 100000] is too large: at most 250000 particles |
-//! | `size` > 0 | cloth `size` needs two sides > 0 m, found [2.0, 0.0] |
+//! | `size` > 0 (≥ 0 along an axis of count 1) | cloth `size` needs two sides > 0 m, found [2.0, 0.0] |
 //! | `mass`, `stretch` > 0; `shear`, `bend`, `damping` ≥ 0 | stretch must be > 0, found -5 |
 //! | `pinned` keyword | unknown pinned `corner` (did you mean `corners`?); valid: corners, edges, none, or [[i, j], …] |
 //! | `pinned` list in the grid | pinned particle [21, 0] is outside the 21×21 grid: i must be in 0..21 and j in 0..21 |
@@ -87,11 +87,12 @@ impl Validator<'_> {
             .as_ref()
             .map_or_else(|| format!("cloth{}", index + 1), |n| n.get_ref().clone());
         let [nx, nz] = *c.count.get_ref();
-        if nx < 2 || nz < 2 {
+        if nx < 1 || nz < 1 || nx * nz < 2 {
             return Err(self.error(
                 c.count.span(),
                 format!(
-                    "cloth `count` needs at least 2 particles along x and along z, found [{nx}, {nz}]"
+                    "cloth `count` needs at least 1 particle along x and along z and 2 in all \
+                     (a rope is [n, 1] or [1, n]), found [{nx}, {nz}]"
                 ),
             ));
         }
@@ -105,11 +106,17 @@ impl Validator<'_> {
         }
         let count = [nx as usize, nz as usize];
         let size = *c.size.get_ref();
-        if !size.iter().all(|s| s.is_finite() && *s > 0.0) {
-            return Err(self.error(
-                c.size.span(),
-                format!("cloth `size` needs two sides > 0 m, found {size:?}"),
-            ));
+        // Along an axis with one row (a rope) the side is unused and may be 0.
+        let side_ok = |s: f64, n: usize| s.is_finite() && (s > 0.0 || (n == 1 && s == 0.0));
+        if !(side_ok(size[0], count[0]) && side_ok(size[1], count[1])) {
+            let message = if count.contains(&1) {
+                format!(
+                    "cloth `size` needs its side along the rope > 0 m (the other ≥ 0), found {size:?}"
+                )
+            } else {
+                format!("cloth `size` needs two sides > 0 m, found {size:?}")
+            };
+            return Err(self.error(c.size.span(), message));
         }
         let optional = |value: &Option<Spanned<f64>>, what: &str| {
             value

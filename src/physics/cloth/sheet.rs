@@ -3,6 +3,7 @@
 //! ```text
 //! particle (i, j) ↦ index j·nx + i
 //! x(i, j) = position + (−size.x/2 + i·size.x/(nx − 1), 0, −size.z/2 + j·size.z/(nz − 1))
+//!           (offset 0 along an axis of count 1: a rope)
 //! m_i = mass/(nx·nz);   v_i = velocity (free) or 0 (pinned)
 //! springs, ℓ₀ = the initial distance:
 //!   stretch (i, j)–(i+1, j), (i, j)–(i, j+1)            k = stretch
@@ -127,14 +128,22 @@ impl Cloth {
         let m = spec.mass / n as f64;
         let mut positions = Vec::with_capacity(n);
         let mut pinned = Vec::with_capacity(n);
+        // Along an axis with one row (a rope), the row is on the centre line.
+        let offset = |k: usize, n: usize, side: f64| {
+            if n > 1 {
+                -side / 2.0 + k as f64 * side / (n - 1) as f64
+            } else {
+                0.0
+            }
+        };
         for j in 0..nz {
             for i in 0..nx {
                 positions.push(
                     spec.position
                         + Vector3::new(
-                            -spec.size[0] / 2.0 + i as f64 * spec.size[0] / (nx - 1) as f64,
+                            offset(i, nx, spec.size[0]),
                             0.0,
-                            -spec.size[1] / 2.0 + j as f64 * spec.size[1] / (nz - 1) as f64,
+                            offset(j, nz, spec.size[1]),
                         ),
                 );
                 pinned.push(spec.pinned.holds(i, j, spec.count));
@@ -177,7 +186,8 @@ impl Cloth {
             }
         }
         if spec.shear > 0.0 {
-            for j in 0..nz - 1 {
+            // A rope (nx or nz = 1) has no cells: no shear springs.
+            for j in 0..nz.saturating_sub(1) {
                 for i in 0..nx - 1 {
                     add(
                         index(i, j),
