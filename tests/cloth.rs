@@ -668,7 +668,8 @@ fn a_ropes_explicit_limit_is_the_chains_formula() {
             let cloth = rope(n, along_z, ClothIntegrator::SymplecticEuler);
             let m = mass / n as f64;
             let big_n = (n - 1) as f64;
-            let chain = 2.0 * (k / m).sqrt()
+            let chain = 2.0
+                * (k / m).sqrt()
                 * ((2.0 * big_n - 1.0) * std::f64::consts::PI / (2.0 * (2.0 * big_n + 1.0))).sin();
             let limit = cloth.explicit_limit(&gravity());
             let error = (limit.omega_max - chain).abs() / chain;
@@ -678,7 +679,11 @@ fn a_ropes_explicit_limit_is_the_chains_formula() {
                 limit.omega_max,
                 2.0 * (k / m).sqrt()
             );
-            assert!(error < 1e-6, "n = {n}: ω_max {} vs {chain}", limit.omega_max);
+            assert!(
+                error < 1e-6,
+                "n = {n}: ω_max {} vs {chain}",
+                limit.omega_max
+            );
         }
     }
     // The limit itself approaches 2√(k/m): the sine is cos(π/(2N + 1)), 1 − π²/(2(2N + 1)²):
@@ -723,7 +728,10 @@ fn a_rope_pinned_at_one_end_swings_and_symplectic_euler_keeps_its_energy_below_t
          ({:.2} % of m g ℓ/2); free end at {end:?}",
         100.0 * below / scale
     );
-    assert!(end.y < 0.6 && end.x < 0.4, "the rope did not swing: end at {end:?}");
+    assert!(
+        end.y < 0.6 && end.x < 0.4,
+        "the rope did not swing: end at {end:?}"
+    );
     // Symplectic below the limit: the energy error stays bounded, a few % of the swing's.
     assert!(below < 0.05 * scale, "0.9 h*: max |E − E₀| = {below:e} J");
     // Above the limit (1.2 h*) the highest longitudinal mode grows from the start: it blows up.

@@ -20,7 +20,7 @@
 
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
-use super::cloth_coupling::{approach_bodies, collide_bodies};
+use super::cloth_coupling::{approach_bodies, collide_bodies, position_factor, tied_step};
 use super::collision::impulse::Scratch;
 use super::collision::impulse::BOUNCE_STEPS;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
@@ -382,6 +382,33 @@ impl World {
         now.cloth_body_contacts.clear();
         now.cloth_body_contacts.resize(now.cloths.0.len(), 0);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
+            if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
+                // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
+                let tied = tied_step(
+                    cloth,
+                    loads,
+                    self.dt,
+                    &self.bodies,
+                    &now.before,
+                    &mut now.states,
+                    &self.obstacles,
+                    &[],
+                    restitution,
+                    friction,
+                    bounce_speed,
+                    position_factor(self.integrator),
+                );
+                now.cloth_body_contacts[k] = tied.contacts;
+                if tied.energy_taken != 0.0 {
+                    now.ledger.book_contact(tied.energy_taken, 0.0);
+                }
+                let lost = cloth.advance_positions(loads, self.dt);
+                now.ledger.drag_work -= lost.damping + lost.drag;
+                let e = cloth_energy(cloth, loads);
+                potential += e.potential;
+                now.cloth_energies.push(e);
+                continue;
+            }
             cloth.velocity_step(loads, self.dt);
             if !self.obstacles.is_empty() {
                 let report = cloth.contact_velocities(

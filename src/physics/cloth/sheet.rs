@@ -339,6 +339,31 @@ impl Cloth {
         }
     }
 
+    /// The implicit step with ties (`ties`), in three calls: this one records the start
+    /// velocities and assembles the step's matrix and right-hand side (`implicit_euler`); then
+    /// [`Cloth::solve_tied`] (as often as the caller's contact set changes); then
+    /// [`Cloth::finish_tied_step`]. Only for `implicit-euler` sheets.
+    pub fn begin_tied_step(&mut self, loads: &ClothLoads, dt: f64) {
+        debug_assert_eq!(self.integrator, ClothIntegrator::ImplicitEuler);
+        self.scratch.start_velocity.clone_from(&self.velocities);
+        implicit_euler::assemble(self, loads, dt);
+    }
+
+    /// Solves the step assembled by [`Cloth::begin_tied_step`] with these ties: v = v₀ + Δv,
+    /// each tie's impulse and each body's correction filled in.
+    pub fn solve_tied(
+        &mut self,
+        ties: &mut [super::ties::Tie],
+        bodies: &mut [super::ties::SolverBody],
+    ) -> StepReport {
+        implicit_euler::solve_tied(self, ties, bodies)
+    }
+
+    /// Ends a tied step's velocity half (the damping and drag the step used, for the losses).
+    pub fn finish_tied_step(&mut self, loads: &ClothLoads) {
+        implicit_euler::finish(self, loads);
+    }
+
     /// The position half: x ← x + h v for the free particles. Returns what the step's damping
     /// and drag took, and adds it to [`Cloth::losses`]: the work of the forces the velocity
     /// half used along the displacement, negated,
