@@ -435,7 +435,7 @@ impl Workspace {
         }
         // Momentum (module doc): with nothing pinned and every tie to a moving body, the
         // untied particles take the uniform shift that closes Σ a Δv = Σ b − Σ M ΔV.
-        if pinned.is_empty() && ties.iter().all(|tie| moves(tie)) && !ties.is_empty() {
+        if pinned.is_empty() && ties.iter().all(|tie| moves(tie)) {
             let mut gap = Vector3::zeros();
             let mut free_mass = 0.0;
             for i in 0..n {
