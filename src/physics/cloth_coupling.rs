@@ -391,8 +391,6 @@ struct Candidate {
     gap: f64,
     normal: Vector3<f64>,
     arm: Vector3<f64>,
-    /// Relative normal velocity at the start of the step (≤ 0), m/s, for the bounce.
-    approach: f64,
 }
 
 /// What the tied step did.
@@ -420,13 +418,10 @@ pub fn tied_step(
     loads: &crate::physics::cloth::ClothLoads,
     dt: f64,
     bodies: &[Body],
-    start: &[State],
     states: &mut [State],
     obstacles: &[crate::physics::collision::Obstacle],
     attachments: &[Attachment],
-    restitution: f64,
     friction: f64,
-    bounce_speed: f64,
     factor: f64,
 ) -> TiedReport {
     use crate::physics::cloth::{SolverBody, Tie, TieKind};
@@ -485,20 +480,12 @@ pub fn tied_step(
                 continue;
             };
             let arm = cp.point - state.position;
-            let before = &start[b];
-            let start_rotation = before.orientation.matrix();
-            let start_omega = start_rotation
-                * body.inv_inertia_body
-                * start_rotation.transpose()
-                * before.angular_momentum;
-            let u0 = v - (before.linear_momentum * body.inv_mass + start_omega.cross(&arm));
             let c = Candidate {
                 particle: i,
                 body: Some(b),
                 gap: -cp.depth,
                 normal: cp.normal,
                 arm,
-                approach: u0.dot(&cp.normal).min(0.0),
             };
             if best.is_none_or(|o| c.gap < o.gap) {
                 best = Some(c);
@@ -519,7 +506,6 @@ pub fn tied_step(
                 gap,
                 normal,
                 arm: Vector3::zeros(),
-                approach: v.dot(&normal).min(0.0),
             };
             if best.is_none_or(|o| c.gap < o.gap) {
                 best = Some(c);
@@ -543,7 +529,6 @@ pub fn tied_step(
         // is its springs' (they are inside the same solve); a restitution rule on a 4.5 g
         // particle tied to the body would kick the patch apart step after step and make
         // energy at large steps (measured: +0.2 J at dt = 5 ms on lesson 16).
-        let _ = (restitution, bounce_speed);
         let bounce = 0.0;
         Tie {
             particle: c.particle,
@@ -669,7 +654,6 @@ pub fn tied_step(
             gap: 0.0,
             normal: tie.normal,
             arm: tie.arm,
-            approach: 0.0,
         };
         let u = cloth.velocities[tie.particle] - point_velocity(&solver_bodies, &c, true);
         report.energy_taken -= (tie.impulse + tie.extra).dot(&u);

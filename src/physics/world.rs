@@ -389,13 +389,10 @@ impl World {
                     loads,
                     self.dt,
                     &self.bodies,
-                    &now.before,
                     &mut now.states,
                     &self.obstacles,
                     &[],
-                    restitution,
                     friction,
-                    bounce_speed,
                     position_factor(self.integrator),
                 );
                 now.cloth_body_contacts[k] = tied.contacts;

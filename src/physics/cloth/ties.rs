@@ -57,6 +57,8 @@
 //! caller makes it a normal tie with the bounded impulse `e = μ λ_n λ_t/|λ_t|` and solves again.
 //! **Attach** is a permanent full tie whose u_i brings the particle back to its point.
 
+#![allow(clippy::needless_range_loop)] // parallel per-particle arrays, indexed together
+
 use super::conjugate_gradient::{Symmetric3, Workspace};
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
@@ -435,7 +437,7 @@ impl Workspace {
         }
         // Momentum (module doc): with nothing pinned and every tie to a moving body, the
         // untied particles take the uniform shift that closes Σ a Δv = Σ b − Σ M ΔV.
-        if pinned.is_empty() && ties.iter().all(|tie| moves(tie)) {
+        if pinned.is_empty() && ties.iter().all(moves) {
             let mut gap = Vector3::zeros();
             let mut free_mass = 0.0;
             for i in 0..n {
