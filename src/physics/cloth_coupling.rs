@@ -106,7 +106,8 @@ pub fn collide_bodies(
         let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
         touches.clear();
         for i in 0..cloth.len() {
-            if cloth.inv_mass(i) == 0.0 {
+            // Attached particles are held inside the solve, not pushed out.
+            if cloth.inv_mass(i) == 0.0 || cloth.attached.iter().any(|a| a.0 == i) {
                 continue;
             }
             let x = cloth.positions[i];
@@ -396,8 +397,10 @@ struct Candidate {
 /// What the tied step did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TiedReport {
-    /// Contacts held at the end (attachments not counted).
+    /// Contacts with bodies held at the end (attachments not counted).
     pub contacts: usize,
+    /// Contacts with obstacles held at the end.
+    pub obstacle_contacts: usize,
     /// Solves of the tied system (1 when the first contact set held).
     pub rounds: usize,
     /// CG iterations over all rounds.
@@ -563,21 +566,24 @@ pub fn tied_step(
         kinds[k] = (tie_of(c).kind, Vector3::zeros());
     }
     let mut report = TiedReport::default();
-    let attach_ties = |states: &[State], cloth: &Cloth| -> Vec<Tie> {
+    let attach_ties = |states: &[State], cloth: &Cloth, sb: &[SolverBody]| -> Vec<Tie> {
         attachments
             .iter()
             .map(|a| {
                 let state = &states[a.body];
                 let arm = state.orientation.matrix() * a.offset_body;
                 let target = state.position + arm;
+                // The body is already at the end of its own step (`target`); the particle
+                // gets there, plus what the ties' correction moves the point: v = (target −
+                // x)/h + ΔV + ΔΩ × r, i.e. relative to the point's velocity V + ω × r:
+                let point = sb[a.body].velocity + sb[a.body].angular_velocity.cross(&arm);
                 Tie {
                     particle: a.particle,
                     body: Some(a.body),
                     arm,
                     normal: Vector3::y(),
                     kind: TieKind::Full,
-                    // Back onto its point within the step.
-                    relative: (target - cloth.positions[a.particle]) / dt,
+                    relative: (target - cloth.positions[a.particle]) / dt - point,
                     extra: Vector3::zeros(),
                     permanent: true,
                     impulse: Vector3::zeros(),
@@ -597,7 +603,7 @@ pub fn tied_step(
                 index.push(k);
             }
         }
-        ties.extend(attach_ties(states, cloth));
+        ties.extend(attach_ties(states, cloth, &solver_bodies));
         let step = cloth.solve_tied(&mut ties, &mut solver_bodies);
         report.rounds = round + 1;
         report.iterations += step.iterations;
@@ -658,7 +664,11 @@ pub fn tied_step(
         let u = cloth.velocities[tie.particle] - point_velocity(&solver_bodies, &c, true);
         report.energy_taken -= (tie.impulse + tie.extra).dot(&u);
     }
-    report.contacts = ties.iter().filter(|t| !t.permanent).count();
+    report.contacts = ties
+        .iter()
+        .filter(|t| !t.permanent && t.body.is_some())
+        .count();
+    report.obstacle_contacts = ties.iter().filter(|t| t.body.is_none()).count();
     // The bodies take the opposite impulses.
     for ((body, state), sb) in bodies.iter().zip(states.iter_mut()).zip(&solver_bodies) {
         if sb.mass == 0.0 {

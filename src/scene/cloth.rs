@@ -12,12 +12,14 @@
 //! | `integrator` a particle integrator | unknown cloth integrator `rk4`; valid cloth integrators: … |
 //! | absent `integrator`: the scene's must be one | cloth `sheet` has no `integrator` and the scene's `rk4` is not a particle integrator: … |
 //! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
+//! | `attach` particle in the grid, body known, not pinned, once | attach: unknown body `bob`; bodies in this file: cube |
+//! | `attach` needs `implicit-euler` | cloth `rope` has `attach`, which is held inside the implicit solve: … |
 //! | a cloth touches things | a cloth needs a collision response: add `contact = …` to [scene] |
 
 use super::error::did_you_mean;
 use super::raw::RawCloth;
 use super::{LoadError, Validator};
-use crate::physics::cloth::{ClothIntegrator, ClothSpec, Pinning};
+use crate::physics::cloth::{Attach, ClothIntegrator, ClothSpec, Pinning};
 use toml::Spanned;
 
 /// The most particles a sheet may have (500 × 500): beyond, a typo, not a lesson.
@@ -43,6 +45,7 @@ impl Validator<'_> {
         raw: &[Spanned<RawCloth>],
         scene_integrator: &Spanned<String>,
         has_contact: bool,
+        bodies: &[&str],
     ) -> Result<Vec<ClothSpec>, LoadError> {
         if let (Some(first), false) = (raw.first(), has_contact) {
             return Err(self.error(
@@ -54,7 +57,7 @@ impl Validator<'_> {
         }
         let mut specs: Vec<ClothSpec> = Vec::with_capacity(raw.len());
         for (k, table) in raw.iter().enumerate() {
-            let spec = self.cloth(table, k, scene_integrator)?;
+            let spec = self.cloth(table, k, scene_integrator, bodies)?;
             if specs.iter().any(|s| s.name == spec.name) {
                 let span = table
                     .get_ref()
@@ -80,6 +83,7 @@ impl Validator<'_> {
         table: &Spanned<RawCloth>,
         index: usize,
         scene_integrator: &Spanned<String>,
+        bodies: &[&str],
     ) -> Result<ClothSpec, LoadError> {
         let c = table.get_ref();
         let name = c
@@ -138,6 +142,62 @@ impl Validator<'_> {
                 )
             })?,
         };
+        let pinning = match &c.pinned {
+            None => Pinning::None,
+            Some(p) => self.pinned(p, count)?,
+        };
+        let mut attach: Vec<Attach> = Vec::new();
+        for entry in c.attach.iter().flatten() {
+            let a = entry.get_ref();
+            let [i, j] = a.particle;
+            if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
+                return Err(self.error(
+                    entry.span(),
+                    format!(
+                        "attached particle [{i}, {j}] is outside the {}×{} grid: i must be in \
+                         0..{} and j in 0..{}",
+                        count[0], count[1], count[0], count[1]
+                    ),
+                ));
+            }
+            let particle = [i as usize, j as usize];
+            let Some(body) = bodies.iter().position(|b| *b == a.body.get_ref()) else {
+                return Err(self.error(
+                    a.body.span(),
+                    format!(
+                        "attach: unknown body `{}`; bodies in this file: {}",
+                        a.body.get_ref(),
+                        bodies.join(", ")
+                    ),
+                ));
+            };
+            if pinning.holds(particle[0], particle[1], count) {
+                return Err(self.error(
+                    entry.span(),
+                    format!(
+                        "particle [{i}, {j}] is both pinned and attached: a particle is held by \
+                         one of them"
+                    ),
+                ));
+            }
+            if attach.iter().any(|b| b.particle == particle) {
+                return Err(self.error(
+                    entry.span(),
+                    format!("particle [{i}, {j}] is attached twice"),
+                ));
+            }
+            attach.push(Attach { particle, body });
+        }
+        if !attach.is_empty() && integrator != ClothIntegrator::ImplicitEuler {
+            return Err(self.error(
+                table.span(),
+                format!(
+                    "cloth `{name}` has `attach`, which is held inside the implicit solve: use \
+                     integrator = \"implicit-euler\" (found `{}`)",
+                    integrator.name()
+                ),
+            ));
+        }
         let spec = ClothSpec {
             name,
             size,
@@ -148,12 +208,10 @@ impl Validator<'_> {
             shear: optional(&c.shear, "shear")?,
             bend: optional(&c.bend, "bend")?,
             damping: optional(&c.damping, "damping")?,
-            pinned: match &c.pinned {
-                None => Pinning::None,
-                Some(p) => self.pinned(p, count)?,
-            },
+            pinned: pinning,
             velocity: self.optional_vector(&c.velocity, "velocity")?,
             integrator,
+            attach,
         };
         // Every rule is checked above with its place; this is the physics core's own check.
         spec.validate()

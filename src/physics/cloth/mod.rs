@@ -34,7 +34,7 @@ pub use energy::{ClothEnergy, Losses};
 pub use integrator::ClothIntegrator;
 pub use loads::ClothLoads;
 pub use sheet::{Cloth, SolverSettings, StepReport};
-pub use spec::{ClothSpec, ClothSpecError, Pinning};
+pub use spec::{Attach, ClothSpec, ClothSpecError, Pinning};
 pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
 pub use ties::{SolverBody, Tie, TieKind};

@@ -85,6 +85,8 @@ pub struct Cloth {
     pub masses: Vec<f64>,
     /// Pinned particles never move.
     pub pinned: Vec<bool>,
+    /// Particles held to bodies: (particle index, body index), from the spec's `attach`.
+    pub attached: Vec<(usize, usize)>,
     pub springs: Vec<Spring>,
     pub integrator: ClothIntegrator,
     pub solver: SolverSettings,
@@ -106,6 +108,7 @@ impl Cloth {
             + bytes_of(&self.velocities, self.velocities.capacity())
             + bytes_of(&self.masses, self.masses.capacity())
             + bytes_of(&self.pinned, self.pinned.capacity())
+            + bytes_of(&self.attached, self.attached.capacity())
             + bytes_of(&self.springs, self.springs.capacity())
             + [
                 &sc.force,
@@ -223,6 +226,11 @@ impl Cloth {
             velocities,
             masses: vec![m; n],
             pinned,
+            attached: spec
+                .attach
+                .iter()
+                .map(|a| (a.particle[1] * nx + a.particle[0], a.body))
+                .collect(),
             springs,
             integrator: spec.integrator,
             solver: SolverSettings::default(),

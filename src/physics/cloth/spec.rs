@@ -70,6 +70,14 @@ impl Pinning {
     }
 }
 
+/// A particle held to a body (`attach`): it moves with the body at its offset at t = 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Attach {
+    pub particle: [usize; 2],
+    /// The body's index in the scene.
+    pub body: usize,
+}
+
 /// A sheet's parameters (SI units), as a scene declares them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClothSpec {
@@ -95,6 +103,8 @@ pub struct ClothSpec {
     /// Initial velocity of every free particle, m/s.
     pub velocity: Vector3<f64>,
     pub integrator: ClothIntegrator,
+    /// Particles held to bodies (only inside the implicit solve).
+    pub attach: Vec<Attach>,
 }
 
 /// Why a spec cannot build a sheet.
@@ -158,6 +168,7 @@ impl ClothSpec {
             pinned: Pinning::None,
             velocity: Vector3::zeros(),
             integrator: ClothIntegrator::ImplicitEuler,
+            attach: Vec::new(),
         }
     }
 
