@@ -226,7 +226,13 @@ impl Validator<'_> {
             }
         }
         let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
-        scene.cloths = self.cloths(&raw.cloths, &scene_integrator, scene.contact.is_some())?;
+        let names: Vec<&str> = scene.bodies.iter().map(|b| b.name.as_str()).collect();
+        scene.cloths = self.cloths(
+            &raw.cloths,
+            &scene_integrator,
+            scene.contact.is_some(),
+            &names,
+        )?;
         scene.obstacles = raw
             .obstacles
             .iter()

@@ -159,4 +159,15 @@ pub struct RawCloth {
     pub pinned: Option<Spanned<toml::Value>>,
     pub velocity: Option<Vec3>,
     pub integrator: Option<Spanned<String>>,
+    /// Particles held to bodies: `[{ particle = [i, j], body = "name" }, …]`.
+    pub attach: Option<Vec<Spanned<RawAttach>>>,
+}
+
+/// One entry of a cloth's `attach`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAttach {
+    /// Signed so that a negative index gets our message, not serde's.
+    pub particle: [i64; 2],
+    pub body: Spanned<String>,
 }

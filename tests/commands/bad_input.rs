@@ -113,7 +113,8 @@ const TABLE: &[(&str, &str)] = &[
     ),
     (
         "cloth-count-below-two.toml",
-        "18:9: cloth `count` needs at least 2 particles along x and along z, found [1, 21]",
+        "18:9: cloth `count` needs at least 1 particle along x and along z and 2 in all (a rope \
+         is [n, 1] or [1, n]), found [0, 21]",
     ),
     (
         "cloth-duplicate-name.toml",
