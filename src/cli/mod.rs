@@ -102,6 +102,18 @@ impl Failure {
     }
 }
 
+/// Exit 3 with the divergence's message when the run diverged (`shot`, `record`: the file is
+/// written first, up to where it stopped).
+pub fn diverged(divergence: Option<&impl std::fmt::Display>) -> Result<(), Failure> {
+    match divergence {
+        None => Ok(()),
+        Some(d) => Err(Failure {
+            code: EXIT_DIVERGED,
+            message: d.to_string(),
+        }),
+    }
+}
+
 impl From<LoadError> for Failure {
     fn from(e: LoadError) -> Failure {
         Failure::bad_input(e.to_string())

@@ -1,6 +1,7 @@
 //! `tumble record FILE --duration T --out OUT.cast [--size COLSxROWS]`: a run of the app as an
 //! asciicast v2 recording (header line, then `[time, "o", data]` events with increasing times),
-//! rendered without a terminal, at real time.
+//! rendered without a terminal, at real time. Its steps and frames are bounded before it
+//! starts ([`crate::limits`]); a divergence ends the recording where it happens, exit 3.
 
 use super::{load_with, Failure, Overrides};
 use crate::tui::export;
@@ -50,6 +51,28 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
     if args.stage {
         app.layout = ScreenLayout::Stage;
     }
+    let what = format!("--duration {} s", crate::limits::short(args.duration));
+    let steps = crate::limits::steps(
+        args.duration,
+        app.snapshot.dt,
+        &what,
+        "record a shorter time or use a larger time step (--dt)",
+    )
+    .map_err(Failure::bad_input)?;
+    // One frame of the recording every `frames_per_second / CAST_FPS` steps (at least one
+    // frame per step).
+    let per_frame = app.frames_per_second() / export::CAST_FPS;
+    crate::limits::count(
+        (steps as f64 / per_frame).ceil(),
+        crate::limits::MAX_CAST_FRAMES,
+        &format!(
+            "{what} at {} frames/s of simulation",
+            app.frames_per_second()
+        ),
+        "recording frames",
+        "record a shorter time",
+    )
+    .map_err(Failure::bad_input)?;
     let (cols, rows) = args.size;
     let cast = export::record(&mut app, args.duration, cols, rows);
     std::fs::write(&args.out, &cast)
@@ -60,5 +83,5 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
         cast.lines().count() - 1,
         crate::tables::number_plain(app.snapshot.time)
     );
-    Ok(())
+    super::diverged(app.divergence.as_ref())
 }

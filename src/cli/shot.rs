@@ -55,7 +55,13 @@ pub fn app_at(
     if stage {
         app.layout = ScreenLayout::Stage;
     }
-    let steps = (at / app.snapshot.dt).round() as u64;
+    let steps = crate::limits::steps(
+        at,
+        app.snapshot.dt,
+        &format!("--at {} s", crate::limits::short(at)),
+        "choose a nearer time or a larger time step (--dt)",
+    )
+    .map_err(Failure::bad_input)?;
     // In chunks, so a divergence stops the run where it happens.
     let mut left = steps;
     while left > 0 && app.divergence.is_none() {
@@ -66,6 +72,8 @@ pub fn app_at(
     Ok(app)
 }
 
+/// Writes the picture; a run that diverged on the way still gets its picture (the moment it
+/// stopped), then exits 3 as `run` does.
 pub fn shot(args: &ShotArgs) -> Result<(), Failure> {
     let app = app_at(&args.file, &args.overrides, args.at, args.ascii, args.stage)?;
     let (cols, rows) = args.size;
@@ -77,5 +85,5 @@ pub fn shot(args: &ShotArgs) -> Result<(), Failure> {
         args.svg.display(),
         crate::tables::number_plain(app.snapshot.time)
     );
-    Ok(())
+    super::diverged(app.divergence.as_ref())
 }

@@ -70,10 +70,45 @@ pub fn cases(files: &[PathBuf], response: Option<&str>) -> Result<Vec<Case>, Fai
         .collect()
 }
 
+/// `--svg PATH` can be written: its folder exists (checked before the study runs, which takes
+/// seconds).
+fn check_svg_path(path: &std::path::Path) -> Result<(), Failure> {
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if path.is_dir() {
+        return Err(Failure::bad_input(format!(
+            "--svg {}: is a directory, not a file to write",
+            path.display()
+        )));
+    }
+    if !folder.is_dir() {
+        return Err(Failure::bad_input(format!(
+            "--svg {}: no such folder `{}`",
+            path.display(),
+            folder.display()
+        )));
+    }
+    Ok(())
+}
+
 /// Runs the study and prints it.
 pub fn study(args: &StudyArgs) -> Result<(), Failure> {
+    if let Some(path) = &args.svg {
+        check_svg_path(path)?;
+    }
     let cases = cases(&args.files, args.response.as_deref())?;
     let config = Config::default();
+    for (case, path) in cases
+        .iter()
+        .zip(args.files.iter().map(Some).chain(std::iter::repeat(None)))
+    {
+        study::check_work(case, &config).map_err(|why| {
+            let at = path.map_or_else(|| case.name.clone(), |p| p.display().to_string());
+            Failure::bad_input(format!("{at}: {why}"))
+        })?;
+    }
     let started = std::time::Instant::now();
     let studies = study::study(&cases, &config, &mut |_, _| {});
     let elapsed = started.elapsed().as_secs_f64();

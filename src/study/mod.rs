@@ -210,6 +210,42 @@ pub fn study_case(
     }
 }
 
+/// Refuses, before anything runs, a case whose study would keep too many samples or whose
+/// finest run would take too many steps ([`crate::limits`]): the error names `duration`.
+pub fn check_work(case: &Case, config: &Config) -> Result<(), String> {
+    use crate::limits::{self, short};
+    let duration = short(case.duration);
+    let interval = config.timing.sample_interval;
+    limits::count(
+        case.duration / interval,
+        limits::MAX_SAMPLES,
+        &format!(
+            "`duration` = {duration} s (a sample every {} s)",
+            short(interval)
+        ),
+        "samples",
+        "give the scene a shorter `duration` to study it",
+    )?;
+    let finest = if case.scene.cloths.is_empty() {
+        config.dts.iter().copied().fold(f64::INFINITY, f64::min)
+    } else {
+        let cloth = cloth_config(config);
+        let ladder = cloth
+            .dts
+            .unwrap_or_else(|| cloth::ladder(cloth::explicit_limit(&case.scene).0));
+        ladder.into_iter().fold(f64::INFINITY, f64::min)
+    };
+    if finest.is_finite() {
+        limits::steps(
+            case.duration,
+            finest,
+            &format!("a study of `duration` = {duration} s"),
+            "its finest run is at that dt; give the scene a shorter `duration` to study it",
+        )?;
+    }
+    Ok(())
+}
+
 /// The cloth settings a study with `config` uses: its timing, the default ladder.
 pub fn cloth_config(config: &Config) -> ClothConfig {
     ClothConfig {
