@@ -256,16 +256,21 @@ fn override_integrators(
     Ok(())
 }
 
-/// Loads a lesson (a file, or a bundled lesson by name) and applies command-line overrides.
+/// Loads a lesson (a file, or a bundled lesson by name) and applies command-line overrides;
+/// the scene then passes the same rules as a file does ([`crate::scene::Scene::check_rules`]).
 pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> {
     let mut lesson = crate::lessons::load(path)?;
-    let scene = &mut lesson.scene;
+    apply(path, &mut lesson.scene, overrides)?;
+    Ok(lesson)
+}
+
+/// Applies command-line overrides to a loaded scene and checks the scene's rules again.
+pub fn apply(
+    path: &Path,
+    scene: &mut crate::scene::Scene,
+    overrides: &Overrides,
+) -> Result<(), Failure> {
     if let Some(dt) = overrides.dt {
-        if !(dt > 0.0 && dt.is_finite()) {
-            return Err(Failure::bad_input(format!(
-                "--dt must be > 0 and finite, found {dt}"
-            )));
-        }
         scene.dt = dt;
     }
     if let Some(name) = &overrides.integrator {
@@ -283,7 +288,17 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
             }
         }
     }
-    Ok(lesson)
+    scene
+        .check_rules(crate::scene::Naming::Flags)
+        .map_err(|(setting, message)| {
+            // A rule the file itself breaks was refused when it loaded: this one is the flag's.
+            match setting {
+                crate::scene::Setting::Dt => Failure::bad_input(message),
+                crate::scene::Setting::Response => {
+                    Failure::bad_input(format!("{}: {message}", path.display()))
+                }
+            }
+        })
 }
 
 /// The file the terminal app opens: the given one, else the first bundled lesson.
@@ -320,11 +335,18 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
                     names,
                 ))
             })?;
-            if matches!(comparison, Comparison::Response(_)) && lesson.scene.contact.is_none() {
-                return Err(Failure::bad_input(format!(
-                    "{}: --compare {name} needs a scene with obstacles and a `contact` table",
-                    path.display()
-                )));
+            if let Comparison::Response(response) = comparison {
+                // The ghost's scene passes the same rules as a file or `--response`.
+                let mut ghost = lesson.scene.clone();
+                apply(
+                    &path,
+                    &mut ghost,
+                    &Overrides {
+                        response: Some(response.name().to_string()),
+                        ..Overrides::default()
+                    },
+                )
+                .map_err(|f| Failure::bad_input(f.message.replace("--response", "--compare")))?;
             }
             Some(comparison)
         }

@@ -43,29 +43,28 @@ pub struct StudyArgs {
 /// replaces the collision response of every case with contact (a file without contact is an
 /// error, as with `tumble run --response`).
 pub fn cases(files: &[PathBuf], response: Option<&str>) -> Result<Vec<Case>, Failure> {
-    let response = response.map(response_named).transpose()?;
+    response.map(response_named).transpose()?;
+    let overrides = super::Overrides {
+        response: response.map(str::to_string),
+        ..super::Overrides::default()
+    };
     if files.is_empty() {
-        let builtin = study::scenes::builtin().into_iter();
-        return Ok(match response {
-            None => builtin.collect(),
-            Some(r) => builtin
-                .map(|case| case.clone().with_response(r).unwrap_or(case))
-                .collect(),
-        });
+        let mut cases = Vec::new();
+        for mut case in study::scenes::builtin() {
+            // A built-in scene without contact keeps its own settings.
+            if case.scene.contact.is_some() {
+                let path = PathBuf::from(&case.name);
+                super::apply(&path, &mut case.scene, &overrides)?;
+            }
+            cases.push(case);
+        }
+        return Ok(cases);
     }
     files
         .iter()
         .map(|path| {
-            let case = Case::from_lesson(&crate::lessons::load(path)?);
-            match response {
-                None => Ok(case),
-                Some(r) => case.with_response(r).ok_or_else(|| {
-                    Failure::bad_input(format!(
-                        "{}: --response needs a scene with obstacles and a `contact` table",
-                        path.display()
-                    ))
-                }),
-            }
+            let lesson = super::load_with(path, &overrides)?;
+            Ok(Case::from_lesson(&lesson))
         })
         .collect()
 }

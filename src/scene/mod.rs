@@ -112,6 +112,71 @@ impl Scene {
     }
 }
 
+/// How a broken scene rule names the setting at fault: as the file's key (`dt`,
+/// `response = "impulse"`) or as the command line's flag (`--dt`, `--response impulse`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Naming {
+    File,
+    Flags,
+}
+
+impl Naming {
+    fn dt(self) -> &'static str {
+        match self {
+            Naming::File => "dt",
+            Naming::Flags => "--dt",
+        }
+    }
+
+    fn response(self, name: &str) -> String {
+        match self {
+            Naming::File => format!("response = \"{name}\""),
+            Naming::Flags => format!("--response {name}"),
+        }
+    }
+}
+
+/// A scene setting a rule is about: each can come from the file or from a flag.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    Dt,
+    Response,
+}
+
+impl Scene {
+    /// The rules between the settings the command line may replace (`dt`, the collision
+    /// response) and the rest of the scene: the loader checks the file with them, and every
+    /// command checks the scene again after its flags (`--dt`, `--response`) replaced a
+    /// setting, so a flag can never say what the file may not. The error names the setting
+    /// at fault in `naming`'s words.
+    pub fn check_rules(&self, naming: Naming) -> Result<(), (Setting, String)> {
+        if !(self.dt > 0.0 && self.dt.is_finite()) {
+            return Err((
+                Setting::Dt,
+                format!(
+                    "{} must be > 0 and finite, found {}",
+                    naming.dt(),
+                    crate::limits::short(self.dt)
+                ),
+            ));
+        }
+        if let Some(model) = &self.contact {
+            if model.response == Response::Seed && self.bodies.len() > 1 {
+                return Err((
+                    Setting::Response,
+                    format!(
+                        "the `seed` response knows one body and fixed obstacles only, and this \
+                         scene has {} bodies: use {}",
+                        self.bodies.len(),
+                        naming.response("impulse")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A lesson (or a bare scene): title, summary, scene and pages.
 #[derive(Debug, Clone)]
 pub struct Lesson {
@@ -473,20 +538,7 @@ impl Validator<'_> {
                 ));
             }
         }
-        if let (Some(model), Some(c)) = (&contact, &raw.contact) {
-            if model.response == Response::Seed && bodies.len() > 1 {
-                let at = c.get_ref().response.span();
-                return Err(self.error(
-                    at,
-                    format!(
-                        "the `seed` response knows one body and fixed obstacles only, and this \
-                         scene has {} bodies: use response = \"impulse\"",
-                        bodies.len()
-                    ),
-                ));
-            }
-        }
-        Ok(Scene {
+        let scene = Scene {
             dt,
             duration,
             integrator,
@@ -495,7 +547,17 @@ impl Validator<'_> {
             obstacles: Vec::new(),
             bodies: bodies.into_iter().map(|(b, _)| b).collect(),
             cloths: Vec::new(),
-        })
+        };
+        scene
+            .check_rules(Naming::File)
+            .map_err(|(setting, message)| {
+                let at = match (setting, &raw.contact) {
+                    (Setting::Response, Some(c)) => c.get_ref().response.span(),
+                    _ => raw.dt.span(),
+                };
+                self.error(at, message)
+            })?;
+        Ok(scene)
     }
 
     fn contact(&self, raw: &Spanned<raw::RawContact>) -> Result<ContactModel, LoadError> {
