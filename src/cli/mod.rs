@@ -5,6 +5,7 @@
 
 mod check;
 mod lessons;
+pub mod output;
 #[cfg(feature = "tui")]
 mod record;
 mod run;
@@ -381,8 +382,11 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => {
             let code = if e.use_stderr() { EXIT_BAD_INPUT } else { 0 };
-            let _ = e.print();
-            return ExitCode::from(code);
+            // `--help | head -1`: a closed stdout ends the help quietly, never a panic.
+            return match e.print() {
+                Err(io) if !e.use_stderr() => ExitCode::from(output::failure(io).code),
+                _ => ExitCode::from(code),
+            };
         }
     };
     let result = match cli.command {
@@ -400,7 +404,7 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            eprintln!("tumble: {}", failure.message);
+            output::warn(&failure.message);
             ExitCode::from(failure.code)
         }
     }

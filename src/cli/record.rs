@@ -77,11 +77,11 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
     let cast = export::record(&mut app, args.duration, cols, rows);
     std::fs::write(&args.out, &cast)
         .map_err(|e| Failure::bad_input(format!("cannot write {}: {e}", args.out.display())))?;
-    eprintln!(
-        "tumble: wrote {} ({cols}x{rows}, {} frames, t = {} s)",
+    super::output::warn(&format!(
+        "wrote {} ({cols}x{rows}, {} frames, t = {} s)",
         args.out.display(),
         cast.lines().count() - 1,
         crate::tables::number_plain(app.snapshot.time)
-    );
+    ));
     super::diverged(app.divergence.as_ref())
 }

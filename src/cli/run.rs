@@ -64,7 +64,7 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
     let write = |out: &mut BufWriter<_>, s: &Snapshot| -> std::io::Result<()> {
         writeln!(out, "{}", row(s))
     };
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    let io = super::output::failure;
     writeln!(out, "{HEADER}").map_err(io)?;
     write(&mut out, &world.snapshot_of(body)).map_err(io)?;
     for step in 1..=args.steps {
@@ -91,7 +91,7 @@ fn run_cloth(
 ) -> Result<(), Failure> {
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    let io = super::output::failure;
     let write = |out: &mut BufWriter<_>, world: &crate::physics::World| -> std::io::Result<()> {
         let cloth = &world.cloths()[index];
         let energy = world.total_energy().total;

@@ -80,10 +80,10 @@ pub fn shot(args: &ShotArgs) -> Result<(), Failure> {
     let picture = export::svg(&export::render(&app, cols, rows));
     std::fs::write(&args.svg, picture)
         .map_err(|e| Failure::bad_input(format!("cannot write {}: {e}", args.svg.display())))?;
-    eprintln!(
-        "tumble: wrote {} ({cols}x{rows}, t = {} s)",
+    super::output::warn(&format!(
+        "wrote {} ({cols}x{rows}, t = {} s)",
         args.svg.display(),
         crate::tables::number_plain(app.snapshot.time)
-    );
+    ));
     super::diverged(app.divergence.as_ref())
 }

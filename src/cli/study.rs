@@ -10,7 +10,6 @@
 
 use super::{response_named, Failure};
 use crate::study::{self, report, Case, Config};
-use std::io::Write;
 use std::path::PathBuf;
 
 /// Output formats.
@@ -125,11 +124,13 @@ pub fn study(args: &StudyArgs) -> Result<(), Failure> {
         Format::Csv => report::csv(&studies),
         Format::Json => report::json(&studies),
     };
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
-    std::io::stdout()
-        .lock()
-        .write_all(text.as_bytes())
-        .map_err(io)?;
+    // Scene names and titles come from files: their control characters escaped.
+    let text = text
+        .split('\n')
+        .map(crate::scene::printable)
+        .collect::<Vec<_>>()
+        .join("\n");
+    super::output::print(&text)?;
     if let Some(path) = &args.svg {
         study::plot::svg(&studies, path).map_err(Failure::bad_input)?;
     }

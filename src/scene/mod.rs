@@ -14,7 +14,7 @@ mod raw;
 
 pub use diagnose::check as check_every_error;
 pub use edit::{ClothEdit, SceneEdits};
-pub use error::{did_you_mean, LoadError};
+pub use error::{did_you_mean, printable, LoadError};
 
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
 use crate::physics::{
