@@ -77,7 +77,7 @@ pub enum Command {
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Overrides {
     /// Time step, s (overrides the file's `dt`).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Integrator (overrides the file's `integrator`).
     #[arg(long)]
@@ -85,6 +85,25 @@ pub struct Overrides {
     /// Collision response (overrides the file's `contact.response`).
     #[arg(long)]
     pub response: Option<String>,
+}
+
+/// A count on the command line (`--steps`, `--frames`, `--every`): a whole number ≥ 0; the
+/// error says which rule the text broke (clap names the flag).
+pub fn parse_count(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    t.parse::<u64>().map_err(|_| {
+        if t.starts_with('-') {
+            "must be a whole number ≥ 0".to_string()
+        } else if t.parse::<f64>().is_ok_and(|v| v.is_finite() && v >= 0.0) {
+            if t.parse::<f64>().is_ok_and(|v| v > u64::MAX as f64) {
+                format!("must be a whole number at most {}", u64::MAX)
+            } else {
+                "must be a whole number (no decimal point or exponent)".to_string()
+            }
+        } else {
+            "must be a whole number ≥ 0".to_string()
+        }
+    })
 }
 
 /// A one-line error for the user, with its exit code.

@@ -14,7 +14,7 @@ pub struct RecordArgs {
     /// The lesson or scene file.
     pub file: PathBuf,
     /// Simulated time to record, s (played back at real time).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub duration: f64,
     /// Where to write the recording (.cast).
     #[arg(long, value_name = "OUT.cast")]

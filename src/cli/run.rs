@@ -25,10 +25,10 @@ pub struct RunArgs {
     /// The scene file.
     pub file: PathBuf,
     /// Number of steps to run.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::parse_count)]
     pub steps: u64,
     /// Print one row every K steps.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = super::parse_count)]
     pub every: u64,
     /// The body whose row is printed (default: the first).
     #[arg(long, conflicts_with = "cloth")]

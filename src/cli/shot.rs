@@ -12,7 +12,7 @@ pub struct ShotArgs {
     /// The lesson or scene file.
     pub file: PathBuf,
     /// Simulated time of the picture, s (the scene is run from t = 0 to the nearest step).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub at: f64,
     /// Where to write the SVG.
     #[arg(long, value_name = "OUT")]

@@ -21,7 +21,7 @@ pub struct WalkArgs {
     /// The lesson or scene file.
     pub file: PathBuf,
     /// Number of frames to walk through.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::parse_count)]
     pub frames: u64,
     /// Print the tables after every phase (derive, forces, integrate, collide), not only after
     /// each frame.
