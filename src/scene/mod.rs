@@ -271,6 +271,7 @@ impl Validator<'_> {
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let bodies = self.bodies(raw.body, !raw.cloths.is_empty())?;
         self.no_overlap(&bodies)?;
+        let body_spans: Vec<Range<usize>> = bodies.iter().map(|(_, s)| s.clone()).collect();
         let title = raw.title.into_inner();
         let scene_integrator = raw.scene.get_ref().integrator.clone();
         let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
@@ -280,6 +281,7 @@ impl Validator<'_> {
             .iter()
             .map(|o| self.obstacle(o))
             .collect::<Result<_, _>>()?;
+        self.finite_start(&scene, &body_spans, &raw.cloths)?;
         let mut pages = Vec::new();
         for page in raw.pages {
             let span = page.span();
@@ -327,6 +329,23 @@ impl Validator<'_> {
             Ok(v)
         } else {
             Err(self.error(value.span(), format!("{what} must be > 0, found {v}")))
+        }
+    }
+
+    /// A mass: > 0, finite, and a normal number (a subnormal mass, below 2.2e-308 kg, has lost
+    /// its precision and its inertia tensor vanishes).
+    fn mass(&self, value: &Spanned<f64>) -> Result<f64, LoadError> {
+        let v = self.positive(value, "mass")?;
+        if v.is_normal() {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!(
+                    "mass {v:e} kg is too small to compute with: at least 2.2e-308 kg (a \
+                     normal number)"
+                ),
+            ))
         }
     }
 
@@ -680,11 +699,7 @@ impl Validator<'_> {
         let b = raw.into_inner();
         let shape = b.shape.get_ref().as_str();
         let needs = |key: &str| self.error(span.clone(), format!("a {shape} body needs `{key}`"));
-        let mass = b
-            .mass
-            .as_ref()
-            .map(|m| self.positive(m, "mass"))
-            .transpose()?;
+        let mass = b.mass.as_ref().map(|m| self.mass(m)).transpose()?;
         let inertia = match &b.inertia {
             None => None,
             Some(i) => match i.get_ref().as_str() {
@@ -730,10 +745,13 @@ impl Validator<'_> {
                 let masses = match &b.masses {
                     Some(m) => {
                         for &value in m.get_ref() {
-                            if !(value > 0.0 && value.is_finite()) {
+                            if !(value > 0.0 && value.is_normal()) {
                                 return Err(self.error(
                                     m.span(),
-                                    format!("point masses must be > 0 and finite, found {value}"),
+                                    format!(
+                                        "point masses must be > 0, finite and at least 2.2e-308 \
+                                         kg (a normal number), found {value:e}"
+                                    ),
                                 ));
                             }
                         }
@@ -809,6 +827,66 @@ impl Validator<'_> {
         Ok((body, shape.to_string(), initial))
     }
 
+    /// Every number of the initial state, and every number formed from it (momenta, weight,
+    /// energies), is finite: a file of huge but finite values (a velocity of 1e308 m/s, a mass
+    /// of 1e308 kg under gravity, a sheet of 1e200 m) is refused here, naming the keys whose
+    /// product overflowed, rather than "diverging" at step 0 or 1 without having diverged.
+    fn finite_start(
+        &self,
+        scene: &Scene,
+        body_spans: &[Range<usize>],
+        cloths: &[Spanned<raw::RawCloth>],
+    ) -> Result<(), LoadError> {
+        let finite = |v: &Vector3<f64>| v.iter().all(|c| c.is_finite());
+        let g = scene.effects.gravity().unwrap_or_else(Vector3::zeros);
+        for (b, span) in scene.bodies.iter().zip(body_spans) {
+            let s = &b.initial;
+            let v = s.linear_momentum * b.body.inv_mass;
+            let rotation = s.orientation.matrix();
+            let omega =
+                rotation * b.body.inv_inertia_body * rotation.transpose() * s.angular_momentum;
+            let weight = g * b.body.mass;
+            let overflow = if !finite(&s.linear_momentum) {
+                Some("its momentum M·v overflows: `velocity` × `mass`")
+            } else if !finite(&s.angular_momentum) || !finite(&omega) {
+                Some("its angular momentum I·ω overflows: `angular_velocity` × the inertia of `mass` and the shape")
+            } else if !(0.5 * s.linear_momentum.dot(&v)).is_finite() {
+                Some("its kinetic energy ½ M v² overflows: `velocity` (and `mass`)")
+            } else if !(0.5 * omega.dot(&s.angular_momentum)).is_finite() {
+                Some("its rotational energy ½ ω·L overflows: `angular_velocity` (and `mass`)")
+            } else if !finite(&weight) {
+                Some("its weight M·g overflows: `mass` × `gravity`")
+            } else if !weight.dot(&s.position).is_finite() {
+                Some("its potential energy −M g·x overflows: `position` × `mass` × `gravity`")
+            } else {
+                None
+            };
+            if let Some(why) = overflow {
+                return Err(self.error(
+                    span.clone(),
+                    format!(
+                        "body `{}`: {why} (a number beyond ±1.8e308): give smaller values",
+                        b.name
+                    ),
+                ));
+            }
+        }
+        if let Some(first) = cloths.first() {
+            let energy = scene.world().total_energy();
+            if !(energy.kinetic.is_finite()
+                && energy.potential.is_finite()
+                && energy.total.is_finite())
+            {
+                return Err(self.error(
+                    first.span(),
+                    "the scene's initial energy overflows (a number beyond ±1.8e308): a \
+                     cloth's `size`, `position`, `mass`, `stretch` or `velocity` is too large",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     fn no_solid(&self, inertia: Option<(&str, Range<usize>)>) -> Result<(), LoadError> {
         match inertia {
             Some(("solid", span)) => Err(self.error(
@@ -836,10 +914,22 @@ impl Validator<'_> {
             (None, None, Some(q)) => {
                 let [w, x, y, z] = *q.get_ref();
                 let quaternion = Quaternion::new(w, x, y, z);
-                if !(quaternion.coords.iter().all(|c| c.is_finite()) && quaternion.norm() > 1e-12) {
+                // Scaled by its largest component before it is normalised: the norm of
+                // [1e300, 0, 0, 1e300] overflows, the norm of [1, 0, 0, 1] does not.
+                let largest = quaternion.coords.amax();
+                if !(quaternion.coords.iter().all(|c| c.is_finite()) && largest > 0.0) {
                     return Err(self.error(q.span(), "orientation quaternion must be finite and non-zero"));
                 }
-                Ok(UnitQuaternion::from_quaternion(quaternion))
+                let norm = quaternion.norm();
+                let scaled = if norm.is_finite() && norm > 1e-100 {
+                    quaternion
+                } else {
+                    quaternion / largest
+                };
+                if scaled.norm() <= 1e-12 {
+                    return Err(self.error(q.span(), "orientation quaternion must be finite and non-zero"));
+                }
+                Ok(UnitQuaternion::from_quaternion(scaled))
             }
             _ => Err(self.error(
                 raw.span(),
