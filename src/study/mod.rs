@@ -1,7 +1,7 @@
 //! `tumble study`: what accuracy costs in time.
 //!
 //! For each scene, each integrator and each time step of a sweep, the scene is run to its
-//! duration and measured against an independent reference ([`reference`]): error, drift of the
+//! duration and measured against an independent reference ([`mod@reference`]): error, drift of the
 //! conserved quantities, and nanoseconds per step ([`measure`]). [`analysis`] marks the Pareto
 //! frontier, fits the observed orders of convergence and writes one plain sentence per scene;
 //! [`report`] prints the table, CSV or JSON and [`plot`] the log–log SVG of error against cost.
