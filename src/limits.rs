@@ -13,7 +13,11 @@
 //! | steps of one run | [`MAX_STEPS`] = 10⁷ | `shot --at`, `record --duration`, the app's jump, a study's finest run |
 //! | frames of a recording | [`MAX_CAST_FRAMES`] = 108 000 (an hour at 30 fps) | `record --duration` |
 //! | samples of a study run | [`MAX_SAMPLES`] = 10⁶ | `study`, the app's `s` (duration / 0.1 s) |
+//! | bytes of a scene file | [`MAX_FILE_BYTES`] = 16 MiB | every command that reads one |
 //! | cells of a rendered screen | [`MAX_CELLS`] = 10⁶, at most [`MAX_SIDE`] a side | `--size` of `shot` and `record` |
+
+/// The largest scene file read, bytes (16 MiB: the longest bundled lesson is a few kB).
+pub const MAX_FILE_BYTES: u64 = 16 << 20;
 
 /// The most steps one run may take (the app's own jump limit is the same number).
 pub const MAX_STEPS: u64 = 10_000_000;

@@ -204,6 +204,18 @@ pub fn load(path: &Path) -> Result<Lesson, LoadError> {
     if path.is_dir() {
         return Err(LoadError::file(path, "is a directory, not a scene file"));
     }
+    if let Ok(meta) = std::fs::metadata(path) {
+        if meta.len() > crate::limits::MAX_FILE_BYTES {
+            return Err(LoadError::file(
+                path,
+                format!(
+                    "file is {} bytes, more than the limit of {} for a scene file",
+                    meta.len(),
+                    crate::limits::MAX_FILE_BYTES
+                ),
+            ));
+        }
+    }
     let bytes = std::fs::read(path).map_err(|e| {
         let reason = match e.kind() {
             std::io::ErrorKind::NotFound => "no such file".to_string(),
@@ -211,6 +223,12 @@ pub fn load(path: &Path) -> Result<Lesson, LoadError> {
         };
         LoadError::file(path, format!("cannot read: {reason}"))
     })?;
+    if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
+        return Err(LoadError::file(
+            path,
+            "UTF-16 text: a scene file is UTF-8 (save it as UTF-8)",
+        ));
+    }
     let source = String::from_utf8(bytes).map_err(|_| {
         LoadError::file(
             path,

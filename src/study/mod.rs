@@ -292,22 +292,81 @@ fn study_cloth_case(
     }
 }
 
-/// Studies every case in turn; `progress(done, total)` counts runs over all cases.
+/// Studies every case, on as many threads as there are cores (one case per thread at a
+/// time, the longest cases first); the studies come back in the order of `cases`.
+/// `progress(done, total)` counts runs over all cases, called on the caller's thread.
+///
+/// Each run is still timed alone on its thread: a case's rows compare integrators measured
+/// under the same conditions, and its ns/step is the median of its 1000-step chunks
+/// ([`measure`]), which a neighbour on the other core does not shift the way a shared
+/// time slice would.
 pub fn study(
     cases: &[Case],
     config: &Config,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Vec<SceneStudy> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::mpsc;
     let counts: Vec<usize> = cases.iter().map(|c| runs(c, config)).collect();
     let total = counts.iter().sum();
-    let mut before = 0;
-    cases
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(cases.len());
+    if workers <= 1 {
+        let mut before = 0;
+        return cases
+            .iter()
+            .zip(&counts)
+            .map(|(case, &count)| {
+                let study = study_case(case, config, &mut |done, _| progress(before + done, total));
+                before += count;
+                study
+            })
+            .collect();
+    }
+    // The longest cases (most steps over all runs) first, so that no thread is left with a
+    // long case at the end.
+    let mut order: Vec<usize> = (0..cases.len()).collect();
+    let cost = |i: usize| counts[i] as f64 * cases[i].duration * cloth_weight(&cases[i]);
+    order.sort_by(|&a, &b| cost(b).total_cmp(&cost(a)));
+    let next = AtomicUsize::new(0);
+    let (sender, receiver) = mpsc::channel::<(usize, Option<Box<SceneStudy>>)>();
+    let mut results: Vec<Option<SceneStudy>> = (0..cases.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let sender = sender.clone();
+            let (next, order) = (&next, &order);
+            scope.spawn(move || loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&i) = order.get(k) else { break };
+                let study = study_case(&cases[i], config, &mut |_, _| {
+                    let _ = sender.send((i, None));
+                });
+                let _ = sender.send((i, Some(Box::new(study))));
+            });
+        }
+        drop(sender);
+        let mut done = 0;
+        for (i, study) in receiver {
+            match study {
+                None => {
+                    done += 1;
+                    progress(done, total);
+                }
+                Some(study) => results[i] = Some(*study),
+            }
+        }
+    });
+    results.into_iter().flatten().collect()
+}
+
+/// A rough weight of a case's cost per run and simulated second: a cloth's particles make
+/// every step dearer than a body's.
+fn cloth_weight(case: &Case) -> f64 {
+    1.0 + case
+        .scene
+        .cloths
         .iter()
-        .zip(&counts)
-        .map(|(case, &count)| {
-            let study = study_case(case, config, &mut |done, _| progress(before + done, total));
-            before += count;
-            study
-        })
-        .collect()
+        .map(|c| (c.count[0] * c.count[1]) as f64)
+        .sum::<f64>()
 }
