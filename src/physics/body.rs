@@ -190,7 +190,8 @@ impl Body {
             return Err(BodyError::Overflow("inertia tensor"));
         }
         let (principal_moments, principal_axes) = principal_frame(&inertia_body);
-        if !principal_moments.z.is_normal() {
+        // All zero is a point or a line (singular, below); nonzero but subnormal underflowed.
+        if principal_moments.z != 0.0 && !principal_moments.z.is_normal() {
             return Err(BodyError::Underflow(principal_moments.z));
         }
         let largest = principal_moments.z;
