@@ -10,6 +10,10 @@
 //!   after 10 steps and part at 0.8 m/s; restarted every 100 steps, so every sample is an
 //!   impact and the contact geometry of two near boxes.
 //!
+//! - `sphere-rolling`, `cylinder-rolling`: a solid ball (r = 0.1 m) and a solid cylinder
+//!   (r = 0.1 m, length 0.2 m) of 1 kg rolling down a 20° plane obstacle from rest, μ = 0.5,
+//!   e = 0; restarted every 1000 steps (1 s of rolling).
+//!
 //! Each world is stepped in place and put back at its start every `restart` steps.
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -97,6 +101,42 @@ struct Case {
     restart: u64,
 }
 
+/// A round body of radius 0.1 m resting on a 20° ramp (turned to lie across the slope if
+/// `lying`), about to roll.
+fn rolling(body: Body, lying: bool) -> World {
+    let theta = 20f64.to_radians();
+    let normal = Vector3::new(theta.sin(), theta.cos(), 0.0);
+    let orientation = if lying {
+        nalgebra::UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2)
+    } else {
+        nalgebra::UnitQuaternion::identity()
+    };
+    let bodies = vec![NamedBody {
+        name: "roller".into(),
+        initial: State {
+            position: normal * 0.1,
+            orientation: tumble::physics::Orientation::Quaternion(orientation),
+            ..State::at_rest()
+        },
+        body,
+    }];
+    World::with_bodies(
+        bodies,
+        Effects::new(vec![GRAVITY]),
+        vec![Obstacle::Plane {
+            point: Vector3::zeros(),
+            normal,
+        }],
+        Some(ContactModel {
+            response: Response::Impulse,
+            restitution: 0.0,
+            friction: 0.5,
+        }),
+        Integrator::Rk4,
+        1e-3,
+    )
+}
+
 fn bodies(c: &mut Criterion) {
     let cases = [
         Case {
@@ -118,6 +158,19 @@ fn bodies(c: &mut Criterion) {
             name: "colliding-cubes",
             world: colliding_cubes(),
             restart: 100,
+        },
+        Case {
+            name: "sphere-rolling",
+            world: rolling(Body::sphere(0.1, 1.0, false).expect("valid ball"), false),
+            restart: 1000,
+        },
+        Case {
+            name: "cylinder-rolling",
+            world: rolling(
+                Body::cylinder(0.1, 0.2, 1.0, false).expect("valid cylinder"),
+                true,
+            ),
+            restart: 1000,
         },
     ];
     let mut group = c.benchmark_group("bodies");

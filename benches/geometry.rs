@@ -8,7 +8,12 @@
 //! - `box-box/apart`: two cubes 0.1 m apart (SAT stops at the first separating axis);
 //! - `box-ground`: a cube resting flat on the ground (4 points);
 //! - `box-sphere`: a plate on a sphere obstacle (1 point);
-//! - `hull-hull/face`: the face case with both cubes as hulls of their 8 corners.
+//! - `hull-hull/face`: the face case with both cubes as hulls of their 8 corners;
+//! - round shapes (radius 0.1 m, length 0.4 m, 1 mm into what they touch): `ball-ground`,
+//!   `ball-plane` (a 20° ramp), `ball-box` (on a cube's top face), `ball-ball`,
+//!   `capsule-ground` and `capsule-box` (lying: 2 points), `capsule-capsule` (crossed: 1 point),
+//!   `capsule-ball`, `cylinder-ground/lying` (2 points), `cylinder-ground/standing` (4 points),
+//!   `cylinder-ball`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Rotation3, Vector3};
@@ -87,6 +92,71 @@ fn bench(c: &mut Criterion) {
     };
     obstacle("box-ground", &cube, &on_ground, &ground);
     obstacle("box-sphere", &plate, &on_sphere, &sphere);
+
+    let ball = Shape::Ball { radius: 0.1 };
+    let capsule = Shape::Capsule {
+        radius: 0.1,
+        half_length: 0.2,
+    };
+    let cylinder = Shape::Cylinder {
+        radius: 0.1,
+        half_length: 0.2,
+    };
+    let theta = 20f64.to_radians();
+    let ramp = Obstacle::Plane {
+        point: Vector3::zeros(),
+        normal: Vector3::new(theta.sin(), theta.cos(), 0.0),
+    };
+    let at = |y: f64| Pose::at(Vector3::new(0.0, y, 0.0));
+    let lying = |y: f64| {
+        rotated(
+            Vector3::z(),
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(0.0, y, 0.0),
+        )
+    };
+    obstacle("ball-ground", &ball, &at(0.099), &ground);
+    obstacle(
+        "ball-plane",
+        &ball,
+        &Pose::at(Vector3::new(theta.sin(), theta.cos(), 0.0) * 0.099),
+        &ramp,
+    );
+    obstacle("capsule-ground", &capsule, &lying(0.099), &ground);
+    obstacle("cylinder-ground/lying", &cylinder, &lying(0.099), &ground);
+    obstacle("cylinder-ground/standing", &cylinder, &at(0.199), &ground);
+    let mut pair = |name: &str, a: &Shape, pa: &Pose, b: &Shape, pb: &Pose| {
+        group.bench_function(name, |bench| {
+            bench.iter(|| {
+                out.clear();
+                shape_shape(
+                    black_box(a),
+                    black_box(pa),
+                    black_box(b),
+                    black_box(pb),
+                    0.01,
+                    &mut out,
+                );
+                black_box(out.len())
+            })
+        });
+    };
+    pair("ball-box", &ball, &at(0.599), &cube, &base);
+    pair("ball-ball", &ball, &at(0.199), &ball, &base);
+    pair("capsule-box", &capsule, &lying(0.599), &cube, &base);
+    pair(
+        "capsule-capsule",
+        &capsule,
+        &rotated(
+            Vector3::x(),
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(0.0, 0.199, 0.0),
+        ),
+        &capsule,
+        &lying(0.0),
+    );
+    pair("capsule-ball", &capsule, &lying(0.199), &ball, &base);
+    pair("cylinder-ball", &cylinder, &lying(0.199), &ball, &base);
     group.finish();
 }
 

@@ -53,6 +53,8 @@ pub struct Body {
     /// points (None when the points have no volume: then only the report's vertex test sees
     /// them).
     pub shape: Option<Shape>,
+    /// Whether the body never moves (infinite mass: `inv_mass` and `inv_inertia_body` are 0).
+    pub fixed: bool,
 }
 
 /// Why a body could not be built.
@@ -64,6 +66,8 @@ pub enum BodyError {
     BadMass(f64),
     #[error("{count} masses given for {points} points: give one mass per point")]
     MassCount { count: usize, points: usize },
+    #[error("{0} must be positive and finite, found {1}")]
+    BadLength(&'static str, f64),
     #[error("box sides must be positive and finite, found {0:?}")]
     BadSize([f64; 3]),
     #[error("a point coordinate is not finite")]
@@ -161,11 +165,90 @@ impl Body {
         })
     }
 
+    /// A uniform ball (`shell`: a thin spherical shell) of radius `radius` and mass `mass`.
+    pub fn sphere(radius: f64, mass: f64, shell: bool) -> Result<Body, BodyError> {
+        check_length("radius", radius)?;
+        check_mass(mass)?;
+        let factor = if shell { 2.0 / 3.0 } else { 2.0 / 5.0 };
+        let inertia = Matrix3::identity() * (factor * mass * radius * radius);
+        Body::round(mass, inertia, Shape::Ball { radius })
+    }
+
+    /// A uniform cylinder (`shell`: a thin tube without end caps) of radius `radius` and length
+    /// `length` along the body y axis.
+    pub fn cylinder(radius: f64, length: f64, mass: f64, shell: bool) -> Result<Body, BodyError> {
+        check_length("radius", radius)?;
+        check_length("length", length)?;
+        check_mass(mass)?;
+        let (r2, l2) = (radius * radius, length * length);
+        let (axial, across) = if shell {
+            (mass * r2, mass * (r2 / 2.0 + l2 / 12.0))
+        } else {
+            (mass * r2 / 2.0, mass * (r2 / 4.0 + l2 / 12.0))
+        };
+        let inertia = Matrix3::from_diagonal(&Vector3::new(across, axial, across));
+        let shape = Shape::Cylinder {
+            radius,
+            half_length: length / 2.0,
+        };
+        Body::round(mass, inertia, shape)
+    }
+
+    /// A uniform solid capsule: a cylinder of radius `radius` and length `length` along the
+    /// body y axis with a hemisphere on each end (module doc).
+    pub fn capsule(radius: f64, length: f64, mass: f64) -> Result<Body, BodyError> {
+        check_length("radius", radius)?;
+        check_length("length", length)?;
+        check_mass(mass)?;
+        let (r, l) = (radius, length);
+        // Volumes π r² L and 4/3 π r³ share the mass.
+        let cylinder = mass * l / (l + 4.0 * r / 3.0);
+        let spheres = mass - cylinder;
+        let axial = cylinder * r * r / 2.0 + spheres * 2.0 * r * r / 5.0;
+        let across = cylinder * (r * r / 4.0 + l * l / 12.0)
+            + spheres * (2.0 * r * r / 5.0 + l * l / 4.0 + 3.0 * l * r / 8.0);
+        let inertia = Matrix3::from_diagonal(&Vector3::new(across, axial, across));
+        let shape = Shape::Capsule {
+            radius,
+            half_length: length / 2.0,
+        };
+        Body::round(mass, inertia, shape)
+    }
+
+    /// A round body: no points, its radius the shape's bounding radius.
+    fn round(mass: f64, inertia: Matrix3<f64>, shape: Shape) -> Result<Body, BodyError> {
+        Body::assemble(
+            mass,
+            Vec::new(),
+            Vector3::zeros(),
+            Vec::new(),
+            inertia,
+            Some(shape),
+        )
+    }
+
+    /// The same body held fixed: it never moves (mass, inertia and their inverses all 0).
+    pub fn fixed(self) -> Body {
+        Body {
+            mass: 0.0,
+            inv_mass: 0.0,
+            inertia_body: Matrix3::zeros(),
+            inv_inertia_body: Matrix3::zeros(),
+            principal_moments: Vector3::zeros(),
+            fixed: true,
+            ..self
+        }
+    }
+
     /// The same body with total mass `mass`: every point mass (or the uniform solid's density)
     /// scaled by `mass / M`, so the points and the barycenter stay where they are and the
     /// inertia tensor scales by the same ratio, `I_body' = (mass / M) I_body`.
     pub fn with_mass(&self, mass: f64) -> Result<Body, BodyError> {
         check_mass(mass)?;
+        if self.fixed {
+            // A fixed body has no mass to scale: it stays the world.
+            return Ok(self.clone());
+        }
         Body::assemble(
             mass,
             self.points_body.clone(),
@@ -225,7 +308,10 @@ impl Body {
                 return Err(BodyError::Overflow("inverse inertia tensor"));
             }
         }
-        let radius = points_body.iter().map(|p| p.norm()).fold(0.0, f64::max);
+        let radius = match (&shape, points_body.is_empty()) {
+            (Some(shape), true) => shape.bounding_radius(),
+            _ => points_body.iter().map(|p| p.norm()).fold(0.0, f64::max),
+        };
         Ok(Body {
             mass,
             inv_mass: 1.0 / mass,
@@ -238,7 +324,16 @@ impl Body {
             principal_axes,
             radius,
             shape,
+            fixed: false,
         })
+    }
+}
+
+fn check_length(what: &'static str, value: f64) -> Result<(), BodyError> {
+    if value > 0.0 && value.is_finite() {
+        Ok(())
+    } else {
+        Err(BodyError::BadLength(what, value))
     }
 }
 

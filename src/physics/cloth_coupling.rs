@@ -215,8 +215,11 @@ fn sweep(
                 t.tangential_impulse = jt;
             }
             cloth.apply_impulse(i, &impulse);
-            state.linear_momentum -= impulse;
-            state.angular_momentum -= r.cross(&impulse);
+            if !body.fixed {
+                // A fixed body is the world: it takes no momentum.
+                state.linear_momentum -= impulse;
+                state.angular_momentum -= r.cross(&impulse);
+            }
         }
     }
 }

@@ -5,7 +5,7 @@
 //! is exactly why the phase order matters. Between frames (after *collide*, or at t = 0) they
 //! are those of the current state, i.e. what the next *derive* will compute.
 
-use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose};
+use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape};
 use super::collision::{Contact, Obstacle};
 use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
@@ -137,8 +137,15 @@ pub struct BodyView {
     pub name: String,
     /// Barycenter x, m.
     pub position: Vector3<f64>,
-    /// Vertex positions pᵢ = x + R r₀ᵢ, m.
+    /// Vertex positions pᵢ = x + R r₀ᵢ, m (none for a round body: draw its `shape`).
     pub vertices: Vec<Vector3<f64>>,
+    /// R, body → world.
+    pub rotation: Matrix3<f64>,
+    /// The contact shape in the body frame (box, hull, ball, capsule, cylinder), so that a
+    /// front end draws what the physics touches and never guesses from vertices.
+    pub shape: Option<Shape>,
+    /// Whether the body is fixed (drawn as an obstacle).
+    pub fixed: bool,
 }
 
 /// The scene as a whole.
@@ -212,6 +219,9 @@ impl Snapshot {
                 } else {
                     world.vertices_of(i)
                 },
+                rotation: world.states()[i].orientation.matrix(),
+                shape: world.bodies()[i].shape.clone(),
+                fixed: world.bodies()[i].fixed,
             })
             .collect();
         Snapshot {

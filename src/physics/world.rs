@@ -336,6 +336,10 @@ impl World {
         }
         let mut potential = 0.0;
         for (i, body) in self.bodies.iter().enumerate() {
+            if body.fixed {
+                // Never integrated: it stays where the scene put it.
+                continue;
+            }
             let state = &mut now.states[i];
             self.integrator.advance(
                 body,

@@ -426,7 +426,7 @@ mod tests {
              exact-splitting-4",
             "s.toml:9:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
             "s.toml:12:8: unknown obstacle type `grund` (did you mean `ground`?); valid types: \
-             ground, sphere, box",
+             ground, sphere, box, plane",
             "s.toml:16:10: radius must be > 0, found -1",
             "s.toml:18:6: page time `at` must be ≥ 0 s, found -1",
         ];

@@ -289,9 +289,25 @@ impl Validator<'_> {
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let bodies = self.bodies(raw.body, !raw.cloths.is_empty())?;
         self.no_overlap(&bodies)?;
-        let body_spans: Vec<Range<usize>> = bodies.iter().map(|(_, s)| s.clone()).collect();
         let title = raw.title.into_inner();
         let scene_integrator = raw.scene.get_ref().integrator.clone();
+        let body_spans: Vec<Range<usize>> = bodies.iter().map(|(_, s)| s.clone()).collect();
+        if let Some(contact) = &raw.scene.get_ref().contact {
+            let response = contact.get_ref().response.get_ref();
+            let round = bodies
+                .iter()
+                .find(|(b, _)| b.body.shape.as_ref().is_some_and(|s| s.is_round()));
+            if let (true, Some((b, _))) = (response == "seed", round) {
+                return Err(self.error(
+                    contact.get_ref().response.span(),
+                    format!(
+                        "the `seed` response tests vertices, and the {} `{}` has none: use \
+                         response = \"impulse\"",
+                        b.shape, b.name
+                    ),
+                ));
+            }
+        }
         let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
         scene.cloths = self.cloths(&raw.cloths, &scene_integrator, scene.contact.is_some())?;
         scene.obstacles = raw
@@ -299,6 +315,7 @@ impl Validator<'_> {
             .iter()
             .map(|o| self.obstacle(o))
             .collect::<Result<_, _>>()?;
+        self.pairs_supported(&scene, &body_spans)?;
         self.finite_start(&scene, &body_spans, &raw.cloths)?;
         let mut pages = Vec::new();
         for page in raw.pages {
@@ -505,6 +522,52 @@ impl Validator<'_> {
         Ok(())
     }
 
+    /// Every pair that can touch has a contact routine: a cylinder against a box, a hull or
+    /// another cylinder has none, and is refused at the cylinder.
+    fn pairs_supported(&self, scene: &Scene, spans: &[Range<usize>]) -> Result<(), LoadError> {
+        use crate::physics::collision::geometry::supports;
+        for (i, body) in scene.bodies.iter().enumerate() {
+            let Some(shape) = &body.body.shape else {
+                continue;
+            };
+            let unsupported =
+                |other: &crate::physics::collision::geometry::Shape| !supports(shape, other);
+            for other in &scene.bodies[..i] {
+                let Some(other_shape) = &other.body.shape else {
+                    continue;
+                };
+                if unsupported(other_shape) && !(body.body.fixed && other.body.fixed) {
+                    return Err(self.error(
+                        spans[i].clone(),
+                        format!(
+                            "no contact routine yet between a {} and a {} (`{}` and `{}`): a \
+                             cylinder meets planes, the ground, spheres and capsules only",
+                            body.shape, other.shape, body.name, other.name
+                        ),
+                    ));
+                }
+            }
+            if body.body.fixed {
+                continue;
+            }
+            for obstacle in &scene.obstacles {
+                if unsupported(&obstacle.shape().0) {
+                    return Err(self.error(
+                        spans[i].clone(),
+                        format!(
+                            "no contact routine yet between a {} and a {} obstacle (`{}`): a \
+                             cylinder meets planes, the ground, spheres and capsules only",
+                            body.shape,
+                            obstacle.kind(),
+                            body.name
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     fn scene(
         &self,
         raw: Spanned<RawScene>,
@@ -646,15 +709,16 @@ impl Validator<'_> {
         let allowed: &[&str] = match kind {
             "ground" => &["height"],
             "sphere" => &["center", "radius"],
-            "box" => &["min", "max"],
+            "box" => &["min", "max", "orientation"],
+            "plane" => &["point", "normal"],
             other => {
-                let hint = did_you_mean(other, ["ground", "sphere", "box"])
+                let hint = did_you_mean(other, ["ground", "sphere", "box", "plane"])
                     .map(|s| format!(" (did you mean `{s}`?)"))
                     .unwrap_or_default();
                 return Err(self.error(
                     o.kind.span(),
                     format!(
-                        "unknown obstacle type `{other}`{hint}; valid types: ground, sphere, box"
+                        "unknown obstacle type `{other}`{hint}; valid types: ground, sphere, box, plane"
                     ),
                 ));
             }
@@ -665,6 +729,9 @@ impl Validator<'_> {
             ("radius", o.radius.as_ref().map(|v| v.span())),
             ("min", o.min.as_ref().map(|v| v.span())),
             ("max", o.max.as_ref().map(|v| v.span())),
+            ("point", o.point.as_ref().map(|v| v.span())),
+            ("normal", o.normal.as_ref().map(|v| v.span())),
+            ("orientation", o.orientation.as_ref().map(|v| v.span())),
         ];
         for (key, key_span) in present {
             if let (Some(key_span), false) = (key_span, allowed.contains(&key)) {
@@ -692,6 +759,21 @@ impl Validator<'_> {
                     radius: self.positive(radius, "radius")?,
                 })
             }
+            "plane" => {
+                let point = o.point.as_ref().ok_or_else(|| missing("point", kind))?;
+                let normal_raw = o.normal.as_ref().ok_or_else(|| missing("normal", kind))?;
+                let normal = self.vector(normal_raw, "normal")?;
+                let unit = normal.try_normalize(1e-12).ok_or_else(|| {
+                    self.error(
+                        normal_raw.span(),
+                        "plane `normal` has zero length: give the outward direction, e.g. [0.0, 1.0, 0.0]",
+                    )
+                })?;
+                Ok(Obstacle::Plane {
+                    point: self.vector(point, "point")?,
+                    normal: unit,
+                })
+            }
             _ => {
                 let min_raw = o.min.as_ref().ok_or_else(|| missing("min", kind))?;
                 let max_raw = o.max.as_ref().ok_or_else(|| missing("max", kind))?;
@@ -707,7 +789,17 @@ impl Validator<'_> {
                         ),
                     ));
                 }
-                Ok(Obstacle::Box { min, max })
+                match &o.orientation {
+                    None => Ok(Obstacle::Box { min, max }),
+                    Some(orientation) => Ok(Obstacle::RotatedBox {
+                        center: (min + max) / 2.0,
+                        half: (max - min) / 2.0,
+                        rotation: self
+                            .orientation(orientation)?
+                            .to_rotation_matrix()
+                            .into_inner(),
+                    }),
+                }
             }
         }
     }
@@ -717,19 +809,69 @@ impl Validator<'_> {
         let b = raw.into_inner();
         let shape = b.shape.get_ref().as_str();
         let needs = |key: &str| self.error(span.clone(), format!("a {shape} body needs `{key}`"));
+        let fixed = b.fixed.as_ref().is_some_and(|f| *f.get_ref());
         let mass = b.mass.as_ref().map(|m| self.mass(m)).transpose()?;
+        // A fixed body's mass is ignored (it never moves): any positive number builds it.
+        let mass = if fixed {
+            Some(mass.unwrap_or(1.0))
+        } else {
+            mass
+        };
         let inertia = match &b.inertia {
             None => None,
             Some(i) => match i.get_ref().as_str() {
-                "solid" | "points" => Some((i.get_ref().as_str(), i.span())),
+                "solid" | "points" | "shell" => Some((i.get_ref().as_str(), i.span())),
                 other => {
                     return Err(self.error(
                         i.span(),
-                        format!("unknown inertia `{other}`; valid: solid, points"),
+                        format!("unknown inertia `{other}`; valid: solid, points, shell"),
                     ))
                 }
             },
         };
+        let round = matches!(shape, "sphere" | "capsule" | "cylinder");
+        if let (false, Some(key)) = (round, b.radius.as_ref().or(b.length.as_ref())) {
+            return Err(self.error(
+                key.span(),
+                format!(
+                    "`radius` and `length` do not apply to a {shape} body (they are for sphere, \
+                     capsule and cylinder)"
+                ),
+            ));
+        }
+        match inertia {
+            Some(("shell", at)) if !matches!(shape, "sphere" | "cylinder") => {
+                return Err(self.error(
+                    at,
+                    format!(
+                        "`inertia = \"shell\"` is for a sphere or a cylinder, not a {shape} body"
+                    ),
+                ))
+            }
+            Some(("points", at)) if round => {
+                return Err(self.error(
+                    at,
+                    format!(
+                        "a {shape} has no mass points: use `inertia = \"solid\"`{}",
+                        if shape == "capsule" {
+                            ""
+                        } else {
+                            " or \"shell\""
+                        }
+                    ),
+                ))
+            }
+            _ => {}
+        }
+        if fixed {
+            let moving = [&b.velocity, &b.angular_velocity, &b.angular_velocity_body];
+            if let Some(v) = moving.into_iter().flatten().next() {
+                return Err(self.error(
+                    v.span(),
+                    "a fixed body never moves: remove its velocity (or `fixed = true`)",
+                ));
+            }
+        }
         let body_error =
             |at: Range<usize>, e: crate::physics::BodyError| self.error(at, e.to_string());
         let body = match shape {
@@ -751,6 +893,29 @@ impl Validator<'_> {
                     _ => Body::solid_box(size, mass),
                 }
                 .map_err(|e| body_error(size_raw.span(), e))?
+            }
+            "sphere" | "capsule" | "cylinder" => {
+                let radius_raw = b.radius.as_ref().ok_or_else(|| needs("radius"))?;
+                let radius = self.positive(radius_raw, "radius")?;
+                let length = match (&b.length, shape) {
+                    (Some(l), "sphere") => {
+                        return Err(self.error(
+                            l.span(),
+                            "`length` does not apply to a sphere (only `radius`)",
+                        ))
+                    }
+                    (Some(l), _) => self.positive(l, "length")?,
+                    (None, "sphere") => 0.0,
+                    (None, _) => return Err(needs("length")),
+                };
+                let mass = mass.ok_or_else(|| needs("mass"))?;
+                let shell = inertia.is_some_and(|i| i.0 == "shell");
+                match shape {
+                    "sphere" => Body::sphere(radius, mass, shell),
+                    "capsule" => Body::capsule(radius, length, mass),
+                    _ => Body::cylinder(radius, length, mass, shell),
+                }
+                .map_err(|e| body_error(radius_raw.span(), e))?
             }
             "points" => {
                 let points_raw = b.points.as_ref().ok_or_else(|| needs("points"))?;
@@ -811,12 +976,18 @@ impl Validator<'_> {
                     .map_err(|e| body_error(file_raw.span(), e))?
             }
             other => {
-                let hint = did_you_mean(other, ["box", "points", "mesh"])
-                    .map(|s| format!(" (did you mean `{s}`?)"))
-                    .unwrap_or_default();
+                let hint = did_you_mean(
+                    other,
+                    ["box", "points", "mesh", "sphere", "capsule", "cylinder"],
+                )
+                .map(|s| format!(" (did you mean `{s}`?)"))
+                .unwrap_or_default();
                 return Err(self.error(
                     b.shape.span(),
-                    format!("unknown shape `{other}`{hint}; valid shapes: box, points, mesh"),
+                    format!(
+                        "unknown shape `{other}`{hint}; valid shapes: box, points, mesh, sphere, \
+                         capsule, cylinder"
+                    ),
                 ));
             }
         };
@@ -842,6 +1013,7 @@ impl Validator<'_> {
             linear_momentum: self.optional_vector(&b.velocity, "velocity")? * body.mass,
             angular_momentum: inertia_world * omega,
         };
+        let body = if fixed { body.fixed() } else { body };
         Ok((body, shape.to_string(), initial))
     }
 

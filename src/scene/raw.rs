@@ -93,6 +93,12 @@ pub struct RawBody {
     pub points: Option<Spanned<Vec<[f64; 3]>>>,
     pub masses: Option<Spanned<Vec<f64>>>,
     pub file: Option<Spanned<String>>,
+    /// sphere, capsule, cylinder: m.
+    pub radius: Option<Spanned<f64>>,
+    /// capsule, cylinder: m, along the body y axis (capsule: the cylindrical part).
+    pub length: Option<Spanned<f64>>,
+    /// The body never moves (infinite mass).
+    pub fixed: Option<Spanned<bool>>,
     pub mass: Option<Spanned<f64>>,
     pub inertia: Option<Spanned<String>>,
     pub position: Option<Vec3>,
@@ -120,6 +126,11 @@ pub struct RawObstacle {
     pub radius: Option<Spanned<f64>>,
     pub min: Option<Vec3>,
     pub max: Option<Vec3>,
+    /// plane: a point of it and its outward normal.
+    pub point: Option<Vec3>,
+    pub normal: Option<Vec3>,
+    /// box: turned about its centre.
+    pub orientation: Option<Spanned<RawOrientation>>,
 }
 
 #[derive(Debug, Deserialize)]

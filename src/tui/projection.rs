@@ -16,8 +16,10 @@
 use super::app::App;
 use super::theme;
 use super::viewport::{Axis, Mapping};
-use crate::physics::body::box_edges;
+use crate::physics::body::{box_corners, box_edges};
 use crate::physics::cloth::Cloth;
+use crate::physics::collision::geometry::Shape;
+use crate::physics::snapshot::BodyView;
 use crate::physics::{Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 use ratatui::buffer::Buffer;
@@ -524,6 +526,28 @@ fn scene_2d(app: &App) -> Scene2d {
                     });
                 }
             }
+            Obstacle::RotatedBox {
+                center,
+                half,
+                rotation,
+            } => {
+                let corners: Vec<_> = box_corners(half * 2.0)
+                    .iter()
+                    .map(|c| axis.project(&(center + rotation * c)))
+                    .collect();
+                for (i, j) in box_edges() {
+                    scene.segments.push(Segment {
+                        from: corners[i],
+                        to: corners[j],
+                        colour: theme::OBSTACLE,
+                        ascii: Some('#'),
+                        dashed: false,
+                    });
+                }
+            }
+            Obstacle::Plane { point, normal } => {
+                add_plane(&mut scene, axis, &point, &normal, app.region.max_extent);
+            }
         }
     }
     if app.trail && app.world.body_count() > 0 {
@@ -540,34 +564,70 @@ fn scene_2d(app: &App) -> Scene2d {
     for cloth in app.world.cloths() {
         add_cloth(&mut scene, axis, cloth, theme::CLOTH, None);
     }
-    // Every other body, in its own colour (the panels show the selected one).
+    // Every other body, in its own colour (the panels show the selected one); a fixed body
+    // in the obstacles' colour.
     for (i, view) in app.snapshot.bodies.iter().enumerate() {
         if i == app.selected {
             continue;
         }
         let other = &app.world.bodies()[i];
+        let wire = view
+            .shape
+            .as_ref()
+            .and_then(|s| wire(s, &view.position, &view.rotation));
+        let (vertices, edges) = match &wire {
+            Some((v, e)) => (v.as_slice(), e.as_slice()),
+            None => (view.vertices.as_slice(), other.edges.as_slice()),
+        };
         let picture = BodyPicture {
-            vertices: &view.vertices,
-            edges: &other.edges,
+            vertices,
+            edges,
             position: view.position,
-            rotation: app.world.states()[i].orientation.matrix(),
+            rotation: view.rotation,
             radius: other.radius,
-            colour: theme::OTHER_BODY,
-            ascii: None,
+            colour: if view.fixed {
+                theme::OBSTACLE
+            } else {
+                theme::OTHER_BODY
+            },
+            ascii: view.fixed.then_some('#'),
             arrows: None,
         };
+        add_outline(&mut scene, axis, view);
         add_body(&mut scene, axis, &picture);
     }
     if let Some(body) = app.world.bodies().get(app.selected) {
+        let view = app.snapshot.bodies.get(app.selected);
         if let Some(g) = &app.ghost {
+            let ghost_wire = g
+                .snapshot
+                .bodies
+                .get(app.selected)
+                .and_then(|v| v.shape.as_ref().map(|s| wire(s, &v.position, &v.rotation)))
+                .flatten();
             let mut ghost = BodyPicture::of(&g.snapshot, &body.edges, body.radius);
+            if let Some((v, e)) = &ghost_wire {
+                (ghost.vertices, ghost.edges) = (v, e);
+            }
             ghost.colour = theme::GHOST;
             ghost.ascii = Some(':');
             add_body(&mut scene, axis, &ghost);
         }
+        let own_wire = view
+            .and_then(|v| v.shape.as_ref().map(|s| wire(s, &v.position, &v.rotation)))
+            .flatten();
         let mut picture = BodyPicture::of(&app.snapshot, &body.edges, body.radius);
+        if let Some((v, e)) = &own_wire {
+            (picture.vertices, picture.edges) = (v, e);
+        }
+        if body.fixed {
+            picture.colour = theme::OBSTACLE;
+        }
         if app.arrows {
             picture.arrows = Some((app.snapshot.angular_velocity, app.snapshot.angular_momentum));
+        }
+        if let Some(view) = view {
+            add_outline(&mut scene, axis, view);
         }
         add_body(&mut scene, axis, &picture);
     }
@@ -577,6 +637,159 @@ fn scene_2d(app: &App) -> Scene2d {
             .push((axis.project(&c.point), theme::CONTACT, '*'));
     }
     scene
+}
+
+/// A wire drawing: world points and the segments between them (indices).
+pub type Wire = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
+
+/// Points per circle of a round body's wire.
+const WIRE_STEPS: usize = 24;
+
+/// The wire of a round body, world frame: points and the segments between them. A ball: its
+/// equator (body x–z plane) and a meridian (body x–y plane), which turn with it, so a rolling
+/// ball is seen to roll. A cylinder: its two rims and four generators. A capsule: the rims of
+/// its cylindrical part, four generators and the two meridian half-circles of each cap. None
+/// for a polyhedron (drawn by its own vertices and edges).
+pub fn wire(shape: &Shape, position: &Vector3<f64>, rotation: &Matrix3<f64>) -> Option<Wire> {
+    let mut points: Vec<Vector3<f64>> = Vec::new();
+    let mut edges = Vec::new();
+    let to_world = |p: Vector3<f64>| position + rotation * p;
+    // A closed (or open, for an arc) polyline through body-frame points.
+    let mut polyline = |pts: Vec<Vector3<f64>>, closed: bool| {
+        let first = points.len();
+        let n = pts.len();
+        points.extend(pts.into_iter().map(to_world));
+        for k in 0..n {
+            if k + 1 < n {
+                edges.push((first + k, first + k + 1));
+            } else if closed {
+                edges.push((first + k, first));
+            }
+        }
+    };
+    let circle = |r: f64, y: f64, plane_xy: bool| -> Vec<Vector3<f64>> {
+        (0..WIRE_STEPS)
+            .map(|k| {
+                let a = k as f64 / WIRE_STEPS as f64 * std::f64::consts::TAU;
+                if plane_xy {
+                    Vector3::new(r * a.cos(), y + r * a.sin(), 0.0)
+                } else {
+                    Vector3::new(r * a.cos(), y, r * a.sin())
+                }
+            })
+            .collect()
+    };
+    match *shape {
+        Shape::Ball { radius } => {
+            polyline(circle(radius, 0.0, false), true);
+            polyline(circle(radius, 0.0, true), true);
+        }
+        Shape::Cylinder {
+            radius,
+            half_length,
+        }
+        | Shape::Capsule {
+            radius,
+            half_length,
+        } => {
+            for y in [-half_length, half_length] {
+                polyline(circle(radius, y, false), true);
+            }
+            for (x, z) in [(radius, 0.0), (-radius, 0.0), (0.0, radius), (0.0, -radius)] {
+                polyline(
+                    vec![
+                        Vector3::new(x, -half_length, z),
+                        Vector3::new(x, half_length, z),
+                    ],
+                    false,
+                );
+            }
+            if matches!(shape, Shape::Capsule { .. }) {
+                // Half-circles over each end, in the body x–y and z–y planes.
+                for sign in [-1.0, 1.0] {
+                    for in_x in [true, false] {
+                        let arc = (0..=WIRE_STEPS / 2)
+                            .map(|k| {
+                                let a = k as f64 / WIRE_STEPS as f64 * std::f64::consts::TAU;
+                                let (across, up) = (radius * a.cos(), sign * radius * a.sin());
+                                let y = sign * half_length + up;
+                                if in_x {
+                                    Vector3::new(across, y, 0.0)
+                                } else {
+                                    Vector3::new(0.0, y, across)
+                                }
+                            })
+                            .collect();
+                        polyline(arc, false);
+                    }
+                }
+            }
+        }
+        Shape::Box { .. } | Shape::Hull(_) | Shape::Plane { .. } => return None,
+    }
+    Some((points, edges))
+}
+
+/// A ball's silhouette: the circle of its radius about its centre, seen from any side.
+fn add_outline(scene: &mut Scene2d, axis: Axis, view: &BodyView) {
+    if let Some(Shape::Ball { radius }) = view.shape {
+        let colour = if view.fixed {
+            theme::OBSTACLE
+        } else {
+            theme::BODY
+        };
+        scene
+            .circles
+            .push((axis.project(&view.position), radius, colour));
+    }
+}
+
+/// A plane obstacle: its trace in the view (a line through the plane's point, across the
+/// projected normal) with short hatches every so often on the solid side. Seen edge-on
+/// only: a plane facing the viewer has no trace to draw.
+fn add_plane(
+    scene: &mut Scene2d,
+    axis: Axis,
+    point: &Vector3<f64>,
+    normal: &Vector3<f64>,
+    extent: f64,
+) {
+    let origin = axis.project(point);
+    let tip = axis.project(&(point + normal));
+    let n = (tip.0 - origin.0, tip.1 - origin.1);
+    let length = n.0.hypot(n.1);
+    if length < 0.2 {
+        return;
+    }
+    let n = (n.0 / length, n.1 / length);
+    let along = (-n.1, n.0);
+    let reach = 4.0 * extent.max(1e-3);
+    let at = |s: f64| (origin.0 + along.0 * s, origin.1 + along.1 * s);
+    scene.segments.push(Segment {
+        from: at(-reach),
+        to: at(reach),
+        colour: theme::OBSTACLE,
+        ascii: None,
+        dashed: false,
+    });
+    // Hatches: 40 per reach, each a twentieth of the extent long, slanted into the solid.
+    let hatch = extent / 20.0;
+    let slant = (
+        (-n.0 - along.0) * std::f64::consts::FRAC_1_SQRT_2,
+        (-n.1 - along.1) * std::f64::consts::FRAC_1_SQRT_2,
+    );
+    // In ASCII each hatch is one character leaning its way (screen y is up).
+    let lean = if slant.0 * slant.1 < 0.0 { '\\' } else { '/' };
+    for k in -40..=40 {
+        let from = at(k as f64 * reach / 40.0);
+        scene.segments.push(Segment {
+            from,
+            to: (from.0 + slant.0 * hatch, from.1 + slant.1 * hatch),
+            colour: theme::OBSTACLE,
+            ascii: Some(lean),
+            dashed: false,
+        });
+    }
 }
 
 fn put(buf: &mut Buffer, area: Rect, col: f64, row: f64, ch: char, colour: Color) {
@@ -739,7 +952,47 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::body::box_corners;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn a_balls_equator_and_meridian_turn_with_it() {
+        // Turned 90° about z: the meridian's body point (r, 0, 0) (its first point) is carried
+        // to (0, r, 0) above the centre; the equator stays a circle of radius r about it.
+        let r = 0.1;
+        let c = Vector3::new(1.0, 2.0, 3.0);
+        let q = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), FRAC_PI_2).into_inner();
+        let (points, edges) = wire(&Shape::Ball { radius: r }, &c, &q).unwrap();
+        assert_eq!(
+            (points.len(), edges.len()),
+            (2 * WIRE_STEPS, 2 * WIRE_STEPS)
+        );
+        let meridian_start = points[WIRE_STEPS];
+        assert!(
+            (meridian_start - (c + Vector3::y() * r)).norm() < 1e-12,
+            "{meridian_start}"
+        );
+        assert!(points.iter().all(|p| ((p - c).norm() - r).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_plane_is_a_line_through_its_point_with_hatches_on_the_solid_side() {
+        // A 45° ramp seen from the front: its trace passes through the origin along (1, −1)/√2,
+        // and every hatch goes below-left of the line (into the solid, n = (1, 1)/√2).
+        let mut scene = Scene2d::default();
+        let n = Vector3::new(1.0, 1.0, 0.0).normalize();
+        add_plane(&mut scene, Axis::Front, &Vector3::zeros(), &n, 1.0);
+        let line = &scene.segments[0];
+        let cross = line.from.0 * line.to.1 - line.from.1 * line.to.0;
+        assert!(cross.abs() < 1e-9, "the line passes through the origin");
+        assert_eq!(scene.segments.len(), 1 + 81);
+        for hatch in &scene.segments[1..] {
+            let d = (hatch.to.0 - hatch.from.0, hatch.to.1 - hatch.from.1);
+            assert!(
+                d.0 * n.x + d.1 * n.y < 0.0,
+                "hatch {d:?} points out of the solid"
+            );
+        }
+    }
 
     #[test]
     fn a_box_seen_face_on_hides_only_its_back_face_edges() {

@@ -111,6 +111,11 @@ impl Region {
                     add(min);
                     add(max);
                 }
+                Obstacle::Plane { point, .. } => add(point),
+                Obstacle::RotatedBox { center, half, .. } => {
+                    add(center - Vector3::repeat(half.norm()));
+                    add(center + Vector3::repeat(half.norm()));
+                }
             }
         }
         let pad = if pad.is_finite() { pad.max(1e-3) } else { 1e-3 };
@@ -187,6 +192,15 @@ pub fn shown_points(world: &World) -> Vec<Vector3<f64>> {
     let mut points: Vec<Vector3<f64>> = (0..world.body_count())
         .flat_map(|i| world.vertices_of(i))
         .collect();
+    // A round body has no vertices: its extreme points along the world axes.
+    for (body, state) in world.bodies().iter().zip(world.states()) {
+        if body.points_body.is_empty() && body.shape.is_some() {
+            for axis in [Vector3::x(), Vector3::y(), Vector3::z()] {
+                points.push(state.position + axis * body.radius);
+                points.push(state.position - axis * body.radius);
+            }
+        }
+    }
     for c in world.cloths() {
         points.extend_from_slice(&c.positions);
     }

@@ -517,3 +517,22 @@ fn shot_and_record_on_the_command_line() {
     assert!(stderr.contains("80x24"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn the_bowling_ball_is_a_circle_whose_meridian_turns_and_the_race_ramp_is_hatched() {
+    // The bowling ball at 0.5 s, in the stage layout at 80×24: its silhouette and meridian (a
+    // circle seen from the front) and its equator, edge-on, a line through the centre that
+    // turns as the ball rolls (here by ½ α t² = 6.13 rad, nearly level again); the race at 1 s: the ramp's line with its `\` hatches (leaning
+    // down-right, into the solid below a slope that goes down toward +x).
+    let mut app = lesson("20-bowling-ball.toml");
+    app.step_frames(500);
+    keys(&mut app, "L");
+    let ball = screen(&app, 80, 24);
+    insta::assert_snapshot!("bowling_ball_stage_80x24", ball);
+    let mut race = lesson("19-the-race.toml");
+    race.step_frames(1000);
+    keys(&mut race, "L");
+    let ramp = screen(&race, 80, 24);
+    assert!(ramp.contains('\\'), "{ramp}");
+    insta::assert_snapshot!("race_stage_80x24", ramp);
+}

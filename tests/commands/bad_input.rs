@@ -149,6 +149,19 @@ const TABLE: &[(&str, &str)] = &[
          or a list [[i, j], …]",
     ),
     ("cloth-zero-mass.toml", "19:8: mass must be > 0, found 0"),
+    (
+        "sphere-with-seed.toml",
+        "7:24: the `seed` response tests vertices, and the sphere `body1` has none: use \
+         response = \"impulse\"",
+    ),
+    (
+        "plane-zero-normal.toml",
+        "16:10: plane `normal` has zero length: give the outward direction, e.g. [0.0, 1.0, 0.0]",
+    ),
+    (
+        "fixed-with-velocity.toml",
+        "12:12: a fixed body never moves: remove its velocity (or `fixed = true`)",
+    ),
 ];
 
 fn tumble() -> Command {

@@ -210,7 +210,7 @@ fn check_reports_every_independent_error_one_line_each() {
          integrator, gravity, drag, contact",
         "11:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
         "15:8: unknown obstacle type `grund` (did you mean `ground`?); valid types: ground, \
-         sphere, box",
+         sphere, box, plane",
         "20:10: radius must be > 0, found -1",
         "23:6: page time `at` must be ≥ 0 s, found -1",
     ]

@@ -1936,3 +1936,104 @@ fn lesson_17_friction_shear_and_bend_change_the_drape_as_quoted() {
     assert_near(b.drift, 0.171, 5e-4, "drift, symplectic");
     assert_near(b.contacts.unwrap(), -0.656, 5e-4, "contacts, symplectic");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 19: the race
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_19_the_solid_ball_wins_and_each_rolls_at_its_closed_form() {
+    // a = g sin θ/(1 + I/(M r²)) at θ = 20°: solid 5/7, cylinder 2/3, hollow 3/5 of
+    // g sin 20° = 3.35522 m/s²; after 1 s: v = a t, s = ½ a t² (the page quotes 1.199 / 1.120
+    // / 1.008 m: a step moves with its end velocity, ½ a t dt ahead of ½ a t²).
+    let l = lesson("19-the-race.toml");
+    let mut w = l.scene.world();
+    for _ in 0..steps_for(1.0, l.scene.dt) {
+        w.step();
+    }
+    let t = 20f64.to_radians();
+    let downhill = Vector3::new(t.cos(), -t.sin(), 0.0);
+    let g_sin = 9.81 * t.sin();
+    let start = position(&l.scene.world(), "solid");
+    for (name, k, quoted_s, quoted_v) in [
+        ("solid", 0.4, 1.199, 2.397),
+        ("cylinder", 0.5, 1.120, 2.237),
+        ("hollow", 2.0 / 3.0, 1.008, 2.013),
+    ] {
+        let a = g_sin / (1.0 + k);
+        let v = velocity(&w, name).dot(&downhill);
+        assert!((v / a - 1.0).abs() < 1e-3, "{name}: v = {v}, a t = {a}");
+        assert_near(v, quoted_v, 5e-4, name);
+        let mut moved = position(&w, name) - start;
+        moved.z = 0.0;
+        assert_near(moved.dot(&downhill), quoted_s, 5e-4, name);
+        assert_near(
+            moved.dot(&downhill),
+            0.5 * a + 0.5 * a * l.scene.dt,
+            2e-5,
+            name,
+        );
+    }
+}
+
+#[test]
+fn lesson_19_rolling_only_loses_energy_and_ten_times_less_at_a_tenth_of_dt() {
+    // The page: 11 mJ lost in the first second at dt = 1 ms, ten times less at 0.1 ms; never
+    // a gain at any step.
+    let l = lesson("19-the-race.toml");
+    let lost = |dt: f64| {
+        let mut w = world_with(&l, Integrator::Rk4, dt);
+        let e0 = w.total_energy().total;
+        for _ in 0..steps_for(1.0, dt) {
+            w.step();
+            assert!(
+                w.total_energy().total <= e0 + 1e-12,
+                "gain at t = {}",
+                w.time()
+            );
+        }
+        e0 - w.total_energy().total
+    };
+    let coarse = lost(1e-3);
+    assert_near(coarse, 0.011, 5e-4, "lost at dt = 1 ms");
+    let ratio = coarse / lost(1e-4);
+    assert!(
+        (ratio - 10.0).abs() < 0.5,
+        "first order in dt: ratio {ratio}"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 20: the bowling ball
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_20_the_ball_rolls_from_step_728_at_five_sevenths_of_v0() {
+    // v₀ = 5, μ = 0.2: t = 2 v₀/(7 μ g) = 0.72812 s, v = 25/7 = 3.571429 m/s, after
+    // 12 v₀²/(49 μ g) = 3.1205 m; on the way, at 0.3 s: v = v₀ − μ g t = 4.4114 m/s,
+    // ω_z = −5 μ g t/(2 r) = −14.715 rad/s.
+    let l = lesson("20-bowling-ball.toml");
+    let mut w = l.scene.world();
+    let mut rolling = None;
+    let e0 = w.total_energy().total;
+    for step in 1..=steps_for(1.5, l.scene.dt) {
+        w.step();
+        let s = w.snapshot();
+        if step == 300 {
+            assert_near(s.linear_momentum.x, 4.4114, 1e-6, "P at 0.3 s");
+            assert_near(s.angular_velocity.z, -14.714639, 1e-6, "ω_z at 0.3 s");
+        }
+        if rolling.is_none() && (s.velocity.x + s.angular_velocity.z * 0.1).abs() < 1e-3 {
+            rolling = Some((step, s.position.x, s.velocity.x));
+        }
+        if step == 1000 {
+            // 2/7 of 12.5 J = 3.5714 J; the page quotes −3.5716 J.
+            assert_near(w.total_energy().total - e0, -3.5716, 1e-4, "E − E₀ at 1 s");
+        }
+    }
+    let (step, x, v) = rolling.expect("the ball ends up rolling");
+    assert_eq!(step, 728);
+    assert_near(x, 3.1205, 2e-3, "distance to rolling");
+    assert_near(v, 25.0 / 7.0, 3e-4, "speed when rolling");
+    assert_near(w.snapshot().velocity.x, 25.0 / 7.0, 1e-4, "speed at 1.5 s");
+}

@@ -11,3 +11,4 @@ mod geometry;
 mod hard_cases;
 mod physics_core;
 mod properties;
+mod round_bodies;

@@ -10,6 +10,10 @@
 //!                    obstacle's own corners and edges inside the body's faces, edge across
 //!                    edge, a sphere against the middle of a face
 //! body vs body       the contact geometry (separating axes, clipped face manifolds)
+//! round body vs any  the contact geometry alone (a ball has no vertices): ground and planes,
+//!                    spheres, boxes and other bodies
+//! plane (ramp)       as the ground: the vertices behind it
+//! fixed body         never against an obstacle; against a moving body it is B (the world)
 //! ```
 //!
 //! Points closer than `margin` to a surface, outside it, are *speculative* rows (depth ≤ 0):
@@ -17,7 +21,7 @@
 
 use super::detect::{inside, near, swept};
 use super::geometry::{shape_obstacle, shape_shape, ContactPoint, Pose};
-use super::{Against, CollideInput, Contact, Feature, Obstacle};
+use super::{Against, CollideInput, Contact, Feature};
 use crate::physics::state::State;
 use nalgebra::Matrix3;
 
@@ -34,11 +38,12 @@ pub fn find(
     out.clear();
     for (index, (body, state)) in input.bodies.iter().zip(states).enumerate() {
         let rotation_now = state.orientation.matrix();
+        if body.fixed {
+            continue;
+        }
+        let round = body.shape.as_ref().is_some_and(|s| s.is_round());
         // The start of the step, for the swept tests (the ground needs none).
-        let swept_tests = input
-            .obstacles
-            .iter()
-            .any(|o| !matches!(o, Obstacle::Ground { .. }));
+        let swept_tests = !round && input.obstacles.iter().any(|o| !o.is_half_space());
         let before = &input.before[index];
         let rotation_before = if swept_tests {
             before.orientation.matrix()
@@ -51,10 +56,17 @@ pub fn find(
         };
         for (obstacle_index, obstacle) in input.obstacles.iter().enumerate() {
             let first = out.len();
+            if let (true, Some(shape)) = (round, &body.shape) {
+                points.clear();
+                shape_obstacle(shape, &pose, obstacle, margin, points);
+                let against = Against::Obstacle(obstacle_index);
+                out.extend(points.iter().map(|p| row(index, state, against, p, None)));
+                continue;
+            }
             for (vertex, r0) in body.points_body.iter().enumerate() {
                 let b = state.position + rotation_now * r0;
-                // The ground needs no sweep (see `detect`): skip the vertex's start point.
-                let hit = if let Obstacle::Ground { .. } = obstacle {
+                // Half-spaces need no sweep (see `detect`): skip the vertex's start point.
+                let hit = if obstacle.is_half_space() {
                     inside(obstacle, &b)
                 } else {
                     swept(obstacle, &(before.position + rotation_before * r0), &b)
@@ -80,11 +92,7 @@ pub fn find(
             }
             // No vertex inside: what do faces and edges see?
             let touched = out[first..].iter().any(|c| c.depth > 0.0);
-            if let (false, false, Some(shape)) = (
-                touched,
-                matches!(obstacle, Obstacle::Ground { .. }),
-                &body.shape,
-            ) {
+            if let (false, false, Some(shape)) = (touched, obstacle.is_half_space(), &body.shape) {
                 points.clear();
                 shape_obstacle(shape, &pose, obstacle, margin, points);
                 if !points.is_empty() {
@@ -103,6 +111,12 @@ pub fn find(
         for b in a + 1..states.len() {
             let Some(shape_b) = &input.bodies[b].shape else {
                 continue;
+            };
+            // A fixed body is B, the world's side: it takes no impulse.
+            let (a, b, shape_a, shape_b) = match (input.bodies[a].fixed, input.bodies[b].fixed) {
+                (true, true) => continue,
+                (true, false) => (b, a, shape_b, shape_a),
+                _ => (a, b, shape_a, shape_b),
             };
             let (sa, sb) = (&states[a], &states[b]);
             let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;

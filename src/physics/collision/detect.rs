@@ -6,6 +6,8 @@
 //! sphere  (c, ρ):       depth = ρ − |p − c|,          n = (p − c)/|p − c|
 //! box     [min, max]:   depth = min over the 6 faces of the distance to that face,
 //!                       n = the outward normal of that face (the face of least penetration)
+//! plane   (o, n):       depth = n·(o − p),            n (a ramp: the ground tilted)
+//! rotated box (c, R, h): the box test in the box's frame l = Rᵀ(p − c), normal turned back by R
 //! ```
 //!
 //! # Catching fast vertices: a swept test
@@ -104,6 +106,45 @@ pub fn inside(obstacle: &Obstacle, p: &Vector3<f64>) -> Option<Penetration> {
             }
             Some(best)
         }
+        Obstacle::Plane { point, normal } => {
+            let depth = normal.dot(&(point - p));
+            (depth > 0.0).then_some(Penetration { depth, normal })
+        }
+        Obstacle::RotatedBox { .. } => {
+            let (local, rotation) = boxed(obstacle);
+            inside(&local, &rotation.tr_mul(&(p - center_of(obstacle))))
+                .map(|hit| turned(hit, &rotation))
+        }
+    }
+}
+
+/// A rotated box as the axis-aligned box of its own frame, and its rotation box → world.
+fn boxed(obstacle: &Obstacle) -> (Obstacle, nalgebra::Matrix3<f64>) {
+    match *obstacle {
+        Obstacle::RotatedBox { half, rotation, .. } => (
+            Obstacle::Box {
+                min: -half,
+                max: half,
+            },
+            rotation,
+        ),
+        _ => (*obstacle, nalgebra::Matrix3::identity()),
+    }
+}
+
+/// The centre of a rotated box (the origin of its own frame).
+fn center_of(obstacle: &Obstacle) -> Vector3<f64> {
+    match *obstacle {
+        Obstacle::RotatedBox { center, .. } => center,
+        _ => Vector3::zeros(),
+    }
+}
+
+/// A penetration found in a rotated box's frame, back in the world.
+fn turned(hit: Penetration, rotation: &nalgebra::Matrix3<f64>) -> Penetration {
+    Penetration {
+        depth: hit.depth,
+        normal: rotation * hit.normal,
     }
 }
 
@@ -112,7 +153,17 @@ pub fn inside(obstacle: &Obstacle, p: &Vector3<f64>) -> Option<Penetration> {
 /// the entry plane; the static test at `b` if the vertex was already inside at `a`.
 pub fn swept(obstacle: &Obstacle, a: &Vector3<f64>, b: &Vector3<f64>) -> Option<Penetration> {
     match *obstacle {
-        Obstacle::Ground { .. } => inside(obstacle, b),
+        Obstacle::Ground { .. } | Obstacle::Plane { .. } => inside(obstacle, b),
+        Obstacle::RotatedBox { .. } => {
+            let (local, rotation) = boxed(obstacle);
+            let c = center_of(obstacle);
+            swept(
+                &local,
+                &rotation.tr_mul(&(a - c)),
+                &rotation.tr_mul(&(b - c)),
+            )
+            .map(|hit| turned(hit, &rotation))
+        }
         Obstacle::Sphere { center, radius } => {
             if obstacle.depth(a) > 0.0 {
                 return inside(obstacle, b);
@@ -208,6 +259,12 @@ pub fn near(obstacle: &Obstacle, p: &Vector3<f64>, margin: f64) -> Option<(f64, 
                 return None;
             }
             (gap, offset / gap)
+        }
+        Obstacle::Plane { point, normal } => (normal.dot(&(p - point)), normal),
+        Obstacle::RotatedBox { .. } => {
+            let (local, rotation) = boxed(obstacle);
+            let l = rotation.tr_mul(&(p - center_of(obstacle)));
+            return near(&local, &l, margin).map(|(gap, n)| (gap, rotation * n));
         }
     };
     (gap >= 0.0 && gap < margin).then_some((gap, normal))

@@ -176,7 +176,9 @@ impl Direction {
             (End { body, rd, w }, m.inv_mass + rd.dot(&w))
         };
         let (a, mut k) = end(contact.body, &contact.lever, d);
-        let b = contact.other_body().map(|b| {
+        // A fixed body (zero inverse mass) is the world: no end of the row is on it.
+        let moves = |b: &usize| motions[*b].inv_mass > 0.0;
+        let b = contact.other_body().filter(moves).map(|b| {
             let (end, kb) = end(b, &contact.lever_other, -d);
             k += kb;
             end
@@ -244,6 +246,9 @@ struct Motion {
 impl Motion {
     /// `½ M v·v + ½ ω·L`.
     fn kinetic(&self) -> f64 {
+        if self.inv_mass == 0.0 {
+            return 0.0; // a fixed body
+        }
         0.5 * self.v.norm_squared() / self.inv_mass + 0.5 * self.omega.dot(&self.l)
     }
 }
@@ -618,6 +623,9 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
         // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
         let (mut a, mut b) = (0.0, 0.0);
         for (m, (dv, dl, domega)) in motions.iter().zip(change.iter()) {
+            if m.inv_mass == 0.0 {
+                continue; // a fixed body takes no impulse
+            }
             a += 0.5 * (dv.norm_squared() / m.inv_mass + domega.dot(dl));
             b += dv.dot(&m.v) / m.inv_mass + m.omega.dot(dl);
         }

@@ -25,7 +25,7 @@ use super::body::Body;
 use super::effects::Loads;
 use super::energy::Energy;
 use super::state::State;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 /// A fixed obstacle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,6 +39,21 @@ pub enum Obstacle {
         min: Vector3<f64>,
         max: Vector3<f64>,
     },
+    /// An infinite fixed plane through `point` with unit outward `normal`; everything behind
+    /// it is solid (a ramp).
+    Plane {
+        point: Vector3<f64>,
+        normal: Vector3<f64>,
+    },
+    /// A fixed box turned about its centre: half-extents `half` along the columns of
+    /// `rotation` (box → world). A box obstacle written without `orientation` stays a [`Box`].
+    ///
+    /// [`Box`]: Obstacle::Box
+    RotatedBox {
+        center: Vector3<f64>,
+        half: Vector3<f64>,
+        rotation: Matrix3<f64>,
+    },
 }
 
 impl Obstacle {
@@ -47,7 +62,51 @@ impl Obstacle {
         match self {
             Obstacle::Ground { .. } => "ground",
             Obstacle::Sphere { .. } => "sphere",
-            Obstacle::Box { .. } => "box",
+            Obstacle::Box { .. } | Obstacle::RotatedBox { .. } => "box",
+            Obstacle::Plane { .. } => "plane",
+        }
+    }
+
+    /// Whether the obstacle is a half-space (ground, plane): a vertex below it is inside
+    /// however fast it came, so it needs no swept test.
+    pub fn is_half_space(&self) -> bool {
+        matches!(self, Obstacle::Ground { .. } | Obstacle::Plane { .. })
+    }
+
+    /// The obstacle as a contact-geometry shape and where it is: the ground and planes are
+    /// [`Shape::Plane`], the sphere a [`Shape::Ball`], boxes a [`Shape::Box`].
+    ///
+    /// [`Shape::Plane`]: geometry::Shape::Plane
+    /// [`Shape::Ball`]: geometry::Shape::Ball
+    /// [`Shape::Box`]: geometry::Shape::Box
+    pub fn shape(&self) -> (geometry::Shape, geometry::Pose) {
+        use geometry::{Pose, Shape};
+        match *self {
+            Obstacle::Ground { height } => (
+                Shape::Plane {
+                    normal: Vector3::y(),
+                },
+                Pose::at(Vector3::new(0.0, height, 0.0)),
+            ),
+            Obstacle::Plane { point, normal } => (Shape::Plane { normal }, Pose::at(point)),
+            Obstacle::Sphere { center, radius } => (Shape::Ball { radius }, Pose::at(center)),
+            Obstacle::Box { min, max } => (
+                Shape::Box {
+                    half: (max - min) / 2.0,
+                },
+                Pose::at((min + max) / 2.0),
+            ),
+            Obstacle::RotatedBox {
+                center,
+                half,
+                rotation,
+            } => (
+                Shape::Box { half },
+                Pose {
+                    position: center,
+                    rotation,
+                },
+            ),
         }
     }
 }
@@ -256,6 +315,15 @@ impl Obstacle {
             Obstacle::Box { min, max } => {
                 let inside = (p - min).inf(&(max - p));
                 inside.min().max(0.0)
+            }
+            Obstacle::Plane { point, normal } => normal.dot(&(point - p)).max(0.0),
+            Obstacle::RotatedBox {
+                center,
+                half,
+                rotation,
+            } => {
+                let local = rotation.tr_mul(&(p - center));
+                (half - local.abs()).min().max(0.0)
             }
         }
     }

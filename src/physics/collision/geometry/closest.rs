@@ -14,6 +14,7 @@
 
 use super::polyhedron::{BoxView, Polygon, Polyhedron};
 use super::segments::closest_points;
+use super::shape::Pose;
 use nalgebra::Vector3;
 
 /// The surface point nearest to a query point.
@@ -97,5 +98,92 @@ pub fn closest_on_polyhedron(shape: &impl Polyhedron, p: &Vector3<f64>) -> Close
             normal: inside.1,
             distance: inside.0,
         },
+    }
+}
+
+/// Closest surface point of a ball (centre c, radius ρ): q = c + ρ u, u = (p − c)/|p − c|,
+/// distance |p − c| − ρ (at the exact centre u = +y).
+pub fn closest_on_ball(center: &Vector3<f64>, radius: f64, p: &Vector3<f64>) -> Closest {
+    let offset = p - center;
+    let d = offset.norm();
+    let normal = if d > 0.0 { offset / d } else { Vector3::y() };
+    Closest {
+        point: center + normal * radius,
+        normal,
+        distance: d - radius,
+    }
+}
+
+/// Closest surface point of a capsule: the ball of radius ρ about the point s of its core
+/// segment nearest to p. An exact point on the core gets the normal of the body x axis.
+pub fn closest_on_capsule(
+    ends: &(Vector3<f64>, Vector3<f64>),
+    side: &Vector3<f64>,
+    radius: f64,
+    p: &Vector3<f64>,
+) -> Closest {
+    let s = closest_points(&ends.0, &ends.1, p, p).0;
+    if (p - s).norm() == 0.0 {
+        return Closest {
+            point: s + side * radius,
+            normal: *side,
+            distance: -radius,
+        };
+    }
+    closest_on_ball(&s, radius, p)
+}
+
+/// Closest surface point of a cylinder (radius ρ, half-length h along the body y axis) at
+/// `pose`: local l = Rᵀ(p − x), radial distance ϱ = √(lx² + lz²).
+///
+/// ```text
+/// outside (ϱ > ρ or |ly| > h):  q = (l_radial · min(1, ρ/ϱ), clamp(ly, −h, h)), normal (l − q)/|l − q|
+/// inside: the nearer of the side (room ρ − ϱ, normal radial) and the end cap (room h − |ly|,
+///         normal ±y)
+/// ```
+pub fn closest_on_cylinder(pose: &Pose, radius: f64, half: f64, p: &Vector3<f64>) -> Closest {
+    let l = pose.rotation.tr_mul(&(p - pose.position));
+    let rho = l.x.hypot(l.z);
+    let radial = if rho > 0.0 {
+        Vector3::new(l.x / rho, 0.0, l.z / rho)
+    } else {
+        Vector3::x()
+    };
+    let world = |v: Vector3<f64>| pose.rotation * v;
+    if rho > radius || l.y.abs() > half {
+        let q = radial * rho.min(radius) + Vector3::y() * l.y.clamp(-half, half);
+        let distance = (l - q).norm();
+        return Closest {
+            point: pose.to_world(&q),
+            normal: world((l - q) / distance),
+            distance,
+        };
+    }
+    let side = radius - rho;
+    let cap = half - l.y.abs();
+    if side < cap {
+        Closest {
+            point: pose.to_world(&(l + radial * side)),
+            normal: world(radial),
+            distance: -side,
+        }
+    } else {
+        let up = Vector3::y() * l.y.signum();
+        Closest {
+            point: pose.to_world(&(l + up * cap)),
+            normal: world(up),
+            distance: -cap,
+        }
+    }
+}
+
+/// Closest surface point of the half-space behind the plane through `origin` with unit outward
+/// normal n: height h = n·(p − origin), q = p − h n.
+pub fn closest_on_plane(origin: &Vector3<f64>, normal: &Vector3<f64>, p: &Vector3<f64>) -> Closest {
+    let h = normal.dot(&(p - origin));
+    Closest {
+        point: p - normal * h,
+        normal: *normal,
+        distance: h,
     }
 }

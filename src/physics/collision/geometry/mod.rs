@@ -1,17 +1,28 @@
 //! Contact geometry between convex shapes: where two shapes touch, along which normal, how deep.
 //! Pure geometry: no masses, no velocities, no impulses (the response reads these points).
 //!
-//! A shape is a box or a convex hull in its body frame, placed in the world by a [`Pose`]. Every
-//! query appends [`ContactPoint`]s with the normal pointing from B toward A (an obstacle is
-//! always B) and the point midway between the two surfaces:
+//! A shape (box, hull, ball, capsule, cylinder, plane) is placed in the world by a [`Pose`].
+//! Every query appends [`ContactPoint`]s with the normal pointing from B toward A (an obstacle
+//! is always B) and the point midway between the two surfaces. Obstacles are shapes too
+//! ([`Obstacle::shape`]): the ground and ramps are planes, the sphere obstacle a ball.
 //!
-//! | A against | method | points |
+//! One table of pair functions, in the manner of Box2D v3's shape-pair table: each pair is
+//! written once with the rounder shape as A (ball < capsule < cylinder < box, hull < plane);
+//! the swapped pair is the same function with its normals flipped ([`ContactPoint::swapped`]).
+//! Everything here is written by hand; no pair comes from a crate.
+//!
+//! | A against B | method | points |
 //! |---|---|---|
-//! | box or hull | separating axes, then clip the incident face to the reference face, or one edge–edge point (`polyhedra`) | face 3–4, edge 2, vertex 1, edge–edge 1 |
-//! | ground | vertices below the plane (`obstacles`) | ≤ 4 |
-//! | sphere obstacle | surface point closest to the centre (`closest`) | 1 |
-//! | box obstacle | a box with identity rotation: as box | as box |
+//! | box or hull – box or hull | separating axes, then clip the incident face to the reference face, or one edge–edge point (`polyhedra`) | face 3–4, edge 2, vertex 1, edge–edge 1 |
+//! | box or hull – plane | vertices behind the plane (`obstacles`) | ≤ 4 |
+//! | box or hull – ball | surface point closest to the centre (`closest`, `obstacles`) | 1 |
+//! | ball – anything | the other's surface point closest to the centre (`round`) | 1 |
+//! | capsule – anything | closest points of the core segment: both ends, or the deepest inner point (`round`) | 1–2 |
+//! | cylinder – plane | the lowest rim points (`cylinder_plane`) | lying 2, standing 4 |
+//! | cylinder – box, hull or cylinder | not available: the scene loader refuses such scenes | – |
 //! | a particle | [`point_shape`] | 1 |
+//!
+//! [`Obstacle::shape`]: super::Obstacle::shape
 //!
 //! Points within `margin` of touching are returned too, with depth in [−margin, 0] (speculative
 //! contacts: the response may hold them back before they meet).
@@ -26,19 +37,23 @@
 //! | `clip` | Sutherland–Hodgman clipping of the incident face; thinning to 4 points |
 //! | `segments` | closest points of two segments (edge–edge) |
 //! | `polyhedra` | polyhedron against polyhedron: the whole contact |
-//! | `closest` | closest surface point (sphere obstacle, particles) |
-//! | `obstacles` | ground and sphere obstacles |
+//! | `closest` | closest surface point of every shape (balls, capsules, particles) |
+//! | `obstacles` | polyhedra against the ground, planes and balls |
+//! | `round` | balls and capsules against any shape |
+//! | `cylinder_plane` | a cylinder on a plane: line contact lying, rim patch standing |
 //!
 //! The report's vertex test (`detect`) is separate and unchanged: it is the `seed` response's
 //! own detection.
 
 pub mod clip;
 pub mod closest;
+pub mod cylinder_plane;
 pub mod hull;
 pub mod obstacles;
 pub mod polygon;
 pub mod polyhedra;
 pub mod polyhedron;
+pub mod round;
 pub mod sat;
 pub mod segments;
 pub mod shape;
@@ -47,7 +62,10 @@ pub use hull::{ConvexHull, HullError};
 pub use shape::{deepest, ContactPoint, Feature, Pose, Shape};
 
 use super::Obstacle;
-use closest::{closest_on_box, closest_on_polyhedron, Closest};
+use closest::{
+    closest_on_ball, closest_on_box, closest_on_capsule, closest_on_cylinder, closest_on_plane,
+    closest_on_polyhedron, Closest,
+};
 use nalgebra::Vector3;
 use polyhedron::{BoxView, HullView};
 
@@ -83,7 +101,141 @@ pub fn shape_shape(
             margin,
             out,
         ),
+        _ if rank(a) <= rank(b) => ordered(a, pa, b, pb, margin, out),
+        _ => {
+            // The swapped pair: computed once, seen from the other side.
+            let first = out.len();
+            ordered(b, pb, a, pa, margin, out);
+            for p in &mut out[first..] {
+                *p = p.swapped();
+            }
+        }
     }
+}
+
+/// The order of the pair table: the rounder shape is A.
+fn rank(shape: &Shape) -> u8 {
+    match shape {
+        Shape::Ball { .. } => 0,
+        Shape::Capsule { .. } => 1,
+        Shape::Cylinder { .. } => 2,
+        Shape::Box { .. } | Shape::Hull(_) => 3,
+        Shape::Plane { .. } => 4,
+    }
+}
+
+/// Whether the contact geometry has a pair function for these two shapes (cylinder against
+/// box, hull or cylinder has none).
+pub fn supports(a: &Shape, b: &Shape) -> bool {
+    let (a, b) = if rank(a) <= rank(b) { (a, b) } else { (b, a) };
+    !matches!(
+        (a, b),
+        (
+            Shape::Cylinder { .. },
+            Shape::Cylinder { .. } | Shape::Box { .. } | Shape::Hull(_)
+        ) | (Shape::Plane { .. }, Shape::Plane { .. })
+    )
+}
+
+/// One pair of the table, rank(a) ≤ rank(b), polyhedron pairs excepted (handled above).
+fn ordered(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64, out: &mut Vec<ContactPoint>) {
+    match a {
+        Shape::Ball { radius } => {
+            let closest = closest_point(b, pb, &pa.position);
+            out.extend(round::ball_against(&closest, &pa.position, *radius, margin));
+        }
+        Shape::Capsule {
+            radius,
+            half_length,
+        } => {
+            let core = core_segment(pa, *half_length);
+            // The parameter along the core of its point nearest to `p`.
+            let along = |p: &Vector3<f64>| {
+                let d = core.1 - core.0;
+                ((p - core.0).dot(&d) / d.norm_squared()).clamp(0.0, 1.0)
+            };
+            let nearest = match b {
+                Shape::Plane { .. } => round::Nearest::Ends,
+                Shape::Ball { .. } => round::Nearest::At(along(&pb.position)),
+                Shape::Capsule { half_length, .. } => {
+                    let other = core_segment(pb, *half_length);
+                    let on_a = segments::closest_points(&core.0, &core.1, &other.0, &other.1).0;
+                    round::Nearest::At(along(&on_a))
+                }
+                _ => round::Nearest::Search,
+            };
+            round::capsule_against(
+                &core,
+                *radius,
+                margin,
+                nearest,
+                |p| closest_point(b, pb, p),
+                out,
+            )
+        }
+        Shape::Cylinder {
+            radius,
+            half_length,
+        } => {
+            if let Shape::Plane { normal } = b {
+                let normal = pb.rotation * normal;
+                cylinder_plane::cylinder_plane(
+                    *radius,
+                    *half_length,
+                    pa,
+                    &pb.position,
+                    &normal,
+                    margin,
+                    out,
+                );
+            }
+        }
+        Shape::Box { half } => match b {
+            Shape::Plane { normal } => obstacles::against_plane(
+                &BoxView::new(half, pa),
+                &pb.position,
+                &(pb.rotation * normal),
+                margin,
+                out,
+            ),
+            Shape::Ball { radius } => {
+                let closest = closest_point(a, pa, &pb.position);
+                out.extend(obstacles::against_sphere(
+                    &closest,
+                    &pb.position,
+                    *radius,
+                    margin,
+                ));
+            }
+            _ => {}
+        },
+        Shape::Hull(hull) => match b {
+            Shape::Plane { normal } => obstacles::against_plane(
+                &HullView { hull, pose: pa },
+                &pb.position,
+                &(pb.rotation * normal),
+                margin,
+                out,
+            ),
+            Shape::Ball { radius } => {
+                let closest = closest_point(a, pa, &pb.position);
+                out.extend(obstacles::against_sphere(
+                    &closest,
+                    &pb.position,
+                    *radius,
+                    margin,
+                ));
+            }
+            _ => {}
+        },
+        Shape::Plane { .. } => {}
+    }
+}
+
+/// The end points of a capsule's core segment, world frame: x ∓ h R ŷ.
+fn core_segment(pose: &Pose, half_length: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let axis = pose.rotation * Vector3::y() * half_length;
+    (pose.position - axis, pose.position + axis)
 }
 
 /// Appends the contact points between shape A at `pa` and a fixed obstacle (B) to `out`.
@@ -101,7 +253,7 @@ pub fn shape_obstacle(
         (Obstacle::Ground { height }, Shape::Hull(hull)) => {
             obstacles::against_ground(&HullView { hull, pose: pa }, height, margin, out)
         }
-        (Obstacle::Sphere { center, radius }, _) => {
+        (Obstacle::Sphere { center, radius }, Shape::Box { .. } | Shape::Hull(_)) => {
             let closest = closest_point(a, pa, &center);
             out.extend(obstacles::against_sphere(&closest, &center, radius, margin));
         }
@@ -117,6 +269,10 @@ pub fn shape_obstacle(
             margin,
             out,
         ),
+        _ => {
+            let (shape, pose) = obstacle.shape();
+            shape_shape(a, pa, &shape, &pose, margin, out);
+        }
     }
 }
 
@@ -136,9 +292,24 @@ pub fn point_shape(p: &Vector3<f64>, a: &Shape, pa: &Pose, margin: f64) -> Optio
 }
 
 /// The surface point of A nearest to `p`.
-fn closest_point(a: &Shape, pa: &Pose, p: &Vector3<f64>) -> Closest {
+pub fn closest_point(a: &Shape, pa: &Pose, p: &Vector3<f64>) -> Closest {
     match a {
         Shape::Box { half } => closest_on_box(&BoxView::new(half, pa), p),
         Shape::Hull(hull) => closest_on_polyhedron(&HullView { hull, pose: pa }, p),
+        Shape::Ball { radius } => closest_on_ball(&pa.position, *radius, p),
+        Shape::Capsule {
+            radius,
+            half_length,
+        } => closest_on_capsule(
+            &core_segment(pa, *half_length),
+            &(pa.rotation * Vector3::x()),
+            *radius,
+            p,
+        ),
+        Shape::Cylinder {
+            radius,
+            half_length,
+        } => closest_on_cylinder(pa, *radius, *half_length, p),
+        Shape::Plane { normal } => closest_on_plane(&pa.position, &(pa.rotation * normal), p),
     }
 }

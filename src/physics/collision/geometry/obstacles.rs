@@ -62,3 +62,32 @@ pub fn against_sphere(
         feature: Feature::Sphere,
     })
 }
+
+/// The vertices of `shape` behind the plane through `origin` with unit normal `normal` by at
+/// least −margin: as [`against_ground`] with depth = n·(origin − v) and normal n.
+pub fn against_plane(
+    shape: &impl Polyhedron,
+    origin: &Vector3<f64>,
+    normal: &Vector3<f64>,
+    margin: f64,
+    out: &mut Vec<ContactPoint>,
+) {
+    let mut points = Polygon::new();
+    let mut depths = [0.0; CAPACITY];
+    shape.for_each_vertex(&mut |v| {
+        let depth = normal.dot(&(origin - v));
+        if depth >= -margin && points.len() < CAPACITY {
+            depths[points.len()] = depth;
+            points.push(v);
+        }
+    });
+    let count = points.len();
+    reduce_to_four(&mut points, &mut depths[..count], normal);
+    let feature = Feature::of_face_contact(points.len());
+    out.extend(points.iter().zip(&depths).map(|(v, &depth)| ContactPoint {
+        point: v + normal * (depth / 2.0),
+        normal: *normal,
+        depth,
+        feature,
+    }));
+}

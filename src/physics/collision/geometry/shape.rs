@@ -20,6 +20,17 @@ pub enum Shape {
     Box { half: Vector3<f64> },
     /// A convex polyhedron (from a point set or an `.obj` mesh).
     Hull(ConvexHull),
+    /// A ball of radius `radius` about the origin.
+    Ball { radius: f64 },
+    /// The points within `radius` of the segment from −`half_length` ŷ to +`half_length` ŷ
+    /// (a cylinder of length 2·half_length with a hemisphere on each end).
+    Capsule { radius: f64, half_length: f64 },
+    /// A solid cylinder of radius `radius` along the body's y axis, from −`half_length` to
+    /// +`half_length`.
+    Cylinder { radius: f64, half_length: f64 },
+    /// The half-space behind the plane through the origin with unit outward normal `normal`
+    /// (body frame): an obstacle only (ground, ramp), never a body.
+    Plane { normal: Vector3<f64> },
 }
 
 impl Shape {
@@ -29,6 +40,37 @@ impl Shape {
         match self {
             Shape::Box { half } => half.norm(),
             Shape::Hull(hull) => hull.vertices.iter().map(|v| v.norm()).fold(0.0, f64::max),
+            Shape::Ball { radius } => *radius,
+            Shape::Capsule {
+                radius,
+                half_length,
+            } => radius + half_length,
+            Shape::Cylinder {
+                radius,
+                half_length,
+            } => radius.hypot(*half_length),
+            Shape::Plane { .. } => f64::INFINITY,
+        }
+    }
+
+    /// Whether the shape is curved (ball, capsule, cylinder): it has no vertices to test, so
+    /// every contact of it comes from the contact geometry.
+    pub fn is_round(&self) -> bool {
+        matches!(
+            self,
+            Shape::Ball { .. } | Shape::Capsule { .. } | Shape::Cylinder { .. }
+        )
+    }
+
+    /// The scene-file name of the shape kind.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Box { .. } => "box",
+            Shape::Hull(_) => "hull",
+            Shape::Ball { .. } => "sphere",
+            Shape::Capsule { .. } => "capsule",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Plane { .. } => "plane",
         }
     }
 }
@@ -70,6 +112,10 @@ pub enum Feature {
     FaceFace,
     /// A curved surface (the sphere obstacle) against the shape: one point.
     Sphere,
+    /// A round body (ball, capsule, cylinder) touching: the points of the curved surface
+    /// nearest to the other shape (one for a ball, two for a capsule or cylinder lying along a
+    /// face, a rim patch for a cylinder standing on its end).
+    Round,
 }
 
 impl Feature {
@@ -81,6 +127,7 @@ impl Feature {
             Feature::EdgeEdge => "edge-edge",
             Feature::FaceFace => "face-face",
             Feature::Sphere => "sphere",
+            Feature::Round => "round",
         }
     }
 
