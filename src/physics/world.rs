@@ -1004,10 +1004,8 @@ impl World {
                             named(q, fastest)
                         } else if let Some(cloth) = self.runaway_cloth(&total) {
                             subject = Some(cloth_subject(cloth));
-                            format!(
-                                "{q}, held as kinetic + spring energy by cloth {}",
-                                cloth.name
-                            )
+                            // The subject names the cloth: said once.
+                            format!("{q}, held as kinetic + spring energy by the cloth")
                         } else {
                             q
                         }

@@ -11,6 +11,7 @@
 //! | `pinned` list in the grid | pinned particle [21, 0] is outside the 21×21 grid: i must be in 0..21 and j in 0..21 |
 //! | `integrator` a particle integrator | unknown cloth integrator `rk4`; valid cloth integrators: … |
 //! | absent `integrator`: the scene's must be one | cloth `sheet` has no `integrator` and the scene's `rk4` is not a particle integrator: … |
+//! | names not empty | cloth `name` must not be empty |
 //! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
 //! | `attach` particle in the grid, body known, not pinned, once | attach: unknown body `bob`; bodies in this file: cube |
 //! | `attach` needs `implicit-euler` | cloth `rope` has `attach`, which is held inside the implicit solve: … |
@@ -90,6 +91,9 @@ impl Validator<'_> {
             .name
             .as_ref()
             .map_or_else(|| format!("cloth{}", index + 1), |n| n.get_ref().clone());
+        if let (true, Some(n)) = (name.trim().is_empty(), &c.name) {
+            return Err(self.error(n.span(), "cloth `name` must not be empty"));
+        }
         let [nx, nz] = *c.count.get_ref();
         if nx < 1 || nz < 1 || nx * nz < 2 {
             return Err(self.error(

@@ -92,7 +92,7 @@ const OPERATORS: &str = "=+−-×·/<>≤≥≈→⊗∝";
 ///
 /// Choices 2–4 are taken only if they keep at least a third of the line filled.
 ///
-/// When a line is wider than `width`, the prose is reflowed first ([`reflow`]): the author's
+/// When a line is wider than `width`, the prose is reflowed first (`reflow`): the author's
 /// line breaks inside a paragraph would otherwise leave a short orphan after every wrapped line.
 pub fn wrap(text: &str, width: usize) -> Vec<String> {
     let width = width.max(1);

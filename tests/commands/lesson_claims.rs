@@ -1668,7 +1668,7 @@ fn lesson_18_at_1_1_times_the_limit_the_guard_stops_step_29() {
     for quoted in [
         "simulation diverged at step 29 (t = 0.032306 s): energy ran away: E = 3.7045e0 J",
         "against a budget of 1.1870e0 J;",
-        "held as kinetic + spring energy by cloth sheet",
+        "held as kinetic + spring energy by the cloth (cloth sheet,",
         "(cloth sheet, integrator symplectic-euler, dt = 0.001114 s)",
     ] {
         assert!(message.contains(quoted), "{message} lacks {quoted}");
