@@ -6,6 +6,7 @@
 
 pub mod cli;
 pub mod lessons;
+pub mod live;
 pub mod physics;
 pub mod scene;
 pub mod study;
