@@ -166,3 +166,83 @@ fn every_bundled_lesson_fills_its_live_numbers() {
         }
     }
 }
+
+mod app {
+    use super::source;
+    use std::path::Path;
+    use tumble::tui::keys::Message;
+    use tumble::tui::{export, App, Options};
+
+    fn app(text: &str, predict: &str) -> App {
+        let lesson = tumble::scene::parse(&source(text, predict), Path::new("drop.toml")).unwrap();
+        App::new(
+            lesson,
+            Options {
+                ascii: true,
+                compare: None,
+                show_timing: false,
+            },
+        )
+    }
+
+    fn screen(app: &App) -> String {
+        let buf = export::render(app, 160, 50);
+        (0..buf.area.height)
+            .map(|y| (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect::<String>())
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    #[test]
+    fn the_lesson_pane_shows_live_numbers_filled_in() {
+        let mut app = app("vy = {{cube.vy}} here", "");
+        app.jump_to(0.5);
+        // vy = −g·0.5 = −4.905 m/s (see walk_fills_live_numbers…).
+        let shown = screen(&app);
+        assert!(shown.contains("vy = -4.905000 m/s here"), "{shown}");
+        assert!(!shown.contains("{{"), "{shown}");
+    }
+
+    #[test]
+    fn a_prediction_is_asked_then_set_beside_the_simulated_value() {
+        let mut app = app("How low at 0.6 s?", r#"predict = { quantity = "cube.y", at = 0.6 }"#);
+        app.update(Message::Continue);
+        app.step_frames(1000);
+        // The run stops at page 2 (t = 0.5 s); Enter asks for the guess instead of running.
+        assert_eq!(app.world.step_count(), 50);
+        assert!(screen(&app).contains("Enter asks for your guess"));
+        app.update(Message::Continue);
+        assert!(!app.running);
+        assert!(matches!(app.overlay, tumble::tui::app::Overlay::Predict { .. }));
+        assert!(screen(&app).contains("what will cube.y be at t = 0.6 s (in m)?"));
+        for c in "0.3".chars() {
+            app.update(Message::Type(c));
+        }
+        app.update(Message::Submit);
+        assert!(app.running);
+        app.step_frames(1000);
+        // Stopped at t = 0.6 s (step 60): y = 0.204770 m; |0.3 − 0.20477| / 0.20477 = 46.5 %.
+        assert_eq!(app.world.step_count(), 60);
+        let expected = "cube.y at t = 0.6 s: your guess 0.3 m · simulated 0.204770 m · relative error 46.5 %";
+        assert!(app.notice.as_deref().unwrap_or("").contains(expected), "{:?}", app.notice);
+        assert!(screen(&app).contains(expected), "{}", screen(&app));
+    }
+
+    #[test]
+    fn switching_the_integrator_requotes_the_pages_with_its_numbers() {
+        let mut app = app("y = {{y}}", "");
+        app.jump_to(0.5);
+        assert!(screen(&app).contains("y = 0.749225 m"));
+        // Explicit Euler (the next integrator after symplectic Euler? whichever `i` gives):
+        // the page now quotes that integrator's value, simulated again from t = 0.
+        app.update(Message::NextIntegrator);
+        let mut world = app.world.clone();
+        world.reset();
+        for _ in 0..50 {
+            world.step();
+        }
+        let y = tumble::tables::number_plain(world.state().position.y);
+        assert_ne!(y, "0.749225");
+        assert!(screen(&app).contains(&format!("y = {y} m")), "{y}");
+    }
+}

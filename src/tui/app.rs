@@ -10,6 +10,7 @@ use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
 use super::viewport::{shown_points, Axis, Region};
 use crate::physics::cloth::ClothIntegrator;
+use crate::live::LiveValues;
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
 use crate::scene::{Lesson, SceneEdits};
 use crate::tables::Frame;
@@ -71,6 +72,41 @@ pub enum Overlay {
     Jump {
         text: String,
     },
+    /// The prediction prompt of page `page` (its `predict`), and the number typed so far.
+    Predict {
+        page: usize,
+        text: String,
+    },
+}
+
+/// A student's answer to a page's `predict`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Guess {
+    /// Not asked yet.
+    Open,
+    /// Esc: the run went on without a guess.
+    Skipped,
+    Given(f64),
+}
+
+/// The settings live numbers were simulated with: they are simulated again when these change
+/// (the integrator `i`, the response `c`, a cloth's integrator), so a page never narrates
+/// another method's numbers.
+#[derive(Debug, Clone, PartialEq)]
+struct LiveSettings {
+    integrator: Integrator,
+    response: Option<Response>,
+    cloths: Vec<ClothIntegrator>,
+}
+
+impl LiveSettings {
+    fn of(world: &World) -> LiveSettings {
+        LiveSettings {
+            integrator: world.integrator(),
+            response: world.contact_model().map(|m| m.response),
+            cloths: world.cloths().iter().map(|c| c.integrator).collect(),
+        }
+    }
 }
 
 /// What [`App::update`] asks of the world outside the app state (files); [`App::perform`]
@@ -154,6 +190,12 @@ pub struct App {
     pub write_dir: PathBuf,
     /// The body the panels show (Tab picks the next one).
     pub selected: usize,
+    /// The values of the pages' live numbers and predictions (see [`crate::live`]), simulated
+    /// when the lesson is opened and when a setting they depend on changes; never per frame.
+    pub live: std::sync::Arc<LiveValues>,
+    live_settings: LiveSettings,
+    /// Each page's answer to its `predict` (Open for pages without one).
+    pub guesses: Vec<Guess>,
     pub quit: bool,
 }
 
@@ -163,6 +205,9 @@ impl App {
         let snapshot = world.snapshot();
         let region = Region::of_world(&world);
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
+        let live = std::sync::Arc::new(LiveValues::compute(&lesson, world.clone()));
+        let live_settings = LiveSettings::of(&world);
+        let guesses = vec![Guess::Open; lesson.pages.len()];
         let real_time = 1.0 / lesson.scene.dt;
         let speed = SPEEDS
             .iter()
@@ -198,6 +243,9 @@ impl App {
             export_requested: false,
             write_dir: PathBuf::from("."),
             selected: 0,
+            live,
+            live_settings,
+            guesses,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -212,7 +260,7 @@ impl App {
         match self.overlay {
             Overlay::Picker { .. } => Context::Picker,
             Overlay::Settings(_) => Context::Form,
-            Overlay::Jump { .. } => Context::Prompt,
+            Overlay::Jump { .. } | Overlay::Predict { .. } => Context::Prompt,
             _ => Context::Main,
         }
     }
@@ -258,7 +306,7 @@ impl App {
             Message::Continue => {
                 if self.divergence.is_some() {
                     self.blocked();
-                } else {
+                } else if !self.ask_prediction() {
                     self.running = true;
                 }
             }
@@ -280,12 +328,15 @@ impl App {
             Message::WriteScene => return self.write_scene(),
             Message::Type(c) => match &mut self.overlay {
                 Overlay::Settings(form) => form.type_char(c),
-                Overlay::Jump { text } if text.chars().count() < 16 => text.push(c),
+                Overlay::Jump { text } if text.chars().count() < 16 && c != '-' && c != 'e' => {
+                    text.push(c)
+                }
+                Overlay::Predict { text, .. } if text.chars().count() < 16 => text.push(c),
                 _ => {}
             },
             Message::Erase => match &mut self.overlay {
                 Overlay::Settings(form) => form.erase(),
-                Overlay::Jump { text } => {
+                Overlay::Jump { text } | Overlay::Predict { text, .. } => {
                     text.pop();
                 }
                 _ => {}
@@ -309,12 +360,28 @@ impl App {
                         _ => self.notice = Some(format!("jump: `{text}` is not a time ≥ 0 s")),
                     }
                 }
+                Overlay::Predict { page, text } => {
+                    let (page, text) = (*page, text.clone());
+                    match text.trim().parse::<f64>() {
+                        Ok(guess) if guess.is_finite() => {
+                            self.overlay = Overlay::None;
+                            self.guesses[page] = Guess::Given(guess);
+                            self.notice = Some(format!(
+                                "your guess: {} — running to t = {} s to see",
+                                text.trim(),
+                                tidy(self.lesson.pages[page].predict.as_ref().map_or(0.0, |p| p.at))
+                            ));
+                            self.running = true;
+                        }
+                        _ => self.notice = Some(format!("predict: `{text}` is not a number")),
+                    }
+                }
                 _ => {}
             },
             Message::TogglePause => {
                 if self.divergence.is_some() {
                     self.blocked();
-                } else {
+                } else if self.running || !self.ask_prediction() {
                     self.running = !self.running;
                 }
             }
@@ -439,10 +506,73 @@ impl App {
         }
     }
 
+    /// The page shown asks for a prediction not made yet, of a time still ahead: opens the
+    /// prompt (and returns true) instead of running.
+    fn ask_prediction(&mut self) -> bool {
+        let Some(index) = self.page else {
+            return false;
+        };
+        let Some(predict) = &self.lesson.pages[index].predict else {
+            return false;
+        };
+        let ahead = self.world.step_count() < crate::live::step_at(predict.at, self.world.dt());
+        if self.guesses[index] != Guess::Open || !ahead {
+            return false;
+        }
+        self.running = false;
+        self.overlay = Overlay::Predict {
+            page: index,
+            text: String::new(),
+        };
+        true
+    }
+
+    /// The question of page `page`'s prediction: `what will cube.y be at t = 1 s (m)?`.
+    pub fn prediction_question(&self, page: usize) -> String {
+        match self.lesson.pages.get(page).and_then(|p| p.predict.as_ref()) {
+            Some(p) => format!(
+                "what will {} be at t = {} s (in {})?",
+                p.quantity.text,
+                tidy(p.at),
+                p.quantity.measure.unit()
+            ),
+            None => String::new(),
+        }
+    }
+
+    /// The line that sets a prediction beside the simulated value, once the run has reached
+    /// its time: `cube.y at t = 1 s: your guess 0.3 m · simulated 0.25 m · error 20 %`.
+    pub fn prediction_result(&self, page: usize) -> Option<String> {
+        let predict = self.lesson.pages.get(page)?.predict.as_ref()?;
+        let reached = self.world.step_count() >= crate::live::step_at(predict.at, self.world.dt());
+        if !reached {
+            return None;
+        }
+        let value = self.live.value(&predict.quantity, predict.at);
+        let unit = predict.quantity.measure.unit();
+        let simulated = crate::live::text_of(value, predict.quantity.measure);
+        let head = format!("{} at t = {} s", predict.quantity.text, tidy(predict.at));
+        Some(match (self.guesses[page], value) {
+            (Guess::Given(guess), Some(crate::live::Value::Number(v))) => format!(
+                "{head}: your guess {} {unit} · simulated {simulated} · relative error {:.1} %",
+                tidy(guess),
+                100.0 * crate::live::relative_error(guess, v)
+            ),
+            (Guess::Given(guess), _) => {
+                format!("{head}: your guess {} {unit} · simulated {simulated}", tidy(guess))
+            }
+            _ => format!("{head}: simulated {simulated}"),
+        })
+    }
+
     /// Esc: closes the innermost window, else the graph or the study; never quits.
     fn back(&mut self) {
         if let Overlay::Settings(_) = self.overlay {
             self.notice = Some("settings closed: nothing applied".into());
+        }
+        if let Overlay::Predict { page, .. } = self.overlay {
+            self.guesses[page] = Guess::Skipped;
+            self.notice = Some("no guess: Enter runs on".into());
         }
         if self.overlay != Overlay::None {
             self.overlay = Overlay::None;
@@ -601,6 +731,13 @@ impl App {
 
     /// Re-reads the snapshots and keeps the bodies in frame.
     fn refresh(&mut self) {
+        let settings = LiveSettings::of(&self.world);
+        if settings != self.live_settings {
+            let mut world = self.world.clone();
+            world.reset();
+            self.live = std::sync::Arc::new(LiveValues::compute(&self.lesson, world));
+            self.live_settings = settings;
+        }
         self.snapshot = self.world.snapshot_of(self.selected);
         let mut shown = shown_points(&self.world);
         if let Some(ghost) = &mut self.ghost {
@@ -681,6 +818,15 @@ impl App {
                     self.stop = Some(stop);
                     break;
                 }
+                if let Some(result) = self.prediction_reached() {
+                    self.running = false;
+                    self.stop = Some(timeline::Stop {
+                        label: "prediction".into(),
+                        notice: result.clone(),
+                    });
+                    self.notice = Some(result);
+                    break;
+                }
             }
         }
         if frames > 1 && done > 0 {
@@ -691,6 +837,22 @@ impl App {
             });
         }
         self.refresh();
+    }
+
+    /// The result line of a guessed prediction whose time the run has just reached.
+    fn prediction_reached(&self) -> Option<String> {
+        let step = self.world.step_count();
+        let dt = self.world.dt();
+        (0..self.lesson.pages.len())
+            .filter(|&i| matches!(self.guesses[i], Guess::Given(_)))
+            .find(|&i| {
+                self.lesson.pages[i]
+                    .predict
+                    .as_ref()
+                    .is_some_and(|p| crate::live::step_at(p.at, dt) == step)
+            })
+            .and_then(|i| self.prediction_result(i))
+            .map(|r| format!("{r}: Enter continues"))
     }
 
     /// Runs the next phase (both worlds).

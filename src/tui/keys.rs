@@ -499,6 +499,13 @@ pub const KEYS: &[Binding] = &[
         "jump: cancel",
         Message::Back,
     ),
+    within(
+        Context::Prompt,
+        &[Char('-'), Char('e')],
+        "- e",
+        "predict: sign, exponent",
+        Message::Type(' '),
+    ),
     within(Context::Prompt, &[Char('q')], "q", "quit", Message::Quit),
 ];
 
