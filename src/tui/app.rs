@@ -196,6 +196,9 @@ pub struct App {
     live_settings: LiveSettings,
     /// Each page's answer to its `predict` (Open for pages without one).
     pub guesses: Vec<Guess>,
+    /// A run pauses by itself at pages, predictions and the scene's end (off for `tumble
+    /// record`, which runs on and must never show a pause it does not make).
+    pub pause_at_stops: bool,
     pub quit: bool,
 }
 
@@ -246,6 +249,7 @@ impl App {
             live,
             live_settings,
             guesses,
+            pause_at_stops: true,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -809,7 +813,7 @@ impl App {
             if self.check_divergence() {
                 break;
             }
-            if self.running {
+            if self.running && self.pause_at_stops {
                 let stop =
                     timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
                 if let Some(stop) = stop {
