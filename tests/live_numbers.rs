@@ -188,7 +188,11 @@ mod app {
     fn screen(app: &App) -> String {
         let buf = export::render(app, 160, 50);
         (0..buf.area.height)
-            .map(|y| (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect::<String>())
+            .map(|y| {
+                (0..buf.area.width)
+                    .map(|x| buf[(x, y)].symbol())
+                    .collect::<String>()
+            })
             .collect::<Vec<_>>()
             .join("\n")
     }
@@ -205,7 +209,10 @@ mod app {
 
     #[test]
     fn a_prediction_is_asked_then_set_beside_the_simulated_value() {
-        let mut app = app("How low at 0.6 s?", r#"predict = { quantity = "cube.y", at = 0.6 }"#);
+        let mut app = app(
+            "How low at 0.6 s?",
+            r#"predict = { quantity = "cube.y", at = 0.6 }"#,
+        );
         app.update(Message::Continue);
         app.step_frames(1000);
         // The run stops at page 2 (t = 0.5 s); Enter asks for the guess instead of running.
@@ -213,7 +220,10 @@ mod app {
         assert!(screen(&app).contains("Enter asks for your guess"));
         app.update(Message::Continue);
         assert!(!app.running);
-        assert!(matches!(app.overlay, tumble::tui::app::Overlay::Predict { .. }));
+        assert!(matches!(
+            app.overlay,
+            tumble::tui::app::Overlay::Predict { .. }
+        ));
         assert!(screen(&app).contains("what will cube.y be at t = 0.6 s (in m)?"));
         for c in "0.3".chars() {
             app.update(Message::Type(c));
@@ -223,8 +233,13 @@ mod app {
         app.step_frames(1000);
         // Stopped at t = 0.6 s (step 60): y = 0.204770 m; |0.3 − 0.20477| / 0.20477 = 46.5 %.
         assert_eq!(app.world.step_count(), 60);
-        let expected = "cube.y at t = 0.6 s: your guess 0.3 m · simulated 0.204770 m · relative error 46.5 %";
-        assert!(app.notice.as_deref().unwrap_or("").contains(expected), "{:?}", app.notice);
+        let expected =
+            "cube.y at t = 0.6 s: your guess 0.3 m · simulated 0.204770 m · relative error 46.5 %";
+        assert!(
+            app.notice.as_deref().unwrap_or("").contains(expected),
+            "{:?}",
+            app.notice
+        );
         assert!(screen(&app).contains(expected), "{}", screen(&app));
     }
 

@@ -9,8 +9,8 @@ use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
 use super::viewport::{shown_points, Axis, Region};
-use crate::physics::cloth::ClothIntegrator;
 use crate::live::LiveValues;
+use crate::physics::cloth::ClothIntegrator;
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
 use crate::scene::{Lesson, SceneEdits};
 use crate::tables::Frame;
@@ -373,7 +373,12 @@ impl App {
                             self.notice = Some(format!(
                                 "your guess: {} — running to t = {} s to see",
                                 text.trim(),
-                                tidy(self.lesson.pages[page].predict.as_ref().map_or(0.0, |p| p.at))
+                                tidy(
+                                    self.lesson.pages[page]
+                                        .predict
+                                        .as_ref()
+                                        .map_or(0.0, |p| p.at)
+                                )
                             ));
                             self.running = true;
                         }
@@ -563,7 +568,10 @@ impl App {
                 100.0 * crate::live::relative_error(guess, v)
             ),
             (Guess::Given(guess), _) => {
-                format!("{head}: your guess {} {unit} · simulated {simulated}", tidy(guess))
+                format!(
+                    "{head}: your guess {} {unit} · simulated {simulated}",
+                    tidy(guess)
+                )
             }
             _ => format!("{head}: simulated {simulated}"),
         })

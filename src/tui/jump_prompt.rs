@@ -11,7 +11,9 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 pub fn render(text: &str, now: f64, area: Rect, buf: &mut Buffer) {
     let keys: Vec<String> = KEYS
         .iter()
-        .filter(|b| b.context == Context::Prompt && b.label != "q" && !b.help.starts_with("predict:"))
+        .filter(|b| {
+            b.context == Context::Prompt && b.label != "q" && !b.help.starts_with("predict:")
+        })
         .map(|b| format!("{} {}", b.label, b.help.trim_start_matches("jump: ")))
         .collect();
     let lines = vec![

@@ -24,7 +24,10 @@ fn page(app: &App) -> (String, String) {
                         "Predict: {} Enter asks for your guess.",
                         app.prediction_question(i)
                     ),
-                    None => format!("Predict: {} (the run will tell)", app.prediction_question(i)),
+                    None => format!(
+                        "Predict: {} (the run will tell)",
+                        app.prediction_question(i)
+                    ),
                 };
                 text.push_str("\n\n");
                 text.push_str(&line);
