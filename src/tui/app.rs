@@ -199,6 +199,9 @@ pub struct App {
     /// A run pauses by itself at pages, predictions and the scene's end (off for `tumble
     /// record`, which runs on and must never show a pause it does not make).
     pub pause_at_stops: bool,
+    /// Simulated seconds per wall-clock second over the last second of running, measured by
+    /// the event loop only (never in tests or exports: it varies between runs).
+    pub measured_real_time: Option<f64>,
     pub quit: bool,
 }
 
@@ -250,6 +253,7 @@ impl App {
             live_settings,
             guesses,
             pause_at_stops: true,
+            measured_real_time: None,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -502,8 +506,10 @@ impl App {
         match effect {
             Effect::WriteScene { edits, to } => {
                 let source = &self.lesson.path;
-                let written = std::fs::read_to_string(source)
-                    .map_err(|e| format!("cannot read {}: {e}", source.display()))
+                // A bundled lesson outside a clone has no file on disk: its compiled-in text.
+                let written = crate::lessons::source(source)
+                    .map(|(_, text)| text)
+                    .ok_or_else(|| format!("cannot read {}", source.display()))
                     .and_then(|text| edits.write_into(&text, 0, source.parent()))
                     .and_then(|text| std::fs::write(&to, text).map_err(|e| e.to_string()))
                     .and_then(|()| crate::scene::load(&to).map_err(|e| e.to_string()));
