@@ -261,3 +261,43 @@ mod app {
         assert!(screen(&app).contains(&format!("y = {y} m")), "{y}");
     }
 }
+
+/// Every key the loader accepts (the fields of `src/scene/raw.rs`, by their TOML names)
+/// appears in `docs/lesson-format.md` as `` `key` ``.
+#[test]
+fn every_key_the_loader_accepts_is_documented() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let raw = std::fs::read_to_string(root.join("src/scene/raw.rs")).unwrap();
+    let docs = std::fs::read_to_string(root.join("docs/lesson-format.md")).unwrap();
+    let mut rename = None;
+    let mut keys = Vec::new();
+    for line in raw.lines().map(str::trim) {
+        if let Some(i) = line.find("rename = \"") {
+            let rest = &line[i + 10..];
+            rename = rest.split('"').next().map(str::to_string);
+            continue;
+        }
+        if let Some(field) = line.strip_prefix("pub ").and_then(|l| l.split_once(':')) {
+            let name = field.0.trim();
+            if name.chars().all(|c| c.is_ascii_lowercase() || c == '_') && !name.is_empty() {
+                keys.push(rename.take().unwrap_or_else(|| name.to_string()));
+            }
+        }
+        if !line.starts_with("#[") {
+            rename = None;
+        }
+    }
+    assert!(keys.len() > 40, "found only {keys:?}");
+    let missing: Vec<&String> = keys
+        .iter()
+        .filter(|k| {
+            !docs.contains(&format!("`{k}`"))
+                && !docs.contains(&format!("[{k}]"))
+                && !docs.contains(&format!("[[{k}]]"))
+        })
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "docs/lesson-format.md does not mention {missing:?}"
+    );
+}
