@@ -336,9 +336,7 @@ impl App {
             Message::WriteScene => return self.write_scene(),
             Message::Type(c) => match &mut self.overlay {
                 Overlay::Settings(form) => form.type_char(c),
-                Overlay::Jump { text } if text.chars().count() < 16 && c != '-' && c != 'e' => {
-                    text.push(c)
-                }
+                Overlay::Jump { text } if text.chars().count() < 16 => text.push(c),
                 Overlay::Predict { text, .. } if text.chars().count() < 16 => text.push(c),
                 _ => {}
             },
