@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod lessons;
 pub mod limits;
+pub mod live;
 pub mod physics;
 pub mod scene;
 pub mod study;

@@ -96,11 +96,12 @@ pub fn write_walk_bodies(
     out: &mut impl Write,
 ) -> Result<(), WalkError> {
     let mut world = lesson.scene.world();
+    let live = crate::live::LiveValues::compute(lesson, world.clone());
     let every: Vec<usize> = (0..world.body_count()).collect();
     let bodies = bodies.unwrap_or(&every);
     write_header(lesson, &world, out)?;
     let mut shown_page = None;
-    write_block(lesson, &world, bodies, &mut shown_page, out)?;
+    write_block(lesson, &live, &world, bodies, &mut shown_page, out)?;
     // One block per frame, or one per phase of every frame.
     let blocks_per_frame = if phases { 4 } else { 1 };
     for _ in 0..frames {
@@ -110,7 +111,7 @@ pub fn write_walk_bodies(
             } else {
                 world.step();
             }
-            write_block(lesson, &world, bodies, &mut shown_page, out)?;
+            write_block(lesson, &live, &world, bodies, &mut shown_page, out)?;
         }
         if let Some(divergence) = world.divergence() {
             writeln!(out)?;
@@ -190,6 +191,7 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
 /// `bodies` (headed by its name when the scene has several), then the scene's.
 fn write_block(
     lesson: &Lesson,
+    live: &crate::live::LiveValues,
     world: &World,
     bodies: &[usize],
     shown_page: &mut Option<usize>,
@@ -232,9 +234,12 @@ fn write_block(
                 number_plain(page.at),
                 printable(&page.title)
             )?;
-            for text_line in page.text.trim_end().lines() {
+            for text_line in live.page_text(page).trim_end().lines() {
                 let text_line = printable(text_line);
                 writeln!(out, "{}", format!("  | {text_line}").trim_end())?;
+            }
+            if let Some(line) = live.prediction_line(page) {
+                writeln!(out, "  {line}")?;
             }
             *shown_page = Some(index);
         }

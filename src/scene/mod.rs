@@ -8,6 +8,7 @@ mod cloth;
 mod diagnose;
 pub mod edit;
 mod error;
+pub mod live;
 mod mesh;
 mod messages;
 mod raw;
@@ -33,7 +34,12 @@ pub struct Page {
     /// The page applies from this time on, s.
     pub at: f64,
     pub title: String,
+    /// As written: live numbers (`{{…}}`) unfilled; see [`Page::live`].
     pub text: String,
+    /// The live numbers of `text`, in order.
+    pub live: Vec<live::LiveNumber>,
+    /// What the student is asked to predict on this page.
+    pub predict: Option<live::Prediction>,
 }
 
 /// Everything a world is built from.
@@ -337,10 +343,31 @@ impl Validator<'_> {
             if pages.last().is_some_and(|p: &Page| p.at > at) {
                 return Err(self.error(span, "pages must be in order of `at`"));
             }
+            let names: Vec<String> = scene.bodies.iter().map(|b| b.name.clone()).collect();
+            let text_span = page.text.span();
+            let text = page.text.into_inner();
+            let live = live::live_numbers(&text, at, &names).map_err(|(offset, message)| {
+                self.error(
+                    self.placeholder_span(text_span.clone(), &text, offset),
+                    message,
+                )
+            })?;
+            let predict = match page.predict {
+                None => None,
+                Some(p) => {
+                    let p = p.into_inner();
+                    let quantity = live::quantity(p.quantity.get_ref(), &names)
+                        .map_err(|e| self.error(p.quantity.span(), format!("predict: {e}")))?;
+                    let when = self.non_negative(&p.at, "predict `at` (s)")?;
+                    Some(live::Prediction { quantity, at: when })
+                }
+            };
             pages.push(Page {
                 at,
                 title: page.title,
-                text: page.text,
+                text,
+                live,
+                predict,
             });
         }
         Ok(Lesson {
@@ -350,6 +377,20 @@ impl Validator<'_> {
             scene,
             pages,
         })
+    }
+
+    /// Where, in the file, the `{{` at byte `offset` of a page's text is: the same
+    /// occurrence of `{{` inside the string as written (escapes and the newline after `"""`
+    /// shift offsets, never the count of `{{`); the string's start if it cannot be found.
+    fn placeholder_span(&self, text_span: Range<usize>, text: &str, offset: usize) -> Range<usize> {
+        let nth = text[..offset].matches("{{").count();
+        let written = self.source.get(text_span.clone()).unwrap_or("");
+        written
+            .match_indices("{{")
+            .nth(nth)
+            .map_or(text_span.clone(), |(i, _)| {
+                text_span.start + i..text_span.start + i + 2
+            })
     }
 
     fn finite(&self, value: &Spanned<f64>, what: &str) -> Result<f64, LoadError> {

@@ -138,7 +138,17 @@ pub struct RawObstacle {
 pub struct RawPage {
     pub at: Spanned<f64>,
     pub title: String,
-    pub text: String,
+    /// May quote live numbers, `{{QUANTITY}}` and `{{QUANTITY@T}}` (see `live.rs`).
+    pub text: Spanned<String>,
+    /// `{ quantity = "cube.y", at = 1.0 }`: the app asks the student for a guess.
+    pub predict: Option<Spanned<RawPredict>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPredict {
+    pub quantity: Spanned<String>,
+    pub at: Spanned<f64>,
 }
 
 /// A `[[cloth]]` table: a mass–spring sheet.

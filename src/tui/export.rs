@@ -285,7 +285,10 @@ pub fn record(app: &mut App, duration: f64, width: u16, height: u16) -> String {
         out.push_str(&serde_json::json!([t, "o", data]).to_string());
         out.push('\n');
     };
+    // The recording runs on through pages (a pause would freeze the picture while the
+    // header said "paused … Enter continues" and the time kept going).
     app.running = true;
+    app.pause_at_stops = false;
     let first = format!("\x1b[2J{}", ansi(&render(app, width, height)));
     event(&mut out, 0, first);
     let mut pending = 0.0;

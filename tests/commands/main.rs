@@ -8,6 +8,7 @@ mod divergence_cli;
 mod hostile;
 mod lesson_claims;
 mod lessons;
+mod live_numbers;
 mod study;
 mod study_cloth;
 mod study_table;
