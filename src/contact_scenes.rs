@@ -117,7 +117,8 @@ pub fn dominoes(response: Response) -> World {
                 // Rotating by −θ about z the pivot at (x + t/2, 0): the barycenter sits at
                 // pivot + R(−θ)·(−t/2, h/2).
                 let (s, c) = tilt.sin_cos();
-                let offset = Vector3::new(-t / 2.0 * c + h / 2.0 * s, t / 2.0 * s + h / 2.0 * c, 0.0);
+                let offset =
+                    Vector3::new(-t / 2.0 * c + h / 2.0 * s, t / 2.0 * s + h / 2.0 * c, 0.0);
                 (
                     Vector3::new(x + t / 2.0, 0.0, 0.0) + offset,
                     UnitQuaternion::from_axis_angle(&Vector3::z_axis(), -tilt),

@@ -144,6 +144,8 @@ pub struct Scratch {
     change: Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     /// Which bodies the position fix advances from the start of the step.
     advanced: Vec<bool>,
+    /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
+    pub(super) soft: super::soft_step::Scratch,
 }
 
 /// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
@@ -913,7 +915,7 @@ fn normal_update(row: &mut Row, motions: &mut [Motion]) -> f64 {
 }
 
 /// Two unit tangents completing n to an orthonormal basis.
-fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+pub(super) fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     let helper = if n.x.abs() < 0.9 {
         Vector3::x()
     } else {
