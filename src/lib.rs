@@ -5,6 +5,7 @@
 //! [`physics::Snapshot`].
 
 pub mod cli;
+pub mod contact_scenes;
 pub mod lessons;
 pub mod limits;
 pub mod live;

@@ -299,6 +299,8 @@ pub fn apply(
     if let Some(name) = &overrides.response {
         let response = response_named(name)?;
         match &mut scene.contact {
+            // The same name keeps the scene's own soft-step parameters.
+            Some(model) if model.response.name() == response.name() => {}
             Some(model) => model.response = response,
             None => {
                 return Err(Failure::bad_input(format!(

@@ -785,6 +785,12 @@ impl World {
         &self.now.contacts
     }
 
+    /// What the `impulse` solver did since the world was built: direct solves, declined ones,
+    /// sweeps (issue 17: a resting scene's solver path must not degrade).
+    pub fn contact_counters(&self) -> super::collision::impulse::Counters {
+        self.scratch.counters
+    }
+
     /// Switches integrator, keeping t and the state (the orientation changes representation;
     /// a drifted `euler-seed` matrix becomes the nearest rotation). The current frame restarts
     /// at its derive phase.

@@ -20,7 +20,7 @@ pub use error::{did_you_mean, printable, LoadError};
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
-    State, World,
+    SoftStep, State, World,
 };
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use raw::{RawBodies, RawBody, RawLesson, RawObstacle, RawScene, Vec3};
@@ -739,10 +739,64 @@ impl Validator<'_> {
             .friction
             .as_ref()
             .map_or(Ok(0.0), |f| self.non_negative(f, "friction"))?;
+        let response = match response {
+            Response::SoftStep(defaults) => Response::SoftStep(self.soft_step(c, defaults)?),
+            other => {
+                let keys = [
+                    ("hertz", c.hertz.as_ref().map(Spanned::span)),
+                    ("damping_ratio", c.damping_ratio.as_ref().map(Spanned::span)),
+                    ("substeps", c.substeps.as_ref().map(Spanned::span)),
+                ];
+                if let Some((key, Some(at))) = keys.into_iter().find(|(_, s)| s.is_some()) {
+                    return Err(self.error(
+                        at,
+                        format!(
+                            "`{key}` is a key of the `soft-step` response, not of `{}`",
+                            other.name()
+                        ),
+                    ));
+                }
+                other
+            }
+        };
         Ok(ContactModel {
             response,
             restitution,
             friction,
+        })
+    }
+
+    /// `hertz` (> 0, Hz), `damping_ratio` (≥ 0) and `substeps` (1 ..= 64) of `soft-step`,
+    /// each defaulting to [`SoftStep::DEFAULT`]'s.
+    fn soft_step(&self, c: &raw::RawContact, defaults: SoftStep) -> Result<SoftStep, LoadError> {
+        let hertz = c
+            .hertz
+            .as_ref()
+            .map_or(Ok(defaults.hertz), |h| self.positive(h, "hertz"))?;
+        let damping_ratio = c
+            .damping_ratio
+            .as_ref()
+            .map_or(Ok(defaults.damping_ratio), |z| {
+                self.non_negative(z, "damping_ratio")
+            })?;
+        let substeps = match &c.substeps {
+            Some(n) => {
+                let v = *n.get_ref();
+                let max = crate::physics::collision::soft_step::MAX_SUBSTEPS;
+                if v < 1 || v > i64::from(max) {
+                    return Err(self.error(
+                        n.span(),
+                        format!("substeps must be a whole number from 1 to {max}, found {v}"),
+                    ));
+                }
+                v as u32
+            }
+            None => defaults.substeps,
+        };
+        Ok(SoftStep {
+            hertz,
+            damping_ratio,
+            substeps,
         })
     }
 

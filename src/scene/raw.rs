@@ -47,6 +47,10 @@ pub struct RawContact {
     pub response: Spanned<String>,
     pub restitution: Option<Spanned<f64>>,
     pub friction: Option<Spanned<f64>>,
+    /// `soft-step` only: contact frequency (Hz), damping ratio, sub-steps per step.
+    pub hertz: Option<Spanned<f64>>,
+    pub damping_ratio: Option<Spanned<f64>>,
+    pub substeps: Option<Spanned<i64>>,
 }
 
 /// `[body]`, a table, or `[[body]]`, an array of tables.

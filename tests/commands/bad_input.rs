@@ -33,7 +33,7 @@ const TABLE: &[(&str, &str)] = &[
     ),
     (
         "unknown-response.toml",
-        "6:24: unknown collision response `bounce`; valid responses: seed, impulse",
+        "6:24: unknown collision response `bounce`; valid responses: seed, impulse, soft-step",
     ),
     ("negative-mass.toml", "10:8: mass must be > 0, found -1"),
     ("zero-mass.toml", "10:8: mass must be > 0, found 0"),
