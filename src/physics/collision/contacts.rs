@@ -104,6 +104,9 @@ pub fn find(
             let Some(shape_b) = &input.bodies[b].shape else {
                 continue;
             };
+            if input.joined.binary_search(&(a, b)).is_ok() {
+                continue;
+            }
             let (sa, sb) = (&states[a], &states[b]);
             let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;
             if (sa.position - sb.position).norm_squared() > reach * reach {
