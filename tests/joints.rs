@@ -37,14 +37,7 @@ fn simple_pendulum(
     let x0 = Vector3::new(l * theta0.sin(), -l * theta0.cos(), 0.0);
     let bodies = vec![bob("bob", x0)];
     let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let joint = Joint::distance(
-        "rod".into(),
-        0,
-        None,
-        [x0, Vector3::zeros()],
-        None,
-        &states,
-    );
+    let joint = Joint::distance("rod".into(), 0, None, [x0, Vector3::zeros()], None, &states);
     World::with_bodies(bodies, gravity(), Vec::new(), None, integrator, dt).with_links(Links {
         joints: vec![joint],
         springs: Vec::new(),
@@ -53,7 +46,11 @@ fn simple_pendulum(
 }
 
 /// The times x crosses 0 upward (linear interpolation between steps), over `steps` steps.
-fn upward_crossings(world: &mut World, steps: usize, coordinate: impl Fn(&World) -> f64) -> Vec<f64> {
+fn upward_crossings(
+    world: &mut World,
+    steps: usize,
+    coordinate: impl Fn(&World) -> f64,
+) -> Vec<f64> {
     let mut out = Vec::new();
     let mut last = coordinate(world);
     for _ in 0..steps {
@@ -93,7 +90,11 @@ fn the_large_amplitude_pendulum_period_follows_the_elliptic_integral() {
     for (degrees, ratio) in [(30.0_f64, 1.017409), (90.0, 1.180341)] {
         let theta0 = degrees.to_radians();
         let exact = 4.0 * (l / G).sqrt() * elliptic_k((theta0 / 2.0).sin());
-        assert!((exact / t0 - ratio).abs() < 1e-6, "K itself: {}", exact / t0);
+        assert!(
+            (exact / t0 - ratio).abs() < 1e-6,
+            "K itself: {}",
+            exact / t0
+        );
         let mut world = simple_pendulum(l, theta0, Integrator::Rk4, 1e-3, Correction::Projection);
         let measured = period(&mut world, 12_000);
         assert!(

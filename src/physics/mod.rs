@@ -46,6 +46,6 @@ pub use effects::{Effect, Effects};
 pub use energy::Energy;
 pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
-pub use snapshot::{BodyView, ClothView, Snapshot, SystemTotals};
+pub use snapshot::{BodyView, ClothView, JointView, Snapshot, SpringView, SystemTotals};
 pub use state::{Orientation, State};
 pub use world::{Checkpoint, NamedBody, Phase, Stepping, World};

@@ -53,7 +53,12 @@ pub struct Scratch {
 
 /// A body's kinematics from (x, R, P, L), R a rotation.
 #[inline]
-pub fn kinematics(body: &Body, rotation: Matrix3<f64>, p: &Vector3<f64>, l: &Vector3<f64>) -> Kinematics {
+pub fn kinematics(
+    body: &Body,
+    rotation: Matrix3<f64>,
+    p: &Vector3<f64>,
+    l: &Vector3<f64>,
+) -> Kinematics {
     let inv_inertia_world = congruence(&rotation, &body.inv_inertia_body);
     Kinematics {
         rotation,
@@ -175,11 +180,19 @@ impl System<'_> {
 
     /// f(Y)'s forces at states (orientations as stored: a drifted `euler-seed` matrix is used
     /// as it is, as the report's loop would).
-    pub fn evaluate_states(&self, states: &[State], kinematics: &mut Vec<Kinematics>, scratch: &mut Scratch) {
+    pub fn evaluate_states(
+        &self,
+        states: &[State],
+        kinematics: &mut Vec<Kinematics>,
+        scratch: &mut Scratch,
+    ) {
         kinematics.clear();
-        kinematics.extend(self.bodies.iter().zip(states).map(|(b, s)| {
-            kinematics_of_state(b, s)
-        }));
+        kinematics.extend(
+            self.bodies
+                .iter()
+                .zip(states)
+                .map(|(b, s)| kinematics_of_state(b, s)),
+        );
         let positions: Vec<Vector3<f64>> = states.iter().map(|s| s.position).collect();
         let momenta: Vec<Vector3<f64>> = states.iter().map(|s| s.angular_momentum).collect();
         self.evaluate(&positions, kinematics, &momenta, scratch);

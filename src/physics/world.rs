@@ -32,9 +32,9 @@ use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
 use super::joints::{project, Correction, Links, ProjectionBuffers};
-use super::system::{Scratch as SystemScratch, System};
 use super::snapshot::Snapshot;
 use super::state::State;
+use super::system::{Scratch as SystemScratch, System};
 use nalgebra::Vector3;
 use std::fmt;
 
@@ -299,11 +299,23 @@ impl World {
     /// Joint `index`'s reaction on its body A averaged over the last step (impulse / dt):
     /// force, and torque about A's barycenter. Zero before the first step.
     pub fn joint_load(&self, index: usize) -> Loads {
-        self.now
-            .joint_loads
-            .get(index)
-            .copied()
-            .unwrap_or_default()
+        self.now.joint_loads.get(index).copied().unwrap_or_default()
+    }
+
+    /// The whole system's loads at the current states, as the next forces phase will compute
+    /// them: (per body, per joint's reaction on its body A).
+    pub fn system_loads_now(&self) -> (Vec<Loads>, Vec<Loads>) {
+        let system = System {
+            bodies: &self.bodies,
+            effects: &self.effects,
+            links: &self.links,
+            integrator: self.integrator,
+            dt: self.dt,
+        };
+        let mut scratch = SystemScratch::default();
+        let mut kinematics = Vec::new();
+        system.evaluate_states(&self.now.states, &mut kinematics, &mut scratch);
+        (scratch.loads, scratch.joint_loads)
     }
 
     /// The forces phase over the whole system: every body's F and τ with springs and joints.
@@ -318,7 +330,12 @@ impl World {
         let now = &mut self.now;
         let positions: Vec<Vector3<f64>> = now.states.iter().map(|s| s.position).collect();
         let momenta: Vec<Vector3<f64>> = now.states.iter().map(|s| s.angular_momentum).collect();
-        system.evaluate(&positions, &now.kinematics, &momenta, &mut self.system_scratch);
+        system.evaluate(
+            &positions,
+            &now.kinematics,
+            &momenta,
+            &mut self.system_scratch,
+        );
         now.loads.clone_from(&self.system_scratch.loads);
         now.start_joint_loads
             .clone_from(&self.system_scratch.joint_loads);
@@ -460,8 +477,7 @@ impl World {
             self.dt,
             &mut self.system_buffers,
         );
-        now.joint_loads
-            .clone_from(&self.system_buffers.joint_loads);
+        now.joint_loads.clone_from(&self.system_buffers.joint_loads);
         now.ledger.drag_work += self.system_buffers.damping_work;
         if self.links.correction == Correction::Projection && !self.links.joints.is_empty() {
             let before = total_energy(&self.bodies, &self.effects, &now.states).total

@@ -115,9 +115,16 @@ pub fn advance(
             buffers.damping_work = start.damping_power * dt;
         }
         Integrator::Rk4 => rk4(system, states, start, dt, buffers),
-        Integrator::Splitting | Integrator::ExactSplitting => {
-            compose(integrator, system, states, start, &[0.5, 0.5], &[1.0], dt, buffers)
-        }
+        Integrator::Splitting | Integrator::ExactSplitting => compose(
+            integrator,
+            system,
+            states,
+            start,
+            &[0.5, 0.5],
+            &[1.0],
+            dt,
+            buffers,
+        ),
         Integrator::ExactSplitting4 => compose(
             integrator,
             system,
@@ -248,7 +255,13 @@ fn drift(integrator: Integrator, body: &Body, state: &mut State, h: f64) {
 
 /// `P, L += h (F, τ)` evaluated at `P + h/2 F, L + h/2 τ` (x and q held); the forces at the
 /// kick's start are `start`'s when given. Books h × the midpoint's reactions and damping power.
-fn midpoint_kick(system: &System, states: &mut [State], start: Option<&Start>, h: f64, b: &mut Buffers) {
+fn midpoint_kick(
+    system: &System,
+    states: &mut [State],
+    start: Option<&Start>,
+    h: f64,
+    b: &mut Buffers,
+) {
     if start.is_none() {
         b.y.clear();
         b.y.extend(states.iter().map(flat_of));

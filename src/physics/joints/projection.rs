@@ -39,7 +39,11 @@ fn build(links: &Links, bodies: &[Body], states: &[State], moving: bool, b: &mut
             x: state.position,
             r: k.rotation,
             v: if moving { k.velocity } else { Pose::WORLD.v },
-            w: if moving { k.angular_velocity } else { Pose::WORLD.w },
+            w: if moving {
+                k.angular_velocity
+            } else {
+                Pose::WORLD.w
+            },
         });
         b.inverse.push(Inverse {
             mass: body.inv_mass,
@@ -77,17 +81,18 @@ pub fn project(
         b.rhs.extend(b.rows.iter().map(|r| -r.c));
         multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
         for (row, &mu) in b.rows.iter().zip(&b.rhs) {
-            let mut shift = |i: usize, lin: &nalgebra::Vector3<f64>, ang: &nalgebra::Vector3<f64>| {
-                let s = &mut states[i];
-                s.position += lin * (mu * b.inverse[i].mass);
-                let theta = b.inverse[i].inertia * (ang * mu);
-                s.orientation = match s.orientation {
-                    Orientation::Quaternion(q) => Orientation::Quaternion(turn(&q, &theta)),
-                    Orientation::Matrix(m) => Orientation::Matrix(
-                        nalgebra::Rotation3::from_scaled_axis(theta).into_inner() * m,
-                    ),
+            let mut shift =
+                |i: usize, lin: &nalgebra::Vector3<f64>, ang: &nalgebra::Vector3<f64>| {
+                    let s = &mut states[i];
+                    s.position += lin * (mu * b.inverse[i].mass);
+                    let theta = b.inverse[i].inertia * (ang * mu);
+                    s.orientation = match s.orientation {
+                        Orientation::Quaternion(q) => Orientation::Quaternion(turn(&q, &theta)),
+                        Orientation::Matrix(m) => Orientation::Matrix(
+                            nalgebra::Rotation3::from_scaled_axis(theta).into_inner() * m,
+                        ),
+                    };
                 };
-            };
             shift(row.a, &row.lin_a, &row.ang_a);
             if let Some(j) = row.b {
                 shift(j, &row.lin_b, &row.ang_b);

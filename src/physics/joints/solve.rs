@@ -35,7 +35,8 @@ pub fn multipliers(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &
     solver.weighted.clear();
     solver.weighted.extend(rows.iter().map(|r| {
         let wa = inverse[r.a].inertia * r.ang_a;
-        let wb = r.b.map_or(Vector3::zeros(), |b| inverse[b].inertia * r.ang_b);
+        let wb =
+            r.b.map_or(Vector3::zeros(), |b| inverse[b].inertia * r.ang_b);
         (wa, wb)
     }));
     solver.matrix.clear();
