@@ -98,7 +98,10 @@ fn the_large_amplitude_pendulum_period_follows_the_elliptic_integral() {
         );
         let mut world = simple_pendulum(l, theta0, Integrator::Rk4, 1e-3, Correction::Projection);
         let measured = period(&mut world, 12_000);
-        eprintln!("pendulum {degrees}°: T = {measured:.7} s, T/T₀ = {:.6}", measured / t0);
+        eprintln!(
+            "pendulum {degrees}°: T = {measured:.7} s, T/T₀ = {:.6}",
+            measured / t0
+        );
         assert!(
             (measured - exact).abs() < 1e-5,
             "{degrees}°: T = {measured:.7} s, 4√(L/g) K = {exact:.7} s (T/T₀ = {:.6})",
@@ -135,7 +138,8 @@ fn cube_on_an_edge(theta0: f64, integrator: Integrator, dt: f64) -> World {
     // The edge through the pivot (origin) along z; the centre hangs d = √2/2 m below it when
     // θ = 0 (the cube turned 45° about z puts an edge on top).
     let d = 0.5_f64.sqrt();
-    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_4 + theta0);
+    let turn =
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_4 + theta0);
     let cube = NamedBody {
         name: "cube".into(),
         body: Body::solid_box(Vector3::new(1.0, 1.0, 1.0), 1.0).expect("a cube"),
@@ -180,7 +184,10 @@ fn a_cube_swinging_on_an_edge_has_the_parallel_axis_period() {
     ] {
         let mut world = cube_on_an_edge(theta0, integrator, 1e-3);
         let measured = period(&mut world, 8_000);
-        eprintln!("cube {}: T = {measured:.6} s (closed form {exact:.6})", integrator.name());
+        eprintln!(
+            "cube {}: T = {measured:.6} s (closed form {exact:.6})",
+            integrator.name()
+        );
         assert!(
             (measured - exact).abs() < 2e-5,
             "{}: T = {measured:.6} s, closed form {exact:.6} s (T₀ = {t0:.6} s)",
@@ -246,7 +253,10 @@ fn a_chaotic_double_pendulum_keeps_its_energy_and_joints_over_20_s_with_rk4() {
         }
     }
     eprintln!("chaotic double pendulum: energy {worst_energy:.3e}, joint {worst_joint:.3e} m");
-    assert!(worst_energy < 1e-6, "relative energy error {worst_energy:.3e}");
+    assert!(
+        worst_energy < 1e-6,
+        "relative energy error {worst_energy:.3e}"
+    );
     assert!(worst_joint < 1e-6, "joint error {worst_joint:.3e} m");
 }
 
@@ -264,7 +274,10 @@ fn without_correction_explicit_euler_lets_the_rod_lengthen_and_projection_stops_
     let drift = free.links().joints[0].error(free.states());
     let kept = held.links().joints[0].error(held.states());
     eprintln!("euler 60°, 2 s: |C| none {drift:.4e} m, projection {kept:.3e} m");
-    assert!(drift > 1e-3, "without correction |C| = {drift:.3e} m after 2 s");
+    assert!(
+        drift > 1e-3,
+        "without correction |C| = {drift:.3e} m after 2 s"
+    );
     assert!(kept < 1e-12, "with projection |C| = {kept:.3e} m");
 }
 
@@ -273,8 +286,25 @@ fn spring_body(k: f64, c: f64, stretch: f64, integrator: Integrator) -> World {
     let x0 = Vector3::new(1.0 + stretch, 0.0, 0.0);
     let bodies = vec![bob("mass", x0)];
     let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let spring = Spring::new("s".into(), 0, None, [x0, Vector3::zeros()], k, c, Some(1.0), &states);
-    World::with_bodies(bodies, Effects::default(), Vec::new(), None, integrator, 1e-3).with_links(Links {
+    let spring = Spring::new(
+        "s".into(),
+        0,
+        None,
+        [x0, Vector3::zeros()],
+        k,
+        c,
+        Some(1.0),
+        &states,
+    );
+    World::with_bodies(
+        bodies,
+        Effects::default(),
+        Vec::new(),
+        None,
+        integrator,
+        1e-3,
+    )
+    .with_links(Links {
         springs: vec![spring],
         ..Links::default()
     })
@@ -287,7 +317,10 @@ fn a_spring_oscillates_at_the_square_root_of_k_over_m() {
     let mut world = spring_body(100.0, 0.0, 0.1, Integrator::Rk4);
     let c = upward_crossings(&mut world, 5000, |w| w.state().position.x - 1.0);
     let measured = (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64;
-    assert!((measured - want).abs() < 1e-6, "T = {measured:.8} s, 2π√(m/k) = {want:.8} s");
+    assert!(
+        (measured - want).abs() < 1e-6,
+        "T = {measured:.8} s, 2π√(m/k) = {want:.8} s"
+    );
     // Energy: ½ k s² = 0.5 J, kept by rk4 to O(dt⁴).
     let e = world.total_energy().total;
     assert!((e - 0.5).abs() < 1e-8, "E = {e}");
@@ -310,9 +343,13 @@ fn a_damped_spring_decays_at_c_over_2m_and_books_its_damping() {
     }
     let t = world.time();
     // The exact solution from rest at x = s: x = s e^{−γt} (cos ω_d t + γ/ω_d sin ω_d t).
-    let exact = s * (-gamma * t).exp() * ((omega_d * t).cos() + gamma / omega_d * (omega_d * t).sin());
+    let exact =
+        s * (-gamma * t).exp() * ((omega_d * t).cos() + gamma / omega_d * (omega_d * t).sin());
     let x = world.state().position.x - 1.0;
-    assert!((x - exact).abs() < 1e-8, "x = {x:.10}, closed form {exact:.10}");
+    assert!(
+        (x - exact).abs() < 1e-8,
+        "x = {x:.10}, closed form {exact:.10}"
+    );
     let balance = world.energy_balance();
     let drag = balance.drag_work.expect("damping booked as drag work");
     assert!(drag < -0.4, "damping work {drag}");
@@ -334,23 +371,38 @@ fn two_bodies_on_a_spring_keep_their_total_momentum_to_round_off() {
             "s".into(),
             0,
             Some(1),
-            [xa + Vector3::new(0.05, 0.05, 0.0), xb - Vector3::new(0.05, 0.0, 0.05)],
+            [
+                xa + Vector3::new(0.05, 0.05, 0.0),
+                xb - Vector3::new(0.05, 0.0, 0.05),
+            ],
             50.0,
             0.5,
             Some(0.8),
             &states,
         );
-        let mut world = World::with_bodies(vec![a, b], Effects::default(), Vec::new(), None, integrator, 1e-3)
-            .with_links(Links {
-                springs: vec![spring],
-                ..Links::default()
-            });
+        let mut world = World::with_bodies(
+            vec![a, b],
+            Effects::default(),
+            Vec::new(),
+            None,
+            integrator,
+            1e-3,
+        )
+        .with_links(Links {
+            springs: vec![spring],
+            ..Links::default()
+        });
         let p0: Vector3<f64> = world.states().iter().map(|s| s.linear_momentum).sum();
         for _ in 0..2000 {
             world.step();
         }
         let p: Vector3<f64> = world.states().iter().map(|s| s.linear_momentum).sum();
-        assert!((p - p0).norm() < 1e-13, "{}: ΔP = {:.3e}", integrator.name(), (p - p0).norm());
+        assert!(
+            (p - p0).norm() < 1e-13,
+            "{}: ΔP = {:.3e}",
+            integrator.name(),
+            (p - p0).norm()
+        );
     }
 }
 
@@ -389,11 +441,22 @@ anchor = [0.0, 0.0, 0.0]
     let run = |extra: &[&str]| {
         let out = assert_cmd::Command::cargo_bin("tumble")
             .unwrap()
-            .args(["run", file.to_str().unwrap(), "--steps", "500", "--every", "50"])
+            .args([
+                "run",
+                file.to_str().unwrap(),
+                "--steps",
+                "500",
+                "--every",
+                "50",
+            ])
             .args(extra)
             .output()
             .unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         String::from_utf8(out.stdout).unwrap()
     };
     let joint = run(&["--joint", "pivot"]);
@@ -408,7 +471,12 @@ anchor = [0.0, 0.0, 0.0]
         let x = Vector3::new(b[2], b[3], b[4]);
         let q = UnitQuaternion::new_normalize(nalgebra::Quaternion::new(b[5], b[6], b[7], b[8]));
         let separation = (x + q * anchor).norm();
-        assert!((j[2] - separation).abs() < 1e-12, "step {}: error {} vs {separation}", j[0], j[2]);
+        assert!(
+            (j[2] - separation).abs() < 1e-12,
+            "step {}: error {} vs {separation}",
+            j[0],
+            j[2]
+        );
         last = j[2];
     }
     assert!(last > 1e-3, "the anchors should have drifted apart: {last}");
