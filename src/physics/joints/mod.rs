@@ -54,7 +54,7 @@
 
 mod projection;
 mod rows;
-pub(crate) mod solve;
+pub mod solve;
 
 pub use projection::{project, Buffers as ProjectionBuffers};
 pub use rows::{rows_of, Pose, Row};
