@@ -4,7 +4,7 @@
 //! - `resting-cube`: one 0.2 m cube of 1 kg at rest on the ground (issue 10's aim: < 500 ns);
 //! - `stack-3`, `stack-10`: 3 and 10 such cubes standing on each other on the ground, e = 0
 //!   (issue 10's aim for 10: ≤ 3 µs per step, its top within 1 mm after 5 s — that bound is a
-//!   test in `tests/bodies.rs`; for comparison, issue 10 quotes MuJoCo 4.0 at about 55 µs and
+//!   test in `tests/physics/bodies.rs`; for comparison, issue 10 quotes MuJoCo 4.0 at about 55 µs and
 //!   Rapier 0.36 at about 21 µs per step on this machine);
 //! - `colliding-cubes`: two cubes 2 cm apart closing at 2 m/s head-on, no gravity: they meet
 //!   after 10 steps and part at 0.8 m/s; restarted every 100 steps, so every sample is an

@@ -33,12 +33,18 @@ fn pendulum() -> World {
     };
     let states = vec![bob.initial];
     let rod = Joint::distance("rod".into(), 0, None, [x0, Vector3::zeros()], None, &states);
-    World::with_bodies(vec![bob], gravity(), Vec::new(), None, Integrator::Rk4, 1e-3).with_links(
-        Links {
-            joints: vec![rod],
-            ..Links::default()
-        },
+    World::with_bodies(
+        vec![bob],
+        gravity(),
+        Vec::new(),
+        None,
+        Integrator::Rk4,
+        1e-3,
     )
+    .with_links(Links {
+        joints: vec![rod],
+        ..Links::default()
+    })
 }
 
 /// `count` links of length `l` along x from the origin, ball-jointed end to end.

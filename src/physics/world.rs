@@ -129,7 +129,7 @@ impl Checkpoint {
     /// cloth module) are counted as what a step fills — per particle the force, the start
     /// positions and velocities, the damping force and drag velocities, per spring its axis,
     /// and with `implicit-euler` the solver's blocks, preconditioner and six vectors — an upper
-    /// bound on them once the cloth has stepped (`tests/history.rs` measures it against the
+    /// bound on them once the cloth has stepped (`tests/app/history.rs` measures it against the
     /// allocator).
     pub fn heap_bytes(&self) -> usize {
         bytes_of(&self.states)

@@ -5,7 +5,7 @@
 //! only at **keyframes**, every K frames; the worlds at frame n are rebuilt by restoring the
 //! newest keyframe k ≤ n and stepping n − k frames again. Stepping is deterministic — the same
 //! checkpoint stepped under the same settings gives the same bits — so the rebuilt state is
-//! exactly the one the forward run had (`tests/history.rs` checks it bit for bit).
+//! exactly the one the forward run had (`tests/app/history.rs` checks it bit for bit).
 //!
 //! ```text
 //! bytes  = heap bytes of a keyframe (world, and compare world if on) + its own size
@@ -401,7 +401,7 @@ mod tests {
     #[test]
     fn a_switch_of_integrator_starts_a_keyframe_and_replay_uses_the_old_one() {
         // The frame after a switch is a keyframe holding the new settings (with cloths, where
-        // K > 1, replay depends on it: tests/history.rs).
+        // K > 1, replay depends on it: tests/app/history.rs).
         let mut w = world();
         let mut history = History::new(10);
         history.push(w.state().position, &w, None);

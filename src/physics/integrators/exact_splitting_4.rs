@@ -15,7 +15,7 @@
 //! Yoshida's triple jump (w₁ = 1/(2 − 2^⅓), three flows) in their own roles; with the roles
 //! swapped that factor is not measured here. Torque-free or under gravity alone it is exact like
 //! `exact-splitting` (four times the work for nothing); with drag it is fourth order (the
-//! observed slope is 3.99 in `tests/exact_splitting.rs`).
+//! observed slope is 3.99 in `tests/physics/exact_splitting.rs`).
 
 use super::super::body::Body;
 use super::super::derive::Kinematics;

@@ -82,7 +82,11 @@ fn factor_and_solve(k: &mut [f64], n: usize, first: &[usize], rhs: &mut [f64]) {
             let from = fi.max(first[j]);
             let (head, tail) = k.split_at_mut(i * n);
             let row_i = &tail[..n];
-            let row_j: &[f64] = if j == i { row_i } else { &head[j * n..j * n + n] };
+            let row_j: &[f64] = if j == i {
+                row_i
+            } else {
+                &head[j * n..j * n + n]
+            };
             let dot: f64 = row_i[from..j]
                 .iter()
                 .zip(&row_j[from..j])
@@ -90,10 +94,18 @@ fn factor_and_solve(k: &mut [f64], n: usize, first: &[usize], rhs: &mut [f64]) {
                 .sum();
             let value = tail[j] - dot;
             if j == i {
-                tail[i] = if value > tiny { value.sqrt() } else { f64::INFINITY };
+                tail[i] = if value > tiny {
+                    value.sqrt()
+                } else {
+                    f64::INFINITY
+                };
             } else {
                 let pivot = head[j * n + j];
-                tail[j] = if pivot.is_finite() { value / pivot } else { 0.0 };
+                tail[j] = if pivot.is_finite() {
+                    value / pivot
+                } else {
+                    0.0
+                };
             }
         }
     }

@@ -4,7 +4,7 @@
 //!
 //! Measured values (release build) are quoted next to each bound.
 
-mod common;
+use crate::common;
 
 use common::{free_world, omega_body, racket, sign_changes};
 use nalgebra::{UnitQuaternion, Vector3};

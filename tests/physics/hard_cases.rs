@@ -3,7 +3,7 @@
 //!
 //! Measured values (release build) are quoted next to each bound.
 
-mod common;
+use crate::common;
 
 use common::{
     elliptic_k_from_complement, flip_spacing, free_world, omega_body, racket, sign_changes,

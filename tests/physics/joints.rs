@@ -481,4 +481,3 @@ anchor = [0.0, 0.0, 0.0]
     }
     assert!(last > 1e-3, "the anchors should have drifted apart: {last}");
 }
-

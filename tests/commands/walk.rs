@@ -18,7 +18,7 @@ fn plan(path: &Path) -> (u64, bool) {
 
 #[test]
 fn walk_snapshot_of_every_bundled_lesson() {
-    insta::glob!("../lessons", "*.toml", |path| {
+    insta::glob!("../../lessons", "*.toml", |path| {
         let lesson = tumble::scene::load(path).unwrap_or_else(|e| panic!("{e}"));
         let (frames, phases) = plan(path);
         let mut out = Vec::new();

@@ -1,0 +1,8 @@
+//! The terminal app: screens, panels, history, the study view (one test binary, built with the tui feature).
+#![cfg(feature = "tui")]
+
+mod history;
+mod tui;
+mod tui_cloth;
+mod tui_screens;
+mod tui_study;

@@ -1,0 +1,13 @@
+//! Command-line tests: check, run, walk, study, the bundled lessons and their claims, bad input (one test binary).
+
+mod bad_input;
+mod cli_lessons;
+mod cli_names_and_errors;
+mod cloth_cli;
+mod divergence_cli;
+mod lesson_claims;
+mod lessons;
+mod study;
+mod study_cloth;
+mod study_table;
+mod walk;

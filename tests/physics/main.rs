@@ -1,0 +1,14 @@
+//! Physics tests: mass properties, integrators, contacts, cloths, hard cases and properties (one test binary: each links the whole library once).
+
+mod bodies;
+mod cloth;
+mod cloth_world;
+mod collisions;
+mod common;
+mod energy_ledger;
+mod exact_splitting;
+mod geometry;
+mod hard_cases;
+mod joints;
+mod physics_core;
+mod properties;
