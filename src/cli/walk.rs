@@ -276,7 +276,7 @@ fn write_block(
         write(&crate::tables::joint_panel(joint))?;
     }
     if !snapshot.joints.is_empty() {
-        write(&crate::tables::correction_panel(&snapshot))?;
+        write(&crate::tables::correction_panel(snapshot))?;
     }
     for spring in &snapshot.springs {
         write(&crate::tables::spring_panel(spring))?;

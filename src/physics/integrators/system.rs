@@ -178,7 +178,6 @@ fn rk4(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Bu
         p: s.linear_momentum,
         l: s.angular_momentum,
     }));
-    let n = states.len();
     // k₁ from the forces phase.
     let mut k = std::mem::take(&mut b.k);
     rates(&b.y, start.kinematics, start.loads, &mut k);
@@ -188,9 +187,8 @@ fn rk4(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Bu
     let mut work = start.damping_power / 6.0;
     for (h, w) in [(0.5, 2.0), (0.5, 2.0), (1.0, 1.0)] {
         b.stage.clear();
-        for i in 0..n {
-            b.stage.push(b.y[i].plus(&k[i], h * dt));
-        }
+        b.stage
+            .extend(b.y.iter().zip(&k).map(|(y, ki)| y.plus(ki, h * dt)));
         let stage = std::mem::take(&mut b.stage);
         evaluate_flat(system, &stage, b);
         rates(&stage, &b.kinematics, &b.eval.loads, &mut k);

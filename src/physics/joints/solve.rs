@@ -15,13 +15,16 @@
 use super::rows::Row;
 use nalgebra::{Matrix3, Vector3};
 
+/// A row touching a body: (row, linear part, I⁻¹ · angular part, angular part).
+type Touch = (usize, Vector3<f64>, Vector3<f64>, Vector3<f64>);
+
 /// Reused buffers of the solve (no allocation once sized).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Solver {
     /// K, then its factor, row-major n × n.
     matrix: Vec<f64>,
     /// Per body: the rows touching it, (row, linear part, I⁻¹ angular part, angular part).
-    touching: Vec<Vec<(usize, Vector3<f64>, Vector3<f64>, Vector3<f64>)>>,
+    touching: Vec<Vec<Touch>>,
     /// Per row: its first column inside the envelope.
     first: Vec<usize>,
 }
