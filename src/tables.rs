@@ -165,6 +165,8 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         rows: vec![
             vector_row("F", &to_frame(&s.force), "N"),
             vector_row("τ", &to_frame(&s.torque), "N·m"),
+            vector_row("Fc", &to_frame(&s.contact_force), "N"),
+            vector_row("τc", &to_frame(&s.contact_torque), "N·m"),
         ],
     };
     let momentum = Panel {
