@@ -7,7 +7,10 @@ use std::path::Path;
 
 fn main() {
     println!("cargo:rerun-if-changed=lessons");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // Read when the script runs, not when it was compiled: a build script compiled in another
+    // checkout (a copied `target/`) would otherwise bundle that checkout's lessons.
+    let manifest_dir = std::env::var("CARGO_MANIFEST_DIR").unwrap();
+    let root = Path::new(&manifest_dir);
     let mut files = Vec::new();
     for folder in ["lessons", "lessons/meshes"] {
         let Ok(entries) = std::fs::read_dir(root.join(folder)) else {
