@@ -8,8 +8,8 @@ use std::path::Path;
 fn main() {
     println!("cargo:rerun-if-changed=lessons");
     // Read when the script runs, not when it was compiled: a build script compiled in another
-    // checkout (a copied `target/`) would otherwise bundle that checkout's lessons.
-    let manifest_dir = std::env::var("CARGO_MANIFEST_DIR").unwrap();
+    // checkout (a copied target/, a worktree) must still bundle this checkout's lessons.
+    let manifest_dir = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
     let root = Path::new(&manifest_dir);
     let mut files = Vec::new();
     for folder in ["lessons", "lessons/meshes"] {

@@ -101,6 +101,10 @@ pub fn load(argument: &Path) -> Result<Lesson, LoadError> {
 pub fn source(argument: &Path) -> Option<(PathBuf, String)> {
     match find(argument)? {
         Found::Disk(path) => {
+            // A file past the loader's size limit is never read (its one error says why).
+            if std::fs::metadata(&path).ok()?.len() > crate::limits::MAX_FILE_BYTES {
+                return None;
+            }
             let text = std::fs::read_to_string(&path).ok()?;
             Some((path, text))
         }

@@ -5,7 +5,10 @@
 //! [`physics::Snapshot`].
 
 pub mod cli;
+pub mod contact_scenes;
 pub mod lessons;
+pub mod limits;
+pub mod live;
 pub mod physics;
 pub mod scene;
 pub mod study;

@@ -2,6 +2,7 @@
 //! error of a file is one line on stderr ([`crate::scene::check_every_error`]); a valid file is
 //! an `ok` line on stdout.
 
+use super::output::{line, warn};
 use super::Failure;
 use crate::lessons;
 use crate::scene::{self, LoadError};
@@ -19,21 +20,26 @@ fn errors(path: &std::path::Path, first: LoadError) -> Vec<LoadError> {
     }
 }
 
+/// The `ok` line of a valid file (its title's control characters escaped).
+fn ok(path: &std::path::Path, title: &str) -> Result<(), Failure> {
+    line(&scene::printable(&format!(
+        "{}: ok ({title})",
+        path.display()
+    )))
+}
+
 /// Validates every file; prints `ok` lines on stdout and errors on stderr (for several files,
 /// then a summary line).
 pub fn check(files: &[PathBuf]) -> Result<(), Failure> {
     if let [path] = files {
         // One file: its errors are the lines (no summary line after them).
         return match lessons::load(path) {
-            Ok(lesson) => {
-                println!("{}: ok ({})", path.display(), lesson.title);
-                Ok(())
-            }
+            Ok(lesson) => ok(path, &lesson.title),
             Err(first) => {
                 let mut all = errors(path, first);
                 let last = all.pop().map(|e| e.to_string()).unwrap_or_default();
                 for e in all {
-                    eprintln!("tumble: {e}");
+                    warn(&e.to_string());
                 }
                 Err(Failure::bad_input(last))
             }
@@ -42,10 +48,10 @@ pub fn check(files: &[PathBuf]) -> Result<(), Failure> {
     let mut failed = 0;
     for path in files {
         match lessons::load(path) {
-            Ok(lesson) => println!("{}: ok ({})", path.display(), lesson.title),
+            Ok(lesson) => ok(path, &lesson.title)?,
             Err(first) => {
                 for e in errors(path, first) {
-                    eprintln!("tumble: {e}");
+                    warn(&e.to_string());
                 }
                 failed += 1;
             }

@@ -5,6 +5,7 @@
 
 mod check;
 mod lessons;
+pub mod output;
 #[cfg(feature = "tui")]
 mod record;
 mod run;
@@ -76,7 +77,7 @@ pub enum Command {
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Overrides {
     /// Time step, s (overrides the file's `dt`).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Integrator (overrides the file's `integrator`).
     #[arg(long)]
@@ -84,6 +85,25 @@ pub struct Overrides {
     /// Collision response (overrides the file's `contact.response`).
     #[arg(long)]
     pub response: Option<String>,
+}
+
+/// A count on the command line (`--steps`, `--frames`, `--every`): a whole number ≥ 0; the
+/// error says which rule the text broke (clap names the flag).
+pub fn parse_count(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    t.parse::<u64>().map_err(|_| {
+        if t.starts_with('-') {
+            "must be a whole number ≥ 0".to_string()
+        } else if t.parse::<f64>().is_ok_and(|v| v.is_finite() && v >= 0.0) {
+            if t.parse::<f64>().is_ok_and(|v| v > u64::MAX as f64) {
+                format!("must be a whole number at most {}", u64::MAX)
+            } else {
+                "must be a whole number (no decimal point or exponent)".to_string()
+            }
+        } else {
+            "must be a whole number ≥ 0".to_string()
+        }
+    })
 }
 
 /// A one-line error for the user, with its exit code.
@@ -99,6 +119,18 @@ impl Failure {
             code: EXIT_BAD_INPUT,
             message: message.into(),
         }
+    }
+}
+
+/// Exit 3 with the divergence's message when the run diverged (`shot`, `record`: the file is
+/// written first, up to where it stopped).
+pub fn diverged(divergence: Option<&impl std::fmt::Display>) -> Result<(), Failure> {
+    match divergence {
+        None => Ok(()),
+        Some(d) => Err(Failure {
+            code: EXIT_DIVERGED,
+            message: d.to_string(),
+        }),
     }
 }
 
@@ -244,16 +276,21 @@ fn override_integrators(
     Ok(())
 }
 
-/// Loads a lesson (a file, or a bundled lesson by name) and applies command-line overrides.
+/// Loads a lesson (a file, or a bundled lesson by name) and applies command-line overrides;
+/// the scene then passes the same rules as a file does ([`crate::scene::Scene::check_rules`]).
 pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> {
     let mut lesson = crate::lessons::load(path)?;
-    let scene = &mut lesson.scene;
+    apply(path, &mut lesson.scene, overrides)?;
+    Ok(lesson)
+}
+
+/// Applies command-line overrides to a loaded scene and checks the scene's rules again.
+pub fn apply(
+    path: &Path,
+    scene: &mut crate::scene::Scene,
+    overrides: &Overrides,
+) -> Result<(), Failure> {
     if let Some(dt) = overrides.dt {
-        if !(dt > 0.0 && dt.is_finite()) {
-            return Err(Failure::bad_input(format!(
-                "--dt must be > 0 and finite, found {dt}"
-            )));
-        }
         scene.dt = dt;
     }
     if let Some(name) = &overrides.integrator {
@@ -262,6 +299,8 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
     if let Some(name) = &overrides.response {
         let response = response_named(name)?;
         match &mut scene.contact {
+            // The same name keeps the scene's own soft-step parameters.
+            Some(model) if model.response.name() == response.name() => {}
             Some(model) => model.response = response,
             None => {
                 return Err(Failure::bad_input(format!(
@@ -271,7 +310,17 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Lesson, Failure> 
             }
         }
     }
-    Ok(lesson)
+    scene
+        .check_rules(crate::scene::Naming::Flags)
+        .map_err(|(setting, message)| {
+            // A rule the file itself breaks was refused when it loaded: this one is the flag's.
+            match setting {
+                crate::scene::Setting::Dt => Failure::bad_input(message),
+                crate::scene::Setting::Response => {
+                    Failure::bad_input(format!("{}: {message}", path.display()))
+                }
+            }
+        })
 }
 
 /// The file the terminal app opens: the given one, else the first bundled lesson.
@@ -308,11 +357,18 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
                     names,
                 ))
             })?;
-            if matches!(comparison, Comparison::Response(_)) && lesson.scene.contact.is_none() {
-                return Err(Failure::bad_input(format!(
-                    "{}: --compare {name} needs a scene with obstacles and a `contact` table",
-                    path.display()
-                )));
+            if let Comparison::Response(response) = comparison {
+                // The ghost's scene passes the same rules as a file or `--response`.
+                let mut ghost = lesson.scene.clone();
+                apply(
+                    &path,
+                    &mut ghost,
+                    &Overrides {
+                        response: Some(response.name().to_string()),
+                        ..Overrides::default()
+                    },
+                )
+                .map_err(|f| Failure::bad_input(f.message.replace("--response", "--compare")))?;
             }
             Some(comparison)
         }
@@ -347,8 +403,11 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => {
             let code = if e.use_stderr() { EXIT_BAD_INPUT } else { 0 };
-            let _ = e.print();
-            return ExitCode::from(code);
+            // `--help | head -1`: a closed stdout ends the help quietly, never a panic.
+            return match e.print() {
+                Err(io) if !e.use_stderr() => ExitCode::from(output::failure(io).code),
+                _ => ExitCode::from(code),
+            };
         }
     };
     let result = match cli.command {
@@ -366,7 +425,7 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            eprintln!("tumble: {}", failure.message);
+            output::warn(&failure.message);
             ExitCode::from(failure.code)
         }
     }

@@ -1,6 +1,7 @@
 //! `tumble record FILE --duration T --out OUT.cast [--size COLSxROWS]`: a run of the app as an
 //! asciicast v2 recording (header line, then `[time, "o", data]` events with increasing times),
-//! rendered without a terminal, at real time.
+//! rendered without a terminal, at real time. Its steps and frames are bounded before it
+//! starts ([`crate::limits`]); a divergence ends the recording where it happens, exit 3.
 
 use super::{load_with, Failure, Overrides};
 use crate::tui::export;
@@ -13,7 +14,7 @@ pub struct RecordArgs {
     /// The lesson or scene file.
     pub file: PathBuf,
     /// Simulated time to record, s (played back at real time).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub duration: f64,
     /// Where to write the recording (.cast).
     #[arg(long, value_name = "OUT.cast")]
@@ -50,15 +51,37 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
     if args.stage {
         app.layout = ScreenLayout::Stage;
     }
+    let what = format!("--duration {} s", crate::limits::short(args.duration));
+    let steps = crate::limits::steps(
+        args.duration,
+        app.snapshot.dt,
+        &what,
+        "record a shorter time or use a larger time step (--dt)",
+    )
+    .map_err(Failure::bad_input)?;
+    // One frame of the recording every `frames_per_second / CAST_FPS` steps (at least one
+    // frame per step).
+    let per_frame = app.frames_per_second() / export::CAST_FPS;
+    crate::limits::count(
+        (steps as f64 / per_frame).ceil(),
+        crate::limits::MAX_CAST_FRAMES,
+        &format!(
+            "{what} at {} frames/s of simulation",
+            app.frames_per_second()
+        ),
+        "recording frames",
+        "record a shorter time",
+    )
+    .map_err(Failure::bad_input)?;
     let (cols, rows) = args.size;
     let cast = export::record(&mut app, args.duration, cols, rows);
     std::fs::write(&args.out, &cast)
         .map_err(|e| Failure::bad_input(format!("cannot write {}: {e}", args.out.display())))?;
-    eprintln!(
-        "tumble: wrote {} ({cols}x{rows}, {} frames, t = {} s)",
+    super::output::warn(&format!(
+        "wrote {} ({cols}x{rows}, {} frames, t = {} s)",
         args.out.display(),
         cast.lines().count() - 1,
         crate::tables::number_plain(app.snapshot.time)
-    );
-    Ok(())
+    ));
+    super::diverged(app.divergence.as_ref())
 }

@@ -25,10 +25,10 @@ pub struct RunArgs {
     /// The scene file.
     pub file: PathBuf,
     /// Number of steps to run.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::parse_count)]
     pub steps: u64,
     /// Print one row every K steps.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = super::parse_count)]
     pub every: u64,
     /// The body whose row is printed (default: the first).
     #[arg(long, conflicts_with = "cloth")]
@@ -64,9 +64,11 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
     let write = |out: &mut BufWriter<_>, s: &Snapshot| -> std::io::Result<()> {
         writeln!(out, "{}", row(s))
     };
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    let io = super::output::failure;
+    let first = world.snapshot_of(body);
+    initial_finite(values(&first).iter().all(|v| v.is_finite()))?;
     writeln!(out, "{HEADER}").map_err(io)?;
-    write(&mut out, &world.snapshot_of(body)).map_err(io)?;
+    write(&mut out, &first).map_err(io)?;
     for step in 1..=args.steps {
         world.step();
         if let Some(divergence) = world.divergence() {
@@ -77,7 +79,22 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
             });
         }
         if step % args.every == 0 || step == args.steps {
-            write(&mut out, &world.snapshot_of(body)).map_err(io)?;
+            let s = world.snapshot_of(body);
+            if !values(&s).iter().all(|v| v.is_finite()) {
+                // The guard missed it (a number overflowed without the state doing so): the
+                // row is not printed either.
+                out.flush().map_err(io)?;
+                return Err(Failure {
+                    code: EXIT_DIVERGED,
+                    message: format!(
+                        "simulation diverged at step {step}: a number of its row is not finite \
+                         (integrator {}, dt = {} s)",
+                        world.integrator().name(),
+                        crate::limits::short(world.dt())
+                    ),
+                });
+            }
+            write(&mut out, &s).map_err(io)?;
         }
     }
     out.flush().map_err(io)
@@ -91,7 +108,7 @@ fn run_cloth(
 ) -> Result<(), Failure> {
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    let io = super::output::failure;
     let write = |out: &mut BufWriter<_>, world: &crate::physics::World| -> std::io::Result<()> {
         let cloth = &world.cloths()[index];
         let energy = world.total_energy().total;
@@ -112,6 +129,15 @@ fn run_cloth(
         }
         Ok(())
     };
+    let cloth = &world.cloths()[index];
+    initial_finite(
+        world.total_energy().total.is_finite()
+            && cloth
+                .positions
+                .iter()
+                .chain(&cloth.velocities)
+                .all(|v| v.iter().all(|c| c.is_finite())),
+    )?;
     writeln!(out, "{CLOTH_HEADER}").map_err(io)?;
     write(&mut out, &world).map_err(io)?;
     for step in 1..=args.steps {
@@ -130,10 +156,26 @@ fn run_cloth(
     out.flush().map_err(io)
 }
 
-/// One CSV row of a snapshot (`energy`: the whole scene's).
-pub fn row(s: &Snapshot) -> String {
+/// The guard before row 0: a run never prints a non-finite number. The loader refuses the
+/// initial states it can name a key for; anything else not finite at t = 0 (an energy that
+/// overflows) stops the run here, exit 3, before the header.
+fn initial_finite(finite: bool) -> Result<(), Failure> {
+    if finite {
+        Ok(())
+    } else {
+        Err(Failure {
+            code: EXIT_DIVERGED,
+            message: "the initial state is not finite (a number overflowed at t = 0): nothing \
+                      was run"
+                .to_string(),
+        })
+    }
+}
+
+/// The numbers of a row, after `step`.
+fn values(s: &Snapshot) -> [f64; 19] {
     let q = s.quaternion.quaternion();
-    let values = [
+    [
         s.time,
         s.position.x,
         s.position.y,
@@ -153,9 +195,13 @@ pub fn row(s: &Snapshot) -> String {
         s.angular_momentum.z,
         s.system.energy.total,
         s.penetration,
-    ];
+    ]
+}
+
+/// One CSV row of a snapshot (`energy`: the whole scene's).
+pub fn row(s: &Snapshot) -> String {
     let mut line = s.step.to_string();
-    for v in values {
+    for v in values(s) {
         line.push(',');
         line.push_str(&v.to_string());
     }

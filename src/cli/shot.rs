@@ -12,7 +12,7 @@ pub struct ShotArgs {
     /// The lesson or scene file.
     pub file: PathBuf,
     /// Simulated time of the picture, s (the scene is run from t = 0 to the nearest step).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub at: f64,
     /// Where to write the SVG.
     #[arg(long, value_name = "OUT")]
@@ -55,7 +55,13 @@ pub fn app_at(
     if stage {
         app.layout = ScreenLayout::Stage;
     }
-    let steps = (at / app.snapshot.dt).round() as u64;
+    let steps = crate::limits::steps(
+        at,
+        app.snapshot.dt,
+        &format!("--at {} s", crate::limits::short(at)),
+        "choose a nearer time or a larger time step (--dt)",
+    )
+    .map_err(Failure::bad_input)?;
     // In chunks, so a divergence stops the run where it happens.
     let mut left = steps;
     while left > 0 && app.divergence.is_none() {
@@ -66,16 +72,18 @@ pub fn app_at(
     Ok(app)
 }
 
+/// Writes the picture; a run that diverged on the way still gets its picture (the moment it
+/// stopped), then exits 3 as `run` does.
 pub fn shot(args: &ShotArgs) -> Result<(), Failure> {
     let app = app_at(&args.file, &args.overrides, args.at, args.ascii, args.stage)?;
     let (cols, rows) = args.size;
     let picture = export::svg(&export::render(&app, cols, rows));
     std::fs::write(&args.svg, picture)
         .map_err(|e| Failure::bad_input(format!("cannot write {}: {e}", args.svg.display())))?;
-    eprintln!(
-        "tumble: wrote {} ({cols}x{rows}, t = {} s)",
+    super::output::warn(&format!(
+        "wrote {} ({cols}x{rows}, t = {} s)",
         args.svg.display(),
         crate::tables::number_plain(app.snapshot.time)
-    );
-    Ok(())
+    ));
+    super::diverged(app.divergence.as_ref())
 }

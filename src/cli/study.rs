@@ -10,7 +10,6 @@
 
 use super::{response_named, Failure};
 use crate::study::{self, report, Case, Config};
-use std::io::Write;
 use std::path::PathBuf;
 
 /// Output formats.
@@ -43,37 +42,71 @@ pub struct StudyArgs {
 /// replaces the collision response of every case with contact (a file without contact is an
 /// error, as with `tumble run --response`).
 pub fn cases(files: &[PathBuf], response: Option<&str>) -> Result<Vec<Case>, Failure> {
-    let response = response.map(response_named).transpose()?;
+    response.map(response_named).transpose()?;
+    let overrides = super::Overrides {
+        response: response.map(str::to_string),
+        ..super::Overrides::default()
+    };
     if files.is_empty() {
-        let builtin = study::scenes::builtin().into_iter();
-        return Ok(match response {
-            None => builtin.collect(),
-            Some(r) => builtin
-                .map(|case| case.clone().with_response(r).unwrap_or(case))
-                .collect(),
-        });
+        let mut cases = Vec::new();
+        for mut case in study::scenes::builtin() {
+            // A built-in scene without contact keeps its own settings.
+            if case.scene.contact.is_some() {
+                let path = PathBuf::from(&case.name);
+                super::apply(&path, &mut case.scene, &overrides)?;
+            }
+            cases.push(case);
+        }
+        return Ok(cases);
     }
     files
         .iter()
         .map(|path| {
-            let case = Case::from_lesson(&crate::lessons::load(path)?);
-            match response {
-                None => Ok(case),
-                Some(r) => case.with_response(r).ok_or_else(|| {
-                    Failure::bad_input(format!(
-                        "{}: --response needs a scene with obstacles and a `contact` table",
-                        path.display()
-                    ))
-                }),
-            }
+            let lesson = super::load_with(path, &overrides)?;
+            Ok(Case::from_lesson(&lesson))
         })
         .collect()
 }
 
+/// `--svg PATH` can be written: its folder exists (checked before the study runs, which takes
+/// seconds).
+fn check_svg_path(path: &std::path::Path) -> Result<(), Failure> {
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if path.is_dir() {
+        return Err(Failure::bad_input(format!(
+            "--svg {}: is a directory, not a file to write",
+            path.display()
+        )));
+    }
+    if !folder.is_dir() {
+        return Err(Failure::bad_input(format!(
+            "--svg {}: no such folder `{}`",
+            path.display(),
+            folder.display()
+        )));
+    }
+    Ok(())
+}
+
 /// Runs the study and prints it.
 pub fn study(args: &StudyArgs) -> Result<(), Failure> {
+    if let Some(path) = &args.svg {
+        check_svg_path(path)?;
+    }
     let cases = cases(&args.files, args.response.as_deref())?;
     let config = Config::default();
+    for (case, path) in cases
+        .iter()
+        .zip(args.files.iter().map(Some).chain(std::iter::repeat(None)))
+    {
+        study::check_work(case, &config).map_err(|why| {
+            let at = path.map_or_else(|| case.name.clone(), |p| p.display().to_string());
+            Failure::bad_input(format!("{at}: {why}"))
+        })?;
+    }
     let started = std::time::Instant::now();
     let studies = study::study(&cases, &config, &mut |_, _| {});
     let elapsed = started.elapsed().as_secs_f64();
@@ -91,11 +124,13 @@ pub fn study(args: &StudyArgs) -> Result<(), Failure> {
         Format::Csv => report::csv(&studies),
         Format::Json => report::json(&studies),
     };
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
-    std::io::stdout()
-        .lock()
-        .write_all(text.as_bytes())
-        .map_err(io)?;
+    // Scene names and titles come from files: their control characters escaped.
+    let text = text
+        .split('\n')
+        .map(crate::scene::printable)
+        .collect::<Vec<_>>()
+        .join("\n");
+    super::output::print(&text)?;
     if let Some(path) = &args.svg {
         study::plot::svg(&studies, path).map_err(Failure::bad_input)?;
     }

@@ -9,7 +9,7 @@
 
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
 use crate::physics::World;
-use crate::scene::Lesson;
+use crate::scene::{printable, Lesson};
 use crate::tables::{
     cloth_panel, contact_panel, number_plain, panel_text, panels, Frame, BODY_PANELS,
 };
@@ -21,7 +21,7 @@ pub struct WalkArgs {
     /// The lesson or scene file.
     pub file: PathBuf,
     /// Number of frames to walk through.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::parse_count)]
     pub frames: u64,
     /// Print the tables after every phase (derive, forces, integrate, collide), not only after
     /// each frame.
@@ -67,12 +67,12 @@ pub fn walk(args: &WalkArgs) -> Result<(), Failure> {
     );
     let flushed = out.flush();
     match result {
-        Ok(()) => flushed.map_err(|e| Failure::bad_input(format!("cannot write output: {e}"))),
+        Ok(()) => flushed.map_err(super::output::failure),
         Err(WalkError::Diverged(message)) => Err(Failure {
             code: EXIT_DIVERGED,
             message,
         }),
-        Err(WalkError::Io(e)) => Err(Failure::bad_input(format!("cannot write output: {e}"))),
+        Err(WalkError::Io(e)) => Err(super::output::failure(e)),
     }
 }
 
@@ -96,11 +96,12 @@ pub fn write_walk_bodies(
     out: &mut impl Write,
 ) -> Result<(), WalkError> {
     let mut world = lesson.scene.world();
+    let live = crate::live::LiveValues::compute(lesson, world.clone());
     let every: Vec<usize> = (0..world.body_count()).collect();
     let bodies = bodies.unwrap_or(&every);
     write_header(lesson, &world, out)?;
     let mut shown_page = None;
-    write_block(lesson, &world, bodies, &mut shown_page, out)?;
+    write_block(lesson, &live, &world, bodies, &mut shown_page, out)?;
     // One block per frame, or one per phase of every frame.
     let blocks_per_frame = if phases { 4 } else { 1 };
     for _ in 0..frames {
@@ -110,7 +111,7 @@ pub fn write_walk_bodies(
             } else {
                 world.step();
             }
-            write_block(lesson, &world, bodies, &mut shown_page, out)?;
+            write_block(lesson, &live, &world, bodies, &mut shown_page, out)?;
         }
         if let Some(divergence) = world.divergence() {
             writeln!(out)?;
@@ -127,9 +128,9 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
         .path
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    writeln!(out, "{} ({name})", lesson.title)?;
+    writeln!(out, "{}", printable(&format!("{} ({name})", lesson.title)))?;
     if !lesson.summary.is_empty() {
-        writeln!(out, "{}", lesson.summary)?;
+        writeln!(out, "{}", printable(&lesson.summary))?;
     }
     let effects = world.effects().names();
     let effects = if effects.is_empty() {
@@ -183,13 +184,14 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
     if let Some(model) = world.contact_model() {
         settings.push_str(&format!(" · response {}", model.response.name()));
     }
-    writeln!(out, "{settings}")
+    writeln!(out, "{}", printable(&settings))
 }
 
 /// One block: time, frame and phase, the page that applies, the panels of each body in
 /// `bodies` (headed by its name when the scene has several), then the scene's.
 fn write_block(
     lesson: &Lesson,
+    live: &crate::live::LiveValues,
     world: &World,
     bodies: &[usize],
     shown_page: &mut Option<usize>,
@@ -222,7 +224,7 @@ fn write_block(
                 out,
                 "page {}/{count}: {} (text above)",
                 index + 1,
-                page.title
+                printable(&page.title)
             )?;
         } else {
             writeln!(
@@ -230,10 +232,14 @@ fn write_block(
                 "page {}/{count} (from t = {} s): {}",
                 index + 1,
                 number_plain(page.at),
-                page.title
+                printable(&page.title)
             )?;
-            for text_line in page.text.trim_end().lines() {
+            for text_line in live.page_text(page).trim_end().lines() {
+                let text_line = printable(text_line);
                 writeln!(out, "{}", format!("  | {text_line}").trim_end())?;
+            }
+            if let Some(line) = live.prediction_line(page) {
+                writeln!(out, "  {line}")?;
             }
             *shown_page = Some(index);
         }
@@ -241,7 +247,7 @@ fn write_block(
     let several = world.body_count() > 1;
     let mut write = |panel: &crate::tables::Panel| -> std::io::Result<()> {
         for text_line in panel_text(panel) {
-            writeln!(out, "{text_line}")?;
+            writeln!(out, "{}", printable(&text_line))?;
         }
         Ok(())
     };

@@ -73,6 +73,16 @@ pub enum BodyError {
     #[error("a point coordinate is not finite")]
     NonFinite,
     #[error(
+        "the {0} overflows (a number beyond ±1.8e308): the coordinates, sizes or masses are \
+         too large to compute with"
+    )]
+    Overflow(&'static str),
+    #[error(
+        "the inertia tensor underflows (largest principal moment {0:.3e} kg·m², below the \
+         smallest normal number 2.2e-308): the masses or sizes are too small to compute with"
+    )]
+    Underflow(f64),
+    #[error(
         "the inertia tensor is singular (principal moments {0:.3e}, {1:.3e}, {2:.3e} kg·m²): \
          the points lie on one line or at one spot, so nothing resists rotation about that line; \
          add a point off the line or use a box"
@@ -110,11 +120,17 @@ impl Body {
             masses.to_vec()
         };
         let total: f64 = masses.iter().sum();
+        if !total.is_finite() {
+            return Err(BodyError::Overflow("total mass"));
+        }
         let barycenter = points
             .iter()
             .zip(&masses)
             .fold(Vector3::zeros(), |acc, (p, m)| acc + p * *m)
             / total;
+        if !barycenter.iter().all(|c| c.is_finite()) {
+            return Err(BodyError::Overflow("barycenter"));
+        }
         let points_body: Vec<Vector3<f64>> = points.iter().map(|p| p - barycenter).collect();
         let inertia = point_inertia(&points_body, &masses);
         let shape = ConvexHull::from_points(&points_body).ok().map(Shape::Hull);
@@ -252,7 +268,15 @@ impl Body {
         inertia_body: Matrix3<f64>,
         shape: Option<Shape>,
     ) -> Result<Body, BodyError> {
+        // Overflow and underflow are named before the shape is blamed for a singular tensor.
+        if !inertia_body.iter().all(|c| c.is_finite()) {
+            return Err(BodyError::Overflow("inertia tensor"));
+        }
         let (principal_moments, principal_axes) = principal_frame(&inertia_body);
+        // All zero is a point or a line (singular, below); nonzero but subnormal underflowed.
+        if principal_moments.z != 0.0 && !principal_moments.z.is_normal() {
+            return Err(BodyError::Underflow(principal_moments.z));
+        }
         let largest = principal_moments.z;
         // Written so that a NaN moment also counts as singular.
         let invertible = principal_moments.x.partial_cmp(&(1e-12 * largest))
@@ -272,7 +296,18 @@ impl Body {
                 principal_moments.z,
             ))?;
         // Symmetrise: the inverse of a symmetric matrix is symmetric, round-off aside.
-        let inv_inertia_body = (inv_inertia_body + inv_inertia_body.transpose()) * 0.5;
+        let mut inv_inertia_body = (inv_inertia_body + inv_inertia_body.transpose()) * 0.5;
+        if !inv_inertia_body.iter().all(|c| c.is_finite()) {
+            // The determinant overflowed (moments near 1e103 and above: I₁I₂I₃ > 1.8e308)
+            // although each moment is finite: invert in the principal frame instead,
+            // I⁻¹ = E diag(1/I₁, 1/I₂, 1/I₃) Eᵀ.
+            let e = principal_axes.to_rotation_matrix().into_inner();
+            inv_inertia_body =
+                e * Matrix3::from_diagonal(&principal_moments.map(|m| 1.0 / m)) * e.transpose();
+            if !inv_inertia_body.iter().all(|c| c.is_finite()) {
+                return Err(BodyError::Overflow("inverse inertia tensor"));
+            }
+        }
         let radius = match (&shape, points_body.is_empty()) {
             (Some(shape), true) => shape.bounding_radius(),
             _ => points_body.iter().map(|p| p.norm()).fold(0.0, f64::max),
@@ -302,8 +337,10 @@ fn check_length(what: &'static str, value: f64) -> Result<(), BodyError> {
     }
 }
 
+/// A mass must be > 0, finite and a normal number (a subnormal mass such as 5e-324 kg has
+/// lost its precision and makes the inertia tensor vanish).
 fn check_mass(mass: f64) -> Result<(), BodyError> {
-    if mass > 0.0 && mass.is_finite() {
+    if mass > 0.0 && mass.is_normal() {
         Ok(())
     } else {
         Err(BodyError::BadMass(mass))

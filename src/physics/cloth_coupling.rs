@@ -106,7 +106,8 @@ pub fn collide_bodies(
         let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
         touches.clear();
         for i in 0..cloth.len() {
-            if cloth.inv_mass(i) == 0.0 {
+            // Attached particles are held inside the solve, not pushed out.
+            if cloth.inv_mass(i) == 0.0 || cloth.attached.iter().any(|a| a.0 == i) {
                 continue;
             }
             let x = cloth.positions[i];
@@ -347,6 +348,351 @@ pub fn approach_bodies(
         let after_sweeps = kinetic(cloth, state, &touches);
         report.contacts += touches.len();
         report.energy_taken += before_sweeps - after_sweeps - within;
+    }
+    report
+}
+
+// ---------------------------------------------------------------------------------------------
+// Contacts inside the implicit solve (`cloth::ties`)
+// ---------------------------------------------------------------------------------------------
+
+/// The most solves of one step's tied system (each after the contact set changed: a contact
+/// released because it pulled, a new one found because the particle would go inside, a stuck
+/// contact that started to slide). What a last change leaves is for the collide phase.
+pub const TIE_ROUNDS: usize = 5;
+
+/// A gap (m) below which a particle counts as touching.
+const TOUCHING: f64 = 1e-9;
+
+/// How far a body's position moves under a constant extra force F over a step, in units of
+/// h²F/M: what its integrator makes of the ties' impulse J = F h when the correction
+/// ΔV = J/M is applied after the step (symplectic Euler drifts with the new velocity: 1;
+/// rk4 and the kick–drift–kick splittings: ½; explicit Euler: 0).
+pub fn position_factor(integrator: super::integrators::Integrator) -> f64 {
+    use super::integrators::Integrator as I;
+    match integrator {
+        I::EulerSeed | I::Euler => 0.0,
+        I::SymplecticEuler => 1.0,
+        I::Rk4 | I::Splitting | I::ExactSplitting | I::ExactSplitting4 => 0.5,
+    }
+}
+
+/// A particle held to a body's point (`attach`): its offset in the body's frame at t = 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Attachment {
+    pub particle: usize,
+    pub body: usize,
+    /// The particle's position in the body's frame (relative to the barycenter), m.
+    pub offset_body: Vector3<f64>,
+}
+
+/// A particle that may touch a body or an obstacle this step.
+#[derive(Debug, Clone, Copy)]
+struct Candidate {
+    particle: usize,
+    body: Option<usize>,
+    /// Signed gap at the start (< 0: inside), m.
+    gap: f64,
+    normal: Vector3<f64>,
+    arm: Vector3<f64>,
+}
+
+/// What the tied step did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TiedReport {
+    /// Contacts with bodies held at the end (attachments not counted).
+    pub contacts: usize,
+    /// Contacts with obstacles held at the end.
+    pub obstacle_contacts: usize,
+    /// Solves of the tied system (1 when the first contact set held).
+    pub rounds: usize,
+    /// CG iterations over all rounds.
+    pub iterations: usize,
+    /// Energy the contacts took, J: minus the work of their impulses along the relative
+    /// motion, −Σ (λ + e)·(v_p − v_point) (0 for a resting contact, > 0 for friction).
+    pub energy_taken: f64,
+}
+
+/// One velocity half of an `implicit-euler` cloth with its contacts against the bodies (at
+/// the end of their own step: `states`) and the obstacles, and its attachments, all inside
+/// the linear solve (`cloth::ties`). The bodies take the opposite impulses: P += M ΔV,
+/// L += I ΔΩ, and their position and orientation move by `factor`·h·(ΔV, ΔΩ)
+/// ([`position_factor`]). The cloth's positions are not moved (the caller's position half).
+#[allow(clippy::too_many_arguments)]
+pub fn tied_step(
+    cloth: &mut Cloth,
+    loads: &crate::physics::cloth::ClothLoads,
+    dt: f64,
+    bodies: &[Body],
+    states: &mut [State],
+    obstacles: &[crate::physics::collision::Obstacle],
+    attachments: &[Attachment],
+    friction: f64,
+    factor: f64,
+) -> TiedReport {
+    use crate::physics::cloth::{SolverBody, Tie, TieKind};
+    use crate::physics::collision::detect;
+    cloth.begin_tied_step(loads, dt);
+    let gravity = loads.gravity.unwrap_or_else(Vector3::zeros);
+    let mut solver_bodies: Vec<SolverBody> = bodies
+        .iter()
+        .zip(states.iter())
+        .map(|(body, state)| {
+            let rotation = state.orientation.matrix();
+            let inertia = if body.inv_mass > 0.0 {
+                rotation * body.inertia_body * rotation.transpose()
+            } else {
+                Matrix3::zeros()
+            };
+            let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+            SolverBody {
+                mass: if body.inv_mass > 0.0 { body.mass } else { 0.0 },
+                inertia,
+                velocity: state.linear_momentum * body.inv_mass,
+                angular_velocity: inv_inertia * state.angular_momentum,
+                correction: [Vector3::zeros(); 2],
+            }
+        })
+        .collect();
+    // Candidates: the nearest surface of each free particle within what it can close.
+    let mut candidates: Vec<Candidate> = Vec::new();
+    for i in 0..cloth.len() {
+        if cloth.inv_mass(i) == 0.0 || attachments.iter().any(|a| a.particle == i) {
+            continue;
+        }
+        let x = cloth.positions[i];
+        let v = cloth.start_velocity(i);
+        let mut best: Option<Candidate> = None;
+        for (b, ((body, state), sb)) in bodies
+            .iter()
+            .zip(states.iter())
+            .zip(&solver_bodies)
+            .enumerate()
+        {
+            let Some(shape) = body.shape.as_ref() else {
+                continue;
+            };
+            let body_speed = sb.velocity.norm() + sb.angular_velocity.norm() * body.radius;
+            let margin = (v.norm() + body_speed + gravity.norm() * dt) * dt + TOUCHING;
+            let reach = body.radius + margin;
+            if (x - state.position).norm_squared() > reach * reach {
+                continue;
+            }
+            let pose = Pose {
+                position: state.position,
+                rotation: state.orientation.matrix(),
+            };
+            let Some(cp) = point_shape(&x, shape, &pose, margin) else {
+                continue;
+            };
+            let arm = cp.point - state.position;
+            let c = Candidate {
+                particle: i,
+                body: Some(b),
+                gap: -cp.depth,
+                normal: cp.normal,
+                arm,
+            };
+            if best.is_none_or(|o| c.gap < o.gap) {
+                best = Some(c);
+            }
+        }
+        for obstacle in obstacles {
+            let margin = (v.norm() + gravity.norm() * dt) * dt + TOUCHING;
+            let (gap, normal) = match detect::inside(obstacle, &x) {
+                Some(p) => (-p.depth, p.normal),
+                None => match detect::near(obstacle, &x, margin) {
+                    Some(near) => near,
+                    None => continue,
+                },
+            };
+            let c = Candidate {
+                particle: i,
+                body: None,
+                gap,
+                normal,
+                arm: Vector3::zeros(),
+            };
+            if best.is_none_or(|o| c.gap < o.gap) {
+                best = Some(c);
+            }
+        }
+        candidates.extend(best);
+    }
+    let point_velocity = |sb: &[SolverBody], c: &Candidate, corrected: bool| {
+        c.body.map_or(Vector3::zeros(), |b| {
+            let s = &sb[b];
+            let (dv, dw) = if corrected {
+                (s.correction[0], s.correction[1])
+            } else {
+                (Vector3::zeros(), Vector3::zeros())
+            };
+            s.velocity + dv + (s.angular_velocity + dw).cross(&c.arm)
+        })
+    };
+    let tie_of = |c: &Candidate| {
+        // Arrive on the surface (−gap/h), no faster: a plastic contact. The sheet's rebound
+        // is its springs' (they are inside the same solve); a restitution rule on a 4.5 g
+        // particle tied to the body would kick the patch apart step after step and make
+        // energy at large steps (measured: +0.2 J at dt = 5 ms on lesson 16).
+        let bounce = 0.0;
+        Tie {
+            particle: c.particle,
+            body: c.body,
+            arm: c.arm,
+            normal: c.normal,
+            kind: if friction > 0.0 {
+                TieKind::Full
+            } else {
+                TieKind::Normal
+            },
+            // Inside already (gap < 0): stop there, the collide phase pushes it out.
+            relative: c.normal * ((-c.gap / dt).min(0.0) + bounce),
+            extra: Vector3::zeros(),
+            permanent: false,
+            impulse: Vector3::zeros(),
+        }
+    };
+    // First guess: touching, or carried inside by the start velocity and gravity.
+    let mut active: Vec<bool> = candidates
+        .iter()
+        .map(|c| {
+            let u = cloth.start_velocity(c.particle) + gravity * dt
+                - point_velocity(&solver_bodies, c, false);
+            c.gap <= TOUCHING || dt * u.dot(&c.normal) < -c.gap
+        })
+        .collect();
+    let mut ties: Vec<Tie> = Vec::new();
+    let mut kinds: Vec<(TieKind, Vector3<f64>)> =
+        vec![(TieKind::Full, Vector3::zeros()); candidates.len()];
+    for (k, c) in candidates.iter().enumerate() {
+        kinds[k] = (tie_of(c).kind, Vector3::zeros());
+    }
+    let mut report = TiedReport::default();
+    let attach_ties = |states: &[State], cloth: &Cloth, sb: &[SolverBody]| -> Vec<Tie> {
+        attachments
+            .iter()
+            .map(|a| {
+                let state = &states[a.body];
+                let arm = state.orientation.matrix() * a.offset_body;
+                let target = state.position + arm;
+                // The body is already at the end of its own step (`target`); the particle
+                // gets there, plus what the ties' correction moves the point: v = (target −
+                // x)/h + ΔV + ΔΩ × r, i.e. relative to the point's velocity V + ω × r:
+                let point = sb[a.body].velocity + sb[a.body].angular_velocity.cross(&arm);
+                Tie {
+                    particle: a.particle,
+                    body: Some(a.body),
+                    arm,
+                    normal: Vector3::y(),
+                    kind: TieKind::Full,
+                    relative: (target - cloth.positions[a.particle]) / dt - point,
+                    extra: Vector3::zeros(),
+                    permanent: true,
+                    impulse: Vector3::zeros(),
+                }
+            })
+            .collect()
+    };
+    let mut index: Vec<usize> = Vec::new();
+    for round in 0..TIE_ROUNDS {
+        ties.clear();
+        index.clear();
+        for (k, c) in candidates.iter().enumerate() {
+            if active[k] {
+                let mut tie = tie_of(c);
+                (tie.kind, tie.extra) = kinds[k];
+                ties.push(tie);
+                index.push(k);
+            }
+        }
+        ties.extend(attach_ties(states, cloth, &solver_bodies));
+        let step = cloth.solve_tied(&mut ties, &mut solver_bodies);
+        report.rounds = round + 1;
+        report.iterations += step.iterations;
+        let mut changed = false;
+        for (tie, &k) in ties.iter().zip(&index) {
+            let n = tie.normal;
+            let normal_impulse = tie.impulse.dot(&n);
+            if normal_impulse < 0.0 {
+                // It would pull the particle onto the body: let go (B&W §6.2).
+                active[k] = false;
+                kinds[k] = (tie_of(&candidates[k]).kind, Vector3::zeros());
+                changed = true;
+                continue;
+            }
+            if friction > 0.0 {
+                let tangential = match tie.kind {
+                    TieKind::Full => tie.impulse - n * normal_impulse,
+                    TieKind::Normal => tie.extra,
+                };
+                let limit = friction * normal_impulse;
+                let size = tangential.norm();
+                if tie.kind == TieKind::Full && size > limit {
+                    // Out of the cone: slide, with the bounded impulse.
+                    kinds[k] = (TieKind::Normal, tangential * (limit / size));
+                    changed = true;
+                } else if tie.kind == TieKind::Normal && size > 0.0 {
+                    let bounded = tangential * (limit / size);
+                    if (bounded - tie.extra).norm() > 1e-12 {
+                        kinds[k].1 = bounded;
+                    }
+                }
+            }
+        }
+        for (k, c) in candidates.iter().enumerate() {
+            if !active[k] {
+                let u = cloth.velocities[c.particle] - point_velocity(&solver_bodies, c, true);
+                if dt * u.dot(&c.normal) < -c.gap - TOUCHING {
+                    active[k] = true;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    cloth.finish_tied_step(loads);
+    // The energy the contacts took: −Σ (λ + e)·u over the contacts (not the attachments:
+    // their relative velocity is the drift they correct, booked the same way).
+    for tie in &ties {
+        let c = Candidate {
+            particle: tie.particle,
+            body: tie.body,
+            gap: 0.0,
+            normal: tie.normal,
+            arm: tie.arm,
+        };
+        let u = cloth.velocities[tie.particle] - point_velocity(&solver_bodies, &c, true);
+        report.energy_taken -= (tie.impulse + tie.extra).dot(&u);
+    }
+    report.contacts = ties
+        .iter()
+        .filter(|t| !t.permanent && t.body.is_some())
+        .count();
+    report.obstacle_contacts = ties.iter().filter(|t| t.body.is_none()).count();
+    // The bodies take the opposite impulses.
+    for ((body, state), sb) in bodies.iter().zip(states.iter_mut()).zip(&solver_bodies) {
+        if sb.mass == 0.0 {
+            continue;
+        }
+        let [dv, dw] = sb.correction;
+        if dv == Vector3::zeros() && dw == Vector3::zeros() {
+            continue;
+        }
+        state.linear_momentum += dv * body.mass;
+        state.angular_momentum += sb.inertia * dw;
+        state.position += dv * (factor * dt);
+        let turn = nalgebra::UnitQuaternion::from_scaled_axis(dw * (factor * dt));
+        state.orientation = match state.orientation {
+            super::state::Orientation::Quaternion(q) => {
+                super::state::Orientation::Quaternion(turn * q)
+            }
+            super::state::Orientation::Matrix(m) => {
+                super::state::Orientation::Matrix(turn.to_rotation_matrix().matrix() * m)
+            }
+        };
     }
     report
 }

@@ -68,10 +68,21 @@ impl fmt::Display for Divergence {
             Some(subject) => subject.clone(),
             None => format!("integrator {}", self.integrator.name()),
         };
+        // Short numbers whatever their size (a dt of 1e300 is one word, not 300 digits).
+        let time = if self.time.abs() < 1e6 {
+            format!("{:.6}", self.time)
+        } else {
+            format!("{:.6e}", self.time)
+        };
+        let dt = if (1e-6..1e6).contains(&self.dt.abs()) {
+            self.dt.to_string()
+        } else {
+            format!("{:e}", self.dt)
+        };
         write!(
             f,
-            "simulation diverged at step {} (t = {:.6} s): {} ({integrator}, dt = {} s)",
-            self.step, self.time, self.quantity, self.dt
+            "simulation diverged at step {} (t = {time} s): {} ({integrator}, dt = {dt} s)",
+            self.step, self.quantity
         )
     }
 }

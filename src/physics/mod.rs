@@ -36,7 +36,7 @@ pub mod state;
 pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
-pub use collision::{Against, Contact, ContactModel, Feature, Obstacle, Response};
+pub use collision::{Against, Contact, ContactModel, Feature, Obstacle, Response, SoftStep};
 pub use divergence::Divergence;
 pub use effects::{Effect, Effects};
 pub use energy::Energy;

@@ -20,7 +20,9 @@
 
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
-use super::cloth_coupling::{approach_bodies, collide_bodies};
+use super::cloth_coupling::{
+    approach_bodies, collide_bodies, position_factor, tied_step, Attachment,
+};
 use super::collision::impulse::Scratch;
 use super::collision::impulse::BOUNCE_STEPS;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
@@ -198,6 +200,8 @@ pub struct World {
     particle_contacts: Vec<ParticleContact>,
     /// Each cloth's explicit limit at rest (computed once: a few ms of power iterations).
     cloth_limits: Vec<ExplicitLimit>,
+    /// Per cloth: its attached particles' offsets in their bodies' frames at t = 0.
+    cloth_attachments: Vec<Vec<Attachment>>,
 }
 
 impl World {
@@ -258,6 +262,7 @@ impl World {
             cloth_loads: ClothLoads::default(),
             particle_contacts: Vec::new(),
             cloth_limits: Vec::new(),
+            cloth_attachments: Vec::new(),
         }
     }
 
@@ -271,7 +276,45 @@ impl World {
             .collect();
         self.initial_cloths = cloths;
         self.reset();
+        // Attachments: each particle's offset in its body's frame at t = 0 (a body index out
+        // of range is ignored: the scene checks names).
+        let states = &self.now.states;
+        self.cloth_attachments = (self.initial_cloths.iter())
+            .map(|c| {
+                c.attached
+                    .iter()
+                    .filter(|&&(_, b)| b < states.len())
+                    .map(|&(particle, body)| {
+                        let s = &states[body];
+                        Attachment {
+                            particle,
+                            body,
+                            offset_body: s.orientation.matrix().transpose()
+                                * (c.positions[particle] - s.position),
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
         self
+    }
+
+    /// The attachment error of cloth `index`: the largest distance of an attached particle
+    /// from its point on its body, m (0 without attachments).
+    pub fn attach_error(&self, index: usize) -> f64 {
+        let (Some(c), Some(list)) = (
+            self.now.cloths.0.get(index),
+            self.cloth_attachments.get(index),
+        ) else {
+            return 0.0;
+        };
+        list.iter()
+            .map(|a| {
+                let s = &self.now.states[a.body];
+                let target = s.position + s.orientation.matrix() * a.offset_body;
+                (c.positions[a.particle] - target).norm()
+            })
+            .fold(0.0, f64::max)
     }
 
     /// Runs the rest of the current frame (all four phases from the start of a frame).
@@ -386,6 +429,31 @@ impl World {
         now.cloth_body_contacts.clear();
         now.cloth_body_contacts.resize(now.cloths.0.len(), 0);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
+            if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
+                // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
+                let tied = tied_step(
+                    cloth,
+                    loads,
+                    self.dt,
+                    &self.bodies,
+                    &mut now.states,
+                    &self.obstacles,
+                    self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
+                    friction,
+                    position_factor(self.integrator),
+                );
+                now.cloth_body_contacts[k] = tied.contacts;
+                now.cloth_obstacle_contacts[k] = [tied.obstacle_contacts, 0];
+                if tied.energy_taken != 0.0 {
+                    now.ledger.book_contact(tied.energy_taken, 0.0);
+                }
+                let lost = cloth.advance_positions(loads, self.dt);
+                now.ledger.drag_work -= lost.damping + lost.drag;
+                let e = cloth_energy(cloth, loads);
+                potential += e.potential;
+                now.cloth_energies.push(e);
+                continue;
+            }
             cloth.velocity_step(loads, self.dt);
             if !self.obstacles.is_empty() {
                 let report = cloth.contact_velocities(
@@ -717,6 +785,12 @@ impl World {
         &self.now.contacts
     }
 
+    /// What the `impulse` solver did since the world was built: direct solves, declined ones,
+    /// sweeps (issue 17: a resting scene's solver path must not degrade).
+    pub fn contact_counters(&self) -> super::collision::impulse::Counters {
+        self.scratch.counters
+    }
+
     /// Switches integrator, keeping t and the state (the orientation changes representation;
     /// a drifted `euler-seed` matrix becomes the nearest rotation). The current frame restarts
     /// at its derive phase.
@@ -936,10 +1010,8 @@ impl World {
                             named(q, fastest)
                         } else if let Some(cloth) = self.runaway_cloth(&total) {
                             subject = Some(cloth_subject(cloth));
-                            format!(
-                                "{q}, held as kinetic + spring energy by cloth {}",
-                                cloth.name
-                            )
+                            // The subject names the cloth: said once.
+                            format!("{q}, held as kinetic + spring energy by the cloth")
                         } else {
                             q
                         }

@@ -3,21 +3,24 @@
 //!
 //! | rule | error |
 //! |---|---|
-//! | `count` ≥ 2 along x and z | cloth `count` needs at least 2 particles along x and along z, found [1, 5] |
+//! | `count` ≥ 1 along x and z, ≥ 2 particles in all (1 along an axis: a rope) | cloth `count` needs at least 1 particle along x and along z and 2 in all (a rope is [n, 1] or [1, n]), found [0, 5] |
 //! | at most 250 000 particles | cloth `count` [100000, 100000] is too large: at most 250000 particles |
-//! | `size` > 0 | cloth `size` needs two sides > 0 m, found [2.0, 0.0] |
+//! | `size` > 0 (≥ 0 along an axis of count 1) | cloth `size` needs two sides > 0 m, found [2.0, 0.0] |
 //! | `mass`, `stretch` > 0; `shear`, `bend`, `damping` ≥ 0 | stretch must be > 0, found -5 |
 //! | `pinned` keyword | unknown pinned `corner` (did you mean `corners`?); valid: corners, edges, none, or [[i, j], …] |
 //! | `pinned` list in the grid | pinned particle [21, 0] is outside the 21×21 grid: i must be in 0..21 and j in 0..21 |
 //! | `integrator` a particle integrator | unknown cloth integrator `rk4`; valid cloth integrators: … |
 //! | absent `integrator`: the scene's must be one | cloth `sheet` has no `integrator` and the scene's `rk4` is not a particle integrator: … |
+//! | names not empty | cloth `name` must not be empty |
 //! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
+//! | `attach` particle in the grid, body known, not pinned, once | attach: unknown body `bob`; bodies in this file: cube |
+//! | `attach` needs `implicit-euler` | cloth `rope` has `attach`, which is held inside the implicit solve: … |
 //! | a cloth touches things | a cloth needs a collision response: add `contact = …` to [scene] |
 
 use super::error::did_you_mean;
 use super::raw::RawCloth;
 use super::{LoadError, Validator};
-use crate::physics::cloth::{ClothIntegrator, ClothSpec, Pinning};
+use crate::physics::cloth::{Attach, ClothIntegrator, ClothSpec, Pinning};
 use toml::Spanned;
 
 /// The most particles a sheet may have (500 × 500): beyond, a typo, not a lesson.
@@ -43,6 +46,7 @@ impl Validator<'_> {
         raw: &[Spanned<RawCloth>],
         scene_integrator: &Spanned<String>,
         has_contact: bool,
+        bodies: &[&str],
     ) -> Result<Vec<ClothSpec>, LoadError> {
         if let (Some(first), false) = (raw.first(), has_contact) {
             return Err(self.error(
@@ -54,7 +58,7 @@ impl Validator<'_> {
         }
         let mut specs: Vec<ClothSpec> = Vec::with_capacity(raw.len());
         for (k, table) in raw.iter().enumerate() {
-            let spec = self.cloth(table, k, scene_integrator)?;
+            let spec = self.cloth(table, k, scene_integrator, bodies)?;
             if specs.iter().any(|s| s.name == spec.name) {
                 let span = table
                     .get_ref()
@@ -80,18 +84,23 @@ impl Validator<'_> {
         table: &Spanned<RawCloth>,
         index: usize,
         scene_integrator: &Spanned<String>,
+        bodies: &[&str],
     ) -> Result<ClothSpec, LoadError> {
         let c = table.get_ref();
         let name = c
             .name
             .as_ref()
             .map_or_else(|| format!("cloth{}", index + 1), |n| n.get_ref().clone());
+        if let (true, Some(n)) = (name.trim().is_empty(), &c.name) {
+            return Err(self.error(n.span(), "cloth `name` must not be empty"));
+        }
         let [nx, nz] = *c.count.get_ref();
-        if nx < 2 || nz < 2 {
+        if nx < 1 || nz < 1 || nx * nz < 2 {
             return Err(self.error(
                 c.count.span(),
                 format!(
-                    "cloth `count` needs at least 2 particles along x and along z, found [{nx}, {nz}]"
+                    "cloth `count` needs at least 1 particle along x and along z and 2 in all \
+                     (a rope is [n, 1] or [1, n]), found [{nx}, {nz}]"
                 ),
             ));
         }
@@ -105,11 +114,17 @@ impl Validator<'_> {
         }
         let count = [nx as usize, nz as usize];
         let size = *c.size.get_ref();
-        if !size.iter().all(|s| s.is_finite() && *s > 0.0) {
-            return Err(self.error(
-                c.size.span(),
-                format!("cloth `size` needs two sides > 0 m, found {size:?}"),
-            ));
+        // Along an axis with one row (a rope) the side is unused and may be 0.
+        let side_ok = |s: f64, n: usize| s.is_finite() && (s > 0.0 || (n == 1 && s == 0.0));
+        if !(side_ok(size[0], count[0]) && side_ok(size[1], count[1])) {
+            let message = if count.contains(&1) {
+                format!(
+                    "cloth `size` needs its side along the rope > 0 m (the other ≥ 0), found {size:?}"
+                )
+            } else {
+                format!("cloth `size` needs two sides > 0 m, found {size:?}")
+            };
+            return Err(self.error(c.size.span(), message));
         }
         let optional = |value: &Option<Spanned<f64>>, what: &str| {
             value
@@ -131,6 +146,62 @@ impl Validator<'_> {
                 )
             })?,
         };
+        let pinning = match &c.pinned {
+            None => Pinning::None,
+            Some(p) => self.pinned(p, count)?,
+        };
+        let mut attach: Vec<Attach> = Vec::new();
+        for entry in c.attach.iter().flatten() {
+            let a = entry.get_ref();
+            let [i, j] = a.particle;
+            if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
+                return Err(self.error(
+                    entry.span(),
+                    format!(
+                        "attached particle [{i}, {j}] is outside the {}×{} grid: i must be in \
+                         0..{} and j in 0..{}",
+                        count[0], count[1], count[0], count[1]
+                    ),
+                ));
+            }
+            let particle = [i as usize, j as usize];
+            let Some(body) = bodies.iter().position(|b| *b == a.body.get_ref()) else {
+                return Err(self.error(
+                    a.body.span(),
+                    format!(
+                        "attach: unknown body `{}`; bodies in this file: {}",
+                        a.body.get_ref(),
+                        bodies.join(", ")
+                    ),
+                ));
+            };
+            if pinning.holds(particle[0], particle[1], count) {
+                return Err(self.error(
+                    entry.span(),
+                    format!(
+                        "particle [{i}, {j}] is both pinned and attached: a particle is held by \
+                         one of them"
+                    ),
+                ));
+            }
+            if attach.iter().any(|b| b.particle == particle) {
+                return Err(self.error(
+                    entry.span(),
+                    format!("particle [{i}, {j}] is attached twice"),
+                ));
+            }
+            attach.push(Attach { particle, body });
+        }
+        if !attach.is_empty() && integrator != ClothIntegrator::ImplicitEuler {
+            return Err(self.error(
+                table.span(),
+                format!(
+                    "cloth `{name}` has `attach`, which is held inside the implicit solve: use \
+                     integrator = \"implicit-euler\" (found `{}`)",
+                    integrator.name()
+                ),
+            ));
+        }
         let spec = ClothSpec {
             name,
             size,
@@ -141,12 +212,10 @@ impl Validator<'_> {
             shear: optional(&c.shear, "shear")?,
             bend: optional(&c.bend, "bend")?,
             damping: optional(&c.damping, "damping")?,
-            pinned: match &c.pinned {
-                None => Pinning::None,
-                Some(p) => self.pinned(p, count)?,
-            },
+            pinned: pinning,
             velocity: self.optional_vector(&c.velocity, "velocity")?,
             integrator,
+            attach,
         };
         // Every rule is checked above with its place; this is the physics core's own check.
         spec.validate()

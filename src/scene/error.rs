@@ -47,13 +47,18 @@ impl fmt::Display for LoadError {
                 write!(
                     f,
                     "{}:{}:{}: {}",
-                    self.path.display(),
+                    printable(&self.path.display().to_string()),
                     line,
                     column,
-                    self.message
+                    printable(&self.message)
                 )
             }
-            None => write!(f, "{}: {}", self.path.display(), self.message),
+            None => write!(
+                f,
+                "{}: {}",
+                printable(&self.path.display().to_string()),
+                printable(&self.message)
+            ),
         }
     }
 }
@@ -74,6 +79,29 @@ fn floor_char_boundary(s: &str, mut i: usize) -> usize {
         i -= 1;
     }
     i
+}
+
+/// Text from a file made safe to print on a terminal: every control character (escape,
+/// carriage return, backspace, bell, newline, …) and every bidirectional-override character
+/// written as a visible escape (`\u{1b}`), tabs kept. One helper for every command that
+/// prints text it did not write itself (titles, summaries, pages, names, errors).
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    let unsafe_char = |c: char| {
+        (c.is_control() && c != '\t')
+            || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{200e}' | '\u{200f}')
+    };
+    if !text.chars().any(unsafe_char) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if unsafe_char(c) {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// Collapses a message onto one line.
@@ -122,6 +150,18 @@ mod tests {
         assert_eq!(line_column(source, source.find('=').unwrap()), (1, 3));
         let second_equals = source.rfind('=').unwrap();
         assert_eq!(line_column(source, second_equals), (2, 4));
+    }
+
+    #[test]
+    fn control_characters_are_escaped_tabs_and_plain_text_kept() {
+        // ESC ] 0 ; … BEL sets a terminal's title; ESC [ 2 J clears the screen.
+        assert_eq!(
+            printable("a\u{1b}]0;pwned\u{7}b\u{1b}[2J"),
+            "a\\u{1b}]0;pwned\\u{7}b\\u{1b}[2J"
+        );
+        assert_eq!(printable("x\ry\nz"), "x\\ry\\nz");
+        assert_eq!(printable("\u{202e}abc"), "\\u{202e}abc");
+        assert_eq!(printable("été\tω = 2"), "été\tω = 2");
     }
 
     #[test]

@@ -11,6 +11,9 @@ pub type Mesh = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
 /// Vertices and unique edges of every model in an `.obj` file: on disk, or else one that a
 /// bundled lesson refers to (compiled in, see [`crate::lessons`]).
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
+    if path.is_dir() {
+        return Err("is a directory, not an .obj file".to_string());
+    }
     let text = if path.is_file() {
         let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
         String::from_utf8(bytes)
@@ -37,11 +40,8 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         let mesh = &model.mesh;
         let base = points.len();
         for p in mesh.positions.chunks_exact(3) {
-            points.push(Vector3::new(
-                f64::from(p[0]),
-                f64::from(p[1]),
-                f64::from(p[2]),
-            ));
+            // tobj's `use_f64` feature: coordinates read as f64, as the scene's numbers.
+            points.push(Vector3::new(p[0], p[1], p[2]));
         }
         let arities: Vec<usize> = if mesh.face_arities.is_empty() {
             vec![3; mesh.indices.len() / 3]
@@ -67,7 +67,9 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         return Err("malformed .obj: no vertices (`v x y z` lines)".to_string());
     }
     if points.iter().any(|p| !p.iter().all(|c| c.is_finite())) {
-        return Err("malformed .obj: a vertex coordinate is not finite".to_string());
+        return Err(
+            "malformed .obj: a vertex coordinate is not finite (beyond ±1.8e308)".to_string(),
+        );
     }
     Ok((points, edges.into_iter().collect()))
 }

@@ -8,18 +8,19 @@ mod cloth;
 mod diagnose;
 pub mod edit;
 mod error;
+pub mod live;
 mod mesh;
 mod messages;
 mod raw;
 
 pub use diagnose::check as check_every_error;
 pub use edit::{ClothEdit, SceneEdits};
-pub use error::{did_you_mean, LoadError};
+pub use error::{did_you_mean, printable, LoadError};
 
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
-    State, World,
+    SoftStep, State, World,
 };
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use raw::{RawBodies, RawBody, RawLesson, RawObstacle, RawScene, Vec3};
@@ -33,7 +34,12 @@ pub struct Page {
     /// The page applies from this time on, s.
     pub at: f64,
     pub title: String,
+    /// As written: live numbers (`{{…}}`) unfilled; see [`Page::live`].
     pub text: String,
+    /// The live numbers of `text`, in order.
+    pub live: Vec<live::LiveNumber>,
+    /// What the student is asked to predict on this page.
+    pub predict: Option<live::Prediction>,
 }
 
 /// Everything a world is built from.
@@ -112,6 +118,71 @@ impl Scene {
     }
 }
 
+/// How a broken scene rule names the setting at fault: as the file's key (`dt`,
+/// `response = "impulse"`) or as the command line's flag (`--dt`, `--response impulse`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Naming {
+    File,
+    Flags,
+}
+
+impl Naming {
+    fn dt(self) -> &'static str {
+        match self {
+            Naming::File => "dt",
+            Naming::Flags => "--dt",
+        }
+    }
+
+    fn response(self, name: &str) -> String {
+        match self {
+            Naming::File => format!("response = \"{name}\""),
+            Naming::Flags => format!("--response {name}"),
+        }
+    }
+}
+
+/// A scene setting a rule is about: each can come from the file or from a flag.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    Dt,
+    Response,
+}
+
+impl Scene {
+    /// The rules between the settings the command line may replace (`dt`, the collision
+    /// response) and the rest of the scene: the loader checks the file with them, and every
+    /// command checks the scene again after its flags (`--dt`, `--response`) replaced a
+    /// setting, so a flag can never say what the file may not. The error names the setting
+    /// at fault in `naming`'s words.
+    pub fn check_rules(&self, naming: Naming) -> Result<(), (Setting, String)> {
+        if !(self.dt > 0.0 && self.dt.is_finite()) {
+            return Err((
+                Setting::Dt,
+                format!(
+                    "{} must be > 0 and finite, found {}",
+                    naming.dt(),
+                    crate::limits::short(self.dt)
+                ),
+            ));
+        }
+        if let Some(model) = &self.contact {
+            if model.response == Response::Seed && self.bodies.len() > 1 {
+                return Err((
+                    Setting::Response,
+                    format!(
+                        "the `seed` response knows one body and fixed obstacles only, and this \
+                         scene has {} bodies: use {}",
+                        self.bodies.len(),
+                        naming.response("impulse")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A lesson (or a bare scene): title, summary, scene and pages.
 #[derive(Debug, Clone)]
 pub struct Lesson {
@@ -139,6 +210,18 @@ pub fn load(path: &Path) -> Result<Lesson, LoadError> {
     if path.is_dir() {
         return Err(LoadError::file(path, "is a directory, not a scene file"));
     }
+    if let Ok(meta) = std::fs::metadata(path) {
+        if meta.len() > crate::limits::MAX_FILE_BYTES {
+            return Err(LoadError::file(
+                path,
+                format!(
+                    "file is {} bytes, more than the limit of {} for a scene file",
+                    meta.len(),
+                    crate::limits::MAX_FILE_BYTES
+                ),
+            ));
+        }
+    }
     let bytes = std::fs::read(path).map_err(|e| {
         let reason = match e.kind() {
             std::io::ErrorKind::NotFound => "no such file".to_string(),
@@ -146,6 +229,12 @@ pub fn load(path: &Path) -> Result<Lesson, LoadError> {
         };
         LoadError::file(path, format!("cannot read: {reason}"))
     })?;
+    if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
+        return Err(LoadError::file(
+            path,
+            "UTF-16 text: a scene file is UTF-8 (save it as UTF-8)",
+        ));
+    }
     let source = String::from_utf8(bytes).map_err(|_| {
         LoadError::file(
             path,
@@ -226,13 +315,20 @@ impl Validator<'_> {
             }
         }
         let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
-        scene.cloths = self.cloths(&raw.cloths, &scene_integrator, scene.contact.is_some())?;
+        let names: Vec<&str> = scene.bodies.iter().map(|b| b.name.as_str()).collect();
+        scene.cloths = self.cloths(
+            &raw.cloths,
+            &scene_integrator,
+            scene.contact.is_some(),
+            &names,
+        )?;
         scene.obstacles = raw
             .obstacles
             .iter()
             .map(|o| self.obstacle(o))
             .collect::<Result<_, _>>()?;
         self.pairs_supported(&scene, &body_spans)?;
+        self.finite_start(&scene, &body_spans, &raw.cloths)?;
         let mut pages = Vec::new();
         for page in raw.pages {
             let span = page.span();
@@ -247,10 +343,31 @@ impl Validator<'_> {
             if pages.last().is_some_and(|p: &Page| p.at > at) {
                 return Err(self.error(span, "pages must be in order of `at`"));
             }
+            let names: Vec<String> = scene.bodies.iter().map(|b| b.name.clone()).collect();
+            let text_span = page.text.span();
+            let text = page.text.into_inner();
+            let live = live::live_numbers(&text, at, &names).map_err(|(offset, message)| {
+                self.error(
+                    self.placeholder_span(text_span.clone(), &text, offset),
+                    message,
+                )
+            })?;
+            let predict = match page.predict {
+                None => None,
+                Some(p) => {
+                    let p = p.into_inner();
+                    let quantity = live::quantity(p.quantity.get_ref(), &names)
+                        .map_err(|e| self.error(p.quantity.span(), format!("predict: {e}")))?;
+                    let when = self.non_negative(&p.at, "predict `at` (s)")?;
+                    Some(live::Prediction { quantity, at: when })
+                }
+            };
             pages.push(Page {
                 at,
                 title: page.title,
-                text: page.text,
+                text,
+                live,
+                predict,
             });
         }
         Ok(Lesson {
@@ -260,6 +377,20 @@ impl Validator<'_> {
             scene,
             pages,
         })
+    }
+
+    /// Where, in the file, the `{{` at byte `offset` of a page's text is: the same
+    /// occurrence of `{{` inside the string as written (escapes and the newline after `"""`
+    /// shift offsets, never the count of `{{`); the string's start if it cannot be found.
+    fn placeholder_span(&self, text_span: Range<usize>, text: &str, offset: usize) -> Range<usize> {
+        let nth = text[..offset].matches("{{").count();
+        let written = self.source.get(text_span.clone()).unwrap_or("");
+        written
+            .match_indices("{{")
+            .nth(nth)
+            .map_or(text_span.clone(), |(i, _)| {
+                text_span.start + i..text_span.start + i + 2
+            })
     }
 
     fn finite(&self, value: &Spanned<f64>, what: &str) -> Result<f64, LoadError> {
@@ -280,6 +411,23 @@ impl Validator<'_> {
             Ok(v)
         } else {
             Err(self.error(value.span(), format!("{what} must be > 0, found {v}")))
+        }
+    }
+
+    /// A mass: > 0, finite, and a normal number (a subnormal mass, below 2.2e-308 kg, has lost
+    /// its precision and its inertia tensor vanishes).
+    fn mass(&self, value: &Spanned<f64>) -> Result<f64, LoadError> {
+        let v = self.positive(value, "mass")?;
+        if v.is_normal() {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!(
+                    "mass {v:e} kg is too small to compute with: at least 2.2e-308 kg (a \
+                     normal number)"
+                ),
+            ))
         }
     }
 
@@ -537,20 +685,7 @@ impl Validator<'_> {
                 ));
             }
         }
-        if let (Some(model), Some(c)) = (&contact, &raw.contact) {
-            if model.response == Response::Seed && bodies.len() > 1 {
-                let at = c.get_ref().response.span();
-                return Err(self.error(
-                    at,
-                    format!(
-                        "the `seed` response knows one body and fixed obstacles only, and this \
-                         scene has {} bodies: use response = \"impulse\"",
-                        bodies.len()
-                    ),
-                ));
-            }
-        }
-        Ok(Scene {
+        let scene = Scene {
             dt,
             duration,
             integrator,
@@ -559,7 +694,17 @@ impl Validator<'_> {
             obstacles: Vec::new(),
             bodies: bodies.into_iter().map(|(b, _)| b).collect(),
             cloths: Vec::new(),
-        })
+        };
+        scene
+            .check_rules(Naming::File)
+            .map_err(|(setting, message)| {
+                let at = match (setting, &raw.contact) {
+                    (Setting::Response, Some(c)) => c.get_ref().response.span(),
+                    _ => raw.dt.span(),
+                };
+                self.error(at, message)
+            })?;
+        Ok(scene)
     }
 
     fn contact(&self, raw: &Spanned<raw::RawContact>) -> Result<ContactModel, LoadError> {
@@ -594,10 +739,64 @@ impl Validator<'_> {
             .friction
             .as_ref()
             .map_or(Ok(0.0), |f| self.non_negative(f, "friction"))?;
+        let response = match response {
+            Response::SoftStep(defaults) => Response::SoftStep(self.soft_step(c, defaults)?),
+            other => {
+                let keys = [
+                    ("hertz", c.hertz.as_ref().map(Spanned::span)),
+                    ("damping_ratio", c.damping_ratio.as_ref().map(Spanned::span)),
+                    ("substeps", c.substeps.as_ref().map(Spanned::span)),
+                ];
+                if let Some((key, Some(at))) = keys.into_iter().find(|(_, s)| s.is_some()) {
+                    return Err(self.error(
+                        at,
+                        format!(
+                            "`{key}` is a key of the `soft-step` response, not of `{}`",
+                            other.name()
+                        ),
+                    ));
+                }
+                other
+            }
+        };
         Ok(ContactModel {
             response,
             restitution,
             friction,
+        })
+    }
+
+    /// `hertz` (> 0, Hz), `damping_ratio` (≥ 0) and `substeps` (1 ..= 64) of `soft-step`,
+    /// each defaulting to [`SoftStep::DEFAULT`]'s.
+    fn soft_step(&self, c: &raw::RawContact, defaults: SoftStep) -> Result<SoftStep, LoadError> {
+        let hertz = c
+            .hertz
+            .as_ref()
+            .map_or(Ok(defaults.hertz), |h| self.positive(h, "hertz"))?;
+        let damping_ratio = c
+            .damping_ratio
+            .as_ref()
+            .map_or(Ok(defaults.damping_ratio), |z| {
+                self.non_negative(z, "damping_ratio")
+            })?;
+        let substeps = match &c.substeps {
+            Some(n) => {
+                let v = *n.get_ref();
+                let max = crate::physics::collision::soft_step::MAX_SUBSTEPS;
+                if v < 1 || v > i64::from(max) {
+                    return Err(self.error(
+                        n.span(),
+                        format!("substeps must be a whole number from 1 to {max}, found {v}"),
+                    ));
+                }
+                v as u32
+            }
+            None => defaults.substeps,
+        };
+        Ok(SoftStep {
+            hertz,
+            damping_ratio,
+            substeps,
         })
     }
 
@@ -712,11 +911,7 @@ impl Validator<'_> {
         let shape = b.shape.get_ref().as_str();
         let needs = |key: &str| self.error(span.clone(), format!("a {shape} body needs `{key}`"));
         let fixed = b.fixed.as_ref().is_some_and(|f| *f.get_ref());
-        let mass = b
-            .mass
-            .as_ref()
-            .map(|m| self.positive(m, "mass"))
-            .transpose()?;
+        let mass = b.mass.as_ref().map(|m| self.mass(m)).transpose()?;
         // A fixed body's mass is ignored (it never moves): any positive number builds it.
         let mass = if fixed {
             Some(mass.unwrap_or(1.0))
@@ -834,10 +1029,13 @@ impl Validator<'_> {
                 let masses = match &b.masses {
                     Some(m) => {
                         for &value in m.get_ref() {
-                            if !(value > 0.0 && value.is_finite()) {
+                            if !(value > 0.0 && value.is_normal()) {
                                 return Err(self.error(
                                     m.span(),
-                                    format!("point masses must be > 0 and finite, found {value}"),
+                                    format!(
+                                        "point masses must be > 0, finite and at least 2.2e-308 \
+                                         kg (a normal number), found {value:e}"
+                                    ),
                                 ));
                             }
                         }
@@ -920,6 +1118,66 @@ impl Validator<'_> {
         Ok((body, shape.to_string(), initial))
     }
 
+    /// Every number of the initial state, and every number formed from it (momenta, weight,
+    /// energies), is finite: a file of huge but finite values (a velocity of 1e308 m/s, a mass
+    /// of 1e308 kg under gravity, a sheet of 1e200 m) is refused here, naming the keys whose
+    /// product overflowed, rather than "diverging" at step 0 or 1 without having diverged.
+    fn finite_start(
+        &self,
+        scene: &Scene,
+        body_spans: &[Range<usize>],
+        cloths: &[Spanned<raw::RawCloth>],
+    ) -> Result<(), LoadError> {
+        let finite = |v: &Vector3<f64>| v.iter().all(|c| c.is_finite());
+        let g = scene.effects.gravity().unwrap_or_else(Vector3::zeros);
+        for (b, span) in scene.bodies.iter().zip(body_spans) {
+            let s = &b.initial;
+            let v = s.linear_momentum * b.body.inv_mass;
+            let rotation = s.orientation.matrix();
+            let omega =
+                rotation * b.body.inv_inertia_body * rotation.transpose() * s.angular_momentum;
+            let weight = g * b.body.mass;
+            let overflow = if !finite(&s.linear_momentum) {
+                Some("its momentum M·v overflows: `velocity` × `mass`")
+            } else if !finite(&s.angular_momentum) || !finite(&omega) {
+                Some("its angular momentum I·ω overflows: `angular_velocity` × the inertia of `mass` and the shape")
+            } else if !(0.5 * s.linear_momentum.dot(&v)).is_finite() {
+                Some("its kinetic energy ½ M v² overflows: `velocity` (and `mass`)")
+            } else if !(0.5 * omega.dot(&s.angular_momentum)).is_finite() {
+                Some("its rotational energy ½ ω·L overflows: `angular_velocity` (and `mass`)")
+            } else if !finite(&weight) {
+                Some("its weight M·g overflows: `mass` × `gravity`")
+            } else if !weight.dot(&s.position).is_finite() {
+                Some("its potential energy −M g·x overflows: `position` × `mass` × `gravity`")
+            } else {
+                None
+            };
+            if let Some(why) = overflow {
+                return Err(self.error(
+                    span.clone(),
+                    format!(
+                        "body `{}`: {why} (a number beyond ±1.8e308): give smaller values",
+                        b.name
+                    ),
+                ));
+            }
+        }
+        if let Some(first) = cloths.first() {
+            let energy = scene.world().total_energy();
+            if !(energy.kinetic.is_finite()
+                && energy.potential.is_finite()
+                && energy.total.is_finite())
+            {
+                return Err(self.error(
+                    first.span(),
+                    "the scene's initial energy overflows (a number beyond ±1.8e308): a \
+                     cloth's `size`, `position`, `mass`, `stretch` or `velocity` is too large",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     fn no_solid(&self, inertia: Option<(&str, Range<usize>)>) -> Result<(), LoadError> {
         match inertia {
             Some(("solid", span)) => Err(self.error(
@@ -947,10 +1205,22 @@ impl Validator<'_> {
             (None, None, Some(q)) => {
                 let [w, x, y, z] = *q.get_ref();
                 let quaternion = Quaternion::new(w, x, y, z);
-                if !(quaternion.coords.iter().all(|c| c.is_finite()) && quaternion.norm() > 1e-12) {
+                // Scaled by its largest component before it is normalised: the norm of
+                // [1e300, 0, 0, 1e300] overflows, the norm of [1, 0, 0, 1] does not.
+                let largest = quaternion.coords.amax();
+                if !(quaternion.coords.iter().all(|c| c.is_finite()) && largest > 0.0) {
                     return Err(self.error(q.span(), "orientation quaternion must be finite and non-zero"));
                 }
-                Ok(UnitQuaternion::from_quaternion(quaternion))
+                let norm = quaternion.norm();
+                let scaled = if norm.is_finite() && norm > 1e-100 {
+                    quaternion
+                } else {
+                    quaternion / largest
+                };
+                if scaled.norm() <= 1e-12 {
+                    return Err(self.error(q.span(), "orientation quaternion must be finite and non-zero"));
+                }
+                Ok(UnitQuaternion::from_quaternion(scaled))
             }
             _ => Err(self.error(
                 raw.span(),

@@ -47,6 +47,10 @@ pub struct RawContact {
     pub response: Spanned<String>,
     pub restitution: Option<Spanned<f64>>,
     pub friction: Option<Spanned<f64>>,
+    /// `soft-step` only: contact frequency (Hz), damping ratio, sub-steps per step.
+    pub hertz: Option<Spanned<f64>>,
+    pub damping_ratio: Option<Spanned<f64>>,
+    pub substeps: Option<Spanned<i64>>,
 }
 
 /// `[body]`, a table, or `[[body]]`, an array of tables.
@@ -138,7 +142,17 @@ pub struct RawObstacle {
 pub struct RawPage {
     pub at: Spanned<f64>,
     pub title: String,
-    pub text: String,
+    /// May quote live numbers, `{{QUANTITY}}` and `{{QUANTITY@T}}` (see `live.rs`).
+    pub text: Spanned<String>,
+    /// `{ quantity = "cube.y", at = 1.0 }`: the app asks the student for a guess.
+    pub predict: Option<Spanned<RawPredict>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPredict {
+    pub quantity: Spanned<String>,
+    pub at: Spanned<f64>,
 }
 
 /// A `[[cloth]]` table: a mass–spring sheet.
@@ -159,4 +173,15 @@ pub struct RawCloth {
     pub pinned: Option<Spanned<toml::Value>>,
     pub velocity: Option<Vec3>,
     pub integrator: Option<Spanned<String>>,
+    /// Particles held to bodies: `[{ particle = [i, j], body = "name" }, …]`.
+    pub attach: Option<Vec<Spanned<RawAttach>>>,
+}
+
+/// One entry of a cloth's `attach`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawAttach {
+    /// Signed so that a negative index gets our message, not serde's.
+    pub particle: [i64; 2],
+    pub body: Spanned<String>,
 }

@@ -34,15 +34,32 @@ struct Inner {
     total: usize,
     result: Option<SceneStudy>,
     lost: bool,
+    /// Why the study was refused before it started ([`super::check_work`]).
+    refused: Option<String>,
 }
 
 impl Job {
-    /// Starts studying `case` on a new thread.
+    /// Starts studying `case` on a new thread; a case past the bounds of
+    /// [`super::check_work`] is refused at once (no thread, [`Job::refusal`] says why).
     pub fn spawn(case: Case, config: Config) -> Job {
         let (sender, receiver) = mpsc::channel();
-        let total = super::runs(&case, &config);
         let name = case.name.clone();
         let response = case.scene.contact.map(|m| m.response);
+        if let Err(why) = super::check_work(&case, &config) {
+            return Job {
+                name,
+                response,
+                inner: Arc::new(Mutex::new(Inner {
+                    receiver,
+                    done: 0,
+                    total: 0,
+                    result: None,
+                    lost: true,
+                    refused: Some(why),
+                })),
+            };
+        }
+        let total = super::runs(&case, &config);
         thread::spawn(move || {
             let mut report = |done, total| {
                 let _ = sender.send(Message::Progress { done, total });
@@ -59,6 +76,7 @@ impl Job {
                 total,
                 result: None,
                 lost: false,
+                refused: None,
             })),
         }
     }
@@ -109,9 +127,14 @@ impl Job {
         self.with(|inner| inner.result.is_some() || inner.lost)
     }
 
-    /// The thread ended without a result (it panicked).
+    /// The thread ended without a result (it panicked), or the study was refused.
     pub fn failed(&self) -> bool {
         self.with(|inner| inner.lost)
+    }
+
+    /// Why the study was refused before it started (too much work for its bounds).
+    pub fn refusal(&self) -> Option<String> {
+        self.with(|inner| inner.refused.clone())
     }
 }
 

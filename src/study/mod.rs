@@ -1,7 +1,7 @@
 //! `tumble study`: what accuracy costs in time.
 //!
 //! For each scene, each integrator and each time step of a sweep, the scene is run to its
-//! duration and measured against an independent reference ([`reference`]): error, drift of the
+//! duration and measured against an independent reference ([`mod@reference`]): error, drift of the
 //! conserved quantities, and nanoseconds per step ([`measure`]). [`analysis`] marks the Pareto
 //! frontier, fits the observed orders of convergence and writes one plain sentence per scene;
 //! [`report`] prints the table, CSV or JSON and [`plot`] the log–log SVG of error against cost.
@@ -210,6 +210,42 @@ pub fn study_case(
     }
 }
 
+/// Refuses, before anything runs, a case whose study would keep too many samples or whose
+/// finest run would take too many steps ([`crate::limits`]): the error names `duration`.
+pub fn check_work(case: &Case, config: &Config) -> Result<(), String> {
+    use crate::limits::{self, short};
+    let duration = short(case.duration);
+    let interval = config.timing.sample_interval;
+    limits::count(
+        case.duration / interval,
+        limits::MAX_SAMPLES,
+        &format!(
+            "`duration` = {duration} s (a sample every {} s)",
+            short(interval)
+        ),
+        "samples",
+        "give the scene a shorter `duration` to study it",
+    )?;
+    let finest = if case.scene.cloths.is_empty() {
+        config.dts.iter().copied().fold(f64::INFINITY, f64::min)
+    } else {
+        let cloth = cloth_config(config);
+        let ladder = cloth
+            .dts
+            .unwrap_or_else(|| cloth::ladder(cloth::explicit_limit(&case.scene).0));
+        ladder.into_iter().fold(f64::INFINITY, f64::min)
+    };
+    if finest.is_finite() {
+        limits::steps(
+            case.duration,
+            finest,
+            &format!("a study of `duration` = {duration} s"),
+            "its finest run is at that dt; give the scene a shorter `duration` to study it",
+        )?;
+    }
+    Ok(())
+}
+
 /// The cloth settings a study with `config` uses: its timing, the default ladder.
 pub fn cloth_config(config: &Config) -> ClothConfig {
     ClothConfig {
@@ -256,22 +292,81 @@ fn study_cloth_case(
     }
 }
 
-/// Studies every case in turn; `progress(done, total)` counts runs over all cases.
+/// Studies every case, on as many threads as there are cores (one case per thread at a
+/// time, the longest cases first); the studies come back in the order of `cases`.
+/// `progress(done, total)` counts runs over all cases, called on the caller's thread.
+///
+/// Each run is still timed alone on its thread: a case's rows compare integrators measured
+/// under the same conditions, and its ns/step is the median of its 1000-step chunks
+/// ([`measure`]), which a neighbour on the other core does not shift the way a shared
+/// time slice would.
 pub fn study(
     cases: &[Case],
     config: &Config,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Vec<SceneStudy> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::mpsc;
     let counts: Vec<usize> = cases.iter().map(|c| runs(c, config)).collect();
     let total = counts.iter().sum();
-    let mut before = 0;
-    cases
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(cases.len());
+    if workers <= 1 {
+        let mut before = 0;
+        return cases
+            .iter()
+            .zip(&counts)
+            .map(|(case, &count)| {
+                let study = study_case(case, config, &mut |done, _| progress(before + done, total));
+                before += count;
+                study
+            })
+            .collect();
+    }
+    // The longest cases (most steps over all runs) first, so that no thread is left with a
+    // long case at the end.
+    let mut order: Vec<usize> = (0..cases.len()).collect();
+    let cost = |i: usize| counts[i] as f64 * cases[i].duration * cloth_weight(&cases[i]);
+    order.sort_by(|&a, &b| cost(b).total_cmp(&cost(a)));
+    let next = AtomicUsize::new(0);
+    let (sender, receiver) = mpsc::channel::<(usize, Option<Box<SceneStudy>>)>();
+    let mut results: Vec<Option<SceneStudy>> = (0..cases.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let sender = sender.clone();
+            let (next, order) = (&next, &order);
+            scope.spawn(move || loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&i) = order.get(k) else { break };
+                let study = study_case(&cases[i], config, &mut |_, _| {
+                    let _ = sender.send((i, None));
+                });
+                let _ = sender.send((i, Some(Box::new(study))));
+            });
+        }
+        drop(sender);
+        let mut done = 0;
+        for (i, study) in receiver {
+            match study {
+                None => {
+                    done += 1;
+                    progress(done, total);
+                }
+                Some(study) => results[i] = Some(*study),
+            }
+        }
+    });
+    results.into_iter().flatten().collect()
+}
+
+/// A rough weight of a case's cost per run and simulated second: a cloth's particles make
+/// every step dearer than a body's.
+fn cloth_weight(case: &Case) -> f64 {
+    1.0 + case
+        .scene
+        .cloths
         .iter()
-        .zip(&counts)
-        .map(|(case, &count)| {
-            let study = study_case(case, config, &mut |done, _| progress(before + done, total));
-            before += count;
-            study
-        })
-        .collect()
+        .map(|c| (c.count[0] * c.count[1]) as f64)
+        .sum::<f64>()
 }

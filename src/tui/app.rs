@@ -9,6 +9,7 @@ use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
 use super::viewport::{shown_points, Axis, Region};
+use crate::live::LiveValues;
 use crate::physics::cloth::ClothIntegrator;
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
 use crate::scene::{Lesson, SceneEdits};
@@ -71,6 +72,41 @@ pub enum Overlay {
     Jump {
         text: String,
     },
+    /// The prediction prompt of page `page` (its `predict`), and the number typed so far.
+    Predict {
+        page: usize,
+        text: String,
+    },
+}
+
+/// A student's answer to a page's `predict`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Guess {
+    /// Not asked yet.
+    Open,
+    /// Esc: the run went on without a guess.
+    Skipped,
+    Given(f64),
+}
+
+/// The settings live numbers were simulated with: they are simulated again when these change
+/// (the integrator `i`, the response `c`, a cloth's integrator), so a page never narrates
+/// another method's numbers.
+#[derive(Debug, Clone, PartialEq)]
+struct LiveSettings {
+    integrator: Integrator,
+    response: Option<Response>,
+    cloths: Vec<ClothIntegrator>,
+}
+
+impl LiveSettings {
+    fn of(world: &World) -> LiveSettings {
+        LiveSettings {
+            integrator: world.integrator(),
+            response: world.contact_model().map(|m| m.response),
+            cloths: world.cloths().iter().map(|c| c.integrator).collect(),
+        }
+    }
 }
 
 /// What [`App::update`] asks of the world outside the app state (files); [`App::perform`]
@@ -154,6 +190,18 @@ pub struct App {
     pub write_dir: PathBuf,
     /// The body the panels show (Tab picks the next one).
     pub selected: usize,
+    /// The values of the pages' live numbers and predictions (see [`crate::live`]), simulated
+    /// when the lesson is opened and when a setting they depend on changes; never per frame.
+    pub live: std::sync::Arc<LiveValues>,
+    live_settings: LiveSettings,
+    /// Each page's answer to its `predict` (Open for pages without one).
+    pub guesses: Vec<Guess>,
+    /// A run pauses by itself at pages, predictions and the scene's end (off for `tumble
+    /// record`, which runs on and must never show a pause it does not make).
+    pub pause_at_stops: bool,
+    /// Simulated seconds per wall-clock second over the last second of running, measured by
+    /// the event loop only (never in tests or exports: it varies between runs).
+    pub measured_real_time: Option<f64>,
     pub quit: bool,
 }
 
@@ -163,6 +211,9 @@ impl App {
         let snapshot = world.snapshot();
         let region = Region::of_world(&world);
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
+        let live = std::sync::Arc::new(LiveValues::compute(&lesson, world.clone()));
+        let live_settings = LiveSettings::of(&world);
+        let guesses = vec![Guess::Open; lesson.pages.len()];
         let real_time = 1.0 / lesson.scene.dt;
         let speed = SPEEDS
             .iter()
@@ -198,6 +249,11 @@ impl App {
             export_requested: false,
             write_dir: PathBuf::from("."),
             selected: 0,
+            live,
+            live_settings,
+            guesses,
+            pause_at_stops: true,
+            measured_real_time: None,
             quit: false,
         };
         if let Some(comparison) = options.compare {
@@ -212,7 +268,7 @@ impl App {
         match self.overlay {
             Overlay::Picker { .. } => Context::Picker,
             Overlay::Settings(_) => Context::Form,
-            Overlay::Jump { .. } => Context::Prompt,
+            Overlay::Jump { .. } | Overlay::Predict { .. } => Context::Prompt,
             _ => Context::Main,
         }
     }
@@ -258,7 +314,7 @@ impl App {
             Message::Continue => {
                 if self.divergence.is_some() {
                     self.blocked();
-                } else {
+                } else if !self.ask_prediction() {
                     self.running = true;
                 }
             }
@@ -281,11 +337,12 @@ impl App {
             Message::Type(c) => match &mut self.overlay {
                 Overlay::Settings(form) => form.type_char(c),
                 Overlay::Jump { text } if text.chars().count() < 16 => text.push(c),
+                Overlay::Predict { text, .. } if text.chars().count() < 16 => text.push(c),
                 _ => {}
             },
             Message::Erase => match &mut self.overlay {
                 Overlay::Settings(form) => form.erase(),
-                Overlay::Jump { text } => {
+                Overlay::Jump { text } | Overlay::Predict { text, .. } => {
                     text.pop();
                 }
                 _ => {}
@@ -309,12 +366,33 @@ impl App {
                         _ => self.notice = Some(format!("jump: `{text}` is not a time ≥ 0 s")),
                     }
                 }
+                Overlay::Predict { page, text } => {
+                    let (page, text) = (*page, text.clone());
+                    match text.trim().parse::<f64>() {
+                        Ok(guess) if guess.is_finite() => {
+                            self.overlay = Overlay::None;
+                            self.guesses[page] = Guess::Given(guess);
+                            self.notice = Some(format!(
+                                "your guess: {} — running to t = {} s to see",
+                                text.trim(),
+                                tidy(
+                                    self.lesson.pages[page]
+                                        .predict
+                                        .as_ref()
+                                        .map_or(0.0, |p| p.at)
+                                )
+                            ));
+                            self.running = true;
+                        }
+                        _ => self.notice = Some(format!("predict: `{text}` is not a number")),
+                    }
+                }
                 _ => {}
             },
             Message::TogglePause => {
                 if self.divergence.is_some() {
                     self.blocked();
-                } else {
+                } else if self.running || !self.ask_prediction() {
                     self.running = !self.running;
                 }
             }
@@ -426,8 +504,10 @@ impl App {
         match effect {
             Effect::WriteScene { edits, to } => {
                 let source = &self.lesson.path;
-                let written = std::fs::read_to_string(source)
-                    .map_err(|e| format!("cannot read {}: {e}", source.display()))
+                // A bundled lesson outside a clone has no file on disk: its compiled-in text.
+                let written = crate::lessons::source(source)
+                    .map(|(_, text)| text)
+                    .ok_or_else(|| format!("cannot read {}", source.display()))
                     .and_then(|text| edits.write_into(&text, 0, source.parent()))
                     .and_then(|text| std::fs::write(&to, text).map_err(|e| e.to_string()))
                     .and_then(|()| crate::scene::load(&to).map_err(|e| e.to_string()));
@@ -439,10 +519,76 @@ impl App {
         }
     }
 
+    /// The page shown asks for a prediction not made yet, of a time still ahead: opens the
+    /// prompt (and returns true) instead of running.
+    fn ask_prediction(&mut self) -> bool {
+        let Some(index) = self.page else {
+            return false;
+        };
+        let Some(predict) = &self.lesson.pages[index].predict else {
+            return false;
+        };
+        let ahead = self.world.step_count() < crate::live::step_at(predict.at, self.world.dt());
+        if self.guesses[index] != Guess::Open || !ahead {
+            return false;
+        }
+        self.running = false;
+        self.overlay = Overlay::Predict {
+            page: index,
+            text: String::new(),
+        };
+        true
+    }
+
+    /// The question of page `page`'s prediction: `what will cube.y be at t = 1 s (m)?`.
+    pub fn prediction_question(&self, page: usize) -> String {
+        match self.lesson.pages.get(page).and_then(|p| p.predict.as_ref()) {
+            Some(p) => format!(
+                "what will {} be at t = {} s (in {})?",
+                p.quantity.text,
+                tidy(p.at),
+                p.quantity.measure.unit()
+            ),
+            None => String::new(),
+        }
+    }
+
+    /// The line that sets a prediction beside the simulated value, once the run has reached
+    /// its time: `cube.y at t = 1 s: your guess 0.3 m · simulated 0.25 m · error 20 %`.
+    pub fn prediction_result(&self, page: usize) -> Option<String> {
+        let predict = self.lesson.pages.get(page)?.predict.as_ref()?;
+        let reached = self.world.step_count() >= crate::live::step_at(predict.at, self.world.dt());
+        if !reached {
+            return None;
+        }
+        let value = self.live.value(&predict.quantity, predict.at);
+        let unit = predict.quantity.measure.unit();
+        let simulated = crate::live::text_of(value, predict.quantity.measure);
+        let head = format!("{} at t = {} s", predict.quantity.text, tidy(predict.at));
+        Some(match (self.guesses[page], value) {
+            (Guess::Given(guess), Some(crate::live::Value::Number(v))) => format!(
+                "{head}: your guess {} {unit} · simulated {simulated} · relative error {:.1} %",
+                tidy(guess),
+                100.0 * crate::live::relative_error(guess, v)
+            ),
+            (Guess::Given(guess), _) => {
+                format!(
+                    "{head}: your guess {} {unit} · simulated {simulated}",
+                    tidy(guess)
+                )
+            }
+            _ => format!("{head}: simulated {simulated}"),
+        })
+    }
+
     /// Esc: closes the innermost window, else the graph or the study; never quits.
     fn back(&mut self) {
         if let Overlay::Settings(_) = self.overlay {
             self.notice = Some("settings closed: nothing applied".into());
+        }
+        if let Overlay::Predict { page, .. } = self.overlay {
+            self.guesses[page] = Guess::Skipped;
+            self.notice = Some("no guess: Enter runs on".into());
         }
         if self.overlay != Overlay::None {
             self.overlay = Overlay::None;
@@ -601,6 +747,13 @@ impl App {
 
     /// Re-reads the snapshots and keeps the bodies in frame.
     fn refresh(&mut self) {
+        let settings = LiveSettings::of(&self.world);
+        if settings != self.live_settings {
+            let mut world = self.world.clone();
+            world.reset();
+            self.live = std::sync::Arc::new(LiveValues::compute(&self.lesson, world));
+            self.live_settings = settings;
+        }
         self.snapshot = self.world.snapshot_of(self.selected);
         let mut shown = shown_points(&self.world);
         if let Some(ghost) = &mut self.ghost {
@@ -672,13 +825,22 @@ impl App {
             if self.check_divergence() {
                 break;
             }
-            if self.running {
+            if self.running && self.pause_at_stops {
                 let stop =
                     timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
                 if let Some(stop) = stop {
                     self.running = false;
                     self.notice = Some(stop.notice.clone());
                     self.stop = Some(stop);
+                    break;
+                }
+                if let Some(result) = self.prediction_reached() {
+                    self.running = false;
+                    self.stop = Some(timeline::Stop {
+                        label: "prediction".into(),
+                        notice: result.clone(),
+                    });
+                    self.notice = Some(result);
                     break;
                 }
             }
@@ -691,6 +853,22 @@ impl App {
             });
         }
         self.refresh();
+    }
+
+    /// The result line of a guessed prediction whose time the run has just reached.
+    fn prediction_reached(&self) -> Option<String> {
+        let step = self.world.step_count();
+        let dt = self.world.dt();
+        (0..self.lesson.pages.len())
+            .filter(|&i| matches!(self.guesses[i], Guess::Given(_)))
+            .find(|&i| {
+                self.lesson.pages[i]
+                    .predict
+                    .as_ref()
+                    .is_some_and(|p| crate::live::step_at(p.at, dt) == step)
+            })
+            .and_then(|i| self.prediction_result(i))
+            .map(|r| format!("{r}: Enter continues"))
     }
 
     /// Runs the next phase (both worlds).

@@ -285,7 +285,10 @@ pub fn record(app: &mut App, duration: f64, width: u16, height: u16) -> String {
         out.push_str(&serde_json::json!([t, "o", data]).to_string());
         out.push('\n');
     };
+    // The recording runs on through pages (a pause would freeze the picture while the
+    // header said "paused … Enter continues" and the time kept going).
     app.running = true;
+    app.pause_at_stops = false;
     let first = format!("\x1b[2J{}", ansi(&render(app, width, height)));
     event(&mut out, 0, first);
     let mut pending = 0.0;
@@ -314,7 +317,8 @@ pub fn record(app: &mut App, duration: f64, width: u16, height: u16) -> String {
     out
 }
 
-/// Parses `COLSxROWS` (e.g. `120x40`), at least 80×24 (the app's smallest screen).
+/// Parses `COLSxROWS` (e.g. `120x40`), at least 80×24 (the app's smallest screen), at most
+/// the bounds of [`crate::limits::screen`].
 pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
     let bad = || format!("size must be COLSxROWS, e.g. 120x40, found `{text}`");
     let (c, r) = text.split_once(['x', 'X', '×']).ok_or_else(bad)?;
@@ -327,5 +331,6 @@ pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
             super::screen::MIN_HEIGHT
         ));
     }
+    crate::limits::screen(cols, rows)?;
     Ok((cols, rows))
 }

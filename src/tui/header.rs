@@ -19,7 +19,8 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     } else {
         Span::styled(" ❚❚ paused ", theme::PAUSED)
     };
-    let speed = format!(" {fps} frames/s (×{} real time) ", trim(real));
+    let measured = app.measured_real_time.filter(|_| app.running);
+    let speed = speed_text(fps, real, measured);
     let right = Line::from(vec![state, Span::raw(speed)]);
     let right_width = right.width() as u16;
     let left_width = area.width.saturating_sub(right_width + 1);
@@ -50,6 +51,19 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     }
 }
 
+/// ` 100 frames/s (×1 real time) `; when the physics cannot keep up (a measured multiple of
+/// real time below 90 % of the one asked for), the measured one: ` 100 frames/s asked · ×0.03
+/// real time `.
+pub fn speed_text(fps: f64, real: f64, measured: Option<f64>) -> String {
+    let frames = if fps == 1.0 { "frame" } else { "frames" };
+    match measured {
+        Some(m) if m < 0.9 * real => {
+            format!(" {fps} {frames}/s asked · ×{} real time measured ", trim(m))
+        }
+        _ => format!(" {fps} {frames}/s (×{} real time) ", trim(real)),
+    }
+}
+
 /// A ratio with at most 3 significant digits, no trailing zeros.
 fn trim(x: f64) -> String {
     let s = if x >= 100.0 {
@@ -63,5 +77,30 @@ fn trim(x: f64) -> String {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_header_shows_the_measured_multiple_when_the_physics_cannot_keep_up() {
+        // Asked: 1000 frames/s at dt = 1 ms, ×1; measured ×0.03: the header says ×0.03.
+        assert_eq!(
+            speed_text(1000.0, 1.0, Some(0.03)),
+            " 1000 frames/s asked · ×0.03 real time measured "
+        );
+        // Keeping up (within 10 %), or nothing measured: the multiple asked for.
+        assert_eq!(
+            speed_text(1000.0, 1.0, Some(0.95)),
+            " 1000 frames/s (×1 real time) "
+        );
+        assert_eq!(
+            speed_text(1000.0, 1.0, None),
+            " 1000 frames/s (×1 real time) "
+        );
+        // One frame per second is a frame, not frames.
+        assert_eq!(speed_text(1.0, 0.01, None), " 1 frame/s (×0.01 real time) ");
     }
 }

@@ -187,6 +187,8 @@ const TIME_KEYS: &[KeyCode] = &[
     Char('8'),
     Char('9'),
     Char('.'),
+    Char('-'),
+    Char('e'),
 ];
 
 use KeyCode::{Backspace, Char, Down, Enter, Esc, Left, PageDown, PageUp, Right, Tab, Up};
@@ -474,7 +476,7 @@ pub const KEYS: &[Binding] = &[
     within(
         Context::Prompt,
         TIME_KEYS,
-        "0-9 .",
+        "0-9 . - e",
         "jump: type t in s",
         Message::Type(' '),
     ),

@@ -14,10 +14,29 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 fn page(app: &App) -> (String, String) {
     let lesson = &app.lesson;
     match lesson.page_at(app.snapshot.time) {
-        Some((i, page)) => (
-            format!(" page {}/{}: {} ", i + 1, lesson.pages.len(), page.title),
-            page.text.trim_matches('\n').to_string(),
-        ),
+        Some((i, page)) => {
+            // Live numbers filled in with the values simulated for the settings in use.
+            let mut text = app.live.page_text(page).trim_matches('\n').to_string();
+            if page.predict.is_some() {
+                let line = match app.prediction_result(i) {
+                    Some(result) => format!("Prediction: {result}."),
+                    None if app.guesses[i] == super::app::Guess::Open => format!(
+                        "Predict: {} Enter asks for your guess.",
+                        app.prediction_question(i)
+                    ),
+                    None => format!(
+                        "Predict: {} (the run will tell)",
+                        app.prediction_question(i)
+                    ),
+                };
+                text.push_str("\n\n");
+                text.push_str(&line);
+            }
+            (
+                format!(" page {}/{}: {} ", i + 1, lesson.pages.len(), page.title),
+                text,
+            )
+        }
         None => (
             " lesson ".to_string(),
             if lesson.summary.is_empty() {
@@ -92,7 +111,7 @@ const OPERATORS: &str = "=+−-×·/<>≤≥≈→⊗∝";
 ///
 /// Choices 2–4 are taken only if they keep at least a third of the line filled.
 ///
-/// When a line is wider than `width`, the prose is reflowed first ([`reflow`]): the author's
+/// When a line is wider than `width`, the prose is reflowed first (`reflow`): the author's
 /// line breaks inside a paragraph would otherwise leave a short orphan after every wrapped line.
 pub fn wrap(text: &str, width: usize) -> Vec<String> {
     let width = width.max(1);

@@ -103,6 +103,9 @@ fn handle(app: &mut App, event: Event) {
 fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<()> {
     let mut last = Instant::now();
     let mut pending = 0.0_f64;
+    // Wall-clock measure of the simulated time run (the header's ×real time when the
+    // physics cannot keep up): a window of at least a second, started over at each pause.
+    let mut window: Option<(Instant, f64)> = None;
     loop {
         app.poll_study();
         if app.export_requested {
@@ -123,6 +126,8 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
             handle(app, event::read()?);
             last = Instant::now();
             pending = 0.0;
+            window = None;
+            app.measured_real_time = None;
             continue;
         }
         let deadline = Instant::now() + RENDER_INTERVAL;
@@ -158,6 +163,12 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
         };
         if frames > 0 {
             app.step_frames(frames);
+        }
+        let (start, simulated) = *window.get_or_insert((now, app.snapshot.time));
+        let wall = now.duration_since(start).as_secs_f64();
+        if wall >= 1.0 {
+            app.measured_real_time = Some((app.snapshot.time - simulated) / wall);
+            window = Some((now, app.snapshot.time));
         }
     }
 }

@@ -46,6 +46,9 @@ impl Widget for &App {
             Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
             Overlay::Settings(form) => settings_view::render(form, area, buf),
             Overlay::Jump { text } => jump_prompt::render(text, self.snapshot.time, area, buf),
+            Overlay::Predict { page, text } => {
+                jump_prompt::render_predict(&self.prediction_question(*page), text, area, buf)
+            }
         }
     }
 }

@@ -69,6 +69,13 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
     block.render(area, buf);
     let [gauge, text] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(inner);
     let (done, total) = job.progress();
+    if let Some(why) = job.refusal() {
+        Paragraph::new(format!("the study cannot run: {why}"))
+            .wrap(Wrap { trim: true })
+            .style(theme::ERROR)
+            .render(inner, buf);
+        return;
+    }
     if job.failed() {
         Paragraph::new("the study stopped unexpectedly (see the terminal after quitting)")
             .style(theme::ERROR)

@@ -473,6 +473,20 @@ fn a_recording_has_an_asciicast_header_and_increasing_event_times() {
 }
 
 #[test]
+fn a_recording_never_shows_a_pause_it_does_not_make() {
+    // Lesson 1's pages start at 0.01, 0.25 and 0.5 s: a run of the app pauses at each, but the
+    // recording runs on through them, so only its last frame (the end) may say "paused".
+    let mut app = lesson("01-the-loop.toml");
+    let cast = export::record(&mut app, 0.6, 120, 40);
+    let frames: Vec<&str> = cast.lines().skip(1).collect();
+    for (i, line) in frames[..frames.len() - 1].iter().enumerate() {
+        assert!(!line.contains("paused"), "frame {i} shows a pause: {line}");
+        assert!(!line.contains("Enter continues"), "frame {i}: {line}");
+    }
+    assert_eq!(app.snapshot.step, 60);
+}
+
+#[test]
 fn shot_and_record_on_the_command_line() {
     use assert_cmd::Command;
     let dir = std::env::temp_dir().join(format!("tumble-cli-{}", std::process::id()));

@@ -33,7 +33,7 @@ const TABLE: &[(&str, &str)] = &[
     ),
     (
         "unknown-response.toml",
-        "6:24: unknown collision response `bounce`; valid responses: seed, impulse",
+        "6:24: unknown collision response `bounce`; valid responses: seed, impulse, soft-step",
     ),
     ("negative-mass.toml", "10:8: mass must be > 0, found -1"),
     ("zero-mass.toml", "10:8: mass must be > 0, found 0"),
@@ -113,7 +113,8 @@ const TABLE: &[(&str, &str)] = &[
     ),
     (
         "cloth-count-below-two.toml",
-        "18:9: cloth `count` needs at least 2 particles along x and along z, found [1, 21]",
+        "18:9: cloth `count` needs at least 1 particle along x and along z and 2 in all (a rope \
+         is [n, 1] or [1, n]), found [0, 21]",
     ),
     (
         "cloth-duplicate-name.toml",

@@ -155,18 +155,18 @@ fn command_line_names_get_did_you_mean_like_files() {
                 "sed",
             ],
             "tumble: unknown collision response `sed` (did you mean `seed`?); valid responses: \
-             seed, impulse\n",
+             seed, impulse, soft-step\n",
         ),
         (
             vec!["study", "05-ground-collision", "--response", "impuls"],
             "tumble: unknown collision response `impuls` (did you mean `impulse`?); valid \
-             responses: seed, impulse\n",
+             responses: seed, impulse, soft-step\n",
         ),
         (
             vec!["01-the-loop", "--compare", "splittin"],
             "tumble: unknown --compare `splittin` (did you mean `splitting`?); valid: \
              integrators and responses: euler-seed, euler, symplectic-euler, rk4, splitting, \
-             exact-splitting, exact-splitting-4, seed, impulse\n",
+             exact-splitting, exact-splitting-4, seed, impulse, soft-step\n",
         ),
         (
             vec!["study", "01-the-loop", "--response", "seed"],

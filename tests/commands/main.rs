@@ -1,12 +1,14 @@
-//! Command-line tests: check, run, walk, study, the bundled lessons and their claims, bad input (one test binary).
+//! Command-line tests: check, run, walk, study, the bundled lessons and their claims, bad input, hostile input (one test binary).
 
 mod bad_input;
 mod cli_lessons;
 mod cli_names_and_errors;
 mod cloth_cli;
 mod divergence_cli;
+mod hostile;
 mod lesson_claims;
 mod lessons;
+mod live_numbers;
 mod study;
 mod study_cloth;
 mod study_table;

@@ -117,7 +117,7 @@ fn cloth_table() {
     let diverged = |dt: f64, t: f64| {
         Status::Diverged(format!(
             "simulation diverged at step 7 (t = {t:.6} s): energy ran away: E = 1.1e0 J \
-             against a budget of 1.9e0 J, held as kinetic + spring energy by cloth t (cloth t, \
+             against a budget of 1.9e0 J, held as kinetic + spring energy by the cloth (cloth t, \
              integrator symplectic-euler, dt = {dt} s)"
         ))
     };

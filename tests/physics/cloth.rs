@@ -607,3 +607,138 @@ pinned = [[0, 0], [2, 1]]
     assert_eq!(b.pinned, Pinning::List(vec![[0, 0], [2, 1]]));
     assert!(Cloth::new(b).is_ok());
 }
+
+// ---------------------------------------------------------------------------------------------
+// Ropes: count = [n, 1] and [1, n]
+// ---------------------------------------------------------------------------------------------
+
+/// A horizontal rope of `n` particles along x (or z when `along_z`), 1 m, 0.2 kg, k = 500 N/m,
+/// pinned at its first particle, at rest at y = 1.
+fn rope(n: usize, along_z: bool, integrator: ClothIntegrator) -> Cloth {
+    let (size, count) = if along_z {
+        ([0.0, 1.0], [1, n])
+    } else {
+        ([1.0, 0.0], [n, 1])
+    };
+    let mut spec = ClothSpec::new(size, count, 0.2, 500.0);
+    spec.shear = 300.0; // a line has no cells: no shear spring is built
+    spec.pinned = Pinning::List(vec![[0, 0]]);
+    spec.position = Vector3::new(0.0, 1.0, 0.0);
+    spec.integrator = integrator;
+    Cloth::new(&spec).unwrap()
+}
+
+#[test]
+fn a_rope_is_one_line_of_particles_with_stretch_and_bend_springs() {
+    for along_z in [false, true] {
+        let mut spec = ClothSpec::new(
+            if along_z { [0.0, 1.0] } else { [1.0, 0.0] },
+            if along_z { [1, 11] } else { [11, 1] },
+            0.2,
+            500.0,
+        );
+        spec.shear = 300.0;
+        spec.bend = 50.0;
+        let cloth = Cloth::new(&spec).unwrap();
+        // 11 particles 0.1 m apart on the line through the centre; 10 stretch + 9 bend
+        // springs, no shear (no cells).
+        assert_eq!(cloth.len(), 11);
+        assert_eq!(cloth.springs.len(), 10 + 9);
+        for (k, x) in cloth.positions.iter().enumerate() {
+            let along = -0.5 + 0.1 * k as f64;
+            let expected = if along_z {
+                Vector3::new(0.0, 0.0, along)
+            } else {
+                Vector3::new(along, 0.0, 0.0)
+            };
+            assert!((x - expected).norm() < 1e-15, "particle {k} at {x:?}");
+        }
+    }
+}
+
+#[test]
+fn a_ropes_explicit_limit_is_the_chains_formula() {
+    // Fixed–free chain of N = n − 1 free masses m (the rope at rest is straight, so only the
+    // longitudinal stiffness k d̂d̂ᵀ is there): M⁻¹K = (k/m)·tridiag(−1, 2, −1) with 1 in its
+    // last diagonal entry; its eigenvalues ω_j² = (4k/m) sin²((2j − 1)π/(2(2N + 1))), so
+    // ω_max = 2√(k/m) sin((2N − 1)π/(2(2N + 1))) → 2√(k/m) as N grows.
+    let (k, mass) = (500.0f64, 0.2);
+    for n in [5, 20, 60] {
+        for along_z in [false, true] {
+            let cloth = rope(n, along_z, ClothIntegrator::SymplecticEuler);
+            let m = mass / n as f64;
+            let big_n = (n - 1) as f64;
+            let chain = 2.0
+                * (k / m).sqrt()
+                * ((2.0 * big_n - 1.0) * std::f64::consts::PI / (2.0 * (2.0 * big_n + 1.0))).sin();
+            let limit = cloth.explicit_limit(&gravity());
+            let error = (limit.omega_max - chain).abs() / chain;
+            eprintln!(
+                "rope n = {n}: ω_max = {:.6} rad/s, chain formula {chain:.6}, 2√(k/m) = {:.6} \
+                 (relative error {error:.1e})",
+                limit.omega_max,
+                2.0 * (k / m).sqrt()
+            );
+            assert!(
+                error < 1e-6,
+                "n = {n}: ω_max {} vs {chain}",
+                limit.omega_max
+            );
+        }
+    }
+    // The limit itself approaches 2√(k/m): the sine is cos(π/(2N + 1)), 1 − π²/(2(2N + 1)²):
+    // at N = 59, 1 − 3.48e-4.
+    let big_n = 59.0;
+    let s = ((2.0 * big_n - 1.0) * std::f64::consts::PI / (2.0 * (2.0 * big_n + 1.0))).sin();
+    let expected = std::f64::consts::PI.powi(2) / (2.0 * (2.0 * big_n + 1.0f64).powi(2));
+    assert!(((1.0 - s) - expected).abs() < 1e-7 && 1.0 - s < 3.5e-4);
+}
+
+/// The largest |E − E₀| over `steps` of `dt` under gravity (∞ once non-finite).
+fn rope_energy_excursion(cloth: &mut Cloth, dt: f64, steps: usize) -> f64 {
+    let loads = gravity();
+    let e0 = cloth.energy(&loads).total();
+    let mut worst: f64 = 0.0;
+    for _ in 0..steps {
+        cloth.step(&loads, dt);
+        let e = cloth.energy(&loads).total();
+        if !e.is_finite() {
+            return f64::INFINITY;
+        }
+        worst = worst.max((e - e0).abs());
+    }
+    worst
+}
+
+#[test]
+fn a_rope_pinned_at_one_end_swings_and_symplectic_euler_keeps_its_energy_below_the_limit() {
+    let n = 20;
+    let probe = rope(n, false, ClothIntegrator::SymplecticEuler);
+    let h = probe.explicit_limit(&gravity()).dt();
+    // The scale of the swing's energy: the rope's centre falls 0.5 m, m g ℓ/2 ≈ 0.98 J.
+    let scale = 0.2 * 9.81 * 0.5;
+    let seconds = 1.5;
+    let steps = (seconds / (0.9 * h)) as usize;
+    let mut swinging = rope(n, false, ClothIntegrator::SymplecticEuler);
+    let below = rope_energy_excursion(&mut swinging, 0.9 * h, steps);
+    // It swings: the free end has fallen well below the pin and moved towards it.
+    let end = swinging.positions[n - 1];
+    eprintln!(
+        "rope: h* = {h:.3e} s; at 0.9 h* over {seconds} s max |E − E₀| = {below:.3e} J \
+         ({:.2} % of m g ℓ/2); free end at {end:?}",
+        100.0 * below / scale
+    );
+    assert!(
+        end.y < 0.6 && end.x < 0.4,
+        "the rope did not swing: end at {end:?}"
+    );
+    // Symplectic below the limit: the energy error stays bounded, a few % of the swing's.
+    assert!(below < 0.05 * scale, "0.9 h*: max |E − E₀| = {below:e} J");
+    // Above the limit (1.2 h*) the highest longitudinal mode grows from the start: it blows up.
+    let above = rope_energy_excursion(
+        &mut rope(n, false, ClothIntegrator::SymplecticEuler),
+        1.2 * h,
+        400,
+    );
+    assert!(above > 1e3 * scale, "1.2 h*: max |E − E₀| only {above:e} J");
+}

@@ -63,7 +63,7 @@ pub struct Block {
 impl Block {
     /// S r.
     #[inline(always)]
-    fn apply(&self, r: &Vector3<f64>) -> Vector3<f64> {
+    pub(super) fn apply(&self, r: &Vector3<f64>) -> Vector3<f64> {
         self.direction * (self.along * self.direction.dot(r)) + r * self.across
     }
 }
@@ -149,10 +149,12 @@ pub struct Workspace {
     pub pinned: Vec<u32>,
     pub rhs: Vec<Vector3<f64>>,
     pub solution: Vec<Vector3<f64>>,
-    residual: Vec<Vector3<f64>>,
-    preconditioned: Vec<Vector3<f64>>,
-    direction: Vec<Vector3<f64>>,
-    product: Vec<Vector3<f64>>,
+    pub(super) residual: Vec<Vector3<f64>>,
+    pub(super) preconditioned: Vec<Vector3<f64>>,
+    pub(super) direction: Vec<Vector3<f64>>,
+    pub(super) product: Vec<Vector3<f64>>,
+    /// The tied solve's buffers (`ties`).
+    pub(super) ties: super::ties::TieBuffers,
 }
 
 /// How a solve ended.
@@ -187,6 +189,7 @@ impl Workspace {
             .iter()
             .map(|v| bytes_of(v, v.capacity()))
             .sum::<usize>()
+            + self.ties.heap_bytes()
     }
 
     /// Sizes every per-particle buffer for `n` particles and lists the pinned ones; the warm

@@ -55,12 +55,73 @@ use super::conjugate_gradient::{Block, Symmetric3};
 use super::energy::Losses;
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
+use super::ties::{SolverBody, Tie};
 use nalgebra::Vector3;
 
 /// The velocity half of a step of length `h`: v ← v₀ + Δv (positions move in
 /// [`Cloth::advance_positions`]). Leaves in the scratch the damping forces
 /// `c ((v₁_j − v₁_i)·d̂₀) d̂₀` and drag velocities v₁ the step used, for the loss accounting.
 pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepReport {
+    assemble(cloth, loads, h);
+    let work = &mut cloth.scratch.solver;
+    let outcome = work.solve(cloth.solver.tolerance, cloth.solver.max_iterations);
+    let n = cloth.positions.len();
+    if work.pinned.is_empty() {
+        // Translation correction (module doc): Σ a_i Δv_i = Σ b_i exactly.
+        let a: f64 = work.diagonal.iter().sum();
+        let mut gap = Vector3::zeros();
+        for i in 0..n {
+            gap += work.rhs[i] - work.solution[i] * work.diagonal[i];
+        }
+        let shift = gap / a;
+        work.solution.iter_mut().for_each(|x| *x += shift);
+    }
+    for i in 0..n {
+        if !cloth.pinned[i] {
+            cloth.velocities[i] += work.solution[i];
+        }
+    }
+    finish(cloth, loads);
+    StepReport {
+        iterations: outcome.iterations,
+        residual: outcome.relative_residual,
+        dissipated: Losses::default(),
+    }
+}
+
+/// The tied step (`ties`): after [`assemble`], solves with the ties and sets
+/// v = v₀ + Δv (v₀ the velocities at the start of the step); may be called again with other
+/// ties (a released contact) before [`finish`].
+pub(super) fn solve_tied(
+    cloth: &mut Cloth,
+    ties: &mut [Tie],
+    bodies: &mut [SolverBody],
+) -> StepReport {
+    let work = &mut cloth.scratch.solver;
+    let v0 = &cloth.scratch.start_velocity;
+    let outcome = work.solve_tied(
+        ties,
+        bodies,
+        v0,
+        cloth.solver.tolerance,
+        cloth.solver.max_iterations,
+    );
+    for (i, v) in cloth.velocities.iter_mut().enumerate() {
+        *v = if cloth.pinned[i] {
+            Vector3::zeros()
+        } else {
+            v0[i] + work.solution[i]
+        };
+    }
+    StepReport {
+        iterations: outcome.iterations,
+        residual: outcome.relative_residual,
+        dissipated: Losses::default(),
+    }
+}
+
+/// The step's setup: a_i, b_i, the springs' blocks and the block-Jacobi preconditioner.
+pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     let n = cloth.positions.len();
     let scratch = &mut cloth.scratch;
     let work = &mut scratch.solver;
@@ -87,7 +148,6 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
     let (x, v0) = (&x[..n], &v0[..n]);
     let rhs = &mut work.rhs[..n];
     let preconditioner = &mut work.preconditioner[..n];
-    let mut damped = false;
     for (s, block) in springs.iter().zip(work.blocks.iter_mut()) {
         let (i, j) = (s.i, s.j);
         let d = x[j] - x[i];
@@ -108,7 +168,6 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
             + dv * across;
         rhs[i] += b;
         rhs[j] -= b;
-        damped |= s.damping > 0.0;
         *block = if pinned[i] && pinned[j] {
             Block::default()
         } else {
@@ -124,27 +183,18 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
         preconditioner[i].add(&sum);
         preconditioner[j].add(&sum);
     }
-    let outcome = work.solve(cloth.solver.tolerance, cloth.solver.max_iterations);
-    if work.pinned.is_empty() {
-        // Translation correction (module doc): Σ a_i Δv_i = Σ b_i exactly.
-        let a: f64 = work.diagonal.iter().sum();
-        let mut gap = Vector3::zeros();
-        for i in 0..n {
-            gap += work.rhs[i] - work.solution[i] * work.diagonal[i];
-        }
-        let shift = gap / a;
-        work.solution.iter_mut().for_each(|x| *x += shift);
-    }
-    for i in 0..n {
-        if !cloth.pinned[i] {
-            cloth.velocities[i] += work.solution[i];
-        }
-    }
-    // What the step's damping and drag forces were: at v₁, along d̂₀ (a spring with both ends
-    // pinned has v₁_j − v₁_i = 0: no force).
+}
+
+/// What the step's damping and drag forces were: at v₁, along d̂₀ (a spring with both ends
+/// pinned has v₁_j − v₁_i = 0: no force), for the loss accounting.
+pub(super) fn finish(cloth: &mut Cloth, loads: &ClothLoads) {
+    let n = cloth.positions.len();
+    let scratch = &mut cloth.scratch;
+    let work = &scratch.solver;
+    let springs = &cloth.springs;
     let v1 = &cloth.velocities;
     scratch.damping_force.clear();
-    if damped {
+    if springs.iter().any(|s| s.damping > 0.0) {
         scratch.damping_force.resize(n, Vector3::zeros());
         for (s, b) in springs.iter().zip(&work.blocks) {
             let f = b.direction * (s.damping * (v1[s.j] - v1[s.i]).dot(&b.direction));
@@ -154,11 +204,6 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
     }
     if loads.drag.is_some() {
         scratch.drag_velocity.clone_from(v1);
-    }
-    StepReport {
-        iterations: outcome.iterations,
-        residual: outcome.relative_residual,
-        dissipated: Losses::default(),
     }
 }
 

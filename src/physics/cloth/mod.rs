@@ -11,6 +11,7 @@
 //! | `symplectic_euler` | the explicit step |
 //! | `implicit_euler` | backward Euler linearised once (Baraff & Witkin 1998) |
 //! | `conjugate_gradient` | the implicit step's solve: filtered block-Jacobi PCG |
+//! | `ties` | contacts and attachments inside that solve: Baraff–Witkin's filter, the body an unknown |
 //! | `stability` | the explicit limit 2/ω_max by power iteration |
 //! | `energy` | kinetic, spring and gravitational energy; losses |
 //! | `contact` | particles against fixed obstacles |
@@ -26,12 +27,14 @@ pub mod spec;
 pub mod spring;
 pub mod stability;
 pub mod symplectic_euler;
+pub mod ties;
 
 pub use contact::{ContactReport, ParticleContact};
 pub use energy::{ClothEnergy, Losses};
 pub use integrator::ClothIntegrator;
 pub use loads::ClothLoads;
 pub use sheet::{Cloth, SolverSettings, StepReport};
-pub use spec::{ClothSpec, ClothSpecError, Pinning};
+pub use spec::{Attach, ClothSpec, ClothSpecError, Pinning};
 pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
+pub use ties::{SolverBody, Tie, TieKind};

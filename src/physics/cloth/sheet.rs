@@ -3,6 +3,7 @@
 //! ```text
 //! particle (i, j) ↦ index j·nx + i
 //! x(i, j) = position + (−size.x/2 + i·size.x/(nx − 1), 0, −size.z/2 + j·size.z/(nz − 1))
+//!           (offset 0 along an axis of count 1: a rope)
 //! m_i = mass/(nx·nz);   v_i = velocity (free) or 0 (pinned)
 //! springs, ℓ₀ = the initial distance:
 //!   stretch (i, j)–(i+1, j), (i, j)–(i, j+1)            k = stretch
@@ -84,6 +85,8 @@ pub struct Cloth {
     pub masses: Vec<f64>,
     /// Pinned particles never move.
     pub pinned: Vec<bool>,
+    /// Particles held to bodies: (particle index, body index), from the spec's `attach`.
+    pub attached: Vec<(usize, usize)>,
     pub springs: Vec<Spring>,
     pub integrator: ClothIntegrator,
     pub solver: SolverSettings,
@@ -105,6 +108,7 @@ impl Cloth {
             + bytes_of(&self.velocities, self.velocities.capacity())
             + bytes_of(&self.masses, self.masses.capacity())
             + bytes_of(&self.pinned, self.pinned.capacity())
+            + bytes_of(&self.attached, self.attached.capacity())
             + bytes_of(&self.springs, self.springs.capacity())
             + [
                 &sc.force,
@@ -127,14 +131,22 @@ impl Cloth {
         let m = spec.mass / n as f64;
         let mut positions = Vec::with_capacity(n);
         let mut pinned = Vec::with_capacity(n);
+        // Along an axis with one row (a rope), the row is on the centre line.
+        let offset = |k: usize, n: usize, side: f64| {
+            if n > 1 {
+                -side / 2.0 + k as f64 * side / (n - 1) as f64
+            } else {
+                0.0
+            }
+        };
         for j in 0..nz {
             for i in 0..nx {
                 positions.push(
                     spec.position
                         + Vector3::new(
-                            -spec.size[0] / 2.0 + i as f64 * spec.size[0] / (nx - 1) as f64,
+                            offset(i, nx, spec.size[0]),
                             0.0,
-                            -spec.size[1] / 2.0 + j as f64 * spec.size[1] / (nz - 1) as f64,
+                            offset(j, nz, spec.size[1]),
                         ),
                 );
                 pinned.push(spec.pinned.holds(i, j, spec.count));
@@ -177,7 +189,8 @@ impl Cloth {
             }
         }
         if spec.shear > 0.0 {
-            for j in 0..nz - 1 {
+            // A rope (nx or nz = 1) has no cells: no shear springs.
+            for j in 0..nz.saturating_sub(1) {
                 for i in 0..nx - 1 {
                     add(
                         index(i, j),
@@ -213,6 +226,11 @@ impl Cloth {
             velocities,
             masses: vec![m; n],
             pinned,
+            attached: spec
+                .attach
+                .iter()
+                .map(|a| (a.particle[1] * nx + a.particle[0], a.body))
+                .collect(),
             springs,
             integrator: spec.integrator,
             solver: SolverSettings::default(),
@@ -327,6 +345,31 @@ impl Cloth {
             ClothIntegrator::SymplecticEuler => symplectic_euler::velocities(self, loads, dt),
             ClothIntegrator::ImplicitEuler => implicit_euler::velocities(self, loads, dt),
         }
+    }
+
+    /// The implicit step with ties (`ties`), in three calls: this one records the start
+    /// velocities and assembles the step's matrix and right-hand side (`implicit_euler`); then
+    /// [`Cloth::solve_tied`] (as often as the caller's contact set changes); then
+    /// [`Cloth::finish_tied_step`]. Only for `implicit-euler` sheets.
+    pub fn begin_tied_step(&mut self, loads: &ClothLoads, dt: f64) {
+        debug_assert_eq!(self.integrator, ClothIntegrator::ImplicitEuler);
+        self.scratch.start_velocity.clone_from(&self.velocities);
+        implicit_euler::assemble(self, loads, dt);
+    }
+
+    /// Solves the step assembled by [`Cloth::begin_tied_step`] with these ties: v = v₀ + Δv,
+    /// each tie's impulse and each body's correction filled in.
+    pub fn solve_tied(
+        &mut self,
+        ties: &mut [super::ties::Tie],
+        bodies: &mut [super::ties::SolverBody],
+    ) -> StepReport {
+        implicit_euler::solve_tied(self, ties, bodies)
+    }
+
+    /// Ends a tied step's velocity half (the damping and drag the step used, for the losses).
+    pub fn finish_tied_step(&mut self, loads: &ClothLoads) {
+        implicit_euler::finish(self, loads);
     }
 
     /// The position half: x ← x + h v for the free particles. Returns what the step's damping

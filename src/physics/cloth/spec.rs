@@ -1,10 +1,16 @@
 //! The parameters of a sheet (a `[[cloth]]` table), validated.
 //!
 //! ```text
-//! count = [nx, nz], nx, nz ≥ 2          particle (i, j), 0 ≤ i < nx, 0 ≤ j < nz, index j·nx + i
+//! count = [nx, nz], nx, nz ≥ 1, nx·nz ≥ 2   particle (i, j), 0 ≤ i < nx, 0 ≤ j < nz, index j·nx + i
 //! x(i, j) = position + (−size.x/2 + i·size.x/(nx − 1), 0, −size.z/2 + j·size.z/(nz − 1))
+//!           (an axis with a count of 1 puts its one row on the centre line: offset 0)
 //! m = mass / (nx·nz)                     every particle, pinned ones included
 //! ```
+//!
+//! A count of 1 along one axis makes a **rope**: one line of particles, its stretch springs
+//! between neighbours and its bend springs to the second neighbour (a line has no cells, so no
+//! shear springs). The side along an axis of count 1 is unused and may be 0. On a rope,
+//! `corners` pins its two ends and `edges` every particle (each lies on a border).
 //!
 //! Stiffnesses are per spring (N/m): `stretch` > 0 along x and z, `shear` ≥ 0 on both
 //! diagonals of every cell, `bend` ≥ 0 to the second neighbour; 0 means no spring of that kind.
@@ -64,6 +70,14 @@ impl Pinning {
     }
 }
 
+/// A particle held to a body (`attach`): it moves with the body at its offset at t = 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Attach {
+    pub particle: [usize; 2],
+    /// The body's index in the scene.
+    pub body: usize,
+}
+
 /// A sheet's parameters (SI units), as a scene declares them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClothSpec {
@@ -71,7 +85,7 @@ pub struct ClothSpec {
     pub name: String,
     /// Side lengths along x and z, m (> 0).
     pub size: [f64; 2],
-    /// Particles along x and z (each ≥ 2).
+    /// Particles along x and z (each ≥ 1, at least 2 in all; 1 along an axis: a rope).
     pub count: [usize; 2],
     /// Centre of the flat sheet, m.
     pub position: Vector3<f64>,
@@ -89,12 +103,14 @@ pub struct ClothSpec {
     /// Initial velocity of every free particle, m/s.
     pub velocity: Vector3<f64>,
     pub integrator: ClothIntegrator,
+    /// Particles held to bodies (only inside the implicit solve).
+    pub attach: Vec<Attach>,
 }
 
 /// Why a spec cannot build a sheet.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ClothSpecError {
-    /// A count below 2 along x (axis 0) or z (axis 1).
+    /// A count of 0 along x (axis 0) or z (axis 1), or a single particle in all.
     Count { axis: usize, found: usize },
     /// A parameter that must be > 0 (or ≥ 0) is not, or is not finite.
     Parameter {
@@ -112,10 +128,14 @@ pub enum ClothSpecError {
 impl fmt::Display for ClothSpecError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            ClothSpecError::Count { axis, found } => write!(
+            ClothSpecError::Count { axis, found } if *found == 0 => write!(
                 f,
-                "count along {} must be ≥ 2 particles, found {found}",
+                "count along {} must be ≥ 1 particle, found 0",
                 ["x", "z"][*axis]
+            ),
+            ClothSpecError::Count { .. } => write!(
+                f,
+                "count must make at least 2 particles (a rope is [n, 1] or [1, n], n ≥ 2), found [1, 1]"
             ),
             ClothSpecError::Parameter { what, found, rule } => {
                 write!(f, "{what} must be {rule}, found {found}")
@@ -148,6 +168,7 @@ impl ClothSpec {
             pinned: Pinning::None,
             velocity: Vector3::zeros(),
             integrator: ClothIntegrator::ImplicitEuler,
+            attach: Vec::new(),
         }
     }
 
@@ -159,9 +180,12 @@ impl ClothSpec {
     /// Checks every rule of the module doc.
     pub fn validate(&self) -> Result<(), ClothSpecError> {
         for (axis, &n) in self.count.iter().enumerate() {
-            if n < 2 {
+            if n == 0 {
                 return Err(ClothSpecError::Count { axis, found: n });
             }
+        }
+        if self.count == [1, 1] {
+            return Err(ClothSpecError::Count { axis: 0, found: 1 });
         }
         let positive = |what, v: f64| {
             if v.is_finite() && v > 0.0 {
@@ -185,8 +209,14 @@ impl ClothSpec {
                 })
             }
         };
-        positive("size.x", self.size[0])?;
-        positive("size.z", self.size[1])?;
+        // A side along an axis with a single row (a rope) is unused: ≥ 0 is enough.
+        for (axis, what) in [(0, "size.x"), (1, "size.z")] {
+            if self.count[axis] > 1 {
+                positive(what, self.size[axis])?;
+            } else {
+                non_negative(what, self.size[axis])?;
+            }
+        }
         positive("mass", self.mass)?;
         positive("stretch", self.stretch)?;
         non_negative("shear", self.shear)?;
@@ -241,11 +271,20 @@ mod tests {
         let good = ClothSpec::new([1.0, 1.0], [3, 3], 1.0, 100.0);
         assert_eq!(good.validate(), Ok(()));
         let mut bad = good.clone();
-        bad.count = [3, 1];
+        bad.count = [3, 0];
         assert_eq!(
             bad.validate().unwrap_err().to_string(),
-            "count along z must be ≥ 2 particles, found 1"
+            "count along z must be ≥ 1 particle, found 0"
         );
+        bad.count = [1, 1];
+        assert_eq!(
+            bad.validate().unwrap_err().to_string(),
+            "count must make at least 2 particles (a rope is [n, 1] or [1, n], n ≥ 2), found [1, 1]"
+        );
+        // A rope: one row; its unused side may be 0.
+        bad.count = [3, 1];
+        bad.size = [1.0, 0.0];
+        assert_eq!(bad.validate(), Ok(()));
         let mut bad = good.clone();
         bad.shear = -1.0;
         assert_eq!(

@@ -93,6 +93,7 @@
 use super::contacts;
 use super::dense::Dense;
 use super::position::{self, Fix};
+use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
@@ -125,6 +126,10 @@ pub const DIRECT_MAX: usize = 64;
 /// Treated as touching (no bias), the rows stay consistent.
 pub const GAP_ROUND_OFF: f64 = 1e-12;
 
+/// How many changes of its active set the direct inelastic solve may make (one row out or in
+/// each) before it gives way to the sweeps.
+pub const PIVOT_ROUNDS: usize = 12;
+
 /// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
 pub const STICKING_MAX: usize = 8;
 
@@ -135,6 +140,8 @@ pub struct Scratch {
     tangents: Vec<[Direction; 2]>,
     motions: Vec<Motion>,
     previous: Vec<Contact>,
+    /// The last step's impulses by pair and feature (warm starts in O(1) per contact).
+    warm: WarmCache,
     points: Vec<super::geometry::ContactPoint>,
     fix: position::Scratch,
     /// The direct solves' system, and the motions saved to undo a rejected solve.
@@ -144,6 +151,23 @@ pub struct Scratch {
     change: Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     /// Which bodies the position fix advances from the start of the step.
     advanced: Vec<bool>,
+    /// What the solver did since the world was built (the solver path, for tests).
+    pub counters: Counters,
+    /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
+    pub(super) soft: super::soft_step::Scratch,
+}
+
+/// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
+/// these rates flat.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Steps whose stage 1 the direct solve answered.
+    pub direct: u64,
+    /// Steps whose stage 1 the direct solve declined (the sweeps ran).
+    pub declined: u64,
+    /// Gauss–Seidel sweeps run, normal (stage 1) and friction (stage 2).
+    pub normal_sweeps: u64,
+    pub friction_sweeps: u64,
 }
 
 /// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
@@ -391,11 +415,13 @@ pub fn respond(
         tangents,
         motions,
         previous,
+        warm,
         fix: fs,
         dense,
         saved,
         change,
         advanced,
+        counters,
         ..
     } = scratch;
     let buffers = Buffers {
@@ -405,8 +431,18 @@ pub fn respond(
         dense,
         saved,
         change,
+        counters,
     };
-    resolve(&settings, contacts, previous, buffers);
+    // A bounce says nothing about the next step's load: stored as no impulse.
+    warm.store(previous.iter().map(|p| {
+        let j = if p.normal_velocity >= -bounce_speed {
+            p.impulse
+        } else {
+            Vector3::zeros()
+        };
+        (p, j)
+    }));
+    resolve(&settings, contacts, warm, buffers);
     for (state, m) in states.iter_mut().zip(motions.iter()) {
         if m.touched {
             state.linear_momentum = m.v / m.inv_mass;
@@ -455,6 +491,7 @@ struct Buffers<'a> {
     dense: &'a mut Dense,
     saved: &'a mut Vec<Motion>,
     change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    counters: &'a mut Counters,
 }
 
 /// What the velocity stages need besides the bodies and the contacts.
@@ -473,7 +510,7 @@ struct Settings {
 
 /// The velocity stages (module doc) for `contacts` (point, depth, normal and levers filled
 /// in); fills in each contact's normal velocity, denominator and impulse, and the motions.
-fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], buffers: Buffers) {
+fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, buffers: Buffers) {
     let Settings {
         restitution,
         friction,
@@ -488,6 +525,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
         dense,
         saved,
         change,
+        counters,
     } = buffers;
     // The energy the velocities may keep: K₀ less the push-out's work against gravity.
     let kinetic_allowed = motions.iter().map(Motion::kinetic).sum::<f64>() - lift;
@@ -503,7 +541,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             lambda_restitution: 0.0,
             approach: along(&normal, motions),
             bias: (-c.depth - GAP_ROUND_OFF).max(0.0) / dt,
-            warm: warm_start(c, previous, bounce_speed),
+            warm: previous.find(c).unwrap_or_else(Vector3::zeros),
         }
     }));
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
@@ -511,7 +549,13 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
 
     // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
     // projected Gauss–Seidel, warm-started from the last step's impulses.
-    if !direct_inelastic(rows, motions, tolerance, dense, saved) {
+    let direct = direct_inelastic(rows, motions, tolerance, dense, saved);
+    if direct {
+        counters.direct += 1;
+    } else {
+        counters.declined += 1;
+    }
+    if !direct {
         for row in rows.iter_mut() {
             row.normal.with_inverse();
             let warm = row.warm.dot(&row.normal.d).max(0.0);
@@ -521,6 +565,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             }
         }
         for _ in 0..MAX_SWEEPS {
+            counters.normal_sweeps += 1;
             let mut largest: f64 = 0.0;
             for row in rows.iter_mut() {
                 largest = largest.max(normal_update(row, motions));
@@ -583,6 +628,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &[Contact], 
             }
         }
         for _ in 0..if solved { 0 } else { MAX_SWEEPS } {
+            counters.friction_sweeps += 1;
             let mut largest: f64 = 0.0;
             for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
                 let bound = row.friction_bound;
@@ -664,22 +710,6 @@ fn bounces(row: &Row, bounce_speed: f64) -> bool {
     row.approach < -bounce_speed && row.compression > 0.0
 }
 
-/// The last step's impulse at the same contact: same bodies, same feature, a point within
-/// 1 mm (a vertex keeps its index; a manifold point is matched by where it is). Zero for a new
-/// contact, or one that bounced (a bounce says nothing about the next step's load).
-fn warm_start(c: &Contact, previous: &[Contact], bounce_speed: f64) -> Vector3<f64> {
-    previous
-        .iter()
-        .find(|p| {
-            p.body == c.body
-                && p.against == c.against
-                && p.feature == c.feature
-                && (p.point - c.point).norm_squared() < 1e-6
-        })
-        .filter(|p| p.normal_velocity >= -bounce_speed)
-        .map_or_else(Vector3::zeros, |p| p.impulse)
-}
-
 /// The inelastic problem solved directly, when its answer is "every approaching contact
 /// stops": with the approaching contacts as the active set, solve
 ///
@@ -692,7 +722,10 @@ fn warm_start(c: &Contact, previous: &[Contact], bounce_speed: f64) -> Vector3<f
 /// picks the minimum-norm λ, which shares the load symmetrically whatever the contact order).
 /// The result is accepted only if it is the solution of the whole problem — every λᵢ ≥ 0 and
 /// no contact, active or not, still approaching — so it is the same minimum of K that the
-/// sweeps converge to, reached at once. Returns false (and changes nothing) otherwise.
+/// sweeps converge to, reached at once. When a λᵢ comes out negative (at rest, a corner of a
+/// 4-point face: four rows of rank three) or a contact outside the set still approaches, the
+/// active set changes by one row and the system is solved again, at most [`PIVOT_ROUNDS`]
+/// times. Returns false (and changes nothing) otherwise.
 fn direct_inelastic(
     rows: &mut [Row],
     motions: &mut [Motion],
@@ -714,37 +747,68 @@ fn direct_inelastic(
     if m == 0 {
         return true;
     }
-    system.reset(m);
-    for p in 0..m {
-        let ni = &rows[active[p]].normal;
-        system.rhs[p] = -along(ni, motions) - rows[active[p]].bias;
-        system.fill_row(p, ni.bodies(), |q| {
-            let nj = &rows[active[q]].normal;
-            ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
-        });
-    }
-    let Some(lambda) = system.solve() else {
-        return false;
-    };
-    if lambda[..m].iter().any(|l| *l < 0.0) {
-        return false;
-    }
+    // An active-set search (principal pivoting), at most PIVOT_ROUNDS changes: solve on the
+    // active rows; if some λ < 0 (a corner of a 4-point face whose minimum-norm share came
+    // out negative), take the most negative row out; else if a row outside the set still
+    // approaches, take the most approaching one in; else accept. Every accepted answer passes
+    // the same test as before (λ ≥ 0, nothing approaching): the solution of the whole problem.
+    let mut lambda = [0.0; DIRECT_MAX];
     saved.clear();
     saved.extend_from_slice(motions);
-    for p in 0..m {
-        apply(lambda[p], &rows[active[p]].normal, motions);
-    }
-    if rows
-        .iter()
-        .any(|r| along(&r.normal, motions) + r.bias < -tolerance)
-    {
+    for round in 0..=PIVOT_ROUNDS {
+        system.reset(m);
+        for p in 0..m {
+            let ni = &rows[active[p]].normal;
+            system.rhs[p] = -along(ni, motions) - rows[active[p]].bias;
+            system.fill_row(p, ni.bodies(), |q| {
+                let nj = &rows[active[q]].normal;
+                ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
+            });
+        }
+        let Some(solution) = system.solve() else {
+            return false;
+        };
+        lambda[..m].copy_from_slice(&solution[..m]);
+        let last = round == PIVOT_ROUNDS;
+        let (_, most_negative) = (0..m).fold((0.0, None), |(w, at), p| {
+            if lambda[p] < w {
+                (lambda[p], Some(p))
+            } else {
+                (w, at)
+            }
+        });
+        if let Some(p) = most_negative {
+            if last || m == 1 {
+                return false;
+            }
+            active.copy_within(p + 1..m, p);
+            m -= 1;
+            continue;
+        }
+        for p in 0..m {
+            apply(lambda[p], &rows[active[p]].normal, motions);
+        }
+        let mut approaching: Option<(usize, f64)> = None;
+        for (i, r) in rows.iter().enumerate() {
+            let u = along(&r.normal, motions) + r.bias;
+            if u < -tolerance && approaching.is_none_or(|(_, w)| u < w) {
+                approaching = Some((i, u));
+            }
+        }
+        let Some((i, _)) = approaching else {
+            for p in 0..m {
+                rows[active[p]].lambda = lambda[p];
+            }
+            return true;
+        };
         motions.copy_from_slice(saved);
-        return false;
+        if last || m == DIRECT_MAX || active[..m].contains(&i) {
+            return false;
+        }
+        active[m] = i;
+        m += 1;
     }
-    for p in 0..m {
-        rows[active[p]].lambda = lambda[p];
-    }
-    true
+    false
 }
 
 /// Friction solved directly, when its answer is "every pushing contact sticks" (a body at rest
@@ -921,7 +985,7 @@ fn normal_update(row: &mut Row, motions: &mut [Motion]) -> f64 {
 }
 
 /// Two unit tangents completing n to an orthonormal basis.
-fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+pub(super) fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     let helper = if n.x.abs() < 0.9 {
         Vector3::x()
     } else {

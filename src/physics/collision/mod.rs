@@ -11,6 +11,8 @@
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
+//! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
+//! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
 //! | `dense` | the direct solves' small symmetric systems (LDLᵀ in each row's envelope) |
 
 pub mod contacts;
@@ -20,6 +22,10 @@ pub mod geometry;
 pub mod impulse;
 pub mod position;
 pub mod seed;
+pub mod soft_step;
+pub mod warm;
+
+pub use soft_step::SoftStep;
 
 use super::body::Body;
 use super::effects::Loads;
@@ -118,21 +124,28 @@ pub enum Response {
     Seed,
     /// Sequential impulses with restitution and Coulomb friction.
     Impulse,
+    /// Sub-stepped soft contacts with a relax pass (Box2D v3): fast, approximate, sags.
+    SoftStep(SoftStep),
 }
 
 impl Response {
     /// Every response, in teaching order.
-    pub const ALL: [Response; 2] = [Response::Seed, Response::Impulse];
+    pub const ALL: [Response; 3] = [
+        Response::Seed,
+        Response::Impulse,
+        Response::SoftStep(SoftStep::DEFAULT),
+    ];
 
     /// The name used in scene files and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             Response::Seed => "seed",
             Response::Impulse => "impulse",
+            Response::SoftStep(_) => "soft-step",
         }
     }
 
-    /// The response with this name.
+    /// The response with this name (soft-step with its documented defaults).
     pub fn from_name(name: &str) -> Option<Response> {
         Response::ALL.into_iter().find(|r| r.name() == name)
     }
@@ -146,7 +159,8 @@ impl Response {
     pub fn next(self) -> Response {
         match self {
             Response::Seed => Response::Impulse,
-            Response::Impulse => Response::Seed,
+            Response::Impulse => Response::SoftStep(SoftStep::DEFAULT),
+            Response::SoftStep(_) => Response::Seed,
         }
     }
 }
@@ -156,9 +170,9 @@ impl Response {
 pub struct ContactModel {
     /// Which response runs.
     pub response: Response,
-    /// Coefficient of restitution e, 0 ≤ e ≤ 1 (`impulse` only; `seed` always uses 0.4).
+    /// Coefficient of restitution e, 0 ≤ e ≤ 1 (`impulse`, `soft-step`; `seed` always uses 0.4).
     pub restitution: f64,
-    /// Coulomb friction coefficient μ ≥ 0 (`impulse` only).
+    /// Coulomb friction coefficient μ ≥ 0 (`impulse`, `soft-step`).
     pub friction: f64,
 }
 
@@ -296,6 +310,9 @@ pub fn collide(
             None
         }
         Response::Impulse => impulse::respond(input, states, contacts, scratch),
+        Response::SoftStep(params) => {
+            soft_step::respond(input, &params, states, contacts, &mut scratch.soft)
+        }
     }
 }
 

@@ -21,7 +21,7 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Everything the front ends say about an integrator, in one place: the scene-file name, the
 /// order, the formulas the loop strip shows, the README's row, the study's colour. Adding an
-/// integrator is its file, one variant in [`integrators!`] and one descriptor in
+/// integrator is its file, one variant in `integrators!` and one descriptor in
 /// [`Integrator::descriptor`] (a missing one does not compile).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Descriptor {

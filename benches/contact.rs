@@ -1,0 +1,91 @@
+//! The contact scaling set (issue 17), per response: what one `World::step()` costs, `rk4`,
+//! dt = 1e-3, μ = 0.5, e = 0 (scenes in `tumble::contact_scenes`):
+//!
+//! - `stack-N`: N = 1, 3, 10, 20, 40 cubes of 0.2 m, 1 kg on each other on the ground;
+//! - `pyramid-R` / `pyramid-R-gap`: R = 5, 10, 20 cubes on the bottom row, touching or 1 cm
+//!   apart;
+//! - `dominoes`: 8 dominoes 2 × 20 × 10 cm, 50 g, 12 cm apart, the first tipped 10°; restarted
+//!   every 1.3 s, so the figure is the mean over the fall.
+//!
+//! Anchors (issue 17, `references.md`, Rapier 0.36 f64 / f32 / MuJoCo 4.0 on this machine):
+//! stack 10: 18.7 / 10.8 / 22.9 µs; stack 20: 31.7 / 18.4 / 44.7 µs; stack 40: 55 / 34 / 123 µs;
+//! pyramid 10: 0.14 / 0.08 / 0.38 ms; pyramid 20: 0.59 / 0.33 / 2.0–2.6 ms.
+//!
+//! Each world is stepped in place and put back at its start every `restart` steps. Run one
+//! filter with short times, e.g.
+//! `cargo bench --bench contact -- impulse/stack --warm-up-time 1 --measurement-time 3`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use std::time::Duration;
+use tumble::contact_scenes::{dominoes, pyramid, stack};
+use tumble::physics::{Response, World};
+
+/// A benchmarked scene: its name, its world, and how many steps between restarts.
+struct Case {
+    name: String,
+    world: World,
+    restart: u64,
+}
+
+fn cases(response: Response) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for n in [1, 3, 10, 20, 40] {
+        cases.push(Case {
+            name: format!("stack-{n}"),
+            world: stack(n, response),
+            restart: 5_000,
+        });
+    }
+    for rows in [5, 10, 20] {
+        for (suffix, gap) in [("", 0.0), ("-gap", 0.01)] {
+            cases.push(Case {
+                name: format!("pyramid-{rows}{suffix}"),
+                world: pyramid(rows, gap, response),
+                restart: 5_000,
+            });
+        }
+    }
+    cases.push(Case {
+        name: "dominoes".into(),
+        world: dominoes(response),
+        restart: 1_300,
+    });
+    cases
+}
+
+fn contact(c: &mut Criterion) {
+    let responses = ["impulse", "soft-step"]
+        .into_iter()
+        .filter_map(Response::from_name);
+    for response in responses {
+        let mut group = c.benchmark_group(format!("contact/{}", response.name()));
+        group
+            .warm_up_time(Duration::from_millis(500))
+            .measurement_time(Duration::from_secs(2))
+            .sample_size(10);
+        for Case {
+            name,
+            mut world,
+            restart,
+        } in cases(response)
+        {
+            let start = world.checkpoint();
+            let mut steps = 0u64;
+            group.bench_function(name, |b| {
+                b.iter(|| {
+                    steps += 1;
+                    if steps.is_multiple_of(restart) {
+                        world.restore(&start);
+                    }
+                    black_box(&mut world).step();
+                    black_box(world.states());
+                })
+            });
+        }
+        group.finish();
+    }
+}
+
+criterion_group!(benches, contact);
+criterion_main!(benches);

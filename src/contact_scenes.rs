@@ -1,0 +1,133 @@
+//! The contact scaling set (issue 17): the scenes the contact benches, tests and the study
+//! share, built in code so every one of them measures the same world.
+//!
+//! - `stack(n)`: n cubes of 0.2 m and 1 kg standing on each other on the ground, barycenters at
+//!   0.1, 0.3, … m;
+//! - `pyramid(rows, gap)`: a 2-D pyramid of such cubes, `rows` on the bottom row, each row
+//!   above one cube shorter and centred, neighbours `gap` apart (0 or 1 cm);
+//! - `dominoes()`: 8 dominoes 2 × 20 × 10 cm (thickness along x), 50 g, 12 cm apart along x,
+//!   the first tipped 10° about z towards the others.
+//!
+//! Every scene: μ = 0.5, e = 0, dt = 1e-3, `rk4`, gravity −9.81 m/s² along y.
+
+use crate::physics::{
+    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
+    State, World,
+};
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// The cubes' side, m.
+pub const SIDE: f64 = 0.2;
+/// The scenes' time step, s.
+pub const DT: f64 = 1e-3;
+/// Gravity, m/s².
+pub const G: f64 = 9.81;
+
+/// The scenes' contact law with the given response: μ = 0.5, e = 0.
+pub fn model(response: Response) -> ContactModel {
+    ContactModel {
+        response,
+        restitution: 0.0,
+        friction: 0.5,
+    }
+}
+
+fn body_at(name: String, body: &Body, position: Vector3<f64>, q: UnitQuaternion<f64>) -> NamedBody {
+    NamedBody {
+        name,
+        initial: State {
+            position,
+            orientation: Orientation::Quaternion(q),
+            ..State::at_rest()
+        },
+        body: body.clone(),
+    }
+}
+
+fn world(bodies: Vec<NamedBody>, response: Response) -> World {
+    World::with_bodies(
+        bodies,
+        Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
+        vec![Obstacle::Ground { height: 0.0 }],
+        Some(model(response)),
+        Integrator::Rk4,
+        DT,
+    )
+}
+
+fn cube() -> Body {
+    Body::solid_box(Vector3::repeat(SIDE), 1.0).expect("a valid box")
+}
+
+/// `count` cubes standing on each other on the ground.
+pub fn stack(count: usize, response: Response) -> World {
+    let cube = cube();
+    let bodies = (0..count)
+        .map(|i| {
+            let y = SIDE / 2.0 + SIDE * i as f64;
+            body_at(
+                format!("cube{i}"),
+                &cube,
+                Vector3::new(0.0, y, 0.0),
+                UnitQuaternion::identity(),
+            )
+        })
+        .collect();
+    world(bodies, response)
+}
+
+/// A pyramid with `rows` cubes on its bottom row, neighbours `gap` m apart; `rows (rows + 1) / 2`
+/// cubes.
+pub fn pyramid(rows: usize, gap: f64, response: Response) -> World {
+    let cube = cube();
+    let pitch = SIDE + gap;
+    let mut bodies = Vec::new();
+    for row in 0..rows {
+        let count = rows - row;
+        for i in 0..count {
+            let x = (i as f64 - (count as f64 - 1.0) / 2.0) * pitch;
+            let y = SIDE / 2.0 + SIDE * row as f64;
+            bodies.push(body_at(
+                format!("r{row}c{i}"),
+                &cube,
+                Vector3::new(x, y, 0.0),
+                UnitQuaternion::identity(),
+            ));
+        }
+    }
+    world(bodies, response)
+}
+
+/// The domino's size (thickness, height, width), m, and mass, kg.
+pub const DOMINO: [f64; 3] = [0.02, 0.2, 0.1];
+pub const DOMINO_MASS: f64 = 0.05;
+/// Distance between neighbouring dominoes' centres, m.
+pub const DOMINO_PITCH: f64 = 0.12;
+
+/// 8 dominoes in a row along x; the first is tipped 10° towards the second about its bottom
+/// edge at +x (it starts on that edge, touching the ground).
+pub fn dominoes(response: Response) -> World {
+    let [t, h, _] = DOMINO;
+    let body = Body::solid_box(Vector3::from(DOMINO), DOMINO_MASS).expect("a valid box");
+    let tilt = 10f64.to_radians();
+    let bodies = (0..8)
+        .map(|i| {
+            let x = i as f64 * DOMINO_PITCH;
+            let (position, q) = if i == 0 {
+                // Rotating by −θ about z the pivot at (x + t/2, 0): the barycenter sits at
+                // pivot + R(−θ)·(−t/2, h/2).
+                let (s, c) = tilt.sin_cos();
+                let offset =
+                    Vector3::new(-t / 2.0 * c + h / 2.0 * s, t / 2.0 * s + h / 2.0 * c, 0.0);
+                (
+                    Vector3::new(x + t / 2.0, 0.0, 0.0) + offset,
+                    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), -tilt),
+                )
+            } else {
+                (Vector3::new(x, h / 2.0, 0.0), UnitQuaternion::identity())
+            };
+            body_at(format!("domino{i}"), &body, position, q)
+        })
+        .collect();
+    world(bodies, response)
+}

@@ -1,0 +1,139 @@
+//! Bounds on the work and the memory one command may ask for, checked before it starts.
+//!
+//! A scene file or a command line can ask for any amount of work: `shot --at 1e12`, a scene
+//! with `dt = 1e-300`, `record --duration 1e7`, `study` on a scene of `duration = 1e9`. Each
+//! command turns what it is asked for into a count — steps, frames, samples, screen cells —
+//! and checks it here before it allocates or steps anything; past a bound it refuses with a
+//! one-line error naming the flag or key, the count and the limit. The bounds are far above
+//! any lesson (the longest bundled study runs 10⁵ steps) and far below what would exhaust the
+//! memory or the patience of the machine.
+//!
+//! | count | bound | who asks |
+//! |---|---|---|
+//! | steps of one run | [`MAX_STEPS`] = 10⁷ | `shot --at`, `record --duration`, the app's jump, a study's finest run |
+//! | frames of a recording | [`MAX_CAST_FRAMES`] = 108 000 (an hour at 30 fps) | `record --duration` |
+//! | samples of a study run | [`MAX_SAMPLES`] = 10⁶ | `study`, the app's `s` (duration / 0.1 s) |
+//! | bytes of a scene file | [`MAX_FILE_BYTES`] = 16 MiB | every command that reads one |
+//! | cells of a rendered screen | [`MAX_CELLS`] = 10⁶, at most [`MAX_SIDE`] a side | `--size` of `shot` and `record` |
+
+/// The largest scene file read, bytes (16 MiB: the longest bundled lesson is a few kB).
+pub const MAX_FILE_BYTES: u64 = 16 << 20;
+
+/// The most steps one run may take (the app's own jump limit is the same number).
+pub const MAX_STEPS: u64 = 10_000_000;
+
+/// The most frames a recording may hold: an hour at 30 frames per second.
+pub const MAX_CAST_FRAMES: u64 = 108_000;
+
+/// The most sample times a study run may keep.
+pub const MAX_SAMPLES: u64 = 1_000_000;
+
+/// The most character cells a rendered screen may have.
+pub const MAX_CELLS: u64 = 1_000_000;
+
+/// The longest side of a rendered screen, in cells.
+pub const MAX_SIDE: u16 = 4_000;
+
+/// A count as a float, for counts that may be astronomically large (`1e12 / 1e-300`):
+/// printed as an integer while it is one, else in scientific notation.
+fn count_text(count: f64) -> String {
+    if count < 1e15 {
+        format!("{count:.0}")
+    } else {
+        format!("{count:.1e}")
+    }
+}
+
+/// A short form of a number a user gave (no 300-digit lines): as written when short, else
+/// in scientific notation.
+pub fn short(value: f64) -> String {
+    let plain = value.to_string();
+    if plain.len() <= 12 {
+        plain
+    } else {
+        format!("{value:.3e}")
+    }
+}
+
+/// The steps needed to cover `duration` seconds at `dt` (rounded to the nearest step), or an
+/// error when they are more than [`MAX_STEPS`]. `what` names what was asked for (a flag or a
+/// key, with its value), `fix` what to do about it.
+pub fn steps(duration: f64, dt: f64, what: &str, fix: &str) -> Result<u64, String> {
+    let count = (duration / dt).round();
+    if count.is_nan() || count > MAX_STEPS as f64 {
+        return Err(format!(
+            "{what} at dt = {} s is {} steps, more than the limit of {MAX_STEPS}: {fix}",
+            short(dt),
+            if count.is_nan() {
+                "too many".to_string()
+            } else {
+                count_text(count)
+            },
+        ));
+    }
+    Ok(count.max(0.0) as u64)
+}
+
+/// A count of `unit`s (frames, samples) checked against its bound: `what` names what asked
+/// for it (a flag or a key, with its value), `fix` what to do about it.
+pub fn count(count: f64, limit: u64, what: &str, unit: &str, fix: &str) -> Result<u64, String> {
+    if count.is_nan() || count > limit as f64 {
+        return Err(format!(
+            "{what} is {} {unit}, more than the limit of {limit}: {fix}",
+            count_text(count)
+        ));
+    }
+    Ok(count.max(0.0) as u64)
+}
+
+/// A screen size checked against [`MAX_SIDE`] and [`MAX_CELLS`].
+pub fn screen(cols: u16, rows: u16) -> Result<(), String> {
+    if cols > MAX_SIDE || rows > MAX_SIDE {
+        return Err(format!(
+            "size {cols}x{rows} is larger than the limit of {MAX_SIDE} cells a side"
+        ));
+    }
+    let cells = u64::from(cols) * u64::from(rows);
+    if cells > MAX_CELLS {
+        return Err(format!(
+            "size {cols}x{rows} is {cells} cells, more than the limit of {MAX_CELLS}"
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steps_are_counted_and_bounded() {
+        // 1 s at 1 ms: 1000 steps (the nearest step).
+        assert_eq!(steps(1.0, 1e-3, "--at 1", "x"), Ok(1000));
+        // 1e12 s at 1 ms: 1e15 steps, far over 1e7.
+        let e = steps(1e12, 1e-3, "--at 1e12 s", "choose a nearer time").unwrap_err();
+        assert!(e.contains("--at 1e12 s") && e.contains("10000000"), "{e}");
+        // 1 s at 1e-300 s: 1e300 steps; the message stays short.
+        let e = steps(1.0, 1e-300, "`dt`", "x").unwrap_err();
+        assert!(e.len() < 150, "{e}");
+        // inf / inf is NaN: refused, never cast to a number of steps.
+        assert!(steps(f64::INFINITY, f64::INFINITY, "x", "y").is_err());
+    }
+
+    #[test]
+    fn counts_and_screens_are_bounded() {
+        let e = count(1e10, MAX_SAMPLES, "duration = 1e9 s", "samples", "z").unwrap_err();
+        assert!(e.contains("samples, more than the limit of 1000000"), "{e}");
+        assert_eq!(count(10.0, MAX_SAMPLES, "x", "samples", "z"), Ok(10));
+        assert!(screen(120, 40).is_ok());
+        assert!(screen(30000, 30000).is_err());
+        // 1001 × 1000 = 1 001 000 cells > 10⁶.
+        assert!(screen(1001, 1000).is_err());
+    }
+
+    #[test]
+    fn a_long_number_is_shortened() {
+        assert_eq!(short(0.001), "0.001");
+        assert_eq!(short(1e300), "1.000e300");
+    }
+}

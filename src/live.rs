@@ -1,0 +1,147 @@
+//! The values of a lesson's live numbers and predictions: the scene simulated once, from
+//! t = 0, to every time its pages quote (`{{QUANTITY@T}}`, a page's `at`, a `predict.at`).
+//!
+//! A time T is read at step `⌈T/dt⌉` (less a round-off margin), the step at which a run of the
+//! app pauses for a page at T, so a page's numbers are the ones its panels show when it stops
+//! there. Values come from the world's [`Snapshot`], like every panel; they print with the
+//! panels' formatter ([`number_plain`]) and the quantity's unit.
+
+use crate::physics::{Snapshot, World};
+use crate::scene::live::{LiveNumber, Measure, Quantity};
+use crate::scene::{Lesson, Page};
+use crate::tables::number_plain;
+use std::collections::BTreeMap;
+
+/// Most steps simulated to reach a quoted time (a time further away prints as unavailable).
+pub const MAX_STEPS: u64 = 20_000_000;
+
+/// The step a time is read at.
+pub fn step_at(t: f64, dt: f64) -> u64 {
+    (t / dt - 1e-9).ceil().max(0.0) as u64
+}
+
+/// A quoted quantity's value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    Number(f64),
+    /// The simulation diverged before that time.
+    Diverged,
+    /// More than [`MAX_STEPS`] steps away.
+    TooFar,
+}
+
+/// Every value a lesson's pages need, keyed by (step, quantity).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LiveValues {
+    values: BTreeMap<(u64, Quantity), Value>,
+    dt: f64,
+}
+
+/// Reads one quantity from a snapshot of body `q.body` (scene-wide ones from its totals).
+pub fn read(snapshot: &Snapshot, q: &Quantity) -> f64 {
+    let s = snapshot;
+    match q.measure {
+        Measure::Position(i) => s.position[i],
+        Measure::Velocity(i) => s.velocity[i],
+        Measure::AngularVelocity(i) => s.angular_velocity[i],
+        Measure::AngularMomentum(i) => s.angular_momentum[i],
+        Measure::Speed => s.velocity.norm(),
+        Measure::Kinetic => s.energy.kinetic,
+        Measure::Potential => s.energy.potential,
+        Measure::Energy => s.energy.total,
+        Measure::SceneEnergy => s.system.energy.total,
+        Measure::SceneMomentum(i) => s.system.linear_momentum[i],
+        Measure::Time => s.time,
+    }
+}
+
+impl LiveValues {
+    /// Simulates `world` (at t = 0, with the settings to quote) to every time the lesson's
+    /// pages need. A lesson without live numbers or predictions costs nothing.
+    pub fn compute(lesson: &Lesson, mut world: World) -> LiveValues {
+        let dt = world.dt();
+        let mut wanted: BTreeMap<u64, Vec<Quantity>> = BTreeMap::new();
+        for page in &lesson.pages {
+            for n in &page.live {
+                wanted
+                    .entry(step_at(n.at, dt))
+                    .or_default()
+                    .push(n.quantity.clone());
+            }
+            if let Some(p) = &page.predict {
+                wanted
+                    .entry(step_at(p.at, dt))
+                    .or_default()
+                    .push(p.quantity.clone());
+            }
+        }
+        let mut values = BTreeMap::new();
+        for (step, quantities) in wanted {
+            let value_of = |world: &World, q: &Quantity| -> Value {
+                if step > MAX_STEPS {
+                    return Value::TooFar;
+                }
+                if world.divergence().is_some() {
+                    return Value::Diverged;
+                }
+                Value::Number(read(&world.snapshot_of(q.body), q))
+            };
+            if step <= MAX_STEPS {
+                while world.step_count() < step && world.divergence().is_none() {
+                    world.step();
+                }
+            }
+            for q in quantities {
+                let v = value_of(&world, &q);
+                values.insert((step, q), v);
+            }
+        }
+        LiveValues { values, dt }
+    }
+
+    /// The value of a quantity at time t (None if the lesson does not quote it there).
+    pub fn value(&self, q: &Quantity, t: f64) -> Option<Value> {
+        self.values.get(&(step_at(t, self.dt), q.clone())).copied()
+    }
+
+    /// A live number as printed: the panels' formatter, then the unit.
+    pub fn text(&self, n: &LiveNumber) -> String {
+        text_of(self.value(&n.quantity, n.at), n.quantity.measure)
+    }
+
+    /// A page's text with its live numbers filled in.
+    pub fn page_text(&self, page: &Page) -> String {
+        crate::scene::live::fill(&page.text, &page.live, |n| self.text(n))
+    }
+
+    /// The prediction's line: `predict: cube.y at t = 1 s → 0.250000 m`.
+    pub fn prediction_line(&self, page: &Page) -> Option<String> {
+        let p = page.predict.as_ref()?;
+        Some(format!(
+            "predict: {} at t = {} s → {}",
+            p.quantity.text,
+            number_plain(p.at),
+            text_of(self.value(&p.quantity, p.at), p.quantity.measure)
+        ))
+    }
+}
+
+/// A value with its unit (or why there is none).
+pub fn text_of(value: Option<Value>, measure: Measure) -> String {
+    match value {
+        Some(Value::Number(x)) => format!("{} {}", number_plain(x), measure.unit()),
+        Some(Value::Diverged) => "(diverged before then)".to_string(),
+        Some(Value::TooFar) => format!("(more than {MAX_STEPS} steps away)"),
+        None => "(not computed)".to_string(),
+    }
+}
+
+/// The relative error of a guess against the simulated value, `|guess − value| / |value|`
+/// (the absolute error when the value is 0).
+pub fn relative_error(guess: f64, value: f64) -> f64 {
+    if value == 0.0 {
+        (guess - value).abs()
+    } else {
+        (guess - value).abs() / value.abs()
+    }
+}

@@ -1,0 +1,549 @@
+//! Ties: particles held to a body's surface (contact) or to a body's point (attach) *inside*
+//! the implicit step's linear solve — Baraff & Witkin's constraint filtering (1998, §5),
+//! extended so that the velocity a tied particle is held to may belong to a rigid body that is
+//! itself an unknown of the solve.
+//!
+//! # The filter (Baraff & Witkin §5.1–5.3)
+//!
+//! A particle constrained along k directions has `S_i = I − Σ p pᵀ` over those directions
+//! (k = 0: S = I; one contact normal n: S = I − n nᵀ; all three: S = 0) and a prescribed part
+//! z_i of its velocity change in them. The modified conjugate gradient solves
+//! `filter(A Δv) = filter(b)` for Δv with `(I − S_i) Δv_i = z_i`, filtering (multiplying by
+//! S_i) every residual and search direction, so the constrained components stay exactly
+//! z_i whatever the number of iterations. The constraint's impulse is what the filtered
+//! system left out: the residual at that particle, `λ_i = (I − S_i)(A Δv − b)_i` (the force
+//! the constraint applied over the step, times h). A contact whose λ·n would pull the particle
+//! onto the surface is released and the step solved again (§6.2's rule for cloth–solid
+//! contact: a constraint is let go when its force turns attractive).
+//!
+//! # The body's side: the body is an unknown too
+//!
+//! Here the prescribed normal velocity is the body's surface velocity at the contact point,
+//! `n·v_i = n·(V + ω × r_i) + u_i` (u_i the wanted relative normal velocity: −gap/h to arrive
+//! on the surface, e·|u₀| to bounce, 0 at rest), and V, ω are changed by the very impulses
+//! the particles take. So the body's velocity change Y = (ΔV, Δω) joins the unknowns, with its
+//! mass matrix M_b = diag(M I, I_world). A tied particle's velocity change is affine in the
+//! reduced unknowns (y_i the free part, S_i y_i = y_i):
+//!
+//! ```text
+//! Δv_i = S_i y_i + G_i Y + z_i,    G_i Y = (I − S_i)(ΔV + Δω × r_i)
+//!                                  z_i   = (I − S_i)(V + ω × r_i + u_i − v₀_i)
+//! ```
+//!
+//! i.e. Δv = T x + z with x = (y, Y). The step minimises ½ Δvᵀ A Δv − Δvᵀ b + ½ Yᵀ M_b Y −
+//! Yᵀ b_Y over that affine set, which is the symmetric positive-definite system
+//!
+//! ```text
+//! Tᵀ Ā T x = Tᵀ (b̄ − Ā z),      Ā = diag(A, M_b),   b̄ = (b + e, −Σ_i [e_i; r_i × e_i])
+//! (Tᵀ q)_i = S_i q_i,           (Tᵀ q)_Y = M_b Y + Σ_i [(I − S_i) q_i;  r_i × (I − S_i) q_i]
+//! ```
+//!
+//! (e_i an impulse from outside the constraint — sliding friction — on the particle, its
+//! opposite on the body). Its solution is backward Euler's step of sheet and body together
+//! with the contact as an equality constraint: the body's weight is carried by the springs
+//! behind the particles within the step, not a step later. Conjugate gradients run on x with
+//! the block-Jacobi preconditioner `S_i P_i⁻¹ S_i` for the particles and
+//! `(M_b + Σ_i G_iᵀ P_i G_i)⁻¹` (6 × 6) for each body. Because the constrained components are
+//! built from Y, a particle and the body's surface move together exactly, at any tolerance.
+//!
+//! **Momentum.** The impulses are internal: at the exact solution the particles' momentum
+//! changes by `Σ b_i − M ΔV` and the body's by `M ΔV`. The solve stops at a tolerance, so when
+//! nothing is pinned and every tie is to a body, the free particles (untied) get the uniform
+//! shift that makes `Σ a_i Δv_i = Σ b_i − Σ_bodies M ΔV` exactly (a translation: it changes no
+//! spring and no tie): body + sheet keep their momentum to round-off.
+//!
+//! **Friction** (Coulomb, μ): a sticking contact ties all three components (S = 0: the
+//! particle moves with the body's point); if its impulse leaves the cone, |λ_t| > μ λ_n, the
+//! caller makes it a normal tie with the bounded impulse `e = μ λ_n λ_t/|λ_t|` and solves again.
+//! **Attach** is a permanent full tie whose u_i brings the particle back to its point.
+
+#![allow(clippy::needless_range_loop)] // parallel per-particle arrays, indexed together
+
+use super::conjugate_gradient::{Symmetric3, Workspace};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+
+/// Which components of a particle's velocity a tie prescribes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TieKind {
+    /// Along the normal only (S = I − n nᵀ): a frictionless or sliding contact.
+    Normal,
+    /// All three (S = 0): a sticking contact, or an attached particle.
+    Full,
+}
+
+/// A rigid body as the tied solve sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverBody {
+    /// M, kg; 0 for a body that cannot move (then it has no unknowns).
+    pub mass: f64,
+    /// World inertia tensor about the barycenter, kg·m².
+    pub inertia: Matrix3<f64>,
+    /// V and ω after the body's own step, before the ties.
+    pub velocity: Vector3<f64>,
+    pub angular_velocity: Vector3<f64>,
+    /// Out: the change the ties made, ΔV (m/s) and Δω (rad/s).
+    pub correction: [Vector3<f64>; 2],
+}
+
+/// One particle tied to a body (or to a fixed surface when `body` is None).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tie {
+    pub particle: usize,
+    /// Index into the solve's bodies; None: a fixed surface (an obstacle).
+    pub body: Option<usize>,
+    /// The tie's point relative to the body's barycenter, m.
+    pub arm: Vector3<f64>,
+    /// Unit normal out of the body (towards the particle).
+    pub normal: Vector3<f64>,
+    pub kind: TieKind,
+    /// The particle's wanted velocity relative to the body's point (Normal: only its n part
+    /// counts), m/s.
+    pub relative: Vector3<f64>,
+    /// An impulse on the particle from outside the constraint (sliding friction), N·s; the
+    /// body takes its opposite.
+    pub extra: Vector3<f64>,
+    /// Never released (attach).
+    pub permanent: bool,
+    /// Out: the impulse the constraint gave the particle, λ (N·s), besides `extra`.
+    pub impulse: Vector3<f64>,
+}
+
+impl Tie {
+    /// (I − S) u: the tied components of u.
+    #[inline(always)]
+    fn tied(&self, u: &Vector3<f64>) -> Vector3<f64> {
+        match self.kind {
+            TieKind::Normal => self.normal * self.normal.dot(u),
+            TieKind::Full => *u,
+        }
+    }
+
+    /// S u: the free components of u.
+    #[inline(always)]
+    fn free(&self, u: &Vector3<f64>) -> Vector3<f64> {
+        u - self.tied(u)
+    }
+}
+
+/// The tied solve's extra buffers (kept in the workspace, reused from step to step).
+#[derive(Debug, Clone, Default)]
+pub struct TieBuffers {
+    /// Per particle: its tie's index, or u32::MAX.
+    tie_of: Vec<u32>,
+    inverse: Vec<Symmetric3>,
+    offset: Vec<Vector3<f64>>,
+    expanded: Vec<Vector3<f64>>,
+    full: Vec<Vector3<f64>>,
+    /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
+    body_inverse: Vec<Matrix6<f64>>,
+    body: Vec<BodyVectors>,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct BodyVectors {
+    x: Vector6<f64>,
+    r: Vector6<f64>,
+    z: Vector6<f64>,
+    rhs: Vector6<f64>,
+}
+
+impl TieBuffers {
+    pub fn heap_bytes(&self) -> usize {
+        use super::conjugate_gradient::bytes_of;
+        bytes_of(&self.tie_of, self.tie_of.capacity())
+            + bytes_of(&self.inverse, self.inverse.capacity())
+            + bytes_of(&self.offset, self.offset.capacity())
+            + bytes_of(&self.expanded, self.expanded.capacity())
+            + bytes_of(&self.full, self.full.capacity())
+            + bytes_of(&self.body_inverse, self.body_inverse.capacity())
+            + bytes_of(&self.body, self.body.capacity())
+    }
+}
+
+/// [ΔV; Δω] ↦ ΔV + Δω × r.
+#[inline(always)]
+fn point(y: &Vector6<f64>, r: &Vector3<f64>) -> Vector3<f64> {
+    let (v, w) = (y.fixed_rows::<3>(0), y.fixed_rows::<3>(3));
+    Vector3::new(v[0], v[1], v[2]) + Vector3::new(w[0], w[1], w[2]).cross(r)
+}
+
+/// u ↦ [u; r × u] (the transpose of `point`).
+#[inline(always)]
+fn wrench(u: &Vector3<f64>, r: &Vector3<f64>) -> Vector6<f64> {
+    let t = r.cross(u);
+    Vector6::new(u.x, u.y, u.z, t.x, t.y, t.z)
+}
+
+/// M_b Y.
+#[inline(always)]
+fn body_mass(b: &SolverBody, y: &Vector6<f64>) -> Vector6<f64> {
+    let w = b.inertia * Vector3::new(y[3], y[4], y[5]);
+    Vector6::new(b.mass * y[0], b.mass * y[1], b.mass * y[2], w.x, w.y, w.z)
+}
+
+impl Workspace {
+    /// Solves the tied system of the module doc. Before: `blocks`, `diagonal`, `rhs` and the
+    /// (uninverted) `preconditioner` as the spring pass left them, `pinned` listed; `v0` the
+    /// velocities at the start of the step. After: `solution` holds Δv of every particle
+    /// (0 where pinned), each tie its impulse, each body its correction.
+    pub fn solve_tied(
+        &mut self,
+        ties: &mut [Tie],
+        bodies: &mut [SolverBody],
+        v0: &[Vector3<f64>],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> super::conjugate_gradient::Outcome {
+        let n = self.rhs.len();
+        let mut t = std::mem::take(&mut self.ties);
+        t.tie_of.clear();
+        t.tie_of.resize(n, u32::MAX);
+        for (k, tie) in ties.iter().enumerate() {
+            t.tie_of[tie.particle] = k as u32;
+        }
+        let pinned = std::mem::take(&mut self.pinned);
+        let mut is_pinned = vec![false; 0];
+        is_pinned.resize(n, false);
+        for &i in &pinned {
+            is_pinned[i as usize] = true;
+        }
+        // Body terms are only for bodies that can move.
+        let moves = |tie: &Tie| tie.body.is_some_and(|b| bodies[b].mass > 0.0);
+        // z: the prescribed part (module doc).
+        t.offset.clear();
+        t.offset.resize(n, Vector3::zeros());
+        for tie in ties.iter() {
+            let i = tie.particle;
+            let surface = tie.body.map_or(Vector3::zeros(), |b| {
+                bodies[b].velocity + bodies[b].angular_velocity.cross(&tie.arm)
+            });
+            t.offset[i] = tie.tied(&(surface + tie.relative - v0[i]));
+        }
+        // Preconditioners: S P⁻¹ S for the particles, the bodies' 6 × 6.
+        t.inverse.clear();
+        t.inverse
+            .extend(self.preconditioner.iter().map(Symmetric3::inverse));
+        for &i in &pinned {
+            t.inverse[i as usize] = Symmetric3::default();
+        }
+        t.body.clear();
+        t.body.resize(bodies.len(), BodyVectors::default());
+        let mut body_blocks: Vec<Matrix6<f64>> = bodies
+            .iter()
+            .map(|b| {
+                let mut m = Matrix6::zeros();
+                for k in 0..3 {
+                    m[(k, k)] = b.mass;
+                }
+                m.fixed_view_mut::<3, 3>(3, 3).copy_from(&b.inertia);
+                m
+            })
+            .collect();
+        for tie in ties.iter() {
+            let i = tie.particle;
+            let p = &self.preconditioner[i];
+            let [a, e, f, b, c, d] = p.0;
+            let full = Matrix3::new(a, b, c, b, e, d, c, d, f);
+            let projector = match tie.kind {
+                TieKind::Normal => tie.normal * tie.normal.transpose(),
+                TieKind::Full => Matrix3::identity(),
+            };
+            let free = Matrix3::identity() - projector;
+            let inv = t.inverse[i].0;
+            let inv_full = Matrix3::new(
+                inv[0], inv[3], inv[4], inv[3], inv[1], inv[5], inv[4], inv[5], inv[2],
+            );
+            let filtered = free * inv_full * free;
+            t.inverse[i] = Symmetric3([
+                filtered[(0, 0)],
+                filtered[(1, 1)],
+                filtered[(2, 2)],
+                filtered[(0, 1)],
+                filtered[(0, 2)],
+                filtered[(1, 2)],
+            ]);
+            if moves(tie) {
+                // G = (I − S) [I, −[r]×]
+                let r = tie.arm;
+                let cross = Matrix3::new(0.0, -r.z, r.y, r.z, 0.0, -r.x, -r.y, r.x, 0.0);
+                let mut g = nalgebra::Matrix3x6::zeros();
+                g.fixed_view_mut::<3, 3>(0, 0).copy_from(&projector);
+                g.fixed_view_mut::<3, 3>(0, 3)
+                    .copy_from(&(-(projector * cross)));
+                body_blocks[tie.body.unwrap()] += g.transpose() * full * g;
+            }
+        }
+        t.body_inverse.clear();
+        t.body_inverse
+            .extend(body_blocks.iter().zip(bodies.iter()).map(|(m, b)| {
+                if b.mass > 0.0 {
+                    m.try_inverse().unwrap_or_else(Matrix6::zeros)
+                } else {
+                    Matrix6::zeros()
+                }
+            }));
+        // Reduced right-hand side: Tᵀ(b̄ − Ā z).
+        Self::multiply_plain(&self.blocks, &self.diagonal, &t.offset, &mut t.full);
+        for i in 0..n {
+            let k = t.tie_of[i];
+            let mut r = self.rhs[i] - t.full[i];
+            if k != u32::MAX {
+                let tie = &ties[k as usize];
+                r += tie.extra;
+                if moves(tie) {
+                    let b = tie.body.unwrap();
+                    t.body[b].rhs += wrench(&tie.tied(&r), &tie.arm) - wrench(&tie.extra, &tie.arm);
+                }
+                r = tie.free(&r);
+            }
+            if is_pinned[i] {
+                r = Vector3::zeros();
+            }
+            self.residual[i] = r;
+        }
+        // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
+        let mut delta0 = 0.0;
+        for i in 0..n {
+            delta0 += self.residual[i].dot(&t.inverse[i].apply(&self.residual[i]));
+        }
+        for (bv, inv) in t.body.iter().zip(&t.body_inverse) {
+            delta0 += bv.rhs.dot(&(inv * bv.rhs));
+        }
+        for i in 0..n {
+            let k = t.tie_of[i];
+            if is_pinned[i] {
+                self.solution[i] = Vector3::zeros();
+            } else if k != u32::MAX {
+                self.solution[i] = ties[k as usize].free(&self.solution[i]);
+            }
+        }
+        // Bodies start from 0 (their correction is a fresh impulse every step).
+        let mut outcome = super::conjugate_gradient::Outcome {
+            iterations: 0,
+            relative_residual: 0.0,
+        };
+        if delta0.is_finite() && delta0 > 0.0 {
+            // r = rhs − (Tᵀ Ā T) x
+            let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            let solution = std::mem::take(&mut self.solution);
+            let mut product = std::mem::take(&mut self.product);
+            self.multiply_reduced(
+                &mut t,
+                ties,
+                bodies,
+                &is_pinned,
+                &solution,
+                &x_body,
+                &mut product,
+                &mut q_body,
+            );
+            self.solution = solution;
+            let mut delta = 0.0;
+            for i in 0..n {
+                self.residual[i] -= product[i];
+                self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
+                delta += self.residual[i].dot(&self.preconditioned[i]);
+            }
+            for (b, bv) in t.body.iter_mut().enumerate() {
+                bv.r = bv.rhs - q_body[b];
+                bv.z = t.body_inverse[b] * bv.r;
+                delta += bv.r.dot(&bv.z);
+            }
+            if delta > delta0 {
+                // A warm start worse than zero: start from zero.
+                self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
+                delta = 0.0;
+                for i in 0..n {
+                    self.residual[i] += product[i];
+                    self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
+                    delta += self.residual[i].dot(&self.preconditioned[i]);
+                }
+                for (b, bv) in t.body.iter_mut().enumerate() {
+                    bv.r = bv.rhs;
+                    bv.z = t.body_inverse[b] * bv.r;
+                    delta += bv.r.dot(&bv.z);
+                }
+                let _ = &x_body;
+            }
+            self.direction.clone_from(&self.preconditioned);
+            let target = tolerance * tolerance * delta0;
+            let mut iterations = 0;
+            let mut direction_body: Vec<Vector6<f64>> = t.body.iter().map(|b| b.z).collect();
+            while delta > target && iterations < max_iterations {
+                let direction = std::mem::take(&mut self.direction);
+                self.multiply_reduced(
+                    &mut t,
+                    ties,
+                    bodies,
+                    &is_pinned,
+                    &direction,
+                    &direction_body,
+                    &mut product,
+                    &mut q_body,
+                );
+                self.direction = direction;
+                let mut curvature: f64 = (0..n).map(|i| self.direction[i].dot(&product[i])).sum();
+                for (b, q) in q_body.iter().enumerate() {
+                    curvature += direction_body[b].dot(q);
+                }
+                if curvature.is_nan() || curvature <= 0.0 {
+                    break;
+                }
+                let alpha = delta / curvature;
+                let mut next = 0.0;
+                for i in 0..n {
+                    self.solution[i] += self.direction[i] * alpha;
+                    self.residual[i] -= product[i] * alpha;
+                    self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
+                    next += self.residual[i].dot(&self.preconditioned[i]);
+                }
+                for (b, bv) in t.body.iter_mut().enumerate() {
+                    x_body[b] += direction_body[b] * alpha;
+                    bv.r -= q_body[b] * alpha;
+                    bv.z = t.body_inverse[b] * bv.r;
+                    next += bv.r.dot(&bv.z);
+                }
+                let beta = next / delta;
+                for i in 0..n {
+                    self.direction[i] = self.preconditioned[i] + self.direction[i] * beta;
+                }
+                for (b, bv) in t.body.iter().enumerate() {
+                    direction_body[b] = bv.z + direction_body[b] * beta;
+                }
+                delta = next;
+                iterations += 1;
+            }
+            self.product = product;
+            for (bv, x) in t.body.iter_mut().zip(&x_body) {
+                bv.x = *x;
+            }
+            outcome = super::conjugate_gradient::Outcome {
+                iterations,
+                relative_residual: (delta / delta0).max(0.0).sqrt(),
+            };
+        }
+        // Δv = T x + z (the warm start of the next step keeps the free parts).
+        for (i, dv) in self.solution.iter_mut().enumerate() {
+            let k = t.tie_of[i];
+            if k != u32::MAX {
+                let tie = &ties[k as usize];
+                let mut tied = t.offset[i];
+                if moves(tie) {
+                    tied += tie.tied(&point(&t.body[tie.body.unwrap()].x, &tie.arm));
+                }
+                *dv = tie.free(dv) + tied;
+            }
+        }
+        // Momentum (module doc): with nothing pinned and every tie to a moving body, the
+        // untied particles take the uniform shift that closes Σ a Δv = Σ b − Σ M ΔV.
+        if pinned.is_empty() && ties.iter().all(moves) {
+            let mut gap = Vector3::zeros();
+            let mut free_mass = 0.0;
+            for i in 0..n {
+                gap += self.rhs[i] - self.solution[i] * self.diagonal[i];
+                if t.tie_of[i] == u32::MAX {
+                    free_mass += self.diagonal[i];
+                }
+            }
+            for (b, bv) in bodies.iter().zip(&t.body) {
+                gap -= Vector3::new(bv.x[0], bv.x[1], bv.x[2]) * b.mass;
+            }
+            if free_mass > 0.0 {
+                let shift = gap / free_mass;
+                for i in 0..n {
+                    if t.tie_of[i] == u32::MAX {
+                        self.solution[i] += shift;
+                    }
+                }
+            }
+        }
+        // λ_i = (I − S_i)(A Δv − b − e)_i.
+        Self::multiply_plain(&self.blocks, &self.diagonal, &self.solution, &mut t.full);
+        for tie in ties.iter_mut() {
+            let i = tie.particle;
+            tie.impulse = tie.tied(&(t.full[i] - self.rhs[i] - tie.extra));
+        }
+        for (b, bv) in bodies.iter_mut().zip(&t.body) {
+            if b.mass > 0.0 {
+                b.correction = [
+                    Vector3::new(bv.x[0], bv.x[1], bv.x[2]),
+                    Vector3::new(bv.x[3], bv.x[4], bv.x[5]),
+                ];
+            } else {
+                b.correction = [Vector3::zeros(); 2];
+            }
+        }
+        self.pinned = pinned;
+        self.ties = t;
+        outcome
+    }
+
+    /// out = A p, no filter.
+    fn multiply_plain(
+        blocks: &[super::conjugate_gradient::Block],
+        diagonal: &[f64],
+        p: &[Vector3<f64>],
+        out: &mut Vec<Vector3<f64>>,
+    ) {
+        out.clear();
+        out.extend(p.iter().zip(diagonal).map(|(p, &a)| p * a));
+        for b in blocks {
+            let (i, j) = (b.i as usize, b.j as usize);
+            let y = b.apply(&(p[i] - p[j]));
+            out[i] += y;
+            out[j] -= y;
+        }
+    }
+
+    /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc).
+    #[allow(clippy::too_many_arguments)]
+    fn multiply_reduced(
+        &self,
+        t: &mut TieBuffers,
+        ties: &[Tie],
+        bodies: &[SolverBody],
+        is_pinned: &[bool],
+        p: &[Vector3<f64>],
+        p_body: &[Vector6<f64>],
+        out: &mut [Vector3<f64>],
+        out_body: &mut [Vector6<f64>],
+    ) {
+        let n = p.len();
+        t.expanded.clear();
+        t.expanded.extend_from_slice(p);
+        for tie in ties {
+            let i = tie.particle;
+            let mut w = tie.free(&p[i]);
+            if let Some(b) = tie.body.filter(|&b| bodies[b].mass > 0.0) {
+                w += tie.tied(&point(&p_body[b], &tie.arm));
+            }
+            t.expanded[i] = w;
+        }
+        for i in 0..n {
+            if is_pinned[i] {
+                t.expanded[i] = Vector3::zeros();
+            }
+        }
+        let expanded = std::mem::take(&mut t.expanded);
+        Self::multiply_plain(&self.blocks, &self.diagonal, &expanded, &mut t.full);
+        t.expanded = expanded;
+        for (b, o) in out_body.iter_mut().enumerate() {
+            *o = body_mass(&bodies[b], &p_body[b]);
+        }
+        for i in 0..n {
+            out[i] = if is_pinned[i] {
+                Vector3::zeros()
+            } else {
+                t.full[i]
+            };
+        }
+        for tie in ties {
+            let i = tie.particle;
+            if let Some(b) = tie.body.filter(|&b| bodies[b].mass > 0.0) {
+                out_body[b] += wrench(&tie.tied(&t.full[i]), &tie.arm);
+            }
+            out[i] = tie.free(&t.full[i]);
+        }
+    }
+}

@@ -1,0 +1,629 @@
+//! `soft-step`: sub-stepped soft contacts with a relax pass, in the manner of Box2D v3
+//! (Catto, "Solver2D", 2024). Fast and approximate: contacts are stiff springs, not rigid
+//! walls, so a stack sags by a known amount; `impulse` is the converged, rigid response.
+//!
+//! # The step
+//!
+//! Contacts are found once per step (the same rows as `impulse`, at the poses the integrate
+//! phase reached). Every body in a contact is then taken back to the start of the step and
+//! advanced again in `n` sub-steps of `h = dt/n` (`substeps`), its external velocity change
+//! over the step (`Δv = v_free − v₀`, `ΔL = L_free − L₀`: gravity, drag, from the integrator)
+//! spread evenly over them:
+//!
+//! ```text
+//! per sub-step:  v += Δv/n, L += ΔL/n            (ω = I₀⁻¹ L, I₀⁻¹ the start pose's)
+//!                warm start: apply every row's accumulated impulse
+//!                solve, biased and soft (one sweep)
+//!                x += h v,  q ← normalise(q + ½ h ω q)
+//!                relax: solve again, unbiased and rigid (one sweep)
+//! then once:     restitution, store impulses (warm start of the next step)
+//! ```
+//!
+//! No detection inside the sub-steps: a row's separation follows its bodies,
+//! `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`, with Δx and D the body's
+//! translation and rotation since the detection pose, s₀ = −depth there.
+//!
+//! # One soft row
+//!
+//! A normal row with effective mass `m = 1/k` (`k` as in `impulse`), velocity `u` and
+//! separation `s < 0` takes the update
+//!
+//! ```text
+//! Δλ = −m·mass_scale·(u + bias_rate·s) − impulse_scale·λ,   λ ← max(0, λ + Δλ)
+//! ω_c = 2π·hertz,  a₁ = 2ζ + h ω_c,  a₂ = h ω_c a₁,  a₃ = 1/(1 + a₂)
+//! bias_rate = ω_c/a₁,  mass_scale = a₂ a₃,  impulse_scale = a₃
+//! ```
+//!
+//! which is one implicit (backward-Euler) step of a damped spring of stiffness `m ω_c²` and
+//! damping ratio ζ (`damping_ratio`) acting on the row: the softness is fixed in hertz, not by
+//! the iteration count. The bias (push-out) speed is capped at [`MAX_PUSH`]. A speculative row
+//! (`s > 0`) takes the rigid update with bias `s/h`: it may close its gap within the sub-step,
+//! no more. The relax sweep uses bias 0, `mass_scale = 1`, `impulse_scale = 0`: it removes the
+//! velocity the push-out added, so the push-out moves positions without feeding kinetic energy.
+//! A row against an obstacle (or a body of zero inverse mass) uses twice the frequency
+//! (Box2D's "static softness"). Friction: two tangent rows, the accumulated tangent impulse
+//! kept in the disk `|λ_t| ≤ μ λ`. The frequency is capped at a quarter of the sub-step rate,
+//! `hertz ≤ n/(4 dt)`: stiffer than that, one sweep per sub-step cannot follow it.
+//!
+//! # The sag it accepts
+//!
+//! At rest a sub-step's warm start cancels gravity's velocity increment exactly, so `u = 0`
+//! and the solve leaves λ unchanged: `m·mass_scale·bias_rate·s = −impulse_scale·λ`, i.e.
+//! `λ = −m·h·ω_c²·s` (`mass_scale·bias_rate/impulse_scale = h ω_c²`). λ per sub-step carries
+//! the load W over h, `λ = W h`, so `s = −W/(m ω_c²)`: each point is a spring of stiffness
+//! `m ω_c²`. For cube on cube (side 2a, mass M, I = ⅔ M a², corner r = (±a, −a, ±a), n = y):
+//! `|r×n|² = 2a²`, so `k = 2·(1/M + 2a²/(⅔ M a²)) = 8/M` and m = M/8 per corner; the four
+//! corners of a face, in parallel, are a spring of `M ω_c²/2`. The face under i cubes sags
+//! `2 i g/ω_c²`; the ground face under N cubes (m = M/4 per corner, static frequency 2ω_c)
+//! sags `N g/(4 ω_c²)`. The top of a stack of N sinks
+//!
+//! ```text
+//! Σ_{i=1}^{N−1} 2 i g/ω_c² + N g/(4 ω_c²) = N(N−1) g/ω_c² + N g/(4 ω_c²)
+//! ```
+//!
+//! At the default 60 Hz: 0.015 mm (N = 1), 0.23 mm (3), 6.3 mm (10); a test checks it.
+//!
+//! # Energy
+//!
+//! The relax sweep takes back the push-out's velocity and ζ = 10 damps the springs, so the
+//! contacts take energy out; what they can add is the work of lifting a body out of
+//! penetration against gravity. Two guards make that the only gain: the kinetic energy after
+//! the response is never above the free flight's (P and L of the bodies in contact are scaled by
+//! `√(K_free/K)` if it is), and restitution is Poisson's `e·λ` at most, so a step gains at most
+//! `Σ M |g|·Δy` where Δy is how much higher than its free flight the contacts left a body.
+//! Over a run the total energy stays below `E(0) + Σ M|g|·d_max`, d_max the deepest
+//! penetration reached (a test).
+
+use super::contacts;
+use super::impulse::{tangents, BOUNCE_STEPS};
+use super::warm::WarmCache;
+use super::{CollideInput, Contact, EnergyChange};
+use crate::physics::derive::derive;
+use crate::physics::energy::{kinetic_energy_with, Energy};
+use crate::physics::state::{Orientation, State};
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use std::hash::{Hash, Hasher};
+
+/// The highest push-out speed a soft row may ask for, m/s (Box2D's `contactPushMaxVelocity`).
+pub const MAX_PUSH: f64 = 3.0;
+
+/// Most sub-steps a scene may ask for.
+pub const MAX_SUBSTEPS: u32 = 64;
+
+/// The `soft-step` parameters (`contact = { response = "soft-step", hertz, damping_ratio,
+/// substeps }`).
+#[derive(Debug, Clone, Copy)]
+pub struct SoftStep {
+    /// Contact frequency f, Hz (ω_c = 2π f), > 0; capped at `substeps/(4 dt)`.
+    pub hertz: f64,
+    /// Damping ratio ζ of the contact spring, ≥ 0.
+    pub damping_ratio: f64,
+    /// Sub-steps per step, 1 ..= [`MAX_SUBSTEPS`].
+    pub substeps: u32,
+}
+
+impl SoftStep {
+    /// The documented defaults: 60 Hz, ζ = 10 (Box2D's contact damping ratio), 4 sub-steps
+    /// (Box2D's count). Box2D and Rapier use 30 Hz at 60 steps/s; at dt = 1e-3 twice that
+    /// costs nothing and quarters the sag.
+    pub const DEFAULT: SoftStep = SoftStep {
+        hertz: 60.0,
+        damping_ratio: 10.0,
+        substeps: 4,
+    };
+
+    /// The frequency used at time step dt: `hertz`, capped at a quarter of the sub-step rate.
+    pub fn hertz_at(&self, dt: f64) -> f64 {
+        self.hertz.min(0.25 * self.substeps as f64 / dt)
+    }
+
+    /// The sag the module doc derives for the top of a stack of `count` cubes under gravity g,
+    /// at time step dt, m: `N(N−1) g/ω_c² + N g/(4 ω_c²)`.
+    pub fn stack_sag(&self, count: usize, g: f64, dt: f64) -> f64 {
+        let omega = 2.0 * std::f64::consts::PI * self.hertz_at(dt);
+        let n = count as f64;
+        (n * (n - 1.0) + n / 4.0) * g / (omega * omega)
+    }
+}
+
+impl Default for SoftStep {
+    fn default() -> Self {
+        SoftStep::DEFAULT
+    }
+}
+
+impl PartialEq for SoftStep {
+    fn eq(&self, other: &Self) -> bool {
+        self.hertz.to_bits() == other.hertz.to_bits()
+            && self.damping_ratio.to_bits() == other.damping_ratio.to_bits()
+            && self.substeps == other.substeps
+    }
+}
+
+impl Eq for SoftStep {}
+
+impl Hash for SoftStep {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.hertz.to_bits().hash(state);
+        self.damping_ratio.to_bits().hash(state);
+        self.substeps.hash(state);
+    }
+}
+
+/// The three coefficients of one soft row at sub-step h (module doc).
+#[derive(Debug, Clone, Copy, Default)]
+struct Softness {
+    bias_rate: f64,
+    mass_scale: f64,
+    impulse_scale: f64,
+}
+
+impl Softness {
+    fn new(hertz: f64, zeta: f64, h: f64) -> Softness {
+        let omega = 2.0 * std::f64::consts::PI * hertz;
+        let a1 = 2.0 * zeta + h * omega;
+        let a2 = h * omega * a1;
+        let a3 = 1.0 / (1.0 + a2);
+        Softness {
+            bias_rate: omega / a1,
+            mass_scale: a2 * a3,
+            impulse_scale: a3,
+        }
+    }
+}
+
+/// A body as the sub-steps see it.
+#[derive(Debug, Clone, Copy)]
+struct SolverBody {
+    v: Vector3<f64>,
+    omega: Vector3<f64>,
+    l: Vector3<f64>,
+    inv_mass: f64,
+    /// I⁻¹ (world) of the start pose, kept over the step.
+    inv_inertia: Matrix3<f64>,
+    position: Vector3<f64>,
+    q: UnitQuaternion<f64>,
+    /// The detection pose.
+    detected_position: Vector3<f64>,
+    detected_inverse: UnitQuaternion<f64>,
+    /// Rotation since the detection pose, minus 𝟙.
+    turned: Matrix3<f64>,
+    /// The external velocity change per sub-step.
+    dv: Vector3<f64>,
+    dl: Vector3<f64>,
+}
+
+/// One end of a row direction: body, r × d, I⁻¹(r × d).
+#[derive(Debug, Clone, Copy)]
+struct End {
+    body: usize,
+    rd: Vector3<f64>,
+    w: Vector3<f64>,
+}
+
+/// A direction d at a contact (+d on A, −d on B) and its effective mass 1/k.
+#[derive(Debug, Clone, Copy)]
+struct Axis {
+    d: Vector3<f64>,
+    a: End,
+    b: Option<End>,
+    mass: f64,
+    k: f64,
+}
+
+impl Axis {
+    fn new(d: Vector3<f64>, c: &Contact, b: Option<usize>, bodies: &[SolverBody]) -> Axis {
+        let end = |body: usize, lever: &Vector3<f64>, d: Vector3<f64>| {
+            let s = &bodies[body];
+            let rd = lever.cross(&d);
+            let w = s.inv_inertia * rd;
+            (End { body, rd, w }, s.inv_mass + rd.dot(&w))
+        };
+        let (a, mut k) = end(c.body, &c.lever, d);
+        let b = b.map(|b| {
+            let (e, kb) = end(b, &c.lever_other, -d);
+            k += kb;
+            e
+        });
+        Axis {
+            d,
+            a,
+            b,
+            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
+            k,
+        }
+    }
+
+    #[inline]
+    fn velocity(&self, bodies: &[SolverBody]) -> f64 {
+        let a = &bodies[self.a.body];
+        let mut u = self.d.dot(&a.v) + self.a.rd.dot(&a.omega);
+        if let Some(b) = &self.b {
+            let s = &bodies[b.body];
+            u += -self.d.dot(&s.v) + b.rd.dot(&s.omega);
+        }
+        u
+    }
+
+    #[inline]
+    fn apply(&self, j: f64, bodies: &mut [SolverBody]) {
+        let a = &mut bodies[self.a.body];
+        a.v += self.d * (j * a.inv_mass);
+        a.l += self.a.rd * j;
+        a.omega += self.a.w * j;
+        if let Some(b) = &self.b {
+            let s = &mut bodies[b.body];
+            s.v -= self.d * (j * s.inv_mass);
+            s.l += b.rd * j;
+            s.omega += b.w * j;
+        }
+    }
+}
+
+/// One contact as the sub-steps see it.
+#[derive(Debug, Clone, Copy)]
+struct Row {
+    normal: Axis,
+    tangents: [Axis; 2],
+    lever: Vector3<f64>,
+    lever_other: Vector3<f64>,
+    /// Separation at the detection pose, m.
+    separation: f64,
+    /// Normal velocity before the response, m/s.
+    approach: f64,
+    soft: Softness,
+    lambda: f64,
+    lambda_tangent: [f64; 2],
+    max_lambda: f64,
+    /// Every impulse applied over the step (N·s, on A).
+    total: Vector3<f64>,
+}
+
+impl Row {
+    /// The separation at the bodies' current poses.
+    #[inline]
+    fn separation_now(&self, bodies: &[SolverBody]) -> f64 {
+        let a = &bodies[self.normal.a.body];
+        let mut d = a.position - a.detected_position + a.turned * self.lever;
+        if let Some(b) = &self.normal.b {
+            let s = &bodies[b.body];
+            d -= s.position - s.detected_position + s.turned * self.lever_other;
+        }
+        self.separation + self.normal.d.dot(&d)
+    }
+}
+
+/// Buffers reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    rows: Vec<Row>,
+    bodies: Vec<SolverBody>,
+    /// Index of each world body among the solver bodies (usize::MAX: not in contact).
+    slot: Vec<usize>,
+    members: Vec<usize>,
+    points: Vec<super::geometry::ContactPoint>,
+    /// Last step's per-sub-step impulses, by contact feature.
+    warm: WarmCache,
+}
+
+/// Detects contacts and runs the sub-stepped soft response on `states` (module doc). Returns
+/// the energy of all bodies before and after (None when nothing touched).
+pub fn respond(
+    input: &CollideInput,
+    params: &SoftStep,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> Option<EnergyChange> {
+    let dt = input.dt;
+    let n = params.substeps.max(1);
+    let h = dt / n as f64;
+    let bounce_speed = input.gravity.map_or(0.0, |g| BOUNCE_STEPS * g.norm() * dt);
+    // Speculative rows: anything a body could reach within the step at the bounce speed,
+    // and at least a millimetre (the rows' separations are tracked within the step).
+    let margin = (bounce_speed * dt).max(1e-3);
+    if !contacts::find(input, states, margin, contacts, &mut scratch.points) {
+        contacts.clear();
+        scratch.warm.clear();
+        return None;
+    }
+    let potential = |i: usize, x: &Vector3<f64>| {
+        input
+            .gravity
+            .map_or(0.0, |g| -input.bodies[i].mass * g.dot(x))
+    };
+    let total = |states: &[State]| {
+        let mut e = Energy::default();
+        for (i, s) in states.iter().enumerate() {
+            let k = kinetic_energy_with(
+                &input.bodies[i],
+                &derive(&input.bodies[i], s).inv_inertia_world,
+                &s.linear_momentum,
+                &s.angular_momentum,
+            );
+            let v = potential(i, &s.position);
+            e = e + Energy {
+                kinetic: k,
+                potential: v,
+                total: k + v,
+            };
+        }
+        e
+    };
+    let before = total(states);
+
+    // The bodies in contact, as solver bodies at the start of the step.
+    let Scratch {
+        rows,
+        bodies,
+        slot,
+        members,
+        warm,
+        ..
+    } = scratch;
+    slot.clear();
+    slot.resize(states.len(), usize::MAX);
+    members.clear();
+    bodies.clear();
+    let inv = n as f64;
+    for c in contacts.iter() {
+        for b in std::iter::once(c.body).chain(c.other_body()) {
+            if slot[b] != usize::MAX {
+                continue;
+            }
+            slot[b] = bodies.len();
+            members.push(b);
+            let body = &input.bodies[b];
+            let start = &input.before[b];
+            let free = &states[b];
+            let k0 = derive(body, start);
+            let q_free = free.orientation.quaternion();
+            bodies.push(SolverBody {
+                v: start.linear_momentum * body.inv_mass,
+                omega: k0.angular_velocity,
+                l: start.angular_momentum,
+                inv_mass: body.inv_mass,
+                inv_inertia: k0.inv_inertia_world,
+                position: start.position,
+                q: start.orientation.quaternion(),
+                detected_position: free.position,
+                detected_inverse: q_free.inverse(),
+                turned: Matrix3::zeros(),
+                dv: (free.linear_momentum - start.linear_momentum) * body.inv_mass / inv,
+                dl: (free.angular_momentum - start.angular_momentum) / inv,
+            });
+        }
+    }
+    let kinetic_free: f64 = members
+        .iter()
+        .map(|&b| {
+            let s = &states[b];
+            kinetic_energy_with(
+                &input.bodies[b],
+                &derive(&input.bodies[b], s).inv_inertia_world,
+                &s.linear_momentum,
+                &s.angular_momentum,
+            )
+        })
+        .sum();
+    for s in bodies.iter_mut() {
+        s.turned = turned(s);
+    }
+
+    let hertz = params.hertz_at(dt);
+    let dynamic = Softness::new(hertz, params.damping_ratio, h);
+    let fixed = Softness::new(2.0 * hertz, params.damping_ratio, h);
+    let friction = input.model.friction;
+    rows.clear();
+    for c in contacts.iter_mut() {
+        // Levers as solver-body indices.
+        let b = c.other_body().map(|b| slot[b]);
+        let a = slot[c.body];
+        let local = Contact { body: a, ..*c };
+        let normal = Axis::new(c.normal, &local, b, bodies);
+        let (t1, t2) = tangents(&c.normal);
+        let tangents = [
+            Axis::new(t1, &local, b, bodies),
+            Axis::new(t2, &local, b, bodies),
+        ];
+        let against_fixed = b.is_none_or(|b| bodies[b].inv_mass == 0.0);
+        // The last step's per-sub-step impulse at the same feature and point.
+        let w = warm.find(c).unwrap_or_else(Vector3::zeros);
+        let lambda = w.dot(&c.normal).max(0.0);
+        let mut lambda_tangent = [w.dot(&t1), w.dot(&t2)];
+        clamp_disk(&mut lambda_tangent, friction * lambda);
+        rows.push(Row {
+            normal,
+            tangents,
+            lever: c.lever,
+            lever_other: c.lever_other,
+            separation: -c.depth,
+            approach: normal.velocity(bodies),
+            soft: if against_fixed { fixed } else { dynamic },
+            lambda,
+            lambda_tangent,
+            max_lambda: 0.0,
+            total: Vector3::zeros(),
+        });
+        c.denominator = normal.k;
+    }
+    // The approach is measured at the free flight's velocities (what the contact meets).
+    for (row, c) in rows.iter_mut().zip(contacts.iter()) {
+        let a = &states[c.body];
+        let ia = derive(&input.bodies[c.body], a);
+        let mut u =
+            a.linear_momentum * input.bodies[c.body].inv_mass + ia.angular_velocity.cross(&c.lever);
+        if let Some(b) = c.other_body() {
+            let s = &states[b];
+            let ib = derive(&input.bodies[b], s);
+            u -= s.linear_momentum * input.bodies[b].inv_mass
+                + ib.angular_velocity.cross(&c.lever_other);
+        }
+        row.approach = u.dot(&c.normal);
+    }
+
+    for _ in 0..n {
+        for s in bodies.iter_mut() {
+            s.v += s.dv;
+            s.l += s.dl;
+            s.omega += s.inv_inertia * s.dl;
+        }
+        for row in rows.iter_mut() {
+            let [t1, t2] = &row.tangents;
+            row.normal.apply(row.lambda, bodies);
+            t1.apply(row.lambda_tangent[0], bodies);
+            t2.apply(row.lambda_tangent[1], bodies);
+            row.total += row.normal.d * row.lambda
+                + t1.d * row.lambda_tangent[0]
+                + t2.d * row.lambda_tangent[1];
+        }
+        sweep(rows, bodies, friction, h, true);
+        for s in bodies.iter_mut() {
+            s.position += s.v * h;
+            let w = s.omega * (0.5 * h);
+            let dq = Quaternion::new(0.0, w.x, w.y, w.z) * s.q.into_inner();
+            s.q = UnitQuaternion::new_normalize(s.q.into_inner() + dq);
+            s.turned = turned(s);
+        }
+        sweep(rows, bodies, friction, h, false);
+    }
+    // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
+    let restitution = input.model.restitution;
+    if restitution > 0.0 {
+        for row in rows.iter_mut() {
+            if row.approach >= -bounce_speed || row.max_lambda == 0.0 {
+                continue;
+            }
+            let u = row.normal.velocity(bodies);
+            let j = -row.normal.mass * (u + restitution * row.approach);
+            let new = (row.lambda + j).max(0.0);
+            let change = new - row.lambda;
+            row.lambda = new;
+            row.normal.apply(change, bodies);
+            row.total += row.normal.d * change;
+        }
+    }
+
+    // Back into the states, the kinetic energy capped at the free flight's.
+    for (&b, s) in members.iter().zip(bodies.iter()) {
+        if s.inv_mass == 0.0 {
+            continue; // a fixed body does not move
+        }
+        let state = &mut states[b];
+        state.position = s.position;
+        state.orientation = match state.orientation {
+            Orientation::Matrix(_) => Orientation::Matrix(s.q.to_rotation_matrix().into_inner()),
+            Orientation::Quaternion(_) => Orientation::Quaternion(s.q),
+        };
+        state.linear_momentum = s.v * input.bodies[b].mass;
+        state.angular_momentum = s.l;
+    }
+    let kinetic_of = |states: &[State]| -> f64 {
+        members
+            .iter()
+            .map(|&b| {
+                let s = &states[b];
+                kinetic_energy_with(
+                    &input.bodies[b],
+                    &derive(&input.bodies[b], s).inv_inertia_world,
+                    &s.linear_momentum,
+                    &s.angular_momentum,
+                )
+            })
+            .sum()
+    };
+    for _ in 0..4 {
+        let kinetic = kinetic_of(states);
+        if kinetic <= kinetic_free {
+            break;
+        }
+        let scale = (kinetic_free / kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
+        for &b in members.iter() {
+            states[b].linear_momentum *= scale;
+            states[b].angular_momentum *= scale;
+        }
+    }
+
+    // Store: the step's impulses on the contacts, the last sub-step's for the next warm start
+    // (none after a bounce: it says nothing about the next step's load).
+    for (c, row) in contacts.iter_mut().zip(rows.iter()) {
+        c.normal_velocity = row.approach;
+        c.impulse = row.total;
+    }
+    warm.store(
+        contacts
+            .iter()
+            .zip(rows.iter())
+            .filter(|(_, row)| row.approach >= -bounce_speed)
+            .map(|(c, row)| {
+                let [t1, t2] = &row.tangents;
+                let j = row.normal.d * row.lambda
+                    + t1.d * row.lambda_tangent[0]
+                    + t2.d * row.lambda_tangent[1];
+                (c, j)
+            }),
+    );
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    let after = total(states);
+    Some(EnergyChange { before, after })
+}
+
+/// One sweep over the rows: the soft, biased solve (`biased`) or the rigid relax.
+fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, biased: bool) {
+    for row in rows.iter_mut() {
+        let s = row.separation_now(bodies);
+        let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+            (s / h, 1.0, 0.0)
+        } else if biased {
+            let soft = row.soft;
+            (
+                (soft.bias_rate * s).max(-MAX_PUSH),
+                soft.mass_scale,
+                soft.impulse_scale,
+            )
+        } else {
+            (0.0, 1.0, 0.0)
+        };
+        let u = row.normal.velocity(bodies);
+        let j = -row.normal.mass * mass_scale * (u + bias) - impulse_scale * row.lambda;
+        let new = (row.lambda + j).max(0.0);
+        let change = new - row.lambda;
+        row.lambda = new;
+        row.max_lambda = row.max_lambda.max(new);
+        if change != 0.0 {
+            row.normal.apply(change, bodies);
+            row.total += row.normal.d * change;
+        }
+        if friction > 0.0 {
+            let bound = friction * row.lambda;
+            let [t1, t2] = &row.tangents;
+            let old = row.lambda_tangent;
+            let mut new = [
+                old[0] - t1.mass * t1.velocity(bodies),
+                old[1] - t2.mass * t2.velocity(bodies),
+            ];
+            clamp_disk(&mut new, bound);
+            let step = [new[0] - old[0], new[1] - old[1]];
+            if step != [0.0; 2] {
+                t1.apply(step[0], bodies);
+                t2.apply(step[1], bodies);
+                row.total += t1.d * step[0] + t2.d * step[1];
+                row.lambda_tangent = new;
+            }
+        }
+    }
+}
+
+/// Scales a tangent impulse into the disk of radius `bound`.
+fn clamp_disk(t: &mut [f64; 2], bound: f64) {
+    let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    if size > bound {
+        let scale = if size > 0.0 { bound / size } else { 0.0 };
+        *t = [t[0] * scale, t[1] * scale];
+    }
+}
+
+/// The rotation since the detection pose, minus 𝟙.
+fn turned(s: &SolverBody) -> Matrix3<f64> {
+    (s.q * s.detected_inverse).to_rotation_matrix().into_inner() - Matrix3::identity()
+}
