@@ -2145,7 +2145,9 @@ fn lesson_21_with_friction_the_sliding_cap_raises_the_top_instead() {
     let tilt = axis.y.acos().to_degrees();
     assert!(tilt < 5.0 && low < 5.0, "tilt {tilt}° at 1.5 s");
     assert!(w.state().position.xz().norm() > 0.2, "the barycenter moved");
+}
 
+// ---------------------------------------------------------------------------------------------
 // Lesson 16 with the contacts inside backward Euler's solve (issue 20)
 // ---------------------------------------------------------------------------------------------
 
@@ -2208,4 +2210,225 @@ fn lesson_16_backward_euler_with_the_cube_is_stable_and_rests_at_the_newton_stat
         assert!((contacts_6s - contacts_5s).abs() < 1e-8, "dt = {dt}");
         assert!(rise < rise_bound, "dt = {dt}: energy rose by {rise} J");
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lessons 25–28: joints
+// ---------------------------------------------------------------------------------------------
+
+/// The mean period of a world's first body from the upward crossings of x = 0 over `steps`
+/// steps, and the worst |E − E₀| on the way.
+fn swing_period(world: &mut World, steps: u64) -> (f64, f64) {
+    let e0 = world.total_energy().total;
+    let mut worst: f64 = 0.0;
+    let mut last = world.state().position.x;
+    let mut crossings = Vec::new();
+    for _ in 0..steps {
+        let t0 = world.time();
+        world.step();
+        let x = world.state().position.x;
+        if last < 0.0 && x >= 0.0 {
+            crossings.push(t0 + world.dt() * (-last) / (x - last));
+        }
+        last = x;
+        worst = worst.max((world.total_energy().total - e0).abs());
+    }
+    assert!(crossings.len() >= 2, "crossings {crossings:?}");
+    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+    (period, worst)
+}
+
+/// The first joint's error after `steps` steps.
+fn joint_error_after(world: &mut World, steps: u64) -> f64 {
+    for _ in 0..steps {
+        world.step();
+    }
+    world.links().joints[0].error(world.states())
+}
+
+#[test]
+fn lesson_25_period_tension_and_the_integrator_table() {
+    let l = lesson("25-the-pendulum.toml");
+    // T = 4 √(L/g) K(sin 45°) with K(k) from k'² = 1 − k² = 1/2: 2.367842 s; T₀ = 2π√(L/g).
+    let exact = 4.0 * (1.0_f64 / 9.81).sqrt() * elliptic_k_from_complement(0.5);
+    let t0 = 2.0 * std::f64::consts::PI * (1.0_f64 / 9.81).sqrt();
+    assert_near(exact, 2.367842, 5e-7, "T (closed form)");
+    assert_near(t0, 2.006067, 5e-7, "T₀");
+    assert_near(exact / t0, 1.180341, 5e-7, "T/T₀");
+    // The table of page 4: period and worst energy error per integrator, dt = 1 ms, 10 s.
+    for (integrator, period, energy_low, energy_high) in [
+        (Integrator::Rk4, 2.367842, 0.0, 1e-10),
+        (Integrator::ExactSplitting4, 2.367842, 1e-8, 1e-7),
+        (Integrator::Splitting, 2.367840, 1e-5, 1e-4),
+        (Integrator::SymplecticEuler, 2.387970, 0.65, 0.67),
+        (Integrator::Euler, 2.409731, 1.34, 1.36),
+    ] {
+        let mut w = world_with(&l, integrator, 1e-3);
+        let (seen, worst) = swing_period(&mut w, 10_000);
+        assert_near(seen, period, 1.5e-6, &format!("T, {}", integrator.name()));
+        assert!(
+            (energy_low..energy_high).contains(&worst),
+            "{}: |ΔE| = {worst:e}",
+            integrator.name()
+        );
+    }
+    // Page 2: at the bottom (t = T/4 = 0.591960 s) the rod pulls 3 m g = 29.43 N; the step
+    // containing it averages 29.42989 N (O(dt²) below the peak).
+    let mut w = l.scene.world();
+    let mut peak: (f64, f64) = (0.0, 0.0);
+    for _ in 0..1000 {
+        w.step();
+        let f = w.joint_load(0).force.norm();
+        if f > peak.0 {
+            peak = (f, w.time());
+        }
+    }
+    assert_near(
+        peak.0,
+        29.42989,
+        1e-5,
+        "tension at the bottom (step average)",
+    );
+    assert_near(peak.0, 29.43, 2e-4, "tension at the bottom");
+    assert_near(peak.1, 0.592, 1e-3, "time of the bottom");
+    // v at the bottom: √(2 g L) = 4.429447 m/s.
+    assert_near((2.0_f64 * 9.81).sqrt(), 4.429447, 5e-7, "√(2gL)");
+}
+
+#[test]
+fn lesson_26_the_cube_on_its_edge_swings_with_the_parallel_axis_period() {
+    let l = lesson("26-the-physical-pendulum.toml");
+    // I_edge = 1/6 + 1/2 = 2/3 kg·m², d = √2/2 m: T₀ = 2π √(I/(m g d)) = 1.947858 s; from 5°,
+    // T = 4 √(I/(m g d)) K(sin 2.5°) = 1.948785 s.
+    let (inertia, d) = (2.0 / 3.0, 0.5_f64.sqrt());
+    let scale = (inertia / (9.81 * d)).sqrt();
+    assert_near(2.0 * std::f64::consts::PI * scale, 1.947858, 5e-7, "T₀");
+    let k = 2.5_f64.to_radians().sin();
+    let exact = 4.0 * scale * elliptic_k_from_complement(1.0 - k * k);
+    assert_near(exact, 1.948785, 5e-7, "T from 5°");
+    // I_c alone and the point at the centre (page 3).
+    assert_near(
+        2.0 * std::f64::consts::PI * (inertia / 4.0 / (9.81 * d)).sqrt(),
+        0.973929,
+        5e-7,
+        "I_c only",
+    );
+    assert_near(
+        2.0 * std::f64::consts::PI * (0.5 / (9.81 * d)).sqrt(),
+        1.686894,
+        5e-7,
+        "point",
+    );
+    for integrator in [
+        Integrator::Rk4,
+        Integrator::Splitting,
+        Integrator::ExactSplitting,
+        Integrator::ExactSplitting4,
+        Integrator::SymplecticEuler,
+    ] {
+        let mut w = world_with(&l, integrator, 1e-3);
+        let (seen, _) = swing_period(&mut w, 10_000);
+        assert_near(seen, exact, 1e-6, &format!("T, {}", integrator.name()));
+    }
+    let mut w = world_with(&l, Integrator::Euler, 1e-3);
+    let (seen, worst) = swing_period(&mut w, 10_000);
+    assert_near(seen, 1.948846, 1e-6, "T, euler");
+    assert_near(worst, 2.9e-3, 1e-4, "energy gained, euler");
+}
+
+#[test]
+fn lesson_27_modes_then_chaos_with_the_energy_kept() {
+    let l = lesson("27-the-double-pendulum.toml");
+    // Modes: ω² = (2 ∓ √2) g/l, θ₂ = ±√2 θ₁; the joints' anchors are the barycenters, so the
+    // bobs can be moved onto a mode without rebuilding them (rod lengths stay 1 m).
+    let root2 = 2.0_f64.sqrt();
+    for (ratio, omega2, quoted) in [
+        (root2, 2.0 - root2, 2.621052),
+        (-root2, 2.0 + root2, 1.085675),
+    ] {
+        let want = 2.0 * std::f64::consts::PI / (omega2 * 9.81_f64).sqrt();
+        assert_near(want, quoted, 5e-7, "mode period (closed form)");
+        let mut scene = l.scene.clone();
+        let (t1, t2) = (0.001_f64, 0.001 * ratio);
+        let x1 = Vector3::new(t1.sin(), -t1.cos(), 0.0);
+        scene.bodies[0].initial.position = x1;
+        scene.bodies[1].initial.position = x1 + Vector3::new(t2.sin(), -t2.cos(), 0.0);
+        let mut w = scene.world();
+        let (seen, _) = swing_period(&mut w, 12_000);
+        assert_near(seen, want, 3e-5 * want, "mode period (rk4)");
+    }
+    // Chaos from the horizontal, 20 s: E within 1e-9 of m g (2 l) = 39.24 J, |C| < 1e-12 m.
+    let mut w = l.scene.world();
+    let mut worst: (f64, f64) = (0.0, 0.0);
+    for _ in 0..steps_for(20.0, 1e-3) {
+        w.step();
+        worst.0 = worst.0.max(w.total_energy().total.abs() / 39.24);
+        for j in &w.links().joints {
+            worst.1 = worst.1.max(j.error(w.states()));
+        }
+    }
+    assert!(worst.0 < 1e-9, "relative energy error {:e}", worst.0);
+    assert!(worst.1 < 1e-12, "joint error {:e} m", worst.1);
+}
+
+#[test]
+fn lesson_28_the_rod_grows_without_correction_and_the_fixes_hold_it() {
+    use tumble::physics::joints::Correction;
+    let l = lesson("28-drift.toml");
+    // euler, none: |C| = 5.08 mm at 1 s, 10.11 mm at 2 s, 19.68 mm at 4 s.
+    let mut w = l.scene.world();
+    assert_near(joint_error_after(&mut w, 1000), 5.08e-3, 5e-6, "|C| at 1 s");
+    assert_near(
+        joint_error_after(&mut w, 1000),
+        10.11e-3,
+        5e-6,
+        "|C| at 2 s",
+    );
+    assert_near(
+        joint_error_after(&mut w, 2000),
+        19.68e-3,
+        5e-6,
+        "|C| at 4 s",
+    );
+    let mut w = world_with(&l, Integrator::SymplecticEuler, 1e-3);
+    assert_near(
+        joint_error_after(&mut w, 4000),
+        10.04e-3,
+        5e-6,
+        "|C| symplectic-euler",
+    );
+    let mut w = world_with(&l, Integrator::Rk4, 1e-3);
+    assert_near(joint_error_after(&mut w, 4000), 1.4e-10, 5e-12, "|C| rk4");
+    let corrected = |correction| {
+        let mut scene = l.scene.clone();
+        scene.links.correction = correction;
+        scene.world()
+    };
+    let mut w = corrected(Correction::Baumgarte);
+    let e0 = w.total_energy().total;
+    assert_near(
+        joint_error_after(&mut w, 1000),
+        5.5e-6,
+        5e-8,
+        "|C| baumgarte 1 s",
+    );
+    assert_near(
+        joint_error_after(&mut w, 3000),
+        66e-6,
+        5e-7,
+        "|C| baumgarte 4 s",
+    );
+    assert_near(w.total_energy().total - e0, 0.32, 5e-3, "ΔE baumgarte");
+    let mut w = corrected(Correction::Projection);
+    assert!(joint_error_after(&mut w, 4000) < 1e-15, "|C| projection");
+    assert_near(w.total_energy().total - e0, 0.24, 5e-3, "ΔE projection");
+    // The projection's energy change is booked apart, numerical, and part of the drift.
+    let b = w.energy_balance();
+    assert!(w.energy_ledger().joint_correction != 0.0);
+    assert_near(
+        b.drift,
+        w.total_energy().total - e0,
+        1e-12,
+        "drift = ΔE (no drag, no contact)",
+    );
 }
