@@ -4,7 +4,9 @@
 //! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e3, otherwise
 //! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
 
-use crate::physics::{Against, BodyView, ClothView, Contact, Feature, Obstacle, Snapshot};
+use crate::physics::{
+    Against, BodyView, ClothView, Contact, Feature, JointView, Obstacle, Snapshot, SpringView,
+};
 use nalgebra::{Matrix3, Vector3};
 
 /// Width of every formatted number, in characters.
@@ -291,6 +293,64 @@ pub fn cloth_panel(c: &ClothView, dt: f64) -> Panel {
             ),
             row("dt/h*", &[dt / c.explicit_limit], ""),
             text(format!("contacts with bodies: {}", c.body_contacts)),
+        ],
+    }
+}
+
+/// One joint: its error |C|, the reaction on its first body (averaged over the last step), its
+/// anchors now (and axis or length).
+///
+/// ```text
+/// |C| = |anchor A − anchor B|  (ball, hinge, fixed)      | |anchor A − anchor B| − ℓ |  (distance)
+/// F, τ: the joint's Jᵀλ on body A, τ about A's barycenter
+/// ```
+pub fn joint_panel(j: &JointView) -> Panel {
+    let other = j.bodies.1.as_deref().unwrap_or("world");
+    let mut rows = vec![
+        scalar_row("|C|", j.error, "m"),
+        vector_row(&format!("F on {}", j.bodies.0), &j.force, "N"),
+        vector_row(&format!("τ on {}", j.bodies.0), &j.torque, "N·m"),
+        vector_row("anchor A", &j.anchors[0], "m"),
+        vector_row("anchor B", &j.anchors[1], "m"),
+    ];
+    if let Some(axis) = &j.axis {
+        rows.push(vector_row("axis", axis, ""));
+    }
+    if let Some(length) = j.length {
+        rows.push(scalar_row("length", length, "m"));
+    }
+    Panel {
+        title: format!("joint {}: {} · {} – {other}", j.name, j.kind, j.bodies.0),
+        rows,
+    }
+}
+
+/// The energy the joints' correction changed since t = 0 (numerical: an ideal joint does no
+/// work), J.
+pub fn correction_panel(s: &Snapshot) -> Panel {
+    Panel {
+        title: "joint correction".to_string(),
+        rows: vec![scalar_row("work", s.joint_correction_work, "J")],
+    }
+}
+
+/// One spring: its length against its rest length, Hooke's tension, its energy.
+///
+/// ```text
+/// tension = k (|d| − ℓ₀)      V = ½ k (|d| − ℓ₀)²
+/// ```
+pub fn spring_panel(sp: &SpringView) -> Panel {
+    let other = sp.bodies.1.as_deref().unwrap_or("world");
+    Panel {
+        title: format!("spring {}: {} – {other}", sp.name, sp.bodies.0),
+        rows: vec![
+            Row {
+                label: "length, ℓ₀".to_string(),
+                cells: vec![number(sp.length), number(sp.rest_length)],
+                unit: "m",
+            },
+            scalar_row("tension", sp.tension, "N"),
+            scalar_row("V", sp.potential, "J"),
         ],
     }
 }

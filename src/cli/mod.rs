@@ -201,6 +201,26 @@ pub fn cloth_named(lesson: &Lesson, name: &str) -> Result<usize, Failure> {
     })
 }
 
+/// The index of the joint with this name, or a one-line error listing the scene's joints.
+pub fn joint_named(lesson: &Lesson, name: &str) -> Result<usize, Failure> {
+    let joints = &lesson.scene.links.joints;
+    joints.iter().position(|j| j.name == name).ok_or_else(|| {
+        let names: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
+        let hint = did_you_mean(name, names.iter().copied())
+            .map(|s| format!(" (did you mean `{s}`?)"))
+            .unwrap_or_default();
+        let list = if names.is_empty() {
+            "the scene has none".to_string()
+        } else {
+            format!("joints: {}", names.join(", "))
+        };
+        Failure::bad_input(format!(
+            "{}: no joint named `{name}`{hint}; {list}",
+            lesson.path.display()
+        ))
+    })
+}
+
 pub fn integrator_named(name: &str) -> Result<Integrator, Failure> {
     Integrator::from_name(name).ok_or_else(|| {
         let names = Integrator::ALL.map(Integrator::name);

@@ -8,6 +8,12 @@
 //! `--cloth NAME` prints instead one row per particle per kept step (a contract):
 //! `step,t,i,j,x,y,z,vx,vy,vz,energy`, `energy` again the whole scene's. A scene of cloths
 //! only prints its first cloth's rows without `--cloth`.
+//!
+//! `--joint NAME` prints one row per kept step for that joint (a contract):
+//! `step,t,error,fx,fy,fz,tx,ty,tz`: its position error (m: ball, hinge, fixed the distance
+//! between its two anchor points, distance |separation − length|) and the force (N) and
+//! torque about the first body's barycenter (N·m) it applies to its first body, averaged over
+//! the step (impulse / dt; row 0: the instantaneous reaction at t = 0).
 
 use super::{load_with, Failure, Overrides, EXIT_DIVERGED};
 use crate::physics::Snapshot;
@@ -16,6 +22,9 @@ use std::path::PathBuf;
 
 /// The CSV header of `tumble run`.
 pub const HEADER: &str = "step,t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Lx,Ly,Lz,energy,penetration";
+
+/// The CSV header of `tumble run --joint NAME`.
+pub const JOINT_HEADER: &str = "step,t,error,fx,fy,fz,tx,ty,tz";
 
 /// The CSV header of `tumble run --cloth NAME`.
 pub const CLOTH_HEADER: &str = "step,t,i,j,x,y,z,vx,vy,vz,energy";
@@ -34,8 +43,11 @@ pub struct RunArgs {
     #[arg(long, conflicts_with = "cloth")]
     pub body: Option<String>,
     /// Print the particles of this cloth instead, one row each.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "joint")]
     pub cloth: Option<String>,
+    /// Print this joint's error and reaction instead.
+    #[arg(long, conflicts_with = "body")]
+    pub joint: Option<String>,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -53,6 +65,10 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
     };
     if let Some(cloth) = cloth {
         return run_cloth(args, lesson.scene.world(), cloth);
+    }
+    if let Some(name) = &args.joint {
+        let index = super::joint_named(&lesson, name)?;
+        return run_joint(args, lesson.scene.world(), index);
     }
     let body = match &args.body {
         Some(name) => super::body_named(&lesson, name)?,
@@ -95,6 +111,42 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
                 });
             }
             write(&mut out, &s).map_err(io)?;
+        }
+    }
+    out.flush().map_err(io)
+}
+
+/// The `--joint` rows: joint `index`, every kept step.
+fn run_joint(
+    args: &RunArgs,
+    mut world: crate::physics::World,
+    index: usize,
+) -> Result<(), Failure> {
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
+    let write = |out: &mut BufWriter<_>, s: &Snapshot| -> std::io::Result<()> {
+        let j = &s.joints[index];
+        let (f, t) = (j.force, j.torque);
+        writeln!(
+            out,
+            "{},{},{},{},{},{},{},{},{}",
+            s.step, s.time, j.error, f.x, f.y, f.z, t.x, t.y, t.z
+        )
+    };
+    writeln!(out, "{JOINT_HEADER}").map_err(io)?;
+    write(&mut out, &world.snapshot()).map_err(io)?;
+    for step in 1..=args.steps {
+        world.step();
+        if let Some(divergence) = world.divergence() {
+            out.flush().map_err(io)?;
+            return Err(Failure {
+                code: EXIT_DIVERGED,
+                message: divergence.to_string(),
+            });
+        }
+        if step % args.every == 0 || step == args.steps {
+            write(&mut out, &world.snapshot()).map_err(io)?;
         }
     }
     out.flush().map_err(io)

@@ -278,6 +278,15 @@ fn write_block(
     for cloth in &snapshot.cloths {
         write(&cloth_panel(cloth, snapshot.dt))?;
     }
+    for joint in &snapshot.joints {
+        write(&crate::tables::joint_panel(joint))?;
+    }
+    if !snapshot.joints.is_empty() {
+        write(&crate::tables::correction_panel(snapshot))?;
+    }
+    for spring in &snapshot.springs {
+        write(&crate::tables::spring_panel(spring))?;
+    }
     for panel in &scene_panels {
         write(panel)?;
     }

@@ -57,6 +57,9 @@ pub struct EnergyLedger {
     pub contact_gain: f64,
     /// Energy the collide phases took: Σ min(0, ΔE_collide) ≤ 0, J.
     pub contact_loss: f64,
+    /// Energy the joints' projection changed (numerical: an ideal joint does no work; still
+    /// part of the drift, booked here to show how much of it the correction made), J.
+    pub joint_correction: f64,
 }
 
 /// The change of energy since t = 0, split by cause.
@@ -118,6 +121,7 @@ impl EnergyLedger {
             drag_work: 0.0,
             contact_gain: 0.0,
             contact_loss: 0.0,
+            joint_correction: 0.0,
         }
     }
 

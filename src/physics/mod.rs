@@ -13,6 +13,8 @@
 //! | `free_top` | the torque-free asymmetric top in closed form (a reference) |
 //! | `free_flow` | the exact torque-free flow over one step (the drift of `exact-splitting`) |
 //! | `integrators` | the integrate phase, one file per method |
+//! | `joints` | joints (constraint rows, multipliers, projection) and springs |
+//! | `system` | the derivative of the whole system when springs or joints couple bodies |
 //! | `collision` | the collide phase: obstacles, detection, responses |
 //! | `world` | the loop, phase by phase, over every body |
 //! | `snapshot` | every quantity a user is shown |
@@ -31,8 +33,10 @@ pub mod energy_ledger;
 pub mod free_flow;
 pub mod free_top;
 pub mod integrators;
+pub mod joints;
 pub mod snapshot;
 pub mod state;
+pub mod system;
 pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
@@ -42,6 +46,6 @@ pub use effects::{Effect, Effects};
 pub use energy::Energy;
 pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
-pub use snapshot::{BodyView, ClothView, Snapshot, SystemTotals};
+pub use snapshot::{BodyView, ClothView, JointView, Snapshot, SpringView, SystemTotals};
 pub use state::{Orientation, State};
 pub use world::{Checkpoint, NamedBody, Phase, Stepping, World};

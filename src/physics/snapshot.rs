@@ -11,6 +11,7 @@ use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
 use super::energy_ledger::EnergyBalance;
 use super::integrators::Integrator;
+use super::joints::{JointKind, Pose as LinkPose};
 use super::state::State;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -76,6 +77,115 @@ pub struct Snapshot {
     pub system: SystemTotals,
     /// Every cloth's numbers (empty without cloths).
     pub cloths: Vec<ClothView>,
+    /// Every joint (empty without `[[joint]]`).
+    pub joints: Vec<JointView>,
+    /// Every spring (empty without `[[spring]]`).
+    pub springs: Vec<SpringView>,
+    /// The energy the joints' correction changed since t = 0, J (numerical, in the drift).
+    pub joint_correction_work: f64,
+}
+
+/// A joint as the panels, `walk` and `run --joint` show it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointView {
+    pub name: String,
+    /// ball, hinge, fixed, distance.
+    pub kind: &'static str,
+    /// Its first body's name, and the second's (None: the world).
+    pub bodies: (String, Option<String>),
+    /// The anchor points now, world frame: on the first body, on the second (or the world).
+    pub anchors: [Vector3<f64>; 2],
+    /// Hinge: the axis now (the first body's), world frame.
+    pub axis: Option<Vector3<f64>>,
+    /// Distance: the rod's length, m.
+    pub length: Option<f64>,
+    /// Position error, m: ball, hinge, fixed: |anchor A − anchor B|; distance:
+    /// |separation − length|.
+    pub error: f64,
+    /// The reaction on the first body, N: averaged over the last step (impulse / dt), or at
+    /// t = 0 the instantaneous one.
+    pub force: Vector3<f64>,
+    /// Its torque about the first body's barycenter, N·m (same convention).
+    pub torque: Vector3<f64>,
+}
+
+/// A spring as the panels and `walk` show it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpringView {
+    pub name: String,
+    pub bodies: (String, Option<String>),
+    /// Its ends now, world frame.
+    pub ends: [Vector3<f64>; 2],
+    /// |d|, m.
+    pub length: f64,
+    pub rest_length: f64,
+    /// Hooke's part k (|d| − ℓ₀), N (> 0 stretched).
+    pub tension: f64,
+    /// ½ k (|d| − ℓ₀)², J.
+    pub potential: f64,
+}
+
+impl JointView {
+    /// Every joint of a world.
+    pub fn all(world: &World) -> Vec<JointView> {
+        let links = world.links();
+        if links.joints.is_empty() {
+            return Vec::new();
+        }
+        let states = world.states();
+        let names = world.body_names();
+        let instant = (world.step_count() == 0).then(|| world.system_loads_now().1);
+        links
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(i, j)| {
+                let load = match &instant {
+                    Some(loads) => loads[i],
+                    None => world.joint_load(i),
+                };
+                JointView {
+                    name: j.name.clone(),
+                    kind: j.kind.name(),
+                    bodies: (names[j.a].clone(), j.b.map(|b| names[b].clone())),
+                    anchors: j.anchors(states),
+                    axis: (j.kind == JointKind::Hinge).then(|| j.axis(states)),
+                    length: (j.kind == JointKind::Distance).then_some(j.length),
+                    error: j.error(states),
+                    force: load.force,
+                    torque: load.torque,
+                }
+            })
+            .collect()
+    }
+}
+
+impl SpringView {
+    /// Every spring of a world.
+    pub fn all(world: &World) -> Vec<SpringView> {
+        let states = world.states();
+        let names = world.body_names();
+        world
+            .links()
+            .springs
+            .iter()
+            .map(|s| {
+                let a = LinkPose::of_state(&states[s.a]);
+                let b =
+                    s.b.map_or(LinkPose::WORLD, |b| LinkPose::of_state(&states[b]));
+                let load = s.load(&a, &b).0;
+                SpringView {
+                    name: s.name.clone(),
+                    bodies: (names[s.a].clone(), s.b.map(|b| names[b].clone())),
+                    ends: load.ends,
+                    length: load.length,
+                    rest_length: s.rest_length,
+                    tension: s.stiffness * (load.length - s.rest_length),
+                    potential: load.potential,
+                }
+            })
+            .collect()
+    }
 }
 
 /// What a table shows of one cloth.
@@ -204,10 +314,12 @@ impl Snapshot {
         let between_frames = matches!(world.last_phase(), None | Some(Phase::Collide));
         let (kinematics, loads) = if between_frames {
             let kinematics = derive(body, state);
-            (
-                kinematics,
-                world.integrator().loads(body, world.effects(), &kinematics),
-            )
+            let loads = if world.links().is_empty() {
+                world.integrator().loads(body, world.effects(), &kinematics)
+            } else {
+                world.system_loads_now().0[index]
+            };
+            (kinematics, loads)
         } else {
             (*world.kinematics_of(index), *world.loads_of(index))
         };
@@ -264,6 +376,9 @@ impl Snapshot {
             bodies,
             system: SystemTotals::of(world),
             cloths: ClothView::all(world),
+            joints: JointView::all(world),
+            springs: SpringView::all(world),
+            joint_correction_work: world.energy_ledger().joint_correction,
         }
     }
 }
@@ -309,6 +424,9 @@ impl Snapshot {
             bodies: Vec::new(),
             system: SystemTotals::of(world),
             cloths: ClothView::all(world),
+            joints: JointView::all(world),
+            springs: SpringView::all(world),
+            joint_correction_work: world.energy_ledger().joint_correction,
         }
     }
 }

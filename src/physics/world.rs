@@ -31,9 +31,12 @@ use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effects, Loads};
 use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
+use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
+use super::joints::{project, Correction, Links, ProjectionBuffers};
 use super::snapshot::Snapshot;
 use super::state::State;
+use super::system::{Scratch as SystemScratch, System};
 use nalgebra::Vector3;
 use std::fmt;
 
@@ -113,6 +116,12 @@ pub struct Checkpoint {
     /// Per cloth: its energy after the last integrate phase (the collide phase starts from it
     /// instead of measuring it again).
     cloth_energies: Vec<Energy>,
+    /// Per joint: its reaction on its body A at the forces phase (start of the step).
+    start_joint_loads: Vec<Loads>,
+    /// The springs' damping power at the forces phase, W.
+    start_damping_power: f64,
+    /// Per joint: its reaction on its body A averaged over the last step (impulse / dt).
+    joint_loads: Vec<Loads>,
 }
 
 impl Checkpoint {
@@ -202,6 +211,13 @@ pub struct World {
     cloth_limits: Vec<ExplicitLimit>,
     /// Per cloth: its attached particles' offsets in their bodies' frames at t = 0.
     cloth_attachments: Vec<Vec<Attachment>>,
+    /// Joints and springs (empty: every body is stepped on its own).
+    links: Links,
+    /// The pairs of bodies joined directly (they do not collide).
+    joined: Vec<(usize, usize)>,
+    system_scratch: SystemScratch,
+    system_buffers: SystemBuffers,
+    projection_buffers: ProjectionBuffers,
 }
 
 impl World {
@@ -263,7 +279,72 @@ impl World {
             particle_contacts: Vec::new(),
             cloth_limits: Vec::new(),
             cloth_attachments: Vec::new(),
+            links: Links::default(),
+            joined: Vec::new(),
+            system_scratch: SystemScratch::default(),
+            system_buffers: SystemBuffers::default(),
+            projection_buffers: ProjectionBuffers::default(),
         }
+    }
+
+    /// The same world with these joints and springs (built against its bodies' t = 0 states):
+    /// the integrators then step the whole system at once (`integrators::system`).
+    pub fn with_links(mut self, links: Links) -> World {
+        self.joined = links.joined_pairs();
+        self.links = links;
+        self.reset();
+        self
+    }
+
+    /// The joints and springs.
+    pub fn links(&self) -> &Links {
+        &self.links
+    }
+
+    /// Joint `index`'s reaction on its body A averaged over the last step (impulse / dt):
+    /// force, and torque about A's barycenter. Zero before the first step.
+    pub fn joint_load(&self, index: usize) -> Loads {
+        self.now.joint_loads.get(index).copied().unwrap_or_default()
+    }
+
+    /// The whole system's loads at the current states, as the next forces phase will compute
+    /// them: (per body, per joint's reaction on its body A).
+    pub fn system_loads_now(&self) -> (Vec<Loads>, Vec<Loads>) {
+        let system = System {
+            bodies: &self.bodies,
+            effects: &self.effects,
+            links: &self.links,
+            integrator: self.integrator,
+            dt: self.dt,
+        };
+        let mut scratch = SystemScratch::default();
+        let mut kinematics = Vec::new();
+        system.evaluate_states(&self.now.states, &mut kinematics, &mut scratch);
+        (scratch.loads, scratch.joint_loads)
+    }
+
+    /// The forces phase over the whole system: every body's F and τ with springs and joints.
+    fn system_loads(&mut self) {
+        let system = System {
+            bodies: &self.bodies,
+            effects: &self.effects,
+            links: &self.links,
+            integrator: self.integrator,
+            dt: self.dt,
+        };
+        let now = &mut self.now;
+        let positions: Vec<Vector3<f64>> = now.states.iter().map(|s| s.position).collect();
+        let momenta: Vec<Vector3<f64>> = now.states.iter().map(|s| s.angular_momentum).collect();
+        system.evaluate(
+            &positions,
+            &now.kinematics,
+            &momenta,
+            &mut self.system_scratch,
+        );
+        now.loads.clone_from(&self.system_scratch.loads);
+        now.start_joint_loads
+            .clone_from(&self.system_scratch.joint_loads);
+        now.start_damping_power = self.system_scratch.damping_power;
     }
 
     /// The same world with these cloths at their initial states (particles under the declared
@@ -359,6 +440,10 @@ impl World {
     /// plus the report's per-vertex torque sum: see [`Integrator::loads`]).
     #[inline]
     fn forces_phase(&mut self) {
+        if !self.links.is_empty() {
+            self.system_loads();
+            return;
+        }
         let now = &mut self.now;
         for ((loads, body), k) in now.loads.iter_mut().zip(&self.bodies).zip(&now.kinematics) {
             *loads = self.integrator.loads(body, &self.effects, k);
@@ -378,23 +463,29 @@ impl World {
             now.before.clone_from(&now.states);
         }
         let mut potential = 0.0;
-        for (i, body) in self.bodies.iter().enumerate() {
-            if body.fixed {
-                // Never integrated: it stays where the scene put it.
-                continue;
+        let has_cloths = !now.cloths.0.is_empty();
+        if self.links.is_empty() {
+            for (i, body) in self.bodies.iter().enumerate() {
+                if body.fixed {
+                    // Never integrated: it stays where the scene put it.
+                    continue;
+                }
+                let state = &mut now.states[i];
+                self.integrator.advance(
+                    body,
+                    &self.effects,
+                    state,
+                    &now.kinematics[i],
+                    &now.loads[i],
+                    self.dt,
+                );
+                potential += self.effects.potential_energy(body, &state.position);
             }
-            let state = &mut now.states[i];
-            self.integrator.advance(
-                body,
-                &self.effects,
-                state,
-                &now.kinematics[i],
-                &now.loads[i],
-                self.dt,
-            );
-            potential += self.effects.potential_energy(body, &state.position);
         }
-        if !now.cloths.0.is_empty() {
+        if !self.links.is_empty() {
+            potential += self.integrate_system();
+        }
+        if has_cloths {
             potential += self.integrate_cloths();
         }
         let now = &mut self.now;
@@ -405,6 +496,62 @@ impl World {
             let end = self.drag_power();
             self.now.ledger.book_drag(&start, &end, self.dt);
         }
+    }
+
+    /// One step of the whole coupled system, then the joints' correction; books the springs'
+    /// damping as drag work and the projection's energy change as the correction's work.
+    /// Returns the potential energy after the step (gravity and springs, for the guard).
+    fn integrate_system(&mut self) -> f64 {
+        let system = System {
+            bodies: &self.bodies,
+            effects: &self.effects,
+            links: &self.links,
+            integrator: self.integrator,
+            dt: self.dt,
+        };
+        let now = &mut self.now;
+        let start = Start {
+            kinematics: &now.kinematics,
+            loads: &now.loads,
+            joint_loads: &now.start_joint_loads,
+            damping_power: now.start_damping_power,
+        };
+        system_step::advance(
+            self.integrator,
+            &system,
+            &mut now.states,
+            &start,
+            self.dt,
+            &mut self.system_buffers,
+        );
+        now.joint_loads.clone_from(&self.system_buffers.joint_loads);
+        now.ledger.drag_work += self.system_buffers.damping_work;
+        if self.links.correction == Correction::Projection && !self.links.joints.is_empty() {
+            let before = total_energy(&self.bodies, &self.effects, &now.states).total
+                + self.links.potential(&now.states);
+            let mut impulses = Vec::new();
+            project(
+                &self.links,
+                &self.bodies,
+                &mut now.states,
+                &mut impulses,
+                &mut self.projection_buffers,
+            );
+            for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {
+                load.force += impulse.force / self.dt;
+                load.torque += impulse.torque / self.dt;
+            }
+            let after = total_energy(&self.bodies, &self.effects, &now.states).total
+                + self.links.potential(&now.states);
+            now.ledger.joint_correction += after - before;
+        }
+        let gravity: f64 = self
+            .bodies
+            .iter()
+            .zip(&now.states)
+            .map(|(b, s)| self.effects.potential_energy(b, &s.position))
+            .sum();
+        gravity + self.links.potential(&now.states)
     }
 
     /// One step of every cloth but its last contact pass: velocity half, the obstacles'
@@ -593,6 +740,7 @@ impl World {
             initial_positions: &self.initial_positions,
             gravity: self.effects.gravity(),
             dt: self.dt,
+            joined: &self.joined,
         };
         let states_before = if model.response == super::collision::Response::Seed {
             Some(now.states[0])
@@ -806,6 +954,9 @@ impl World {
             now.kinematics[i] = derive(body, state);
             now.loads[i] = integrator.loads(body, &self.effects, &now.kinematics[i]);
         }
+        if !self.links.is_empty() {
+            self.system_loads();
+        }
     }
 
     /// Switches the collision response (takes effect at the next collide phase).
@@ -892,6 +1043,22 @@ impl World {
             now.guard = EnergyGuard::new(&energy, weight);
         }
         self.now = now;
+        if !self.links.is_empty() {
+            let springs = self.links.potential(&self.initial);
+            if springs != 0.0 {
+                let energy = self.initial_total_energy();
+                let weight = self.effects.gravity().map_or(0.0, |g| {
+                    self.bodies
+                        .iter()
+                        .map(|b| b.mass * g.norm() * b.radius)
+                        .sum()
+                });
+                let weight = weight + springs.abs();
+                self.now.ledger = EnergyLedger::new(energy.total);
+                self.now.guard = EnergyGuard::new(&energy, weight);
+            }
+            self.system_loads();
+        }
     }
 
     /// Vertex positions `pᵢ = x + R r₀ᵢ` of the first body's current state.
@@ -928,7 +1095,10 @@ impl World {
 
     /// The whole scene's energy now: the sum over its bodies.
     pub fn total_energy(&self) -> Energy {
-        let bodies = total_energy(&self.bodies, &self.effects, &self.now.states);
+        let mut bodies = total_energy(&self.bodies, &self.effects, &self.now.states);
+        if !self.links.springs.is_empty() {
+            bodies = bodies + self.springs_energy(&self.now.states);
+        }
         if self.now.cloths.0.is_empty() {
             bodies
         } else {
@@ -951,12 +1121,16 @@ impl World {
         let mut balance = self.now.ledger.balance(
             &self.initial_total_energy(),
             &self.total_energy(),
-            self.effects.depends_on_velocity() || damped,
+            self.effects.depends_on_velocity() || damped || self.links.damped(),
             self.can_touch() || (!cloths.is_empty() && self.contact.is_some()),
         );
         if !cloths.is_empty() {
             // Shown, not subtracted: the springs' energy is part of E already.
             balance.springs = Some(cloths.iter().map(Cloth::spring_energy).sum());
+        }
+        if !self.links.springs.is_empty() {
+            let v = self.links.potential(&self.now.states);
+            balance.springs = Some(balance.springs.unwrap_or(0.0) + v);
         }
         balance
     }
@@ -965,6 +1139,17 @@ impl World {
     pub fn initial_total_energy(&self) -> Energy {
         total_energy(&self.bodies, &self.effects, &self.initial)
             + self.cloths_energy(&self.initial_cloths)
+            + self.springs_energy(&self.initial)
+    }
+
+    /// The springs' potential energy at these states, as an [`Energy`].
+    fn springs_energy(&self, states: &[State]) -> Energy {
+        let v = self.links.potential(states);
+        Energy {
+            kinetic: 0.0,
+            potential: v,
+            total: v,
+        }
     }
 
     /// A non-finite or runaway state, if the simulation has diverged. With cloths, a
@@ -1160,5 +1345,8 @@ fn fresh(
         cloth_body_contacts: vec![0; cloths.len()],
         cloth_obstacle_contacts: vec![[0, 0]; cloths.len()],
         cloth_energies: Vec::new(),
+        start_joint_loads: Vec::new(),
+        start_damping_power: 0.0,
+        joint_loads: Vec::new(),
     }
 }

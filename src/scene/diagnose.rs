@@ -419,7 +419,7 @@ mod tests {
         let found = lines(source);
         let expected = [
             "s.toml:5:1: unknown key `gravty` (did you mean `gravity`?); valid keys here: dt, \
-             duration, integrator, gravity, drag, contact",
+             duration, integrator, gravity, drag, contact, joint_correction",
             "s.toml:3:6: dt must be > 0, found -0.01",
             "s.toml:4:14: unknown integrator `rk5` (did you mean `rk4`?); valid integrators: \
              euler-seed, euler, symplectic-euler, rk4, splitting, exact-splitting, \

@@ -8,6 +8,7 @@ mod cloth;
 mod diagnose;
 pub mod edit;
 mod error;
+mod links;
 pub mod live;
 mod mesh;
 mod messages;
@@ -18,6 +19,7 @@ pub use edit::{ClothEdit, SceneEdits};
 pub use error::{did_you_mean, printable, LoadError};
 
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
+use crate::physics::joints::Links;
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
     SoftStep, State, World,
@@ -57,6 +59,8 @@ pub struct Scene {
     pub bodies: Vec<SceneBody>,
     /// The `[[cloth]]` sheets, in file order.
     pub cloths: Vec<ClothSpec>,
+    /// The `[[joint]]`s and `[[spring]]`s, and `joint_correction`.
+    pub links: Links,
 }
 
 /// A body of a scene: `[body]` or one `[[body]]`.
@@ -95,6 +99,11 @@ impl Scene {
             integrator,
             dt,
         );
+        let world = if self.links.is_empty() {
+            world
+        } else {
+            world.with_links(self.links.clone())
+        };
         if self.cloths.is_empty() {
             return world;
         }
@@ -294,7 +303,8 @@ impl Validator<'_> {
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
         let bodies = self.bodies(raw.body, !raw.cloths.is_empty())?;
-        self.no_overlap(&bodies)?;
+        let links = self.links(&raw.scene, &raw.joints, &raw.springs, &bodies)?;
+        self.no_overlap(&bodies, &links)?;
         let title = raw.title.into_inner();
         let scene_integrator = raw.scene.get_ref().integrator.clone();
         let body_spans: Vec<Range<usize>> = bodies.iter().map(|(_, s)| s.clone()).collect();
@@ -314,7 +324,8 @@ impl Validator<'_> {
                 ));
             }
         }
-        let mut scene = self.scene(raw.scene, bodies, &raw.obstacles)?;
+        let mut scene = self.scene(raw.scene, bodies, &raw.obstacles, &links)?;
+        scene.links = links;
         let names: Vec<&str> = scene.bodies.iter().map(|b| b.name.as_str()).collect();
         scene.cloths = self.cloths(
             &raw.cloths,
@@ -529,7 +540,12 @@ impl Validator<'_> {
 
     /// No body may start inside another: the first pair whose shapes overlap at their initial
     /// poses (geometric depth > 1e-9 m; touching is fine) is an error at the later body.
-    fn no_overlap(&self, bodies: &[(SceneBody, Range<usize>)]) -> Result<(), LoadError> {
+    /// Bodies joined directly by a joint may overlap (they do not collide).
+    fn no_overlap(
+        &self,
+        bodies: &[(SceneBody, Range<usize>)],
+        links: &Links,
+    ) -> Result<(), LoadError> {
         use crate::physics::collision::geometry::{deepest, shape_shape, Pose};
         let pose = |b: &SceneBody| Pose {
             position: b.initial.position,
@@ -540,10 +556,13 @@ impl Validator<'_> {
             let Some(shape_j) = &later.body.shape else {
                 continue;
             };
-            for (earlier, _) in &bodies[..j] {
+            for (i, (earlier, _)) in bodies[..j].iter().enumerate() {
                 let Some(shape_i) = &earlier.body.shape else {
                     continue;
                 };
+                if links.joined(i, j) {
+                    continue;
+                }
                 points.clear();
                 shape_shape(
                     shape_j,
@@ -620,6 +639,7 @@ impl Validator<'_> {
         raw: Spanned<RawScene>,
         bodies: Vec<(SceneBody, Range<usize>)>,
         obstacles: &[Spanned<RawObstacle>],
+        links: &Links,
     ) -> Result<Scene, LoadError> {
         let raw = raw.into_inner();
         let dt = self.positive(&raw.dt, "dt")?;
@@ -677,7 +697,10 @@ impl Validator<'_> {
                      restitution = 0.4, friction = 0.5 }` to [scene]",
                 ));
             }
-            if let Some((_, second)) = bodies.get(1) {
+            // Bodies joined directly do not collide: a response is needed only when some
+            // pair is not joined.
+            let all_joined = (0..bodies.len()).all(|j| (0..j).all(|i| links.joined(i, j)));
+            if let (Some((_, second)), false) = (bodies.get(1), all_joined) {
                 return Err(self.error(
                     second.clone(),
                     "several bodies need a collision response: add `contact = { response = \
@@ -694,6 +717,7 @@ impl Validator<'_> {
             obstacles: Vec::new(),
             bodies: bodies.into_iter().map(|(b, _)| b).collect(),
             cloths: Vec::new(),
+            links: Links::default(),
         };
         scene
             .check_rules(Naming::File)

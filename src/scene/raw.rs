@@ -21,6 +21,10 @@ pub struct RawLesson {
     pub pages: Vec<Spanned<RawPage>>,
     #[serde(default, rename = "cloth")]
     pub cloths: Vec<Spanned<RawCloth>>,
+    #[serde(default, rename = "joint")]
+    pub joints: Vec<Spanned<RawJoint>>,
+    #[serde(default, rename = "spring")]
+    pub springs: Vec<Spanned<RawSpring>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -32,6 +36,8 @@ pub struct RawScene {
     pub gravity: Option<Vec3>,
     pub drag: Option<Spanned<RawDrag>>,
     pub contact: Option<Spanned<RawContact>>,
+    /// projection | baumgarte | none (joints only).
+    pub joint_correction: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -184,4 +190,30 @@ pub struct RawAttach {
     /// Signed so that a negative index gets our message, not serde's.
     pub particle: [i64; 2],
     pub body: Spanned<String>,
+}
+
+/// A `[[joint]]` table: an ideal constraint between two bodies or a body and the world.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawJoint {
+    pub name: Option<Spanned<String>>,
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    pub bodies: Spanned<Vec<Spanned<String>>>,
+    pub anchor: Option<Vec3>,
+    pub axis: Option<Vec3>,
+    pub anchors: Option<Spanned<Vec<[f64; 3]>>>,
+    pub length: Option<Spanned<f64>>,
+}
+
+/// A `[[spring]]` table: a Hooke spring with damping.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSpring {
+    pub name: Option<Spanned<String>>,
+    pub bodies: Spanned<Vec<Spanned<String>>>,
+    pub anchors: Spanned<Vec<[f64; 3]>>,
+    pub stiffness: Spanned<f64>,
+    pub damping: Option<Spanned<f64>>,
+    pub rest_length: Option<Spanned<f64>>,
 }

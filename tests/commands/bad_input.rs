@@ -24,7 +24,7 @@ const TABLE: &[(&str, &str)] = &[
     (
         "unknown-key.toml",
         "6:1: unknown key `gravty` (did you mean `gravity`?); valid keys here: dt, duration, \
-         integrator, gravity, drag, contact",
+         integrator, gravity, drag, contact, joint_correction",
     ),
     (
         "unknown-integrator.toml",

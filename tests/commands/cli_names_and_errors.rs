@@ -207,7 +207,7 @@ fn check_reports_every_independent_error_one_line_each() {
         "5:14: unknown integrator `rk5` (did you mean `rk4`?); valid integrators: euler-seed, \
          euler, symplectic-euler, rk4, splitting, exact-splitting, exact-splitting-4",
         "6:1: unknown key `gravty` (did you mean `gravity`?); valid keys here: dt, duration, \
-         integrator, gravity, drag, contact",
+         integrator, gravity, drag, contact, joint_correction",
         "11:8: box `size` needs three sides > 0 m, found [1.0, 0.0, 1.0]",
         "15:8: unknown obstacle type `grund` (did you mean `ground`?); valid types: ground, \
          sphere, box, plane",

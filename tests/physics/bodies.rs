@@ -400,6 +400,7 @@ proptest! {
             initial_positions: &[Vector3::zeros(), Vector3::zeros()],
             gravity: None,
             dt,
+            joined: &[],
         };
         let mut states = start;
         let mut contacts = Vec::new();

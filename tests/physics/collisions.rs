@@ -409,6 +409,7 @@ proptest! {
             initial_positions: &[Vector3::zeros()],
             gravity: Some(Vector3::new(0.0, -G, 0.0)),
             dt: 1e-2,
+            joined: &[],
         };
         let kinetic_before = kinetic_energy(&body, &now);
         let mut contacts = Vec::new();

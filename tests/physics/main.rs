@@ -10,6 +10,7 @@ mod energy_ledger;
 mod exact_splitting;
 mod geometry;
 mod hard_cases;
+mod joints;
 mod physics_core;
 mod properties;
 mod round_bodies;

@@ -112,6 +112,9 @@ pub fn find(
             let Some(shape_b) = &input.bodies[b].shape else {
                 continue;
             };
+            if input.joined.binary_search(&(a, b)).is_ok() {
+                continue;
+            }
             // A fixed body is B, the world's side: it takes no impulse.
             let (a, b, shape_a, shape_b) = match (input.bodies[a].fixed, input.bodies[b].fixed) {
                 (true, true) => continue,

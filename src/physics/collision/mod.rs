@@ -279,6 +279,8 @@ pub struct CollideInput<'a> {
     /// Declared gravity, if any (sets the speed below which contacts do not bounce).
     pub gravity: Option<Vector3<f64>>,
     pub dt: f64,
+    /// Pairs of bodies (low, high index) joined directly by a joint: they do not collide.
+    pub joined: &'a [(usize, usize)],
 }
 
 /// The energy of the bodies before and after a response, measured as [`energy`] measures it

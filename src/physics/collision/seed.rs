@@ -130,6 +130,7 @@ mod tests {
             initial_positions: &[Vector3::new(0.0, 1.0, 0.0)],
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             dt: 1e-3,
+            joined: &[],
         };
         let mut contacts = Vec::new();
         respond(&input, &mut state, &mut contacts);

@@ -28,9 +28,9 @@ const LAMBDA: f64 = -0.212_341_831_062_605_4;
 const CHI: f64 = -0.066_264_582_669_818_5;
 
 /// Fractions of dt of the five kicks.
-const KICKS: [f64; 5] = [XI, CHI, 1.0 - 2.0 * (CHI + XI), CHI, XI];
+pub(super) const KICKS: [f64; 5] = [XI, CHI, 1.0 - 2.0 * (CHI + XI), CHI, XI];
 /// Fractions of dt of the four free rotations.
-const FLOWS: [f64; 4] = [
+pub(super) const FLOWS: [f64; 4] = [
     0.5 * (1.0 - 2.0 * LAMBDA),
     LAMBDA,
     LAMBDA,

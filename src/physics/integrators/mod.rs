@@ -12,6 +12,7 @@ mod exact_splitting_4;
 mod rk4;
 mod splitting;
 mod symplectic_euler;
+pub mod system;
 
 use super::body::Body;
 use super::derive::Kinematics;

@@ -96,7 +96,7 @@ fn kick(
 }
 
 /// The Strang-split free rotation over `dt` with world angular momentum `l`.
-fn free_rotation(
+pub(super) fn free_rotation(
     body: &Body,
     q: &UnitQuaternion<f64>,
     l: &Vector3<f64>,

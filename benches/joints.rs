@@ -1,0 +1,114 @@
+//! What one `World::step()` costs with joints (issue 19), in ns/step, `rk4`, dt = 1e-3,
+//! gravity, `joint_correction = projection` unless stated:
+//!
+//! - `pendulum`: one 0.1 m box on a distance joint to the world (1 row);
+//! - `chain-10`: 10 links of 0.5 m (0.5 × 0.05 × 0.05 m, 0.1 kg), ball-jointed end to end and
+//!   to the world, released horizontal (30 rows: a 30 × 30 LDLᵀ in each of rk4's four
+//!   evaluations, then the projection); issue 19's aim: ≤ 10 µs per step;
+//! - `chain-10-baumgarte`: the same with Baumgarte's correction (no projection).
+//!
+//! No contact response: the links do not collide. Each world is put back at its start every
+//! 2000 steps (2 s, before the chain has folded onto itself).
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use nalgebra::Vector3;
+use std::hint::black_box;
+use std::time::Duration;
+use tumble::physics::joints::{Correction, Joint, JointKind, Links};
+use tumble::physics::{Body, Effect, Effects, Integrator, NamedBody, State, World};
+
+fn gravity() -> Effects {
+    Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -9.81, 0.0))])
+}
+
+fn pendulum() -> World {
+    let x0 = Vector3::new(1.0, 0.0, 0.0);
+    let bob = NamedBody {
+        name: "bob".into(),
+        body: Body::solid_box(Vector3::repeat(0.1), 1.0).expect("a box"),
+        initial: State {
+            position: x0,
+            ..State::at_rest()
+        },
+    };
+    let states = vec![bob.initial];
+    let rod = Joint::distance("rod".into(), 0, None, [x0, Vector3::zeros()], None, &states);
+    World::with_bodies(
+        vec![bob],
+        gravity(),
+        Vec::new(),
+        None,
+        Integrator::Rk4,
+        1e-3,
+    )
+    .with_links(Links {
+        joints: vec![rod],
+        ..Links::default()
+    })
+}
+
+/// `count` links of length `l` along x from the origin, ball-jointed end to end.
+pub fn chain(count: usize, correction: Correction) -> World {
+    let l = 0.5;
+    let bodies: Vec<NamedBody> = (0..count)
+        .map(|i| NamedBody {
+            name: format!("link{i}"),
+            body: Body::solid_box(Vector3::new(l, 0.05, 0.05), 0.1).expect("a box"),
+            initial: State {
+                position: Vector3::new((i as f64 + 0.5) * l, 0.0, 0.0),
+                ..State::at_rest()
+            },
+        })
+        .collect();
+    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
+    let joints = (0..count)
+        .map(|i| {
+            Joint::at_point(
+                format!("j{i}"),
+                JointKind::Ball,
+                i,
+                i.checked_sub(1),
+                Vector3::new(i as f64 * l, 0.0, 0.0),
+                Vector3::z(),
+                &states,
+            )
+        })
+        .collect();
+    World::with_bodies(bodies, gravity(), Vec::new(), None, Integrator::Rk4, 1e-3).with_links(
+        Links {
+            joints,
+            springs: Vec::new(),
+            correction,
+        },
+    )
+}
+
+fn joints(c: &mut Criterion) {
+    let mut group = c.benchmark_group("joints");
+    group
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(2));
+    let cases = [
+        ("pendulum", pendulum()),
+        ("chain-10", chain(10, Correction::Projection)),
+        ("chain-10-baumgarte", chain(10, Correction::Baumgarte)),
+    ];
+    for (name, mut world) in cases {
+        let start = world.checkpoint();
+        let mut steps = 0u64;
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                steps += 1;
+                if steps.is_multiple_of(2000) {
+                    world.restore(&start);
+                }
+                world.step();
+                black_box(world.state());
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, joints);
+criterion_main!(benches);

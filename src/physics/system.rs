@@ -1,0 +1,206 @@
+//! Forces on the whole system: the derivative f(Y) of every body's state at once, when bodies
+//! are coupled by springs or joints.
+//!
+//! ```text
+//! Y = (x_i, q_i, P_i, L_i) for every body i
+//! f(Y) = (v_i, ½ ω_i ⊗ q_i, F_i, τ_i)
+//! F_i, τ_i = the declared effects (gravity, drag: `Effects`)          one body at a time
+//!          + Σ springs acting on i (`joints::Spring::load`)            pairs of bodies
+//!          + Σ joints' reactions J_iᵀ λ (`joints`: the multipliers)    all joints at once
+//! ```
+//!
+//! The integrators step this f (`integrators::system`), so every stage of rk4 is a stage of
+//! the whole world: a spring between two bodies, or a pendulum's rod, is then integrated to
+//! the method's full order. A world without springs or joints never comes here: each body is
+//! stepped alone as before (the single-body fast path, bit for bit what it was).
+
+use super::body::Body;
+use super::derive::{congruence, Kinematics};
+use super::effects::{Effects, Loads};
+use super::integrators::Integrator;
+use super::joints::solve::Inverse;
+use super::joints::{multipliers, rows_of, Correction, Links, Pose, Row, Solver};
+use super::state::State;
+use nalgebra::{Matrix3, Vector3};
+
+/// What the derivative sees: the bodies, the declared effects, the links, and the integrator
+/// (whose forces phase may add to the effects: `euler-seed`'s vertex torque).
+#[derive(Debug, Clone, Copy)]
+pub struct System<'a> {
+    pub bodies: &'a [Body],
+    pub effects: &'a Effects,
+    pub links: &'a Links,
+    pub integrator: Integrator,
+    /// The step, s (sets Baumgarte's rates α = β = 1/(10 dt)).
+    pub dt: f64,
+}
+
+/// Buffers of an evaluation, and its results.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Scratch {
+    poses: Vec<Pose>,
+    inverse: Vec<Inverse>,
+    rows: Vec<Row>,
+    rhs: Vec<f64>,
+    solver: Solver,
+    /// Result: the total force and torque on each body.
+    pub loads: Vec<Loads>,
+    /// Result: each joint's force and torque (about A's barycenter) on its body A.
+    pub joint_loads: Vec<Loads>,
+    /// Result: the springs' damping power, W (≤ 0).
+    pub damping_power: f64,
+}
+
+/// A body's kinematics from (x, R, P, L), R a rotation.
+#[inline]
+pub fn kinematics(
+    body: &Body,
+    rotation: Matrix3<f64>,
+    p: &Vector3<f64>,
+    l: &Vector3<f64>,
+) -> Kinematics {
+    let inv_inertia_world = congruence(&rotation, &body.inv_inertia_body);
+    Kinematics {
+        rotation,
+        inv_inertia_world,
+        angular_velocity: inv_inertia_world * l,
+        velocity: p * body.inv_mass,
+    }
+}
+
+impl System<'_> {
+    /// f(Y)'s forces: fills `scratch.loads` (total F, τ per body), `scratch.joint_loads` and
+    /// `scratch.damping_power`, from each body's position, kinematics and angular momentum.
+    pub fn evaluate(
+        &self,
+        positions: &[Vector3<f64>],
+        kinematics: &[Kinematics],
+        angular_momenta: &[Vector3<f64>],
+        scratch: &mut Scratch,
+    ) {
+        let n = self.bodies.len();
+        scratch.poses.clear();
+        scratch.poses.extend((0..n).map(|i| Pose {
+            x: positions[i],
+            r: kinematics[i].rotation,
+            v: kinematics[i].velocity,
+            w: kinematics[i].angular_velocity,
+        }));
+        scratch.loads.clear();
+        scratch.loads.extend(
+            self.bodies
+                .iter()
+                .zip(kinematics)
+                .map(|(b, k)| self.integrator.loads(b, self.effects, k)),
+        );
+        // Springs: equal and opposite forces at the two ends.
+        scratch.damping_power = 0.0;
+        for spring in &self.links.springs {
+            let a = &scratch.poses[spring.a];
+            let b = spring.b.map_or(&Pose::WORLD, |b| &scratch.poses[b]);
+            let (load, ra, rb) = spring.load(a, b);
+            scratch.damping_power += load.damping_power;
+            let f = load.force_a;
+            scratch.loads[spring.a].force += f;
+            scratch.loads[spring.a].torque += ra.cross(&f);
+            if let Some(b) = spring.b {
+                scratch.loads[b].force -= f;
+                scratch.loads[b].torque -= rb.cross(&f);
+            }
+        }
+        scratch.joint_loads.clear();
+        scratch
+            .joint_loads
+            .resize(self.links.joints.len(), Loads::default());
+        if self.links.joints.is_empty() {
+            return;
+        }
+        // Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction.
+        scratch.rows.clear();
+        for (index, joint) in self.links.joints.iter().enumerate() {
+            let a = &scratch.poses[joint.a];
+            let b = joint.b.map_or(&Pose::WORLD, |b| &scratch.poses[b]);
+            rows_of(joint, index, a, b, &mut scratch.rows);
+        }
+        scratch.inverse.clear();
+        scratch
+            .inverse
+            .extend(self.bodies.iter().zip(kinematics).map(|(b, k)| Inverse {
+                mass: b.inv_mass,
+                inertia: k.inv_inertia_world,
+            }));
+        // Free accelerations (v̇, ω̇) = (F/m, I⁻¹(τ − ω × L)).
+        let free = |i: usize, loads: &[Loads]| {
+            let k = &kinematics[i];
+            (
+                loads[i].force * self.bodies[i].inv_mass,
+                k.inv_inertia_world
+                    * (loads[i].torque - k.angular_velocity.cross(&angular_momenta[i])),
+            )
+        };
+        let rate = 1.0 / (10.0 * self.dt);
+        scratch.rhs.clear();
+        for row in &scratch.rows {
+            let (la, aa) = free(row.a, &scratch.loads);
+            let mut j_a = row.lin_a.dot(&la) + row.ang_a.dot(&aa);
+            let b = match row.b {
+                Some(b) => {
+                    let (lb, ab) = free(b, &scratch.loads);
+                    j_a += row.lin_b.dot(&lb) + row.ang_b.dot(&ab);
+                    &scratch.poses[b]
+                }
+                None => &Pose::WORLD,
+            };
+            let mut rhs = -(j_a + row.bias);
+            if self.links.correction == Correction::Baumgarte {
+                let c_dot = row.rate(&scratch.poses[row.a], b);
+                rhs -= 2.0 * rate * c_dot + rate * rate * row.c;
+            }
+            scratch.rhs.push(rhs);
+        }
+        multipliers(
+            &scratch.rows,
+            &scratch.inverse,
+            &mut scratch.rhs,
+            &mut scratch.solver,
+        );
+        for (row, &lambda) in scratch.rows.iter().zip(&scratch.rhs) {
+            let (f, t) = (row.lin_a * lambda, row.ang_a * lambda);
+            scratch.loads[row.a].force += f;
+            scratch.loads[row.a].torque += t;
+            let reaction = &mut scratch.joint_loads[row.joint];
+            reaction.force += f;
+            reaction.torque += t;
+            if let Some(b) = row.b {
+                scratch.loads[b].force += row.lin_b * lambda;
+                scratch.loads[b].torque += row.ang_b * lambda;
+            }
+        }
+    }
+
+    /// f(Y)'s forces at states (orientations as stored: a drifted `euler-seed` matrix is used
+    /// as it is, as the report's loop would).
+    pub fn evaluate_states(
+        &self,
+        states: &[State],
+        kinematics: &mut Vec<Kinematics>,
+        scratch: &mut Scratch,
+    ) {
+        kinematics.clear();
+        kinematics.extend(
+            self.bodies
+                .iter()
+                .zip(states)
+                .map(|(b, s)| kinematics_of_state(b, s)),
+        );
+        let positions: Vec<Vector3<f64>> = states.iter().map(|s| s.position).collect();
+        let momenta: Vec<Vector3<f64>> = states.iter().map(|s| s.angular_momentum).collect();
+        self.evaluate(&positions, kinematics, &momenta, scratch);
+    }
+}
+
+/// The derive phase of a state (its orientation's matrix, as `derive` takes it).
+#[inline]
+fn kinematics_of_state(body: &Body, state: &State) -> Kinematics {
+    super::derive::derive(body, state)
+}

@@ -1,0 +1,276 @@
+//! `[[joint]]` and `[[spring]]` tables and `[scene] joint_correction`, validated into
+//! [`Links`]: each broken rule a one-line error at the key at fault.
+//!
+//! | rule | error |
+//! |---|---|
+//! | `type` a joint kind | unknown joint type `hing` (did you mean `hinge`?); valid types: ball, hinge, fixed, distance |
+//! | `bodies` one or two known names | joint `bodies` needs one body name (jointed to the world) or two, found 3 |
+//! | | unknown body `bbo` in joint `bodies` (did you mean `bob`?); bodies: bob, arm |
+//! | two different bodies | a joint's two bodies must differ, found `bob` twice |
+//! | ball, hinge, fixed: `anchor`; distance, spring: `anchors` (two points) | a hinge joint needs `anchor` |
+//! | keys of other kinds refused | `axis` does not apply to a ball joint; valid keys: … |
+//! | hinge `axis` non-zero | hinge `axis` has zero length: give a non-zero axis |
+//! | distance `length` > 0, or the anchors apart at t = 0 | distance joint anchors coincide at t = 0: give `length` > 0 or two different points |
+//! | spring `stiffness` > 0, `damping`, `rest_length` ≥ 0 | stiffness must be > 0, found 0 |
+//! | names unique | duplicate joint name `pivot`: joint names must be unique in the file |
+//! | `joint_correction` | unknown joint_correction `projektion` (did you mean `projection`?); valid: projection, baumgarte, none |
+
+use super::error::did_you_mean;
+use super::raw::{RawJoint, RawScene, RawSpring};
+use super::{LoadError, SceneBody, Validator};
+use crate::physics::joints::{Correction, Joint, JointKind, Links, Spring};
+use crate::physics::State;
+use nalgebra::Vector3;
+use std::ops::Range;
+use toml::Spanned;
+
+/// A joint's or spring's name, or the default `{prefix}{n}`, unique among `taken`.
+fn name_of(
+    v: &Validator,
+    raw: &Option<Spanned<String>>,
+    taken: &[String],
+    prefix: &str,
+    what: &str,
+    n: usize,
+) -> Result<String, LoadError> {
+    match raw {
+        Some(name) => {
+            let text = name.get_ref().clone();
+            if text.trim().is_empty() {
+                return Err(v.error(name.span(), format!("{what} `name` must not be empty")));
+            }
+            if taken.contains(&text) {
+                return Err(v.error(
+                    name.span(),
+                    format!(
+                        "duplicate {what} name `{text}`: {what} names must be unique in the file"
+                    ),
+                ));
+            }
+            Ok(text)
+        }
+        None => {
+            let mut k = n + 1;
+            while taken.contains(&format!("{prefix}{k}")) {
+                k += 1;
+            }
+            Ok(format!("{prefix}{k}"))
+        }
+    }
+}
+
+impl Validator<'_> {
+    /// `joint_correction`, every `[[joint]]` and every `[[spring]]`, against the bodies.
+    pub(super) fn links(
+        &self,
+        scene: &Spanned<RawScene>,
+        joints: &[Spanned<RawJoint>],
+        springs: &[Spanned<RawSpring>],
+        bodies: &[(SceneBody, Range<usize>)],
+    ) -> Result<Links, LoadError> {
+        let correction = match &scene.get_ref().joint_correction {
+            None => Correction::default(),
+            Some(c) => Correction::from_name(c.get_ref()).ok_or_else(|| {
+                let hint = did_you_mean(c.get_ref(), Correction::ALL.map(Correction::name))
+                    .map(|s| format!(" (did you mean `{s}`?)"))
+                    .unwrap_or_default();
+                self.error(
+                    c.span(),
+                    format!(
+                        "unknown joint_correction `{}`{hint}; valid: projection, baumgarte, none",
+                        c.get_ref()
+                    ),
+                )
+            })?,
+        };
+        let states: Vec<State> = bodies.iter().map(|(b, _)| b.initial).collect();
+        let mut links = Links {
+            correction,
+            ..Links::default()
+        };
+        let mut names = Vec::new();
+        for (n, raw) in joints.iter().enumerate() {
+            let j = raw.get_ref();
+            let name = name_of(self, &j.name, &names, "joint", "joint", n)?;
+            names.push(name.clone());
+            links.joints.push(self.joint(raw, name, bodies, &states)?);
+        }
+        let mut names = Vec::new();
+        for (n, raw) in springs.iter().enumerate() {
+            let s = raw.get_ref();
+            let name = name_of(self, &s.name, &names, "spring", "spring", n)?;
+            names.push(name.clone());
+            let (a, b) = self.pair(&s.bodies, bodies, "spring")?;
+            let anchors = self.two_points(&s.anchors, "spring")?;
+            let stiffness = self.positive(&s.stiffness, "stiffness")?;
+            let damping = s
+                .damping
+                .as_ref()
+                .map_or(Ok(0.0), |d| self.non_negative(d, "spring damping"))?;
+            let rest = s
+                .rest_length
+                .as_ref()
+                .map(|r| self.non_negative(r, "rest_length"))
+                .transpose()?;
+            links.springs.push(Spring::new(
+                name, a, b, anchors, stiffness, damping, rest, &states,
+            ));
+        }
+        Ok(links)
+    }
+
+    /// `bodies = ["a"]` or `["a", "b"]`: indices.
+    fn pair(
+        &self,
+        raw: &Spanned<Vec<Spanned<String>>>,
+        bodies: &[(SceneBody, Range<usize>)],
+        what: &str,
+    ) -> Result<(usize, Option<usize>), LoadError> {
+        let list = raw.get_ref();
+        if list.is_empty() || list.len() > 2 {
+            return Err(self.error(
+                raw.span(),
+                format!(
+                    "{what} `bodies` needs one body name ({what} to the world) or two, found {}",
+                    list.len()
+                ),
+            ));
+        }
+        let index = |name: &Spanned<String>| {
+            bodies
+                .iter()
+                .position(|(b, _)| &b.name == name.get_ref())
+                .ok_or_else(|| {
+                    let all: Vec<&str> = bodies.iter().map(|(b, _)| b.name.as_str()).collect();
+                    let hint = did_you_mean(name.get_ref(), all.iter().copied())
+                        .map(|s| format!(" (did you mean `{s}`?)"))
+                        .unwrap_or_default();
+                    self.error(
+                        name.span(),
+                        format!(
+                            "unknown body `{}` in {what} `bodies`{hint}; bodies: {}",
+                            name.get_ref(),
+                            if all.is_empty() {
+                                "none".to_string()
+                            } else {
+                                all.join(", ")
+                            }
+                        ),
+                    )
+                })
+        };
+        let a = index(&list[0])?;
+        let b = list.get(1).map(index).transpose()?;
+        if b == Some(a) {
+            return Err(self.error(
+                list[1].span(),
+                format!(
+                    "a {what}'s two bodies must differ, found `{}` twice",
+                    list[0].get_ref()
+                ),
+            ));
+        }
+        Ok((a, b))
+    }
+
+    /// `anchors = [[x, y, z], [x, y, z]]`.
+    fn two_points(
+        &self,
+        raw: &Spanned<Vec<[f64; 3]>>,
+        what: &str,
+    ) -> Result<[Vector3<f64>; 2], LoadError> {
+        let list = raw.get_ref();
+        if list.len() != 2 || !list.iter().flatten().all(|c| c.is_finite()) {
+            return Err(self.error(
+                raw.span(),
+                format!(
+                    "{what} `anchors` needs two points [[x, y, z], [x, y, z]] with finite \
+                     components, found {list:?}"
+                ),
+            ));
+        }
+        Ok([Vector3::from(list[0]), Vector3::from(list[1])])
+    }
+
+    fn joint(
+        &self,
+        raw: &Spanned<RawJoint>,
+        name: String,
+        bodies: &[(SceneBody, Range<usize>)],
+        states: &[State],
+    ) -> Result<Joint, LoadError> {
+        let j = raw.get_ref();
+        let kind = JointKind::from_name(j.kind.get_ref()).ok_or_else(|| {
+            let hint = did_you_mean(j.kind.get_ref(), JointKind::ALL.map(JointKind::name))
+                .map(|s| format!(" (did you mean `{s}`?)"))
+                .unwrap_or_default();
+            self.error(
+                j.kind.span(),
+                format!(
+                    "unknown joint type `{}`{hint}; valid types: ball, hinge, fixed, distance",
+                    j.kind.get_ref()
+                ),
+            )
+        })?;
+        let kind_name = kind.name();
+        let allowed: &[&str] = match kind {
+            JointKind::Ball | JointKind::Fixed => &["anchor"],
+            JointKind::Hinge => &["anchor", "axis"],
+            JointKind::Distance => &["anchors", "length"],
+        };
+        let present = [
+            ("anchor", j.anchor.as_ref().map(|v| v.span())),
+            ("axis", j.axis.as_ref().map(|v| v.span())),
+            ("anchors", j.anchors.as_ref().map(|v| v.span())),
+            ("length", j.length.as_ref().map(|v| v.span())),
+        ];
+        for (key, span) in present {
+            if let (Some(span), false) = (span, allowed.contains(&key)) {
+                return Err(self.error(
+                    span,
+                    format!(
+                        "`{key}` does not apply to a {kind_name} joint; valid keys: name, type, \
+                         bodies, {}",
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+        let (a, b) = self.pair(&j.bodies, bodies, "joint")?;
+        let needs =
+            |key: &str| self.error(raw.span(), format!("a {kind_name} joint needs `{key}`"));
+        if kind == JointKind::Distance {
+            let anchors_raw = j.anchors.as_ref().ok_or_else(|| needs("anchors"))?;
+            let anchors = self.two_points(anchors_raw, "distance joint")?;
+            let length = j
+                .length
+                .as_ref()
+                .map(|l| self.positive(l, "distance joint `length`"))
+                .transpose()?;
+            if length.is_none() && (anchors[0] - anchors[1]).norm() < 1e-12 {
+                return Err(self.error(
+                    anchors_raw.span(),
+                    "distance joint anchors coincide at t = 0: give `length` > 0 or two \
+                     different points",
+                ));
+            }
+            return Ok(Joint::distance(name, a, b, anchors, length, states));
+        }
+        let anchor = self.vector(j.anchor.as_ref().ok_or_else(|| needs("anchor"))?, "anchor")?;
+        let axis = match (kind, &j.axis) {
+            (JointKind::Hinge, None) => return Err(needs("axis")),
+            (JointKind::Hinge, Some(axis)) => {
+                let v = self.vector(axis, "hinge axis")?;
+                if v.norm() < 1e-12 {
+                    return Err(self.error(
+                        axis.span(),
+                        "hinge `axis` has zero length: give a non-zero axis",
+                    ));
+                }
+                v
+            }
+            _ => Vector3::z(),
+        };
+        Ok(Joint::at_point(name, kind, a, b, anchor, axis, states))
+    }
+}
