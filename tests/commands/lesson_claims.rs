@@ -2102,7 +2102,12 @@ fn lesson_21_the_top_precesses_at_the_slow_root_and_the_contact_carries_its_torq
     assert_near(omega3, 201.693374, 1e-6, "ω₃");
     assert_near(expected, 1.802051, 1e-5, "slow root");
     assert_near(m * g * d / l3, 1.762253, 1e-5, "M g d/L₃");
-    assert_near(slow_root(i1 + m * d * d), 1.837859, 1e-5, "slow root about a held tip");
+    assert_near(
+        slow_root(i1 + m * d * d),
+        1.837859,
+        1e-5,
+        "slow root about a held tip",
+    );
     // Measured over the lesson's 3.5 s (7000 steps of RK4, ≈ one turn). Tolerance 0.1 %: the
     // file's ω is rounded to 6 digits, which leaves a nod of ±0.01° and a rate ripple far
     // below it; 0.1 % is 20 times narrower than the gap to either approximation above.
@@ -2115,7 +2120,10 @@ fn lesson_21_the_top_precesses_at_the_slow_root_and_the_contact_carries_its_torq
     // Steady: the tilt stays at 20° (±0.01°, the page) and the barycenter on its vertical.
     assert!(low > 19.99 && high < 20.01, "tilt {low}..{high}°");
     let x = w.state().position;
-    assert!((x.x + 0.020521).abs() < 1e-4 && x.z.abs() < 1e-4, "x = {x:?}");
+    assert!(
+        (x.x + 0.020521).abs() < 1e-4 && x.z.abs() < 1e-4,
+        "x = {x:?}"
+    );
     // The contact's force and torque (the panel's Fc, τc): the ground carries the weight,
     // M g = 9.81 N up, at the contact below the tip's centre, d sin θ from the barycenter
     // horizontally: |τ_c| = M g d sin θ = 0.201313 N·m, horizontal and across the lean (what
@@ -2138,7 +2146,11 @@ fn lesson_21_with_friction_the_sliding_cap_raises_the_top_instead() {
     // from 20° to below 5° within 1.5 s, as the page says) while its barycenter wanders off.
     let l = lesson("21-spinning-top.toml");
     let mut scene = l.scene.clone();
-    scene.contact.as_mut().expect("the lesson has a contact model").friction = 0.05;
+    scene
+        .contact
+        .as_mut()
+        .expect("the lesson has a contact model")
+        .friction = 0.05;
     let mut w = scene.world();
     let (_, low, _) = precession(&mut w, steps_for(1.5, l.scene.dt));
     let (axis, _) = top_axis(&w);
