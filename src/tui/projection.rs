@@ -520,12 +520,7 @@ fn zigzag_turns(columns: f64) -> usize {
 ///   viewer) or `⊗` (away) on the pivot;
 /// - a spring: a zigzag between its ends, one column to either side of the line.
 pub fn add_links(scene: &mut Scene2d, axis: Axis, s: &Snapshot, scale: f64) {
-    let centre_of = |name: &str| {
-        s.bodies
-            .iter()
-            .find(|b| b.name == name)
-            .map(|b| b.position)
-    };
+    let centre_of = |name: &str| s.bodies.iter().find(|b| b.name == name).map(|b| b.position);
     let rod = |scene: &mut Scene2d, from: &Vector3<f64>, to: &Vector3<f64>| {
         let (a, b) = (axis.project(from), axis.project(to));
         if (a.0 - b.0).hypot(a.1 - b.1) > 1e-12 {

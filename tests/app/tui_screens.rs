@@ -613,3 +613,25 @@ fn the_pendulum_shows_its_pivot_rod_and_the_walks_joint_numbers() {
         insta::assert_snapshot!(format!("pendulum_592_{w}x{h}"), shown);
     }
 }
+
+#[test]
+fn a_hinge_seen_end_on_is_a_circled_dot_and_a_spring_a_zigzag() {
+    // Lesson 26: a cube on a hinge at the origin, axis z (towards the viewer of the front
+    // view): the pivot is drawn `⊙` (ASCII `o`), the arm from the cube's barycenter to it.
+    let app = lesson("26-the-physical-pendulum.toml");
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("joint edge: hinge"), "{shown}");
+    assert!(shown.contains(" axis "), "{shown}");
+    // The spring fixture at t = 0: the block at y = 0, the spring's world end at y = 1 straight
+    // above; drawn as a zigzag, `/` and `\` alternating up the column between them.
+    let app = fixture("tui-spring.toml");
+    let shown = screen(&app, 80, 24);
+    let drawing: Vec<&str> = shown.lines().skip(2).take(8).collect();
+    let slashes = drawing.iter().filter(|l| l.contains('/')).count();
+    let backslashes = drawing.iter().filter(|l| l.contains('\\')).count();
+    assert!(slashes >= 2 && backslashes >= 2, "{shown}");
+    assert!(shown.contains("spring s: block – world"), "{shown}");
+    // tension = k (|d| − ℓ₀) = 100 · (1 − 0.5) = 50 N.
+    assert!(shown.contains("50.000000"), "{shown}");
+    insta::assert_snapshot!("spring_80x24", shown);
+}
