@@ -1,6 +1,7 @@
 //! The numeric panels: the tables of `tables::panels` (state, inertia tensor, angular velocity,
 //! force and torque, momenta, energy), then one cloth panel per cloth (`cloth_panel`), cells
-//! changed by the last action highlighted, and in compare mode the ghost's numbers on a line
+//! changed by the last action highlighted, one panel per joint and per spring
+//! (`tables::joint_panel`, `tables::spring_panel`: |C|, reaction force and torque, anchors), and in compare mode the ghost's numbers on a line
 //! under each of the first's. A scene of cloths only shows one line saying it has no rigid
 //! body, the scene's energy and the cloth panels.
 
@@ -196,8 +197,38 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
             .and_then(|g| g.snapshot.cloths.get(k).map(|c| (c, g.comparison.name())));
         cloth_panel::lines(c, s.dt, before, ghost)
     });
-    views.splice(at..at, cloths.collect::<Vec<_>>());
+    let cloths: Vec<_> = cloths.collect();
+    let after_cloths = at + cloths.len();
+    views.splice(at..at, cloths);
+    // Then the joints and springs (`tables::joint_panel`, `spring_panel`: the numbers `walk`
+    // prints): a pendulum's lesson is about the rod's pull and its error |C|.
+    let links = link_panels(s);
+    let before = app.previous.as_ref().map(link_panels);
+    let ghost = app
+        .ghost
+        .as_ref()
+        .map(|g| (link_panels(&g.snapshot), g.comparison.name()));
+    let links = links.iter().enumerate().map(|(k, panel)| {
+        let view = PanelView {
+            panel,
+            previous: before.as_ref().and_then(|p| p.get(k)),
+            compare: ghost
+                .as_ref()
+                .and_then(|(g, name)| g.get(k).map(|p| (p, *name))),
+        };
+        (view.lines(), panel.title.clone())
+    });
+    views.splice(after_cloths..after_cloths, links.collect::<Vec<_>>());
     views
+}
+
+/// One panel per joint, then one per spring.
+fn link_panels(s: &Snapshot) -> Vec<Panel> {
+    s.joints
+        .iter()
+        .map(tables::joint_panel)
+        .chain(s.springs.iter().map(tables::spring_panel))
+        .collect()
 }
 
 /// What the panels say in a scene of cloths only.

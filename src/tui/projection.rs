@@ -11,7 +11,8 @@
 //! One body is drawn by [`add_body`] from a [`BodyPicture`] (vertices, edges, pose, colour),
 //! so a scene with several bodies calls it once per body. A cloth is drawn by [`add_cloth`]:
 //! its grid of particles joined along x and z, pinned particles marked `x`; in compare mode
-//! the ghost's cloths too, in the ghost's colour.
+//! the ghost's cloths too, in the ghost's colour. Joints and springs are drawn by
+//! [`add_links`]: pivots, rods, hinge axes, springs as zigzags.
 
 use super::app::App;
 use super::theme;
@@ -52,7 +53,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ..inner
     };
     let mapping = Mapping::fit(&app.region, app.axis, drawing.width, drawing.height);
-    let scene = scene_2d(app);
+    let scene = scene_2d(app, mapping.scale);
     if app.ascii {
         draw_ascii(&scene, &mapping, drawing, buf);
     } else {
@@ -115,6 +116,12 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
             items.push(item("x", theme::PINNED, "pinned".into()));
         }
     }
+    if !app.snapshot.joints.is_empty() {
+        items.push(item("o", theme::JOINT, "pivot, rod".into()));
+    }
+    if !app.snapshot.springs.is_empty() {
+        items.push(item("/\\/", theme::SPRING, "spring".into()));
+    }
     if body.is_some_and(|b| !b.edges.is_empty()) {
         let mark = if app.ascii { "..." } else { "- -" };
         items.push(item(mark, theme::HIDDEN, "hidden".into()));
@@ -175,7 +182,7 @@ pub struct Scene2d {
     pub segments: Vec<Segment>,
     /// (centre, radius, colour).
     pub circles: Vec<((f64, f64), f64, Color)>,
-    /// (point, colour, ASCII char): `@ % * x O` print as characters in Braille too; others
+    /// (point, colour, ASCII char): `@ % * x o O` print as characters in Braille too; others
     /// are dots.
     pub points: Vec<((f64, f64), Color, char)>,
     /// Text printed at a point (arrow labels, arrow heads), in both renderers: point, colour,
@@ -497,7 +504,114 @@ pub fn add_cloth(
     }
 }
 
-fn scene_2d(app: &App) -> Scene2d {
+/// Half-turns of a spring's zigzag: about one per two columns of its length, 4 to 16.
+fn zigzag_turns(columns: f64) -> usize {
+    ((columns / 2.0).round() as usize).clamp(4, 16)
+}
+
+/// Adds the joints and springs of a snapshot, in [`theme::JOINT`] and [`theme::SPRING`];
+/// `scale` is the view's metres per column (the marks' size on screen).
+///
+/// - a pivot `o` at each anchor on the world, and at a ball, hinge or fixed joint's anchor
+///   between two bodies;
+/// - a rod: a distance joint's, between its two anchors, and for every joint the arm from each
+///   body's barycenter to its anchor (a physical pendulum's arm);
+/// - a hinge's axis: a short line through the anchor along it, or seen end-on `⊙` (towards the
+///   viewer) or `⊗` (away) on the pivot;
+/// - a spring: a zigzag between its ends, one column to either side of the line.
+pub fn add_links(scene: &mut Scene2d, axis: Axis, s: &Snapshot, scale: f64) {
+    let centre_of = |name: &str| s.bodies.iter().find(|b| b.name == name).map(|b| b.position);
+    let rod = |scene: &mut Scene2d, from: &Vector3<f64>, to: &Vector3<f64>| {
+        let (a, b) = (axis.project(from), axis.project(to));
+        if (a.0 - b.0).hypot(a.1 - b.1) > 1e-12 {
+            scene.segments.push(Segment {
+                from: a,
+                to: b,
+                colour: theme::JOINT,
+                ascii: None,
+                dashed: false,
+            });
+        }
+    };
+    for j in &s.joints {
+        let [pa, pb] = j.anchors;
+        if let Some(x) = centre_of(&j.bodies.0) {
+            rod(scene, &x, &pa);
+        }
+        if let Some(x) = j.bodies.1.as_deref().and_then(centre_of) {
+            rod(scene, &x, &pb);
+        }
+        if j.length.is_some() {
+            rod(scene, &pa, &pb);
+        }
+        let pivot = if j.bodies.1.is_none() || j.length.is_none() {
+            Some(pb)
+        } else {
+            None
+        };
+        if let Some(p) = pivot {
+            scene.points.push((axis.project(&p), theme::JOINT, 'o'));
+        }
+        if let Some(h) = &j.axis {
+            let half = h * (1.5 * scale);
+            let (a, b) = (axis.project(&(pb - half)), axis.project(&(pb + half)));
+            if (a.0 - b.0).hypot(a.1 - b.1) < 0.3 * scale {
+                let mark = if h.dot(&axis.toward_viewer()) > 0.0 {
+                    "⊙"
+                } else {
+                    "⊗"
+                };
+                scene.labels.push(Label {
+                    at: axis.project(&pb),
+                    colour: theme::JOINT,
+                    text: mark.to_string(),
+                    past: None,
+                    shift: (0, 0),
+                });
+            } else {
+                scene.segments.push(Segment {
+                    from: a,
+                    to: b,
+                    colour: theme::JOINT,
+                    ascii: Some('='),
+                    dashed: false,
+                });
+            }
+        }
+    }
+    for sp in &s.springs {
+        let (a, b) = (axis.project(&sp.ends[0]), axis.project(&sp.ends[1]));
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let shown = dx.hypot(dy);
+        if shown < 1e-12 {
+            continue;
+        }
+        let turns = zigzag_turns(shown / scale.max(1e-300));
+        // One column to either side, across the line as seen.
+        let (nx, ny) = (-dy / shown * scale, dx / shown * scale);
+        let at = |k: usize| {
+            let f = k as f64 / (turns + 1) as f64;
+            let side = match k {
+                0 => 0.0,
+                k if k == turns + 1 => 0.0,
+                k if k % 2 == 1 => 1.0,
+                _ => -1.0,
+            };
+            (a.0 + f * dx + side * nx, a.1 + f * dy + side * ny)
+        };
+        for k in 0..=turns {
+            scene.segments.push(Segment {
+                from: at(k),
+                to: at(k + 1),
+                colour: theme::SPRING,
+                ascii: None,
+                dashed: false,
+            });
+        }
+    }
+}
+
+fn scene_2d(app: &App, scale: f64) -> Scene2d {
     let axis = app.axis;
     let mut scene = Scene2d::default();
     for o in app.world.obstacles() {
@@ -564,6 +678,8 @@ fn scene_2d(app: &App) -> Scene2d {
     for cloth in app.world.cloths() {
         add_cloth(&mut scene, axis, cloth, theme::CLOTH, None);
     }
+    // The joints and springs under the bodies they hold.
+    add_links(&mut scene, axis, &app.snapshot, scale);
     // Every other body, in its own colour (the panels show the selected one); a fixed body
     // in the obstacles' colour.
     for (i, view) in app.snapshot.bodies.iter().enumerate() {
@@ -927,7 +1043,7 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
             }
             for &(p, colour, ch) in &scene.points {
                 match ch {
-                    '@' | '%' | '*' | 'x' => ctx.print(
+                    '@' | '%' | '*' | 'x' | 'o' => ctx.print(
                         p.0,
                         p.1,
                         Span::styled(ch.to_string(), Style::new().fg(colour)),

@@ -32,6 +32,11 @@ pub const MASS_POINT: Color = Color::LightYellow;
 pub const CLOTH: Color = Color::LightGreen;
 /// A cloth's pinned particles (held in place), drawn as `x`.
 pub const PINNED: Color = Color::LightRed;
+/// Joints: a pivot `o` at each anchor, the rods (distance joints, and from each body's
+/// barycenter to its anchor), a hinge's axis.
+pub const JOINT: Color = Color::Gray;
+/// Springs, drawn as a zigzag between their ends.
+pub const SPRING: Color = Color::LightMagenta;
 
 /// Row labels of the numeric panels.
 pub const LABEL: Style = Style::new().fg(Color::Cyan);

@@ -187,7 +187,8 @@ impl Region {
     }
 }
 
-/// What the view keeps in frame: every body's vertices and every cloth's particles.
+/// What the view keeps in frame: every body's vertices, every cloth's particles, every
+/// joint's anchors and every spring's ends.
 pub fn shown_points(world: &World) -> Vec<Vector3<f64>> {
     let mut points: Vec<Vector3<f64>> = (0..world.body_count())
         .flat_map(|i| world.vertices_of(i))
@@ -203,6 +204,20 @@ pub fn shown_points(world: &World) -> Vec<Vector3<f64>> {
     }
     for c in world.cloths() {
         points.extend_from_slice(&c.positions);
+    }
+    // The joints' anchors and the springs' ends (a pendulum's pivot is in no body).
+    let states = world.states();
+    let end = |body: Option<usize>, anchor: &Vector3<f64>| match body {
+        Some(i) => states[i].position + states[i].orientation.matrix() * anchor,
+        None => *anchor,
+    };
+    let links = world.links();
+    for j in &links.joints {
+        points.extend(j.anchors(states));
+    }
+    for s in &links.springs {
+        points.push(end(Some(s.a), &s.anchor_a));
+        points.push(end(s.b, &s.anchor_b));
     }
     points
 }

@@ -550,3 +550,88 @@ fn the_bowling_ball_is_a_circle_whose_meridian_turns_and_the_race_ramp_is_hatche
     assert!(ramp.contains('\\'), "{ramp}");
     insta::assert_snapshot!("race_stage_80x24", ramp);
 }
+
+/// The numbers of a row of `tumble walk FILE --frames N`'s output, by its label.
+fn walk_row(file: &str, frames: u64, label: &str) -> Vec<String> {
+    let out = assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("walk")
+        .arg(file)
+        .args(["--frames", &frames.to_string()])
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).into_owned();
+    let line = text
+        .lines()
+        .rev()
+        .find(|l| l.trim_start().starts_with(label))
+        .unwrap_or_else(|| panic!("no row {label} in\n{text}"));
+    line.trim_start()[label.len()..]
+        .split_whitespace()
+        .filter(|w| w.parse::<f64>().is_ok())
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn the_pendulum_shows_its_pivot_rod_and_the_walks_joint_numbers() {
+    // Lesson 25 after 592 frames (dt = 1 ms: t = 0.592 s, the bob at the bottom, a quarter
+    // period T/4 = 2.367842/4 = 0.591960 s): the bob is under the pivot at the origin, the rod
+    // vertical, the rod's pull 3 m g = 29.43 N up the rod (the lesson's second page); |C| is
+    // rounding noise (projection keeps the length).
+    let mut app = lesson("25-the-pendulum.toml");
+    app.step_frames(592);
+    let error = walk_row("25-the-pendulum", 592, "|C|");
+    let force = walk_row("25-the-pendulum", 592, "F on bob");
+    assert_eq!(force.len(), 3, "{force:?}");
+    let fy: f64 = force[1].parse().unwrap();
+    assert!((fy - 29.43).abs() < 0.01, "F_y = {fy}, 3 m g = 29.43 N");
+    for (w, h) in [(120, 40), (80, 24)] {
+        let shown = screen(&app, w, h);
+        assert!(shown.contains("joint rod: distance"), "{w}x{h}\n{shown}");
+        // The pivot `o` alone in its cell of the drawing, the vertical rod `|` under it.
+        let rows: Vec<Vec<char>> = shown.lines().map(|l| l.chars().collect()).collect();
+        let pivot = rows.iter().enumerate().find_map(|(r, row)| {
+            let c = row.iter().position(|&ch| ch == 'o')?;
+            let blank = |k: usize| row.get(k).is_some_and(|ch| *ch == ' ');
+            (row.first() == Some(&'│') && blank(c - 1) && blank(c + 1)).then_some((r, c))
+        });
+        let (r, c) = pivot.unwrap_or_else(|| panic!("no pivot at {w}x{h}\n{shown}"));
+        assert_eq!(rows[r + 1].get(c), Some(&'|'), "no rod at {w}x{h}\n{shown}");
+        let c_line = shown
+            .lines()
+            .find(|l| l.contains("|C|"))
+            .unwrap_or_else(|| panic!("no |C| at {w}x{h}\n{shown}"));
+        assert!(c_line.contains(&error[0]), "{error:?} vs {c_line}");
+        let f_line = shown
+            .lines()
+            .find(|l| l.contains("F on bob"))
+            .unwrap_or_else(|| panic!("no F at {w}x{h}\n{shown}"));
+        for cell in &force {
+            assert!(f_line.contains(cell.as_str()), "{force:?} vs {f_line}");
+        }
+        insta::assert_snapshot!(format!("pendulum_592_{w}x{h}"), shown);
+    }
+}
+
+#[test]
+fn a_hinge_seen_end_on_is_a_circled_dot_and_a_spring_a_zigzag() {
+    // Lesson 26: a cube on a hinge at the origin, axis z (towards the viewer of the front
+    // view): the pivot is drawn `⊙` (ASCII `o`), the arm from the cube's barycenter to it.
+    let app = lesson("26-the-physical-pendulum.toml");
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("joint edge: hinge"), "{shown}");
+    assert!(shown.contains(" axis "), "{shown}");
+    // The spring fixture at t = 0: the block at y = 0, the spring's world end at y = 1 straight
+    // above; drawn as a zigzag, `/` and `\` alternating up the column between them.
+    let app = fixture("tui-spring.toml");
+    let shown = screen(&app, 80, 24);
+    let drawing: Vec<&str> = shown.lines().skip(2).take(8).collect();
+    let slashes = drawing.iter().filter(|l| l.contains('/')).count();
+    let backslashes = drawing.iter().filter(|l| l.contains('\\')).count();
+    assert!(slashes >= 2 && backslashes >= 2, "{shown}");
+    assert!(shown.contains("spring s: block – world"), "{shown}");
+    // tension = k (|d| − ℓ₀) = 100 · (1 − 0.5) = 50 N.
+    assert!(shown.contains("50.000000"), "{shown}");
+    insta::assert_snapshot!("spring_80x24", shown);
+}
