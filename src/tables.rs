@@ -162,12 +162,19 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
             scalar_row("|ω|", s.angular_velocity.norm(), "rad/s"),
         ],
     };
+    // F, τ: the declared effects'. Fc, τc: the contacts' (impulses over dt of the last collide
+    // phase), shown while the body is in a contact.
+    let mut force_rows = vec![
+        vector_row("F", &to_frame(&s.force), "N"),
+        vector_row("τ", &to_frame(&s.torque), "N·m"),
+    ];
+    if s.contacts.iter().any(|c| involves(c, s.body_index)) {
+        force_rows.push(vector_row("Fc", &to_frame(&s.contact_force), "N"));
+        force_rows.push(vector_row("τc", &to_frame(&s.contact_torque), "N·m"));
+    }
     let forces = Panel {
         title: format!("force and torque{suffix}"),
-        rows: vec![
-            vector_row("F", &to_frame(&s.force), "N"),
-            vector_row("τ", &to_frame(&s.torque), "N·m"),
-        ],
+        rows: force_rows,
     };
     let momentum = Panel {
         title: format!("linear momentum{suffix}"),

@@ -6,7 +6,7 @@
 //! are those of the current state, i.e. what the next *derive* will compute.
 
 use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape};
-use super::collision::{Contact, Obstacle};
+use super::collision::{Against, Contact, Obstacle};
 use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
 use super::energy_ledger::EnergyBalance;
@@ -50,6 +50,10 @@ pub struct Snapshot {
     /// F, N and τ about the barycenter, N·m (world frame).
     pub force: Vector3<f64>,
     pub torque: Vector3<f64>,
+    /// The contacts' force and torque about the barycenter on this body (world frame), N and
+    /// N·m: the last collide phase's impulses over dt (see [`contact_loads`]).
+    pub contact_force: Vector3<f64>,
+    pub contact_torque: Vector3<f64>,
     /// Energy now and at t = 0.
     pub energy: Energy,
     pub initial_energy: Energy,
@@ -320,6 +324,7 @@ impl Snapshot {
             (*world.kinematics_of(index), *world.loads_of(index))
         };
         let rotation = state.orientation.matrix();
+        let (contact_force, contact_torque) = contact_loads(world.contacts(), index, world.dt());
         let vertices = world.vertices_of(index);
         let penetration = geometric_penetration(world, index, &vertices);
         let bodies = (0..world.body_count())
@@ -357,6 +362,8 @@ impl Snapshot {
             inv_inertia_world: kinematics.inv_inertia_world,
             force: loads.force,
             torque: loads.torque,
+            contact_force,
+            contact_torque,
             energy: energy(body, world.effects(), state),
             initial_energy: energy(body, world.effects(), &world.initial_states()[index]),
             energy_balance: world.energy_balance(),
@@ -403,6 +410,8 @@ impl Snapshot {
             inv_inertia_world: Matrix3::zeros(),
             force: zero,
             torque: zero,
+            contact_force: zero,
+            contact_torque: zero,
             energy: Energy::default(),
             initial_energy: Energy::default(),
             energy_balance: world.energy_balance(),
@@ -419,6 +428,36 @@ impl Snapshot {
             springs: SpringView::all(world),
             joint_correction_work: world.energy_ledger().joint_correction,
         }
+    }
+}
+
+/// The contacts' force and torque on body `index`, N and N·m (world frame): the impulses the
+/// last collide phase applied, over dt, summed over the body's contacts, as A (impulse J, lever
+/// r_A) and as B (−J, lever r_B), the torque about the barycenter.
+///
+/// ```text
+/// F_c = Σ J / dt        τ_c = Σ r × J / dt
+/// ```
+///
+/// A mean over the step: a resting contact gives F_c = −(the other forces), e.g. M g up for
+/// a box on the ground. For `seed` the impulse is its change of the whole momentum and the
+/// lever is measured from the initial barycenter (the report's), so τ_c is about x₀.
+pub fn contact_loads(contacts: &[Contact], index: usize, dt: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let mut impulse = Vector3::zeros();
+    let mut moment = Vector3::zeros();
+    for c in contacts {
+        if c.body == index {
+            impulse += c.impulse;
+            moment += c.lever.cross(&c.impulse);
+        } else if c.against == Against::Body(index) {
+            impulse -= c.impulse;
+            moment -= c.lever_other.cross(&c.impulse);
+        }
+    }
+    if dt > 0.0 {
+        (impulse / dt, moment / dt)
+    } else {
+        (Vector3::zeros(), Vector3::zeros())
     }
 }
 

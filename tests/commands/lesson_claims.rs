@@ -2044,6 +2044,123 @@ fn lesson_20_the_ball_rolls_from_step_728_at_five_sevenths_of_v0() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Lesson 21: the spinning top
+// ---------------------------------------------------------------------------------------------
+
+/// The top's axis (body y in the world) and its azimuth about the vertical, rad.
+fn top_axis(w: &World) -> (Vector3<f64>, f64) {
+    let axis = w.state().orientation.matrix() * Vector3::y();
+    (axis, axis.z.atan2(-axis.x))
+}
+
+/// Steps a top for `steps` and measures its mean precession rate (the axis' azimuth, unwrapped
+/// every step, over the time) and the extremes of its tilt from the vertical, degrees.
+fn precession(w: &mut World, steps: u64) -> (f64, f64, f64) {
+    let (_, start) = top_axis(w);
+    let mut previous = start;
+    let mut turned = 0.0;
+    let (mut low, mut high) = (f64::MAX, f64::MIN);
+    for _ in 0..steps {
+        w.step();
+        let (axis, azimuth) = top_axis(w);
+        let mut change = azimuth - previous;
+        change -= (change / std::f64::consts::TAU).round() * std::f64::consts::TAU;
+        turned += change;
+        previous = azimuth;
+        let tilt = axis.y.clamp(-1.0, 1.0).acos().to_degrees();
+        low = low.min(tilt);
+        high = high.max(tilt);
+    }
+    (turned / (steps as f64 * w.dt()), low, high)
+}
+
+#[test]
+fn lesson_21_the_top_precesses_at_the_slow_root_and_the_contact_carries_its_torque() {
+    let l = lesson("21-spinning-top.toml");
+    let mut w = l.scene.world();
+    let (axis, _) = top_axis(&w);
+    // Closed form. The ground is smooth (friction 0): no horizontal force, the barycenter
+    // stays on its vertical and the top turns about it, so I₁ is about the barycenter (about
+    // the tip only if the tip were held). θ = 20°, d = L/2 = 0.06 m from the cap's centre (the
+    // tip) to the barycenter; L₃ = I₃ ω₃ with ω₃ = ω·axis (spin plus Ω cos θ).
+    let i1 = w.body().inertia_body[(0, 0)];
+    let i3 = w.body().inertia_body[(1, 1)];
+    let theta = axis.y.acos();
+    let (m, g, d) = (w.body().mass, 9.81, 0.06);
+    let omega3 = w.kinematics().angular_velocity.dot(&axis);
+    let l3 = i3 * omega3;
+    let slow_root = |i1: f64| {
+        let c = i1 * theta.cos();
+        (l3 - (l3 * l3 - 4.0 * c * m * g * d).sqrt()) / (2.0 * c)
+    };
+    let expected = slow_root(i1);
+    // The page's numbers: I₁ = 0.004356, I₃ = 0.001656 kg·m², ω₃ = 201.693374 rad/s, the slow
+    // root 1.802051 rad/s (one turn in 3.487 s); M g d/L₃ = 1.762 and, about a held tip,
+    // I₁ + M d² gives 1.838: the tolerance below tells the three apart.
+    assert_near(theta.to_degrees(), 20.0, 1e-9, "tilt at t = 0");
+    assert_near(i1, 0.004356, 5e-7, "I₁");
+    assert_near(i3, 0.001656, 5e-7, "I₃");
+    assert_near(omega3, 201.693374, 1e-6, "ω₃");
+    assert_near(expected, 1.802051, 1e-5, "slow root");
+    assert_near(m * g * d / l3, 1.762253, 1e-5, "M g d/L₃");
+    assert_near(
+        slow_root(i1 + m * d * d),
+        1.837859,
+        1e-5,
+        "slow root about a held tip",
+    );
+    // Measured over the lesson's 3.5 s (7000 steps of RK4, ≈ one turn). Tolerance 0.1 %: the
+    // file's ω is rounded to 6 digits, which leaves a nod of ±0.01° and a rate ripple far
+    // below it; 0.1 % is 20 times narrower than the gap to either approximation above.
+    let (rate, low, high) = precession(&mut w, steps_for(3.5, l.scene.dt));
+    assert!(
+        (rate / expected - 1.0).abs() < 1e-3,
+        "precession {rate} rad/s, slow root {expected} rad/s"
+    );
+    assert_near(rate, 1.80202, 1e-5, "the page's measured rate");
+    // Steady: the tilt stays at 20° (±0.01°, the page) and the barycenter on its vertical.
+    assert!(low > 19.99 && high < 20.01, "tilt {low}..{high}°");
+    let x = w.state().position;
+    assert!(
+        (x.x + 0.020521).abs() < 1e-4 && x.z.abs() < 1e-4,
+        "x = {x:?}"
+    );
+    // The contact's force and torque (the panel's Fc, τc): the ground carries the weight,
+    // M g = 9.81 N up, at the contact below the tip's centre, d sin θ from the barycenter
+    // horizontally: |τ_c| = M g d sin θ = 0.201313 N·m, horizontal and across the lean (what
+    // turns L round the vertical; the effects' τ is 0).
+    let s = w.snapshot();
+    assert_near(s.contact_force.y, m * g, 1e-3 * m * g, "F_c up");
+    assert!(s.contact_force.xz().norm() < 1e-6, "no horizontal force");
+    let tau = s.contact_torque;
+    assert_near(tau.norm(), m * g * d * theta.sin(), 1e-3 * 0.2, "|τ_c|");
+    assert!(tau.y.abs() < 1e-6, "τ_c is horizontal: {tau:?}");
+    let (axis, _) = top_axis(&w);
+    assert!(tau.dot(&axis).abs() < 1e-6, "τ_c ⟂ the axis: {tau:?}");
+    assert_eq!(s.torque, Vector3::zeros(), "the effects' torque is 0");
+}
+
+#[test]
+fn lesson_21_with_friction_the_sliding_cap_raises_the_top_instead() {
+    // The cap's lowest point is r sin θ = 0.021 m off the axis, moving at ≈ 200 × 0.021
+    // = 4.1 m/s: on rough ground it slides, and friction's torque raises the top (μ = 0.05:
+    // from 20° to below 5° within 1.5 s, as the page says) while its barycenter wanders off.
+    let l = lesson("21-spinning-top.toml");
+    let mut scene = l.scene.clone();
+    scene
+        .contact
+        .as_mut()
+        .expect("the lesson has a contact model")
+        .friction = 0.05;
+    let mut w = scene.world();
+    let (_, low, _) = precession(&mut w, steps_for(1.5, l.scene.dt));
+    let (axis, _) = top_axis(&w);
+    let tilt = axis.y.acos().to_degrees();
+    assert!(tilt < 5.0 && low < 5.0, "tilt {tilt}° at 1.5 s");
+    assert!(w.state().position.xz().norm() > 0.2, "the barycenter moved");
+}
+
+// ---------------------------------------------------------------------------------------------
 // Lesson 16 with the contacts inside backward Euler's solve (issue 20)
 // ---------------------------------------------------------------------------------------------
 

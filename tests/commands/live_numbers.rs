@@ -167,6 +167,7 @@ fn every_bundled_lesson_fills_its_live_numbers() {
     }
 }
 
+#[cfg(feature = "tui")]
 mod app {
     use super::source;
     use std::path::Path;

@@ -544,7 +544,9 @@ mod random_pairs {
             let mut touched = false;
             for step in 0..400 {
                 w.step();
-                touched |= w.contacts().iter().any(|c| c.depth > 0.0);
+                // Met: an impulse passed between them (a speculative contact may stop the pair
+                // at depth ≤ 0, before any overlap).
+                touched |= w.contacts().iter().any(|c| c.impulse.norm() > 0.0);
                 let e = w.total_energy().total;
                 prop_assert!(e.is_finite() && e <= e0 * (1.0 + 1e-9) + 1e-12,
                     "step {step}: E = {e} > E₀ = {e0}");
@@ -561,4 +563,76 @@ mod random_pairs {
             }
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The contacts' force and torque (the snapshot's F_c, τ_c: Σ J/dt and Σ r × J/dt)
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn a_box_resting_on_the_ground_gets_m_g_up_from_its_contacts_and_no_torque() {
+    // At rest, the collide phase takes away exactly what gravity gave in the step: Σ J = M g dt
+    // up, F_c = M g = 2 × 9.81 = 19.62 N; the four corners carry it symmetrically about the
+    // barycenter, so τ_c = Σ r × J/dt = 0.
+    let source = format!(
+        "{}[body]\nshape = \"box\"\nsize = [0.2, 0.2, 0.2]\nmass = 2.0\nposition = [0.0, 0.1, 0.0]\n\
+         [[obstacle]]\ntype = \"ground\"\nheight = 0.0\n",
+        scene(0.5, 0.0, true)
+    );
+    let mut w = world(&source);
+    run(&mut w, 0.5);
+    let s = w.snapshot();
+    assert!(!s.contacts.is_empty(), "the box touches the ground");
+    let expected = Vector3::new(0.0, 2.0 * G, 0.0);
+    assert!(
+        (s.contact_force - expected).norm() < 1e-6 * expected.norm(),
+        "F_c = {:?}, expected {expected:?}",
+        s.contact_force
+    );
+    assert!(
+        s.contact_torque.norm() < 1e-9,
+        "τ_c = {:?}",
+        s.contact_torque
+    );
+    // The effects' force is gravity alone: F + F_c = 0 for a body at rest.
+    assert!((s.force + s.contact_force).norm() < 1e-6);
+}
+
+#[test]
+fn a_ball_rolling_down_a_ramp_gets_two_sevenths_m_g_sin_theta_of_friction_up_the_slope() {
+    // A solid ball (M = 1, r = 0.1, I = ⅖ M r²) rolling on a 20° ramp: a = 5/7 g sin θ, so the
+    // contact pushes M g cos θ = 9.218381 N along n and friction f = M g sin θ − M a
+    // = (2/7) M g sin θ = 0.958636 N up the slope; its torque about the centre is r × f with
+    // r = −0.1 n: |τ_c| = 0.1 f = 0.0958636 N·m, along −z (it spins the ball toward +x).
+    let (n, plane) = ramp(20.0);
+    let source = format!(
+        "{}[body]\nshape = \"sphere\"\nradius = 0.1\nmass = 1.0\nposition = {}\n{plane}",
+        scene(0.5, 0.0, true),
+        vec(&(n * 0.1))
+    );
+    let mut w = world(&source);
+    run(&mut w, 0.5);
+    let s = w.snapshot();
+    let t = 20f64.to_radians();
+    let uphill = Vector3::new(-n.y, n.x, 0.0);
+    let f = 2.0 / 7.0 * G * t.sin();
+    let normal = G * t.cos();
+    let fc = s.contact_force;
+    assert!(
+        (fc.dot(&n) - normal).abs() < 1e-3 * normal,
+        "normal part {} N, expected {normal}",
+        fc.dot(&n)
+    );
+    assert!(
+        (fc.dot(&uphill) - f).abs() < 1e-3 * f,
+        "friction {} N, expected {f}",
+        fc.dot(&uphill)
+    );
+    let expected_torque = (-n * 0.1).cross(&(uphill * f));
+    assert!(
+        (s.contact_torque - expected_torque).norm() < 1e-3 * expected_torque.norm(),
+        "τ_c = {:?}, expected {expected_torque:?}",
+        s.contact_torque
+    );
+    assert!(expected_torque.z < 0.0);
 }
