@@ -1413,7 +1413,6 @@ fn lesson_16_the_sheet_is_particles_and_springs_and_explicit_steps_cannot_follow
 }
 
 #[test]
-#[ignore = "issue 20: the page's numbers are the old velocity-pass coupling's; to be re-measured now that contacts are inside the implicit solve"]
 fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
     let l = lesson("16-trampoline.toml");
     let mut world = l.scene.world();
@@ -1421,11 +1420,14 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
     let (mut arrival, mut landing, mut by_pass) = (0.0, 0.0, [0.0; 2]);
     let mut worst = [0.0f64; 2];
     let mut rising = false;
+    let mut landing_contacts = 0.0;
     let mut heights = Vec::new();
     for step in 1..=4000u64 {
         let (start, impulses) = frame_with_contact_impulses(&mut world);
         assert!(world.divergence().is_none());
-        // Each contact of either pass gives a particle J and the cube −J: Σ P kept by each.
+        // A push-out (collide phase) gives a particle J and the cube −J: Σ P kept. (The ties
+        // inside the solve share their impulse with the pinned edges through the springs:
+        // that pass is not a two-body exchange, and is not checked here.)
         for (w, [cube, sheet]) in worst.iter_mut().zip(impulses) {
             *w = w.max((cube + sheet).norm());
         }
@@ -1443,6 +1445,7 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
             }
             if contacts > 0 {
                 leave = Some((step, landing, p.y));
+                landing_contacts = world.energy_balance().contacts.unwrap();
             }
             if p.y > 0.0 {
                 rising = true;
@@ -1454,50 +1457,50 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
             heights.push(world.states()[0].position.y);
         }
     }
-    assert!(
-        worst[0] < 1e-14,
-        "Σ P changed by {:e} in a velocity pass",
-        worst[0]
-    );
+    // The ledger's contacts row at the landing's last contact: +1.450 J.
+    assert_near(landing_contacts, 1.450, 5e-4, "contacts row at landing");
     assert!(
         worst[1] < 1e-14,
         "Σ P changed by {:e} in a collide phase",
         worst[1]
     );
-    // First touch at step 272, after a free fall: P_y = −M g t = −9.81 × 0.272 (rk4 is exact).
-    assert_eq!(touch, Some(272));
-    assert_near(arrival, -2.66832, 1e-12, "arrival P_y");
-    // Last contact of the landing at step 561; the momentum theorem over steps 272–561: the
-    // sheet's impulse is ΔP + M g T = 0.5590 + 2.66832 + 9.81 × 0.289 = 6.0624 N·s, of which
-    // the velocity pass gave 6.0600 and the collide phase 0.0024.
+    // First touch at step 271, after a free fall: P_y = −M g t = −9.81 × 0.271 (rk4 is exact).
+    // (The contact inside the solve ties a particle the step it would reach the surface, one
+    // step before the old velocity pass met it: 272.)
+    assert_eq!(touch, Some(271));
+    assert_near(arrival, -2.65851, 1e-12, "arrival P_y");
+    // Last contact of the landing at step 564; the momentum theorem over steps 271–564: the
+    // sheet's impulse is ΔP + M g T = 0.2197 + 2.65851 + 9.81 × 0.293 = 5.7526 N·s, of which
+    // the integrate phase (the ties inside the solve) gave 4.1522 and the collide phase's
+    // push-outs 1.6004 (measured on the cube's side: its ΔP less its weight's M g h).
     let (last, impulse, departure) = leave.unwrap();
-    assert_eq!(last, 561);
-    assert_near(departure, 0.5590, 5e-5, "P_y leaving");
+    assert_eq!(last, 564);
+    assert_near(departure, 0.2197, 5e-5, "P_y leaving");
     assert_near(
         impulse,
-        departure - arrival + G * 0.289,
+        departure - arrival + G * 0.293,
         1e-12,
         "momentum theorem",
     );
-    assert_near(impulse, 6.0624, 5e-5, "the sheet's impulse");
-    assert_near(by_pass[0], 6.0600, 5e-5, "the velocity pass's share");
-    assert_near(by_pass[1], 0.0024, 5e-5, "the collide phase's share");
-    // The top of the rebound: v_y changes sign at step 618, y = 0.1525 m.
+    assert_near(impulse, 5.7526, 5e-5, "the sheet's impulse");
+    assert_near(by_pass[0], 4.1522, 5e-5, "the solve's share");
+    assert_near(by_pass[1], 1.6004, 5e-5, "the collide phase's share");
+    // The top of the rebound: v_y changes sign at step 587, y = 0.1307 m.
     let (top, height) = apex.unwrap();
-    assert_eq!(top, 618);
-    assert_near(height, 0.1525, 5e-5, "rebound height");
+    assert_eq!(top, 587);
+    assert_near(height, 0.1307, 5e-5, "rebound height");
     // Energy: E₀ = 1 × 9.81 × 0.5 = 4.905 J (the flat sheet at y = 0: none); the ledger:
-    // −3.925 − 0.042 − 0.567 = −4.534 J.
+    // −5.107 + 2.123 − 1.606 = −4.590 J.
     let b = world.energy_balance();
     assert_near(world.initial_total_energy().total, 4.905, 1e-12, "E₀");
-    assert_near(world.total_energy().total, 0.371, 5e-4, "E(4 s)");
-    assert_near(b.change, -4.534, 5e-4, "E − E₀");
-    assert_near(b.drag_work.unwrap(), -3.925, 5e-4, "damping");
-    assert_near(b.contacts.unwrap(), -0.042, 5e-4, "contacts");
-    assert_near(b.drift, -0.567, 5e-4, "drift");
-    // At rest: from 3 s on within 1.3 mm of its height at 4 s; bottom at −0.1212 m on the 8
+    assert_near(world.total_energy().total, 0.315, 5e-4, "E(4 s)");
+    assert_near(b.change, -4.590, 5e-4, "E − E₀");
+    assert_near(b.drag_work.unwrap(), -5.107, 5e-4, "damping");
+    assert_near(b.contacts.unwrap(), 2.123, 5e-4, "contacts");
+    assert_near(b.drift, -1.606, 5e-4, "drift");
+    // At rest: from 3 s on within 1.3 mm of its height at 4 s; bottom at −0.1162 m on the 8
     // particles around the centre of its face; the centre particle just below the face; the
-    // fastest particle at 4.8 mm/s.
+    // fastest particle at 0.22 mm/s.
     let s = world.states()[0];
     let bottom = s.position.y - 0.175;
     let band = heights
@@ -1505,7 +1508,7 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
         .map(|h| (h - s.position.y).abs())
         .fold(0.0, f64::max);
     assert!(band < 1.3e-3, "moves {band} m after 3 s");
-    assert_near(bottom, -0.1212, 5e-5, "resting bottom");
+    assert_near(bottom, -0.1162, 5e-5, "resting bottom");
     let c = &world.cloths()[0];
     let on_face: Vec<usize> = (0..c.len())
         .filter(|&p| (c.positions[p].y - bottom).abs() < 1e-5)
@@ -1525,7 +1528,7 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
     .collect();
     assert_eq!(on_face, ring);
     assert!(c.positions[c.index(10, 10)].y < bottom - 1e-4);
-    assert_near(c.max_speed(), 0.0048, 5e-5, "fastest particle");
+    assert_near(c.max_speed(), 0.00022, 5e-6, "fastest particle");
     // The static equilibrium by Newton's method (no friction): the 8 particles at one height
     // carry M g = 9.81 N (corners of the face 1.760 N each, the others 0.693 N: 4 × 1.760 +
     // 4 × 0.693 = 9.81), bottom at −0.1162 m; the sheet alone sags 6.84 cm at its centre.
@@ -1542,27 +1545,26 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
         assert_near(*f, expected, 5e-4, "a particle's share");
     }
     assert_eq!(resting.under, ring);
-    // The cube sits 4.9 mm below the frictionless static equilibrium. Not friction holding
-    // the 8 where they landed: Newton again with each of them held at its simulated x and z
-    // (friction gives whatever sideways force that needs) puts the bottom at −0.1146 m,
-    // higher, and needs a sideways force up to 2.79 times the particle's push (μ = 0.5).
+    // The cube sits 0.06 mm above the frictionless static equilibrium (the page: within
+    // 0.06 mm). Newton again with each of the 8 held at its simulated x and z (friction gives
+    // whatever sideways force that needs) puts the bottom at −0.1162 m too, and needs a
+    // sideways force up to 0.092 times the particle's push: well inside the cone (μ = 0.5).
     let held = trampoline_equilibrium(&sheet, Some((1.0, 0.175)), true, Some(&c.positions));
-    assert_near(held.bottom, -0.1146, 5e-5, "held bottom");
+    assert_near(held.bottom, -0.1162, 5e-5, "held bottom");
     let needed = (held.friction.iter())
         .zip(&held.contact_forces)
         .map(|(t, n)| t / n)
         .fold(0.0, f64::max);
     assert_near(
         needed,
-        2.79,
+        0.092,
         5e-3,
         "the friction coefficient the held particles need",
     );
-    // The simulated sheet is not in static balance: its springs (and the particles' weight)
-    // push the 8 up with 25.3 N while the cube weighs 9.81 N (Σ of the spring forces' y on
-    // them, less their weight 8 m g). A contact stops a particle's own velocity (its 4.5 g in
-    // k(n)); presumably what the implicit step asked of the springs behind it (a quasi-static
-    // velocity of the whole patch) is cancelled there each step and never reaches the cube.
+    // The simulated sheet is in static balance: its springs (and the particles' weight) push
+    // the 8 up with 9.809 N while the cube weighs 9.81 N (Σ of the spring forces' y on them,
+    // less their weight 8 m g): the ties inside the solve carry the springs' pull to the cube
+    // within the step.
     let mut push = 0.0;
     for s in &c.springs {
         let d = c.positions[s.j] - c.positions[s.i];
@@ -1574,15 +1576,14 @@ fn lesson_16_the_cube_lands_rebounds_and_rests_in_the_dip() {
             .sum::<f64>();
     }
     push -= 8.0 * G * c.masses[0];
-    assert_near(push, 25.3, 0.05, "the springs' push on the 8");
-    assert_near(resting.bottom - bottom, 0.0049, 5e-5, "below static");
+    assert_near(push, 9.809, 5e-4, "the springs' push on the 8");
+    assert_near(resting.bottom - bottom, -0.00006, 1e-5, "above static");
 }
 
 #[test]
-#[ignore = "issue 20: the page's numbers are the old velocity-pass coupling's; to be re-measured now that contacts are inside the implicit solve"]
 fn lesson_16_the_drift_is_backward_eulers_and_shrinks_with_dt() {
-    // The ledger's drift at 4 s, −0.567 J at dt = 1 ms, is the sheet's numerical damping
-    // (the cube's rk4 is exact in free flight): at dt = 0.5 ms it is −0.339 J.
+    // The ledger's drift at 4 s, −1.606 J at dt = 1 ms, is the sheet's numerical damping
+    // (the cube's rk4 is exact in free flight): at dt = 0.5 ms it is −1.192 J.
     let l = lesson_edited("16-trampoline.toml", &[("dt = 0.001", "dt = 0.0005")]);
     let mut world = l.scene.world();
     for _ in 0..8000 {
@@ -1591,7 +1592,7 @@ fn lesson_16_the_drift_is_backward_eulers_and_shrinks_with_dt() {
     assert!(world.divergence().is_none());
     assert_near(
         world.energy_balance().drift,
-        -0.339,
+        -1.192,
         5e-4,
         "drift at dt = 0.5 ms",
     );
@@ -1783,7 +1784,6 @@ fn lesson_17_the_cloth_and_its_fall() {
 }
 
 #[test]
-#[ignore = "issue 20: the page's numbers are the old velocity-pass coupling's; to be re-measured now that contacts are inside the implicit solve"]
 fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
     let l = lesson("17-drape.toml");
     let mut world = l.scene.world();
@@ -1821,9 +1821,9 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
         if step == 2000 {
             // The page's table, "as given" at t = 2 s.
             let (mid, corner, _) = drape_shape(&world);
-            assert_near(mid.y, 0.606, 5e-4, "edge midpoint y at 2 s");
-            assert_near(mid.x.hypot(mid.z), 0.919, 5e-4, "edge midpoint out at 2 s");
-            assert_near(corner.x.hypot(corner.z), 0.818, 5e-4, "corner at 2 s");
+            assert_near(mid.y, 0.613, 5e-4, "edge midpoint y at 2 s");
+            assert_near(mid.x.hypot(mid.z), 0.921, 5e-4, "edge midpoint out at 2 s");
+            assert_near(corner.x.hypot(corner.z), 0.812, 5e-4, "corner at 2 s");
         }
         // Stuck: from step 1310 on it does not move at all.
         if step > 1310 {
@@ -1834,20 +1834,20 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
         }
     }
     // The centre touches at step 209 (t = 0.209 s, the closed form above); the four corners
-    // reach the ground together at step 538 and stay the only particles there.
+    // reach the ground together at step 537 and stay the only particles there.
     assert_eq!(first_touch, Some(209));
     let corners = vec![(0, 0), (16, 0), (0, 16), (16, 16)];
-    assert_eq!(first_ground, Some((538, corners.clone())));
+    assert_eq!(first_ground, Some((537, corners.clone())));
     let c = &world.cloths()[0];
     let grounded: Vec<_> = (0..c.len())
         .filter(|&p| c.positions[p].y < 1e-9)
         .map(|p| c.grid(p))
         .collect();
     assert_eq!(grounded, corners);
-    // On the ground they slide in to 0.68 m from the axis and back out; stuck from 1.31 s at
-    // 0.818 m.
-    assert_near(closest_corner, 0.68, 5e-3, "closest corner");
-    assert_near(corner_stuck.x.hypot(corner_stuck.z), 0.818, 5e-4, "corner");
+    // On the ground they slide in to 0.71 m from the axis and back out; stuck from 1.31 s at
+    // 0.812 m.
+    assert_near(closest_corner, 0.71, 5e-3, "closest corner");
+    assert_near(corner_stuck.x.hypot(corner_stuck.z), 0.812, 5e-4, "corner");
     // Chords: a spring with both ends on the sphere has its middle ρ − √(ρ² − ℓ²/4) inside;
     // the deepest: ≈ 4 mm for stretch springs (ℓ ≈ 0.127 m), 16 mm for bend ones (0.252 m).
     let on = |p: usize| ((c.positions[p] - centre).norm() - 0.5).abs() < 1e-9;
@@ -1858,7 +1858,8 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
             .map(|s| {
                 let l = (c.positions[s.j] - c.positions[s.i]).norm();
                 let inside = 0.5 - ((c.positions[s.i] + c.positions[s.j]) / 2.0 - centre).norm();
-                assert_near(inside, 0.5 - (0.25 - l * l / 4.0).sqrt(), 1e-12, "chord");
+                // Both ends within 1e-9 m of the surface (`on`): the identity to that much.
+                assert_near(inside, 0.5 - (0.25 - l * l / 4.0).sqrt(), 1e-9, "chord");
                 (inside, l)
             })
             .fold((0.0, 0.0), |a: (f64, f64), b| if b.0 > a.0 { b } else { a })
@@ -1879,27 +1880,27 @@ fn lesson_17_the_cloth_drapes_with_no_particle_inside_the_sphere() {
         "E₀",
     );
     assert_near(0.5 * G * 1.2, 5.886, 1e-12, "E₀ quoted");
-    assert_near(world.total_energy().total, 2.831, 5e-4, "E(3 s)");
-    assert_near(b.drag_work.unwrap(), -2.099, 5e-4, "drag and damping");
-    assert_near(b.contacts.unwrap(), -0.572, 5e-4, "contacts");
-    assert_near(b.drift, -0.383, 5e-4, "drift");
-    assert_near(c.max_stretch(), 0.025, 5e-4, "2.5 % stretch");
+    // 5.886 − 2.097 − 0.245 − 0.708 = 2.836 J.
+    assert_near(world.total_energy().total, 2.836, 5e-4, "E(3 s)");
+    assert_near(b.drag_work.unwrap(), -2.097, 5e-4, "drag and damping");
+    assert_near(b.contacts.unwrap(), -0.245, 5e-4, "contacts");
+    assert_near(b.drift, -0.708, 5e-4, "drift");
+    assert_near(c.max_stretch(), 0.027, 5e-4, "2.7 % stretch");
 }
 
 #[test]
-#[ignore = "issue 20: the page's numbers are the old velocity-pass coupling's; to be re-measured now that contacts are inside the implicit solve"]
 fn lesson_17_friction_shear_and_bend_change_the_drape_as_quoted() {
     // (edit, edge midpoint (0, 8): y and distance from the axis, corner distance, max stretch)
     // at t = 2 s (the lesson as given: in the test above).
     for (edit, y, out, corner, stretch) in [
         (
             ("shear = 100.0", "shear = 0.0"),
-            0.293,
-            0.572,
-            0.888,
-            0.0033,
+            0.286,
+            0.464,
+            1.094,
+            0.0019,
         ),
-        (("bend = 5.0", "bend = 0.0"), 0.542, 0.870, 0.495, 0.022),
+        (("bend = 5.0", "bend = 0.0"), 0.523, 0.849, 0.669, 0.025),
     ] {
         let l = lesson_edited("17-drape.toml", &[edit]);
         let mut w = l.scene.world();
@@ -1917,15 +1918,15 @@ fn lesson_17_friction_shear_and_bend_change_the_drape_as_quoted() {
             assert!(w.cloths()[0].max_stretch() <= stretch + 5e-4, "{what}");
         }
     }
-    // Without friction it still slides at 2 s: particles at up to 0.67 m/s, corners at 0.80 m.
+    // Without friction it still slides at 2 s: particles at up to 0.48 m/s, corners at 0.78 m.
     let l = lesson_edited("17-drape.toml", &[("friction = 0.6", "friction = 0.0")]);
     let mut w = l.scene.world();
     for _ in 0..2000 {
         w.step();
     }
     let (_, c, speed) = drape_shape(&w);
-    assert_near(speed, 0.67, 5e-3, "still sliding");
-    assert_near(c.x.hypot(c.z), 0.80, 5e-3, "corners");
+    assert_near(speed, 0.48, 5e-3, "still sliding");
+    assert_near(c.x.hypot(c.z), 0.78, 5e-3, "corners");
     // The cloth's integrator set to symplectic-euler (dt = 1 ms > h*): it runs the 3 s; E at
     // 3 s = 2.829 J, drift +0.171 J, contacts −0.656 J.
     let mut scene = lesson("17-drape.toml").scene;
