@@ -1,5 +1,13 @@
 //! Particles against bodies, both ways: a cloth particle is a point, a body its convex shape.
 //!
+//! Which path a cloth takes depends on its integrator:
+//! - `implicit-euler`: [`tied_step`] holds every contact (bodies and obstacles) and every
+//!   attachment *inside* backward Euler's linear solve (`cloth::ties`, Baraff & Witkin's
+//!   constraint filter with the body's velocity change as an unknown of the same solve); the
+//!   velocity pass below is not used, and the collide phase's push-out only handles what is
+//!   still inside after the positions moved.
+//! - `symplectic-euler`: the two passes below.
+//!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
 //!
 //! A push-out that moves a particle out of a body stretches its springs: energy made by the
@@ -18,9 +26,8 @@
 //! body's weight is driven into it within every step, and that is no impact). The sweeps
 //! below reach it with impulses +J on the particle (Δv_p·n = Δj/m_p) and −J on the body at
 //! the contact point, friction on the relative slip within μ j_n. Known limit: the particle's
-//! own mass takes the impulse, not the sheet the implicit step couples it to, so the springs
-//! behind a particle reach the body only through later steps (Baraff–Witkin's constraint
-//! filtering inside the linear solve would do it within the step).
+//! own mass takes the impulse, not the sheet behind it, so its springs reach the body only
+//! through later steps (the implicit path, [`tied_step`], does it within the step).
 //!
 //! # The second pass, after the positions moved
 //!
