@@ -28,6 +28,8 @@ pub enum Value {
     Diverged,
     /// More than [`MAX_STEPS`] steps away.
     TooFar,
+    /// `t_contact` read before the body touched anything.
+    NoContactYet,
 }
 
 /// Every value a lesson's pages need, keyed by (step, quantity).
@@ -52,6 +54,8 @@ pub fn read(snapshot: &Snapshot, q: &Quantity) -> f64 {
         Measure::SceneEnergy => s.system.energy.total,
         Measure::SceneMomentum(i) => s.system.linear_momentum[i],
         Measure::Time => s.time,
+        // Not a state quantity: `LiveValues::compute` tracks it while stepping.
+        Measure::ContactTime => f64::NAN,
     }
 }
 
@@ -76,7 +80,34 @@ impl LiveValues {
             }
         }
         let mut values = BTreeMap::new();
+        // t_contact: each body's first contact time, watched only when a page quotes it.
+        let watch_contacts = wanted
+            .values()
+            .flatten()
+            .any(|q| q.measure == Measure::ContactTime);
+        let mut first_contact: Vec<Option<f64>> = vec![None; world.states().len()];
         for (step, quantities) in wanted {
+            if step <= MAX_STEPS {
+                while world.step_count() < step && world.divergence().is_none() {
+                    world.step();
+                    if watch_contacts {
+                        let t = world.time();
+                        // Touching: an impulse acted (a speculative row may hold one at
+                        // depth ≤ 0) or the body overlaps.
+                        let touching = world
+                            .contacts()
+                            .iter()
+                            .filter(|c| c.depth > 0.0 || c.impulse.norm() > 0.0);
+                        for c in touching {
+                            for b in std::iter::once(c.body).chain(c.other_body()) {
+                                if let Some(slot @ None) = first_contact.get_mut(b) {
+                                    *slot = Some(t);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
             let value_of = |world: &World, q: &Quantity| -> Value {
                 if step > MAX_STEPS {
                     return Value::TooFar;
@@ -84,13 +115,15 @@ impl LiveValues {
                 if world.divergence().is_some() {
                     return Value::Diverged;
                 }
+                if q.measure == Measure::ContactTime {
+                    return first_contact
+                        .get(q.body)
+                        .copied()
+                        .flatten()
+                        .map_or(Value::NoContactYet, Value::Number);
+                }
                 Value::Number(read(&world.snapshot_of(q.body), q))
             };
-            if step <= MAX_STEPS {
-                while world.step_count() < step && world.divergence().is_none() {
-                    world.step();
-                }
-            }
             for q in quantities {
                 let v = value_of(&world, &q);
                 values.insert((step, q), v);
@@ -132,6 +165,7 @@ pub fn text_of(value: Option<Value>, measure: Measure) -> String {
         Some(Value::Number(x)) => format!("{} {}", number_plain(x), measure.unit()),
         Some(Value::Diverged) => "(diverged before then)".to_string(),
         Some(Value::TooFar) => format!("(more than {MAX_STEPS} steps away)"),
+        Some(Value::NoContactYet) => "(no contact yet)".to_string(),
         None => "(not computed)".to_string(),
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! QUANTITY = BODY.NAME | NAME (the first body) | energy | Px | Py | Pz | t (the whole scene)
-//! NAME     = x y z vx vy vz wx wy wz Lx Ly Lz speed kinetic potential energy
+//! NAME     = x y z vx vy vz wx wy wz Lx Ly Lz speed kinetic potential energy t_contact
 //! ```
 //!
 //! This module only reads the names and checks them against the scene's bodies; the values
@@ -36,6 +36,8 @@ pub enum Measure {
     SceneMomentum(usize),
     /// The time of the step the value is read at, s.
     Time,
+    /// The time of the body's first contact with an obstacle or another body (by then), s.
+    ContactTime,
 }
 
 impl Measure {
@@ -48,7 +50,7 @@ impl Measure {
             Measure::AngularMomentum(_) => "kg·m²/s",
             Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => "J",
             Measure::SceneMomentum(_) => "kg·m/s",
-            Measure::Time => "s",
+            Measure::Time | Measure::ContactTime => "s",
         }
     }
 
@@ -62,7 +64,7 @@ impl Measure {
 }
 
 /// The per-body names, in the contract's order.
-pub const BODY_NAMES: [&str; 16] = [
+pub const BODY_NAMES: [&str; 17] = [
     "x",
     "y",
     "z",
@@ -79,6 +81,7 @@ pub const BODY_NAMES: [&str; 16] = [
     "kinetic",
     "potential",
     "energy",
+    "t_contact",
 ];
 
 /// The scene-wide names.
@@ -94,7 +97,8 @@ fn body_measure(name: &str) -> Option<Measure> {
         12 => Measure::Speed,
         13 => Measure::Kinetic,
         14 => Measure::Potential,
-        _ => Measure::Energy,
+        15 => Measure::Energy,
+        _ => Measure::ContactTime,
     })
 }
 

@@ -69,6 +69,40 @@ fn walk_fills_live_numbers_with_the_simulated_values_and_units() {
 }
 
 #[test]
+fn t_contact_is_the_first_touch_and_says_so_before_it() {
+    // The cube of `source` with a ground at y = 0 and an impulse response: its bottom (1.9 m up)
+    // reaches the ground after √(2 h/g) = √(3.8/9.81) = 0.6224 s; the first step whose contact
+    // impulse acts is within 2 dt of that (symplectic Euler lags, a speculative row may act
+    // one step early). At 0.5 s it has not touched yet.
+    let text = source("first touch {{cube.t_contact@1}}; at 0.5 s {{cube.t_contact}}", "")
+        .replace(
+            "gravity = [0.0, -9.81, 0.0]",
+            "gravity = [0.0, -9.81, 0.0]\ncontact = { response = \"impulse\", restitution = 0.0, friction = 0.5 }",
+        )
+        .replace(
+            "[[page]]\nat = 0.0",
+            "[[obstacle]]\ntype = \"ground\"\nheight = 0.0\n\n[[page]]\nat = 0.0",
+        );
+    let out = walk(&text, 50);
+    let line = out
+        .lines()
+        .find(|l| l.contains("first touch"))
+        .unwrap_or_else(|| panic!("{out}"));
+    assert!(line.ends_with("at 0.5 s (no contact yet)"), "{line}");
+    let t: f64 = line
+        .split("first touch ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("{line}"));
+    let closed = (2.0 * 1.9 / 9.81f64).sqrt();
+    assert!(
+        (t - closed).abs() <= 0.02 + 1e-9,
+        "t_contact {t} against {closed}"
+    );
+}
+
+#[test]
 fn a_value_quoted_at_a_time_matches_the_panel_at_that_time() {
     // The page at 0.5 s quotes y at 0.3 s; the walk's own state panel at t = 0.3 s must agree.
     let text = walk(&source("{{y@0.3}}", ""), 50);
