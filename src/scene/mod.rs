@@ -338,7 +338,6 @@ impl Validator<'_> {
             .iter()
             .map(|o| self.obstacle(o))
             .collect::<Result<_, _>>()?;
-        self.pairs_supported(&scene, &body_spans)?;
         self.finite_start(&scene, &body_spans, &raw.cloths)?;
         let mut pages = Vec::new();
         for page in raw.pages {
@@ -580,52 +579,6 @@ impl Validator<'_> {
                             "body `{}` starts inside body `{}` (overlap {depth:.3e} m): move \
                              them apart so that they at most touch",
                             later.name, earlier.name
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Every pair that can touch has a contact routine: a cylinder against a box, a hull or
-    /// another cylinder has none, and is refused at the cylinder.
-    fn pairs_supported(&self, scene: &Scene, spans: &[Range<usize>]) -> Result<(), LoadError> {
-        use crate::physics::collision::geometry::supports;
-        for (i, body) in scene.bodies.iter().enumerate() {
-            let Some(shape) = &body.body.shape else {
-                continue;
-            };
-            let unsupported =
-                |other: &crate::physics::collision::geometry::Shape| !supports(shape, other);
-            for other in &scene.bodies[..i] {
-                let Some(other_shape) = &other.body.shape else {
-                    continue;
-                };
-                if unsupported(other_shape) && !(body.body.fixed && other.body.fixed) {
-                    return Err(self.error(
-                        spans[i].clone(),
-                        format!(
-                            "no contact routine yet between a {} and a {} (`{}` and `{}`): a \
-                             cylinder meets planes, the ground, spheres and capsules only",
-                            body.shape, other.shape, body.name, other.name
-                        ),
-                    ));
-                }
-            }
-            if body.body.fixed {
-                continue;
-            }
-            for obstacle in &scene.obstacles {
-                if unsupported(&obstacle.shape().0) {
-                    return Err(self.error(
-                        spans[i].clone(),
-                        format!(
-                            "no contact routine yet between a {} and a {} obstacle (`{}`): a \
-                             cylinder meets planes, the ground, spheres and capsules only",
-                            body.shape,
-                            obstacle.kind(),
-                            body.name
                         ),
                     ));
                 }

@@ -9,7 +9,8 @@
 //! One table of pair functions, in the manner of Box2D v3's shape-pair table: each pair is
 //! written once with the rounder shape as A (ball < capsule < cylinder < box, hull < plane);
 //! the swapped pair is the same function with its normals flipped ([`ContactPoint::swapped`]).
-//! Everything here is written by hand; no pair comes from a crate.
+//! Everything here is written by hand; no pair comes from a crate (GJK/EPA included: a
+//! support function per shape, ~300 lines, rather than a new dependency of the core).
 //!
 //! | A against B | method | points |
 //! |---|---|---|
@@ -19,7 +20,7 @@
 //! | ball – anything | the other's surface point closest to the centre (`round`) | 1 |
 //! | capsule – anything | closest points of the core segment: both ends, or the deepest inner point (`round`) | 1–2 |
 //! | cylinder – plane | the lowest rim points (`cylinder_plane`) | lying 2, standing 4 |
-//! | cylinder – box, hull or cylinder | not available: the scene loader refuses such scenes | – |
+//! | cylinder – box, hull or cylinder | GJK/EPA for the normal, then the flat features clipped: a box face against the rim octagon and the lowest generator, or the cylinder's end against the other's face (`cylinder`, `gjk`) | lying 2, standing 4, else 1 |
 //! | a particle | [`point_shape`] | 1 |
 //!
 //! [`Obstacle::shape`]: super::Obstacle::shape
@@ -41,13 +42,17 @@
 //! | `obstacles` | polyhedra against the ground, planes and balls |
 //! | `round` | balls and capsules against any shape |
 //! | `cylinder_plane` | a cylinder on a plane: line contact lying, rim patch standing |
+//! | `gjk` | distance (GJK) and depth (EPA) of any two convex shapes from their support points |
+//! | `cylinder` | a cylinder against a box, a hull or a cylinder: GJK/EPA's normal, clipped features |
 //!
 //! The report's vertex test (`detect`) is separate and unchanged: it is the `seed` response's
 //! own detection.
 
 pub mod clip;
 pub mod closest;
+pub mod cylinder;
 pub mod cylinder_plane;
+pub mod gjk;
 pub mod hull;
 pub mod obstacles;
 pub mod polygon;
@@ -66,6 +71,7 @@ use closest::{
     closest_on_ball, closest_on_box, closest_on_capsule, closest_on_cylinder, closest_on_plane,
     closest_on_polyhedron, Closest,
 };
+use gjk::CylinderView;
 use nalgebra::Vector3;
 use polyhedron::{BoxView, HullView};
 
@@ -124,19 +130,6 @@ fn rank(shape: &Shape) -> u8 {
     }
 }
 
-/// Whether the contact geometry has a pair function for these two shapes (cylinder against
-/// box, hull or cylinder has none).
-pub fn supports(a: &Shape, b: &Shape) -> bool {
-    let (a, b) = if rank(a) <= rank(b) { (a, b) } else { (b, a) };
-    !matches!(
-        (a, b),
-        (
-            Shape::Cylinder { .. },
-            Shape::Cylinder { .. } | Shape::Box { .. } | Shape::Hull(_)
-        ) | (Shape::Plane { .. }, Shape::Plane { .. })
-    )
-}
-
 /// One pair of the table, rank(a) ≤ rank(b), polyhedron pairs excepted (handled above).
 fn ordered(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64, out: &mut Vec<ContactPoint>) {
     match a {
@@ -177,17 +170,42 @@ fn ordered(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64, out: &mut Ve
             radius,
             half_length,
         } => {
-            if let Shape::Plane { normal } = b {
-                let normal = pb.rotation * normal;
-                cylinder_plane::cylinder_plane(
+            let view = CylinderView {
+                center: pa.position,
+                rotation: pa.rotation,
+                radius: *radius,
+                half: *half_length,
+            };
+            match b {
+                Shape::Plane { normal } => cylinder_plane::cylinder_plane(
                     *radius,
                     *half_length,
                     pa,
                     &pb.position,
-                    &normal,
+                    &(pb.rotation * normal),
                     margin,
                     out,
-                );
+                ),
+                Shape::Box { half } => {
+                    cylinder::cylinder_polyhedron(&view, &BoxView::new(half, pb), margin, out)
+                }
+                Shape::Hull(hull) => {
+                    cylinder::cylinder_polyhedron(&view, &HullView { hull, pose: pb }, margin, out)
+                }
+                Shape::Cylinder {
+                    radius,
+                    half_length,
+                } => {
+                    let other = CylinderView {
+                        center: pb.position,
+                        rotation: pb.rotation,
+                        radius: *radius,
+                        half: *half_length,
+                    };
+                    cylinder::cylinder_cylinder(&view, &other, margin, out)
+                }
+                // Balls and capsules rank before cylinders: handled as A.
+                Shape::Ball { .. } | Shape::Capsule { .. } => {}
             }
         }
         Shape::Box { half } => match b {
