@@ -9,10 +9,20 @@
 //! bounce, ends the step where its corrected velocity takes it from the start of the step:
 //!
 //! ```text
-//! x_{n+1} = x_n + dt · v_{n+1}          (velocity-level time stepping; the rotation is kept)
+//! x_{n+1} = x_n + dt · (v_{n+1} + ½ P (v_n − v_{n+1}))       (the rotation is kept)
+//! P = the projection across the body's contact normals (what is left of a vector once its
+//!     parts along the normals, made orthonormal, are taken out)
 //! ```
 //!
-//! A body held by static friction has `v_{n+1} = 0` and stays exactly where it was. The
+//! Across the normals (along the surface) this is the trapezoid rule, dt (v_n + v_{n+1})/2:
+//! exact when the velocity changes linearly, as rolling or sliding down a slope does, so the
+//! work of gravity m g·Δx equals the kinetic energy gained — a ball rolling without slipping
+//! keeps its energy. Advancing with v_{n+1} alone (velocity-level time stepping) would lose
+//! ½ M_eff a² dt² a step (M_eff = M + I/r²): 4.0 mJ/s for a 1 kg ball rolling on 20° at
+//! dt = 1 ms, first order in dt. Along the normals it stays dt · v_{n+1}, which the
+//! speculative contacts make exact (a landing body stops at the surface, not half a step
+//! inside it). A body held by static friction has `v_n = v_{n+1} = 0` and stays exactly
+//! where it was. The
 //! contacts' depths move with the bodies: `d ← d − n·(Δx_A − Δx_B)`. A bouncing body keeps
 //! the integrator's position (re-advancing it with its rebound velocity would lift it by
 //! `2 |u| dt` at every bounce, energy from nothing).
@@ -69,6 +79,8 @@ pub struct Scratch {
     multipliers: Vec<f64>,
     shifts: Vec<Vector3<f64>>,
     depths: Vec<f64>,
+    /// Per body: orthonormal contact normals and how many.
+    normals: Vec<([Vector3<f64>; 3], usize)>,
     /// The direct solve: merged rows (first contact, depth), the active ones, the system.
     merged: Vec<(usize, f64)>,
     active: Vec<usize>,
@@ -117,10 +129,33 @@ impl Fix<'_> {
         let mut moved = false;
         scratch.shifts.clear();
         scratch.shifts.resize(states.len(), Vector3::zeros());
+        // Up to three orthonormal contact normals per body (the directions the trapezoid
+        // leaves out: module doc).
+        scratch.normals.clear();
+        scratch.normals.resize(states.len(), ([Vector3::zeros(); 3], 0));
+        for c in contacts {
+            for b in std::iter::once(c.body).chain(c.other_body()) {
+                let (basis, count) = &mut scratch.normals[b];
+                let mut r = c.normal;
+                for e in &basis[..*count] {
+                    r -= e * e.dot(&r);
+                }
+                if *count < 3 && r.norm() > 1e-6 {
+                    basis[*count] = r.normalize();
+                    *count += 1;
+                }
+            }
+        }
         for (b, state) in states.iter_mut().enumerate() {
             if advanced[b] {
                 let body = &self.bodies[b];
-                let x = self.before[b].position + state.linear_momentum * (body.inv_mass * self.dt);
+                let v1 = state.linear_momentum * body.inv_mass;
+                let mut along = self.before[b].linear_momentum * body.inv_mass - v1;
+                let (basis, count) = &scratch.normals[b];
+                for e in &basis[..*count] {
+                    along -= e * e.dot(&along);
+                }
+                let x = self.before[b].position + (v1 + along / 2.0) * self.dt;
                 scratch.shifts[b] = x - state.position;
                 state.position = x;
                 moved = true;
