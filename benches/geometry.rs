@@ -13,7 +13,9 @@
 //!   `ball-plane` (a 20° ramp), `ball-box` (on a cube's top face), `ball-ball`,
 //!   `capsule-ground` and `capsule-box` (lying: 2 points), `capsule-capsule` (crossed: 1 point),
 //!   `capsule-ball`, `cylinder-ground/lying` (2 points), `cylinder-ground/standing` (4 points),
-//!   `cylinder-ball`.
+//!   `cylinder-ball`; by GJK/EPA and clipping: `cylinder-box/lying` (2 points),
+//!   `cylinder-box/standing` (4), `cylinder-hull/lying` (2), `cylinder-cylinder/crossed` (1),
+//!   `cylinder-cylinder/stacked` (end on end, 4).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Rotation3, Vector3};
@@ -157,6 +159,21 @@ fn bench(c: &mut Criterion) {
     );
     pair("capsule-ball", &capsule, &lying(0.199), &ball, &base);
     pair("cylinder-ball", &cylinder, &lying(0.199), &ball, &base);
+    pair("cylinder-box/lying", &cylinder, &lying(0.599), &cube, &base);
+    pair("cylinder-box/standing", &cylinder, &at(0.699), &cube, &base);
+    pair("cylinder-hull/lying", &cylinder, &lying(0.599), &hull, &base);
+    pair(
+        "cylinder-cylinder/crossed",
+        &cylinder,
+        &rotated(
+            Vector3::x(),
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(0.0, 0.199, 0.0),
+        ),
+        &cylinder,
+        &lying(0.0),
+    );
+    pair("cylinder-cylinder/stacked", &cylinder, &at(0.399), &cylinder, &base);
     group.finish();
 }
 
