@@ -161,7 +161,13 @@ fn bench(c: &mut Criterion) {
     pair("cylinder-ball", &cylinder, &lying(0.199), &ball, &base);
     pair("cylinder-box/lying", &cylinder, &lying(0.599), &cube, &base);
     pair("cylinder-box/standing", &cylinder, &at(0.699), &cube, &base);
-    pair("cylinder-hull/lying", &cylinder, &lying(0.599), &hull, &base);
+    pair(
+        "cylinder-hull/lying",
+        &cylinder,
+        &lying(0.599),
+        &hull,
+        &base,
+    );
     pair(
         "cylinder-cylinder/crossed",
         &cylinder,
@@ -173,7 +179,13 @@ fn bench(c: &mut Criterion) {
         &cylinder,
         &lying(0.0),
     );
-    pair("cylinder-cylinder/stacked", &cylinder, &at(0.399), &cylinder, &base);
+    pair(
+        "cylinder-cylinder/stacked",
+        &cylinder,
+        &at(0.399),
+        &cylinder,
+        &base,
+    );
     group.finish();
 }
 

@@ -1015,11 +1015,22 @@ fn lesson_15_friction_stops_the_top_and_the_stack_stands_still() {
     // position fix's trapezoid): d = dt Σ_{k=1}^{102} (v_{k−1} + v_k)/2, v_k = v₀ − k μ g dt
     // for k ≤ 101 and v₁₀₂ = 0 (stopped inside step 102): 25.4843 mm, the continuous
     // v₀²/(2 μ g) = 25.4842 mm but for the last step's part (0.15 µm).
-    let v = |k: u64| if k <= 101 { v0 - k as f64 * mu * G * dt } else { 0.0 };
+    let v = |k: u64| {
+        if k <= 101 {
+            v0 - k as f64 * mu * G * dt
+        } else {
+            0.0
+        }
+    };
     let discrete: f64 = (1..=102).map(|k| (v(k - 1) + v(k)) / 2.0 * dt).sum();
     assert_near(position(&world, "top").x, discrete, 5e-7, "distance");
     assert_near(v0 * v0 / (2.0 * mu * G), 0.0255, 5e-5, "25.5 mm quoted");
-    assert_near(discrete, v0 * v0 / (2.0 * mu * G), 2e-7, "the continuous distance");
+    assert_near(
+        discrete,
+        v0 * v0 / (2.0 * mu * G),
+        2e-7,
+        "the continuous distance",
+    );
     // Within 20 nm of 0.5 m for the whole 3 s.
     assert!(
         highest_offset < 2e-8,
@@ -2160,19 +2171,28 @@ fn lesson_21_with_friction_the_sliding_cap_raises_the_top_instead() {
     // Gyrostatics, §the rising top; the tippe top's integral).
     let jellett = |w: &World| {
         let (axis, _) = top_axis(w);
-        w.state().angular_momentum.dot(&(axis * 0.06 + Vector3::y() * 0.06))
+        w.state()
+            .angular_momentum
+            .dot(&(axis * 0.06 + Vector3::y() * 0.06))
     };
     let (j0, e0) = (jellett(&w), w.total_energy().total);
     let (mut previous, mut worst_j) = (e0, 0.0f64);
     for _ in 0..steps_for(1.5, l.scene.dt) {
         w.step();
         let e = w.total_energy().total;
-        assert!(e <= previous + 1e-12, "energy rose at t = {}: {previous} → {e}", w.time());
+        assert!(
+            e <= previous + 1e-12,
+            "energy rose at t = {}: {previous} → {e}",
+            w.time()
+        );
         previous = e;
         worst_j = worst_j.max((jellett(&w) / j0 - 1.0).abs());
     }
     // Measured: J to 1.5e-7 of itself; E 34.826 → 33.157 J (friction took 1.67 J).
-    assert!(worst_j < 1e-6, "Jellett's integral moved by {worst_j} of itself");
+    assert!(
+        worst_j < 1e-6,
+        "Jellett's integral moved by {worst_j} of itself"
+    );
     assert!(previous < e0 - 1.0, "friction took {} J", e0 - previous);
     let (axis, _) = top_axis(&w);
     let tilt = axis.y.acos().to_degrees();

@@ -354,7 +354,10 @@ fn cylinder_on(below: &str, orientation: &str, y: f64) -> (usize, f64, f64, Vect
     let mut w = world(&source);
     let last = w.bodies().len() - 1;
     run(&mut w, 0.5);
-    let (x0, q0) = (w.states()[last].position, w.states()[last].orientation.quaternion());
+    let (x0, q0) = (
+        w.states()[last].position,
+        w.states()[last].orientation.quaternion(),
+    );
     run(&mut w, 0.5);
     let s = &w.states()[last];
     let count = w
@@ -362,7 +365,8 @@ fn cylinder_on(below: &str, orientation: &str, y: f64) -> (usize, f64, f64, Vect
         .iter()
         .filter(|c| {
             c.body == last && matches!(c.against, tumble::physics::Against::Body(0))
-                || c.body == 0 && matches!(c.against, tumble::physics::Against::Body(b) if b == last)
+                || c.body == 0
+                    && matches!(c.against, tumble::physics::Against::Body(b) if b == last)
         })
         .count();
     (
@@ -385,7 +389,10 @@ fn a_cylinder_rests_on_a_box_on_its_side_along_two_points_and_on_its_end_along_i
     for (orientation, y, points) in [(LYING, 0.3, 2), ("", 0.4, 4)] {
         let (count, moved, turned, at) = cylinder_on(TABLE, orientation, y);
         assert_eq!(count, points, "{orientation:?}");
-        assert!(moved < 1e-7 && turned < 1e-7, "{orientation:?}: {moved} m, {turned} rad");
+        assert!(
+            moved < 1e-7 && turned < 1e-7,
+            "{orientation:?}: {moved} m, {turned} rad"
+        );
         // Resting where it was put, within the solver's allowed overlap (≤ 1 mm).
         assert!((at.y - y).abs() < 1e-3, "{orientation:?}: y = {}", at.y);
     }
@@ -400,7 +407,10 @@ fn a_cylinder_rests_on_a_box_body_that_rests_on_the_ground() {
     for (orientation, y, points) in [(LYING, 0.3, 2), ("", 0.4, 4)] {
         let (count, moved, turned, at) = cylinder_on(block, orientation, y);
         assert_eq!(count, points, "{orientation:?}");
-        assert!(moved < 1e-6 && turned < 1e-6, "{orientation:?}: {moved} m, {turned} rad");
+        assert!(
+            moved < 1e-6 && turned < 1e-6,
+            "{orientation:?}: {moved} m, {turned} rad"
+        );
         assert!((at.y - y).abs() < 2e-3, "{orientation:?}: y = {}", at.y);
     }
 }
@@ -415,7 +425,10 @@ fn a_cylinder_rests_on_a_cylinder_end_on_end_and_lying_across_its_top() {
     for (orientation, y, points) in [("", 0.6, 4), (LYING, 0.5, 2)] {
         let (count, moved, turned, at) = cylinder_on(post, orientation, y);
         assert_eq!(count, points, "{orientation:?}");
-        assert!(moved < 1e-7 && turned < 1e-7, "{orientation:?}: {moved} m, {turned} rad");
+        assert!(
+            moved < 1e-7 && turned < 1e-7,
+            "{orientation:?}: {moved} m, {turned} rad"
+        );
         assert!((at.y - y).abs() < 1e-3, "{orientation:?}: y = {}", at.y);
     }
 }
@@ -483,7 +496,10 @@ fn a_ball_rolling_without_slipping_keeps_its_energy() {
         }
         // Moved: 2 s at 2.3966 m/s² is ½ a t² = 4.79 m down the slope (the test is not idle).
         let s = (w.state().position - n * 0.1).norm();
-        assert!((s - 0.5 * 2.396_584 * 4.0).abs() < 1e-3, "{integrator}: s = {s}");
+        assert!(
+            (s - 0.5 * 2.396_584 * 4.0).abs() < 1e-3,
+            "{integrator}: s = {s}"
+        );
         assert!(worst < 1e-6, "{integrator}: |E − E₀| reached {worst} J");
     }
 }

@@ -132,7 +132,9 @@ impl Fix<'_> {
         // Up to three orthonormal contact normals per body (the directions the trapezoid
         // leaves out: module doc).
         scratch.normals.clear();
-        scratch.normals.resize(states.len(), ([Vector3::zeros(); 3], 0));
+        scratch
+            .normals
+            .resize(states.len(), ([Vector3::zeros(); 3], 0));
         for c in contacts {
             for b in std::iter::once(c.body).chain(c.other_body()) {
                 let (basis, count) = &mut scratch.normals[b];

@@ -91,7 +91,15 @@ pub fn cylinder_cylinder(
         }
     } else if 1.0 - along_a <= ALIGNED {
         let (m, d, reference) = cap(a, &-n);
-        if face_manifold(&m, d, &reference, &lower_features(b, &m), false, margin, out) {
+        if face_manifold(
+            &m,
+            d,
+            &reference,
+            &lower_features(b, &m),
+            false,
+            margin,
+            out,
+        ) {
             return;
         }
     } else if along_a <= ALIGNED.sqrt()
@@ -265,7 +273,10 @@ mod tests {
         assert_eq!(out.len(), 2, "{out:?}");
         let mut xs: Vec<f64> = out.iter().map(|p| p.point.x).collect();
         xs.sort_by(f64::total_cmp);
-        assert!((xs[0] + 0.3).abs() < 1e-9 && (xs[1] - 0.3).abs() < 1e-9, "{out:?}");
+        assert!(
+            (xs[0] + 0.3).abs() < 1e-9 && (xs[1] - 0.3).abs() < 1e-9,
+            "{out:?}"
+        );
         for p in &out {
             assert!((p.depth - 0.001).abs() < 1e-9, "{p:?}");
             assert!((p.normal - V::y()).norm() < 1e-12);
@@ -282,7 +293,10 @@ mod tests {
         let mut xs: Vec<f64> = out.iter().map(|p| p.point.x).collect();
         xs.sort_by(f64::total_cmp);
         assert_eq!(xs.len(), 2, "{out:?}");
-        assert!((xs[0] - 0.1).abs() < 1e-9 && (xs[1] - 0.5).abs() < 1e-9, "{xs:?}");
+        assert!(
+            (xs[0] - 0.1).abs() < 1e-9 && (xs[1] - 0.5).abs() < 1e-9,
+            "{xs:?}"
+        );
     }
 
     #[test]
@@ -337,7 +351,10 @@ mod tests {
         let mut xs: Vec<f64> = out.iter().map(|p| p.point.x).collect();
         xs.sort_by(f64::total_cmp);
         // Overlap of x ∈ [−0.2, 0.4] and [−0.3, 0.3]: [−0.2, 0.3].
-        assert!((xs[0] + 0.2).abs() < 1e-6 && (xs[1] - 0.3).abs() < 1e-6, "{xs:?}");
+        assert!(
+            (xs[0] + 0.2).abs() < 1e-6 && (xs[1] - 0.3).abs() < 1e-6,
+            "{xs:?}"
+        );
         for p in &out {
             assert!((p.depth - 0.001).abs() < 1e-6, "{p:?}");
         }

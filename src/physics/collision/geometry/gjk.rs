@@ -295,7 +295,9 @@ fn triangle(s: &mut [Vertex; 4], weights: &mut [f64; 4]) -> (V, usize) {
 /// origin on their outer side; count 4 when the origin is inside.
 fn tetrahedron(s: &mut [Vertex; 4], weights: &mut [f64; 4]) -> (V, usize) {
     const FACES: [[usize; 4]; 4] = [[0, 1, 2, 3], [0, 1, 3, 2], [0, 2, 3, 1], [1, 2, 3, 0]];
-    let mut best: Option<(f64, V, [Vertex; 4], [f64; 4], usize)> = None;
+    // (squared distance, point, reduced face, weights, count) of the nearest face so far.
+    type Candidate = (f64, V, [Vertex; 4], [f64; 4], usize);
+    let mut best: Option<Candidate> = None;
     for [i, j, k, opposite] in FACES {
         let (a, b, c, d) = (s[i].w, s[j].w, s[k].w, s[opposite].w);
         let n = (b - a).cross(&(c - a));
@@ -398,7 +400,9 @@ fn expand(
         }
         if !grown {
             // D is flat here (cannot happen for solids): touching, depth 0.
-            let n = (a.inner() - b.inner()).try_normalize(1e-300).unwrap_or(V::y());
+            let n = (a.inner() - b.inner())
+                .try_normalize(1e-300)
+                .unwrap_or(V::y());
             let on = simplex[0];
             return Separation {
                 normal: n,
@@ -515,7 +519,8 @@ mod tests {
     fn a_cylinder_lying_on_a_box_is_its_radius_minus_the_height_above() {
         // Cylinder of radius 0.3, axis along x, centre 0.29 above the top face y = 0.5 of a
         // unit cube: it sinks 0.3 − 0.29 = 0.01 into it; normal +y.
-        let rotation = nalgebra::Rotation3::from_axis_angle(&V::z_axis(), std::f64::consts::FRAC_PI_2);
+        let rotation =
+            nalgebra::Rotation3::from_axis_angle(&V::z_axis(), std::f64::consts::FRAC_PI_2);
         let c = CylinderView {
             center: V::new(0.1, 0.79, 0.0),
             rotation: *rotation.matrix(),
