@@ -33,7 +33,7 @@ use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
-use super::joints::{project, Correction, Links, ProjectionBuffers};
+use super::joints::{hold, project, ContactBuffers, Correction, Links, ProjectionBuffers};
 use super::snapshot::Snapshot;
 use super::state::State;
 use super::system::{Scratch as SystemScratch, System};
@@ -218,6 +218,8 @@ pub struct World {
     system_scratch: SystemScratch,
     system_buffers: SystemBuffers,
     projection_buffers: ProjectionBuffers,
+    /// The joints held while the contacts act (`joints::contact`).
+    contact_joint_buffers: ContactBuffers,
 }
 
 impl World {
@@ -284,6 +286,7 @@ impl World {
             system_scratch: SystemScratch::default(),
             system_buffers: SystemBuffers::default(),
             projection_buffers: ProjectionBuffers::default(),
+            contact_joint_buffers: ContactBuffers::default(),
         }
     }
 
@@ -747,12 +750,37 @@ impl World {
         } else {
             None
         };
-        let measured = collide(
+        let mut measured = collide(
             &input,
             &mut now.states,
             &mut now.contacts,
             &mut self.scratch,
         );
+        if !self.links.joints.is_empty() && !now.contacts.is_empty() && states_before.is_none() {
+            // The joints held with the contacts (`joints::contact`); booked with the response.
+            let before = total_energy(&self.bodies, &self.effects, &now.states);
+            let mut impulses = vec![Loads::default(); self.links.joints.len()];
+            let held = hold(
+                &self.links,
+                &self.bodies,
+                &mut now.states,
+                &now.contacts,
+                self.dt,
+                &mut impulses,
+                &mut self.contact_joint_buffers,
+            );
+            if held.changed {
+                for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {
+                    load.force += impulse.force / self.dt;
+                    load.torque += impulse.torque / self.dt;
+                }
+                let after = total_energy(&self.bodies, &self.effects, &now.states);
+                measured = Some(match measured {
+                    Some(change) => EnergyChange { after, ..change },
+                    None => EnergyChange { before, after },
+                });
+            }
+        }
         let change = match (measured, states_before) {
             (Some(change), _) => Some(change),
             // `seed` measures nothing: measured here when it changed the state.

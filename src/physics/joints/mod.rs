@@ -52,10 +52,12 @@
 //! correction changes is numerical, booked apart (`EnergyLedger::joint_correction`) and still
 //! counted in the drift.
 
+pub mod contact;
 mod projection;
 mod rows;
 pub mod solve;
 
+pub use contact::{hold, Buffers as ContactBuffers};
 pub use projection::{project, Buffers as ProjectionBuffers};
 pub use rows::{rows_of, Pose, Row};
 pub use solve::{multipliers, Solver};

@@ -18,6 +18,7 @@ use crate::physics::body::Body;
 use crate::physics::derive::derive;
 use crate::physics::effects::Loads;
 use crate::physics::state::{Orientation, State};
+use nalgebra::Vector3;
 
 /// Reused buffers.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -29,8 +30,8 @@ pub struct Buffers {
     solver: Solver,
 }
 
-/// The rows at `states`, with velocities when `moving`.
-fn build(links: &Links, bodies: &[Body], states: &[State], moving: bool, b: &mut Buffers) {
+/// The rows at `states`, with their velocities.
+fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
     b.poses.clear();
     b.inverse.clear();
     for (body, state) in bodies.iter().zip(states) {
@@ -38,12 +39,8 @@ fn build(links: &Links, bodies: &[Body], states: &[State], moving: bool, b: &mut
         b.poses.push(Pose {
             x: state.position,
             r: k.rotation,
-            v: if moving { k.velocity } else { Pose::WORLD.v },
-            w: if moving {
-                k.angular_velocity
-            } else {
-                Pose::WORLD.w
-            },
+            v: k.velocity,
+            w: k.angular_velocity,
         });
         b.inverse.push(Inverse {
             mass: body.inv_mass,
@@ -71,35 +68,23 @@ pub fn project(
     if links.joints.is_empty() {
         return;
     }
-    for _ in 0..10 {
-        build(links, bodies, states, false, b);
+    // The rows are built with velocities: the last build, on C = 0, serves the velocity pass.
+    for pass in 0..=10 {
+        build(links, bodies, states, b);
         let worst = b.rows.iter().map(|r| r.c.abs()).fold(0.0, f64::max);
-        if worst < 1e-12 {
+        if worst < 1e-12 || pass == 10 {
             break;
         }
         b.rhs.clear();
         b.rhs.extend(b.rows.iter().map(|r| -r.c));
         multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
         for (row, &mu) in b.rows.iter().zip(&b.rhs) {
-            let mut shift =
-                |i: usize, lin: &nalgebra::Vector3<f64>, ang: &nalgebra::Vector3<f64>| {
-                    let s = &mut states[i];
-                    s.position += lin * (mu * b.inverse[i].mass);
-                    let theta = b.inverse[i].inertia * (ang * mu);
-                    s.orientation = match s.orientation {
-                        Orientation::Quaternion(q) => Orientation::Quaternion(turn(&q, &theta)),
-                        Orientation::Matrix(m) => Orientation::Matrix(
-                            nalgebra::Rotation3::from_scaled_axis(theta).into_inner() * m,
-                        ),
-                    };
-                };
-            shift(row.a, &row.lin_a, &row.ang_a);
+            shift(states, &b.inverse, row.a, &row.lin_a, &row.ang_a, mu);
             if let Some(j) = row.b {
-                shift(j, &row.lin_b, &row.ang_b);
+                shift(states, &b.inverse, j, &row.lin_b, &row.ang_b, mu);
             }
         }
     }
-    build(links, bodies, states, true, b);
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
         let pb = r.b.map_or(Pose::WORLD, |j| b.poses[j]);
@@ -116,4 +101,25 @@ pub fn project(
             states[j].angular_momentum += row.ang_b * mu;
         }
     }
+}
+
+/// Body `i` moved by one row's position multiplier μ: `x += μ lin / m`,
+/// `q ← exp(I⁻¹_world ang μ) q`.
+pub(super) fn shift(
+    states: &mut [State],
+    inverse: &[Inverse],
+    i: usize,
+    lin: &Vector3<f64>,
+    ang: &Vector3<f64>,
+    mu: f64,
+) {
+    let s = &mut states[i];
+    s.position += lin * (mu * inverse[i].mass);
+    let theta = inverse[i].inertia * (ang * mu);
+    s.orientation = match s.orientation {
+        Orientation::Quaternion(q) => Orientation::Quaternion(turn(&q, &theta)),
+        Orientation::Matrix(m) => {
+            Orientation::Matrix(nalgebra::Rotation3::from_scaled_axis(theta).into_inner() * m)
+        }
+    };
 }

@@ -75,42 +75,35 @@ pub fn multipliers(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &
 /// envelope — row i's entries from `first[i]`, its first non-zero column, on (a chain's rows
 /// only touch their neighbours', so the work is n·b² for a bandwidth b, not n³/6) — then the
 /// solve of `k x = rhs`. A pivot below 1e-12 of the largest diagonal entry is a redundant row:
-/// an infinite pivot makes its multiplier 0.
+/// its reciprocal is set to 0, which makes its multiplier 0.
 fn factor_and_solve(k: &mut [f64], n: usize, first: &[usize], rhs: &mut [f64]) {
     let largest = (0..n).map(|i| k[i * n + i].abs()).fold(0.0, f64::max);
     let tiny = 1e-12 * largest;
+    // The pivots' reciprocals (0 for a redundant row) are kept on the diagonal: the solves
+    // then multiply, and a division or square root sits on the critical path once per row,
+    // not once per entry (their latency, not the multiply–adds, was the cost).
     for i in 0..n {
         let fi = first[i];
-        for j in fi..=i {
+        let (head, tail) = k.split_at_mut(i * n);
+        let row_i = &mut tail[..n];
+        for j in fi..i {
             let from = fi.max(first[j]);
-            let (head, tail) = k.split_at_mut(i * n);
-            let row_i = &tail[..n];
-            let row_j: &[f64] = if j == i {
-                row_i
-            } else {
-                &head[j * n..j * n + n]
-            };
+            let row_j = &head[j * n..j * n + n];
             let dot: f64 = row_i[from..j]
                 .iter()
                 .zip(&row_j[from..j])
                 .map(|(a, b)| a * b)
                 .sum();
-            let value = tail[j] - dot;
-            if j == i {
-                tail[i] = if value > tiny {
-                    value.sqrt()
-                } else {
-                    f64::INFINITY
-                };
-            } else {
-                let pivot = head[j * n + j];
-                tail[j] = if pivot.is_finite() {
-                    value / pivot
-                } else {
-                    0.0
-                };
-            }
+            // row_j[j] is 1/L_jj (0 when row j was redundant: then L_ij = 0 too).
+            row_i[j] = (row_i[j] - dot) * row_j[j];
         }
+        let dot: f64 = row_i[fi..i].iter().map(|a| a * a).sum();
+        let value = row_i[i] - dot;
+        row_i[i] = if value > tiny {
+            1.0 / value.sqrt()
+        } else {
+            0.0
+        };
     }
     // L y = rhs, then Lᵀ x = y.
     for i in 0..n {
@@ -120,13 +113,14 @@ fn factor_and_solve(k: &mut [f64], n: usize, first: &[usize], rhs: &mut [f64]) {
             .zip(&rhs[first[i]..i])
             .map(|(a, b)| a * b)
             .sum();
-        rhs[i] = (rhs[i] - dot) / row[i];
+        rhs[i] = (rhs[i] - dot) * row[i];
     }
     for i in (0..n).rev() {
-        rhs[i] /= k[i * n + i];
+        let row = &k[i * n..i * n + n];
+        rhs[i] *= row[i];
         let x = rhs[i];
         for p in first[i]..i {
-            rhs[p] -= k[i * n + p] * x;
+            rhs[p] -= row[p] * x;
         }
     }
 }
