@@ -33,7 +33,7 @@ use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
-use super::joints::{hold, project, ContactBuffers, Correction, Links, ProjectionBuffers};
+use super::joints::{hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers};
 use super::snapshot::Snapshot;
 use super::state::State;
 use super::system::{Scratch as SystemScratch, System};
@@ -220,6 +220,8 @@ pub struct World {
     projection_buffers: ProjectionBuffers,
     /// The joints held while the contacts act (`joints::contact`).
     contact_joint_buffers: ContactBuffers,
+    /// `symplectic-euler` with projection: the states at the step's start (`joints::shake`).
+    step_start: Vec<State>,
 }
 
 impl World {
@@ -287,6 +289,7 @@ impl World {
             system_buffers: SystemBuffers::default(),
             projection_buffers: ProjectionBuffers::default(),
             contact_joint_buffers: ContactBuffers::default(),
+            step_start: Vec::new(),
         }
     }
 
@@ -513,6 +516,12 @@ impl World {
             dt: self.dt,
         };
         let now = &mut self.now;
+        let shaken = self.integrator == Integrator::SymplecticEuler
+            && self.links.correction == Correction::Projection
+            && !self.links.joints.is_empty();
+        if shaken {
+            self.step_start.clone_from(&now.states);
+        }
         let start = Start {
             kinematics: &now.kinematics,
             loads: &now.loads,
@@ -533,13 +542,25 @@ impl World {
             let before = total_energy(&self.bodies, &self.effects, &now.states).total
                 + self.links.potential(&now.states);
             let mut impulses = Vec::new();
-            project(
-                &self.links,
-                &self.bodies,
-                &mut now.states,
-                &mut impulses,
-                &mut self.projection_buffers,
-            );
+            if shaken {
+                shake(
+                    &self.links,
+                    &self.bodies,
+                    &mut now.states,
+                    &self.step_start,
+                    self.dt,
+                    &mut impulses,
+                    &mut self.projection_buffers,
+                );
+            } else {
+                project(
+                    &self.links,
+                    &self.bodies,
+                    &mut now.states,
+                    &mut impulses,
+                    &mut self.projection_buffers,
+                );
+            }
             for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {
                 load.force += impulse.force / self.dt;
                 load.torque += impulse.torque / self.dt;
