@@ -786,8 +786,8 @@ fn symplectic_euler_with_its_shake_projection_keeps_the_pendulum_energy_bounded(
         "90° pendulum, 20 s: symplectic-euler |ΔE| ≤ {first:.4e} J then {second:.4e} J; \
          euler {euler_first:.4e} J then {euler_second:.4e} J"
     );
-    // Its period over 10 s (lesson 25's table) against T = 4 √(L/g) K(sin 45°) = 2.367842 s:
-    // first order, so off by O(dt) of T.
+    // Its period over 10 s (lesson 25's table) against T = 4 √(L/g) K(sin 45°) = 2.367842 s
+    // (measured 2.367839 s: the period is kept far better than E).
     let mut world = simple_pendulum(
         1.0,
         theta0,
