@@ -3,8 +3,8 @@
 //!
 //! - `pendulum`: one 0.1 m box on a distance joint to the world (1 row);
 //! - `chain-10`: 10 links of 0.5 m (0.5 × 0.05 × 0.05 m, 0.1 kg), ball-jointed end to end and
-//!   to the world, released horizontal (30 rows: a 30 × 30 LDLᵀ in each of rk4's four
-//!   evaluations, then the projection); issue 19's aim: ≤ 10 µs per step;
+//!   to the world, released horizontal (30 rows: a skyline Cholesky of J W Jᵀ, 6 wide, in each
+//!   of rk4's four evaluations, then the projection's); issue 19's aim: ≤ 10 µs per step;
 //! - `chain-10-baumgarte`: the same with Baumgarte's correction (no projection);
 //! - `chain-10-landing`: 10 links of 0.3 m (0.3 × 0.05 × 0.05 m, 0.1 kg) ball-jointed end to
 //!   end (free), tilted 20°, the low end 0.3 m above the ground, `impulse` contacts (e = 0,
