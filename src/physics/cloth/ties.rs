@@ -96,9 +96,9 @@ pub struct Tie {
     /// Unit normal out of the body (towards the particle).
     pub normal: Vector3<f64>,
     pub kind: TieKind,
-    /// The particle's wanted velocity relative to the body's point (Normal: only its n part
-    /// counts), m/s.
-    pub relative: Vector3<f64>,
+    /// The particle's velocity the tie prescribes besides the body's correction, m/s: its
+    /// tied components are `(I − S)(target + ΔV + Δω × r)` (Normal: only its n part counts).
+    pub target: Vector3<f64>,
     /// An impulse on the particle from outside the constraint (sliding friction), N·s; the
     /// body takes its opposite.
     pub extra: Vector3<f64>,
@@ -137,6 +137,8 @@ pub struct TieBuffers {
     /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
     body_inverse: Vec<Matrix6<f64>>,
     body: Vec<BodyVectors>,
+    /// Per body: the last solve's Y, the next one's warm start.
+    last_body: Vec<Vector6<f64>>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -157,6 +159,7 @@ impl TieBuffers {
             + bytes_of(&self.full, self.full.capacity())
             + bytes_of(&self.body_inverse, self.body_inverse.capacity())
             + bytes_of(&self.body, self.body.capacity())
+            + bytes_of(&self.last_body, self.last_body.capacity())
     }
 }
 
@@ -214,10 +217,7 @@ impl Workspace {
         t.offset.resize(n, Vector3::zeros());
         for tie in ties.iter() {
             let i = tie.particle;
-            let surface = tie.body.map_or(Vector3::zeros(), |b| {
-                bodies[b].velocity + bodies[b].angular_velocity.cross(&tie.arm)
-            });
-            t.offset[i] = tie.tied(&(surface + tie.relative - v0[i]));
+            t.offset[i] = tie.tied(&(tie.target - v0[i]));
         }
         // Preconditioners: S P⁻¹ S for the particles, the bodies' 6 × 6.
         t.inverse.clear();
@@ -317,14 +317,19 @@ impl Workspace {
                 self.solution[i] = ties[k as usize].free(&self.solution[i]);
             }
         }
-        // Bodies start from 0 (their correction is a fresh impulse every step).
+        // Bodies start from their last correction (a resting body needs the same every step).
+        if t.last_body.len() != bodies.len() {
+            t.last_body = vec![Vector6::zeros(); bodies.len()];
+        }
         let mut outcome = super::conjugate_gradient::Outcome {
             iterations: 0,
             relative_residual: 0.0,
         };
         if delta0.is_finite() && delta0 > 0.0 {
             // r = rhs − (Tᵀ Ā T) x
-            let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            let mut x_body: Vec<Vector6<f64>> = (t.last_body.iter().zip(bodies.iter()))
+                .map(|(x, b)| if b.mass > 0.0 { *x } else { Vector6::zeros() })
+                .collect();
             let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
             let solution = std::mem::take(&mut self.solution);
             let mut product = std::mem::take(&mut self.product);
@@ -353,6 +358,7 @@ impl Workspace {
             if delta > delta0 {
                 // A warm start worse than zero: start from zero.
                 self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
+                x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                 delta = 0.0;
                 for i in 0..n {
                     self.residual[i] += product[i];
@@ -364,7 +370,6 @@ impl Workspace {
                     bv.z = t.body_inverse[b] * bv.r;
                     delta += bv.r.dot(&bv.z);
                 }
-                let _ = &x_body;
             }
             self.direction.clone_from(&self.preconditioned);
             let target = tolerance * tolerance * delta0;
@@ -418,6 +423,7 @@ impl Workspace {
             for (bv, x) in t.body.iter_mut().zip(&x_body) {
                 bv.x = *x;
             }
+            t.last_body.clone_from(&x_body);
             outcome = super::conjugate_gradient::Outcome {
                 iterations,
                 relative_residual: (delta / delta0).max(0.0).sqrt(),
