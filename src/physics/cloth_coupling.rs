@@ -587,7 +587,11 @@ pub fn tied_step(
         // is its springs' (they are inside the same solve); a restitution rule on a 4.5 g
         // particle tied to the body would kick the patch apart step after step and make
         // energy at large steps (measured: +0.2 J at dt = 5 ms on lesson 16).
-        let along = c.normal * (-c.gap / dt);
+        // One already inside at the start of the step (gap₀ = gap + h n·drift < 0) is not
+        // pushed out by a velocity (energy made): it moves with the surface, the collide
+        // phase pushes it out. Against an obstacle (drift 0): stop there.
+        let start_gap = c.gap + dt * c.normal.dot(&c.drift);
+        let along = c.normal * ((-c.gap + start_gap.min(0.0)) / dt);
         let kind = if friction > 0.0 {
             TieKind::Full
         } else {
@@ -610,18 +614,17 @@ pub fn tied_step(
     let end_gap = |c: &Candidate, v: &Vector3<f64>, sb: &[SolverBody]| {
         c.gap + dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
     };
-    // First guess: as the last step ended for a particle that was already a candidate (held
-    // or let go: the rounds below correct it); for a new one, touching or carried inside by
-    // its start velocity and gravity.
+    // First guess: touching, or carried inside by its start velocity and gravity; against a
+    // body also held at the end of the last step and still within a step's fall (g h²) of
+    // its surface (a warm start of the contact set: the rounds below correct it).
     let mut active: Vec<bool> = candidates
         .iter()
-        .map(|c| match held.get(c.particle).copied().unwrap_or(0) {
-            2 => c.gap <= TOUCHING + gravity.norm() * dt * dt,
-            1 => false,
-            _ => {
-                let v = cloth.start_velocity(c.particle) + gravity * dt;
-                c.gap <= TOUCHING || end_gap(c, &v, &solver_bodies) < 0.0
-            }
+        .map(|c| {
+            let v = cloth.start_velocity(c.particle) + gravity * dt;
+            let held = c.body.is_some()
+                && held.get(c.particle).copied().unwrap_or(0) == 2
+                && c.gap <= TOUCHING + gravity.norm() * dt * dt;
+            held || c.gap <= TOUCHING || end_gap(c, &v, &solver_bodies) < 0.0
         })
         .collect();
     let mut ties: Vec<Tie> = Vec::new();
