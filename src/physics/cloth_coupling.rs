@@ -3,9 +3,10 @@
 //! Which path a cloth takes depends on its integrator:
 //! - `implicit-euler`: [`tied_step`] holds every contact (bodies and obstacles) and every
 //!   attachment *inside* backward Euler's linear solve (`cloth::ties`, Baraff & Witkin's
-//!   constraint filter with the body's velocity change as an unknown of the same solve); the
-//!   velocity pass below is not used, and the collide phase's push-out only handles what is
-//!   still inside after the positions moved.
+//!   constraint filter with the body's velocity change as an unknown of the same solve),
+//!   each tied particle ending the step on the body's surface; the velocity pass below is
+//!   not used, and the collide phase's push-out only handles what is still more than
+//!   [`SLOP`] inside after the positions moved (nothing, on lesson 16).
 //! - `symplectic-euler`: the two passes below.
 //!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
@@ -380,7 +381,7 @@ const TOUCHING: f64 = 1e-9;
 
 /// A depth (m) the collide phase leaves to an `implicit-euler` cloth's particles: its ties
 /// put them on the surface, up to round-off and the linearised turn of the body.
-const SLOP: f64 = 1e-8;
+pub const SLOP: f64 = 1e-8;
 
 /// How far a body's position moves under a constant extra force F over a step, in units of
 /// h²F/M: what its integrator makes of the ties' impulse J = F h when the correction
@@ -703,8 +704,7 @@ pub fn tied_step(
             }
         }
         for (k, c) in candidates.iter().enumerate() {
-            if !active[k] && end_gap(c, &cloth.velocities[c.particle], &solver_bodies) < -TOUCHING
-            {
+            if !active[k] && end_gap(c, &cloth.velocities[c.particle], &solver_bodies) < -TOUCHING {
                 active[k] = true;
                 changed = true;
             }
@@ -720,7 +720,9 @@ pub fn tied_step(
         let drift = tie
             .body
             .map_or(Vector3::zeros(), |b| displacement(b, &tie.arm) / dt);
-        let u = cloth.velocities[tie.particle] - drift - correction_at(&solver_bodies, tie.body, &tie.arm);
+        let u = cloth.velocities[tie.particle]
+            - drift
+            - correction_at(&solver_bodies, tie.body, &tie.arm);
         report.energy_taken -= (tie.impulse + tie.extra).dot(&u);
     }
     report.contacts = ties

@@ -2232,8 +2232,14 @@ fn lesson_16_backward_euler_with_the_cube_is_stable_and_rests_at_the_newton_stat
         // At rest the contacts make (and take) no energy: the last second's row change.
         assert!((contacts_6s - contacts_5s).abs() < 1e-8, "dt = {dt}");
         assert!(rise < 1e-6, "dt = {dt}: energy rose by {rise} J");
-        assert!(row_rise < 1e-6, "dt = {dt}: the contacts row rose by {row_rise} J");
-        assert!(contacts_6s <= 0.0, "dt = {dt}: the contacts made {contacts_6s} J");
+        assert!(
+            row_rise < 1e-6,
+            "dt = {dt}: the contacts row rose by {row_rise} J"
+        );
+        assert!(
+            contacts_6s <= 0.0,
+            "dt = {dt}: the contacts made {contacts_6s} J"
+        );
     }
 }
 

@@ -18,16 +18,18 @@
 //!
 //! # The body's side: the body is an unknown too
 //!
-//! Here the prescribed normal velocity is the body's surface velocity at the contact point,
-//! `n·v_i = n·(V + ω × r_i) + u_i` (u_i the wanted relative normal velocity: −gap/h to arrive
-//! on the surface, e·|u₀| to bounce, 0 at rest), and V, ω are changed by the very impulses
-//! the particles take. So the body's velocity change Y = (ΔV, Δω) joins the unknowns, with its
-//! mass matrix M_b = diag(M I, I_world). A tied particle's velocity change is affine in the
-//! reduced unknowns (y_i the free part, S_i y_i = y_i):
+//! Here the prescribed velocity of a tied particle is a target t_i (where the caller wants
+//! the particle to end: on the body's surface, `cloth_coupling::tied_step`) plus the motion
+//! Y = (Y_V, Y_ω) the very impulses the particles take add to the body's point,
+//! `(I − S_i) v_i = (I − S_i)(t_i + Y_V + Y_ω × r_i)`; Y joins the unknowns, with the body's
+//! mass matrix in the solve M_b = diag(M I, I_world) (the caller may scale it: a body whose
+//! position takes only a fraction of its correction enters with M/factor). A tied
+//! particle's velocity change is affine in the reduced unknowns (y_i the free part,
+//! S_i y_i = y_i):
 //!
 //! ```text
-//! Δv_i = S_i y_i + G_i Y + z_i,    G_i Y = (I − S_i)(ΔV + Δω × r_i)
-//!                                  z_i   = (I − S_i)(V + ω × r_i + u_i − v₀_i)
+//! Δv_i = S_i y_i + G_i Y + z_i,    G_i Y = (I − S_i)(Y_V + Y_ω × r_i)
+//!                                  z_i   = (I − S_i)(t_i − v₀_i)
 //! ```
 //!
 //! i.e. Δv = T x + z with x = (y, Y). The step minimises ½ Δvᵀ A Δv − Δvᵀ b + ½ Yᵀ M_b Y −
@@ -39,8 +41,10 @@
 //! ```
 //!
 //! (e_i an impulse from outside the constraint — sliding friction — on the particle, its
-//! opposite on the body). Its solution is backward Euler's step of sheet and body together
-//! with the contact as an equality constraint: the body's weight is carried by the springs
+//! opposite on the body). The body's Y starts from the last solve's (a resting body needs
+//! the same correction every step). Its solution is backward Euler's step of sheet and body
+//! together with the contact as an equality constraint: the body's weight is carried by the
+//! springs
 //! behind the particles within the step, not a step later. Conjugate gradients run on x with
 //! the block-Jacobi preconditioner `S_i P_i⁻¹ S_i` for the particles and
 //! `(M_b + Σ_i G_iᵀ P_i G_i)⁻¹` (6 × 6) for each body. Because the constrained components are
