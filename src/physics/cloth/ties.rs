@@ -44,8 +44,7 @@
 //! opposite on the body). The body's Y starts from the last solve's (a resting body needs
 //! the same correction every step). Its solution is backward Euler's step of sheet and body
 //! together with the contact as an equality constraint: the body's weight is carried by the
-//! springs
-//! behind the particles within the step, not a step later. Conjugate gradients run on x with
+//! springs behind the particles within the step, not a step later. Conjugate gradients run on x with
 //! the block-Jacobi preconditioner `S_i P_i⁻¹ S_i` for the particles and
 //! `(M_b + Σ_i G_iᵀ P_i G_i)⁻¹` (6 × 6) for each body. Because the constrained components are
 //! built from Y, a particle and the body's surface move together exactly, at any tolerance.
