@@ -119,6 +119,61 @@ fn main() {
                     .fold(f64::INFINITY, f64::min)
             );
         }
+        "lesson16" => {
+            // Lesson 16 with DT and FRICTION from the environment: every 0.1 s the cube's
+            // offset from the centre, its tilt, the energy and the ledger's contacts row.
+            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("lessons")
+                .join("16-trampoline.toml");
+            let mut scene = tumble::scene::load(&path).expect("lesson 16").scene;
+            if let Some(dt) = std::env::var("DT").ok().and_then(|s| s.parse().ok()) {
+                scene.dt = dt;
+            }
+            if let (Some(mu), Some(model)) = (
+                std::env::var("FRICTION")
+                    .ok()
+                    .and_then(|s| s.parse::<f64>().ok()),
+                scene.contact.as_mut(),
+            ) {
+                model.friction = mu;
+            }
+            let dt = scene.dt;
+            let mut w = scene.world();
+            let every = (0.1 / dt).round() as usize;
+            let (mut touched, mut low, mut rise) = (false, f64::INFINITY, 0.0f64);
+            for k in 0..steps {
+                black_box(&mut w).step();
+                if w.divergence().is_some() {
+                    println!("diverged at step {k}");
+                    break;
+                }
+                let e = w.total_energy().total;
+                touched |= w.cloth_body_contacts(0) > 0;
+                if touched {
+                    low = low.min(e);
+                    rise = rise.max(e - low);
+                }
+                if (k + 1) % every == 0 {
+                    let s = w.states()[0];
+                    let up = s.orientation.matrix() * Vector3::y();
+                    let b = w.energy_balance();
+                    println!(
+                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} n={}",
+                        w.time(),
+                        s.position.x,
+                        s.position.z,
+                        s.position.y,
+                        up.angle(&Vector3::y()).to_degrees(),
+                        s.linear_momentum.norm(),
+                        e,
+                        rise,
+                        b.contacts.unwrap_or(0.0),
+                        b.drift,
+                        w.cloth_body_contacts(0),
+                    );
+                }
+            }
+        }
         _ => eprintln!("unknown case {case}"),
     }
 }

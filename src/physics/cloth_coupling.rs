@@ -3,9 +3,10 @@
 //! Which path a cloth takes depends on its integrator:
 //! - `implicit-euler`: [`tied_step`] holds every contact (bodies and obstacles) and every
 //!   attachment *inside* backward Euler's linear solve (`cloth::ties`, Baraff & Witkin's
-//!   constraint filter with the body's velocity change as an unknown of the same solve); the
-//!   velocity pass below is not used, and the collide phase's push-out only handles what is
-//!   still inside after the positions moved.
+//!   constraint filter with the body's velocity change as an unknown of the same solve),
+//!   each tied particle ending the step on the body's surface; the velocity pass below is
+//!   not used, and the collide phase's push-out only handles what is still more than
+//!   [`SLOP`] inside after the positions moved (nothing, on lesson 16).
 //! - `symplectic-euler`: the two passes below.
 //!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
@@ -112,6 +113,13 @@ pub fn collide_bodies(
         let reach = body.radius;
         let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
         touches.clear();
+        // An implicit-euler cloth's ties end its particles on the surface: what is left
+        // inside at round-off is not a contact.
+        let slop = if cloth.integrator == crate::physics::cloth::ClothIntegrator::ImplicitEuler {
+            SLOP
+        } else {
+            0.0
+        };
         for i in 0..cloth.len() {
             // Attached particles are held inside the solve, not pushed out.
             if cloth.inv_mass(i) == 0.0 || cloth.attached.iter().any(|a| a.0 == i) {
@@ -124,7 +132,7 @@ pub fn collide_bodies(
             let Some(cp) = point_shape(&x, shape, &pose, 0.0) else {
                 continue;
             };
-            if cp.depth <= 0.0 {
+            if cp.depth <= slop {
                 continue;
             }
             let n = cp.normal;
@@ -371,6 +379,10 @@ pub const TIE_ROUNDS: usize = 5;
 /// A gap (m) below which a particle counts as touching.
 const TOUCHING: f64 = 1e-9;
 
+/// A depth (m) the collide phase leaves to an `implicit-euler` cloth's particles: its ties
+/// put them on the surface, up to round-off and the linearised turn of the body.
+pub const SLOP: f64 = 1e-8;
+
 /// How far a body's position moves under a constant extra force F over a step, in units of
 /// h²F/M: what its integrator makes of the ties' impulse J = F h when the correction
 /// ΔV = J/M is applied after the step (symplectic Euler drifts with the new velocity: 1;
@@ -398,10 +410,13 @@ pub struct Attachment {
 struct Candidate {
     particle: usize,
     body: Option<usize>,
-    /// Signed gap at the start (< 0: inside), m.
+    /// Signed gap from the particle's start position to the body's pose after its own step
+    /// (< 0: inside), m.
     gap: f64,
     normal: Vector3<f64>,
     arm: Vector3<f64>,
+    /// The body's material point at `arm`: its own-step displacement over h, m/s.
+    drift: Vector3<f64>,
 }
 
 /// What the tied step did.
@@ -420,17 +435,42 @@ pub struct TiedReport {
     pub energy_taken: f64,
 }
 
-/// One velocity half of an `implicit-euler` cloth with its contacts against the bodies (at
-/// the end of their own step: `states`) and the obstacles, and its attachments, all inside
-/// the linear solve (`cloth::ties`). The bodies take the opposite impulses: P += M ΔV,
-/// L += I ΔΩ, and their position and orientation move by `factor`·h·(ΔV, ΔΩ)
-/// ([`position_factor`]). The cloth's positions are not moved (the caller's position half).
+/// One velocity half of an `implicit-euler` cloth with its contacts against the bodies and
+/// the obstacles, and its attachments, all inside the linear solve (`cloth::ties`). `start`:
+/// the bodies' states at the start of the step; `states`: after their own step, where the
+/// contacts are measured. The cloth's positions are not moved (the caller's position half).
+///
+/// # Where the particle must end: positions, not velocities
+///
+/// The body has already moved by its own step when the cloth steps; what its correction
+/// (ΔV, Δω) adds to its position is `factor`·h·(ΔV, Δω) ([`position_factor`]). So a particle
+/// at gap g from the body's new pose ends on its surface when
+///
+/// ```text
+/// n·v₁ = −g/h + n·(Y_V + Y_ω × r),     (Y_V, Y_ω) = factor·(ΔV, Δω)
+/// ```
+///
+/// (not n·(V + ΔV + …): the body's own velocity V is already in its pose; following it once
+/// more left a particle a step's travel h|V| inside a body moving away from it, for the
+/// collide phase to push out — energy made). A sticking particle also follows the body's
+/// point along the surface: its tangential velocity is the point's own-step displacement
+/// over h, plus the same correction. The solve's unknown is Y: the impulse J on the body
+/// gives M ΔV = J, i.e. M/factor · Y = J, so the body enters the solve with mass M/factor and
+/// inertia I/factor, and takes P += (M/factor) Y_V, L += (I/factor) Y_ω, x += h Y_V, and
+/// turns by h Y_ω. A body whose integrator ignores the correction in its position (factor 0)
+/// is not an unknown: it is held still in the solve and takes the impulses afterwards.
+///
+/// Energy the contacts take: the work of the impulses along the particle's motion relative
+/// to the body's material point over the step, −Σ (λ + e)·(v₁ − d/h − Y_V − Y_ω × r) (d the
+/// point's own-step displacement): a contact arriving from a gap g₀ at the start takes λ_n
+/// g₀/h, a resting one (g₀ = 0, sticking) none, a sliding one what its friction did.
 #[allow(clippy::too_many_arguments)]
 pub fn tied_step(
     cloth: &mut Cloth,
     loads: &crate::physics::cloth::ClothLoads,
     dt: f64,
     bodies: &[Body],
+    start: &[State],
     states: &mut [State],
     obstacles: &[crate::physics::collision::Obstacle],
     attachments: &[Attachment],
@@ -446,14 +486,15 @@ pub fn tied_step(
         .zip(states.iter())
         .map(|(body, state)| {
             let rotation = state.orientation.matrix();
-            let inertia = if body.inv_mass > 0.0 {
-                rotation * body.inertia_body * rotation.transpose()
+            let moves = body.inv_mass > 0.0 && !body.fixed && factor > 0.0;
+            let inertia = if moves {
+                rotation * body.inertia_body * rotation.transpose() / factor
             } else {
                 Matrix3::zeros()
             };
             let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
             SolverBody {
-                mass: if body.inv_mass > 0.0 { body.mass } else { 0.0 },
+                mass: if moves { body.mass / factor } else { 0.0 },
                 inertia,
                 velocity: state.linear_momentum * body.inv_mass,
                 angular_velocity: inv_inertia * state.angular_momentum,
@@ -461,7 +502,14 @@ pub fn tied_step(
             }
         })
         .collect();
+    // A body's material point at `arm` (from its new barycenter): its own-step displacement.
+    let displacement = |b: usize, arm: &Vector3<f64>| -> Vector3<f64> {
+        let (now, before) = (&states[b], start.get(b).unwrap_or(&states[b]));
+        let back = before.orientation.matrix() * now.orientation.matrix().transpose();
+        now.position + arm - (before.position + back * arm)
+    };
     // Candidates: the nearest surface of each free particle within what it can close.
+    let held: Vec<u8> = cloth.held().to_vec();
     let mut candidates: Vec<Candidate> = Vec::new();
     for i in 0..cloth.len() {
         if cloth.inv_mass(i) == 0.0 || attachments.iter().any(|a| a.particle == i) {
@@ -499,6 +547,7 @@ pub fn tied_step(
                 gap: -cp.depth,
                 normal: cp.normal,
                 arm,
+                drift: displacement(b, &arm) / dt,
             };
             if best.is_none_or(|o| c.gap < o.gap) {
                 best = Some(c);
@@ -519,6 +568,7 @@ pub fn tied_step(
                 gap,
                 normal,
                 arm: Vector3::zeros(),
+                drift: Vector3::zeros(),
             };
             if best.is_none_or(|o| c.gap < o.gap) {
                 best = Some(c);
@@ -526,74 +576,80 @@ pub fn tied_step(
         }
         candidates.extend(best);
     }
-    let point_velocity = |sb: &[SolverBody], c: &Candidate, corrected: bool| {
-        c.body.map_or(Vector3::zeros(), |b| {
-            let s = &sb[b];
-            let (dv, dw) = if corrected {
-                (s.correction[0], s.correction[1])
-            } else {
-                (Vector3::zeros(), Vector3::zeros())
-            };
-            s.velocity + dv + (s.angular_velocity + dw).cross(&c.arm)
+    // The correction's velocity at a candidate's point, (Y_V + Y_ω × r).
+    let correction_at = |sb: &[SolverBody], body: Option<usize>, arm: &Vector3<f64>| {
+        body.map_or(Vector3::zeros(), |b| {
+            let [dv, dw] = sb[b].correction;
+            dv + dw.cross(arm)
         })
     };
     let tie_of = |c: &Candidate| {
-        // Arrive on the surface (−gap/h), no faster: a plastic contact. The sheet's rebound
+        // Arrive on the surface (−gap/h) and no faster: a plastic contact. The sheet's rebound
         // is its springs' (they are inside the same solve); a restitution rule on a 4.5 g
         // particle tied to the body would kick the patch apart step after step and make
         // energy at large steps (measured: +0.2 J at dt = 5 ms on lesson 16).
-        let bounce = 0.0;
+        // One already inside at the start of the step (gap₀ = gap + h n·drift < 0) is not
+        // pushed out by a velocity (energy made): it moves with the surface, the collide
+        // phase pushes it out. Against an obstacle (drift 0): stop there.
+        let start_gap = c.gap + dt * c.normal.dot(&c.drift);
+        let along = c.normal * ((-c.gap + start_gap.min(0.0)) / dt);
+        let kind = if friction > 0.0 {
+            TieKind::Full
+        } else {
+            TieKind::Normal
+        };
         Tie {
             particle: c.particle,
             body: c.body,
             arm: c.arm,
             normal: c.normal,
-            kind: if friction > 0.0 {
-                TieKind::Full
-            } else {
-                TieKind::Normal
-            },
-            // Inside already (gap < 0): stop there, the collide phase pushes it out.
-            relative: c.normal * ((-c.gap / dt).min(0.0) + bounce),
+            kind,
+            // Normal: −gap/h; tangent (sticking): the point's own-step drift.
+            target: along + (c.drift - c.normal * c.normal.dot(&c.drift)),
             extra: Vector3::zeros(),
             permanent: false,
             impulse: Vector3::zeros(),
         }
     };
-    // First guess: touching, or carried inside by the start velocity and gravity.
+    // Where the particle ends along n relative to the surface, for a velocity v₁ (< 0: inside).
+    let end_gap = |c: &Candidate, v: &Vector3<f64>, sb: &[SolverBody]| {
+        c.gap + dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
+    };
+    // First guess: touching, or carried inside by its start velocity and gravity; against a
+    // body also held at the end of the last step and still within a step's fall (g h²) of
+    // its surface (a warm start of the contact set: the rounds below correct it).
     let mut active: Vec<bool> = candidates
         .iter()
         .map(|c| {
-            let u = cloth.start_velocity(c.particle) + gravity * dt
-                - point_velocity(&solver_bodies, c, false);
-            c.gap <= TOUCHING || dt * u.dot(&c.normal) < -c.gap
+            let v = cloth.start_velocity(c.particle) + gravity * dt;
+            let held = c.body.is_some()
+                && held.get(c.particle).copied().unwrap_or(0) == 2
+                && c.gap <= TOUCHING + gravity.norm() * dt * dt;
+            held || c.gap <= TOUCHING || end_gap(c, &v, &solver_bodies) < 0.0
         })
         .collect();
     let mut ties: Vec<Tie> = Vec::new();
-    let mut kinds: Vec<(TieKind, Vector3<f64>)> =
-        vec![(TieKind::Full, Vector3::zeros()); candidates.len()];
-    for (k, c) in candidates.iter().enumerate() {
-        kinds[k] = (tie_of(c).kind, Vector3::zeros());
-    }
+    let mut kinds: Vec<(TieKind, Vector3<f64>)> = candidates
+        .iter()
+        .map(|c| (tie_of(c).kind, Vector3::zeros()))
+        .collect();
     let mut report = TiedReport::default();
-    let attach_ties = |states: &[State], cloth: &Cloth, sb: &[SolverBody]| -> Vec<Tie> {
+    let attach_ties = |states: &[State], cloth: &Cloth| -> Vec<Tie> {
         attachments
             .iter()
             .map(|a| {
                 let state = &states[a.body];
                 let arm = state.orientation.matrix() * a.offset_body;
                 let target = state.position + arm;
-                // The body is already at the end of its own step (`target`); the particle
-                // gets there, plus what the ties' correction moves the point: v = (target −
-                // x)/h + ΔV + ΔΩ × r, i.e. relative to the point's velocity V + ω × r:
-                let point = sb[a.body].velocity + sb[a.body].angular_velocity.cross(&arm);
+                // The body is already at the end of its own step (`target`): the particle
+                // gets there, plus what the correction moves the point.
                 Tie {
                     particle: a.particle,
                     body: Some(a.body),
                     arm,
                     normal: Vector3::y(),
                     kind: TieKind::Full,
-                    relative: (target - cloth.positions[a.particle]) / dt - point,
+                    target: (target - cloth.positions[a.particle]) / dt,
                     extra: Vector3::zeros(),
                     permanent: true,
                     impulse: Vector3::zeros(),
@@ -613,7 +669,7 @@ pub fn tied_step(
                 index.push(k);
             }
         }
-        ties.extend(attach_ties(states, cloth, &solver_bodies));
+        ties.extend(attach_ties(states, cloth));
         let step = cloth.solve_tied(&mut ties, &mut solver_bodies);
         report.rounds = round + 1;
         report.iterations += step.iterations;
@@ -648,12 +704,9 @@ pub fn tied_step(
             }
         }
         for (k, c) in candidates.iter().enumerate() {
-            if !active[k] {
-                let u = cloth.velocities[c.particle] - point_velocity(&solver_bodies, c, true);
-                if dt * u.dot(&c.normal) < -c.gap - TOUCHING {
-                    active[k] = true;
-                    changed = true;
-                }
+            if !active[k] && end_gap(c, &cloth.velocities[c.particle], &solver_bodies) < -TOUCHING {
+                active[k] = true;
+                changed = true;
             }
         }
         if !changed {
@@ -661,17 +714,15 @@ pub fn tied_step(
         }
     }
     cloth.finish_tied_step(loads);
-    // The energy the contacts took: −Σ (λ + e)·u over the contacts (not the attachments:
-    // their relative velocity is the drift they correct, booked the same way).
+    // The energy the ties took (doc above): the impulses' work along the particle's motion
+    // relative to the body's material point.
     for tie in &ties {
-        let c = Candidate {
-            particle: tie.particle,
-            body: tie.body,
-            gap: 0.0,
-            normal: tie.normal,
-            arm: tie.arm,
-        };
-        let u = cloth.velocities[tie.particle] - point_velocity(&solver_bodies, &c, true);
+        let drift = tie
+            .body
+            .map_or(Vector3::zeros(), |b| displacement(b, &tie.arm) / dt);
+        let u = cloth.velocities[tie.particle]
+            - drift
+            - correction_at(&solver_bodies, tie.body, &tie.arm);
         report.energy_taken -= (tie.impulse + tie.extra).dot(&u);
     }
     report.contacts = ties
@@ -679,19 +730,42 @@ pub fn tied_step(
         .filter(|t| !t.permanent && t.body.is_some())
         .count();
     report.obstacle_contacts = ties.iter().filter(|t| t.body.is_none()).count();
-    // The bodies take the opposite impulses.
-    for ((body, state), sb) in bodies.iter().zip(states.iter_mut()).zip(&solver_bodies) {
+    cloth.set_held(
+        candidates.iter().map(|c| c.particle),
+        ties.iter().filter(|t| !t.permanent).map(|t| t.particle),
+    );
+    // The bodies take the opposite impulses: through their correction when they are unknowns
+    // of the solve, summed afterwards when they are not (factor 0).
+    let mut pushed = vec![[Vector3::zeros(); 2]; bodies.len()];
+    for tie in &ties {
+        if let Some(b) = tie.body {
+            let j = tie.impulse + tie.extra;
+            pushed[b][0] -= j;
+            pushed[b][1] -= tie.arm.cross(&j);
+        }
+    }
+    for (((body, state), sb), push) in bodies
+        .iter()
+        .zip(states.iter_mut())
+        .zip(&solver_bodies)
+        .zip(&pushed)
+    {
+        if body.fixed || body.inv_mass == 0.0 {
+            continue;
+        }
         if sb.mass == 0.0 {
+            state.linear_momentum += push[0];
+            state.angular_momentum += push[1];
             continue;
         }
         let [dv, dw] = sb.correction;
         if dv == Vector3::zeros() && dw == Vector3::zeros() {
             continue;
         }
-        state.linear_momentum += dv * body.mass;
+        state.linear_momentum += dv * sb.mass;
         state.angular_momentum += sb.inertia * dw;
-        state.position += dv * (factor * dt);
-        let turn = nalgebra::UnitQuaternion::from_scaled_axis(dw * (factor * dt));
+        state.position += dv * dt;
+        let turn = nalgebra::UnitQuaternion::from_scaled_axis(dw * dt);
         state.orientation = match state.orientation {
             super::state::Orientation::Quaternion(q) => {
                 super::state::Orientation::Quaternion(turn * q)

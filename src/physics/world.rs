@@ -607,6 +607,7 @@ impl World {
                     loads,
                     self.dt,
                     &self.bodies,
+                    &now.before,
                     &mut now.states,
                     &self.obstacles,
                     self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),

@@ -69,6 +69,9 @@ pub(super) struct Scratch {
     pub drag_velocity: Vec<Vector3<f64>>,
     pub start: Vec<Vector3<f64>>,
     pub solver: Workspace,
+    /// Per particle: 0 no contact candidate, 1 a candidate not held, 2 held by a contact tie
+    /// at the end of the last tied step (the next step's first guess of its contact set).
+    pub held: Vec<u8>,
 }
 
 /// A mass–spring sheet.
@@ -120,6 +123,7 @@ impl Cloth {
             .iter()
             .map(|v| bytes_of(v, v.capacity()))
             .sum::<usize>()
+            + bytes_of(&sc.held, sc.held.capacity())
             + sc.solver.heap_bytes()
     }
 
@@ -413,6 +417,29 @@ impl Cloth {
             .get(i)
             .copied()
             .unwrap_or(self.velocities[i])
+    }
+
+    /// Per particle, how the last tied step ended (empty before the first): 0 no contact
+    /// candidate, 1 a candidate not held, 2 held by a contact tie.
+    pub fn held(&self) -> &[u8] {
+        &self.scratch.held
+    }
+
+    /// Records the candidates and the contact set a tied step ended with ([`Cloth::held`]).
+    pub fn set_held(
+        &mut self,
+        candidates: impl Iterator<Item = usize>,
+        held: impl Iterator<Item = usize>,
+    ) {
+        let n = self.len();
+        self.scratch.held.clear();
+        self.scratch.held.resize(n, 0);
+        for i in candidates {
+            self.scratch.held[i] = 1;
+        }
+        for i in held {
+            self.scratch.held[i] = 2;
+        }
     }
 
     /// Positions at the start of the last step (for swept contact tests); the current

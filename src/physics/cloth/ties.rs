@@ -18,16 +18,18 @@
 //!
 //! # The body's side: the body is an unknown too
 //!
-//! Here the prescribed normal velocity is the body's surface velocity at the contact point,
-//! `n·v_i = n·(V + ω × r_i) + u_i` (u_i the wanted relative normal velocity: −gap/h to arrive
-//! on the surface, e·|u₀| to bounce, 0 at rest), and V, ω are changed by the very impulses
-//! the particles take. So the body's velocity change Y = (ΔV, Δω) joins the unknowns, with its
-//! mass matrix M_b = diag(M I, I_world). A tied particle's velocity change is affine in the
-//! reduced unknowns (y_i the free part, S_i y_i = y_i):
+//! Here the prescribed velocity of a tied particle is a target t_i (where the caller wants
+//! the particle to end: on the body's surface, `cloth_coupling::tied_step`) plus the motion
+//! Y = (Y_V, Y_ω) the very impulses the particles take add to the body's point,
+//! `(I − S_i) v_i = (I − S_i)(t_i + Y_V + Y_ω × r_i)`; Y joins the unknowns, with the body's
+//! mass matrix in the solve M_b = diag(M I, I_world) (the caller may scale it: a body whose
+//! position takes only a fraction of its correction enters with M/factor). A tied
+//! particle's velocity change is affine in the reduced unknowns (y_i the free part,
+//! S_i y_i = y_i):
 //!
 //! ```text
-//! Δv_i = S_i y_i + G_i Y + z_i,    G_i Y = (I − S_i)(ΔV + Δω × r_i)
-//!                                  z_i   = (I − S_i)(V + ω × r_i + u_i − v₀_i)
+//! Δv_i = S_i y_i + G_i Y + z_i,    G_i Y = (I − S_i)(Y_V + Y_ω × r_i)
+//!                                  z_i   = (I − S_i)(t_i − v₀_i)
 //! ```
 //!
 //! i.e. Δv = T x + z with x = (y, Y). The step minimises ½ Δvᵀ A Δv − Δvᵀ b + ½ Yᵀ M_b Y −
@@ -39,9 +41,10 @@
 //! ```
 //!
 //! (e_i an impulse from outside the constraint — sliding friction — on the particle, its
-//! opposite on the body). Its solution is backward Euler's step of sheet and body together
-//! with the contact as an equality constraint: the body's weight is carried by the springs
-//! behind the particles within the step, not a step later. Conjugate gradients run on x with
+//! opposite on the body). The body's Y starts from the last solve's (a resting body needs
+//! the same correction every step). Its solution is backward Euler's step of sheet and body
+//! together with the contact as an equality constraint: the body's weight is carried by the
+//! springs behind the particles within the step, not a step later. Conjugate gradients run on x with
 //! the block-Jacobi preconditioner `S_i P_i⁻¹ S_i` for the particles and
 //! `(M_b + Σ_i G_iᵀ P_i G_i)⁻¹` (6 × 6) for each body. Because the constrained components are
 //! built from Y, a particle and the body's surface move together exactly, at any tolerance.
@@ -96,9 +99,9 @@ pub struct Tie {
     /// Unit normal out of the body (towards the particle).
     pub normal: Vector3<f64>,
     pub kind: TieKind,
-    /// The particle's wanted velocity relative to the body's point (Normal: only its n part
-    /// counts), m/s.
-    pub relative: Vector3<f64>,
+    /// The particle's velocity the tie prescribes besides the body's correction, m/s: its
+    /// tied components are `(I − S)(target + ΔV + Δω × r)` (Normal: only its n part counts).
+    pub target: Vector3<f64>,
     /// An impulse on the particle from outside the constraint (sliding friction), N·s; the
     /// body takes its opposite.
     pub extra: Vector3<f64>,
@@ -137,6 +140,8 @@ pub struct TieBuffers {
     /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
     body_inverse: Vec<Matrix6<f64>>,
     body: Vec<BodyVectors>,
+    /// Per body: the last solve's Y, the next one's warm start.
+    last_body: Vec<Vector6<f64>>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -157,6 +162,7 @@ impl TieBuffers {
             + bytes_of(&self.full, self.full.capacity())
             + bytes_of(&self.body_inverse, self.body_inverse.capacity())
             + bytes_of(&self.body, self.body.capacity())
+            + bytes_of(&self.last_body, self.last_body.capacity())
     }
 }
 
@@ -214,10 +220,7 @@ impl Workspace {
         t.offset.resize(n, Vector3::zeros());
         for tie in ties.iter() {
             let i = tie.particle;
-            let surface = tie.body.map_or(Vector3::zeros(), |b| {
-                bodies[b].velocity + bodies[b].angular_velocity.cross(&tie.arm)
-            });
-            t.offset[i] = tie.tied(&(surface + tie.relative - v0[i]));
+            t.offset[i] = tie.tied(&(tie.target - v0[i]));
         }
         // Preconditioners: S P⁻¹ S for the particles, the bodies' 6 × 6.
         t.inverse.clear();
@@ -317,14 +320,19 @@ impl Workspace {
                 self.solution[i] = ties[k as usize].free(&self.solution[i]);
             }
         }
-        // Bodies start from 0 (their correction is a fresh impulse every step).
+        // Bodies start from their last correction (a resting body needs the same every step).
+        if t.last_body.len() != bodies.len() {
+            t.last_body = vec![Vector6::zeros(); bodies.len()];
+        }
         let mut outcome = super::conjugate_gradient::Outcome {
             iterations: 0,
             relative_residual: 0.0,
         };
         if delta0.is_finite() && delta0 > 0.0 {
             // r = rhs − (Tᵀ Ā T) x
-            let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            let mut x_body: Vec<Vector6<f64>> = (t.last_body.iter().zip(bodies.iter()))
+                .map(|(x, b)| if b.mass > 0.0 { *x } else { Vector6::zeros() })
+                .collect();
             let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
             let solution = std::mem::take(&mut self.solution);
             let mut product = std::mem::take(&mut self.product);
@@ -353,6 +361,7 @@ impl Workspace {
             if delta > delta0 {
                 // A warm start worse than zero: start from zero.
                 self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
+                x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                 delta = 0.0;
                 for i in 0..n {
                     self.residual[i] += product[i];
@@ -364,7 +373,6 @@ impl Workspace {
                     bv.z = t.body_inverse[b] * bv.r;
                     delta += bv.r.dot(&bv.z);
                 }
-                let _ = &x_body;
             }
             self.direction.clone_from(&self.preconditioned);
             let target = tolerance * tolerance * delta0;
@@ -418,6 +426,7 @@ impl Workspace {
             for (bv, x) in t.body.iter_mut().zip(&x_body) {
                 bv.x = *x;
             }
+            t.last_body.clone_from(&x_body);
             outcome = super::conjugate_gradient::Outcome {
                 iterations,
                 relative_residual: (delta / delta0).max(0.0).sqrt(),
