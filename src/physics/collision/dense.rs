@@ -21,6 +21,10 @@
 //! sum as it was, to the last bit (the back substitution sums each column's entries in
 //! increasing row order, as a dense one would).
 
+/// Up to this many rows the back substitution scans the rows below each column; above it,
+/// it lists each column's rows once (O(envelope) instead of O(m²)).
+const SMALL: usize = 64;
+
 /// The system `(A + ε𝟙) x = rhs`, lower triangle of A filled in row by row. Buffers reused
 /// from step to step.
 #[derive(Debug, Clone, Default)]
@@ -139,6 +143,17 @@ impl Dense {
                 .map(|(x, y)| x * y)
                 .sum();
             x[p] -= dot;
+        }
+        if m <= SMALL {
+            // Few rows: scan them (the same sums, in the same order).
+            for p in (0..m).rev() {
+                let dot: f64 = (p + 1..m)
+                    .filter(|&k| first[k] <= p)
+                    .map(|k| a[at(k, p)] * x[k])
+                    .sum();
+                x[p] = x[p] * inv_diagonal[p] - dot;
+            }
+            return Some(&x[..m]);
         }
         // Column q of L below the diagonal: the rows k > q whose envelope reaches q.
         column_start.clear();

@@ -339,9 +339,6 @@ struct Row {
     bias: f64,
     /// The last step's impulse at the same contact, if any (warm start of the sweeps).
     warm: Vector3<f64>,
-    /// Whether the last step's impulse here pushed (or there was none): the direct solve's
-    /// first active set.
-    pushed: bool,
 }
 
 /// Detects contacts (swept vertex tests, contact geometry, speculative rows) and runs the
@@ -547,6 +544,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
     rows.clear();
     rows.extend(contacts.iter().map(|c| {
         let normal = Direction::new(c.normal, c, motions);
+        let warm = previous.find(c);
         Row {
             normal,
             lambda: 0.0,
@@ -556,10 +554,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
             lambda_restitution: 0.0,
             approach: along(&normal, motions),
             bias: (-c.depth - GAP_ROUND_OFF).max(0.0) / dt,
-            warm: previous.find(c).unwrap_or_else(Vector3::zeros),
-            // A contact of the last step that did not push was taken out of its active set
-            // (or was not needed): it starts out of this step's too.
-            pushed: previous.find(c).is_none_or(|j| j.dot(&c.normal) > 0.0),
+            warm: warm.unwrap_or_else(Vector3::zeros),
         }
     }));
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
@@ -765,9 +760,7 @@ fn direct_inelastic(
     if !rows.iter().any(approaching) {
         return true;
     }
-    // The first active set: the approaching rows that pushed in the last step (the last
-    // step's answer at rest, found again in one round instead of one round per change).
-    active.extend((0..rows.len()).filter(|&i| approaching(&rows[i]) && rows[i].pushed));
+    active.extend((0..rows.len()).filter(|&i| approaching(&rows[i])));
     let mut m = active.len();
     if m > DIRECT_MAX {
         return false;
@@ -831,6 +824,7 @@ fn direct_inelastic(
                 q = end;
             }
             debug_assert!(out.contains(&p));
+
             let mut k = 0;
             active.retain(|_| {
                 let keep = out.binary_search(&k).is_err();

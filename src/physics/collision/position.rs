@@ -69,6 +69,9 @@ pub const DIRECT_MAX: usize = 4096;
 /// Largest envelope (stored entries of [`Dense`]) the direct push-out takes on.
 pub const ENVELOPE_MAX: usize = 1 << 20;
 
+/// Up to this many contacts the rows are merged by a scan, above it through a hash map.
+pub const MERGE_SCAN_MAX: usize = 32;
+
 /// At most this many changes of the direct push-out's active set before the sweeps run.
 pub const PASSES_MAX: usize = 64;
 
@@ -234,6 +237,18 @@ impl Fix<'_> {
         merged.clear();
         merged_at.clear();
         for (i, (c, &depth)) in contacts.iter().zip(depths.iter()).enumerate() {
+            if contacts.len() <= MERGE_SCAN_MAX {
+                // Few contacts: a scan is cheaper than hashing.
+                let same = merged.iter_mut().find(|(j, _)| {
+                    let o = &contacts[*j];
+                    o.body == c.body && o.against == c.against && o.normal == c.normal
+                });
+                match same {
+                    Some((_, d)) => *d = d.max(depth),
+                    None => merged.push((i, depth)),
+                }
+                continue;
+            }
             // +0.0 and −0.0 compare equal: one key for both.
             let bits = c.normal.map(|x| (x + 0.0).to_bits());
             match merged_at.entry((c.body, c.against, [bits.x, bits.y, bits.z])) {
