@@ -14,9 +14,16 @@
 //! L_pq  = w_q / D_q,     D_p = A_pp + ε − Σ_q w_q L_pq
 //! ```
 //!
-//! Contacts come grouped by pair of bodies, so a stack of n cubes (ground, then each cube on
-//! the next) is banded: the cost grows as n, not n³. Skipping exact zeros leaves every sum
-//! as it was, to the last bit.
+//! Only the envelope is stored (skyline storage: row p's entries `first(p)..=p` one after the
+//! other), so memory and work grow with `Σ_p (p − first(p))` and `Σ_p (p − first(p))²`, not
+//! with m². Contacts come grouped by pair of bodies, so a stack of n cubes (ground, then each
+//! cube on the next) is banded: the cost grows as n, not n³. Skipping exact zeros leaves every
+//! sum as it was, to the last bit (the back substitution sums each column's entries in
+//! increasing row order, as a dense one would).
+
+/// Up to this many rows the back substitution scans the rows below each column; above it,
+/// it lists each column's rows once (O(envelope) instead of O(m²)).
+const SMALL: usize = 64;
 
 /// The system `(A + ε𝟙) x = rhs`, lower triangle of A filled in row by row. Buffers reused
 /// from step to step.
@@ -25,29 +32,41 @@ pub struct Dense {
     m: usize,
     /// The right-hand side, then x.
     pub rhs: Vec<f64>,
-    /// Row-major m × m, lower triangle: A, then L in place.
+    /// Row p's envelope `first(p)..=p` from `start[p]` on: A, then L in place (D on the
+    /// diagonal slot is not used: `inv_diagonal` keeps 1/Dₚ).
     a: Vec<f64>,
+    start: Vec<usize>,
     first: Vec<usize>,
     inv_diagonal: Vec<f64>,
     w: Vec<f64>,
     /// The first row that acts on each body (usize::MAX: none yet).
     body_first: Vec<usize>,
+    /// For the back substitution: column q's rows k > q with first(k) ≤ q, in increasing k,
+    /// from `column_start[q]` to `column_start[q + 1]`.
+    column_start: Vec<usize>,
+    column_rows: Vec<usize>,
+    fill: Vec<usize>,
 }
 
 impl Dense {
     /// Makes room for an m × m system (its entries are written by [`Dense::fill_row`]).
     pub fn reset(&mut self, m: usize) {
         self.m = m;
-        if self.a.len() < m * m {
-            self.a.resize(m * m, 0.0);
-        }
+        self.a.clear();
         for v in [&mut self.rhs, &mut self.inv_diagonal, &mut self.w] {
             v.clear();
             v.resize(m, 0.0);
         }
         self.first.clear();
         self.first.resize(m, 0);
+        self.start.clear();
+        self.start.resize(m, 0);
         self.body_first.fill(usize::MAX);
+    }
+
+    /// The number of stored entries the rows filled so far take (the envelope's size).
+    pub fn stored(&self) -> usize {
+        self.a.len()
     }
 
     /// Fills row p of the lower triangle, rows filled in order 0, 1, …: the row acts on
@@ -67,10 +86,8 @@ impl Dense {
             first = first.min(self.body_first[b]);
             self.body_first[b] = self.body_first[b].min(p);
         }
-        let m = self.m;
-        for (q, slot) in (first..=p).zip(&mut self.a[p * m + first..p * m + p + 1]) {
-            *slot = entry(q).unwrap_or(0.0);
-        }
+        self.start[p] = self.a.len();
+        self.a.extend((first..=p).map(|q| entry(q).unwrap_or(0.0)));
         self.first[p] = first;
     }
 
@@ -80,29 +97,36 @@ impl Dense {
         let Dense {
             a,
             rhs,
+            start,
             first,
             inv_diagonal,
             w,
+            column_start,
+            column_rows,
+            fill,
             ..
         } = self;
-        let largest = (0..m).map(|p| a[p * m + p]).fold(0.0, f64::max);
+        // Entry (p, q) of the envelope, first(p) ≤ q ≤ p.
+        let at = |p: usize, q: usize| start[p] + q - first[p];
+        let largest = (0..m).map(|p| a[at(p, p)]).fold(0.0, f64::max);
         let epsilon = 1e-10 * largest;
         // A + ε𝟙 = L D Lᵀ (L unit lower triangular, in place below the diagonal; D kept as
         // 1/Dₚ): no square roots. w_q = L_pq D_q for the row being factored.
         for p in 0..m {
             let fp = first[p];
-            let mut pivot = a[p * m + p] + epsilon;
+            let mut pivot = a[at(p, p)] + epsilon;
             for q in fp..p {
-                let start = fp.max(first[q]);
-                let dot: f64 = w[start..q]
+                let begin = fp.max(first[q]);
+                let (row_q, row_p) = (at(q, begin), at(p, q));
+                let dot: f64 = w[begin..q]
                     .iter()
-                    .zip(&a[q * m + start..q * m + q])
+                    .zip(&a[row_q..row_q + q - begin])
                     .map(|(x, y)| x * y)
                     .sum();
-                w[q] = a[p * m + q] - dot;
+                w[q] = a[row_p] - dot;
                 let l = w[q] * inv_diagonal[q];
                 pivot -= w[q] * l;
-                a[p * m + q] = l;
+                a[row_p] = l;
             }
             if pivot <= 0.0 {
                 return None;
@@ -113,17 +137,49 @@ impl Dense {
         let x = rhs;
         for p in 0..m {
             let fp = first[p];
-            let dot: f64 = a[p * m + fp..p * m + p]
+            let dot: f64 = a[at(p, fp)..at(p, p)]
                 .iter()
                 .zip(&x[fp..p])
                 .map(|(x, y)| x * y)
                 .sum();
             x[p] -= dot;
         }
+        if m <= SMALL {
+            // Few rows: scan them (the same sums, in the same order).
+            for p in (0..m).rev() {
+                let dot: f64 = (p + 1..m)
+                    .filter(|&k| first[k] <= p)
+                    .map(|k| a[at(k, p)] * x[k])
+                    .sum();
+                x[p] = x[p] * inv_diagonal[p] - dot;
+            }
+            return Some(&x[..m]);
+        }
+        // Column q of L below the diagonal: the rows k > q whose envelope reaches q.
+        column_start.clear();
+        column_start.resize(m + 1, 0);
+        for (k, &fk) in first.iter().enumerate() {
+            for count in &mut column_start[fk + 1..k + 1] {
+                *count += 1;
+            }
+        }
+        for q in 0..m {
+            column_start[q + 1] += column_start[q];
+        }
+        column_rows.clear();
+        column_rows.resize(column_start[m], 0);
+        fill.clear();
+        fill.extend_from_slice(&column_start[..m]);
+        for (k, &fk) in first.iter().enumerate() {
+            for slot in &mut fill[fk..k] {
+                column_rows[*slot] = k;
+                *slot += 1;
+            }
+        }
         for p in (0..m).rev() {
-            let dot: f64 = (p + 1..m)
-                .filter(|&k| first[k] <= p)
-                .map(|k| a[k * m + p] * x[k])
+            let dot: f64 = column_rows[column_start[p]..column_start[p + 1]]
+                .iter()
+                .map(|&k| a[at(k, p)] * x[k])
                 .sum();
             x[p] = x[p] * inv_diagonal[p] - dot;
         }

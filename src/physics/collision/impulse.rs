@@ -114,9 +114,16 @@ pub const TOLERANCE: f64 = 1e-10;
 /// number would leave every later step unconverged too.
 pub const MAX_SWEEPS: usize = 2000;
 
-/// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40;
-/// the system is banded there, see [`Dense`]).
-pub const DIRECT_MAX: usize = 64;
+/// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40,
+/// a pyramid of 20 rows about 1600; the system is banded or nearly so there and only its
+/// envelope is stored and factored, see [`Dense`]).
+pub const DIRECT_MAX: usize = 4096;
+
+/// Largest envelope (stored entries of [`Dense`]) the direct solves take on; beyond it the
+/// sweeps run. A stack of 40 (banded) stays far below it; a pyramid of 10 rows, whose rows in
+/// contact order have a wide envelope, goes above: measured, its factorisations cost more than
+/// the warm-started sweeps (2.8 against 1.3 ms a step), and with 1 cm gaps far more (35 ms).
+pub const ENVELOPE_MAX: usize = 1 << 14;
 
 /// Gaps up to this are round-off of touching, m: positions of order 1 m carry errors of
 /// about 1e-14 m after a few operations, so the corners of a face lying flat on another come
@@ -127,11 +134,12 @@ pub const DIRECT_MAX: usize = 64;
 pub const GAP_ROUND_OFF: f64 = 1e-12;
 
 /// How many changes of its active set the direct inelastic solve may make (one row out or in
-/// each) before it gives way to the sweeps.
-pub const PIVOT_ROUNDS: usize = 12;
+/// per pair of bodies each) before it gives way to the sweeps (a pyramid of 10 rows needed
+/// more than 12 while it settles).
+pub const PIVOT_ROUNDS: usize = 40;
 
 /// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
-pub const STICKING_MAX: usize = 8;
+pub const STICKING_MAX: usize = DIRECT_MAX / 3;
 
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
@@ -144,9 +152,8 @@ pub struct Scratch {
     warm: WarmCache,
     points: Vec<super::geometry::ContactPoint>,
     fix: position::Scratch,
-    /// The direct solves' system, and the motions saved to undo a rejected solve.
-    dense: Dense,
-    saved: Vec<Motion>,
+    /// The direct solves' buffers.
+    direct: Direct,
     /// The restitution impulses' change to each body: Δv, ΔL, Δω.
     change: Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     /// Which bodies the position fix advances from the start of the step.
@@ -155,6 +162,17 @@ pub struct Scratch {
     pub counters: Counters,
     /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
     pub(super) soft: super::soft_step::Scratch,
+}
+
+/// The direct solves' buffers: the system, the motions saved to undo a rejected solve, the
+/// active rows (in contact order), their impulses, and the rows entering the active set.
+#[derive(Debug, Clone, Default)]
+struct Direct {
+    system: Dense,
+    saved: Vec<Motion>,
+    active: Vec<usize>,
+    lambda: Vec<f64>,
+    entering: Vec<usize>,
 }
 
 /// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
@@ -417,8 +435,7 @@ pub fn respond(
         previous,
         warm,
         fix: fs,
-        dense,
-        saved,
+        direct,
         change,
         advanced,
         counters,
@@ -428,8 +445,7 @@ pub fn respond(
         rows,
         tangents,
         motions,
-        dense,
-        saved,
+        direct,
         change,
         counters,
     };
@@ -488,8 +504,7 @@ struct Buffers<'a> {
     rows: &'a mut Vec<Row>,
     tangents: &'a mut Vec<[Direction; 2]>,
     motions: &'a mut Vec<Motion>,
-    dense: &'a mut Dense,
-    saved: &'a mut Vec<Motion>,
+    direct: &'a mut Direct,
     change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     counters: &'a mut Counters,
 }
@@ -522,8 +537,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         rows,
         tangents: tangent_directions,
         motions,
-        dense,
-        saved,
+        direct: buffers_direct,
         change,
         counters,
     } = buffers;
@@ -532,6 +546,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
     rows.clear();
     rows.extend(contacts.iter().map(|c| {
         let normal = Direction::new(c.normal, c, motions);
+        let warm = previous.find(c);
         Row {
             normal,
             lambda: 0.0,
@@ -541,7 +556,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
             lambda_restitution: 0.0,
             approach: along(&normal, motions),
             bias: (-c.depth - GAP_ROUND_OFF).max(0.0) / dt,
-            warm: previous.find(c).unwrap_or_else(Vector3::zeros),
+            warm: warm.unwrap_or_else(Vector3::zeros),
         }
     }));
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
@@ -549,7 +564,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
 
     // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
     // projected Gauss–Seidel, warm-started from the last step's impulses.
-    let direct = direct_inelastic(rows, motions, tolerance, dense, saved);
+    let direct = direct_inelastic(rows, motions, tolerance, buffers_direct);
     if direct {
         counters.direct += 1;
     } else {
@@ -609,7 +624,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         }
         // The direct solve first (everything sticks); else the sweeps, warm-started from the
         // last step's friction impulses (kept in their disks).
-        let solved = direct_sticking(rows, tangent_directions, motions, tolerance, dense, saved);
+        let solved = direct_sticking(rows, tangent_directions, motions, tolerance, buffers_direct);
         if !solved {
             for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
                 row.normal.with_inverse();
@@ -724,35 +739,39 @@ fn bounces(row: &Row, bounce_speed: f64) -> bool {
 /// no contact, active or not, still approaching — so it is the same minimum of K that the
 /// sweeps converge to, reached at once. When a λᵢ comes out negative (at rest, a corner of a
 /// 4-point face: four rows of rank three) or a contact outside the set still approaches, the
-/// active set changes by one row and the system is solved again, at most [`PIVOT_ROUNDS`]
-/// times. Returns false (and changes nothing) otherwise.
+/// active set changes — by one row per pair of bodies, the pair's most negative one out or
+/// its most approaching one in, so a pyramid whose every face has such a corner needs a few
+/// rounds, not one per face — and the system is solved again, at most [`PIVOT_ROUNDS`]
+/// times. The active rows stay in contact order (rows of a pair together), which keeps the
+/// envelope of a stack banded. Returns false (and changes nothing) otherwise.
 fn direct_inelastic(
     rows: &mut [Row],
     motions: &mut [Motion],
     tolerance: f64,
-    system: &mut Dense,
-    saved: &mut Vec<Motion>,
+    buffers: &mut Direct,
 ) -> bool {
-    let mut active = [0usize; DIRECT_MAX];
-    let mut m = 0;
-    for (i, row) in rows.iter().enumerate() {
-        if row.approach + row.bias < 0.0 {
-            if m == DIRECT_MAX {
-                return false;
-            }
-            active[m] = i;
-            m += 1;
-        }
-    }
-    if m == 0 {
+    let Direct {
+        system,
+        saved,
+        active,
+        lambda,
+        entering,
+    } = buffers;
+    active.clear();
+    let approaching = |r: &Row| r.approach + r.bias < 0.0;
+    if !rows.iter().any(approaching) {
         return true;
+    }
+    active.extend((0..rows.len()).filter(|&i| approaching(&rows[i])));
+    let mut m = active.len();
+    if m > DIRECT_MAX {
+        return false;
     }
     // An active-set search (principal pivoting), at most PIVOT_ROUNDS changes: solve on the
     // active rows; if some λ < 0 (a corner of a 4-point face whose minimum-norm share came
     // out negative), take the most negative row out; else if a row outside the set still
     // approaches, take the most approaching one in; else accept. Every accepted answer passes
     // the same test as before (λ ≥ 0, nothing approaching): the solution of the whole problem.
-    let mut lambda = [0.0; DIRECT_MAX];
     saved.clear();
     saved.extend_from_slice(motions);
     for round in 0..=PIVOT_ROUNDS {
@@ -764,11 +783,15 @@ fn direct_inelastic(
                 let nj = &rows[active[q]].normal;
                 ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
             });
+            if system.stored() > ENVELOPE_MAX {
+                return false;
+            }
         }
         let Some(solution) = system.solve() else {
             return false;
         };
-        lambda[..m].copy_from_slice(&solution[..m]);
+        lambda.clear();
+        lambda.extend_from_slice(&solution[..m]);
         let last = round == PIVOT_ROUNDS;
         let (_, most_negative) = (0..m).fold((0.0, None), |(w, at), p| {
             if lambda[p] < w {
@@ -781,32 +804,79 @@ fn direct_inelastic(
             if last || m == 1 {
                 return false;
             }
-            active.copy_within(p + 1..m, p);
-            m -= 1;
+            // Out: the most negative row of each pair of bodies that has one (each face's
+            // corner whose minimum-norm share came out negative; the same row as "the most
+            // negative" when one pair has them). The rows stay in contact order.
+            let pair = |p: usize| {
+                let n = &rows[active[p]].normal;
+                (n.a.body, n.b.map(|b| b.body))
+            };
+            let mut out = Vec::new();
+            let mut q = 0;
+            while q < m {
+                let mut end = q;
+                let mut worst = (0.0, None);
+                while end < m && pair(end) == pair(q) {
+                    if lambda[end] < worst.0 {
+                        worst = (lambda[end], Some(end));
+                    }
+                    end += 1;
+                }
+                out.extend(worst.1);
+                q = end;
+            }
+            debug_assert!(out.contains(&p));
+
+            let mut k = 0;
+            active.retain(|_| {
+                let keep = out.binary_search(&k).is_err();
+                k += 1;
+                keep
+            });
+            m = active.len();
             continue;
         }
         for p in 0..m {
             apply(lambda[p], &rows[active[p]].normal, motions);
         }
-        let mut approaching: Option<(usize, f64)> = None;
+        // The most approaching row of each pair of bodies that has one, in contact order
+        // (the same row as "the most approaching" when one pair has them).
+        let pair = |r: &Row| (r.normal.a.body, r.normal.b.map(|b| b.body));
+        let mut worst: Option<(usize, f64)> = None;
+        let mut group: Option<(usize, f64)> = None;
+        entering.clear();
         for (i, r) in rows.iter().enumerate() {
+            if i > 0 && pair(r) != pair(&rows[i - 1]) {
+                entering.extend(group.take().map(|(j, _)| j));
+            }
             let u = along(&r.normal, motions) + r.bias;
-            if u < -tolerance && approaching.is_none_or(|(_, w)| u < w) {
-                approaching = Some((i, u));
+            if u < -tolerance {
+                if group.is_none_or(|(_, w)| u < w) {
+                    group = Some((i, u));
+                }
+                if worst.is_none_or(|(_, w)| u < w) {
+                    worst = Some((i, u));
+                }
             }
         }
-        let Some((i, _)) = approaching else {
+        entering.extend(group.map(|(j, _)| j));
+        let Some((i, _)) = worst else {
             for p in 0..m {
                 rows[active[p]].lambda = lambda[p];
             }
             return true;
         };
         motions.copy_from_slice(saved);
-        if last || m == DIRECT_MAX || active[..m].contains(&i) {
+        if last || m + entering.len() > DIRECT_MAX || active.binary_search(&i).is_ok() {
             return false;
         }
-        active[m] = i;
-        m += 1;
+        // In, in contact order (rows of a pair stay together: the envelope stays narrow).
+        for &j in entering.iter() {
+            if let Err(at) = active.binary_search(&j) {
+                active.insert(at, j);
+            }
+        }
+        m = active.len();
     }
     false
 }
@@ -829,21 +899,18 @@ fn direct_sticking(
     directions: &[[Direction; 2]],
     motions: &mut [Motion],
     tolerance: f64,
-    system: &mut Dense,
-    saved: &mut Vec<Motion>,
+    buffers: &mut Direct,
 ) -> bool {
-    let mut active = [0usize; STICKING_MAX];
-    let mut m = 0;
-    for (i, row) in rows.iter().enumerate() {
-        if row.lambda > 0.0 {
-            if m == STICKING_MAX {
-                return false;
-            }
-            active[m] = i;
-            m += 1;
-        }
-    }
-    if m == 0 {
+    let Direct {
+        system,
+        saved,
+        active,
+        ..
+    } = buffers;
+    active.clear();
+    active.extend((0..rows.len()).filter(|&i| rows[i].lambda > 0.0));
+    let m = active.len();
+    if m == 0 || m > STICKING_MAX {
         return false;
     }
     // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact.
@@ -864,6 +931,9 @@ fn direct_sticking(
                 0.0
             };
         system.fill_row(p, dp.bodies(), |q| Some(dp.coupling(direction(q), motions)));
+        if system.stored() > ENVELOPE_MAX {
+            return false;
+        }
     }
     let Some(delta) = system.solve() else {
         return false;

@@ -55,20 +55,35 @@
 //! `max dᵢ`, exactly. What is left — one row per pair in a stack — is solved at once with the
 //! rows that penetrate as the active set: `B μ = d`, `B_ij = Σ_shared b (±nᵢ)·(±nⱼ)/M_b`
 //! (`dense`); a row the answer leaves penetrating joins the set and it is solved again (a
-//! cube pushed up pushes the one above). Accepted when every μ ≥ 0 and every row is
-//! separated; otherwise (and for a single body, which the sweeps finish in one or two)
-//! Hildreth's sweeps run. Hildreth on a
+//! cube pushed up pushes the one above), a row whose μ comes out negative leaves it (a pair
+//! the others' push-outs already separate: in a pyramid, a cube lifted by one of its two
+//! supports). Accepted when every μ ≥ 0 and every row is separated — the optimality
+//! conditions of the minimisation above, so the same unique answer the sweeps converge to;
+//! otherwise (after [`PASSES_MAX`] changes, and for a single body, which the sweeps finish
+//! in one or two) Hildreth's sweeps run. Hildreth on a
 //! stack of n bodies converges by a factor about cos²(π/(n+1)) a sweep: hundreds of sweeps
 //! for 10 cubes.
 
 use super::dense::Dense;
-use super::Contact;
+use super::{Against, Contact};
 use crate::physics::body::Body;
 use crate::physics::state::State;
 use nalgebra::Vector3;
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
 
-/// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10).
-pub const DIRECT_MAX: usize = 64;
+/// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10, a pyramid of
+/// 20 rows about 400; only the system's envelope is stored, see [`Dense`]).
+pub const DIRECT_MAX: usize = 4096;
+
+/// Largest envelope (stored entries of [`Dense`]) the direct push-out takes on.
+pub const ENVELOPE_MAX: usize = 1 << 20;
+
+/// Up to this many contacts the rows are merged by a scan, above it through a hash map.
+pub const MERGE_SCAN_MAX: usize = 32;
+
+/// At most this many changes of the direct push-out's active set before the sweeps run.
+pub const PASSES_MAX: usize = 64;
 
 /// At most this many Gauss–Seidel sweeps of the push-out.
 pub const MAX_SWEEPS: usize = 200;
@@ -83,6 +98,8 @@ pub struct Scratch {
     normals: Vec<([Vector3<f64>; 3], usize)>,
     /// The direct solve: merged rows (first contact, depth), the active ones, the system.
     merged: Vec<(usize, f64)>,
+    /// Where each pair and normal sits in `merged` (the merge in O(1) per contact).
+    merged_at: HashMap<(usize, Against, [u64; 3]), usize>,
     active: Vec<usize>,
     dense: Dense,
 }
@@ -247,20 +264,39 @@ impl Fix<'_> {
             shifts,
             depths,
             merged,
+            merged_at,
             active,
             dense,
             ..
         } = scratch;
-        // One row per pair and normal, with the deepest depth.
+        // One row per pair and normal (bit for bit), with the deepest depth, in the order of
+        // their first contacts.
         merged.clear();
+        merged_at.clear();
         for (i, (c, &depth)) in contacts.iter().zip(depths.iter()).enumerate() {
-            let same = merged.iter_mut().find(|(j, _)| {
-                let o = &contacts[*j];
-                o.body == c.body && o.against == c.against && o.normal == c.normal
-            });
-            match same {
-                Some((_, d)) => *d = d.max(depth),
-                None => merged.push((i, depth)),
+            if contacts.len() <= MERGE_SCAN_MAX {
+                // Few contacts: a scan is cheaper than hashing.
+                let same = merged.iter_mut().find(|(j, _)| {
+                    let o = &contacts[*j];
+                    o.body == c.body && o.against == c.against && o.normal == c.normal
+                });
+                match same {
+                    Some((_, d)) => *d = d.max(depth),
+                    None => merged.push((i, depth)),
+                }
+                continue;
+            }
+            // +0.0 and −0.0 compare equal: one key for both.
+            let bits = c.normal.map(|x| (x + 0.0).to_bits());
+            match merged_at.entry((c.body, c.against, [bits.x, bits.y, bits.z])) {
+                Entry::Occupied(at) => {
+                    let d = &mut merged[*at.get()].1;
+                    *d = d.max(depth);
+                }
+                Entry::Vacant(slot) => {
+                    slot.insert(merged.len());
+                    merged.push((i, depth));
+                }
             }
         }
         if merged.len() > DIRECT_MAX {
@@ -275,9 +311,9 @@ impl Fix<'_> {
                 .into_iter()
                 .flatten()
         };
-        // Each pass adds a row or ends: a cube pushed up pushes the next one, so a stack of
-        // n takes up to n passes.
-        for _ in 0..=merged.len() {
+        // Each pass adds rows, takes out pulling ones, or ends: a cube pushed up pushes the
+        // next one, so a stack of n takes up to n passes.
+        for _ in 0..=merged.len().min(PASSES_MAX) {
             let m = active.len();
             dense.reset(m);
             for p in 0..m {
@@ -297,12 +333,21 @@ impl Fix<'_> {
                     }
                     sum
                 });
+                if dense.stored() > ENVELOPE_MAX {
+                    return false;
+                }
             }
             let Some(mu) = dense.solve() else {
                 return false;
             };
             if mu.iter().any(|&x| x < 0.0) {
-                return false;
+                // Out: the rows pulling (a pair that the others' push-outs already separate).
+                let mut p = 0;
+                active.retain(|_| {
+                    p += 1;
+                    mu[p - 1] >= 0.0
+                });
+                continue;
             }
             shifts.fill(Vector3::zeros());
             for (p, &x) in mu.iter().enumerate() {
@@ -319,7 +364,9 @@ impl Fix<'_> {
                 if let Some(other) = c.other_body() {
                     separation -= shifts[other];
                 }
-                if c.normal.dot(&separation) < depth - tolerance && !active.contains(&r) {
+                if c.normal.dot(&separation) < depth - tolerance
+                    && active[..before].binary_search(&r).is_err()
+                {
                     active.push(r);
                 }
             }

@@ -1,0 +1,65 @@
+//! Steps one of the contact benches' scenes (`tumble::contact_scenes`) a given number of times
+//! and prints the solver's path counters, for profiles (`perf record`) or instruction counts
+//! (`valgrind --tool=callgrind`), stable where wall-clock times are not:
+//!
+//! ```text
+//! cargo build --release --example contact_steps
+//! target/release/examples/contact_steps SCENE STEPS [RESPONSE]
+//! ```
+//!
+//! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes`; RESPONSE: `impulse` (default)
+//! or `soft-step`.
+
+use std::time::Instant;
+use tumble::contact_scenes::{dominoes, pyramid, stack};
+use tumble::physics::Response;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let usage = "usage: contact_steps SCENE STEPS [RESPONSE]";
+    let scene = args.get(1).expect(usage);
+    let steps: u64 = args.get(2).and_then(|s| s.parse().ok()).expect(usage);
+    let response = Response::from_name(args.get(3).map_or("impulse", String::as_str))
+        .expect("a response name");
+    let mut world = if let Some(n) = scene.strip_prefix("stack-") {
+        stack(n.parse().expect(usage), response)
+    } else if let Some(rest) = scene.strip_prefix("pyramid-") {
+        let (rows, gap) = match rest.strip_suffix("-gap") {
+            Some(rows) => (rows, 0.01),
+            None => (rest, 0.0),
+        };
+        pyramid(rows.parse().expect(usage), gap, response)
+    } else if scene == "dominoes" {
+        dominoes(response)
+    } else {
+        panic!("{usage}")
+    };
+    let start = Instant::now();
+    let mut last = world.contact_counters();
+    let mut last_time = start;
+    for step in 1..=steps {
+        world.step();
+        if step % 1000 == 0 || step == steps {
+            let now = world.contact_counters();
+            let t = Instant::now();
+            println!(
+                "t {:6.1} s  direct {:5} declined {:5} normal sweeps {:7} friction sweeps {:7}  {:9.1} µs/step",
+                step as f64 * 1e-3,
+                now.direct - last.direct,
+                now.declined - last.declined,
+                now.normal_sweeps - last.normal_sweeps,
+                now.friction_sweeps - last.friction_sweeps,
+                (t - last_time).as_secs_f64() * 1e6 / 1000.0,
+            );
+            last = now;
+            last_time = t;
+        }
+    }
+    let drift = world
+        .states()
+        .iter()
+        .zip(world.initial_states())
+        .map(|(s, s0)| (s.position - s0.position).norm())
+        .fold(0.0, f64::max);
+    println!("largest displacement {drift:.3e} m");
+}
