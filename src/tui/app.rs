@@ -144,6 +144,9 @@ pub struct Ghost {
     pub comparison: Comparison,
     pub world: World,
     pub snapshot: Snapshot,
+    /// Where the compare world diverged: it stays frozen there (its last finite state) while
+    /// the other world runs on.
+    pub diverged: Option<Divergence>,
 }
 
 /// The whole app state.
@@ -758,7 +761,10 @@ impl App {
         let mut shown = shown_points(&self.world);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot_of(self.selected);
-            shown.extend(shown_points(&ghost.world));
+            // A diverged ghost's runaway positions would take the view with them.
+            if ghost.diverged.is_none() {
+                shown.extend(shown_points(&ghost.world));
+            }
         }
         self.region.include(&shown);
         let page = self.lesson.page_at(self.snapshot.time).map(|(i, _)| i);
@@ -768,23 +774,67 @@ impl App {
         }
     }
 
-    /// Checks both worlds after a frame; pauses with a dialog on divergence.
+    /// Checks both worlds after a frame. A compare world that diverges is frozen there and
+    /// marked (the run goes on); when the world itself diverges beside a compare world that
+    /// has not, the two trade places (the run follows the one still running, the diverged one
+    /// stays as the frozen ghost). Only when nothing runs on does the run pause, with a dialog.
     fn check_divergence(&mut self) -> bool {
-        let diverged = self.world.divergence().or_else(|| {
-            self.ghost.as_ref().and_then(|g| {
-                g.world.divergence().map(|mut d| {
-                    d.quantity = format!("compare world ({}): {}", g.comparison.name(), d.quantity);
-                    d
-                })
-            })
-        });
-        if let Some(d) = diverged {
-            self.divergence = Some(d);
-            self.running = false;
-            true
-        } else {
-            false
+        if let Some(ghost) = self.ghost.as_mut().filter(|g| g.diverged.is_none()) {
+            if let Some(d) = ghost.world.divergence() {
+                self.notice = Some(format!(
+                    "the ghost ({}) diverged at step {} ({}): it stays frozen there, the run                      goes on",
+                    ghost.comparison.name(),
+                    d.step,
+                    d.quantity
+                ));
+                ghost.diverged = Some(d);
+            }
         }
+        let Some(d) = self.world.divergence() else {
+            return false;
+        };
+        let healthy = self.ghost.as_ref().is_some_and(|g| g.diverged.is_none());
+        if healthy && self.swap_with_ghost(&d) {
+            return false;
+        }
+        self.divergence = Some(d);
+        self.running = false;
+        true
+    }
+
+    /// The world diverged (`d`) and the compare world has not: they trade places, so the run
+    /// follows the compare world and the diverged world is the frozen ghost. The ghost's
+    /// comparison becomes the diverged world's setting. False when the settings cannot be told
+    /// apart by one comparison (then nothing changes).
+    fn swap_with_ghost(&mut self, d: &Divergence) -> bool {
+        let Some(ghost) = self.ghost.as_mut() else {
+            return false;
+        };
+        let own = match ghost.comparison {
+            Comparison::Integrator(_) => Comparison::Integrator(self.world.integrator()),
+            Comparison::Response(_) => match self.world.contact_model() {
+                Some(m) => Comparison::Response(m.response),
+                None => return false,
+            },
+            Comparison::ClothIntegrator(_) => match self.world.cloths().first() {
+                Some(c) => Comparison::ClothIntegrator(c.integrator),
+                None => return false,
+            },
+        };
+        let running = ghost.comparison;
+        std::mem::swap(&mut self.world, &mut ghost.world);
+        ghost.comparison = own;
+        ghost.diverged = Some(d.clone());
+        self.history.swap_worlds();
+        self.notice = Some(format!(
+            "{} diverged at step {} ({}): the run follows the ghost ({}) now, the diverged \
+             world stays frozen as the ghost",
+            own.name(),
+            d.step,
+            d.quantity,
+            running.name()
+        ));
+        true
     }
 
     /// Records the frame just finished in the energy series.
@@ -818,7 +868,7 @@ impl App {
             self.world.step();
             cost += start.elapsed().as_secs_f64();
             done += 1;
-            if let Some(ghost) = &mut self.ghost {
+            if let Some(ghost) = self.ghost.as_mut().filter(|g| g.diverged.is_none()) {
                 ghost.world.step();
             }
             self.record_frame();
@@ -880,7 +930,7 @@ impl App {
         self.before_change();
         self.remember();
         let phase = self.world.step_phase();
-        if let Some(ghost) = &mut self.ghost {
+        if let Some(ghost) = self.ghost.as_mut().filter(|g| g.diverged.is_none()) {
             ghost.world.step_phase();
         }
         if phase == Phase::Collide {
@@ -917,6 +967,7 @@ impl App {
                 apply(&mut ghost.world, ghost.comparison);
                 self.history.break_segment();
             }
+            ghost.diverged = ghost.world.divergence();
         }
         self.divergence = None;
         self.series.truncate_after(self.world.time());
@@ -930,6 +981,7 @@ impl App {
         if let Some(ghost) = &mut self.ghost {
             ghost.world = self.world.clone();
             apply(&mut ghost.world, ghost.comparison);
+            ghost.diverged = None;
         }
         self.history.clear();
         self.divergence = None;
@@ -1052,10 +1104,12 @@ impl App {
             ));
         }
         let snapshot = world.snapshot();
+        let diverged = world.divergence();
         self.ghost = Some(Ghost {
             comparison,
             world,
             snapshot,
+            diverged,
         });
         self.history.break_segment();
         self.refresh();
