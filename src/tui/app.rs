@@ -327,10 +327,6 @@ impl App {
                     text: String::new(),
                 };
             }
-            Message::OpenSettings | Message::WriteScene if self.lesson.scene.bodies.is_empty() => {
-                self.notice =
-                    Some("no rigid body in this scene: the settings form edits a body's".into());
-            }
             Message::OpenSettings => {
                 self.running = false;
                 self.overlay =
@@ -465,8 +461,6 @@ impl App {
             Message::ToggleStudy => {
                 if self.view == View::Study {
                     self.view = View::Loop;
-                } else if self.world.body_count() == 0 {
-                    self.view = View::Study;
                 } else {
                     if !self
                         .study
@@ -625,6 +619,14 @@ impl App {
             },
             _ => SceneEdits::of(&self.lesson.scene),
         };
+        // The written file must pass what the loader checks: the same rules here.
+        if let Err(e) = edits.apply(&self.lesson.scene) {
+            match &mut self.overlay {
+                Overlay::Settings(form) => form.error = Some(e),
+                _ => self.notice = Some(format!("cannot write the scene: {e}")),
+            }
+            return None;
+        }
         Some(Effect::WriteScene {
             edits,
             to: self.write_path(),

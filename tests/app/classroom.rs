@@ -107,3 +107,136 @@ fn when_the_lessons_own_world_diverges_the_run_follows_the_ghost() {
     assert_eq!(impulse.world.checkpoint(), app.world.checkpoint());
     assert!(app.ghost.as_ref().unwrap().diverged.is_none());
 }
+
+fn press(app: &mut App, code: crossterm::event::KeyCode) {
+    app.handle_key(&crossterm::event::KeyEvent::new(
+        code,
+        crossterm::event::KeyModifiers::NONE,
+    ));
+}
+
+/// Selects the form's field labelled `label` and types `text` into it.
+fn set_field(app: &mut App, label: &str, text: &str) {
+    use crossterm::event::KeyCode;
+    let tumble::tui::Overlay::Settings(form) = &app.overlay else {
+        panic!("the form is not open");
+    };
+    let at = form
+        .fields
+        .iter()
+        .position(|f| form.label(f).0 == label)
+        .unwrap_or_else(|| panic!("no field `{label}`"));
+    while !matches!(&app.overlay, tumble::tui::Overlay::Settings(f) if f.selected == at) {
+        press(app, KeyCode::Down);
+    }
+    for c in text.chars() {
+        press(app, KeyCode::Char(c));
+    }
+}
+
+#[test]
+fn the_settings_form_edits_a_scene_of_cloths_only() {
+    use crossterm::event::KeyCode;
+    use tumble::physics::cloth::ClothIntegrator;
+    // Lesson 18 tells the student to switch the sheet to implicit-euler with `e`.
+    let mut app = lesson_app("18-explicit-limit", None);
+    assert_eq!(app.world.body_count(), 0);
+    press(&mut app, KeyCode::Char('e'));
+    assert!(
+        matches!(app.overlay, tumble::tui::Overlay::Settings(_)),
+        "{:?}",
+        app.notice
+    );
+    let shown = screen(&app, 80, 24);
+    assert!(shown.contains("time step dt"), "{shown}");
+    let name = app.world.cloths()[0].name.clone();
+    set_field(
+        &mut app,
+        &format!("cloth {name} integrator"),
+        "implicit-euler",
+    );
+    set_field(&mut app, &format!("cloth {name} stretch"), "1500");
+    set_field(&mut app, "time step dt", "0.01");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.overlay, tumble::tui::Overlay::None, "{:?}", app.notice);
+    assert_eq!(app.world.dt(), 0.01);
+    assert_eq!(
+        app.world.cloths()[0].integrator,
+        ClothIntegrator::ImplicitEuler
+    );
+    assert_eq!(app.lesson.scene.cloths[0].stretch, 1500.0);
+    let notice = app.notice.clone().unwrap();
+    assert!(notice.contains("→ implicit-euler"), "{notice}");
+    assert!(notice.contains("stretch"), "{notice}");
+    // W writes a file the loader reads back with the same values.
+    let dir = std::env::temp_dir().join(format!("tumble-classroom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    app.write_dir = dir.clone();
+    press(&mut app, KeyCode::Char('W'));
+    let written = tumble::scene::load(&app.write_path()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(written.scene.dt, 0.01);
+    assert_eq!(
+        written.scene.cloths[0].integrator,
+        ClothIntegrator::ImplicitEuler
+    );
+    assert_eq!(written.scene.cloths[0].stretch, 1500.0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_in_app_study_runs_on_a_scene_of_cloths_only() {
+    use crossterm::event::KeyCode;
+    let mut app = lesson_app("18-explicit-limit", None);
+    press(&mut app, KeyCode::Char('s'));
+    let job = app.study.as_ref().expect("a study started");
+    assert!(job.refusal().is_none(), "{:?}", job.refusal());
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains("study of"), "{shown}");
+    assert!(
+        !shown.contains("the study compares the body integrators"),
+        "{shown}"
+    );
+}
+
+#[test]
+fn the_form_moves_orients_and_sets_gravity_and_drag() {
+    use crossterm::event::KeyCode;
+    let mut app = lesson_app("05-ground-collision", None);
+    press(&mut app, KeyCode::Char('e'));
+    set_field(&mut app, "position x₀ x", "0.5");
+    set_field(&mut app, "angle about the axis", "45");
+    set_field(&mut app, "orientation axis x", "1");
+    set_field(&mut app, "axis y", "0");
+    set_field(&mut app, "axis z", "0");
+    set_field(&mut app, "gravity g x", "0");
+    set_field(&mut app, "g y", "-1.62");
+    set_field(&mut app, "drag k (F = −k v)", "0.2");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.overlay, tumble::tui::Overlay::None, "{:?}", app.notice);
+    let initial = &app.lesson.scene.bodies[0].initial;
+    assert_eq!(initial.position.x, 0.5);
+    // 45° about x: the body's y axis goes to (0, cos 45°, sin 45°).
+    let y = initial.orientation.matrix() * nalgebra::Vector3::y();
+    let c = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(
+        (y - nalgebra::Vector3::new(0.0, c, c)).norm() < 1e-15,
+        "{y}"
+    );
+    assert_eq!(
+        app.lesson.scene.effects.gravity(),
+        Some(nalgebra::Vector3::new(0.0, -1.62, 0.0))
+    );
+    assert!(app
+        .lesson
+        .scene
+        .effects
+        .list()
+        .contains(&tumble::physics::Effect::Drag {
+            linear: 0.2,
+            angular: 0.0
+        }));
+    // One frame: the force panel's F = M g − k v with v = 0 at t = 0 is M g.
+    let m = app.lesson.scene.bodies[0].body.mass;
+    let force = app.snapshot.force;
+    assert!((force.y + 1.62 * m).abs() < 1e-12, "{force}");
+}
