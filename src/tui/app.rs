@@ -1003,19 +1003,44 @@ impl App {
                         .into(),
                 )
             }
-            Some(_) if self.world.body_count() > 1 => {
-                self.notice = Some(
-                    "seed knows one body and fixed obstacles: with several bodies the response \
-                     stays impulse"
-                        .into(),
-                )
-            }
             Some(mut model) => {
-                model.response = model.response.next();
-                self.world.set_contact_model(model);
+                // The next response the scene's rules allow (the rules the file and `--response`
+                // pass); one they refuse is skipped, and the notice says why.
+                let start = model.response;
+                let mut refused = None;
+                loop {
+                    model.response = model.response.next();
+                    if model.response == start {
+                        break;
+                    }
+                    match self.rules_with(model.response) {
+                        Ok(()) => break,
+                        Err(why) => refused = refused.or(Some(why)),
+                    }
+                }
+                if let Some(why) = refused {
+                    self.notice = Some(format!("skipped: {why}"));
+                }
+                if model.response != start {
+                    self.world.set_contact_model(model);
+                }
             }
             None => self.notice = Some("no obstacles in this scene: no collision response".into()),
         }
+    }
+
+    /// Whether the scene as it runs, with collision response `response`, passes the scene's
+    /// rules ([`crate::scene::Scene::check_rules`], as a file and the command line do); the
+    /// error names the app's keys.
+    fn rules_with(&self, response: Response) -> Result<(), String> {
+        let mut scene = self.lesson.scene.clone();
+        scene.dt = self.world.dt();
+        if let Some(model) = &mut scene.contact {
+            model.response = response;
+        }
+        scene
+            .check_rules(crate::scene::Naming::Keys)
+            .map_err(|(_, why)| why)
     }
 
     /// The comparisons this scene offers, in cycling order: the other body integrators and
@@ -1034,7 +1059,7 @@ impl App {
                 list.extend(
                     Response::ALL
                         .into_iter()
-                        .filter(|&r| r != model.response)
+                        .filter(|&r| r != model.response && self.rules_with(r).is_ok())
                         .map(Comparison::Response),
                 );
             }
@@ -1085,6 +1110,12 @@ impl App {
                 comparison.name()
             ));
             return;
+        }
+        if let Comparison::Response(response) = comparison {
+            if let Err(why) = self.rules_with(response) {
+                self.notice = Some(format!("no ghost: {why}"));
+                return;
+            }
         }
         let mut world = self.world.clone();
         if !self.at_frame_start() {

@@ -240,3 +240,64 @@ fn the_form_moves_orients_and_sets_gravity_and_drag() {
     let force = app.snapshot.force;
     assert!((force.y + 1.62 * m).abs() < 1e-12, "{force}");
 }
+
+#[test]
+fn the_apps_response_and_ghost_pass_the_scenes_rules() {
+    use crossterm::event::KeyCode;
+    // Lesson 14 has three bodies: the scene's rules refuse `seed` (a file saying so is refused,
+    // and so is `--response seed`); `c` skips it and says why, the ghost refuses it.
+    let mut app = lesson_app("14-head-on", None);
+    let mut seen = Vec::new();
+    for _ in 0..Response::ALL.len() {
+        press(&mut app, KeyCode::Char('c'));
+        let response = app.world.contact_model().unwrap().response;
+        assert_ne!(response, Response::Seed, "{:?}", app.notice);
+        if let Some(notice) = &app.notice {
+            seen.push(notice.clone());
+        }
+    }
+    assert!(
+        seen.iter().any(|n| n
+            == "skipped: the `seed` response knows one body and fixed obstacles only, and this \
+                scene has 3 bodies: use the `impulse` response (c)"),
+        "{seen:?}"
+    );
+    app.start_compare(Comparison::Response(Response::Seed));
+    assert!(app.ghost.is_none());
+    assert!(
+        app.notice
+            .as_deref()
+            .unwrap()
+            .starts_with("no ghost: the `seed` response knows one body"),
+        "{:?}",
+        app.notice
+    );
+    assert!(!app
+        .comparisons()
+        .contains(&Comparison::Response(Response::Seed)));
+}
+
+#[test]
+fn compare_with_the_lessons_own_setting_is_refused() {
+    use assert_cmd::Command;
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tui-box.toml");
+    for (flag, other) in [("rk4", true), ("impulse", true), ("euler", false)] {
+        let run = Command::cargo_bin("tumble")
+            .unwrap()
+            .arg(&fixture)
+            .args(["--compare", flag])
+            .assert()
+            .code(2);
+        let stderr = String::from_utf8_lossy(&run.get_output().stderr).to_string();
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        if other {
+            assert!(
+                stderr.contains(&format!("the lesson runs `{flag}` already")),
+                "{stderr}"
+            );
+        } else {
+            // A different integrator passes the checks; only the missing terminal stops it.
+            assert!(stderr.contains("the app needs a terminal"), "{stderr}");
+        }
+    }
+}
