@@ -17,14 +17,12 @@ use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
 const FORMULA: Style = theme::FORMULA;
 
-/// A vector as `(x, y, z)` with the shared number formatter.
+/// A vector as `(x, y, z)` with the shared number formatter; a component below the round-off
+/// of the vector's length prints as 0 (as in the panels, [`crate::tables::ROUND_OFF`]).
 pub fn vector(v: &Vector3<f64>) -> String {
-    format!(
-        "({}, {}, {})",
-        number_plain(v.x),
-        number_plain(v.y),
-        number_plain(v.z)
-    )
+    let r = crate::tables::ROUND_OFF * v.norm();
+    let c = |x: f64| number_plain(crate::tables::resolved(x, r));
+    format!("({}, {}, {})", c(v.x), c(v.y), c(v.z))
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
@@ -334,7 +332,10 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
             format!(
                 " = {} kg·m²/s,   ‖RᵀR−1‖ = {}",
                 vector(&s.angular_momentum),
-                number_plain(s.orthonormality_error)
+                number_plain(crate::tables::resolved(
+                    s.orthonormality_error,
+                    crate::tables::ROUND_OFF
+                ))
             ),
         ),
     ]

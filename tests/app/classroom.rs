@@ -301,3 +301,88 @@ fn compare_with_the_lessons_own_setting_is_refused() {
         }
     }
 }
+
+/// The cells of the row labelled `label` in the panel titled `title` (its first match).
+fn cells(app: &App, title: &str, label: &str) -> Vec<String> {
+    tumble::tables::panels(&app.snapshot, tumble::tables::Frame::World)
+        .into_iter()
+        .filter(|p| p.title.starts_with(title))
+        .flat_map(|p| p.rows)
+        .find(|r| r.label.trim() == label)
+        .unwrap_or_else(|| panic!("no row {label} in {title}"))
+        .cells
+        .iter()
+        .map(|c| c.trim().to_string())
+        .collect()
+}
+
+#[test]
+fn round_off_prints_as_zero_and_is_never_highlighted() {
+    use crossterm::event::KeyCode;
+    // Lesson 14: after the first blow `left` stops; the solver stops within its tolerance,
+    // 1e-10 m/s (impulse::TOLERANCE): the page says P = 0, and so does the panel.
+    let mut app = lesson_app("14-head-on", None);
+    app.pause_at_stops = false;
+    app.step_frames(505);
+    assert_eq!(app.snapshot.body_name, "left");
+    assert!(
+        app.snapshot.linear_momentum.x.abs() > 0.0,
+        "a residue is there"
+    );
+    assert!(app.snapshot.linear_momentum.x.abs() <= 2e-10);
+    assert_eq!(cells(&app, "linear momentum", "P"), ["0.000000"; 3]);
+    assert_eq!(cells(&app, "linear momentum", "v"), ["0.000000"; 3]);
+    assert_eq!(cells(&app, "energy", "E − E₀"), ["0.000000"]);
+    // The system's P is still 1 kg·m/s: the rule is relative to the scene's scale.
+    assert_eq!(cells(&app, "system", "P total")[0], "1.000000");
+
+    // A spinning box (lesson 7, impulse): the world inertia tensor's off-diagonal 1e-19
+    // entries print as 0, so a frame never highlights them as changed.
+    let mut app = lesson_app("07-box-obstacle", None);
+    app.pause_at_stops = false;
+    app.step_frames(300);
+    let before = cells(&app, "inertia tensor", "I");
+    app.step_frames(1);
+    let after = cells(&app, "inertia tensor", "I");
+    assert_eq!(before[1..], after[1..], "off-diagonal entries");
+    for c in &after[1..] {
+        assert!(!c.contains('e'), "{after:?}");
+    }
+    // ‖RᵀR−1‖ of a quaternion (≈ 1e-16) is round-off of 1.
+    assert_eq!(cells(&app, "state", "‖RᵀR−1‖"), ["0.000000"]);
+
+    // Cycling the integrator at t = 0 never shows an E − E₀ of round-off.
+    let mut app = lesson_app("10-tennis-racket", None);
+    for _ in 0..tumble::physics::Integrator::ALL.len() {
+        press(&mut app, KeyCode::Char('i'));
+        assert_eq!(cells(&app, "energy", "E − E₀"), ["0.000000"]);
+    }
+}
+
+#[test]
+fn numbers_the_solver_or_the_integrator_really_made_are_kept() {
+    // rk4's truncation error in free flight is no round-off: tui-box's drift shows.
+    let mut app = App::new(
+        tumble::scene::load(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tui-box.toml"),
+        )
+        .unwrap(),
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    app.step_frames(5);
+    let drift = &cells(&app, "energy", "drift/E₀")[0];
+    assert!(drift.contains("e-13"), "{drift}");
+    // A 4.86e-48 is round-off of 1; a 1e-3 (euler-seed's ‖RᵀR−1‖) is not.
+    assert_eq!(
+        tumble::tables::resolved(4.8598e-48, tumble::tables::ROUND_OFF),
+        0.0
+    );
+    assert_eq!(
+        tumble::tables::resolved(1e-3, tumble::tables::ROUND_OFF),
+        1e-3
+    );
+}
