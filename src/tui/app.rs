@@ -1029,6 +1029,38 @@ impl App {
         }
     }
 
+    /// The settings the run uses that the lesson's pages were not written for (after `i`,
+    /// `c`): `the page describes rk4 + seed; running impulse`, or None when they are the
+    /// lesson's own. The page's numbers are the lesson's settings', so the page says so.
+    pub fn page_settings_note(&self) -> Option<String> {
+        let scene = &self.lesson.scene;
+        let (mut own, mut now) = (Vec::new(), Vec::new());
+        if self.world.body_count() > 0 && self.world.integrator() != scene.integrator {
+            own.push(scene.integrator.name());
+            now.push(self.world.integrator().name());
+        }
+        if let (Some(a), Some(b)) = (scene.contact, self.world.contact_model()) {
+            if a.response != b.response {
+                own.push(a.response.name());
+                now.push(b.response.name());
+            }
+        }
+        for (a, b) in scene.cloths.iter().zip(self.world.cloths()) {
+            if a.integrator != b.integrator {
+                own.push(a.integrator.name());
+                now.push(b.integrator.name());
+                break;
+            }
+        }
+        (!own.is_empty()).then(|| {
+            format!(
+                " the page describes {}; running {} ",
+                own.join(" + "),
+                now.join(" + ")
+            )
+        })
+    }
+
     /// Whether the scene as it runs, with collision response `response`, passes the scene's
     /// rules ([`crate::scene::Scene::check_rules`], as a file and the command line do); the
     /// error names the app's keys.

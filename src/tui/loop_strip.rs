@@ -262,7 +262,10 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             what.push(format!("{pushed} pushed out of obstacles"));
         }
         if bodies {
-            what.push(format!("{} touching bodies", view.body_contacts));
+            what.push(match view.body_contacts {
+                1 => "1 particle touching a body".to_string(),
+                n => format!("{n} particles touching bodies"),
+            });
         }
         if what.is_empty() {
             what.push("nothing to touch".to_string());
@@ -352,7 +355,9 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     }
     if s.contacts.is_empty() {
         let what = match (obstacles.len(), bodies) {
-            (n, 1) => format!("{n} obstacle(s), nothing inside: nothing to do"),
+            // The deepest penetration beside it is measured on the shape; the solver may stop
+            // a body short of, or slightly inside, a surface without a contact in this phase.
+            (n, 1) => format!("{n} obstacle(s), no contact this step: nothing to do"),
             (0, b) => format!("{b} bodies, no pair touching: nothing to do"),
             (n, b) => format!("{n} obstacle(s) and {b} bodies, nothing touching: nothing to do"),
         };

@@ -386,3 +386,60 @@ fn numbers_the_solver_or_the_integrator_really_made_are_kept() {
         1e-3
     );
 }
+
+#[test]
+fn after_c_the_page_says_it_describes_the_lessons_own_settings() {
+    use crossterm::event::KeyCode;
+    let mut app = lesson_app("08-climbing-bug", None);
+    assert!(app.page_settings_note().is_none());
+    press(&mut app, KeyCode::Char('c'));
+    let note = app.page_settings_note().expect("another response runs");
+    assert_eq!(note, " the page describes seed; running impulse ");
+    let shown = screen(&app, 200, 60);
+    assert!(
+        shown.contains("the page describes seed; running impulse"),
+        "{shown}"
+    );
+}
+
+#[test]
+fn wording_of_the_loop_strip_and_the_divergence() {
+    // |ω|·dt in fixed decimals, not `3.4937e0`.
+    let mut app = lesson_app("05-ground-collision", None);
+    app.pause_at_stops = false;
+    app.step_frames(3000);
+    let d = app
+        .divergence
+        .as_ref()
+        .expect("lesson 5 diverges with seed");
+    assert!(!d.quantity.contains("e0 rad"), "{}", d.quantity);
+    assert!(d.quantity.contains("|ω|·dt = 3."), "{}", d.quantity);
+    // Particles touching bodies are counted as particles.
+    let mut app = App::new(
+        tumble::scene::load(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tui-cloth-trampoline.toml"),
+        )
+        .unwrap(),
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    app.pause_at_stops = false;
+    let mut seen = false;
+    for _ in 0..400 {
+        app.step_frames(1);
+        let shown = screen(&app, 200, 60);
+        assert!(
+            !shown.contains("touching bodies") || shown.contains("particles touching"),
+            "{shown}"
+        );
+        seen |= shown.contains("particles touching bodies")
+            || shown.contains("particle touching a body");
+        if seen {
+            break;
+        }
+    }
+    assert!(seen, "the cube lands on the sheet");
+}
