@@ -67,7 +67,7 @@ pub enum Overlay {
         selected: usize,
     },
     /// The settings form (key `e`).
-    Settings(SettingsForm),
+    Settings(Box<SettingsForm>),
     /// The jump-to-time prompt (key `J`) and the time typed so far.
     Jump {
         text: String,
@@ -329,8 +329,9 @@ impl App {
             }
             Message::OpenSettings => {
                 self.running = false;
-                self.overlay =
-                    Overlay::Settings(SettingsForm::new(SceneEdits::of(&self.lesson.scene)));
+                self.overlay = Overlay::Settings(Box::new(SettingsForm::new(SceneEdits::of(
+                    &self.lesson.scene,
+                ))));
             }
             Message::WriteScene => return self.write_scene(),
             Message::Type(c) => match &mut self.overlay {
