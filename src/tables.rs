@@ -3,11 +3,37 @@
 //!
 //! Numbers are fixed-width and deterministic: 6 decimals between 1e-3 and 1e3, otherwise
 //! scientific with 5 significant digits; `-0` prints as `0`; NaN and ∞ are spelled out.
+//!
+//! A number below the round-off of its own quantity prints as 0 (and so is never highlighted
+//! as changed): round-off is [`ROUND_OFF`] of the scale the panel shows (a vector's length, a
+//! tensor's largest entry, 1 for q and ‖RᵀR−1‖, the scene's energy for E − E₀), and once a
+//! contact has acted the contact solver's own tolerance for velocities, momenta and the
+//! energy they carry (its sweeps stop within [`impulse::TOLERANCE`] m/s plus that fraction
+//! of the speed):
+//!
+//! ```text
+//! shown(x) = 0   if |x| ≤ ROUND_OFF · scale + solver tolerance (quantities the solver sets)
+//! ROUND_OFF = 64 ε ≈ 1.4e-14        (a few dozen roundings of numbers of that size)
+//! v: tol = TOLERANCE · (1 + v_scale),  P: M · tol,  E − E₀: |P| · tol
+//! ```
 
+use crate::physics::collision::impulse;
 use crate::physics::{
     Against, BodyView, ClothView, Contact, Feature, JointView, Obstacle, Snapshot, SpringView,
 };
 use nalgebra::{Matrix3, Vector3};
+
+/// Relative round-off of a panel's quantity: 64 ε ≈ 1.4e-14 of its scale.
+pub const ROUND_OFF: f64 = 64.0 * f64::EPSILON;
+
+/// `x` as a panel shows it: 0 when at or below `resolution` (the round-off of its quantity).
+pub fn resolved(x: f64, resolution: f64) -> f64 {
+    if x.abs() <= resolution {
+        0.0
+    } else {
+        x
+    }
+}
 
 /// Width of every formatted number, in characters.
 pub const NUMBER_WIDTH: usize = 12;
@@ -84,23 +110,38 @@ pub struct Panel {
     pub rows: Vec<Row>,
 }
 
-fn vector_row(label: &str, v: &Vector3<f64>, unit: &'static str) -> Row {
+/// A vector's row: a component below the round-off of the vector's length (or of `floor`,
+/// an absolute resolution) prints as 0.
+fn vector_row_at(label: &str, v: &Vector3<f64>, unit: &'static str, floor: f64) -> Row {
+    let resolution = (ROUND_OFF * v.norm()).max(floor);
     Row {
         label: label.to_string(),
-        cells: v.iter().map(|c| number(*c)).collect(),
+        cells: v.iter().map(|c| number(resolved(*c, resolution))).collect(),
+        unit,
+    }
+}
+
+fn vector_row(label: &str, v: &Vector3<f64>, unit: &'static str) -> Row {
+    vector_row_at(label, v, unit, 0.0)
+}
+
+/// A scalar's row: 0 at or below `resolution`.
+fn scalar_row_at(label: &str, x: f64, unit: &'static str, resolution: f64) -> Row {
+    Row {
+        label: label.to_string(),
+        cells: vec![number(resolved(x, resolution))],
         unit,
     }
 }
 
 fn scalar_row(label: &str, x: f64, unit: &'static str) -> Row {
-    Row {
-        label: label.to_string(),
-        cells: vec![number(x)],
-        unit,
-    }
+    scalar_row_at(label, x, unit, 0.0)
 }
 
+/// A tensor's rows: an entry below the round-off of its largest entry prints as 0.
 fn matrix_rows(label: &str, m: &Matrix3<f64>, unit: &'static str) -> Vec<Row> {
+    let resolution = ROUND_OFF * m.amax();
+    let m = m.map(|x| resolved(x, resolution));
     (0..3)
         .map(|i| Row {
             label: if i == 0 {
@@ -127,16 +168,42 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         Frame::Body => " (body frame)",
     };
     let q = s.quaternion.quaternion();
+    // Scales of the quantities the contact solver sets (see the module doc).
+    // Once a contact has acted (energy booked to contacts, or touching now): before, the
+    // solver has set nothing and only floating-point round-off applies.
+    let contacts = s.energy_balance.contacts.is_some_and(|c| c != 0.0) || !s.contacts.is_empty();
+    let mass = if s.velocity.norm() > 0.0 {
+        s.linear_momentum.norm() / s.velocity.norm()
+    } else {
+        0.0
+    };
+    let momentum_scale = s
+        .linear_momentum
+        .norm()
+        .max(s.system.linear_momentum.norm());
+    let speed_scale = if mass > 0.0 {
+        momentum_scale / mass
+    } else {
+        s.velocity.norm()
+    };
+    let speed_tolerance = if contacts {
+        impulse::TOLERANCE * (1.0 + speed_scale)
+    } else {
+        0.0
+    };
     let state = Panel {
         title: "state".to_string(),
         rows: vec![
             vector_row("x", &s.position, "m"),
             Row {
                 label: "q".to_string(),
-                cells: [q.w, q.i, q.j, q.k].iter().map(|c| number(*c)).collect(),
+                cells: [q.w, q.i, q.j, q.k]
+                    .iter()
+                    .map(|c| number(resolved(*c, ROUND_OFF)))
+                    .collect(),
                 unit: "w x y z",
             },
-            scalar_row("‖RᵀR−1‖", s.orthonormality_error, ""),
+            scalar_row_at("‖RᵀR−1‖", s.orthonormality_error, "", ROUND_OFF),
         ],
     };
     let (inertia, inverse, inertia_label, inverse_label) = match frame {
@@ -179,8 +246,13 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     let momentum = Panel {
         title: format!("linear momentum{suffix}"),
         rows: vec![
-            vector_row("P", &to_frame(&s.linear_momentum), "kg·m/s"),
-            vector_row("v", &to_frame(&s.velocity), "m/s"),
+            vector_row_at(
+                "P",
+                &to_frame(&s.linear_momentum),
+                "kg·m/s",
+                mass * speed_tolerance,
+            ),
+            vector_row_at("v", &to_frame(&s.velocity), "m/s", speed_tolerance),
         ],
     };
     let angular_momentum = Panel {
@@ -194,12 +266,24 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     // by cause (the energy ledger); only the unbooked remainder is drift.
     let b = &s.energy_balance;
     let e = &s.system.energy;
+    let e0 = &s.system.initial_energy;
     let several = s.bodies.len() > 1;
+    let energy_scale = [
+        e.kinetic,
+        e.potential,
+        e.total,
+        e0.kinetic,
+        e0.potential,
+        e0.total,
+    ]
+    .iter()
+    .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let energy_resolution = ROUND_OFF * energy_scale + momentum_scale * speed_tolerance;
     let mut energy_rows = vec![Row {
         label: "K, V, E".to_string(),
         cells: [e.kinetic, e.potential, e.total]
             .iter()
-            .map(|x| number(*x))
+            .map(|x| number(resolved(*x, ROUND_OFF * energy_scale)))
             .collect(),
         unit: "J",
     }];
@@ -207,14 +291,25 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     if let Some(springs) = b.springs {
         energy_rows.push(scalar_row("U springs", springs, "J"));
     }
-    energy_rows.push(scalar_row("E − E₀", b.change, "J"));
+    energy_rows.push(scalar_row_at("E − E₀", b.change, "J", energy_resolution));
     for (label, value) in [("  drag work", b.drag_work), ("  contacts", b.contacts)] {
         if let Some(value) = value {
-            energy_rows.push(scalar_row(label, value, "J"));
+            energy_rows.push(scalar_row_at(label, value, "J", energy_resolution));
         }
     }
-    energy_rows.push(scalar_row("  drift", b.drift, "J"));
-    energy_rows.push(scalar_row("drift/E₀", b.relative_drift, ""));
+    energy_rows.push(scalar_row_at("  drift", b.drift, "J", energy_resolution));
+    // drift/E₀ is the drift over the energy scale: its round-off is the drift's, relative.
+    let relative_resolution = if b.drift != 0.0 {
+        energy_resolution * (b.relative_drift / b.drift).abs()
+    } else {
+        0.0
+    };
+    energy_rows.push(scalar_row_at(
+        "drift/E₀",
+        b.relative_drift,
+        "",
+        relative_resolution,
+    ));
     let energy = Panel {
         title: if several {
             "energy (all bodies)".to_string()

@@ -390,6 +390,22 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
                 )
                 .map_err(|f| Failure::bad_input(f.message.replace("--response", "--compare")))?;
             }
+            // A ghost running the lesson's own setting would compare a run with itself.
+            let scene = &lesson.scene;
+            let same = match comparison {
+                Comparison::Integrator(i) => !scene.bodies.is_empty() && i == scene.integrator,
+                Comparison::Response(r) => scene.contact.is_some_and(|m| m.response == r),
+                Comparison::ClothIntegrator(c) => {
+                    !scene.cloths.is_empty() && scene.cloths.iter().all(|cl| cl.integrator == c)
+                }
+            };
+            if same {
+                return Err(Failure::bad_input(format!(
+                    "{}: --compare {name}: the lesson runs `{name}` already, so the ghost would \
+                     run the same as the lesson; compare with another (k cycles them in the app)",
+                    path.display()
+                )));
+            }
             Some(comparison)
         }
     };

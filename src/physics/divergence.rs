@@ -131,9 +131,15 @@ impl EnergyGuard {
             return Some("energy is not finite".into());
         }
         if turn_per_step > MAX_TURN_PER_STEP {
+            // Above π and below 1e3 in practice: 4 decimals read better than `3.4937e0`.
+            let turn = if turn_per_step < 1e3 {
+                format!("{turn_per_step:.4}")
+            } else {
+                format!("{turn_per_step:.4e}")
+            };
             return Some(format!(
-                "rotation no longer resolved: |ω|·dt = {turn_per_step:.4e} rad per step, \
-                 more than half a turn (π)"
+                "rotation no longer resolved: |ω|·dt = {turn} rad per step, more than half a \
+                 turn (π)"
             ));
         }
         let supplied = ledger.supplied();

@@ -48,14 +48,6 @@ impl Validator<'_> {
         has_contact: bool,
         bodies: &[&str],
     ) -> Result<Vec<ClothSpec>, LoadError> {
-        if let (Some(first), false) = (raw.first(), has_contact) {
-            return Err(self.error(
-                first.span(),
-                "a cloth needs a collision response (its particles touch bodies and obstacles): \
-                 add `contact = { response = \"impulse\", restitution = 0.4, friction = 0.5 }` \
-                 to [scene]",
-            ));
-        }
         let mut specs: Vec<ClothSpec> = Vec::with_capacity(raw.len());
         for (k, table) in raw.iter().enumerate() {
             let spec = self.cloth(table, k, scene_integrator, bodies)?;
@@ -74,6 +66,16 @@ impl Validator<'_> {
                 ));
             }
             specs.push(spec);
+        }
+        // After each cloth's own values, so that `tumble check` reports those too (this
+        // error blanks the cloth out to look further).
+        if let (Some(first), false) = (raw.first(), has_contact) {
+            return Err(self.error(
+                first.span(),
+                "a cloth needs a collision response (its particles touch bodies and obstacles): \
+                 add `contact = { response = \"impulse\", restitution = 0.4, friction = 0.5 }` \
+                 to [scene]",
+            ));
         }
         Ok(specs)
     }

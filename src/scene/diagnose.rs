@@ -31,12 +31,12 @@ const PLACEHOLDERS: &[(&str, &str)] = &[
         "\n[scene]\ndt = 0.001\nintegrator = \"symplectic-euler\"\n\
          contact = { response = \"impulse\" }\n",
     ),
-    (
-        "body",
-        "\n[body]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\nmass = 1.0\n\
-         position = [1.0e6, 1.0e6, 1.0e6]\n",
-    ),
+    ("body", BODY_PLACEHOLDER),
 ];
+
+/// The `[body]` placeholder: a box far from everything.
+const BODY_PLACEHOLDER: &str = "\n[body]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\nmass = 1.0\n\
+                                position = [1.0e6, 1.0e6, 1.0e6]\n";
 
 /// Every independent error of `source` (empty if it loads), in the order of the file.
 pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
@@ -84,7 +84,32 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                 (value.len() <= span.len()).then(|| (span.clone(), key.clone(), value))
             })
             .filter(|_| !current.message.starts_with("unknown key"));
+        // A value replaced by one that passes and still at fault (a length the neutral value
+        // could not guess): its whole entry goes, not the whole section.
+        let still = touched
+            .iter()
+            .position(|t| t.entry.contains(&offset) && t.header == section.header);
+        let retry = still.and_then(|i| {
+            let t = &touched[i];
+            section
+                .entries
+                .iter()
+                .find(|e| e.start <= t.entry.start && t.entry.end <= e.end && **e != t.entry)
+                .filter(|e| untouched(e))
+                .cloned()
+        });
         match (value, entry) {
+            _ if retry.is_some() => {
+                let entry = retry.unwrap_or_default();
+                let key = key_name(&text[entry.clone()]);
+                blank(&mut text, entry.clone());
+                touched.push(Touched {
+                    header: section.header.clone(),
+                    entry,
+                    key,
+                    renamed: false,
+                });
+            }
             (Some((span, key, value)), _) if !caused => {
                 blank(&mut text, span.clone());
                 text.replace_range(span.start..span.start + value.len(), &value);
@@ -117,10 +142,19 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                 }
             }
         }
-        let next = match parse(&text, path) {
+        let mut next = match parse(&text, path) {
             Ok(_) => break,
             Err(e) => e,
         };
+        // A file of cloths only needs no [body]; once a broken cloth is blanked out, it does:
+        // the body placeholder stands in, so the search goes on past a false "missing table".
+        if next.message.starts_with("missing table `[body]`") && !text.contains(BODY_PLACEHOLDER) {
+            text.push_str(BODY_PLACEHOLDER);
+            next = match parse(&text, path) {
+                Ok(_) => break,
+                Err(e) => e,
+            };
+        }
         let Some(next_offset) = offset_of(&text, next.location).filter(|&o| o < source.len())
         else {
             break;
@@ -185,7 +219,14 @@ fn neutral(value: &str, message: &str) -> Option<String> {
     if let Some(inner) = value.strip_prefix('[').and_then(|v| v.strip_suffix(']')) {
         let items: Vec<&str> = inner.split(',').map(str::trim).collect();
         let numeric = items.iter().all(|i| looks_numeric(i));
-        return numeric.then(|| format!("[{}]", vec!["1"; items.len()].join(",")));
+        // "expected an array of 3 numbers": as many as asked for, if they fit.
+        let asked = message
+            .split_once("expected an array of ")
+            .and_then(|(_, rest)| rest.split_once(' '))
+            .and_then(|(n, _)| n.parse::<usize>().ok())
+            .unwrap_or(items.len());
+        let text = format!("[{}]", vec!["1"; asked].join(","));
+        return (numeric && text.len() <= value.len()).then_some(text);
     }
     looks_numeric(value).then(|| "1".to_string())
 }

@@ -6,14 +6,22 @@
 //! dt                     [scene] dt
 //! restitution, friction  [scene] contact = { restitution, friction }   (scenes with obstacles)
 //! mass M                 [body] mass; with `masses`, each point mass × M'/M (their sum is M')
+//! position x             [body] position
+//! orientation            [body] orientation = { axis, degrees } (written only when changed)
 //! velocity v             [body] velocity
 //! angular velocity ω     [body] angular_velocity (world frame; replaces angular_velocity_body)
+//! gravity g              [scene] gravity (absent stays absent until a component is changed)
+//! drag k, k_a            [scene] drag = { linear, angular } (likewise)
 //! cloth NAME integrator  [[cloth]] integrator of the cloth named NAME (written only when it
 //!                        differs from what the file gives the cloth, its own or the scene's)
+//! cloth NAME stretch,    [[cloth]] stretch, shear, bend (written only when changed)
+//!   shear, bend
 //! ```
 //!
-//! A scene of cloths only has no body values: `body` is None and only dt, the contact values
-//! and the cloths' integrators are edited.
+//! A scene of cloths only has no body values: `body` is None and dt, the contact values,
+//! gravity, drag and the cloths' values are edited. The values pass the loader's range rules
+//! ([`SceneEdits::problem`]) and the edited scene passes [`Scene::check_rules`], the rules
+//! the file and the command-line flags pass.
 //!
 //! In memory the body keeps its points and its inertia scales with the mass
 //! (`I_body' = (M'/M) I_body`, see [`Body::with_mass`]); the initial momenta follow from the
@@ -22,10 +30,12 @@
 //!
 //! [`Body::with_mass`]: crate::physics::Body::with_mass
 
-use super::Scene;
+use super::{Naming, Scene};
 use crate::physics::cloth::ClothIntegrator;
 use crate::physics::derive::derive;
-use nalgebra::Vector3;
+use crate::physics::effects::{Effect, Effects};
+use crate::physics::state::Orientation;
+use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use std::path::Path;
 use toml_edit::{Array, DocumentMut, Item, TableLike, Value};
 
@@ -43,11 +53,19 @@ pub struct SceneEdits {
     pub friction: Option<f64>,
     /// Total mass of the body, kg (> 0).
     pub mass: f64,
+    /// Initial position of the barycenter, m.
+    pub position: Vector3<f64>,
+    /// Initial orientation, body → world.
+    pub orientation: UnitQuaternion<f64>,
     /// Initial velocity of the barycenter, m/s.
     pub velocity: Vector3<f64>,
     /// Initial angular velocity, world frame, rad/s.
     pub angular_velocity: Vector3<f64>,
-    /// Each cloth's particle integrator, in scene order.
+    /// Uniform gravity g, m/s² (None: the scene declares none).
+    pub gravity: Option<Vector3<f64>>,
+    /// Drag coefficients (linear kg/s, angular kg·m²/s), each ≥ 0 (None: no drag declared).
+    pub drag: Option<(f64, f64)>,
+    /// Each cloth's particle integrator and stiffnesses, in scene order.
     pub cloths: Vec<ClothEdit>,
 }
 
@@ -57,6 +75,10 @@ pub struct ClothEdit {
     /// The cloth's name (unique in the scene).
     pub name: String,
     pub integrator: ClothIntegrator,
+    /// Spring stiffnesses, N/m: along x and z (> 0), diagonal and second-neighbour (≥ 0).
+    pub stretch: f64,
+    pub shear: f64,
+    pub bend: f64,
 }
 
 /// A particle integrator by name, with the loader's own message (and its "did you mean")
@@ -80,22 +102,35 @@ impl SceneEdits {
             .map(|c| ClothEdit {
                 name: c.name.clone(),
                 integrator: c.integrator,
+                stretch: c.stretch,
+                shear: c.shear,
+                bend: c.bend,
             })
             .collect();
+        let drag = scene.effects.list().iter().find_map(|e| match e {
+            Effect::Drag { linear, angular } => Some((*linear, *angular)),
+            Effect::Gravity(_) => None,
+        });
         let mut edits = SceneEdits {
             body: None,
             dt: scene.dt,
             restitution: scene.contact.map(|c| c.restitution),
             friction: scene.contact.map(|c| c.friction),
             mass: 0.0,
+            position: Vector3::zeros(),
+            orientation: UnitQuaternion::identity(),
             velocity: Vector3::zeros(),
             angular_velocity: Vector3::zeros(),
+            gravity: scene.effects.gravity(),
+            drag,
             cloths,
         };
         if let Some(b) = scene.bodies.get(index) {
             let kinematics = derive(&b.body, &b.initial);
             edits.body = Some(index);
             edits.mass = b.body.mass;
+            edits.position = b.initial.position;
+            edits.orientation = b.initial.orientation.quaternion();
             edits.velocity = kinematics.velocity;
             edits.angular_velocity = kinematics.angular_velocity;
         }
@@ -124,7 +159,59 @@ impl SceneEdits {
         if self.body.is_some() && (!finite(&self.velocity) || !finite(&self.angular_velocity)) {
             return Some("velocities must be finite".into());
         }
+        if self.body.is_some()
+            && (!finite(&self.position) || !self.orientation.coords.iter().all(|c| c.is_finite()))
+        {
+            return Some("position and orientation must be finite".into());
+        }
+        if self.gravity.is_some_and(|g| !finite(&g)) {
+            return Some("gravity must be finite".into());
+        }
+        if let Some((linear, angular)) = self.drag {
+            for (what, k) in [("drag.linear", linear), ("drag.angular", angular)] {
+                if !(k >= 0.0 && k.is_finite()) {
+                    return Some(format!("{what} must be ≥ 0, found {k}"));
+                }
+            }
+        }
+        for c in &self.cloths {
+            if !(c.stretch > 0.0 && c.stretch.is_finite()) {
+                return Some(format!(
+                    "cloth {}: stretch must be > 0, found {}",
+                    c.name, c.stretch
+                ));
+            }
+            for (what, k) in [("shear", c.shear), ("bend", c.bend)] {
+                if !(k >= 0.0 && k.is_finite()) {
+                    return Some(format!("cloth {}: {what} must be ≥ 0, found {k}", c.name));
+                }
+            }
+        }
         None
+    }
+
+    /// The scene's effects with these values: gravity and drag replaced where the scene
+    /// declares them, added where it did not and they are given.
+    fn effects(&self, effects: &Effects) -> Effects {
+        let mut list: Vec<Effect> = effects.list().to_vec();
+        let (mut gravity, mut drag) = (self.gravity, self.drag);
+        for effect in &mut list {
+            match effect {
+                Effect::Gravity(g) => {
+                    if let Some(new) = gravity.take() {
+                        *g = new;
+                    }
+                }
+                Effect::Drag { linear, angular } => {
+                    if let Some((l, a)) = drag.take() {
+                        (*linear, *angular) = (l, a);
+                    }
+                }
+            }
+        }
+        list.extend(gravity.map(Effect::Gravity));
+        list.extend(drag.map(|(linear, angular)| Effect::Drag { linear, angular }));
+        Effects::new(list)
     }
 
     /// The scene with these values (the body rescaled to the new mass, the initial momenta
@@ -135,6 +222,7 @@ impl SceneEdits {
         }
         let mut out = scene.clone();
         out.dt = self.dt;
+        out.effects = self.effects(&scene.effects);
         if let Some(contact) = &mut out.contact {
             if let Some(e) = self.restitution {
                 contact.restitution = e;
@@ -150,10 +238,21 @@ impl SceneEdits {
                 .find(|c| c.name == edit.name)
                 .ok_or_else(|| format!("the scene has no cloth named `{}`", edit.name))?;
             cloth.integrator = edit.integrator;
+            cloth.stretch = edit.stretch;
+            cloth.shear = edit.shear;
+            cloth.bend = edit.bend;
         }
-        let Some(index) = self.body else {
-            return Ok(out);
-        };
+        if let Some(index) = self.body {
+            self.apply_body(&mut out, index)?;
+        }
+        // The rules the file and the command-line flags pass.
+        out.check_rules(Naming::File)
+            .map_err(|(_, message)| message)?;
+        Ok(out)
+    }
+
+    /// The body values into body `index` of `out`.
+    fn apply_body(&self, out: &mut Scene, index: usize) -> Result<(), String> {
         let edited = out
             .bodies
             .get_mut(index)
@@ -162,11 +261,15 @@ impl SceneEdits {
             .body
             .with_mass(self.mass)
             .map_err(|e| e.to_string())?;
+        edited.initial.position = self.position;
+        if edited.initial.orientation.quaternion() != self.orientation {
+            edited.initial.orientation = Orientation::Quaternion(self.orientation);
+        }
         let rotation = edited.initial.orientation.matrix();
         let inertia_world = rotation * edited.body.inertia_body * rotation.transpose();
         edited.initial.linear_momentum = self.velocity * edited.body.mass;
         edited.initial.angular_momentum = inertia_world * self.angular_velocity;
-        Ok(out)
+        Ok(())
     }
 
     /// The scene file's text with these values written in; everything else (keys, comments,
@@ -190,6 +293,28 @@ impl SceneEdits {
             .and_then(Item::as_table_like_mut)
             .ok_or("the scene file has no [scene] table")?;
         set(scene, "dt", Value::from(self.dt));
+        if let Some(g) = self.gravity {
+            if numbers(scene.get("gravity")) != Some(g.iter().copied().collect()) {
+                set(scene, "gravity", vector(&g));
+            }
+        }
+        if let Some((linear, angular)) = self.drag {
+            match scene.get_mut("drag").and_then(Item::as_table_like_mut) {
+                Some(drag) => {
+                    for (key, k) in [("linear", linear), ("angular", angular)] {
+                        if drag.get(key).and_then(Item::as_value).and_then(number) != Some(k) {
+                            set(drag, key, Value::from(k));
+                        }
+                    }
+                }
+                None => {
+                    let mut drag = toml_edit::InlineTable::new();
+                    drag.insert("linear", Value::from(linear));
+                    drag.insert("angular", Value::from(angular));
+                    set(scene, "drag", Value::InlineTable(drag));
+                }
+            }
+        }
         if let Some(contact) = scene.get_mut("contact").and_then(Item::as_table_like_mut) {
             if let Some(e) = self.restitution {
                 set(contact, "restitution", Value::from(e));
@@ -238,6 +363,20 @@ impl SceneEdits {
             if current != Some(edit.integrator.name()) {
                 set(table, "integrator", Value::from(edit.integrator.name()));
             }
+            for (key, k, absent) in [
+                ("stretch", edit.stretch, None),
+                ("shear", edit.shear, Some(0.0)),
+                ("bend", edit.bend, Some(0.0)),
+            ] {
+                let current = table
+                    .get(key)
+                    .and_then(Item::as_value)
+                    .and_then(number)
+                    .or(absent);
+                if current != Some(k) {
+                    set(table, key, Value::from(k));
+                }
+            }
         }
         Ok(())
     }
@@ -272,6 +411,23 @@ impl SceneEdits {
             }
             _ => set(body_table, "mass", Value::from(self.mass)),
         }
+        if numbers(body_table.get("position")).unwrap_or_else(|| vec![0.0; 3])
+            != self.position.iter().copied().collect::<Vec<f64>>()
+        {
+            set(body_table, "position", vector(&self.position));
+        }
+        if file_orientation(body_table.get("orientation")) != Some(self.orientation) {
+            let (axis, angle) = self
+                .orientation
+                .axis_angle()
+                .map_or((Vector3::z(), 0.0), |(axis, angle)| {
+                    (axis.into_inner(), angle)
+                });
+            let mut table = toml_edit::InlineTable::new();
+            table.insert("axis", vector(&axis));
+            table.insert("degrees", Value::from(angle.to_degrees()));
+            set(body_table, "orientation", Value::InlineTable(table));
+        }
         set(body_table, "velocity", vector(&self.velocity));
         body_table.remove("angular_velocity_body");
         set(
@@ -300,6 +456,36 @@ impl SceneEdits {
 /// A number as TOML holds it (an integer counts).
 fn number(v: &Value) -> Option<f64> {
     v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+}
+
+/// An array of numbers as TOML holds it (None: absent, or not all numbers).
+fn numbers(item: Option<&Item>) -> Option<Vec<f64>> {
+    item?
+        .as_array()?
+        .iter()
+        .map(number)
+        .collect::<Option<Vec<f64>>>()
+}
+
+/// The orientation an `orientation` table gives, computed as the loader does (None: absent or
+/// not one the loader reads; identity when absent is the caller's, see `write_body`).
+fn file_orientation(item: Option<&Item>) -> Option<UnitQuaternion<f64>> {
+    let Some(item) = item else {
+        return Some(UnitQuaternion::identity());
+    };
+    let table = item.as_table_like()?;
+    if let Some(q) = numbers(table.get("quaternion")) {
+        let [w, x, y, z] = q[..] else { return None };
+        return Some(UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)));
+    }
+    let axis = numbers(table.get("axis"))?;
+    let [x, y, z] = axis[..] else { return None };
+    let degrees = table
+        .get("degrees")
+        .and_then(Item::as_value)
+        .and_then(number)?;
+    let unit = Unit::try_new(Vector3::new(x, y, z), 1e-12)?;
+    Some(UnitQuaternion::from_axis_angle(&unit, degrees.to_radians()))
 }
 
 /// `[x, y, z]` as a TOML array.
@@ -362,8 +548,12 @@ lines."""
             restitution: Some(0.8),
             friction: Some(0.0),
             mass: 3.0,
+            position: Vector3::new(0.0, 1.5, 0.0),
+            orientation: UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 30f64.to_radians()),
             velocity: Vector3::new(1.0, 2.0, 0.0),
             angular_velocity: Vector3::new(0.5, 0.0, -1.0),
+            gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
+            drag: None,
             cloths: Vec::new(),
         }
     }

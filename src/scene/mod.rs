@@ -128,11 +128,13 @@ impl Scene {
 }
 
 /// How a broken scene rule names the setting at fault: as the file's key (`dt`,
-/// `response = "impulse"`) or as the command line's flag (`--dt`, `--response impulse`).
+/// `response = "impulse"`), as the command line's flag (`--dt`, `--response impulse`), or as
+/// the app's keys (`dt (e)`, `the impulse response (c)`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Naming {
     File,
     Flags,
+    Keys,
 }
 
 impl Naming {
@@ -140,6 +142,7 @@ impl Naming {
         match self {
             Naming::File => "dt",
             Naming::Flags => "--dt",
+            Naming::Keys => "dt (e)",
         }
     }
 
@@ -147,6 +150,7 @@ impl Naming {
         match self {
             Naming::File => format!("response = \"{name}\""),
             Naming::Flags => format!("--response {name}"),
+            Naming::Keys => format!("the `{name}` response (c)"),
         }
     }
 }

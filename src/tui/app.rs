@@ -67,7 +67,7 @@ pub enum Overlay {
         selected: usize,
     },
     /// The settings form (key `e`).
-    Settings(SettingsForm),
+    Settings(Box<SettingsForm>),
     /// The jump-to-time prompt (key `J`) and the time typed so far.
     Jump {
         text: String,
@@ -144,6 +144,9 @@ pub struct Ghost {
     pub comparison: Comparison,
     pub world: World,
     pub snapshot: Snapshot,
+    /// Where the compare world diverged: it stays frozen there (its last finite state) while
+    /// the other world runs on.
+    pub diverged: Option<Divergence>,
 }
 
 /// The whole app state.
@@ -324,14 +327,11 @@ impl App {
                     text: String::new(),
                 };
             }
-            Message::OpenSettings | Message::WriteScene if self.lesson.scene.bodies.is_empty() => {
-                self.notice =
-                    Some("no rigid body in this scene: the settings form edits a body's".into());
-            }
             Message::OpenSettings => {
                 self.running = false;
-                self.overlay =
-                    Overlay::Settings(SettingsForm::new(SceneEdits::of(&self.lesson.scene)));
+                self.overlay = Overlay::Settings(Box::new(SettingsForm::new(SceneEdits::of(
+                    &self.lesson.scene,
+                ))));
             }
             Message::WriteScene => return self.write_scene(),
             Message::Type(c) => match &mut self.overlay {
@@ -462,8 +462,6 @@ impl App {
             Message::ToggleStudy => {
                 if self.view == View::Study {
                     self.view = View::Loop;
-                } else if self.world.body_count() == 0 {
-                    self.view = View::Study;
                 } else {
                     if !self
                         .study
@@ -622,6 +620,14 @@ impl App {
             },
             _ => SceneEdits::of(&self.lesson.scene),
         };
+        // The written file must pass what the loader checks: the same rules here.
+        if let Err(e) = edits.apply(&self.lesson.scene) {
+            match &mut self.overlay {
+                Overlay::Settings(form) => form.error = Some(e),
+                _ => self.notice = Some(format!("cannot write the scene: {e}")),
+            }
+            return None;
+        }
         Some(Effect::WriteScene {
             edits,
             to: self.write_path(),
@@ -758,7 +764,10 @@ impl App {
         let mut shown = shown_points(&self.world);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot_of(self.selected);
-            shown.extend(shown_points(&ghost.world));
+            // A diverged ghost's runaway positions would take the view with them.
+            if ghost.diverged.is_none() {
+                shown.extend(shown_points(&ghost.world));
+            }
         }
         self.region.include(&shown);
         let page = self.lesson.page_at(self.snapshot.time).map(|(i, _)| i);
@@ -768,23 +777,67 @@ impl App {
         }
     }
 
-    /// Checks both worlds after a frame; pauses with a dialog on divergence.
+    /// Checks both worlds after a frame. A compare world that diverges is frozen there and
+    /// marked (the run goes on); when the world itself diverges beside a compare world that
+    /// has not, the two trade places (the run follows the one still running, the diverged one
+    /// stays as the frozen ghost). Only when nothing runs on does the run pause, with a dialog.
     fn check_divergence(&mut self) -> bool {
-        let diverged = self.world.divergence().or_else(|| {
-            self.ghost.as_ref().and_then(|g| {
-                g.world.divergence().map(|mut d| {
-                    d.quantity = format!("compare world ({}): {}", g.comparison.name(), d.quantity);
-                    d
-                })
-            })
-        });
-        if let Some(d) = diverged {
-            self.divergence = Some(d);
-            self.running = false;
-            true
-        } else {
-            false
+        if let Some(ghost) = self.ghost.as_mut().filter(|g| g.diverged.is_none()) {
+            if let Some(d) = ghost.world.divergence() {
+                self.notice = Some(format!(
+                    "the ghost ({}) diverged at step {} ({}): it stays frozen there, the run                      goes on",
+                    ghost.comparison.name(),
+                    d.step,
+                    d.quantity
+                ));
+                ghost.diverged = Some(d);
+            }
         }
+        let Some(d) = self.world.divergence() else {
+            return false;
+        };
+        let healthy = self.ghost.as_ref().is_some_and(|g| g.diverged.is_none());
+        if healthy && self.swap_with_ghost(&d) {
+            return false;
+        }
+        self.divergence = Some(d);
+        self.running = false;
+        true
+    }
+
+    /// The world diverged (`d`) and the compare world has not: they trade places, so the run
+    /// follows the compare world and the diverged world is the frozen ghost. The ghost's
+    /// comparison becomes the diverged world's setting. False when the settings cannot be told
+    /// apart by one comparison (then nothing changes).
+    fn swap_with_ghost(&mut self, d: &Divergence) -> bool {
+        let Some(ghost) = self.ghost.as_mut() else {
+            return false;
+        };
+        let own = match ghost.comparison {
+            Comparison::Integrator(_) => Comparison::Integrator(self.world.integrator()),
+            Comparison::Response(_) => match self.world.contact_model() {
+                Some(m) => Comparison::Response(m.response),
+                None => return false,
+            },
+            Comparison::ClothIntegrator(_) => match self.world.cloths().first() {
+                Some(c) => Comparison::ClothIntegrator(c.integrator),
+                None => return false,
+            },
+        };
+        let running = ghost.comparison;
+        std::mem::swap(&mut self.world, &mut ghost.world);
+        ghost.comparison = own;
+        ghost.diverged = Some(d.clone());
+        self.history.swap_worlds();
+        self.notice = Some(format!(
+            "{} diverged at step {} ({}): the run follows the ghost ({}) now, the diverged \
+             world stays frozen as the ghost",
+            own.name(),
+            d.step,
+            d.quantity,
+            running.name()
+        ));
+        true
     }
 
     /// Records the frame just finished in the energy series.
@@ -818,7 +871,7 @@ impl App {
             self.world.step();
             cost += start.elapsed().as_secs_f64();
             done += 1;
-            if let Some(ghost) = &mut self.ghost {
+            if let Some(ghost) = self.ghost.as_mut().filter(|g| g.diverged.is_none()) {
                 ghost.world.step();
             }
             self.record_frame();
@@ -880,7 +933,7 @@ impl App {
         self.before_change();
         self.remember();
         let phase = self.world.step_phase();
-        if let Some(ghost) = &mut self.ghost {
+        if let Some(ghost) = self.ghost.as_mut().filter(|g| g.diverged.is_none()) {
             ghost.world.step_phase();
         }
         if phase == Phase::Collide {
@@ -917,6 +970,7 @@ impl App {
                 apply(&mut ghost.world, ghost.comparison);
                 self.history.break_segment();
             }
+            ghost.diverged = ghost.world.divergence();
         }
         self.divergence = None;
         self.series.truncate_after(self.world.time());
@@ -930,6 +984,7 @@ impl App {
         if let Some(ghost) = &mut self.ghost {
             ghost.world = self.world.clone();
             apply(&mut ghost.world, ghost.comparison);
+            ghost.diverged = None;
         }
         self.history.clear();
         self.divergence = None;
@@ -949,19 +1004,76 @@ impl App {
                         .into(),
                 )
             }
-            Some(_) if self.world.body_count() > 1 => {
-                self.notice = Some(
-                    "seed knows one body and fixed obstacles: with several bodies the response \
-                     stays impulse"
-                        .into(),
-                )
-            }
             Some(mut model) => {
-                model.response = model.response.next();
-                self.world.set_contact_model(model);
+                // The next response the scene's rules allow (the rules the file and `--response`
+                // pass); one they refuse is skipped, and the notice says why.
+                let start = model.response;
+                let mut refused = None;
+                loop {
+                    model.response = model.response.next();
+                    if model.response == start {
+                        break;
+                    }
+                    match self.rules_with(model.response) {
+                        Ok(()) => break,
+                        Err(why) => refused = refused.or(Some(why)),
+                    }
+                }
+                if let Some(why) = refused {
+                    self.notice = Some(format!("skipped: {why}"));
+                }
+                if model.response != start {
+                    self.world.set_contact_model(model);
+                }
             }
             None => self.notice = Some("no obstacles in this scene: no collision response".into()),
         }
+    }
+
+    /// The settings the run uses that the lesson's pages were not written for (after `i`,
+    /// `c`): `the page describes rk4 + seed; running impulse`, or None when they are the
+    /// lesson's own. The page's numbers are the lesson's settings', so the page says so.
+    pub fn page_settings_note(&self) -> Option<String> {
+        let scene = &self.lesson.scene;
+        let (mut own, mut now) = (Vec::new(), Vec::new());
+        if self.world.body_count() > 0 && self.world.integrator() != scene.integrator {
+            own.push(scene.integrator.name());
+            now.push(self.world.integrator().name());
+        }
+        if let (Some(a), Some(b)) = (scene.contact, self.world.contact_model()) {
+            if a.response != b.response {
+                own.push(a.response.name());
+                now.push(b.response.name());
+            }
+        }
+        for (a, b) in scene.cloths.iter().zip(self.world.cloths()) {
+            if a.integrator != b.integrator {
+                own.push(a.integrator.name());
+                now.push(b.integrator.name());
+                break;
+            }
+        }
+        (!own.is_empty()).then(|| {
+            format!(
+                " the page describes {}; running {} ",
+                own.join(" + "),
+                now.join(" + ")
+            )
+        })
+    }
+
+    /// Whether the scene as it runs, with collision response `response`, passes the scene's
+    /// rules ([`crate::scene::Scene::check_rules`], as a file and the command line do); the
+    /// error names the app's keys.
+    fn rules_with(&self, response: Response) -> Result<(), String> {
+        let mut scene = self.lesson.scene.clone();
+        scene.dt = self.world.dt();
+        if let Some(model) = &mut scene.contact {
+            model.response = response;
+        }
+        scene
+            .check_rules(crate::scene::Naming::Keys)
+            .map_err(|(_, why)| why)
     }
 
     /// The comparisons this scene offers, in cycling order: the other body integrators and
@@ -980,7 +1092,7 @@ impl App {
                 list.extend(
                     Response::ALL
                         .into_iter()
-                        .filter(|&r| r != model.response)
+                        .filter(|&r| r != model.response && self.rules_with(r).is_ok())
                         .map(Comparison::Response),
                 );
             }
@@ -1032,6 +1144,12 @@ impl App {
             ));
             return;
         }
+        if let Comparison::Response(response) = comparison {
+            if let Err(why) = self.rules_with(response) {
+                self.notice = Some(format!("no ghost: {why}"));
+                return;
+            }
+        }
         let mut world = self.world.clone();
         if !self.at_frame_start() {
             self.history.restore_last(&mut world, None);
@@ -1052,10 +1170,12 @@ impl App {
             ));
         }
         let snapshot = world.snapshot();
+        let diverged = world.divergence();
         self.ghost = Some(Ghost {
             comparison,
             world,
             snapshot,
+            diverged,
         });
         self.history.break_segment();
         self.refresh();

@@ -165,6 +165,36 @@ impl History {
         self.fresh = true;
     }
 
+    /// The world and the compare world trade places in every frame kept (the app follows the
+    /// compare world when its own diverged): frames from before the compare world was last
+    /// started, which hold no compare world, are dropped.
+    pub fn swap_worlds(&mut self) {
+        self.rewind.clear();
+        self.fresh = true;
+        while let Some(last_without) = self
+            .entries
+            .iter()
+            .rposition(|e| e.key.as_ref().is_some_and(|k| k.compare.is_none()))
+        {
+            for _ in 0..=last_without {
+                if let Some(Entry { key: Some(key), .. }) = self.entries.pop_front() {
+                    self.key_bytes -= key.bytes;
+                }
+            }
+            while self.entries.front().is_some_and(|e| e.key.is_none()) {
+                self.entries.pop_front();
+            }
+        }
+        for entry in &mut self.entries {
+            if let Some(key) = entry.key.as_deref_mut() {
+                if let Some((checkpoint, stepping)) = key.compare.as_mut() {
+                    std::mem::swap(&mut key.world, checkpoint);
+                    std::mem::swap(&mut key.stepping, stepping);
+                }
+            }
+        }
+    }
+
     /// Drops the oldest frame, and the frames after it up to the next keyframe (they cannot be
     /// rebuilt without it).
     fn drop_oldest(&mut self) {
@@ -249,7 +279,8 @@ impl History {
                 });
             }
             world.step();
-            if let Some(w) = compare.as_deref_mut() {
+            // A compare world that diverged stays frozen there, as in the forward run.
+            if let Some(w) = compare.as_deref_mut().filter(|w| w.divergence().is_none()) {
                 w.step();
             }
         }

@@ -75,6 +75,10 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let total = lines.len() as u16;
     let scroll = app.lesson_scroll.min(total.saturating_sub(inner.height));
     let mut block = block;
+    // After i or c the page's numbers are another method's: the page says whose they are.
+    if let Some(note) = app.page_settings_note() {
+        block = block.title(Line::styled(note, theme::NOTICE).right_aligned());
+    }
     if total > inner.height {
         block = block.title_bottom(
             Line::styled(

@@ -17,14 +17,12 @@ use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
 const FORMULA: Style = theme::FORMULA;
 
-/// A vector as `(x, y, z)` with the shared number formatter.
+/// A vector as `(x, y, z)` with the shared number formatter; a component below the round-off
+/// of the vector's length prints as 0 (as in the panels, [`crate::tables::ROUND_OFF`]).
 pub fn vector(v: &Vector3<f64>) -> String {
-    format!(
-        "({}, {}, {})",
-        number_plain(v.x),
-        number_plain(v.y),
-        number_plain(v.z)
-    )
+    let r = crate::tables::ROUND_OFF * v.norm();
+    let c = |x: f64| number_plain(crate::tables::resolved(x, r));
+    format!("({}, {}, {})", c(v.x), c(v.y), c(v.z))
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
@@ -264,7 +262,10 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             what.push(format!("{pushed} pushed out of obstacles"));
         }
         if bodies {
-            what.push(format!("{} touching bodies", view.body_contacts));
+            what.push(match view.body_contacts {
+                1 => "1 particle touching a body".to_string(),
+                n => format!("{n} particles touching bodies"),
+            });
         }
         if what.is_empty() {
             what.push("nothing to touch".to_string());
@@ -334,7 +335,10 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
             format!(
                 " = {} kg·m²/s,   ‖RᵀR−1‖ = {}",
                 vector(&s.angular_momentum),
-                number_plain(s.orthonormality_error)
+                number_plain(crate::tables::resolved(
+                    s.orthonormality_error,
+                    crate::tables::ROUND_OFF
+                ))
             ),
         ),
     ]
@@ -351,7 +355,9 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     }
     if s.contacts.is_empty() {
         let what = match (obstacles.len(), bodies) {
-            (n, 1) => format!("{n} obstacle(s), nothing inside: nothing to do"),
+            // The deepest penetration beside it is measured on the shape; the solver may stop
+            // a body short of, or slightly inside, a surface without a contact in this phase.
+            (n, 1) => format!("{n} obstacle(s), no contact this step: nothing to do"),
             (0, b) => format!("{b} bodies, no pair touching: nothing to do"),
             (n, b) => format!("{n} obstacle(s) and {b} bodies, nothing touching: nothing to do"),
         };

@@ -1,11 +1,12 @@
 //! The settings form's state (key `e`): one text field per value of [`SceneEdits`] — restitution,
-//! friction, mass, dt, the body's initial velocity and angular velocity component by
-//! component, and each cloth's particle integrator by name. A scene of cloths only has no body
-//! fields. Typing replaces the selected field's value (then appends); the values are read and
+//! friction, mass, dt, the body's initial position, orientation (axis and degrees), velocity
+//! and angular velocity component by component, gravity and drag, and each cloth's particle
+//! integrator by name and its stiffnesses. A scene of cloths only has no body fields. Typing replaces the selected field's value (then appends); the values are read and
 //! checked only when the form is applied or written, with the loader's own rules.
 
 use crate::scene::edit::cloth_integrator;
 use crate::scene::SceneEdits;
+use nalgebra::{Unit, UnitQuaternion, Vector3};
 
 /// What a field holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -14,12 +15,28 @@ pub enum FieldKind {
     Friction,
     Mass,
     Dt,
+    /// Initial position of the barycenter, component 0, 1 or 2.
+    Position(usize),
+    /// The axis of the initial orientation (any length but 0), component 0, 1 or 2.
+    OrientationAxis(usize),
+    /// The angle of the initial orientation about its axis, degrees.
+    OrientationDegrees,
     /// Initial velocity, component 0, 1 or 2 (x, y, z).
     Velocity(usize),
     /// Initial angular velocity (world frame), component 0, 1 or 2.
     AngularVelocity(usize),
+    /// Gravity g, component 0, 1 or 2.
+    Gravity(usize),
+    /// Drag: linear coefficient k (F = −k v).
+    DragLinear,
+    /// Drag: angular coefficient k_a (τ = −k_a ω).
+    DragAngular,
     /// The particle integrator of cloth `i` (its index in [`SceneEdits::cloths`]), by name.
     ClothIntegrator(usize),
+    /// Cloth `i`'s stiffnesses: along x and z, diagonal, second neighbour.
+    ClothStretch(usize),
+    ClothShear(usize),
+    ClothBend(usize),
 }
 
 impl FieldKind {
@@ -30,12 +47,21 @@ impl FieldKind {
             FieldKind::Friction => ("friction μ", ""),
             FieldKind::Mass => ("mass M", "kg"),
             FieldKind::Dt => ("time step dt", "s"),
+            FieldKind::Position(i) => (["position x₀ x", "x₀ y", "x₀ z"][i], "m"),
+            FieldKind::OrientationAxis(i) => (["orientation axis x", "axis y", "axis z"][i], ""),
+            FieldKind::OrientationDegrees => ("angle about the axis", "°"),
+            FieldKind::Gravity(i) => (["gravity g x", "g y", "g z"][i], "m/s²"),
+            FieldKind::DragLinear => ("drag k (F = −k v)", "kg/s"),
+            FieldKind::DragAngular => ("drag k_a (τ = −k_a ω)", "kg·m²/s"),
             FieldKind::Velocity(i) => (["velocity v₀ x", "v₀ y", "v₀ z"][i], "m/s"),
             FieldKind::AngularVelocity(i) => (
                 ["angular velocity ω₀ x", "ω₀ y", "ω₀ z"][i],
                 ["rad/s (world frame)", "rad/s", "rad/s"][i],
             ),
             FieldKind::ClothIntegrator(_) => ("cloth integrator", ""),
+            FieldKind::ClothStretch(_) => ("stretch", "N/m"),
+            FieldKind::ClothShear(_) => ("shear", "N/m"),
+            FieldKind::ClothBend(_) => ("bend", "N/m"),
         }
     }
 }
@@ -60,6 +86,13 @@ pub struct SettingsForm {
     pub error: Option<String>,
 }
 
+/// An orientation as an axis (unit length; z for none) and an angle in degrees.
+pub fn axis_degrees(q: &UnitQuaternion<f64>) -> (Vector3<f64>, f64) {
+    q.axis_angle().map_or((Vector3::z(), 0.0), |(axis, angle)| {
+        (axis.into_inner(), angle.to_degrees())
+    })
+}
+
 /// A value as the form shows it: the shortest text that reads back as the value rounded to 12
 /// significant digits (so 0.30000000000000004 shows as 0.3).
 pub fn tidy(x: f64) -> String {
@@ -76,13 +109,9 @@ impl SettingsForm {
     /// A form showing `base`. Restitution and friction appear only when the scene has a contact
     /// model (obstacles).
     pub fn new(base: SceneEdits) -> SettingsForm {
-        let mut fields = Vec::new();
-        let mut add = |kind, value: f64| {
-            fields.push(Field {
-                kind,
-                text: tidy(value),
-            })
-        };
+        let fields = std::cell::RefCell::new(Vec::new());
+        let add_text = |kind, text: String| fields.borrow_mut().push(Field { kind, text });
+        let add = |kind, value: f64| add_text(kind, tidy(value));
         if let Some(e) = base.restitution {
             add(FieldKind::Restitution, e);
         }
@@ -95,6 +124,14 @@ impl SettingsForm {
         }
         add(FieldKind::Dt, base.dt);
         if body {
+            let (axis, degrees) = axis_degrees(&base.orientation);
+            for i in 0..3 {
+                add(FieldKind::Position(i), base.position[i]);
+            }
+            for i in 0..3 {
+                add(FieldKind::OrientationAxis(i), axis[i]);
+            }
+            add(FieldKind::OrientationDegrees, degrees);
             for i in 0..3 {
                 add(FieldKind::Velocity(i), base.velocity[i]);
             }
@@ -102,12 +139,23 @@ impl SettingsForm {
                 add(FieldKind::AngularVelocity(i), base.angular_velocity[i]);
             }
         }
-        for (i, cloth) in base.cloths.iter().enumerate() {
-            fields.push(Field {
-                kind: FieldKind::ClothIntegrator(i),
-                text: cloth.integrator.name().into(),
-            });
+        let g = base.gravity.unwrap_or_else(Vector3::zeros);
+        for i in 0..3 {
+            add(FieldKind::Gravity(i), g[i]);
         }
+        let (linear, angular) = base.drag.unwrap_or((0.0, 0.0));
+        add(FieldKind::DragLinear, linear);
+        add(FieldKind::DragAngular, angular);
+        for (i, cloth) in base.cloths.iter().enumerate() {
+            add_text(
+                FieldKind::ClothIntegrator(i),
+                cloth.integrator.name().into(),
+            );
+            add(FieldKind::ClothStretch(i), cloth.stretch);
+            add(FieldKind::ClothShear(i), cloth.shear);
+            add(FieldKind::ClothBend(i), cloth.bend);
+        }
+        let fields = fields.into_inner();
         SettingsForm {
             base,
             fields,
@@ -152,14 +200,13 @@ impl SettingsForm {
 
     /// A field's label and unit: a cloth's names the cloth, "cloth NAME integrator".
     pub fn label(&self, field: &Field) -> (String, &'static str) {
+        let cloth = |i: usize| self.base.cloths.get(i).map_or("?", |c| c.name.as_str());
         match field.kind {
-            FieldKind::ClothIntegrator(i) => (
-                format!(
-                    "cloth {} integrator",
-                    self.base.cloths.get(i).map_or("?", |c| c.name.as_str())
-                ),
-                "",
-            ),
+            FieldKind::ClothIntegrator(i) => (format!("cloth {} integrator", cloth(i)), ""),
+            FieldKind::ClothStretch(i) | FieldKind::ClothShear(i) | FieldKind::ClothBend(i) => {
+                let (label, unit) = field.kind.label();
+                (format!("cloth {} {label}", cloth(i)), unit)
+            }
             kind => {
                 let (label, unit) = kind.label();
                 (label.to_string(), unit)
@@ -187,9 +234,18 @@ impl SettingsForm {
             FieldKind::Friction => b.friction.unwrap_or(0.0),
             FieldKind::Mass => b.mass,
             FieldKind::Dt => b.dt,
+            FieldKind::Position(i) => b.position[i],
+            FieldKind::OrientationAxis(i) => axis_degrees(&b.orientation).0[i],
+            FieldKind::OrientationDegrees => axis_degrees(&b.orientation).1,
             FieldKind::Velocity(i) => b.velocity[i],
             FieldKind::AngularVelocity(i) => b.angular_velocity[i],
+            FieldKind::Gravity(i) => b.gravity.map_or(0.0, |g| g[i]),
+            FieldKind::DragLinear => b.drag.map_or(0.0, |d| d.0),
+            FieldKind::DragAngular => b.drag.map_or(0.0, |d| d.1),
             FieldKind::ClothIntegrator(_) => f64::NAN,
+            FieldKind::ClothStretch(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.stretch),
+            FieldKind::ClothShear(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.shear),
+            FieldKind::ClothBend(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.bend),
         }
     }
 
@@ -197,6 +253,8 @@ impl SettingsForm {
     /// whose text was left as shown keeps its value exactly (not its rounded text).
     pub fn edits(&self) -> Result<SceneEdits, String> {
         let mut edits = self.base.clone();
+        let (mut axis, mut degrees) = axis_degrees(&self.base.orientation);
+        let mut turned = false;
         for field in &self.fields {
             if field.text == self.base_text(field.kind) {
                 continue;
@@ -220,10 +278,38 @@ impl SettingsForm {
                 FieldKind::Friction => edits.friction = Some(value),
                 FieldKind::Mass => edits.mass = value,
                 FieldKind::Dt => edits.dt = value,
+                FieldKind::Position(i) => edits.position[i] = value,
+                FieldKind::OrientationAxis(i) => (axis[i], turned) = (value, true),
+                FieldKind::OrientationDegrees => (degrees, turned) = (value, true),
                 FieldKind::Velocity(i) => edits.velocity[i] = value,
                 FieldKind::AngularVelocity(i) => edits.angular_velocity[i] = value,
+                FieldKind::Gravity(i) => {
+                    edits.gravity.get_or_insert_with(Vector3::zeros)[i] = value;
+                }
+                FieldKind::DragLinear => edits.drag.get_or_insert((0.0, 0.0)).0 = value,
+                FieldKind::DragAngular => edits.drag.get_or_insert((0.0, 0.0)).1 = value,
+                FieldKind::ClothStretch(i) | FieldKind::ClothShear(i) | FieldKind::ClothBend(i) => {
+                    if let Some(cloth) = edits.cloths.get_mut(i) {
+                        *match field.kind {
+                            FieldKind::ClothStretch(_) => &mut cloth.stretch,
+                            FieldKind::ClothShear(_) => &mut cloth.shear,
+                            _ => &mut cloth.bend,
+                        } = value;
+                    }
+                }
                 FieldKind::ClothIntegrator(_) => {}
             }
+        }
+        if turned {
+            // The loader's words for the same values in a file.
+            if !degrees.is_finite() {
+                return Err(format!(
+                    "orientation degrees must be finite, found {degrees}"
+                ));
+            }
+            let unit = Unit::try_new(axis, 1e-12)
+                .ok_or("orientation axis has zero length: give a non-zero axis")?;
+            edits.orientation = UnitQuaternion::from_axis_angle(&unit, degrees.to_radians());
         }
         match edits.problem() {
             Some(problem) => Err(problem),
@@ -233,8 +319,8 @@ impl SettingsForm {
 
     /// What changed from the values the form started with, e.g. `mass 2 → 3 kg, dt 0.01 → 0.005 s`.
     pub fn changes(&self, edits: &SceneEdits) -> String {
-        let mut parts = Vec::new();
-        let mut note = |name: &str, old: f64, new: f64, unit: &str| {
+        let mut parts: Vec<String> = Vec::new();
+        let note = |parts: &mut Vec<String>, name: &str, old: f64, new: f64, unit: &str| {
             if old != new {
                 let unit = if unit.is_empty() {
                     String::new()
@@ -246,33 +332,52 @@ impl SettingsForm {
         };
         let b = &self.base;
         if let (Some(old), Some(new)) = (b.restitution, edits.restitution) {
-            note("e", old, new, "");
+            note(&mut parts, "e", old, new, "");
         }
         if let (Some(old), Some(new)) = (b.friction, edits.friction) {
-            note("μ", old, new, "");
+            note(&mut parts, "μ", old, new, "");
         }
-        if b.body.is_some() {
-            note("mass", b.mass, edits.mass, "kg");
+        let body = b.body.is_some();
+        if body {
+            note(&mut parts, "mass", b.mass, edits.mass, "kg");
         }
-        note("dt", b.dt, edits.dt, "s");
-        for (i, axis) in ["x", "y", "z"]
-            .into_iter()
-            .enumerate()
-            .filter(|_| b.body.is_some())
-        {
+        note(&mut parts, "dt", b.dt, edits.dt, "s");
+        const AXES: [&str; 3] = ["x", "y", "z"];
+        if body {
+            for (i, axis) in AXES.into_iter().enumerate() {
+                let name = format!("x₀{axis}");
+                note(&mut parts, &name, b.position[i], edits.position[i], "m");
+            }
+            if b.orientation != edits.orientation {
+                let (axis, degrees) = axis_degrees(&edits.orientation);
+                parts.push(format!(
+                    "orientation → {}° about ({}, {}, {})",
+                    tidy(degrees),
+                    tidy(axis.x),
+                    tidy(axis.y),
+                    tidy(axis.z)
+                ));
+            }
+            for (i, axis) in AXES.into_iter().enumerate() {
+                let (v, w) = (format!("v₀{axis}"), format!("ω₀{axis}"));
+                note(&mut parts, &v, b.velocity[i], edits.velocity[i], "m/s");
+                let (old, new) = (b.angular_velocity[i], edits.angular_velocity[i]);
+                note(&mut parts, &w, old, new, "rad/s");
+            }
+        }
+        let g = |e: &SceneEdits| e.gravity.unwrap_or_else(Vector3::zeros);
+        for (i, axis) in AXES.into_iter().enumerate() {
             note(
-                &format!("v₀{axis}"),
-                b.velocity[i],
-                edits.velocity[i],
-                "m/s",
-            );
-            note(
-                &format!("ω₀{axis}"),
-                b.angular_velocity[i],
-                edits.angular_velocity[i],
-                "rad/s",
+                &mut parts,
+                &format!("g{axis}"),
+                g(b)[i],
+                g(edits)[i],
+                "m/s²",
             );
         }
+        let drag = |e: &SceneEdits| e.drag.unwrap_or((0.0, 0.0));
+        note(&mut parts, "drag k", drag(b).0, drag(edits).0, "kg/s");
+        note(&mut parts, "drag k_a", drag(b).1, drag(edits).1, "kg·m²/s");
         for (old, new) in b.cloths.iter().zip(&edits.cloths) {
             if old.integrator != new.integrator {
                 parts.push(format!(
@@ -281,6 +386,19 @@ impl SettingsForm {
                     old.integrator.name(),
                     new.integrator.name()
                 ));
+            }
+            for (what, o, n) in [
+                ("stretch", old.stretch, new.stretch),
+                ("shear", old.shear, new.shear),
+                ("bend", old.bend, new.bend),
+            ] {
+                note(
+                    &mut parts,
+                    &format!("cloth {} {what}", old.name),
+                    o,
+                    n,
+                    "N/m",
+                );
             }
         }
         if parts.is_empty() {
@@ -305,8 +423,12 @@ mod tests {
             restitution: Some(0.5),
             friction: Some(0.3),
             mass: 2.0,
+            position: Vector3::new(0.0, 1.5, 0.0),
+            orientation: UnitQuaternion::identity(),
             velocity: Vector3::new(0.3, 1.0, 0.0),
             angular_velocity: Vector3::new(0.5, 1.0, 2.0),
+            gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
+            drag: None,
             cloths: Vec::new(),
         }
     }
@@ -314,7 +436,8 @@ mod tests {
     #[test]
     fn typing_replaces_then_appends_and_the_values_read_back() {
         let mut form = SettingsForm::new(base());
-        assert_eq!(form.fields.len(), 10);
+        // e, μ, mass, dt, x₀ (3), axis (3), angle, v₀ (3), ω₀ (3), g (3), drag k and k_a.
+        assert_eq!(form.fields.len(), 22);
         form.down();
         form.down(); // mass
         for c in "3.5".chars() {
@@ -354,7 +477,7 @@ mod tests {
             friction: None,
             ..base()
         });
-        assert_eq!(form.fields.len(), 8);
+        assert_eq!(form.fields.len(), 20);
         assert_eq!(form.fields[0].kind, FieldKind::Mass);
     }
 
@@ -367,6 +490,9 @@ mod tests {
             cloths: vec![ClothEdit {
                 name: "sheet".into(),
                 integrator: ClothIntegrator::SymplecticEuler,
+                stretch: 2000.0,
+                shear: 500.0,
+                bend: 0.0,
             }],
             ..base()
         }
@@ -382,11 +508,24 @@ mod tests {
                 FieldKind::Restitution,
                 FieldKind::Friction,
                 FieldKind::Dt,
-                FieldKind::ClothIntegrator(0)
+                FieldKind::Gravity(0),
+                FieldKind::Gravity(1),
+                FieldKind::Gravity(2),
+                FieldKind::DragLinear,
+                FieldKind::DragAngular,
+                FieldKind::ClothIntegrator(0),
+                FieldKind::ClothStretch(0),
+                FieldKind::ClothShear(0),
+                FieldKind::ClothBend(0),
             ]
         );
-        assert_eq!(form.label(&form.fields[3]).0, "cloth sheet integrator");
-        assert_eq!(form.fields[3].text, "symplectic-euler");
+        assert_eq!(form.label(&form.fields[8]).0, "cloth sheet integrator");
+        assert_eq!(form.fields[8].text, "symplectic-euler");
+        assert_eq!(
+            form.label(&form.fields[9]),
+            ("cloth sheet stretch".to_string(), "N/m")
+        );
+        assert_eq!(form.fields[9].text, "2000");
         // Untouched, nothing changes (the absent body's zero mass is not checked).
         assert_eq!(form.edits().unwrap(), cloths_only());
         form.down();
@@ -394,22 +533,36 @@ mod tests {
         for c in "0.013".chars() {
             form.type_char(c);
         }
-        form.down(); // the cloth's integrator
+        form.selected = 8; // the cloth's integrator
+        form.fresh = true;
         for c in "implicit-euler".chars() {
+            form.type_char(c);
+        }
+        form.down(); // stretch
+        for c in "500".chars() {
             form.type_char(c);
         }
         let edits = form.edits().unwrap();
         assert_eq!(edits.cloths[0].integrator, ClothIntegrator::ImplicitEuler);
+        assert_eq!(edits.cloths[0].stretch, 500.0);
         assert_eq!(
             form.changes(&edits),
-            "dt 0.01 → 0.013 s, cloth sheet symplectic-euler → implicit-euler"
+            "dt 0.01 → 0.013 s, cloth sheet symplectic-euler → implicit-euler, \
+             cloth sheet stretch 2000 → 500 N/m"
+        );
+        form.down(); // shear
+        form.type_char('-');
+        form.type_char('1');
+        assert_eq!(
+            form.edits().unwrap_err(),
+            "cloth sheet: shear must be ≥ 0, found -1"
         );
     }
 
     #[test]
     fn a_misspelt_integrator_is_refused_with_the_loaders_words() {
         let mut form = SettingsForm::new(cloths_only());
-        form.selected = 3;
+        form.selected = 8;
         for c in "implict-euler".chars() {
             form.type_char(c);
         }
@@ -417,6 +570,62 @@ mod tests {
             form.edits().unwrap_err(),
             "cloth sheet integrator: unknown cloth integrator `implict-euler` (did you mean \
              `implicit-euler`?); valid cloth integrators: symplectic-euler, implicit-euler"
+        );
+    }
+
+    /// Types `text` into the field of kind `kind`.
+    fn type_into(form: &mut SettingsForm, kind: FieldKind, text: &str) {
+        form.selected = form.fields.iter().position(|f| f.kind == kind).unwrap();
+        form.fresh = true;
+        for c in text.chars() {
+            form.type_char(c);
+        }
+    }
+
+    #[test]
+    fn position_orientation_gravity_and_drag_are_edited() {
+        let mut form = SettingsForm::new(base());
+        // The identity shows as 0° about z.
+        let at = |form: &SettingsForm, kind| {
+            form.fields
+                .iter()
+                .find(|f| f.kind == kind)
+                .unwrap()
+                .text
+                .clone()
+        };
+        assert_eq!(at(&form, FieldKind::OrientationAxis(2)), "1");
+        assert_eq!(at(&form, FieldKind::OrientationDegrees), "0");
+        assert_eq!(at(&form, FieldKind::Gravity(1)), "-9.81");
+        assert_eq!(at(&form, FieldKind::DragLinear), "0");
+        type_into(&mut form, FieldKind::Position(1), "2");
+        type_into(&mut form, FieldKind::OrientationDegrees, "90");
+        type_into(&mut form, FieldKind::Gravity(1), "-1.62");
+        type_into(&mut form, FieldKind::DragLinear, "0.1");
+        let edits = form.edits().unwrap();
+        assert_eq!(edits.position, Vector3::new(0.0, 2.0, 0.0));
+        // 90° about z takes x to y.
+        let x = edits.orientation * Vector3::x();
+        assert!((x - Vector3::y()).norm() < 1e-15, "{x}");
+        assert_eq!(edits.gravity, Some(Vector3::new(0.0, -1.62, 0.0)));
+        // No drag before: the angular coefficient the form showed, 0.
+        assert_eq!(edits.drag, Some((0.1, 0.0)));
+        assert_eq!(
+            form.changes(&edits),
+            "x₀y 1.5 → 2 m, orientation → 90° about (0, 0, 1), gy -9.81 → -1.62 m/s², \
+             drag k 0 → 0.1 kg/s"
+        );
+        // The loader's words for a zero axis and a negative drag.
+        type_into(&mut form, FieldKind::OrientationAxis(2), "0");
+        assert_eq!(
+            form.edits().unwrap_err(),
+            "orientation axis has zero length: give a non-zero axis"
+        );
+        type_into(&mut form, FieldKind::OrientationAxis(2), "1");
+        type_into(&mut form, FieldKind::DragAngular, "-2");
+        assert_eq!(
+            form.edits().unwrap_err(),
+            "drag.angular must be ≥ 0, found -2"
         );
     }
 

@@ -1,5 +1,7 @@
 //! The settings form overlay: each field with its unit, the selected one highlighted, the
-//! problem found (if any) and the form's keys from the key table.
+//! problem found (if any) and the form's keys from the key table. When the fields do not fit
+//! the screen, a window of them around the selected one is shown, with how many are above and
+//! below.
 
 use super::keys::{Context, KEYS};
 use super::screen::centered;
@@ -21,16 +23,34 @@ pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
         .fg(Color::Black)
         .bg(Color::Yellow)
         .add_modifier(Modifier::BOLD);
-    let whose = if form.base.cloths.is_empty() {
-        "The body's"
+    let keys: Vec<String> = KEYS
+        .iter()
+        .filter(|b| b.context == Context::Form && b.label != "q")
+        .map(|b| format!("{} {}", b.label, b.help.trim_start_matches("settings: ")))
+        .collect();
+    let key_lines = keys.len().div_ceil(2);
+    // Borders, the heading, the problem line and the key lines around the fields.
+    let room = usize::from(area.height)
+        .saturating_sub(4 + key_lines)
+        .max(3);
+    let n = form.fields.len();
+    let (first, shown) = if n <= room {
+        (0, n)
     } else {
-        "The scene's"
+        // Two lines say what is above and below.
+        let shown = room - 2;
+        let first = form.selected.saturating_sub(shown / 2).min(n - shown);
+        (first, shown)
     };
     let mut lines = vec![Line::styled(
-        format!(" {whose} settings: Enter restarts the scene with them."),
+        " The scene's settings: Enter restarts the scene with them.",
         Style::new().fg(Color::Gray),
     )];
-    for (i, field) in form.fields.iter().enumerate() {
+    let dim = Style::new().fg(Color::DarkGray);
+    if n > room {
+        lines.push(Line::styled(format!(" ↑ {first} more (↑ ↓ move)"), dim));
+    }
+    for (i, field) in form.fields.iter().enumerate().skip(first).take(shown) {
         let (label, unit) = form.label(field);
         let value = format!(" {:<14}", field.text);
         lines.push(Line::from(vec![
@@ -46,15 +66,13 @@ pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
             Span::styled(format!(" {unit}"), Style::new().fg(Color::DarkGray)),
         ]));
     }
+    if n > room {
+        lines.push(Line::styled(format!(" ↓ {} more", n - first - shown), dim));
+    }
     lines.push(match &form.error {
         Some(e) => Line::styled(format!(" ✖ {e}"), Style::new().fg(Color::Red)),
         None => Line::raw(""),
     });
-    let keys: Vec<String> = KEYS
-        .iter()
-        .filter(|b| b.context == Context::Form && b.label != "q")
-        .map(|b| format!("{} {}", b.label, b.help.trim_start_matches("settings: ")))
-        .collect();
     for pair in keys.chunks(2) {
         lines.push(Line::styled(
             format!(" {}", pair.join(" · ")),

@@ -30,6 +30,12 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         ));
     }
     let comparison = app.ghost.as_ref().map(|g| g.comparison);
+    // A diverged ghost is marked where its name is shown.
+    let frozen = app
+        .ghost
+        .as_ref()
+        .and_then(|g| g.diverged.as_ref())
+        .map_or_else(String::new, |d| format!(" (diverged at step {})", d.step));
     fields.extend([
         ("t", format!("{} s", number_plain(s.time))),
         ("step", s.step.to_string()),
@@ -44,7 +50,7 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
                 "integrator",
                 match comparison {
                     Some(Comparison::Integrator(i)) => {
-                        format!("{} vs {}", s.integrator.name(), i.name())
+                        format!("{} vs {}{frozen}", s.integrator.name(), i.name())
                     }
                     _ => s.integrator.name().to_string(),
                 },
@@ -52,7 +58,7 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
             (
                 "response",
                 match comparison {
-                    Some(Comparison::Response(r)) => format!("{response} vs {}", r.name()),
+                    Some(Comparison::Response(r)) => format!("{response} vs {}{frozen}", r.name()),
                     _ => response.to_string(),
                 },
             ),
@@ -64,7 +70,7 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         fields.push((
             "cloth",
             match comparison {
-                Some(Comparison::ClothIntegrator(c)) => format!("{own} vs {}", c.name()),
+                Some(Comparison::ClothIntegrator(c)) => format!("{own} vs {}{frozen}", c.name()),
                 _ => own,
             },
         ));

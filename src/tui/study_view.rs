@@ -41,16 +41,6 @@ fn colour(integrator: Integrator) -> Color {
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    if app.world.body_count() == 0 {
-        Paragraph::new(
-            "no rigid body in this scene: the study compares the body integrators \
-             (press s to go back)",
-        )
-        .wrap(Wrap { trim: true })
-        .block(Block::bordered().title(" study "))
-        .render(area, buf);
-        return;
-    }
     let Some(job) = &app.study else {
         Paragraph::new("press s to study this scene")
             .block(Block::bordered().title(" study "))

@@ -450,10 +450,13 @@ fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
     let Overlay::Settings(form) = &app.overlay else {
         panic!("e opens the form");
     };
-    // restitution, friction, mass, dt, v₀ ×3, ω₀ ×3, then the cloth.
-    assert_eq!(form.fields.len(), 11);
-    assert_eq!(form.label(&form.fields[10]).0, "cloth sheet integrator");
-    press(&mut app, KeyCode::Up);
+    // restitution, friction, mass, dt, x₀ ×3, axis ×3, angle, v₀ ×3, ω₀ ×3, g ×3, drag ×2,
+    // then the cloth's integrator, stretch, shear and bend.
+    assert_eq!(form.fields.len(), 26);
+    assert_eq!(form.label(&form.fields[22]).0, "cloth sheet integrator");
+    for _ in 0..4 {
+        press(&mut app, KeyCode::Up);
+    }
     typed(&mut app, "implicit-eulr");
     press(&mut app, KeyCode::Enter);
     let Overlay::Settings(form) = &app.overlay else {
@@ -529,7 +532,12 @@ fn lesson_18_in_the_form_past_the_limit_then_implicit_at_ten_times() {
     for c in format!("{}", 10.0 * limit).chars() {
         form.type_char(c);
     }
-    form.down();
+    form.selected = form
+        .fields
+        .iter()
+        .position(|f| f.kind == tumble::tui::settings_form::FieldKind::ClothIntegrator(0))
+        .unwrap();
+    form.fresh = true;
     for c in "implicit-euler".chars() {
         form.type_char(c);
     }

@@ -815,8 +815,14 @@ fn tab_picks_the_body_the_panels_show_and_every_body_is_drawn() {
 }
 
 #[test]
-fn with_several_bodies_c_keeps_the_impulse_response_and_says_why() {
+fn with_several_bodies_c_skips_seed_and_says_why() {
+    // impulse → soft-step → (seed, refused by the scene's rules) → impulse.
     let mut app = head_on_app();
+    press(&mut app, KeyCode::Char('c'));
+    assert_eq!(
+        app.world.contact_model().map(|m| m.response.name()),
+        Some("soft-step")
+    );
     press(&mut app, KeyCode::Char('c'));
     assert_eq!(
         app.world.contact_model().map(|m| m.response.name()),
@@ -826,7 +832,7 @@ fn with_several_bodies_c_keeps_the_impulse_response_and_says_why() {
         app.notice
             .as_deref()
             .unwrap_or("")
-            .contains("seed knows one body"),
+            .contains("the `seed` response knows one body"),
         "{:?}",
         app.notice
     );

@@ -266,3 +266,50 @@ fn study_response_seed_on_the_ground_blames_the_response_when_every_integrator_d
         assert!(line.chars().count() < header.chars().count(), "{line}");
     }
 }
+
+#[test]
+fn check_reports_errors_of_every_stage_in_one_pass() {
+    // Types and keys (the TOML reader's stage), then dt and names, then ranges: one run of
+    // `check` lists them all (it took three before: a wrong array length blanked [scene]).
+    let file = "tests/fixtures/several/three-rounds.toml";
+    let (code, stdout, stderr) = outcome(&["check", file]);
+    assert_eq!(code, Some(2));
+    assert!(stdout.is_empty());
+    let expected = [
+        "4:6: dt must be > 0, found 0",
+        "5:12: duration must be > 0, found -3",
+        "6:14: unknown integrator `rk5` (did you mean `rk4`?); valid integrators: euler-seed, \
+         euler, symplectic-euler, rk4, splitting, exact-splitting, exact-splitting-4",
+        "7:11: wrong length: expected an array of 3 numbers, found 2 elements",
+        "8:24: unknown collision response `impulsive` (did you mean `impulse`?); valid \
+         responses: seed, impulse, soft-step",
+        "8:51: restitution must be between 0 and 1, found 2",
+        "8:67: friction must be ≥ 0, found -0.5",
+        "13:8: box `size` needs three sides > 0 m, found [1.0, -1.0, 1.0]",
+        "14:8: wrong type: expected a number, found the string \"heavy\"",
+        "16:1: unknown key `spin`; valid keys here: name, shape, size, points, masses, file, \
+         radius, length, fixed, mass, inertia, position, orientation, velocity, \
+         angular_velocity, angular_velocity_body",
+        "21:10: radius must be > 0, found -1",
+        "25:6: page time `at` must be ≥ 0 s, found -1",
+    ]
+    .map(|line| format!("tumble: {file}:{line}\n"))
+    .concat();
+    assert_eq!(stderr, expected);
+}
+
+#[test]
+fn a_file_of_cloths_only_gets_its_cloth_errors_and_no_false_missing_body() {
+    let file = "tests/fixtures/several/cloth-only-errors.toml";
+    let (code, _, stderr) = outcome(&["check", file]);
+    assert_eq!(code, Some(2));
+    assert!(!stderr.contains("missing table"), "{stderr}");
+    let expected = [
+        "8:1: a cloth needs a collision response (its particles touch bodies and obstacles): \
+         add `contact = { response = \"impulse\", restitution = 0.4, friction = 0.5 }` to [scene]",
+        "14:11: stretch must be > 0, found -2000",
+    ]
+    .map(|line| format!("tumble: {file}:{line}\n"))
+    .concat();
+    assert_eq!(stderr, expected);
+}

@@ -61,7 +61,7 @@ fn free_motion_table() {
             0.0,
             Status::Diverged(
                 "simulation diverged at step 12 (t = 1.200000 s): rotation no longer resolved: \
-                 |ω|·dt = 6.1206e0 rad per step, more than half a turn (π) (integrator \
+                 |ω|·dt = 6.1206 rad per step, more than half a turn (π) (integrator \
                  euler-seed, dt = 0.1 s)"
                     .to_string(),
             ),
