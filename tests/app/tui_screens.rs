@@ -168,7 +168,8 @@ fn words(lines: &[String]) -> Vec<String> {
 fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     let lines: Vec<&str> = shown.lines().collect();
     let mut all = tables::panels(&app.snapshot, app.frame);
-    all.push(panels::essentials(&app.snapshot, app.frame));
+    all.push(panels::essentials_of(app, &app.snapshot));
+    all.push(tables::body_energy_panel(&app.snapshot));
     for c in &app.snapshot.cloths {
         let (panel, text) = cloth_panel::panel(c, app.snapshot.dt);
         let title = format!("│{}", panel.title);
@@ -220,6 +221,7 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
             .iter()
             .take_while(|l| {
                 !l.starts_with(" t ")
+                    && !l.starts_with(" body ")
                     && !l.starts_with(&format!(" {}", panels::NO_BODY))
                     && !l.starts_with('┌')
             })
@@ -634,4 +636,141 @@ fn a_hinge_seen_end_on_is_a_circled_dot_and_a_spring_a_zigzag() {
     // tension = k (|d| − ℓ₀) = 100 · (1 − 0.5) = 50 N.
     assert!(shown.contains("50.000000"), "{shown}");
     insta::assert_snapshot!("spring_80x24", shown);
+}
+
+/// Runs the app as the event loop does (running, pausing at page times) to its next pause.
+fn run_to_next_pause(app: &mut App) {
+    app.running = true;
+    app.step_frames(10_000_000);
+    app.running = false;
+}
+
+#[test]
+fn a_pause_line_never_hides_a_panel() {
+    // At a page's pause the status line says "page 2/4 … Enter continues". That notice takes
+    // a row of the key hints, never one of the main area: the drawing, panels, page and loop
+    // strip are the same with the notice as without it (before, at 120×40 the energy panel of
+    // lessons 5, 8, 13, 14 and 15 gave up its row at every pause).
+    for name in [
+        "05-ground-collision.toml",
+        "08-climbing-bug.toml",
+        "13-what-vertices-miss.toml",
+        "14-head-on.toml",
+        "15-stack.toml",
+    ] {
+        let mut app = lesson(name);
+        for pause in 1..=2 {
+            run_to_next_pause(&mut app);
+            assert!(app.notice.is_some(), "{name}: no pause {pause}");
+            let mut quiet = app.clone();
+            quiet.notice = None;
+            for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
+                app.layout = layout;
+                quiet.layout = layout;
+                for (w, h) in [(80, 24), (100, 31), (120, 40), (200, 60)] {
+                    let (with, without) = (screen(&app, w, h), screen(&quiet, w, h));
+                    let status = 4; // the status bar is at most 4 rows
+                    let main = |s: &str| {
+                        s.lines()
+                            .take(usize::from(h) - status)
+                            .map(str::to_string)
+                            .collect::<Vec<_>>()
+                    };
+                    assert_eq!(
+                        main(&with),
+                        main(&without),
+                        "{name} pause {pause}, {layout:?} {w}×{h}: the notice moved the screen:\n{with}"
+                    );
+                    let notice = app.notice.clone().unwrap();
+                    let head: String = notice.chars().take(20).collect();
+                    assert!(
+                        with.contains(&head),
+                        "{name} {w}×{h}: no `{notice}`:\n{with}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Whether the panel titled `title` is shown on `shown` (its title line, whole or with the
+/// note of a panel shown in part).
+fn panel_shown(shown: &str, title: &str) -> bool {
+    let key = format!("│{title}");
+    shown.lines().any(|l| {
+        l.rfind(&key).is_some_and(|i| {
+            let rest = &l[i + key.len()..];
+            rest.is_empty() || rest.starts_with(" (")
+        })
+    })
+}
+
+#[test]
+fn the_panels_a_page_quotes_are_shown_at_every_width_from_80_to_240() {
+    // Each page of these lessons quotes panels: by its live numbers (lesson 1's {{Py}} and
+    // {{y}}: momentum and state; lesson 16's {{vy@…}}, {{energy@4}}) or by its `panels` key
+    // (lesson 1's first page: state, momentum, angular momentum; lesson 10: angular velocity,
+    // for ωbody; lesson 14: each body's energy and the system's momentum). At every size each
+    // quoted panel is shown (whole, or the rows that fit), the others yield.
+    use tumble::scene::PagePanel;
+    for name in [
+        "01-the-loop.toml",
+        "10-tennis-racket.toml",
+        "14-head-on.toml",
+        "16-trampoline.toml",
+    ] {
+        let mut app = lesson(name);
+        let times: Vec<f64> = app.lesson.pages.iter().map(|p| p.at).collect();
+        let mut quoting = 0;
+        for at in times {
+            let steps = tumble::tui::timeline::step_at(at, app.snapshot.dt);
+            app.step_frames(steps - app.snapshot.step);
+            let quoted = panels::quoted(&app);
+            if quoted.is_empty() {
+                continue;
+            }
+            quoting += 1;
+            let titles = panels::titles(&app);
+            for height in [24, 31, 40, 60] {
+                for width in 80..=240 {
+                    let shown = screen(&app, width, height);
+                    for key in &quoted {
+                        let wanted: Vec<&String> = titles
+                            .iter()
+                            .filter(|(k, _)| *k == Some(*key))
+                            .map(|(_, t)| t)
+                            .collect();
+                        // Several cloths or joints: at least the first.
+                        let first = wanted.first().unwrap_or_else(|| {
+                            panic!("{name} at {at} s quotes {key:?}, which it has not")
+                        });
+                        assert!(
+                            panel_shown(&shown, first),
+                            "{name} at {at} s, {width}×{height}: quoted panel `{first}` not shown:\n{shown}"
+                        );
+                    }
+                    assert_nothing_cut(
+                        &app,
+                        &shown,
+                        &format!("{name} at {at} s, {width}×{height}"),
+                    );
+                }
+            }
+            // The stage layout's essentials hold the rows of the panels the page names.
+            app.layout = ScreenLayout::Stage;
+            let essentials = panels::essentials_of(&app, &app.snapshot);
+            for key in &app.lesson.page_at(app.snapshot.time).unwrap().1.panels {
+                if *key == PagePanel::AngularVelocity {
+                    assert!(
+                        essentials.rows.iter().any(|r| r.label == "ωbody"),
+                        "{name} at {at} s: no ωbody in the essentials"
+                    );
+                    let shown = screen(&app, 120, 40);
+                    assert!(shown.contains("ωbody"), "{name}:\n{shown}");
+                }
+            }
+            app.layout = ScreenLayout::Numbers;
+        }
+        assert!(quoting >= 2, "{name}: {quoting} pages quote panels");
+    }
 }
