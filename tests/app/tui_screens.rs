@@ -774,3 +774,75 @@ fn the_panels_a_page_quotes_are_shown_at_every_width_from_80_to_240() {
         assert!(quoting >= 2, "{name}: {quoting} pages quote panels");
     }
 }
+
+#[test]
+fn shot_and_record_set_the_screen_as_the_app_keys_do() {
+    // `--view top` (key v twice), `--no-arrows` (key a), `--graph` (key g), `--compare NAME`
+    // (key k): each shows in the exported text as it does on the app's screen.
+    use assert_cmd::Command;
+    let dir = std::env::temp_dir().join(format!("tumble-screen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = root().join("tests/fixtures/tui-box.toml");
+    let shot = |args: &[&str]| -> String {
+        let svg = dir.join("s.svg");
+        Command::cargo_bin("tumble")
+            .unwrap()
+            .arg("shot")
+            .arg(&file)
+            .args(["--at", "0.05", "--svg"])
+            .arg(&svg)
+            .args(args)
+            .assert()
+            .success();
+        xml_text(&std::fs::read_to_string(&svg).unwrap())
+    };
+    let plain = shot(&[]);
+    assert!(
+        plain.contains("front x–y") && plain.contains("ang. vel."),
+        "{plain}"
+    );
+    let top = shot(&["--view", "top"]);
+    assert!(
+        top.contains("top x–z") && !top.contains("front x–y"),
+        "{top}"
+    );
+    assert!(shot(&["--view", "side"]).contains("side z–y"));
+    let bare = shot(&["--no-arrows"]);
+    assert!(!bare.contains("ang. vel."), "{bare}");
+    let graph = shot(&["--graph"]);
+    assert!(
+        graph.contains("energy, J") && !graph.contains("front x–y"),
+        "{graph}"
+    );
+    let ghost = shot(&["--compare", "euler-seed"]);
+    assert!(ghost.contains("vs euler-seed"), "{ghost}");
+    // The same options for record; a bad one is a one-line error, exit 2.
+    let cast = dir.join("r.cast");
+    Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("record")
+        .arg(&file)
+        .args(["--duration", "0.05", "--view", "top", "--out"])
+        .arg(&cast)
+        .assert()
+        .success();
+    let frames = std::fs::read_to_string(&cast).unwrap();
+    assert!(
+        frames.lines().skip(1).all(|l| l.contains("top x")),
+        "{frames}"
+    );
+    for bad in [&["--view", "diagonal"][..], &["--compare", "rk4"][..]] {
+        let out = Command::cargo_bin("tumble")
+            .unwrap()
+            .arg("shot")
+            .arg(&file)
+            .args(["--svg"])
+            .arg(dir.join("bad.svg"))
+            .args(bad)
+            .assert()
+            .code(2);
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(bad[1]), "{bad:?}: {stderr}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
