@@ -846,3 +846,50 @@ fn shot_and_record_set_the_screen_as_the_app_keys_do() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn several_bodies_flying_apart_all_stay_in_the_drawing() {
+    // Lesson 14: `left` stops at x = −0.2 m, `right` leaves at 1 m/s (e = 1): by t = 2 s (the
+    // lesson's duration) they are about 1.7 m apart, by t = 5 s 4.7 m — wider than the 8 body
+    // diameters the view may otherwise grow to (8 × 2 × 0.173 = 2.77 m). Before, the view slid
+    // to their middle and kept its size: part of one cube at 2 s, nothing at 5 s. Every
+    // vertex of every body must map inside the drawing.
+    let mut app = lesson("14-head-on.toml");
+    for (frames, t) in [(2000, 2.0), (3000, 5.0)] {
+        app.step_frames(frames);
+        assert!((app.snapshot.time - t).abs() < 1e-9);
+        for (w, h) in [(80, 24), (120, 40)] {
+            let main = ratatui::layout::Rect::new(0, 1, w, h - 4);
+            let drawing = tumble::tui::screen::main_areas(&app, main).drawing;
+            let (cols, rows) = (drawing.width - 2, drawing.height - 2);
+            let mapping = tumble::tui::viewport::Mapping::fit(&app.region, app.axis, cols, rows);
+            for body in &app.snapshot.bodies {
+                for v in &body.vertices {
+                    let (hx, vy) = app.axis.project(v);
+                    let (c, r) = mapping.cell(hx, vy);
+                    assert!(
+                        (0.0..=f64::from(cols)).contains(&c)
+                            && (0.0..=f64::from(rows)).contains(&r),
+                        "t = {t} s, {w}×{h}: {} at cell ({c:.1}, {r:.1}) outside {cols}×{rows}",
+                        body.name
+                    );
+                }
+            }
+            // And drawn: the cubes' barycenters `@` (at 80 columns a cube is a cell or two,
+            // under the arrows).
+            if w < 120 {
+                continue;
+            }
+            let shown = screen(&app, w, h);
+            let drawing_text: String = shown
+                .lines()
+                .take_while(|l| !l.starts_with('└'))
+                .collect::<Vec<_>>()
+                .join("\n");
+            assert!(
+                drawing_text.matches('@').count() >= 2,
+                "t = {t} s:\n{shown}"
+            );
+        }
+    }
+}
