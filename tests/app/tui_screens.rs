@@ -893,3 +893,32 @@ fn several_bodies_flying_apart_all_stay_in_the_drawing() {
         }
     }
 }
+
+#[test]
+fn page_scrolling_stops_at_the_pages_end() {
+    // Lesson 5's second page is 25 lines at 120×40 and its pane shows 10: PgDn stops at the
+    // last 10 (lines 16-25), however often it is pressed, so one PgUp moves the page back
+    // at once (before, every extra PgDn had to be undone: five PgUp to come back).
+    let mut app = lesson("05-ground-collision.toml");
+    run_to_next_pause(&mut app);
+    let pgdn = KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE);
+    let pgup = KeyEvent::new(KeyCode::PageUp, KeyModifiers::NONE);
+    let position = |s: &str| -> String {
+        let l = s
+            .lines()
+            .find(|l| l.contains(" of 25 "))
+            .unwrap_or_else(|| panic!("{s}"));
+        let i = l.find(" of 25 ").unwrap();
+        l[..i].rsplit(' ').next().unwrap().to_string()
+    };
+    screen(&app, 120, 40);
+    for _ in 0..12 {
+        app.handle_key(&pgdn);
+        screen(&app, 120, 40);
+    }
+    let end = screen(&app, 120, 40);
+    assert_eq!(position(&end), "16-25", "{end}");
+    app.handle_key(&pgup);
+    let back = screen(&app, 120, 40);
+    assert_eq!(position(&back), "13-22", "{back}");
+}
