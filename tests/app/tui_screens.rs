@@ -922,3 +922,50 @@ fn page_scrolling_stops_at_the_pages_end() {
     let back = screen(&app, 120, 40);
     assert_eq!(position(&back), "13-22", "{back}");
 }
+
+#[test]
+fn the_energy_graphs_labels_never_overlap_and_its_legend_is_out_of_the_curves() {
+    // Lesson 5 at t = 0.42 s, the energy view (key g). Each y-axis label is printed whole,
+    // alone on its row: one of the axis's own labels (lo, mid, hi). Before, in a drift chart
+    // three rows tall the mid label `0` was drawn over `-9.9e-6`: `09.9e-6`. The legend is
+    // in the chart's title line, where no curve runs.
+    use tumble::tui::energy_graph::axis_label;
+    let mut app = lesson("05-ground-collision.toml");
+    app.step_frames(420);
+    keys(&mut app, "g");
+    for (w, h) in [(80, 24), (100, 31), (120, 40), (200, 60)] {
+        let shown = screen(&app, w, h);
+        let mut allowed = Vec::new();
+        for r in [app.series.energy_axis, app.series.drift_axis] {
+            let span = r.hi - r.lo;
+            for x in [r.lo, 0.5 * (r.lo + r.hi), r.hi] {
+                allowed.push(axis_label(x, span));
+            }
+        }
+        let mut labels = 0;
+        for line in shown.lines().skip(1) {
+            // A plot row: `│LABEL │…` (the label column, then the y axis).
+            let Some(rest) = line.strip_prefix('│') else {
+                continue;
+            };
+            let Some((label, _)) = rest.split_once('│') else {
+                continue;
+            };
+            let label = label.trim();
+            if label.is_empty() || label.contains('─') || label.len() > 12 {
+                continue;
+            }
+            assert!(
+                allowed.iter().any(|a| a == label),
+                "{w}×{h}: y label `{label}` is none of {allowed:?}:\n{shown}"
+            );
+            labels += 1;
+        }
+        assert!(labels >= 4, "{w}×{h}: {labels} labels:\n{shown}");
+        assert!(
+            shown.contains("energy, J ━ kinetic ━ potential ━ total ")
+                || shown.contains("energy, J ━ K ━ V ━ E "),
+            "{w}×{h}: legend cut:\n{shown}"
+        );
+    }
+}
