@@ -12,7 +12,7 @@ use tumble::study::{self, scenes, Config};
 fn default_study(c: &mut Criterion) {
     let cases = scenes::builtin();
     let config = Config::default();
-    // What the study itself measures on the tumbling box (median of 5 timed runs each).
+    // What the study itself measures on the tumbling box (median of its timed 1000-step chunks).
     let tumbling = study::study_case(&cases[0], &config, &mut |_, _| {});
     eprintln!("ns/step on {} (study's own timing):", tumbling.name);
     let mut rows: Vec<_> = tumbling.rows.iter().filter(|r| r.ok()).collect();

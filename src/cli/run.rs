@@ -74,17 +74,38 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
         Some(name) => super::body_named(&lesson, name)?,
         None => 0,
     };
-    let mut world = lesson.scene.world();
+    run_rows(args, lesson.scene.world(), HEADER, |world| {
+        let s = world.snapshot_of(body);
+        finite(&values(&s)).then(|| row(&s))
+    })
+}
+
+/// The loop every mode of `run` shares: the header, row 0, then a step at a time, the rows of
+/// every kept step. `rows(world)` is the text of a step's rows, or `None` when one of its
+/// numbers is not finite: a run never prints a non-finite number, it stops with exit 3 —
+/// before the header when it is so at t = 0 (the loader refuses the initial states it can name
+/// a key for; this catches what overflows later, an energy of 1e308 kg), at the step it
+/// happens otherwise (the divergence guard usually stops it first; this catches a number that
+/// overflowed without the state doing so).
+fn run_rows(
+    args: &RunArgs,
+    mut world: crate::physics::World,
+    header: &str,
+    rows: impl Fn(&crate::physics::World) -> Option<String>,
+) -> Result<(), Failure> {
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    let write = |out: &mut BufWriter<_>, s: &Snapshot| -> std::io::Result<()> {
-        writeln!(out, "{}", row(s))
-    };
     let io = super::output::failure;
-    let first = world.snapshot_of(body);
-    initial_finite(values(&first).iter().all(|v| v.is_finite()))?;
-    writeln!(out, "{HEADER}").map_err(io)?;
-    write(&mut out, &first).map_err(io)?;
+    let Some(first) = rows(&world) else {
+        return Err(Failure {
+            code: EXIT_DIVERGED,
+            message: "the initial state is not finite (a number overflowed at t = 0): nothing \
+                      was run"
+                .to_string(),
+        });
+    };
+    writeln!(out, "{header}").map_err(io)?;
+    out.write_all(first.as_bytes()).map_err(io)?;
     for step in 1..=args.steps {
         world.step();
         if let Some(divergence) = world.divergence() {
@@ -95,10 +116,7 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
             });
         }
         if step % args.every == 0 || step == args.steps {
-            let s = world.snapshot_of(body);
-            if !values(&s).iter().all(|v| v.is_finite()) {
-                // The guard missed it (a number overflowed without the state doing so): the
-                // row is not printed either.
+            let Some(text) = rows(&world) else {
                 out.flush().map_err(io)?;
                 return Err(Failure {
                     code: EXIT_DIVERGED,
@@ -109,119 +127,60 @@ pub fn run(args: &RunArgs) -> Result<(), Failure> {
                         crate::limits::short(world.dt())
                     ),
                 });
-            }
-            write(&mut out, &s).map_err(io)?;
+            };
+            out.write_all(text.as_bytes()).map_err(io)?;
         }
     }
     out.flush().map_err(io)
+}
+
+/// Every number is finite.
+fn finite(values: &[f64]) -> bool {
+    values.iter().all(|v| v.is_finite())
 }
 
 /// The `--joint` rows: joint `index`, every kept step.
-fn run_joint(
-    args: &RunArgs,
-    mut world: crate::physics::World,
-    index: usize,
-) -> Result<(), Failure> {
-    let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
-    let io = |e: std::io::Error| Failure::bad_input(format!("cannot write output: {e}"));
-    let write = |out: &mut BufWriter<_>, s: &Snapshot| -> std::io::Result<()> {
+fn run_joint(args: &RunArgs, world: crate::physics::World, index: usize) -> Result<(), Failure> {
+    run_rows(args, world, JOINT_HEADER, |world| {
+        let s = world.snapshot();
         let j = &s.joints[index];
         let (f, t) = (j.force, j.torque);
-        writeln!(
-            out,
-            "{},{},{},{},{},{},{},{},{}",
-            s.step, s.time, j.error, f.x, f.y, f.z, t.x, t.y, t.z
-        )
-    };
-    writeln!(out, "{JOINT_HEADER}").map_err(io)?;
-    write(&mut out, &world.snapshot()).map_err(io)?;
-    for step in 1..=args.steps {
-        world.step();
-        if let Some(divergence) = world.divergence() {
-            out.flush().map_err(io)?;
-            return Err(Failure {
-                code: EXIT_DIVERGED,
-                message: divergence.to_string(),
-            });
-        }
-        if step % args.every == 0 || step == args.steps {
-            write(&mut out, &world.snapshot()).map_err(io)?;
-        }
-    }
-    out.flush().map_err(io)
+        let numbers = [s.time, j.error, f.x, f.y, f.z, t.x, t.y, t.z];
+        finite(&numbers).then(|| csv_line(s.step, &numbers))
+    })
 }
 
 /// The `--cloth` rows: every particle of cloth `index`, every kept step.
-fn run_cloth(
-    args: &RunArgs,
-    mut world: crate::physics::World,
-    index: usize,
-) -> Result<(), Failure> {
-    let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
-    let io = super::output::failure;
-    let write = |out: &mut BufWriter<_>, world: &crate::physics::World| -> std::io::Result<()> {
+fn run_cloth(args: &RunArgs, world: crate::physics::World, index: usize) -> Result<(), Failure> {
+    run_rows(args, world, CLOTH_HEADER, |world| {
         let cloth = &world.cloths()[index];
         let energy = world.total_energy().total;
+        let mut text = String::new();
         for (k, (x, v)) in cloth.positions.iter().zip(&cloth.velocities).enumerate() {
             let (i, j) = cloth.grid(k);
-            writeln!(
-                out,
-                "{},{},{i},{j},{},{},{},{},{},{},{energy}",
-                world.step_count(),
-                world.time(),
-                x.x,
-                x.y,
-                x.z,
-                v.x,
-                v.y,
-                v.z
-            )?;
+            let numbers = [x.x, x.y, x.z, v.x, v.y, v.z, energy];
+            if !finite(&numbers) || !world.time().is_finite() {
+                return None;
+            }
+            text.push_str(&format!("{},{},{i},{j}", world.step_count(), world.time()));
+            for n in numbers {
+                text.push_str(&format!(",{n}"));
+            }
+            text.push('\n');
         }
-        Ok(())
-    };
-    let cloth = &world.cloths()[index];
-    initial_finite(
-        world.total_energy().total.is_finite()
-            && cloth
-                .positions
-                .iter()
-                .chain(&cloth.velocities)
-                .all(|v| v.iter().all(|c| c.is_finite())),
-    )?;
-    writeln!(out, "{CLOTH_HEADER}").map_err(io)?;
-    write(&mut out, &world).map_err(io)?;
-    for step in 1..=args.steps {
-        world.step();
-        if let Some(divergence) = world.divergence() {
-            out.flush().map_err(io)?;
-            return Err(Failure {
-                code: EXIT_DIVERGED,
-                message: divergence.to_string(),
-            });
-        }
-        if step % args.every == 0 || step == args.steps {
-            write(&mut out, &world).map_err(io)?;
-        }
-    }
-    out.flush().map_err(io)
+        Some(text)
+    })
 }
 
-/// The guard before row 0: a run never prints a non-finite number. The loader refuses the
-/// initial states it can name a key for; anything else not finite at t = 0 (an energy that
-/// overflows) stops the run here, exit 3, before the header.
-fn initial_finite(finite: bool) -> Result<(), Failure> {
-    if finite {
-        Ok(())
-    } else {
-        Err(Failure {
-            code: EXIT_DIVERGED,
-            message: "the initial state is not finite (a number overflowed at t = 0): nothing \
-                      was run"
-                .to_string(),
-        })
+/// `step` then the numbers, comma-separated, in full precision, with its newline.
+fn csv_line(step: u64, numbers: &[f64]) -> String {
+    let mut line = step.to_string();
+    for v in numbers {
+        line.push(',');
+        line.push_str(&v.to_string());
     }
+    line.push('\n');
+    line
 }
 
 /// The numbers of a row, after `step`.
@@ -250,12 +209,7 @@ fn values(s: &Snapshot) -> [f64; 19] {
     ]
 }
 
-/// One CSV row of a snapshot (`energy`: the whole scene's).
+/// One CSV row of a snapshot (`energy`: the whole scene's), with its newline.
 pub fn row(s: &Snapshot) -> String {
-    let mut line = s.step.to_string();
-    for v in values(s) {
-        line.push(',');
-        line.push_str(&v.to_string());
-    }
-    line
+    csv_line(s.step, &values(s))
 }

@@ -42,6 +42,8 @@ pub struct Scratch {
     inverse: Vec<Inverse>,
     rows: Vec<Row>,
     rhs: Vec<f64>,
+    /// Per body: its free accelerations (v̇, ω̇) under the applied loads.
+    free: Vec<(Vector3<f64>, Vector3<f64>)>,
     solver: Solver,
     /// Result: the total force and torque on each body.
     pub loads: Vec<Loads>,
@@ -129,24 +131,26 @@ impl System<'_> {
                 mass: b.inv_mass,
                 inertia: k.inv_inertia_world,
             }));
-        // Free accelerations (v̇, ω̇) = (F/m, I⁻¹(τ − ω × L)).
-        let free = |i: usize, loads: &[Loads]| {
+        // Free accelerations (v̇, ω̇) = (F/m, I⁻¹(τ − ω × L)), once per body.
+        scratch.free.clear();
+        scratch.free.extend((0..n).map(|i| {
             let k = &kinematics[i];
+            let loads = &scratch.loads[i];
             (
-                loads[i].force * self.bodies[i].inv_mass,
+                loads.force * self.bodies[i].inv_mass,
                 k.inv_inertia_world
-                    * (loads[i].torque - k.angular_velocity.cross(&angular_momenta[i])),
+                    * (loads.torque - k.angular_velocity.cross(&angular_momenta[i])),
             )
-        };
+        }));
         let rate = 1.0 / (10.0 * self.dt);
         scratch.rhs.clear();
         for row in &scratch.rows {
-            let (la, aa) = free(row.a, &scratch.loads);
-            let mut j_a = row.lin_a.dot(&la) + row.ang_a.dot(&aa);
+            let (la, aa) = &scratch.free[row.a];
+            let mut j_a = row.lin_a.dot(la) + row.ang_a.dot(aa);
             let b = match row.b {
                 Some(b) => {
-                    let (lb, ab) = free(b, &scratch.loads);
-                    j_a += row.lin_b.dot(&lb) + row.ang_b.dot(&ab);
+                    let (lb, ab) = &scratch.free[b];
+                    j_a += row.lin_b.dot(lb) + row.ang_b.dot(ab);
                     &scratch.poses[b]
                 }
                 None => &Pose::WORLD,

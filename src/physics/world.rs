@@ -33,7 +33,7 @@ use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
-use super::joints::{project, Correction, Links, ProjectionBuffers};
+use super::joints::{hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers};
 use super::snapshot::Snapshot;
 use super::state::State;
 use super::system::{Scratch as SystemScratch, System};
@@ -218,6 +218,10 @@ pub struct World {
     system_scratch: SystemScratch,
     system_buffers: SystemBuffers,
     projection_buffers: ProjectionBuffers,
+    /// The joints held while the contacts act (`joints::contact`).
+    contact_joint_buffers: ContactBuffers,
+    /// `symplectic-euler` with projection: the states at the step's start (`joints::shake`).
+    step_start: Vec<State>,
 }
 
 impl World {
@@ -284,6 +288,8 @@ impl World {
             system_scratch: SystemScratch::default(),
             system_buffers: SystemBuffers::default(),
             projection_buffers: ProjectionBuffers::default(),
+            contact_joint_buffers: ContactBuffers::default(),
+            step_start: Vec::new(),
         }
     }
 
@@ -510,6 +516,12 @@ impl World {
             dt: self.dt,
         };
         let now = &mut self.now;
+        let shaken = self.integrator == Integrator::SymplecticEuler
+            && self.links.correction == Correction::Projection
+            && !self.links.joints.is_empty();
+        if shaken {
+            self.step_start.clone_from(&now.states);
+        }
         let start = Start {
             kinematics: &now.kinematics,
             loads: &now.loads,
@@ -530,13 +542,25 @@ impl World {
             let before = total_energy(&self.bodies, &self.effects, &now.states).total
                 + self.links.potential(&now.states);
             let mut impulses = Vec::new();
-            project(
-                &self.links,
-                &self.bodies,
-                &mut now.states,
-                &mut impulses,
-                &mut self.projection_buffers,
-            );
+            if shaken {
+                shake(
+                    &self.links,
+                    &self.bodies,
+                    &mut now.states,
+                    &self.step_start,
+                    self.dt,
+                    &mut impulses,
+                    &mut self.projection_buffers,
+                );
+            } else {
+                project(
+                    &self.links,
+                    &self.bodies,
+                    &mut now.states,
+                    &mut impulses,
+                    &mut self.projection_buffers,
+                );
+            }
             for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {
                 load.force += impulse.force / self.dt;
                 load.torque += impulse.torque / self.dt;
@@ -747,12 +771,37 @@ impl World {
         } else {
             None
         };
-        let measured = collide(
+        let mut measured = collide(
             &input,
             &mut now.states,
             &mut now.contacts,
             &mut self.scratch,
         );
+        if !self.links.joints.is_empty() && !now.contacts.is_empty() && states_before.is_none() {
+            // The joints held with the contacts (`joints::contact`); booked with the response.
+            let before = total_energy(&self.bodies, &self.effects, &now.states);
+            let mut impulses = vec![Loads::default(); self.links.joints.len()];
+            let held = hold(
+                &self.links,
+                &self.bodies,
+                &mut now.states,
+                &now.contacts,
+                self.dt,
+                &mut impulses,
+                &mut self.contact_joint_buffers,
+            );
+            if held.changed {
+                for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {
+                    load.force += impulse.force / self.dt;
+                    load.torque += impulse.torque / self.dt;
+                }
+                let after = total_energy(&self.bodies, &self.effects, &now.states);
+                measured = Some(match measured {
+                    Some(change) => EnergyChange { after, ..change },
+                    None => EnergyChange { before, after },
+                });
+            }
+        }
         let change = match (measured, states_before) {
             (Some(change), _) => Some(change),
             // `seed` measures nothing: measured here when it changed the state.

@@ -34,7 +34,7 @@
 //! further), with both errors.
 
 use super::analysis::{format_dt, format_number};
-use super::measure::{median, sample_times, time_steps, Status, Timing};
+use super::measure::{cost_per_step, sample_times, Status, Timing};
 use crate::physics::cloth::ClothIntegrator;
 use crate::physics::World;
 use crate::scene::Scene;
@@ -498,11 +498,7 @@ fn measure(
     };
     let accuracy_ns = started.elapsed().as_nanos() as f64 / steps as f64;
     row.ns_per_step = if timing.repeats > 0 {
-        let mut samples: Vec<f64> = (0..=timing.repeats)
-            .map(|_| time_steps(scene.world_with(scene.integrator, dt), steps))
-            .skip(1) // the warm-up
-            .collect();
-        median(&mut samples)
+        cost_per_step(|| scene.world_with(scene.integrator, dt), steps, &timing)
     } else {
         accuracy_ns
     };

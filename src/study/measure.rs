@@ -4,9 +4,11 @@
 //!    reference and the conserved quantities with their initial values; contact scenes are
 //!    stepped phase by phase to see the energy each collide phase adds. The divergence guard is
 //!    checked at every sample.
-//! 2. **Timed runs** (a warm-up, then `repeats` runs of plain [`World::step`], nothing observed):
-//!    ns per step is the median over the repeats of each run's median 1000-step chunk (robust
-//!    to other processes taking the CPU on a shared machine).
+//! 2. **Timed runs** (a short warm-up, then up to `repeats` runs of plain [`World::step`],
+//!    nothing observed): ns per step is the median of all their 1000-step chunks (robust to
+//!    other processes taking the CPU on a shared machine). A run of many chunks is timed fewer
+//!    times: [`TIMED_CHUNKS`] chunks are enough for the median, so a 100 000-step run is timed
+//!    once, a 100-step run `repeats` times.
 //!
 //! ```text
 //! error           = max over samples of  angle(q_ref⁻¹ q) + |x − x_ref| / radius      (rad)
@@ -165,11 +167,7 @@ pub fn measure(
         return row;
     }
     if timing.repeats > 0 {
-        let mut samples: Vec<f64> = (0..=timing.repeats)
-            .map(|_| timed_run(scene, integrator, dt, steps))
-            .skip(1) // the warm-up
-            .collect();
-        row.ns_per_step = median(&mut samples);
+        row.ns_per_step = cost_per_step(|| world_for(scene, integrator, dt), steps, &timing);
     } else {
         // Untimed studies (tests): the instrumented run's time, reference included.
         row.ns_per_step = accuracy_ns;
@@ -181,17 +179,34 @@ pub fn measure(
 /// Steps per timed chunk: ≈ 0.2 ms, far shorter than a scheduler time slice.
 const CHUNK: u64 = 1000;
 
-/// Wall time per step of a plain run, ns: the median over its chunks of [`CHUNK`] steps, so
-/// that the moments another process holds the CPU (one chunk in many on a shared machine) do
-/// not count as the integrator's cost.
-fn timed_run(scene: &Scene, integrator: Integrator, dt: f64, steps: u64) -> f64 {
-    time_steps(world_for(scene, integrator, dt), steps)
+/// Chunks a row's median is taken over, at least (a run shorter than this is repeated, up to
+/// `Timing::repeats` times): enough that the chunks another process held the CPU during do not
+/// move the median.
+pub(super) const TIMED_CHUNKS: u64 = 100;
+
+/// Steps of the warm-up before the timed runs (caches, branch predictors, clock).
+const WARM_UP: u64 = 10 * CHUNK;
+
+/// Wall time per step of `steps` plain steps of fresh worlds made by `world`, ns: the median
+/// over every [`CHUNK`]-step chunk of ⌈[`TIMED_CHUNKS`] / chunks per run⌉ runs (at least one,
+/// at most `timing.repeats`), after a warm-up of [`WARM_UP`] steps.
+pub(super) fn cost_per_step(world: impl Fn() -> World, steps: u64, timing: &Timing) -> f64 {
+    time_chunks(world(), steps.min(WARM_UP), &mut Vec::new());
+    let chunks_per_run = steps.div_ceil(CHUNK);
+    let runs = TIMED_CHUNKS
+        .div_ceil(chunks_per_run)
+        .clamp(1, timing.repeats.max(1) as u64);
+    let mut chunks = Vec::with_capacity((runs * chunks_per_run) as usize);
+    for _ in 0..runs {
+        time_chunks(world(), steps, &mut chunks);
+    }
+    median(&mut chunks)
 }
 
-/// Wall time per step of `steps` plain steps of `world` from where it is, ns (the median
-/// chunk, as [`timed_run`]).
-pub(super) fn time_steps(mut world: World, steps: u64) -> f64 {
-    let mut chunks = Vec::with_capacity((steps / CHUNK + 1) as usize);
+/// Steps `world` `steps` times, pushing the wall time per step of each chunk of [`CHUNK`]
+/// steps (ns) onto `chunks`; the world's last state goes through `black_box`, so no step is
+/// optimised away.
+fn time_chunks(mut world: World, steps: u64, chunks: &mut Vec<f64>) {
     let mut left = steps;
     while left > 0 {
         let n = left.min(CHUNK);
@@ -203,7 +218,6 @@ pub(super) fn time_steps(mut world: World, steps: u64) -> f64 {
         left -= n;
     }
     std::hint::black_box(world.state());
-    median(&mut chunks)
 }
 
 /// The median of a non-empty list (sorts it).

@@ -341,11 +341,13 @@ fn views(app: &App) -> Vec<Stacked> {
     views
 }
 
-/// One panel per joint, then one per spring.
+/// One panel per joint, the joint correction's work when there are joints, then one panel
+/// per spring (the order `walk` prints them in).
 fn link_panels(s: &Snapshot) -> Vec<Panel> {
     s.joints
         .iter()
         .map(tables::joint_panel)
+        .chain((!s.joints.is_empty()).then(|| tables::correction_panel(s)))
         .chain(s.springs.iter().map(tables::spring_panel))
         .collect()
 }

@@ -2273,7 +2273,7 @@ fn lesson_25_period_tension_and_the_integrator_table() {
         (Integrator::Rk4, 2.367842, 0.0, 1e-10),
         (Integrator::ExactSplitting4, 2.367842, 1e-8, 1e-7),
         (Integrator::Splitting, 2.367840, 1e-5, 1e-4),
-        (Integrator::SymplecticEuler, 2.387970, 0.65, 0.67),
+        (Integrator::SymplecticEuler, 2.367839, 0.013, 0.014),
         (Integrator::Euler, 2.409731, 1.34, 1.36),
     ] {
         let mut w = world_with(&l, integrator, 1e-3);

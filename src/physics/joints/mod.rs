@@ -45,18 +45,27 @@
 //!             constant) — the rhs gets −2α Ċ − β² C; the drift is pulled back, not removed
 //! projection  after each step, positions back onto C = 0 (Newton: (J W Jᵀ) μ = −C,
 //!             δx = W J_linᵀ μ, δθ = W J_angᵀ μ, repeated to |C| < 1e-12 m), then velocities
-//!             onto J u = 0 (one linear solve, ΔP = J_linᵀ μ, ΔL = J_angᵀ μ)
+//!             onto J u = 0 (one linear solve, ΔP = J_linᵀ μ, ΔL = J_angᵀ μ); under
+//!             `symplectic-euler` the positions move along the step's start rows and the
+//!             momenta take the same correction over dt (SHAKE, then RATTLE's velocity half:
+//!             `projection::shake`), which keeps that method symplectic
 //! ```
+//!
+//! Contacts: after the contact response, the joint rows and the contact normals are solved
+//! together, positions then velocities, as one mixed complementarity problem (`contact`), so
+//! a chain that lands keeps its links while the contacts act.
 //!
 //! An ideal joint does no work (Jᵀλ · u = λ·(J u) = 0 on the constraint): the energy the
 //! correction changes is numerical, booked apart (`EnergyLedger::joint_correction`) and still
 //! counted in the drift.
 
+pub mod contact;
 mod projection;
 mod rows;
 pub mod solve;
 
-pub use projection::{project, Buffers as ProjectionBuffers};
+pub use contact::{hold, Buffers as ContactBuffers};
+pub use projection::{project, shake, Buffers as ProjectionBuffers};
 pub use rows::{rows_of, Pose, Row};
 pub use solve::{multipliers, Solver};
 
