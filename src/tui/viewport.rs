@@ -174,9 +174,7 @@ impl Region {
                     break;
                 }
                 if 2.0 * extent > self.max_extent {
-                    // Sliding keeps a margin of a twentieth of the region on each side, so a
-                    // cloth's pin or a body's edge is never drawn on (or past) the border.
-                    if hi[i] - lo[i] <= 0.9 * extent {
+                    if hi[i] - lo[i] <= extent {
                         let shift = 0.5 * (lo[i] + hi[i]) - 0.5 * (self.min[i] + self.max[i]);
                         self.min[i] += shift;
                         self.max[i] += shift;
@@ -321,8 +319,8 @@ mod tests {
     fn points_spread_wider_than_the_region_make_it_grow_past_its_largest_extent() {
         // Extent 4 = max_extent along x, points at x = −3 and x = 5 (spread 8): re-centring
         // the 4 m region on x = 1 ([−1, 3]) would lose both. It doubles instead, on the side
-        // exceeded first ([−1, 7], extent 8), which still misses −3 and is not wider than the
-        // points by the margins (8 > 0.9 × 8), so it doubles again on the left: [−9, 7].
+        // exceeded first ([−1, 7], extent 8), then, as wide as the points, re-centres on
+        // x = 1: [−3, 5].
         let mut region = Region {
             min: Vector3::new(-1.0, -1.0, -1.0),
             max: Vector3::new(3.0, 1.0, 1.0),
@@ -330,8 +328,8 @@ mod tests {
         };
         region.include(&[Vector3::new(-3.0, 0.0, 0.0), Vector3::new(5.0, 0.0, 0.0)]);
         assert!(region.min.x <= -3.0 && region.max.x >= 5.0, "{region:?}");
-        assert_eq!((region.min.x, region.max.x), (-9.0, 7.0));
-        assert_eq!(region.max_extent, 16.0, "it may grow that far from now on");
+        assert_eq!((region.min.x, region.max.x), (-3.0, 5.0));
+        assert_eq!(region.max_extent, 8.0, "it may grow that far from now on");
     }
 
     #[test]
