@@ -337,6 +337,26 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
 /// system panel with several bodies — describe the whole scene).
 pub const BODY_PANELS: usize = 6;
 
+/// Each body's own energy (several bodies: a heavy body's share would swamp the others in the
+/// scene's total), one row per body: K, V, E = K + V.
+pub fn body_energy_panel(s: &Snapshot) -> Panel {
+    Panel {
+        title: "energy by body".to_string(),
+        rows: s
+            .bodies
+            .iter()
+            .map(|b| Row {
+                label: b.name.clone(),
+                cells: [b.energy.kinetic, b.energy.potential, b.energy.total]
+                    .iter()
+                    .map(|x| number(*x))
+                    .collect(),
+                unit: "J (K, V, E)",
+            })
+            .collect(),
+    }
+}
+
 /// The whole scene (several bodies): total momenta, which contacts between bodies keep.
 ///
 /// ```text

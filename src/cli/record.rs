@@ -1,12 +1,12 @@
-//! `tumble record FILE --duration T --out OUT.cast [--size COLSxROWS]`: a run of the app as an
-//! asciicast v2 recording (header line, then `[time, "o", data]` events with increasing times),
+//! `tumble record FILE --duration T --out OUT.cast [--size COLSxROWS] [--view front|side|top]`:
+//! a run of the app (set as `shot` sets it: [`super::shot::ScreenArgs`]) as an asciicast v2
+//! recording (header line, then `[time, "o", data]` events with increasing times),
 //! rendered without a terminal, at real time. Its steps and frames are bounded before it
 //! starts ([`crate::limits`]); a divergence ends the recording where it happens, exit 3.
 
+use super::shot::ScreenArgs;
 use super::{load_with, Failure, Overrides};
 use crate::tui::export;
-use crate::tui::layout::ScreenLayout;
-use crate::tui::{App, Options};
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -22,12 +22,8 @@ pub struct RecordArgs {
     /// Screen size, COLSxROWS.
     #[arg(long, default_value = "120x40", value_parser = export::parse_size)]
     pub size: (u16, u16),
-    /// Draw the projection in pure ASCII instead of Braille dots.
-    #[arg(long)]
-    pub ascii: bool,
-    /// The large-drawing layout (key `L` in the app) instead of every panel.
-    #[arg(long)]
-    pub stage: bool,
+    #[command(flatten)]
+    pub screen: ScreenArgs,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -40,17 +36,7 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
         )));
     }
     let lesson = load_with(&args.file, &args.overrides)?;
-    let mut app = App::new(
-        lesson,
-        Options {
-            ascii: args.ascii,
-            compare: None,
-            show_timing: false,
-        },
-    );
-    if args.stage {
-        app.layout = ScreenLayout::Stage;
-    }
+    let mut app = args.screen.app(lesson)?;
     let what = format!("--duration {} s", crate::limits::short(args.duration));
     let steps = crate::limits::steps(
         args.duration,

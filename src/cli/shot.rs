@@ -1,11 +1,88 @@
-//! `tumble shot FILE --at T --svg OUT [--size COLSxROWS]`: the app's screen at time T as an
-//! SVG, rendered without a terminal (text kept as text, colours as in the terminal).
+//! `tumble shot FILE --at T --svg OUT [--size COLSxROWS] [--view front|side|top]`: the app's
+//! screen at time T as an SVG, rendered without a terminal (text kept as text, colours as in the
+//! terminal). The screen is set as in the app: the view (`--view`, key `v`), the arrows
+//! (`--no-arrows`, key `a`), the energy graph (`--graph`, key `g`), the compare ghost
+//! (`--compare NAME`, key `k`), the stage layout (`--stage`, key `L`); `tumble record` takes
+//! the same options ([`ScreenArgs`]).
 
 use super::{load_with, Failure, Overrides};
 use crate::tui::export;
 use crate::tui::layout::ScreenLayout;
-use crate::tui::{App, Options};
+use crate::tui::viewport::Axis;
+use crate::tui::{App, Comparison, Options, View};
 use std::path::PathBuf;
+
+/// How the exported screen is set: the options of `shot` and `record`, each a key of the app.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ScreenArgs {
+    /// Draw the projection in pure ASCII instead of Braille dots.
+    #[arg(long)]
+    pub ascii: bool,
+    /// The large-drawing layout (key `L` in the app) instead of every panel.
+    #[arg(long)]
+    pub stage: bool,
+    /// The view direction (key `v`): front (x–y), side (z–y) or top (x–z).
+    #[arg(long, default_value = "front", value_parser = parse_view)]
+    pub view: Axis,
+    /// Leave out the body axes and the ω and L arrows (key `a`).
+    #[arg(long)]
+    pub no_arrows: bool,
+    /// The energy graph in place of the drawing (key `g`).
+    #[arg(long)]
+    pub graph: bool,
+    /// Run a ghost beside the scene with another integrator, collision response or cloth
+    /// integrator (key `k`), drawn and tabulated as in the app's compare mode.
+    #[arg(long, value_name = "NAME", value_parser = parse_comparison)]
+    pub compare: Option<Comparison>,
+}
+
+fn parse_view(name: &str) -> Result<Axis, String> {
+    match name {
+        "front" => Ok(Axis::Front),
+        "side" => Ok(Axis::Side),
+        "top" => Ok(Axis::Top),
+        _ => Err(format!("unknown view `{name}` (front, side or top)")),
+    }
+}
+
+fn parse_comparison(name: &str) -> Result<Comparison, String> {
+    Comparison::from_name(name).ok_or_else(|| {
+        format!("unknown integrator, collision response or cloth integrator `{name}`")
+    })
+}
+
+impl ScreenArgs {
+    /// The app for `lesson`, set as these options say.
+    pub fn app(&self, lesson: crate::scene::Lesson) -> Result<App, Failure> {
+        let mut app = App::new(
+            lesson,
+            Options {
+                ascii: self.ascii,
+                compare: None,
+                show_timing: false,
+            },
+        );
+        if let Some(comparison) = self.compare {
+            if !app.comparisons().contains(&comparison) {
+                return Err(Failure::bad_input(format!(
+                    "--compare {}: this scene cannot be compared with it (it is its own setting, or \
+                     it does not apply here)",
+                    comparison.name()
+                )));
+            }
+            app.start_compare(comparison);
+        }
+        if self.stage {
+            app.layout = ScreenLayout::Stage;
+        }
+        app.axis = self.view;
+        app.arrows = !self.no_arrows;
+        if self.graph {
+            app.view = View::Energy;
+        }
+        Ok(app)
+    }
+}
 
 #[derive(Debug, clap::Args)]
 pub struct ShotArgs {
@@ -20,12 +97,8 @@ pub struct ShotArgs {
     /// Screen size, COLSxROWS.
     #[arg(long, default_value = "120x40", value_parser = export::parse_size)]
     pub size: (u16, u16),
-    /// Draw the projection in pure ASCII instead of Braille dots.
-    #[arg(long)]
-    pub ascii: bool,
-    /// The large-drawing layout (key `L` in the app) instead of every panel.
-    #[arg(long)]
-    pub stage: bool,
+    #[command(flatten)]
+    pub screen: ScreenArgs,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -35,8 +108,7 @@ pub fn app_at(
     file: &std::path::Path,
     overrides: &Overrides,
     at: f64,
-    ascii: bool,
-    stage: bool,
+    screen: &ScreenArgs,
 ) -> Result<App, Failure> {
     if !(at >= 0.0 && at.is_finite()) {
         return Err(Failure::bad_input(format!(
@@ -44,17 +116,7 @@ pub fn app_at(
         )));
     }
     let lesson = load_with(file, overrides)?;
-    let mut app = App::new(
-        lesson,
-        Options {
-            ascii,
-            compare: None,
-            show_timing: false,
-        },
-    );
-    if stage {
-        app.layout = ScreenLayout::Stage;
-    }
+    let mut app = screen.app(lesson)?;
     let steps = crate::limits::steps(
         at,
         app.snapshot.dt,
@@ -75,7 +137,7 @@ pub fn app_at(
 /// Writes the picture; a run that diverged on the way still gets its picture (the moment it
 /// stopped), then exits 3 as `run` does.
 pub fn shot(args: &ShotArgs) -> Result<(), Failure> {
-    let app = app_at(&args.file, &args.overrides, args.at, args.ascii, args.stage)?;
+    let app = app_at(&args.file, &args.overrides, args.at, &args.screen)?;
     let (cols, rows) = args.size;
     let picture = export::svg(&export::render(&app, cols, rows));
     std::fs::write(&args.svg, picture)

@@ -260,6 +260,8 @@ pub struct BodyView {
     pub shape: Option<Shape>,
     /// Whether the body is fixed (drawn as an obstacle).
     pub fixed: bool,
+    /// The body's own kinetic, potential and total energy.
+    pub energy: Energy,
 }
 
 /// The scene as a whole.
@@ -339,6 +341,7 @@ impl Snapshot {
                 rotation: world.states()[i].orientation.matrix(),
                 shape: world.bodies()[i].shape.clone(),
                 fixed: world.bodies()[i].fixed,
+                energy: world.body_energy(i),
             })
             .collect();
         Snapshot {

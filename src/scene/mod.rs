@@ -12,11 +12,13 @@ mod links;
 pub mod live;
 mod mesh;
 mod messages;
+mod page_panels;
 mod raw;
 
 pub use diagnose::check as check_every_error;
 pub use edit::{ClothEdit, SceneEdits};
 pub use error::{did_you_mean, printable, LoadError};
+pub use page_panels::PagePanel;
 
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
 use crate::physics::joints::Links;
@@ -42,6 +44,8 @@ pub struct Page {
     pub live: Vec<live::LiveNumber>,
     /// What the student is asked to predict on this page.
     pub predict: Option<live::Prediction>,
+    /// The panels the page names (`panels = [...]`), shown first at any size.
+    pub panels: Vec<PagePanel>,
 }
 
 /// Everything a world is built from.
@@ -376,12 +380,22 @@ impl Validator<'_> {
                     Some(live::Prediction { quantity, at: when })
                 }
             };
+            let panels = page
+                .panels
+                .iter()
+                .flatten()
+                .map(|name| {
+                    PagePanel::from_name(name.get_ref())
+                        .map_err(|e| self.error(name.span(), format!("page `panels`: {e}")))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
             pages.push(Page {
                 at,
                 title: page.title,
                 text,
                 live,
                 predict,
+                panels,
             });
         }
         Ok(Lesson {

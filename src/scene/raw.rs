@@ -152,6 +152,8 @@ pub struct RawPage {
     pub text: Spanned<String>,
     /// `{ quantity = "cube.y", at = 1.0 }`: the app asks the student for a guess.
     pub predict: Option<Spanned<RawPredict>>,
+    /// `["energy", "momentum"]`: panels the app shows first (`page_panels.rs`).
+    pub panels: Option<Vec<Spanned<String>>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -175,6 +175,9 @@ pub struct App {
     /// Where the run paused by itself (a page, the scene's end), until the next key.
     pub stop: Option<timeline::Stop>,
     pub lesson_scroll: u16,
+    /// The largest useful scroll of the page as last drawn (its lines less the pane's height),
+    /// set by the lesson pane when it renders, so PgDn stops at the page's end.
+    pub lesson_scroll_max: std::cell::Cell<u16>,
     /// The lesson page shown (the scroll starts over when it changes).
     pub page: Option<usize>,
     pub ascii: bool,
@@ -242,6 +245,7 @@ impl App {
             notice: None,
             stop: None,
             lesson_scroll: 0,
+            lesson_scroll_max: std::cell::Cell::new(u16::MAX),
             page: None,
             ascii: options.ascii,
             show_timing: options.show_timing,
@@ -474,8 +478,18 @@ impl App {
                 }
             }
             Message::OpenPicker => self.open_picker(),
-            Message::ScrollUp => self.lesson_scroll = self.lesson_scroll.saturating_sub(3),
-            Message::ScrollDown => self.lesson_scroll = self.lesson_scroll.saturating_add(3),
+            Message::ScrollUp => {
+                self.lesson_scroll = self
+                    .lesson_scroll
+                    .min(self.lesson_scroll_max.get())
+                    .saturating_sub(3)
+            }
+            Message::ScrollDown => {
+                self.lesson_scroll = self
+                    .lesson_scroll
+                    .saturating_add(3)
+                    .min(self.lesson_scroll_max.get())
+            }
             Message::ToggleHelp => self.overlay = Overlay::Help,
             Message::Quit => self.quit = true,
             Message::PickerUp | Message::PickerDown => {

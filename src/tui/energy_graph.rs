@@ -9,7 +9,8 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::symbols::Marker;
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LegendPosition, Widget};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
 
 /// An axis label with the digits the axis needs: two significant digits of its span
 /// (`172.7` on an axis spanning 3, not `172.741806`); scientific beyond 1e-4 and 1e5.
@@ -34,18 +35,44 @@ pub fn axis_label(x: f64, span: f64) -> String {
     }
 }
 
-fn axis<'a>(title: &'a str, range: Range) -> Axis<'a> {
+/// An axis with its labels at the ends and, when `room` (rows of a vertical axis, columns of
+/// a horizontal one) leaves a gap between them, in the middle: labels never share a row or
+/// run into each other (a drift chart 3 rows tall printed `0` over `-9.9e-6`).
+fn axis<'a>(title: &'a str, range: Range, room: u16, label_width: usize) -> Axis<'a> {
     let mid = 0.5 * (range.lo + range.hi);
     let span = range.hi - range.lo;
+    let (lo, hi) = (axis_label(range.lo, span), axis_label(range.hi, span));
+    let mut labels = vec![lo];
+    if usize::from(room) >= 3 * label_width.max(1) + 2 {
+        labels.push(axis_label(mid, span));
+    }
+    labels.push(hi);
     Axis::default()
         .title(title)
         .style(theme::CHART_AXIS)
         .bounds([range.lo, range.hi])
-        .labels([
-            axis_label(range.lo, span),
-            axis_label(mid, span),
-            axis_label(range.hi, span),
-        ])
+        .labels(labels)
+}
+
+/// The widest label of an axis over `range`.
+fn label_width(range: Range) -> usize {
+    let span = range.hi - range.lo;
+    [range.lo, 0.5 * (range.lo + range.hi), range.hi]
+        .iter()
+        .map(|&x| axis_label(x, span).chars().count())
+        .max()
+        .unwrap_or(1)
+}
+
+/// The block title: the chart's name, then each curve's name in its colour (the legend, kept
+/// out of the plot so that no curve runs over it).
+fn title_with_legend(name: &str, curves: &[(String, ratatui::style::Color)]) -> Line<'static> {
+    let mut spans = vec![Span::raw(format!(" {name} "))];
+    for (label, colour) in curves {
+        spans.push(Span::styled("━ ", Style::new().fg(*colour)));
+        spans.push(Span::styled(format!("{label} "), Style::new().fg(*colour)));
+    }
+    Line::from(spans)
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
@@ -75,31 +102,62 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
             .style(Style::new().fg(colour))
             .data(data)
     };
-    let mut energies = vec![
-        dataset("kinetic".into(), &kinetic, theme::KINETIC),
-        dataset("potential".into(), &potential, theme::POTENTIAL),
-        dataset("total".into(), &total, theme::TOTAL),
+    let mut curves = vec![
+        ("kinetic".to_string(), theme::KINETIC),
+        ("potential".to_string(), theme::POTENTIAL),
+        ("total".to_string(), theme::TOTAL),
     ];
     if let Some(g) = &app.ghost {
-        energies.push(dataset(
-            format!("total ({})", g.comparison.name()),
-            &compare,
-            theme::GHOST,
-        ));
+        curves.push((format!("total ({})", g.comparison.name()), theme::GHOST));
     }
+    let data = [&kinetic, &potential, &total, &compare];
+    let energies: Vec<Dataset> = curves
+        .iter()
+        .zip(data)
+        .map(|((name, colour), d)| dataset(name.clone(), d, *colour))
+        .collect();
     let [top, bottom] =
         Layout::vertical([Constraint::Percentage(65), Constraint::Percentage(35)]).areas(area);
+    // Rows of each plot inside its border, less the x axis's line and labels.
+    let rows = |r: Rect| r.height.saturating_sub(4);
+    let columns = area.width.saturating_sub(12);
+    // The curves' names, or in a narrow chart their symbols (K, V, E).
+    let mut title = title_with_legend("energy, J", &curves);
+    if title.width() + 2 > usize::from(top.width) {
+        let short: Vec<(String, ratatui::style::Color)> = curves
+            .iter()
+            .zip(["K", "V", "E", "E"])
+            .enumerate()
+            .map(|(i, ((_, colour), symbol))| {
+                let label = match (i, &app.ghost) {
+                    (3, Some(g)) => format!("{symbol} {}", g.comparison.name()),
+                    _ => symbol.to_string(),
+                };
+                (label, *colour)
+            })
+            .collect();
+        title = title_with_legend("energy, J", &short);
+    }
     Chart::new(energies)
-        .block(Block::bordered().title(" energy, J "))
-        .x_axis(axis("t, s", series.time_axis))
-        .y_axis(axis("J", series.energy_axis))
-        .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Ratio(1, 1), Constraint::Ratio(1, 1)))
+        .block(Block::bordered().title(title))
+        .x_axis(axis(
+            "t, s",
+            series.time_axis,
+            columns,
+            label_width(series.time_axis),
+        ))
+        .y_axis(axis("J", series.energy_axis, rows(top), 1))
+        .legend_position(None)
         .render(top, buf);
     Chart::new(vec![dataset("drift".into(), &drift, theme::DRIFT)])
         .block(Block::bordered().title(" drift (E − E₀ not booked), J "))
-        .x_axis(axis("t, s", series.time_axis))
-        .y_axis(axis("J", series.drift_axis))
+        .x_axis(axis(
+            "t, s",
+            series.time_axis,
+            columns,
+            label_width(series.time_axis),
+        ))
+        .y_axis(axis("J", series.drift_axis, rows(bottom), 1))
         .legend_position(None)
         .render(bottom, buf);
 }

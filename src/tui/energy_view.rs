@@ -10,7 +10,18 @@ use ratatui::layout::Rect;
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let areas = main_areas(app, area);
-    energy_graph::render(app, areas.drawing, buf);
+    // The graph takes the drawing's place and, in the numbers layout, the page's under it (the
+    // energy view shows no page there): a drift chart needs the rows.
+    let graph = match areas.lesson {
+        Some(l) if app.layout == ScreenLayout::Numbers && l.x == areas.drawing.x => {
+            areas.drawing.union(l)
+        }
+        _ => areas.drawing,
+    };
+    energy_graph::render(app, graph, buf);
+    if let (Some(l), ScreenLayout::Stage) = (areas.lesson, app.layout) {
+        super::lesson_pane::render(app, l, buf);
+    }
     if let Some(p) = areas.panels {
         match app.layout {
             ScreenLayout::Numbers => panels::render(app, p, buf),

@@ -20,6 +20,10 @@ pub const PAGE_WIDTH: u16 = 86;
 /// The narrowest drawing beside the panels, columns.
 pub const MIN_DRAWING_WIDTH: u16 = 26;
 
+/// The narrowest drawing beside panels a page quotes, which may take columns from the
+/// drawing down to this (a quoted panel is shown at any size).
+pub const MIN_DRAWING_WIDTH_QUOTED: u16 = 20;
+
 /// The arrangement of the main area.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ScreenLayout {
@@ -58,12 +62,15 @@ pub struct Areas {
 }
 
 /// Splits the main area. `panels_width` is the width the numeric panels ask for (their widest
-/// line plus the border); `essentials` the width and height of the essentials panel;
+/// line plus the border) and `quoted_width` the width the panels the page quotes need to show
+/// a row each (the drawing gives up columns for it, down to [`MIN_DRAWING_WIDTH_QUOTED`]);
+/// `essentials` the width and height of the essentials panel;
 /// `page_lines` how many lines the lesson page takes at the full width (stage layout).
 pub fn areas(
     area: Rect,
     layout: ScreenLayout,
     panels_width: u16,
+    quoted_width: u16,
     essentials: (u16, u16),
     page_lines: u16,
 ) -> Areas {
@@ -73,7 +80,9 @@ pub fn areas(
             let [upper, strip] =
                 Layout::vertical([Constraint::Min(0), Constraint::Length(strip_height)])
                     .areas(area);
-            let panels = panels_width.min(upper.width.saturating_sub(MIN_DRAWING_WIDTH));
+            let panels = panels_width
+                .min(upper.width.saturating_sub(MIN_DRAWING_WIDTH))
+                .max(quoted_width.min(upper.width.saturating_sub(MIN_DRAWING_WIDTH_QUOTED)));
             let [left, right] =
                 Layout::horizontal([Constraint::Min(0), Constraint::Length(panels)]).areas(upper);
             let lesson_height = (left.height * 2 / 5).clamp(4, 16);

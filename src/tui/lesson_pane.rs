@@ -74,6 +74,8 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     .collect();
     let total = lines.len() as u16;
     let scroll = app.lesson_scroll.min(total.saturating_sub(inner.height));
+    app.lesson_scroll_max
+        .set(total.saturating_sub(inner.height));
     let mut block = block;
     // After i or c the page's numbers are another method's: the page says whose they are.
     if let Some(note) = app.page_settings_note() {

@@ -9,6 +9,8 @@ use super::app::App;
 use super::cloth_panel;
 use super::theme;
 use crate::physics::Snapshot;
+use crate::scene::live::Measure;
+use crate::scene::PagePanel;
 use crate::tables::{self, Frame, Panel, Row};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -33,6 +35,11 @@ pub struct PanelView<'a> {
 impl PanelView<'_> {
     /// The panel as lines: title, then each row (and its ghost row in compare mode).
     pub fn lines(&self) -> Vec<Line<'static>> {
+        self.groups().into_iter().flatten().collect()
+    }
+
+    /// The title line, then each row's lines (the row, and its ghost row in compare mode).
+    pub fn groups(&self) -> Vec<Vec<Line<'static>>> {
         let label_width = self
             .panel
             .rows
@@ -40,23 +47,22 @@ impl PanelView<'_> {
             .map(|r| r.label.chars().count())
             .max()
             .unwrap_or(0);
-        let mut lines = vec![Line::from(vec![Span::styled(
-            self.panel.title.clone(),
-            TITLE,
-        )])];
+        let mut title = Line::from(vec![Span::styled(self.panel.title.clone(), TITLE)]);
         if let Some((_, name)) = self.compare {
-            lines[0].push_span(Span::styled(format!("   (second line: {name})"), GHOST));
+            title.push_span(Span::styled(format!("   (second line: {name})"), GHOST));
         }
+        let mut groups = vec![vec![title]];
         for (i, row) in self.panel.rows.iter().enumerate() {
             let before = self.previous.and_then(|p| p.rows.get(i));
-            lines.push(row_line(row, before, label_width, None));
+            let mut group = vec![row_line(row, before, label_width, None)];
             if let Some((compare, _)) = self.compare {
                 if let Some(ghost) = compare.rows.get(i) {
-                    lines.push(row_line(ghost, None, label_width, Some(GHOST)));
+                    group.push(row_line(ghost, None, label_width, Some(GHOST)));
                 }
             }
+            groups.push(group);
         }
-        lines
+        groups
     }
 }
 
@@ -132,6 +138,61 @@ impl PanelId {
     pub fn index(self) -> usize {
         self as usize
     }
+
+    /// The name a page gives it (`panels = [...]`).
+    pub fn page_panel(self) -> PagePanel {
+        match self {
+            PanelId::State => PagePanel::State,
+            PanelId::Inertia => PagePanel::Inertia,
+            PanelId::AngularVelocity => PagePanel::AngularVelocity,
+            PanelId::Forces => PagePanel::Forces,
+            PanelId::Momentum => PagePanel::Momentum,
+            PanelId::AngularMomentum => PagePanel::AngularMomentum,
+            PanelId::Energy => PagePanel::Energy,
+        }
+    }
+}
+
+/// The panel of `tables::panels` at index `i` by the name a page gives it (the system panel
+/// comes after the seven named ones).
+fn page_panel_of(i: usize) -> PagePanel {
+    PanelId::ALL
+        .get(i)
+        .map_or(PagePanel::System, |p| p.page_panel())
+}
+
+/// The panel where a quantity of the live numbers shows (None: the time, in the status line).
+/// `several`: the scene has several bodies (a body's energy is then in its own panel, the
+/// scene's momentum in the system panel).
+pub fn panel_of_measure(m: Measure, several: bool) -> Option<PagePanel> {
+    Some(match m {
+        Measure::Position(_) => PagePanel::State,
+        Measure::Velocity(_) | Measure::Speed => PagePanel::Momentum,
+        Measure::AngularVelocity(_) => PagePanel::AngularVelocity,
+        Measure::AngularMomentum(_) => PagePanel::AngularMomentum,
+        Measure::Kinetic | Measure::Potential | Measure::Energy if several => PagePanel::BodyEnergy,
+        Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => {
+            PagePanel::Energy
+        }
+        Measure::SceneMomentum(_) if several => PagePanel::System,
+        Measure::SceneMomentum(_) => PagePanel::Momentum,
+        Measure::Time | Measure::ContactTime => return None,
+    })
+}
+
+/// What the page shown quotes: the panels of its live numbers and its prediction, and the
+/// panels it names (`panels = [...]`), each once, in stacking order.
+pub fn quoted(app: &App) -> Vec<PagePanel> {
+    let (named, measures) = page_quotes(app);
+    let several = app.snapshot.bodies.len() > 1;
+    let mut quoted: Vec<PagePanel> = measures
+        .iter()
+        .filter_map(|&(m, _)| panel_of_measure(m, several))
+        .chain(named)
+        .collect();
+    quoted.sort();
+    quoted.dedup();
+    quoted
 }
 
 /// Indices into `tables::panels` in the order they are stacked; panels beyond the named ones
@@ -151,10 +212,49 @@ fn order(count: usize, compare: bool) -> Vec<usize> {
     order
 }
 
-/// Every panel's lines with its title, in stacking order: the body's state, one panel per
-/// cloth, the body's other panels (with no body: one line saying so, the cloth panels, the
-/// scene's energy).
-fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
+/// One panel in the stack: which panel it is (None: the line saying there is no body), its
+/// title, and its lines in groups — the title line, then each row with its ghost row (a cloth
+/// panel is one group: it is shown whole or not at all).
+pub struct Stacked {
+    pub key: Option<PagePanel>,
+    pub title: String,
+    pub groups: Vec<Vec<Line<'static>>>,
+    /// The label of each group after the first (its row), to name rows left out.
+    pub labels: Vec<String>,
+}
+
+impl Stacked {
+    fn of(key: PagePanel, panel: &Panel, view: &PanelView) -> Stacked {
+        Stacked {
+            key: Some(key),
+            title: panel.title.clone(),
+            groups: view.groups(),
+            labels: panel
+                .rows
+                .iter()
+                .map(|r| r.label.trim().to_string())
+                .collect(),
+        }
+    }
+
+    fn whole(key: Option<PagePanel>, lines: Vec<Line<'static>>, title: String) -> Stacked {
+        Stacked {
+            key,
+            title,
+            groups: vec![lines],
+            labels: Vec::new(),
+        }
+    }
+
+    fn lines(&self) -> Vec<Line<'static>> {
+        self.groups.iter().flatten().cloned().collect()
+    }
+}
+
+/// Every panel in stacking order: the body's state, one panel per cloth, the joints and
+/// springs, the body's other panels, each body's energy (several bodies) and the system panel
+/// (with no body: one line saying so, the cloth panels, the scene's energy).
+fn views(app: &App) -> Vec<Stacked> {
     let panels = tables::panels(&app.snapshot, app.frame);
     let previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
     let compare = app
@@ -167,14 +267,17 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
     } else {
         order(panels.len(), compare.is_some())
     };
-    let mut views: Vec<(Vec<Line<'static>>, String)> = Vec::new();
+    let mut views: Vec<Stacked> = Vec::new();
     if no_body {
-        views.push((
+        views.push(Stacked::whole(
+            None,
             vec![Line::styled(NO_BODY.to_string(), UNIT)],
             NO_BODY.to_string(),
         ));
     }
-    views.extend(shown.into_iter().map(|i| {
+    let energy_at = PanelId::Energy.index();
+    let several = app.snapshot.bodies.len() > 1;
+    for i in shown {
         let view = PanelView {
             panel: &panels[i],
             previous: previous.as_ref().and_then(|p| p.get(i)),
@@ -182,8 +285,23 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
                 .as_ref()
                 .and_then(|(c, name)| c.get(i).map(|p| (p, *name))),
         };
-        (view.lines(), panels[i].title.clone())
-    }));
+        views.push(Stacked::of(page_panel_of(i), &panels[i], &view));
+        if i == energy_at && several {
+            // Each body's own energy, under the scene's.
+            let own = tables::body_energy_panel(&app.snapshot);
+            let before = app.previous.as_ref().map(tables::body_energy_panel);
+            let ghost = app
+                .ghost
+                .as_ref()
+                .map(|g| (tables::body_energy_panel(&g.snapshot), g.comparison.name()));
+            let view = PanelView {
+                panel: &own,
+                previous: before.as_ref(),
+                compare: ghost.as_ref().map(|(p, name)| (p, *name)),
+            };
+            views.push(Stacked::of(PagePanel::BodyEnergy, &own, &view));
+        }
+    }
     // The cloth panels come second: after the body's state, or after the line saying there
     // is no body (a scene with a cloth is about it: in a small terminal the other panels are
     // left out before them).
@@ -195,7 +313,8 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
             .ghost
             .as_ref()
             .and_then(|g| g.snapshot.cloths.get(k).map(|c| (c, g.comparison.name())));
-        cloth_panel::lines(c, s.dt, before, ghost)
+        let (lines, title) = cloth_panel::lines(c, s.dt, before, ghost);
+        Stacked::whole(Some(PagePanel::Cloth), lines, title)
     });
     let cloths: Vec<_> = cloths.collect();
     let after_cloths = at + cloths.len();
@@ -216,7 +335,7 @@ fn views(app: &App) -> Vec<(Vec<Line<'static>>, String)> {
                 .as_ref()
                 .and_then(|(g, name)| g.get(k).map(|p| (p, *name))),
         };
-        (view.lines(), panel.title.clone())
+        Stacked::of(PagePanel::Joints, panel, &view)
     });
     views.splice(after_cloths..after_cloths, links.collect::<Vec<_>>());
     views
@@ -244,15 +363,48 @@ fn widest(lines: &[Line]) -> u16 {
 pub fn width(app: &App) -> u16 {
     views(app)
         .iter()
-        .map(|(lines, _)| widest(lines))
+        .map(|v| widest(&v.lines()))
         .max()
         .unwrap_or(0)
         + 1
 }
 
+/// The width the panels the page quotes need to show their title and one row each (their
+/// narrowest row), with the border.
+pub fn quoted_width(app: &App) -> u16 {
+    let quoted = quoted(app);
+    views(app)
+        .iter()
+        .filter(|v| v.key.is_some_and(|k| quoted.contains(&k)))
+        .map(|v| {
+            let row = v
+                .groups
+                .iter()
+                .skip(1)
+                .map(|g| widest(g))
+                .min()
+                .unwrap_or(0);
+            row.max(widest(&v.groups[0]).min(row))
+        })
+        .max()
+        .map_or(0, |w| w + 1)
+}
+
 /// The essential numbers (the stage layout): position, velocity, ω, L, total energy and its
 /// change since t = 0 — rows of `tables::panels`, formatted by it.
 pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
+    essentials_for(s, frame, &[], &[])
+}
+
+/// The essentials, with what a page quotes: every row of the panels it names (`named`), and
+/// for its live numbers (`measures`, with the body each is about) the row that shows each
+/// when the defaults do not (a body's own energy, the momentum P).
+pub fn essentials_for(
+    s: &Snapshot,
+    frame: Frame,
+    named: &[PagePanel],
+    measures: &[(Measure, usize)],
+) -> Panel {
     let panels = tables::panels(s, frame);
     let pick = |id: PanelId, labels: &[&str]| -> Vec<Row> {
         panels
@@ -266,6 +418,7 @@ pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
             })
             .unwrap_or_default()
     };
+    let several = s.bodies.len() > 1;
     let mut rows = Vec::new();
     if !s.bodies.is_empty() {
         rows.extend(pick(PanelId::State, &["x"]));
@@ -284,6 +437,54 @@ pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
                 .filter(|r| ["max stretch", "max speed", "dt/h*"].contains(&r.label.as_str())),
         );
     }
+    // What the page quotes.
+    let body_energy = || tables::body_energy_panel(s).rows;
+    let mut extra: Vec<Row> = Vec::new();
+    for &(m, body) in measures {
+        match panel_of_measure(m, several) {
+            Some(PagePanel::BodyEnergy) => extra.extend(body_energy().into_iter().nth(body)),
+            Some(PagePanel::System) => extra.extend(
+                tables::system_panel(s)
+                    .rows
+                    .into_iter()
+                    .filter(|r| r.label == "P total"),
+            ),
+            Some(PagePanel::Momentum) if matches!(m, Measure::SceneMomentum(_)) => {
+                extra.extend(pick(PanelId::Momentum, &["P"]))
+            }
+            _ => {}
+        }
+    }
+    for &name in named {
+        match name {
+            PagePanel::BodyEnergy if several => extra.extend(body_energy()),
+            PagePanel::System if several => extra.extend(tables::system_panel(s).rows),
+            PagePanel::Joints => {
+                for p in link_panels(s) {
+                    extra.extend(p.rows.into_iter().take(2));
+                }
+            }
+            PagePanel::BodyEnergy | PagePanel::System | PagePanel::Cloth => {}
+            _ if s.bodies.is_empty() && name != PagePanel::Energy => {}
+            _ => {
+                let id = PanelId::ALL
+                    .into_iter()
+                    .find(|p| p.page_panel() == name)
+                    .expect("every other page panel is one of tables::panels");
+                extra.extend(
+                    panels
+                        .get(id.index())
+                        .into_iter()
+                        .flat_map(|p| p.rows.clone()),
+                );
+            }
+        }
+    }
+    for row in extra {
+        if !rows.contains(&row) {
+            rows.push(row);
+        }
+    }
     Panel {
         title: match frame {
             Frame::World => "essentials".to_string(),
@@ -293,14 +494,37 @@ pub fn essentials(s: &Snapshot, frame: Frame) -> Panel {
     }
 }
 
+/// The essentials of the app's page (see [`essentials_for`]) for snapshot `s` of the app.
+pub fn essentials_of(app: &App, s: &Snapshot) -> Panel {
+    let (named, measures) = page_quotes(app);
+    essentials_for(s, app.frame, &named, &measures)
+}
+
+/// The page's `panels`, and its live numbers' and prediction's quantities with their body.
+fn page_quotes(app: &App) -> (Vec<PagePanel>, Vec<(Measure, usize)>) {
+    let Some((_, page)) = app.lesson.page_at(app.snapshot.time) else {
+        return (Vec::new(), Vec::new());
+    };
+    let mut measures: Vec<(Measure, usize)> = page
+        .live
+        .iter()
+        .map(|n| &n.quantity)
+        .chain(page.predict.iter().map(|p| &p.quantity))
+        .map(|q| (q.measure, q.body))
+        .collect();
+    measures.sort();
+    measures.dedup();
+    (page.panels.clone(), measures)
+}
+
 /// The essentials panel's lines (with the ghost's in compare mode).
 fn essentials_lines(app: &App) -> Vec<Line<'static>> {
-    let panel = essentials(&app.snapshot, app.frame);
-    let previous = app.previous.as_ref().map(|p| essentials(p, app.frame));
+    let panel = essentials_of(app, &app.snapshot);
+    let previous = app.previous.as_ref().map(|p| essentials_of(app, p));
     let compare = app
         .ghost
         .as_ref()
-        .map(|g| (essentials(&g.snapshot, app.frame), g.comparison.name()));
+        .map(|g| (essentials_of(app, &g.snapshot), g.comparison.name()));
     PanelView {
         panel: &panel,
         previous: previous.as_ref(),
@@ -337,21 +561,82 @@ pub fn render_essentials(app: &App, area: Rect, buf: &mut Buffer) {
     }
 }
 
-/// All panels, stacked; a panel that does not fit (in height or in width) is left out whole,
-/// and what is left out is named on the last line.
+/// What the panels column shows in `width × height`: for each panel of [`views`] (in
+/// stacking order) the groups shown, None for a panel left out; and the title a quoted panel
+/// shown in part takes.
+///
+/// The panels the page quotes ([`quoted`]) are placed first: whole if they fit, otherwise the
+/// rows that fit (a quoted panel is never left out while one of its rows fits). Then the other
+/// panels, in stacking order, each whole or not at all.
+pub fn arrange(app: &App, width: u16, height: u16) -> Vec<(Stacked, Option<Vec<usize>>)> {
+    let views = views(app);
+    let quoted = quoted(app);
+    let height = usize::from(height);
+    let mut used = 0usize;
+    let mut chosen: Vec<Option<Vec<usize>>> = vec![None; views.len()];
+    let is_quoted = |v: &Stacked| v.key.is_some_and(|k| quoted.contains(&k));
+    for pass in [true, false] {
+        for (k, view) in views.iter().enumerate() {
+            if is_quoted(view) != pass {
+                continue;
+            }
+            let lines = view.lines();
+            if used + lines.len() <= height && widest(&lines) <= width {
+                used += lines.len();
+                chosen[k] = Some((0..view.groups.len()).collect());
+            } else if pass && widest(&view.groups[0]) <= width {
+                // The rows that fit, under the title.
+                let mut rows = vec![0];
+                let mut need = view.groups[0].len();
+                for (g, group) in view.groups.iter().enumerate().skip(1) {
+                    if widest(group) <= width && used + need + group.len() <= height {
+                        need += group.len();
+                        rows.push(g);
+                    }
+                }
+                if rows.len() > 1 {
+                    used += need;
+                    chosen[k] = Some(rows);
+                }
+            }
+        }
+    }
+    views.into_iter().zip(chosen).collect()
+}
+
+/// All panels, stacked as [`arrange`] chooses; what is left out is named on the last line, and
+/// a quoted panel shown in part names the rows it leaves out in its title.
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let block = Block::new().borders(Borders::LEFT).border_style(theme::DIM);
     let inner = block.inner(area);
     block.render(area, buf);
-    let views = views(app);
     let height = usize::from(inner.height);
     let mut lines: Vec<Line> = Vec::new();
-    let mut left_out: Vec<&str> = Vec::new();
-    for (panel_lines, title) in &views {
-        if lines.len() + panel_lines.len() <= height && widest(panel_lines) <= inner.width {
-            lines.extend(panel_lines.iter().cloned());
-        } else {
-            left_out.push(title);
+    let mut left_out: Vec<String> = Vec::new();
+    for (view, rows) in arrange(app, inner.width, inner.height) {
+        let Some(rows) = rows else {
+            left_out.push(view.title.clone());
+            continue;
+        };
+        let missing: Vec<&str> = (1..view.groups.len())
+            .filter(|g| !rows.contains(g))
+            .filter_map(|g| view.labels.get(g - 1).map(String::as_str))
+            .filter(|l| !l.is_empty())
+            .collect();
+        for &g in &rows {
+            let mut group = view.groups[g].clone();
+            if g == 0 && !missing.is_empty() {
+                let note = format!(" (enlarge for {})", missing.join(", "));
+                let fits =
+                    |n: &str| group[0].width() + n.chars().count() <= usize::from(inner.width);
+                let note = if fits(&note) {
+                    note
+                } else {
+                    " (part)".to_string()
+                };
+                group[0].push_span(Span::styled(note, UNIT));
+            }
+            lines.extend(group);
         }
     }
     if !left_out.is_empty() && lines.len() < height {
@@ -361,4 +646,9 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ));
     }
     Paragraph::new(lines).render(inner, buf);
+}
+
+/// Each panel of the stack (in stacking order) by the name a page gives it, with its title.
+pub fn titles(app: &App) -> Vec<(Option<PagePanel>, String)> {
+    views(app).into_iter().map(|v| (v.key, v.title)).collect()
 }

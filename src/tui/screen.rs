@@ -63,11 +63,22 @@ pub fn main_areas(app: &App, area: Rect) -> Areas {
         ScreenLayout::Numbers => panels::width(app),
         ScreenLayout::Stage => 0,
     };
+    let quoted_width = match app.layout {
+        ScreenLayout::Numbers => panels::quoted_width(app),
+        ScreenLayout::Stage => 0,
+    };
     let page_lines = match app.layout {
         ScreenLayout::Stage => lesson_pane::line_count(app, area.width.saturating_sub(2)),
         ScreenLayout::Numbers => 0,
     };
-    layout::areas(area, app.layout, panels_width, essentials, page_lines)
+    layout::areas(
+        area,
+        app.layout,
+        panels_width,
+        quoted_width,
+        essentials,
+        page_lines,
+    )
 }
 
 /// A rectangle of at most `width × height` centred in `area`.

@@ -13,8 +13,8 @@ use ratatui::text::{Line, Span};
 const KEY: Style = theme::KEY;
 const DIM: Style = theme::DIM;
 
-/// The status fields, each a group of spans.
-fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
+/// The status fields, each a group of spans (the notice last, when `notice` and there is one).
+fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
     let s = &app.snapshot;
     let effects = app.world.effects().names();
     let response = app.world.contact_model().map_or("—", |m| m.response.name());
@@ -100,7 +100,7 @@ fn fields(app: &App) -> Vec<Vec<Span<'static>>> {
         ));
         items.push(item);
     }
-    if let Some(notice) = &app.notice {
+    if let Some(notice) = app.notice.as_ref().filter(|_| notice) {
         items.push(vec![Span::styled(notice.clone(), theme::NOTICE)]);
     }
     items
@@ -118,11 +118,19 @@ fn cloth_integrators(app: &App) -> Option<String> {
     (!names.is_empty()).then(|| names.join(" + "))
 }
 
-/// The status fields, whole, on as many lines of `width` columns as they need (a field is
-/// never cut; one wider than the line is the only one on its line).
+/// The status fields and the notice, whole, on as many lines of `width` columns as they need
+/// (a field is never cut; one wider than the line is the only one on its line).
 pub fn field_lines(app: &App, width: u16) -> Vec<Line<'static>> {
+    lines_of(fields(app, true), width)
+}
+
+fn fields_without_notice(app: &App) -> Vec<Vec<Span<'static>>> {
+    fields(app, false)
+}
+
+fn lines_of(fields: Vec<Vec<Span<'static>>>, width: u16) -> Vec<Line<'static>> {
     let mut lines: Vec<Line<'static>> = vec![Line::raw(" ")];
-    for item in fields(app) {
+    for item in fields {
         let w: usize = item.iter().map(|s| s.width()).sum();
         let line = lines.last_mut().expect("one line at least");
         let used = line.width();
@@ -140,16 +148,29 @@ pub fn field_lines(app: &App, width: u16) -> Vec<Line<'static>> {
 }
 
 /// Rows the status bar takes at this size: the fields, then one or two lines of hints (the
-/// whole bar at most 3 rows in a terminal under 30 rows).
+/// whole bar at most 3 rows in a terminal under 30 rows). The notice (a pause, a refused key)
+/// is not counted: it takes a row of the hints, so a notice never takes a row from the panels
+/// or the drawing above.
 pub fn height(app: &App, width: u16, screen_height: u16) -> u16 {
-    let fields = field_lines(app, width).len();
+    let fields = lines_of(fields(app, false), width).len();
     let hints = hints(width, 2).len();
     let cap = if screen_height < 30 { 3 } else { 4 };
     (fields + hints).min(cap).max(fields.min(cap)) as u16
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let fields = field_lines(app, area.width);
+    let mut fields = field_lines(app, area.width);
+    if fields.len() > usize::from(area.height) {
+        // No hint row left for the notice: it takes the last row (what the user must read).
+        if let Some(notice) = &app.notice {
+            fields = lines_of(fields_without_notice(app), area.width);
+            fields.truncate(usize::from(area.height).saturating_sub(1));
+            fields.push(Line::from(vec![
+                Span::raw(" "),
+                Span::styled(notice.clone(), theme::NOTICE),
+            ]));
+        }
+    }
     let mut row = area.y;
     for line in fields.iter().take(usize::from(area.height)) {
         buf.set_line(area.x, row, line, area.width);

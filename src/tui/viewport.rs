@@ -149,8 +149,10 @@ impl Region {
 
     /// Moves until every point is inside. While the extent along an axis stays within
     /// `max_extent`, each side exceeded moves out by the region's extent (doubling it); past
-    /// that the region keeps its size and re-centres on the points. The view changes rarely,
-    /// never shrinks, and a body that falls for ever stays drawn at a readable size.
+    /// that the region keeps its size and re-centres on the points — unless they are spread
+    /// wider than it (several bodies flying apart), when it doubles anyway: every point stays
+    /// in view. The view changes rarely, never shrinks, and a body that falls for ever stays
+    /// drawn at a readable size.
     pub fn include(&mut self, points: &[Vector3<f64>]) {
         let finite = points.iter().filter(|p| p.iter().all(|c| c.is_finite()));
         let (mut lo, mut hi) = (
@@ -172,10 +174,16 @@ impl Region {
                     break;
                 }
                 if 2.0 * extent > self.max_extent {
-                    let shift = 0.5 * (lo[i] + hi[i]) - 0.5 * (self.min[i] + self.max[i]);
-                    self.min[i] += shift;
-                    self.max[i] += shift;
-                    break;
+                    if hi[i] - lo[i] <= extent {
+                        let shift = 0.5 * (lo[i] + hi[i]) - 0.5 * (self.min[i] + self.max[i]);
+                        self.min[i] += shift;
+                        self.max[i] += shift;
+                        break;
+                    }
+                    // The points are spread wider than the region (bodies flying apart):
+                    // sliding would lose some of them, so it grows after all, and may grow
+                    // that far from now on.
+                    self.max_extent = 2.0 * extent;
                 }
                 if hi[i] > self.max[i] {
                     self.max[i] += extent;
@@ -305,6 +313,23 @@ mod tests {
         region.include(&[Vector3::new(0.0, -3.0, 0.0)]);
         assert_eq!(region.min.y, -3.0, "min {}", region.min.y);
         assert_eq!(region.max.y, 1.0);
+    }
+
+    #[test]
+    fn points_spread_wider_than_the_region_make_it_grow_past_its_largest_extent() {
+        // Extent 4 = max_extent along x, points at x = −3 and x = 5 (spread 8): re-centring
+        // the 4 m region on x = 1 ([−1, 3]) would lose both. It doubles instead, on the side
+        // exceeded first ([−1, 7], extent 8), then, as wide as the points, re-centres on
+        // x = 1: [−3, 5].
+        let mut region = Region {
+            min: Vector3::new(-1.0, -1.0, -1.0),
+            max: Vector3::new(3.0, 1.0, 1.0),
+            max_extent: 4.0,
+        };
+        region.include(&[Vector3::new(-3.0, 0.0, 0.0), Vector3::new(5.0, 0.0, 0.0)]);
+        assert!(region.min.x <= -3.0 && region.max.x >= 5.0, "{region:?}");
+        assert_eq!((region.min.x, region.max.x), (-3.0, 5.0));
+        assert_eq!(region.max_extent, 8.0, "it may grow that far from now on");
     }
 
     #[test]

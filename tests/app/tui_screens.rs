@@ -168,7 +168,8 @@ fn words(lines: &[String]) -> Vec<String> {
 fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     let lines: Vec<&str> = shown.lines().collect();
     let mut all = tables::panels(&app.snapshot, app.frame);
-    all.push(panels::essentials(&app.snapshot, app.frame));
+    all.push(panels::essentials_of(app, &app.snapshot));
+    all.push(tables::body_energy_panel(&app.snapshot));
     for c in &app.snapshot.cloths {
         let (panel, text) = cloth_panel::panel(c, app.snapshot.dt);
         let title = format!("│{}", panel.title);
@@ -220,6 +221,7 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
             .iter()
             .take_while(|l| {
                 !l.starts_with(" t ")
+                    && !l.starts_with(" body ")
                     && !l.starts_with(&format!(" {}", panels::NO_BODY))
                     && !l.starts_with('┌')
             })
@@ -634,4 +636,336 @@ fn a_hinge_seen_end_on_is_a_circled_dot_and_a_spring_a_zigzag() {
     // tension = k (|d| − ℓ₀) = 100 · (1 − 0.5) = 50 N.
     assert!(shown.contains("50.000000"), "{shown}");
     insta::assert_snapshot!("spring_80x24", shown);
+}
+
+/// Runs the app as the event loop does (running, pausing at page times) to its next pause.
+fn run_to_next_pause(app: &mut App) {
+    app.running = true;
+    app.step_frames(10_000_000);
+    app.running = false;
+}
+
+#[test]
+fn a_pause_line_never_hides_a_panel() {
+    // At a page's pause the status line says "page 2/4 … Enter continues". That notice takes
+    // a row of the key hints, never one of the main area: the drawing, panels, page and loop
+    // strip are the same with the notice as without it (before, at 120×40 the energy panel of
+    // lessons 5, 8, 13, 14 and 15 gave up its row at every pause).
+    for name in [
+        "05-ground-collision.toml",
+        "08-climbing-bug.toml",
+        "13-what-vertices-miss.toml",
+        "14-head-on.toml",
+        "15-stack.toml",
+    ] {
+        let mut app = lesson(name);
+        for pause in 1..=2 {
+            run_to_next_pause(&mut app);
+            assert!(app.notice.is_some(), "{name}: no pause {pause}");
+            let mut quiet = app.clone();
+            quiet.notice = None;
+            for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
+                app.layout = layout;
+                quiet.layout = layout;
+                for (w, h) in [(80, 24), (100, 31), (120, 40), (200, 60)] {
+                    let (with, without) = (screen(&app, w, h), screen(&quiet, w, h));
+                    let status = 4; // the status bar is at most 4 rows
+                    let main = |s: &str| {
+                        s.lines()
+                            .take(usize::from(h) - status)
+                            .map(str::to_string)
+                            .collect::<Vec<_>>()
+                    };
+                    assert_eq!(
+                        main(&with),
+                        main(&without),
+                        "{name} pause {pause}, {layout:?} {w}×{h}: the notice moved the screen:\n{with}"
+                    );
+                    let notice = app.notice.clone().unwrap();
+                    let head: String = notice.chars().take(20).collect();
+                    assert!(
+                        with.contains(&head),
+                        "{name} {w}×{h}: no `{notice}`:\n{with}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Whether the panel titled `title` is shown on `shown` (its title line, whole or with the
+/// note of a panel shown in part).
+fn panel_shown(shown: &str, title: &str) -> bool {
+    let key = format!("│{title}");
+    shown.lines().any(|l| {
+        l.rfind(&key).is_some_and(|i| {
+            let rest = &l[i + key.len()..];
+            rest.is_empty() || rest.starts_with(" (")
+        })
+    })
+}
+
+#[test]
+fn the_panels_a_page_quotes_are_shown_at_every_width_from_80_to_240() {
+    // Each page of these lessons quotes panels: by its live numbers (lesson 1's {{Py}} and
+    // {{y}}: momentum and state; lesson 16's {{vy@…}}, {{energy@4}}) or by its `panels` key
+    // (lesson 1's first page: state, momentum, angular momentum; lesson 10: angular velocity,
+    // for ωbody; lesson 14: each body's energy and the system's momentum). At every size each
+    // quoted panel is shown (whole, or the rows that fit), the others yield.
+    use tumble::scene::PagePanel;
+    for name in [
+        "01-the-loop.toml",
+        "10-tennis-racket.toml",
+        "14-head-on.toml",
+        "16-trampoline.toml",
+    ] {
+        let mut app = lesson(name);
+        let times: Vec<f64> = app.lesson.pages.iter().map(|p| p.at).collect();
+        let mut quoting = 0;
+        for at in times {
+            let steps = tumble::tui::timeline::step_at(at, app.snapshot.dt);
+            app.step_frames(steps - app.snapshot.step);
+            let quoted = panels::quoted(&app);
+            if quoted.is_empty() {
+                continue;
+            }
+            quoting += 1;
+            let titles = panels::titles(&app);
+            for height in [24, 31, 40, 60] {
+                for width in 80..=240 {
+                    let shown = screen(&app, width, height);
+                    for key in &quoted {
+                        let wanted: Vec<&String> = titles
+                            .iter()
+                            .filter(|(k, _)| *k == Some(*key))
+                            .map(|(_, t)| t)
+                            .collect();
+                        // Several cloths or joints: at least the first.
+                        let first = wanted.first().unwrap_or_else(|| {
+                            panic!("{name} at {at} s quotes {key:?}, which it has not")
+                        });
+                        assert!(
+                            panel_shown(&shown, first),
+                            "{name} at {at} s, {width}×{height}: quoted panel `{first}` not shown:\n{shown}"
+                        );
+                    }
+                    assert_nothing_cut(
+                        &app,
+                        &shown,
+                        &format!("{name} at {at} s, {width}×{height}"),
+                    );
+                }
+            }
+            // The stage layout's essentials hold the rows of the panels the page names.
+            app.layout = ScreenLayout::Stage;
+            let essentials = panels::essentials_of(&app, &app.snapshot);
+            for key in &app.lesson.page_at(app.snapshot.time).unwrap().1.panels {
+                if *key == PagePanel::AngularVelocity {
+                    assert!(
+                        essentials.rows.iter().any(|r| r.label == "ωbody"),
+                        "{name} at {at} s: no ωbody in the essentials"
+                    );
+                    let shown = screen(&app, 120, 40);
+                    assert!(shown.contains("ωbody"), "{name}:\n{shown}");
+                }
+            }
+            app.layout = ScreenLayout::Numbers;
+        }
+        assert!(quoting >= 2, "{name}: {quoting} pages quote panels");
+    }
+}
+
+#[test]
+fn shot_and_record_set_the_screen_as_the_app_keys_do() {
+    // `--view top` (key v twice), `--no-arrows` (key a), `--graph` (key g), `--compare NAME`
+    // (key k): each shows in the exported text as it does on the app's screen.
+    use assert_cmd::Command;
+    let dir = std::env::temp_dir().join(format!("tumble-screen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = root().join("tests/fixtures/tui-box.toml");
+    let shot = |args: &[&str]| -> String {
+        let svg = dir.join("s.svg");
+        Command::cargo_bin("tumble")
+            .unwrap()
+            .arg("shot")
+            .arg(&file)
+            .args(["--at", "0.05", "--svg"])
+            .arg(&svg)
+            .args(args)
+            .assert()
+            .success();
+        xml_text(&std::fs::read_to_string(&svg).unwrap())
+    };
+    let plain = shot(&[]);
+    assert!(
+        plain.contains("front x–y") && plain.contains("ang. vel."),
+        "{plain}"
+    );
+    let top = shot(&["--view", "top"]);
+    assert!(
+        top.contains("top x–z") && !top.contains("front x–y"),
+        "{top}"
+    );
+    assert!(shot(&["--view", "side"]).contains("side z–y"));
+    let bare = shot(&["--no-arrows"]);
+    assert!(!bare.contains("ang. vel."), "{bare}");
+    let graph = shot(&["--graph"]);
+    assert!(
+        graph.contains("energy, J") && !graph.contains("front x–y"),
+        "{graph}"
+    );
+    let ghost = shot(&["--compare", "euler-seed"]);
+    assert!(ghost.contains("vs euler-seed"), "{ghost}");
+    // The same options for record; a bad one is a one-line error, exit 2.
+    let cast = dir.join("r.cast");
+    Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("record")
+        .arg(&file)
+        .args(["--duration", "0.05", "--view", "top", "--out"])
+        .arg(&cast)
+        .assert()
+        .success();
+    let frames = std::fs::read_to_string(&cast).unwrap();
+    assert!(
+        frames.lines().skip(1).all(|l| l.contains("top x")),
+        "{frames}"
+    );
+    for bad in [&["--view", "diagonal"][..], &["--compare", "rk4"][..]] {
+        let out = Command::cargo_bin("tumble")
+            .unwrap()
+            .arg("shot")
+            .arg(&file)
+            .args(["--svg"])
+            .arg(dir.join("bad.svg"))
+            .args(bad)
+            .assert()
+            .code(2);
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(bad[1]), "{bad:?}: {stderr}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn several_bodies_flying_apart_all_stay_in_the_drawing() {
+    // Lesson 14: `left` stops at x = −0.2 m, `right` leaves at 1 m/s (e = 1): by t = 2 s (the
+    // lesson's duration) they are about 1.7 m apart, by t = 5 s 4.7 m — wider than the 8 body
+    // diameters the view may otherwise grow to (8 × 2 × 0.173 = 2.77 m). Before, the view slid
+    // to their middle and kept its size: part of one cube at 2 s, nothing at 5 s. Every
+    // vertex of every body must map inside the drawing.
+    let mut app = lesson("14-head-on.toml");
+    for (frames, t) in [(2000, 2.0), (3000, 5.0)] {
+        app.step_frames(frames);
+        assert!((app.snapshot.time - t).abs() < 1e-9);
+        for (w, h) in [(80, 24), (120, 40)] {
+            let main = ratatui::layout::Rect::new(0, 1, w, h - 4);
+            let drawing = tumble::tui::screen::main_areas(&app, main).drawing;
+            let (cols, rows) = (drawing.width - 2, drawing.height - 2);
+            let mapping = tumble::tui::viewport::Mapping::fit(&app.region, app.axis, cols, rows);
+            for body in &app.snapshot.bodies {
+                for v in &body.vertices {
+                    let (hx, vy) = app.axis.project(v);
+                    let (c, r) = mapping.cell(hx, vy);
+                    assert!(
+                        (0.0..=f64::from(cols)).contains(&c)
+                            && (0.0..=f64::from(rows)).contains(&r),
+                        "t = {t} s, {w}×{h}: {} at cell ({c:.1}, {r:.1}) outside {cols}×{rows}",
+                        body.name
+                    );
+                }
+            }
+            // And drawn: the cubes' barycenters `@` (at 80 columns a cube is a cell or two,
+            // under the arrows).
+            if w < 120 {
+                continue;
+            }
+            let shown = screen(&app, w, h);
+            let drawing_text: String = shown
+                .lines()
+                .take_while(|l| !l.starts_with('└'))
+                .collect::<Vec<_>>()
+                .join("\n");
+            assert!(
+                drawing_text.matches('@').count() >= 2,
+                "t = {t} s:\n{shown}"
+            );
+        }
+    }
+}
+
+#[test]
+fn page_scrolling_stops_at_the_pages_end() {
+    // Lesson 5's second page is 25 lines at 120×40 and its pane shows 10: PgDn stops at the
+    // last 10 (lines 16-25), however often it is pressed, so one PgUp moves the page back
+    // at once (before, every extra PgDn had to be undone: five PgUp to come back).
+    let mut app = lesson("05-ground-collision.toml");
+    run_to_next_pause(&mut app);
+    let pgdn = KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE);
+    let pgup = KeyEvent::new(KeyCode::PageUp, KeyModifiers::NONE);
+    let position = |s: &str| -> String {
+        let l = s
+            .lines()
+            .find(|l| l.contains(" of 25 "))
+            .unwrap_or_else(|| panic!("{s}"));
+        let i = l.find(" of 25 ").unwrap();
+        l[..i].rsplit(' ').next().unwrap().to_string()
+    };
+    screen(&app, 120, 40);
+    for _ in 0..12 {
+        app.handle_key(&pgdn);
+        screen(&app, 120, 40);
+    }
+    let end = screen(&app, 120, 40);
+    assert_eq!(position(&end), "16-25", "{end}");
+    app.handle_key(&pgup);
+    let back = screen(&app, 120, 40);
+    assert_eq!(position(&back), "13-22", "{back}");
+}
+
+#[test]
+fn the_energy_graphs_labels_never_overlap_and_its_legend_is_out_of_the_curves() {
+    // Lesson 5 at t = 0.42 s, the energy view (key g). Each y-axis label is printed whole,
+    // alone on its row: one of the axis's own labels (lo, mid, hi). Before, in a drift chart
+    // three rows tall the mid label `0` was drawn over `-9.9e-6`: `09.9e-6`. The legend is
+    // in the chart's title line, where no curve runs.
+    use tumble::tui::energy_graph::axis_label;
+    let mut app = lesson("05-ground-collision.toml");
+    app.step_frames(420);
+    keys(&mut app, "g");
+    for (w, h) in [(80, 24), (100, 31), (120, 40), (200, 60)] {
+        let shown = screen(&app, w, h);
+        let mut allowed = Vec::new();
+        for r in [app.series.energy_axis, app.series.drift_axis] {
+            let span = r.hi - r.lo;
+            for x in [r.lo, 0.5 * (r.lo + r.hi), r.hi] {
+                allowed.push(axis_label(x, span));
+            }
+        }
+        let mut labels = 0;
+        for line in shown.lines().skip(1) {
+            // A plot row: `│LABEL │…` (the label column, then the y axis).
+            let Some(rest) = line.strip_prefix('│') else {
+                continue;
+            };
+            let Some((label, _)) = rest.split_once('│') else {
+                continue;
+            };
+            let label = label.trim();
+            if label.is_empty() || label.contains('─') || label.len() > 12 {
+                continue;
+            }
+            assert!(
+                allowed.iter().any(|a| a == label),
+                "{w}×{h}: y label `{label}` is none of {allowed:?}:\n{shown}"
+            );
+            labels += 1;
+        }
+        assert!(labels >= 4, "{w}×{h}: {labels} labels:\n{shown}");
+        assert!(
+            shown.contains("energy, J ━ kinetic ━ potential ━ total ")
+                || shown.contains("energy, J ━ K ━ V ━ E "),
+            "{w}×{h}: legend cut:\n{shown}"
+        );
+    }
 }

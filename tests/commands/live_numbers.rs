@@ -162,6 +162,11 @@ fn unknown_quantities_and_bodies_are_refused_at_their_line_and_column() {
             r#"predict = { quantity = "cube.hight", at = 0.6 }"#,
             "drop.toml:23:24: predict: unknown quantity `cube.hight`",
         ),
+        (
+            "fine",
+            r#"panels = ["energy", "energie"]"#,
+            "drop.toml:23:21: page `panels`: unknown panel `energie` (panels: state,",
+        ),
     ];
     for (text, predict, expected) in cases {
         let e = tumble::scene::parse(&source(text, predict), Path::new("drop.toml"))
@@ -169,6 +174,21 @@ fn unknown_quantities_and_bodies_are_refused_at_their_line_and_column() {
             .to_string();
         assert!(e.starts_with(expected), "{e}\nexpected: {expected}");
     }
+}
+
+#[test]
+fn a_page_names_its_panels() {
+    use tumble::scene::PagePanel;
+    let lesson = tumble::scene::parse(
+        &source("fine", r#"panels = ["body-energy", "angular-velocity"]"#),
+        Path::new("drop.toml"),
+    )
+    .unwrap();
+    assert_eq!(lesson.pages[0].panels, vec![]);
+    assert_eq!(
+        lesson.pages[1].panels,
+        vec![PagePanel::BodyEnergy, PagePanel::AngularVelocity]
+    );
 }
 
 #[test]
