@@ -7,7 +7,7 @@
 //! 2. **Timed runs** (a short warm-up, then up to `repeats` runs of plain [`World::step`],
 //!    nothing observed): ns per step is the median of all their 1000-step chunks (robust to
 //!    other processes taking the CPU on a shared machine). A run of many chunks is timed fewer
-//!    times: [`TIMED_CHUNKS`] chunks are enough for the median, so a 100 000-step run is timed
+//!    times: `TIMED_CHUNKS` (100) chunks are enough for the median, so a 100 000-step run is timed
 //!    once, a 100-step run `repeats` times.
 //!
 //! ```text

@@ -561,7 +561,7 @@ pub fn render_essentials(app: &App, area: Rect, buf: &mut Buffer) {
     }
 }
 
-/// What the panels column shows in `width × height`: for each panel of [`views`] (in
+/// What the panels column shows in `width × height`: for each panel of `views` (in
 /// stacking order) the groups shown, None for a panel left out; and the title a quoted panel
 /// shown in part takes.
 ///
