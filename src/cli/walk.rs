@@ -166,7 +166,13 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
         let cloths: Vec<String> = world
             .cloths()
             .iter()
-            .map(|c| format!("cloth {}, {}", c.name, c.integrator.name()))
+            .map(|c| {
+                format!(
+                    "{}, {}",
+                    crate::physics::cloth::label(&c.name),
+                    c.integrator.name()
+                )
+            })
             .collect();
         format!(
             "dt = {} s · {} · effects: {effects} · obstacles: {obstacles}",

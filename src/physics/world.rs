@@ -1273,7 +1273,10 @@ impl World {
             } else {
                 return None;
             };
-            Some((c, format!("{what} is not finite (cloth {})", c.name)))
+            Some((
+                c,
+                format!("{what} is not finite ({})", super::cloth::label(&c.name)),
+            ))
         })
     }
 
@@ -1321,11 +1324,11 @@ impl World {
     }
 }
 
-/// "cloth `NAME`, integrator NAME": a cloth's divergence names its own integrator.
+/// "cloth NAME, integrator NAME": a cloth's divergence names its own integrator.
 fn cloth_subject(cloth: &Cloth) -> String {
     format!(
-        "cloth {}, integrator {}",
-        cloth.name,
+        "{}, integrator {}",
+        super::cloth::label(&cloth.name),
         cloth.integrator.name()
     )
 }

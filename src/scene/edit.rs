@@ -177,13 +177,17 @@ impl SceneEdits {
         for c in &self.cloths {
             if !(c.stretch > 0.0 && c.stretch.is_finite()) {
                 return Some(format!(
-                    "cloth {}: stretch must be > 0, found {}",
-                    c.name, c.stretch
+                    "{}: stretch must be > 0, found {}",
+                    crate::physics::cloth::label(&c.name),
+                    c.stretch
                 ));
             }
             for (what, k) in [("shear", c.shear), ("bend", c.bend)] {
                 if !(k >= 0.0 && k.is_finite()) {
-                    return Some(format!("cloth {}: {what} must be ≥ 0, found {k}", c.name));
+                    return Some(format!(
+                        "{}: {what} must be ≥ 0, found {k}",
+                        crate::physics::cloth::label(&c.name)
+                    ));
                 }
             }
         }

@@ -45,7 +45,11 @@ pub fn panel(c: &ClothView, dt: f64) -> (Panel, Vec<String>) {
     ];
     (
         Panel {
-            title: format!("cloth {} · {}", c.name, c.integrator),
+            title: format!(
+                "{} · {}",
+                crate::physics::cloth::label(&c.name),
+                c.integrator
+            ),
             rows,
         },
         text,

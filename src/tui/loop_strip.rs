@@ -192,7 +192,7 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     for (c, view) in world.cloths().iter().zip(&s.cloths) {
         lines.push(line(
-            format!("cloth {}: ", view.name),
+            format!("{}: ", crate::physics::cloth::label(&view.name)),
             format!(
                 "{} on its {} free particles, h = dt = {} s   (f: springs, damping, effects)",
                 view.integrator,
@@ -270,7 +270,10 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         if what.is_empty() {
             what.push("nothing to touch".to_string());
         }
-        lines.push(line(format!("cloth {}: ", view.name), what.join(", ")));
+        lines.push(line(
+            format!("{}: ", crate::physics::cloth::label(&view.name)),
+            what.join(", "),
+        ));
     }
     lines
 }

@@ -200,12 +200,14 @@ impl SettingsForm {
 
     /// A field's label and unit: a cloth's names the cloth, "cloth NAME integrator".
     pub fn label(&self, field: &Field) -> (String, &'static str) {
-        let cloth = |i: usize| self.base.cloths.get(i).map_or("?", |c| c.name.as_str());
+        let cloth = |i: usize| {
+            crate::physics::cloth::label(self.base.cloths.get(i).map_or("?", |c| c.name.as_str()))
+        };
         match field.kind {
-            FieldKind::ClothIntegrator(i) => (format!("cloth {} integrator", cloth(i)), ""),
+            FieldKind::ClothIntegrator(i) => (format!("{} integrator", cloth(i)), ""),
             FieldKind::ClothStretch(i) | FieldKind::ClothShear(i) | FieldKind::ClothBend(i) => {
                 let (label, unit) = field.kind.label();
-                (format!("cloth {} {label}", cloth(i)), unit)
+                (format!("{} {label}", cloth(i)), unit)
             }
             kind => {
                 let (label, unit) = kind.label();
@@ -381,8 +383,8 @@ impl SettingsForm {
         for (old, new) in b.cloths.iter().zip(&edits.cloths) {
             if old.integrator != new.integrator {
                 parts.push(format!(
-                    "cloth {} {} → {}",
-                    old.name,
+                    "{} {} → {}",
+                    crate::physics::cloth::label(&old.name),
                     old.integrator.name(),
                     new.integrator.name()
                 ));
@@ -394,7 +396,7 @@ impl SettingsForm {
             ] {
                 note(
                     &mut parts,
-                    &format!("cloth {} {what}", old.name),
+                    &format!("{} {what}", crate::physics::cloth::label(&old.name)),
                     o,
                     n,
                     "N/m",

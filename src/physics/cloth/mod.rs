@@ -38,3 +38,26 @@ pub use spec::{Attach, ClothSpec, ClothSpecError, Pinning};
 pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
 pub use ties::{SolverBody, Tie, TieKind};
+
+/// How text names a cloth: "cloth sheet" for a cloth named `sheet`, but just "cloth" or
+/// "cloth1" for one whose name already says it (never "cloth cloth").
+pub fn label(name: &str) -> String {
+    if name.to_lowercase().starts_with("cloth") {
+        name.to_string()
+    } else {
+        format!("cloth {name}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::label;
+
+    #[test]
+    fn a_cloth_is_named_once() {
+        assert_eq!(label("sheet"), "cloth sheet");
+        assert_eq!(label("cloth"), "cloth");
+        assert_eq!(label("cloth2"), "cloth2");
+        assert_eq!(label("Cloth of gold"), "Cloth of gold");
+    }
+}
