@@ -33,13 +33,12 @@
 //! impulses are not re-solved with the joints: a chain sliding on the ground brakes a little
 //! less exactly than Coulomb's law per link says).
 
-use super::projection::shift;
-use super::rows::{rows_of, Pose, Row};
+use super::projection::{joint_rows, shift};
+use super::rows::{Pose, Row};
 use super::solve::{multipliers, Inverse, Solver};
 use super::Links;
 use crate::physics::body::Body;
 use crate::physics::collision::Contact;
-use crate::physics::derive::derive;
 use crate::physics::effects::Loads;
 use crate::physics::state::State;
 use nalgebra::Vector3;
@@ -175,26 +174,12 @@ pub fn hold(
 
 /// The joint rows and the contact rows at `states`, with velocities.
 fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact], b: &mut Buffers) {
-    b.poses.clear();
-    b.inverse.clear();
-    for (body, state) in bodies.iter().zip(states) {
-        let k = derive(body, state);
-        b.poses.push(Pose {
-            x: state.position,
-            r: k.rotation,
-            v: k.velocity,
-            w: k.angular_velocity,
-        });
-        b.inverse.push(Inverse {
-            mass: body.inv_mass,
-            inertia: k.inv_inertia_world,
-        });
-    }
-    b.rows.clear();
-    for (index, joint) in links.joints.iter().enumerate() {
-        let pb = joint.b.map_or(Pose::WORLD, |j| b.poses[j]);
-        rows_of(joint, index, &b.poses[joint.a], &pb, &mut b.rows);
-    }
+    joint_rows(
+        links,
+        bodies,
+        states,
+        (&mut b.poses, &mut b.inverse, &mut b.rows),
+    );
     for (c, (la, lb)) in contacts.iter().zip(&b.levers) {
         let n = c.normal;
         let ra = b.poses[c.body].r * la;

@@ -35,25 +35,41 @@ pub struct Buffers {
 
 /// The rows at `states`, with their velocities.
 fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
-    b.poses.clear();
-    b.inverse.clear();
+    joint_rows(
+        links,
+        bodies,
+        states,
+        (&mut b.poses, &mut b.inverse, &mut b.rows),
+    );
+}
+
+/// Each body's pose and inverse mass at `states`, and the joints' rows there, with their
+/// velocities (the rows the projection and the contact pass both start from).
+pub(super) fn joint_rows(
+    links: &Links,
+    bodies: &[Body],
+    states: &[State],
+    (poses, inverse, rows): (&mut Vec<Pose>, &mut Vec<Inverse>, &mut Vec<Row>),
+) {
+    poses.clear();
+    inverse.clear();
     for (body, state) in bodies.iter().zip(states) {
         let k = derive(body, state);
-        b.poses.push(Pose {
+        poses.push(Pose {
             x: state.position,
             r: k.rotation,
             v: k.velocity,
             w: k.angular_velocity,
         });
-        b.inverse.push(Inverse {
+        inverse.push(Inverse {
             mass: body.inv_mass,
             inertia: k.inv_inertia_world,
         });
     }
-    b.rows.clear();
+    rows.clear();
     for (index, joint) in links.joints.iter().enumerate() {
-        let pb = joint.b.map_or(Pose::WORLD, |j| b.poses[j]);
-        rows_of(joint, index, &b.poses[joint.a], &pb, &mut b.rows);
+        let pb = joint.b.map_or(Pose::WORLD, |j| poses[j]);
+        rows_of(joint, index, &poses[joint.a], &pb, rows);
     }
 }
 
