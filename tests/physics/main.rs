@@ -15,3 +15,4 @@ mod physics_core;
 mod properties;
 mod round_bodies;
 mod soft_step;
+mod tunnelling;

@@ -21,6 +21,7 @@
 
 use super::detect::{inside, near, swept};
 use super::geometry::{shape_obstacle, shape_shape, ContactPoint, Pose};
+use super::sweep;
 use super::{Against, CollideInput, Contact, Feature};
 use crate::physics::state::State;
 use nalgebra::Matrix3;
@@ -103,7 +104,26 @@ pub fn find(
             }
         }
     }
-    // Body against body: pairs whose bounding spheres meet.
+    // Body against body: pairs whose bounding spheres meet, and fast pairs (`sweep`) whose
+    // paths over the step may meet. A pair is only swept when some body moved more than
+    // `FAST` of the thinnest half-thickness: at rest nothing is swept.
+    let moved = |i: usize| match &input.bodies[i].shape {
+        Some(shape) if !input.bodies[i].fixed => {
+            sweep::reach(&input.before[i], &states[i], shape.bounding_radius())
+        }
+        _ => 0.0,
+    };
+    let thin = |i: usize| {
+        input.bodies[i]
+            .shape
+            .as_ref()
+            .map_or(f64::INFINITY, sweep::half_thickness)
+    };
+    let sweeping = states.len() > 1 && {
+        let fastest = (0..states.len()).map(moved).fold(0.0, f64::max);
+        let thinnest = (0..states.len()).map(thin).fold(f64::INFINITY, f64::min);
+        2.0 * fastest > sweep::FAST * thinnest
+    };
     for a in 0..states.len() {
         let Some(shape_a) = &input.bodies[a].shape else {
             continue;
@@ -122,6 +142,24 @@ pub fn find(
                 _ => (a, b, shape_a, shape_b),
             };
             let (sa, sb) = (&states[a], &states[b]);
+            if sweeping && moved(a) + moved(b) > sweep::FAST * thin(a).min(thin(b)) {
+                let side_a = sweep::Side {
+                    shape: shape_a,
+                    path: sweep::Path::new(&input.before[a], sa, shape_a.bounding_radius()),
+                };
+                let side_b = sweep::Side {
+                    shape: shape_b,
+                    path: sweep::Path::new(&input.before[b], sb, shape_b.bounding_radius()),
+                };
+                if sweep::swept_rows(&side_a, &side_b, margin, points) {
+                    out.extend(
+                        points
+                            .iter()
+                            .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
+                    );
+                    continue;
+                }
+            }
             let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;
             if (sa.position - sb.position).norm_squared() > reach * reach {
                 continue;

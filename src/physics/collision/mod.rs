@@ -12,6 +12,7 @@
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
 //! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
+//! | `sweep` | fast pairs of bodies: time of impact, rows carried to the end of the step (no tunnelling) |
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
 //! | `dense` | the direct solves' small symmetric systems (LDLᵀ in each row's envelope) |
 
@@ -23,6 +24,7 @@ pub mod impulse;
 pub mod position;
 pub mod seed;
 pub mod soft_step;
+pub mod sweep;
 pub mod warm;
 
 pub use soft_step::SoftStep;

@@ -87,6 +87,11 @@ use std::hash::{Hash, Hasher};
 /// The highest push-out speed a soft row may ask for, m/s (Box2D's `contactPushMaxVelocity`).
 pub const MAX_PUSH: f64 = 3.0;
 
+/// Sweeps per sub-step (solve and relax each) in a step where a contact meets faster than the
+/// bounce speed (an impact); one otherwise. Measured on a 2 cm box landing at 50 m/s on a 1 cm
+/// plate: with one sweep a quarter of the starting heights went through the plate.
+pub const IMPACT_SWEEPS: usize = 8;
+
 /// Most sub-steps a scene may ask for.
 pub const MAX_SUBSTEPS: u32 = 64;
 
@@ -462,6 +467,11 @@ pub fn respond(
         row.approach = u.dot(&c.normal);
     }
 
+    // An impact (a row meeting faster than the bounce speed) gets IMPACT_SWEEPS sweeps per
+    // sub-step: one Gauss–Seidel sweep over a face's 4 coupled rows leaves part of a fast
+    // approach, which then goes deep (or, for a thin body, through).
+    let impact = rows.iter().any(|row| row.approach < -bounce_speed);
+    let passes = if impact { IMPACT_SWEEPS } else { 1 };
     for _ in 0..n {
         for s in bodies.iter_mut() {
             s.v += s.dv;
@@ -477,7 +487,9 @@ pub fn respond(
                 + t1.d * row.lambda_tangent[0]
                 + t2.d * row.lambda_tangent[1];
         }
-        sweep(rows, bodies, friction, h, true);
+        for _ in 0..passes {
+            sweep(rows, bodies, friction, h, true);
+        }
         for s in bodies.iter_mut() {
             s.position += s.v * h;
             let w = s.omega * (0.5 * h);
@@ -485,7 +497,9 @@ pub fn respond(
             s.q = UnitQuaternion::new_normalize(s.q.into_inner() + dq);
             s.turned = turned(s);
         }
-        sweep(rows, bodies, friction, h, false);
+        for _ in 0..passes {
+            sweep(rows, bodies, friction, h, false);
+        }
     }
     // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
     let restitution = input.model.restitution;
