@@ -6,6 +6,7 @@ mod cloth_world;
 mod collisions;
 mod common;
 mod contact_scaling;
+mod dominoes;
 mod energy_ledger;
 mod exact_splitting;
 mod geometry;

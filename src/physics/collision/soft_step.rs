@@ -68,8 +68,9 @@
 //! The relax sweep takes back the push-out's velocity and ζ = 10 damps the springs, so the
 //! contacts take energy out; what they can add is the work of lifting a body out of
 //! penetration against gravity. Two guards make that the only gain: the kinetic energy after
-//! the response is never above the free flight's (P and L of the bodies in contact are scaled by
-//! `√(K_free/K)` if it is), and restitution is Poisson's `e·λ` at most, so a step gains at most
+//! the response is never above the free flight's (if it is, the motion of the bodies in
+//! contact relative to their common barycenter is scaled, `v ← v_cm + s (v − v_cm)`, `L ← s L`,
+//! with `K_cm + s² K_rel = K_free`: the total linear momentum is kept), and restitution is Poisson's `e·λ` at most, so a step gains at most
 //! `Σ M |g|·Δy` where Δy is how much higher than its free flight the contacts left a body.
 //! Over a run the total energy stays below `E(0) + Σ M|g|·d_max`, d_max the deepest
 //! penetration reached (a test).
@@ -546,14 +547,36 @@ pub fn respond(
             })
             .sum()
     };
+    // The cap keeps the linear momentum: only the motion relative to the moving members'
+    // common barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy").
+    let moving = |b: &&usize| input.bodies[**b].inv_mass > 0.0;
+    let mass: f64 = members
+        .iter()
+        .filter(moving)
+        .map(|&b| input.bodies[b].mass)
+        .sum();
     for _ in 0..4 {
         let kinetic = kinetic_of(states);
-        if kinetic <= kinetic_free {
+        if kinetic <= kinetic_free || mass == 0.0 {
             break;
         }
-        let scale = (kinetic_free / kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
-        for &b in members.iter() {
-            states[b].linear_momentum *= scale;
+        let momentum: Vector3<f64> = members
+            .iter()
+            .filter(moving)
+            .map(|&b| states[b].linear_momentum)
+            .sum();
+        let v_cm = momentum / mass;
+        let k_cm = 0.5 * mass * v_cm.norm_squared();
+        let k_rel = kinetic - k_cm;
+        let scale = if k_rel > 0.0 && kinetic_free > k_cm {
+            ((kinetic_free - k_cm) / k_rel).sqrt() * (1.0 - 4.0 * f64::EPSILON)
+        } else {
+            0.0
+        };
+        for &b in members.iter().filter(moving) {
+            let m = input.bodies[b].mass;
+            let p = states[b].linear_momentum;
+            states[b].linear_momentum = v_cm * m + (p - v_cm * m) * scale;
             states[b].angular_momentum *= scale;
         }
     }
