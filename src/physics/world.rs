@@ -766,6 +766,7 @@ impl World {
             gravity: self.effects.gravity(),
             dt: self.dt,
             joined: &self.joined,
+            recorded: None,
         };
         let states_before = if model.response == super::collision::Response::Seed {
             Some(now.states[0])

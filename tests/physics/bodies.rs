@@ -401,6 +401,7 @@ proptest! {
             gravity: None,
             dt,
             joined: &[],
+            recorded: None,
         };
         let mut states = start;
         let mut contacts = Vec::new();

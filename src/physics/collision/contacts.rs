@@ -28,7 +28,7 @@ use nalgebra::Matrix3;
 
 /// Finds the rows for `states` (after the integrate phase) into `out`; returns whether any
 /// row touches (depth > 0). Levers are filled in from the current barycenters; `points` is a
-/// buffer for the contact geometry.
+/// buffer for the contact geometry. With `input.recorded`, those rows are copied instead.
 pub fn find(
     input: &CollideInput,
     states: &[State],
@@ -37,6 +37,10 @@ pub fn find(
     points: &mut Vec<ContactPoint>,
 ) -> bool {
     out.clear();
+    if let Some(rows) = input.recorded {
+        out.extend_from_slice(rows);
+        return out.iter().any(|c| c.depth > 0.0);
+    }
     for (index, (body, state)) in input.bodies.iter().zip(states).enumerate() {
         let rotation_now = state.orientation.matrix();
         if body.fixed {

@@ -283,6 +283,9 @@ pub struct CollideInput<'a> {
     pub dt: f64,
     /// Pairs of bodies (low, high index) joined directly by a joint: they do not collide.
     pub joined: &'a [(usize, usize)],
+    /// Recorded contact rows: when given, detection is skipped and these are the step's rows
+    /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
+    pub recorded: Option<&'a [Contact]>,
 }
 
 /// The energy of the bodies before and after a response, measured as [`energy`] measures it

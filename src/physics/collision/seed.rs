@@ -131,6 +131,7 @@ mod tests {
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             dt: 1e-3,
             joined: &[],
+            recorded: None,
         };
         let mut contacts = Vec::new();
         respond(&input, &mut state, &mut contacts);
