@@ -4,6 +4,8 @@
 //! duration and measured against an independent reference ([`mod@reference`]): error, drift of the
 //! conserved quantities, and nanoseconds per step ([`measure`]). [`analysis`] marks the Pareto
 //! frontier, fits the observed orders of convergence and writes one plain sentence per scene;
+//! on a scene with contact, [`contact`] charts the collision responses (`impulse`, `soft-step`
+//! at 1–8 sub-steps) at the scene's own integrator and dt;
 //! [`report`] prints the table, CSV or JSON and [`plot`] the log–log SVG of error against cost.
 //!
 //! The study only drives [`crate::physics::World`] and reads its [`crate::physics::Snapshot`]:
@@ -12,6 +14,7 @@
 pub mod analysis;
 pub mod background;
 pub mod cloth;
+pub mod contact;
 pub mod measure;
 pub mod plot;
 pub mod reference;
@@ -20,6 +23,7 @@ pub mod scenes;
 
 pub use analysis::{fit_order, mark_frontier, Order};
 pub use cloth::{ClothConfig, ClothRow, ClothStudy};
+pub use contact::{ContactStudy, SolverRow};
 pub use measure::{Row, Status, Timing};
 pub use reference::Reference;
 
@@ -126,6 +130,9 @@ pub struct SceneStudy {
     /// The cloth case: a scene with `[[cloth]]` sweeps the particle integrators instead of the
     /// bodies' (its `rows` and `orders` are then empty, its `sentence` is the cloth case's).
     pub cloth: Option<ClothStudy>,
+    /// A scene with contact: its contact solvers charted at its own integrator and dt
+    /// ([`contact`]).
+    pub contact_solvers: Option<ContactStudy>,
 }
 
 impl SceneStudy {
@@ -196,6 +203,17 @@ pub fn study_case(
     };
     mark_frontier(&mut rows);
     analysis::sort_by_cost(&mut rows);
+    let contact_solvers = response.map(|_| {
+        let chart = contact::study(
+            &case.name,
+            &case.scene,
+            case.duration,
+            &times,
+            config.timing,
+        );
+        progress(total + chart.rows.len(), runs(case, config));
+        chart
+    });
     SceneStudy {
         name: case.name.clone(),
         description: case.description.clone(),
@@ -207,6 +225,7 @@ pub fn study_case(
         sentence,
         response,
         cloth: None,
+        contact_solvers,
     }
 }
 
@@ -257,7 +276,9 @@ pub fn cloth_config(config: &Config) -> ClothConfig {
 /// How many runs studying `case` with `config` makes.
 pub fn runs(case: &Case, config: &Config) -> usize {
     if case.scene.cloths.is_empty() {
+        let contact = case.scene.contact.is_some() && !case.scene.obstacles.is_empty();
         config.integrators.len() * config.dts.len()
+            + if contact { contact::solvers().len() } else { 0 }
     } else {
         cloth::runs(&case.scene, &cloth_config(config))
     }
@@ -289,6 +310,7 @@ fn study_cloth_case(
         sentence: cloth.sentence.clone(),
         response: None,
         cloth: Some(cloth),
+        contact_solvers: None,
     }
 }
 

@@ -5,6 +5,7 @@
 
 use super::analysis::format_dt;
 use super::cloth::ClothStudy;
+use super::contact::ContactStudy;
 use super::SceneStudy;
 use crate::physics::cloth::ClothIntegrator;
 use crate::physics::Integrator;
@@ -29,24 +30,111 @@ pub fn cloth_color(integrator: ClothIntegrator) -> RGBColor {
 /// Smallest error drawn (exact zeros are drawn here).
 const FLOOR: f64 = 1e-16;
 
+/// One panel of the picture.
+enum Panel<'s> {
+    /// A scene's integrators: error against cost.
+    Bodies(&'s SceneStudy),
+    /// A cloth case's particle integrators.
+    Cloth(&'s SceneStudy, &'s ClothStudy),
+    /// A contact scene's collision responses at its own integrator and dt.
+    Solvers(&'s SceneStudy, &'s ContactStudy),
+}
+
+/// What the legend lists: only what some panel draws.
+struct Entries {
+    integrators: Vec<Integrator>,
+    implicit_euler: bool,
+    solvers: bool,
+}
+
+impl Entries {
+    fn of(studies: &[SceneStudy]) -> Entries {
+        let drawn = |i: &Integrator| {
+            studies
+                .iter()
+                .any(|s| s.rows.iter().any(|r| r.integrator == *i && drawable(r)))
+        };
+        Entries {
+            integrators: Integrator::ALL.into_iter().filter(drawn).collect(),
+            implicit_euler: studies.iter().any(|s| {
+                s.cloth.as_ref().is_some_and(|c| {
+                    c.rows
+                        .iter()
+                        .any(|r| r.integrator == ClothIntegrator::ImplicitEuler && r.ok())
+                })
+            }),
+            solvers: studies.iter().any(|s| s.contact_solvers.is_some()),
+        }
+    }
+
+    fn list(&self) -> Vec<(String, RGBColor)> {
+        let mut entries: Vec<(String, RGBColor)> = self
+            .integrators
+            .iter()
+            .map(|&i| (i.name().to_string(), color(i)))
+            .collect();
+        if self.implicit_euler {
+            let i = ClothIntegrator::ImplicitEuler;
+            entries.push((i.name().to_string(), cloth_color(i)));
+        }
+        if self.solvers {
+            entries.push(("impulse (contact)".to_string(), IMPULSE));
+            entries.push(("soft-step ×n (contact)".to_string(), SOFT_STEP));
+        }
+        entries
+    }
+}
+
+/// The colours of the contact solvers' panel: `impulse` and `soft-step`.
+const IMPULSE: RGBColor = RGBColor(0, 0, 0);
+const SOFT_STEP: RGBColor = RGBColor(130, 130, 130);
+
+/// A body row the panels draw.
+fn drawable(r: &super::measure::Row) -> bool {
+    r.ok() && r.measure().is_finite() && r.us_per_simulated_second > 0.0
+}
+
+/// The title, in lines that fit a picture `width` px wide (about 8 px a character at 16 px).
+fn title_lines(width: u32) -> Vec<&'static str> {
+    const FIRST: &str = "tumble study: error against cost, log–log";
+    const SECOND: &str = "(lower left is better; ringed = Pareto frontier; labels = dt in s)";
+    if (FIRST.chars().count() + SECOND.chars().count() + 1) * 8 + 32 <= width as usize {
+        vec!["tumble study: error against cost, log–log (lower left is better; ringed = Pareto frontier; labels = dt in s)"]
+    } else {
+        vec![FIRST, SECOND]
+    }
+}
+
 /// Writes the plot; the error is a one-line message.
 pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
-    let panels = studies.len().max(1);
-    let columns = if panels > 1 { 2 } else { 1 };
-    let rows = panels.div_ceil(columns);
+    let mut panels = Vec::new();
+    for study in studies {
+        match &study.cloth {
+            Some(cloth) => panels.push(Panel::Cloth(study, cloth)),
+            None => panels.push(Panel::Bodies(study)),
+        }
+        if let Some(chart) = &study.contact_solvers {
+            panels.push(Panel::Solvers(study, chart));
+        }
+    }
+    let count = panels.len().max(1);
+    let columns = if count > 1 { 2 } else { 1 };
+    let rows = count.div_ceil(columns);
     let width = 640 * columns as u32;
-    let header = header_height(width, studies.iter().any(|s| s.cloth.is_some()));
+    let entries = Entries::of(studies).list();
+    let header = header_height(width, entries.len());
     let size = (width, header + 480 * rows as u32);
     let root = SVGBackend::new(path, size).into_drawing_area();
     let fail = |e: &dyn std::fmt::Display| format!("cannot draw {}: {e}", path.display());
     root.fill(&WHITE).map_err(|e| fail(&e))?;
     let (header, body) = root.split_vertically(header);
-    legend(&header, studies.iter().any(|s| s.cloth.is_some())).map_err(|e| fail(&e))?;
+    legend(&header, &entries).map_err(|e| fail(&e))?;
     let areas = body.split_evenly((rows, columns));
-    for (study, area) in studies.iter().zip(areas.iter()) {
-        match &study.cloth {
-            Some(cloth) => cloth_panel(study, cloth, area),
-            None => panel(study, area),
+    for (panel, area) in panels.iter().zip(areas.iter()) {
+        match panel {
+            Panel::Bodies(study) => bodies_panel(study, area),
+            Panel::Cloth(study, cloth) => cloth_panel(study, cloth, area),
+            Panel::Solvers(study, chart) => solvers_panel(study, chart, area),
         }
         .map_err(|e| fail(&e))?;
     }
@@ -63,45 +151,52 @@ fn legend_per_row(width: u32) -> usize {
     ((width - 16) / LEGEND_ENTRY).max(1) as usize
 }
 
-/// Height of the title and shared legend strip, px: the title, then rows of legend entries.
-fn header_height(width: u32, cloth: bool) -> u32 {
-    let entries = Integrator::ALL.len() + usize::from(cloth);
+/// Height of the title and shared legend strip, px: the title's lines, then rows of legend
+/// entries.
+fn header_height(width: u32, entries: usize) -> u32 {
     let rows = entries.div_ceil(legend_per_row(width)) as u32;
-    36 + 20 * rows
+    16 + 20 * title_lines(width).len() as u32 + 20 * rows
 }
 
 /// The title and one legend for every panel (a legend inside a panel would hide its points).
-fn legend(area: &Area, cloth: bool) -> Result<(), Box<dyn std::error::Error>> {
-    area.draw(&Text::new(
-        "tumble study: error against cost, log–log (lower left is better; ringed = Pareto \
-         frontier; labels = dt in s)",
-        (16, 8),
-        ("sans-serif", 16).into_font(),
-    ))?;
-    let per_row = legend_per_row(area.dim_in_pixel().0);
-    let mut entries: Vec<(&str, RGBColor)> = Integrator::ALL
-        .into_iter()
-        .map(|i| (i.name(), color(i)))
-        .collect();
-    if cloth {
-        let i = ClothIntegrator::ImplicitEuler;
-        entries.push((i.name(), cloth_color(i)));
+fn legend(area: &Area, entries: &[(String, RGBColor)]) -> Result<(), Box<dyn std::error::Error>> {
+    let width = area.dim_in_pixel().0;
+    let lines = title_lines(width);
+    for (k, line) in lines.iter().enumerate() {
+        area.draw(&Text::new(
+            *line,
+            (16, 8 + 20 * k as i32),
+            ("sans-serif", 16).into_font(),
+        ))?;
     }
-    for (k, (name, c)) in entries.into_iter().enumerate() {
+    let top = 20 + 20 * lines.len() as i32;
+    let per_row = legend_per_row(width);
+    for (k, (name, c)) in entries.iter().enumerate() {
         let x = 16 + (LEGEND_ENTRY * (k % per_row) as u32) as i32;
-        let y = 40 + 20 * (k / per_row) as i32;
+        let y = top + 20 * (k / per_row) as i32;
         area.draw(&PathElement::new(
             vec![(x, y), (x + 28, y)],
             c.stroke_width(3),
         ))?;
         area.draw(&Text::new(
-            name,
+            name.as_str(),
             (x + 34, y - 7),
-            ("sans-serif", 14).into_font().color(&c),
+            ("sans-serif", 14).into_font().color(c),
         ))?;
     }
     Ok(())
 }
+
+/// A point's label, set beside it (right of and above the point, clear of its frontier ring):
+/// `label!(text, (x, y), &colour)`.
+macro_rules! label {
+    ($text:expr, $at:expr, $c:expr $(,)?) => {
+        EmptyElement::at($at) + Text::new($text, (9, -14), ("sans-serif", 11).into_font().color($c))
+    };
+}
+
+/// The cost axis of the panels that sweep dt.
+const PER_SECOND: &str = "cost: µs of wall time per simulated second";
 
 /// Error against cost, both axes logarithmic.
 type CostChart<'a, 'b> =
@@ -112,6 +207,7 @@ type CostChart<'a, 'b> =
 fn cost_chart<'a, 'b>(
     area: &'a Area<'b>,
     caption: &str,
+    cost: &str,
     error: &str,
     points: impl Iterator<Item = (f64, f64)>,
 ) -> Result<CostChart<'a, 'b>, Box<dyn std::error::Error>> {
@@ -134,26 +230,24 @@ fn cost_chart<'a, 'b>(
         )?;
     chart
         .configure_mesh()
-        .x_desc("cost: µs of wall time per simulated second")
+        .x_desc(cost)
         .y_desc(error)
+        .x_labels(6)
+        .y_labels(8)
         .x_label_formatter(&|x| format!("{x:.0e}"))
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()?;
     Ok(chart)
 }
 
-fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
-    let ok: Vec<_> = study
-        .rows
-        .iter()
-        .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
-        .collect();
+fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
+    let ok: Vec<_> = study.rows.iter().filter(|r| drawable(r)).collect();
     let caption = format!(
         "{} ({} s, {} reference)",
         study.name, study.duration, study.reference_kind
     );
     let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
-    let mut chart = cost_chart(area, &caption, "error, rad", points)?;
+    let mut chart = cost_chart(area, &caption, PER_SECOND, "error, rad", points)?;
     let mut integrators: Vec<Integrator> = ok.iter().map(|r| r.integrator).collect();
     integrators.dedup();
     integrators.sort_by_key(|i| Integrator::ALL.iter().position(|a| a == i));
@@ -169,10 +263,10 @@ fn panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Erro
         chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
         chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         chart.draw_series(points.iter().map(|r| {
-            Text::new(
+            label!(
                 format_dt(r.dt),
                 (r.us_per_simulated_second, r.error.max(FLOOR)),
-                ("sans-serif", 11).into_font().color(&c),
+                &c,
             )
         }))?;
     }
@@ -202,7 +296,7 @@ fn cloth_panel(
         study.name, study.duration, cloth.limit
     );
     let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
-    let mut chart = cost_chart(area, &caption, "max particle error, m", points)?;
+    let mut chart = cost_chart(area, &caption, PER_SECOND, "max particle error, m", points)?;
     for integrator in ClothIntegrator::ALL {
         let c = cloth_color(integrator);
         let points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
@@ -213,10 +307,10 @@ fn cloth_panel(
         chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
         chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         chart.draw_series(points.iter().map(|r| {
-            Text::new(
+            label!(
                 format_dt(r.dt),
                 (r.us_per_simulated_second, r.error.max(FLOOR)),
-                ("sans-serif", 11).into_font().color(&c),
+                &c,
             )
         }))?;
     }
@@ -227,5 +321,55 @@ fn cloth_panel(
             BLACK.stroke_width(1),
         )
     }))?;
+    Ok(())
+}
+
+/// The contact solvers' panel: contact error against cost at the scene's integrator and dt,
+/// `impulse` one point, `soft-step` a line through its sub-step counts.
+fn solvers_panel(
+    study: &SceneStudy,
+    chart: &ContactStudy,
+    area: &Area,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let ok: Vec<_> = chart.rows.iter().filter(|r| drawable(&r.run)).collect();
+    let caption = format!(
+        "{}: contact solvers ({}, dt = {} s)",
+        study.name,
+        chart.integrator.name(),
+        format_dt(chart.dt)
+    );
+    let at = |r: &super::SolverRow| {
+        (
+            r.run.us_per_simulated_second,
+            r.run.contact_error.max(FLOOR),
+        )
+    };
+    let mut plot = cost_chart(
+        area,
+        &caption,
+        PER_SECOND,
+        "contact error (end pose, shape, penetration, gain)",
+        ok.iter().map(|r| at(r)),
+    )?;
+    let soft: Vec<_> = ok.iter().filter(|r| r.substeps > 0).collect();
+    plot.draw_series(LineSeries::new(
+        soft.iter().map(|r| at(r)),
+        SOFT_STEP.stroke_width(2),
+    ))?;
+    for r in &ok {
+        let c = if r.substeps > 0 { SOFT_STEP } else { IMPULSE };
+        plot.draw_series(std::iter::once(Circle::new(at(r), 3, c.filled())))?;
+        let text = if r.substeps > 0 {
+            format!("×{}", r.substeps)
+        } else {
+            "impulse".to_string()
+        };
+        plot.draw_series(std::iter::once(label!(text, at(r), &c)))?;
+    }
+    plot.draw_series(
+        ok.iter()
+            .filter(|r| r.frontier)
+            .map(|r| Circle::new(at(r), 7, BLACK.stroke_width(1))),
+    )?;
     Ok(())
 }

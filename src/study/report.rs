@@ -7,9 +7,16 @@
 //! have `case` = `cloth`, the particle integrator in `integrator`, the largest particle
 //! distance from the reference (m) in `error` and `position_error`, NaN in the columns of a
 //! body's rotation and contact, and its own columns at the end (NaN in a body's row).
+//!
+//! The contact solvers of a scene with contact ([`super::contact`]) print their own section
+//! after the scene's table; in the CSV their rows have `case` = `contact-solver`, the scene's
+//! integrator and dt, the response in `solver` (`impulse`, `soft-step`), its sub-steps in
+//! `substeps` (0 for `impulse`) and the rest height below the reference (m) in `sink`; a body's
+//! and a cloth's rows have the scene's response (or nothing) in `solver`, NaN in the other two.
 
 use super::analysis::{format_cost, format_dt, format_number};
 use super::cloth::{ClothRow, ClothStudy};
+use super::contact::ContactStudy;
 use super::measure::{Row, Status};
 use super::SceneStudy;
 use std::fmt::Write;
@@ -18,7 +25,7 @@ use std::fmt::Write;
 pub const CSV_HEADER: &str = "scene,integrator,dt,steps,ns_per_step,error,energy_drift,\
 momentum_drift,orthonormality,us_per_simulated_second,omega_error,position_error,penetration,\
 impact_energy,rest_error,frontier,status,reference,angle_error,end_pose_error,contact_error,\
-case,limit_ratio,drift_j,booked_losses,numerical_damping,energy_rise";
+case,limit_ratio,drift_j,booked_losses,numerical_damping,energy_rise,solver,substeps,sink";
 
 /// A measured number in the table.
 fn sci(x: f64) -> String {
@@ -132,9 +139,50 @@ pub fn table(studies: &[SceneStudy]) -> String {
                 orders.join(", ")
             );
         }
+        if let Some(chart) = &study.contact_solvers {
+            solver_table(&mut out, chart);
+        }
         let _ = writeln!(out);
     }
     out
+}
+
+/// The contact solvers' section of a scene's table.
+fn solver_table(out: &mut String, chart: &ContactStudy) {
+    let _ = writeln!(
+        out,
+        "contact solvers ({}, dt = {} s; reference: {}); sink = how much lower than the \
+         reference the body rests at the end (m)",
+        chart.integrator.name(),
+        format_dt(chart.dt),
+        chart.reference
+    );
+    let _ = writeln!(
+        out,
+        "  {:<15}{:>9}{:>10}{:>10}{:>10}{:>10}{:>12}",
+        "solver", "ns/step", "end pose", "sink m", "penetr. m", "gain J", "contact err"
+    );
+    for row in &chart.rows {
+        let mark = if row.frontier { '*' } else { ' ' };
+        let r = &row.run;
+        let line = match &r.status {
+            Status::Ok => format!(
+                "{mark} {:<15}{:>9.0}{:>10}{:>10}{:>10}{:>10}{:>12}",
+                row.solver,
+                r.ns_per_step,
+                sci(r.end_pose_error),
+                sci(row.sink),
+                sci(r.penetration),
+                sci(r.impact_energy),
+                sci(r.contact_error)
+            ),
+            Status::Diverged(message) => {
+                format!("{mark} {:<15}  {}", row.solver, short_divergence(message))
+            }
+        };
+        let _ = writeln!(out, "{line}");
+    }
+    let _ = writeln!(out, "{}", chart.sentence);
 }
 
 /// The cloth case's section of the table.
@@ -312,7 +360,8 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             };
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},body,NaN,NaN,NaN,NaN,NaN",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},body,NaN,NaN,NaN,NaN,NaN,\
+                 {},NaN,NaN",
                 r.scene,
                 r.integrator.name(),
                 r.dt,
@@ -333,7 +382,43 @@ pub fn csv(studies: &[SceneStudy]) -> String {
                 study.reference_kind,
                 r.angle_error,
                 r.end_pose_error,
-                r.contact_error
+                r.contact_error,
+                study.response.map_or("", |r| r.name())
+            );
+        }
+        for row in study.contact_solvers.iter().flat_map(|c| &c.rows) {
+            let r = &row.run;
+            let status = match &r.status {
+                Status::Ok => "ok".to_string(),
+                Status::Diverged(m) => format!("\"diverged: {}\"", m.replace('"', "'")),
+            };
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},numeric,{},{},{},contact-solver,\
+                 NaN,NaN,NaN,NaN,NaN,{},{},{}",
+                r.scene,
+                r.integrator.name(),
+                r.dt,
+                r.steps,
+                r.ns_per_step,
+                r.error,
+                r.energy_drift,
+                r.momentum_drift,
+                r.orthonormality,
+                r.us_per_simulated_second,
+                r.omega_error,
+                r.position_error,
+                r.penetration,
+                r.impact_energy,
+                r.rest_error,
+                row.frontier,
+                status,
+                r.angle_error,
+                r.end_pose_error,
+                r.contact_error,
+                row.response.name(),
+                row.substeps,
+                row.sink
             );
         }
         for r in study.cloth.iter().flat_map(|c| &c.rows) {
@@ -345,7 +430,7 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             let _ = writeln!(
                 out,
                 "{},{},{},{},{},{},{},{nan},{nan},{},{nan},{},{nan},{nan},{nan},{},{},{},{nan},\
-                 {nan},{nan},cloth,{},{},{},{},{}",
+                 {nan},{nan},cloth,{},{},{},{},{},,{nan},{nan}",
                 r.scene,
                 r.integrator.name(),
                 r.dt,
@@ -429,6 +514,9 @@ pub fn json(studies: &[SceneStudy]) -> String {
             if let Some(cloth) = &s.cloth {
                 scene["cloth"] = cloth_json(cloth);
             }
+            if let Some(chart) = &s.contact_solvers {
+                scene["contact_solvers"] = solvers_json(chart);
+            }
             scene
         })
         .collect();
@@ -436,6 +524,41 @@ pub fn json(studies: &[SceneStudy]) -> String {
         .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
     text.push('\n');
     text
+}
+
+/// The contact solvers' chart as JSON (NaN as null).
+fn solvers_json(chart: &ContactStudy) -> serde_json::Value {
+    let runs: Vec<serde_json::Value> = chart
+        .rows
+        .iter()
+        .map(|row| {
+            let r = &row.run;
+            serde_json::json!({
+                "solver": row.response.name(),
+                "label": row.solver,
+                "substeps": row.substeps,
+                "ns_per_step": r.ns_per_step,
+                "end_pose_error": r.end_pose_error,
+                "sink": row.sink,
+                "penetration": r.penetration,
+                "impact_energy": r.impact_energy,
+                "contact_error": r.contact_error,
+                "rest_error": r.rest_error,
+                "frontier": row.frontier,
+                "diverged": match &r.status {
+                    Status::Ok => serde_json::Value::Null,
+                    Status::Diverged(m) => m.clone().into(),
+                },
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "integrator": chart.integrator.name(),
+        "dt": chart.dt,
+        "reference": chart.reference,
+        "sentence": chart.sentence,
+        "runs": runs,
+    })
 }
 
 /// The cloth case as JSON (NaN as null).

@@ -11,5 +11,6 @@ mod lessons;
 mod live_numbers;
 mod study;
 mod study_cloth;
+mod study_contact;
 mod study_table;
 mod walk;

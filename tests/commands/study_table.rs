@@ -44,6 +44,7 @@ fn study(rows: Vec<Row>, response: Option<Response>) -> SceneStudy {
         sentence: "One sentence.".to_string(),
         response,
         cloth: None,
+        contact_solvers: None,
     }
 }
 
