@@ -81,7 +81,10 @@ fn record(name: &str, mut world: World, response: Response) -> Recorded {
 }
 
 fn solver(c: &mut Criterion) {
-    for response in ["impulse", "soft-step"].into_iter().filter_map(Response::from_name) {
+    for response in ["impulse", "soft-step"]
+        .into_iter()
+        .filter_map(Response::from_name)
+    {
         let mut group = c.benchmark_group(format!("solver/{}", response.name()));
         group
             .warm_up_time(Duration::from_millis(500))
@@ -96,7 +99,12 @@ fn solver(c: &mut Criterion) {
         ];
         for (name, world) in scenes {
             let r = record(name, world, response);
-            let initial: Vec<_> = r.world.initial_states().iter().map(|s| s.position).collect();
+            let initial: Vec<_> = r
+                .world
+                .initial_states()
+                .iter()
+                .map(|s| s.position)
+                .collect();
             let input = CollideInput {
                 bodies: r.world.bodies(),
                 obstacles: r.world.obstacles(),
