@@ -123,10 +123,16 @@ pub fn find(
             .as_ref()
             .map_or(f64::INFINITY, sweep::half_thickness)
     };
+    // No body moved more than half of FAST·(thinnest half-thickness): no pair can be fast.
     let sweeping = states.len() > 1 && {
-        let fastest = (0..states.len()).map(moved).fold(0.0, f64::max);
         let thinnest = (0..states.len()).map(thin).fold(f64::INFINITY, f64::min);
-        2.0 * fastest > sweep::FAST * thinnest
+        let limit = 0.5 * sweep::FAST * thinnest;
+        (0..states.len()).any(|i| match &input.bodies[i].shape {
+            Some(shape) if !input.bodies[i].fixed => {
+                sweep::may_exceed(&input.before[i], &states[i], shape, limit)
+            }
+            _ => false,
+        })
     };
     for a in 0..states.len() {
         let Some(shape_a) = &input.bodies[a].shape else {

@@ -138,6 +138,43 @@ pub fn reach(before: &State, after: &State, radius: f64) -> f64 {
     (after.position - before.position).norm() + turn * radius
 }
 
+/// Whether a body's points may have moved more than `limit` over the step (`reach > limit`),
+/// told without a square root or a trigonometric function: at rest, every body of a stack asks
+/// this once per step. If |Δx| ≤ limit/2 and θ ρ ≤ limit/2 the reach is at most `limit`, so
+///
+/// ```text
+/// may exceed  ⇔  |Δx|² > limit²/4  or  π² ρ² (1 − (q₀·q₁)²) > limit²/4
+/// ```
+///
+/// (quaternions; a matrix orientation asks [`reach`]).
+pub fn may_exceed(before: &State, after: &State, shape: &Shape, limit: f64) -> bool {
+    use crate::physics::state::Orientation;
+    let quarter = 0.25 * limit * limit;
+    if (after.position - before.position).norm_squared() > quarter {
+        return true;
+    }
+    match (&before.orientation, &after.orientation) {
+        (Orientation::Quaternion(q0), Orientation::Quaternion(q1)) => {
+            let c = q0.coords.dot(&q1.coords);
+            let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+            pi2 * radius_squared(shape) * (1.0 - c * c) > quarter
+        }
+        _ => reach(before, after, shape.bounding_radius()) > limit,
+    }
+}
+
+/// ρ², the squared bounding radius (no square root for a box or a cylinder).
+fn radius_squared(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Box { half } => half.norm_squared(),
+        Shape::Cylinder {
+            radius,
+            half_length,
+        } => radius * radius + half_length * half_length,
+        other => other.bounding_radius().powi(2),
+    }
+}
+
 /// The half-thickness τ of a shape: the radius of the largest ball about its barycenter that it
 /// holds, m (module doc).
 pub fn half_thickness(shape: &Shape) -> f64 {
