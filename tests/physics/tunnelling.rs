@@ -215,3 +215,49 @@ fn the_responses_are_the_ones_named() {
         Response::Impulse
     ));
 }
+
+#[test]
+fn a_fast_ball_does_not_pass_through_a_thin_box_obstacle() {
+    // A round body has no vertices to sweep: a 2 cm ball at 50 m/s (5 cm a step) against a
+    // 1 cm box obstacle. Its centre must stay above the top face (0.005 m) by its radius.
+    let mut failures = Vec::new();
+    for response in ["impulse", "soft-step"] {
+        for k in 0..25 {
+            let y = 0.1 + 2e-3 * k as f64;
+            let mut w = world(&format!(
+                r#"
+title = "ball onto plate"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = {{ response = "{response}", restitution = 0.0, friction = 0.5 }}
+[body]
+shape = "sphere"
+radius = 0.01
+mass = 0.05
+position = [0.0, {y}, 0.0]
+velocity = [0.0, -50.0, 0.0]
+[[obstacle]]
+type = "box"
+min = [-0.5, -0.005, -0.5]
+max = [0.5, 0.005, 0.5]
+"#
+            ));
+            let mut lowest = f64::INFINITY;
+            for _ in 0..1000 {
+                w.step();
+                lowest = lowest.min(w.states()[0].position.y);
+            }
+            if lowest < 0.015 - 2e-3 {
+                failures.push(format!("{response}, y0 {y:.3}: went down to {lowest} m"));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}

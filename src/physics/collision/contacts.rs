@@ -11,7 +11,10 @@
 //!                    edge, a sphere against the middle of a face
 //! body vs body       the contact geometry (separating axes, clipped face manifolds)
 //! round body vs any  the contact geometry alone (a ball has no vertices): ground and planes,
-//!                    spheres, boxes and other bodies
+//!                    spheres, boxes and other bodies; swept (`sweep`) against a sphere or box
+//!                    when it moves fast
+//! fast pairs         two bodies moving fast relative to each other: swept to their time of
+//!                    impact (`sweep`), the rows carried to the end of the step
 //! plane (ramp)       as the ground: the vertices behind it
 //! fixed body         never against an obstacle; against a moving body it is B (the world)
 //! ```
@@ -63,6 +66,26 @@ pub fn find(
             let first = out.len();
             if let (true, Some(shape)) = (round, &body.shape) {
                 points.clear();
+                // A fast round body is swept against a thin obstacle (`sweep`).
+                if !obstacle.is_half_space() {
+                    let (other, at) = obstacle.shape();
+                    let thin = sweep::half_thickness(shape).min(sweep::half_thickness(&other));
+                    if sweep::may_exceed(before, state, shape, sweep::FAST * thin) {
+                        let a = sweep::Side {
+                            shape,
+                            path: sweep::Path::new(before, state, shape.bounding_radius()),
+                        };
+                        let b = sweep::Side {
+                            shape: &other,
+                            path: sweep::Path::still(&at),
+                        };
+                        if sweep::swept_rows(&a, &b, margin, points) {
+                            let against = Against::Obstacle(obstacle_index);
+                            out.extend(points.iter().map(|p| row(index, state, against, p, None)));
+                            continue;
+                        }
+                    }
+                }
                 shape_obstacle(shape, &pose, obstacle, margin, points);
                 let against = Against::Obstacle(obstacle_index);
                 out.extend(points.iter().map(|p| row(index, state, against, p, None)));

@@ -5,7 +5,8 @@
 //! another at dt = 1e-3 moves 3 cm in the step: at its end the pair overlaps past its middle —
 //! the axis of least penetration then points the wrong way and the push-out sends A through B —
 //! or does not overlap at all. `detect` sweeps vertices against obstacles; this file sweeps
-//! whole shapes against each other (a fixed body is a B that does not move).
+//! whole shapes against each other (a fixed body is a B that does not move), and round bodies
+//! (which have no vertices) against the obstacles that are not half-spaces.
 //!
 //! # Which pairs
 //!
@@ -96,6 +97,20 @@ impl Path {
             q0,
             q1,
             turn: q0.angle_to(&q1) * radius,
+        }
+    }
+
+    /// A shape that does not move (an obstacle).
+    pub fn still(pose: &Pose) -> Path {
+        let q = UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(
+            pose.rotation,
+        ));
+        Path {
+            x0: pose.position,
+            x1: pose.position,
+            q0: q,
+            q1: q,
+            turn: 0.0,
         }
     }
 
