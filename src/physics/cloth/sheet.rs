@@ -69,9 +69,38 @@ pub(super) struct Scratch {
     pub drag_velocity: Vec<Vector3<f64>>,
     pub start: Vec<Vector3<f64>>,
     pub solver: Workspace,
-    /// Per particle: 0 no contact candidate, 1 a candidate not held, 2 held by a contact tie
-    /// at the end of the last tied step (the next step's first guess of its contact set).
-    pub held: Vec<u8>,
+    /// Per particle: how the last tied step ended (the next step's first guess of its
+    /// contact set, [`Held`]).
+    pub held: Vec<Held>,
+    /// Per particle held sliding: the friction impulse of its last tied step, N·s (the next
+    /// step's first guess of it); 0 otherwise.
+    pub sliding: Vec<Vector3<f64>>,
+    /// What the last step's linear solves took.
+    pub solves: SolveCounts,
+}
+
+/// What the last step's linear solves took (0 for an explicit step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SolveCounts {
+    /// Solves: 1, or one per contact set a tied step tried.
+    pub solves: usize,
+    /// Conjugate-gradient iterations over those solves.
+    pub iterations: usize,
+}
+
+/// How a particle ended the last tied step (`cloth_coupling::tied_step`), the next step's
+/// first guess of its contact set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Held {
+    /// No contact candidate.
+    #[default]
+    Free,
+    /// A candidate, not held.
+    Near,
+    /// Held by a contact tie: sticking (or frictionless).
+    Sticking,
+    /// Held by a contact tie along its normal, sliding with a bounded friction impulse.
+    Sliding,
 }
 
 /// A mass–spring sheet.
@@ -124,6 +153,7 @@ impl Cloth {
             .map(|v| bytes_of(v, v.capacity()))
             .sum::<usize>()
             + bytes_of(&sc.held, sc.held.capacity())
+            + bytes_of(&sc.sliding, sc.sliding.capacity())
             + sc.solver.heap_bytes()
     }
 
@@ -345,10 +375,25 @@ impl Cloth {
     /// [`Cloth::advance_positions`].
     pub fn velocity_step(&mut self, loads: &ClothLoads, dt: f64) -> StepReport {
         self.scratch.start_velocity.clone_from(&self.velocities);
-        match self.integrator {
+        let report = match self.integrator {
             ClothIntegrator::SymplecticEuler => symplectic_euler::velocities(self, loads, dt),
             ClothIntegrator::ImplicitEuler => implicit_euler::velocities(self, loads, dt),
-        }
+        };
+        self.scratch.solves = SolveCounts {
+            solves: usize::from(self.integrator == ClothIntegrator::ImplicitEuler),
+            iterations: report.iterations,
+        };
+        report
+    }
+
+    /// What the last step's linear solves took.
+    pub fn solve_counts(&self) -> SolveCounts {
+        self.scratch.solves
+    }
+
+    /// Records what a tied step's solves took ([`Cloth::solve_counts`]).
+    pub fn record_solves(&mut self, counts: SolveCounts) {
+        self.scratch.solves = counts;
     }
 
     /// The implicit step with ties (`ties`), in three calls: this one records the start
@@ -419,26 +464,43 @@ impl Cloth {
             .unwrap_or(self.velocities[i])
     }
 
-    /// Per particle, how the last tied step ended (empty before the first): 0 no contact
-    /// candidate, 1 a candidate not held, 2 held by a contact tie.
-    pub fn held(&self) -> &[u8] {
+    /// Per particle, how the last tied step ended (empty before the first).
+    pub fn held(&self) -> &[Held] {
         &self.scratch.held
     }
 
-    /// Records the candidates and the contact set a tied step ended with ([`Cloth::held`]).
+    /// The friction impulse a particle held [`Held::Sliding`] took in the last tied step,
+    /// N·s (0 otherwise).
+    pub fn sliding_impulse(&self, i: usize) -> Vector3<f64> {
+        self.scratch
+            .sliding
+            .get(i)
+            .copied()
+            .unwrap_or_else(Vector3::zeros)
+    }
+
+    /// Records the candidates and the contact set a tied step ended with ([`Cloth::held`]):
+    /// `held` gives each held particle and, when it slides, its friction impulse.
     pub fn set_held(
         &mut self,
         candidates: impl Iterator<Item = usize>,
-        held: impl Iterator<Item = usize>,
+        held: impl Iterator<Item = (usize, Option<Vector3<f64>>)>,
     ) {
         let n = self.len();
         self.scratch.held.clear();
-        self.scratch.held.resize(n, 0);
+        self.scratch.held.resize(n, Held::Free);
+        self.scratch.sliding.clear();
+        self.scratch.sliding.resize(n, Vector3::zeros());
         for i in candidates {
-            self.scratch.held[i] = 1;
+            self.scratch.held[i] = Held::Near;
         }
-        for i in held {
-            self.scratch.held[i] = 2;
+        for (i, slide) in held {
+            if let Some(e) = slide {
+                self.scratch.held[i] = Held::Sliding;
+                self.scratch.sliding[i] = e;
+            } else {
+                self.scratch.held[i] = Held::Sticking;
+            }
         }
     }
 
