@@ -379,15 +379,12 @@ pub const TIE_ROUNDS: usize = 5;
 /// A gap (m) below which a particle counts as touching.
 const TOUCHING: f64 = 1e-9;
 
-/// A slip speed (m/s) below which a sliding contact's motion relative to the body counts as
-/// none: a friction impulse that reverses a slip by more than this makes the contact stick.
-const SLIP: f64 = 1e-6;
-
 /// A depth (m) the collide phase leaves to an `implicit-euler` cloth's particles: its ties
 /// put them on the surface, up to round-off (the body's turn is made up exactly, see the
-/// end of [`tied_step`]). A particle left inside by more — a contact the last of the
-/// [`TIE_ROUNDS`] found too late to solve with it — is pushed out there.
-pub const SLOP: f64 = 1e-12;
+/// end of [`tied_step`]); a particle a step's last round let go may end a few nm inside,
+/// and the next step's tie moves it with the surface (pushing it out would stretch its
+/// springs: energy made).
+pub const SLOP: f64 = 1e-8;
 
 /// How far a body's position moves under a constant extra force F over a step, in units of
 /// h²F/M: what its integrator makes of the ties' impulse J = F h when the correction
@@ -627,9 +624,11 @@ pub fn tied_step(
     // The gap is measured at the start of the step from the body's material point (it has
     // moved by its own step since: a body pushed up by the sheet moves away from the
     // particles that hold it by h·V every step).
+    // (Against a body only: an obstacle's contacts are found afresh each step.)
     let was_held = |c: &Candidate| {
         let start_gap = c.gap + dt * c.normal.dot(&c.drift);
-        matches!(held.get(c.particle), Some(Held::Sticking | Held::Sliding))
+        c.body.is_some()
+            && held.get(c.particle) == Some(&Held::Touching)
             && start_gap <= TOUCHING + gravity.norm() * dt * dt
     };
     let mut active: Vec<bool> = candidates
@@ -640,19 +639,9 @@ pub fn tied_step(
         })
         .collect();
     let mut ties: Vec<Tie> = Vec::new();
-    // A contact that slid in the last step starts sliding, with its last friction impulse in
-    // the new tangent plane (a warm start: the rounds below make it stick again if that
-    // impulse would reverse its slip).
     let mut kinds: Vec<(TieKind, Vector3<f64>)> = candidates
         .iter()
-        .map(|c| {
-            if friction > 0.0 && held.get(c.particle) == Some(&Held::Sliding) && was_held(c) {
-                let e = cloth.sliding_impulse(c.particle);
-                (TieKind::Normal, e - c.normal * c.normal.dot(&e))
-            } else {
-                (tie_of(c).kind, Vector3::zeros())
-            }
-        })
+        .map(|c| (tie_of(c).kind, Vector3::zeros()))
         .collect();
     let mut report = TiedReport::default();
     let attach_ties = |states: &[State], cloth: &Cloth| -> Vec<Tie> {
@@ -679,7 +668,6 @@ pub fn tied_step(
             .collect()
     };
     let mut index: Vec<usize> = Vec::new();
-    let mut reversed = vec![false; candidates.len()];
     for round in 0..TIE_ROUNDS {
         ties.clear();
         index.clear();
@@ -717,30 +705,10 @@ pub fn tied_step(
                     // Out of the cone: slide, with the bounded impulse.
                     kinds[k] = (TieKind::Normal, tangential * (limit / size));
                     changed = true;
-                } else if tie.kind == TieKind::Normal {
-                    // Sliding: its slip relative to the body's point after the solve.
-                    let c = &candidates[k];
-                    let u = cloth.velocities[c.particle]
-                        - c.drift
-                        - correction_at(&solver_bodies, c.body, &c.arm);
-                    let slip = u - n * n.dot(&u);
-                    if slip.dot(&tie.extra) > SLIP * size {
-                        // The friction impulse reversed the slip: it sticks from the next
-                        // step on (solving again here would trade stick and slide round
-                        // after round at the cone's edge).
-                        reversed[k] = true;
-                    } else {
-                        // Keeps sliding: μ λ_n against the slip (the next step's warm start;
-                        // not solved again).
-                        let speed = slip.norm();
-                        let direction = if speed > SLIP {
-                            -slip / speed
-                        } else if size > 0.0 {
-                            tangential / size
-                        } else {
-                            Vector3::zeros()
-                        };
-                        kinds[k].1 = direction * limit;
+                } else if tie.kind == TieKind::Normal && size > 0.0 {
+                    let bounded = tangential * (limit / size);
+                    if (bounded - tie.extra).norm() > 1e-12 {
+                        kinds[k].1 = bounded;
                     }
                 }
             }
@@ -778,10 +746,7 @@ pub fn tied_step(
     report.obstacle_contacts = ties.iter().filter(|t| t.body.is_none()).count();
     cloth.set_held(
         candidates.iter().map(|c| c.particle),
-        ties.iter().zip(&index).map(|(t, &k)| {
-            let slides = friction > 0.0 && t.kind == TieKind::Normal && !reversed[k];
-            (t.particle, slides.then_some(kinds[k].1))
-        }),
+        ties.iter().filter(|t| !t.permanent).map(|t| t.particle),
     );
     // The bodies take the opposite impulses: through their correction when they are unknowns
     // of the solve, summed afterwards when they are not (factor 0).

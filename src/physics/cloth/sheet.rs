@@ -72,9 +72,6 @@ pub(super) struct Scratch {
     /// Per particle: how the last tied step ended (the next step's first guess of its
     /// contact set, [`Held`]).
     pub held: Vec<Held>,
-    /// Per particle held sliding: the friction impulse of its last tied step, N·s (the next
-    /// step's first guess of it); 0 otherwise.
-    pub sliding: Vec<Vector3<f64>>,
     /// What the last step's linear solves took.
     pub solves: SolveCounts,
 }
@@ -97,10 +94,8 @@ pub enum Held {
     Free,
     /// A candidate, not held.
     Near,
-    /// Held by a contact tie: sticking (or frictionless).
-    Sticking,
-    /// Held by a contact tie along its normal, sliding with a bounded friction impulse.
-    Sliding,
+    /// Held by a contact tie.
+    Touching,
 }
 
 /// A mass–spring sheet.
@@ -153,7 +148,6 @@ impl Cloth {
             .map(|v| bytes_of(v, v.capacity()))
             .sum::<usize>()
             + bytes_of(&sc.held, sc.held.capacity())
-            + bytes_of(&sc.sliding, sc.sliding.capacity())
             + sc.solver.heap_bytes()
     }
 
@@ -469,38 +463,20 @@ impl Cloth {
         &self.scratch.held
     }
 
-    /// The friction impulse a particle held [`Held::Sliding`] took in the last tied step,
-    /// N·s (0 otherwise).
-    pub fn sliding_impulse(&self, i: usize) -> Vector3<f64> {
-        self.scratch
-            .sliding
-            .get(i)
-            .copied()
-            .unwrap_or_else(Vector3::zeros)
-    }
-
-    /// Records the candidates and the contact set a tied step ended with ([`Cloth::held`]):
-    /// `held` gives each held particle and, when it slides, its friction impulse.
+    /// Records the candidates and the contact set a tied step ended with ([`Cloth::held`]).
     pub fn set_held(
         &mut self,
         candidates: impl Iterator<Item = usize>,
-        held: impl Iterator<Item = (usize, Option<Vector3<f64>>)>,
+        held: impl Iterator<Item = usize>,
     ) {
         let n = self.len();
         self.scratch.held.clear();
         self.scratch.held.resize(n, Held::Free);
-        self.scratch.sliding.clear();
-        self.scratch.sliding.resize(n, Vector3::zeros());
         for i in candidates {
             self.scratch.held[i] = Held::Near;
         }
-        for (i, slide) in held {
-            if let Some(e) = slide {
-                self.scratch.held[i] = Held::Sliding;
-                self.scratch.sliding[i] = e;
-            } else {
-                self.scratch.held[i] = Held::Sticking;
-            }
+        for i in held {
+            self.scratch.held[i] = Held::Touching;
         }
     }
 
