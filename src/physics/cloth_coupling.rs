@@ -7,7 +7,8 @@
 //!   each tied particle ending the step on the body's surface; the velocity pass below is
 //!   not used, and the collide phase's push-out only handles what is still more than
 //!   [`SLOP`] inside after the positions moved (nothing, on lesson 16).
-//! - `symplectic-euler`: the two passes below.
+//! - `symplectic-euler`: the two passes below for contacts, and [`hold_attachments`] for
+//!   its attachments (impulses after the velocity half, one small solve per body).
 //!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
 //!
