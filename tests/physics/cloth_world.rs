@@ -508,9 +508,9 @@ fn a_frictionless_cube_dropped_centred_stays_centred_and_level() {
     // x → −x and z → −z; without friction nothing holds it sideways, and the centred rest is
     // unstable (a tilted face pushes it further off), so any asymmetry grows — but it must
     // start from round-off, not from the coupling, at the solver's default ε = 1e-3.
-    // Measured: 9e-12 m off centre at 0.5 s (after the landing), 2.8e-5 m and 0.0017° at
+    // Measured: 2.5e-11 m off centre by 0.8 s (after the landing), 3.3e-5 m and 0.0019° at
     // 4 s, growing ×e every 0.23 s (the instability's own rate). Before the body's
-    // correction started from 0 in every solve (`cloth::ties`, "Warm starts"): 1.3e-7 m
+    // correction started from 0 in every solve (`cloth::ties`, "Warm starts"): 1.0e-7 m
     // at 0.5 s, 6–12 mm and 0.4–0.7° at 4 s; it held only at ε = 1e-8.
     let mut w = frictionless_trampoline(SolverSettings::default().tolerance);
     let (mut offset, mut tilt, mut touched) = (0.0f64, 0.0f64, 0);

@@ -56,8 +56,8 @@
 //! on the sheet), and what a warm start hands on is never corrected while it stays below ε.
 //! For a body that error is a correction ΔV, Δω applied again step after step: a steady
 //! push or torque of up to ε times the weight's. Measured with Y carried over: the
-//! frictionless centred drop of lesson 16 went from 1.8e-14 m off centre to 1.3e-7 m
-//! within its landing (0.3 → 0.5 s) and 7.6 mm, 0.45° at 4 s; lesson 31's box at dt =
+//! frictionless centred drop of lesson 16 went from 1.8e-14 m off centre to 1.0e-7 m
+//! within its landing (0.3 → 0.5 s) and 6–12 mm, 0.4–0.7° at 4 s; lesson 31's box at dt =
 //! 10 ms rested 1.5e-5 m from the statics. Started from 0, the Krylov space of a
 //! mirror-symmetric scene is mirror-symmetric, and each step's error is fresh, not summed.
 //! Its price: a resting cube's solve takes ~8 iterations instead of 1 (none while it moves:
