@@ -81,12 +81,16 @@ fn main() {
                 )
             };
             let mut w = cube_on_trampoline(name, dt);
+            let (mut solves, mut iterations) = (0, 0);
             for _ in 0..steps {
                 black_box(&mut w).step();
+                let counts = w.cloths()[0].solve_counts();
+                solves += counts.solves;
+                iterations += counts.iterations;
             }
             let c = &w.cloths()[0];
             println!(
-                "{case} dt={dt:.6e} steps={steps} y_min={:.9} cube_y={:.9}",
+                "{case} dt={dt:.6e} steps={steps} solves={solves} cg_iterations={iterations} y_min={:.9} cube_y={:.9}",
                 c.positions
                     .iter()
                     .map(|x| x.y)
@@ -158,7 +162,7 @@ fn main() {
                     let up = s.orientation.matrix() * Vector3::y();
                     let b = w.energy_balance();
                     println!(
-                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} n={}",
+                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} n={} cg={}",
                         w.time(),
                         s.position.x,
                         s.position.z,
@@ -170,6 +174,7 @@ fn main() {
                         b.contacts.unwrap_or(0.0),
                         b.drift,
                         w.cloth_body_contacts(0),
+                        w.cloths()[0].solve_counts().iterations,
                     );
                 }
             }

@@ -7,7 +7,8 @@
 //!   each tied particle ending the step on the body's surface; the velocity pass below is
 //!   not used, and the collide phase's push-out only handles what is still more than
 //!   [`SLOP`] inside after the positions moved (nothing, on lesson 16).
-//! - `symplectic-euler`: the two passes below.
+//! - `symplectic-euler`: the two passes below for contacts, and [`hold_attachments`] for
+//!   its attachments (impulses after the velocity half, one small solve per body).
 //!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
 //!
@@ -61,7 +62,7 @@
 //! books the change in its ledger.
 
 use super::body::Body;
-use super::cloth::Cloth;
+use super::cloth::{Cloth, Held};
 use super::collision::geometry::{point_shape, Pose};
 use super::state::State;
 use nalgebra::{Matrix3, Vector3};
@@ -380,7 +381,10 @@ pub const TIE_ROUNDS: usize = 5;
 const TOUCHING: f64 = 1e-9;
 
 /// A depth (m) the collide phase leaves to an `implicit-euler` cloth's particles: its ties
-/// put them on the surface, up to round-off and the linearised turn of the body.
+/// put them on the surface, up to round-off (the body's turn is made up exactly, see the
+/// end of [`tied_step`]); a particle a step's last round let go may end a few nm inside,
+/// and the next step's tie moves it with the surface (pushing it out would stretch its
+/// springs: energy made).
 pub const SLOP: f64 = 1e-8;
 
 /// How far a body's position moves under a constant extra force F over a step, in units of
@@ -509,7 +513,7 @@ pub fn tied_step(
         now.position + arm - (before.position + back * arm)
     };
     // Candidates: the nearest surface of each free particle within what it can close.
-    let held: Vec<u8> = cloth.held().to_vec();
+    let held: Vec<Held> = cloth.held().to_vec();
     let mut candidates: Vec<Candidate> = Vec::new();
     for i in 0..cloth.len() {
         if cloth.inv_mass(i) == 0.0 || attachments.iter().any(|a| a.particle == i) {
@@ -618,14 +622,21 @@ pub fn tied_step(
     // First guess: touching, or carried inside by its start velocity and gravity; against a
     // body also held at the end of the last step and still within a step's fall (g h²) of
     // its surface (a warm start of the contact set: the rounds below correct it).
+    // The gap is measured at the start of the step from the body's material point (it has
+    // moved by its own step since: a body pushed up by the sheet moves away from the
+    // particles that hold it by h·V every step).
+    // (Against a body only: an obstacle's contacts are found afresh each step.)
+    let was_held = |c: &Candidate| {
+        let start_gap = c.gap + dt * c.normal.dot(&c.drift);
+        c.body.is_some()
+            && held.get(c.particle) == Some(&Held::Touching)
+            && start_gap <= TOUCHING + gravity.norm() * dt * dt
+    };
     let mut active: Vec<bool> = candidates
         .iter()
         .map(|c| {
             let v = cloth.start_velocity(c.particle) + gravity * dt;
-            let held = c.body.is_some()
-                && held.get(c.particle).copied().unwrap_or(0) == 2
-                && c.gap <= TOUCHING + gravity.norm() * dt * dt;
-            held || c.gap <= TOUCHING || end_gap(c, &v, &solver_bodies) < 0.0
+            was_held(c) || c.gap <= TOUCHING || end_gap(c, &v, &solver_bodies) < 0.0
         })
         .collect();
     let mut ties: Vec<Tie> = Vec::new();
@@ -714,6 +725,10 @@ pub fn tied_step(
         }
     }
     cloth.finish_tied_step(loads);
+    cloth.record_solves(crate::physics::cloth::SolveCounts {
+        solves: report.rounds,
+        iterations: report.iterations,
+    });
     // The energy the ties took (doc above): the impulses' work along the particle's motion
     // relative to the body's material point.
     for tie in &ties {
@@ -764,16 +779,169 @@ pub fn tied_step(
         }
         state.linear_momentum += dv * sb.mass;
         state.angular_momentum += sb.inertia * dw;
-        state.position += dv * dt;
-        let turn = nalgebra::UnitQuaternion::from_scaled_axis(dw * dt);
-        state.orientation = match state.orientation {
-            super::state::Orientation::Quaternion(q) => {
-                super::state::Orientation::Quaternion(turn * q)
-            }
-            super::state::Orientation::Matrix(m) => {
-                super::state::Orientation::Matrix(turn.to_rotation_matrix().matrix() * m)
-            }
-        };
+        move_body(state, &dv, &dw, dt);
+    }
+    // Tied particles: the body turned by the rotation h Y_ω, their tie moved them along its
+    // tangent h Y_ω × r; the difference in the tied components, (I − S)((R(h Y_ω) − I) r −
+    // h Y_ω × r) = O(h² |Y_ω|² r), is made up within the step (module doc of
+    // `hold_attachments`), so that an attached particle stays on its point and a contact on
+    // the surface to round-off.
+    for tie in &ties {
+        let Some(b) = tie.body else { continue };
+        let sb = &solver_bodies[b];
+        if sb.mass == 0.0 {
+            continue;
+        }
+        let mut gap = turn_gap(&sb.correction[1], &tie.arm, dt);
+        if tie.kind == TieKind::Normal {
+            gap = tie.normal * tie.normal.dot(&gap);
+        }
+        close_gap(cloth, tie.particle, &mut states[b], &tie.arm, &gap, dt);
     }
     report
+}
+
+/// Moves a body by the position part of a correction (Y_V, Y_ω) over a step of length h:
+/// x += h Y_V, and a turn by the rotation of vector h Y_ω (exact, not linearised).
+fn move_body(state: &mut State, y_v: &Vector3<f64>, y_w: &Vector3<f64>, dt: f64) {
+    state.position += y_v * dt;
+    let turn = nalgebra::UnitQuaternion::from_scaled_axis(y_w * dt);
+    state.orientation = match state.orientation {
+        super::state::Orientation::Quaternion(q) => super::state::Orientation::Quaternion(turn * q),
+        super::state::Orientation::Matrix(m) => {
+            super::state::Orientation::Matrix(turn.to_rotation_matrix().matrix() * m)
+        }
+    };
+}
+
+/// (R(h ω) − I) r − h ω × r: where a body's point at arm r ends after the exact turn by
+/// h ω, less where its linearisation puts it, m.
+fn turn_gap(omega: &Vector3<f64>, arm: &Vector3<f64>, dt: f64) -> Vector3<f64> {
+    let turn = nalgebra::UnitQuaternion::from_scaled_axis(omega * dt);
+    turn * arm - arm - omega.cross(arm) * dt
+}
+
+/// Moves particle `i`'s end of step by `gap` (its velocity by gap/h) and gives the body the
+/// opposite momentum at its point, so that particle + body keep theirs.
+fn close_gap(
+    cloth: &mut Cloth,
+    i: usize,
+    state: &mut State,
+    arm: &Vector3<f64>,
+    gap: &Vector3<f64>,
+    dt: f64,
+) {
+    let impulse = gap * (cloth.masses[i] / dt);
+    cloth.apply_impulse(i, &impulse);
+    state.linear_momentum -= impulse;
+    state.angular_momentum -= arm.cross(&impulse);
+}
+
+/// Attachments of an explicit (`symplectic-euler`) cloth, held by impulses after its
+/// velocity half and the bodies' own step (the implicit cloth holds them inside its solve,
+/// [`tied_step`]).
+///
+/// Attachment a holds particle p at its body's point P_a = x_b + r_a (the body already at
+/// the end of its own step). Unknown: the impulse J_a on the particle, −J_a on the body at
+/// r_a. The body's correction ΔV = −Σ J/M, Δω = −I⁻¹ Σ r × J moves its position by
+/// factor·h·(ΔV, Δω) ([`position_factor`]), so the particle ends on its point when
+///
+/// ```text
+/// x_p + h (v_p + J_a/m_p) = P_a + factor h (ΔV + Δω × r_a)      (linearised turn)
+/// Σ_c K_ac J_c = (P_a − x_p)/h − v_p
+/// K_ac = δ_ac I/m_p + factor (I/M − [r_a]× I⁻¹ [r_c]×)
+/// ```
+///
+/// one symmetric positive-definite 3k × 3k system per body with k attachments, solved
+/// directly (Cholesky). The body's turn is then applied exactly and the particle moved by
+/// what the linearisation missed, `(R(h Δω') − I) r − h Δω' × r` (Δω' = factor Δω),
+/// with the opposite momentum to the body: the error left is round-off, and body +
+/// particles keep their momentum. A fixed body takes nothing (K = I/m_p); a body whose
+/// integrator ignores the correction in its position (factor 0) takes the impulses in its
+/// momenta only.
+///
+/// Returns the kinetic energy the impulses took, J (a rigid hold is a perfectly plastic
+/// impact between the particle and the body's point: ≥ 0).
+pub fn hold_attachments(
+    cloth: &mut Cloth,
+    bodies: &[Body],
+    states: &mut [State],
+    attachments: &[Attachment],
+    dt: f64,
+    factor: f64,
+) -> f64 {
+    use nalgebra::{DMatrix, DVector};
+    let mut taken = 0.0;
+    for (b, (body, state)) in bodies.iter().zip(states.iter_mut()).enumerate() {
+        let list: Vec<&Attachment> = attachments.iter().filter(|a| a.body == b).collect();
+        if list.is_empty() {
+            continue;
+        }
+        let rotation = state.orientation.matrix();
+        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+        let moves = !body.fixed && body.inv_mass > 0.0;
+        let scale = if moves { factor } else { 0.0 };
+        let arms: Vec<Vector3<f64>> = list.iter().map(|a| rotation * a.offset_body).collect();
+        let k = list.len();
+        let mut matrix = DMatrix::<f64>::zeros(3 * k, 3 * k);
+        let mut rhs = DVector::<f64>::zeros(3 * k);
+        for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
+            let p = att.particle;
+            let point = state.position + ra;
+            let u = (point - cloth.positions[p]) / dt - cloth.velocities[p];
+            rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
+            for (c, rc) in arms.iter().enumerate() {
+                let mut block = -ra.cross_matrix() * inv_inertia * rc.cross_matrix()
+                    + Matrix3::identity() * body.inv_mass;
+                block *= scale;
+                if a == c {
+                    block += Matrix3::identity() * cloth.inv_mass(p);
+                }
+                matrix
+                    .fixed_view_mut::<3, 3>(3 * a, 3 * c)
+                    .copy_from(&block);
+            }
+        }
+        let Some(cholesky) = matrix.cholesky() else {
+            continue;
+        };
+        let impulses = cholesky.solve(&rhs);
+        let kinetic = |cloth: &Cloth, state: &State| {
+            let rigid = if moves {
+                0.5 * state.linear_momentum.norm_squared() * body.inv_mass
+                    + 0.5
+                        * state
+                            .angular_momentum
+                            .dot(&(inv_inertia * state.angular_momentum))
+            } else {
+                0.0
+            };
+            list.iter().fold(rigid, |t, a| {
+                t + 0.5 * cloth.masses[a.particle] * cloth.velocities[a.particle].norm_squared()
+            })
+        };
+        let before = kinetic(cloth, state);
+        let (mut total, mut torque) = (Vector3::zeros(), Vector3::zeros());
+        for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
+            let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
+            cloth.apply_impulse(att.particle, &j);
+            total += j;
+            torque += ra.cross(&j);
+        }
+        if moves {
+            state.linear_momentum -= total;
+            state.angular_momentum -= torque;
+            if scale > 0.0 {
+                let y_v = -total * (body.inv_mass * scale);
+                let y_w = -(inv_inertia * torque) * scale;
+                move_body(state, &y_v, &y_w, dt);
+                for (att, ra) in list.iter().zip(&arms) {
+                    let gap = turn_gap(&y_w, ra, dt);
+                    close_gap(cloth, att.particle, state, ra, &gap, dt);
+                }
+            }
+        }
+        taken += before - kinetic(cloth, state);
+    }
+    taken
 }

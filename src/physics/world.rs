@@ -21,7 +21,7 @@
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::{
-    approach_bodies, collide_bodies, position_factor, tied_step, Attachment,
+    approach_bodies, collide_bodies, hold_attachments, position_factor, tied_step, Attachment,
 };
 use super::collision::impulse::Scratch;
 use super::collision::impulse::BOUNCE_STEPS;
@@ -657,6 +657,20 @@ impl World {
                 now.cloth_body_contacts[k] = approach.contacts;
                 if approach.energy_taken != 0.0 {
                     now.ledger.book_contact(approach.energy_taken, 0.0);
+                }
+            }
+            if let Some(list) = self.cloth_attachments.get(k).filter(|l| !l.is_empty()) {
+                // An explicit cloth's attachments: impulses after the velocity half.
+                let taken = hold_attachments(
+                    cloth,
+                    &self.bodies,
+                    &mut now.states,
+                    list,
+                    self.dt,
+                    position_factor(self.integrator),
+                );
+                if taken != 0.0 {
+                    now.ledger.book_contact(taken, 0.0);
                 }
             }
             let lost = cloth.advance_positions(loads, self.dt);

@@ -14,7 +14,6 @@
 //! | names not empty | cloth `name` must not be empty |
 //! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
 //! | `attach` particle in the grid, body known, not pinned, once | attach: unknown body `bob`; bodies in this file: cube |
-//! | `attach` needs `implicit-euler` | cloth `rope` has `attach`, which is held inside the implicit solve: … |
 //! | a cloth touches things | a cloth needs a collision response: add `contact = …` to [scene] |
 
 use super::error::did_you_mean;
@@ -193,16 +192,6 @@ impl Validator<'_> {
                 ));
             }
             attach.push(Attach { particle, body });
-        }
-        if !attach.is_empty() && integrator != ClothIntegrator::ImplicitEuler {
-            return Err(self.error(
-                table.span(),
-                format!(
-                    "cloth `{name}` has `attach`, which is held inside the implicit solve: use \
-                     integrator = \"implicit-euler\" (found `{}`)",
-                    integrator.name()
-                ),
-            ));
         }
         let spec = ClothSpec {
             name,

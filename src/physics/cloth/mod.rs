@@ -33,7 +33,7 @@ pub use contact::{ContactReport, ParticleContact};
 pub use energy::{ClothEnergy, Losses};
 pub use integrator::ClothIntegrator;
 pub use loads::ClothLoads;
-pub use sheet::{Cloth, SolverSettings, StepReport};
+pub use sheet::{Cloth, Held, SolveCounts, SolverSettings, StepReport};
 pub use spec::{Attach, ClothSpec, ClothSpecError, Pinning};
 pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;

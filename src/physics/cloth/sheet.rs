@@ -69,9 +69,33 @@ pub(super) struct Scratch {
     pub drag_velocity: Vec<Vector3<f64>>,
     pub start: Vec<Vector3<f64>>,
     pub solver: Workspace,
-    /// Per particle: 0 no contact candidate, 1 a candidate not held, 2 held by a contact tie
-    /// at the end of the last tied step (the next step's first guess of its contact set).
-    pub held: Vec<u8>,
+    /// Per particle: how the last tied step ended (the next step's first guess of its
+    /// contact set, [`Held`]).
+    pub held: Vec<Held>,
+    /// What the last step's linear solves took.
+    pub solves: SolveCounts,
+}
+
+/// What the last step's linear solves took (0 for an explicit step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SolveCounts {
+    /// Solves: 1, or one per contact set a tied step tried.
+    pub solves: usize,
+    /// Conjugate-gradient iterations over those solves.
+    pub iterations: usize,
+}
+
+/// How a particle ended the last tied step (`cloth_coupling::tied_step`), the next step's
+/// first guess of its contact set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Held {
+    /// No contact candidate.
+    #[default]
+    Free,
+    /// A candidate, not held.
+    Near,
+    /// Held by a contact tie.
+    Touching,
 }
 
 /// A mass–spring sheet.
@@ -345,10 +369,25 @@ impl Cloth {
     /// [`Cloth::advance_positions`].
     pub fn velocity_step(&mut self, loads: &ClothLoads, dt: f64) -> StepReport {
         self.scratch.start_velocity.clone_from(&self.velocities);
-        match self.integrator {
+        let report = match self.integrator {
             ClothIntegrator::SymplecticEuler => symplectic_euler::velocities(self, loads, dt),
             ClothIntegrator::ImplicitEuler => implicit_euler::velocities(self, loads, dt),
-        }
+        };
+        self.scratch.solves = SolveCounts {
+            solves: usize::from(self.integrator == ClothIntegrator::ImplicitEuler),
+            iterations: report.iterations,
+        };
+        report
+    }
+
+    /// What the last step's linear solves took.
+    pub fn solve_counts(&self) -> SolveCounts {
+        self.scratch.solves
+    }
+
+    /// Records what a tied step's solves took ([`Cloth::solve_counts`]).
+    pub fn record_solves(&mut self, counts: SolveCounts) {
+        self.scratch.solves = counts;
     }
 
     /// The implicit step with ties (`ties`), in three calls: this one records the start
@@ -419,9 +458,8 @@ impl Cloth {
             .unwrap_or(self.velocities[i])
     }
 
-    /// Per particle, how the last tied step ended (empty before the first): 0 no contact
-    /// candidate, 1 a candidate not held, 2 held by a contact tie.
-    pub fn held(&self) -> &[u8] {
+    /// Per particle, how the last tied step ended (empty before the first).
+    pub fn held(&self) -> &[Held] {
         &self.scratch.held
     }
 
@@ -433,12 +471,12 @@ impl Cloth {
     ) {
         let n = self.len();
         self.scratch.held.clear();
-        self.scratch.held.resize(n, 0);
+        self.scratch.held.resize(n, Held::Free);
         for i in candidates {
-            self.scratch.held[i] = 1;
+            self.scratch.held[i] = Held::Near;
         }
         for i in held {
-            self.scratch.held[i] = 2;
+            self.scratch.held[i] = Held::Touching;
         }
     }
 
