@@ -277,7 +277,8 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         e0.total,
     ]
     .iter()
-    .fold(0.0_f64, |m, x| m.max(x.abs()));
+    .fold(0.0_f64, |m, x| m.max(x.abs()))
+    .max(s.bodies.iter().map(|b| b.potential_scale).sum());
     let energy_resolution = ROUND_OFF * energy_scale + momentum_scale * speed_tolerance;
     let mut energy_rows = vec![Row {
         label: "K, V, E".to_string(),
@@ -345,13 +346,18 @@ pub fn body_energy_panel(s: &Snapshot) -> Panel {
         rows: s
             .bodies
             .iter()
-            .map(|b| Row {
-                label: b.name.clone(),
-                cells: [b.energy.kinetic, b.energy.potential, b.energy.total]
-                    .iter()
-                    .map(|x| number(*x))
-                    .collect(),
-                unit: "J (K, V, E)",
+            .map(|b| {
+                let e = [b.energy.kinetic, b.energy.potential, b.energy.total];
+                // Round-off of the body's energy: of its largest term, or of −M g·x's terms.
+                let scale = e.iter().fold(b.potential_scale, |m, x| m.max(x.abs()));
+                Row {
+                    label: b.name.clone(),
+                    cells: e
+                        .iter()
+                        .map(|x| number(resolved(*x, ROUND_OFF * scale)))
+                        .collect(),
+                    unit: "J (K, V, E)",
+                }
             })
             .collect(),
     }

@@ -3,6 +3,7 @@
 
 mod classroom;
 mod history;
+mod plot;
 mod tui;
 mod tui_cloth;
 mod tui_screens;

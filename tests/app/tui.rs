@@ -259,6 +259,7 @@ fn help_overlay_lists_every_bound_key() {
             Context::Picker => "l",
             Context::Form => "e",
             Context::Prompt => "J",
+            Context::PlotPicker => "p",
         };
         keys(app, open);
         screen(app, 120, 40)
@@ -715,7 +716,9 @@ fn w_asks_for_a_write_and_the_written_scene_loads() {
     keys(&mut app, "3");
     // `update` only asks; nothing is written until the effect is performed.
     let effect = app.update(Message::WriteScene).expect("W asks for a write");
-    let Effect::WriteScene { edits, to } = &effect;
+    let Effect::WriteScene { edits, to } = &effect else {
+        panic!("W writes a scene");
+    };
     assert_eq!(edits.mass, 3.0);
     assert_eq!(*to, dir.join("tui-box-edited.toml"));
     assert!(!to.exists());
