@@ -2,6 +2,7 @@
 #![cfg(feature = "tui")]
 
 mod classroom;
+mod findings;
 mod history;
 mod plot;
 mod tui;
