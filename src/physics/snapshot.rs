@@ -267,6 +267,8 @@ pub struct BodyView {
     /// energy's round-off: a double pendulum hanging 1 m and 2 m from the origin has
     /// E − E₀ ≈ 1e-15 J of round-off while its V is only 1e-4 J.
     pub potential_scale: f64,
+    /// M, kg (infinite or unused for a fixed body).
+    pub mass: f64,
 }
 
 /// The scene as a whole.
@@ -361,6 +363,7 @@ impl Snapshot {
                 fixed: world.bodies()[i].fixed,
                 energy: world.body_energy(i),
                 potential_scale: potential_scale(world, i),
+                mass: world.bodies()[i].mass,
             })
             .collect();
         Snapshot {
