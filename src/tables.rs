@@ -272,7 +272,6 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     // by cause (the energy ledger); only the unbooked remainder is drift.
     let b = &s.energy_balance;
     let e = &s.system.energy;
-    let e0 = &s.system.initial_energy;
     let several = s.bodies.len() > 1;
     let energy_scale = tolerance.energy_scale;
     let energy_resolution = ROUND_OFF * energy_scale + momentum_scale * speed_tolerance;

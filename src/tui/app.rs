@@ -125,7 +125,7 @@ impl LiveSettings {
 pub enum Effect {
     /// Write the scene file with these values to `to` (the lesson's own file is the source, so
     /// its comments and pages are kept), then load it back to check it.
-    WriteScene { edits: SceneEdits, to: PathBuf },
+    WriteScene { edits: Box<SceneEdits>, to: PathBuf },
     /// Write what the graph plots, as CSV, to `to`.
     WriteCsv { text: String, to: PathBuf },
 }
@@ -745,7 +745,7 @@ impl App {
             return None;
         }
         Some(Effect::WriteScene {
-            edits,
+            edits: Box::new(edits),
             to: self.write_path(),
         })
     }
