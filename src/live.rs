@@ -59,6 +59,31 @@ pub fn read(snapshot: &Snapshot, q: &Quantity) -> f64 {
     }
 }
 
+/// A value as the panels show it: 0 at or below the round-off of its quantity (see
+/// [`crate::tables::Resolution`]), so a page never quotes `1.0000e-10 kg·m/s` where its panel
+/// shows 0 after a contact.
+pub fn shown(snapshot: &Snapshot, q: &Quantity, x: f64) -> f64 {
+    use crate::tables::{resolved, Resolution, ROUND_OFF};
+    let s = snapshot;
+    let r = Resolution::of(s);
+    let resolution = match q.measure {
+        Measure::Position(_) => ROUND_OFF * s.position.norm(),
+        Measure::Velocity(_) | Measure::Speed => (ROUND_OFF * s.velocity.norm()).max(r.speed),
+        Measure::AngularVelocity(_) => {
+            (ROUND_OFF * s.angular_velocity.norm()).max(r.angular_velocity)
+        }
+        Measure::AngularMomentum(_) => {
+            (ROUND_OFF * s.angular_momentum.norm()).max(r.angular_momentum)
+        }
+        Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => {
+            ROUND_OFF * r.energy_scale
+        }
+        Measure::SceneMomentum(_) => (ROUND_OFF * s.system.linear_momentum.norm()).max(r.momentum),
+        Measure::Time | Measure::ContactTime => 0.0,
+    };
+    resolved(x, resolution)
+}
+
 impl LiveValues {
     /// Simulates `world` (at t = 0, with the settings to quote) to every time the lesson's
     /// pages need. A lesson without live numbers or predictions costs nothing.
@@ -122,7 +147,8 @@ impl LiveValues {
                         .flatten()
                         .map_or(Value::NoContactYet, Value::Number);
                 }
-                Value::Number(read(&world.snapshot_of(q.body), q))
+                let snapshot = world.snapshot_of(q.body);
+                Value::Number(shown(&snapshot, q, read(&snapshot, q)))
             };
             for q in quantities {
                 let v = value_of(&world, &q);

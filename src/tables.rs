@@ -15,6 +15,7 @@
 //! shown(x) = 0   if |x| ≤ ROUND_OFF · scale + solver tolerance (quantities the solver sets)
 //! ROUND_OFF = 64 ε ≈ 1.4e-14        (a few dozen roundings of numbers of that size)
 //! v: tol = TOLERANCE · (1 + v_scale),  P: M · tol,  E − E₀: |P| · tol
+//! ω: tol / k with k = √(tr Ibody / 2M) (the radius of gyration),  L: max |I_ij| · tol / k
 //! ```
 
 use crate::physics::collision::impulse;
@@ -168,29 +169,9 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         Frame::Body => " (body frame)",
     };
     let q = s.quaternion.quaternion();
-    // Scales of the quantities the contact solver sets (see the module doc).
-    // Once a contact has acted (energy booked to contacts, or touching now): before, the
-    // solver has set nothing and only floating-point round-off applies.
-    let contacts = s.energy_balance.contacts.is_some_and(|c| c != 0.0) || !s.contacts.is_empty();
-    let mass = if s.velocity.norm() > 0.0 {
-        s.linear_momentum.norm() / s.velocity.norm()
-    } else {
-        0.0
-    };
-    let momentum_scale = s
-        .linear_momentum
-        .norm()
-        .max(s.system.linear_momentum.norm());
-    let speed_scale = if mass > 0.0 {
-        momentum_scale / mass
-    } else {
-        s.velocity.norm()
-    };
-    let speed_tolerance = if contacts {
-        impulse::TOLERANCE * (1.0 + speed_scale)
-    } else {
-        0.0
-    };
+    let tolerance = Resolution::of(s);
+    let speed_tolerance = tolerance.speed;
+    let momentum_scale = tolerance.momentum_scale;
     let state = Panel {
         title: "state".to_string(),
         rows: vec![
@@ -224,9 +205,24 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     let angular_velocity = Panel {
         title: "angular velocity".to_string(),
         rows: vec![
-            vector_row("ω", &s.angular_velocity, "rad/s"),
-            vector_row("ωbody", &s.angular_velocity_body, "rad/s"),
-            scalar_row("|ω|", s.angular_velocity.norm(), "rad/s"),
+            vector_row_at(
+                "ω",
+                &s.angular_velocity,
+                "rad/s",
+                tolerance.angular_velocity,
+            ),
+            vector_row_at(
+                "ωbody",
+                &s.angular_velocity_body,
+                "rad/s",
+                tolerance.angular_velocity,
+            ),
+            scalar_row_at(
+                "|ω|",
+                s.angular_velocity.norm(),
+                "rad/s",
+                tolerance.angular_velocity,
+            ),
         ],
     };
     // F, τ: the declared effects'. Fc, τc: the contacts' (impulses over dt of the last collide
@@ -250,7 +246,7 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
                 "P",
                 &to_frame(&s.linear_momentum),
                 "kg·m/s",
-                mass * speed_tolerance,
+                tolerance.momentum,
             ),
             vector_row_at("v", &to_frame(&s.velocity), "m/s", speed_tolerance),
         ],
@@ -258,26 +254,26 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     let angular_momentum = Panel {
         title: format!("angular momentum{suffix}"),
         rows: vec![
-            vector_row("L", &to_frame(&s.angular_momentum), "kg·m²/s"),
-            scalar_row("|L|", s.angular_momentum.norm(), "kg·m²/s"),
+            vector_row_at(
+                "L",
+                &to_frame(&s.angular_momentum),
+                "kg·m²/s",
+                tolerance.angular_momentum,
+            ),
+            scalar_row_at(
+                "|L|",
+                s.angular_momentum.norm(),
+                "kg·m²/s",
+                tolerance.angular_momentum,
+            ),
         ],
     };
     // The scene's energy (every body: contacts pass energy from one to another), E − E₀ split
     // by cause (the energy ledger); only the unbooked remainder is drift.
     let b = &s.energy_balance;
     let e = &s.system.energy;
-    let e0 = &s.system.initial_energy;
     let several = s.bodies.len() > 1;
-    let energy_scale = [
-        e.kinetic,
-        e.potential,
-        e.total,
-        e0.kinetic,
-        e0.potential,
-        e0.total,
-    ]
-    .iter()
-    .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let energy_scale = tolerance.energy_scale;
     let energy_resolution = ROUND_OFF * energy_scale + momentum_scale * speed_tolerance;
     let mut energy_rows = vec![Row {
         label: "K, V, E".to_string(),
@@ -333,6 +329,93 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
     panels
 }
 
+/// The round-off of a snapshot's quantities: at or below it a value prints as 0 (see the
+/// module doc). Once a contact has acted, the contact solver's tolerance `tol` at the contact
+/// points sets it for the velocities it changes: v and P directly, ω at the body's radius of
+/// gyration k = √(tr Ibody / 2M) (ω_tol = tol / k), L through the inertia (I ω_tol).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Resolution {
+    /// m/s: the contact solver's tolerance on v (0 before any contact).
+    pub speed: f64,
+    /// kg·m/s: on P.
+    pub momentum: f64,
+    /// rad/s: on ω.
+    pub angular_velocity: f64,
+    /// kg·m²/s: on L.
+    pub angular_momentum: f64,
+    /// The largest momentum shown, kg·m/s.
+    pub momentum_scale: f64,
+    /// J: the scale of the energy rows (their largest term, or Σ M|g||x|: positions carry
+    /// a round-off of ε|x|).
+    pub energy_scale: f64,
+}
+
+impl Resolution {
+    pub fn of(s: &Snapshot) -> Resolution {
+        // Once a contact has acted (energy booked to contacts, or touching now): before, the
+        // solver has set nothing and only floating-point round-off applies.
+        let contacts =
+            s.energy_balance.contacts.is_some_and(|c| c != 0.0) || !s.contacts.is_empty();
+        // M as P/v (0 at rest: then the speed alone sets the scale).
+        let mass = if s.velocity.norm() > 0.0 {
+            s.linear_momentum.norm() / s.velocity.norm()
+        } else {
+            0.0
+        };
+        let momentum_scale = s
+            .linear_momentum
+            .norm()
+            .max(s.system.linear_momentum.norm());
+        let speed_scale = if mass > 0.0 {
+            momentum_scale / mass
+        } else {
+            s.velocity.norm()
+        };
+        let speed = if contacts {
+            impulse::TOLERANCE * (1.0 + speed_scale)
+        } else {
+            0.0
+        };
+        let body_mass = s
+            .bodies
+            .get(s.body_index)
+            .map(|b| b.mass)
+            .filter(|m| m.is_finite() && *m > 0.0)
+            .unwrap_or(0.0);
+        let gyration = if body_mass > 0.0 {
+            (s.inertia_body.trace() / (2.0 * body_mass)).sqrt()
+        } else {
+            0.0
+        };
+        let angular_velocity = if gyration > 0.0 {
+            speed / gyration
+        } else {
+            0.0
+        };
+        let e = &s.system.energy;
+        let e0 = &s.system.initial_energy;
+        let energy_scale = [
+            e.kinetic,
+            e.potential,
+            e.total,
+            e0.kinetic,
+            e0.potential,
+            e0.total,
+        ]
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()))
+        .max(s.bodies.iter().map(|b| b.potential_scale).sum());
+        Resolution {
+            speed,
+            momentum: mass * speed,
+            angular_velocity,
+            angular_momentum: s.inertia_world.amax() * angular_velocity,
+            momentum_scale,
+            energy_scale,
+        }
+    }
+}
+
 /// How many of [`panels`] describe the body the snapshot shows (the rest — energy, and the
 /// system panel with several bodies — describe the whole scene).
 pub const BODY_PANELS: usize = 6;
@@ -340,18 +423,27 @@ pub const BODY_PANELS: usize = 6;
 /// Each body's own energy (several bodies: a heavy body's share would swamp the others in the
 /// scene's total), one row per body: K, V, E = K + V.
 pub fn body_energy_panel(s: &Snapshot) -> Panel {
+    // Round-off of the panel's scale: its largest term, or the largest −M g·x's terms.
+    let scale = s.bodies.iter().fold(0.0_f64, |m, b| {
+        [b.energy.kinetic, b.energy.potential, b.energy.total]
+            .iter()
+            .fold(m.max(b.potential_scale), |m, x| m.max(x.abs()))
+    });
     Panel {
         title: "energy by body".to_string(),
         rows: s
             .bodies
             .iter()
-            .map(|b| Row {
-                label: b.name.clone(),
-                cells: [b.energy.kinetic, b.energy.potential, b.energy.total]
-                    .iter()
-                    .map(|x| number(*x))
-                    .collect(),
-                unit: "J (K, V, E)",
+            .map(|b| {
+                let e = [b.energy.kinetic, b.energy.potential, b.energy.total];
+                Row {
+                    label: b.name.clone(),
+                    cells: e
+                        .iter()
+                        .map(|x| number(resolved(*x, ROUND_OFF * scale)))
+                        .collect(),
+                    unit: "J (K, V, E)",
+                }
             })
             .collect(),
     }

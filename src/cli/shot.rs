@@ -2,8 +2,9 @@
 //! screen at time T as an SVG, rendered without a terminal (text kept as text, colours as in the
 //! terminal). The screen is set as in the app: the view (`--view`, key `v`), the arrows
 //! (`--no-arrows`, key `a`), the energy graph (`--graph`, key `g`), the compare ghost
-//! (`--compare NAME`, key `k`), the stage layout (`--stage`, key `L`); `tumble record` takes
-//! the same options ([`ScreenArgs`]).
+//! (`--compare NAME`, key `k`), the stage layout (`--stage`, key `L`), the graph of a quantity
+//! (`--plot NAME`, against another with `--plot-x NAME`: key `p`); `tumble record` takes the
+//! same options ([`ScreenArgs`]).
 
 use super::{load_with, Failure, Overrides};
 use crate::tui::export;
@@ -34,6 +35,14 @@ pub struct ScreenArgs {
     /// integrator (key `k`), drawn and tabulated as in the app's compare mode.
     #[arg(long, value_name = "NAME", value_parser = parse_comparison)]
     pub compare: Option<Comparison>,
+    /// The graph of a quantity in place of the drawing (key `p`): BODY.NAME (x y z vx vy vz
+    /// wx wy wz Lx Ly Lz |L| speed kinetic potential energy), the scene's energy Px Py Pz, or
+    /// JOINT.error; against time unless `--plot-x` is given.
+    #[arg(long, value_name = "QUANTITY", conflicts_with = "graph")]
+    pub plot: Option<String>,
+    /// With `--plot`: the quantity on the horizontal axis (a phase portrait).
+    #[arg(long, value_name = "QUANTITY", requires = "plot")]
+    pub plot_x: Option<String>,
 }
 
 fn parse_view(name: &str) -> Result<Axis, String> {
@@ -79,6 +88,25 @@ impl ScreenArgs {
         app.arrows = !self.no_arrows;
         if self.graph {
             app.view = View::Energy;
+        }
+        if let Some(y) = &self.plot {
+            let column = |name: &str, flag: &str| -> Result<usize, Failure> {
+                let columns = &app.plot_series.columns;
+                columns.iter().position(|c| c.name == name).ok_or_else(|| {
+                    let names: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
+                    Failure::bad_input(format!(
+                        "{flag} {name}: no such quantity in this scene (it has {})",
+                        names.join(" ")
+                    ))
+                })
+            };
+            let y = column(y, "--plot")?;
+            let x = match &self.plot_x {
+                Some(x) => Some(column(x, "--plot-x")?),
+                None => None,
+            };
+            app.plot = Some(crate::tui::plot::PlotChoice { y, x });
+            app.view = View::Plot;
         }
         Ok(app)
     }

@@ -273,6 +273,10 @@ fn write_block(
         let mut all = panels(&snapshot, Frame::World);
         if several {
             scene_panels = all.split_off(BODY_PANELS);
+            // Each body's own energy under the scene's (as the app shows it): a heavy body's
+            // share would swamp the others in the total.
+            let at = scene_panels.len().min(1);
+            scene_panels.insert(at, crate::tables::body_energy_panel(&snapshot));
         }
         if !obstacles.is_empty() || several {
             all.push(contact_panel(&snapshot, obstacles));

@@ -262,6 +262,13 @@ pub struct BodyView {
     pub fixed: bool,
     /// The body's own kinetic, potential and total energy.
     pub energy: Energy,
+    /// M |g| |x|, J: the size of the terms `−M g·x` adds up (0 without gravity or when
+    /// fixed). Positions carry a round-off of ε |x|, so this is the scale of the potential
+    /// energy's round-off: a double pendulum hanging 1 m and 2 m from the origin has
+    /// E − E₀ ≈ 1e-15 J of round-off while its V is only 1e-4 J.
+    pub potential_scale: f64,
+    /// M, kg (infinite or unused for a fixed body).
+    pub mass: f64,
 }
 
 /// The scene as a whole.
@@ -297,6 +304,19 @@ impl SystemTotals {
             energy: world.total_energy(),
             initial_energy: world.initial_total_energy(),
         }
+    }
+}
+
+/// M |g| |x| of body `index` now (see [`BodyView::potential_scale`]).
+fn potential_scale(world: &World, index: usize) -> f64 {
+    let body = &world.bodies()[index];
+    let scale = world.effects().gravity().map_or(0.0, |g| {
+        body.mass * g.norm() * world.states()[index].position.norm()
+    });
+    if body.fixed || !scale.is_finite() {
+        0.0
+    } else {
+        scale
     }
 }
 
@@ -342,6 +362,8 @@ impl Snapshot {
                 shape: world.bodies()[i].shape.clone(),
                 fixed: world.bodies()[i].fixed,
                 energy: world.body_energy(i),
+                potential_scale: potential_scale(world, i),
+                mass: world.bodies()[i].mass,
             })
             .collect();
         Snapshot {

@@ -5,6 +5,7 @@
 
 use super::history::{History, DEFAULT_CAPACITY};
 use super::keys::{self, Context, Message};
+use super::plot::{PlotChoice, PlotSeries};
 use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
@@ -52,6 +53,8 @@ pub enum View {
     Loop,
     /// The energy graph in place of the projection.
     Energy,
+    /// The graph of a picked quantity (key `p`) in place of the projection.
+    Plot,
     /// Error against cost of every integrator × dt (computed in the background).
     Study,
 }
@@ -76,6 +79,12 @@ pub enum Overlay {
     Predict {
         page: usize,
         text: String,
+    },
+    /// The quantity picker (key `p`): the selected line, and the horizontal axis chosen so
+    /// far (None: time).
+    PlotPicker {
+        selected: usize,
+        x: Option<usize>,
     },
 }
 
@@ -116,7 +125,9 @@ impl LiveSettings {
 pub enum Effect {
     /// Write the scene file with these values to `to` (the lesson's own file is the source, so
     /// its comments and pages are kept), then load it back to check it.
-    WriteScene { edits: SceneEdits, to: PathBuf },
+    WriteScene { edits: Box<SceneEdits>, to: PathBuf },
+    /// Write what the graph plots, as CSV, to `to`.
+    WriteCsv { text: String, to: PathBuf },
 }
 
 /// Most frames a jump (`J`) runs at once.
@@ -160,6 +171,10 @@ pub struct App {
     pub ghost: Option<Ghost>,
     pub history: History,
     pub series: EnergySeries,
+    /// Every plottable quantity over the run (key `p` picks which one the graph shows).
+    pub plot_series: PlotSeries,
+    /// What the quantity graph shows (None until picked).
+    pub plot: Option<PlotChoice>,
     pub region: Region,
     pub axis: Axis,
     pub frame: Frame,
@@ -217,6 +232,7 @@ impl App {
         let snapshot = world.snapshot();
         let region = Region::of_world(&world);
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
+        let plot_series = PlotSeries::new(&world);
         let live = std::sync::Arc::new(LiveValues::compute(&lesson, world.clone()));
         let live_settings = LiveSettings::of(&world);
         let guesses = vec![Guess::Open; lesson.pages.len()];
@@ -233,6 +249,8 @@ impl App {
             ghost: None,
             history: History::new(DEFAULT_CAPACITY),
             series,
+            plot_series,
+            plot: None,
             region,
             axis: Axis::Front,
             frame: Frame::World,
@@ -274,6 +292,7 @@ impl App {
     pub fn context(&self) -> Context {
         match self.overlay {
             Overlay::Picker { .. } => Context::Picker,
+            Overlay::PlotPicker { .. } => Context::PlotPicker,
             Overlay::Settings(_) => Context::Form,
             Overlay::Jump { .. } | Overlay::Predict { .. } => Context::Prompt,
             _ => Context::Main,
@@ -493,8 +512,14 @@ impl App {
             Message::ToggleHelp => self.overlay = Overlay::Help,
             Message::Quit => self.quit = true,
             Message::PickerUp | Message::PickerDown => {
-                if let Overlay::Picker { lessons, selected } = &mut self.overlay {
-                    let n = lessons.len().max(1);
+                let n = match &self.overlay {
+                    Overlay::Picker { lessons, .. } => lessons.len(),
+                    _ => self.plot_series.columns.len(),
+                }
+                .max(1);
+                if let Overlay::Picker { selected, .. } | Overlay::PlotPicker { selected, .. } =
+                    &mut self.overlay
+                {
                     *selected = if message == Message::PickerUp {
                         (*selected + n - 1) % n
                     } else {
@@ -507,8 +532,77 @@ impl App {
             Message::ToggleArrows => self.arrows = !self.arrows,
             Message::NextLayout => self.layout = self.layout.next(),
             Message::ExportSvg => self.export_requested = true,
+            Message::OpenPlot => {
+                let (selected, x) = self.plot.map_or((0, None), |p| (p.y, p.x));
+                self.overlay = Overlay::PlotPicker { selected, x };
+            }
+            Message::PlotAgainstTime | Message::PlotAsX | Message::PlotY => {
+                if let Overlay::PlotPicker { selected, x } = &mut self.overlay {
+                    match message {
+                        Message::PlotAgainstTime => *x = None,
+                        Message::PlotAsX => *x = Some(*selected),
+                        _ => {
+                            self.plot = Some(PlotChoice {
+                                y: *selected,
+                                x: *x,
+                            });
+                            self.overlay = Overlay::None;
+                            self.view = View::Plot;
+                        }
+                    }
+                }
+            }
+            Message::ExportCsv => return self.export_csv(),
         }
         None
+    }
+
+    /// The file `X` writes: `tumble-NAME-energy.csv`, or `tumble-NAME-Y.csv` /
+    /// `tumble-NAME-X-Y.csv` for a quantity graph, in [`App::write_dir`] (characters other
+    /// than letters, digits, `.`, `-` and `_` left out of the quantities' names).
+    pub fn csv_path(&self) -> Option<PathBuf> {
+        let stem = self
+            .lesson
+            .path
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+        let clean = |name: &str| -> String {
+            name.chars()
+                .filter(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_'))
+                .collect()
+        };
+        let what = match self.view {
+            View::Energy => "energy".to_string(),
+            View::Plot => {
+                let p = self.plot?;
+                let columns = &self.plot_series.columns;
+                p.x.into_iter()
+                    .chain([p.y])
+                    .map(|c| clean(&columns[c].name))
+                    .collect::<Vec<_>>()
+                    .join("-")
+            }
+            _ => return None,
+        };
+        Some(self.write_dir.join(format!("tumble-{stem}-{what}.csv")))
+    }
+
+    /// `X`: what the graph shown plots, as CSV (the energy graph, or the quantity graph).
+    fn export_csv(&mut self) -> Option<Effect> {
+        let text = match (self.view, self.plot) {
+            (View::Energy, _) => self.series.csv(self.world.dt()),
+            (View::Plot, Some(choice)) => self.plot_series.csv(choice),
+            _ => {
+                self.notice = Some(
+                    "no graph shown: g shows the energy graph, p picks a quantity to graph".into(),
+                );
+                return None;
+            }
+        };
+        Some(Effect::WriteCsv {
+            text,
+            to: self.csv_path()?,
+        })
     }
 
     /// Does what [`App::update`] asked of the outside world; the status line says how it went.
@@ -525,6 +619,14 @@ impl App {
                     .and_then(|()| crate::scene::load(&to).map_err(|e| e.to_string()));
                 self.notice = Some(match written {
                     Ok(_) => format!("wrote {} (tumble check accepts it)", to.display()),
+                    Err(e) => format!("could not write {}: {e}", to.display()),
+                });
+            }
+            Effect::WriteCsv { text, to } => {
+                let rows = text.lines().count().saturating_sub(1);
+                let header = text.lines().next().unwrap_or("").to_string();
+                self.notice = Some(match std::fs::write(&to, text) {
+                    Ok(()) => format!("wrote {} ({rows} rows: {header})", to.display()),
                     Err(e) => format!("could not write {}: {e}", to.display()),
                 });
             }
@@ -643,7 +745,7 @@ impl App {
             return None;
         }
         Some(Effect::WriteScene {
-            edits,
+            edits: Box::new(edits),
             to: self.write_path(),
         })
     }
@@ -688,6 +790,7 @@ impl App {
         let (axis, frame, trail, write_dir) =
             (self.axis, self.frame, self.trail, self.write_dir.clone());
         let (arrows, layout) = (self.arrows, self.layout);
+        // The quantity graph's quantities are the old scene's: it does not carry over.
         let view = if self.view == View::Energy {
             View::Energy
         } else {
@@ -866,6 +969,7 @@ impl App {
             drift,
             ghost,
         );
+        self.plot_series.record(&self.world);
     }
 
     /// Runs up to `frames` whole frames (both worlds); stops at a divergence.
@@ -988,6 +1092,7 @@ impl App {
         }
         self.divergence = None;
         self.series.truncate_after(self.world.time());
+        self.plot_series.truncate_after(self.world.time());
         self.refresh();
     }
 
@@ -1006,6 +1111,7 @@ impl App {
         self.snapshot = self.world.snapshot_of(self.selected);
         self.region = Region::of_world(&self.world);
         self.series = EnergySeries::new(&self.snapshot, self.lesson.scene.duration);
+        self.plot_series = PlotSeries::new(&self.world);
         self.refresh();
     }
 

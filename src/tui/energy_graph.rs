@@ -38,7 +38,7 @@ pub fn axis_label(x: f64, span: f64) -> String {
 /// An axis with its labels at the ends and, when `room` (rows of a vertical axis, columns of
 /// a horizontal one) leaves a gap between them, in the middle: labels never share a row or
 /// run into each other (a drift chart 3 rows tall printed `0` over `-9.9e-6`).
-fn axis<'a>(title: &'a str, range: Range, room: u16, label_width: usize) -> Axis<'a> {
+pub(super) fn axis<'a>(title: &'a str, range: Range, room: u16, label_width: usize) -> Axis<'a> {
     let mid = 0.5 * (range.lo + range.hi);
     let span = range.hi - range.lo;
     let (lo, hi) = (axis_label(range.lo, span), axis_label(range.hi, span));
@@ -55,7 +55,7 @@ fn axis<'a>(title: &'a str, range: Range, room: u16, label_width: usize) -> Axis
 }
 
 /// The widest label of an axis over `range`.
-fn label_width(range: Range) -> usize {
+pub(super) fn label_width(range: Range) -> usize {
     let span = range.hi - range.lo;
     [range.lo, 0.5 * (range.lo + range.hi), range.hi]
         .iter()

@@ -1,10 +1,11 @@
-//! The energy view: the energy graph in place of the projection, beside the same panels and
-//! loop strip.
+//! The graph views: the energy graph (key `g`) or the graph of a picked quantity (key `p`) in
+//! place of the projection, beside the same panels and loop strip.
 
 use super::app::App;
+use super::app::View;
 use super::layout::ScreenLayout;
 use super::screen::main_areas;
-use super::{energy_graph, loop_strip, panels};
+use super::{energy_graph, loop_strip, panels, plot_graph};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
@@ -18,7 +19,11 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         }
         _ => areas.drawing,
     };
-    energy_graph::render(app, graph, buf);
+    if app.view == View::Plot {
+        plot_graph::render(app, graph, buf);
+    } else {
+        energy_graph::render(app, graph, buf);
+    }
     if let (Some(l), ScreenLayout::Stage) = (areas.lesson, app.layout) {
         super::lesson_pane::render(app, l, buf);
     }

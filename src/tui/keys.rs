@@ -57,6 +57,18 @@ pub enum Message {
     FieldDown,
     /// Enter in the form (apply and restart) or the prompt (jump).
     Submit,
+    /// `p`: the quantity picker for the graph of any quantity.
+    OpenPlot,
+    /// In the quantity picker: graph the selected quantity (against the horizontal axis
+    /// chosen, time unless `x` chose one).
+    PlotY,
+    /// In the quantity picker: the selected quantity becomes the horizontal axis (a phase
+    /// portrait once the vertical one is picked).
+    PlotAsX,
+    /// In the quantity picker: the horizontal axis is time again.
+    PlotAgainstTime,
+    /// `X`: what the graph shown plots, as CSV.
+    ExportCsv,
 }
 
 /// Where a binding applies.
@@ -70,6 +82,8 @@ pub enum Context {
     Form,
     /// The jump-to-time prompt (`J`).
     Prompt,
+    /// The quantity picker of the graph (`p`).
+    PlotPicker,
 }
 
 /// One row of the key table.
@@ -385,6 +399,20 @@ pub const KEYS: &[Binding] = &[
         Message::WriteScene,
     ),
     bind(
+        &[Char('p')],
+        "p",
+        "p plot",
+        "graph any quantity against t, or two against each other (a phase portrait)",
+        Message::OpenPlot,
+    ),
+    bind(
+        &[Char('X')],
+        "X",
+        "",
+        "write what the graph plots as CSV (./tumble-LESSON-QUANTITY.csv)",
+        Message::ExportCsv,
+    ),
+    bind(
         &[PageUp, Char('[')],
         "PgUp [",
         "",
@@ -423,6 +451,55 @@ pub const KEYS: &[Binding] = &[
         Message::Close,
     ),
     pick(&[Char('q')], "q", "quit", Message::Quit),
+    within(
+        Context::PlotPicker,
+        &[Up],
+        "↑",
+        "plot: previous quantity",
+        Message::PickerUp,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Down],
+        "↓",
+        "plot: next quantity",
+        Message::PickerDown,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Enter],
+        "Enter",
+        "plot: graph it",
+        Message::PlotY,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Char('x')],
+        "x",
+        "plot: make it the horizontal axis (phase portrait)",
+        Message::PlotAsX,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Char('t')],
+        "t",
+        "plot: time on the horizontal axis",
+        Message::PlotAgainstTime,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Esc],
+        "Esc",
+        "plot: close",
+        Message::Close,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Char('q')],
+        "q",
+        "quit",
+        Message::Quit,
+    ),
     within(
         Context::Form,
         &[Up],
@@ -551,6 +628,7 @@ mod tests {
             Context::Picker,
             Context::Form,
             Context::Prompt,
+            Context::PlotPicker,
         ] {
             let esc = message(&press(Esc), context);
             assert!(

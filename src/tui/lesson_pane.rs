@@ -20,10 +20,13 @@ fn page(app: &App) -> (String, String) {
             if page.predict.is_some() {
                 let line = match app.prediction_result(i) {
                     Some(result) => format!("Prediction: {result}."),
-                    None if app.guesses[i] == super::app::Guess::Open => format!(
-                        "Predict: {} Enter asks for your guess.",
-                        app.prediction_question(i)
-                    ),
+                    // A recording (`tumble record`) runs on and asks nothing.
+                    None if app.guesses[i] == super::app::Guess::Open && app.pause_at_stops => {
+                        format!(
+                            "Predict: {} Enter asks for your guess.",
+                            app.prediction_question(i)
+                        )
+                    }
                     None => format!(
                         "Predict: {} (the run will tell)",
                         app.prediction_question(i)

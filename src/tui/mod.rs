@@ -11,15 +11,16 @@
 //! | `keys` | the key table (status-bar hints and help overlay) |
 //! | `history` | the ring of saved frames for stepping back |
 //! | `series` | the energy series behind the graph |
+//! | `plot` | every plottable quantity over the run, the quantity graph's choice and its CSV |
 //! | `viewport` | view axis, region kept in frame, cell mapping |
 //! | `layout` | where each pane goes (key `L`: all numbers, or a large drawing) |
 //! | `theme` | every colour and text style |
 //! | `export` | the screen as SVG (key `x`, `tumble shot`) and a run as asciicast (`tumble record`) |
 //! | `screen` | the whole screen, overlays, the "enlarge" message |
 //! | `header`, `status_bar` | top line; bottom lines |
-//! | `loop_view`, `energy_view` | the views (one file each) |
-//! | `projection`, `panels`, `cloth_panel`, `loop_strip`, `lesson_pane`, `energy_graph` | the panes |
-//! | `help`, `picker`, `divergence_dialog` | the overlays |
+//! | `loop_view`, `energy_view` | the views (one file each; the second draws either graph) |
+//! | `projection`, `panels`, `cloth_panel`, `loop_strip`, `lesson_pane`, `energy_graph`, `plot_graph` | the panes |
+//! | `help`, `picker`, `plot_picker`, `divergence_dialog` | the overlays |
 //! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
 //! | `jump_prompt`, `timeline` | the jump prompt (`J`); where a run pauses by itself |
 //!
@@ -45,6 +46,9 @@ pub mod loop_strip;
 pub mod loop_view;
 pub mod panels;
 pub mod picker;
+pub mod plot;
+pub mod plot_graph;
+pub mod plot_picker;
 pub mod projection;
 pub mod screen;
 pub mod series;

@@ -575,8 +575,19 @@ pub fn arrange(app: &App, width: u16, height: u16) -> Vec<(Stacked, Option<Vec<u
     let mut used = 0usize;
     let mut chosen: Vec<Option<Vec<usize>>> = vec![None; views.len()];
     let is_quoted = |v: &Stacked| v.key.is_some_and(|k| quoted.contains(&k));
+    // The panels no page quotes take the room left in order of what they tell: the inertia
+    // tensor (constant for a body that does not turn, or turns about a symmetric axis) yields
+    // first, then the effects' forces; the others in stacking order. Shown in stacking order.
+    let yields = |v: &Stacked| match v.key {
+        Some(PagePanel::Inertia) => 2,
+        Some(PagePanel::Forces) => 1,
+        _ => 0,
+    };
+    let mut by_priority: Vec<usize> = (0..views.len()).collect();
+    by_priority.sort_by_key(|&k| yields(&views[k]));
     for pass in [true, false] {
-        for (k, view) in views.iter().enumerate() {
+        for &k in &by_priority {
+            let view = &views[k];
             if is_quoted(view) != pass {
                 continue;
             }

@@ -40,6 +40,19 @@ pub const AXIS_LENGTH: f64 = 1.25;
 pub const OMEGA_LENGTH: f64 = 1.6;
 pub const MOMENTUM_LENGTH: f64 = 2.0;
 
+/// The smallest body the arrows are drawn on, in columns of its radius: on a smaller body
+/// the axes, ω, L and their labels would cover it (a teacher found lesson 14's cubes hidden
+/// under them), so they are left out and the legend says so.
+pub const MIN_ARROW_RADIUS_COLUMNS: f64 = 3.0;
+
+/// Whether the selected body is large enough on screen (`scale` m per column) for its arrows.
+pub fn arrows_fit(app: &App, scale: f64) -> bool {
+    app.world
+        .bodies()
+        .get(app.selected)
+        .is_some_and(|b| b.radius >= MIN_ARROW_RADIUS_COLUMNS * scale)
+}
+
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let title = format!(" {} ({}) ", app.axis.name(), app.axis.legend());
     let block = Block::bordered().title(title);
@@ -103,9 +116,12 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
     };
     let mut items = Vec::new();
     let body = app.world.bodies().get(app.selected);
-    if app.arrows && body.is_some() {
+    let arrows = app.arrows && arrows_fit(app, mapping.scale);
+    if arrows {
         items.push(item("ω", theme::OMEGA, "ang. vel.".into()));
         items.push(item("L", theme::MOMENTUM, "ang. mom.".into()));
+    } else if app.arrows && body.is_some() {
+        items.push(item("ω L", Color::DarkGray, "hidden: body small".into()));
     }
     if body.is_some() {
         items.push(item("@", theme::BODY, "center".into()));
@@ -126,7 +142,7 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
         let mark = if app.ascii { "..." } else { "- -" };
         items.push(item(mark, theme::HIDDEN, "hidden".into()));
     }
-    if app.arrows && body.is_some() {
+    if arrows {
         items.push(vec![
             Span::styled("x", Style::new().fg(theme::AXES[0])),
             Span::styled("y", Style::new().fg(theme::AXES[1])),
@@ -739,7 +755,7 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
         if body.fixed {
             picture.colour = theme::OBSTACLE;
         }
-        if app.arrows {
+        if app.arrows && arrows_fit(app, scale) {
             picture.arrows = Some((app.snapshot.angular_velocity, app.snapshot.angular_momentum));
         }
         if let Some(view) = view {

@@ -6,7 +6,7 @@ use super::layout::{self, Areas, ScreenLayout};
 use super::theme;
 use super::{
     divergence_dialog, energy_view, header, help, jump_prompt, lesson_pane, loop_view, panels,
-    picker, settings_view, status_bar, study_view,
+    picker, plot_picker, settings_view, status_bar, study_view,
 };
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -33,7 +33,7 @@ impl Widget for &App {
         header::render(self, top, buf);
         match self.view {
             View::Loop => loop_view::render(self, main, buf),
-            View::Energy => energy_view::render(self, main, buf),
+            View::Energy | View::Plot => energy_view::render(self, main, buf),
             View::Study => study_view::render(self, main, buf),
         }
         status_bar::render(self, status, buf);
@@ -44,6 +44,9 @@ impl Widget for &App {
             Overlay::None => {}
             Overlay::Help => help::render(area, buf),
             Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
+            Overlay::PlotPicker { selected, x } => {
+                plot_picker::render(&self.plot_series.columns, *selected, *x, area, buf)
+            }
             Overlay::Settings(form) => settings_view::render(form, area, buf),
             Overlay::Jump { text } => jump_prompt::render(text, self.snapshot.time, area, buf),
             Overlay::Predict { page, text } => {

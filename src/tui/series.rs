@@ -150,4 +150,35 @@ impl EnergySeries {
     pub fn samples(&self) -> &[Sample] {
         &self.samples
     }
+
+    /// The CSV of what the energy graph plots: `step,t,kinetic,potential,total,drift`, and
+    /// `compare_total` in compare mode; every value printed in full (the shortest text that
+    /// reads back to the same f64).
+    pub fn csv(&self, dt: f64) -> String {
+        let compare = self.samples.iter().any(|s| s.compare_total.is_some());
+        let mut out = String::from("step,t,kinetic,potential,total,drift");
+        if compare {
+            out.push_str(",compare_total");
+        }
+        out.push('\n');
+        for s in &self.samples {
+            out.push_str(&format!(
+                "{},{},{},{},{},{}",
+                (s.t / dt).round() as u64,
+                s.t,
+                s.kinetic,
+                s.potential,
+                s.total,
+                s.drift
+            ));
+            if compare {
+                match s.compare_total {
+                    Some(c) => out.push_str(&format!(",{c}")),
+                    None => out.push(','),
+                }
+            }
+            out.push('\n');
+        }
+        out
+    }
 }

@@ -1,5 +1,6 @@
 //! What the projection looks at: the view axis (front x–y, side z–y, top x–z) and the region of
-//! the world kept in frame, which grows (by doubling) whenever a body or a cloth would leave it,
+//! the world kept in frame, which grows (a little at a time) whenever a body or a cloth would
+//! leave it,
 //! and the mapping to terminal cells with the right aspect ratio (a cell is about twice as tall
 //! as wide).
 
@@ -73,7 +74,7 @@ impl Axis {
 pub struct Region {
     pub min: Vector3<f64>,
     pub max: Vector3<f64>,
-    /// The region grows (by doubling) up to this extent along each axis, then slides instead,
+    /// The region grows up to this extent along each axis, then slides instead,
     /// so a body that falls for ever stays drawn at a readable size, m.
     pub max_extent: f64,
 }
@@ -147,12 +148,13 @@ impl Region {
         Region::padded(pad, &points, world.obstacles())
     }
 
-    /// Moves until every point is inside. While the extent along an axis stays within
-    /// `max_extent`, each side exceeded moves out by the region's extent (doubling it); past
-    /// that the region keeps its size and re-centres on the points — unless they are spread
-    /// wider than it (several bodies flying apart), when it doubles anyway: every point stays
-    /// in view. The view changes rarely, never shrinks, and a body that falls for ever stays
-    /// drawn at a readable size.
+    /// Moves until every point is inside, smoothly: a side a point has crossed moves out to
+    /// it plus an eighth of the region's extent (no doubling: a teacher found the picture
+    /// halving in size mid-flight confusing), so a body flying out pulls the view back a
+    /// little at a time. Past `max_extent` along an axis the region keeps that size and moves
+    /// with the points instead — unless they are spread wider than it (several bodies flying
+    /// apart), when it grows anyway: every point stays in view. It never shrinks, and a body
+    /// that falls for ever stays drawn at a readable size.
     pub fn include(&mut self, points: &[Vector3<f64>]) {
         let finite = points.iter().filter(|p| p.iter().all(|c| c.is_finite()));
         let (mut lo, mut hi) = (
@@ -164,36 +166,47 @@ impl Region {
             hi = hi.sup(p);
         }
         for i in 0..3 {
-            if lo[i] > hi[i] {
-                return;
+            if lo[i] > hi[i] || (hi[i] <= self.max[i] && lo[i] >= self.min[i]) {
+                continue;
             }
-            for _ in 0..64 {
-                let extent = (self.max[i] - self.min[i]).max(1e-9);
-                let outside = hi[i] > self.max[i] || lo[i] < self.min[i];
-                if !outside {
-                    break;
-                }
-                if 2.0 * extent > self.max_extent {
-                    if hi[i] - lo[i] <= extent {
-                        let shift = 0.5 * (lo[i] + hi[i]) - 0.5 * (self.min[i] + self.max[i]);
-                        self.min[i] += shift;
-                        self.max[i] += shift;
-                        break;
-                    }
-                    // The points are spread wider than the region (bodies flying apart):
-                    // sliding would lose some of them, so it grows after all, and may grow
-                    // that far from now on.
-                    self.max_extent = 2.0 * extent;
-                }
-                if hi[i] > self.max[i] {
-                    self.max[i] += extent;
+            let extent = (self.max[i] - self.min[i]).max(1e-9);
+            let margin = extent / GROWTH_MARGIN;
+            let new_min = if lo[i] < self.min[i] {
+                lo[i] - margin
+            } else {
+                self.min[i]
+            };
+            let new_max = if hi[i] > self.max[i] {
+                hi[i] + margin
+            } else {
+                self.max[i]
+            };
+            let grown = new_max - new_min;
+            if grown <= self.max_extent || hi[i] - lo[i] > self.max_extent {
+                // Grows (past the largest extent only for points spread wider than it, which
+                // may then stay that wide).
+                self.min[i] = new_min;
+                self.max[i] = new_max;
+                self.max_extent = self.max_extent.max(grown);
+            } else {
+                // As large as it may be: that size, moved just enough (with the margin, when
+                // it fits) to hold the points.
+                let size = self.max_extent.max(extent);
+                let margin = (0.5 * (size - (hi[i] - lo[i]))).min(margin);
+                let (min, max) = if hi[i] > self.max[i] {
+                    (hi[i] + margin - size, hi[i] + margin)
                 } else {
-                    self.min[i] -= extent;
-                }
+                    (lo[i] - margin, lo[i] - margin + size)
+                };
+                self.min[i] = min;
+                self.max[i] = max;
             }
         }
     }
 }
+
+/// A side the points cross moves out by an extra 1/GROWTH_MARGIN of the region's extent.
+pub const GROWTH_MARGIN: f64 = 8.0;
 
 /// What the view keeps in frame: every body's vertices, every cloth's particles, every
 /// joint's anchors and every spring's ends.
@@ -303,46 +316,49 @@ mod tests {
     }
 
     #[test]
-    fn the_region_doubles_towards_a_point_outside() {
-        // Extent 2 along y; a point at y = −3 is 3 below min = −1: one doubling gives −3.
+    fn the_region_grows_to_a_point_outside_plus_an_eighth_not_by_doubling() {
+        // Extent 2 along y; a point at y = −3 is 2 below min = −1: min moves to it less an
+        // eighth of the extent (0.25): −3.25, extent 4.25 (doubling gave −3, then 8 at the
+        // next crossing). The other side and the other axes stay.
         let mut region = Region {
             min: Vector3::new(-1.0, -1.0, -1.0),
             max: Vector3::new(1.0, 1.0, 1.0),
-            max_extent: 4.0,
+            max_extent: 8.0,
         };
         region.include(&[Vector3::new(0.0, -3.0, 0.0)]);
-        assert_eq!(region.min.y, -3.0, "min {}", region.min.y);
-        assert_eq!(region.max.y, 1.0);
+        assert_eq!((region.min.y, region.max.y), (-3.25, 1.0));
+        assert_eq!((region.min.x, region.max.x), (-1.0, 1.0));
+        // A body crossing a little further pulls it a little further: y = −3.5 → −4.03125.
+        region.include(&[Vector3::new(0.0, -3.5, 0.0)]);
+        assert_eq!(region.min.y, -3.5 - 4.25 / 8.0);
     }
 
     #[test]
     fn points_spread_wider_than_the_region_make_it_grow_past_its_largest_extent() {
-        // Extent 4 = max_extent along x, points at x = −3 and x = 5 (spread 8): re-centring
-        // the 4 m region on x = 1 ([−1, 3]) would lose both. It doubles instead, on the side
-        // exceeded first ([−1, 7], extent 8), then, as wide as the points, re-centres on
-        // x = 1: [−3, 5].
+        // Extent 4 = max_extent along x, points at x = −3 and x = 5 (spread 8): a 4 m region
+        // would lose one of them. It grows to both, each with its margin of 0.5: [−3.5, 5.5].
         let mut region = Region {
             min: Vector3::new(-1.0, -1.0, -1.0),
             max: Vector3::new(3.0, 1.0, 1.0),
             max_extent: 4.0,
         };
         region.include(&[Vector3::new(-3.0, 0.0, 0.0), Vector3::new(5.0, 0.0, 0.0)]);
-        assert!(region.min.x <= -3.0 && region.max.x >= 5.0, "{region:?}");
-        assert_eq!((region.min.x, region.max.x), (-3.0, 5.0));
-        assert_eq!(region.max_extent, 8.0, "it may grow that far from now on");
+        assert_eq!((region.min.x, region.max.x), (-3.5, 5.5));
+        assert_eq!(region.max_extent, 9.0, "it may grow that far from now on");
     }
 
     #[test]
-    fn past_its_largest_extent_the_region_recentres_at_the_same_scale() {
-        // Extent 4 = max_extent along y: a point at y = −5 is below min = −3; doubling would
-        // give extent 8, so the region keeps its extent 4 and centres on y = −5: [−7, −3].
+    fn past_its_largest_extent_the_region_moves_at_the_same_scale() {
+        // Extent 4 = max_extent along y: a point at y = −5 is below min = −3; growing would
+        // give extent 6.5, so the region keeps its extent 4 and moves down to hold the point
+        // with its margin 0.5: [−5.5, −1.5].
         let mut region = Region {
             min: Vector3::new(-1.0, -3.0, -1.0),
             max: Vector3::new(1.0, 1.0, 1.0),
             max_extent: 4.0,
         };
         region.include(&[Vector3::new(0.0, -5.0, 0.0)]);
-        assert_eq!((region.min.y, region.max.y), (-7.0, -3.0));
+        assert_eq!((region.min.y, region.max.y), (-5.5, -1.5));
         assert_eq!((region.min.x, region.max.x), (-1.0, 1.0), "x untouched");
     }
 }

@@ -475,7 +475,9 @@ fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
     let Some(effect) = app.update(tumble::tui::keys::Message::WriteScene) else {
         panic!("W asks for a write");
     };
-    let Effect::WriteScene { to, .. } = &effect;
+    let Effect::WriteScene { to, .. } = &effect else {
+        panic!("W writes a scene");
+    };
     let to = to.clone();
     app.perform(effect);
     press(&mut app, KeyCode::Enter);

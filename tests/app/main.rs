@@ -2,7 +2,9 @@
 #![cfg(feature = "tui")]
 
 mod classroom;
+mod findings;
 mod history;
+mod plot;
 mod tui;
 mod tui_cloth;
 mod tui_screens;

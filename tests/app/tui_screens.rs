@@ -969,3 +969,109 @@ fn the_energy_graphs_labels_never_overlap_and_its_legend_is_out_of_the_curves() 
         );
     }
 }
+
+/// A teacher's own lesson (a file of theirs, not a bundled one) with a live number and a
+/// prediction: `shot` and `record` show the number filled in and the prediction's simulated
+/// value, and a recording never asks for a guess it cannot take.
+#[test]
+fn a_teachers_lesson_with_live_numbers_and_a_prediction_in_shot_and_record() {
+    use assert_cmd::Command;
+    let dir = std::env::temp_dir().join(format!("tumble-teacher-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A 1 kg cube dropped from y = 2 m, symplectic Euler, dt = 0.01 s: vy(0.5) = −g·0.5 =
+    // −4.905 m/s, y(0.6) = 2 − g·0.01²·60·61/2 = 0.204770 m (no contact before).
+    let file = dir.join("drop.toml");
+    std::fs::write(
+        &file,
+        r#"title = "drop"
+[scene]
+dt = 0.01
+duration = 0.8
+integrator = "symplectic-euler"
+gravity = [0.0, -9.81, 0.0]
+
+[[body]]
+name = "cube"
+shape = "box"
+size = [0.2, 0.2, 0.2]
+mass = 1.0
+position = [0.0, 2.0, 0.0]
+
+[[page]]
+at = 0.0
+title = "Start"
+text = "Let go."
+
+[[page]]
+at = 0.5
+title = "Falling"
+text = "vy = {{cube.vy}} now."
+predict = { quantity = "cube.y", at = 0.6 }
+"#,
+    )
+    .unwrap();
+    let shot = |at: &str, args: &[&str]| -> String {
+        let svg = dir.join("s.svg");
+        Command::cargo_bin("tumble")
+            .unwrap()
+            .arg("shot")
+            .arg(&file)
+            .args(["--at", at, "--size", "160x50", "--svg"])
+            .arg(&svg)
+            .args(args)
+            .assert()
+            .success();
+        xml_text(&std::fs::read_to_string(&svg).unwrap())
+    };
+    let before = shot("0.55", &[]);
+    assert!(before.contains("vy = -4.905000 m/s now."), "{before}");
+    assert!(
+        before.contains("what will cube.y be at t = 0.6 s"),
+        "{before}"
+    );
+    let after = shot("0.7", &[]);
+    assert!(after.contains("simulated 0.204770 m"), "{after}");
+    assert!(!after.contains("{{"), "{after}");
+    // The quantity graph, as key p sets it; an unknown quantity is a one-line error, exit 2.
+    let plot = shot("0.7", &["--plot", "cube.vy", "--plot-x", "cube.y"]);
+    assert!(
+        plot.contains("cube.vy, m/s against cube.y, m (phase portrait)"),
+        "{plot}"
+    );
+    let bad = Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("shot")
+        .arg(&file)
+        .args(["--plot", "cube.height", "--svg"])
+        .arg(dir.join("bad.svg"))
+        .assert()
+        .code(2);
+    let err = String::from_utf8_lossy(&bad.get_output().stderr).to_string();
+    assert!(
+        err.contains("--plot cube.height") && err.contains("cube.vy") && err.lines().count() == 1,
+        "{err}"
+    );
+    // The recording: the number filled in on every frame of page 2, the prediction's value
+    // at the end, never "Enter asks for your guess" (it runs on) nor a "{{".
+    let cast = dir.join("r.cast");
+    Command::cargo_bin("tumble")
+        .unwrap()
+        .arg("record")
+        .arg(&file)
+        .args(["--duration", "0.7", "--size", "160x50", "--out"])
+        .arg(&cast)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let frames: Vec<&str> = text.lines().skip(1).collect();
+    assert!(frames.iter().any(|f| f.contains("vy = -4.905000 m/s now.")));
+    assert!(frames
+        .iter()
+        .all(|f| !f.contains("Enter asks") && !f.contains("{{")));
+    assert!(
+        frames.last().unwrap().contains("simulated 0.204770 m"),
+        "{}",
+        frames.last().unwrap()
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -356,3 +356,33 @@ fn every_key_the_loader_accepts_is_documented() {
         "docs/lesson-format.md does not mention {missing:?}"
     );
 }
+
+/// A live number prints as its panel does: lesson 5 run with the impulse response (key `c`
+/// in the app re-simulates the page's numbers for it) quoted `Px 1.0000e-10 kg·m/s` after
+/// the bounce, where the momentum panel shows 0 (the contact solver's tolerance, 1e-10 m/s
+/// per unit speed, is the round-off of a velocity it sets).
+#[test]
+fn a_live_number_below_its_panels_round_off_prints_as_zero() {
+    let mut lesson = tumble::lessons::load(Path::new("05-ground-collision")).unwrap();
+    let mut model = lesson.scene.contact.unwrap();
+    model.response = tumble::physics::Response::Impulse;
+    lesson.scene.contact = Some(model);
+    let live = LiveValues::compute(&lesson, lesson.scene.world());
+    let page = &lesson.pages[1];
+    let text = live.page_text(page);
+    assert!(text.contains("Px 0.000000 kg·m/s"), "{text}");
+    // The panel at that step says the same: P's x cell is 0 there, and Px itself is not.
+    let mut world = lesson.scene.world();
+    while world.step_count() < tumble::live::step_at(page.at, world.dt()) {
+        world.step();
+    }
+    let s = world.snapshot();
+    assert!(s.linear_momentum.x != 0.0 && s.linear_momentum.x.abs() < 1e-9);
+    let panels = tumble::tables::panels(&s, tumble::tables::Frame::World);
+    let p = panels
+        .iter()
+        .flat_map(|p| &p.rows)
+        .find(|r| r.label == "P")
+        .unwrap();
+    assert_eq!(p.cells[0].trim(), "0.000000");
+}

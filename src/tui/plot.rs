@@ -1,0 +1,327 @@
+//! The graph of any quantity (key `p`): what can be plotted, its values frame by frame, and the
+//! CSV of what is plotted (key `X`).
+//!
+//! Every quantity of every moving body is recorded as the run goes (one row per kept frame,
+//! thinned by halves when long, like the energy series), so picking another quantity shows its
+//! whole past at once. Names are the live numbers' (`cube.y`, `cube.energy`, `energy`, `Px`),
+//! plus `BODY.|L|` and `JOINT.error`:
+//!
+//! ```text
+//! per body   x y z   vx vy vz = P/M   wx wy wz = I⁻¹L   Lx Ly Lz   |L|   speed = |v|
+//!            kinetic = ½ M v·v + ½ ω·L   potential = −M g·x   energy = kinetic + potential
+//! scene      energy (bodies, particles, springs)   Px Py Pz = Σ P
+//! per joint  error: ball, hinge, fixed |anchor A − anchor B|; distance |separation − length|
+//! ```
+//!
+//! Values are read between frames from the world's state the way its snapshot reads them, so a
+//! plotted number is the one the panels show at that frame.
+
+use crate::physics::derive::derive;
+use crate::physics::{SystemTotals, World};
+
+/// Rows kept before the series is thinned to every other row.
+pub const MAX_ROWS: usize = 4096;
+
+/// What one column measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    Position(usize),
+    Velocity(usize),
+    AngularVelocity(usize),
+    AngularMomentum(usize),
+    AngularMomentumNorm,
+    Speed,
+    Kinetic,
+    Potential,
+    Energy,
+}
+
+/// A plottable quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Of body `body`.
+    Body { body: usize, measure: Measure },
+    /// The whole scene's energy, J.
+    SceneEnergy,
+    /// The whole scene's linear momentum component, kg·m/s.
+    SceneMomentum(usize),
+    /// Joint `joint`'s position error, m.
+    JointError(usize),
+}
+
+/// A column: the quantity, its name (as typed in a page: `cube.y`) and its unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    pub quantity: Quantity,
+    pub name: String,
+    pub unit: &'static str,
+}
+
+/// The per-body names and units, in the order the picker lists them.
+const BODY_COLUMNS: [(&str, Measure, &str); 17] = [
+    ("x", Measure::Position(0), "m"),
+    ("y", Measure::Position(1), "m"),
+    ("z", Measure::Position(2), "m"),
+    ("vx", Measure::Velocity(0), "m/s"),
+    ("vy", Measure::Velocity(1), "m/s"),
+    ("vz", Measure::Velocity(2), "m/s"),
+    ("wx", Measure::AngularVelocity(0), "rad/s"),
+    ("wy", Measure::AngularVelocity(1), "rad/s"),
+    ("wz", Measure::AngularVelocity(2), "rad/s"),
+    ("Lx", Measure::AngularMomentum(0), "kg·m²/s"),
+    ("Ly", Measure::AngularMomentum(1), "kg·m²/s"),
+    ("Lz", Measure::AngularMomentum(2), "kg·m²/s"),
+    ("|L|", Measure::AngularMomentumNorm, "kg·m²/s"),
+    ("speed", Measure::Speed, "m/s"),
+    ("kinetic", Measure::Kinetic, "J"),
+    ("potential", Measure::Potential, "J"),
+    ("energy", Measure::Energy, "J"),
+];
+
+/// Every quantity a world offers, in the picker's order: each moving body's, then the
+/// scene's, then each joint's error.
+pub fn columns(world: &World) -> Vec<Column> {
+    let mut out = Vec::new();
+    for (body, name) in world.body_names().iter().enumerate() {
+        if world.bodies()[body].fixed {
+            continue;
+        }
+        for (what, measure, unit) in BODY_COLUMNS {
+            out.push(Column {
+                quantity: Quantity::Body { body, measure },
+                name: format!("{name}.{what}"),
+                unit,
+            });
+        }
+    }
+    out.push(Column {
+        quantity: Quantity::SceneEnergy,
+        name: "energy".into(),
+        unit: "J",
+    });
+    for (i, axis) in ["Px", "Py", "Pz"].into_iter().enumerate() {
+        out.push(Column {
+            quantity: Quantity::SceneMomentum(i),
+            name: axis.into(),
+            unit: "kg·m/s",
+        });
+    }
+    for (joint, j) in world.links().joints.iter().enumerate() {
+        out.push(Column {
+            quantity: Quantity::JointError(joint),
+            name: format!("{}.error", j.name),
+            unit: "m",
+        });
+    }
+    out
+}
+
+/// The value of every column now (between frames), in the columns' order.
+pub fn values(world: &World, columns: &[Column]) -> Vec<f64> {
+    let mut derived: Vec<Option<crate::physics::derive::Kinematics>> =
+        vec![None; world.body_count()];
+    let mut totals: Option<SystemTotals> = None;
+    columns
+        .iter()
+        .map(|c| match c.quantity {
+            Quantity::Body { body, measure } => {
+                let state = &world.states()[body];
+                let k = *derived[body].get_or_insert_with(|| derive(&world.bodies()[body], state));
+                match measure {
+                    Measure::Position(i) => state.position[i],
+                    Measure::Velocity(i) => k.velocity[i],
+                    Measure::AngularVelocity(i) => k.angular_velocity[i],
+                    Measure::AngularMomentum(i) => state.angular_momentum[i],
+                    Measure::AngularMomentumNorm => state.angular_momentum.norm(),
+                    Measure::Speed => k.velocity.norm(),
+                    Measure::Kinetic => world.body_energy(body).kinetic,
+                    Measure::Potential => world.body_energy(body).potential,
+                    Measure::Energy => world.body_energy(body).total,
+                }
+            }
+            Quantity::SceneEnergy => {
+                totals
+                    .get_or_insert_with(|| SystemTotals::of(world))
+                    .energy
+                    .total
+            }
+            Quantity::SceneMomentum(i) => {
+                totals
+                    .get_or_insert_with(|| SystemTotals::of(world))
+                    .linear_momentum[i]
+            }
+            Quantity::JointError(j) => world.links().joints[j].error(world.states()),
+        })
+        .collect()
+}
+
+/// What is plotted: a quantity against time, or against another quantity (a phase portrait).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PlotChoice {
+    /// Column index of the vertical axis.
+    pub y: usize,
+    /// Column index of the horizontal axis; None: time.
+    pub x: Option<usize>,
+}
+
+/// Every column's values over the run, one row per kept frame.
+#[derive(Debug, Clone)]
+pub struct PlotSeries {
+    pub columns: Vec<Column>,
+    steps: Vec<u64>,
+    times: Vec<f64>,
+    /// Row-major: `columns.len()` values per row.
+    values: Vec<f64>,
+    /// Record one frame in `stride`.
+    stride: u64,
+}
+
+impl PlotSeries {
+    /// A series holding the world's state now (t = 0).
+    pub fn new(world: &World) -> PlotSeries {
+        let mut series = PlotSeries {
+            columns: columns(world),
+            steps: Vec::new(),
+            times: Vec::new(),
+            values: Vec::new(),
+            stride: 1,
+        };
+        series.record(world);
+        series
+    }
+
+    /// Records the world after a whole frame, if its step is one kept (one in `stride`).
+    pub fn record(&mut self, world: &World) {
+        let step = world.step_count();
+        if !step.is_multiple_of(self.stride) {
+            return;
+        }
+        if self.steps.last().is_some_and(|&s| s >= step) {
+            self.truncate_after_step(step.saturating_sub(1));
+        }
+        self.steps.push(step);
+        self.times.push(world.time());
+        self.values.extend(values(world, &self.columns));
+        if self.steps.len() > MAX_ROWS {
+            self.stride *= 2;
+            let n = self.columns.len();
+            let keep: Vec<bool> = self
+                .steps
+                .iter()
+                .map(|s| s.is_multiple_of(self.stride))
+                .collect();
+            let mut row = 0;
+            self.values.retain(|_| {
+                let k = keep[row / n.max(1)];
+                row += 1;
+                k
+            });
+            let mut i = 0;
+            self.times.retain(|_| {
+                i += 1;
+                keep[i - 1]
+            });
+            self.steps.retain(|s| s.is_multiple_of(self.stride));
+        }
+    }
+
+    /// Forgets the rows after time `t` (stepping back).
+    pub fn truncate_after(&mut self, t: f64) {
+        let keep = self.times.partition_point(|&x| x <= t + 1e-12);
+        self.cut(keep);
+    }
+
+    fn truncate_after_step(&mut self, step: u64) {
+        let keep = self.steps.partition_point(|&s| s <= step);
+        self.cut(keep);
+    }
+
+    fn cut(&mut self, rows: usize) {
+        self.steps.truncate(rows);
+        self.times.truncate(rows);
+        self.values.truncate(rows * self.columns.len());
+    }
+
+    /// Rows kept.
+    pub fn len(&self) -> usize {
+        self.steps.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.steps.is_empty()
+    }
+
+    pub fn times(&self) -> &[f64] {
+        &self.times
+    }
+
+    /// Column `c`'s values, one per row.
+    pub fn column(&self, c: usize) -> impl Iterator<Item = f64> + '_ {
+        let n = self.columns.len();
+        (0..self.len()).map(move |row| self.values[row * n + c])
+    }
+
+    /// The points of a choice: (t or x, y) per row.
+    pub fn points(&self, choice: PlotChoice) -> Vec<(f64, f64)> {
+        let y = self.column(choice.y);
+        match choice.x {
+            None => self.times.iter().copied().zip(y).collect(),
+            Some(x) => self.column(x).zip(y).collect(),
+        }
+    }
+
+    /// The CSV of what is plotted: `step,t,` then the x column (if any) and the y column's
+    /// name; every value printed in full (the shortest text that reads back to the same f64).
+    pub fn csv(&self, choice: PlotChoice) -> String {
+        let picked: Vec<usize> = choice.x.into_iter().chain([choice.y]).collect();
+        let mut out = String::from("step,t");
+        for &c in &picked {
+            out.push(',');
+            out.push_str(&self.columns[c].name);
+        }
+        out.push('\n');
+        let n = self.columns.len();
+        for row in 0..self.len() {
+            out.push_str(&format!("{},{}", self.steps[row], self.times[row]));
+            for &c in &picked {
+                out.push_str(&format!(",{}", self.values[row * n + c]));
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// A column's label on an axis: `cube.y, m`.
+pub fn label(column: &Column) -> String {
+    format!("{}, {}", column.name, column.unit)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thinning_keeps_every_other_row_and_the_columns_aligned() {
+        let lesson =
+            crate::lessons::load(std::path::Path::new("lessons/05-ground-collision.toml")).unwrap();
+        let mut world = lesson.scene.world();
+        let mut series = PlotSeries::new(&world);
+        let t = series
+            .columns
+            .iter()
+            .position(|c| c.name.ends_with(".y"))
+            .unwrap();
+        for _ in 0..(MAX_ROWS as u64 + 10) {
+            world.step();
+            series.record(&world);
+        }
+        // 4107 rows were offered; past 4096 the stride doubled: even steps only.
+        assert!(series.len() <= MAX_ROWS && series.len() > MAX_ROWS / 2);
+        assert!(series.steps.iter().all(|s| s % 2 == 0));
+        // The last row is the world now (step 4106 is even).
+        let last_y = series.column(t).last().unwrap();
+        assert_eq!(last_y, world.states()[0].position.y);
+        assert_eq!(*series.times.last().unwrap(), world.time());
+    }
+}
