@@ -2503,3 +2503,123 @@ fn lesson_28_the_rod_grows_without_correction_and_the_fixes_hold_it() {
         "drift = ΔE (no drag, no contact)",
     );
 }
+
+/// Lesson 33's rope with the settings form's edits: dt and the rope's integrator.
+fn swinging_rope_world(dt: f64, integrator: tumble::physics::cloth::ClothIntegrator) -> World {
+    let mut scene = lesson("33-the-swinging-rope.toml").scene;
+    scene.dt = dt;
+    scene.cloths[0].integrator = integrator;
+    scene.world()
+}
+
+/// The free end's position and speed after `seconds` at `dt` (symplectic Euler).
+fn rope_end_after(seconds: f64, dt: f64) -> (Vector3<f64>, f64) {
+    use tumble::physics::cloth::ClothIntegrator;
+    let mut world = swinging_rope_world(dt, ClothIntegrator::SymplecticEuler);
+    for _ in 0..steps_for(seconds, dt) {
+        world.step();
+    }
+    let c = &world.cloths()[0];
+    let end = c.index(20, 0);
+    (c.positions[end], c.velocities[end].norm())
+}
+
+#[test]
+fn lesson_33_the_limit_is_the_pinned_free_chains_highest_mode() {
+    // N = 20 free particles, pinned at one end, free at the other: the stiffness is
+    // tridiagonal (2, −1) with 1 in its last corner; its eigenvalues are
+    // 4 sin²((2j − 1)π / (2(2N + 1))), so ω_max = 2 √(k/m) sin(39π/82), m = 0.1/21 kg.
+    let m: f64 = 0.1 / 21.0;
+    let omega = 2.0 * (2000.0 / m).sqrt() * (39.0 * std::f64::consts::PI / 82.0).sin();
+    assert_near(omega, 1292.3, 0.05, "ω_max quoted");
+    assert_near(2.0 / omega, 1.5476e-3, 5e-8, "2/ω_max quoted");
+    assert_near(omega / (2.0 * std::f64::consts::PI), 206.0, 0.5, "206 Hz");
+    let world = lesson("33-the-swinging-rope.toml").scene.world();
+    assert_near(world.cloths()[0].masses[1], m, 1e-15, "m");
+    let limit = world.cloth_limit(0);
+    assert_near(limit.omega_max, omega, 1e-6 * omega, "power iteration");
+    assert_near(world.dt() / limit.dt(), 0.646, 5e-4, "dt/h*");
+}
+
+#[test]
+fn lesson_33_the_free_end_outruns_a_falling_stone_and_is_converged() {
+    // At 0.5 s the end is 0.92 m below its start, past under the pin, at 6.44 m/s, where a
+    // stone dropped 0.92 m falls at √(2 g 0.92) = 4.24 m/s; at dt = 0.5 ms it is within
+    // 2 mm of the same place at the same speed.
+    let (end, speed) = rope_end_after(0.5, 0.001);
+    assert!(end.x < 0.0, "past under the pin: x = {}", end.x);
+    assert_near(1.5 - end.y, 0.92, 5e-3, "drop");
+    assert_near(speed, 6.44, 5e-3, "end speed");
+    assert_near((2.0 * 9.81 * (1.5 - end.y)).sqrt(), 4.24, 5e-3, "stone");
+    let (fine, fine_speed) = rope_end_after(0.5, 0.0005);
+    assert!((fine - end).norm() < 2e-3, "{fine} against {end}");
+    assert_near(fine_speed, speed, 5e-3, "speed at dt = 0.5 ms");
+}
+
+#[test]
+fn lesson_33_symplectic_euler_keeps_the_energy_in_its_band() {
+    use tumble::physics::cloth::ClothIntegrator;
+    let band = |dt: f64, seconds: f64| {
+        let mut world = swinging_rope_world(dt, ClothIntegrator::SymplecticEuler);
+        let e0 = world.total_energy().total;
+        let (mut low, mut high) = (e0, e0);
+        for _ in 0..steps_for(seconds, dt) {
+            world.step();
+            assert!(world.divergence().is_none());
+            let e = world.total_energy().total;
+            (low, high) = (low.min(e), high.max(e));
+        }
+        (e0, low, high)
+    };
+    // 20 s at 1 ms: between 1.401 and 1.600 J around E₀ = 0.1 × 9.81 × 1.5 = 1.4715 J.
+    let (e0, low, high) = band(0.001, 20.0);
+    assert_near(e0, 1.4715, 1e-12, "E₀");
+    assert_near(low, 1.401, 5e-4, "lowest E");
+    assert_near(high, 1.600, 5e-4, "highest E");
+    // 4 s at 0.5 ms: −0.7 % … +0.9 %.
+    let (e0, low, high) = band(0.0005, 4.0);
+    assert_near(low / e0 - 1.0, -0.007, 5e-4, "lowest at 0.5 ms");
+    assert_near(high / e0 - 1.0, 0.009, 5e-4, "highest at 0.5 ms");
+}
+
+#[test]
+fn lesson_33_at_1_1_times_the_limit_the_guard_stops_step_24() {
+    use tumble::physics::cloth::ClothIntegrator;
+    let mut world = swinging_rope_world(0.0017, ClothIntegrator::SymplecticEuler);
+    assert_near(0.0017 / world.cloth_limit(0).dt(), 1.1, 5e-3, "1.1 ×");
+    let mut stopped = None;
+    for _ in 0..400 {
+        world.step();
+        if let Some(d) = world.divergence() {
+            stopped = Some(d);
+            break;
+        }
+    }
+    assert_eq!(stopped.expect("1.1 × the limit diverges").step, 24);
+    let output = assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["run", "33-the-swinging-rope", "--steps", "400", "--dt", "0.0017"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(3));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("energy ran away"));
+}
+
+#[test]
+fn lesson_33_backward_euler_at_10_ms_loses_a_quarter_to_numerical_damping() {
+    use tumble::physics::cloth::ClothIntegrator;
+    let mut world = swinging_rope_world(0.01, ClothIntegrator::ImplicitEuler);
+    assert_near(0.01 / world.cloth_limit(0).stiffness_limit(), 6.5, 0.05, "× the limit");
+    let e0 = world.total_energy().total;
+    for _ in 0..400 {
+        world.step();
+        assert!(world.divergence().is_none());
+    }
+    let e = world.total_energy().total;
+    // 1.4715 → 1.0954 J by 4 s: a quarter gone, all of it drift (no damping declared).
+    assert_near(e, 1.0954, 5e-5, "E at 4 s");
+    assert_near((e0 - e) / e0, 0.256, 1e-3, "a quarter");
+    let b = world.energy_balance();
+    assert_near(b.drift, b.change, 1e-12, "all of it drift");
+}
