@@ -439,7 +439,18 @@ pub fn respond(
         before: input.before,
         dt: input.dt,
     };
-    let lift = fix.lift(contacts, states, &potential, &mut scratch.fix);
+    // Only a bounce pays it (stage 3): with e = 0, or no contact approaching near the bounce
+    // speed, it is not needed, and it is a whole push-out (a pyramid at rest penetrates by
+    // ½|g|dt² at every support after the integrator: a factorisation a step).
+    let may_bounce = input.model.restitution > 0.0
+        && contacts
+            .iter()
+            .any(|c| relative_velocity(c, &scratch.motions) < -0.5 * bounce_speed);
+    let lift = if may_bounce {
+        fix.lift(contacts, states, &potential, &mut scratch.fix)
+    } else {
+        0.0
+    };
     let settings = Settings {
         restitution: input.model.restitution,
         friction: input.model.friction,
