@@ -141,16 +141,27 @@ pub const PIVOT_ROUNDS: usize = 40;
 /// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
 pub const STICKING_MAX: usize = DIRECT_MAX / 3;
 
-/// Above this many rows a stage first tries [`TRIAL_SWEEPS`] sweeps from the last step's
+/// Above this many rows (and when the rows are wide, [`WIDE_ENVELOPE`]) a stage first tries
+/// [`TRIAL_SWEEPS`] sweeps from the last step's
 /// impulses before any factorisation: at rest (or sliding steadily) they are already the answer,
 /// and confirming it costs one pass over the rows, where the direct solve costs a factorisation
 /// whose envelope grows with the width of the scene (a pyramid of 10 rows has about 450 rows).
 /// Smaller systems (every bundled lesson) keep the direct solve first.
 pub const SWEEPS_FIRST_ROWS: usize = 64;
 
+/// A system whose rows, in contact order, reach back further than this many rows on average
+/// (its envelope over its rows) is *wide*: its factorisation costs about rows · width², and
+/// it tries the sweeps first. A stack is banded (about 6: a cube's rows reach back to the
+/// rows of the pair below it) and keeps the direct solve first, whose minimum-norm impulses
+/// leave no tangent drift; a pyramid of 10 rows reaches back about 40.
+pub const WIDE_ENVELOPE: f64 = 16.0;
+
 /// The sweeps a large system's warm start may take to converge before the direct solve is
 /// tried instead (a scene at rest needs 1 or 2).
 pub const TRIAL_SWEEPS: u64 = 8;
+
+/// The longest wait, in steps, between stage-1 trials that keep failing.
+pub const TRIAL_WAIT_MAX: u32 = 32;
 
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
@@ -187,6 +198,13 @@ struct Direct {
     /// The motions and (λ, λ_t) before a large system's trial sweeps, to undo them.
     trial: Vec<Motion>,
     trial_rows: Vec<(f64, [f64; 2])>,
+    /// Steps left before stage 1's trial sweeps run again, and the wait after the last
+    /// failure (doubled at each failure up to [`TRIAL_WAIT_MAX`], 0 after a success): a scene
+    /// whose warm start does not converge in a few sweeps stops paying for them.
+    trial_skip: u32,
+    trial_wait: u32,
+    /// The first row acting on each body (the envelope's estimate).
+    body_first: Vec<usize>,
 }
 
 /// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
@@ -596,9 +614,12 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
     // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
     // rows confirms it for far less than a factorisation); then the direct solve when it
     // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
-    let large = rows.len() > SWEEPS_FIRST_ROWS;
+    let large = rows.len() > SWEEPS_FIRST_ROWS
+        && mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
     let mut answered = false;
-    if large {
+    if large && buffers_direct.trial_skip > 0 {
+        buffers_direct.trial_skip -= 1;
+    } else if large {
         buffers_direct.trial.clear();
         buffers_direct.trial.extend_from_slice(motions);
         warm_start_normals(rows, motions);
@@ -607,7 +628,11 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         if converged {
             counters.warm += 1;
             answered = true;
+            buffers_direct.trial_wait = 0;
         } else {
+            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
+            buffers_direct.trial_wait = wait;
+            buffers_direct.trial_skip = wait;
             motions.copy_from_slice(&buffers_direct.trial);
             for row in rows.iter_mut() {
                 row.lambda = 0.0;
@@ -757,6 +782,25 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
             contact.impulse += t1.d * row.lambda_tangent[0] + t2.d * row.lambda_tangent[1];
         }
     }
+}
+
+/// The mean width of the rows' envelope in contact order, `Σ_p (p − first(p) + 1) / m`, with
+/// first(p) the first row acting on one of row p's bodies (as [`Dense`] stores it).
+fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
+    body_first.clear();
+    let mut sum = 0usize;
+    for (p, row) in rows.iter().enumerate() {
+        let mut first = p;
+        for b in row.normal.bodies().into_iter().flatten() {
+            if b >= body_first.len() {
+                body_first.resize(b + 1, usize::MAX);
+            }
+            first = first.min(body_first[b]);
+            body_first[b] = body_first[b].min(p);
+        }
+        sum += p - first + 1;
+    }
+    sum as f64 / rows.len().max(1) as f64
 }
 
 /// Starts the normal sweeps from the last step's normal impulses (kept ≥ 0).
