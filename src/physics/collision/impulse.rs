@@ -718,8 +718,13 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         }
         if !solved {
             warm_start_friction(rows, tangent_directions, motions);
-            let (_, sweeps) =
-                sweep_friction(rows, tangent_directions, motions, tolerance, MAX_SWEEPS as u64);
+            let (_, sweeps) = sweep_friction(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                MAX_SWEEPS as u64,
+            );
             counters.friction_sweeps += sweeps;
         }
     }
@@ -817,7 +822,12 @@ fn warm_start_normals(rows: &mut [Row], motions: &mut [Motion]) {
 
 /// Projected Gauss–Seidel on the normal impulses, at most `cap` sweeps; returns whether they
 /// converged and how many ran.
-fn sweep_normals(rows: &mut [Row], motions: &mut [Motion], tolerance: f64, cap: u64) -> (bool, u64) {
+fn sweep_normals(
+    rows: &mut [Row],
+    motions: &mut [Motion],
+    tolerance: f64,
+    cap: u64,
+) -> (bool, u64) {
     for sweep in 1..=cap {
         let mut largest: f64 = 0.0;
         for row in rows.iter_mut() {
@@ -841,7 +851,10 @@ fn warm_start_friction(rows: &mut [Row], directions: &[[Direction; 2]], motions:
             let scale = row.friction_bound / size;
             warm = [warm[0] * scale, warm[1] * scale];
         }
-        let step = [warm[0] - row.lambda_tangent[0], warm[1] - row.lambda_tangent[1]];
+        let step = [
+            warm[0] - row.lambda_tangent[0],
+            warm[1] - row.lambda_tangent[1],
+        ];
         if step != [0.0; 2] {
             row.lambda_tangent = warm;
             apply(step[0], t1, motions);

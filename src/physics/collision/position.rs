@@ -65,11 +65,11 @@
 //! for 10 cubes.
 
 use super::dense::Dense;
+use super::warm::FastMap;
 use super::{Against, Contact};
 use crate::physics::body::Body;
 use crate::physics::state::State;
 use nalgebra::Vector3;
-use super::warm::FastMap;
 use std::collections::hash_map::Entry;
 
 /// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10, a pyramid of
