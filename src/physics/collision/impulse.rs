@@ -43,6 +43,14 @@
 //!    approaching contact stops and pushes" (a face landing, a body at rest: the usual case),
 //!    the same minimum is computed at once by a small LDLᵀ solve and checked against the
 //!    conditions above (`direct_inelastic`); the sweeps run only when that check fails.
+//!    A large system whose rows are *wide* in contact order (a pyramid: each cube touches the
+//!    row below and its neighbours; [`WIDE_ENVELOPE`]) first tries [`TRIAL_SWEEPS`] sweeps from
+//!    the last step's impulses: at rest they are already the answer, one sweep over the rows
+//!    confirms it to the same tolerance, where a factorisation costs rows · width². Only when
+//!    they do not converge does the direct solve run (and a failed trial waits a few steps
+//!    before the next, so a scene whose warm start is poor stops paying for it). Every
+//!    bundled lesson and every stack (banded) keeps the direct solve first. The friction stage
+//!    below does the same.
 //! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
 //!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
 //!    The sweep updates the normal impulse as in stage 1, then both tangent impulses at once:
