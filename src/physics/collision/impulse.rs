@@ -43,6 +43,14 @@
 //!    approaching contact stops and pushes" (a face landing, a body at rest: the usual case),
 //!    the same minimum is computed at once by a small LDLᵀ solve and checked against the
 //!    conditions above (`direct_inelastic`); the sweeps run only when that check fails.
+//!    A large system whose rows are *wide* in contact order (a pyramid: each cube touches the
+//!    row below and its neighbours; [`WIDE_ENVELOPE`]) first tries [`TRIAL_SWEEPS`] sweeps from
+//!    the last step's impulses: at rest they are already the answer, one sweep over the rows
+//!    confirms it to the same tolerance, where a factorisation costs rows · width². Only when
+//!    they do not converge does the direct solve run (and a failed trial waits a few steps
+//!    before the next, so a scene whose warm start is poor stops paying for it). Every
+//!    bundled lesson and every stack (banded) keeps the direct solve first. The friction stage
+//!    below does the same.
 //! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
 //!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
 //!    The sweep updates the normal impulse as in stage 1, then both tangent impulses at once:
@@ -141,6 +149,28 @@ pub const PIVOT_ROUNDS: usize = 40;
 /// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
 pub const STICKING_MAX: usize = DIRECT_MAX / 3;
 
+/// Above this many rows (and when the rows are wide, [`WIDE_ENVELOPE`]) a stage first tries
+/// [`TRIAL_SWEEPS`] sweeps from the last step's
+/// impulses before any factorisation: at rest (or sliding steadily) they are already the answer,
+/// and confirming it costs one pass over the rows, where the direct solve costs a factorisation
+/// whose envelope grows with the width of the scene (a pyramid of 10 rows has about 450 rows).
+/// Smaller systems (every bundled lesson) keep the direct solve first.
+pub const SWEEPS_FIRST_ROWS: usize = 64;
+
+/// A system whose rows, in contact order, reach back further than this many rows on average
+/// (its envelope over its rows) is *wide*: its factorisation costs about rows · width², and
+/// it tries the sweeps first. A stack is banded (about 6: a cube's rows reach back to the
+/// rows of the pair below it) and keeps the direct solve first, whose minimum-norm impulses
+/// leave no tangent drift; a pyramid of 10 rows reaches back about 40.
+pub const WIDE_ENVELOPE: f64 = 16.0;
+
+/// The sweeps a large system's warm start may take to converge before the direct solve is
+/// tried instead (a scene at rest needs 1 or 2).
+pub const TRIAL_SWEEPS: u64 = 8;
+
+/// The longest wait, in steps, between stage-1 trials that keep failing.
+pub const TRIAL_WAIT_MAX: u32 = 32;
+
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -173,6 +203,16 @@ struct Direct {
     active: Vec<usize>,
     lambda: Vec<f64>,
     entering: Vec<usize>,
+    /// The motions and (λ, λ_t) before a large system's trial sweeps, to undo them.
+    trial: Vec<Motion>,
+    trial_rows: Vec<(f64, [f64; 2])>,
+    /// Steps left before stage 1's trial sweeps run again, and the wait after the last
+    /// failure (doubled at each failure up to [`TRIAL_WAIT_MAX`], 0 after a success): a scene
+    /// whose warm start does not converge in a few sweeps stops paying for them.
+    trial_skip: u32,
+    trial_wait: u32,
+    /// The first row acting on each body (the envelope's estimate).
+    body_first: Vec<usize>,
 }
 
 /// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
@@ -186,6 +226,11 @@ pub struct Counters {
     /// Gauss–Seidel sweeps run, normal (stage 1) and friction (stage 2).
     pub normal_sweeps: u64,
     pub friction_sweeps: u64,
+    /// Steps whose stage 1 a large system's warm-started trial sweeps answered.
+    pub warm: u64,
+    /// Steps whose friction stage the trial sweeps answered, and the direct solve.
+    pub friction_warm: u64,
+    pub friction_direct: u64,
 }
 
 /// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
@@ -420,7 +465,18 @@ pub fn respond(
         before: input.before,
         dt: input.dt,
     };
-    let lift = fix.lift(contacts, states, &potential, &mut scratch.fix);
+    // Only a bounce pays it (stage 3): with e = 0, or no contact approaching near the bounce
+    // speed, it is not needed, and it is a whole push-out (a pyramid at rest penetrates by
+    // ½|g|dt² at every support after the integrator: a factorisation a step).
+    let may_bounce = input.model.restitution > 0.0
+        && contacts
+            .iter()
+            .any(|c| relative_velocity(c, &scratch.motions) < -0.5 * bounce_speed);
+    let lift = if may_bounce {
+        fix.lift(contacts, states, &potential, &mut scratch.fix)
+    } else {
+        0.0
+    };
     let settings = Settings {
         restitution: input.model.restitution,
         friction: input.model.friction,
@@ -562,32 +618,44 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
     let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
     let tolerance = TOLERANCE * (1.0 + fastest);
 
-    // Stage 1: inelastic normal impulses, λ ≥ 0: the direct solve when it applies, else
-    // projected Gauss–Seidel, warm-started from the last step's impulses.
-    let direct = direct_inelastic(rows, motions, tolerance, buffers_direct);
-    if direct {
-        counters.direct += 1;
-    } else {
-        counters.declined += 1;
-    }
-    if !direct {
-        for row in rows.iter_mut() {
-            row.normal.with_inverse();
-            let warm = row.warm.dot(&row.normal.d).max(0.0);
-            if warm > 0.0 {
-                row.lambda = warm;
-                apply(warm, &row.normal, motions);
+    // Stage 1: inelastic normal impulses, λ ≥ 0. A large system first tries a few sweeps from
+    // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
+    // rows confirms it for far less than a factorisation); then the direct solve when it
+    // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
+    let large = rows.len() > SWEEPS_FIRST_ROWS
+        && mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
+    let mut answered = false;
+    if large && buffers_direct.trial_skip > 0 {
+        buffers_direct.trial_skip -= 1;
+    } else if large {
+        buffers_direct.trial.clear();
+        buffers_direct.trial.extend_from_slice(motions);
+        warm_start_normals(rows, motions);
+        let (converged, sweeps) = sweep_normals(rows, motions, tolerance, TRIAL_SWEEPS);
+        counters.normal_sweeps += sweeps;
+        if converged {
+            counters.warm += 1;
+            answered = true;
+            buffers_direct.trial_wait = 0;
+        } else {
+            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
+            buffers_direct.trial_wait = wait;
+            buffers_direct.trial_skip = wait;
+            motions.copy_from_slice(&buffers_direct.trial);
+            for row in rows.iter_mut() {
+                row.lambda = 0.0;
             }
         }
-        for _ in 0..MAX_SWEEPS {
-            counters.normal_sweeps += 1;
-            let mut largest: f64 = 0.0;
-            for row in rows.iter_mut() {
-                largest = largest.max(normal_update(row, motions));
-            }
-            if largest <= tolerance {
-                break;
-            }
+    }
+    if !answered {
+        let direct = direct_inelastic(rows, motions, tolerance, buffers_direct);
+        if direct {
+            counters.direct += 1;
+        } else {
+            counters.declined += 1;
+            warm_start_normals(rows, motions);
+            let (_, sweeps) = sweep_normals(rows, motions, tolerance, MAX_SWEEPS as u64);
+            counters.normal_sweeps += sweeps;
         }
     }
 
@@ -622,41 +690,50 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
                 Direction::new(t2, contact, motions),
             ]);
         }
-        // The direct solve first (everything sticks); else the sweeps, warm-started from the
-        // last step's friction impulses (kept in their disks).
-        let solved = direct_sticking(rows, tangent_directions, motions, tolerance, buffers_direct);
-        if !solved {
-            for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
-                row.normal.with_inverse();
-                let [t1, t2] = directions;
-                let mut warm = [row.warm.dot(&t1.d), row.warm.dot(&t2.d)];
-                let size = (warm[0] * warm[0] + warm[1] * warm[1]).sqrt();
-                if size > row.friction_bound {
-                    let scale = row.friction_bound / size;
-                    warm = [warm[0] * scale, warm[1] * scale];
-                }
-                if warm != [0.0; 2] {
-                    row.lambda_tangent = warm;
-                    apply(warm[0], t1, motions);
-                    apply(warm[1], t2, motions);
+        // A large system: a few sweeps from the last step's friction impulses first (at rest
+        // or sliding steadily they are the answer). Then the direct solve (everything sticks);
+        // else the sweeps, warm-started from the last step's friction
+        // impulses (kept in their disks).
+        let mut solved = false;
+        if large {
+            let Direct {
+                trial, trial_rows, ..
+            } = &mut *buffers_direct;
+            trial.clear();
+            trial.extend_from_slice(motions);
+            trial_rows.clear();
+            trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+            warm_start_friction(rows, tangent_directions, motions);
+            let (converged, sweeps) =
+                sweep_friction(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
+            counters.friction_sweeps += sweeps;
+            if converged {
+                counters.friction_warm += 1;
+                solved = true;
+            } else {
+                motions.copy_from_slice(trial);
+                for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
+                    row.lambda = lambda;
+                    row.lambda_tangent = tangent;
                 }
             }
         }
-        for _ in 0..if solved { 0 } else { MAX_SWEEPS } {
-            counters.friction_sweeps += 1;
-            let mut largest: f64 = 0.0;
-            for (row, directions) in rows.iter_mut().zip(tangent_directions.iter()) {
-                let bound = row.friction_bound;
-                largest = largest.max(normal_update(row, motions));
-                if bound == 0.0 {
-                    continue;
-                }
-                let change = friction_update(row, directions, bound, motions);
-                largest = largest.max(change);
+        if !solved {
+            solved = direct_sticking(rows, tangent_directions, motions, tolerance, buffers_direct);
+            if solved {
+                counters.friction_direct += 1;
             }
-            if largest <= tolerance {
-                break;
-            }
+        }
+        if !solved {
+            warm_start_friction(rows, tangent_directions, motions);
+            let (_, sweeps) = sweep_friction(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                MAX_SWEEPS as u64,
+            );
+            counters.friction_sweeps += sweeps;
         }
     }
 
@@ -720,6 +797,107 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
     }
 }
 
+/// The mean width of the rows' envelope in contact order, `Σ_p (p − first(p) + 1) / m`, with
+/// first(p) the first row acting on one of row p's bodies (as [`Dense`] stores it).
+fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
+    body_first.clear();
+    let mut sum = 0usize;
+    for (p, row) in rows.iter().enumerate() {
+        let mut first = p;
+        for b in row.normal.bodies().into_iter().flatten() {
+            if b >= body_first.len() {
+                body_first.resize(b + 1, usize::MAX);
+            }
+            first = first.min(body_first[b]);
+            body_first[b] = body_first[b].min(p);
+        }
+        sum += p - first + 1;
+    }
+    sum as f64 / rows.len().max(1) as f64
+}
+
+/// Starts the normal sweeps from the last step's normal impulses (kept ≥ 0).
+fn warm_start_normals(rows: &mut [Row], motions: &mut [Motion]) {
+    for row in rows.iter_mut() {
+        row.normal.with_inverse();
+        let warm = row.warm.dot(&row.normal.d).max(0.0);
+        if warm > 0.0 {
+            row.lambda = warm;
+            apply(warm, &row.normal, motions);
+        }
+    }
+}
+
+/// Projected Gauss–Seidel on the normal impulses, at most `cap` sweeps; returns whether they
+/// converged and how many ran.
+fn sweep_normals(
+    rows: &mut [Row],
+    motions: &mut [Motion],
+    tolerance: f64,
+    cap: u64,
+) -> (bool, u64) {
+    for sweep in 1..=cap {
+        let mut largest: f64 = 0.0;
+        for row in rows.iter_mut() {
+            largest = largest.max(normal_update(row, motions));
+        }
+        if largest <= tolerance {
+            return (true, sweep);
+        }
+    }
+    (false, cap)
+}
+
+/// Starts the friction sweeps from the last step's friction impulses, kept in their disks.
+fn warm_start_friction(rows: &mut [Row], directions: &[[Direction; 2]], motions: &mut [Motion]) {
+    for (row, directions) in rows.iter_mut().zip(directions.iter()) {
+        row.normal.with_inverse();
+        let [t1, t2] = directions;
+        let mut warm = [row.warm.dot(&t1.d), row.warm.dot(&t2.d)];
+        let size = (warm[0] * warm[0] + warm[1] * warm[1]).sqrt();
+        if size > row.friction_bound {
+            let scale = row.friction_bound / size;
+            warm = [warm[0] * scale, warm[1] * scale];
+        }
+        let step = [
+            warm[0] - row.lambda_tangent[0],
+            warm[1] - row.lambda_tangent[1],
+        ];
+        if step != [0.0; 2] {
+            row.lambda_tangent = warm;
+            apply(step[0], t1, motions);
+            apply(step[1], t2, motions);
+        }
+    }
+}
+
+/// Block coordinate descent on the normal and friction impulses, at most `cap` sweeps;
+/// returns whether they converged and how many ran.
+fn sweep_friction(
+    rows: &mut [Row],
+    directions: &[[Direction; 2]],
+    motions: &mut [Motion],
+    tolerance: f64,
+    cap: u64,
+) -> (bool, u64) {
+    for sweep in 1..=cap {
+        let mut largest: f64 = 0.0;
+        for (row, directions) in rows.iter_mut().zip(directions.iter()) {
+            let bound = row.friction_bound;
+            largest = largest.max(normal_update(row, motions));
+            if bound == 0.0 {
+                continue;
+            }
+            let change = friction_update(row, directions, bound, motions);
+            largest = largest.max(change);
+        }
+        if largest <= tolerance {
+            return (true, sweep);
+        }
+    }
+    (false, cap)
+}
+
 /// Whether a row bounces: it approached faster than the bounce speed and pushed.
 fn bounces(row: &Row, bounce_speed: f64) -> bool {
     row.approach < -bounce_speed && row.compression > 0.0
@@ -756,6 +934,7 @@ fn direct_inelastic(
         active,
         lambda,
         entering,
+        ..
     } = buffers;
     active.clear();
     let approaching = |r: &Row| r.approach + r.bias < 0.0;

@@ -65,12 +65,12 @@
 //! for 10 cubes.
 
 use super::dense::Dense;
+use super::warm::FastMap;
 use super::{Against, Contact};
 use crate::physics::body::Body;
 use crate::physics::state::State;
 use nalgebra::Vector3;
 use std::collections::hash_map::Entry;
-use std::collections::HashMap;
 
 /// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10, a pyramid of
 /// 20 rows about 400; only the system's envelope is stored, see [`Dense`]).
@@ -99,7 +99,7 @@ pub struct Scratch {
     /// The direct solve: merged rows (first contact, depth), the active ones, the system.
     merged: Vec<(usize, f64)>,
     /// Where each pair and normal sits in `merged` (the merge in O(1) per contact).
-    merged_at: HashMap<(usize, Against, [u64; 3]), usize>,
+    merged_at: FastMap<(usize, Against, [u64; 3]), usize>,
     active: Vec<usize>,
     dense: Dense,
 }

@@ -9,6 +9,7 @@
 use super::{Against, Contact, Feature};
 use nalgebra::Vector3;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::Range;
 
 /// A stored point matches a new one closer than this, m.
@@ -18,7 +19,7 @@ pub const MATCH_DISTANCE: f64 = 1e-3;
 #[derive(Debug, Clone, Default)]
 pub struct WarmCache {
     entries: Vec<(Feature, Vector3<f64>, Vector3<f64>)>,
-    pairs: HashMap<(usize, Against), Range<usize>>,
+    pairs: FastMap<(usize, Against), Range<usize>>,
 }
 
 impl WarmCache {
@@ -59,5 +60,55 @@ impl WarmCache {
                 *f == c.feature && (p - c.point).norm_squared() < MATCH_DISTANCE * MATCH_DISTANCE
             })
             .map(|(_, _, j)| *j)
+    }
+}
+
+/// A hash map with [`FastHasher`]: the solver's keys are a few small integers, looked up once
+/// per contact per step, where the standard SipHash cost more than the lookup it served.
+pub type FastMap<K, V> = HashMap<K, V, BuildHasherDefault<FastHasher>>;
+
+/// The multiply–rotate hash of rustc's `FxHasher`: `h ← (rotl(h, 5) ⊕ word) · K` per 64-bit
+/// word. Not resistant to chosen keys (none here: body indices and normals' bits), and
+/// deterministic; the maps are only looked up, never iterated, so it changes no result.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FastHasher {
+    hash: u64,
+}
+
+impl FastHasher {
+    const K: u64 = 0x517c_c1b7_2722_0a95;
+
+    fn add(&mut self, word: u64) {
+        self.hash = (self.hash.rotate_left(5) ^ word).wrapping_mul(Self::K);
+    }
+}
+
+impl Hasher for FastHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.add(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u8(&mut self, i: u8) {
+        self.add(u64::from(i));
+    }
+
+    fn write_u32(&mut self, i: u32) {
+        self.add(u64::from(i));
+    }
+
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.hash
     }
 }
