@@ -2599,7 +2599,14 @@ fn lesson_33_at_1_1_times_the_limit_the_guard_stops_step_24() {
     let output = assert_cmd::Command::cargo_bin("tumble")
         .unwrap()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["run", "33-the-swinging-rope", "--steps", "400", "--dt", "0.0017"])
+        .args([
+            "run",
+            "33-the-swinging-rope",
+            "--steps",
+            "400",
+            "--dt",
+            "0.0017",
+        ])
         .output()
         .unwrap();
     assert_eq!(output.status.code(), Some(3));
@@ -2610,7 +2617,12 @@ fn lesson_33_at_1_1_times_the_limit_the_guard_stops_step_24() {
 fn lesson_33_backward_euler_at_10_ms_loses_a_quarter_to_numerical_damping() {
     use tumble::physics::cloth::ClothIntegrator;
     let mut world = swinging_rope_world(0.01, ClothIntegrator::ImplicitEuler);
-    assert_near(0.01 / world.cloth_limit(0).stiffness_limit(), 6.5, 0.05, "× the limit");
+    assert_near(
+        0.01 / world.cloth_limit(0).stiffness_limit(),
+        6.5,
+        0.05,
+        "× the limit",
+    );
     let e0 = world.total_energy().total;
     for _ in 0..400 {
         world.step();
