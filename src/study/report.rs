@@ -348,35 +348,47 @@ fn table_row(row: &Row, contact: bool) -> String {
     line
 }
 
+/// A study row's status as a CSV cell: `ok`, or the divergence message quoted.
+fn csv_status(status: &Status) -> String {
+    match status {
+        Status::Ok => "ok".to_string(),
+        Status::Diverged(m) => format!("\"diverged: {}\"", m.replace('"', "'")),
+    }
+}
+
+/// The CSV columns from `scene` to `rest_error` that every rigid-body row shares.
+fn run_columns(r: &Row) -> String {
+    format!(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+        r.scene,
+        r.integrator.name(),
+        r.dt,
+        r.steps,
+        r.ns_per_step,
+        r.error,
+        r.energy_drift,
+        r.momentum_drift,
+        r.orthonormality,
+        r.us_per_simulated_second,
+        r.omega_error,
+        r.position_error,
+        r.penetration,
+        r.impact_energy,
+        r.rest_error
+    )
+}
+
 /// The raw numbers as CSV, full precision.
 pub fn csv(studies: &[SceneStudy]) -> String {
     let mut out = String::from(CSV_HEADER);
     out.push('\n');
     for study in studies {
         for r in &study.rows {
-            let status = match &r.status {
-                Status::Ok => "ok".to_string(),
-                Status::Diverged(m) => format!("\"diverged: {}\"", m.replace('"', "'")),
-            };
+            let status = csv_status(&r.status);
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},body,NaN,NaN,NaN,NaN,NaN,\
-                 {},NaN,NaN",
-                r.scene,
-                r.integrator.name(),
-                r.dt,
-                r.steps,
-                r.ns_per_step,
-                r.error,
-                r.energy_drift,
-                r.momentum_drift,
-                r.orthonormality,
-                r.us_per_simulated_second,
-                r.omega_error,
-                r.position_error,
-                r.penetration,
-                r.impact_energy,
-                r.rest_error,
+                "{},{},{},{},{},{},{},body,NaN,NaN,NaN,NaN,NaN,{},NaN,NaN",
+                run_columns(r),
                 r.frontier,
                 status,
                 study.reference_kind,
@@ -388,29 +400,11 @@ pub fn csv(studies: &[SceneStudy]) -> String {
         }
         for row in study.contact_solvers.iter().flat_map(|c| &c.rows) {
             let r = &row.run;
-            let status = match &r.status {
-                Status::Ok => "ok".to_string(),
-                Status::Diverged(m) => format!("\"diverged: {}\"", m.replace('"', "'")),
-            };
+            let status = csv_status(&r.status);
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},numeric,{},{},{},contact-solver,\
-                 NaN,NaN,NaN,NaN,NaN,{},{},{}",
-                r.scene,
-                r.integrator.name(),
-                r.dt,
-                r.steps,
-                r.ns_per_step,
-                r.error,
-                r.energy_drift,
-                r.momentum_drift,
-                r.orthonormality,
-                r.us_per_simulated_second,
-                r.omega_error,
-                r.position_error,
-                r.penetration,
-                r.impact_energy,
-                r.rest_error,
+                "{},{},{},numeric,{},{},{},contact-solver,NaN,NaN,NaN,NaN,NaN,{},{},{}",
+                run_columns(r),
                 row.frontier,
                 status,
                 r.angle_error,
@@ -422,10 +416,7 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             );
         }
         for r in study.cloth.iter().flat_map(|c| &c.rows) {
-            let status = match &r.status {
-                Status::Ok => "ok".to_string(),
-                Status::Diverged(m) => format!("\"diverged: {}\"", m.replace('"', "'")),
-            };
+            let status = csv_status(&r.status);
             let nan = f64::NAN;
             let _ = writeln!(
                 out,
