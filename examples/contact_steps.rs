@@ -63,4 +63,12 @@ fn main() {
         .map(|(s, s0)| (s.position - s0.position).norm())
         .fold(0.0, f64::max);
     println!("largest displacement {drift:.3e} m");
+    if std::env::var_os("CONTACT_STEPS_STATES").is_some() {
+        for s in world.states() {
+            println!(
+                "{:?} {:?} {:?} {:?}",
+                s.position, s.orientation, s.linear_momentum, s.angular_momentum
+            );
+        }
+    }
 }

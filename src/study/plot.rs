@@ -8,7 +8,7 @@ use super::cloth::ClothStudy;
 use super::contact::ContactStudy;
 use super::SceneStudy;
 use crate::physics::cloth::ClothIntegrator;
-use crate::physics::Integrator;
+use crate::physics::{Integrator, Response, SoftStep};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -78,16 +78,27 @@ impl Entries {
             entries.push((i.name().to_string(), cloth_color(i)));
         }
         if self.solvers {
-            entries.push(("impulse (contact)".to_string(), IMPULSE));
-            entries.push(("soft-step ×n (contact)".to_string(), SOFT_STEP));
+            let (impulse, soft_step) = solver_colors();
+            entries.push(("impulse (contact)".to_string(), impulse));
+            entries.push(("soft-step ×n (contact)".to_string(), soft_step));
         }
         entries
     }
 }
 
-/// The colours of the contact solvers' panel: `impulse` and `soft-step`.
-const IMPULSE: RGBColor = RGBColor(0, 0, 0);
-const SOFT_STEP: RGBColor = RGBColor(130, 130, 130);
+/// The colour of a collision response in the contact solvers' panel: its descriptor's.
+fn response_color(response: Response) -> RGBColor {
+    let (r, g, b) = response.descriptor().colour;
+    RGBColor(r, g, b)
+}
+
+/// The contact solvers' panel's colours: `impulse` and `soft-step`.
+fn solver_colors() -> (RGBColor, RGBColor) {
+    (
+        response_color(Response::Impulse),
+        response_color(Response::SoftStep(SoftStep::DEFAULT)),
+    )
+}
 
 /// A body row the panels draw.
 fn drawable(r: &super::measure::Row) -> bool {
@@ -352,12 +363,13 @@ fn solvers_panel(
         ok.iter().map(|r| at(r)),
     )?;
     let soft: Vec<_> = ok.iter().filter(|r| r.substeps > 0).collect();
+    let (impulse, soft_step) = solver_colors();
     plot.draw_series(LineSeries::new(
         soft.iter().map(|r| at(r)),
-        SOFT_STEP.stroke_width(2),
+        soft_step.stroke_width(2),
     ))?;
     for r in &ok {
-        let c = if r.substeps > 0 { SOFT_STEP } else { IMPULSE };
+        let c = if r.substeps > 0 { soft_step } else { impulse };
         plot.draw_series(std::iter::once(Circle::new(at(r), 3, c.filled())))?;
         let text = if r.substeps > 0 {
             format!("×{}", r.substeps)

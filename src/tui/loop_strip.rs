@@ -371,46 +371,52 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     }
     let model = world.contact_model();
     let mut lines = Vec::new();
-    match model.map(|m| m.response) {
-        Some(Response::Impulse) => {
-            let e = model.map_or(0.0, |m| m.restitution);
+    let chosen = model.map_or(Response::Seed, |m| m.response);
+    let response = chosen.descriptor();
+    if response.impulses {
+        let e = model.map_or(0.0, |m| m.restitution);
+        let parameters = match chosen {
+            Response::SoftStep(p) => format!(
+                "   e = {}, hertz = {}, ζ = {}, n = {}",
+                number_plain(e),
+                number_plain(p.hertz),
+                number_plain(p.damping_ratio),
+                p.substeps
+            ),
+            _ => format!("   e = {}", number_plain(e)),
+        };
+        lines.push(line(
+            if bodies > 1 {
+                response.formula_bodies
+            } else {
+                response.formula
+            },
+            parameters,
+        ));
+        for c in s.contacts.iter().take(2) {
             lines.push(line(
-                if bodies > 1 {
-                    "uₙ = (v_A + ω_A×r_A − v_B − ω_B×r_B)·n,  k = Σ 1/M + (r×n)·I⁻¹(r×n),  j = −(1+e)·uₙ/k  on A, −j on B (all contacts together, + friction)"
-                } else {
-                    "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)"
-                },
-                format!("   e = {}", number_plain(e)),
+                format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
+                format!(
+                    " n = {}, uₙ = {}, k = {}, J = {} N·s",
+                    vector(&c.normal),
+                    number_plain(c.normal_velocity),
+                    number_plain(c.denominator),
+                    vector(&c.impulse)
+                ),
             ));
-            for c in s.contacts.iter().take(2) {
-                lines.push(line(
-                    format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
-                    format!(
-                        " n = {}, uₙ = {}, k = {}, J = {} N·s",
-                        vector(&c.normal),
-                        number_plain(c.normal_velocity),
-                        number_plain(c.denominator),
-                        vector(&c.impulse)
-                    ),
-                ));
-            }
         }
-        _ => {
+    } else {
+        lines.push(line(response.formula, ""));
+        for c in s.contacts.iter().take(2) {
             lines.push(line(
-                "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
-                "",
+                format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
+                format!(
+                    " d = {} m, n = {}, ΔP = −1.4·P = {} N·s",
+                    number_plain(c.depth),
+                    vector(&c.normal),
+                    vector(&c.impulse)
+                ),
             ));
-            for c in s.contacts.iter().take(2) {
-                lines.push(line(
-                    format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
-                    format!(
-                        " d = {} m, n = {}, ΔP = −1.4·P = {} N·s",
-                        number_plain(c.depth),
-                        vector(&c.normal),
-                        vector(&c.impulse)
-                    ),
-                ));
-            }
         }
     }
     if s.contacts.len() > 2 {

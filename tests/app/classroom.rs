@@ -443,3 +443,39 @@ fn wording_of_the_loop_strip_and_the_divergence() {
     }
     assert!(seen, "the cube lands on the sheet");
 }
+
+#[test]
+fn the_loop_strip_shows_the_chosen_responses_own_formula() {
+    // Each response's collide line comes from its descriptor: soft-step's sub-stepped soft
+    // update with its parameters, not the report's push-out (which it showed before).
+    for (response, formula, numbers) in [
+        (Response::Impulse, "j = −(1+e)·uₙ/k", "e = 0.400000"),
+        (
+            Response::SoftStep(tumble::physics::SoftStep::DEFAULT),
+            "per sub-step h = dt/n",
+            "e = 0.400000, hertz = 60.000000, ζ = 10.000000, n = 4",
+        ),
+    ] {
+        let mut app = lesson_app("05-ground-collision", None);
+        app.pause_at_stops = false;
+        let mut model = *app.world.contact_model().unwrap();
+        model.response = response;
+        app.world.set_contact_model(model);
+        let mut touched = false;
+        for _ in 0..2000 {
+            app.step_frames(1);
+            if !app.snapshot.contacts.is_empty() {
+                touched = true;
+                break;
+            }
+        }
+        assert!(touched, "{}: the cube never landed", response.name());
+        let strip: String = tumble::tui::loop_strip::lines(&app)
+            .iter()
+            .flat_map(|l| l.spans.iter().map(|s| s.content.to_string()))
+            .collect();
+        assert!(strip.contains(formula), "{}: {strip}", response.name());
+        assert!(strip.contains(numbers), "{}: {strip}", response.name());
+        assert!(!strip.contains("seed (the report's)"), "{strip}");
+    }
+}

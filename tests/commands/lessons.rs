@@ -143,6 +143,20 @@ fn the_readme_integrator_table_has_every_integrators_descriptor_row() {
 }
 
 #[test]
+fn the_readme_response_table_has_every_responses_descriptor_row() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    for response in tumble::physics::Response::ALL {
+        let d = response.descriptor();
+        let row = format!("| `{}` | {} | {} |", d.name, d.summary, d.keeps);
+        assert!(
+            readme.contains(&row),
+            "README.md's response table has no row `{row}`"
+        );
+    }
+}
+
+#[test]
 fn the_complete_example_of_the_lesson_format_doc_is_a_valid_lesson() {
     let doc = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),

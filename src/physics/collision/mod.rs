@@ -8,9 +8,11 @@
 //! |---|---|
 //! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion |
 //! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
+//! | `response` | the responses a scene can choose, each described once (name, formulas, README row, colour) |
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
+//! | `solver_body` | solver bodies (v, ω, L, 1/M, I⁻¹) and constraint axes between two ends: what every solver works on |
 //! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
 //! | `sweep` | fast pairs of bodies: time of impact, rows carried to the end of the step (no tunnelling) |
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
@@ -22,11 +24,14 @@ pub mod detect;
 pub mod geometry;
 pub mod impulse;
 pub mod position;
+pub mod response;
 pub mod seed;
 pub mod soft_step;
+pub mod solver_body;
 pub mod sweep;
 pub mod warm;
 
+pub use response::{Descriptor as ResponseDescriptor, Response};
 pub use soft_step::SoftStep;
 
 use super::body::Body;
@@ -115,54 +120,6 @@ impl Obstacle {
                     rotation,
                 },
             ),
-        }
-    }
-}
-
-/// Which collision response runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Response {
-    /// The original report's response, reproduced with its failures.
-    Seed,
-    /// Sequential impulses with restitution and Coulomb friction.
-    Impulse,
-    /// Sub-stepped soft contacts with a relax pass (Box2D v3): fast, approximate, sags.
-    SoftStep(SoftStep),
-}
-
-impl Response {
-    /// Every response, in teaching order.
-    pub const ALL: [Response; 3] = [
-        Response::Seed,
-        Response::Impulse,
-        Response::SoftStep(SoftStep::DEFAULT),
-    ];
-
-    /// The name used in scene files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Response::Seed => "seed",
-            Response::Impulse => "impulse",
-            Response::SoftStep(_) => "soft-step",
-        }
-    }
-
-    /// The response with this name (soft-step with its documented defaults).
-    pub fn from_name(name: &str) -> Option<Response> {
-        Response::ALL.into_iter().find(|r| r.name() == name)
-    }
-
-    /// Every valid name, comma-separated.
-    pub fn names() -> String {
-        Response::ALL.map(Response::name).join(", ")
-    }
-
-    /// The next response, wrapping around.
-    pub fn next(self) -> Response {
-        match self {
-            Response::Seed => Response::Impulse,
-            Response::Impulse => Response::SoftStep(SoftStep::DEFAULT),
-            Response::SoftStep(_) => Response::Seed,
         }
     }
 }

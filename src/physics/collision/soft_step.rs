@@ -77,6 +77,7 @@
 
 use super::contacts;
 use super::impulse::{tangents, BOUNCE_STEPS};
+use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
@@ -178,15 +179,10 @@ impl Softness {
     }
 }
 
-/// A body as the sub-steps see it.
+/// Where a solver body is within the sub-steps (its velocities are the [`SolverBody`] of the
+/// same index).
 #[derive(Debug, Clone, Copy)]
-struct SolverBody {
-    v: Vector3<f64>,
-    omega: Vector3<f64>,
-    l: Vector3<f64>,
-    inv_mass: f64,
-    /// I⁻¹ (world) of the start pose, kept over the step.
-    inv_inertia: Matrix3<f64>,
+struct Placement {
     position: Vector3<f64>,
     q: UnitQuaternion<f64>,
     /// The detection pose.
@@ -197,73 +193,6 @@ struct SolverBody {
     /// The external velocity change per sub-step.
     dv: Vector3<f64>,
     dl: Vector3<f64>,
-}
-
-/// One end of a row direction: body, r × d, I⁻¹(r × d).
-#[derive(Debug, Clone, Copy)]
-struct End {
-    body: usize,
-    rd: Vector3<f64>,
-    w: Vector3<f64>,
-}
-
-/// A direction d at a contact (+d on A, −d on B) and its effective mass 1/k.
-#[derive(Debug, Clone, Copy)]
-struct Axis {
-    d: Vector3<f64>,
-    a: End,
-    b: Option<End>,
-    mass: f64,
-    k: f64,
-}
-
-impl Axis {
-    fn new(d: Vector3<f64>, c: &Contact, b: Option<usize>, bodies: &[SolverBody]) -> Axis {
-        let end = |body: usize, lever: &Vector3<f64>, d: Vector3<f64>| {
-            let s = &bodies[body];
-            let rd = lever.cross(&d);
-            let w = s.inv_inertia * rd;
-            (End { body, rd, w }, s.inv_mass + rd.dot(&w))
-        };
-        let (a, mut k) = end(c.body, &c.lever, d);
-        let b = b.map(|b| {
-            let (e, kb) = end(b, &c.lever_other, -d);
-            k += kb;
-            e
-        });
-        Axis {
-            d,
-            a,
-            b,
-            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
-            k,
-        }
-    }
-
-    #[inline]
-    fn velocity(&self, bodies: &[SolverBody]) -> f64 {
-        let a = &bodies[self.a.body];
-        let mut u = self.d.dot(&a.v) + self.a.rd.dot(&a.omega);
-        if let Some(b) = &self.b {
-            let s = &bodies[b.body];
-            u += -self.d.dot(&s.v) + b.rd.dot(&s.omega);
-        }
-        u
-    }
-
-    #[inline]
-    fn apply(&self, j: f64, bodies: &mut [SolverBody]) {
-        let a = &mut bodies[self.a.body];
-        a.v += self.d * (j * a.inv_mass);
-        a.l += self.a.rd * j;
-        a.omega += self.a.w * j;
-        if let Some(b) = &self.b {
-            let s = &mut bodies[b.body];
-            s.v -= self.d * (j * s.inv_mass);
-            s.l += b.rd * j;
-            s.omega += b.w * j;
-        }
-    }
 }
 
 /// One contact as the sub-steps see it.
@@ -288,11 +217,11 @@ struct Row {
 impl Row {
     /// The separation at the bodies' current poses.
     #[inline]
-    fn separation_now(&self, bodies: &[SolverBody]) -> f64 {
-        let a = &bodies[self.normal.a.body];
+    fn separation_now(&self, places: &[Placement]) -> f64 {
+        let a = &places[self.normal.a.body];
         let mut d = a.position - a.detected_position + a.turned * self.lever;
         if let Some(b) = &self.normal.b {
-            let s = &bodies[b.body];
+            let s = &places[b.body];
             d -= s.position - s.detected_position + s.turned * self.lever_other;
         }
         self.separation + self.normal.d.dot(&d)
@@ -304,6 +233,7 @@ impl Row {
 pub struct Scratch {
     rows: Vec<Row>,
     bodies: Vec<SolverBody>,
+    places: Vec<Placement>,
     /// Index of each world body among the solver bodies (usize::MAX: not in contact).
     slot: Vec<usize>,
     members: Vec<usize>,
@@ -362,6 +292,7 @@ pub fn respond(
     let Scratch {
         rows,
         bodies,
+        places,
         slot,
         members,
         warm,
@@ -371,6 +302,7 @@ pub fn respond(
     slot.resize(states.len(), usize::MAX);
     members.clear();
     bodies.clear();
+    places.clear();
     let inv = n as f64;
     for c in contacts.iter() {
         for b in std::iter::once(c.body).chain(c.other_body()) {
@@ -390,6 +322,9 @@ pub fn respond(
                 l: start.angular_momentum,
                 inv_mass: body.inv_mass,
                 inv_inertia: k0.inv_inertia_world,
+                touched: false,
+            });
+            places.push(Placement {
                 position: start.position,
                 q: start.orientation.quaternion(),
                 detected_position: free.position,
@@ -412,8 +347,8 @@ pub fn respond(
             )
         })
         .sum();
-    for s in bodies.iter_mut() {
-        s.turned = turned(s);
+    for p in places.iter_mut() {
+        p.turned = turned(p);
     }
 
     let hertz = params.hertz_at(dt);
@@ -424,14 +359,16 @@ pub fn respond(
     for c in contacts.iter_mut() {
         // Levers as solver-body indices.
         let b = c.other_body().map(|b| slot[b]);
-        let a = slot[c.body];
-        let local = Contact { body: a, ..*c };
-        let normal = Axis::new(c.normal, &local, b, bodies);
+        let a = (slot[c.body], &c.lever);
+        let other = b.map(|b| (b, &c.lever_other));
+        let axis = |d: Vector3<f64>| {
+            let mut axis = Axis::new(d, a, other, bodies);
+            axis.with_inverse();
+            axis
+        };
+        let normal = axis(c.normal);
         let (t1, t2) = tangents(&c.normal);
-        let tangents = [
-            Axis::new(t1, &local, b, bodies),
-            Axis::new(t2, &local, b, bodies),
-        ];
+        let tangents = [axis(t1), axis(t2)];
         let against_fixed = b.is_none_or(|b| bodies[b].inv_mass == 0.0);
         // The last step's per-sub-step impulse at the same feature and point.
         let w = warm.find(c).unwrap_or_else(Vector3::zeros);
@@ -474,10 +411,10 @@ pub fn respond(
     let impact = rows.iter().any(|row| row.approach < -bounce_speed);
     let passes = if impact { IMPACT_SWEEPS } else { 1 };
     for _ in 0..n {
-        for s in bodies.iter_mut() {
-            s.v += s.dv;
-            s.l += s.dl;
-            s.omega += s.inv_inertia * s.dl;
+        for (s, p) in bodies.iter_mut().zip(places.iter()) {
+            s.v += p.dv;
+            s.l += p.dl;
+            s.omega += s.inv_inertia * p.dl;
         }
         for row in rows.iter_mut() {
             let [t1, t2] = &row.tangents;
@@ -489,17 +426,17 @@ pub fn respond(
                 + t2.d * row.lambda_tangent[1];
         }
         for _ in 0..passes {
-            sweep(rows, bodies, friction, h, true);
+            sweep(rows, bodies, places, friction, h, true);
         }
-        for s in bodies.iter_mut() {
-            s.position += s.v * h;
+        for (s, p) in bodies.iter().zip(places.iter_mut()) {
+            p.position += s.v * h;
             let w = s.omega * (0.5 * h);
-            let dq = Quaternion::new(0.0, w.x, w.y, w.z) * s.q.into_inner();
-            s.q = UnitQuaternion::new_normalize(s.q.into_inner() + dq);
-            s.turned = turned(s);
+            let dq = Quaternion::new(0.0, w.x, w.y, w.z) * p.q.into_inner();
+            p.q = UnitQuaternion::new_normalize(p.q.into_inner() + dq);
+            p.turned = turned(p);
         }
         for _ in 0..passes {
-            sweep(rows, bodies, friction, h, false);
+            sweep(rows, bodies, places, friction, h, false);
         }
     }
     // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
@@ -510,7 +447,7 @@ pub fn respond(
                 continue;
             }
             let u = row.normal.velocity(bodies);
-            let j = -row.normal.mass * (u + restitution * row.approach);
+            let j = -row.normal.inv_k * (u + restitution * row.approach);
             let new = (row.lambda + j).max(0.0);
             let change = new - row.lambda;
             row.lambda = new;
@@ -520,15 +457,15 @@ pub fn respond(
     }
 
     // Back into the states, the kinetic energy capped at the free flight's.
-    for (&b, s) in members.iter().zip(bodies.iter()) {
-        if s.inv_mass == 0.0 {
+    for ((&b, s), p) in members.iter().zip(bodies.iter()).zip(places.iter()) {
+        if s.fixed() {
             continue; // a fixed body does not move
         }
         let state = &mut states[b];
-        state.position = s.position;
+        state.position = p.position;
         state.orientation = match state.orientation {
-            Orientation::Matrix(_) => Orientation::Matrix(s.q.to_rotation_matrix().into_inner()),
-            Orientation::Quaternion(_) => Orientation::Quaternion(s.q),
+            Orientation::Matrix(_) => Orientation::Matrix(p.q.to_rotation_matrix().into_inner()),
+            Orientation::Quaternion(_) => Orientation::Quaternion(p.q),
         };
         state.linear_momentum = s.v * input.bodies[b].mass;
         state.angular_momentum = s.l;
@@ -606,9 +543,16 @@ pub fn respond(
 }
 
 /// One sweep over the rows: the soft, biased solve (`biased`) or the rigid relax.
-fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, biased: bool) {
+fn sweep(
+    rows: &mut [Row],
+    bodies: &mut [SolverBody],
+    places: &[Placement],
+    friction: f64,
+    h: f64,
+    biased: bool,
+) {
     for row in rows.iter_mut() {
-        let s = row.separation_now(bodies);
+        let s = row.separation_now(places);
         let (bias, mass_scale, impulse_scale) = if s > 0.0 {
             (s / h, 1.0, 0.0)
         } else if biased {
@@ -622,7 +566,7 @@ fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, bia
             (0.0, 1.0, 0.0)
         };
         let u = row.normal.velocity(bodies);
-        let j = -row.normal.mass * mass_scale * (u + bias) - impulse_scale * row.lambda;
+        let j = -row.normal.inv_k * mass_scale * (u + bias) - impulse_scale * row.lambda;
         let new = (row.lambda + j).max(0.0);
         let change = new - row.lambda;
         row.lambda = new;
@@ -636,8 +580,8 @@ fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, bia
             let [t1, t2] = &row.tangents;
             let old = row.lambda_tangent;
             let mut new = [
-                old[0] - t1.mass * t1.velocity(bodies),
-                old[1] - t2.mass * t2.velocity(bodies),
+                old[0] - t1.inv_k * t1.velocity(bodies),
+                old[1] - t2.inv_k * t2.velocity(bodies),
             ];
             clamp_disk(&mut new, bound);
             let step = [new[0] - old[0], new[1] - old[1]];
@@ -661,6 +605,6 @@ fn clamp_disk(t: &mut [f64; 2], bound: f64) {
 }
 
 /// The rotation since the detection pose, minus 𝟙.
-fn turned(s: &SolverBody) -> Matrix3<f64> {
+fn turned(s: &Placement) -> Matrix3<f64> {
     (s.q * s.detected_inverse).to_rotation_matrix().into_inner() - Matrix3::identity()
 }
