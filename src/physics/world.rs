@@ -24,7 +24,7 @@ use super::cloth_coupling::{
     approach_bodies, collide_bodies, hold_attachments, position_factor, tied_step, Attachment,
 };
 use super::collision::impulse::Scratch;
-use super::collision::impulse::BOUNCE_STEPS;
+use super::collision::StepContext;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
 use super::derive::{derive, Kinematics};
 use super::divergence::{not_finite, Divergence, EnergyGuard};
@@ -578,19 +578,22 @@ impl World {
         gravity + self.links.potential(&now.states)
     }
 
+    /// The step's contact constants (bounce speed, margins, e, μ): `collision::step_context`.
+    fn step_context(&self) -> StepContext {
+        StepContext::new(self.dt, self.effects.gravity(), self.contact.as_ref())
+    }
+
     /// One step of every cloth but its last contact pass: velocity half, the obstacles'
     /// velocity pass, position half. Books the damping and drag losses as drag work and the
     /// velocity pass's energy as contact energy; returns the cloths' spring and gravitational
     /// energy after the step (for the guard).
     fn integrate_cloths(&mut self) -> f64 {
-        let (restitution, friction) = self
-            .contact
-            .as_ref()
-            .map_or((0.0, 0.0), |m| (m.restitution, m.friction));
-        let bounce_speed = self
-            .effects
-            .gravity()
-            .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
+        let StepContext {
+            restitution,
+            friction,
+            bounce_speed,
+            ..
+        } = self.step_context();
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
@@ -702,10 +705,7 @@ impl World {
             self.total_energy()
         };
         let mut touched = false;
-        let bounce_speed = self
-            .effects
-            .gravity()
-            .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * self.dt);
+        let bounce_speed = self.step_context().bounce_speed;
         let now = &mut self.now;
         now.cloth_obstacle_contacts
             .resize(now.cloths.0.len(), [0, 0]);

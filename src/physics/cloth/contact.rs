@@ -26,7 +26,7 @@
 //! v_t = v − (v·n) n,  |v_t| ≤ μ Δu_n ? v_t ← 0 : v_t ← v_t (1 − μ Δu_n/|v_t|)    (Coulomb)
 //! ```
 //!
-//! The bounce threshold is the bodies' (`collision::impulse::BOUNCE_STEPS`). A point mass has
+//! The bounce threshold is the bodies' (`collision::step_context::BOUNCE_STEPS`). A point mass has
 //! no lever arm, so this one-contact rule is exact and never adds kinetic energy (e ≤ 1,
 //! μ ≥ 0); the push-out lifts the particle by `depth n` against gravity, and that work
 //! `ΔV = −m g·(depth n)` is paid from the bounce (the restitution part is scaled down so that
@@ -42,8 +42,8 @@
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
 use crate::physics::collision::detect;
-use crate::physics::collision::impulse::BOUNCE_STEPS;
 use crate::physics::collision::Obstacle;
+use crate::physics::collision::StepContext;
 use nalgebra::Vector3;
 
 /// One particle found inside an obstacle, and what the response did.
@@ -60,9 +60,10 @@ pub struct ParticleContact {
     pub normal_velocity: f64,
 }
 
-/// The speed below which approaches do not bounce: `BOUNCE_STEPS·|g|·dt`, as for bodies.
+/// The speed below which approaches do not bounce: `BOUNCE_STEPS·|g|·dt`, as for bodies
+/// (`collision::step_context`).
 fn bounce_speed(loads: &ClothLoads, dt: f64) -> f64 {
-    loads.gravity.map_or(0.0, |g| BOUNCE_STEPS * g.norm() * dt)
+    StepContext::new(dt, loads.gravity, None).bounce_speed
 }
 
 /// The tangential velocity after Coulomb friction with a normal velocity change `stop` ≥ 0.
@@ -226,7 +227,7 @@ impl Cloth {
         if obstacles.is_empty() {
             return ContactReport::default();
         }
-        let bounce_speed = loads.gravity.map_or(0.0, |g| BOUNCE_STEPS * g.norm() * dt);
+        let bounce_speed = bounce_speed(loads, dt);
         if self.scratch.start.len() != self.len() {
             self.scratch.start.clone_from(&self.positions);
         }

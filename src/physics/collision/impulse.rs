@@ -108,10 +108,7 @@ use crate::physics::energy::{kinetic_energy_with, Energy};
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
-/// Contacts approaching slower than this many `|g| dt` do not bounce: one step of free fall
-/// gives an approach speed of `|g| dt`, so a resting body is always below the threshold.
-/// Points within `BOUNCE_STEPS·|g|·dt²` of a surface are speculative contacts.
-pub const BOUNCE_STEPS: f64 = 3.0;
+pub use super::step_context::BOUNCE_STEPS;
 
 /// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
 /// same fraction of the fastest approach speed.

@@ -13,6 +13,7 @@
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
 //! | `solver_body` | solver bodies (v, ω, L, 1/M, I⁻¹) and constraint axes between two ends: what every solver works on |
+//! | `step_context` | the constants every contact pass of a step reads (bounce speed, margins, e, μ), computed once |
 //! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
 //! | `sweep` | fast pairs of bodies: time of impact, rows carried to the end of the step (no tunnelling) |
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
@@ -28,11 +29,13 @@ pub mod response;
 pub mod seed;
 pub mod soft_step;
 pub mod solver_body;
+pub mod step_context;
 pub mod sweep;
 pub mod warm;
 
 pub use response::{Descriptor as ResponseDescriptor, Response};
 pub use soft_step::SoftStep;
+pub use step_context::StepContext;
 
 use super::body::Body;
 use super::effects::Loads;
@@ -243,6 +246,13 @@ pub struct CollideInput<'a> {
     /// Recorded contact rows: when given, detection is skipped and these are the step's rows
     /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
     pub recorded: Option<&'a [Contact]>,
+}
+
+impl CollideInput<'_> {
+    /// The step's contact constants (`step_context`).
+    pub fn context(&self) -> StepContext {
+        StepContext::new(self.dt, self.gravity, Some(self.model))
+    }
 }
 
 /// The energy of the bodies before and after a response, measured as [`energy`] measures it

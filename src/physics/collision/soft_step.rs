@@ -76,7 +76,7 @@
 //! penetration reached (a test).
 
 use super::contacts;
-use super::impulse::{tangents, BOUNCE_STEPS};
+use super::impulse::tangents;
 use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
@@ -251,10 +251,11 @@ pub fn respond(
     contacts: &mut Vec<Contact>,
     scratch: &mut Scratch,
 ) -> Option<EnergyChange> {
-    let dt = input.dt;
+    let context = input.context();
+    let dt = context.dt;
     let n = params.substeps.max(1);
     let h = dt / n as f64;
-    let bounce_speed = input.gravity.map_or(0.0, |g| BOUNCE_STEPS * g.norm() * dt);
+    let bounce_speed = context.bounce_speed;
     // Speculative rows: anything a body could reach within the step at the bounce speed,
     // and at least a millimetre (the rows' separations are tracked within the step).
     let margin = (bounce_speed * dt).max(1e-3);
@@ -354,7 +355,7 @@ pub fn respond(
     let hertz = params.hertz_at(dt);
     let dynamic = Softness::new(hertz, params.damping_ratio, h);
     let fixed = Softness::new(2.0 * hertz, params.damping_ratio, h);
-    let friction = input.model.friction;
+    let friction = context.friction;
     rows.clear();
     for c in contacts.iter_mut() {
         // Levers as solver-body indices.
@@ -440,7 +441,7 @@ pub fn respond(
         }
     }
     // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
-    let restitution = input.model.restitution;
+    let restitution = context.restitution;
     if restitution > 0.0 {
         for row in rows.iter_mut() {
             if row.approach >= -bounce_speed || row.max_lambda == 0.0 {
