@@ -2635,3 +2635,112 @@ fn lesson_33_backward_euler_at_10_ms_loses_a_quarter_to_numerical_damping() {
     let b = world.energy_balance();
     assert_near(b.drift, b.change, 1e-12, "all of it drift");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 36: soft or rigid, a stack of ten
+// ---------------------------------------------------------------------------------------------
+
+/// The lesson's scene with its bodies in reverse order (top to bottom) and the given response.
+fn stack_of_ten(reversed: bool, response: tumble::physics::Response) -> World {
+    let lesson = lesson("36-soft-or-rigid.toml");
+    let mut scene = lesson.scene.clone();
+    if reversed {
+        scene.bodies.reverse();
+    }
+    let mut model = scene.contact.expect("a contact model");
+    model.response = response;
+    scene.contact = Some(model);
+    scene.world()
+}
+
+/// Steps `world` until its clock reads `t` (s), to the nearest step.
+fn run_to(world: &mut World, t: f64) {
+    while world.time() < t - 1e-9 {
+        world.step();
+    }
+}
+
+fn body_named<'a>(world: &'a World, name: &str) -> &'a tumble::physics::State {
+    let i = world
+        .body_names()
+        .iter()
+        .position(|n| n == name)
+        .unwrap_or_else(|| panic!("no body {name}"));
+    &world.states()[i]
+}
+
+#[test]
+fn lesson_36_the_soft_stack_sinks_by_the_closed_form() {
+    // Page 1–2: a corner between cubes is a spring (M/8) ω², a face four of them; under i
+    // cubes a face sinks 2 i g/ω², the ground face N g/(4 ω²) (static frequency 2ω, m = M/4).
+    // Top: N(N−1) g/ω² + N g/(4 ω²) = 6.385 mm for N = 10, ω = 2π·60; c1: 0.173 mm.
+    let l = lesson("36-soft-or-rigid.toml");
+    let soft = l.scene.contact.unwrap().response;
+    let mut world = stack_of_ten(false, soft);
+    run_to(&mut world, 3.0);
+    let omega2 = (2.0 * std::f64::consts::PI * 60.0_f64).powi(2);
+    let g = 9.81;
+    let top = 90.0 * g / omega2 + 10.0 * g / (4.0 * omega2);
+    assert_near(top, 6.385e-3, 5e-7, "closed form, top");
+    assert_near(
+        1.9 - body_named(&world, "top").position.y,
+        top,
+        2e-6,
+        "top's sink at 3 s",
+    );
+    assert_near(
+        0.1 - body_named(&world, "c1").position.y,
+        10.0 * g / (4.0 * omega2),
+        1e-6,
+        "c1's sink",
+    );
+    // Page 4: bottom-to-top order, the top drifts less than 0.1 mm sideways.
+    assert!(body_named(&world, "top").position.x.abs() < 1e-4);
+    // Page 2: at 120 Hz the sag is a quarter (1.6 mm).
+    let mut scene = l.scene.clone();
+    let mut model = scene.contact.unwrap();
+    if let tumble::physics::Response::SoftStep(ref mut p) = model.response {
+        p.hertz = 120.0;
+    }
+    scene.contact = Some(model);
+    let mut stiffer = scene.world();
+    run_to(&mut stiffer, 3.0);
+    assert_near(
+        1.9 - body_named(&stiffer, "top").position.y,
+        top / 4.0,
+        2e-6,
+        "at 120 Hz",
+    );
+}
+
+#[test]
+fn lesson_36_the_sweep_order_sways_the_soft_stack_and_not_the_rigid_one() {
+    // Page 4: listed top to bottom, soft-step's top sways 2.8 mm one way by t = 1 s, then
+    // 0.7 mm the other way around t = 2.2 s; impulse keeps it put to 1e-15 m in both orders.
+    let l = lesson("36-soft-or-rigid.toml");
+    let soft = l.scene.contact.unwrap().response;
+    let mut world = stack_of_ten(true, soft);
+    run_to(&mut world, 1.0);
+    assert_near(
+        body_named(&world, "top").position.x,
+        -2.8e-3,
+        0.1e-3,
+        "sway at 1 s",
+    );
+    run_to(&mut world, 2.25);
+    assert_near(
+        body_named(&world, "top").position.x,
+        0.7e-3,
+        0.1e-3,
+        "sway at 2.25 s",
+    );
+    for reversed in [false, true] {
+        let mut rigid = stack_of_ten(reversed, tumble::physics::Response::Impulse);
+        run_to(&mut rigid, 3.0);
+        let top = body_named(&rigid, "top").position;
+        assert!(
+            (top - Vector3::new(0.0, 1.9, 0.0)).norm() < 1e-14,
+            "impulse, reversed = {reversed}: {top}"
+        );
+    }
+}
