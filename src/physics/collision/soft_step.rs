@@ -204,6 +204,9 @@ struct Row {
     lever_other: Vector3<f64>,
     /// Separation at the detection pose, m.
     separation: f64,
+    /// Separation at the bodies' current poses, m: refreshed whenever the poses move (once
+    /// per sub-step), read by every sweep.
+    gap: f64,
     /// Normal velocity before the response, m/s.
     approach: f64,
     soft: Softness,
@@ -234,6 +237,8 @@ pub struct Scratch {
     rows: Vec<Row>,
     bodies: Vec<SolverBody>,
     places: Vec<Placement>,
+    /// Each solver body's free flight (the integrate phase's result): v, ω and world I⁻¹.
+    flight: Vec<(Vector3<f64>, Vector3<f64>, Matrix3<f64>)>,
     /// Index of each world body among the solver bodies (usize::MAX: not in contact).
     slot: Vec<usize>,
     members: Vec<usize>,
@@ -294,6 +299,7 @@ pub fn respond(
         rows,
         bodies,
         places,
+        flight,
         slot,
         members,
         warm,
@@ -304,6 +310,7 @@ pub fn respond(
     members.clear();
     bodies.clear();
     places.clear();
+    flight.clear();
     let inv = n as f64;
     for c in contacts.iter() {
         for b in std::iter::once(c.body).chain(c.other_body()) {
@@ -316,6 +323,12 @@ pub fn respond(
             let start = &input.before[b];
             let free = &states[b];
             let k0 = derive(body, start);
+            let k_free = derive(body, free);
+            flight.push((
+                free.linear_momentum * body.inv_mass,
+                k_free.angular_velocity,
+                k_free.inv_inertia_world,
+            ));
             let q_free = free.orientation.quaternion();
             bodies.push(SolverBody {
                 v: start.linear_momentum * body.inv_mass,
@@ -338,11 +351,12 @@ pub fn respond(
     }
     let kinetic_free: f64 = members
         .iter()
-        .map(|&b| {
+        .zip(flight.iter())
+        .map(|(&b, (_, _, inv_inertia))| {
             let s = &states[b];
             kinetic_energy_with(
                 &input.bodies[b],
-                &derive(&input.bodies[b], s).inv_inertia_world,
+                inv_inertia,
                 &s.linear_momentum,
                 &s.angular_momentum,
             )
@@ -382,7 +396,8 @@ pub fn respond(
             lever: c.lever,
             lever_other: c.lever_other,
             separation: -c.depth,
-            approach: normal.velocity(bodies),
+            gap: 0.0,
+            approach: 0.0,
             soft: if against_fixed { fixed } else { dynamic },
             lambda,
             lambda_tangent,
@@ -393,17 +408,14 @@ pub fn respond(
     }
     // The approach is measured at the free flight's velocities (what the contact meets).
     for (row, c) in rows.iter_mut().zip(contacts.iter()) {
-        let a = &states[c.body];
-        let ia = derive(&input.bodies[c.body], a);
-        let mut u =
-            a.linear_momentum * input.bodies[c.body].inv_mass + ia.angular_velocity.cross(&c.lever);
+        let (v, omega, _) = &flight[slot[c.body]];
+        let mut u = v + omega.cross(&c.lever);
         if let Some(b) = c.other_body() {
-            let s = &states[b];
-            let ib = derive(&input.bodies[b], s);
-            u -= s.linear_momentum * input.bodies[b].inv_mass
-                + ib.angular_velocity.cross(&c.lever_other);
+            let (v, omega, _) = &flight[slot[b]];
+            u -= v + omega.cross(&c.lever_other);
         }
         row.approach = u.dot(&c.normal);
+        row.gap = row.separation_now(places);
     }
 
     // An impact (a row meeting faster than the bounce speed) gets IMPACT_SWEEPS sweeps per
@@ -427,7 +439,7 @@ pub fn respond(
                 + t2.d * row.lambda_tangent[1];
         }
         for _ in 0..passes {
-            sweep(rows, bodies, places, friction, h, true);
+            sweep(rows, bodies, friction, h, true);
         }
         for (s, p) in bodies.iter().zip(places.iter_mut()) {
             p.position += s.v * h;
@@ -436,8 +448,11 @@ pub fn respond(
             p.q = UnitQuaternion::new_normalize(p.q.into_inner() + dq);
             p.turned = turned(p);
         }
+        for row in rows.iter_mut() {
+            row.gap = row.separation_now(places);
+        }
         for _ in 0..passes {
-            sweep(rows, bodies, places, friction, h, false);
+            sweep(rows, bodies, friction, h, false);
         }
     }
     // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
@@ -544,16 +559,9 @@ pub fn respond(
 }
 
 /// One sweep over the rows: the soft, biased solve (`biased`) or the rigid relax.
-fn sweep(
-    rows: &mut [Row],
-    bodies: &mut [SolverBody],
-    places: &[Placement],
-    friction: f64,
-    h: f64,
-    biased: bool,
-) {
+fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, biased: bool) {
     for row in rows.iter_mut() {
-        let s = row.separation_now(places);
+        let s = row.gap;
         let (bias, mass_scale, impulse_scale) = if s > 0.0 {
             (s / h, 1.0, 0.0)
         } else if biased {

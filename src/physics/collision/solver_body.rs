@@ -140,12 +140,18 @@ impl Axis {
     /// Applies the impulse j d: +j d to A at r_A, −j d to B at r_B.
     #[inline]
     pub fn apply(&self, j: f64, bodies: &mut [SolverBody]) {
-        for (end, sign) in self.ends() {
-            let s = &mut bodies[end.body];
-            s.v += self.d * (sign * j * s.inv_mass);
-            s.l += end.rd * j;
-            s.omega += end.w * j;
-            s.touched |= j != 0.0;
+        let touched = j != 0.0;
+        let a = &mut bodies[self.a.body];
+        a.v += self.d * (j * a.inv_mass);
+        a.l += self.a.rd * j;
+        a.omega += self.a.w * j;
+        a.touched |= touched;
+        if let Some(b) = &self.b {
+            let s = &mut bodies[b.body];
+            s.v += self.d * (-j * s.inv_mass);
+            s.l += b.rd * j;
+            s.omega += b.w * j;
+            s.touched |= touched;
         }
     }
 
