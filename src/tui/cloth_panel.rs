@@ -124,6 +124,9 @@ mod tests {
             body_contacts: 0,
             obstacle_contacts: [0, 0],
             explicit,
+            attached: 0,
+            attach_force: nalgebra::Vector3::zeros(),
+            attach_error: 0.0,
         }
     }
 
