@@ -180,6 +180,18 @@ fn falling_pole(dt: f64) -> (f64, f64, f64, f64) {
         worst_l = worst_l.max((spin(&w) - l0).norm());
         worst_attach = worst_attach.max(w.attach_error(0));
     }
+    // The ledger closes: no drag declared, so E − E₀ = springs' damping + contacts + drift;
+    // the attachments do no work (contacts 0) and nothing makes energy (drift ≤ 0).
+    let b = w.energy_balance();
+    let (damping, contacts) = (b.drag_work.unwrap_or(0.0), b.contacts.unwrap_or(0.0));
+    eprintln!(
+        "dt {dt}: E − E₀ {:.6} J = springs' damping {damping:.6} + contacts {contacts:e} + \
+         drift {:.6}",
+        b.change, b.drift
+    );
+    assert!((b.change - (damping + contacts + b.drift)).abs() < 1e-12);
+    assert!(contacts.abs() < 1e-12, "contacts {contacts:e}");
+    assert!(damping <= 0.0 && b.drift <= 0.0, "{damping} {}", b.drift);
     (worst_p, worst_l, l0.norm(), worst_attach)
 }
 
