@@ -465,7 +465,9 @@ pub fn system_panel(s: &Snapshot) -> Panel {
 }
 
 /// One cloth: its size, how stretched and how fast, its energies, the explicit limit next to
-/// the dt in use, and its contacts with bodies.
+/// the dt in use, its contacts with bodies, and with `attach` the force its attached particles
+/// take from their bodies (Σ λ_a / dt over the last step; the bodies take the opposite) and
+/// their largest distance from their points.
 ///
 /// ```text
 /// max stretch = max over springs of (ℓ − ℓ₀)/ℓ₀ · 100 %
@@ -500,7 +502,24 @@ pub fn cloth_panel(c: &ClothView, dt: f64) -> Panel {
             ),
             row("dt/h*", &[dt / c.explicit_limit], ""),
             text(format!("contacts with bodies: {}", c.body_contacts)),
-        ],
+        ]
+        .into_iter()
+        .chain(
+            (c.attached > 0)
+                .then(|| {
+                    [
+                        vector_row(
+                            &format!("F by {} attached", c.attached),
+                            &c.attach_force,
+                            "N",
+                        ),
+                        scalar_row_at("attach error", c.attach_error, "m", 1e-15),
+                    ]
+                })
+                .into_iter()
+                .flatten(),
+        )
+        .collect(),
     }
 }
 

@@ -437,6 +437,20 @@ pub struct TiedReport {
     /// Energy the contacts took, J: minus the work of their impulses along the relative
     /// motion, −Σ (λ + e)·(v_p − v_point) (0 for a resting contact, > 0 for friction).
     pub energy_taken: f64,
+    /// What the attachments gave the cloth over the step: Σ λ_a (N·s) and its moment about
+    /// the world origin, Σ x_a × λ_a (N·m·s), x_a the attachment's point on its body at the
+    /// end of the step (the bodies took the opposite).
+    pub attach_impulse: [Vector3<f64>; 2],
+}
+
+/// What the attachments of an explicit cloth did over a step ([`hold_attachments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AttachReport {
+    /// The kinetic energy the impulses took, J (≥ 0).
+    pub taken: f64,
+    /// Σ J_a on the particles (N·s) and its moment about the world origin, Σ x_a × J_a
+    /// (N·m·s), x_a the attachment's point.
+    pub impulse: [Vector3<f64>; 2],
 }
 
 /// One velocity half of an `implicit-euler` cloth with its contacts against the bodies and
@@ -796,7 +810,21 @@ pub fn tied_step(
         if tie.kind == TieKind::Normal {
             gap = tie.normal * tie.normal.dot(&gap);
         }
-        close_gap(cloth, tie.particle, &mut states[b], &tie.arm, &gap, dt);
+        let made_up = close_gap(cloth, tie.particle, &mut states[b], &tie.arm, &gap, dt);
+        if tie.permanent {
+            let point = states[b].position + tie.arm;
+            report.attach_impulse[0] += made_up;
+            report.attach_impulse[1] += point.cross(&made_up);
+        }
+    }
+    // The attachments' reactions on the cloth (their point on the body at the step's end).
+    // (`attach_ties` appends them after the contacts, in the order of `attachments`.)
+    for (tie, a) in ties.iter().filter(|t| t.permanent).zip(attachments) {
+        let state = &states[a.body];
+        let point = state.position + state.orientation.matrix() * a.offset_body;
+        let j = tie.impulse + tie.extra;
+        report.attach_impulse[0] += j;
+        report.attach_impulse[1] += point.cross(&j);
     }
     report
 }
@@ -823,6 +851,7 @@ fn turn_gap(omega: &Vector3<f64>, arm: &Vector3<f64>, dt: f64) -> Vector3<f64> {
 
 /// Moves particle `i`'s end of step by `gap` (its velocity by gap/h) and gives the body the
 /// opposite momentum at its point, so that particle + body keep theirs.
+/// Returns the impulse the particle took, N·s.
 fn close_gap(
     cloth: &mut Cloth,
     i: usize,
@@ -830,11 +859,12 @@ fn close_gap(
     arm: &Vector3<f64>,
     gap: &Vector3<f64>,
     dt: f64,
-) {
+) -> Vector3<f64> {
     let impulse = gap * (cloth.masses[i] / dt);
     cloth.apply_impulse(i, &impulse);
     state.linear_momentum -= impulse;
     state.angular_momentum -= arm.cross(&impulse);
+    impulse
 }
 
 /// Attachments of an explicit (`symplectic-euler`) cloth, held by impulses after its
@@ -861,7 +891,7 @@ fn close_gap(
 /// momenta only.
 ///
 /// Returns the kinetic energy the impulses took, J (a rigid hold is a perfectly plastic
-/// impact between the particle and the body's point: ≥ 0).
+/// impact between the particle and the body's point: ≥ 0), and the impulses' sum and moment.
 pub fn hold_attachments(
     cloth: &mut Cloth,
     bodies: &[Body],
@@ -869,9 +899,9 @@ pub fn hold_attachments(
     attachments: &[Attachment],
     dt: f64,
     factor: f64,
-) -> f64 {
+) -> AttachReport {
     use nalgebra::{DMatrix, DVector};
-    let mut taken = 0.0;
+    let mut report = AttachReport::default();
     for (b, (body, state)) in bodies.iter().zip(states.iter_mut()).enumerate() {
         let list: Vec<&Attachment> = attachments.iter().filter(|a| a.body == b).collect();
         if list.is_empty() {
@@ -927,7 +957,9 @@ pub fn hold_attachments(
             cloth.apply_impulse(att.particle, &j);
             total += j;
             torque += ra.cross(&j);
+            report.impulse[1] += (state.position + ra).cross(&j);
         }
+        report.impulse[0] += total;
         if moves {
             state.linear_momentum -= total;
             state.angular_momentum -= torque;
@@ -937,11 +969,13 @@ pub fn hold_attachments(
                 move_body(state, &y_v, &y_w, dt);
                 for (att, ra) in list.iter().zip(&arms) {
                     let gap = turn_gap(&y_w, ra, dt);
-                    close_gap(cloth, att.particle, state, ra, &gap, dt);
+                    let j = close_gap(cloth, att.particle, state, ra, &gap, dt);
+                    report.impulse[0] += j;
+                    report.impulse[1] += (state.position + ra).cross(&j);
                 }
             }
         }
-        taken += before - kinetic(cloth, state);
+        report.taken += before - kinetic(cloth, state);
     }
-    taken
+    report
 }

@@ -213,6 +213,12 @@ pub struct ClothView {
     pub obstacle_contacts: [usize; 2],
     /// Whether the particle integrator is explicit (then bounded by `explicit_limit`).
     pub explicit: bool,
+    /// Particles attached to bodies (`attach`).
+    pub attached: usize,
+    /// The force the attachments gave the cloth over the last step (impulse / dt), N.
+    pub attach_force: Vector3<f64>,
+    /// The largest distance of an attached particle from its point on its body, m.
+    pub attach_error: f64,
 }
 
 impl ClothView {
@@ -239,6 +245,9 @@ impl ClothView {
                     body_contacts: world.cloth_body_contacts(k),
                     obstacle_contacts: world.cloth_obstacle_contacts(k),
                     explicit: c.integrator.is_explicit(),
+                    attached: c.attached.len(),
+                    attach_force: world.cloth_attach_load(k)[0],
+                    attach_error: world.attach_error(k),
                 }
             })
             .collect()

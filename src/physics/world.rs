@@ -110,6 +110,9 @@ pub struct Checkpoint {
     cloths: Cloths,
     /// Per cloth: particle–body contacts in the last collide phase.
     cloth_body_contacts: Vec<usize>,
+    /// Per cloth: the force its attachments gave it, averaged over the last step (N), and
+    /// that force's moment about the world origin (N·m).
+    cloth_attach_loads: Vec<[Vector3<f64>; 2]>,
     /// Per cloth: particle–obstacle contacts of the last step's velocity pass (integrate)
     /// and position pass (collide).
     cloth_obstacle_contacts: Vec<[usize; 2]>,
@@ -142,6 +145,7 @@ impl Checkpoint {
             + bytes_of(&self.cloths.0)
             + self.cloths.0.iter().map(Cloth::heap_bytes).sum::<usize>()
             + bytes_of(&self.cloth_body_contacts)
+            + bytes_of(&self.cloth_attach_loads)
             + bytes_of(&self.cloth_obstacle_contacts)
             + bytes_of(&self.cloth_energies)
     }
@@ -602,6 +606,9 @@ impl World {
         now.cloth_energies.clear();
         now.cloth_body_contacts.clear();
         now.cloth_body_contacts.resize(now.cloths.0.len(), 0);
+        now.cloth_attach_loads.clear();
+        now.cloth_attach_loads
+            .resize(now.cloths.0.len(), [Vector3::zeros(); 2]);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
                 // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
@@ -618,6 +625,7 @@ impl World {
                     position_factor(self.integrator),
                 );
                 now.cloth_body_contacts[k] = tied.contacts;
+                now.cloth_attach_loads[k] = tied.attach_impulse.map(|j| j / self.dt);
                 now.cloth_obstacle_contacts[k] = [tied.obstacle_contacts, 0];
                 if tied.energy_taken != 0.0 {
                     now.ledger.book_contact(tied.energy_taken, 0.0);
@@ -664,7 +672,7 @@ impl World {
             }
             if let Some(list) = self.cloth_attachments.get(k).filter(|l| !l.is_empty()) {
                 // An explicit cloth's attachments: impulses after the velocity half.
-                let taken = hold_attachments(
+                let held = hold_attachments(
                     cloth,
                     &self.bodies,
                     &mut now.states,
@@ -672,8 +680,9 @@ impl World {
                     self.dt,
                     position_factor(self.integrator),
                 );
-                if taken != 0.0 {
-                    now.ledger.book_contact(taken, 0.0);
+                now.cloth_attach_loads[k] = held.impulse.map(|j| j / self.dt);
+                if held.taken != 0.0 {
+                    now.ledger.book_contact(held.taken, 0.0);
                 }
             }
             let lost = cloth.advance_positions(loads, self.dt);
@@ -874,6 +883,18 @@ impl World {
     /// Gravity and drag as they act on particles.
     pub fn cloth_loads(&self) -> &ClothLoads {
         &self.cloth_loads
+    }
+
+    /// The force the attachments of cloth `index` gave it, averaged over the last step (its
+    /// attachment impulses over dt; the bodies took the opposite), N, and that force's moment
+    /// about the world origin, Σ x_a × F_a (x_a each attachment's point), N·m. Zero before
+    /// the first step and without attachments.
+    pub fn cloth_attach_load(&self, index: usize) -> [Vector3<f64>; 2] {
+        self.now
+            .cloth_attach_loads
+            .get(index)
+            .copied()
+            .unwrap_or([Vector3::zeros(); 2])
     }
 
     /// Particle–body contacts of cloth `index` in the last step: the velocity pass of the
@@ -1411,6 +1432,7 @@ fn fresh(
         guard,
         cloths: Cloths(cloths.to_vec()),
         cloth_body_contacts: vec![0; cloths.len()],
+        cloth_attach_loads: vec![[Vector3::zeros(); 2]; cloths.len()],
         cloth_obstacle_contacts: vec![[0, 0]; cloths.len()],
         cloth_energies: Vec::new(),
         start_joint_loads: Vec::new(),

@@ -14,6 +14,8 @@
 //! | names not empty | cloth `name` must not be empty |
 //! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
 //! | `attach` particle in the grid, body known, not pinned, once | attach: unknown body `bob`; bodies in this file: cube |
+//! | `attach` one of `particle` and `edge` | an attach entry needs one of `particle = [i, j]` or `edge = "-x"` (-x, +x, -z, +z, all), not both |
+//! | `attach` edge a known name | unknown attach edge `top`; valid: -x, +x, -z, +z, all (-x is the edge i = 0, …) |
 //! | a cloth touches things | a cloth needs a collision response: add `contact = …` to [scene] |
 
 use super::error::did_you_mean;
@@ -21,6 +23,27 @@ use super::raw::RawCloth;
 use super::{LoadError, Validator};
 use crate::physics::cloth::{Attach, ClothIntegrator, ClothSpec, Pinning};
 use toml::Spanned;
+
+/// The edges an `attach` entry may name.
+const EDGES: [&str; 5] = ["-x", "+x", "-z", "+z", "all"];
+
+/// The particles of an edge of an nx × nz grid, in grid order (`all`: the rim, each once, in
+/// row order j then i); None for an unknown name.
+fn edge_particles(edge: &str, [nx, nz]: [usize; 2]) -> Option<Vec<[usize; 2]>> {
+    let on = |i: usize, j: usize| match edge {
+        "-x" => i == 0,
+        "+x" => i == nx - 1,
+        "-z" => j == 0,
+        "+z" => j == nz - 1,
+        _ => i == 0 || j == 0 || i == nx - 1 || j == nz - 1,
+    };
+    EDGES.contains(&edge).then(|| {
+        (0..nz)
+            .flat_map(|j| (0..nx).map(move |i| [i, j]))
+            .filter(|&[i, j]| on(i, j))
+            .collect()
+    })
+}
 
 /// The most particles a sheet may have (500 × 500): beyond, a typo, not a lesson.
 const MAX_PARTICLES: i64 = 250_000;
@@ -154,18 +177,44 @@ impl Validator<'_> {
         let mut attach: Vec<Attach> = Vec::new();
         for entry in c.attach.iter().flatten() {
             let a = entry.get_ref();
-            let [i, j] = a.particle;
-            if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
-                return Err(self.error(
-                    entry.span(),
-                    format!(
-                        "attached particle [{i}, {j}] is outside the {}×{} grid: i must be in \
-                         0..{} and j in 0..{}",
-                        count[0], count[1], count[0], count[1]
-                    ),
-                ));
-            }
-            let particle = [i as usize, j as usize];
+            let particles: Vec<[usize; 2]> = match (a.particle, &a.edge) {
+                (Some([i, j]), None) => {
+                    if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
+                        return Err(self.error(
+                            entry.span(),
+                            format!(
+                                "attached particle [{i}, {j}] is outside the {}×{} grid: i must \
+                                 be in 0..{} and j in 0..{}",
+                                count[0], count[1], count[0], count[1]
+                            ),
+                        ));
+                    }
+                    vec![[i as usize, j as usize]]
+                }
+                (None, Some(edge)) => edge_particles(edge.get_ref(), count).ok_or_else(|| {
+                    let hint = did_you_mean(edge.get_ref(), EDGES)
+                        .map(|s| format!(" (did you mean `{s}`?)"))
+                        .unwrap_or_default();
+                    self.error(
+                        edge.span(),
+                        format!(
+                            "unknown attach edge `{}`{hint}; valid: {} (-x is the edge i = 0, \
+                             +x i = {}, -z j = 0, +z j = {}, all the whole rim)",
+                            edge.get_ref(),
+                            EDGES.join(", "),
+                            count[0] - 1,
+                            count[1] - 1
+                        ),
+                    )
+                })?,
+                _ => {
+                    return Err(self.error(
+                        entry.span(),
+                        "an attach entry needs one of `particle = [i, j]` or `edge = \"-x\"` \
+                         (-x, +x, -z, +z, all), not both",
+                    ))
+                }
+            };
             let Some(body) = bodies.iter().position(|b| *b == a.body.get_ref()) else {
                 return Err(self.error(
                     a.body.span(),
@@ -176,22 +225,25 @@ impl Validator<'_> {
                     ),
                 ));
             };
-            if pinning.holds(particle[0], particle[1], count) {
-                return Err(self.error(
-                    entry.span(),
-                    format!(
-                        "particle [{i}, {j}] is both pinned and attached: a particle is held by \
-                         one of them"
-                    ),
-                ));
+            for particle in particles {
+                let [i, j] = particle;
+                if pinning.holds(i, j, count) {
+                    return Err(self.error(
+                        entry.span(),
+                        format!(
+                            "particle [{i}, {j}] is both pinned and attached: a particle is held \
+                             by one of them"
+                        ),
+                    ));
+                }
+                if attach.iter().any(|b| b.particle == particle) {
+                    return Err(self.error(
+                        entry.span(),
+                        format!("particle [{i}, {j}] is attached twice"),
+                    ));
+                }
+                attach.push(Attach { particle, body });
             }
-            if attach.iter().any(|b| b.particle == particle) {
-                return Err(self.error(
-                    entry.span(),
-                    format!("particle [{i}, {j}] is attached twice"),
-                ));
-            }
-            attach.push(Attach { particle, body });
         }
         let spec = ClothSpec {
             name,

@@ -185,12 +185,15 @@ pub struct RawCloth {
     pub attach: Option<Vec<Spanned<RawAttach>>>,
 }
 
-/// One entry of a cloth's `attach`.
+/// One entry of a cloth's `attach`: one `particle`, or a whole `edge`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawAttach {
     /// Signed so that a negative index gets our message, not serde's.
-    pub particle: [i64; 2],
+    pub particle: Option<[i64; 2]>,
+    /// `-x`, `+x`, `-z`, `+z` (the particles with i = 0, i = nx − 1, j = 0, j = nz − 1) or
+    /// `all` (the whole rim).
+    pub edge: Option<Spanned<String>>,
     pub body: Spanned<String>,
 }
 

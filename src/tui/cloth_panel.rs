@@ -1,6 +1,6 @@
 //! The cloth panel, one per cloth: the numbers of `walk`'s cloth table (`tables::cloth_panel`:
 //! max stretch, kinetic and spring energy, max particle speed, the explicit limit next to the
-//! dt in use), then its contacts and what the limit means for its integrator — above it,
+//! dt in use, and with attachments the size of their force |F| and their error), then its contacts and what the limit means for its integrator — above it,
 //! `symplectic-euler` diverges; `implicit-euler` is not bounded by it.
 
 use super::panels::PanelView;
@@ -27,6 +27,14 @@ pub fn panel(c: &ClothView, dt: f64) -> (Panel, Vec<String>) {
             rows.push(Row {
                 label: "dt".to_string(),
                 cells: vec![dt.clone()],
+                unit: row.unit,
+            });
+        } else if row.cells.len() == 3 {
+            // `F by N attached` (a vector): its size, so the panel fits at 80 columns (walk's
+            // table has the components).
+            rows.push(Row {
+                label: format!("|{}", row.label.replacen(' ', "| ", 1)),
+                cells: vec![tables::number(c.attach_force.norm())],
                 unit: row.unit,
             });
         } else {
@@ -124,6 +132,9 @@ mod tests {
             body_contacts: 0,
             obstacle_contacts: [0, 0],
             explicit,
+            attached: 0,
+            attach_force: nalgebra::Vector3::zeros(),
+            attach_error: 0.0,
         }
     }
 

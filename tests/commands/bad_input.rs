@@ -151,6 +151,33 @@ const TABLE: &[(&str, &str)] = &[
     ),
     ("cloth-zero-mass.toml", "19:8: mass must be > 0, found 0"),
     (
+        "cloth-attach-out-of-range.toml",
+        "24:11: attached particle [11, 0] is outside the 11×7 grid: i must be in 0..11 and j in \
+         0..7",
+    ),
+    (
+        "cloth-attach-particle-and-edge.toml",
+        "24:11: an attach entry needs one of `particle = [i, j]` or `edge = \"-x\"` (-x, +x, -z, \
+         +z, all), not both",
+    ),
+    (
+        "cloth-attach-pinned.toml",
+        "25:11: particle [0, 0] is both pinned and attached: a particle is held by one of them",
+    ),
+    (
+        "cloth-attach-twice.toml",
+        "24:49: particle [0, 0] is attached twice",
+    ),
+    (
+        "cloth-attach-unknown-body.toml",
+        "24:33: attach: unknown body `mast`; bodies in this file: pole",
+    ),
+    (
+        "cloth-attach-unknown-edge.toml",
+        "24:20: unknown attach edge `top`; valid: -x, +x, -z, +z, all (-x is the edge i = 0, +x \
+         i = 10, -z j = 0, +z j = 6, all the whole rim)",
+    ),
+    (
         "sphere-with-seed.toml",
         "7:24: the `seed` response tests vertices, and the sphere `body1` has none: use \
          response = \"impulse\"",

@@ -2637,6 +2637,184 @@ fn lesson_33_backward_euler_at_10_ms_loses_a_quarter_to_numerical_damping() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Lesson 34, the flag; lesson 35, a trampoline on the floor (issue 20, item 4)
+// ---------------------------------------------------------------------------------------------
+
+/// Steps `world` to time `t` (the step a page at `t` pauses at, ⌈t/dt⌉).
+fn run_to(world: &mut World, t: f64) {
+    while world.step_count() < tumble::live::step_at(t, world.dt()) {
+        world.step();
+    }
+}
+
+#[test]
+fn lesson_34_the_flag_swings_under_the_pole_and_pulls_harder_than_its_weight() {
+    let l = lesson("34-the-flag.toml");
+    let mut w = l.scene.world();
+    let c = &w.cloths()[0];
+    assert_eq!(
+        (c.len(), c.attached.len()),
+        (77, 11),
+        "11 × 7 particles, 11 sewn"
+    );
+    // Page 1: E₀ = m g y = 0.3 × 9.81 × 2 = 5.886 J (all of it the flag's height).
+    assert_near(w.total_energy().total, 0.3 * G * 2.0, 1e-12, "E₀");
+    // Page 2: the kinetic energy peaks at 0.344 s (0.3075 J), the free edge at 2.72 m/s;
+    // at 0.43 s the sewn edge pulls the flag up with 4.196 N (1.43 m g) and 0.956 N
+    // sideways; a rigid plate released level would pull m g + m ω² L/2 = 2.5 m g.
+    let (mut peak, mut at, mut fastest) = (0.0_f64, 0.0, 0.0);
+    while w.time() < 0.43 - 1e-9 {
+        w.step();
+        let k = w.cloths()[0].kinetic_energy();
+        if k > peak {
+            (peak, at, fastest) = (k, w.time(), w.cloths()[0].max_speed());
+        }
+    }
+    assert_near(at, 0.344, 1.5e-3, "the fastest moment");
+    assert_near(peak, 0.3075, 5e-5, "T at its peak");
+    assert_near(fastest, 2.72, 5e-3, "the free edge's speed");
+    let [force, _] = w.cloth_attach_load(0);
+    assert_near(force.y, 4.196, 5e-4, "pull at 0.43 s");
+    assert_near(force.y / (0.3 * G), 1.43, 5e-3, "in m g");
+    assert_near(force.z.abs(), 0.956, 5e-4, "sideways");
+    let (length, omega2) = (0.6, 3.0 * G / 0.6);
+    assert_near(
+        (0.3 * G + 0.3 * omega2 * length / 2.0) / (0.3 * G),
+        2.5,
+        1e-12,
+        "rigid plate",
+    );
+}
+
+#[test]
+fn lesson_34_at_rest_the_pole_carries_the_flags_weight_and_moment_and_the_edge_stays_sewn() {
+    let l = lesson("34-the-flag.toml");
+    let mut w = l.scene.world();
+    let mut worst = 0.0_f64;
+    while w.step_count() < tumble::live::step_at(8.0, w.dt()) {
+        w.step();
+        worst = worst.max(w.attach_error(0));
+    }
+    // Page 3: F = (0, 2.943, 0) N = m g; about the root (0, 2, 0) its moment is m g × 1.0 m.
+    let [force, moment] = w.cloth_attach_load(0);
+    assert!(
+        (force - Vector3::new(0.0, 2.943, 0.0)).norm() < 1e-5,
+        "{force:?}"
+    );
+    let root = Vector3::new(0.0, 2.0, 0.0);
+    let about_root = moment - root.cross(&force);
+    assert_near(about_root.z, 2.943, 1e-5, "moment about the root");
+    let c = &w.cloths()[0];
+    let barycentre = c.positions.iter().sum::<Vector3<f64>>() / c.len() as f64;
+    assert_near(barycentre.x, 1.0, 1e-6, "barycentre 1.0 m out");
+    assert_near(2.0 - barycentre.y, 0.3, 2e-3, "barycentre 0.3 m down");
+    assert!(worst < 1e-15, "attach error {worst:e}");
+    // E fell by m g × 0.3 m = 0.883 J: the air 0.871 J, backward Euler 0.012 J, contacts 0.
+    let b = w.energy_balance();
+    assert_near(-b.change, 0.883, 5e-4, "E₀ − E");
+    assert_near(-b.drag_work.unwrap(), 0.871, 5e-4, "drag");
+    assert_near(-b.drift, 0.012, 5e-4, "drift");
+    assert!(
+        b.contacts.unwrap_or(0.0).abs() < 1e-12,
+        "contacts {:?}",
+        b.contacts
+    );
+}
+
+/// The floor's force on the frame over the last step (its contact impulses / dt), N.
+fn floor_force(w: &World) -> Vector3<f64> {
+    let impulse: Vector3<f64> = (w.contacts().iter())
+        .filter(|c| c.body == 0 && matches!(c.against, Against::Obstacle(_)))
+        .map(|c| c.impulse)
+        .sum();
+    impulse / w.dt()
+}
+
+#[test]
+fn lesson_35_the_frame_passes_the_blow_to_the_floor() {
+    let l = lesson("35-a-trampoline-on-the-floor.toml");
+    let mut w = l.scene.world();
+    assert_eq!(w.cloths()[0].attached.len(), 80, "the rim");
+    // Page 1: the cube lands at 0.272 s, as on lesson 16's pinned sheet.
+    while w.cloth_body_contacts(0) == 0 {
+        w.step();
+    }
+    assert_near(w.time(), 0.272, 1e-9, "landing");
+    // Page 2: the floor's push peaks at 0.356 s, 509.7 N, against (40 + 2 + 1) g = 421.8 N;
+    // the rim then carries 117.3 N, and the cube still goes down.
+    let (mut peak, mut at, mut rim) = (0.0_f64, 0.0, 0.0);
+    while w.time() < 0.6 {
+        w.step();
+        let f = floor_force(&w).y;
+        if f > peak {
+            (peak, at, rim) = (f, w.time(), w.cloth_attach_load(0)[0].y);
+        }
+    }
+    assert_near(at, 0.356, 1e-9, "the floor's peak");
+    assert_near(peak, 509.7, 0.05, "Fc at its peak");
+    assert_near(rim, 117.3, 0.05, "the rim then");
+    assert_near(43.0 * G, 421.83, 1e-9, "the weight of all three");
+    let mut again = l.scene.world();
+    run_to(&mut again, 0.356);
+    assert!(
+        again.states()[1].linear_momentum.y < -0.4,
+        "the cube still goes down"
+    );
+}
+
+#[test]
+fn lesson_35_at_rest_the_floor_carries_all_three_and_the_cube_rests_at_the_pinned_statics() {
+    let l = lesson("35-a-trampoline-on-the-floor.toml");
+    let mut w = l.scene.world();
+    let p0 = w
+        .states()
+        .iter()
+        .map(|s| s.linear_momentum)
+        .sum::<Vector3<f64>>()
+        + w.cloths()[0].linear_momentum();
+    let mut floor = Vector3::zeros();
+    while w.step_count() < tumble::live::step_at(6.0, w.dt()) {
+        w.step();
+        floor += floor_force(&w) * w.dt();
+    }
+    // Page 3: the floor carries 421.83 N = 43 g, the rim 29.43 N = 3 g.
+    assert_near(floor_force(&w).y, 421.83, 0.01, "Fc");
+    assert_near(w.cloth_attach_load(0)[0].y, 29.43, 0.01, "the rim");
+    // The cube's bottom 0.116162 m below the rim; Newton's statics of the same network with
+    // its rim pinned: −0.116231 m (lesson 16's `trampoline_equilibrium`), 0.07 mm away.
+    let statics = trampoline_equilibrium(
+        &sheet(21, 2.0, 2.0, 5000.0, 1000.0),
+        Some((1.0, 0.175)),
+        true,
+        None,
+    )
+    .bottom;
+    assert_near(statics, -0.116231, 5e-7, "statics");
+    let c = &w.cloths()[0];
+    let rim = c.positions[c.index(0, 10)].y;
+    let bottom = w.states()[1].position.y - 0.175 - rim;
+    assert_near(bottom, -0.116162, 5e-7, "the cube's bottom below the rim");
+    assert_near((bottom - statics) * 1e3, 0.07, 0.005, "mm from the statics");
+    // The frame sits ½ a h² into the floor within each step, a = g + 3 g/40: 5.27 µm.
+    let sag = 0.5 * (G + 3.0 * G / 40.0) * 1e-6;
+    assert_near(sag * 1e6, 5.27, 0.005, "½ a h² in µm");
+    assert_near(w.attach_error(0), sag, 0.01 * sag, "the rim's offset");
+    // Momentum: gravity and the floor are the only outside forces.
+    let p = w
+        .states()
+        .iter()
+        .map(|s| s.linear_momentum)
+        .sum::<Vector3<f64>>()
+        + w.cloths()[0].linear_momentum();
+    let expected = p0 + floor + Vector3::new(0.0, -43.0 * G, 0.0) * w.time();
+    assert!(
+        (p - expected).norm() < 1e-9,
+        "ΔP off by {:e}",
+        (p - expected).norm()
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
 // Lesson 36: soft or rigid, a stack of ten
 // ---------------------------------------------------------------------------------------------
 
@@ -2651,13 +2829,6 @@ fn stack_of_ten(reversed: bool, response: tumble::physics::Response) -> World {
     model.response = response;
     scene.contact = Some(model);
     scene.world()
-}
-
-/// Steps `world` until its clock reads `t` (s), to the nearest step.
-fn run_to(world: &mut World, t: f64) {
-    while world.time() < t - 1e-9 {
-        world.step();
-    }
 }
 
 fn body_named<'a>(world: &'a World, name: &str) -> &'a tumble::physics::State {

@@ -2,6 +2,7 @@
 
 mod bodies;
 mod cloth;
+mod cloth_attach;
 mod cloth_world;
 mod collisions;
 mod common;

@@ -1,0 +1,388 @@
+//! Bodies hung from cloth (issue 20, item 4): a flag on a pole — fixed, falling, on a hinge —
+//! and a trampoline whose frame is a body resting on the floor. Scenes are written as scene
+//! files, as a teacher would (`attach = [{ edge = …, body = … }]`), and checked against
+//! statics (the support carries m g and its moment), conservation (momentum in free fall, the
+//! ground's impulse the only outside one), the attach constraint and the energy ledger.
+
+use nalgebra::Vector3;
+use std::path::Path;
+use tumble::physics::{Against, World};
+use tumble::scene::parse;
+
+const G: f64 = 9.81;
+
+fn world(source: &str) -> World {
+    parse(source, Path::new("test.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
+        .world()
+}
+
+fn step(world: &mut World) {
+    world.step();
+    if let Some(d) = world.divergence() {
+        panic!("{d}");
+    }
+}
+
+/// P of every body and particle, kg·m/s.
+fn total_momentum(world: &World) -> Vector3<f64> {
+    let bodies: Vector3<f64> = world.states().iter().map(|s| s.linear_momentum).sum();
+    bodies + world.cloths()[0].linear_momentum()
+}
+
+/// The barycentre of cloth 0 (its particles share its mass equally), m.
+fn cloth_barycentre(world: &World) -> Vector3<f64> {
+    let c = &world.cloths()[0];
+    c.positions.iter().sum::<Vector3<f64>>() / c.len() as f64
+}
+
+/// A flag 1 m × 0.6 m (11 × 7 particles, 0.3 kg) sewn along its edge j = 0 onto a pole 1.6 m
+/// long along x whose end x = 0 is at a wall, y = 2; the flag hangs from x = 0.5 to 1.5 m.
+/// `pole` is the body's extra keys (fixed, or a mass), `drag` the scene's linear drag.
+fn flag(pole: &str, drag: f64, extra: &str) -> String {
+    let drag = if drag > 0.0 {
+        format!("drag = {{ linear = {drag}, angular = 0.05 }}")
+    } else {
+        String::new()
+    };
+    format!(
+        r#"
+title = "A flag on a pole"
+[scene]
+dt = 0.001
+integrator = "symplectic-euler"
+gravity = [0.0, -9.81, 0.0]
+{drag}
+contact = {{ response = "impulse", restitution = 0.0, friction = 0.5 }}
+
+[[body]]
+name = "pole"
+shape = "box"
+size = [1.6, 0.04, 0.04]
+{pole}
+position = [0.8, 2.0, 0.0]
+
+[[cloth]]
+name = "flag"
+size = [1.0, 0.6]
+count = [11, 7]
+position = [1.0, 2.0, 0.3]
+mass = 0.3
+stretch = 2000.0
+shear = 500.0
+bend = 20.0
+damping = 1.0
+integrator = "implicit-euler"
+attach = [{{ edge = "-z", body = "pole" }}]
+{extra}
+"#
+    )
+}
+
+#[test]
+fn a_flag_on_a_fixed_pole_hangs_and_the_pole_carries_its_weight_and_its_moment() {
+    let mut w = world(&flag("fixed = true", 1.0, ""));
+    assert_eq!(
+        w.cloths()[0].attached.len(),
+        11,
+        "edge -z: the 11 particles j = 0"
+    );
+    let mut worst = 0.0_f64;
+    for _ in 0..8000 {
+        step(&mut w);
+        worst = worst.max(w.attach_error(0));
+    }
+    let c = &w.cloths()[0];
+    let m = 0.3;
+    // At rest (drag 1 kg/s on 0.3 kg: 3.3/s, over 8 s).
+    assert!(c.max_speed() < 1e-5, "max speed {}", c.max_speed());
+    // It hangs: every free particle below the pole, the lowest row about 0.6 m down.
+    let lowest = c
+        .positions
+        .iter()
+        .map(|x| x.y)
+        .fold(f64::INFINITY, f64::min);
+    assert!((2.0 - lowest - 0.6).abs() < 0.01, "lowest row at {lowest}");
+    // The support: Σ F_a = −m g = (0, m g, 0) = (0, 2.943, 0) N.
+    let [force, moment_origin] = w.cloth_attach_load(0);
+    let weight = Vector3::new(0.0, m * G, 0.0);
+    eprintln!("flag on a fixed pole: attachments carry {force:?} N (m g = 2.943 N)");
+    // (To 1e-5 N: the reactions are read from the solve's residual, which stops at a relative
+    // tolerance; measured 4.4e-6 N sideways.)
+    assert!((force - weight).norm() < 1e-5, "Σ F_a = {force:?}");
+    // Their moment about the pole's root at the wall c = (0, 2, 0): M_c = M_O − c × F. The
+    // flag's balance: M_c = −(x_G − c) × m g⃗ = (x_G − c) × (0, m g, 0), with x_G the flag's
+    // barycentre; by hand (x_G = 1.0 m out along the pole, right below it) M_c ≈ (0, 0,
+    // m g × 1.0 m) = (0, 0, 2.943) N·m: the cantilever moment the wall must hold.
+    let root = Vector3::new(0.0, 2.0, 0.0);
+    let moment = moment_origin - root.cross(&force);
+    let expected = (cloth_barycentre(&w) - root).cross(&weight);
+    eprintln!("moment about the root {moment:?} N·m, from the barycentre {expected:?}");
+    assert!(
+        (moment - expected).norm() < 1e-5,
+        "{moment:?} vs {expected:?}"
+    );
+    assert!(
+        (moment - Vector3::new(0.0, 0.0, 2.943)).norm() < 2e-3,
+        "{moment:?}"
+    );
+    // The attached particles stay on their points.
+    eprintln!("worst attach error {worst:e} m");
+    assert!(worst < 1e-9, "attach error {worst:e} m");
+    // The ledger closes: E − E₀ = drag + contacts + drift; a fixed attachment does no work
+    // (contacts 0) and backward Euler only loses (drift ≤ 0).
+    let b = w.energy_balance();
+    let (drag, contacts) = (b.drag_work.unwrap(), b.contacts.unwrap_or(0.0));
+    eprintln!(
+        "E − E₀ {:.6} J = drag {drag:.6} + contacts {contacts:e} + drift {:.6}",
+        b.change, b.drift
+    );
+    assert!((b.change - (drag + contacts + b.drift)).abs() < 1e-12);
+    assert!(contacts.abs() < 1e-9, "contacts {contacts:e} J");
+    assert!(
+        b.drift <= 0.0 && b.drift > 0.05 * b.change,
+        "drift {}",
+        b.drift
+    );
+}
+
+/// Pole (2 kg, spun about z and y, thrown up) + flag falling together without drag or
+/// ground, stepped with `dt` for 1 s: the worst |P − P₀ − (M + m) g⃗ t|, the worst change of
+/// the angular momentum about the common barycentre, its size, and the worst attach error.
+fn falling_pole(dt: f64) -> (f64, f64, f64, f64) {
+    let source = flag(
+        "mass = 2.0\nangular_velocity = [0.0, 1.0, 2.0]\nvelocity = [0.5, 1.0, 0.0]",
+        0.0,
+        "",
+    )
+    .replace("dt = 0.001", &format!("dt = {dt}"));
+    let mut w = world(&source);
+    let total = 2.3;
+    let p0 = total_momentum(&w);
+    let spin = |w: &World| {
+        let c = &w.cloths()[0];
+        let s = &w.states()[0];
+        let x_g =
+            (s.position * 2.0 + c.positions.iter().sum::<Vector3<f64>>() * (0.3 / 77.0)) / total;
+        let v_g = total_momentum(w) / total;
+        let flag: Vector3<f64> = (c.positions.iter().zip(&c.velocities))
+            .map(|(x, v)| (x - x_g).cross(&((v - v_g) * (0.3 / 77.0))))
+            .sum();
+        flag + s.angular_momentum + (s.position - x_g).cross(&(s.linear_momentum - v_g * 2.0))
+    };
+    let l0 = spin(&w);
+    let (mut worst_p, mut worst_l, mut worst_attach) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for _ in 0..(1.0 / dt).round() as usize {
+        step(&mut w);
+        let expected = p0 + Vector3::new(0.0, -G, 0.0) * total * w.time();
+        worst_p = worst_p.max((total_momentum(&w) - expected).norm());
+        worst_l = worst_l.max((spin(&w) - l0).norm());
+        worst_attach = worst_attach.max(w.attach_error(0));
+    }
+    // The ledger closes: no drag declared, so E − E₀ = springs' damping + contacts + drift;
+    // the attachments do no work (contacts 0) and nothing makes energy (drift ≤ 0).
+    let b = w.energy_balance();
+    let (damping, contacts) = (b.drag_work.unwrap_or(0.0), b.contacts.unwrap_or(0.0));
+    eprintln!(
+        "dt {dt}: E − E₀ {:.6} J = springs' damping {damping:.6} + contacts {contacts:e} + \
+         drift {:.6}",
+        b.change, b.drift
+    );
+    assert!((b.change - (damping + contacts + b.drift)).abs() < 1e-12);
+    assert!(contacts.abs() < 1e-12, "contacts {contacts:e}");
+    assert!(damping <= 0.0 && b.drift <= 0.0, "{damping} {}", b.drift);
+    (worst_p, worst_l, l0.norm(), worst_attach)
+}
+
+#[test]
+fn a_flag_on_a_falling_pole_keeps_the_momentum_of_pole_and_flag() {
+    // Gravity is the only outside force, so P(t) = P₀ + (M + m) g⃗ t exactly, and the angular
+    // momentum about the common barycentre is constant (uniform gravity has no torque about it).
+    let (worst_p, worst_l, l0, worst_attach) = falling_pole(0.001);
+    let (_, half_l, _, _) = falling_pole(0.0005);
+    eprintln!(
+        "falling pole over 1 s: |P − P₀ − (M+m) g t| ≤ {worst_p:e} kg·m/s, |L_G − L_G₀| ≤ \
+         {worst_l:e} kg·m²/s at 1 ms, {half_l:e} at 0.5 ms (|L_G₀| = {l0:.4}), attach error ≤ \
+         {worst_attach:e} m"
+    );
+    assert!(worst_p < 1e-11, "momentum off by {worst_p:e}");
+    assert!(worst_attach < 1e-9, "attach error {worst_attach:e}");
+    // The impulses between pole and flag are equal and opposite at the attachment's point,
+    // so what changes L_G is the step itself: backward Euler moves positions with the end
+    // velocities (ΔL = −h² Σ v × F per step), first order in h: halving dt halves it.
+    assert!(worst_l < 0.01 * l0, "|ΔL_G| {worst_l:e}");
+    let order = worst_l / half_l;
+    assert!((1.6..2.4).contains(&order), "ΔL_G(h)/ΔL_G(h/2) = {order}");
+}
+
+#[test]
+fn a_flag_on_a_hinged_pole_hangs_and_the_hinge_carries_pole_and_flag() {
+    // The pole turns about its own axis on a hinge at the wall: the flag swings down, turning
+    // the pole, and hangs; the hinge then carries (M + m) g = (2 + 0.3) 9.81 = 22.563 N.
+    let hinge = r#"
+[[joint]]
+name = "hinge"
+type = "hinge"
+bodies = ["pole"]
+anchor = [0.0, 2.0, 0.0]
+axis = [1.0, 0.0, 0.0]
+"#;
+    let mut w = world(&flag("mass = 2.0", 1.0, hinge));
+    let mut worst = 0.0_f64;
+    for _ in 0..8000 {
+        step(&mut w);
+        worst = worst.max(w.attach_error(0));
+    }
+    let [force, _] = w.cloth_attach_load(0);
+    let hinge = w.joint_load(0).force;
+    eprintln!(
+        "hinged pole at 8 s: attachments {force:?} N, hinge {hinge:?} N ((M + m) g = 22.563), \
+         attach error ≤ {worst:e} m, L = {:?}",
+        w.states()[0].angular_momentum
+    );
+    assert!(
+        (force - Vector3::new(0.0, 0.3 * G, 0.0)).norm() < 1e-4,
+        "{force:?}"
+    );
+    assert!(worst < 1e-9, "attach error {worst:e}");
+    // Known limit: the cloth's reaction acts after the joints' step, and the next step's
+    // projection takes it back into the hinge, so the hinge reads (M + m) g to 1e-4 only.
+    assert!(
+        (hinge - Vector3::new(0.0, 2.3 * G, 0.0)).norm() < 1e-4 * 2.3 * G,
+        "{hinge:?}"
+    );
+}
+
+/// A trampoline whose frame is a body: the 21 × 21 sheet of lesson 16 (2 m, 2 kg, k = 5000,
+/// shear 1000, c = 50) with its rim (`edge = "all"`, 80 particles) attached 0.55 m above a
+/// 40 kg slab resting on the ground, and lesson 16's cube dropped from 0.5 m above the sheet.
+const FLOOR_TRAMPOLINE: &str = r#"
+title = "A trampoline on the floor"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+
+[[obstacle]]
+type = "ground"
+height = 0.0
+
+[[body]]
+name = "frame"
+shape = "box"
+size = [2.4, 0.1, 2.4]
+mass = 40.0
+position = [0.0, 0.05, 0.0]
+
+[[body]]
+name = "cube"
+shape = "box"
+size = [0.35, 0.35, 0.35]
+mass = 1.0
+position = [0.0, 1.1, 0.0]
+
+[[cloth]]
+name = "trampoline"
+size = [2.0, 2.0]
+count = [21, 21]
+position = [0.0, 0.6, 0.0]
+mass = 2.0
+stretch = 5000.0
+shear = 1000.0
+damping = 50.0
+attach = [{ edge = "all", body = "frame" }]
+integrator = "implicit-euler"
+"#;
+
+/// The ground's impulses on the bodies in the last step, N·s.
+fn ground_impulse(w: &World) -> Vector3<f64> {
+    w.contacts()
+        .iter()
+        .filter(|c| matches!(c.against, Against::Obstacle(_)))
+        .map(|c| c.impulse)
+        .sum()
+}
+
+#[test]
+fn a_trampoline_whose_frame_rests_on_the_floor_holds_the_cube_at_the_fixed_rim_statics() {
+    let mut w = world(FLOOR_TRAMPOLINE);
+    assert_eq!(
+        w.cloths()[0].attached.len(),
+        80,
+        "the rim of a 21 × 21 sheet"
+    );
+    let total = 40.0 + 2.0 + 1.0;
+    let p0 = total_momentum(&w);
+    let mut ground = Vector3::zeros();
+    let mut worst_p = 0.0_f64;
+    let mut worst_attach = 0.0_f64;
+    let mut landed = None;
+    for _ in 0..6000 {
+        step(&mut w);
+        ground += ground_impulse(&w);
+        // Momentum: gravity and the ground are the only outside forces.
+        let expected = p0 + Vector3::new(0.0, -G, 0.0) * total * w.time() + ground;
+        worst_p = worst_p.max((total_momentum(&w) - expected).norm());
+        worst_attach = worst_attach.max(w.attach_error(0));
+        if landed.is_none() && w.cloth_body_contacts(0) > 0 {
+            landed = Some(w.time());
+        }
+    }
+    eprintln!(
+        "floor trampoline: cube lands at {landed:?} s; |P − P₀ − M g t − J_ground| ≤ \
+         {worst_p:e} kg·m/s; attach error ≤ {worst_attach:e} m"
+    );
+    assert!(worst_p < 1e-9, "momentum off by {worst_p:e}");
+    // The cube lands when its bottom (0.325 m up) meets the sheet, sagging under its own
+    // weight: √(2 × 0.325/g) = 0.257 s before the sag; lesson 16: 0.272 s.
+    let landed = landed.expect("the cube lands");
+    assert!((landed - 0.272).abs() < 0.002, "landed at {landed}");
+    // At rest the ground carries everything: its force over the last step (impulse / dt)
+    // is (M_frame + m_sheet + M_cube) g = 43 × 9.81 = 421.83 N.
+    let support = ground_impulse(&w) / w.dt();
+    eprintln!("ground carries {support:?} N (43 g = 421.83 N)");
+    assert!(
+        (support - Vector3::new(0.0, total * G, 0.0)).norm() < 0.05,
+        "{support:?}"
+    );
+    // The frame's attachments carry the sheet and the cube: (2 + 1) g = 29.43 N.
+    let [rim, _] = w.cloth_attach_load(0);
+    eprintln!("the rim carries {rim:?} N (3 g = 29.43 N)");
+    assert!(
+        (rim - Vector3::new(0.0, 3.0 * G, 0.0)).norm() < 0.02,
+        "{rim:?}"
+    );
+    // The cube's bottom below the rim against the fixed-rim statics of the same network
+    // (lesson 16's Newton solve, `tests/commands/lesson_claims.rs`: −0.116231 m): the rim
+    // is where the frame holds it now.
+    let frame = &w.states()[0];
+    let cube = &w.states()[1];
+    let c = &w.cloths()[0];
+    let rim_height = c.positions[c.index(0, 10)].y;
+    let bottom = cube.position.y - 0.175 - rim_height;
+    eprintln!(
+        "cube bottom {bottom:.6} m below the rim (statics −0.116231); frame at {:.9} m, cube \
+         |v| {:e} m/s",
+        frame.position.y,
+        cube.linear_momentum.norm()
+    );
+    assert!((bottom + 0.116231).abs() < 1e-4, "bottom {bottom}");
+    assert!(cube.linear_momentum.norm() < 1e-4);
+    // The frame sags into the ground within each step by its own contact: rk4 moves it down by
+    // ½ a h² under a = g + (rim load)/M = 9.81 + 29.43/40 = 10.546 m/s² (5.27e-6 m), the
+    // collide phase pushes it back after the sheet's step, so at the end of a step its
+    // attached particles sit that far below their points (the next step's tie starts there).
+    let sag = 0.5 * (G + 3.0 * G / 40.0) * w.dt() * w.dt();
+    assert!(
+        (frame.position.y - 0.05).abs() < 1e-6,
+        "frame at {}",
+        frame.position.y
+    );
+    assert!(
+        (w.attach_error(0) - sag).abs() < 0.02 * sag,
+        "attach error {:e} vs ½ a h² = {sag:e}",
+        w.attach_error(0)
+    );
+}
