@@ -143,7 +143,23 @@ fn main() {
             }
             let dt = scene.dt;
             let mut w = scene.world();
-            let every = (0.1 / dt).round() as usize;
+            let every = std::env::var("EVERY")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or((0.1 / dt).round() as usize);
+            // How far the sheet is from its mirror image under x → −x (particle (i, j) against
+            // (nx − 1 − i, j)), m.
+            let mirror = |c: &Cloth| {
+                let nx = c.count[0];
+                c.positions
+                    .iter()
+                    .enumerate()
+                    .map(|(k, x)| {
+                        let m = c.positions[k - k % nx + (nx - 1 - k % nx)];
+                        (x - Vector3::new(-m.x, m.y, m.z)).norm()
+                    })
+                    .fold(0.0, f64::max)
+            };
             let (mut touched, mut low, mut rise) = (false, f64::INFINITY, 0.0f64);
             for k in 0..steps {
                 black_box(&mut w).step();
@@ -162,7 +178,7 @@ fn main() {
                     let up = s.orientation.matrix() * Vector3::y();
                     let b = w.energy_balance();
                     println!(
-                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} n={} cg={}",
+                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} mirror={:.2e} n={} cg={}",
                         w.time(),
                         s.position.x,
                         s.position.z,
@@ -173,6 +189,7 @@ fn main() {
                         rise,
                         b.contacts.unwrap_or(0.0),
                         b.drift,
+                        mirror(&w.cloths()[0]),
                         w.cloth_body_contacts(0),
                         w.cloths()[0].solve_counts().iterations,
                     );

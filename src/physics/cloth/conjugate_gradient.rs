@@ -24,6 +24,28 @@
 //! direct sparse factorisation would have to be redone every step (the blocks change), and on
 //! a 2-D grid its fill-in (bandwidth 3·nx) costs more than the few iterations CG needs.
 //!
+//! # Sums in a mirror-symmetric order
+//!
+//! A product is computed in two passes: every spring's `y_s = S_s (p_i − p_j)` (one stream over
+//! the blocks), then every particle's `(A p)_k = a_k p_k + Σ_{s ∋ k} ±y_s`, gathered from its
+//! own springs in a fixed order of *directions* on the grid ([`SpringOrder`]):
+//!
+//! ```text
+//! ((E + W) + (N + S)) + ((NE + SW) + (NW + SE)) + ((EE + WW) + (NN + SS))
+//! ```
+//!
+//! Floating-point addition is commutative but not associative, so a sum's rounding depends on
+//! its order; summed in the springs' storage order (a scatter), a particle and its mirror image
+//! under x → −x add the same terms in different orders and end up to an ulp apart. In the
+//! order above, a mirror (x → −x, z → −z, or x ↔ z) only swaps the two terms of a pair or
+//! the two pairs of a group, and negation is exact: on a mirror-symmetric sheet the product
+//! of a mirror-symmetric vector is mirror-symmetric *to the last bit*, and so is every CG
+//! iterate. Why it matters: a mirror-symmetric scene (lesson 16's frictionless centred drop)
+//! then keeps its symmetry exactly instead of from an ulp-sized seed that the contact set's
+//! decisions and the CG's polynomial amplify (`tests/physics/cloth_world.rs`). The gathered
+//! pass costs about what the scatter did (the same flops, no read-modify-write of `out`).
+//! A sheet whose springs are not the grid's (built by hand) falls back to the scatter.
+//!
 //! # Preconditioner: Jacobi by 3×3 particle blocks
 //!
 //! `P_i = a_i I + Σ_{s ∋ i} S_s` (the diagonal block of A, symmetric: 6 numbers), summed in the
@@ -136,6 +158,101 @@ impl Symmetric3 {
     }
 }
 
+/// Per particle, its springs in the mirror-symmetric order of the module doc: 12 slots
+/// `[E, W, N, S, NE, SW, NW, SE, EE, WW, NN, SS]`, each `2 s + (1 if the particle is the
+/// spring's j end)` (its term is −y_s then), or `2 · springs` (a zero term) when empty.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SpringOrder {
+    pub slots: Vec<[u32; SLOTS]>,
+    /// The number of springs it was built for.
+    pub springs: usize,
+}
+
+/// Directions a particle of the grid has springs in.
+pub const SLOTS: usize = 12;
+
+impl SpringOrder {
+    /// The order for a grid of `count = [nx, nz]` particles (index j·nx + i) with springs
+    /// `(i, j, kind)`; None when a spring is not one of the grid's or two share a slot.
+    pub fn of_grid(
+        count: [usize; 2],
+        springs: impl ExactSizeIterator<Item = (usize, usize, super::spring::SpringKind)>,
+    ) -> Option<SpringOrder> {
+        use super::spring::SpringKind;
+        let nx = count[0];
+        let n = count[0] * count[1];
+        let total = springs.len();
+        let empty = u32::try_from(2 * total).ok()?;
+        let mut slots = vec![[empty; SLOTS]; n];
+        for (s, (i, j, kind)) in springs.enumerate() {
+            let (a, b) = (i.min(j), i.max(j));
+            let same_row = |k: usize| a % nx + k < nx;
+            // The slot of `a` (its neighbour b is E, N, NE, NW, EE or NN of it); b's is the next.
+            let slot = match (kind, b - a) {
+                (SpringKind::Stretch, 1) if same_row(1) => 0,
+                (SpringKind::Stretch, d) if d == nx => 2,
+                (SpringKind::Shear, d) if d == nx + 1 && same_row(1) => 4,
+                (SpringKind::Shear, d) if d + 1 == nx && a % nx >= 1 => 6,
+                (SpringKind::Bend, 2) if same_row(2) => 8,
+                (SpringKind::Bend, d) if d == 2 * nx => 10,
+                _ => return None,
+            };
+            if b >= n {
+                return None;
+            }
+            // The spring's i end takes +y_s, its j end −y_s.
+            for (particle, slot) in [(a, slot), (b, slot + 1)] {
+                if slots[particle][slot] != empty {
+                    return None;
+                }
+                slots[particle][slot] = 2 * s as u32 + u32::from(particle == j);
+            }
+        }
+        Some(SpringOrder {
+            slots,
+            springs: total,
+        })
+    }
+
+    /// Σ ±terms\[slot\] of particle `k` in the order of the module doc; `terms` has one entry
+    /// per spring and a zero at the end.
+    #[inline(always)]
+    pub fn gather(&self, k: usize, terms: &[Vector3<f64>]) -> Vector3<f64> {
+        let s = &self.slots[k];
+        let c = |m: usize| {
+            let v = s[m];
+            let y = terms[(v >> 1) as usize];
+            if v & 1 == 1 {
+                -y
+            } else {
+                y
+            }
+        };
+        ((c(0) + c(1)) + (c(2) + c(3)))
+            + ((c(4) + c(5)) + (c(6) + c(7)))
+            + ((c(8) + c(9)) + (c(10) + c(11)))
+    }
+
+    /// Σ blocks\[slot\] of particle `k` (all with +), in the same order.
+    #[inline(always)]
+    pub fn gather_blocks(&self, k: usize, blocks: &[Symmetric3]) -> Symmetric3 {
+        let s = &self.slots[k];
+        let c = |m: usize| blocks[(s[m] >> 1) as usize];
+        let sum = |a: Symmetric3, b: Symmetric3| {
+            let mut a = a;
+            a.add(&b);
+            a
+        };
+        sum(
+            sum(
+                sum(sum(c(0), c(1)), sum(c(2), c(3))),
+                sum(sum(c(4), c(5)), sum(c(6), c(7))),
+            ),
+            sum(sum(c(8), c(9)), sum(c(10), c(11))),
+        )
+    }
+}
+
 /// The solve's buffers, reused from step to step; `solution` is the last Δv (the warm start).
 #[derive(Debug, Clone, Default)]
 pub struct Workspace {
@@ -155,6 +272,46 @@ pub struct Workspace {
     pub(super) product: Vec<Vector3<f64>>,
     /// The tied solve's buffers (`ties`).
     pub(super) ties: super::ties::TieBuffers,
+    /// The order the springs' terms are summed in per particle (module doc); empty: scatter.
+    pub order: SpringOrder,
+    /// Per spring, y_s = S_s (p_i − p_j) of the product under way, and a zero at the end.
+    pub(super) terms: Vec<Vector3<f64>>,
+    /// Per spring, S_s as a matrix (for the preconditioner's sums), and a zero at the end.
+    pub(super) matrices: Vec<Symmetric3>,
+}
+
+/// out = A p (no filter): a_k p_k plus the springs' terms, gathered in `order` when it was
+/// built for these blocks (module doc), scattered otherwise. `terms` is a buffer.
+pub(super) fn product(
+    blocks: &[Block],
+    diagonal: &[f64],
+    order: &SpringOrder,
+    terms: &mut Vec<Vector3<f64>>,
+    p: &[Vector3<f64>],
+    out: &mut [Vector3<f64>],
+) {
+    let n = out.len();
+    let (diagonal, p) = (&diagonal[..n], &p[..n]);
+    if order.springs == blocks.len() && order.slots.len() == n {
+        terms.resize(blocks.len() + 1, Vector3::zeros());
+        for (y, b) in terms.iter_mut().zip(blocks) {
+            *y = b.apply(&(p[b.i as usize] - p[b.j as usize]));
+        }
+        terms[blocks.len()] = Vector3::zeros();
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = p[k] * diagonal[k] + order.gather(k, terms);
+        }
+    } else {
+        for ((o, &a), p) in out.iter_mut().zip(diagonal).zip(p) {
+            *o = p * a;
+        }
+        for b in blocks {
+            let (i, j) = (b.i as usize, b.j as usize);
+            let y = b.apply(&(p[i] - p[j]));
+            out[i] += y;
+            out[j] -= y;
+        }
+    }
 }
 
 /// How a solve ended.
@@ -190,6 +347,9 @@ impl Workspace {
             .map(|v| bytes_of(v, v.capacity()))
             .sum::<usize>()
             + self.ties.heap_bytes()
+            + bytes_of(&self.order.slots, self.order.slots.capacity())
+            + bytes_of(&self.terms, self.terms.capacity())
+            + bytes_of(&self.matrices, self.matrices.capacity())
     }
 
     /// Sizes every per-particle buffer for `n` particles and lists the pinned ones; the warm
@@ -225,19 +385,13 @@ impl Workspace {
     fn multiply(
         blocks: &[Block],
         diagonal: &[f64],
+        order: &SpringOrder,
+        terms: &mut Vec<Vector3<f64>>,
         pinned: &[u32],
         p: &[Vector3<f64>],
         out: &mut [Vector3<f64>],
     ) {
-        for ((o, &a), p) in out.iter_mut().zip(diagonal).zip(p) {
-            *o = p * a;
-        }
-        for b in blocks {
-            let (i, j) = (b.i as usize, b.j as usize);
-            let y = b.apply(&(p[i] - p[j]));
-            out[i] += y;
-            out[j] -= y;
-        }
+        product(blocks, diagonal, order, terms, p, out);
         for &i in pinned {
             out[i as usize] = Vector3::zeros();
         }
@@ -271,6 +425,8 @@ impl Workspace {
         Self::multiply(
             &self.blocks,
             &self.diagonal,
+            &self.order,
+            &mut self.terms,
             &self.pinned,
             &self.solution,
             &mut self.product,
@@ -304,6 +460,8 @@ impl Workspace {
             Self::multiply(
                 &self.blocks,
                 &self.diagonal,
+                &self.order,
+                &mut self.terms,
                 &self.pinned,
                 &self.direction,
                 &mut self.product,

@@ -154,6 +154,12 @@ pub struct TieBuffers {
     /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
     body_inverse: Vec<Matrix6<f64>>,
     body: Vec<BodyVectors>,
+    /// The springs' terms of a product (`conjugate_gradient::product`).
+    terms: Vec<Vector3<f64>>,
+    /// Per tie, its body and the wrench it adds there, before they are summed
+    /// ([`add_wrenches`]); and the values of one sum.
+    wrenches: Vec<(usize, Vector6<f64>)>,
+    values: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -174,6 +180,9 @@ impl TieBuffers {
             + bytes_of(&self.full, self.full.capacity())
             + bytes_of(&self.body_inverse, self.body_inverse.capacity())
             + bytes_of(&self.body, self.body.capacity())
+            + bytes_of(&self.terms, self.terms.capacity())
+            + bytes_of(&self.wrenches, self.wrenches.capacity())
+            + bytes_of(&self.values, self.values.capacity())
     }
 }
 
@@ -189,6 +198,41 @@ fn point(y: &Vector6<f64>, r: &Vector3<f64>) -> Vector3<f64> {
 fn wrench(u: &Vector3<f64>, r: &Vector3<f64>) -> Vector6<f64> {
     let t = r.cross(u);
     Vector6::new(u.x, u.y, u.z, t.x, t.y, t.z)
+}
+
+/// Σ values, the same to the last bit for any order of the values and exactly −Σ for the
+/// negated values: the positive and the negative values each summed by increasing magnitude.
+/// A body's sums over its ties use it, so that ties in mirror-image places (a cube centred on
+/// a sheet) add up to a wrench with exact zeros where the mirror says so (`conjugate_gradient`,
+/// "Sums in a mirror-symmetric order"); summed in the ties' order, a + b − a − b need not be 0.
+fn order_free_sum(values: &mut [f64]) -> f64 {
+    values.sort_unstable_by(|a, b| a.abs().total_cmp(&b.abs()));
+    let (mut positive, mut negative) = (0.0, 0.0);
+    for &v in values.iter() {
+        if v > 0.0 {
+            positive += v;
+        } else {
+            negative += v;
+        }
+    }
+    positive + negative
+}
+
+/// out\[b\] += Σ the wrenches listed for body b, each component by [`order_free_sum`].
+fn add_wrenches(
+    out: &mut [Vector6<f64>],
+    wrenches: &[(usize, Vector6<f64>)],
+    values: &mut Vec<f64>,
+) {
+    for (b, o) in out.iter_mut().enumerate() {
+        for c in 0..6 {
+            values.clear();
+            values.extend(wrenches.iter().filter(|w| w.0 == b).map(|w| w.1[c]));
+            if !values.is_empty() {
+                o[c] += order_free_sum(values);
+            }
+        }
+    }
 }
 
 /// M_b Y.
@@ -253,6 +297,7 @@ impl Workspace {
                 m
             })
             .collect();
+        let mut block_terms: Vec<(usize, Matrix6<f64>)> = Vec::new();
         for tie in ties.iter() {
             let i = tie.particle;
             let p = &self.preconditioner[i];
@@ -284,7 +329,18 @@ impl Workspace {
                 g.fixed_view_mut::<3, 3>(0, 0).copy_from(&projector);
                 g.fixed_view_mut::<3, 3>(0, 3)
                     .copy_from(&(-(projector * cross)));
-                body_blocks[tie.body.unwrap()] += g.transpose() * full * g;
+                block_terms.push((tie.body.unwrap(), g.transpose() * full * g));
+            }
+        }
+        // Summed in no particular order (`order_free_sum`).
+        for (b, m) in body_blocks.iter_mut().enumerate() {
+            for e in 0..36 {
+                t.values.clear();
+                t.values
+                    .extend(block_terms.iter().filter(|x| x.0 == b).map(|x| x.1[e]));
+                if !t.values.is_empty() {
+                    m[e] += order_free_sum(&mut t.values);
+                }
             }
         }
         t.body_inverse.clear();
@@ -297,7 +353,15 @@ impl Workspace {
                 }
             }));
         // Reduced right-hand side: Tᵀ(b̄ − Ā z).
-        Self::multiply_plain(&self.blocks, &self.diagonal, &t.offset, &mut t.full);
+        Self::multiply_plain(
+            &self.blocks,
+            &self.diagonal,
+            &self.order,
+            &mut t.terms,
+            &t.offset,
+            &mut t.full,
+        );
+        t.wrenches.clear();
         for i in 0..n {
             let k = t.tie_of[i];
             let mut r = self.rhs[i] - t.full[i];
@@ -306,7 +370,10 @@ impl Workspace {
                 r += tie.extra;
                 if moves(tie) {
                     let b = tie.body.unwrap();
-                    t.body[b].rhs += wrench(&tie.tied(&r), &tie.arm) - wrench(&tie.extra, &tie.arm);
+                    t.wrenches.push((
+                        b,
+                        wrench(&tie.tied(&r), &tie.arm) - wrench(&tie.extra, &tie.arm),
+                    ));
                 }
                 r = tie.free(&r);
             }
@@ -314,6 +381,13 @@ impl Workspace {
                 r = Vector3::zeros();
             }
             self.residual[i] = r;
+        }
+        {
+            let mut rhs: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            add_wrenches(&mut rhs, &t.wrenches, &mut t.values);
+            for (bv, r) in t.body.iter_mut().zip(rhs) {
+                bv.rhs = r;
+            }
         }
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
@@ -474,7 +548,14 @@ impl Workspace {
             }
         }
         // λ_i = (I − S_i)(A Δv − b − e)_i.
-        Self::multiply_plain(&self.blocks, &self.diagonal, &self.solution, &mut t.full);
+        Self::multiply_plain(
+            &self.blocks,
+            &self.diagonal,
+            &self.order,
+            &mut t.terms,
+            &self.solution,
+            &mut t.full,
+        );
         for tie in ties.iter_mut() {
             let i = tie.particle;
             tie.impulse = tie.tied(&(t.full[i] - self.rhs[i] - tie.extra));
@@ -494,21 +575,17 @@ impl Workspace {
         outcome
     }
 
-    /// out = A p, no filter.
+    /// out = A p, no filter (`conjugate_gradient::product`).
     fn multiply_plain(
         blocks: &[super::conjugate_gradient::Block],
         diagonal: &[f64],
+        order: &super::conjugate_gradient::SpringOrder,
+        terms: &mut Vec<Vector3<f64>>,
         p: &[Vector3<f64>],
         out: &mut Vec<Vector3<f64>>,
     ) {
-        out.clear();
-        out.extend(p.iter().zip(diagonal).map(|(p, &a)| p * a));
-        for b in blocks {
-            let (i, j) = (b.i as usize, b.j as usize);
-            let y = b.apply(&(p[i] - p[j]));
-            out[i] += y;
-            out[j] -= y;
-        }
+        out.resize(p.len(), Vector3::zeros());
+        super::conjugate_gradient::product(blocks, diagonal, order, terms, p, out);
     }
 
     /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc).
@@ -541,7 +618,14 @@ impl Workspace {
             }
         }
         let expanded = std::mem::take(&mut t.expanded);
-        Self::multiply_plain(&self.blocks, &self.diagonal, &expanded, &mut t.full);
+        Self::multiply_plain(
+            &self.blocks,
+            &self.diagonal,
+            &self.order,
+            &mut t.terms,
+            &expanded,
+            &mut t.full,
+        );
         t.expanded = expanded;
         for (b, o) in out_body.iter_mut().enumerate() {
             *o = body_mass(&bodies[b], &p_body[b]);
@@ -553,12 +637,15 @@ impl Workspace {
                 t.full[i]
             };
         }
+        t.wrenches.clear();
         for tie in ties {
             let i = tie.particle;
             if let Some(b) = tie.body.filter(|&b| bodies[b].mass > 0.0) {
-                out_body[b] += wrench(&tie.tied(&t.full[i]), &tie.arm);
+                t.wrenches
+                    .push((b, wrench(&tie.tied(&t.full[i]), &tie.arm)));
             }
             out[i] = tie.free(&t.full[i]);
         }
+        add_wrenches(out_body, &t.wrenches, &mut t.values);
     }
 }
