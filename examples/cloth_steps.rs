@@ -141,8 +141,43 @@ fn main() {
             ) {
                 model.friction = mu;
             }
+            // SEED: the cube moved this far off centre along x and z, m; TOL: the sheet's CG
+            // tolerance.
+            if let Some(seed) = std::env::var("SEED")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+            {
+                scene.bodies[0].initial.position += Vector3::new(seed, 0.0, seed);
+            }
+            if let Some(tol) = std::env::var("TOL")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+            {
+                let specs = std::mem::take(&mut scene.cloths);
+                let cloths = specs
+                    .iter()
+                    .map(|s| {
+                        let mut c = Cloth::new(s).expect("valid");
+                        c.solver.tolerance = tol;
+                        c
+                    })
+                    .collect();
+                let dt = scene.dt;
+                let w = scene.world().with_cloths(cloths);
+                return lesson16(w, dt, steps);
+            }
             let dt = scene.dt;
-            let mut w = scene.world();
+            let w = scene.world();
+            lesson16(w, dt, steps);
+        }
+        _ => eprintln!("unknown case {case}"),
+    }
+}
+
+/// The `lesson16` case's loop.
+fn lesson16(mut w: tumble::physics::World, dt: f64, steps: usize) {
+    {
+        {
             let every = std::env::var("EVERY")
                 .ok()
                 .and_then(|s| s.parse().ok())
@@ -196,6 +231,5 @@ fn main() {
                 }
             }
         }
-        _ => eprintln!("unknown case {case}"),
     }
 }
