@@ -14,8 +14,9 @@
 //! Every spring's block is built once per step, in the same pass over the springs as the
 //! forces and the right-hand side (`implicit_euler`), and stored compactly next to its two
 //! particle indices: `[i, j: u32; along, across: f64; d̂]`, 48 bytes, so that a product is one
-//! stream over the blocks (S r = along (d̂·r) d̂ + across r: 14 flops; ±(p_i − p_j) gathered
-//! and scattered: ~55 instructions a spring). A spring whose two ends are pinned has an empty
+//! stream over the blocks (S r = along (d̂·r) d̂ + across r: 14 flops) and one over the
+//! particles gathering their springs' terms (below): ~118k instructions per product on the
+//! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). A spring whose two ends are pinned has an empty
 //! block: it acts on no free particle. Why not a CSR matrix of 3×3 blocks by rows: each
 //! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
 //! twice as a full 3×3 plus index arrays, ~2× the flops per product (a full 3×3 product per
@@ -43,8 +44,10 @@
 //! iterate. Why it matters: a mirror-symmetric scene (lesson 16's frictionless centred drop)
 //! then keeps its symmetry exactly instead of from an ulp-sized seed that the contact set's
 //! decisions and the CG's polynomial amplify (`tests/physics/cloth_world.rs`). The gathered
-//! pass costs about what the scatter did (the same flops, no read-modify-write of `out`).
-//! A sheet whose springs are not the grid's (built by hand) falls back to the scatter.
+//! product costs ~12 % more instructions than the scatter did (callgrind); a tied solve
+//! makes up for it by computing A Δv only at the tied particles for their impulses
+//! ([`SpringOrder::row`]). A sheet whose springs are not the grid's (built by hand, or a
+//! spring with i > j) falls back to the scatter.
 //!
 //! # Preconditioner: Jacobi by 3×3 particle blocks
 //!
@@ -159,8 +162,10 @@ impl Symmetric3 {
 }
 
 /// Per particle, its springs in the mirror-symmetric order of the module doc: 12 slots
-/// `[E, W, N, S, NE, SW, NW, SE, EE, WW, NN, SS]`, each `2 s + (1 if the particle is the
-/// spring's j end)` (its term is −y_s then), or `2 · springs` (a zero term) when empty.
+/// `[E, W, N, S, NE, SW, NW, SE, EE, WW, NN, SS]`, each a spring's index s, or the number of
+/// springs (a zero term) when empty: an index into the terms `[y_0, y_1, …, 0]`. Every grid
+/// spring has i < j, so a particle is the i end of its springs in the even slots (E, N, NE,
+/// NW, EE, NN: its term +y_s) and the j end in the odd ones (its term −y_s).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SpringOrder {
     pub slots: Vec<[u32; SLOTS]>,
@@ -182,10 +187,12 @@ impl SpringOrder {
         let nx = count[0];
         let n = count[0] * count[1];
         let total = springs.len();
-        let empty = u32::try_from(2 * total).ok()?;
+        let empty = u32::try_from(total).ok()?;
         let mut slots = vec![[empty; SLOTS]; n];
-        for (s, (i, j, kind)) in springs.enumerate() {
-            let (a, b) = (i.min(j), i.max(j));
+        for (s, (a, b, kind)) in springs.enumerate() {
+            if a >= b {
+                return None;
+            }
             let same_row = |k: usize| a % nx + k < nx;
             // The slot of `a` (its neighbour b is E, N, NE, NW, EE or NN of it); b's is the next.
             let slot = match (kind, b - a) {
@@ -200,12 +207,12 @@ impl SpringOrder {
             if b >= n {
                 return None;
             }
-            // The spring's i end takes +y_s, its j end −y_s.
+            // The spring's i end (a, even slot) takes +y_s, its j end (b, odd slot) −y_s.
             for (particle, slot) in [(a, slot), (b, slot + 1)] {
                 if slots[particle][slot] != empty {
                     return None;
                 }
-                slots[particle][slot] = 2 * s as u32 + u32::from(particle == j);
+                slots[particle][slot] = s as u32;
             }
         }
         Some(SpringOrder {
@@ -214,30 +221,38 @@ impl SpringOrder {
         })
     }
 
-    /// Σ ±terms\[slot\] of particle `k` in the order of the module doc; `terms` has one entry
-    /// per spring and a zero at the end.
+    /// Σ ±terms\[slot\] of particle `k` in the order of the module doc (+ in the even
+    /// slots, − in the odd ones: c_even + c_odd is computed as y_even − y_odd, the same bits);
+    /// `terms` holds `[y_0, y_1, …, 0]`.
     #[inline(always)]
     pub fn gather(&self, k: usize, terms: &[Vector3<f64>]) -> Vector3<f64> {
         let s = &self.slots[k];
-        let c = |m: usize| {
-            let v = s[m];
-            let y = terms[(v >> 1) as usize];
-            if v & 1 == 1 {
-                -y
-            } else {
-                y
-            }
+        let y = |m: usize| terms[s[m] as usize];
+        ((y(0) - y(1)) + (y(2) - y(3)))
+            + ((y(4) - y(5)) + (y(6) - y(7)))
+            + ((y(8) - y(9)) + (y(10) - y(11)))
+    }
+
+    /// (A p)_k alone, `a p_k + Σ ±S_s (p_i − p_j)` over particle k's springs, to the same bits
+    /// as [`product`]'s row k (the same terms, summed in the same order).
+    #[inline]
+    pub fn row(&self, blocks: &[Block], a: f64, p: &[Vector3<f64>], k: usize) -> Vector3<f64> {
+        let s = &self.slots[k];
+        let y = |m: usize| match blocks.get(s[m] as usize) {
+            Some(b) => b.apply(&(p[b.i as usize] - p[b.j as usize])),
+            None => Vector3::zeros(),
         };
-        ((c(0) + c(1)) + (c(2) + c(3)))
-            + ((c(4) + c(5)) + (c(6) + c(7)))
-            + ((c(8) + c(9)) + (c(10) + c(11)))
+        p[k] * a
+            + (((y(0) - y(1)) + (y(2) - y(3)))
+                + ((y(4) - y(5)) + (y(6) - y(7)))
+                + ((y(8) - y(9)) + (y(10) - y(11))))
     }
 
     /// Σ blocks\[slot\] of particle `k` (all with +), in the same order.
     #[inline(always)]
     pub fn gather_blocks(&self, k: usize, blocks: &[Symmetric3]) -> Symmetric3 {
         let s = &self.slots[k];
-        let c = |m: usize| blocks[(s[m] >> 1) as usize];
+        let c = |m: usize| blocks[s[m] as usize];
         let sum = |a: Symmetric3, b: Symmetric3| {
             let mut a = a;
             a.add(&b);
@@ -274,7 +289,8 @@ pub struct Workspace {
     pub(super) ties: super::ties::TieBuffers,
     /// The order the springs' terms are summed in per particle (module doc); empty: scatter.
     pub order: SpringOrder,
-    /// Per spring, y_s = S_s (p_i − p_j) of the product under way, and a zero at the end.
+    /// Per spring, y_s = S_s (p_i − p_j) of the product under way, and a zero at the end
+    /// ([`SpringOrder`]).
     pub(super) terms: Vec<Vector3<f64>>,
     /// Per spring, S_s as a matrix (for the preconditioner's sums), and a zero at the end.
     pub(super) matrices: Vec<Symmetric3>,
@@ -298,8 +314,8 @@ pub(super) fn product(
             *y = b.apply(&(p[b.i as usize] - p[b.j as usize]));
         }
         terms[blocks.len()] = Vector3::zeros();
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = p[k] * diagonal[k] + order.gather(k, terms);
+        for (k, ((o, p), &a)) in out.iter_mut().zip(p).zip(diagonal).enumerate() {
+            *o = p * a + order.gather(k, terms);
         }
     } else {
         for ((o, &a), p) in out.iter_mut().zip(diagonal).zip(p) {

@@ -160,6 +160,8 @@ pub struct TieBuffers {
     /// ([`add_wrenches`]); and the values of one sum.
     wrenches: Vec<(usize, Vector6<f64>)>,
     values: Vec<f64>,
+    /// The tied rows of a product (`multiply_reduced`).
+    tied_rows: Vec<(usize, Vector3<f64>)>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -183,6 +185,7 @@ impl TieBuffers {
             + bytes_of(&self.terms, self.terms.capacity())
             + bytes_of(&self.wrenches, self.wrenches.capacity())
             + bytes_of(&self.values, self.values.capacity())
+            + bytes_of(&self.tied_rows, self.tied_rows.capacity())
     }
 }
 
@@ -472,7 +475,10 @@ impl Workspace {
                     &mut q_body,
                 );
                 self.direction = direction;
-                let mut curvature: f64 = (0..n).map(|i| self.direction[i].dot(&product[i])).sum();
+                let mut curvature: f64 = (self.direction[..n].iter())
+                    .zip(&product[..n])
+                    .map(|(p, q)| p.dot(q))
+                    .sum();
                 for (b, q) in q_body.iter().enumerate() {
                     curvature += direction_body[b].dot(q);
                 }
@@ -481,11 +487,16 @@ impl Workspace {
                 }
                 let alpha = delta / curvature;
                 let mut next = 0.0;
-                for i in 0..n {
-                    self.solution[i] += self.direction[i] * alpha;
-                    self.residual[i] -= product[i] * alpha;
-                    self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-                    next += self.residual[i].dot(&self.preconditioned[i]);
+                for ((((x, r), z), (p, q)), inverse) in (self.solution[..n].iter_mut())
+                    .zip(&mut self.residual[..n])
+                    .zip(&mut self.preconditioned[..n])
+                    .zip(self.direction[..n].iter().zip(&product[..n]))
+                    .zip(&t.inverse[..n])
+                {
+                    *x += p * alpha;
+                    *r -= q * alpha;
+                    *z = inverse.apply(r);
+                    next += r.dot(z);
                 }
                 for (b, bv) in t.body.iter_mut().enumerate() {
                     x_body[b] += direction_body[b] * alpha;
@@ -494,8 +505,8 @@ impl Workspace {
                     next += bv.r.dot(&bv.z);
                 }
                 let beta = next / delta;
-                for i in 0..n {
-                    self.direction[i] = self.preconditioned[i] + self.direction[i] * beta;
+                for (p, z) in (self.direction[..n].iter_mut()).zip(&self.preconditioned[..n]) {
+                    *p = z + *p * beta;
                 }
                 for (b, bv) in t.body.iter().enumerate() {
                     direction_body[b] = bv.z + direction_body[b] * beta;
@@ -547,18 +558,28 @@ impl Workspace {
                 }
             }
         }
-        // λ_i = (I − S_i)(A Δv − b − e)_i.
-        Self::multiply_plain(
-            &self.blocks,
-            &self.diagonal,
-            &self.order,
-            &mut t.terms,
-            &self.solution,
-            &mut t.full,
-        );
+        // λ_i = (I − S_i)(A Δv − b − e)_i: A Δv at the tied particles only when the springs
+        // are the grid's (`SpringOrder::row`, the same bits as the whole product).
+        let by_rows = self.order.springs == self.blocks.len() && self.order.slots.len() == n;
+        if !by_rows {
+            Self::multiply_plain(
+                &self.blocks,
+                &self.diagonal,
+                &self.order,
+                &mut t.terms,
+                &self.solution,
+                &mut t.full,
+            );
+        }
         for tie in ties.iter_mut() {
             let i = tie.particle;
-            tie.impulse = tie.tied(&(t.full[i] - self.rhs[i] - tie.extra));
+            let product = if by_rows {
+                self.order
+                    .row(&self.blocks, self.diagonal[i], &self.solution, i)
+            } else {
+                t.full[i]
+            };
+            tie.impulse = tie.tied(&(product - self.rhs[i] - tie.extra));
         }
         for (b, bv) in bodies.iter_mut().zip(&t.body) {
             if b.mass > 0.0 {
@@ -612,39 +633,42 @@ impl Workspace {
             }
             t.expanded[i] = w;
         }
-        for i in 0..n {
-            if is_pinned[i] {
-                t.expanded[i] = Vector3::zeros();
-            }
+        for (e, _) in (t.expanded[..n].iter_mut())
+            .zip(&is_pinned[..n])
+            .filter(|(_, &pinned)| pinned)
+        {
+            *e = Vector3::zeros();
         }
-        let expanded = std::mem::take(&mut t.expanded);
-        Self::multiply_plain(
+        // A p straight into `out`; then the tied rows, and the pinned rows zeroed.
+        super::conjugate_gradient::product(
             &self.blocks,
             &self.diagonal,
             &self.order,
             &mut t.terms,
-            &expanded,
-            &mut t.full,
+            &t.expanded,
+            &mut out[..n],
         );
-        t.expanded = expanded;
         for (b, o) in out_body.iter_mut().enumerate() {
             *o = body_mass(&bodies[b], &p_body[b]);
         }
-        for i in 0..n {
-            out[i] = if is_pinned[i] {
-                Vector3::zeros()
-            } else {
-                t.full[i]
-            };
-        }
         t.wrenches.clear();
+        t.tied_rows.clear();
         for tie in ties {
             let i = tie.particle;
+            let full = out[i];
             if let Some(b) = tie.body.filter(|&b| bodies[b].mass > 0.0) {
-                t.wrenches
-                    .push((b, wrench(&tie.tied(&t.full[i]), &tie.arm)));
+                t.wrenches.push((b, wrench(&tie.tied(&full), &tie.arm)));
             }
-            out[i] = tie.free(&t.full[i]);
+            t.tied_rows.push((i, tie.free(&full)));
+        }
+        for (o, _) in (out[..n].iter_mut())
+            .zip(&is_pinned[..n])
+            .filter(|(_, &pinned)| pinned)
+        {
+            *o = Vector3::zeros();
+        }
+        for &(i, row) in &t.tied_rows {
+            out[i] = row;
         }
         add_wrenches(out_body, &t.wrenches, &mut t.values);
     }
