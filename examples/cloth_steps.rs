@@ -82,11 +82,26 @@ fn main() {
             };
             let mut w = cube_on_trampoline(name, dt);
             let (mut solves, mut iterations) = (0, 0);
+            // Per number of solves in a step (0 contacts; 1, 2, 3+ solves with contacts):
+            // steps and CG iterations.
+            let mut by_solves = [(0usize, 0usize); 4];
             for _ in 0..steps {
                 black_box(&mut w).step();
                 let counts = w.cloths()[0].solve_counts();
                 solves += counts.solves;
                 iterations += counts.iterations;
+                let kind = if w.cloth_body_contacts(0) == 0 {
+                    0
+                } else {
+                    counts.solves.min(3)
+                };
+                by_solves[kind].0 += 1;
+                by_solves[kind].1 += counts.iterations;
+            }
+            if std::env::var("BREAKDOWN").is_ok() {
+                for (k, (n, it)) in by_solves.iter().enumerate() {
+                    println!("{k}: steps {n}, CG iterations {it}");
+                }
             }
             let c = &w.cloths()[0];
             println!(
