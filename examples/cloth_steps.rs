@@ -27,6 +27,11 @@ fn trampoline(integrator: ClothIntegrator) -> Cloth {
 }
 
 fn cube_on_trampoline(integrator: &str, dt: f64) -> tumble::physics::World {
+    // FRICTION: the contact's μ (0.5 unless given).
+    let friction: f64 = std::env::var("FRICTION")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0.5);
     let source = format!(
         r#"
 title = "bench"
@@ -34,7 +39,7 @@ title = "bench"
 dt = {dt}
 integrator = "rk4"
 gravity = [0.0, -9.81, 0.0]
-contact = {{ response = "impulse", restitution = 0.4, friction = 0.5 }}
+contact = {{ response = "impulse", restitution = 0.4, friction = {friction} }}
 [body]
 shape = "box"
 size = [0.35, 0.35, 0.35]
