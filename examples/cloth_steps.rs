@@ -27,6 +27,11 @@ fn trampoline(integrator: ClothIntegrator) -> Cloth {
 }
 
 fn cube_on_trampoline(integrator: &str, dt: f64) -> tumble::physics::World {
+    // FRICTION: the contact's μ (0.5 unless given).
+    let friction: f64 = std::env::var("FRICTION")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0.5);
     let source = format!(
         r#"
 title = "bench"
@@ -34,7 +39,7 @@ title = "bench"
 dt = {dt}
 integrator = "rk4"
 gravity = [0.0, -9.81, 0.0]
-contact = {{ response = "impulse", restitution = 0.4, friction = 0.5 }}
+contact = {{ response = "impulse", restitution = 0.4, friction = {friction} }}
 [body]
 shape = "box"
 size = [0.35, 0.35, 0.35]
@@ -82,11 +87,26 @@ fn main() {
             };
             let mut w = cube_on_trampoline(name, dt);
             let (mut solves, mut iterations) = (0, 0);
+            // Per number of solves in a step (0 contacts; 1, 2, 3+ solves with contacts):
+            // steps and CG iterations.
+            let mut by_solves = [(0usize, 0usize); 4];
             for _ in 0..steps {
                 black_box(&mut w).step();
                 let counts = w.cloths()[0].solve_counts();
                 solves += counts.solves;
                 iterations += counts.iterations;
+                let kind = if w.cloth_body_contacts(0) == 0 {
+                    0
+                } else {
+                    counts.solves.min(3)
+                };
+                by_solves[kind].0 += 1;
+                by_solves[kind].1 += counts.iterations;
+            }
+            if std::env::var("BREAKDOWN").is_ok() {
+                for (k, (n, it)) in by_solves.iter().enumerate() {
+                    println!("{k}: steps {n}, CG iterations {it}");
+                }
             }
             let c = &w.cloths()[0];
             println!(
@@ -141,9 +161,60 @@ fn main() {
             ) {
                 model.friction = mu;
             }
+            // SEED: the cube moved this far off centre along x and z, m; TOL: the sheet's CG
+            // tolerance.
+            if let Some(seed) = std::env::var("SEED")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+            {
+                scene.bodies[0].initial.position += Vector3::new(seed, 0.0, seed);
+            }
+            if let Some(tol) = std::env::var("TOL")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+            {
+                let specs = std::mem::take(&mut scene.cloths);
+                let cloths = specs
+                    .iter()
+                    .map(|s| {
+                        let mut c = Cloth::new(s).expect("valid");
+                        c.solver.tolerance = tol;
+                        c
+                    })
+                    .collect();
+                let dt = scene.dt;
+                let w = scene.world().with_cloths(cloths);
+                return lesson16(w, dt, steps);
+            }
             let dt = scene.dt;
-            let mut w = scene.world();
-            let every = (0.1 / dt).round() as usize;
+            let w = scene.world();
+            lesson16(w, dt, steps);
+        }
+        _ => eprintln!("unknown case {case}"),
+    }
+}
+
+/// The `lesson16` case's loop.
+fn lesson16(mut w: tumble::physics::World, dt: f64, steps: usize) {
+    {
+        {
+            let every = std::env::var("EVERY")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or((0.1 / dt).round() as usize);
+            // How far the sheet is from its mirror image under x → −x (particle (i, j) against
+            // (nx − 1 − i, j)), m.
+            let mirror = |c: &Cloth| {
+                let nx = c.count[0];
+                c.positions
+                    .iter()
+                    .enumerate()
+                    .map(|(k, x)| {
+                        let m = c.positions[k - k % nx + (nx - 1 - k % nx)];
+                        (x - Vector3::new(-m.x, m.y, m.z)).norm()
+                    })
+                    .fold(0.0, f64::max)
+            };
             let (mut touched, mut low, mut rise) = (false, f64::INFINITY, 0.0f64);
             for k in 0..steps {
                 black_box(&mut w).step();
@@ -162,7 +233,7 @@ fn main() {
                     let up = s.orientation.matrix() * Vector3::y();
                     let b = w.energy_balance();
                     println!(
-                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} n={} cg={}",
+                        "t={:.3} xz=({:+.3e},{:+.3e}) y={:.6} tilt={:.3e}deg |v|={:.2e} E={:.6} rise={:.3e} contacts={:+.6} drift={:+.6} mirror={:.2e} n={} cg={}",
                         w.time(),
                         s.position.x,
                         s.position.z,
@@ -173,12 +244,12 @@ fn main() {
                         rise,
                         b.contacts.unwrap_or(0.0),
                         b.drift,
+                        mirror(&w.cloths()[0]),
                         w.cloth_body_contacts(0),
                         w.cloths()[0].solve_counts().iterations,
                     );
                 }
             }
         }
-        _ => eprintln!("unknown case {case}"),
     }
 }

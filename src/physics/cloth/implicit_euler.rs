@@ -51,7 +51,7 @@
 //! step's displacement is what they took (`sheet`), with Δx = h v₁ never negative:
 //! `W = h Σ_springs c ((v₁_j − v₁_i)·d̂₀)² + h Σ_i k_drag,i |v₁_i|²`.
 
-use super::conjugate_gradient::{Block, Symmetric3};
+use super::conjugate_gradient::{Block, SpringOrder, Symmetric3};
 use super::energy::Losses;
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
@@ -139,16 +139,31 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
         *b = (gravity * m - v * drag) * h;
         *p = Symmetric3::diagonal(*a);
     }
-    // One pass over the springs: b += h f₀ − h² K v₀ (f₀ with the damping at v₀), the block
-    // S = h c d̂d̂ᵀ + h² k ((1 − t) d̂d̂ᵀ + t I), and P_i += S, P_j += S. A spring with both ends
-    // pinned gets an empty block (it acts on no free particle).
+    // One pass over the springs: b_s = h f₀ − h² K v₀ (f₀ with the damping at v₀) and the
+    // block S = h c d̂d̂ᵀ + h² k ((1 − t) d̂d̂ᵀ + t I); then per particle b_i ± Σ b_s and
+    // P_i = a_i I + Σ S, summed in the mirror-symmetric order of `conjugate_gradient` (or
+    // scattered when the springs are not the grid's). A spring with both ends pinned gets an
+    // empty block (it acts on no free particle).
     let springs = &cloth.springs;
+    if work.order.springs != springs.len() || work.order.slots.len() != n {
+        work.order = SpringOrder::of_grid(cloth.count, springs.iter().map(|s| (s.i, s.j, s.kind)))
+            .unwrap_or_default();
+    }
+    let gathered = work.order.springs == springs.len() && work.order.slots.len() == n;
     let pinned = &cloth.pinned[..n];
     work.blocks.resize(springs.len(), Block::default());
+    work.terms.resize(springs.len() + 1, Vector3::zeros());
+    work.matrices
+        .resize(springs.len() + 1, Symmetric3::default());
     let (x, v0) = (&x[..n], &v0[..n]);
     let rhs = &mut work.rhs[..n];
     let preconditioner = &mut work.preconditioner[..n];
-    for (s, block) in springs.iter().zip(work.blocks.iter_mut()) {
+    for (((s, block), term), matrix) in springs
+        .iter()
+        .zip(work.blocks.iter_mut())
+        .zip(work.terms.iter_mut())
+        .zip(work.matrices.iter_mut())
+    {
         let (i, j) = (s.i, s.j);
         let d = x[j] - x[i];
         let length = d.norm();
@@ -166,8 +181,6 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
         // h k (ℓ − ℓ₀) d̂ + [h c + h² k (1 − t)] (d̂·Δv) d̂ + h² k t Δv,   Δv = v₀_j − v₀_i
         let b = direction * (h * s.stiffness * (length - s.rest_length) + along * dv_along)
             + dv * across;
-        rhs[i] += b;
-        rhs[j] -= b;
         *block = if pinned[i] && pinned[j] {
             Block::default()
         } else {
@@ -179,9 +192,23 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
                 direction,
             }
         };
-        let sum = Symmetric3::of(block);
-        preconditioner[i].add(&sum);
-        preconditioner[j].add(&sum);
+        *matrix = Symmetric3::of(block);
+        if gathered {
+            *term = b;
+        } else {
+            rhs[i] += b;
+            rhs[j] -= b;
+            preconditioner[i].add(matrix);
+            preconditioner[j].add(matrix);
+        }
+    }
+    if gathered {
+        work.terms[springs.len()] = Vector3::zeros();
+        work.matrices[springs.len()] = Symmetric3::default();
+        for (k, (b, p)) in rhs.iter_mut().zip(preconditioner.iter_mut()).enumerate() {
+            *b += work.order.gather(k, &work.terms);
+            p.add(&work.order.gather_blocks(k, &work.matrices));
+        }
     }
 }
 

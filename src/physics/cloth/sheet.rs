@@ -159,10 +159,13 @@ impl Cloth {
         let m = spec.mass / n as f64;
         let mut positions = Vec::with_capacity(n);
         let mut pinned = Vec::with_capacity(n);
-        // Along an axis with one row (a rope), the row is on the centre line.
+        // Along an axis with one row (a rope), the row is on the centre line. The offset is
+        // side·(2k − (n − 1))/(2(n − 1)), an integer times side divided by an integer, so that
+        // particles k and n − 1 − k sit at exactly opposite offsets: the sheet is
+        // mirror-symmetric to the last bit (what `conjugate_gradient`'s summation order keeps).
         let offset = |k: usize, n: usize, side: f64| {
             if n > 1 {
-                -side / 2.0 + k as f64 * side / (n - 1) as f64
+                (2.0 * k as f64 - (n - 1) as f64) * side / (2 * (n - 1)) as f64
             } else {
                 0.0
             }

@@ -154,6 +154,14 @@ pub struct TieBuffers {
     /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
     body_inverse: Vec<Matrix6<f64>>,
     body: Vec<BodyVectors>,
+    /// The springs' terms of a product (`conjugate_gradient::product`).
+    terms: Vec<Vector3<f64>>,
+    /// Per tie, its body and the wrench it adds there, before they are summed
+    /// ([`add_wrenches`]); and the values of one sum.
+    wrenches: Vec<(usize, Vector6<f64>)>,
+    values: Vec<f64>,
+    /// The tied rows of a product (`multiply_reduced`).
+    tied_rows: Vec<(usize, Vector3<f64>)>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -174,6 +182,10 @@ impl TieBuffers {
             + bytes_of(&self.full, self.full.capacity())
             + bytes_of(&self.body_inverse, self.body_inverse.capacity())
             + bytes_of(&self.body, self.body.capacity())
+            + bytes_of(&self.terms, self.terms.capacity())
+            + bytes_of(&self.wrenches, self.wrenches.capacity())
+            + bytes_of(&self.values, self.values.capacity())
+            + bytes_of(&self.tied_rows, self.tied_rows.capacity())
     }
 }
 
@@ -189,6 +201,41 @@ fn point(y: &Vector6<f64>, r: &Vector3<f64>) -> Vector3<f64> {
 fn wrench(u: &Vector3<f64>, r: &Vector3<f64>) -> Vector6<f64> {
     let t = r.cross(u);
     Vector6::new(u.x, u.y, u.z, t.x, t.y, t.z)
+}
+
+/// Σ values, the same to the last bit for any order of the values and exactly −Σ for the
+/// negated values: the positive and the negative values each summed by increasing magnitude.
+/// A body's sums over its ties use it, so that ties in mirror-image places (a cube centred on
+/// a sheet) add up to a wrench with exact zeros where the mirror says so (`conjugate_gradient`,
+/// "Sums in a mirror-symmetric order"); summed in the ties' order, a + b − a − b need not be 0.
+fn order_free_sum(values: &mut [f64]) -> f64 {
+    values.sort_unstable_by(|a, b| a.abs().total_cmp(&b.abs()));
+    let (mut positive, mut negative) = (0.0, 0.0);
+    for &v in values.iter() {
+        if v > 0.0 {
+            positive += v;
+        } else {
+            negative += v;
+        }
+    }
+    positive + negative
+}
+
+/// out\[b\] += Σ the wrenches listed for body b, each component by [`order_free_sum`].
+fn add_wrenches(
+    out: &mut [Vector6<f64>],
+    wrenches: &[(usize, Vector6<f64>)],
+    values: &mut Vec<f64>,
+) {
+    for (b, o) in out.iter_mut().enumerate() {
+        for c in 0..6 {
+            values.clear();
+            values.extend(wrenches.iter().filter(|w| w.0 == b).map(|w| w.1[c]));
+            if !values.is_empty() {
+                o[c] += order_free_sum(values);
+            }
+        }
+    }
 }
 
 /// M_b Y.
@@ -253,6 +300,7 @@ impl Workspace {
                 m
             })
             .collect();
+        let mut block_terms: Vec<(usize, Matrix6<f64>)> = Vec::new();
         for tie in ties.iter() {
             let i = tie.particle;
             let p = &self.preconditioner[i];
@@ -284,7 +332,18 @@ impl Workspace {
                 g.fixed_view_mut::<3, 3>(0, 0).copy_from(&projector);
                 g.fixed_view_mut::<3, 3>(0, 3)
                     .copy_from(&(-(projector * cross)));
-                body_blocks[tie.body.unwrap()] += g.transpose() * full * g;
+                block_terms.push((tie.body.unwrap(), g.transpose() * full * g));
+            }
+        }
+        // Summed in no particular order (`order_free_sum`).
+        for (b, m) in body_blocks.iter_mut().enumerate() {
+            for e in 0..36 {
+                t.values.clear();
+                t.values
+                    .extend(block_terms.iter().filter(|x| x.0 == b).map(|x| x.1[e]));
+                if !t.values.is_empty() {
+                    m[e] += order_free_sum(&mut t.values);
+                }
             }
         }
         t.body_inverse.clear();
@@ -297,7 +356,15 @@ impl Workspace {
                 }
             }));
         // Reduced right-hand side: Tᵀ(b̄ − Ā z).
-        Self::multiply_plain(&self.blocks, &self.diagonal, &t.offset, &mut t.full);
+        Self::multiply_plain(
+            &self.blocks,
+            &self.diagonal,
+            &self.order,
+            &mut t.terms,
+            &t.offset,
+            &mut t.full,
+        );
+        t.wrenches.clear();
         for i in 0..n {
             let k = t.tie_of[i];
             let mut r = self.rhs[i] - t.full[i];
@@ -306,7 +373,10 @@ impl Workspace {
                 r += tie.extra;
                 if moves(tie) {
                     let b = tie.body.unwrap();
-                    t.body[b].rhs += wrench(&tie.tied(&r), &tie.arm) - wrench(&tie.extra, &tie.arm);
+                    t.wrenches.push((
+                        b,
+                        wrench(&tie.tied(&r), &tie.arm) - wrench(&tie.extra, &tie.arm),
+                    ));
                 }
                 r = tie.free(&r);
             }
@@ -314,6 +384,13 @@ impl Workspace {
                 r = Vector3::zeros();
             }
             self.residual[i] = r;
+        }
+        {
+            let mut rhs: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            add_wrenches(&mut rhs, &t.wrenches, &mut t.values);
+            for (bv, r) in t.body.iter_mut().zip(rhs) {
+                bv.rhs = r;
+            }
         }
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
@@ -398,7 +475,10 @@ impl Workspace {
                     &mut q_body,
                 );
                 self.direction = direction;
-                let mut curvature: f64 = (0..n).map(|i| self.direction[i].dot(&product[i])).sum();
+                let mut curvature: f64 = (self.direction[..n].iter())
+                    .zip(&product[..n])
+                    .map(|(p, q)| p.dot(q))
+                    .sum();
                 for (b, q) in q_body.iter().enumerate() {
                     curvature += direction_body[b].dot(q);
                 }
@@ -407,11 +487,16 @@ impl Workspace {
                 }
                 let alpha = delta / curvature;
                 let mut next = 0.0;
-                for i in 0..n {
-                    self.solution[i] += self.direction[i] * alpha;
-                    self.residual[i] -= product[i] * alpha;
-                    self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-                    next += self.residual[i].dot(&self.preconditioned[i]);
+                for ((((x, r), z), (p, q)), inverse) in (self.solution[..n].iter_mut())
+                    .zip(&mut self.residual[..n])
+                    .zip(&mut self.preconditioned[..n])
+                    .zip(self.direction[..n].iter().zip(&product[..n]))
+                    .zip(&t.inverse[..n])
+                {
+                    *x += p * alpha;
+                    *r -= q * alpha;
+                    *z = inverse.apply(r);
+                    next += r.dot(z);
                 }
                 for (b, bv) in t.body.iter_mut().enumerate() {
                     x_body[b] += direction_body[b] * alpha;
@@ -420,8 +505,8 @@ impl Workspace {
                     next += bv.r.dot(&bv.z);
                 }
                 let beta = next / delta;
-                for i in 0..n {
-                    self.direction[i] = self.preconditioned[i] + self.direction[i] * beta;
+                for (p, z) in (self.direction[..n].iter_mut()).zip(&self.preconditioned[..n]) {
+                    *p = z + *p * beta;
                 }
                 for (b, bv) in t.body.iter().enumerate() {
                     direction_body[b] = bv.z + direction_body[b] * beta;
@@ -473,11 +558,28 @@ impl Workspace {
                 }
             }
         }
-        // λ_i = (I − S_i)(A Δv − b − e)_i.
-        Self::multiply_plain(&self.blocks, &self.diagonal, &self.solution, &mut t.full);
+        // λ_i = (I − S_i)(A Δv − b − e)_i: A Δv at the tied particles only when the springs
+        // are the grid's (`SpringOrder::row`, the same bits as the whole product).
+        let by_rows = self.order.springs == self.blocks.len() && self.order.slots.len() == n;
+        if !by_rows {
+            Self::multiply_plain(
+                &self.blocks,
+                &self.diagonal,
+                &self.order,
+                &mut t.terms,
+                &self.solution,
+                &mut t.full,
+            );
+        }
         for tie in ties.iter_mut() {
             let i = tie.particle;
-            tie.impulse = tie.tied(&(t.full[i] - self.rhs[i] - tie.extra));
+            let product = if by_rows {
+                self.order
+                    .row(&self.blocks, self.diagonal[i], &self.solution, i)
+            } else {
+                t.full[i]
+            };
+            tie.impulse = tie.tied(&(product - self.rhs[i] - tie.extra));
         }
         for (b, bv) in bodies.iter_mut().zip(&t.body) {
             if b.mass > 0.0 {
@@ -494,21 +596,17 @@ impl Workspace {
         outcome
     }
 
-    /// out = A p, no filter.
+    /// out = A p, no filter (`conjugate_gradient::product`).
     fn multiply_plain(
         blocks: &[super::conjugate_gradient::Block],
         diagonal: &[f64],
+        order: &super::conjugate_gradient::SpringOrder,
+        terms: &mut Vec<Vector3<f64>>,
         p: &[Vector3<f64>],
         out: &mut Vec<Vector3<f64>>,
     ) {
-        out.clear();
-        out.extend(p.iter().zip(diagonal).map(|(p, &a)| p * a));
-        for b in blocks {
-            let (i, j) = (b.i as usize, b.j as usize);
-            let y = b.apply(&(p[i] - p[j]));
-            out[i] += y;
-            out[j] -= y;
-        }
+        out.resize(p.len(), Vector3::zeros());
+        super::conjugate_gradient::product(blocks, diagonal, order, terms, p, out);
     }
 
     /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc).
@@ -535,30 +633,43 @@ impl Workspace {
             }
             t.expanded[i] = w;
         }
-        for i in 0..n {
-            if is_pinned[i] {
-                t.expanded[i] = Vector3::zeros();
-            }
+        for (e, _) in (t.expanded[..n].iter_mut())
+            .zip(&is_pinned[..n])
+            .filter(|(_, &pinned)| pinned)
+        {
+            *e = Vector3::zeros();
         }
-        let expanded = std::mem::take(&mut t.expanded);
-        Self::multiply_plain(&self.blocks, &self.diagonal, &expanded, &mut t.full);
-        t.expanded = expanded;
+        // A p straight into `out`; then the tied rows, and the pinned rows zeroed.
+        super::conjugate_gradient::product(
+            &self.blocks,
+            &self.diagonal,
+            &self.order,
+            &mut t.terms,
+            &t.expanded,
+            &mut out[..n],
+        );
         for (b, o) in out_body.iter_mut().enumerate() {
             *o = body_mass(&bodies[b], &p_body[b]);
         }
-        for i in 0..n {
-            out[i] = if is_pinned[i] {
-                Vector3::zeros()
-            } else {
-                t.full[i]
-            };
-        }
+        t.wrenches.clear();
+        t.tied_rows.clear();
         for tie in ties {
             let i = tie.particle;
+            let full = out[i];
             if let Some(b) = tie.body.filter(|&b| bodies[b].mass > 0.0) {
-                out_body[b] += wrench(&tie.tied(&t.full[i]), &tie.arm);
+                t.wrenches.push((b, wrench(&tie.tied(&full), &tie.arm)));
             }
-            out[i] = tie.free(&t.full[i]);
+            t.tied_rows.push((i, tie.free(&full)));
         }
+        for (o, _) in (out[..n].iter_mut())
+            .zip(&is_pinned[..n])
+            .filter(|(_, &pinned)| pinned)
+        {
+            *o = Vector3::zeros();
+        }
+        for &(i, row) in &t.tied_rows {
+            out[i] = row;
+        }
+        add_wrenches(out_body, &t.wrenches, &mut t.values);
     }
 }
