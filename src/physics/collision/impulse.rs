@@ -171,6 +171,14 @@ pub const TRIAL_SWEEPS: u64 = 8;
 /// The longest wait, in steps, between stage-1 trials that keep failing.
 pub const TRIAL_WAIT_MAX: u32 = 32;
 
+/// The friction disk update's Newton iteration stops when |x(ν)| is within this fraction of
+/// the disk's radius (a few ulps: round-off).
+const DISK_TOLERANCE: f64 = 16.0 * f64::EPSILON;
+
+/// At most this many Newton (or bisection) steps for one disk update; Newton needs 2 to 5,
+/// and 60 bisections would narrow the bracket by 2⁻⁶⁰.
+const MAX_DISK_ITERATIONS: usize = 60;
+
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -1154,10 +1162,22 @@ fn direct_sticking(
 /// |x*| ≤ bound: x = x*;  else x(ν) = (K_t + ν𝟙)⁻¹ K_t x*  with ν ≥ 0 and |x(ν)| = bound
 /// ```
 ///
-/// (|x(ν)| decreases with ν: ν is found by bisection, keeping the feasible end.) Updating the
-/// two tangent directions one at a time instead can stall on the disk's edge at a point that is
-/// not the minimum, and where it stalls depends on the contact order. The step is taken only
-/// if it does not raise K.
+/// |x(ν)| decreases with ν. ν is the root of the secular equation (Moré–Sorensen)
+///
+/// ```text
+/// ψ(ν) = 1/|x(ν)| − 1/bound,   ψ'(ν) = q/|x|³,   q = xᵀ (K_t + ν𝟙)⁻¹ x
+/// ν ← ν + (|x| − bound)/bound · |x|²/q                    (Newton: ν − ψ/ψ')
+/// ```
+///
+/// ψ is increasing, concave and nearly linear in ν (exactly linear when k₁ = k₂, c = 0), so
+/// Newton from ν = 0 (where ψ < 0) stays below the root and converges quadratically: 2 to 5
+/// iterations to round-off. It is safeguarded in the bracket `[low, high]`, `high =
+/// |K_t x*|/bound` (there `|x| ≤ |K_t x*|/(σ_min + ν) < bound`): a step that would leave it
+/// bisects instead. An answer left outside the disk by round-off is scaled onto its edge,
+/// `x ← x·bound/|x|` (a change of a few ulps). Updating the two tangent
+/// directions one at a time instead can stall on the disk's edge at a point that is not the
+/// minimum, and where it stalls depends on the contact order. The step is taken only if it
+/// does not raise K.
 fn friction_update(
     row: &mut Row,
     directions: &[Direction; 2],
@@ -1181,29 +1201,12 @@ fn friction_update(
     let new = if norm(target) <= bound {
         target
     } else {
-        // K x* once, then x(ν) = (K + ν𝟙)⁻¹ K x*.
+        // K x* once, then x(ν) = (K + ν𝟙)⁻¹ K x* on the disk's edge.
         let kx = [
             k1 * target[0] + c * target[1],
             c * target[0] + k2 * target[1],
         ];
-        let at = |nu: f64| {
-            let (a, d) = (k1 + nu, k2 + nu);
-            let det = a * d - c * c;
-            [(d * kx[0] - c * kx[1]) / det, (a * kx[1] - c * kx[0]) / det]
-        };
-        let (mut low, mut high) = (0.0, k1.max(k2));
-        while norm(at(high)) > bound {
-            high *= 2.0;
-        }
-        for _ in 0..40 {
-            let mid = 0.5 * (low + high);
-            if norm(at(mid)) > bound {
-                low = mid;
-            } else {
-                high = mid;
-            }
-        }
-        at(high)
+        disk_edge(k1, k2, c, kx, bound)
     };
     let step = [new[0] - old[0], new[1] - old[1]];
     // ΔK = Δλ·u + ½ Δλᵀ K Δλ: never accept a step that raises K.
@@ -1217,6 +1220,48 @@ fn friction_update(
     apply(step[0], t1, motions);
     apply(step[1], t2, motions);
     (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
+}
+
+/// The point `x(ν) = (K_t + ν𝟙)⁻¹ kx` (kx = K_t x*, |x(0)| > bound) with `|x(ν)| = bound`,
+/// ν ≥ 0 by safeguarded Newton on the secular equation (see [`friction_update`]).
+fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
+    // (K_t + ν𝟙)⁻¹ y for a 2-vector y.
+    let solve = |nu: f64, y: [f64; 2]| {
+        let (a, d) = (k1 + nu, k2 + nu);
+        let det = a * d - c * c;
+        [(d * y[0] - c * y[1]) / det, (a * y[1] - c * y[0]) / det]
+    };
+    let norm = |x: [f64; 2]| (x[0] * x[0] + x[1] * x[1]).sqrt();
+    let (mut low, mut high) = (0.0, norm(kx) / bound);
+    let mut nu = 0.0;
+    let mut x = solve(nu, kx);
+    for _ in 0..MAX_DISK_ITERATIONS {
+        let size = norm(x);
+        if size <= bound {
+            // Past the root (round-off, or a bisection): the feasible end.
+            high = nu;
+        } else {
+            low = nu;
+        }
+        if size - bound <= DISK_TOLERANCE * bound && size >= bound * (1.0 - DISK_TOLERANCE) {
+            break;
+        }
+        let y = solve(nu, x);
+        let q = x[0] * y[0] + x[1] * y[1];
+        let newton = nu + (size - bound) / bound * size * size / q;
+        nu = if newton > low && newton < high {
+            newton
+        } else {
+            0.5 * (low + high)
+        };
+        x = solve(nu, kx);
+    }
+    let size = norm(x);
+    if size > bound {
+        let scale = bound / size;
+        x = [x[0] * scale, x[1] * scale];
+    }
+    x
 }
 
 /// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
