@@ -1065,6 +1065,7 @@ fn friction_subspace_step(
                 row: i,
                 tangent: None,
                 before: [gradient, 0.0],
+                direction: row.normal,
             });
         }
         let bound = row.friction_bound;
@@ -1078,17 +1079,20 @@ fn friction_subspace_step(
         let slip_along = (u[0] * l[0] + u[1] * l[1]) / size;
         if size >= bound * (1.0 - SLIDING_EDGE) && (slip_along <= 0.0 || pinned.contains(&i)) {
             let s = [l[0] / size, l[1] / size];
+            let c = [-s[1], s[0]];
             unknowns.push(Unknown {
                 row: i,
-                tangent: Some(([-s[1], s[0]], (-slip_along / bound).max(0.0))),
+                tangent: Some((c, (-slip_along / bound).max(0.0))),
                 before: u,
+                direction: combined(&directions[i], c),
             });
         } else {
-            for c in [[1.0, 0.0], [0.0, 1.0]] {
+            for (k, c) in [[1.0, 0.0], [0.0, 1.0]].into_iter().enumerate() {
                 unknowns.push(Unknown {
                     row: i,
                     tangent: Some((c, 0.0)),
                     before: u,
+                    direction: directions[i][k],
                 });
             }
         }
@@ -1097,49 +1101,22 @@ fn friction_subspace_step(
     if m == 0 {
         return Subspace::Declined;
     }
-    // H_pq: the couplings of the unknowns' directions (a tangent unknown is c₁ t₁ + c₂ t₂).
-    let coupling = |p: &Unknown, q: &Unknown| -> f64 {
-        let (np, nq) = (&rows[p.row].normal, &rows[q.row].normal);
-        let (tp, tq) = (&directions[p.row], &directions[q.row]);
-        let with_tangent = |d: &Direction, c: [f64; 2], t: &[Direction; 2]| {
-            let mut sum = 0.0;
-            for k in 0..2 {
-                if c[k] != 0.0 {
-                    sum += c[k] * d.coupling(&t[k], motions);
-                }
-            }
-            sum
-        };
-        match (p.tangent, q.tangent) {
-            (None, None) => np.coupling(nq, motions),
-            (None, Some((c, _))) => with_tangent(np, c, tq),
-            (Some((c, _)), None) => with_tangent(nq, c, tp),
-            (Some((cp, _)), Some((cq, _))) => {
-                let mut sum = 0.0;
-                for k in 0..2 {
-                    if cp[k] != 0.0 {
-                        sum += cp[k] * with_tangent(&tp[k], cq, tq);
-                    }
-                }
-                sum
-            }
-        }
-    };
+    // H_pq: the couplings of the unknowns' directions (a tangent unknown is c₁ t₁ + c₂ t₂,
+    // combined once: the coupling is bilinear).
     system.reset(m);
     for p in 0..m {
         let up = &unknowns[p];
-        let np = &rows[up.row].normal;
+        let dp = &up.direction;
         system.rhs[p] = -match up.tangent {
             None => up.before[0],
             Some((c, _)) => c[0] * up.before[0] + c[1] * up.before[1],
         };
-        system.fill_row(p, np.bodies(), |q| {
-            let uq = &unknowns[q];
-            let nq = &rows[uq.row].normal;
+        system.fill_row(p, dp.bodies(), |q| {
+            let dq = &unknowns[q].direction;
             if q == p {
-                Some(coupling(up, up) + up.tangent.map_or(0.0, |(_, kappa)| kappa))
+                Some(dp.coupling(dp, motions) + up.tangent.map_or(0.0, |(_, kappa)| kappa))
             } else {
-                np.shares_a_body(nq).then(|| coupling(up, uq))
+                dp.shares_a_body(dq).then(|| dp.coupling(dq, motions))
             }
         });
         if system.stored() > ENVELOPE_MAX {
@@ -1301,6 +1278,26 @@ struct Unknown {
     tangent: Option<([f64; 2], f64)>,
     /// ∇F along the row's directions before the step: (uₙ + gₙ/dt, 0), or u_t.
     before: [f64; 2],
+    /// The row's normal, or its tangent `c₁ t₁ + c₂ t₂` with its ends (for the couplings).
+    direction: Direction,
+}
+
+/// The direction `c₁ t₁ + c₂ t₂` of two tangent directions at one contact (the same ends):
+/// d, r×d and I⁻¹(r×d) are linear in d (its k is not used).
+fn combined(t: &[Direction; 2], c: [f64; 2]) -> Direction {
+    let [t1, t2] = t;
+    let end = |e: &End, f: &End| End {
+        body: e.body,
+        rd: e.rd * c[0] + f.rd * c[1],
+        w: e.w * c[0] + f.w * c[1],
+    };
+    Direction {
+        d: t1.d * c[0] + t2.d * c[1],
+        a: end(&t1.a, &t2.a),
+        b: t1.b.as_ref().zip(t2.b.as_ref()).map(|(e, f)| end(e, f)),
+        k: f64::NAN,
+        inv_k: f64::NAN,
+    }
 }
 
 /// Whether a row bounces: it approached faster than the bounce speed and pushed.
