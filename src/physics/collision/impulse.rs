@@ -1027,10 +1027,14 @@ enum Subspace {
 /// The change of F is then measured exactly — F is quadratic in Λ, so
 /// `F(Λ + ΔΛ) − F(Λ) = ΔΛ·(∇F(Λ) + ∇F(Λ + ΔΛ))/2`, with ∇F the rows' velocities (plus gₙ/dt),
 /// summed over the rows that moved: no cancellation against F itself, so even a step of
-/// 1e-20 J is judged right — and a step that did not lower F is undone. Like every sweep
-/// update, an accepted step only lowers F, so K stays below K₀. The sweeps go on from there
-/// and judge convergence as before, to the same tolerance: the step changes only how fast
-/// they get there.
+/// 1e-20 J is judged right — and a step that did not lower F (H nearly singular, solved
+/// inaccurately) is undone and tried 8 times shorter, [`SUBSPACE_BACKTRACKS`] times at most.
+/// Like every sweep update, an accepted step only lowers F, so K stays below K₀. A step cut
+/// short by the ratio test changes the active set (that normal is held at 0, that disk is
+/// held on its edge whatever its slip says) and the caller solves again, up to
+/// [`SUBSPACE_ROUNDS`] times. The sweeps go on from there and judge convergence as before,
+/// to the same tolerance: the steps change only how fast they get there. The unknowns are
+/// ordered by the last body their row acts on, so a chain of bodies has a banded envelope.
 fn friction_subspace_step(
     rows: &mut [Row],
     directions: &[[Direction; 2]],
@@ -1169,7 +1173,7 @@ fn friction_subspace_step(
             }
         }
     }
-    if !(alpha > 0.0) {
+    if alpha.is_nan() || alpha <= 0.0 {
         return Subspace::Declined;
     }
     saved.clear();
@@ -1236,11 +1240,13 @@ fn friction_subspace_step(
                 Some(_) => {
                     let [t1, t2] = &directions[unknown.row];
                     let after = [along(t1, motions), along(t2, motions)];
-                    for k in 0..2 {
-                        change += (row.lambda_tangent[k] - tangent[k])
-                            * 0.5
-                            * (unknown.before[k] + after[k]);
-                    }
+                    let moved = [
+                        row.lambda_tangent[0] - tangent[0],
+                        row.lambda_tangent[1] - tangent[1],
+                    ];
+                    change += 0.5
+                        * (moved[0] * (unknown.before[0] + after[0])
+                            + moved[1] * (unknown.before[1] + after[1]));
                     p += if unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row) {
                         2
                     } else {
@@ -1654,6 +1660,10 @@ fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
     if size > bound {
         let scale = bound / size;
         x = [x[0] * scale, x[1] * scale];
+    }
+    // The feasible side: |x| ≤ bound as computed (scaling can leave it an ulp over).
+    while norm(x) > bound {
+        x = [x[0] * (1.0 - f64::EPSILON), x[1] * (1.0 - f64::EPSILON)];
     }
     x
 }
