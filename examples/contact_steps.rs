@@ -43,13 +43,14 @@ fn main() {
             let now = world.contact_counters();
             let t = Instant::now();
             println!(
-                "t {:6.1} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction sweeps {:7}  {:9.1} µs/step",
+                "t {:6.1} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction sweeps {:7} subspace {:6}  {:9.1} µs/step",
                 step as f64 * 1e-3,
                 now.direct - last.direct,
                 now.declined - last.declined,
                 now.warm - last.warm,
                 now.normal_sweeps - last.normal_sweeps,
                 now.friction_sweeps - last.friction_sweeps,
+                now.friction_subspace - last.friction_subspace,
                 (t - last_time).as_secs_f64() * 1e6 / 1000.0,
             );
             last = now;

@@ -57,7 +57,11 @@
 //!    the exact minimum of K over the contact's disk (`friction_update`). Still exact block
 //!    minimisations of the same convex K over a convex set containing the current value: K
 //!    still only goes down, and block coordinate descent reaches the unique minimising
-//!    velocity whatever the order of the contacts.
+//!    velocity whatever the order of the contacts. It gets there linearly, and slowly when
+//!    bodies slide on each other (a row of dominoes); every [`SUBSPACE_EVERY`] sweeps a
+//!    subspace step (`friction_subspace_step`) solves the active set the sweeps have found
+//!    directly, with a Newton step along the sliding disks' edges, and is kept only if it
+//!    lowers the same objective. The sweeps still decide convergence, to the same tolerance.
 //! 3. **Restitution** (Poisson's: the restitution impulse is e times the compression impulse,
 //!    the frictionless λᵢ of stage 1 — unique, unlike the stage-2 λᵢ when several contacts share
 //!    a load, so the bounce cannot depend on the vertex order),
@@ -168,6 +172,32 @@ pub const TRIAL_SWEEPS: u64 = 8;
 /// The longest wait, in steps, between stage-1 trials that keep failing.
 pub const TRIAL_WAIT_MAX: u32 = 32;
 
+/// The friction sweeps take a subspace step (`friction_subspace_step`) after this many sweeps
+/// that did not converge.
+pub const SUBSPACE_EVERY: u64 = 8;
+
+/// Most changes of the active set one friction subspace search makes (each a direct solve).
+pub const SUBSPACE_ROUNDS: usize = 8;
+
+/// How many times a friction subspace step that did not lower F is tried again, 8 times
+/// shorter.
+pub const SUBSPACE_BACKTRACKS: usize = 3;
+
+/// The largest turn of a sliding disk's impulse along its edge in one subspace step, rad.
+pub const EDGE_TURN: f64 = 0.25;
+
+/// A friction disk whose impulse is within this fraction of its bound is on its edge
+/// (sliding) for the subspace step; further inside, it sticks.
+const SLIDING_EDGE: f64 = 1e-9;
+
+/// The friction disk update's Newton iteration stops when |x(ν)| is within this fraction of
+/// the disk's radius (a few ulps: round-off).
+const DISK_TOLERANCE: f64 = 16.0 * f64::EPSILON;
+
+/// At most this many Newton (or bisection) steps for one disk update; Newton needs 2 to 5,
+/// and 60 bisections would narrow the bracket by 2⁻⁶⁰.
+const MAX_DISK_ITERATIONS: usize = 60;
+
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -210,6 +240,13 @@ struct Direct {
     trial_wait: u32,
     /// The first row acting on each body (the envelope's estimate).
     body_first: Vec<usize>,
+    /// The friction subspace step's unknowns, and the impulses before it (to undo it).
+    unknowns: Vec<Unknown>,
+    /// The disks an active-set search moved onto their edge (held there for its next rounds).
+    pinned: Vec<usize>,
+    /// The rows in the order the subspace step takes its unknowns.
+    order: Vec<usize>,
+    subspace_rows: Vec<(f64, [f64; 2])>,
 }
 
 /// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
@@ -228,6 +265,9 @@ pub struct Counters {
     /// Steps whose friction stage the trial sweeps answered, and the direct solve.
     pub friction_warm: u64,
     pub friction_direct: u64,
+    /// Subspace steps the friction sweeps took (each a direct solve on the sweeps' active set,
+    /// see `friction_subspace_step`).
+    pub friction_subspace: u64,
 }
 
 /// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
@@ -723,12 +763,13 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         }
         if !solved {
             warm_start_friction(rows, tangent_directions, motions);
-            let (_, sweeps) = sweep_friction(
+            let (_, sweeps) = sweep_friction_with_subspace(
                 rows,
                 tangent_directions,
                 motions,
                 tolerance,
-                MAX_SWEEPS as u64,
+                buffers_direct,
+                counters,
             );
             counters.friction_sweeps += sweeps;
         }
@@ -893,6 +934,373 @@ fn sweep_friction(
         }
     }
     (false, cap)
+}
+
+/// The friction sweeps ([`sweep_friction`]) with a subspace step ([`friction_subspace_step`])
+/// after every [`SUBSPACE_EVERY`] sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in
+/// all; returns whether they converged and how many sweeps ran. A system too wide for the
+/// direct solve ([`ENVELOPE_MAX`]) stops trying the subspace steps.
+fn sweep_friction_with_subspace(
+    rows: &mut [Row],
+    directions: &[[Direction; 2]],
+    motions: &mut [Motion],
+    tolerance: f64,
+    buffers: &mut Direct,
+    counters: &mut Counters,
+) -> (bool, u64) {
+    let cap = MAX_SWEEPS as u64;
+    let mut total = 0;
+    let mut subspace = true;
+    loop {
+        let burst = if subspace { SUBSPACE_EVERY } else { cap };
+        let (converged, sweeps) =
+            sweep_friction(rows, directions, motions, tolerance, burst.min(cap - total));
+        total += sweeps;
+        if converged || total >= cap {
+            return (converged, total);
+        }
+        // An active-set search: a step cut short by a normal reaching 0 or a sticking disk
+        // reaching its edge changes the active set; solve again on the new one.
+        buffers.pinned.clear();
+        for _ in 0..SUBSPACE_ROUNDS {
+            match friction_subspace_step(rows, directions, motions, buffers) {
+                Subspace::Taken { whole } => {
+                    counters.friction_subspace += 1;
+                    if whole {
+                        break;
+                    }
+                }
+                Subspace::Declined => break,
+                Subspace::TooWide => {
+                    subspace = false;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// What a subspace step did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Subspace {
+    /// Taken, whole (α = 1) or cut short by the ratio test.
+    Taken { whole: bool },
+    /// Nothing to solve, a singular system, no room to move, or no descent (round-off).
+    Declined,
+    /// The system's envelope is over [`ENVELOPE_MAX`].
+    TooWide,
+}
+
+/// A subspace step of the friction stage (projected Gauss–Seidel with subspace minimisation,
+/// Silcowitz, Niebe & Erleben 2010, with a Newton step along the sliding disks' edges):
+/// block Gauss–Seidel converges linearly, and slowly when contacts are stiffly coupled or sit
+/// on the edge of their friction disk with almost no slip (a domino leaning on the next: its
+/// floor contacts at the stick–slip limit); the sweeps find the active set long before they
+/// converge on it. With the active set the sweeps left, the stage-2 objective
+///
+/// ```text
+/// F(Λ) = K(Λ) + Σ λₙ gₙ/dt           (the objective the sweeps minimise, ≥ K)
+/// ```
+///
+/// is minimised by one Newton step, a direct solve over these unknowns:
+///
+/// - each pushing normal (λₙ > 0), its row `uₙ + gₙ/dt = 0`; the normals at 0 are held;
+/// - each sticking disk (|λ_t| < bound, or on the edge with the slip along λ_t: it wants
+///   in), both tangents, rows `u_t = 0`;
+/// - each sliding disk (on its edge |λ_t| = bound, slip u_t against λ_t): its impulse may
+///   move along the edge, `λ_t = bound (s cos θ + s⊥ sin θ)` with `s = λ_t/|λ_t|`, `s⊥` s
+///   turned by 90°; the unknown is the arc δ = bound·θ along s⊥, whose row carries the
+///   edge's curvature: `∂²F/∂δ² = s⊥ᵀ K_t s⊥ + κ`, `κ = −u_t·s / bound ≥ 0` (the slip speed
+///   over the bound: the Lagrange multiplier ν of the disk update), right-hand side `−u_t·s⊥`.
+///
+/// ```text
+/// (H + ε𝟙) Δ = −∇F      H: the rows' couplings A (the same minimum-norm LDLᵀ as the direct
+///                       solves), plus κ on each edge unknown's diagonal
+/// ```
+///
+/// The step is `αΔ` with the largest α ≤ 1 that keeps every free normal ≥ 0 and every
+/// sticking disk inside its bound, `|λ_t + αΔ_t| ≤ bound` (the positive root of a quadratic
+/// in α); an edge unknown moves its impulse along the circle, `λ_t ← bound (λ_t + αδ s⊥)/|·|`.
+/// The change of F is then measured exactly — F is quadratic in Λ, so
+/// `F(Λ + ΔΛ) − F(Λ) = ΔΛ·(∇F(Λ) + ∇F(Λ + ΔΛ))/2`, with ∇F the rows' velocities (plus gₙ/dt),
+/// summed over the rows that moved: no cancellation against F itself, so even a step of
+/// 1e-20 J is judged right — and a step that did not lower F (H nearly singular, solved
+/// inaccurately) is undone and tried 8 times shorter, [`SUBSPACE_BACKTRACKS`] times at most.
+/// Like every sweep update, an accepted step only lowers F, so K stays below K₀. A step cut
+/// short by the ratio test changes the active set (that normal is held at 0, that disk is
+/// held on its edge whatever its slip says) and the caller solves again, up to
+/// [`SUBSPACE_ROUNDS`] times. The sweeps go on from there and judge convergence as before,
+/// to the same tolerance: the steps change only how fast they get there. The unknowns are
+/// ordered by the last body their row acts on, so a chain of bodies has a banded envelope.
+fn friction_subspace_step(
+    rows: &mut [Row],
+    directions: &[[Direction; 2]],
+    motions: &mut [Motion],
+    buffers: &mut Direct,
+) -> Subspace {
+    let Direct {
+        system,
+        saved,
+        unknowns,
+        subspace_rows,
+        pinned,
+        order,
+        ..
+    } = buffers;
+    // Rows ordered by the last body they act on (stable: a pair's rows stay together), so
+    // a body's floor contacts sit beside its contacts with its neighbours: a chain of bodies
+    // (a row of dominoes, a stack) gets a banded envelope, where contact order (every floor
+    // contact first) would reach back over all of them.
+    order.clear();
+    order.extend(0..rows.len());
+    order.sort_by_key(|&i| {
+        let n = &rows[i].normal;
+        n.b.map_or(n.a.body, |b| b.body.max(n.a.body))
+    });
+    unknowns.clear();
+    for &i in order.iter() {
+        let row = &rows[i];
+        if row.lambda > 0.0 {
+            let gradient = along(&row.normal, motions) + row.bias;
+            unknowns.push(Unknown {
+                row: i,
+                tangent: None,
+                before: [gradient, 0.0],
+                direction: row.normal,
+            });
+        }
+        let bound = row.friction_bound;
+        if bound == 0.0 {
+            continue;
+        }
+        let [t1, t2] = &directions[i];
+        let u = [along(t1, motions), along(t2, motions)];
+        let l = row.lambda_tangent;
+        let size = (l[0] * l[0] + l[1] * l[1]).sqrt();
+        let slip_along = (u[0] * l[0] + u[1] * l[1]) / size;
+        if size >= bound * (1.0 - SLIDING_EDGE) && (slip_along <= 0.0 || pinned.contains(&i)) {
+            let s = [l[0] / size, l[1] / size];
+            let c = [-s[1], s[0]];
+            unknowns.push(Unknown {
+                row: i,
+                tangent: Some((c, (-slip_along / bound).max(0.0))),
+                before: u,
+                direction: combined(&directions[i], c),
+            });
+        } else {
+            for (k, c) in [[1.0, 0.0], [0.0, 1.0]].into_iter().enumerate() {
+                unknowns.push(Unknown {
+                    row: i,
+                    tangent: Some((c, 0.0)),
+                    before: u,
+                    direction: directions[i][k],
+                });
+            }
+        }
+    }
+    let m = unknowns.len();
+    if m == 0 {
+        return Subspace::Declined;
+    }
+    // H_pq: the couplings of the unknowns' directions (a tangent unknown is c₁ t₁ + c₂ t₂,
+    // combined once: the coupling is bilinear).
+    system.reset(m);
+    for p in 0..m {
+        let up = &unknowns[p];
+        let dp = &up.direction;
+        system.rhs[p] = -match up.tangent {
+            None => up.before[0],
+            Some((c, _)) => c[0] * up.before[0] + c[1] * up.before[1],
+        };
+        system.fill_row(p, dp.bodies(), |q| {
+            let dq = &unknowns[q].direction;
+            if q == p {
+                Some(dp.coupling(dp, motions) + up.tangent.map_or(0.0, |(_, kappa)| kappa))
+            } else {
+                dp.shares_a_body(dq).then(|| dp.coupling(dq, motions))
+            }
+        });
+        if system.stored() > ENVELOPE_MAX {
+            return Subspace::TooWide;
+        }
+    }
+    let Some(delta) = system.solve() else {
+        return Subspace::Declined;
+    };
+    // The ratio test: the largest α ≤ 1 keeping the free normals ≥ 0 and the sticking disks
+    // inside their bounds (an edge unknown stays on its circle whatever α).
+    let mut alpha: f64 = 1.0;
+    let mut blocking = None;
+    let mut p = 0;
+    while p < m {
+        let unknown = &unknowns[p];
+        let row = &rows[unknown.row];
+        match unknown.tangent {
+            None => {
+                if row.lambda + delta[p] < 0.0 && row.lambda / -delta[p] < alpha {
+                    alpha = row.lambda / -delta[p];
+                    blocking = Some(p);
+                }
+                p += 1;
+            }
+            Some(_) if unknowns.get(p + 1).is_none_or(|u| u.row != unknown.row) => {
+                // An edge unknown: the model is quadratic in the arc, the edge is a circle;
+                // turn by at most EDGE_TURN radians, where they agree to second order.
+                let reach = EDGE_TURN * row.friction_bound / delta[p].abs();
+                if reach < alpha {
+                    alpha = reach;
+                    blocking = None;
+                }
+                p += 1;
+            }
+            Some(_) => {
+                // |t + α d|² = bound²: α = (−t·d + √((t·d)² + |d|²(bound² − |t|²))) / |d|².
+                let (t, d) = (row.lambda_tangent, [delta[p], delta[p + 1]]);
+                let dd = d[0] * d[0] + d[1] * d[1];
+                let td = t[0] * d[0] + t[1] * d[1];
+                let inside = row.friction_bound.powi(2) - (t[0] * t[0] + t[1] * t[1]);
+                if dd > 0.0 {
+                    let reach = (-td + (td * td + dd * inside.max(0.0)).sqrt()) / dd;
+                    if reach < alpha {
+                        alpha = reach;
+                        blocking = Some(p);
+                    }
+                }
+                p += 2;
+            }
+        }
+    }
+    if alpha.is_nan() || alpha <= 0.0 {
+        return Subspace::Declined;
+    }
+    saved.clear();
+    saved.extend_from_slice(motions);
+    subspace_rows.clear();
+    subspace_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+    // Backtracking: a step that did not lower F (a nearly singular H solved inaccurately) is
+    // undone and tried again 8 times shorter, a few times.
+    for attempt in 0..SUBSPACE_BACKTRACKS {
+        let mut p = 0;
+        while p < m {
+            let unknown = unknowns[p];
+            let row = &mut rows[unknown.row];
+            match unknown.tangent {
+                None => {
+                    // The normal that cut the step short leaves the active set at exactly 0.
+                    let new = if blocking == Some(p) {
+                        0.0
+                    } else {
+                        (row.lambda + alpha * delta[p]).max(0.0)
+                    };
+                    let step = new - row.lambda;
+                    row.lambda = new;
+                    apply(step, &row.normal, motions);
+                    p += 1;
+                }
+                Some((c, _)) => {
+                    let pair = unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row);
+                    let old = row.lambda_tangent;
+                    let step = if pair {
+                        [alpha * delta[p], alpha * delta[p + 1]]
+                    } else {
+                        [alpha * delta[p] * c[0], alpha * delta[p] * c[1]]
+                    };
+                    let mut new = [old[0] + step[0], old[1] + step[1]];
+                    let size = (new[0] * new[0] + new[1] * new[1]).sqrt();
+                    if size > row.friction_bound || !pair || blocking == Some(p) {
+                        // Back onto the edge: a sticking disk that reached it (round-off), or an
+                        // edge unknown moved along its tangent.
+                        let scale = row.friction_bound / size;
+                        new = [new[0] * scale, new[1] * scale];
+                    }
+                    row.lambda_tangent = new;
+                    let [t1, t2] = &directions[unknown.row];
+                    apply(new[0] - old[0], t1, motions);
+                    apply(new[1] - old[1], t2, motions);
+                    p += if pair { 2 } else { 1 };
+                }
+            }
+        }
+        // ΔF = ΔΛ·(∇F before + ∇F after)/2 over the rows that moved (exact: F is quadratic).
+        let mut change = 0.0;
+        let mut p = 0;
+        while p < m {
+            let unknown = &unknowns[p];
+            let row = &rows[unknown.row];
+            let (lambda, tangent) = subspace_rows[unknown.row];
+            match unknown.tangent {
+                None => {
+                    let after = along(&row.normal, motions) + row.bias;
+                    change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
+                    p += 1;
+                }
+                Some(_) => {
+                    let [t1, t2] = &directions[unknown.row];
+                    let after = [along(t1, motions), along(t2, motions)];
+                    let moved = [
+                        row.lambda_tangent[0] - tangent[0],
+                        row.lambda_tangent[1] - tangent[1],
+                    ];
+                    change += 0.5
+                        * (moved[0] * (unknown.before[0] + after[0])
+                            + moved[1] * (unknown.before[1] + after[1]));
+                    p += if unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row) {
+                        2
+                    } else {
+                        1
+                    };
+                }
+            }
+        }
+        if change < 0.0 {
+            if let Some(p) = blocking.filter(|&p| unknowns[p].tangent.is_some()) {
+                pinned.push(unknowns[p].row);
+            }
+            return Subspace::Taken {
+                whole: alpha == 1.0 && attempt == 0,
+            };
+        }
+        motions.copy_from_slice(saved);
+        for (row, &(lambda, tangent)) in rows.iter_mut().zip(subspace_rows.iter()) {
+            row.lambda = lambda;
+            row.lambda_tangent = tangent;
+        }
+        alpha /= 8.0;
+        blocking = None;
+    }
+    Subspace::Declined
+}
+
+/// One unknown of the friction subspace step: row `row`'s normal impulse (`tangent` None), or
+/// its tangent impulse along `c₁ t₁ + c₂ t₂` with the curvature κ added to its diagonal
+/// (`tangent` Some((c, κ)): a sticking disk has two, c = (1, 0) and (0, 1), κ = 0; a sliding
+/// one has one, along its edge).
+#[derive(Debug, Clone, Copy)]
+struct Unknown {
+    row: usize,
+    tangent: Option<([f64; 2], f64)>,
+    /// ∇F along the row's directions before the step: (uₙ + gₙ/dt, 0), or u_t.
+    before: [f64; 2],
+    /// The row's normal, or its tangent `c₁ t₁ + c₂ t₂` with its ends (for the couplings).
+    direction: Direction,
+}
+
+/// The direction `c₁ t₁ + c₂ t₂` of two tangent directions at one contact (the same ends):
+/// d, r×d and I⁻¹(r×d) are linear in d (its k is not used).
+fn combined(t: &[Direction; 2], c: [f64; 2]) -> Direction {
+    let [t1, t2] = t;
+    let end = |e: &End, f: &End| End {
+        body: e.body,
+        rd: e.rd * c[0] + f.rd * c[1],
+        w: e.w * c[0] + f.w * c[1],
+    };
+    Direction {
+        d: t1.d * c[0] + t2.d * c[1],
+        a: end(&t1.a, &t2.a),
+        b: t1.b.as_ref().zip(t2.b.as_ref()).map(|(e, f)| end(e, f)),
+        k: f64::NAN,
+        inv_k: f64::NAN,
+    }
 }
 
 /// Whether a row bounces: it approached faster than the bounce speed and pushed.
@@ -1151,10 +1559,22 @@ fn direct_sticking(
 /// |x*| ≤ bound: x = x*;  else x(ν) = (K_t + ν𝟙)⁻¹ K_t x*  with ν ≥ 0 and |x(ν)| = bound
 /// ```
 ///
-/// (|x(ν)| decreases with ν: ν is found by bisection, keeping the feasible end.) Updating the
-/// two tangent directions one at a time instead can stall on the disk's edge at a point that is
-/// not the minimum, and where it stalls depends on the contact order. The step is taken only
-/// if it does not raise K.
+/// |x(ν)| decreases with ν. ν is the root of the secular equation (Moré–Sorensen)
+///
+/// ```text
+/// ψ(ν) = 1/|x(ν)| − 1/bound,   ψ'(ν) = q/|x|³,   q = xᵀ (K_t + ν𝟙)⁻¹ x
+/// ν ← ν + (|x| − bound)/bound · |x|²/q                    (Newton: ν − ψ/ψ')
+/// ```
+///
+/// ψ is increasing, concave and nearly linear in ν (exactly linear when k₁ = k₂, c = 0), so
+/// Newton from ν = 0 (where ψ < 0) stays below the root and converges quadratically: 2 to 5
+/// iterations to round-off. It is safeguarded in the bracket `[low, high]`, `high =
+/// |K_t x*|/bound` (there `|x| ≤ |K_t x*|/(σ_min + ν) < bound`): a step that would leave it
+/// bisects instead. An answer left outside the disk by round-off is scaled onto its edge,
+/// `x ← x·bound/|x|` (a change of a few ulps). Updating the two tangent
+/// directions one at a time instead can stall on the disk's edge at a point that is not the
+/// minimum, and where it stalls depends on the contact order. The step is taken only if it
+/// does not raise K.
 fn friction_update(
     row: &mut Row,
     directions: &[Direction; 2],
@@ -1178,29 +1598,12 @@ fn friction_update(
     let new = if norm(target) <= bound {
         target
     } else {
-        // K x* once, then x(ν) = (K + ν𝟙)⁻¹ K x*.
+        // K x* once, then x(ν) = (K + ν𝟙)⁻¹ K x* on the disk's edge.
         let kx = [
             k1 * target[0] + c * target[1],
             c * target[0] + k2 * target[1],
         ];
-        let at = |nu: f64| {
-            let (a, d) = (k1 + nu, k2 + nu);
-            let det = a * d - c * c;
-            [(d * kx[0] - c * kx[1]) / det, (a * kx[1] - c * kx[0]) / det]
-        };
-        let (mut low, mut high) = (0.0, k1.max(k2));
-        while norm(at(high)) > bound {
-            high *= 2.0;
-        }
-        for _ in 0..40 {
-            let mid = 0.5 * (low + high);
-            if norm(at(mid)) > bound {
-                low = mid;
-            } else {
-                high = mid;
-            }
-        }
-        at(high)
+        disk_edge(k1, k2, c, kx, bound)
     };
     let step = [new[0] - old[0], new[1] - old[1]];
     // ΔK = Δλ·u + ½ Δλᵀ K Δλ: never accept a step that raises K.
@@ -1214,6 +1617,52 @@ fn friction_update(
     apply(step[0], t1, motions);
     apply(step[1], t2, motions);
     (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
+}
+
+/// The point `x(ν) = (K_t + ν𝟙)⁻¹ kx` (kx = K_t x*, |x(0)| > bound) with `|x(ν)| = bound`,
+/// ν ≥ 0 by safeguarded Newton on the secular equation (see [`friction_update`]).
+fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
+    // (K_t + ν𝟙)⁻¹ y for a 2-vector y.
+    let solve = |nu: f64, y: [f64; 2]| {
+        let (a, d) = (k1 + nu, k2 + nu);
+        let det = a * d - c * c;
+        [(d * y[0] - c * y[1]) / det, (a * y[1] - c * y[0]) / det]
+    };
+    let norm = |x: [f64; 2]| (x[0] * x[0] + x[1] * x[1]).sqrt();
+    let (mut low, mut high) = (0.0, norm(kx) / bound);
+    let mut nu = 0.0;
+    let mut x = solve(nu, kx);
+    for _ in 0..MAX_DISK_ITERATIONS {
+        let size = norm(x);
+        if size <= bound {
+            // Past the root (round-off, or a bisection): the feasible end.
+            high = nu;
+        } else {
+            low = nu;
+        }
+        if size - bound <= DISK_TOLERANCE * bound && size >= bound * (1.0 - DISK_TOLERANCE) {
+            break;
+        }
+        let y = solve(nu, x);
+        let q = x[0] * y[0] + x[1] * y[1];
+        let newton = nu + (size - bound) / bound * size * size / q;
+        nu = if newton > low && newton < high {
+            newton
+        } else {
+            0.5 * (low + high)
+        };
+        x = solve(nu, kx);
+    }
+    let size = norm(x);
+    if size > bound {
+        let scale = bound / size;
+        x = [x[0] * scale, x[1] * scale];
+    }
+    // The feasible side: |x| ≤ bound as computed (scaling can leave it an ulp over).
+    while norm(x) > bound {
+        x = [x[0] * (1.0 - f64::EPSILON), x[1] * (1.0 - f64::EPSILON)];
+    }
+    x
 }
 
 /// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
