@@ -105,6 +105,7 @@
 use super::contacts;
 use super::dense::Dense;
 use super::position::{self, Fix};
+use super::solver_body::{Axis, End, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
@@ -202,8 +203,8 @@ const MAX_DISK_ITERATIONS: usize = 60;
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
     rows: Vec<Row>,
-    tangents: Vec<[Direction; 2]>,
-    motions: Vec<Motion>,
+    tangents: Vec<[Axis; 2]>,
+    motions: Vec<SolverBody>,
     previous: Vec<Contact>,
     /// The last step's impulses by pair and feature (warm starts in O(1) per contact).
     warm: WarmCache,
@@ -226,12 +227,12 @@ pub struct Scratch {
 #[derive(Debug, Clone, Default)]
 struct Direct {
     system: Dense,
-    saved: Vec<Motion>,
+    saved: Vec<SolverBody>,
     active: Vec<usize>,
     lambda: Vec<f64>,
     entering: Vec<usize>,
     /// The motions and (λ, λ_t) before a large system's trial sweeps, to undo them.
-    trial: Vec<Motion>,
+    trial: Vec<SolverBody>,
     trial_rows: Vec<(f64, [f64; 2])>,
     /// Steps left before stage 1's trial sweeps run again, and the wait after the last
     /// failure (doubled at each failure up to [`TRIAL_WAIT_MAX`], 0 after a success): a scene
@@ -270,143 +271,21 @@ pub struct Counters {
     pub friction_subspace: u64,
 }
 
-/// One end of a row: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
-#[derive(Debug, Clone, Copy, Default)]
-struct End {
-    body: usize,
-    rd: Vector3<f64>,
-    w: Vector3<f64>,
-}
-
-/// A direction d at a contact: +d on body A at lever r_A, −d on body B (if any) at r_B, and the
-/// effective inverse mass k along it.
-#[derive(Debug, Clone, Copy, Default)]
-struct Direction {
-    d: Vector3<f64>,
-    a: End,
-    b: Option<End>,
-    k: f64,
-    /// 1/k, for the sweeps only: NaN until [`Direction::with_inverse`] (the direct solve, the
-    /// usual resting step, never divides by k).
-    inv_k: f64,
-}
-
-impl Direction {
-    fn new(d: Vector3<f64>, contact: &Contact, motions: &[Motion]) -> Self {
-        let end = |body: usize, lever: &Vector3<f64>, d: Vector3<f64>| {
-            let m = &motions[body];
-            let rd = lever.cross(&d);
-            let w = m.inv_inertia * rd;
-            (End { body, rd, w }, m.inv_mass + rd.dot(&w))
-        };
-        let (a, mut k) = end(contact.body, &contact.lever, d);
-        // A fixed body (zero inverse mass) is the world: no end of the row is on it.
-        let moves = |b: &usize| motions[*b].inv_mass > 0.0;
-        let b = contact.other_body().filter(moves).map(|b| {
-            let (end, kb) = end(b, &contact.lever_other, -d);
-            k += kb;
-            end
-        });
-        Direction {
-            d,
-            a,
-            b,
-            k,
-            inv_k: f64::NAN,
-        }
-    }
-
-    /// Fills in 1/k.
-    fn with_inverse(&mut self) {
-        self.inv_k = 1.0 / self.k;
-    }
-
-    /// `Σ over the ends both directions share a body: (±d)·(±d')/M + rd·w'`: the coupling of
-    /// two rows in the contact-space inverse mass A.
-    fn coupling(&self, other: &Direction, motions: &[Motion]) -> f64 {
-        let mut sum = 0.0;
-        for (e, se) in self.ends() {
-            for (f, sf) in other.ends() {
-                if e.body == f.body {
-                    sum +=
-                        se * sf * self.d.dot(&other.d) * motions[e.body].inv_mass + e.rd.dot(&f.w);
-                }
-            }
-        }
-        sum
-    }
-
-    /// The bodies the direction acts on.
-    fn bodies(&self) -> [Option<usize>; 2] {
-        [Some(self.a.body), self.b.map(|b| b.body)]
-    }
-
-    /// Whether the two directions act on a common body (else their coupling is 0).
-    fn shares_a_body(&self, other: &Direction) -> bool {
-        let ([a, b], [c, d]) = (self.bodies(), other.bodies());
-        a == c || a == d || (b.is_some() && (b == c || b == d))
-    }
-
-    /// The ends with the sign of d at each.
-    fn ends(&self) -> impl Iterator<Item = (&End, f64)> {
-        std::iter::once((&self.a, 1.0)).chain(self.b.as_ref().map(|b| (b, -1.0)))
-    }
-}
-
-/// A body's velocities while impulses are applied: v, ω and L (ω = I⁻¹ L kept in step).
-#[derive(Debug, Clone, Copy, Default)]
-struct Motion {
-    v: Vector3<f64>,
-    omega: Vector3<f64>,
-    l: Vector3<f64>,
-    inv_mass: f64,
-    inv_inertia: Matrix3<f64>,
-    /// Whether an impulse touched this body.
-    touched: bool,
-    /// Whether a restitution impulse acted on it (then its position is not re-advanced).
-    bounced: bool,
-}
-
-impl Motion {
-    /// `½ M v·v + ½ ω·L`.
-    fn kinetic(&self) -> f64 {
-        if self.inv_mass == 0.0 {
-            return 0.0; // a fixed body
-        }
-        0.5 * self.v.norm_squared() / self.inv_mass + 0.5 * self.omega.dot(&self.l)
-    }
-}
-
-/// Velocity of the contact point along the direction, A relative to B:
-/// `d·v_A + (r_A×d)·ω_A − d·v_B + (r_B×(−d))·ω_B`.
-#[inline]
-fn along(dir: &Direction, motions: &[Motion]) -> f64 {
-    let a = &motions[dir.a.body];
-    let mut u = dir.d.dot(&a.v) + dir.a.rd.dot(&a.omega);
-    if let Some(b) = &dir.b {
-        let m = &motions[b.body];
-        u += -dir.d.dot(&m.v) + b.rd.dot(&m.omega);
-    }
-    u
-}
-
-/// Applies the impulse j d at the contact: +j d to A, −j d to B.
-#[inline]
-fn apply(j: f64, dir: &Direction, motions: &mut [Motion]) {
-    for (end, sign) in dir.ends() {
-        let m = &mut motions[end.body];
-        m.v += dir.d * (sign * j * m.inv_mass);
-        m.l += end.rd * j;
-        m.omega += end.w * j;
-        m.touched |= j != 0.0;
-    }
+/// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
+fn axis_at(d: Vector3<f64>, contact: &Contact, motions: &[SolverBody]) -> Axis {
+    Axis::new(
+        d,
+        (contact.body, &contact.lever),
+        contact.other_body().map(|b| (b, &contact.lever_other)),
+        motions,
+    )
 }
 
 /// One contact as the solver sees it.
 #[derive(Debug, Clone, Copy, Default)]
 struct Row {
     /// Unit normal n with its ends and k.
-    normal: Direction,
+    normal: Axis,
     /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
     lambda: f64,
     lambda_tangent: [f64; 2],
@@ -454,14 +333,13 @@ pub fn respond(
     motions.clear();
     motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
         let k = derive(body, state);
-        Motion {
+        SolverBody {
             v: k.velocity,
             omega: k.angular_velocity,
             l: state.angular_momentum,
             inv_mass: body.inv_mass,
             inv_inertia: k.inv_inertia_world,
             touched: false,
-            bounced: false,
         }
     }));
     if contacts.iter().any(|c| c.depth <= 0.0) {
@@ -481,7 +359,7 @@ pub fn respond(
             .gravity
             .map_or(0.0, |g| -input.bodies[i].mass * g.dot(x))
     };
-    let total = |states: &[State], motions: &[Motion]| {
+    let total = |states: &[State], motions: &[SolverBody]| {
         let mut e = Energy::default();
         for (i, s) in states.iter().enumerate() {
             let k = kinetic(i, s, &motions[i].inv_inertia);
@@ -534,12 +412,15 @@ pub fn respond(
         counters,
         ..
     } = scratch;
+    advanced.clear();
+    advanced.resize(motions.len(), false);
     let buffers = Buffers {
         rows,
         tangents,
         motions,
         direct,
         change,
+        bounced: advanced,
         counters,
     };
     // A bounce says nothing about the next step's load: stored as no impulse.
@@ -558,8 +439,11 @@ pub fn respond(
             state.angular_momentum = m.l;
         }
     }
-    advanced.clear();
-    advanced.extend(motions.iter().map(|m| m.touched && !m.bounced));
+    // Advanced from the start of the step: touched and not bounced (`advanced` held the
+    // bounce flags).
+    for (advance, m) in advanced.iter_mut().zip(motions.iter()) {
+        *advance = m.touched && !*advance;
+    }
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
     let mut after = total(states, motions);
@@ -582,7 +466,7 @@ pub fn respond(
 }
 
 /// The relative velocity of a contact point along its normal (A relative to B).
-fn relative_velocity(c: &Contact, motions: &[Motion]) -> f64 {
+fn relative_velocity(c: &Contact, motions: &[SolverBody]) -> f64 {
     let a = &motions[c.body];
     let mut u = a.v + a.omega.cross(&c.lever);
     if let Some(b) = c.other_body() {
@@ -595,10 +479,13 @@ fn relative_velocity(c: &Contact, motions: &[Motion]) -> f64 {
 /// The scratch buffers the velocity stages use.
 struct Buffers<'a> {
     rows: &'a mut Vec<Row>,
-    tangents: &'a mut Vec<[Direction; 2]>,
-    motions: &'a mut Vec<Motion>,
+    tangents: &'a mut Vec<[Axis; 2]>,
+    motions: &'a mut Vec<SolverBody>,
     direct: &'a mut Direct,
     change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    /// Per body: whether a restitution impulse acted on it (then the position fix does not
+    /// re-advance it).
+    bounced: &'a mut Vec<bool>,
     counters: &'a mut Counters,
 }
 
@@ -632,13 +519,14 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         motions,
         direct: buffers_direct,
         change,
+        bounced,
         counters,
     } = buffers;
     // The energy the velocities may keep: K₀ less the push-out's work against gravity.
-    let kinetic_allowed = motions.iter().map(Motion::kinetic).sum::<f64>() - lift;
+    let kinetic_allowed = motions.iter().map(SolverBody::kinetic).sum::<f64>() - lift;
     rows.clear();
     rows.extend(contacts.iter().map(|c| {
-        let normal = Direction::new(c.normal, c, motions);
+        let normal = axis_at(c.normal, c, motions);
         let warm = previous.find(c);
         Row {
             normal,
@@ -647,7 +535,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
             compression: 0.0,
             friction_bound: 0.0,
             lambda_restitution: 0.0,
-            approach: along(&normal, motions),
+            approach: normal.velocity(motions),
             bias: (-c.depth - GAP_ROUND_OFF).max(0.0) / dt,
             warm: warm.unwrap_or_else(Vector3::zeros),
         }
@@ -702,7 +590,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
 
     // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
     // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
-    let sliding = |row: &Row, contact: &Contact, motions: &[Motion]| {
+    let sliding = |row: &Row, contact: &Contact, motions: &[SolverBody]| {
         let a = &motions[contact.body];
         let mut u = a.v + a.omega.cross(&contact.lever);
         if let Some(b) = contact.other_body() {
@@ -722,10 +610,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         for (row, contact) in rows.iter_mut().zip(contacts.iter()) {
             row.friction_bound = friction * row.lambda;
             let (t1, t2) = tangents(&contact.normal);
-            tangent_directions.push([
-                Direction::new(t1, contact, motions),
-                Direction::new(t2, contact, motions),
-            ]);
+            tangent_directions.push([axis_at(t1, contact, motions), axis_at(t2, contact, motions)]);
         }
         // A large system: a few sweeps from the last step's friction impulses first (at rest
         // or sliding steadily they are the answer). Then the direct solve (everything sticks);
@@ -805,19 +690,23 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
             a += 0.5 * (dv.norm_squared() / m.inv_mass + domega.dot(dl));
             b += dv.dot(&m.v) / m.inv_mass + m.omega.dot(dl);
         }
-        let c: f64 = motions.iter().map(Motion::kinetic).sum();
+        let c: f64 = motions.iter().map(SolverBody::kinetic).sum();
         let scale = if a + b + c <= kinetic_allowed || a <= 0.0 {
             1.0
         } else {
             let slack = (kinetic_allowed - c).max(0.0);
             ((-b + (b * b + 4.0 * a * slack).sqrt()) / (2.0 * a)).clamp(0.0, 1.0)
         };
-        for (m, (dv, dl, domega)) in motions.iter_mut().zip(change.iter()) {
+        for ((m, bounce), (dv, dl, domega)) in motions
+            .iter_mut()
+            .zip(bounced.iter_mut())
+            .zip(change.iter())
+        {
             if *dl != Vector3::zeros() || *dv != Vector3::zeros() {
                 m.v += dv * scale;
                 m.l += dl * scale;
                 m.omega += domega * scale;
-                m.bounced = true;
+                *bounce = true;
             }
         }
         for row in rows.iter_mut() {
@@ -855,13 +744,13 @@ fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
 }
 
 /// Starts the normal sweeps from the last step's normal impulses (kept ≥ 0).
-fn warm_start_normals(rows: &mut [Row], motions: &mut [Motion]) {
+fn warm_start_normals(rows: &mut [Row], motions: &mut [SolverBody]) {
     for row in rows.iter_mut() {
         row.normal.with_inverse();
         let warm = row.warm.dot(&row.normal.d).max(0.0);
         if warm > 0.0 {
             row.lambda = warm;
-            apply(warm, &row.normal, motions);
+            row.normal.apply(warm, motions);
         }
     }
 }
@@ -870,7 +759,7 @@ fn warm_start_normals(rows: &mut [Row], motions: &mut [Motion]) {
 /// converged and how many ran.
 fn sweep_normals(
     rows: &mut [Row],
-    motions: &mut [Motion],
+    motions: &mut [SolverBody],
     tolerance: f64,
     cap: u64,
 ) -> (bool, u64) {
@@ -887,7 +776,7 @@ fn sweep_normals(
 }
 
 /// Starts the friction sweeps from the last step's friction impulses, kept in their disks.
-fn warm_start_friction(rows: &mut [Row], directions: &[[Direction; 2]], motions: &mut [Motion]) {
+fn warm_start_friction(rows: &mut [Row], directions: &[[Axis; 2]], motions: &mut [SolverBody]) {
     for (row, directions) in rows.iter_mut().zip(directions.iter()) {
         row.normal.with_inverse();
         let [t1, t2] = directions;
@@ -903,8 +792,8 @@ fn warm_start_friction(rows: &mut [Row], directions: &[[Direction; 2]], motions:
         ];
         if step != [0.0; 2] {
             row.lambda_tangent = warm;
-            apply(step[0], t1, motions);
-            apply(step[1], t2, motions);
+            t1.apply(step[0], motions);
+            t2.apply(step[1], motions);
         }
     }
 }
@@ -913,8 +802,8 @@ fn warm_start_friction(rows: &mut [Row], directions: &[[Direction; 2]], motions:
 /// returns whether they converged and how many ran.
 fn sweep_friction(
     rows: &mut [Row],
-    directions: &[[Direction; 2]],
-    motions: &mut [Motion],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
     tolerance: f64,
     cap: u64,
 ) -> (bool, u64) {
@@ -942,8 +831,8 @@ fn sweep_friction(
 /// direct solve ([`ENVELOPE_MAX`]) stops trying the subspace steps.
 fn sweep_friction_with_subspace(
     rows: &mut [Row],
-    directions: &[[Direction; 2]],
-    motions: &mut [Motion],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
     tolerance: f64,
     buffers: &mut Direct,
     counters: &mut Counters,
@@ -1034,8 +923,8 @@ enum Subspace {
 /// ordered by the last body their row acts on, so a chain of bodies has a banded envelope.
 fn friction_subspace_step(
     rows: &mut [Row],
-    directions: &[[Direction; 2]],
-    motions: &mut [Motion],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
     buffers: &mut Direct,
 ) -> Subspace {
     let Direct {
@@ -1061,7 +950,7 @@ fn friction_subspace_step(
     for &i in order.iter() {
         let row = &rows[i];
         if row.lambda > 0.0 {
-            let gradient = along(&row.normal, motions) + row.bias;
+            let gradient = row.normal.velocity(motions) + row.bias;
             unknowns.push(Unknown {
                 row: i,
                 tangent: None,
@@ -1074,7 +963,7 @@ fn friction_subspace_step(
             continue;
         }
         let [t1, t2] = &directions[i];
-        let u = [along(t1, motions), along(t2, motions)];
+        let u = [t1.velocity(motions), t2.velocity(motions)];
         let l = row.lambda_tangent;
         let size = (l[0] * l[0] + l[1] * l[1]).sqrt();
         let slip_along = (u[0] * l[0] + u[1] * l[1]) / size;
@@ -1194,7 +1083,7 @@ fn friction_subspace_step(
                     };
                     let step = new - row.lambda;
                     row.lambda = new;
-                    apply(step, &row.normal, motions);
+                    row.normal.apply(step, motions);
                     p += 1;
                 }
                 Some((c, _)) => {
@@ -1215,8 +1104,8 @@ fn friction_subspace_step(
                     }
                     row.lambda_tangent = new;
                     let [t1, t2] = &directions[unknown.row];
-                    apply(new[0] - old[0], t1, motions);
-                    apply(new[1] - old[1], t2, motions);
+                    t1.apply(new[0] - old[0], motions);
+                    t2.apply(new[1] - old[1], motions);
                     p += if pair { 2 } else { 1 };
                 }
             }
@@ -1230,13 +1119,13 @@ fn friction_subspace_step(
             let (lambda, tangent) = subspace_rows[unknown.row];
             match unknown.tangent {
                 None => {
-                    let after = along(&row.normal, motions) + row.bias;
+                    let after = row.normal.velocity(motions) + row.bias;
                     change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
                     p += 1;
                 }
                 Some(_) => {
                     let [t1, t2] = &directions[unknown.row];
-                    let after = [along(t1, motions), along(t2, motions)];
+                    let after = [t1.velocity(motions), t2.velocity(motions)];
                     let moved = [
                         row.lambda_tangent[0] - tangent[0],
                         row.lambda_tangent[1] - tangent[1],
@@ -1282,19 +1171,19 @@ struct Unknown {
     /// ∇F along the row's directions before the step: (uₙ + gₙ/dt, 0), or u_t.
     before: [f64; 2],
     /// The row's normal, or its tangent `c₁ t₁ + c₂ t₂` with its ends (for the couplings).
-    direction: Direction,
+    direction: Axis,
 }
 
 /// The direction `c₁ t₁ + c₂ t₂` of two tangent directions at one contact (the same ends):
 /// d, r×d and I⁻¹(r×d) are linear in d (its k is not used).
-fn combined(t: &[Direction; 2], c: [f64; 2]) -> Direction {
+fn combined(t: &[Axis; 2], c: [f64; 2]) -> Axis {
     let [t1, t2] = t;
     let end = |e: &End, f: &End| End {
         body: e.body,
         rd: e.rd * c[0] + f.rd * c[1],
         w: e.w * c[0] + f.w * c[1],
     };
-    Direction {
+    Axis {
         d: t1.d * c[0] + t2.d * c[1],
         a: end(&t1.a, &t2.a),
         b: t1.b.as_ref().zip(t2.b.as_ref()).map(|(e, f)| end(e, f)),
@@ -1329,7 +1218,7 @@ fn bounces(row: &Row, bounce_speed: f64) -> bool {
 /// envelope of a stack banded. Returns false (and changes nothing) otherwise.
 fn direct_inelastic(
     rows: &mut [Row],
-    motions: &mut [Motion],
+    motions: &mut [SolverBody],
     tolerance: f64,
     buffers: &mut Direct,
 ) -> bool {
@@ -1362,7 +1251,7 @@ fn direct_inelastic(
         system.reset(m);
         for p in 0..m {
             let ni = &rows[active[p]].normal;
-            system.rhs[p] = -along(ni, motions) - rows[active[p]].bias;
+            system.rhs[p] = -ni.velocity(motions) - rows[active[p]].bias;
             system.fill_row(p, ni.bodies(), |q| {
                 let nj = &rows[active[q]].normal;
                 ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
@@ -1421,7 +1310,7 @@ fn direct_inelastic(
             continue;
         }
         for p in 0..m {
-            apply(lambda[p], &rows[active[p]].normal, motions);
+            rows[active[p]].normal.apply(lambda[p], motions);
         }
         // The most approaching row of each pair of bodies that has one, in contact order
         // (the same row as "the most approaching" when one pair has them).
@@ -1433,7 +1322,7 @@ fn direct_inelastic(
             if i > 0 && pair(r) != pair(&rows[i - 1]) {
                 entering.extend(group.take().map(|(j, _)| j));
             }
-            let u = along(&r.normal, motions) + r.bias;
+            let u = r.normal.velocity(motions) + r.bias;
             if u < -tolerance {
                 if group.is_none_or(|(_, w)| u < w) {
                     group = Some((i, u));
@@ -1480,8 +1369,8 @@ fn direct_inelastic(
 /// Returns false (and changes nothing) otherwise.
 fn direct_sticking(
     rows: &mut [Row],
-    directions: &[[Direction; 2]],
-    motions: &mut [Motion],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
     tolerance: f64,
     buffers: &mut Direct,
 ) -> bool {
@@ -1498,7 +1387,7 @@ fn direct_sticking(
         return false;
     }
     // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact.
-    let direction = |k: usize| -> &Direction {
+    let direction = |k: usize| -> &Axis {
         let i = active[k / 3];
         match k % 3 {
             0 => &rows[i].normal,
@@ -1508,7 +1397,7 @@ fn direct_sticking(
     system.reset(3 * m);
     for p in 0..3 * m {
         let dp = direction(p);
-        system.rhs[p] = -along(dp, motions)
+        system.rhs[p] = -dp.velocity(motions)
             - if p % 3 == 0 {
                 rows[active[p / 3]].bias
             } else {
@@ -1532,11 +1421,11 @@ fn direct_sticking(
     saved.clear();
     saved.extend_from_slice(motions);
     for (p, d) in delta[..3 * m].iter().enumerate() {
-        apply(*d, direction(p), motions);
+        direction(p).apply(*d, motions);
     }
     if rows
         .iter()
-        .any(|r| along(&r.normal, motions) + r.bias < -tolerance)
+        .any(|r| r.normal.velocity(motions) + r.bias < -tolerance)
     {
         motions.copy_from_slice(saved);
         return false;
@@ -1577,12 +1466,12 @@ fn direct_sticking(
 /// does not raise K.
 fn friction_update(
     row: &mut Row,
-    directions: &[Direction; 2],
+    directions: &[Axis; 2],
     bound: f64,
-    motions: &mut [Motion],
+    motions: &mut [SolverBody],
 ) -> f64 {
     let [t1, t2] = directions;
-    let u = [along(t1, motions), along(t2, motions)];
+    let u = [t1.velocity(motions), t2.velocity(motions)];
     let (k1, k2, c) = (t1.k, t2.k, t1.coupling(t2, motions));
     let det = k1 * k2 - c * c;
     if det <= 0.0 {
@@ -1614,8 +1503,8 @@ fn friction_update(
         return 0.0;
     }
     row.lambda_tangent = new;
-    apply(step[0], t1, motions);
-    apply(step[1], t2, motions);
+    t1.apply(step[0], motions);
+    t2.apply(step[1], motions);
     (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
 }
 
@@ -1667,15 +1556,15 @@ fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
 
 /// One projected Gauss–Seidel update of a contact's normal impulse; returns the change it made
 /// to the contact's normal velocity (m/s).
-fn normal_update(row: &mut Row, motions: &mut [Motion]) -> f64 {
+fn normal_update(row: &mut Row, motions: &mut [SolverBody]) -> f64 {
     let dir = &row.normal;
-    let new = (row.lambda - (along(dir, motions) + row.bias) * dir.inv_k).max(0.0);
+    let new = (row.lambda - (dir.velocity(motions) + row.bias) * dir.inv_k).max(0.0);
     let change = new - row.lambda;
     if change == 0.0 {
         return 0.0;
     }
     row.lambda = new;
-    apply(change, dir, motions);
+    dir.apply(change, motions);
     change.abs() * dir.k
 }
 
