@@ -11,6 +11,9 @@
 //! stack 10: 18.7 / 10.8 / 22.9 µs; stack 20: 31.7 / 18.4 / 44.7 µs; stack 40: 55 / 34 / 123 µs;
 //! pyramid 10: 0.14 / 0.08 / 0.38 ms; pyramid 20: 0.59 / 0.33 / 2.0–2.6 ms.
 //!
+//! `contact/at-rest`: a stack of 10 in its first second and after standing 99 s (the cost of a
+//! scene at rest stays flat).
+//!
 //! Each world is stepped in place and put back at its start every `restart` steps. Run one
 //! filter with short times, e.g.
 //! `cargo bench --bench contact -- impulse/stack --warm-up-time 1 --measurement-time 3`.
@@ -87,5 +90,37 @@ fn contact(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, contact);
+/// A scene at rest keeps its cost (issue 17): one step of a stack of 10 in its first second and
+/// after it has stood for 99 s (`impulse`), each world stepped in place for the measurement
+/// (put back at its start every 1000 steps). The two figures should match; the test
+/// `contact_scaling::a_stack_of_ten_at_rest_keeps_its_solver_path_for_100_seconds` checks the
+/// solver's path itself.
+fn at_rest(c: &mut Criterion) {
+    let mut group = c.benchmark_group("contact/at-rest");
+    group
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .sample_size(10);
+    for (name, seconds) in [("stack-10-first-second", 0u64), ("stack-10-after-99-s", 99)] {
+        let mut world = stack(10, Response::Impulse);
+        for _ in 0..seconds * 1000 {
+            world.step();
+        }
+        let start = world.checkpoint();
+        let mut steps = 0u64;
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                steps += 1;
+                if steps.is_multiple_of(1000) {
+                    world.restore(&start);
+                }
+                black_box(&mut world).step();
+                black_box(world.states());
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, contact, at_rest);
 criterion_main!(benches);
