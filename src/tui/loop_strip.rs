@@ -119,7 +119,11 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = match s.phase {
         None => vec![
             line("derive ", "I⁻¹ = R·Ibody⁻¹·Rᵀ, ω = I⁻¹·L, v = P/M        forces  F and τ of the declared effects"),
-            line("integrate ", format!("one {} step of (x, orientation, P, L)   collide  push vertices out of obstacles", s.integrator.name())),
+            line("integrate ", format!(
+                "one {} step of (x, orientation, P, L)   collide  {}",
+                s.integrator.name(),
+                world.contact_model().map_or("no contact declared", |m| m.response.descriptor().brief)
+            )),
             line("Press n to run one phase, → a whole frame, space to run; ? lists every key.", ""),
         ],
         Some(Phase::Derive) => vec![

@@ -15,6 +15,8 @@ pub struct Descriptor {
     pub summary: &'static str,
     /// What it keeps and what it gives up (the README's response table).
     pub keeps: &'static str,
+    /// What the collide phase does, in a few words (the loop strip before the first step).
+    pub brief: &'static str,
     /// The collide phase's update for one body against obstacles, as the loop strip shows it.
     pub formula: &'static str,
     /// The same for bodies against bodies (two-sided rows).
@@ -52,6 +54,7 @@ impl Response {
                 name: "seed",
                 summary: "the original report's response: the whole momentum reversed and scaled by 0.4, a squared push-out, a force added to L (one body, obstacles only)",
                 keeps: "nothing promised: it reproduces the report's failures (a landing kicks the body into a spin)",
+                brief: "push vertices out of obstacles",
                 formula: "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
                 formula_bodies: "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
                 impulses: false,
@@ -61,6 +64,7 @@ impl Response {
                 name: "impulse",
                 summary: "impulses at every contact together, converged: restitution e, Coulomb friction μ, penetration removed by moving the body, speculative contacts within a step's reach",
                 keeps: "never adds kinetic energy (a bounce pays for its lift); momentum between bodies; stacks stand to micrometres",
+                brief: "impulses at every contact",
                 formula: "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)",
                 formula_bodies: "uₙ = (v_A + ω_A×r_A − v_B − ω_B×r_B)·n,  k = Σ 1/M + (r×n)·I⁻¹(r×n),  j = −(1+e)·uₙ/k  on A, −j on B (all contacts together, + friction)",
                 impulses: true,
@@ -70,6 +74,7 @@ impl Response {
                 name: "soft-step",
                 summary: "sub-stepped soft contacts with a relax pass (Box2D v3): each contact a damped spring of `hertz` and `damping_ratio`, one sweep per sub-step",
                 keeps: "momentum between bodies; energy at most the lift out of penetration; sags N(N−1)g/ω² at the top of a stack of N",
+                brief: "soft contacts over sub-steps",
                 formula: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ,  λ ≥ 0;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
                 formula_bodies: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ on A, −Δλ on B;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
                 impulses: true,
