@@ -2831,15 +2831,6 @@ fn stack_of_ten(reversed: bool, response: tumble::physics::Response) -> World {
     scene.world()
 }
 
-fn body_named<'a>(world: &'a World, name: &str) -> &'a tumble::physics::State {
-    let i = world
-        .body_names()
-        .iter()
-        .position(|n| n == name)
-        .unwrap_or_else(|| panic!("no body {name}"));
-    &world.states()[i]
-}
-
 #[test]
 fn lesson_36_the_soft_stack_sinks_by_the_closed_form() {
     // Page 1–2: a corner between cubes is a spring (M/8) ω², a face four of them; under i
@@ -2854,19 +2845,19 @@ fn lesson_36_the_soft_stack_sinks_by_the_closed_form() {
     let top = 90.0 * g / omega2 + 10.0 * g / (4.0 * omega2);
     assert_near(top, 6.385e-3, 5e-7, "closed form, top");
     assert_near(
-        1.9 - body_named(&world, "top").position.y,
+        1.9 - position(&world, "top").y,
         top,
         2e-6,
         "top's sink at 3 s",
     );
     assert_near(
-        0.1 - body_named(&world, "c1").position.y,
+        0.1 - position(&world, "c1").y,
         10.0 * g / (4.0 * omega2),
         1e-6,
         "c1's sink",
     );
     // Page 4: bottom-to-top order, the top drifts less than 0.1 mm sideways.
-    assert!(body_named(&world, "top").position.x.abs() < 1e-4);
+    assert!(position(&world, "top").x.abs() < 1e-4);
     // Page 2: at 120 Hz the sag is a quarter (1.6 mm).
     let mut scene = l.scene.clone();
     let mut model = scene.contact.unwrap();
@@ -2877,7 +2868,7 @@ fn lesson_36_the_soft_stack_sinks_by_the_closed_form() {
     let mut stiffer = scene.world();
     run_to(&mut stiffer, 3.0);
     assert_near(
-        1.9 - body_named(&stiffer, "top").position.y,
+        1.9 - position(&stiffer, "top").y,
         top / 4.0,
         2e-6,
         "at 120 Hz",
@@ -2892,23 +2883,13 @@ fn lesson_36_the_sweep_order_sways_the_soft_stack_and_not_the_rigid_one() {
     let soft = l.scene.contact.unwrap().response;
     let mut world = stack_of_ten(true, soft);
     run_to(&mut world, 1.0);
-    assert_near(
-        body_named(&world, "top").position.x,
-        -2.8e-3,
-        0.1e-3,
-        "sway at 1 s",
-    );
+    assert_near(position(&world, "top").x, -2.8e-3, 0.1e-3, "sway at 1 s");
     run_to(&mut world, 2.25);
-    assert_near(
-        body_named(&world, "top").position.x,
-        0.7e-3,
-        0.1e-3,
-        "sway at 2.25 s",
-    );
+    assert_near(position(&world, "top").x, 0.7e-3, 0.1e-3, "sway at 2.25 s");
     for reversed in [false, true] {
         let mut rigid = stack_of_ten(reversed, tumble::physics::Response::Impulse);
         run_to(&mut rigid, 3.0);
-        let top = body_named(&rigid, "top").position;
+        let top = position(&rigid, "top");
         assert!(
             (top - Vector3::new(0.0, 1.9, 0.0)).norm() < 1e-14,
             "impulse, reversed = {reversed}: {top}"
