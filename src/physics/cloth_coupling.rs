@@ -62,10 +62,12 @@
 //! books the change in its ledger.
 
 use super::body::Body;
-use super::cloth::{Cloth, Held};
+use super::cloth::{BodyJoints, Cloth, Held, SolverBody, Tie};
 use super::collision::geometry::{point_shape, Pose};
+use super::effects::Loads;
+use super::joints::{rows_of, Links, Pose as JointPose, Row};
 use super::state::State;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 /// Sweeps over a body's contacts (module doc): one sweep lets the first particle met take
 /// all of a resting body's weight and tilts it; a few sweeps with accumulated impulses share it.
@@ -482,6 +484,34 @@ pub struct AttachReport {
 /// to the body's material point over the step, −Σ (λ + e)·(v₁ − d/h − Y_V − Y_ω × r) (d the
 /// point's own-step displacement): a contact arriving from a gap g₀ at the start takes λ_n
 /// g₀/h, a resting one (g₀ = 0, sticking) none, a sliding one what its friction did.
+///
+/// # Joints
+///
+/// The joints on the bodies that move in the solve are held inside it ([`HeldJoints`]):
+/// their rows filter the bodies' corrections, and `joint_impulses` receives each joint's
+/// impulse on its body A over the step (N·s, torque about A's barycenter).
+///
+/// # Bodies the collide phase moves
+///
+/// The rigid contact response runs after this step, and may move a body again: a frame
+/// resting on the floor falls ½ a h² within its own step and the floor puts it back. An
+/// attached particle tied to the fallen point would be left that far from it at the end of
+/// the step, and carried back after the response ([`carry_attachments`]) it would be pulled
+/// down again the next step — a 5 µm vibration of lesson 35's rim every step, whose damping
+/// the ledger books while nothing visibly moves. So an attached particle aims at its point
+/// after the body's own step moved on by the move the collide phase gave the body the step
+/// before, `predicted` ([`BodyMove`]; none: no lead),
+///
+/// ```text
+/// target_a = (x_b + r_a + m_b(r_a) − x_p)/h,   m_b(r) = shift_b + turn_b r − r
+/// ```
+///
+/// For a body at rest the move repeats exactly and the particle ends the step on its point
+/// with the body's velocity; what a changing move leaves is carried after the response.
+/// Energy: the lead is motion of the particle relative to the body's material point, so the
+/// tie's work along it, −λ·lead h, is booked with the contacts like any tie's (above); it is
+/// what the body takes from the sheet's pull over the lead, and the response's own booking
+/// takes it back when it puts the body where the lead said (at rest the two cancel exactly).
 #[allow(clippy::too_many_arguments)]
 pub fn tied_step(
     cloth: &mut Cloth,
@@ -494,8 +524,11 @@ pub fn tied_step(
     attachments: &[Attachment],
     friction: f64,
     factor: f64,
+    links: &Links,
+    joint_impulses: &mut Vec<Loads>,
+    predicted: &[BodyMove],
 ) -> TiedReport {
-    use crate::physics::cloth::{SolverBody, Tie, TieKind};
+    use crate::physics::cloth::TieKind;
     use crate::physics::collision::detect;
     cloth.begin_tied_step(loads, dt);
     let gravity = loads.gravity.unwrap_or_else(Vector3::zeros);
@@ -520,6 +553,9 @@ pub fn tied_step(
             }
         })
         .collect();
+    // The joints on the bodies that move in the solve, held inside it (`cloth::ties`,
+    // "Joints on the bodies").
+    let held_joints = HeldJoints::new(links, states, &solver_bodies);
     // A body's material point at `arm` (from its new barycenter): its own-step displacement.
     let displacement = |b: usize, arm: &Vector3<f64>| -> Vector3<f64> {
         let (now, before) = (&states[b], start.get(b).unwrap_or(&states[b]));
@@ -659,22 +695,36 @@ pub fn tied_step(
         .map(|c| (tie_of(c).kind, Vector3::zeros()))
         .collect();
     let mut report = TiedReport::default();
+    // Where each attached particle aims beyond its point after the body's own step: the move
+    // the collide phase gave the body last step ([`BodyMove`]), over h.
+    let lead: Vec<Vector3<f64>> = attachments
+        .iter()
+        .map(|a| {
+            let state = &states[a.body];
+            let arm = state.orientation.matrix() * a.offset_body;
+            predicted
+                .get(a.body)
+                .map_or(Vector3::zeros(), |m| m.of_point(&arm) / dt)
+        })
+        .collect();
     let attach_ties = |states: &[State], cloth: &Cloth| -> Vec<Tie> {
         attachments
             .iter()
-            .map(|a| {
+            .zip(&lead)
+            .map(|(a, lead)| {
                 let state = &states[a.body];
                 let arm = state.orientation.matrix() * a.offset_body;
                 let target = state.position + arm;
                 // The body is already at the end of its own step (`target`): the particle
-                // gets there, plus what the correction moves the point.
+                // gets there, plus what the collide phase is predicted to move it (`lead`),
+                // plus what the correction moves the point.
                 Tie {
                     particle: a.particle,
                     body: Some(a.body),
                     arm,
                     normal: Vector3::y(),
                     kind: TieKind::Full,
-                    target: (target - cloth.positions[a.particle]) / dt,
+                    target: (target - cloth.positions[a.particle]) / dt + lead,
                     extra: Vector3::zeros(),
                     permanent: true,
                     impulse: Vector3::zeros(),
@@ -695,7 +745,7 @@ pub fn tied_step(
             }
         }
         ties.extend(attach_ties(states, cloth));
-        let step = cloth.solve_tied(&mut ties, &mut solver_bodies);
+        let step = cloth.solve_tied(&mut ties, &mut solver_bodies, &held_joints.filter);
         report.rounds = round + 1;
         report.iterations += step.iterations;
         let mut changed = false;
@@ -763,6 +813,9 @@ pub fn tied_step(
         candidates.iter().map(|c| c.particle),
         ties.iter().filter(|t| !t.permanent).map(|t| t.particle),
     );
+    joint_impulses.clear();
+    joint_impulses.resize(links.joints.len(), Loads::default());
+    held_joints.impulses(&ties, &solver_bodies, joint_impulses);
     // The bodies take the opposite impulses: through their correction when they are unknowns
     // of the solve, summed afterwards when they are not (factor 0).
     let mut pushed = vec![[Vector3::zeros(); 2]; bodies.len()];
@@ -829,6 +882,126 @@ pub fn tied_step(
     report
 }
 
+/// The joints' velocity rows on the bodies that move in a tied solve (`cloth::ties`, "Joints
+/// on the bodies"): `J Y = 0` over the stacked corrections of the bodies any joint touches
+/// (a fixed body, the world, or a body whose integrator ignores the correction, factor 0,
+/// has no correction: its columns are dropped). The rows are `joints::rows_of` at the bodies'
+/// poses after their own step, where the joints' own step left them (J u = 0).
+///
+/// Why inside the solve, not after it: the joints are stepped first (`integrators::system`,
+/// then their projection), the cloth after. Held apart, the cloth's pull on a hinged pole
+/// arrives after the hinge has been solved: the pull turns the pole within the cloth's step
+/// (ω_z = −1.4e-3 rad/s after every step of a 2 kg pole under a 0.3 kg flag), the next step's
+/// projection turns it back, the hinge reads (M + m) g a step late (6.5e-5 relative) and the
+/// projection's energy, booked as the joint correction, climbs 0.055 J/s while nothing moves.
+/// Projecting again after the cloth's step would stop the pole but not the work: the
+/// projection would move the pole, and with it its attached particles, every step. Inside
+/// the solve the pole never leaves the hinge's motions: at rest it does not move, the hinge
+/// carries (M + m) g within the step, and no ledger row changes.
+struct HeldJoints {
+    filter: BodyJoints,
+    /// The rows, each with its joint (`Row::joint`), and their matrix over the stacked
+    /// corrections (rows × 6k).
+    rows: Vec<Row>,
+    matrix: DMatrix<f64>,
+}
+
+impl HeldJoints {
+    fn new(links: &Links, states: &[State], solver_bodies: &[SolverBody]) -> HeldJoints {
+        let moves = |b: usize| solver_bodies[b].mass > 0.0;
+        let mut bodies: Vec<usize> = Vec::new();
+        for joint in &links.joints {
+            for b in std::iter::once(joint.a).chain(joint.b) {
+                if moves(b) && !bodies.contains(&b) {
+                    bodies.push(b);
+                }
+            }
+        }
+        let mut rows = Vec::new();
+        if bodies.is_empty() {
+            return HeldJoints {
+                filter: BodyJoints::default(),
+                rows,
+                matrix: DMatrix::zeros(0, 0),
+            };
+        }
+        bodies.sort_unstable();
+        let poses: Vec<JointPose> = states.iter().map(JointPose::of_state).collect();
+        for (index, joint) in links.joints.iter().enumerate() {
+            if moves(joint.a) || joint.b.is_some_and(moves) {
+                let b = joint.b.map_or(JointPose::WORLD, |b| poses[b]);
+                rows_of(joint, index, &poses[joint.a], &b, &mut rows);
+            }
+        }
+        let column = |b: usize| bodies.iter().position(|&x| x == b);
+        let mut matrix = DMatrix::zeros(rows.len(), 6 * bodies.len());
+        for (k, row) in rows.iter().enumerate() {
+            let sides = [
+                (Some(row.a), row.lin_a, row.ang_a),
+                (row.b, row.lin_b, row.ang_b),
+            ];
+            for (body, lin, ang) in sides {
+                let Some(g) = body.and_then(column) else {
+                    continue;
+                };
+                for c in 0..3 {
+                    matrix[(k, 6 * g + c)] += lin[c];
+                    matrix[(k, 6 * g + 3 + c)] += ang[c];
+                }
+            }
+        }
+        HeldJoints {
+            filter: BodyJoints::new(bodies, &matrix),
+            rows,
+            matrix,
+        }
+    }
+
+    /// Each joint's impulse on its body A over the step (force: N·s; torque about A's
+    /// barycenter: N·m·s), added to `out` (one entry per joint): W = M_b Y_b + Σ_ties
+    /// [λ + e; r × (λ + e)] on the held bodies, W = Jᵀ μ solved for μ by least squares
+    /// (the part of W a solve stopped at its tolerance leaves outside range(Jᵀ) is no joint's),
+    /// then Σ over each joint's rows of (lin_A μ, ang_A μ).
+    fn impulses(&self, ties: &[Tie], solver_bodies: &[SolverBody], out: &mut [Loads]) {
+        if self.filter.is_empty() || self.rows.is_empty() {
+            return;
+        }
+        let bodies = &self.filter.bodies;
+        let mut wrench = DVector::<f64>::zeros(6 * bodies.len());
+        for (g, &b) in bodies.iter().enumerate() {
+            let sb = &solver_bodies[b];
+            let [dv, dw] = sb.correction;
+            let (lin, ang) = (dv * sb.mass, sb.inertia * dw);
+            for c in 0..3 {
+                wrench[6 * g + c] += lin[c];
+                wrench[6 * g + 3 + c] += ang[c];
+            }
+        }
+        for tie in ties {
+            let Some(g) = tie.body.and_then(|b| bodies.iter().position(|&x| x == b)) else {
+                continue;
+            };
+            let j = tie.impulse + tie.extra;
+            let t = tie.arm.cross(&j);
+            for c in 0..3 {
+                wrench[6 * g + c] += j[c];
+                wrench[6 * g + 3 + c] += t[c];
+            }
+        }
+        let svd = self.matrix.transpose().svd(true, true);
+        let largest = svd.singular_values.iter().fold(0.0_f64, |m, v| m.max(*v));
+        let Ok(mu) = svd.solve(&wrench, 1e-12 * largest) else {
+            return;
+        };
+        for (row, &m) in self.rows.iter().zip(mu.iter()) {
+            if let Some(load) = out.get_mut(row.joint) {
+                load.force += row.lin_a * m;
+                load.torque += row.ang_a * m;
+            }
+        }
+    }
+}
+
 /// Moves a body by the position part of a correction (Y_V, Y_ω) over a step of length h:
 /// x += h Y_V, and a turn by the rotation of vector h Y_ω (exact, not linearised).
 fn move_body(state: &mut State, y_v: &Vector3<f64>, y_w: &Vector3<f64>, dt: f64) {
@@ -865,6 +1038,93 @@ fn close_gap(
     state.linear_momentum -= impulse;
     state.angular_momentum -= arm.cross(&impulse);
     impulse
+}
+
+/// How the collide phase moved a body: its barycenter by `shift`, its orientation by the
+/// rotation `turn` about the barycenter (R ← turn R). An attached particle's tie aims at its
+/// point after the body's own step moved on by the body's last move ([`tied_step`], "Bodies
+/// the collide phase moves"), which [`carry_attachments`] then corrects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMove {
+    pub shift: Vector3<f64>,
+    pub turn: Matrix3<f64>,
+}
+
+impl BodyMove {
+    /// No move.
+    pub const NONE: BodyMove = BodyMove {
+        shift: Vector3::new(0.0, 0.0, 0.0),
+        turn: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+    };
+
+    /// The move from state `before` to `after`.
+    pub fn between(before: &State, after: &State) -> BodyMove {
+        BodyMove {
+            shift: after.position - before.position,
+            turn: after.orientation.matrix() * before.orientation.matrix().transpose(),
+        }
+    }
+
+    /// How far it moves the body's point at arm r (from the barycenter): shift + turn r − r.
+    pub fn of_point(&self, arm: &Vector3<f64>) -> Vector3<f64> {
+        self.shift + self.turn * arm - arm
+    }
+}
+
+/// What carrying a body's attached particles gave them ([`carry_attachments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Carried {
+    /// Σ m_p Δv_p over the body's attached particles, N·s.
+    pub impulse: Vector3<f64>,
+    /// Σ r_p × m_p Δv_p about the body's barycenter (r_p = x_p − x_b), N·m·s.
+    pub moment: Vector3<f64>,
+}
+
+/// Attached particles carried with their bodies after the rigid collide phase moved them.
+///
+/// The cloth's step ends its attached particles on their points (`tied_step`), but the rigid
+/// contact response runs after it, in the collide phase, and may move a body again: a frame
+/// resting on the floor falls ½ a h² within its own step (a = g + its load / M: 5.27e-6 m for
+/// lesson 35's frame) and the floor's contact puts it back, leaving its 80 rim particles that
+/// far below their points at the end of every step. So each attached particle p of a body b
+/// the response moved (`moved[b]`) is put back on its point and given the point's velocity:
+///
+/// ```text
+/// x_p = x_b + R_b o_p,    v_p = V_b + ω_b × (R_b o_p)      (o_p: its offset in b's frame)
+/// ```
+///
+/// This is what the response would have done had it seen the body and its attached particles
+/// as one rigid body: the momentum the particles take, Σ m_p Δv_p (returned per body in
+/// `carried`, with its moment about the body's barycenter), came through the body from what it
+/// touches. The caller books it (`World`: into the body's contacts with what cannot move,
+/// which then report the support of the body and its particles together) and books the
+/// energy the move changes (the particles' kinetic, gravitational and spring energy) as the
+/// contacts' energy.
+pub fn carry_attachments(
+    cloth: &mut Cloth,
+    bodies: &[Body],
+    states: &[State],
+    attachments: &[Attachment],
+    moved: &[bool],
+    carried: &mut [Carried],
+) {
+    for a in attachments {
+        if !moved.get(a.body).copied().unwrap_or(false) {
+            continue;
+        }
+        let (body, state) = (&bodies[a.body], &states[a.body]);
+        let rotation = state.orientation.matrix();
+        let arm = rotation * a.offset_body;
+        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+        let omega = inv_inertia * state.angular_momentum;
+        let velocity = state.linear_momentum * body.inv_mass + omega.cross(&arm);
+        let p = a.particle;
+        let change = (velocity - cloth.velocities[p]) * cloth.masses[p];
+        cloth.positions[p] = state.position + arm;
+        cloth.velocities[p] = velocity;
+        carried[a.body].impulse += change;
+        carried[a.body].moment += arm.cross(&change);
+    }
 }
 
 /// Attachments of an explicit (`symplectic-euler`) cloth, held by impulses after its

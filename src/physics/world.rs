@@ -21,7 +21,8 @@
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::{
-    approach_bodies, collide_bodies, hold_attachments, position_factor, tied_step, Attachment,
+    approach_bodies, carry_attachments, collide_bodies, hold_attachments, position_factor,
+    tied_step, Attachment, BodyMove, Carried,
 };
 use super::collision::impulse::Scratch;
 use super::collision::StepContext;
@@ -125,6 +126,9 @@ pub struct Checkpoint {
     start_damping_power: f64,
     /// Per joint: its reaction on its body A averaged over the last step (impulse / dt).
     joint_loads: Vec<Loads>,
+    /// Per body, when some body holds attached particles: how the last collide phase moved
+    /// it (the attached particles' lead in the next step, `cloth_coupling::tied_step`).
+    collide_moves: Vec<BodyMove>,
 }
 
 impl Checkpoint {
@@ -148,6 +152,7 @@ impl Checkpoint {
             + bytes_of(&self.cloth_attach_loads)
             + bytes_of(&self.cloth_obstacle_contacts)
             + bytes_of(&self.cloth_energies)
+            + bytes_of(&self.collide_moves)
     }
 
     /// Whether the checkpoint holds any cloth.
@@ -226,6 +231,9 @@ pub struct World {
     contact_joint_buffers: ContactBuffers,
     /// `symplectic-euler` with projection: the states at the step's start (`joints::shake`).
     step_start: Vec<State>,
+    /// The states before the rigid response, when some body holds attached particles
+    /// (`carry_attached`).
+    carry_start: Vec<State>,
 }
 
 impl World {
@@ -294,6 +302,7 @@ impl World {
             projection_buffers: ProjectionBuffers::default(),
             contact_joint_buffers: ContactBuffers::default(),
             step_start: Vec::new(),
+            carry_start: Vec::new(),
         }
     }
 
@@ -601,6 +610,7 @@ impl World {
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
+        let mut joint_impulses = Vec::new();
         now.cloth_obstacle_contacts
             .resize(now.cloths.0.len(), [0, 0]);
         now.cloth_energies.clear();
@@ -623,7 +633,15 @@ impl World {
                     self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
                     friction,
                     position_factor(self.integrator),
+                    &self.links,
+                    &mut joint_impulses,
+                    &now.collide_moves,
                 );
+                // The joints held inside the solve: their share of the step's reaction.
+                for (load, impulse) in now.joint_loads.iter_mut().zip(&joint_impulses) {
+                    load.force += impulse.force / self.dt;
+                    load.torque += impulse.torque / self.dt;
+                }
                 now.cloth_body_contacts[k] = tied.contacts;
                 now.cloth_attach_loads[k] = tied.attach_impulse.map(|j| j / self.dt);
                 now.cloth_obstacle_contacts[k] = [tied.obstacle_contacts, 0];
@@ -796,6 +814,12 @@ impl World {
         } else {
             None
         };
+        // Bodies holding attached particles: their states before the response, to carry the
+        // particles if it moves them (`carry_attached`).
+        let carrying = self.cloth_attachments.iter().any(|l| !l.is_empty());
+        if carrying {
+            self.carry_start.clone_from(&now.states);
+        }
         let mut measured = collide(
             &input,
             &mut now.states,
@@ -842,6 +866,98 @@ impl World {
             now.ledger
                 .book_contact(change.before.total, change.after.total);
             now.guard.after_collision(&change.after);
+        }
+        if carrying {
+            self.carry_attached();
+        }
+    }
+
+    /// After the rigid response: the attached particles of every body it moved go back on
+    /// their points with their points' velocities (`cloth_coupling::carry_attachments`). The
+    /// momentum they take came through the body from what it touches: it is added to the
+    /// body's contacts this step with obstacles and fixed bodies, shared as their normal
+    /// impulses share the load, so that the contacts report the support of the body and its
+    /// particles together — exactly what one rigid body of both would have received from
+    /// contacts that hold it still (a frame at rest on the floor). A body the response moved
+    /// without such a contact (pushed by another moving body) gives the particles their
+    /// momentum itself (P −= Σ m Δv, L −= Σ r × m Δv): momentum is kept, and the particles
+    /// then lag its point velocity by that small change (O(m/M)), their positions exact. The
+    /// energy the carrying changes (kinetic, gravitational, spring) is booked with the
+    /// contacts.
+    fn carry_attached(&mut self) {
+        let now = &mut self.now;
+        let moved: Vec<bool> = (self.carry_start.iter())
+            .zip(&now.states)
+            .map(|(before, after)| before != after)
+            .collect();
+        now.collide_moves.clear();
+        now.collide_moves
+            .extend((self.carry_start.iter()).zip(&now.states).zip(&moved).map(
+                |((before, after), &m)| {
+                    if m {
+                        BodyMove::between(before, after)
+                    } else {
+                        BodyMove::NONE
+                    }
+                },
+            ));
+        if !moved.iter().any(|&m| m) {
+            return;
+        }
+        let before = self.total_energy();
+        let now = &mut self.now;
+        let mut carried = vec![Carried::default(); self.bodies.len()];
+        for (k, (cloth, list)) in (now.cloths.0.iter_mut())
+            .zip(&self.cloth_attachments)
+            .enumerate()
+        {
+            let mut mine = vec![Carried::default(); self.bodies.len()];
+            carry_attachments(cloth, &self.bodies, &now.states, list, &moved, &mut mine);
+            // Part of what the attachments gave the cloth this step (about the origin:
+            // Σ x_p × m Δv = Σ (x_b × J + r × J)).
+            if let Some(load) = now.cloth_attach_loads.get_mut(k) {
+                for (b, c) in mine.iter().enumerate() {
+                    load[0] += c.impulse / self.dt;
+                    load[1] += (now.states[b].position.cross(&c.impulse) + c.moment) / self.dt;
+                }
+            }
+            for (sum, c) in carried.iter_mut().zip(&mine) {
+                sum.impulse += c.impulse;
+                sum.moment += c.moment;
+            }
+        }
+        let bodies = &self.bodies;
+        let holds = |c: &Contact, b: usize| {
+            c.body == b
+                && match c.against {
+                    super::collision::Against::Obstacle(_) => true,
+                    super::collision::Against::Body(o) => bodies[o].fixed,
+                }
+        };
+        for (b, carry) in carried.iter().enumerate() {
+            if carry.impulse == Vector3::zeros() && carry.moment == Vector3::zeros() {
+                continue;
+            }
+            let load: f64 = (now.contacts.iter())
+                .filter(|c| holds(c, b))
+                .map(|c| c.impulse.dot(&c.normal).max(0.0))
+                .sum();
+            if load > 0.0 {
+                for c in now.contacts.iter_mut().filter(|c| holds(c, b)) {
+                    let share = c.impulse.dot(&c.normal).max(0.0) / load;
+                    c.impulse += carry.impulse * share;
+                }
+            } else {
+                let state = &mut now.states[b];
+                state.linear_momentum -= carry.impulse;
+                state.angular_momentum -= carry.moment;
+            }
+        }
+        let after = self.total_energy();
+        if after.total != before.total {
+            let now = &mut self.now;
+            now.ledger.book_contact(before.total, after.total);
+            now.guard.after_collision(&after);
         }
     }
 
@@ -1438,5 +1554,6 @@ fn fresh(
         start_joint_loads: Vec::new(),
         start_damping_power: 0.0,
         joint_loads: Vec::new(),
+        collide_moves: Vec::new(),
     }
 }

@@ -55,7 +55,7 @@ use super::conjugate_gradient::{Block, SpringOrder, Symmetric3};
 use super::energy::Losses;
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
-use super::ties::{SolverBody, Tie};
+use super::ties::{BodyJoints, SolverBody, Tie};
 use nalgebra::Vector3;
 
 /// The velocity half of a step of length `h`: v ← v₀ + Δv (positions move in
@@ -96,12 +96,14 @@ pub(super) fn solve_tied(
     cloth: &mut Cloth,
     ties: &mut [Tie],
     bodies: &mut [SolverBody],
+    joints: &BodyJoints,
 ) -> StepReport {
     let work = &mut cloth.scratch.solver;
     let v0 = &cloth.scratch.start_velocity;
     let outcome = work.solve_tied(
         ties,
         bodies,
+        joints,
         v0,
         cloth.solver.tolerance,
         cloth.solver.max_iterations,

@@ -404,13 +404,15 @@ impl Cloth {
     }
 
     /// Solves the step assembled by [`Cloth::begin_tied_step`] with these ties: v = v₀ + Δv,
-    /// each tie's impulse and each body's correction filled in.
+    /// each tie's impulse and each body's correction filled in; the bodies' corrections kept
+    /// on `joints`' rows (`ties`, "Joints on the bodies").
     pub fn solve_tied(
         &mut self,
         ties: &mut [super::ties::Tie],
         bodies: &mut [super::ties::SolverBody],
+        joints: &super::ties::BodyJoints,
     ) -> StepReport {
-        implicit_euler::solve_tied(self, ties, bodies)
+        implicit_euler::solve_tied(self, ties, bodies, joints)
     }
 
     /// Ends a tied step's velocity half (the damping and drag the step used, for the losses).

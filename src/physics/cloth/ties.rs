@@ -48,6 +48,41 @@
 //! `(M_b + Σ_i G_iᵀ P_i G_i)⁻¹` (6 × 6) for each body. Because the constrained components are
 //! built from Y, a particle and the body's surface move together exactly, at any tolerance.
 //!
+//! # Joints on the bodies: a filter on Y
+//!
+//! A body the ties pull may itself be held by joints (a pole on a hinge at a wall). Solved
+//! apart — the joints in their own step, the cloth after — the hinge would learn of the
+//! cloth's pull a step late: the pull turns the pole within the cloth's step, the next step's
+//! projection turns it back, and that projection's energy climbs while nothing moves. So the
+//! joints' velocity rows are held here, on the same footing as a tie: the bodies' corrections
+//! must not move them apart,
+//!
+//! ```text
+//! J Y = 0,    Y = (Y₁, …, Y_k) the stacked corrections of the bodies the joint rows touch
+//!             (a fixed body or the world has no Y: its columns are dropped)
+//! ```
+//!
+//! (the rows `J` of `joints::rows_of` at the bodies' poses after their own step; the joints'
+//! own step already left them at J u = 0). With N an orthonormal basis of null(J) (6k × d),
+//! the bodies' unknowns are Y = N w: the bodies' preconditioner becomes
+//!
+//! ```text
+//! Q = N (Nᵀ D N)⁻¹ Nᵀ,    D = blockdiag(M_b + Σ_i G_iᵀ P_i G_i)   (the bodies' 6 × 6 blocks)
+//! ```
+//!
+//! exactly Baraff & Witkin's filter applied to the bodies: Y starts at 0 and every search
+//! direction is Q times a residual, so Y stays in null(J) at every iteration and the solve
+//! minimises the step's energy over the motions the joints allow. The joints' impulse on the
+//! bodies is then what the filter left out of the bodies' rows, as for a tie:
+//!
+//! ```text
+//! W_b = M_b Y_b + Σ_{ties on b} [λ_i + e_i; r_i × (λ_i + e_i)]     (= Jᵀ μ at the solution)
+//! ```
+//!
+//! An ideal joint does no work: W·Y = μᵀ J Y = 0. (The caller reads μ per joint from W.)
+//! The momentum closure below is skipped when a tied body is held by a joint: the joint's
+//! impulse comes from outside the sheet and its bodies.
+//!
 //! # Warm starts
 //!
 //! The particles' y starts from the last Δv (as in the untied solve); a body's Y starts
@@ -100,6 +135,46 @@ pub struct SolverBody {
     pub angular_velocity: Vector3<f64>,
     /// Out: the change the ties made, ΔV (m/s) and Δω (rad/s).
     pub correction: [Vector3<f64>; 2],
+}
+
+/// Joint rows on the solve's bodies: the bodies' corrections must keep `J Y = 0` (module doc,
+/// "Joints on the bodies"). Empty: no body is held.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BodyJoints {
+    /// The bodies the rows touch (indices into the solve's bodies, each one that moves), in
+    /// the order their corrections are stacked.
+    pub bodies: Vec<usize>,
+    /// An orthonormal basis N of null(J), 6k × d (d = 0: the rows hold the bodies still).
+    basis: nalgebra::DMatrix<f64>,
+}
+
+impl BodyJoints {
+    /// The filter of rows `rows` (r × 6k, each row J over the stacked corrections of
+    /// `bodies`): N from the eigenvectors of Jᵀ J whose eigenvalue is below 1e-12 of the
+    /// largest (a redundant row removes nothing).
+    pub fn new(bodies: Vec<usize>, rows: &nalgebra::DMatrix<f64>) -> BodyJoints {
+        let size = 6 * bodies.len();
+        debug_assert_eq!(rows.ncols(), size);
+        let normal = rows.transpose() * rows;
+        let eigen = nalgebra::SymmetricEigen::new(normal);
+        let largest = eigen
+            .eigenvalues
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let free: Vec<usize> = (0..size)
+            .filter(|&k| eigen.eigenvalues[k] <= 1e-12 * largest)
+            .collect();
+        let mut basis = nalgebra::DMatrix::zeros(size, free.len());
+        for (c, &k) in free.iter().enumerate() {
+            basis.set_column(c, &eigen.eigenvectors.column(k));
+        }
+        BodyJoints { bodies, basis }
+    }
+
+    /// Whether no body is held.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.is_empty()
+    }
 }
 
 /// One particle tied to a body (or to a fixed surface when `body` is None).
@@ -162,6 +237,10 @@ pub struct TieBuffers {
     values: Vec<f64>,
     /// The tied rows of a product (`multiply_reduced`).
     tied_rows: Vec<(usize, Vector3<f64>)>,
+    /// Joints on the bodies: Q = N (Nᵀ D N)⁻¹ Nᵀ over the held bodies' stacked corrections,
+    /// and per body whether it is held (module doc).
+    held_inverse: nalgebra::DMatrix<f64>,
+    held: Vec<bool>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -186,6 +265,8 @@ impl TieBuffers {
             + bytes_of(&self.wrenches, self.wrenches.capacity())
             + bytes_of(&self.values, self.values.capacity())
             + bytes_of(&self.tied_rows, self.tied_rows.capacity())
+            + self.held_inverse.len() * std::mem::size_of::<f64>()
+            + bytes_of(&self.held, self.held.capacity())
     }
 }
 
@@ -238,6 +319,29 @@ fn add_wrenches(
     }
 }
 
+/// Each body's z = its preconditioner times its r (`from_rhs`: times its right-hand side):
+/// the 6 × 6 inverse of its block, or for the bodies held by joints Q over their stacked
+/// vectors (module doc, "Joints on the bodies").
+fn precondition_bodies(t: &mut TieBuffers, joints: &BodyJoints, from_rhs: bool) {
+    let pick = |bv: &BodyVectors| if from_rhs { bv.rhs } else { bv.r };
+    for (b, bv) in t.body.iter_mut().enumerate() {
+        if !t.held[b] {
+            bv.z = t.body_inverse[b] * pick(bv);
+        }
+    }
+    if joints.is_empty() {
+        return;
+    }
+    let mut r = nalgebra::DVector::<f64>::zeros(6 * joints.bodies.len());
+    for (g, &b) in joints.bodies.iter().enumerate() {
+        r.rows_mut(6 * g, 6).copy_from(&pick(&t.body[b]));
+    }
+    let z = &t.held_inverse * r;
+    for (g, &b) in joints.bodies.iter().enumerate() {
+        t.body[b].z = z.fixed_rows::<6>(6 * g).into_owned();
+    }
+}
+
 /// M_b Y.
 #[inline(always)]
 fn body_mass(b: &SolverBody, y: &Vector6<f64>) -> Vector6<f64> {
@@ -254,6 +358,7 @@ impl Workspace {
         &mut self,
         ties: &mut [Tie],
         bodies: &mut [SolverBody],
+        joints: &BodyJoints,
         v0: &[Vector3<f64>],
         tolerance: f64,
         max_iterations: usize,
@@ -355,6 +460,24 @@ impl Workspace {
                     Matrix6::zeros()
                 }
             }));
+        // Joints on the bodies: Q = N (Nᵀ D N)⁻¹ Nᵀ over the held bodies (module doc).
+        t.held.clear();
+        t.held.resize(bodies.len(), false);
+        if !joints.is_empty() {
+            let size = 6 * joints.bodies.len();
+            let mut d = nalgebra::DMatrix::<f64>::zeros(size, size);
+            for (g, &b) in joints.bodies.iter().enumerate() {
+                t.held[b] = true;
+                d.view_mut((6 * g, 6 * g), (6, 6))
+                    .copy_from(&body_blocks[b]);
+            }
+            let n = &joints.basis;
+            let reduced = n.transpose() * &d * n;
+            t.held_inverse = match reduced.cholesky() {
+                Some(c) if n.ncols() > 0 => n * c.inverse() * n.transpose(),
+                _ => nalgebra::DMatrix::zeros(size, size),
+            };
+        }
         // Reduced right-hand side: Tᵀ(b̄ − Ā z).
         Self::multiply_plain(
             &self.blocks,
@@ -397,8 +520,9 @@ impl Workspace {
         for i in 0..n {
             delta0 += self.residual[i].dot(&t.inverse[i].apply(&self.residual[i]));
         }
-        for (bv, inv) in t.body.iter().zip(&t.body_inverse) {
-            delta0 += bv.rhs.dot(&(inv * bv.rhs));
+        precondition_bodies(&mut t, joints, true);
+        for bv in &t.body {
+            delta0 += bv.rhs.dot(&bv.z);
         }
         for i in 0..n {
             let k = t.tie_of[i];
@@ -439,7 +563,9 @@ impl Workspace {
             }
             for (b, bv) in t.body.iter_mut().enumerate() {
                 bv.r = bv.rhs - q_body[b];
-                bv.z = t.body_inverse[b] * bv.r;
+            }
+            precondition_bodies(&mut t, joints, false);
+            for bv in &t.body {
                 delta += bv.r.dot(&bv.z);
             }
             if delta > delta0 {
@@ -452,9 +578,11 @@ impl Workspace {
                     self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
                     delta += self.residual[i].dot(&self.preconditioned[i]);
                 }
-                for (b, bv) in t.body.iter_mut().enumerate() {
+                for bv in t.body.iter_mut() {
                     bv.r = bv.rhs;
-                    bv.z = t.body_inverse[b] * bv.r;
+                }
+                precondition_bodies(&mut t, joints, false);
+                for bv in &t.body {
                     delta += bv.r.dot(&bv.z);
                 }
             }
@@ -501,7 +629,9 @@ impl Workspace {
                 for (b, bv) in t.body.iter_mut().enumerate() {
                     x_body[b] += direction_body[b] * alpha;
                     bv.r -= q_body[b] * alpha;
-                    bv.z = t.body_inverse[b] * bv.r;
+                }
+                precondition_bodies(&mut t, joints, false);
+                for bv in &t.body {
                     next += bv.r.dot(&bv.z);
                 }
                 let beta = next / delta;
@@ -535,9 +665,11 @@ impl Workspace {
                 *dv = tie.free(dv) + tied;
             }
         }
-        // Momentum (module doc): with nothing pinned and every tie to a moving body, the
-        // untied particles take the uniform shift that closes Σ a Δv = Σ b − Σ M ΔV.
-        if pinned.is_empty() && ties.iter().all(moves) {
+        // Momentum (module doc): with nothing pinned and every tie to a moving body, none of
+        // them held by a joint, the untied particles take the uniform shift that closes
+        // Σ a Δv = Σ b − Σ M ΔV.
+        let held_tie = |tie: &Tie| tie.body.is_some_and(|b| t.held[b]);
+        if pinned.is_empty() && ties.iter().all(moves) && !ties.iter().any(held_tie) {
             let mut gap = Vector3::zeros();
             let mut free_mass = 0.0;
             for i in 0..n {
