@@ -2807,7 +2807,11 @@ fn lesson_35_at_rest_the_floor_carries_all_three_and_the_cube_rests_at_the_pinne
         .map(|c| c.depth)
         .fold(0.0, f64::max);
     assert_near(depth, sag, 0.01 * sag, "the frame's depth within the step");
-    assert!(w.attach_error(0) < 1e-12, "the rim's offset {:e}", w.attach_error(0));
+    assert!(
+        w.attach_error(0) < 1e-12,
+        "the rim's offset {:e}",
+        w.attach_error(0)
+    );
     // Momentum: gravity and the floor are the only outside forces.
     let p = w
         .states()
