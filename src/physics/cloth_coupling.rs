@@ -1098,16 +1098,40 @@ pub struct Carried {
 /// `carried`, with its moment about the body's barycenter), came through the body from what it
 /// touches. The caller books it (`World`: into the body's contacts with what cannot move,
 /// which then report the support of the body and its particles together) and books the
-/// energy the move changes (the particles' kinetic, gravitational and spring energy) as the
-/// contacts' energy.
+/// energy the move changes as the contacts' energy. Returned, J: the carried particles'
+/// kinetic and gravitational energy, and the springs that touch them,
+///
+/// ```text
+/// ΔE = Σ_p [½ m_p (|v_p'|² − |v_p|²) − m_p g·(x_p' − x_p)] + Σ_{springs at a carried p} ΔU_s
+/// ```
+///
+/// (what measuring the whole sheet's energy before and after would give, without the other
+/// particles and springs, which do not change).
 pub fn carry_attachments(
     cloth: &mut Cloth,
+    gravity: Option<Vector3<f64>>,
     bodies: &[Body],
     states: &[State],
     attachments: &[Attachment],
     moved: &[bool],
     carried: &mut [Carried],
-) {
+) -> f64 {
+    let carries = |a: &Attachment| moved.get(a.body).copied().unwrap_or(false);
+    if !attachments.iter().any(carries) {
+        return 0.0;
+    }
+    // The springs at a carried particle, before and after.
+    let mut at_carried = vec![false; cloth.len()];
+    for a in attachments.iter().filter(|a| carries(a)) {
+        at_carried[a.particle] = true;
+    }
+    let springs_energy = |cloth: &Cloth| -> f64 {
+        (cloth.springs.iter())
+            .filter(|s| at_carried[s.i] || at_carried[s.j])
+            .map(|s| s.energy(&cloth.positions))
+            .sum()
+    };
+    let mut change = -springs_energy(cloth);
     for a in attachments {
         if !moved.get(a.body).copied().unwrap_or(false) {
             continue;
@@ -1119,12 +1143,18 @@ pub fn carry_attachments(
         let omega = inv_inertia * state.angular_momentum;
         let velocity = state.linear_momentum * body.inv_mass + omega.cross(&arm);
         let p = a.particle;
-        let change = (velocity - cloth.velocities[p]) * cloth.masses[p];
-        cloth.positions[p] = state.position + arm;
+        let (m, position) = (cloth.masses[p], state.position + arm);
+        let momentum = (velocity - cloth.velocities[p]) * m;
+        change += 0.5 * m * (velocity.norm_squared() - cloth.velocities[p].norm_squared());
+        if let Some(g) = gravity {
+            change -= m * g.dot(&(position - cloth.positions[p]));
+        }
+        cloth.positions[p] = position;
         cloth.velocities[p] = velocity;
-        carried[a.body].impulse += change;
-        carried[a.body].moment += arm.cross(&change);
+        carried[a.body].impulse += momentum;
+        carried[a.body].moment += arm.cross(&momentum);
     }
+    change + springs_energy(cloth)
 }
 
 /// Attachments of an explicit (`symplectic-euler`) cloth, held by impulses after its
