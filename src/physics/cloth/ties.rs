@@ -805,3 +805,85 @@ impl Workspace {
         add_wrenches(out_body, &t.wrenches, &mut t.values);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::DMatrix;
+
+    /// The rows of a ball joint at arm r (from the barycentre) to the world, `V + ω × r = 0`:
+    /// for each axis e_k, `e_k·V + (r × e_k)·ω = 0`; with `hinge` also `(u × t)·ω = 0` for the
+    /// two t ⊥ u.
+    fn joint_rows(r: &Vector3<f64>, hinge: Option<Vector3<f64>>) -> DMatrix<f64> {
+        let mut rows: Vec<[f64; 6]> = (0..3)
+            .map(|k| {
+                let e = Vector3::ith(k, 1.0);
+                let a = r.cross(&e);
+                [e.x, e.y, e.z, a.x, a.y, a.z]
+            })
+            .collect();
+        if let Some(u) = hinge {
+            let p = u.cross(&Vector3::new(0.3, 1.0, 0.2)).normalize();
+            for t in [p, u.cross(&p)] {
+                let g = u.cross(&t);
+                rows.push([0.0, 0.0, 0.0, g.x, g.y, g.z]);
+            }
+        }
+        DMatrix::from_fn(rows.len(), 6, |i, c| rows[i][c])
+    }
+
+    /// Each column of the basis as (V, ω).
+    fn motions(joints: &BodyJoints) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+        (joints.basis.column_iter())
+            .map(|c| {
+                (
+                    Vector3::new(c[0], c[1], c[2]),
+                    Vector3::new(c[3], c[4], c[5]),
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_ball_joint_leaves_the_three_turns_about_its_point() {
+        // Free motions: turns about the joint's point, V = −ω × r (the point stays): 3.
+        let r = Vector3::new(-0.8, 0.1, 0.2);
+        let joints = BodyJoints::new(vec![0], &joint_rows(&r, None));
+        let free = motions(&joints);
+        assert_eq!(free.len(), 3);
+        for (v, w) in &free {
+            assert!((v + w.cross(&r)).norm() < 1e-14, "{v:?} {w:?}");
+        }
+        let gram = joints.basis.transpose() * &joints.basis;
+        assert!((gram - DMatrix::<f64>::identity(3, 3)).norm() < 1e-14);
+    }
+
+    #[test]
+    fn a_hinge_leaves_one_turn_about_its_axis_through_its_point() {
+        let r = Vector3::new(-0.8, 0.0, 0.0);
+        let u = Vector3::new(1.0, 2.0, -0.5).normalize();
+        let joints = BodyJoints::new(vec![0], &joint_rows(&r, Some(u)));
+        let free = motions(&joints);
+        assert_eq!(free.len(), 1);
+        let (v, w) = free[0];
+        // A unit vector of the stacked (V, ω), turning about u: ω ∥ u, ω ≠ 0.
+        assert!((v.norm_squared() + w.norm_squared() - 1.0).abs() < 1e-14);
+        assert!(
+            w.norm() > 0.1 && w.cross(&u).norm() < 1e-14,
+            "about the axis: {w:?}"
+        );
+        assert!((v + w.cross(&r)).norm() < 1e-14, "the point stays: {v:?}");
+    }
+
+    #[test]
+    fn a_fixed_joint_leaves_no_motion() {
+        // Ball rows and the three angular rows ω = 0.
+        let mut rows = joint_rows(&Vector3::new(0.3, -0.2, 0.1), None);
+        rows = rows.insert_rows(3, 3, 0.0);
+        for k in 0..3 {
+            rows[(3 + k, 3 + k)] = 1.0;
+        }
+        let joints = BodyJoints::new(vec![0], &rows);
+        assert_eq!(joints.basis.ncols(), 0);
+    }
+}
