@@ -886,21 +886,23 @@ impl World {
     /// case) is booked with the contacts, measured on what it moved (`carry_attachments`).
     fn carry_attached(&mut self) {
         let now = &mut self.now;
-        let moved: Vec<bool> = (self.carry_start.iter())
+        let moves: Vec<BodyMove> = (self.carry_start.iter())
             .zip(&now.states)
-            .map(|(before, after)| before != after)
+            .map(|(before, after)| {
+                if before != after {
+                    BodyMove::between(before, after)
+                } else {
+                    BodyMove::NONE
+                }
+            })
             .collect();
-        now.collide_moves.clear();
-        now.collide_moves
-            .extend((self.carry_start.iter()).zip(&now.states).zip(&moved).map(
-                |((before, after), &m)| {
-                    if m {
-                        BodyMove::between(before, after)
-                    } else {
-                        BodyMove::NONE
-                    }
-                },
-            ));
+        // Carried: what the response moved, and what this step's ties led by the last move
+        // (a body moved then and not now: its particles went one move too far).
+        let led = std::mem::replace(&mut now.collide_moves, moves);
+        let moved: Vec<bool> = (now.collide_moves.iter())
+            .enumerate()
+            .map(|(b, m)| *m != BodyMove::NONE || led.get(b).is_some_and(|l| *l != BodyMove::NONE))
+            .collect();
         if !moved.iter().any(|&m| m) {
             return;
         }
