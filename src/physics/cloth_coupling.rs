@@ -10,6 +10,11 @@
 //! - `symplectic-euler`: the two passes below for contacts, and [`hold_attachments`] for
 //!   its attachments (impulses after the velocity half, one small solve per body).
 //!
+//! Attached bodies stay consistent within the step: the joints on a body that moves in the
+//! implicit solve are held inside it ([`tied_step`], "Joints"), and particles attached to a
+//! body the rigid collide phase then moves are carried with it ([`carry_attachments`]),
+//! having aimed at where its last move put it ([`BodyMove`]).
+//!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
 //!
 //! A push-out that moves a particle out of a body stretches its springs: energy made by the
@@ -487,7 +492,7 @@ pub struct AttachReport {
 ///
 /// # Joints
 ///
-/// The joints on the bodies that move in the solve are held inside it ([`HeldJoints`]):
+/// The joints on the bodies that move in the solve are held inside it (`HeldJoints`):
 /// their rows filter the bodies' corrections, and `joint_impulses` receives each joint's
 /// impulse on its body A over the step (N·s, torque about A's barycenter).
 ///
