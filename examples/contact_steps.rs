@@ -34,16 +34,20 @@ fn main() {
     } else {
         panic!("{usage}")
     };
+    let every: u64 = std::env::var("CONTACT_STEPS_EVERY")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1000);
     let start = Instant::now();
     let mut last = world.contact_counters();
     let mut last_time = start;
     for step in 1..=steps {
         world.step();
-        if step % 1000 == 0 || step == steps {
+        if step % every == 0 || step == steps {
             let now = world.contact_counters();
             let t = Instant::now();
             println!(
-                "t {:6.1} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction sweeps {:7} subspace {:6}  {:9.1} µs/step",
+                "t {:6.3} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
                 step as f64 * 1e-3,
                 now.direct - last.direct,
                 now.declined - last.declined,
@@ -51,7 +55,8 @@ fn main() {
                 now.normal_sweeps - last.normal_sweeps,
                 now.friction_sweeps - last.friction_sweeps,
                 now.friction_subspace - last.friction_subspace,
-                (t - last_time).as_secs_f64() * 1e6 / 1000.0,
+                now.normal_subspace - last.normal_subspace,
+                (t - last_time).as_secs_f64() * 1e6 / every as f64,
             );
             last = now;
             last_time = t;

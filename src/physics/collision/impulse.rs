@@ -48,9 +48,14 @@
 //!    the last step's impulses: at rest they are already the answer, one sweep over the rows
 //!    confirms it to the same tolerance, where a factorisation costs rows · width². Only when
 //!    they do not converge does the direct solve run (and a failed trial waits a few steps
-//!    before the next, so a scene whose warm start is poor stops paying for it). Every
-//!    bundled lesson and every stack (banded) keeps the direct solve first. The friction stage
-//!    below does the same.
+//!    before the next, so a scene whose warm start is poor stops paying for it). Such a
+//!    system's direct solve starts its active set from the rows that pushed last step as well
+//!    as the approaching ones (a settling pyramid of 20 rows otherwise adds a row per pair of
+//!    bodies a round, needs about three rounds per row of cubes, and runs out of rounds), and
+//!    if it still declines, its sweeps take subspace steps (as stage 2's below, on the
+//!    pushing normals alone, the whole step first projected onto λ ≥ 0, at most
+//!    [`NORMAL_SUBSPACE_MAX`] a step). Every bundled lesson and every stack (banded) keeps the
+//!    direct solve first and the plain sweeps. The friction stage below does the same.
 //! 2. **Coulomb friction** (if μ > 0): two tangent impulses per contact, kept in the disk
 //!    `|λ_t| ≤ μ λᵢ` with λᵢ from stage 1 (fixed bounds, so the feasible set is convex and fixed).
 //!    The sweep updates the normal impulse as in stage 1, then both tangent impulses at once:
@@ -129,19 +134,23 @@ pub const MAX_SWEEPS: usize = 2000;
 /// envelope is stored and factored, see [`Dense`]).
 pub const DIRECT_MAX: usize = 4096;
 
-/// Largest envelope (stored entries of [`Dense`]) the direct solves take on; beyond it the
-/// sweeps run. A stack of 40 (banded) stays far below it; a pyramid of 10 rows, whose rows in
-/// contact order have a wide envelope, goes above: measured, its factorisations cost more than
-/// the warm-started sweeps (2.8 against 1.3 ms a step), and with 1 cm gaps far more (35 ms).
-pub const ENVELOPE_MAX: usize = 1 << 14;
+/// Largest envelope (stored entries of [`Dense`], 8 bytes each) the direct solves take on;
+/// beyond it the sweeps run. A stack of 40 (banded) stays far below it; a pyramid of 20 rows,
+/// whose rows in contact order reach back over a whole row of cubes, stores about 250 000
+/// while it settles (about 5 ms a factorisation, against seconds of capped sweeps).
+pub const ENVELOPE_MAX: usize = 1 << 20;
 
 /// Gaps up to this are round-off of touching, m: positions of order 1 m carry errors of
 /// about 1e-14 m after a few operations, so the corners of a face lying flat on another come
-/// out ±1e-14 m apart. Their bias (gap/dt) would make the four rows of a face manifold —
-/// which constrain three motions — inconsistent by 1e-11 m/s, and the direct solve's
-/// minimum-norm answer would blow that up by 1/ε into impulses of ±100 N·s of opposite signs.
-/// Treated as touching (no bias), the rows stay consistent.
-pub const GAP_ROUND_OFF: f64 = 1e-12;
+/// out ±1e-14 m apart, and the sweeps' tolerance ([`TOLERANCE`], 1e-10 m/s) lets a body at rest
+/// creep by up to 1e-13 m a step: after a few seconds a face's corners are up to a nanometre
+/// apart. Their bias (gap/dt) would make the four rows of a face manifold — which constrain
+/// three motions — inconsistent, and the direct solve's minimum-norm answer would blow that
+/// up by 1/ε into impulses of ±100 N·s of opposite signs; a pyramid of 20 rows whose corners
+/// came 1e-11 m apart declined its direct solve and spent seconds a step in the sweeps.
+/// Treated as touching (no bias), the rows stay consistent. A nanometre is far below anything
+/// a panel shows (0.1 µm).
+pub const GAP_ROUND_OFF: f64 = 1e-9;
 
 /// How many changes of its active set the direct inelastic solve may make (one row out or in
 /// per pair of bodies each) before it gives way to the sweeps (a pyramid of 10 rows needed
@@ -179,6 +188,11 @@ pub const SUBSPACE_EVERY: u64 = 8;
 
 /// Most changes of the active set one friction subspace search makes (each a direct solve).
 pub const SUBSPACE_ROUNDS: usize = 8;
+
+/// Most subspace steps the normal sweeps of one step take (each a factorisation of the
+/// pushing rows): a settling pyramid of 20 rows needs 6; where they stop helping (rows on the
+/// edge of degeneracy) the plain sweeps go on.
+pub const NORMAL_SUBSPACE_MAX: usize = 32;
 
 /// How many times a friction subspace step that did not lower F is tried again, 8 times
 /// shorter.
@@ -269,6 +283,9 @@ pub struct Counters {
     /// Subspace steps the friction sweeps took (each a direct solve on the sweeps' active set,
     /// see `friction_subspace_step`).
     pub friction_subspace: u64,
+    /// Subspace steps the normal sweeps of a large system took (stage 1: the same step with
+    /// no friction unknowns).
+    pub normal_subspace: u64,
 }
 
 /// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
@@ -573,13 +590,17 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         }
     }
     if !answered {
-        let direct = direct_inelastic(rows, motions, tolerance, buffers_direct);
+        let direct = direct_inelastic(large, rows, motions, tolerance, buffers_direct);
         if direct {
             counters.direct += 1;
         } else {
             counters.declined += 1;
             warm_start_normals(rows, motions);
-            let (_, sweeps) = sweep_normals(rows, motions, tolerance, MAX_SWEEPS as u64);
+            let (_, sweeps) = if large {
+                sweep_with_subspace(rows, &[], motions, tolerance, buffers_direct, counters)
+            } else {
+                sweep_normals(rows, motions, tolerance, MAX_SWEEPS as u64)
+            };
             counters.normal_sweeps += sweeps;
         }
     }
@@ -648,7 +669,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         }
         if !solved {
             warm_start_friction(rows, tangent_directions, motions);
-            let (_, sweeps) = sweep_friction_with_subspace(
+            let (_, sweeps) = sweep_with_subspace(
                 rows,
                 tangent_directions,
                 motions,
@@ -825,11 +846,13 @@ fn sweep_friction(
     (false, cap)
 }
 
-/// The friction sweeps ([`sweep_friction`]) with a subspace step ([`friction_subspace_step`])
-/// after every [`SUBSPACE_EVERY`] sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in
-/// all; returns whether they converged and how many sweeps ran. A system too wide for the
-/// direct solve ([`ENVELOPE_MAX`]) stops trying the subspace steps.
-fn sweep_friction_with_subspace(
+/// Sweeps with a subspace step ([`friction_subspace_step`]) after every [`SUBSPACE_EVERY`]
+/// sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in all; returns whether they
+/// converged and how many sweeps ran. With friction directions these are the friction sweeps
+/// ([`sweep_friction`]); with none (stage 1, every friction bound 0) the normal sweeps
+/// ([`sweep_normals`]), and the subspace step solves the pushing normals alone. A system too
+/// wide for the direct solve ([`ENVELOPE_MAX`]) stops trying the subspace steps.
+fn sweep_with_subspace(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
@@ -838,12 +861,22 @@ fn sweep_friction_with_subspace(
     counters: &mut Counters,
 ) -> (bool, u64) {
     let cap = MAX_SWEEPS as u64;
+    let normals_only = directions.is_empty();
     let mut total = 0;
     let mut subspace = true;
+    let mut steps_left = if normals_only {
+        NORMAL_SUBSPACE_MAX
+    } else {
+        usize::MAX
+    };
     loop {
-        let burst = if subspace { SUBSPACE_EVERY } else { cap };
-        let (converged, sweeps) =
-            sweep_friction(rows, directions, motions, tolerance, burst.min(cap - total));
+        subspace &= steps_left > 0;
+        let burst = if subspace { SUBSPACE_EVERY } else { cap }.min(cap - total);
+        let (converged, sweeps) = if normals_only {
+            sweep_normals(rows, motions, tolerance, burst)
+        } else {
+            sweep_friction(rows, directions, motions, tolerance, burst)
+        };
         total += sweeps;
         if converged || total >= cap {
             return (converged, total);
@@ -854,8 +887,13 @@ fn sweep_friction_with_subspace(
         for _ in 0..SUBSPACE_ROUNDS {
             match friction_subspace_step(rows, directions, motions, buffers) {
                 Subspace::Taken { whole } => {
-                    counters.friction_subspace += 1;
-                    if whole {
+                    steps_left = steps_left.saturating_sub(1);
+                    if normals_only {
+                        counters.normal_subspace += 1;
+                    } else {
+                        counters.friction_subspace += 1;
+                    }
+                    if whole || steps_left == 0 {
                         break;
                     }
                 }
@@ -1062,6 +1100,14 @@ fn friction_subspace_step(
     if alpha.is_nan() || alpha <= 0.0 {
         return Subspace::Declined;
     }
+    // Stage 1 (no friction unknowns) first tries the whole step projected onto λ ≥ 0, which
+    // changes many normals at once (a pyramid settling changes hundreds); the ratio-test step
+    // follows if that one does not lower F.
+    let ratio = (alpha, blocking);
+    let projected_first = directions.is_empty() && alpha < 1.0;
+    if projected_first {
+        (alpha, blocking) = (1.0, None);
+    }
     saved.clear();
     saved.extend_from_slice(motions);
     subspace_rows.clear();
@@ -1146,7 +1192,7 @@ fn friction_subspace_step(
                 pinned.push(unknowns[p].row);
             }
             return Subspace::Taken {
-                whole: alpha == 1.0 && attempt == 0,
+                whole: alpha == 1.0 && attempt == 0 && !projected_first,
             };
         }
         motions.copy_from_slice(saved);
@@ -1154,8 +1200,12 @@ fn friction_subspace_step(
             row.lambda = lambda;
             row.lambda_tangent = tangent;
         }
-        alpha /= 8.0;
-        blocking = None;
+        if projected_first && attempt == 0 {
+            (alpha, blocking) = ratio;
+        } else {
+            alpha /= 8.0;
+            blocking = None;
+        }
     }
     Subspace::Declined
 }
@@ -1215,8 +1265,12 @@ fn bounces(row: &Row, bounce_speed: f64) -> bool {
 /// its most approaching one in, so a pyramid whose every face has such a corner needs a few
 /// rounds, not one per face — and the system is solved again, at most [`PIVOT_ROUNDS`]
 /// times. The active rows stay in contact order (rows of a pair together), which keeps the
-/// envelope of a stack banded. Returns false (and changes nothing) otherwise.
+/// envelope of a stack banded. A `wide` system (a pyramid) starts its active set with the
+/// rows that pushed last step too (their warm impulse along the normal is positive): its
+/// answer at rest, where starting from the approaching rows alone would climb the pyramid a
+/// row per pair per round. Returns false (and changes nothing) otherwise.
 fn direct_inelastic(
+    wide: bool,
     rows: &mut [Row],
     motions: &mut [SolverBody],
     tolerance: f64,
@@ -1235,7 +1289,8 @@ fn direct_inelastic(
     if !rows.iter().any(approaching) {
         return true;
     }
-    active.extend((0..rows.len()).filter(|&i| approaching(&rows[i])));
+    let start = |r: &Row| approaching(r) || (wide && r.warm.dot(&r.normal.d) > 0.0);
+    active.extend((0..rows.len()).filter(|&i| start(&rows[i])));
     let mut m = active.len();
     if m > DIRECT_MAX {
         return false;
