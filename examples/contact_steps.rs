@@ -7,11 +7,11 @@
 //! target/release/examples/contact_steps SCENE STEPS [RESPONSE]
 //! ```
 //!
-//! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes`; RESPONSE: `impulse` (default)
-//! or `soft-step`.
+//! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes` (or `dominoes-D`, the first
+//! tipped D°); RESPONSE: `impulse` (default) or `soft-step`.
 
 use std::time::Instant;
-use tumble::contact_scenes::{dominoes, pyramid, stack};
+use tumble::contact_scenes::{dominoes, dominoes_tipped, pyramid, stack};
 use tumble::physics::Response;
 
 fn main() {
@@ -31,6 +31,8 @@ fn main() {
         pyramid(rows.parse().expect(usage), gap, response)
     } else if scene == "dominoes" {
         dominoes(response)
+    } else if let Some(degrees) = scene.strip_prefix("dominoes-") {
+        dominoes_tipped(degrees.parse().expect(usage), response)
     } else {
         panic!("{usage}")
     };

@@ -107,9 +107,15 @@ pub const DOMINO_PITCH: f64 = 0.12;
 /// 8 dominoes in a row along x; the first is tipped 10° towards the second about its bottom
 /// edge at +x (it starts on that edge, touching the ground).
 pub fn dominoes(response: Response) -> World {
+    dominoes_tipped(10.0, response)
+}
+
+/// [`dominoes`] with the first tipped `degrees` instead of 10° (the same run along another
+/// trajectory: the benches average cost over a few).
+pub fn dominoes_tipped(degrees: f64, response: Response) -> World {
     let [t, h, _] = DOMINO;
     let body = Body::solid_box(Vector3::from(DOMINO), DOMINO_MASS).expect("a valid box");
-    let tilt = 10f64.to_radians();
+    let tilt = degrees.to_radians();
     let bodies = (0..8)
         .map(|i| {
             let x = i as f64 * DOMINO_PITCH;
