@@ -2980,7 +2980,12 @@ fn lesson_37_the_first_domino_turns_about_its_edge_as_the_quadrature_says() {
     let r = 0.5 * (DOMINO_T.powi(2) + DOMINO_H.powi(2)).sqrt();
     assert_near(domino_y(tip), r, 1e-15, "y is highest at the tipping angle");
     assert_near(r, 0.100499, 5e-7, "r");
-    assert_near(DOMINO_M * G * (r - DOMINO_H / 2.0) * 1e3, 0.245, 5e-4, "work to tip, mJ");
+    assert_near(
+        DOMINO_M * G * (r - DOMINO_H / 2.0) * 1e3,
+        0.245,
+        5e-4,
+        "work to tip, mJ",
+    );
     assert_near(w.states()[0].position.y, domino_y(theta0), 1e-15, "d1's y");
     assert_near(tilt_degrees(&w, 0), 10.0, 1e-12, "d1's tilt");
     // Page 2: the top meets d2 where h sin θ = spacing − t: sin θ = 0.5, θ = 30°.
@@ -3026,7 +3031,12 @@ fn lesson_37_the_first_domino_turns_about_its_edge_as_the_quadrature_says() {
         exact.push((th, om));
     }
     let reached = exact.iter().position(|&(th, _)| th >= theta1).unwrap();
-    assert_near(reached as f64 * dt / 2.0, quadrature, dt / 2.0, "RK4 against quadrature");
+    assert_near(
+        reached as f64 * dt / 2.0,
+        quadrature,
+        dt / 2.0,
+        "RK4 against quadrature",
+    );
     // Page 2: the exact ω at 0.283 s, 3.535 rad/s.
     assert_near(exact[2 * 283].1, 3.535, 5e-4, "exact ω at 0.283 s");
     // The simulation: until the touch, ω follows the exact ω(t) to 2e-4 and the angle the
@@ -3064,12 +3074,23 @@ fn lesson_37_the_first_domino_turns_about_its_edge_as_the_quadrature_says() {
         }
     }
     assert!(worst_omega < 2.5e-4, "ω off the exact by {worst_omega:e}");
-    assert!(worst_angle < 0.003, "angle off the lagged exact by {worst_angle}°");
+    assert!(
+        worst_angle < 0.003,
+        "angle off the lagged exact by {worst_angle}°"
+    );
     assert!(lifted < 1e-12, "the edge left the ground by {lifted:e} m");
-    assert_near(creep * 1e3, 0.17, 0.005, "the edge's creep by the touch, mm");
+    assert_near(
+        creep * 1e3,
+        0.17,
+        0.005,
+        "the edge's creep by the touch, mm",
+    );
     // The rigid rotation's need: the ground's force F = m a_cm + m g ŷ at the edge, at 30°.
     let (s1, c1) = theta1.sin_cos();
-    let (omega1, alpha1) = (domino_omega(theta0, theta1), domino_angular_acceleration(theta1));
+    let (omega1, alpha1) = (
+        domino_omega(theta0, theta1),
+        domino_angular_acceleration(theta1),
+    );
     // Barycenter from the edge: (−t/2 cos θ + h/2 sin θ, y(θ)); its derivatives in θ:
     // (t/2 sin θ + h/2 cos θ, y'(θ)) and (y'(θ), −y(θ)); a = x' α + x'' ω².
     let (dx, dy) = (
@@ -3131,7 +3152,12 @@ fn lesson_37_the_wave_runs_down_the_row_and_the_contacts_take_three_quarters() {
     let m_g = DOMINO_M * G;
     // E₀ = 7 m g h/2 + m g y(10°): all potential.
     let e0 = w.total_energy().total;
-    assert_near(e0, 7.0 * m_g * DOMINO_H / 2.0 + m_g * domino_y(10f64.to_radians()), 1e-15, "E₀");
+    assert_near(
+        e0,
+        7.0 * m_g * DOMINO_H / 2.0 + m_g * domino_y(10f64.to_radians()),
+        1e-15,
+        "E₀",
+    );
     assert_near(e0, 0.392507, 5e-7, "E₀ quoted");
     assert_near(m_g * DOMINO_H / 2.0, 0.049050, 5e-7, "m g h/2");
     let mut hits = [f64::NAN; 7];
@@ -3170,7 +3196,11 @@ fn lesson_37_the_wave_runs_down_the_row_and_the_contacts_take_three_quarters() {
         }
         last = e.total;
         if w.step_count() == tumble::live::step_at(1.2, w.dt()) {
-            assert!(e.kinetic < 1e-9, "still moving at 1.2 s: K = {:e}", e.kinetic);
+            assert!(
+                e.kinetic < 1e-9,
+                "still moving at 1.2 s: K = {:e}",
+                e.kinetic
+            );
         }
         if w.step_count() == tumble::live::step_at(1.25, w.dt()) {
             rest = Some(poses(&w));
@@ -3204,13 +3234,24 @@ fn lesson_37_the_wave_runs_down_the_row_and_the_contacts_take_three_quarters() {
         assert!((0.0255..0.0275).contains(&y), "d{} at y = {y}", i + 1);
     }
     assert!((tilt_degrees(&w, 7) - 90.0).abs() < 1.0, "d8 not flat");
-    assert_near(w.states()[7].position.y, DOMINO_T / 2.0, 1e-6, "d8's y = t/2");
+    assert_near(
+        w.states()[7].position.y,
+        DOMINO_T / 2.0,
+        1e-6,
+        "d8's y = t/2",
+    );
     // Page 5: E never read more than 3.4e-5 J above E₀ (just before the first touch); after d8
     // landed, the steps that lifted the leaning row raised E by 1.7e-3 J in all.
     assert_near(highest - e0, 3.4e-5, 1e-6, "E's highest above E₀");
     assert_near(rises_late, 1.7e-3, 5e-5, "rises after the landing");
-    assert!(integrate_change < 1e-12, "integrate changed E by {integrate_change:e}");
-    assert!(impulses_gain < 1e-12, "the impulses added {impulses_gain:e} J of K");
+    assert!(
+        integrate_change < 1e-12,
+        "integrate changed E by {integrate_change:e}"
+    );
+    assert!(
+        impulses_gain < 1e-12,
+        "the impulses added {impulses_gain:e} J of K"
+    );
     // At rest nothing creeps: from 1.25 s to 1.5 s no domino moves 1e-10 m.
     let moved = largest_move(&rest.unwrap(), &poses(&w));
     assert!(moved < 1e-10, "moved {moved:e} m");
