@@ -2,7 +2,7 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4, 9–18.
+//! with the formula that gives it in a comment. Lessons: 1–4, 9–21, 25–28, 33–37.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
@@ -3318,4 +3318,35 @@ fn lesson_37_soft_step_runs_the_same_wave_but_sags_and_creeps() {
     let moved = largest_move(&rest.unwrap(), &poses(&w));
     println!("soft-step: moved {moved:e} m from 1.25 s to 1.5 s");
     assert!(moved > 1e-5, "moved only {moved:e} m");
+}
+
+#[test]
+fn lesson_37_is_the_contact_scenes_domino_run() {
+    // The lesson writes out `tumble::contact_scenes::dominoes` (the scene the contact benches
+    // and tests/physics/dominoes.rs step): same bodies, same start, same contact law.
+    let lesson = domino_run(1e-3, None);
+    let code = tumble::contact_scenes::dominoes(tumble::physics::Response::Impulse);
+    assert_eq!(lesson.body_count(), code.body_count());
+    assert_eq!(lesson.dt(), code.dt());
+    assert_eq!(lesson.integrator(), code.integrator());
+    assert_eq!(lesson.contact_model(), code.contact_model());
+    assert_eq!(lesson.obstacles(), code.obstacles());
+    assert_eq!(lesson.effects(), code.effects());
+    for (i, (a, b)) in lesson.states().iter().zip(code.states()).enumerate() {
+        assert!(
+            (a.position - b.position).norm() < 1e-15,
+            "d{}: {} against {}",
+            i + 1,
+            a.position,
+            b.position
+        );
+        let angle = a
+            .orientation
+            .quaternion()
+            .angle_to(&b.orientation.quaternion());
+        assert!(angle < 1e-15, "d{}: turned {angle:e} rad off", i + 1);
+        let (ma, mb) = (&lesson.bodies()[i], &code.bodies()[i]);
+        assert_eq!(ma.mass, mb.mass);
+        assert!((ma.inertia_body - mb.inertia_body).norm() < 1e-18);
+    }
 }
