@@ -2,7 +2,7 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4, 9–18.
+//! with the formula that gives it in a comment. Lessons: 1–4, 9–21, 25–28, 33–37.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
@@ -2907,5 +2907,446 @@ fn lesson_36_the_sweep_order_sways_the_soft_stack_and_not_the_rigid_one() {
             (top - Vector3::new(0.0, 1.9, 0.0)).norm() < 1e-14,
             "impulse, reversed = {reversed}: {top}"
         );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 37: a domino run
+// ---------------------------------------------------------------------------------------------
+
+/// A domino's thickness t (along x), height h, mass m; the dominoes' spacing.
+const DOMINO_T: f64 = 0.02;
+const DOMINO_H: f64 = 0.2;
+const DOMINO_M: f64 = 0.05;
+const DOMINO_SPACING: f64 = 0.12;
+
+/// The first domino's barycenter height above its bottom edge when turned θ from upright
+/// about that edge: y(θ) = (t/2) sin θ + (h/2) cos θ.
+fn domino_y(theta: f64) -> f64 {
+    DOMINO_T / 2.0 * theta.sin() + DOMINO_H / 2.0 * theta.cos()
+}
+
+/// Its moment of inertia about the edge: m (t² + h²)/12 + m r², r² = (t² + h²)/4.
+fn domino_inertia_edge() -> f64 {
+    DOMINO_M * (DOMINO_T.powi(2) + DOMINO_H.powi(2)) / 3.0
+}
+
+/// θ'' of the rigid rotation about the fixed edge: I θ'' = −m g y'(θ).
+fn domino_angular_acceleration(theta: f64) -> f64 {
+    let dy = DOMINO_T / 2.0 * theta.cos() - DOMINO_H / 2.0 * theta.sin();
+    -DOMINO_M * G * dy / domino_inertia_edge()
+}
+
+/// ω(θ) of the rotation from rest at θ₀, by energy: ½ I ω² = m g (y(θ₀) − y(θ)).
+fn domino_omega(theta0: f64, theta: f64) -> f64 {
+    (2.0 * DOMINO_M * G * (domino_y(theta0) - domino_y(theta)) / domino_inertia_edge()).sqrt()
+}
+
+/// A body's tilt: the angle of its long (body y) axis from the vertical, degrees.
+fn tilt_degrees(world: &World, i: usize) -> f64 {
+    let axis = world.states()[i].orientation.matrix() * Vector3::y();
+    axis.y.clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// A body's angular velocity ω = R I⁻¹ Rᵀ L from its state, rad/s.
+fn omega_of(world: &World, i: usize) -> Vector3<f64> {
+    let s = &world.states()[i];
+    let r = s.orientation.matrix();
+    r * world.bodies()[i].inv_inertia_body * r.transpose() * s.angular_momentum
+}
+
+/// Whether bodies i and i + 1 pushed on each other in the last step.
+fn neighbours_pushed(world: &World, i: usize) -> bool {
+    world.contacts().iter().any(|c| {
+        let pair = match c.against {
+            Against::Body(b) => (c.body.min(b), c.body.max(b)),
+            Against::Obstacle(_) => return false,
+        };
+        pair == (i, i + 1) && c.impulse.norm() > 0.0
+    })
+}
+
+#[test]
+fn lesson_37_the_first_domino_turns_about_its_edge_as_the_quadrature_says() {
+    let l = lesson("37-a-domino-run.toml");
+    let mut w = l.scene.world();
+    let dt = w.dt();
+    let theta0 = 10f64.to_radians();
+    // Page 1: it tips at atan(t/h) = 5.71°, where its barycenter is highest, r = ½√(t² + h²)
+    // = 0.100499 m; tipping a standing one takes m g (r − h/2) = 0.245 mJ. d1 starts at 10°
+    // on its edge at x = 0.01 m, barycenter y(10°) = 0.100217 m.
+    let tip = (DOMINO_T / DOMINO_H).atan();
+    assert_near(tip.to_degrees(), 5.71, 5e-3, "tipping angle");
+    let r = 0.5 * (DOMINO_T.powi(2) + DOMINO_H.powi(2)).sqrt();
+    assert_near(domino_y(tip), r, 1e-15, "y is highest at the tipping angle");
+    assert_near(r, 0.100499, 5e-7, "r");
+    assert_near(
+        DOMINO_M * G * (r - DOMINO_H / 2.0) * 1e3,
+        0.245,
+        5e-4,
+        "work to tip, mJ",
+    );
+    assert_near(w.states()[0].position.y, domino_y(theta0), 1e-15, "d1's y");
+    assert_near(tilt_degrees(&w, 0), 10.0, 1e-12, "d1's tilt");
+    // Page 2: the top meets d2 where h sin θ = spacing − t: sin θ = 0.5, θ = 30°.
+    let theta1 = ((DOMINO_SPACING - DOMINO_T) / DOMINO_H).asin();
+    assert_near(theta1.to_degrees(), 30.0, 1e-12, "θ at the touch");
+    let inertia = domino_inertia_edge();
+    assert_near(inertia, 6.733e-4, 5e-8, "I_edge");
+    let released = DOMINO_M * G * (domino_y(theta0) - domino_y(theta1));
+    assert_near(released * 1e3, 4.226, 5e-4, "mJ released by 30°");
+    assert_near(domino_omega(theta0, theta1), 3.543, 5e-4, "ω at 30°");
+    // The time, T = ∫ dθ/ω(θ) from θ₀ to θ₁; θ = θ₀ + u² takes out the 1/√ singularity at
+    // the start (from rest): T = ∫₀^√(θ₁−θ₀) 2u du / ω(θ₀ + u²), by the midpoint rule.
+    let (upper, n) = ((theta1 - theta0).sqrt(), 200_000);
+    let du = upper / n as f64;
+    let quadrature: f64 = (0..n)
+        .map(|k| {
+            let u = (k as f64 + 0.5) * du;
+            2.0 * u * du / domino_omega(theta0, theta0 + u * u)
+        })
+        .sum();
+    assert_near(quadrature, 0.2833, 5e-5, "T by quadrature");
+    // The exact fall θ(t), ω(t) by a fine RK4 of I θ'' = −m g y'(θ) (h = dt/40), sampled every
+    // half step: its end must agree with the quadrature.
+    let substeps = 20;
+    let h = dt / 2.0 / substeps as f64;
+    let mut exact = vec![(theta0, 0.0)];
+    let (mut th, mut om) = (theta0, 0.0);
+    while exact.len() < 2 * 300 {
+        for _ in 0..substeps {
+            let (k1t, k1o) = (om, domino_angular_acceleration(th));
+            let (k2t, k2o) = (
+                om + h / 2.0 * k1o,
+                domino_angular_acceleration(th + h / 2.0 * k1t),
+            );
+            let (k3t, k3o) = (
+                om + h / 2.0 * k2o,
+                domino_angular_acceleration(th + h / 2.0 * k2t),
+            );
+            let (k4t, k4o) = (om + h * k3o, domino_angular_acceleration(th + h * k3t));
+            th += h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t);
+            om += h / 6.0 * (k1o + 2.0 * k2o + 2.0 * k3o + k4o);
+        }
+        exact.push((th, om));
+    }
+    let reached = exact.iter().position(|&(th, _)| th >= theta1).unwrap();
+    assert_near(
+        reached as f64 * dt / 2.0,
+        quadrature,
+        dt / 2.0,
+        "RK4 against quadrature",
+    );
+    // Page 2: the exact ω at 0.283 s, 3.535 rad/s.
+    assert_near(exact[2 * 283].1, 3.535, 5e-4, "exact ω at 0.283 s");
+    // The simulation: until the touch, ω follows the exact ω(t) to 2e-4 and the angle the
+    // exact θ(t − dt/2): the positions lag the motion by half a step (seen: 0.0017° at most,
+    // a constant 0.5 ms; the next test shows it is first order). The ground's impulse leans
+    // as the rigid rotation needs, 0.302 at most (at 30°), inside μ = 0.5: the edge sticks,
+    // it never leaves the ground, yet it creeps forward, 0.17 mm by the touch: each step
+    // moves the body along a straight line with its new velocity (first order, page 5).
+    let corner = Vector3::new(DOMINO_T / 2.0, -DOMINO_H / 2.0, 0.0);
+    let (mut worst_omega, mut worst_angle, mut lean) = (0.0_f64, 0.0_f64, 0.0);
+    let (mut lifted, mut creep) = (0.0_f64, 0.0);
+    let mut touch = None;
+    while touch.is_none() {
+        w.step();
+        let k = w.step_count() as usize;
+        if neighbours_pushed(&w, 0) {
+            touch = Some(w.time());
+            break;
+        }
+        let omega = -omega_of(&w, 0).z;
+        worst_omega = worst_omega.max((omega / exact[2 * k].1 - 1.0).abs());
+        let lagged = exact[2 * k - 1].0.to_degrees();
+        worst_angle = worst_angle.max((tilt_degrees(&w, 0) - lagged).abs());
+        let s = &w.states()[0];
+        let edge = s.position + s.orientation.matrix() * corner;
+        lifted = lifted.max(edge.y.abs());
+        assert!(edge.x - 0.01 >= creep, "the edge went back at step {k}");
+        creep = edge.x - 0.01;
+        let ground = |c: &&tumble::physics::Contact| {
+            c.body == 0 && matches!(c.against, Against::Obstacle(_))
+        };
+        for c in w.contacts().iter().filter(ground) {
+            let jn = c.impulse.dot(&c.normal);
+            lean = f64::max(lean, (c.impulse - jn * c.normal).norm() / jn);
+        }
+    }
+    assert!(worst_omega < 2.5e-4, "ω off the exact by {worst_omega:e}");
+    assert!(
+        worst_angle < 0.003,
+        "angle off the lagged exact by {worst_angle}°"
+    );
+    assert!(lifted < 1e-12, "the edge left the ground by {lifted:e} m");
+    assert_near(
+        creep * 1e3,
+        0.17,
+        0.005,
+        "the edge's creep by the touch, mm",
+    );
+    // The rigid rotation's need: the ground's force F = m a_cm + m g ŷ at the edge, at 30°.
+    let (s1, c1) = theta1.sin_cos();
+    let (omega1, alpha1) = (
+        domino_omega(theta0, theta1),
+        domino_angular_acceleration(theta1),
+    );
+    // Barycenter from the edge: (−t/2 cos θ + h/2 sin θ, y(θ)); its derivatives in θ:
+    // (t/2 sin θ + h/2 cos θ, y'(θ)) and (y'(θ), −y(θ)); a = x' α + x'' ω².
+    let (dx, dy) = (
+        DOMINO_T / 2.0 * s1 + DOMINO_H / 2.0 * c1,
+        DOMINO_T / 2.0 * c1 - DOMINO_H / 2.0 * s1,
+    );
+    let (ddx, ddy) = (dy, -domino_y(theta1));
+    let fx = DOMINO_M * (dx * alpha1 + ddx * omega1.powi(2));
+    let fy = DOMINO_M * (dy * alpha1 + ddy * omega1.powi(2)) + DOMINO_M * G;
+    assert_near(fx / fy, 0.302, 5e-4, "|F_x|/F_y at 30°");
+    assert!(
+        (0.29..=0.302).contains(&lean),
+        "the ground's impulse leaned {lean}"
+    );
+    // The touch is found at the end of the step the top crosses 30° in; with the half-step
+    // lag it crosses at T + dt/2: step 284, t = 0.284 s.
+    let touch = touch.unwrap();
+    assert_near(touch, 0.284, 1e-9, "the touch");
+    assert!(
+        touch - dt < quadrature + dt / 2.0 && quadrature + dt / 2.0 <= touch,
+        "T + dt/2 = {} is not in the step ending at {touch}",
+        quadrature + dt / 2.0
+    );
+}
+
+/// The lesson's scene at time step `dt` with the given response.
+fn domino_run(dt: f64, response: Option<tumble::physics::Response>) -> World {
+    let l = lesson("37-a-domino-run.toml");
+    let mut scene = l.scene.clone();
+    scene.dt = dt;
+    if let Some(response) = response {
+        let mut model = scene.contact.expect("a contact model");
+        model.response = response;
+        scene.contact = Some(model);
+    }
+    scene.world()
+}
+
+/// Every body's position and orientation.
+fn poses(world: &World) -> Vec<(Vector3<f64>, UnitQuaternion<f64>)> {
+    (world.states().iter())
+        .map(|s| (s.position, s.orientation.quaternion()))
+        .collect()
+}
+
+/// The largest move between two sets of poses: metres, and radians times the half-height.
+fn largest_move(
+    a: &[(Vector3<f64>, UnitQuaternion<f64>)],
+    b: &[(Vector3<f64>, UnitQuaternion<f64>)],
+) -> f64 {
+    (a.iter().zip(b))
+        .map(|((pa, qa), (pb, qb))| (pa - pb).norm().max(qa.angle_to(qb) * DOMINO_H / 2.0))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn lesson_37_the_wave_runs_down_the_row_and_the_contacts_take_three_quarters() {
+    let mut w = domino_run(1e-3, None);
+    let m_g = DOMINO_M * G;
+    // E₀ = 7 m g h/2 + m g y(10°): all potential.
+    let e0 = w.total_energy().total;
+    assert_near(
+        e0,
+        7.0 * m_g * DOMINO_H / 2.0 + m_g * domino_y(10f64.to_radians()),
+        1e-15,
+        "E₀",
+    );
+    assert_near(e0, 0.392507, 5e-7, "E₀ quoted");
+    assert_near(m_g * DOMINO_H / 2.0, 0.049050, 5e-7, "m g h/2");
+    let mut hits = [f64::NAN; 7];
+    let (mut peak, mut peak_at, mut highest) = (0.0_f64, 0.0, e0);
+    let (mut last, mut rises_late) = (e0, 0.0);
+    // Page 5: the integrate phase keeps E (free flight under gravity, rk4: to round-off), the
+    // collide phase's impulses never add K; what E gains, the collide phase's positions gain.
+    let (mut integrate_change, mut impulses_gain) = (0.0_f64, 0.0_f64);
+    let mut rest = None;
+    while w.step_count() < tumble::live::step_at(1.5, w.dt()) {
+        let mut integrated = None;
+        loop {
+            let phase = w.step_phase();
+            if phase == Phase::Integrate {
+                integrated = Some(w.total_energy());
+            }
+            if phase == Phase::Collide {
+                break;
+            }
+        }
+        let integrated = integrated.expect("an integrate phase");
+        integrate_change = integrate_change.max((integrated.total - last).abs());
+        for (i, hit) in hits.iter_mut().enumerate() {
+            if hit.is_nan() && neighbours_pushed(&w, i) {
+                *hit = w.time();
+            }
+        }
+        let e = w.total_energy();
+        impulses_gain = impulses_gain.max(e.kinetic - integrated.kinetic);
+        if e.kinetic > peak {
+            (peak, peak_at) = (e.kinetic, w.time());
+        }
+        highest = highest.max(e.total);
+        if w.time() > 1.0 && e.total > last {
+            rises_late += e.total - last;
+        }
+        last = e.total;
+        if w.step_count() == tumble::live::step_at(1.2, w.dt()) {
+            assert!(
+                e.kinetic < 1e-9,
+                "still moving at 1.2 s: K = {:e}",
+                e.kinetic
+            );
+        }
+        if w.step_count() == tumble::live::step_at(1.25, w.dt()) {
+            rest = Some(poses(&w));
+        }
+    }
+    // Page 2–3: d2 is hit at 0.284 s, d3 … d8 at 0.458, 0.574, 0.671, 0.763, 0.851, 0.939 s.
+    let quoted = [0.284, 0.458, 0.574, 0.671, 0.763, 0.851, 0.939];
+    for (i, (&hit, &q)) in hits.iter().zip(&quoted).enumerate() {
+        assert_near(hit, q, 1e-9, &format!("d{} hit", i + 2));
+    }
+    let gaps: Vec<f64> = hits.windows(2).map(|p| p[1] - p[0]).collect();
+    for (gap, q) in gaps.iter().zip([0.174, 0.116, 0.097, 0.092, 0.088, 0.088]) {
+        assert_near(*gap, q, 1e-9, "gap");
+    }
+    assert_near(DOMINO_SPACING / gaps[5], 1.36, 5e-3, "the wave's speed");
+    assert_near((G * DOMINO_H).sqrt(), 1.40, 5e-3, "√(g h)");
+    // Page 4: K peaks at 0.0895 J at 1.103 s; E₀ − E = 0.2972 J, all booked to the contacts.
+    assert_near(peak, 0.0895, 5e-5, "K at its peak");
+    assert_near(peak_at, 1.103, 1e-9, "when");
+    let e = w.total_energy();
+    assert!(e.total <= e0, "E rose from {e0} to {}", e.total);
+    assert_near(e0 - e.total, 0.2972, 5e-5, "E₀ − E");
+    let b = w.energy_balance();
+    assert_near(b.contacts.unwrap(), b.change, 1e-12, "the contacts row");
+    assert!(b.drift.abs() < 1e-12, "drift {:e}", b.drift);
+    assert!(e.kinetic < 1e-9, "K at the end {:e}", e.kinetic);
+    // d1 … d7 lean at about 80°, barycenters near 0.026 m; d8 lies flat on its face.
+    for i in 0..7 {
+        let (tilt, y) = (tilt_degrees(&w, i), w.states()[i].position.y);
+        assert!((79.0..82.0).contains(&tilt), "d{} tilted {tilt}°", i + 1);
+        assert!((0.0255..0.0275).contains(&y), "d{} at y = {y}", i + 1);
+    }
+    assert!((tilt_degrees(&w, 7) - 90.0).abs() < 1.0, "d8 not flat");
+    assert_near(
+        w.states()[7].position.y,
+        DOMINO_T / 2.0,
+        1e-6,
+        "d8's y = t/2",
+    );
+    // Page 5: E never read more than 3.4e-5 J above E₀ (just before the first touch); after d8
+    // landed, the steps that lifted the leaning row raised E by 1.7e-3 J in all.
+    assert_near(highest - e0, 3.4e-5, 1e-6, "E's highest above E₀");
+    assert_near(rises_late, 1.7e-3, 5e-5, "rises after the landing");
+    assert!(
+        integrate_change < 1e-12,
+        "integrate changed E by {integrate_change:e}"
+    );
+    assert!(
+        impulses_gain < 1e-12,
+        "the impulses added {impulses_gain:e} J of K"
+    );
+    // At rest nothing creeps: from 1.25 s to 1.5 s no domino moves 1e-10 m.
+    let moved = largest_move(&rest.unwrap(), &poses(&w));
+    assert!(moved < 1e-10, "moved {moved:e} m");
+}
+
+#[test]
+fn lesson_37_the_position_step_errors_are_first_order_in_dt() {
+    // Page 5: before the touch the angle lags the exact fall by dt/2, E reads up to
+    // m g |y'| ω dt/2 too high and the edge creeps forward: each halves with dt.
+    let mut seen = Vec::new();
+    for dt in [2e-3, 1e-3, 5e-4] {
+        let mut w = domino_run(dt, None);
+        let e0 = w.total_energy().total;
+        let corner = Vector3::new(DOMINO_T / 2.0, -DOMINO_H / 2.0, 0.0);
+        let (mut highest, mut edge) = (e0, 0.0);
+        loop {
+            let before = w.checkpoint();
+            w.step();
+            if neighbours_pushed(&w, 0) {
+                w.restore(&before);
+                break;
+            }
+            highest = highest.max(w.total_energy().total);
+            let s = &w.states()[0];
+            edge = (s.position + s.orientation.matrix() * corner).x - 0.01;
+        }
+        seen.push((highest - e0, edge));
+    }
+    println!("(E's highest − E₀, edge creep) at dt = 2, 1, 0.5 ms: {seen:?}");
+    for pair in seen.windows(2) {
+        assert_near(pair[0].0 / pair[1].0, 2.0, 0.1, "E's rise halves");
+        assert_near(pair[0].1 / pair[1].1, 2.0, 0.1, "the creep halves");
+    }
+}
+
+#[test]
+fn lesson_37_soft_step_runs_the_same_wave_but_sags_and_creeps() {
+    // Page 5: with soft-step the row falls the same way and the last domino lies flat, but
+    // the contacts are stiff springs: d8 rests sunk into the ground and the row still moves
+    // between 1.25 s and 1.5 s.
+    let soft = tumble::physics::Response::SoftStep(tumble::physics::SoftStep::DEFAULT);
+    let mut w = domino_run(1e-3, Some(soft));
+    let mut hits = [f64::NAN; 7];
+    let mut rest = None;
+    while w.step_count() < tumble::live::step_at(1.5, w.dt()) {
+        w.step();
+        for (i, hit) in hits.iter_mut().enumerate() {
+            if hit.is_nan() && neighbours_pushed(&w, i) {
+                *hit = w.time();
+            }
+        }
+        if w.step_count() == tumble::live::step_at(1.25, w.dt()) {
+            rest = Some(poses(&w));
+        }
+    }
+    let quoted = [0.284, 0.458, 0.574, 0.671, 0.763, 0.851, 0.939];
+    for (hit, q) in hits.iter().zip(quoted) {
+        assert!((hit - q).abs() < 0.025, "soft hit at {hit}, impulse at {q}");
+    }
+    assert!((tilt_degrees(&w, 7) - 90.0).abs() < 1.0, "d8 not flat");
+    let sag = DOMINO_T / 2.0 - w.states()[7].position.y;
+    println!("soft-step: hits {hits:?}, d8 sunk {sag:e} m");
+    assert_near(sag * 1e3, 0.05, 0.005, "d8's depth, mm");
+    let moved = largest_move(&rest.unwrap(), &poses(&w));
+    println!("soft-step: moved {moved:e} m from 1.25 s to 1.5 s");
+    assert!(moved > 1e-5, "moved only {moved:e} m");
+}
+
+#[test]
+fn lesson_37_is_the_contact_scenes_domino_run() {
+    // The lesson writes out `tumble::contact_scenes::dominoes` (the scene the contact benches
+    // and tests/physics/dominoes.rs step): same bodies, same start, same contact law.
+    let lesson = domino_run(1e-3, None);
+    let code = tumble::contact_scenes::dominoes(tumble::physics::Response::Impulse);
+    assert_eq!(lesson.body_count(), code.body_count());
+    assert_eq!(lesson.dt(), code.dt());
+    assert_eq!(lesson.integrator(), code.integrator());
+    assert_eq!(lesson.contact_model(), code.contact_model());
+    assert_eq!(lesson.obstacles(), code.obstacles());
+    assert_eq!(lesson.effects(), code.effects());
+    for (i, (a, b)) in lesson.states().iter().zip(code.states()).enumerate() {
+        assert!(
+            (a.position - b.position).norm() < 1e-15,
+            "d{}: {} against {}",
+            i + 1,
+            a.position,
+            b.position
+        );
+        let angle = a
+            .orientation
+            .quaternion()
+            .angle_to(&b.orientation.quaternion());
+        assert!(angle < 1e-15, "d{}: turned {angle:e} rad off", i + 1);
+        let (ma, mb) = (&lesson.bodies()[i], &code.bodies()[i]);
+        assert_eq!(ma.mass, mb.mass);
+        assert!((ma.inertia_body - mb.inertia_body).norm() < 1e-18);
     }
 }
