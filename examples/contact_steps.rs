@@ -49,12 +49,14 @@ fn main() {
             let now = world.contact_counters();
             let t = Instant::now();
             println!(
-                "t {:6.3} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
+                "t {:6.3} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
                 step as f64 * 1e-3,
                 now.direct - last.direct,
                 now.declined - last.declined,
                 now.warm - last.warm,
                 now.normal_sweeps - last.normal_sweeps,
+                now.friction_warm - last.friction_warm,
+                now.friction_direct - last.friction_direct,
                 now.friction_sweeps - last.friction_sweeps,
                 now.friction_subspace - last.friction_subspace,
                 now.normal_subspace - last.normal_subspace,

@@ -10,20 +10,16 @@ use tumble::physics::{Response, World};
 /// Steps `world` for `seconds` (dt = 1e-3) and returns, per second, the declined direct
 /// solves and the sweeps (normal + friction) of that second.
 fn per_second(world: &mut World, seconds: usize) -> Vec<(u64, u64)> {
-    let mut out = Vec::new();
-    let mut last = world.contact_counters();
-    for _ in 0..seconds {
-        for _ in 0..1000 {
-            world.step();
-        }
-        let now = world.contact_counters();
-        out.push((
-            now.declined - last.declined,
-            now.normal_sweeps - last.normal_sweeps + now.friction_sweeps - last.friction_sweeps,
-        ));
-        last = now;
-    }
-    out
+    per_second_counters(world, seconds)
+        .windows(2)
+        .map(|w| {
+            let (last, now) = (w[0], w[1]);
+            (
+                now.declined - last.declined,
+                now.normal_sweeps - last.normal_sweeps + now.friction_sweeps - last.friction_sweeps,
+            )
+        })
+        .collect()
 }
 
 /// The largest distance of any body from where it started, m.

@@ -64,7 +64,7 @@
 //!    still only goes down, and block coordinate descent reaches the unique minimising
 //!    velocity whatever the order of the contacts. It gets there linearly, and slowly when
 //!    bodies slide on each other (a row of dominoes); every [`SUBSPACE_EVERY`] sweeps a
-//!    subspace step (`friction_subspace_step`) solves the active set the sweeps have found
+//!    subspace step (`subspace_step`) solves the active set the sweeps have found
 //!    directly, with a Newton step along the sliding disks' edges, and is kept only if it
 //!    lowers the same objective. The sweeps still decide convergence, to the same tolerance.
 //! 3. **Restitution** (Poisson's: the restitution impulse is e times the compression impulse,
@@ -189,7 +189,7 @@ pub const TRIAL_SWEEPS: u64 = 8;
 /// The longest wait, in steps, between stage-1 trials that keep failing.
 pub const TRIAL_WAIT_MAX: u32 = 32;
 
-/// The friction sweeps take a subspace step (`friction_subspace_step`) after this many sweeps
+/// The friction sweeps take a subspace step (`subspace_step`) after this many sweeps
 /// that did not converge.
 pub const SUBSPACE_EVERY: u64 = 8;
 
@@ -288,7 +288,7 @@ pub struct Counters {
     pub friction_warm: u64,
     pub friction_direct: u64,
     /// Subspace steps the friction sweeps took (each a direct solve on the sweeps' active set,
-    /// see `friction_subspace_step`).
+    /// see `subspace_step`).
     pub friction_subspace: u64,
     /// Subspace steps the normal sweeps of a large system took (stage 1: the same step with
     /// no friction unknowns).
@@ -862,7 +862,7 @@ fn sweep_friction(
     (false, cap)
 }
 
-/// Sweeps with a subspace step ([`friction_subspace_step`]) after every [`SUBSPACE_EVERY`]
+/// Sweeps with a subspace step ([`subspace_step`]) after every [`SUBSPACE_EVERY`]
 /// sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in all; returns whether they
 /// converged and how many sweeps ran. With friction directions these are the friction sweeps
 /// ([`sweep_friction`]); with none (stage 1, every friction bound 0) the normal sweeps
@@ -901,7 +901,7 @@ fn sweep_with_subspace(
         // reaching its edge changes the active set; solve again on the new one.
         buffers.pinned.clear();
         for _ in 0..SUBSPACE_ROUNDS {
-            match friction_subspace_step(rows, directions, motions, buffers) {
+            match subspace_step(rows, directions, motions, buffers) {
                 Subspace::Taken { whole } => {
                     steps_left = steps_left.saturating_sub(1);
                     if normals_only {
@@ -975,7 +975,7 @@ enum Subspace {
 /// [`SUBSPACE_ROUNDS`] times. The sweeps go on from there and judge convergence as before,
 /// to the same tolerance: the steps change only how fast they get there. The unknowns are
 /// ordered by the last body their row acts on, so a chain of bodies has a banded envelope.
-fn friction_subspace_step(
+fn subspace_step(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
