@@ -229,8 +229,8 @@ pub struct TieBuffers {
     /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
     body_inverse: Vec<Matrix6<f64>>,
     body: Vec<BodyVectors>,
-    /// The springs' terms of a product (`conjugate_gradient::product`).
-    terms: Vec<Vector3<f64>>,
+    /// The buffers of a product (`conjugate_gradient::product`).
+    terms: super::conjugate_gradient::ProductBuffers,
     /// Per tie, its body and the wrench it adds there, before they are summed
     /// ([`add_wrenches`]); and the values of one sum.
     wrenches: Vec<(usize, Vector6<f64>)>,
@@ -261,7 +261,7 @@ impl TieBuffers {
             + bytes_of(&self.full, self.full.capacity())
             + bytes_of(&self.body_inverse, self.body_inverse.capacity())
             + bytes_of(&self.body, self.body.capacity())
-            + bytes_of(&self.terms, self.terms.capacity())
+            + self.terms.heap_bytes()
             + bytes_of(&self.wrenches, self.wrenches.capacity())
             + bytes_of(&self.values, self.values.capacity())
             + bytes_of(&self.tied_rows, self.tied_rows.capacity())
@@ -733,7 +733,7 @@ impl Workspace {
         blocks: &[super::conjugate_gradient::Block],
         diagonal: &[f64],
         order: &super::conjugate_gradient::SpringOrder,
-        terms: &mut Vec<Vector3<f64>>,
+        terms: &mut super::conjugate_gradient::ProductBuffers,
         p: &[Vector3<f64>],
         out: &mut Vec<Vector3<f64>>,
     ) {
