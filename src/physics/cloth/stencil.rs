@@ -11,7 +11,7 @@
 //! and every particle of a rectangle of the grid has one (E: i < nx − 1; N: j < nz − 1; NE:
 //! both; NW: i ≥ 1, j < nz − 1; EE: i < nx − 2; NN: j < nz − 2). So the blocks are stored per
 //! direction and per particle, `[along, across, d̂x, d̂y, d̂z][D][k]` (0 outside the rectangle),
-//! the terms `y_D[k] = S (p_k − p_{k+o})` are computed row by row over each rectangle from
+//! the terms `y_D[k] = S (p_k − p_{k+o})` are computed over each rectangle's span of rows from
 //! p split by component (contiguous streams, no index arrays: the loops vectorise), and each
 //! particle gathers its twelve terms by offset, in the mirror-symmetric order of
 //! `conjugate_gradient` (its opposite directions read y_D\[k − o\]):
@@ -196,34 +196,39 @@ impl Stencil {
                 continue;
             }
             let o = self.offset[d];
-            let len = i1 - i0;
+            // The whole span of the rectangle's rows at once (a few particles between two
+            // rows are outside it: their terms, from zero blocks, are set back to +0 after).
+            let (start, end) = (j0 * nx + i0, (j1 - 1) * nx + i1);
+            let len = end - start;
             let base = 3 * d * span + pad;
             let (yx, rest) = buffers.terms[base..base + 2 * span + n].split_at_mut(span);
             let (yy, rest) = rest.split_at_mut(span);
             let yz = &mut rest[..n];
-            for j in j0..j1 {
-                let k = j * nx + i0;
-                let b = d * n + k;
-                row_terms(
-                    [&px[k..k + len], &py[k..k + len], &pz[k..k + len]],
-                    [
-                        &px[k + o..k + o + len],
-                        &py[k + o..k + o + len],
-                        &pz[k + o..k + o + len],
-                    ],
-                    [
-                        &along[b..b + len],
-                        &across[b..b + len],
-                        &dx[b..b + len],
-                        &dy[b..b + len],
-                        &dz[b..b + len],
-                    ],
-                    [
-                        &mut yx[k..k + len],
-                        &mut yy[k..k + len],
-                        &mut yz[k..k + len],
-                    ],
-                );
+            let (k, b) = (start, d * n + start);
+            row_terms(
+                [&px[k..k + len], &py[k..k + len], &pz[k..k + len]],
+                [
+                    &px[k + o..k + o + len],
+                    &py[k + o..k + o + len],
+                    &pz[k + o..k + o + len],
+                ],
+                [
+                    &along[b..b + len],
+                    &across[b..b + len],
+                    &dx[b..b + len],
+                    &dy[b..b + len],
+                    &dz[b..b + len],
+                ],
+                [
+                    &mut yx[k..k + len],
+                    &mut yy[k..k + len],
+                    &mut yz[k..k + len],
+                ],
+            );
+            for j in j0..j1 - 1 {
+                for k in j * nx + i1..(j + 1) * nx + i0 {
+                    (yx[k], yy[k], yz[k]) = (0.0, 0.0, 0.0);
+                }
             }
         }
         // The gather, component by component (term (D, c) of particle k is at
@@ -278,7 +283,7 @@ fn gather_row(out: &mut [f64], p: &[f64], a: &[f64], y: [[&[f64]; 2]; DIRECTIONS
     }
 }
 
-/// One row of a direction's terms: y = d̂ (along (d̂·r)) + across r, r = p − q (module doc),
+/// A run of a direction's terms: y = d̂ (along (d̂·r)) + across r, r = p − q (module doc),
 /// over slices of one length (no bounds checks inside: the loop vectorises).
 #[inline(always)]
 fn row_terms(p: [&[f64]; 3], q: [&[f64]; 3], block: [&[f64]; FIELDS], y: [&mut [f64]; 3]) {
