@@ -56,11 +56,20 @@ pub struct Stencil {
 }
 
 /// The product's buffers: p by component, and the terms by direction and component.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 pub struct StencilBuffers {
     p: Vec<f64>,
     terms: Vec<f64>,
     out: Vec<f64>,
+}
+
+/// A copy starts empty: a product writes every number it reads from them (the terms' zeros
+/// when it sizes them), so what they held never reaches a result, and a checkpoint of the
+/// world (a copy of its cloths) does not carry ~90 kB of them per 21 × 21 sheet.
+impl Clone for StencilBuffers {
+    fn clone(&self) -> Self {
+        StencilBuffers::default()
+    }
 }
 
 impl StencilBuffers {
@@ -384,7 +393,8 @@ mod tests {
                 &p,
                 &mut by_stencil,
             );
-            // Twice: the buffers' second use must not depend on the first.
+            // Twice: the buffers' second use must not depend on the first; and with a copy of
+            // the used buffers (which starts empty).
             product(
                 &blocks,
                 &diagonal,
@@ -392,6 +402,14 @@ mod tests {
                 &mut buffers,
                 &p,
                 &mut by_stencil,
+            );
+            let mut copied = buffers.clone();
+            let mut again = vec![Vector3::zeros(); n];
+            product(&blocks, &diagonal, &order, &mut copied, &p, &mut again);
+            assert!(
+                (again.iter().zip(&by_stencil))
+                    .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits)),
+                "{count:?}: a copy of the buffers gives the same bits"
             );
             order.stencil = None;
             let mut gathered = vec![Vector3::zeros(); n];
