@@ -10,7 +10,10 @@
 //! `benches/cloth.rs`: symplectic-euler at 0.9× its explicit limit, implicit-euler at 1e-3 s),
 //! `sheet-symplectic`, `sheet-implicit-1e-3`, `sheet-implicit-5e-3` (the sheet alone).
 //! Instructions per step = (count at STEPS − count at 0)/STEPS; 2000 steps is one restart
-//! cycle of the benches (fall, bounces, rest).
+//! cycle of the benches (fall, bounces, rest). Each case prints `bits=`, a checksum of the
+//! final state's bits (a change meant to leave the physics alone must leave it alone), and on
+//! stderr the wall-clock µs per step of the steps alone (no setup; a shared machine's figure).
+//! `FRICTION` (world cases) sets the contact's μ, `DT` the world-implicit step.
 
 use nalgebra::Vector3;
 use std::hint::black_box;
@@ -63,6 +66,24 @@ integrator = "{integrator}"
         .world()
 }
 
+/// A checksum of the bits of every number listed (FNV-1a over their `to_bits`): two runs with
+/// the same checksum computed the same numbers to the last bit.
+fn checksum<'a>(numbers: impl IntoIterator<Item = &'a f64>) -> u64 {
+    numbers.into_iter().fold(0xcbf2_9ce4_8422_2325, |h, x| {
+        (h ^ x.to_bits()).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// The checksum of a sheet's positions and velocities.
+fn cloth_bits(c: &Cloth) -> u64 {
+    checksum(
+        c.positions
+            .iter()
+            .chain(&c.velocities)
+            .flat_map(|v| v.iter()),
+    )
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let case = args.get(1).map_or("world-implicit", String::as_str);
@@ -90,6 +111,7 @@ fn main() {
             // Per number of solves in a step (0 contacts; 1, 2, 3+ solves with contacts):
             // steps and CG iterations.
             let mut by_solves = [(0usize, 0usize); 4];
+            let clock = std::time::Instant::now();
             for _ in 0..steps {
                 black_box(&mut w).step();
                 let counts = w.cloths()[0].solve_counts();
@@ -103,19 +125,34 @@ fn main() {
                 by_solves[kind].0 += 1;
                 by_solves[kind].1 += counts.iterations;
             }
+            let elapsed = clock.elapsed();
             if std::env::var("BREAKDOWN").is_ok() {
                 for (k, (n, it)) in by_solves.iter().enumerate() {
                     println!("{k}: steps {n}, CG iterations {it}");
                 }
             }
             let c = &w.cloths()[0];
+            eprintln!(
+                "{case}: {:.1} µs/step (wall clock, steps only)",
+                elapsed.as_secs_f64() * 1e6 / steps.max(1) as f64
+            );
+            let s = w.state();
+            let rotation = s.orientation.matrix();
+            let body_bits = checksum(
+                s.position
+                    .iter()
+                    .chain(rotation.iter())
+                    .chain(s.linear_momentum.iter())
+                    .chain(s.angular_momentum.iter()),
+            );
             println!(
-                "{case} dt={dt:.6e} steps={steps} solves={solves} cg_iterations={iterations} y_min={:.9} cube_y={:.9}",
+                "{case} dt={dt:.6e} steps={steps} solves={solves} cg_iterations={iterations} y_min={:.9} cube_y={:.9} bits={:016x}",
                 c.positions
                     .iter()
                     .map(|x| x.y)
                     .fold(f64::INFINITY, f64::min),
                 w.state().position.y,
+                cloth_bits(c) ^ body_bits.rotate_left(1),
             );
         }
         "sheet-symplectic" | "sheet-implicit-1e-3" | "sheet-implicit-5e-3" => {
@@ -131,16 +168,22 @@ fn main() {
             };
             let mut cloth = trampoline(integrator);
             let mut iterations = 0;
+            let clock = std::time::Instant::now();
             for _ in 0..steps {
                 iterations += black_box(&mut cloth).step(&loads, dt).iterations;
             }
+            eprintln!(
+                "{case}: {:.1} µs/step (wall clock, steps only)",
+                clock.elapsed().as_secs_f64() * 1e6 / steps.max(1) as f64
+            );
             println!(
-                "{case} dt={dt:.6e} steps={steps} cg_iterations={iterations} y_min={:.9}",
+                "{case} dt={dt:.6e} steps={steps} cg_iterations={iterations} y_min={:.9} bits={:016x}",
                 cloth
                     .positions
                     .iter()
                     .map(|x| x.y)
-                    .fold(f64::INFINITY, f64::min)
+                    .fold(f64::INFINITY, f64::min),
+                cloth_bits(&cloth),
             );
         }
         "lesson16" => {

@@ -16,7 +16,9 @@
 //! particle indices: `[i, j: u32; along, across: f64; d̂]`, 48 bytes, so that a product is one
 //! stream over the blocks (S r = along (d̂·r) d̂ + across r: 14 flops) and one over the
 //! particles gathering their springs' terms (below): ~118k instructions per product on the
-//! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). A spring whose two ends are pinned has an empty
+//! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). On a grid sheet the
+//! same blocks are also stored by direction and the product runs as a stencil over them
+//! (`stencil`: the same bits, ~72k instructions). A spring whose two ends are pinned has an empty
 //! block: it acts on no free particle. Why not a CSR matrix of 3×3 blocks by rows: each
 //! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
 //! twice as a full 3×3 plus index arrays, ~2× the flops per product (a full 3×3 product per
@@ -73,6 +75,7 @@
 //! [`SolverSettings::tolerance`](super::sheet::SolverSettings); why its default is enough:
 //! `implicit_euler`).
 
+use super::stencil::{Stencil, StencilBuffers};
 use nalgebra::Vector3;
 
 /// One spring's block `S = along·d̂d̂ᵀ + across·I` (module doc) and its particles.
@@ -171,6 +174,9 @@ pub struct SpringOrder {
     pub slots: Vec<[u32; SLOTS]>,
     /// The number of springs it was built for.
     pub springs: usize,
+    /// The blocks by direction, when every direction's springs fill its rectangle
+    /// (`stencil`): the product's fast path, to the same bits.
+    pub stencil: Option<Stencil>,
 }
 
 /// Directions a particle of the grid has springs in.
@@ -215,9 +221,20 @@ impl SpringOrder {
                 slots[particle][slot] = s as u32;
             }
         }
+        // Each spring by (direction, its i end): its even slot 2 D at particle k.
+        let mut ends = vec![(0, 0); total];
+        for (k, particle) in slots.iter().enumerate() {
+            for d in 0..SLOTS / 2 {
+                if let Some(end) = ends.get_mut(particle[2 * d] as usize) {
+                    *end = (d, k);
+                }
+            }
+        }
+        let stencil = Stencil::of_grid(count, &ends);
         Some(SpringOrder {
             slots,
             springs: total,
+            stencil,
         })
     }
 
@@ -289,25 +306,46 @@ pub struct Workspace {
     pub(super) ties: super::ties::TieBuffers,
     /// The order the springs' terms are summed in per particle (module doc); empty: scatter.
     pub order: SpringOrder,
-    /// Per spring, y_s = S_s (p_i − p_j) of the product under way, and a zero at the end
-    /// ([`SpringOrder`]).
-    pub(super) terms: Vec<Vector3<f64>>,
+    /// The product's buffers ([`ProductBuffers`]); in the spring pass, per spring its
+    /// right-hand-side term and a zero at the end.
+    pub(super) terms: ProductBuffers,
     /// Per spring, S_s as a matrix (for the preconditioner's sums), and a zero at the end.
     pub(super) matrices: Vec<Symmetric3>,
 }
 
+/// A product's buffers: per spring y_s = S_s (p_i − p_j) and a zero at the end
+/// ([`SpringOrder`]), or the stencil's.
+#[derive(Debug, Clone, Default)]
+pub struct ProductBuffers {
+    pub terms: Vec<Vector3<f64>>,
+    pub stencil: StencilBuffers,
+}
+
+impl ProductBuffers {
+    /// The bytes its buffers hold on the heap.
+    pub fn heap_bytes(&self) -> usize {
+        bytes_of(&self.terms, self.terms.capacity()) + self.stencil.heap_bytes()
+    }
+}
+
 /// out = A p (no filter): a_k p_k plus the springs' terms, gathered in `order` when it was
-/// built for these blocks (module doc), scattered otherwise. `terms` is a buffer.
+/// built for these blocks (module doc) — by the stencil when the order has one and it holds
+/// these blocks (`stencil`, the same bits) — scattered otherwise.
 pub(super) fn product(
     blocks: &[Block],
     diagonal: &[f64],
     order: &SpringOrder,
-    terms: &mut Vec<Vector3<f64>>,
+    buffers: &mut ProductBuffers,
     p: &[Vector3<f64>],
     out: &mut [Vector3<f64>],
 ) {
     let n = out.len();
     let (diagonal, p) = (&diagonal[..n], &p[..n]);
+    if let Some(stencil) = order.stencil.as_ref().filter(|s| s.fits(blocks.len(), n)) {
+        stencil.product(diagonal, &mut buffers.stencil, p, out);
+        return;
+    }
+    let terms = &mut buffers.terms;
     if order.springs == blocks.len() && order.slots.len() == n {
         terms.resize(blocks.len() + 1, Vector3::zeros());
         for (y, b) in terms.iter_mut().zip(blocks) {
@@ -364,7 +402,8 @@ impl Workspace {
             .sum::<usize>()
             + self.ties.heap_bytes()
             + bytes_of(&self.order.slots, self.order.slots.capacity())
-            + bytes_of(&self.terms, self.terms.capacity())
+            + self.terms.heap_bytes()
+            + self.order.stencil.as_ref().map_or(0, Stencil::heap_bytes)
             + bytes_of(&self.matrices, self.matrices.capacity())
     }
 
@@ -402,7 +441,7 @@ impl Workspace {
         blocks: &[Block],
         diagonal: &[f64],
         order: &SpringOrder,
-        terms: &mut Vec<Vector3<f64>>,
+        terms: &mut ProductBuffers,
         pinned: &[u32],
         p: &[Vector3<f64>],
         out: &mut [Vector3<f64>],

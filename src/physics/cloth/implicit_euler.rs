@@ -154,7 +154,7 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     let gathered = work.order.springs == springs.len() && work.order.slots.len() == n;
     let pinned = &cloth.pinned[..n];
     work.blocks.resize(springs.len(), Block::default());
-    work.terms.resize(springs.len() + 1, Vector3::zeros());
+    work.terms.terms.resize(springs.len() + 1, Vector3::zeros());
     work.matrices
         .resize(springs.len() + 1, Symmetric3::default());
     let (x, v0) = (&x[..n], &v0[..n]);
@@ -163,7 +163,7 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     for (((s, block), term), matrix) in springs
         .iter()
         .zip(work.blocks.iter_mut())
-        .zip(work.terms.iter_mut())
+        .zip(work.terms.terms.iter_mut())
         .zip(work.matrices.iter_mut())
     {
         let (i, j) = (s.i, s.j);
@@ -204,11 +204,14 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
             preconditioner[j].add(matrix);
         }
     }
+    if let Some(stencil) = work.order.stencil.as_mut() {
+        stencil.load(&work.blocks);
+    }
     if gathered {
-        work.terms[springs.len()] = Vector3::zeros();
+        work.terms.terms[springs.len()] = Vector3::zeros();
         work.matrices[springs.len()] = Symmetric3::default();
         for (k, (b, p)) in rhs.iter_mut().zip(preconditioner.iter_mut()).enumerate() {
-            *b += work.order.gather(k, &work.terms);
+            *b += work.order.gather(k, &work.terms.terms);
             p.add(&work.order.gather_blocks(k, &work.matrices));
         }
     }

@@ -11,6 +11,7 @@
 //! | `symplectic_euler` | the explicit step |
 //! | `implicit_euler` | backward Euler linearised once (Baraff & Witkin 1998) |
 //! | `conjugate_gradient` | the implicit step's solve: filtered block-Jacobi PCG |
+//! | `stencil` | that solve's product on a grid sheet, by spring direction (same bits, faster) |
 //! | `ties` | contacts and attachments inside that solve: Baraff–Witkin's filter, the body an unknown |
 //! | `stability` | the explicit limit 2/ω_max by power iteration |
 //! | `energy` | kinetic, spring and gravitational energy; losses |
@@ -26,6 +27,7 @@ pub mod sheet;
 pub mod spec;
 pub mod spring;
 pub mod stability;
+mod stencil;
 pub mod symplectic_euler;
 pub mod ties;
 

@@ -224,19 +224,25 @@ pub struct TieBuffers {
     tie_of: Vec<u32>,
     inverse: Vec<Symmetric3>,
     offset: Vec<Vector3<f64>>,
-    expanded: Vec<Vector3<f64>>,
+    /// The rows of p a product expanded in place, as they were (`multiply_reduced`).
+    saved: Vec<(usize, Vector3<f64>)>,
     full: Vec<Vector3<f64>>,
     /// Per body: the 6 × 6 preconditioner's inverse, the unknown Y and its CG vectors.
     body_inverse: Vec<Matrix6<f64>>,
     body: Vec<BodyVectors>,
-    /// The springs' terms of a product (`conjugate_gradient::product`).
-    terms: Vec<Vector3<f64>>,
+    /// The buffers of a product (`conjugate_gradient::product`).
+    terms: super::conjugate_gradient::ProductBuffers,
     /// Per tie, its body and the wrench it adds there, before they are summed
     /// ([`add_wrenches`]); and the values of one sum.
     wrenches: Vec<(usize, Vector6<f64>)>,
     values: Vec<f64>,
     /// The tied rows of a product (`multiply_reduced`).
     tied_rows: Vec<(usize, Vector3<f64>)>,
+    /// The rows of A z to compute, and which are listed (`solve_tied`).
+    rows: Vec<usize>,
+    marked: Vec<bool>,
+    /// Per particle, whether it is pinned.
+    is_pinned: Vec<bool>,
     /// Joints on the bodies: Q = N (Nᵀ D N)⁻¹ Nᵀ over the held bodies' stacked corrections,
     /// and per body whether it is held (module doc).
     held_inverse: nalgebra::DMatrix<f64>,
@@ -257,14 +263,17 @@ impl TieBuffers {
         bytes_of(&self.tie_of, self.tie_of.capacity())
             + bytes_of(&self.inverse, self.inverse.capacity())
             + bytes_of(&self.offset, self.offset.capacity())
-            + bytes_of(&self.expanded, self.expanded.capacity())
+            + bytes_of(&self.saved, self.saved.capacity())
             + bytes_of(&self.full, self.full.capacity())
             + bytes_of(&self.body_inverse, self.body_inverse.capacity())
             + bytes_of(&self.body, self.body.capacity())
-            + bytes_of(&self.terms, self.terms.capacity())
+            + self.terms.heap_bytes()
             + bytes_of(&self.wrenches, self.wrenches.capacity())
             + bytes_of(&self.values, self.values.capacity())
             + bytes_of(&self.tied_rows, self.tied_rows.capacity())
+            + bytes_of(&self.rows, self.rows.capacity())
+            + bytes_of(&self.marked, self.marked.capacity())
+            + bytes_of(&self.is_pinned, self.is_pinned.capacity())
             + self.held_inverse.len() * std::mem::size_of::<f64>()
             + bytes_of(&self.held, self.held.capacity())
     }
@@ -371,7 +380,8 @@ impl Workspace {
             t.tie_of[tie.particle] = k as u32;
         }
         let pinned = std::mem::take(&mut self.pinned);
-        let mut is_pinned = vec![false; 0];
+        let mut is_pinned = std::mem::take(&mut t.is_pinned);
+        is_pinned.clear();
         is_pinned.resize(n, false);
         for &i in &pinned {
             is_pinned[i as usize] = true;
@@ -478,15 +488,42 @@ impl Workspace {
                 _ => nalgebra::DMatrix::zeros(size, size),
             };
         }
-        // Reduced right-hand side: Tᵀ(b̄ − Ā z).
-        Self::multiply_plain(
-            &self.blocks,
-            &self.diagonal,
-            &self.order,
-            &mut t.terms,
-            &t.offset,
-            &mut t.full,
-        );
+        // Reduced right-hand side: Tᵀ(b̄ − Ā z). z is 0 but at the tied particles: on a grid
+        // sheet A z is computed only in their rows and their springs' other ends
+        // (`SpringOrder::row`, the bits of the whole product); every other row of the whole
+        // product is +0 (all its terms are), and so it is here.
+        if self.order.springs == self.blocks.len() && self.order.slots.len() == n {
+            t.full.clear();
+            t.full.resize(n, Vector3::zeros());
+            t.rows.clear();
+            t.marked.clear();
+            t.marked.resize(n, false);
+            for tie in ties.iter() {
+                let i = tie.particle;
+                for k in std::iter::once(i).chain(
+                    (self.order.slots[i].iter())
+                        .filter_map(|&s| self.blocks.get(s as usize))
+                        .flat_map(|b| [b.i as usize, b.j as usize]),
+                ) {
+                    if !t.marked[k] {
+                        t.marked[k] = true;
+                        t.rows.push(k);
+                    }
+                }
+            }
+            for &k in &t.rows {
+                t.full[k] = self.order.row(&self.blocks, self.diagonal[k], &t.offset, k);
+            }
+        } else {
+            Self::multiply_plain(
+                &self.blocks,
+                &self.diagonal,
+                &self.order,
+                &mut t.terms,
+                &t.offset,
+                &mut t.full,
+            );
+        }
         t.wrenches.clear();
         for i in 0..n {
             let k = t.tie_of[i];
@@ -542,14 +579,14 @@ impl Workspace {
             // Y starts from 0 (module doc, "Warm starts").
             let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
             let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
-            let solution = std::mem::take(&mut self.solution);
+            let mut solution = std::mem::take(&mut self.solution);
             let mut product = std::mem::take(&mut self.product);
             self.multiply_reduced(
                 &mut t,
                 ties,
                 bodies,
-                &is_pinned,
-                &solution,
+                &pinned,
+                &mut solution,
                 &x_body,
                 &mut product,
                 &mut q_body,
@@ -591,13 +628,13 @@ impl Workspace {
             let mut iterations = 0;
             let mut direction_body: Vec<Vector6<f64>> = t.body.iter().map(|b| b.z).collect();
             while delta > target && iterations < max_iterations {
-                let direction = std::mem::take(&mut self.direction);
+                let mut direction = std::mem::take(&mut self.direction);
                 self.multiply_reduced(
                     &mut t,
                     ties,
                     bodies,
-                    &is_pinned,
-                    &direction,
+                    &pinned,
+                    &mut direction,
                     &direction_body,
                     &mut product,
                     &mut q_body,
@@ -724,6 +761,7 @@ impl Workspace {
             }
         }
         self.pinned = pinned;
+        t.is_pinned = is_pinned;
         self.ties = t;
         outcome
     }
@@ -733,7 +771,7 @@ impl Workspace {
         blocks: &[super::conjugate_gradient::Block],
         diagonal: &[f64],
         order: &super::conjugate_gradient::SpringOrder,
-        terms: &mut Vec<Vector3<f64>>,
+        terms: &mut super::conjugate_gradient::ProductBuffers,
         p: &[Vector3<f64>],
         out: &mut Vec<Vector3<f64>>,
     ) {
@@ -741,35 +779,35 @@ impl Workspace {
         super::conjugate_gradient::product(blocks, diagonal, order, terms, p, out);
     }
 
-    /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc).
+    /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc). `p` is expanded in place (its
+    /// tied rows to S p + G Y, its pinned rows to 0) for the product and given back as it came.
     #[allow(clippy::too_many_arguments)]
     fn multiply_reduced(
         &self,
         t: &mut TieBuffers,
         ties: &[Tie],
         bodies: &[SolverBody],
-        is_pinned: &[bool],
-        p: &[Vector3<f64>],
+        pinned: &[u32],
+        p: &mut [Vector3<f64>],
         p_body: &[Vector6<f64>],
         out: &mut [Vector3<f64>],
         out_body: &mut [Vector6<f64>],
     ) {
         let n = p.len();
-        t.expanded.clear();
-        t.expanded.extend_from_slice(p);
+        t.saved.clear();
         for tie in ties {
             let i = tie.particle;
             let mut w = tie.free(&p[i]);
             if let Some(b) = tie.body.filter(|&b| bodies[b].mass > 0.0) {
                 w += tie.tied(&point(&p_body[b], &tie.arm));
             }
-            t.expanded[i] = w;
+            t.saved.push((i, p[i]));
+            p[i] = w;
         }
-        for (e, _) in (t.expanded[..n].iter_mut())
-            .zip(&is_pinned[..n])
-            .filter(|(_, &pinned)| pinned)
-        {
-            *e = Vector3::zeros();
+        for &i in pinned {
+            let i = i as usize;
+            t.saved.push((i, p[i]));
+            p[i] = Vector3::zeros();
         }
         // A p straight into `out`; then the tied rows, and the pinned rows zeroed.
         super::conjugate_gradient::product(
@@ -777,9 +815,12 @@ impl Workspace {
             &self.diagonal,
             &self.order,
             &mut t.terms,
-            &t.expanded,
+            p,
             &mut out[..n],
         );
+        for &(i, value) in t.saved.iter().rev() {
+            p[i] = value;
+        }
         for (b, o) in out_body.iter_mut().enumerate() {
             *o = body_mass(&bodies[b], &p_body[b]);
         }
@@ -793,11 +834,8 @@ impl Workspace {
             }
             t.tied_rows.push((i, tie.free(&full)));
         }
-        for (o, _) in (out[..n].iter_mut())
-            .zip(&is_pinned[..n])
-            .filter(|(_, &pinned)| pinned)
-        {
-            *o = Vector3::zeros();
+        for &i in pinned {
+            out[i as usize] = Vector3::zeros();
         }
         for &(i, row) in &t.tied_rows {
             out[i] = row;
