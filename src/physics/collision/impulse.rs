@@ -1451,7 +1451,11 @@ fn direct_inelastic(
 /// pushing speculative contact whose gap is below [`RESTING_GAP`] (target `uₙ = 0` instead of
 /// `−g/dt`): such gaps (nm to 0.1 µm, left where edges are not quite parallel) make the rows
 /// ask for motions no rigid body has, and the minimum-norm answer then grows without bound
-/// (measured |Δλ| of 10–500 N·s against impulses of 1e-4). The same acceptance checks follow.
+/// (measured |Δλ| of 10–500 N·s against impulses of 1e-4). The same acceptance checks follow;
+/// with a gap held closed, what they accept is the stage-2 solution with that gap taken as 0
+/// (as [`GAP_ROUND_OFF`] does for every solve at 1 nm): the contact may push across up to
+/// 1 µm, where the exact problem would let the body close that gap first. Velocities are the
+/// same either way once no gap is held (the weights move only how the impulses are shared).
 fn direct_sticking(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
