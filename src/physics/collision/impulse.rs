@@ -160,7 +160,7 @@ pub const PIVOT_ROUNDS: usize = 40;
 /// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
 pub const STICKING_MAX: usize = DIRECT_MAX / 3;
 
-/// The direct sticking solve's second try ([`Sticking::Resting`]) holds a pushing speculative
+/// The direct sticking solve's second try (`Sticking::Resting`) holds a pushing speculative
 /// contact still if its gap is below this (m): bodies at rest on redundant contacts (a face's
 /// four corners, dominoes lying on each other) keep gaps of nanometres to a tenth of a micrometre
 /// where their edges are not quite parallel, and closing each within the step asks for motions
