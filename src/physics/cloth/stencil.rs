@@ -385,24 +385,18 @@ mod tests {
             let n = cloth.len();
             let mut buffers = ProductBuffers::default();
             let mut by_stencil = vec![Vector3::zeros(); n];
-            product(
-                &blocks,
-                &diagonal,
-                &order,
-                &mut buffers,
-                &p,
-                &mut by_stencil,
-            );
-            // Twice: the buffers' second use must not depend on the first; and with a copy of
+            // Twice: the buffers' second use must not depend on the first; then with a copy of
             // the used buffers (which starts empty).
-            product(
-                &blocks,
-                &diagonal,
-                &order,
-                &mut buffers,
-                &p,
-                &mut by_stencil,
-            );
+            for _ in 0..2 {
+                product(
+                    &blocks,
+                    &diagonal,
+                    &order,
+                    &mut buffers,
+                    &p,
+                    &mut by_stencil,
+                );
+            }
             let mut copied = buffers.clone();
             let mut again = vec![Vector3::zeros(); n];
             product(&blocks, &diagonal, &order, &mut copied, &p, &mut again);
