@@ -2890,15 +2890,16 @@ fn lesson_36_the_soft_stack_sinks_by_the_closed_form() {
 
 #[test]
 fn lesson_36_the_sweep_order_sways_the_soft_stack_and_not_the_rigid_one() {
-    // Page 4: listed top to bottom, soft-step's top sways 2.8 mm one way by t = 1 s, then
-    // 0.7 mm the other way around t = 2.2 s; impulse keeps it put to 1e-15 m in both orders.
+    // Page 4: listed top to bottom, soft-step's top sways 1.8 mm one way by t = 1 s, then
+    // 0.5 mm the other way around t = 2.2 s; impulse keeps it put to 1e-15 m in both orders.
+    // (2.8 and 0.7 mm while face clipping lost a corner of some faces: `clip::ON_PLANE`.)
     let l = lesson("36-soft-or-rigid.toml");
     let soft = l.scene.contact.unwrap().response;
     let mut world = stack_of_ten(true, soft);
     run_to(&mut world, 1.0);
-    assert_near(position(&world, "top").x, -2.8e-3, 0.1e-3, "sway at 1 s");
+    assert_near(position(&world, "top").x, -1.8e-3, 0.1e-3, "sway at 1 s");
     run_to(&mut world, 2.25);
-    assert_near(position(&world, "top").x, 0.7e-3, 0.1e-3, "sway at 2.25 s");
+    assert_near(position(&world, "top").x, 0.5e-3, 0.1e-3, "sway at 2.25 s");
     for reversed in [false, true] {
         let mut rigid = stack_of_ten(reversed, tumble::physics::Response::Impulse);
         run_to(&mut rigid, 3.0);
@@ -3234,16 +3235,20 @@ fn lesson_37_the_wave_runs_down_the_row_and_the_contacts_take_three_quarters() {
         assert!((0.0255..0.0275).contains(&y), "d{} at y = {y}", i + 1);
     }
     assert!((tilt_degrees(&w, 7) - 90.0).abs() < 1.0, "d8 not flat");
+    // To 2e-6 m: d8 comes to rest turned 1.3e-5 rad from flat, one long edge 2.6 µm up
+    // (measured y − t/2 = 1.3e-6 m; 2e-8 m before `clip::ON_PLANE` kept every corner of the
+    // row's face contacts, a chaotic fall's last digits).
     assert_near(
         w.states()[7].position.y,
         DOMINO_T / 2.0,
-        1e-6,
+        2e-6,
         "d8's y = t/2",
     );
     // Page 5: E never read more than 3.4e-5 J above E₀ (just before the first touch); after d8
-    // landed, the steps that lifted the leaning row raised E by 1.7e-3 J in all.
+    // landed, the steps that lifted the leaning row raised E by 1.6e-3 J in all (1.63e-3;
+    // 1.70e-3 before `clip::ON_PLANE`, the fall's last digits).
     assert_near(highest - e0, 3.4e-5, 1e-6, "E's highest above E₀");
-    assert_near(rises_late, 1.7e-3, 5e-5, "rises after the landing");
+    assert_near(rises_late, 1.63e-3, 5e-5, "rises after the landing");
     assert!(
         integrate_change < 1e-12,
         "integrate changed E by {integrate_change:e}"
