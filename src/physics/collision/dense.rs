@@ -87,7 +87,8 @@ impl Dense {
             self.body_first[b] = self.body_first[b].min(p);
         }
         self.start[p] = self.a.len();
-        self.a.extend((first..=p).map(|q| entry(q).unwrap_or(0.0)));
+        self.a
+            .extend((first..p + 1).map(|q| entry(q).unwrap_or(0.0)));
         self.first[p] = first;
     }
 
