@@ -110,6 +110,9 @@ impl Dense {
             fill,
             ..
         } = self;
+        // The m rows' slices (bounds known once).
+        let (start, first) = (&start[..m], &first[..m]);
+        let (inv_diagonal, w) = (&mut inv_diagonal[..m], &mut w[..m]);
         // Entry (p, q) of the envelope, first(p) ≤ q ≤ p. Every dot product below is summed
         // in increasing index from −0 (as `Iterator::sum` does).
         let at = |p: usize, q: usize| start[p] + q - first[p];
@@ -128,8 +131,8 @@ impl Dense {
                 let begin = fp.max(first[q]);
                 let row_q = at(q, begin);
                 let mut dot = -0.0;
-                for (k, y) in (begin..q).zip(&a[row_q..row_q + q - begin]) {
-                    dot += w[k] * y;
+                for (wk, y) in w[begin..q].iter().zip(&a[row_q..row_q + q - begin]) {
+                    dot += wk * y;
                 }
                 let wq = a[row_p + q - fp] - dot;
                 w[q] = wq;
@@ -143,7 +146,7 @@ impl Dense {
             inv_diagonal[p] = 1.0 / pivot;
         }
         // L y = rhs, then Lᵀ x = D⁻¹ y.
-        let x = rhs;
+        let x = &mut rhs[..m];
         for p in 0..m {
             let fp = first[p];
             let row_p = at(p, fp);
