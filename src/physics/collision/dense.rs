@@ -87,7 +87,11 @@ impl Dense {
             self.body_first[b] = self.body_first[b].min(p);
         }
         self.start[p] = self.a.len();
-        self.a.extend((first..=p).map(|q| entry(q).unwrap_or(0.0)));
+        self.a.reserve(p + 1 - first);
+        for q in first..p + 1 {
+            let value = entry(q).unwrap_or(0.0);
+            self.a.push(value);
+        }
         self.first[p] = first;
     }
 
@@ -106,27 +110,35 @@ impl Dense {
             fill,
             ..
         } = self;
-        // Entry (p, q) of the envelope, first(p) ≤ q ≤ p.
+        // The m rows' slices (bounds known once).
+        let (start, first) = (&start[..m], &first[..m]);
+        let (inv_diagonal, w) = (&mut inv_diagonal[..m], &mut w[..m]);
+        // Entry (p, q) of the envelope, first(p) ≤ q ≤ p. Every dot product below is summed
+        // in increasing index from −0 (as `Iterator::sum` does).
         let at = |p: usize, q: usize| start[p] + q - first[p];
-        let largest = (0..m).map(|p| a[at(p, p)]).fold(0.0, f64::max);
+        let mut largest = 0.0;
+        for p in 0..m {
+            largest = f64::max(largest, a[at(p, p)]);
+        }
         let epsilon = 1e-10 * largest;
         // A + ε𝟙 = L D Lᵀ (L unit lower triangular, in place below the diagonal; D kept as
         // 1/Dₚ): no square roots. w_q = L_pq D_q for the row being factored.
         for p in 0..m {
             let fp = first[p];
-            let mut pivot = a[at(p, p)] + epsilon;
+            let row_p = at(p, fp);
+            let mut pivot = a[row_p + p - fp] + epsilon;
             for q in fp..p {
                 let begin = fp.max(first[q]);
-                let (row_q, row_p) = (at(q, begin), at(p, q));
-                let dot: f64 = w[begin..q]
-                    .iter()
-                    .zip(&a[row_q..row_q + q - begin])
-                    .map(|(x, y)| x * y)
-                    .sum();
-                w[q] = a[row_p] - dot;
-                let l = w[q] * inv_diagonal[q];
-                pivot -= w[q] * l;
-                a[row_p] = l;
+                let row_q = at(q, begin);
+                let mut dot = -0.0;
+                for (wk, y) in w[begin..q].iter().zip(&a[row_q..row_q + q - begin]) {
+                    dot += wk * y;
+                }
+                let wq = a[row_p + q - fp] - dot;
+                w[q] = wq;
+                let l = wq * inv_diagonal[q];
+                pivot -= wq * l;
+                a[row_p + q - fp] = l;
             }
             if pivot <= 0.0 {
                 return None;
@@ -134,23 +146,25 @@ impl Dense {
             inv_diagonal[p] = 1.0 / pivot;
         }
         // L y = rhs, then Lᵀ x = D⁻¹ y.
-        let x = rhs;
+        let x = &mut rhs[..m];
         for p in 0..m {
             let fp = first[p];
-            let dot: f64 = a[at(p, fp)..at(p, p)]
-                .iter()
-                .zip(&x[fp..p])
-                .map(|(x, y)| x * y)
-                .sum();
+            let row_p = at(p, fp);
+            let mut dot = -0.0;
+            for (y, xk) in a[row_p..row_p + p - fp].iter().zip(&x[fp..p]) {
+                dot += y * xk;
+            }
             x[p] -= dot;
         }
         if m <= SMALL {
             // Few rows: scan them (the same sums, in the same order).
             for p in (0..m).rev() {
-                let dot: f64 = (p + 1..m)
-                    .filter(|&k| first[k] <= p)
-                    .map(|k| a[at(k, p)] * x[k])
-                    .sum();
+                let mut dot = -0.0;
+                for k in p + 1..m {
+                    if first[k] <= p {
+                        dot += a[at(k, p)] * x[k];
+                    }
+                }
                 x[p] = x[p] * inv_diagonal[p] - dot;
             }
             return Some(&x[..m]);

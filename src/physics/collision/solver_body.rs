@@ -157,14 +157,26 @@ impl Axis {
 
     /// The coupling of two axes in the contact-space inverse mass A:
     /// `Σ over the bodies they share (±d)·(±d')/M + (r×(±d))·I⁻¹(r×(±d'))`.
+    ///
+    /// The pairs of ends are taken in the order (A, A'), (A, B'), (B, A'), (B, B'), each term
+    /// added to a sum that starts at +0 (the order [`Axis::ends`] gives them).
+    #[inline]
     pub fn coupling(&self, other: &Axis, bodies: &[SolverBody]) -> f64 {
         let mut sum = 0.0;
-        for (e, se) in self.ends() {
-            for (f, sf) in other.ends() {
-                if e.body == f.body {
-                    sum +=
-                        se * sf * self.d.dot(&other.d) * bodies[e.body].inv_mass + e.rd.dot(&f.w);
-                }
+        let dot = self.d.dot(&other.d);
+        let mut add = |e: &End, se: f64, f: &End, sf: f64| {
+            if e.body == f.body {
+                sum += se * sf * dot * bodies[e.body].inv_mass + e.rd.dot(&f.w);
+            }
+        };
+        add(&self.a, 1.0, &other.a, 1.0);
+        if let Some(fb) = &other.b {
+            add(&self.a, 1.0, fb, -1.0);
+        }
+        if let Some(eb) = &self.b {
+            add(eb, -1.0, &other.a, 1.0);
+            if let Some(fb) = &other.b {
+                add(eb, -1.0, fb, -1.0);
             }
         }
         sum
@@ -176,9 +188,12 @@ impl Axis {
     }
 
     /// Whether the two axes act on a common body (else their coupling is 0).
+    #[inline]
     pub fn shares_a_body(&self, other: &Axis) -> bool {
-        let ([a, b], [c, d]) = (self.bodies(), other.bodies());
-        a == c || a == d || (b.is_some() && (b == c || b == d))
+        let acts_on = |axis: &Axis, body: usize| {
+            axis.a.body == body || axis.b.as_ref().is_some_and(|b| b.body == body)
+        };
+        acts_on(other, self.a.body) || self.b.as_ref().is_some_and(|b| acts_on(other, b.body))
     }
 
     /// The ends with the sign of d at each.
