@@ -116,7 +116,9 @@
 //! residual's norm), so what a step carries over is a geometric series, at most
 //! 1/(1 − 0.1) ≈ 1.11 times one step's own error, never a sum over the steps. Otherwise
 //! (a moving body: landing, bouncing) the trial is dropped and the solve starts cold exactly
-//! as above, to the last bit; the trial costs one product. Measured: lesson 16's landing
+//! as above, to the last bit; the trial costs one product, so after a dropped one the round
+//! skips its trial for [`TRIAL_PAUSE`] = 7 steps (a body coming to rest waits at most that
+//! long for its warm starts). Measured: lesson 16's landing
 //! (steps 272–555) has the same bits as with cold starts only; at rest its solve takes 1–3
 //! iterations instead of ~8, and the cube's height at 4 s moves by 1e-6 m; the frictionless
 //! centred drop keeps its mirror symmetry exactly (`tests/physics/cloth_world.rs`). A body held
@@ -290,7 +292,13 @@ pub struct TieBuffers {
 struct Start {
     particles: Vec<Vector3<f64>>,
     bodies: Vec<Vector6<f64>>,
+    /// Steps this round skips its trial for (after a trial was dropped: [`TRIAL_PAUSE`]).
+    pause: u32,
 }
+
+/// The steps a round waits before trying its warm start again after one was dropped (a body
+/// in motion): a dropped trial costs a product for nothing (module doc, "Warm starts").
+pub const TRIAL_PAUSE: u32 = 7;
 
 #[derive(Debug, Clone, Copy, Default)]
 struct BodyVectors {
@@ -621,11 +629,15 @@ impl Workspace {
         // one for these particles and bodies (module doc, "Warm starts").
         let round = t.round;
         t.round += 1;
-        let candidate = (t.starts.get(round))
+        let mut candidate = (t.starts.get(round))
             .filter(|s| s.particles.len() == n && s.bodies.len() == bodies.len())
             .is_some()
             && ties.iter().any(moves)
             && !ties.iter().any(|tie| tie.permanent);
+        if candidate && t.starts[round].pause > 0 {
+            t.starts[round].pause -= 1;
+            candidate = false;
+        }
         let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
@@ -698,6 +710,7 @@ impl Workspace {
                 if delta <= WARM_GATE * WARM_GATE * delta0 {
                     warm = Some(delta);
                 } else {
+                    t.starts[round].pause = TRIAL_PAUSE;
                     // Not good enough: the cold start below, as if never tried.
                     self.solution.clone_from(&t.kept);
                     self.residual.clone_from(&t.reduced);
