@@ -128,6 +128,7 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     let scratch = &mut cloth.scratch;
     let work = &mut scratch.solver;
     work.resize(&cloth.pinned);
+    work.ties.new_step();
     let (x, v0) = (&cloth.positions, &cloth.velocities);
     // a_i = m_i + h k_drag,i;  b_i = h (m_i g − k_drag,i v₀_i);  P_i = a_i I.
     let gravity = loads.gravity.unwrap_or_else(Vector3::zeros);
