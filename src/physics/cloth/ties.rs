@@ -102,7 +102,8 @@
 //! in rounds (the first contact set; the set after a contact was released or began to slide;
 //! …: a cube resting with friction on a trampoline sticks all its contacts in the first
 //! round and lets them slide in the second, every step). When a moving body is tied by
-//! contacts (no attachment among the ties), each round first tries what the *same* round ended with the step before, (y, Y) = (Δv, Y)
+//! contacts (no attachment among the ties), each round first tries what the *same* round
+//! ended with the step before, (y, Y) = (Δv, Y)
 //! then, and keeps it only when its residual is already small,
 //!
 //! ```text
@@ -667,8 +668,8 @@ impl Workspace {
         if delta0.is_finite() && delta0 > 0.0 {
             let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
             let mut product = std::mem::take(&mut self.product);
-            // The round's warm start, kept only when it is already within ε (module doc,
-            // "Warm starts"): its residual δ_w.
+            // The round's warm start, kept only when its residual δ_w is already within
+            // WARM_GATE of the right-hand side's (module doc, "Warm starts").
             let mut warm = None;
             if candidate {
                 t.kept.clone_from(&self.solution);
