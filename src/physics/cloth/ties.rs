@@ -683,31 +683,16 @@ impl Workspace {
                         *x = Vector6::zeros();
                     }
                 }
-                let mut solution = std::mem::take(&mut self.solution);
-                self.multiply_reduced(
+                let delta = self.start_residual(
                     &mut t,
                     ties,
                     bodies,
                     &pinned,
-                    &mut solution,
+                    joints,
                     &x_body,
                     &mut product,
                     &mut q_body,
                 );
-                self.solution = solution;
-                let mut delta = 0.0;
-                for i in 0..n {
-                    self.residual[i] -= product[i];
-                    self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-                    delta += self.residual[i].dot(&self.preconditioned[i]);
-                }
-                for (b, bv) in t.body.iter_mut().enumerate() {
-                    bv.r = bv.rhs - q_body[b];
-                }
-                precondition_bodies(&mut t, joints, false);
-                for bv in &t.body {
-                    delta += bv.r.dot(&bv.z);
-                }
                 if delta <= WARM_GATE * WARM_GATE * delta0 {
                     warm = Some(delta);
                 } else {
@@ -718,35 +703,20 @@ impl Workspace {
                     x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                 }
             }
-            let mut delta = 0.0;
+            let mut delta;
             if let Some(warm) = warm {
                 delta = warm;
             } else {
-                // r = rhs − (Tᵀ Ā T) x
-                let mut solution = std::mem::take(&mut self.solution);
-                self.multiply_reduced(
+                delta = self.start_residual(
                     &mut t,
                     ties,
                     bodies,
                     &pinned,
-                    &mut solution,
+                    joints,
                     &x_body,
                     &mut product,
                     &mut q_body,
                 );
-                self.solution = solution;
-                for i in 0..n {
-                    self.residual[i] -= product[i];
-                    self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-                    delta += self.residual[i].dot(&self.preconditioned[i]);
-                }
-                for (b, bv) in t.body.iter_mut().enumerate() {
-                    bv.r = bv.rhs - q_body[b];
-                }
-                precondition_bodies(&mut t, joints, false);
-                for bv in &t.body {
-                    delta += bv.r.dot(&bv.z);
-                }
                 if delta > delta0 {
                     // A warm start worse than zero: start from zero.
                     self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
@@ -935,6 +905,50 @@ impl Workspace {
     ) {
         out.resize(p.len(), Vector3::zeros());
         super::conjugate_gradient::product(blocks, diagonal, order, terms, p, out);
+    }
+
+    /// The start's residual r = b − (Tᵀ Ā T) x for x = (`solution`, `x_body`), with `residual`
+    /// and the bodies' `rhs` holding b on entry; its preconditioned z; returns δ = r·z.
+    /// `product` and `q_body` keep Tᵀ Ā T x (a start worse than zero is undone with it).
+    #[allow(clippy::too_many_arguments)]
+    fn start_residual(
+        &mut self,
+        t: &mut TieBuffers,
+        ties: &[Tie],
+        bodies: &[SolverBody],
+        pinned: &[u32],
+        joints: &BodyJoints,
+        x_body: &[Vector6<f64>],
+        product: &mut [Vector3<f64>],
+        q_body: &mut [Vector6<f64>],
+    ) -> f64 {
+        let n = self.rhs.len();
+        let mut solution = std::mem::take(&mut self.solution);
+        self.multiply_reduced(
+            t,
+            ties,
+            bodies,
+            pinned,
+            &mut solution,
+            x_body,
+            product,
+            q_body,
+        );
+        self.solution = solution;
+        let mut delta = 0.0;
+        for i in 0..n {
+            self.residual[i] -= product[i];
+            self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
+            delta += self.residual[i].dot(&self.preconditioned[i]);
+        }
+        for (b, bv) in t.body.iter_mut().enumerate() {
+            bv.r = bv.rhs - q_body[b];
+        }
+        precondition_bodies(t, joints, false);
+        for bv in &t.body {
+            delta += bv.r.dot(&bv.z);
+        }
+        delta
     }
 
     /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc). `p` is expanded in place (its
