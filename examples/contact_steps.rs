@@ -19,8 +19,15 @@ fn main() {
     let usage = "usage: contact_steps SCENE STEPS [RESPONSE]";
     let scene = args.get(1).expect(usage);
     let steps: u64 = args.get(2).and_then(|s| s.parse().ok()).expect(usage);
-    let response = Response::from_name(args.get(3).map_or("impulse", String::as_str))
+    let mut response = Response::from_name(args.get(3).map_or("impulse", String::as_str))
         .expect("a response name");
+    // SOFT_HERTZ, SOFT_ZETA, SOFT_SUBSTEPS: soft-step's parameters (defaults otherwise).
+    if let Response::SoftStep(soft) = &mut response {
+        let var = |name: &str| std::env::var(name).ok().and_then(|s| s.parse::<f64>().ok());
+        soft.hertz = var("SOFT_HERTZ").unwrap_or(soft.hertz);
+        soft.damping_ratio = var("SOFT_ZETA").unwrap_or(soft.damping_ratio);
+        soft.substeps = var("SOFT_SUBSTEPS").map_or(soft.substeps, |n| n as u32);
+    }
     let mut world = if let Some(n) = scene.strip_prefix("stack-") {
         stack(n.parse().expect(usage), response)
     } else if let Some(rest) = scene.strip_prefix("pyramid-") {
@@ -48,9 +55,16 @@ fn main() {
         if step % every == 0 || step == steps {
             let now = world.contact_counters();
             let t = Instant::now();
+            let sideways = world
+                .states()
+                .iter()
+                .zip(world.initial_states())
+                .map(|(s, s0)| (s.position - s0.position).xz().norm())
+                .fold(0.0, f64::max);
             println!(
-                "t {:6.3} s  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
+                "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
                 step as f64 * 1e-3,
+                sideways,
                 now.direct - last.direct,
                 now.declined - last.declined,
                 now.warm - last.warm,

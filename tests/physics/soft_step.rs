@@ -234,3 +234,101 @@ fn soft_step_is_in_the_response_list() {
     assert_eq!(Response::Impulse.next(), soft());
     assert_eq!(soft().next(), Response::Seed);
 }
+
+/// The largest sideways distance (x, z) of a cube from the stack's axis, m.
+fn sideways(world: &World) -> f64 {
+    world
+        .states()
+        .iter()
+        .map(|s| s.position.x.hypot(s.position.z))
+        .fold(0.0, f64::max)
+}
+
+/// The fewest cubes whose discrete chain of soft tilt joints is unstable at `hertz`: the tilt
+/// θ_j of each cube, joints of stiffness M ω² a²/2 between cubes (four corners of M/8 at lever
+/// a) and 4 M ω² a² at the ground (corners of M/4 at 2ω), gravity's −M g h_j on the diagonal
+/// (h_j: the height of cube j's centre above the joint below the cubes it carries, summed:
+/// 2a (N−1−j) + a). Stable while the tridiagonal stiffness matrix is positive definite: its
+/// LDLᵀ pivots d_j = K_jj − K_j,j−1²/d_j−1 all positive.
+fn chain_buckles_at(hertz: f64) -> usize {
+    let (m, a) = (1.0, SIDE / 2.0);
+    let omega = 2.0 * std::f64::consts::PI * hertz;
+    let (joint, ground) = (
+        m * omega * omega * a * a / 2.0,
+        4.0 * m * omega * omega * a * a,
+    );
+    (1..200)
+        .find(|&n| {
+            let mut pivot = f64::INFINITY;
+            (0..n).any(|j| {
+                let below = if j == 0 { ground } else { joint };
+                let above = if j + 1 < n { joint } else { 0.0 };
+                let gravity = m * G * (2.0 * a * (n - 1 - j) as f64 + a);
+                let coupling = if j == 0 { 0.0 } else { joint * joint / pivot };
+                pivot = below + above - gravity - coupling;
+                pivot <= 0.0
+            })
+        })
+        .expect("a chain that buckles")
+}
+
+#[test]
+fn the_buckling_count_matches_the_discrete_chain_of_tilt_joints() {
+    // Greenhill's continuous column (module doc) against the chain of rigid cubes: the chain
+    // holds `chain − 1` cubes and not `chain`; that boundary, `chain − ½`, lies within one cube
+    // of the continuum's count.
+    for hertz in [30.0, 60.0, 120.0, 240.0] {
+        let params = SoftStep {
+            hertz,
+            ..SoftStep::DEFAULT
+        };
+        let count = params.buckling_count(SIDE, G, DT);
+        let chain = chain_buckles_at(hertz);
+        println!("{hertz} Hz: Greenhill {count:.2}, chain buckles at {chain}");
+        assert!(
+            (count - (chain as f64 - 0.5)).abs() <= 1.0,
+            "{hertz} Hz: Greenhill {count}, chain {chain}"
+        );
+        let hold = SoftStep::hertz_to_hold(chain, SIDE, G);
+        let params = SoftStep {
+            hertz: hold,
+            ..SoftStep::DEFAULT
+        };
+        assert!((params.buckling_count(SIDE, G, DT) - chain as f64).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn a_soft_stack_stands_below_its_buckling_count_and_falls_above_it() {
+    // Below N_c the lean the sweep order leaves (micrometres) stays; above, it grows
+    // exponentially (×2.6 a second on 16 cubes at 60 Hz) until the stack falls. Doubling
+    // the frequency raises N_c by 2^(2/3): the 16 that fall at 60 Hz stand at 120 Hz.
+    for hertz in [60.0, 120.0] {
+        let params = SoftStep {
+            hertz,
+            ..SoftStep::DEFAULT
+        };
+        let count = params.buckling_count(SIDE, G, DT).floor() as usize;
+        for (n, falls) in [(count - 1, false), (count + 2, true)] {
+            let mut world = stack(n, Response::SoftStep(params));
+            let (mut at_4, mut largest) = (0.0, 0.0f64);
+            for step in 1..=10_000 {
+                world.step();
+                largest = largest.max(sideways(&world));
+                if step == 4000 {
+                    at_4 = sideways(&world);
+                }
+            }
+            let at_10 = sideways(&world);
+            println!("{hertz} Hz, {n} cubes: sideways {at_4:.3e} m at 4 s, {at_10:.3e} m at 10 s");
+            if falls {
+                assert!(
+                    at_10 > 0.01 && at_10 > 20.0 * at_4,
+                    "{hertz} Hz, {n} cubes: {at_4:e} m at 4 s, {at_10:e} m at 10 s"
+                );
+            } else {
+                assert!(largest < 5e-4, "{hertz} Hz, {n} cubes leaned {largest:e} m");
+            }
+        }
+    }
+}

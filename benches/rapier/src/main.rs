@@ -169,8 +169,16 @@ fn main() {
         .iter()
         .map(|(h, at)| (s.bodies[*h].translation() - *at).length())
         .fold(0.0, f64::max);
+    let sideways = s
+        .handles
+        .iter()
+        .map(|(h, at)| {
+            let d = s.bodies[*h].translation() - *at;
+            (d.x * d.x + d.z * d.z).sqrt()
+        })
+        .fold(0.0, f64::max);
     println!(
-        "{name}: {:.2} µs/step over {steps} steps (CPU); largest displacement {moved:.3e} m",
+        "{name}: {:.2} µs/step over {steps} steps (CPU); largest displacement {moved:.3e} m, sideways {sideways:.3e} m",
         total * 1e6 / steps as f64
     );
 }
