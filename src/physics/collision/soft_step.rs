@@ -19,6 +19,12 @@
 //! then once:     restitution, store impulses (warm start of the next step)
 //! ```
 //!
+//! The sweeps work on v and ω alone (ω = I₀⁻¹ L, I₀⁻¹ fixed over the step), taking the rows
+//! between the same two bodies together with the bodies' motions copied in once; each row
+//! keeps the total it applied along each axis, Λ, so the step's L is
+//! `L₀ + ΔL + Σ_rows Σ_axes (r×d) Λ` and the row's impulse `n Λ₀ + t₁ Λ₁ + t₂ Λ₂`. Friction
+//! reads the point's relative velocity once for both tangents.
+//!
 //! No detection inside the sub-steps: a row's separation follows its bodies,
 //! `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`, with Δx and D the body's
 //! translation and rotation since the detection pose, s₀ = −depth there.
@@ -233,9 +239,10 @@ struct Placement {
     detected_inverse: UnitQuaternion<f64>,
     /// Rotation since the detection pose, minus 𝟙.
     turned: Matrix3<f64>,
-    /// The external velocity change per sub-step.
+    /// The external velocity change per sub-step: Δv/n, ΔL/n and I₀⁻¹ ΔL/n.
     dv: Vector3<f64>,
     dl: Vector3<f64>,
+    dw: Vector3<f64>,
 }
 
 /// One contact as the sub-steps see it.
@@ -256,8 +263,84 @@ struct Row {
     lambda: f64,
     lambda_tangent: [f64; 2],
     max_lambda: f64,
-    /// Every impulse applied over the step (N·s, on A).
-    total: Vector3<f64>,
+    /// Every impulse applied over the step along the normal and the two tangents (N·s, on
+    /// A): the row's impulse is `n Λ₀ + t₁ Λ₁ + t₂ Λ₂`, and its share of each body's angular
+    /// momentum `(r×d) Λ` summed over the three axes.
+    applied: [f64; 3],
+}
+
+/// A body's motion inside the sub-steps: v, ω (= I₀⁻¹ L) and 1/M. Its angular momentum is
+/// not kept in step impulse by impulse: L at the end is L₀ plus the external change plus each
+/// row's `(r×d) Λ` ([`Row::applied`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct Motion {
+    v: Vector3<f64>,
+    omega: Vector3<f64>,
+    inv_mass: f64,
+}
+
+impl Motion {
+    /// The rate of `axis`, A relative to B (`b` unread when the axis has no B end):
+    /// `d·v_A + (r_A×d)·ω_A − d·v_B + (r_B×(−d))·ω_B`.
+    #[inline]
+    fn rate(axis: &Axis, a: &Motion, b: &Motion) -> f64 {
+        let mut u = axis.d.dot(&a.v) + axis.a.rd.dot(&a.omega);
+        if let Some(e) = &axis.b {
+            u += -axis.d.dot(&b.v) + e.rd.dot(&b.omega);
+        }
+        u
+    }
+
+    /// The velocity of A's point at lever `ra` relative to B's at `rb`,
+    /// `v_A + ω_A×r_A − v_B − ω_B×r_B` (B still when the row has no B end): any axis's rate
+    /// is its `d·` this.
+    #[inline]
+    fn relative(a: &Motion, b: &Motion, ra: &Vector3<f64>, rb: &Vector3<f64>) -> Vector3<f64> {
+        a.v + a.omega.cross(ra) - b.v - b.omega.cross(rb)
+    }
+
+    /// Applies the impulse j along `axis`: `v_A += j d/M_A`, `ω_A += j I_A⁻¹(r_A×d)`, the
+    /// opposite on B.
+    #[inline]
+    fn push(axis: &Axis, j: f64, a: &mut Motion, b: &mut Motion) {
+        a.v += axis.d * (j * a.inv_mass);
+        a.omega += axis.a.w * j;
+        if let Some(e) = &axis.b {
+            b.v += axis.d * (-j * b.inv_mass);
+            b.omega += e.w * j;
+        }
+    }
+}
+
+/// Consecutive rows between the same two bodies (B: None for an obstacle or a fixed body):
+/// a sweep copies their motions in once, solves the rows, and copies them back.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    a: usize,
+    b: Option<usize>,
+    rows: (usize, usize),
+}
+
+/// Calls `solve` on each row with its two bodies' motions, run by run (`b` is a still
+/// stand-in when the row has no B end).
+#[inline]
+fn each_row(
+    runs: &[Run],
+    rows: &mut [Row],
+    motions: &mut [Motion],
+    mut solve: impl FnMut(&mut Row, &mut Motion, &mut Motion),
+) {
+    for run in runs {
+        let mut a = motions[run.a];
+        let mut b = run.b.map_or(Motion::default(), |b| motions[b]);
+        for row in &mut rows[run.rows.0..run.rows.1] {
+            solve(row, &mut a, &mut b);
+        }
+        motions[run.a] = a;
+        if let Some(i) = run.b {
+            motions[i] = b;
+        }
+    }
 }
 
 impl Row {
@@ -278,7 +361,9 @@ impl Row {
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
     rows: Vec<Row>,
+    runs: Vec<Run>,
     bodies: Vec<SolverBody>,
+    motions: Vec<Motion>,
     places: Vec<Placement>,
     /// Each solver body's free flight (the integrate phase's result): v, ω and world I⁻¹.
     flight: Vec<(Vector3<f64>, Vector3<f64>, Matrix3<f64>)>,
@@ -340,7 +425,9 @@ pub fn respond(
     // The bodies in contact, as solver bodies at the start of the step.
     let Scratch {
         rows,
+        runs,
         bodies,
+        motions,
         places,
         flight,
         slot,
@@ -389,6 +476,7 @@ pub fn respond(
                 turned: Matrix3::zeros(),
                 dv: (free.linear_momentum - start.linear_momentum) * body.inv_mass / inv,
                 dl: (free.angular_momentum - start.angular_momentum) / inv,
+                dw: k0.inv_inertia_world * ((free.angular_momentum - start.angular_momentum) / inv),
             });
         }
     }
@@ -445,10 +533,29 @@ pub fn respond(
             lambda,
             lambda_tangent,
             max_lambda: 0.0,
-            total: Vector3::zeros(),
+            applied: [0.0; 3],
         });
         c.denominator = normal.k;
     }
+    runs.clear();
+    for (i, row) in rows.iter().enumerate() {
+        let (a, b) = (row.normal.a.body, row.normal.b.map(|e| e.body));
+        match runs.last_mut() {
+            Some(run) if run.a == a && run.b == b => run.rows.1 = i + 1,
+            _ => runs.push(Run {
+                a,
+                b,
+                rows: (i, i + 1),
+            }),
+        }
+    }
+    motions.clear();
+    motions.extend(bodies.iter().map(|s| Motion {
+        v: s.v,
+        omega: s.omega,
+        inv_mass: s.inv_mass,
+    }));
+
     // The approach is measured at the free flight's velocities (what the contact meets).
     for (row, c) in rows.iter_mut().zip(contacts.iter()) {
         let (v, omega, _) = &flight[slot[c.body]];
@@ -467,24 +574,24 @@ pub fn respond(
     let impact = rows.iter().any(|row| row.approach < -bounce_speed);
     let passes = if impact { IMPACT_SWEEPS } else { 1 };
     for _ in 0..n {
-        for (s, p) in bodies.iter_mut().zip(places.iter()) {
-            s.v += p.dv;
+        for ((m, s), p) in motions.iter_mut().zip(bodies.iter_mut()).zip(places.iter()) {
+            m.v += p.dv;
             s.l += p.dl;
-            s.omega += s.inv_inertia * p.dl;
+            m.omega += p.dw;
         }
-        for row in rows.iter_mut() {
+        each_row(runs, rows, motions, |row, a, b| {
             let [t1, t2] = &row.tangents;
-            row.normal.apply(row.lambda, bodies);
-            t1.apply(row.lambda_tangent[0], bodies);
-            t2.apply(row.lambda_tangent[1], bodies);
-            row.total += row.normal.d * row.lambda
-                + t1.d * row.lambda_tangent[0]
-                + t2.d * row.lambda_tangent[1];
-        }
+            Motion::push(&row.normal, row.lambda, a, b);
+            Motion::push(t1, row.lambda_tangent[0], a, b);
+            Motion::push(t2, row.lambda_tangent[1], a, b);
+            row.applied[0] += row.lambda;
+            row.applied[1] += row.lambda_tangent[0];
+            row.applied[2] += row.lambda_tangent[1];
+        });
         for _ in 0..passes {
-            sweep(rows, bodies, friction, h, true);
+            sweep(runs, rows, motions, friction, h, true);
         }
-        for (s, p) in bodies.iter().zip(places.iter_mut()) {
+        for (s, p) in motions.iter().zip(places.iter_mut()) {
             p.position += s.v * h;
             let w = s.omega * (0.5 * h);
             let dq = Quaternion::new(0.0, w.x, w.y, w.z) * p.q.into_inner();
@@ -495,23 +602,37 @@ pub fn respond(
             row.gap = row.separation_now(places);
         }
         for _ in 0..passes {
-            sweep(rows, bodies, friction, h, false);
+            sweep(runs, rows, motions, friction, h, false);
         }
     }
     // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
     let restitution = context.restitution;
     if restitution > 0.0 {
-        for row in rows.iter_mut() {
+        each_row(runs, rows, motions, |row, a, b| {
             if row.approach >= -bounce_speed || row.max_lambda == 0.0 {
-                continue;
+                return;
             }
-            let u = row.normal.velocity(bodies);
+            let u = Motion::rate(&row.normal, a, b);
             let j = -row.normal.inv_k * (u + restitution * row.approach);
             let new = (row.lambda + j).max(0.0);
             let change = new - row.lambda;
             row.lambda = new;
-            row.normal.apply(change, bodies);
-            row.total += row.normal.d * change;
+            Motion::push(&row.normal, change, a, b);
+            row.applied[0] += change;
+        });
+    }
+    // The motions back into the solver bodies: v, ω, and L from each row's impulses.
+    for (s, m) in bodies.iter_mut().zip(motions.iter()) {
+        s.v = m.v;
+        s.omega = m.omega;
+    }
+    for row in rows.iter() {
+        let axes = [&row.normal, &row.tangents[0], &row.tangents[1]];
+        for (axis, &total) in axes.into_iter().zip(row.applied.iter()) {
+            bodies[axis.a.body].l += axis.a.rd * total;
+            if let Some(e) = &axis.b {
+                bodies[e.body].l += e.rd * total;
+            }
         }
     }
 
@@ -581,7 +702,8 @@ pub fn respond(
     // (none after a bounce: it says nothing about the next step's load).
     for (c, row) in contacts.iter_mut().zip(rows.iter()) {
         c.normal_velocity = row.approach;
-        c.impulse = row.total;
+        let [t1, t2] = &row.tangents;
+        c.impulse = row.normal.d * row.applied[0] + t1.d * row.applied[1] + t2.d * row.applied[2];
     }
     warm.store(
         contacts
@@ -602,8 +724,15 @@ pub fn respond(
 }
 
 /// One sweep over the rows: the soft, biased solve (`biased`) or the rigid relax.
-fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, biased: bool) {
-    for row in rows.iter_mut() {
+fn sweep(
+    runs: &[Run],
+    rows: &mut [Row],
+    motions: &mut [Motion],
+    friction: f64,
+    h: f64,
+    biased: bool,
+) {
+    each_row(runs, rows, motions, |row, a, b| {
         let s = row.gap;
         let (bias, mass_scale, impulse_scale) = if s > 0.0 {
             (s / h, 1.0, 0.0)
@@ -617,34 +746,42 @@ fn sweep(rows: &mut [Row], bodies: &mut [SolverBody], friction: f64, h: f64, bia
         } else {
             (0.0, 1.0, 0.0)
         };
-        let u = row.normal.velocity(bodies);
+        let u = Motion::rate(&row.normal, a, b);
         let j = -row.normal.inv_k * mass_scale * (u + bias) - impulse_scale * row.lambda;
         let new = (row.lambda + j).max(0.0);
         let change = new - row.lambda;
         row.lambda = new;
         row.max_lambda = row.max_lambda.max(new);
         if change != 0.0 {
-            row.normal.apply(change, bodies);
-            row.total += row.normal.d * change;
+            Motion::push(&row.normal, change, a, b);
+            row.applied[0] += change;
         }
         if friction > 0.0 {
             let bound = friction * row.lambda;
             let [t1, t2] = &row.tangents;
             let old = row.lambda_tangent;
+            let slip = Motion::relative(a, b, &row.lever, &row.lever_other);
             let mut new = [
-                old[0] - t1.inv_k * t1.velocity(bodies),
-                old[1] - t2.inv_k * t2.velocity(bodies),
+                old[0] - t1.inv_k * t1.d.dot(&slip),
+                old[1] - t2.inv_k * t2.d.dot(&slip),
             ];
             clamp_disk(&mut new, bound);
             let step = [new[0] - old[0], new[1] - old[1]];
             if step != [0.0; 2] {
-                t1.apply(step[0], bodies);
-                t2.apply(step[1], bodies);
-                row.total += t1.d * step[0] + t2.d * step[1];
+                // Both tangents at once: Δv_A = (t₁ s₁ + t₂ s₂)/M_A, Δω_A = I_A⁻¹(r_A×t₁) s₁ + …
+                let p = t1.d * step[0] + t2.d * step[1];
+                a.v += p * a.inv_mass;
+                a.omega += t1.a.w * step[0] + t2.a.w * step[1];
+                if let (Some(e1), Some(e2)) = (&t1.b, &t2.b) {
+                    b.v -= p * b.inv_mass;
+                    b.omega += e1.w * step[0] + e2.w * step[1];
+                }
+                row.applied[1] += step[0];
+                row.applied[2] += step[1];
                 row.lambda_tangent = new;
             }
         }
-    }
+    });
 }
 
 /// Scales a tangent impulse into the disk of radius `bound`.
