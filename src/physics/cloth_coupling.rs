@@ -570,11 +570,35 @@ pub fn tied_step(
     // Candidates: the nearest surface of each free particle within what it can close.
     let held: Vec<Held> = cloth.held().to_vec();
     let mut candidates: Vec<Candidate> = Vec::new();
+    // A broad phase: each body's reach at the fastest free particle's speed bounds every
+    // particle's reach below (sqrt, + and × by positive numbers round monotonically; a NaN
+    // speed makes it NaN, which rejects nothing), so a particle farther than it from every
+    // body is skipped with the same candidates as before.
+    let fastest = (0..cloth.len())
+        .filter(|&i| !cloth.pinned[i])
+        .map(|i| cloth.start_velocity(i).norm_squared())
+        .fold(0.0, |m: f64, v| if v > m || v.is_nan() { v } else { m })
+        .sqrt();
+    let body_speed = |body: &Body, sb: &SolverBody| {
+        sb.velocity.norm() + sb.angular_velocity.norm() * body.radius
+    };
+    let widest: Vec<f64> = (bodies.iter().zip(&solver_bodies))
+        .map(|(body, sb)| {
+            let margin = (fastest + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
+            let reach = body.radius + margin;
+            reach * reach
+        })
+        .collect();
     for i in 0..cloth.len() {
         if cloth.inv_mass(i) == 0.0 || attachments.iter().any(|a| a.particle == i) {
             continue;
         }
         let x = cloth.positions[i];
+        let far = (states.iter().zip(&widest))
+            .all(|(state, &widest)| (x - state.position).norm_squared() > widest);
+        if far && obstacles.is_empty() {
+            continue;
+        }
         let v = cloth.start_velocity(i);
         let mut best: Option<Candidate> = None;
         for (b, ((body, state), sb)) in bodies
@@ -586,8 +610,10 @@ pub fn tied_step(
             let Some(shape) = body.shape.as_ref() else {
                 continue;
             };
-            let body_speed = sb.velocity.norm() + sb.angular_velocity.norm() * body.radius;
-            let margin = (v.norm() + body_speed + gravity.norm() * dt) * dt + TOUCHING;
+            if (x - state.position).norm_squared() > widest[b] {
+                continue;
+            }
+            let margin = (v.norm() + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
             let reach = body.radius + margin;
             if (x - state.position).norm_squared() > reach * reach {
                 continue;

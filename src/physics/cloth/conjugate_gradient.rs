@@ -18,7 +18,7 @@
 //! particles gathering their springs' terms (below): ~118k instructions per product on the
 //! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). On a grid sheet the
 //! same blocks are also stored by direction and the product runs as a stencil over them
-//! (`stencil`: the same bits, ~72k instructions). A spring whose two ends are pinned has an empty
+//! (`stencil`: the same bits, ~66k instructions). A spring whose two ends are pinned has an empty
 //! block: it acts on no free particle. Why not a CSR matrix of 3×3 blocks by rows: each
 //! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
 //! twice as a full 3×3 plus index arrays, ~2× the flops per product (a full 3×3 product per
@@ -177,6 +177,11 @@ pub struct SpringOrder {
     /// The blocks by direction, when every direction's springs fill its rectangle
     /// (`stencil`): the product's fast path, to the same bits.
     pub stencil: Option<Stencil>,
+    /// Whether any particle has a spring in the bend slots (EE … SS). Without one, the last
+    /// group of every sum is (0 − 0) + (0 − 0) = +0 exactly: the sums add the constant +0 in
+    /// its place instead of reading four empty slots (not nothing: x + 0 turns a −0 into +0),
+    /// the same bits.
+    pub bend: bool,
 }
 
 /// Directions a particle of the grid has springs in.
@@ -231,10 +236,12 @@ impl SpringOrder {
             }
         }
         let stencil = Stencil::of_grid(count, &ends);
+        let bend = (slots.iter()).any(|s| s[8..].iter().any(|&spring| spring != empty));
         Some(SpringOrder {
             slots,
             springs: total,
             stencil,
+            bend,
         })
     }
 
@@ -245,9 +252,12 @@ impl SpringOrder {
     pub fn gather(&self, k: usize, terms: &[Vector3<f64>]) -> Vector3<f64> {
         let s = &self.slots[k];
         let y = |m: usize| terms[s[m] as usize];
-        ((y(0) - y(1)) + (y(2) - y(3)))
-            + ((y(4) - y(5)) + (y(6) - y(7)))
-            + ((y(8) - y(9)) + (y(10) - y(11)))
+        let bend = if self.bend {
+            (y(8) - y(9)) + (y(10) - y(11))
+        } else {
+            Vector3::zeros()
+        };
+        ((y(0) - y(1)) + (y(2) - y(3))) + ((y(4) - y(5)) + (y(6) - y(7))) + bend
     }
 
     /// (A p)_k alone, `a p_k + Σ ±S_s (p_i − p_j)` over particle k's springs, to the same bits
@@ -259,10 +269,12 @@ impl SpringOrder {
             Some(b) => b.apply(&(p[b.i as usize] - p[b.j as usize])),
             None => Vector3::zeros(),
         };
-        p[k] * a
-            + (((y(0) - y(1)) + (y(2) - y(3)))
-                + ((y(4) - y(5)) + (y(6) - y(7)))
-                + ((y(8) - y(9)) + (y(10) - y(11))))
+        let bend = if self.bend {
+            (y(8) - y(9)) + (y(10) - y(11))
+        } else {
+            Vector3::zeros()
+        };
+        p[k] * a + (((y(0) - y(1)) + (y(2) - y(3))) + ((y(4) - y(5)) + (y(6) - y(7))) + bend)
     }
 
     /// Σ blocks\[slot\] of particle `k` (all with +), in the same order.
@@ -275,12 +287,17 @@ impl SpringOrder {
             a.add(&b);
             a
         };
+        let bend = if self.bend {
+            sum(sum(c(8), c(9)), sum(c(10), c(11)))
+        } else {
+            Symmetric3::default()
+        };
         sum(
             sum(
                 sum(sum(c(0), c(1)), sum(c(2), c(3))),
                 sum(sum(c(4), c(5)), sum(c(6), c(7))),
             ),
-            sum(sum(c(8), c(9)), sum(c(10), c(11))),
+            bend,
         )
     }
 }

@@ -253,6 +253,8 @@ pub struct TieBuffers {
     /// Per particle: its tie's index, or u32::MAX.
     tie_of: Vec<u32>,
     inverse: Vec<Symmetric3>,
+    /// The particles whose P⁻¹ this step's last round filtered, with their P⁻¹ before.
+    filtered: Vec<(usize, Symmetric3)>,
     offset: Vec<Vector3<f64>>,
     /// The rows of p a product expanded in place, as they were (`multiply_reduced`).
     saved: Vec<(usize, Vector3<f64>)>,
@@ -319,6 +321,7 @@ impl TieBuffers {
         use super::conjugate_gradient::bytes_of;
         bytes_of(&self.tie_of, self.tie_of.capacity())
             + bytes_of(&self.inverse, self.inverse.capacity())
+            + bytes_of(&self.filtered, self.filtered.capacity())
             + bytes_of(&self.offset, self.offset.capacity())
             + bytes_of(&self.saved, self.saved.capacity())
             + bytes_of(&self.full, self.full.capacity())
@@ -469,13 +472,22 @@ impl Workspace {
             let i = tie.particle;
             t.offset[i] = tie.tied(&(tie.target - v0[i]));
         }
-        // Preconditioners: S P⁻¹ S for the particles, the bodies' 6 × 6.
-        t.inverse.clear();
-        t.inverse
-            .extend(self.preconditioner.iter().map(Symmetric3::inverse));
-        for &i in &pinned {
-            t.inverse[i as usize] = Symmetric3::default();
+        // Preconditioners: S P⁻¹ S for the particles, the bodies' 6 × 6. P⁻¹ is inverted on
+        // a step's first round only (P does not change between its rounds): a later round
+        // puts back the P⁻¹ of the particles the last round's ties filtered.
+        if t.round == 0 || t.inverse.len() != n {
+            t.inverse.clear();
+            t.inverse
+                .extend(self.preconditioner.iter().map(Symmetric3::inverse));
+            for &i in &pinned {
+                t.inverse[i as usize] = Symmetric3::default();
+            }
+        } else {
+            for &(i, inverse) in t.filtered.iter().rev() {
+                t.inverse[i] = inverse;
+            }
         }
+        t.filtered.clear();
         t.body.clear();
         t.body.resize(bodies.len(), BodyVectors::default());
         let mut body_blocks: Vec<Matrix6<f64>> = bodies
@@ -500,6 +512,7 @@ impl Workspace {
                 TieKind::Full => Matrix3::identity(),
             };
             let free = Matrix3::identity() - projector;
+            t.filtered.push((i, t.inverse[i]));
             let inv = t.inverse[i].0;
             let inv_full = Matrix3::new(
                 inv[0], inv[3], inv[4], inv[3], inv[1], inv[5], inv[4], inv[5], inv[2],
@@ -672,9 +685,10 @@ impl Workspace {
             // WARM_GATE of the right-hand side's (module doc, "Warm starts").
             let mut warm = None;
             if candidate {
-                t.kept.clone_from(&self.solution);
+                // The cold start is kept aside (swapped, not copied).
+                std::mem::swap(&mut self.solution, &mut t.kept);
                 t.reduced.clone_from(&self.residual);
-                self.solution.copy_from_slice(&t.starts[round].particles);
+                self.solution.clone_from(&t.starts[round].particles);
                 filter_start(&mut self.solution, &t.tie_of);
                 x_body.copy_from_slice(&t.starts[round].bodies);
                 // A body held by joints starts from 0: its last Y kept last step's rows.
@@ -698,7 +712,7 @@ impl Workspace {
                 } else {
                     t.starts[round].pause = TRIAL_PAUSE;
                     // Not good enough: the cold start below, as if never tried.
-                    self.solution.clone_from(&t.kept);
+                    std::mem::swap(&mut self.solution, &mut t.kept);
                     self.residual.clone_from(&t.reduced);
                     x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                 }
@@ -736,7 +750,8 @@ impl Workspace {
                     }
                 }
             }
-            self.direction.clone_from(&self.preconditioned);
+            // p = z: swapped, not copied (every iteration writes all of z before reading it).
+            std::mem::swap(&mut self.direction, &mut self.preconditioned);
             // Stop at ε of the right-hand side; from the round's warm start, not before its
             // residual has shrunk by CONTRACTION (module doc, "Warm starts").
             let target = match warm {
