@@ -14,6 +14,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
 use tumble::contact_scenes::{pyramid, stack};
+use tumble::physics::collision::broad_phase::BroadPhase;
 use tumble::physics::collision::{collide, contacts, impulse, CollideInput, Contact};
 use tumble::physics::effects::Loads;
 use tumble::physics::{Phase, Response, State, World};
@@ -69,6 +70,7 @@ fn record(name: &str, mut world: World, response: Response) -> Recorded {
         margin(response, g, world.dt()),
         &mut rows,
         &mut Vec::new(),
+        &mut BroadPhase::default(),
     );
     Recorded {
         name: name.into(),

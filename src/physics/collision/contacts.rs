@@ -22,6 +22,7 @@
 //! Points closer than `margin` to a surface, outside it, are *speculative* rows (depth ≤ 0):
 //! the solver may keep them from closing their gap within the next step (see `impulse`).
 
+use super::broad_phase::BroadPhase;
 use super::detect::{inside, near, swept};
 use super::geometry::{shape_obstacle, shape_shape, ContactPoint, Pose};
 use super::sweep;
@@ -31,13 +32,15 @@ use nalgebra::Matrix3;
 
 /// Finds the rows for `states` (after the integrate phase) into `out`; returns whether any
 /// row touches (depth > 0). Levers are filled in from the current barycenters; `points` is a
-/// buffer for the contact geometry. With `input.recorded`, those rows are copied instead.
+/// buffer for the contact geometry, `broad` the broad phase's. With `input.recorded`, those
+/// rows are copied instead.
 pub fn find(
     input: &CollideInput,
     states: &[State],
     margin: f64,
     out: &mut Vec<Contact>,
     points: &mut Vec<ContactPoint>,
+    broad: &mut BroadPhase,
 ) -> bool {
     out.clear();
     if let Some(rows) = input.recorded {
@@ -157,54 +160,69 @@ pub fn find(
             _ => false,
         })
     };
-    for a in 0..states.len() {
-        let Some(shape_a) = &input.bodies[a].shape else {
+    // The pairs to test, in the order of the double loop a < b: every pair when some pair may
+    // be fast (its path, not its end pose, decides), else those whose bounding spheres may
+    // meet (`broad_phase`).
+    let pairs: &[(usize, usize)] = if sweeping {
+        broad.pairs.clear();
+        for a in 0..states.len() {
+            broad.pairs.extend((a + 1..states.len()).map(|b| (a, b)));
+        }
+        &broad.pairs
+    } else {
+        broad.find(
+            (0..states.len()).filter_map(|i| {
+                let shape = input.bodies[i].shape.as_ref()?;
+                Some((i, states[i].position, shape.bounding_radius()))
+            }),
+            margin,
+        );
+        &broad.pairs
+    };
+    for &(a, b) in pairs {
+        let (Some(shape_a), Some(shape_b)) = (&input.bodies[a].shape, &input.bodies[b].shape)
+        else {
             continue;
         };
-        for b in a + 1..states.len() {
-            let Some(shape_b) = &input.bodies[b].shape else {
-                continue;
-            };
-            if input.joined.binary_search(&(a, b)).is_ok() {
-                continue;
-            }
-            // A fixed body is B, the world's side: it takes no impulse.
-            let (a, b, shape_a, shape_b) = match (input.bodies[a].fixed, input.bodies[b].fixed) {
-                (true, true) => continue,
-                (true, false) => (b, a, shape_b, shape_a),
-                _ => (a, b, shape_a, shape_b),
-            };
-            let (sa, sb) = (&states[a], &states[b]);
-            if sweeping && moved(a) + moved(b) > sweep::FAST * thin(a).min(thin(b)) {
-                let side_a = sweep::Side {
-                    shape: shape_a,
-                    path: sweep::Path::new(&input.before[a], sa, shape_a.bounding_radius()),
-                };
-                let side_b = sweep::Side {
-                    shape: shape_b,
-                    path: sweep::Path::new(&input.before[b], sb, shape_b.bounding_radius()),
-                };
-                if sweep::swept_rows(&side_a, &side_b, margin, points) {
-                    out.extend(
-                        points
-                            .iter()
-                            .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
-                    );
-                    continue;
-                }
-            }
-            let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;
-            if (sa.position - sb.position).norm_squared() > reach * reach {
-                continue;
-            }
-            points.clear();
-            shape_shape(shape_a, &pose_of(sa), shape_b, &pose_of(sb), margin, points);
-            out.extend(
-                points
-                    .iter()
-                    .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
-            );
+        if input.joined.binary_search(&(a, b)).is_ok() {
+            continue;
         }
+        // A fixed body is B, the world's side: it takes no impulse.
+        let (a, b, shape_a, shape_b) = match (input.bodies[a].fixed, input.bodies[b].fixed) {
+            (true, true) => continue,
+            (true, false) => (b, a, shape_b, shape_a),
+            _ => (a, b, shape_a, shape_b),
+        };
+        let (sa, sb) = (&states[a], &states[b]);
+        if sweeping && moved(a) + moved(b) > sweep::FAST * thin(a).min(thin(b)) {
+            let side_a = sweep::Side {
+                shape: shape_a,
+                path: sweep::Path::new(&input.before[a], sa, shape_a.bounding_radius()),
+            };
+            let side_b = sweep::Side {
+                shape: shape_b,
+                path: sweep::Path::new(&input.before[b], sb, shape_b.bounding_radius()),
+            };
+            if sweep::swept_rows(&side_a, &side_b, margin, points) {
+                out.extend(
+                    points
+                        .iter()
+                        .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
+                );
+                continue;
+            }
+        }
+        let reach = shape_a.bounding_radius() + shape_b.bounding_radius() + margin;
+        if (sa.position - sb.position).norm_squared() > reach * reach {
+            continue;
+        }
+        points.clear();
+        shape_shape(shape_a, &pose_of(sa), shape_b, &pose_of(sb), margin, points);
+        out.extend(
+            points
+                .iter()
+                .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
+        );
     }
     out.iter().any(|c| c.depth > 0.0)
 }

@@ -230,6 +230,8 @@ pub struct Scratch {
     /// The last step's impulses by pair and feature (warm starts in O(1) per contact).
     warm: WarmCache,
     points: Vec<super::geometry::ContactPoint>,
+    /// The broad phase's buffers (`broad_phase`).
+    broad: super::broad_phase::BroadPhase,
     fix: position::Scratch,
     /// The direct solves' buffers.
     direct: Direct,
@@ -346,7 +348,14 @@ pub fn respond(
     // Points closer than this to a surface are speculative contacts (module doc).
     let margin = bounce_speed * input.dt;
     std::mem::swap(&mut scratch.previous, contacts);
-    if !contacts::find(input, states, margin, contacts, &mut scratch.points) {
+    if !contacts::find(
+        input,
+        states,
+        margin,
+        contacts,
+        &mut scratch.points,
+        &mut scratch.broad,
+    ) {
         // Nothing has touched: speculative contacts alone never act.
         contacts.clear();
         return None;

@@ -19,6 +19,7 @@
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
 //! | `dense` | the direct solves' small symmetric systems (LDLᵀ in each row's envelope) |
 
+pub mod broad_phase;
 pub mod contacts;
 pub mod dense;
 pub mod detect;

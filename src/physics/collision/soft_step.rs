@@ -380,6 +380,8 @@ pub struct Scratch {
     slot: Vec<usize>,
     members: Vec<usize>,
     points: Vec<super::geometry::ContactPoint>,
+    /// The broad phase's buffers (`broad_phase`).
+    broad: super::broad_phase::BroadPhase,
     /// Last step's per-sub-step impulses, by contact feature.
     warm: WarmCache,
 }
@@ -401,7 +403,14 @@ pub fn respond(
     // Speculative rows: anything a body could reach within the step at the bounce speed,
     // and at least a millimetre (the rows' separations are tracked within the step).
     let margin = (bounce_speed * dt).max(1e-3);
-    if !contacts::find(input, states, margin, contacts, &mut scratch.points) {
+    if !contacts::find(
+        input,
+        states,
+        margin,
+        contacts,
+        &mut scratch.points,
+        &mut scratch.broad,
+    ) {
         contacts.clear();
         scratch.warm.clear();
         return None;
