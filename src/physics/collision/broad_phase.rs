@@ -136,8 +136,8 @@ mod tests {
             broad.pairs.windows(2).all(|w| w[0] < w[1]),
             "sorted, no repeats"
         );
-        // Swept along x (the grid's spread is equal in x and z; x is found first): each
-        // sphere overlaps about its own column and the next, 40 of the 400.
+        // Swept along x (the pair at x = 10 makes it the widest spread): each sphere's
+        // interval meets those of its own column and the neighbouring ones, not all 400.
         let all = bodies.len() * (bodies.len() - 1) / 2;
         assert!(
             broad.pairs.len() * 4 < all,
