@@ -4,8 +4,8 @@
 //! Every pair of N bodies is N(N−1)/2 distance tests: 21 945 for a pyramid of 210 cubes, more
 //! than its contact solve at rest. Each body instead gets an interval along the axis where the
 //! bodies spread most, its barycenter ± (its bounding radius + half the contact margin),
-//! padded by [`PAD`]; the intervals are sorted by their lower ends and swept once, so only
-//! pairs whose intervals overlap are returned:
+//! padded by [`PAD`]; the intervals are sorted by their lower ends and swept once, and only
+//! pairs whose intervals overlap and whose padded spheres meet are returned (then sorted):
 //!
 //! ```text
 //! |x_a − x_b| ≤ r_a + r_b + margin    (necessary for |p_a − p_b| ≤ r_a + r_b + margin)
@@ -28,6 +28,9 @@ struct Interval {
     low: f64,
     high: f64,
     body: usize,
+    centre: Vector3<f64>,
+    /// Bounding radius + margin/2, padded.
+    reach: f64,
 }
 
 /// Buffers reused from step to step.
@@ -65,6 +68,8 @@ impl BroadPhase {
                 low: p[axis] - reach,
                 high: p[axis] + reach,
                 body,
+                centre: p,
+                reach,
             });
         }
         self.intervals
@@ -74,7 +79,11 @@ impl BroadPhase {
                 if b.low > a.high {
                     break;
                 }
-                self.pairs.push((a.body.min(b.body), a.body.max(b.body)));
+                // The padded spheres, so that only pairs that may meet are sorted.
+                let reach = a.reach + b.reach;
+                if (a.centre - b.centre).norm_squared() <= reach * reach {
+                    self.pairs.push((a.body.min(b.body), a.body.max(b.body)));
+                }
             }
         }
         self.pairs.sort_unstable();
