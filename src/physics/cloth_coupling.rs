@@ -56,6 +56,9 @@
 //! sweep corrects the impulse found so far, the normal total stays ≥ 0 and aims at the
 //! velocity −e·u_n the contact started with, the tangential total stays in the cone μ j_n), so
 //! that a body resting on many particles is held by all of them, not the first one met.
+//! They run on the contact solvers' solver bodies and axes (`collision::solver_body`): the
+//! body and each touching particle are solver bodies (a particle has no rotational inertia
+//! and lever 0), k(n) is the normal axis's k, and each impulse is applied to both ends at once.
 //! v_p ← v_p + J/m_p,   P ← P − J,   L ← L − r × J
 //! x_p ← x_p + depth n                            the particle is pushed out, not the body
 //! ```
@@ -67,8 +70,9 @@
 //! books the change in its ledger.
 
 use super::body::Body;
-use super::cloth::{BodyJoints, Cloth, Held, SolverBody, Tie};
+use super::cloth::{BodyJoints, Cloth, Held, Tie, TiedBody};
 use super::collision::geometry::{point_shape, Pose};
+use super::collision::solver_body::{Axis, SolverBody};
 use super::effects::Loads;
 use super::joints::{rows_of, Links, Pose as JointPose, Row};
 use super::state::State;
@@ -78,11 +82,15 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 /// all of a resting body's weight and tilts it; a few sweeps with accumulated impulses share it.
 pub const SWEEPS: usize = 4;
 
-/// One contact of a particle with a body, while the sweeps run.
+/// One contact of a particle with a body, while the sweeps run: a row between two solver
+/// bodies ([`Sweeps`]), the particle's (A, lever 0) and the body's (B, lever `arm`).
 #[derive(Debug, Clone, Copy)]
 struct Touch {
     particle: usize,
-    normal: Vector3<f64>,
+    /// The particle's solver body in [`Sweeps::motions`].
+    index: usize,
+    /// The normal axis: d = n out of the body, k = 1/m_p + 1/M + (r×n)·I⁻¹(r×n).
+    normal: Axis,
     /// Contact point relative to the barycenter, m.
     arm: Vector3<f64>,
     /// The normal velocity the sweeps aim at, −e·u_n at the start (0 for a resting contact).
@@ -93,6 +101,136 @@ struct Touch {
     /// Accumulated normal impulse (≥ 0) and tangential impulse, N·s.
     normal_impulse: f64,
     tangential_impulse: Vector3<f64>,
+}
+
+/// One body's contacts with a cloth's particles on solver bodies (`collision::solver_body`):
+/// the body at index 0, each touching particle after it, a point mass with no rotational
+/// inertia.
+#[derive(Debug, Clone, Default)]
+struct Sweeps {
+    motions: Vec<SolverBody>,
+    touches: Vec<Touch>,
+}
+
+impl Sweeps {
+    /// Starts a body's contacts: its solver body from its momenta, at the pose of `inv_inertia`
+    /// (a fixed body is the world: no inverse mass, no inverse inertia).
+    fn start(&mut self, body: &Body, state: &State, inv_inertia: &Matrix3<f64>) {
+        self.touches.clear();
+        self.motions.clear();
+        self.motions.push(SolverBody::new(
+            state.linear_momentum * body.inv_mass,
+            state.angular_momentum,
+            body.inv_mass,
+            *inv_inertia,
+        ));
+    }
+
+    /// Adds particle `particle`'s contact at `arm` with normal n (out of the body).
+    fn touch(
+        &mut self,
+        cloth: &Cloth,
+        particle: usize,
+        normal: &Vector3<f64>,
+        arm: Vector3<f64>,
+        (target, absolute): (f64, bool),
+    ) {
+        let index = self.motions.len();
+        self.motions.push(SolverBody::new(
+            cloth.particle_velocity(particle),
+            Vector3::zeros(),
+            cloth.inv_mass(particle),
+            Matrix3::zeros(),
+        ));
+        let normal = Axis::new(
+            *normal,
+            (index, &Vector3::zeros()),
+            Some((0, &arm)),
+            &self.motions,
+        );
+        self.touches.push(Touch {
+            particle,
+            index,
+            normal,
+            arm,
+            target,
+            absolute,
+            normal_impulse: 0.0,
+            tangential_impulse: Vector3::zeros(),
+        });
+    }
+
+    /// u = v_p − (v_b + ω × r) of particle `particle` at the body's point `arm` (before it
+    /// is a contact), m/s.
+    fn approach(&self, cloth: &Cloth, particle: usize, arm: &Vector3<f64>) -> Vector3<f64> {
+        cloth.particle_velocity(particle) - self.motions[0].point_velocity(arm)
+    }
+
+    /// u = v_p − (v_b + ω × r) of a contact, m/s.
+    fn relative_velocity(&self, t: &Touch) -> Vector3<f64> {
+        self.motions[t.index].v - self.motions[0].point_velocity(&t.arm)
+    }
+
+    /// [`SWEEPS`] projected Gauss–Seidel sweeps over the contacts (module doc), forward then
+    /// backward so that no particle of the grid is favoured by its index; then the particles'
+    /// velocities and the body's momenta take what the sweeps applied (the body −ΣJ, so
+    /// particle + body keep their momentum to round-off).
+    fn solve(&mut self, cloth: &mut Cloth, state: &mut State, friction: f64) {
+        let count = self.touches.len();
+        for pass in 0..SWEEPS {
+            for k in 0..count {
+                let k = if pass % 2 == 0 { k } else { count - 1 - k };
+                let t = self.touches[k];
+                let n = t.normal.d;
+                let u = self.relative_velocity(&t);
+                // Normal: reach the target velocity, the accumulated impulse never pulls.
+                let particle = &self.motions[t.index];
+                let total = if t.absolute {
+                    let vn = particle.v.dot(&n);
+                    t.normal_impulse + (t.target - vn) / particle.inv_mass
+                } else {
+                    t.normal_impulse + (t.target - u.dot(&n)) / t.normal.k
+                }
+                .max(0.0);
+                let mut impulse = n * (total - t.normal_impulse);
+                let touch = &mut self.touches[k];
+                touch.normal_impulse = total;
+                // Tangential: stop the slip, within the cone μ j_n.
+                if friction > 0.0 {
+                    let ut = u - n * u.dot(&n);
+                    let slip = ut.norm();
+                    let mut jt = t.tangential_impulse;
+                    if slip > 0.0 {
+                        let d = ut / slip;
+                        let along = Axis::new(
+                            d,
+                            (t.index, &Vector3::zeros()),
+                            Some((0, &t.arm)),
+                            &self.motions,
+                        );
+                        jt -= d * (slip / along.k);
+                    }
+                    let limit = friction * total;
+                    if jt.norm() > limit {
+                        jt *= limit / jt.norm();
+                    }
+                    impulse += jt - t.tangential_impulse;
+                    self.touches[k].tangential_impulse = jt;
+                }
+                self.motions[t.index].apply_at(&impulse, &Vector3::zeros());
+                self.motions[0].apply_at(&-impulse, &t.arm);
+            }
+        }
+        let mut total = Vector3::zeros();
+        for t in &self.touches {
+            cloth.velocities[t.particle] = self.motions[t.index].v;
+            total += t.normal.d * t.normal_impulse + t.tangential_impulse;
+        }
+        if !self.motions[0].fixed() {
+            state.linear_momentum -= total;
+            state.angular_momentum = self.motions[0].l;
+        }
+    }
 }
 
 /// One particle–body contact pass over a cloth: returns the number of contacts.
@@ -107,7 +245,7 @@ pub fn collide_bodies(
     bounce_speed: f64,
 ) -> usize {
     let mut count = 0;
-    let mut touches: Vec<Touch> = Vec::new();
+    let mut sweeps = Sweeps::default();
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
         let Some(shape) = body.shape.as_ref() else {
             continue;
@@ -120,7 +258,7 @@ pub fn collide_bodies(
         // A quick reject: particles farther than the body's radius from its barycenter.
         let reach = body.radius;
         let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
-        touches.clear();
+        sweeps.start(body, state, &inv_inertia);
         // An implicit-euler cloth's ties end its particles on the surface: what is left
         // inside at round-off is not a contact.
         let slop = if cloth.integrator == crate::physics::cloth::ClothIntegrator::ImplicitEuler {
@@ -146,106 +284,14 @@ pub fn collide_bodies(
             let n = cp.normal;
             cloth.displace(i, &(n * cp.depth));
             let arm = cp.point - state.position;
-            let u = relative_velocity(cloth, i, body, state, &inv_inertia, &arm);
-            let un = u.dot(&n);
+            let un = sweeps.approach(cloth, i, &arm).dot(&n);
             let e = if -un > bounce_speed { restitution } else { 0.0 };
-            touches.push(Touch {
-                particle: i,
-                normal: n,
-                arm,
-                target: (-e * un).max(0.0),
-                absolute: false,
-                normal_impulse: 0.0,
-                tangential_impulse: Vector3::zeros(),
-            });
+            sweeps.touch(cloth, i, &n, arm, ((-e * un).max(0.0), false));
         }
-        count += touches.len();
-        sweep(cloth, body, state, &inv_inertia, &mut touches, friction);
+        count += sweeps.touches.len();
+        sweeps.solve(cloth, state, friction);
     }
     count
-}
-
-/// u = v_p − (v_b + ω × r), m/s.
-fn relative_velocity(
-    cloth: &Cloth,
-    i: usize,
-    body: &Body,
-    state: &State,
-    inv_inertia: &Matrix3<f64>,
-    arm: &Vector3<f64>,
-) -> Vector3<f64> {
-    let omega = inv_inertia * state.angular_momentum;
-    cloth.particle_velocity(i) - (state.linear_momentum * body.inv_mass + omega.cross(arm))
-}
-
-/// k(d) = 1/m_p + 1/M + d·((I⁻¹(r × d)) × r): the inverse effective mass of particle `i` and
-/// the body along the unit `d` at the arm `r`.
-fn inverse_mass(
-    cloth: &Cloth,
-    i: usize,
-    body: &Body,
-    inv_inertia: &Matrix3<f64>,
-    r: &Vector3<f64>,
-    d: &Vector3<f64>,
-) -> f64 {
-    cloth.inv_mass(i) + body.inv_mass + d.dot(&(inv_inertia * r.cross(d)).cross(r))
-}
-
-/// [`SWEEPS`] projected Gauss–Seidel sweeps over one body's contacts (module doc), forward
-/// then backward so that no particle of the grid is favoured by its index.
-fn sweep(
-    cloth: &mut Cloth,
-    body: &Body,
-    state: &mut State,
-    inv_inertia: &Matrix3<f64>,
-    touches: &mut [Touch],
-    friction: f64,
-) {
-    for pass in 0..SWEEPS {
-        for k in 0..touches.len() {
-            let t = if pass % 2 == 0 {
-                &mut touches[k]
-            } else {
-                let last = touches.len() - 1 - k;
-                &mut touches[last]
-            };
-            let (i, n, r) = (t.particle, t.normal, t.arm);
-            let u = relative_velocity(cloth, i, body, state, inv_inertia, &r);
-            // Normal: reach the target velocity, the accumulated impulse never pulls.
-            let total = if t.absolute {
-                let vn = cloth.particle_velocity(i).dot(&n);
-                t.normal_impulse + (t.target - vn) / cloth.inv_mass(i)
-            } else {
-                let k_n = inverse_mass(cloth, i, body, inv_inertia, &r, &n);
-                t.normal_impulse + (t.target - u.dot(&n)) / k_n
-            }
-            .max(0.0);
-            let mut impulse = n * (total - t.normal_impulse);
-            t.normal_impulse = total;
-            // Tangential: stop the slip, within the cone μ j_n.
-            if friction > 0.0 {
-                let ut = u - n * u.dot(&n);
-                let slip = ut.norm();
-                let mut jt = t.tangential_impulse;
-                if slip > 0.0 {
-                    let d = ut / slip;
-                    jt -= d * (slip / inverse_mass(cloth, i, body, inv_inertia, &r, &d));
-                }
-                let limit = friction * t.normal_impulse;
-                if jt.norm() > limit {
-                    jt *= limit / jt.norm();
-                }
-                impulse += jt - t.tangential_impulse;
-                t.tangential_impulse = jt;
-            }
-            cloth.apply_impulse(i, &impulse);
-            if !body.fixed {
-                // A fixed body is the world: it takes no momentum.
-                state.linear_momentum -= impulse;
-                state.angular_momentum -= r.cross(&impulse);
-            }
-        }
-    }
 }
 
 /// What the velocity pass against bodies did.
@@ -286,7 +332,7 @@ pub fn approach_bodies(
     dt: f64,
 ) -> Approach {
     let mut report = Approach::default();
-    let mut touches: Vec<Touch> = Vec::new();
+    let mut sweeps = Sweeps::default();
     for ((body, state), before) in bodies.iter().zip(states.iter_mut()).zip(start) {
         let Some(shape) = body.shape.as_ref() else {
             continue;
@@ -303,7 +349,7 @@ pub fn approach_bodies(
         let start_inv_inertia = start_rotation * body.inv_inertia_body * start_rotation.transpose();
         let start_omega = start_inv_inertia * before.angular_momentum;
         let start_velocity = before.linear_momentum * body.inv_mass;
-        touches.clear();
+        sweeps.start(body, state, &inv_inertia);
         let mut within = 0.0;
         for i in 0..cloth.len() {
             if cloth.inv_mass(i) == 0.0 {
@@ -323,8 +369,7 @@ pub fn approach_bodies(
             let gap = -cp.depth;
             let n = cp.normal;
             let arm = cp.point - state.position;
-            let u = relative_velocity(cloth, i, body, state, &inv_inertia, &arm);
-            let un = u.dot(&n);
+            let un = sweeps.approach(cloth, i, &arm).dot(&n);
             // Bounce or rest is decided by the approach the pair had at the start of the
             // step: a particle carrying the body's weight is driven into it at h·F/m_p within
             // every step (0.3 m/s on a trampoline), and that is no impact.
@@ -341,19 +386,11 @@ pub fn approach_bodies(
             if cloth.velocities[i].dot(&n) >= target {
                 continue;
             }
-            let k_n = inverse_mass(cloth, i, body, &inv_inertia, &arm, &n);
+            sweeps.touch(cloth, i, &n, arm, (target, true));
+            let k_n = sweeps.touches.last().map_or(f64::NAN, |t| t.normal.k);
             within += 0.5 * (un.min(0.0).powi(2) - approach * approach) / k_n;
-            touches.push(Touch {
-                particle: i,
-                normal: n,
-                arm,
-                target,
-                absolute: true,
-                normal_impulse: 0.0,
-                tangential_impulse: Vector3::zeros(),
-            });
         }
-        if touches.is_empty() {
+        if sweeps.touches.is_empty() {
             continue;
         }
         let kinetic = |cloth: &Cloth, state: &State, touches: &[Touch]| {
@@ -366,10 +403,10 @@ pub fn approach_bodies(
                 t + 0.5 * cloth.masses[c.particle] * cloth.velocities[c.particle].norm_squared()
             })
         };
-        let before_sweeps = kinetic(cloth, state, &touches);
-        sweep(cloth, body, state, &inv_inertia, &mut touches, friction);
-        let after_sweeps = kinetic(cloth, state, &touches);
-        report.contacts += touches.len();
+        let before_sweeps = kinetic(cloth, state, &sweeps.touches);
+        sweeps.solve(cloth, state, friction);
+        let after_sweeps = kinetic(cloth, state, &sweeps.touches);
+        report.contacts += sweeps.touches.len();
         report.energy_taken += before_sweeps - after_sweeps - within;
     }
     report
@@ -537,7 +574,7 @@ pub fn tied_step(
     use crate::physics::collision::detect;
     cloth.begin_tied_step(loads, dt);
     let gravity = loads.gravity.unwrap_or_else(Vector3::zeros);
-    let mut solver_bodies: Vec<SolverBody> = bodies
+    let mut solver_bodies: Vec<TiedBody> = bodies
         .iter()
         .zip(states.iter())
         .map(|(body, state)| {
@@ -549,7 +586,7 @@ pub fn tied_step(
                 Matrix3::zeros()
             };
             let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
-            SolverBody {
+            TiedBody {
                 mass: if moves { body.mass / factor } else { 0.0 },
                 inertia,
                 velocity: state.linear_momentum * body.inv_mass,
@@ -579,9 +616,8 @@ pub fn tied_step(
         .map(|i| cloth.start_velocity(i).norm_squared())
         .fold(0.0, |m: f64, v| if v > m || v.is_nan() { v } else { m })
         .sqrt();
-    let body_speed = |body: &Body, sb: &SolverBody| {
-        sb.velocity.norm() + sb.angular_velocity.norm() * body.radius
-    };
+    let body_speed =
+        |body: &Body, sb: &TiedBody| sb.velocity.norm() + sb.angular_velocity.norm() * body.radius;
     let widest: Vec<f64> = (bodies.iter().zip(&solver_bodies))
         .map(|(body, sb)| {
             let margin = (fastest + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
@@ -662,7 +698,7 @@ pub fn tied_step(
         candidates.extend(best);
     }
     // The correction's velocity at a candidate's point, (Y_V + Y_ω × r).
-    let correction_at = |sb: &[SolverBody], body: Option<usize>, arm: &Vector3<f64>| {
+    let correction_at = |sb: &[TiedBody], body: Option<usize>, arm: &Vector3<f64>| {
         body.map_or(Vector3::zeros(), |b| {
             let [dv, dw] = sb[b].correction;
             dv + dw.cross(arm)
@@ -697,7 +733,7 @@ pub fn tied_step(
         }
     };
     // Where the particle ends along n relative to the surface, for a velocity v₁ (< 0: inside).
-    let end_gap = |c: &Candidate, v: &Vector3<f64>, sb: &[SolverBody]| {
+    let end_gap = |c: &Candidate, v: &Vector3<f64>, sb: &[TiedBody]| {
         c.gap + dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
     };
     // First guess: touching, or carried inside by its start velocity and gravity; against a
@@ -938,7 +974,7 @@ struct HeldJoints {
 }
 
 impl HeldJoints {
-    fn new(links: &Links, states: &[State], solver_bodies: &[SolverBody]) -> HeldJoints {
+    fn new(links: &Links, states: &[State], solver_bodies: &[TiedBody]) -> HeldJoints {
         let moves = |b: usize| solver_bodies[b].mass > 0.0;
         let mut bodies: Vec<usize> = Vec::new();
         for joint in &links.joints {
@@ -993,7 +1029,7 @@ impl HeldJoints {
     /// [λ + e; r × (λ + e)] on the held bodies, W = Jᵀ μ solved for μ by least squares
     /// (the part of W a solve stopped at its tolerance leaves outside range(Jᵀ) is no joint's),
     /// then Σ over each joint's rows of (lin_A μ, ang_A μ).
-    fn impulses(&self, ties: &[Tie], solver_bodies: &[SolverBody], out: &mut [Loads]) {
+    fn impulses(&self, ties: &[Tie], solver_bodies: &[TiedBody], out: &mut [Loads]) {
         if self.filter.is_empty() || self.rows.is_empty() {
             return;
         }

@@ -55,7 +55,7 @@ use super::conjugate_gradient::{Block, SpringOrder, Symmetric3};
 use super::energy::Losses;
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
-use super::ties::{BodyJoints, SolverBody, Tie};
+use super::ties::{BodyJoints, Tie, TiedBody};
 use nalgebra::Vector3;
 
 /// The velocity half of a step of length `h`: v ← v₀ + Δv (positions move in
@@ -95,7 +95,7 @@ pub(super) fn velocities(cloth: &mut Cloth, loads: &ClothLoads, h: f64) -> StepR
 pub(super) fn solve_tied(
     cloth: &mut Cloth,
     ties: &mut [Tie],
-    bodies: &mut [SolverBody],
+    bodies: &mut [TiedBody],
     joints: &BodyJoints,
 ) -> StepReport {
     let work = &mut cloth.scratch.solver;

@@ -39,7 +39,7 @@ pub use sheet::{Cloth, Held, SolveCounts, SolverSettings, StepReport};
 pub use spec::{Attach, ClothSpec, ClothSpecError, Pinning};
 pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
-pub use ties::{BodyJoints, SolverBody, Tie, TieKind};
+pub use ties::{BodyJoints, Tie, TieKind, TiedBody};
 
 /// How text names a cloth: "cloth sheet" for a cloth named `sheet`, but just "cloth" or
 /// "cloth1" for one whose name already says it (never "cloth cloth").

@@ -409,7 +409,7 @@ impl Cloth {
     pub fn solve_tied(
         &mut self,
         ties: &mut [super::ties::Tie],
-        bodies: &mut [super::ties::SolverBody],
+        bodies: &mut [super::ties::TiedBody],
         joints: &super::ties::BodyJoints,
     ) -> StepReport {
         implicit_euler::solve_tied(self, ties, bodies, joints)

@@ -153,9 +153,11 @@ pub enum TieKind {
     Full,
 }
 
-/// A rigid body as the tied solve sees it.
+/// A rigid body as the tied solve sees it: its velocities are unknowns of the same linear
+/// solve as the particles', so it carries M and I (the solve's mass matrix), not their
+/// inverses as a contact solver body does (`collision::solver_body::SolverBody`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolverBody {
+pub struct TiedBody {
     /// M, kg; 0 for a body that cannot move (then it has no unknowns).
     pub mass: f64,
     /// World inertia tensor about the barycenter, kg·m².
@@ -430,7 +432,7 @@ fn precondition_bodies(t: &mut TieBuffers, joints: &BodyJoints, from_rhs: bool) 
 
 /// M_b Y.
 #[inline(always)]
-fn body_mass(b: &SolverBody, y: &Vector6<f64>) -> Vector6<f64> {
+fn body_mass(b: &TiedBody, y: &Vector6<f64>) -> Vector6<f64> {
     let w = b.inertia * Vector3::new(y[3], y[4], y[5]);
     Vector6::new(b.mass * y[0], b.mass * y[1], b.mass * y[2], w.x, w.y, w.z)
 }
@@ -443,7 +445,7 @@ impl Workspace {
     pub fn solve_tied(
         &mut self,
         ties: &mut [Tie],
-        bodies: &mut [SolverBody],
+        bodies: &mut [TiedBody],
         joints: &BodyJoints,
         v0: &[Vector3<f64>],
         tolerance: f64,
@@ -930,7 +932,7 @@ impl Workspace {
         &mut self,
         t: &mut TieBuffers,
         ties: &[Tie],
-        bodies: &[SolverBody],
+        bodies: &[TiedBody],
         pinned: &[u32],
         joints: &BodyJoints,
         x_body: &[Vector6<f64>],
@@ -973,7 +975,7 @@ impl Workspace {
         &self,
         t: &mut TieBuffers,
         ties: &[Tie],
-        bodies: &[SolverBody],
+        bodies: &[TiedBody],
         pinned: &[u32],
         p: &mut [Vector3<f64>],
         p_body: &[Vector6<f64>],

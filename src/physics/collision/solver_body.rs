@@ -4,7 +4,9 @@
 //! A **solver body** is a body's velocities and inverse mass properties over one collide
 //! phase: v, ω, L (ω = I⁻¹ L kept in step), 1/M and the world inverse inertia I⁻¹ of the
 //! pose the solver works at. A fixed body (1/M = 0, I⁻¹ = 0) is the world: no axis has an end
-//! on it, so it takes no impulse.
+//! on it, so it takes no impulse. A cloth's particle is a solver body without rotational
+//! inertia (I⁻¹ = 0, every lever 0): `cloth_coupling`'s contact sweeps between particles and
+//! bodies run on the same solver bodies and axes as the bodies' contacts.
 //!
 //! An **axis** is one scalar constraint direction between two ends: the unit d on body A at
 //! lever r_A and −d on body B (if any) at r_B. Its rate and effective inverse mass are
@@ -58,6 +60,26 @@ impl SolverBody {
     #[inline]
     pub fn fixed(&self) -> bool {
         self.inv_mass == 0.0
+    }
+
+    /// The velocity of the point at lever r from the barycenter, `v + ω × r`.
+    #[inline]
+    pub fn point_velocity(&self, lever: &Vector3<f64>) -> Vector3<f64> {
+        self.v + self.omega.cross(lever)
+    }
+
+    /// Applies the impulse j at the point at lever r: `v += j/M`, `L += r × j`,
+    /// `ω += I⁻¹(r × j)`. Nothing on a fixed body (the world takes no impulse).
+    #[inline]
+    pub fn apply_at(&mut self, j: &Vector3<f64>, lever: &Vector3<f64>) {
+        if self.fixed() {
+            return;
+        }
+        let rj = lever.cross(j);
+        self.v += j * self.inv_mass;
+        self.l += rj;
+        self.omega += self.inv_inertia * rj;
+        self.touched |= *j != Vector3::zeros();
     }
 
     /// `½ M v·v + ½ ω·L` (0 for a fixed body).
