@@ -1,0 +1,249 @@
+//! Attached particles: an explicit cloth's attachments held by impulses after its velocity
+//! half ([`hold_attachments`]), and attached particles carried with their bodies after the
+//! collide phase moved them ([`carry_attachments`]).
+
+use super::{close_gap, move_body, turn_gap, Attachment};
+use crate::physics::body::Body;
+use crate::physics::cloth::Cloth;
+use crate::physics::state::State;
+use nalgebra::{Matrix3, Vector3};
+
+/// What the attachments of an explicit cloth did over a step ([`hold_attachments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AttachReport {
+    /// The kinetic energy the impulses took, J (≥ 0).
+    pub taken: f64,
+    /// Σ J_a on the particles (N·s) and its moment about the world origin, Σ x_a × J_a
+    /// (N·m·s), x_a the attachment's point.
+    pub impulse: [Vector3<f64>; 2],
+}
+
+/// How the collide phase moved a body: its barycenter by `shift`, its orientation by the
+/// rotation `turn` about the barycenter (R ← turn R). An attached particle's tie aims at its
+/// point after the body's own step moved on by the body's last move ([`tied_step`](super::tied_step), "Bodies
+/// the collide phase moves"), which [`carry_attachments`] then corrects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMove {
+    pub shift: Vector3<f64>,
+    pub turn: Matrix3<f64>,
+}
+
+impl BodyMove {
+    /// No move.
+    pub const NONE: BodyMove = BodyMove {
+        shift: Vector3::new(0.0, 0.0, 0.0),
+        turn: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+    };
+
+    /// The move from state `before` to `after`.
+    pub fn between(before: &State, after: &State) -> BodyMove {
+        BodyMove {
+            shift: after.position - before.position,
+            turn: after.orientation.matrix() * before.orientation.matrix().transpose(),
+        }
+    }
+
+    /// How far it moves the body's point at arm r (from the barycenter): shift + turn r − r.
+    pub fn of_point(&self, arm: &Vector3<f64>) -> Vector3<f64> {
+        self.shift + self.turn * arm - arm
+    }
+}
+
+/// What carrying a body's attached particles gave them ([`carry_attachments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Carried {
+    /// Σ m_p Δv_p over the body's attached particles, N·s.
+    pub impulse: Vector3<f64>,
+    /// Σ r_p × m_p Δv_p about the body's barycenter (r_p = x_p − x_b), N·m·s.
+    pub moment: Vector3<f64>,
+}
+
+/// Attached particles carried with their bodies after the rigid collide phase moved them.
+///
+/// The cloth's step ends its attached particles on their points (`tied_step`), but the rigid
+/// contact response runs after it, in the collide phase, and may move a body again: a frame
+/// resting on the floor falls ½ a h² within its own step (a = g + its load / M: 5.27e-6 m for
+/// lesson 35's frame) and the floor's contact puts it back, leaving its 80 rim particles that
+/// far below their points at the end of every step. So each attached particle p of a body b
+/// the response moved (`moved[b]`) is put back on its point and given the point's velocity:
+///
+/// ```text
+/// x_p = x_b + R_b o_p,    v_p = V_b + ω_b × (R_b o_p)      (o_p: its offset in b's frame)
+/// ```
+///
+/// This is what the response would have done had it seen the body and its attached particles
+/// as one rigid body: the momentum the particles take, Σ m_p Δv_p (returned per body in
+/// `carried`, with its moment about the body's barycenter), came through the body from what it
+/// touches. The caller books it (`World`: into the body's contacts with what cannot move,
+/// which then report the support of the body and its particles together) and books the
+/// energy the move changes as the contacts' energy. Returned, J: the carried particles'
+/// kinetic and gravitational energy, and the springs that touch them,
+///
+/// ```text
+/// ΔE = Σ_p [½ m_p (|v_p'|² − |v_p|²) − m_p g·(x_p' − x_p)] + Σ_{springs at a carried p} ΔU_s
+/// ```
+///
+/// (what measuring the whole sheet's energy before and after would give, without the other
+/// particles and springs, which do not change).
+pub fn carry_attachments(
+    cloth: &mut Cloth,
+    gravity: Option<Vector3<f64>>,
+    bodies: &[Body],
+    states: &[State],
+    attachments: &[Attachment],
+    moved: &[bool],
+    carried: &mut [Carried],
+) -> f64 {
+    let carries = |a: &Attachment| moved.get(a.body).copied().unwrap_or(false);
+    if !attachments.iter().any(carries) {
+        return 0.0;
+    }
+    // The springs at a carried particle, before and after.
+    let mut at_carried = vec![false; cloth.len()];
+    for a in attachments.iter().filter(|a| carries(a)) {
+        at_carried[a.particle] = true;
+    }
+    let springs_energy = |cloth: &Cloth| -> f64 {
+        (cloth.springs.iter())
+            .filter(|s| at_carried[s.i] || at_carried[s.j])
+            .map(|s| s.energy(&cloth.positions))
+            .sum()
+    };
+    let mut change = -springs_energy(cloth);
+    for a in attachments {
+        if !moved.get(a.body).copied().unwrap_or(false) {
+            continue;
+        }
+        let (body, state) = (&bodies[a.body], &states[a.body]);
+        let rotation = state.orientation.matrix();
+        let arm = rotation * a.offset_body;
+        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+        let omega = inv_inertia * state.angular_momentum;
+        let velocity = state.linear_momentum * body.inv_mass + omega.cross(&arm);
+        let p = a.particle;
+        let (m, position) = (cloth.masses[p], state.position + arm);
+        let momentum = (velocity - cloth.velocities[p]) * m;
+        change += 0.5 * m * (velocity.norm_squared() - cloth.velocities[p].norm_squared());
+        if let Some(g) = gravity {
+            change -= m * g.dot(&(position - cloth.positions[p]));
+        }
+        cloth.positions[p] = position;
+        cloth.velocities[p] = velocity;
+        carried[a.body].impulse += momentum;
+        carried[a.body].moment += arm.cross(&momentum);
+    }
+    change + springs_energy(cloth)
+}
+
+/// Attachments of an explicit (`symplectic-euler`) cloth, held by impulses after its
+/// velocity half and the bodies' own step (the implicit cloth holds them inside its solve,
+/// [`tied_step`](super::tied_step)).
+///
+/// Attachment a holds particle p at its body's point P_a = x_b + r_a (the body already at
+/// the end of its own step). Unknown: the impulse J_a on the particle, −J_a on the body at
+/// r_a. The body's correction ΔV = −Σ J/M, Δω = −I⁻¹ Σ r × J moves its position by
+/// factor·h·(ΔV, Δω) ([`position_factor`](super::position_factor)), so the particle ends on its point when
+///
+/// ```text
+/// x_p + h (v_p + J_a/m_p) = P_a + factor h (ΔV + Δω × r_a)      (linearised turn)
+/// Σ_c K_ac J_c = (P_a − x_p)/h − v_p
+/// K_ac = δ_ac I/m_p + factor (I/M − [r_a]× I⁻¹ [r_c]×)
+/// ```
+///
+/// one symmetric positive-definite 3k × 3k system per body with k attachments, solved
+/// directly (Cholesky). The body's turn is then applied exactly and the particle moved by
+/// what the linearisation missed, `(R(h Δω') − I) r − h Δω' × r` (Δω' = factor Δω),
+/// with the opposite momentum to the body: the error left is round-off, and body +
+/// particles keep their momentum. A fixed body takes nothing (K = I/m_p); a body whose
+/// integrator ignores the correction in its position (factor 0) takes the impulses in its
+/// momenta only.
+///
+/// Returns the kinetic energy the impulses took, J (a rigid hold is a perfectly plastic
+/// impact between the particle and the body's point: ≥ 0), and the impulses' sum and moment.
+pub fn hold_attachments(
+    cloth: &mut Cloth,
+    bodies: &[Body],
+    states: &mut [State],
+    attachments: &[Attachment],
+    dt: f64,
+    factor: f64,
+) -> AttachReport {
+    use nalgebra::{DMatrix, DVector};
+    let mut report = AttachReport::default();
+    for (b, (body, state)) in bodies.iter().zip(states.iter_mut()).enumerate() {
+        let list: Vec<&Attachment> = attachments.iter().filter(|a| a.body == b).collect();
+        if list.is_empty() {
+            continue;
+        }
+        let rotation = state.orientation.matrix();
+        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+        let moves = !body.fixed && body.inv_mass > 0.0;
+        let scale = if moves { factor } else { 0.0 };
+        let arms: Vec<Vector3<f64>> = list.iter().map(|a| rotation * a.offset_body).collect();
+        let k = list.len();
+        let mut matrix = DMatrix::<f64>::zeros(3 * k, 3 * k);
+        let mut rhs = DVector::<f64>::zeros(3 * k);
+        for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
+            let p = att.particle;
+            let point = state.position + ra;
+            let u = (point - cloth.positions[p]) / dt - cloth.velocities[p];
+            rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
+            for (c, rc) in arms.iter().enumerate() {
+                let mut block = -ra.cross_matrix() * inv_inertia * rc.cross_matrix()
+                    + Matrix3::identity() * body.inv_mass;
+                block *= scale;
+                if a == c {
+                    block += Matrix3::identity() * cloth.inv_mass(p);
+                }
+                matrix
+                    .fixed_view_mut::<3, 3>(3 * a, 3 * c)
+                    .copy_from(&block);
+            }
+        }
+        let Some(cholesky) = matrix.cholesky() else {
+            continue;
+        };
+        let impulses = cholesky.solve(&rhs);
+        let kinetic = |cloth: &Cloth, state: &State| {
+            let rigid = if moves {
+                0.5 * state.linear_momentum.norm_squared() * body.inv_mass
+                    + 0.5
+                        * state
+                            .angular_momentum
+                            .dot(&(inv_inertia * state.angular_momentum))
+            } else {
+                0.0
+            };
+            list.iter().fold(rigid, |t, a| {
+                t + 0.5 * cloth.masses[a.particle] * cloth.velocities[a.particle].norm_squared()
+            })
+        };
+        let before = kinetic(cloth, state);
+        let (mut total, mut torque) = (Vector3::zeros(), Vector3::zeros());
+        for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
+            let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
+            cloth.apply_impulse(att.particle, &j);
+            total += j;
+            torque += ra.cross(&j);
+            report.impulse[1] += (state.position + ra).cross(&j);
+        }
+        report.impulse[0] += total;
+        if moves {
+            state.linear_momentum -= total;
+            state.angular_momentum -= torque;
+            if scale > 0.0 {
+                let y_v = -total * (body.inv_mass * scale);
+                let y_w = -(inv_inertia * torque) * scale;
+                move_body(state, &y_v, &y_w, dt);
+                for (att, ra) in list.iter().zip(&arms) {
+                    let gap = turn_gap(&y_w, ra, dt);
+                    let j = close_gap(cloth, att.particle, state, ra, &gap, dt);
+                    report.impulse[0] += j;
+                    report.impulse[1] += (state.position + ra).cross(&j);
+                }
+            }
+        }
+        report.taken += before - kinetic(cloth, state);
+    }
+    report
+}

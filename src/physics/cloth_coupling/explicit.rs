@@ -1,0 +1,398 @@
+//! Contacts of a `symplectic-euler` cloth's particles with bodies: two passes, on velocities
+//! then on positions, with the sweeps on solver bodies.
+//!
+//! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
+//!
+//! A push-out that moves a particle out of a body stretches its springs: energy made by the
+//! contact, taken again by the springs' damping a step later — a resting cube would trade
+//! millijoules with the sheet every step and tremble. So contacts act on the velocities
+//! *before* the particles move ([`approach_bodies`], in the integrate phase, after the bodies
+//! and the particles' velocities were stepped). The body is then already where it ends the
+//! step, so a free particle at signed gap g from the body's new pose (g < 0: inside it) must
+//! end outside it:
+//!
+//! ```text
+//! v_p·n ≥ −g/h + b,   b = −e u₀,n if it touches (g ≤ 0) after a fast approach u₀,n, else 0
+//! ```
+//!
+//! with u₀,n the relative normal velocity at the start of the step (a particle carrying the
+//! body's weight is driven into it within every step, and that is no impact). The sweeps
+//! below reach it with impulses +J on the particle (Δv_p·n = Δj/m_p) and −J on the body at
+//! the contact point, friction on the relative slip within μ j_n. Known limit: the particle's
+//! own mass takes the impulse, not the sheet behind it, so its springs reach the body only
+//! through later steps (the implicit path, [`tied_step`](super::tied_step), does it within the step).
+//!
+//! # The second pass, after the positions moved
+//!
+//! In the collide phase, every free particle inside a body's shape
+//! (`geometry::point_shape`: depth > 0, normal n out of the body, contact point c on its
+//! surface, r = c − x_body) gets an impulse J, and the body −J at c, so the momentum of
+//! particle + body is kept to round-off by every contact:
+//!
+//! ```text
+//! u    = v_p − (v_b + ω × r)                    relative velocity, u_n = u·n < 0: approaching
+//! k(d) = 1/m_p + 1/M + d·((I⁻¹(r × d)) × r)     effective inverse mass along a unit d
+//! j_n  = −(1 + e) u_n / k(n)                     e = restitution if −u_n > BOUNCE_STEPS·|g|·dt, else 0
+//! t    = u_t/|u_t|,  u_t = u − u_n n
+//! j_t  = min(|u_t| / k(t), μ j_n)                Coulomb: stop the slip, within the cone
+//! J    = j_n n − j_t t
+//!
+//! With several particles on one body the impulses are found by a few sequential sweeps
+//! ([`SWEEPS`]) over its contacts with accumulated impulses (projected Gauss–Seidel: each
+//! sweep corrects the impulse found so far, the normal total stays ≥ 0 and aims at the
+//! velocity −e·u_n the contact started with, the tangential total stays in the cone μ j_n), so
+//! that a body resting on many particles is held by all of them, not the first one met.
+//! They run on the contact solvers' solver bodies and axes (`collision::solver_body`): the
+//! body and each touching particle are solver bodies (a particle has no rotational inertia
+//! and lever 0), k(n) is the normal axis's k, and each impulse is applied to both ends at once.
+//! v_p ← v_p + J/m_p,   P ← P − J,   L ← L − r × J
+//! x_p ← x_p + depth n                            the particle is pushed out, not the body
+//! ```
+//!
+//! A point against a rigid body is one contact with a lever arm, so the rule above is the
+//! exact two-body impulse (no energy made for e ≤ 1, μ ≥ 0). The push-out moves a light
+//! particle, never the body (moving the body would make it jitter on a sheet of hundreds of
+//! particles). The world measures the energy of the whole collide phase before and after and
+//! books the change in its ledger.
+
+use super::SLOP;
+use crate::physics::body::Body;
+use crate::physics::cloth::Cloth;
+use crate::physics::collision::geometry::{point_shape, Pose};
+use crate::physics::collision::solver_body::{Axis, SolverBody};
+use crate::physics::state::State;
+use nalgebra::{Matrix3, Vector3};
+
+/// Sweeps over a body's contacts (module doc): one sweep lets the first particle met take
+/// all of a resting body's weight and tilts it; a few sweeps with accumulated impulses share it.
+pub const SWEEPS: usize = 4;
+
+/// One contact of a particle with a body, while the sweeps run: a row between two solver
+/// bodies ([`Sweeps`]), the particle's (A, lever 0) and the body's (B, lever `arm`).
+#[derive(Debug, Clone, Copy)]
+struct Touch {
+    particle: usize,
+    /// The particle's solver body in [`Sweeps::motions`].
+    index: usize,
+    /// The normal axis: d = n out of the body, k = 1/m_p + 1/M + (r×n)·I⁻¹(r×n).
+    normal: Axis,
+    /// Contact point relative to the barycenter, m.
+    arm: Vector3<f64>,
+    /// The normal velocity the sweeps aim at, −e·u_n at the start (0 for a resting contact).
+    target: f64,
+    /// The target is the particle's own normal velocity, not the relative one (pass 1: the
+    /// body is already at the end of its step, so where the particle ends is its business).
+    absolute: bool,
+    /// Accumulated normal impulse (≥ 0) and tangential impulse, N·s.
+    normal_impulse: f64,
+    tangential_impulse: Vector3<f64>,
+}
+
+/// One body's contacts with a cloth's particles on solver bodies (`collision::solver_body`):
+/// the body at index 0, each touching particle after it, a point mass with no rotational
+/// inertia.
+#[derive(Debug, Clone, Default)]
+struct Sweeps {
+    motions: Vec<SolverBody>,
+    touches: Vec<Touch>,
+}
+
+impl Sweeps {
+    /// Starts a body's contacts: its solver body from its momenta, at the pose of `inv_inertia`
+    /// (a fixed body is the world: no inverse mass, no inverse inertia).
+    fn start(&mut self, body: &Body, state: &State, inv_inertia: &Matrix3<f64>) {
+        self.touches.clear();
+        self.motions.clear();
+        self.motions.push(SolverBody::new(
+            state.linear_momentum * body.inv_mass,
+            state.angular_momentum,
+            body.inv_mass,
+            *inv_inertia,
+        ));
+    }
+
+    /// Adds particle `particle`'s contact at `arm` with normal n (out of the body).
+    fn touch(
+        &mut self,
+        cloth: &Cloth,
+        particle: usize,
+        normal: &Vector3<f64>,
+        arm: Vector3<f64>,
+        (target, absolute): (f64, bool),
+    ) {
+        let index = self.motions.len();
+        self.motions.push(SolverBody::new(
+            cloth.particle_velocity(particle),
+            Vector3::zeros(),
+            cloth.inv_mass(particle),
+            Matrix3::zeros(),
+        ));
+        let normal = Axis::new(
+            *normal,
+            (index, &Vector3::zeros()),
+            Some((0, &arm)),
+            &self.motions,
+        );
+        self.touches.push(Touch {
+            particle,
+            index,
+            normal,
+            arm,
+            target,
+            absolute,
+            normal_impulse: 0.0,
+            tangential_impulse: Vector3::zeros(),
+        });
+    }
+
+    /// u = v_p − (v_b + ω × r) of particle `particle` at the body's point `arm` (before it
+    /// is a contact), m/s.
+    fn approach(&self, cloth: &Cloth, particle: usize, arm: &Vector3<f64>) -> Vector3<f64> {
+        cloth.particle_velocity(particle) - self.motions[0].point_velocity(arm)
+    }
+
+    /// u = v_p − (v_b + ω × r) of a contact, m/s.
+    fn relative_velocity(&self, t: &Touch) -> Vector3<f64> {
+        self.motions[t.index].v - self.motions[0].point_velocity(&t.arm)
+    }
+
+    /// [`SWEEPS`] projected Gauss–Seidel sweeps over the contacts (module doc), forward then
+    /// backward so that no particle of the grid is favoured by its index; then the particles'
+    /// velocities and the body's momenta take what the sweeps applied (the body −ΣJ, so
+    /// particle + body keep their momentum to round-off).
+    fn solve(&mut self, cloth: &mut Cloth, state: &mut State, friction: f64) {
+        let count = self.touches.len();
+        for pass in 0..SWEEPS {
+            for k in 0..count {
+                let k = if pass % 2 == 0 { k } else { count - 1 - k };
+                let t = self.touches[k];
+                let n = t.normal.d;
+                let u = self.relative_velocity(&t);
+                // Normal: reach the target velocity, the accumulated impulse never pulls.
+                let particle = &self.motions[t.index];
+                let total = if t.absolute {
+                    let vn = particle.v.dot(&n);
+                    t.normal_impulse + (t.target - vn) / particle.inv_mass
+                } else {
+                    t.normal_impulse + (t.target - u.dot(&n)) / t.normal.k
+                }
+                .max(0.0);
+                let mut impulse = n * (total - t.normal_impulse);
+                let touch = &mut self.touches[k];
+                touch.normal_impulse = total;
+                // Tangential: stop the slip, within the cone μ j_n.
+                if friction > 0.0 {
+                    let ut = u - n * u.dot(&n);
+                    let slip = ut.norm();
+                    let mut jt = t.tangential_impulse;
+                    if slip > 0.0 {
+                        let d = ut / slip;
+                        let along = Axis::new(
+                            d,
+                            (t.index, &Vector3::zeros()),
+                            Some((0, &t.arm)),
+                            &self.motions,
+                        );
+                        jt -= d * (slip / along.k);
+                    }
+                    let limit = friction * total;
+                    if jt.norm() > limit {
+                        jt *= limit / jt.norm();
+                    }
+                    impulse += jt - t.tangential_impulse;
+                    self.touches[k].tangential_impulse = jt;
+                }
+                self.motions[t.index].apply_at(&impulse, &Vector3::zeros());
+                self.motions[0].apply_at(&-impulse, &t.arm);
+            }
+        }
+        let mut total = Vector3::zeros();
+        for t in &self.touches {
+            cloth.velocities[t.particle] = self.motions[t.index].v;
+            total += t.normal.d * t.normal_impulse + t.tangential_impulse;
+        }
+        if !self.motions[0].fixed() {
+            state.linear_momentum -= total;
+            state.angular_momentum = self.motions[0].l;
+        }
+    }
+}
+
+/// One particle–body contact pass over a cloth: returns the number of contacts.
+///
+/// `bounce_speed`: approaches slower than this do not bounce.
+pub fn collide_bodies(
+    cloth: &mut Cloth,
+    bodies: &[Body],
+    states: &mut [State],
+    restitution: f64,
+    friction: f64,
+    bounce_speed: f64,
+) -> usize {
+    let mut count = 0;
+    let mut sweeps = Sweeps::default();
+    for (body, state) in bodies.iter().zip(states.iter_mut()) {
+        let Some(shape) = body.shape.as_ref() else {
+            continue;
+        };
+        let rotation = state.orientation.matrix();
+        let pose = Pose {
+            position: state.position,
+            rotation,
+        };
+        // A quick reject: particles farther than the body's radius from its barycenter.
+        let reach = body.radius;
+        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+        sweeps.start(body, state, &inv_inertia);
+        // An implicit-euler cloth's ties end its particles on the surface: what is left
+        // inside at round-off is not a contact.
+        let slop = if cloth.integrator == crate::physics::cloth::ClothIntegrator::ImplicitEuler {
+            SLOP
+        } else {
+            0.0
+        };
+        for i in 0..cloth.len() {
+            // Attached particles are held inside the solve, not pushed out.
+            if cloth.inv_mass(i) == 0.0 || cloth.attached.iter().any(|a| a.0 == i) {
+                continue;
+            }
+            let x = cloth.positions[i];
+            if (x - state.position).norm_squared() > reach * reach {
+                continue;
+            }
+            let Some(cp) = point_shape(&x, shape, &pose, 0.0) else {
+                continue;
+            };
+            if cp.depth <= slop {
+                continue;
+            }
+            let n = cp.normal;
+            cloth.displace(i, &(n * cp.depth));
+            let arm = cp.point - state.position;
+            let un = sweeps.approach(cloth, i, &arm).dot(&n);
+            let e = if -un > bounce_speed { restitution } else { 0.0 };
+            sweeps.touch(cloth, i, &n, arm, ((-e * un).max(0.0), false));
+        }
+        count += sweeps.touches.len();
+        sweeps.solve(cloth, state, friction);
+    }
+    count
+}
+
+/// What the velocity pass against bodies did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Approach {
+    /// Particle–body contacts of the pass.
+    pub contacts: usize,
+    /// Energy the pass took, J: the kinetic energy of the approaches the contacts had at the
+    /// start of the step, and what friction removed (see [`approach_bodies`]).
+    pub energy_taken: f64,
+}
+
+/// Pass 1 against bodies (module doc): between the particles' velocity half-step and their
+/// positions' update, with every body already at the end of its step (`states`; `start` are
+/// the bodies' states at the start of the step). Each free particle whose velocity would
+/// carry it into a body within the step is stopped on its surface (or bounces off it) by
+/// equal and opposite impulses.
+///
+/// Energy taken, as for obstacles: the measured kinetic energy the impulses removed from the
+/// touched particles and the body, less what the step's own forces added to the approach
+/// within the step (a resting contact cancels that before it exists: booking it would count a
+/// resting cube's weight as a loss every step),
+///
+/// ```text
+/// taken = (T_before − T_after) − Σ_contacts ½ (min(0, u_n)² − min(0, u₀,n)²) / k(n)
+/// ```
+///
+/// with u_n the relative normal velocity after the velocity half, u₀,n at the start of the step.
+#[allow(clippy::too_many_arguments)]
+pub fn approach_bodies(
+    cloth: &mut Cloth,
+    bodies: &[Body],
+    start: &[State],
+    states: &mut [State],
+    restitution: f64,
+    friction: f64,
+    bounce_speed: f64,
+    dt: f64,
+) -> Approach {
+    let mut report = Approach::default();
+    let mut sweeps = Sweeps::default();
+    for ((body, state), before) in bodies.iter().zip(states.iter_mut()).zip(start) {
+        let Some(shape) = body.shape.as_ref() else {
+            continue;
+        };
+        let rotation = state.orientation.matrix();
+        let pose = Pose {
+            position: state.position,
+            rotation,
+        };
+        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+        let omega = inv_inertia * state.angular_momentum;
+        let body_speed = state.linear_momentum.norm() * body.inv_mass + omega.norm() * body.radius;
+        let start_rotation = before.orientation.matrix();
+        let start_inv_inertia = start_rotation * body.inv_inertia_body * start_rotation.transpose();
+        let start_omega = start_inv_inertia * before.angular_momentum;
+        let start_velocity = before.linear_momentum * body.inv_mass;
+        sweeps.start(body, state, &inv_inertia);
+        let mut within = 0.0;
+        for i in 0..cloth.len() {
+            if cloth.inv_mass(i) == 0.0 {
+                continue;
+            }
+            let x = cloth.positions[i];
+            // What the particle and the body's surface can close within the step.
+            let margin = (cloth.velocities[i].norm() + body_speed) * dt;
+            let reach = body.radius + margin;
+            if (x - state.position).norm_squared() > reach * reach {
+                continue;
+            }
+            let Some(cp) = point_shape(&x, shape, &pose, margin) else {
+                continue;
+            };
+            // Signed: < 0 when the body's new pose already holds the particle inside.
+            let gap = -cp.depth;
+            let n = cp.normal;
+            let arm = cp.point - state.position;
+            let un = sweeps.approach(cloth, i, &arm).dot(&n);
+            // Bounce or rest is decided by the approach the pair had at the start of the
+            // step: a particle carrying the body's weight is driven into it at h·F/m_p within
+            // every step (0.3 m/s on a trampoline), and that is no impact.
+            let u0 = cloth.start_velocity(i) - (start_velocity + start_omega.cross(&arm));
+            let approach = u0.dot(&n).min(0.0);
+            // The body is already where it ends the step: the particle must end outside it,
+            // v_p·n ≥ −gap/h, and leave at e times a fast approach when it touches.
+            let bounce = if gap <= 0.0 && -approach > bounce_speed {
+                -restitution * approach
+            } else {
+                0.0
+            };
+            let target = -gap / dt + bounce;
+            if cloth.velocities[i].dot(&n) >= target {
+                continue;
+            }
+            sweeps.touch(cloth, i, &n, arm, (target, true));
+            let k_n = sweeps.touches.last().map_or(f64::NAN, |t| t.normal.k);
+            within += 0.5 * (un.min(0.0).powi(2) - approach * approach) / k_n;
+        }
+        if sweeps.touches.is_empty() {
+            continue;
+        }
+        let kinetic = |cloth: &Cloth, state: &State, touches: &[Touch]| {
+            let rigid = 0.5 * state.linear_momentum.norm_squared() * body.inv_mass
+                + 0.5
+                    * state
+                        .angular_momentum
+                        .dot(&(inv_inertia * state.angular_momentum));
+            touches.iter().fold(rigid, |t, c| {
+                t + 0.5 * cloth.masses[c.particle] * cloth.velocities[c.particle].norm_squared()
+            })
+        };
+        let before_sweeps = kinetic(cloth, state, &sweeps.touches);
+        sweeps.solve(cloth, state, friction);
+        let after_sweeps = kinetic(cloth, state, &sweeps.touches);
+        report.contacts += sweeps.touches.len();
+        report.energy_taken += before_sweeps - after_sweeps - within;
+    }
+    report
+}
