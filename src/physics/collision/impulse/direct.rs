@@ -1,0 +1,375 @@
+//! The direct solves: methods over the rows, not a constraint kind. When the answer of a
+//! stage is "every approaching contact stops and pushes" (stage 1: a face landing, a body at
+//! rest, the usual case) or "every pushing contact sticks" (stage 2: a body at rest on a
+//! slope), the minimum of K the sweeps converge to is computed at once by a small LDLᵀ solve
+//! ([`Dense`], only each row's envelope stored) and checked against the conditions of the
+//! whole problem; the sweeps run only when that check fails.
+//!
+//! - `inelastic` (stage 1): `(A + ε𝟙) λ = −u` over an active set of normal rows, changed by
+//!   principal pivoting (at most [`PIVOT_ROUNDS`] changes); a *wide* system (a pyramid) starts
+//!   its active set from the rows that pushed last step as well as the approaching ones.
+//! - `sticking` (stage 2): `(A + ε𝟙) Δλ = −u` over the rows (n, t₁, t₂) of each pushing
+//!   contact, then a load-weighted second try (`Sticking::Resting`, gaps below
+//!   [`RESTING_GAP`] held closed).
+//! - `mean_envelope`: how wide the rows are in contact order, which decides whether a large
+//!   system tries the sweeps first ([`WIDE_ENVELOPE`]).
+//!
+//! Their formulas are on the functions. Here
+//!
+//! ```text
+//! A_ij = Σ_shared bodies (±dᵢ)·(±dⱼ)/M + (r×(±dᵢ))·I⁻¹(r×(±dⱼ))     (Axis::coupling)
+//! ```
+//!
+//! is the contact-space inverse mass over the rows' axes, and ε = 1e-10 · max Aᵢᵢ picks the
+//! minimum-norm answer of a semi-definite A (4 coplanar contacts constrain 3 motions).
+//!
+//! [`Dense`]: crate::physics::collision::dense::Dense
+//! [`WIDE_ENVELOPE`]: super::WIDE_ENVELOPE
+
+#[cfg(doc)]
+use super::GAP_ROUND_OFF;
+use super::{Direct, Row, ENVELOPE_MAX};
+use crate::physics::collision::solver_body::{Axis, SolverBody};
+
+/// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40,
+/// a pyramid of 20 rows about 1600; the system is banded or nearly so there and only its
+/// envelope is stored and factored, see [`Dense`]).
+///
+/// [`Dense`]: crate::physics::collision::dense::Dense
+pub const DIRECT_MAX: usize = 4096;
+
+/// How many changes of its active set the direct inelastic solve may make (one row out or in
+/// per pair of bodies each) before it gives way to the sweeps (a pyramid of 10 rows needed
+/// more than 12 while it settles).
+pub const PIVOT_ROUNDS: usize = 40;
+
+/// Most pushing contacts to try the direct sticking-friction solve for (three rows each).
+pub const STICKING_MAX: usize = DIRECT_MAX / 3;
+
+/// The direct sticking solve's second try (`Sticking::Resting`) holds a pushing speculative
+/// contact still if its gap is below this (m): bodies at rest on redundant contacts (a face's
+/// four corners, dominoes lying on each other) keep gaps of nanometres to a tenth of a micrometre
+/// where their edges are not quite parallel, and closing each within the step asks for motions
+/// no rigid body has. Within the micrometre to which bodies stand.
+pub const RESTING_GAP: f64 = 1e-6;
+
+/// The mean width of the rows' envelope in contact order, `Σ_p (p − first(p) + 1) / m`, with
+/// first(p) the first row acting on one of row p's bodies (as [`Dense`] stores it).
+///
+/// [`Dense`]: crate::physics::collision::dense::Dense
+#[inline]
+pub(super) fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
+    body_first.clear();
+    let mut sum = 0usize;
+    for (p, row) in rows.iter().enumerate() {
+        let mut first = p;
+        for b in row.normal.bodies().into_iter().flatten() {
+            if b >= body_first.len() {
+                body_first.resize(b + 1, usize::MAX);
+            }
+            first = first.min(body_first[b]);
+            body_first[b] = body_first[b].min(p);
+        }
+        sum += p - first + 1;
+    }
+    sum as f64 / rows.len().max(1) as f64
+}
+
+/// The inelastic problem solved directly, when its answer is "every approaching contact
+/// stops": with the approaching contacts as the active set, solve
+///
+/// ```text
+/// (A + ε𝟙) λ = −u,   A_ij = Σ_shared bodies (±nᵢ)·(±nⱼ)/M + (r×(±nᵢ))·I⁻¹(r×(±nⱼ)),
+///                    ε = 1e-10 · max Aᵢᵢ
+/// ```
+///
+/// by LDLᵀ (A is only semi-definite: 4 coplanar contacts constrain 3 motions; the tiny ε
+/// picks the minimum-norm λ, which shares the load symmetrically whatever the contact order).
+/// The result is accepted only if it is the solution of the whole problem — every λᵢ ≥ 0 and
+/// no contact, active or not, still approaching — so it is the same minimum of K that the
+/// sweeps converge to, reached at once. When a λᵢ comes out negative (at rest, a corner of a
+/// 4-point face: four rows of rank three) or a contact outside the set still approaches, the
+/// active set changes — by one row per pair of bodies, the pair's most negative one out or
+/// its most approaching one in, so a pyramid whose every face has such a corner needs a few
+/// rounds, not one per face — and the system is solved again, at most [`PIVOT_ROUNDS`]
+/// times. The active rows stay in contact order (rows of a pair together), which keeps the
+/// envelope of a stack banded. A `wide` system (a pyramid) starts its active set with the
+/// rows that pushed last step too (their warm impulse along the normal is positive): its
+/// answer at rest, where starting from the approaching rows alone would climb the pyramid a
+/// row per pair per round. Returns false (and changes nothing) otherwise.
+pub(super) fn inelastic(
+    wide: bool,
+    rows: &mut [Row],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    buffers: &mut Direct,
+) -> bool {
+    let Direct {
+        system,
+        saved,
+        active,
+        lambda,
+        entering,
+        ..
+    } = buffers;
+    active.clear();
+    let approaching = |r: &Row| r.approach + r.bias < 0.0;
+    if !rows.iter().any(approaching) {
+        return true;
+    }
+    let start = |r: &Row| approaching(r) || (wide && r.warm.dot(&r.normal.d) > 0.0);
+    active.extend((0..rows.len()).filter(|&i| start(&rows[i])));
+    let mut m = active.len();
+    if m > DIRECT_MAX {
+        return false;
+    }
+    // An active-set search (principal pivoting), at most PIVOT_ROUNDS changes: solve on the
+    // active rows; if some λ < 0 (a corner of a 4-point face whose minimum-norm share came
+    // out negative), take the most negative row out; else if a row outside the set still
+    // approaches, take the most approaching one in; else accept. Every accepted answer passes
+    // the same test as before (λ ≥ 0, nothing approaching): the solution of the whole problem.
+    saved.clear();
+    saved.extend_from_slice(motions);
+    for round in 0..=PIVOT_ROUNDS {
+        system.reset(m);
+        for p in 0..m {
+            let ni = &rows[active[p]].normal;
+            system.rhs[p] = -ni.velocity(motions) - rows[active[p]].bias;
+            system.fill_row(p, ni.bodies(), |q| {
+                let nj = &rows[active[q]].normal;
+                ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
+            });
+            if system.stored() > ENVELOPE_MAX {
+                return false;
+            }
+        }
+        let Some(solution) = system.solve() else {
+            return false;
+        };
+        lambda.clear();
+        lambda.extend_from_slice(&solution[..m]);
+        let last = round == PIVOT_ROUNDS;
+        let (_, most_negative) = (0..m).fold((0.0, None), |(w, at), p| {
+            if lambda[p] < w {
+                (lambda[p], Some(p))
+            } else {
+                (w, at)
+            }
+        });
+        if let Some(p) = most_negative {
+            if last || m == 1 {
+                return false;
+            }
+            // Out: the most negative row of each pair of bodies that has one (each face's
+            // corner whose minimum-norm share came out negative; the same row as "the most
+            // negative" when one pair has them). The rows stay in contact order.
+            let pair = |p: usize| {
+                let n = &rows[active[p]].normal;
+                (n.a.body, n.b.map(|b| b.body))
+            };
+            let mut out = Vec::new();
+            let mut q = 0;
+            while q < m {
+                let mut end = q;
+                let mut worst = (0.0, None);
+                while end < m && pair(end) == pair(q) {
+                    if lambda[end] < worst.0 {
+                        worst = (lambda[end], Some(end));
+                    }
+                    end += 1;
+                }
+                out.extend(worst.1);
+                q = end;
+            }
+            debug_assert!(out.contains(&p));
+
+            let mut k = 0;
+            active.retain(|_| {
+                let keep = out.binary_search(&k).is_err();
+                k += 1;
+                keep
+            });
+            m = active.len();
+            continue;
+        }
+        for p in 0..m {
+            rows[active[p]].normal.apply(lambda[p], motions);
+        }
+        // The most approaching row of each pair of bodies that has one, in contact order
+        // (the same row as "the most approaching" when one pair has them).
+        let pair = |r: &Row| (r.normal.a.body, r.normal.b.map(|b| b.body));
+        let mut worst: Option<(usize, f64)> = None;
+        let mut group: Option<(usize, f64)> = None;
+        entering.clear();
+        for (i, r) in rows.iter().enumerate() {
+            if i > 0 && pair(r) != pair(&rows[i - 1]) {
+                entering.extend(group.take().map(|(j, _)| j));
+            }
+            let u = r.normal.velocity(motions) + r.bias;
+            if u < -tolerance {
+                if group.is_none_or(|(_, w)| u < w) {
+                    group = Some((i, u));
+                }
+                if worst.is_none_or(|(_, w)| u < w) {
+                    worst = Some((i, u));
+                }
+            }
+        }
+        entering.extend(group.map(|(j, _)| j));
+        let Some((i, _)) = worst else {
+            for p in 0..m {
+                rows[active[p]].lambda = lambda[p];
+            }
+            return true;
+        };
+        motions.copy_from_slice(saved);
+        if last || m + entering.len() > DIRECT_MAX || active.binary_search(&i).is_ok() {
+            return false;
+        }
+        // In, in contact order (rows of a pair stay together: the envelope stays narrow).
+        for &j in entering.iter() {
+            if let Err(at) = active.binary_search(&j) {
+                active.insert(at, j);
+            }
+        }
+        m = active.len();
+    }
+    false
+}
+
+/// Friction solved directly, when its answer is "every pushing contact sticks" (a body at rest
+/// on a slope, the usual case with friction): with the contacts that push after stage 1, find
+/// the increments of their normal impulses and their tangent impulses that stop every tangent
+/// velocity and keep every normal one,
+///
+/// ```text
+/// (A + ε𝟙) Δλ = −u      over the rows (n, t₁, t₂) of each pushing contact
+/// ```
+///
+/// (the same minimum-norm LDLᵀ as the inelastic solve). Accepted only if it is the solution
+/// of the stage-2 problem: every λₙ ≥ 0, every |λ_t| inside its disk μ λ_stage1, and no
+/// contact approaching; then it is the minimum of K the sweeps converge to, reached at once.
+/// Returns false (and changes nothing) otherwise.
+///
+/// Bodies at rest on redundant contacts (dominoes lying on each other: two floor contacts
+/// and two contacts with the next domino each) have many impulses that hold them; the
+/// minimum-norm one shares each load evenly and can leave a disk whose neighbour has room
+/// (measured: 1.938e-5 N·s asked of a disk of 1.898e-5 beside one of 2.125e-5), and the sweeps
+/// then crawl along the disks' edges for ever (40–80 sweeps and 20–40 subspace steps a step,
+/// 0.7–2.8 ms, while no body moves by 1e-12 m/s). So a second try, [`Sticking::Resting`],
+/// weights the minimum norm by each contact's stage-1 load ℓ: with `Δλ = S y`,
+/// `S = diag(ℓ)`, it solves `(S A S + ε𝟙) y = −S u`, the change minimising `Σ (Δλᵢ/ℓᵢ)²`, so
+/// each contact takes a share of the load in proportion to its disk. It also holds still every
+/// pushing speculative contact whose gap is below [`RESTING_GAP`] (target `uₙ = 0` instead of
+/// `−g/dt`): such gaps (nm to 0.1 µm, left where edges are not quite parallel) make the rows
+/// ask for motions no rigid body has, and the minimum-norm answer then grows without bound
+/// (measured |Δλ| of 10–500 N·s against impulses of 1e-4). The same acceptance checks follow;
+/// with a gap held closed, what they accept is the stage-2 solution with that gap taken as 0
+/// (as [`GAP_ROUND_OFF`] does for every solve at 1 nm): the contact may push across up to
+/// 1 µm, where the exact problem would let the body close that gap first. Velocities are the
+/// same either way once no gap is held (the weights move only how the impulses are shared).
+pub(super) fn sticking(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    how: Sticking,
+    buffers: &mut Direct,
+) -> bool {
+    let Direct {
+        system,
+        saved,
+        active,
+        lambda: delta,
+        ..
+    } = buffers;
+    active.clear();
+    active.extend((0..rows.len()).filter(|&i| rows[i].lambda > 0.0));
+    let m = active.len();
+    if m == 0 || m > STICKING_MAX {
+        return false;
+    }
+    // Ordered by the last body each acts on (stable), as the subspace step's unknowns: a chain
+    // of bodies (a row of dominoes, a stack) gets a banded envelope.
+    active.sort_by_key(|&i| {
+        let n = &rows[i].normal;
+        n.b.map_or(n.a.body, |b| b.body.max(n.a.body))
+    });
+    // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact.
+    let direction = |k: usize| -> &Axis {
+        let i = active[k / 3];
+        match k % 3 {
+            0 => &rows[i].normal,
+            t => &directions[i][t - 1],
+        }
+    };
+    // The scale of each unknown (1, or its contact's stage-1 load: the weighted minimum norm),
+    // and the normal velocity each pushing contact is held to, −g/dt or 0.
+    let largest = active.iter().map(|&i| rows[i].lambda).fold(0.0, f64::max);
+    let scale = |p: usize| match how {
+        Sticking::Exact => 1.0,
+        Sticking::Resting { .. } => rows[active[p / 3]].lambda.max(1e-6 * largest),
+    };
+    let bias = |row: &Row| match how {
+        Sticking::Resting { dt } if row.bias * dt < RESTING_GAP => 0.0,
+        _ => row.bias,
+    };
+    system.reset(3 * m);
+    for p in 0..3 * m {
+        let dp = direction(p);
+        let sp = scale(p);
+        let target = if p % 3 == 0 {
+            bias(&rows[active[p / 3]])
+        } else {
+            0.0
+        };
+        system.rhs[p] = -sp * (dp.velocity(motions) + target);
+        system.fill_row(p, dp.bodies(), |q| {
+            let dq = direction(q);
+            dp.shares_a_body(dq)
+                .then(|| sp * scale(q) * dp.coupling(dq, motions))
+        });
+        if system.stored() > ENVELOPE_MAX {
+            return false;
+        }
+    }
+    let Some(solution) = system.solve() else {
+        return false;
+    };
+    delta.clear();
+    delta.extend(solution.iter().enumerate().map(|(p, y)| scale(p) * y));
+    for k in 0..m {
+        let row = &rows[active[k]];
+        let (dn, t1, t2) = (delta[3 * k], delta[3 * k + 1], delta[3 * k + 2]);
+        if row.lambda + dn < 0.0 || (t1 * t1 + t2 * t2).sqrt() > row.friction_bound {
+            return false;
+        }
+    }
+    saved.clear();
+    saved.extend_from_slice(motions);
+    for (p, d) in delta[..3 * m].iter().enumerate() {
+        direction(p).apply(*d, motions);
+    }
+    if rows
+        .iter()
+        .any(|r| r.normal.velocity(motions) + bias(r) < -tolerance)
+    {
+        motions.copy_from_slice(saved);
+        return false;
+    }
+    for k in 0..m {
+        let row = &mut rows[active[k]];
+        row.lambda += delta[3 * k];
+        row.lambda_tangent = [delta[3 * k + 1], delta[3 * k + 2]];
+    }
+    true
+}
+
+/// The two tries of [`sticking`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Sticking {
+    /// The minimum-norm change, every pushing contact held to `uₙ = −g/dt`: the exact solution.
+    Exact,
+    /// The load-weighted minimum-norm change, gaps below [`RESTING_GAP`] held closed (step dt).
+    Resting { dt: f64 },
+}

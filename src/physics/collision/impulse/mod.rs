@@ -1,0 +1,624 @@
+//! `impulse`: a physically based response with restitution e and Coulomb friction μ that never
+//! adds kinetic energy (for 0 ≤ e ≤ 1, μ ≥ 0), whatever the number of contacts.
+//!
+//! Each contact is a row between body A and body B (n from B to A; an obstacle is a B of
+//! infinite mass): equal and opposite impulses at the same point, so linear and angular
+//! momentum are kept (the impulse of one contact, `j = −(1 + e) u_n / k`, and its k: see
+//! [`normal`]). A resting body, a stack, a body on a body: one solver.
+//!
+//! # Constraint kinds and methods, one file each
+//!
+//! Each constraint kind is one file with the same verbs; the solves over many rows at once
+//! are methods, not kinds. `resolve` (here) runs them in stage order.
+//!
+//! | kind / method | file | verbs |
+//! |---|---|---|
+//! | normal row: no penetration, λ ≥ 0, a speculative gap's bias | [`normal`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `restitution`, `store` |
+//! | friction row: the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
+//! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
+//! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
+//!
+//! # Many contacts (a face landing flat has 4), in three stages
+//!
+//! Applying one contact's formula to one vertex after the other makes the result depend on
+//! the vertex order, and a single pass leaves later contacts approaching. Instead:
+//!
+//! 1. **Inelastic normal impulses** λᵢ ≥ 0 by projected Gauss–Seidel ([`normal`]: the update,
+//!    and why the kinetic energy K can only go down). When the answer is "every
+//!    approaching contact stops and pushes" (a face landing, a body at rest: the usual case),
+//!    the same minimum is computed at once by a small LDLᵀ solve and checked against the
+//!    conditions of the whole problem ([`direct`]); the sweeps run only when that check fails.
+//!    A large system whose rows are *wide* in contact order (a pyramid: each cube touches the
+//!    row below and its neighbours; [`WIDE_ENVELOPE`]) first tries [`TRIAL_SWEEPS`] sweeps from
+//!    the last step's impulses: at rest they are already the answer, one sweep over the rows
+//!    confirms it to the same tolerance, where a factorisation costs rows · width². Only when
+//!    they do not converge does the direct solve run (and a failed trial waits a few steps
+//!    before the next, so a scene whose warm start is poor stops paying for it). Such a
+//!    system's direct solve starts its active set from the rows that pushed last step as well
+//!    as the approaching ones (a settling pyramid of 20 rows otherwise adds a row per pair of
+//!    bodies a round, needs about three rounds per row of cubes, and runs out of rounds), and
+//!    if it still declines, its sweeps take subspace steps ([`subspace`]: as stage 2's, on the
+//!    pushing normals alone, the whole step first projected onto λ ≥ 0, at most
+//!    [`NORMAL_SUBSPACE_MAX`] a step). Every bundled lesson and every stack (banded) keeps the
+//!    direct solve first and the plain sweeps. The friction stage below does the same.
+//! 2. **Coulomb friction** (if μ > 0, and some pushing contact slides): two tangent impulses
+//!    per contact in the disk `|λ_t| ≤ μ λᵢ`, λᵢ from stage 1 ([`friction`]: the exact
+//!    minimum of K over a disk). The same order: a large wide system's trial sweeps from the
+//!    last step's impulses, then the direct sticking solve ([`direct`]), else the sweeps with
+//!    a subspace step every [`SUBSPACE_EVERY`] sweeps ([`subspace`]).
+//! 3. **Restitution** (Poisson's, e times the stage-1 impulse, only at contacts that
+//!    approached faster than [`BOUNCE_STEPS`]·|g|·dt), scaled so that K does not exceed K₀ less
+//!    the push-out's work against gravity ([`normal`]: the energy clamp).
+//!
+//! Last, each row's impulses are stored into its contact (the normal row's `store`, then
+//! the friction row's), where they also warm-start the next step ([`WarmCache`]).
+//!
+//! A last check measures K exactly as the energy panel does and, if round-off alone left it
+//! above K₀, scales P and L by `√(K₀/K)` (K is quadratic in (P, L)).
+//!
+//! # Speculative contacts
+//!
+//! A resting body falls only ½|g|dt² per step under `rk4` and `splitting` (free fall from
+//! rest), |g|dt² under `symplectic-euler`. A body a few µrad off flat then touches with one
+//! edge only, the other edge being still a few µm up; that edge's impulse alone tips the body
+//! over onto the other edge, which then touches alone, and so on: it rocks for ever. So once a
+//! vertex touches, every vertex closer to a surface than
+//! `BOUNCE_STEPS·|g|·dt²` (the distance a non-bouncing contact covers in a step) and approaching
+//! slower than the bounce speed joins the solve as a *speculative* contact with gap g ≥ 0 and
+//! the condition `u_n ≥ −g/dt`: it may close its gap within the next step, no more. In every
+//! stage it is a normal row with a bias g/dt ([`normal`]: its update, and why K still never
+//! rises). One that received no impulse is dropped from the reported contacts.
+//!
+//! # Positions
+//!
+//! After the velocities, `position` moves the bodies: a body that did not bounce advances from
+//! where it was at the start of the step with its *corrected* velocity (no creep at rest, on a
+//! slope or on a sphere), and what penetration is left is removed by translation (see there).
+
+pub mod direct;
+pub mod friction;
+pub mod normal;
+pub mod subspace;
+
+use super::contacts;
+use super::dense::Dense;
+use super::position::{self, Fix};
+use super::solver_body::{Axis, SolverBody};
+use super::warm::WarmCache;
+use super::{CollideInput, Contact, EnergyChange};
+use crate::physics::derive::derive;
+use crate::physics::energy::{kinetic_energy_with, Energy};
+use crate::physics::state::State;
+use nalgebra::{Matrix3, Vector3};
+
+pub use super::step_context::BOUNCE_STEPS;
+pub use direct::{DIRECT_MAX, PIVOT_ROUNDS, RESTING_GAP, STICKING_MAX};
+pub(super) use friction::tangents;
+pub use normal::GAP_ROUND_OFF;
+pub use subspace::{
+    EDGE_TURN, NORMAL_SUBSPACE_MAX, SUBSPACE_BACKTRACKS, SUBSPACE_EVERY, SUBSPACE_ROUNDS,
+};
+
+/// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
+/// same fraction of the fastest approach speed.
+pub const TOLERANCE: f64 = 1e-10;
+
+/// At most this many Gauss–Seidel sweeps per stage. A stack of 10 cubes needs about 800 the
+/// first time it is loaded, then 1 to 10 a step from the warm start; a cap below the first
+/// number would leave every later step unconverged too.
+pub const MAX_SWEEPS: usize = 2000;
+
+/// Largest envelope (stored entries of [`Dense`], 8 bytes each) the direct solves take on;
+/// beyond it the sweeps run. A stack of 40 (banded) stays far below it; a pyramid of 20 rows,
+/// whose rows in contact order reach back over a whole row of cubes, stores about 250 000
+/// while it settles (about 5 ms a factorisation, against seconds of capped sweeps).
+pub const ENVELOPE_MAX: usize = 1 << 20;
+
+/// Above this many rows (and when the rows are wide, [`WIDE_ENVELOPE`]) a stage first tries
+/// [`TRIAL_SWEEPS`] sweeps from the last step's
+/// impulses before any factorisation: at rest (or sliding steadily) they are already the answer,
+/// and confirming it costs one pass over the rows, where the direct solve costs a factorisation
+/// whose envelope grows with the width of the scene (a pyramid of 10 rows has about 450 rows).
+/// Smaller systems (every bundled lesson) keep the direct solve first.
+pub const SWEEPS_FIRST_ROWS: usize = 64;
+
+/// A system whose rows, in contact order, reach back further than this many rows on average
+/// (its envelope over its rows) is *wide*: its factorisation costs about rows · width², and
+/// it tries the sweeps first. A stack is banded (about 6: a cube's rows reach back to the
+/// rows of the pair below it) and keeps the direct solve first, whose minimum-norm impulses
+/// leave no tangent drift; a pyramid of 10 rows reaches back about 40.
+pub const WIDE_ENVELOPE: f64 = 16.0;
+
+/// The sweeps a large system's warm start may take to converge before the direct solve is
+/// tried instead (a scene at rest needs 1 or 2).
+pub const TRIAL_SWEEPS: u64 = 8;
+
+/// The longest wait, in steps, between stage-1 trials that keep failing.
+pub const TRIAL_WAIT_MAX: u32 = 32;
+
+/// Buffers reused from step to step (nothing in them outlives a collide phase).
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    rows: Vec<Row>,
+    tangents: Vec<[Axis; 2]>,
+    motions: Vec<SolverBody>,
+    previous: Vec<Contact>,
+    /// The last step's impulses by pair and feature (warm starts in O(1) per contact).
+    warm: WarmCache,
+    points: Vec<super::geometry::ContactPoint>,
+    /// The broad phase's buffers (`broad_phase`).
+    broad: super::broad_phase::BroadPhase,
+    fix: position::Scratch,
+    /// The direct solves' buffers.
+    direct: Direct,
+    /// The restitution impulses' change to each body: Δv, ΔL, Δω.
+    change: Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    /// Which bodies the position fix advances from the start of the step.
+    advanced: Vec<bool>,
+    /// What the solver did since the world was built (the solver path, for tests).
+    pub counters: Counters,
+    /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
+    pub(super) soft: super::soft_step::Scratch,
+}
+
+/// The direct solves' buffers: the system, the motions saved to undo a rejected solve, the
+/// active rows (in contact order), their impulses, and the rows entering the active set.
+#[derive(Debug, Clone, Default)]
+struct Direct {
+    system: Dense,
+    saved: Vec<SolverBody>,
+    active: Vec<usize>,
+    lambda: Vec<f64>,
+    entering: Vec<usize>,
+    /// The motions and (λ, λ_t) before a large system's trial sweeps, to undo them.
+    trial: Vec<SolverBody>,
+    trial_rows: Vec<(f64, [f64; 2])>,
+    /// Steps left before stage 1's trial sweeps run again, and the wait after the last
+    /// failure (doubled at each failure up to [`TRIAL_WAIT_MAX`], 0 after a success): a scene
+    /// whose warm start does not converge in a few sweeps stops paying for them.
+    trial_skip: u32,
+    trial_wait: u32,
+    /// The first row acting on each body (the envelope's estimate).
+    body_first: Vec<usize>,
+    /// The friction subspace step's unknowns, and the impulses before it (to undo it).
+    unknowns: Vec<subspace::Unknown>,
+    /// The disks an active-set search moved onto their edge (held there for its next rounds).
+    pinned: Vec<usize>,
+    /// The rows in the order the subspace step takes its unknowns.
+    order: Vec<usize>,
+    subspace_rows: Vec<(f64, [f64; 2])>,
+}
+
+/// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
+/// these rates flat.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Steps whose stage 1 the direct solve answered.
+    pub direct: u64,
+    /// Steps whose stage 1 the direct solve declined (the sweeps ran).
+    pub declined: u64,
+    /// Gauss–Seidel sweeps run, normal (stage 1) and friction (stage 2).
+    pub normal_sweeps: u64,
+    pub friction_sweeps: u64,
+    /// Steps whose stage 1 a large system's warm-started trial sweeps answered.
+    pub warm: u64,
+    /// Steps whose friction stage the trial sweeps answered, and the direct solve.
+    pub friction_warm: u64,
+    pub friction_direct: u64,
+    /// Subspace steps the friction sweeps took (each a direct solve on the sweeps' active set,
+    /// see [`subspace`]).
+    pub friction_subspace: u64,
+    /// Subspace steps the normal sweeps of a large system took (stage 1: the same step with
+    /// no friction unknowns).
+    pub normal_subspace: u64,
+}
+
+/// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
+fn axis_at(d: Vector3<f64>, contact: &Contact, motions: &[SolverBody]) -> Axis {
+    Axis::new(
+        d,
+        (contact.body, &contact.lever),
+        contact.other_body().map(|b| (b, &contact.lever_other)),
+        motions,
+    )
+}
+
+/// One contact as the solver sees it.
+#[derive(Debug, Clone, Copy, Default)]
+struct Row {
+    /// Unit normal n with its ends and k.
+    normal: Axis,
+    /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
+    lambda: f64,
+    lambda_tangent: [f64; 2],
+    /// λ at the end of stage 1 (the frictionless compression impulse).
+    compression: f64,
+    /// μ λ from stage 1: the radius of the friction disk.
+    friction_bound: f64,
+    /// Restitution impulse e λ (scaled by the energy clamp).
+    lambda_restitution: f64,
+    /// Normal velocity before the response, m/s.
+    approach: f64,
+    /// The normal velocity the contact may keep: gap/dt for a speculative contact (it may
+    /// close its gap within the next step, no more), 0 for a touching one, m/s.
+    bias: f64,
+    /// The last step's impulse at the same contact, if any (warm start of the sweeps).
+    warm: Vector3<f64>,
+}
+
+/// Detects contacts (swept vertex tests, contact geometry, speculative rows) and runs the
+/// response on `states`. On entry `contacts` holds the last step's contacts (they warm-start
+/// the sweeps).
+///
+/// Returns the energy of all bodies before and after (None when nothing touched: the states
+/// are unchanged).
+pub fn respond(
+    input: &CollideInput,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> Option<EnergyChange> {
+    let bounce_speed = input
+        .gravity
+        .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
+    // Points closer than this to a surface are speculative contacts (module doc).
+    let margin = bounce_speed * input.dt;
+    std::mem::swap(&mut scratch.previous, contacts);
+    if !contacts::find(
+        input,
+        states,
+        margin,
+        contacts,
+        &mut scratch.points,
+        &mut scratch.broad,
+    ) {
+        // Nothing has touched: speculative contacts alone never act.
+        contacts.clear();
+        return None;
+    }
+    // Every body's velocities, with I⁻¹_world exactly as the derive phase (and the energy
+    // panel) computes it.
+    let motions = &mut scratch.motions;
+    motions.clear();
+    motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
+        let k = derive(body, state);
+        SolverBody {
+            v: k.velocity,
+            omega: k.angular_velocity,
+            l: state.angular_momentum,
+            inv_mass: body.inv_mass,
+            inv_inertia: k.inv_inertia_world,
+            touched: false,
+        }
+    }));
+    if contacts.iter().any(|c| c.depth <= 0.0) {
+        // A point approaching at bouncing speed is left to touch and bounce next step.
+        contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
+    }
+    let kinetic = |i: usize, s: &State, inv_inertia: &Matrix3<f64>| {
+        kinetic_energy_with(
+            &input.bodies[i],
+            inv_inertia,
+            &s.linear_momentum,
+            &s.angular_momentum,
+        )
+    };
+    let potential = |i: usize, x: &Vector3<f64>| {
+        input
+            .gravity
+            .map_or(0.0, |g| -input.bodies[i].mass * g.dot(x))
+    };
+    let total = |states: &[State], motions: &[SolverBody]| {
+        let mut e = Energy::default();
+        for (i, s) in states.iter().enumerate() {
+            let k = kinetic(i, s, &motions[i].inv_inertia);
+            let v = potential(i, &s.position);
+            e = e + Energy {
+                kinetic: k,
+                potential: v,
+                total: k + v,
+            };
+        }
+        e
+    };
+    let before = total(states, motions);
+    // The push-out depends on the geometry only: known before the velocities are solved, so
+    // the work it does against gravity can be paid from the kinetic energy.
+    let fix = Fix {
+        bodies: input.bodies,
+        before: input.before,
+        dt: input.dt,
+    };
+    // Only a bounce pays it (stage 3): with e = 0, or no contact approaching near the bounce
+    // speed, it is not needed, and it is a whole push-out (a pyramid at rest penetrates by
+    // ½|g|dt² at every support after the integrator: a factorisation a step).
+    let may_bounce = input.model.restitution > 0.0
+        && contacts
+            .iter()
+            .any(|c| relative_velocity(c, &scratch.motions) < -0.5 * bounce_speed);
+    let lift = if may_bounce {
+        fix.lift(contacts, states, &potential, &mut scratch.fix)
+    } else {
+        0.0
+    };
+    let settings = Settings {
+        restitution: input.model.restitution,
+        friction: input.model.friction,
+        bounce_speed,
+        dt: input.dt,
+        lift,
+    };
+    let Scratch {
+        rows,
+        tangents,
+        motions,
+        previous,
+        warm,
+        fix: fs,
+        direct,
+        change,
+        advanced,
+        counters,
+        ..
+    } = scratch;
+    advanced.clear();
+    advanced.resize(motions.len(), false);
+    let buffers = Buffers {
+        rows,
+        tangents,
+        motions,
+        direct,
+        change,
+        bounced: advanced,
+        counters,
+    };
+    // A bounce says nothing about the next step's load: stored as no impulse.
+    warm.store(previous.iter().map(|p| {
+        let j = if p.normal_velocity >= -bounce_speed {
+            p.impulse
+        } else {
+            Vector3::zeros()
+        };
+        (p, j)
+    }));
+    resolve(&settings, contacts, warm, buffers);
+    for (state, m) in states.iter_mut().zip(motions.iter()) {
+        if m.touched {
+            state.linear_momentum = m.v / m.inv_mass;
+            state.angular_momentum = m.l;
+        }
+    }
+    // Advanced from the start of the step: touched and not bounced (`advanced` held the
+    // bounce flags).
+    for (advance, m) in advanced.iter_mut().zip(motions.iter()) {
+        *advance = m.touched && !*advance;
+    }
+    fix.apply(contacts, states, advanced, fs);
+    // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    let mut after = total(states, motions);
+    for _ in 0..4 {
+        if after.kinetic <= before.kinetic {
+            break;
+        }
+        let scale = (before.kinetic / after.kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
+        for (state, m) in states.iter_mut().zip(motions.iter()) {
+            if m.touched {
+                state.linear_momentum *= scale;
+                state.angular_momentum *= scale;
+            }
+        }
+        after = total(states, motions);
+    }
+    // Speculative contacts that were not needed are not contacts.
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    Some(EnergyChange { before, after })
+}
+
+/// The relative velocity of a contact point along its normal (A relative to B).
+fn relative_velocity(c: &Contact, motions: &[SolverBody]) -> f64 {
+    let a = &motions[c.body];
+    let mut u = a.v + a.omega.cross(&c.lever);
+    if let Some(b) = c.other_body() {
+        let m = &motions[b];
+        u -= m.v + m.omega.cross(&c.lever_other);
+    }
+    u.dot(&c.normal)
+}
+
+/// The scratch buffers the velocity stages use.
+struct Buffers<'a> {
+    rows: &'a mut Vec<Row>,
+    tangents: &'a mut Vec<[Axis; 2]>,
+    motions: &'a mut Vec<SolverBody>,
+    direct: &'a mut Direct,
+    change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    /// Per body: whether a restitution impulse acted on it (then the position fix does not
+    /// re-advance it).
+    bounced: &'a mut Vec<bool>,
+    counters: &'a mut Counters,
+}
+
+/// What the velocity stages need besides the bodies and the contacts.
+#[derive(Debug, Clone, Copy)]
+struct Settings {
+    /// Coefficient of restitution e and Coulomb friction μ.
+    restitution: f64,
+    friction: f64,
+    /// Contacts approaching slower than this do not bounce, m/s.
+    bounce_speed: f64,
+    /// Time step, s (a speculative contact may close its gap within it).
+    dt: f64,
+    /// The push-out's work against gravity, J: paid from the bounce.
+    lift: f64,
+}
+
+/// The velocity stages (module doc) for `contacts` (point, depth, normal and levers filled
+/// in); fills in each contact's normal velocity, denominator and impulse, and the motions.
+fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, buffers: Buffers) {
+    let Settings {
+        restitution,
+        friction,
+        bounce_speed,
+        dt,
+        lift,
+    } = *settings;
+    let Buffers {
+        rows,
+        tangents: tangent_directions,
+        motions,
+        direct: buffers_direct,
+        change,
+        bounced,
+        counters,
+    } = buffers;
+    // The energy the velocities may keep: K₀ less the push-out's work against gravity.
+    let kinetic_allowed = motions.iter().map(SolverBody::kinetic).sum::<f64>() - lift;
+    rows.clear();
+    rows.extend(
+        contacts
+            .iter()
+            .map(|c| normal::prepare(c, previous, dt, motions)),
+    );
+    let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
+    let tolerance = TOLERANCE * (1.0 + fastest);
+
+    // Stage 1: inelastic normal impulses, λ ≥ 0. A large system first tries a few sweeps from
+    // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
+    // rows confirms it for far less than a factorisation); then the direct solve when it
+    // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
+    let large = rows.len() > SWEEPS_FIRST_ROWS
+        && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
+    let mut answered = false;
+    if large && buffers_direct.trial_skip > 0 {
+        buffers_direct.trial_skip -= 1;
+    } else if large {
+        buffers_direct.trial.clear();
+        buffers_direct.trial.extend_from_slice(motions);
+        normal::warm_start(rows, motions);
+        let (converged, sweeps) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
+        counters.normal_sweeps += sweeps;
+        if converged {
+            counters.warm += 1;
+            answered = true;
+            buffers_direct.trial_wait = 0;
+        } else {
+            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
+            buffers_direct.trial_wait = wait;
+            buffers_direct.trial_skip = wait;
+            motions.copy_from_slice(&buffers_direct.trial);
+            for row in rows.iter_mut() {
+                row.lambda = 0.0;
+            }
+        }
+    }
+    if !answered {
+        let direct = direct::inelastic(large, rows, motions, tolerance, buffers_direct);
+        if direct {
+            counters.direct += 1;
+        } else {
+            counters.declined += 1;
+            normal::warm_start(rows, motions);
+            let (_, sweeps) = if large {
+                subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
+            } else {
+                normal::sweep(rows, motions, tolerance, MAX_SWEEPS as u64)
+            };
+            counters.normal_sweeps += sweeps;
+        }
+    }
+
+    for row in rows.iter_mut() {
+        row.compression = row.lambda;
+    }
+
+    // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
+    // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
+    tangent_directions.clear();
+    if friction > 0.0
+        && rows
+            .iter()
+            .zip(contacts.iter())
+            .any(|(r, c)| friction::sliding(r, c, motions, tolerance))
+    {
+        tangent_directions.extend(
+            rows.iter_mut()
+                .zip(contacts.iter())
+                .map(|(row, contact)| friction::prepare(row, contact, friction, motions)),
+        );
+        // A large system: a few sweeps from the last step's impulses first (at rest or
+        // sliding steadily they are the answer). Then the direct solve (everything sticks);
+        // else the sweeps, warm-started from the last step's friction
+        // impulses (kept in their disks).
+        let mut solved = false;
+        if large {
+            let Direct {
+                trial, trial_rows, ..
+            } = &mut *buffers_direct;
+            trial.clear();
+            trial.extend_from_slice(motions);
+            trial_rows.clear();
+            trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+            // From last step's normal impulses as well as its friction: stage 1's answer,
+            // when its direct solve gave it, shares the loads its own way (the minimum norm),
+            // and at rest last step's friction holds last step's shares, not those (a pyramid
+            // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
+            normal::warm_start_again(rows, motions);
+            friction::warm_start(rows, tangent_directions, motions);
+            let (converged, sweeps) =
+                friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
+            counters.friction_sweeps += sweeps;
+            if converged {
+                counters.friction_warm += 1;
+                solved = true;
+            } else {
+                motions.copy_from_slice(trial);
+                for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
+                    row.lambda = lambda;
+                    row.lambda_tangent = tangent;
+                }
+            }
+        }
+        for how in [direct::Sticking::Exact, direct::Sticking::Resting { dt }] {
+            if !solved {
+                solved = direct::sticking(
+                    rows,
+                    tangent_directions,
+                    motions,
+                    tolerance,
+                    how,
+                    buffers_direct,
+                );
+                if solved {
+                    counters.friction_direct += 1;
+                }
+            }
+        }
+        if !solved {
+            friction::warm_start(rows, tangent_directions, motions);
+            let (_, sweeps) = subspace::sweep(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                buffers_direct,
+                counters,
+            );
+            counters.friction_sweeps += sweeps;
+        }
+    }
+
+    // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀.
+    normal::restitution(
+        rows,
+        motions,
+        restitution,
+        bounce_speed,
+        kinetic_allowed,
+        change,
+        bounced,
+    );
+
+    // Store: the impulses into the contacts (normal, then the tangents when stage 2 ran).
+    normal::store(contacts, rows);
+    friction::store(contacts, rows, tangent_directions);
+}

@@ -1,0 +1,435 @@
+//! Subspace steps: a method over the rows, not a constraint kind. Projected Gauss–Seidel (the
+//! normal and friction rows' `sweep`) converges linearly, and slowly when bodies slide on each
+//! other (a row of dominoes) or when a large system settles (a pyramid); the sweeps find the
+//! active set long before they converge on it. Every [`SUBSPACE_EVERY`] sweeps that did not
+//! converge, a subspace step (`step`) solves the active set the sweeps have found directly,
+//! with a Newton step along the sliding disks' edges, and is kept only if it lowers the same
+//! objective. The sweeps still decide convergence, to the same tolerance (`sweep`).
+//!
+//! Stage 2 (friction) takes them whenever its direct solve declined. Stage 1 takes them only
+//! in a large, *wide* system whose direct solve declined: the same step on the pushing normals
+//! alone, the whole step first projected onto λ ≥ 0, at most [`NORMAL_SUBSPACE_MAX`] a step.
+//! The step's formulas (the objective F, the edge unknowns' curvature, the ratio test and the
+//! exact measure of the change of F) are on `step`.
+
+use super::{friction, normal, Counters, Direct, Row, ENVELOPE_MAX, MAX_SWEEPS};
+use crate::physics::collision::solver_body::{Axis, End, SolverBody};
+
+/// The friction sweeps take a subspace step (`step`) after this many sweeps
+/// that did not converge.
+pub const SUBSPACE_EVERY: u64 = 8;
+
+/// Most changes of the active set one friction subspace search makes (each a direct solve).
+pub const SUBSPACE_ROUNDS: usize = 8;
+
+/// Most subspace steps the normal sweeps of one step take (each a factorisation of the
+/// pushing rows): a settling pyramid of 20 rows needs 6; where they stop helping (rows on the
+/// edge of degeneracy) the plain sweeps go on.
+pub const NORMAL_SUBSPACE_MAX: usize = 32;
+
+/// How many times a friction subspace step that did not lower F is tried again, 8 times
+/// shorter.
+pub const SUBSPACE_BACKTRACKS: usize = 3;
+
+/// The largest turn of a sliding disk's impulse along its edge in one subspace step, rad.
+pub const EDGE_TURN: f64 = 0.25;
+
+/// A friction disk whose impulse is within this fraction of its bound is on its edge
+/// (sliding) for the subspace step; further inside, it sticks.
+const SLIDING_EDGE: f64 = 1e-9;
+
+/// Sweeps with a subspace step ([`step`]) after every [`SUBSPACE_EVERY`]
+/// sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in all; returns whether they
+/// converged and how many sweeps ran. With friction directions these are the friction sweeps
+/// ([`friction::sweep`]); with none (stage 1, every friction bound 0) the normal sweeps
+/// ([`normal::sweep`]), and the subspace step solves the pushing normals alone. A system too
+/// wide for the direct solve ([`ENVELOPE_MAX`]) stops trying the subspace steps.
+pub(super) fn sweep(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    buffers: &mut Direct,
+    counters: &mut Counters,
+) -> (bool, u64) {
+    let cap = MAX_SWEEPS as u64;
+    let normals_only = directions.is_empty();
+    let mut total = 0;
+    let mut subspace = true;
+    let mut steps_left = if normals_only {
+        NORMAL_SUBSPACE_MAX
+    } else {
+        usize::MAX
+    };
+    loop {
+        subspace &= steps_left > 0;
+        let burst = if subspace { SUBSPACE_EVERY } else { cap }.min(cap - total);
+        let (converged, sweeps) = if normals_only {
+            normal::sweep(rows, motions, tolerance, burst)
+        } else {
+            friction::sweep(rows, directions, motions, tolerance, burst)
+        };
+        total += sweeps;
+        if converged || total >= cap {
+            return (converged, total);
+        }
+        // An active-set search: a step cut short by a normal reaching 0 or a sticking disk
+        // reaching its edge changes the active set; solve again on the new one.
+        buffers.pinned.clear();
+        for _ in 0..SUBSPACE_ROUNDS {
+            match step(rows, directions, motions, buffers) {
+                Subspace::Taken { whole } => {
+                    steps_left = steps_left.saturating_sub(1);
+                    if normals_only {
+                        counters.normal_subspace += 1;
+                    } else {
+                        counters.friction_subspace += 1;
+                    }
+                    if whole || steps_left == 0 {
+                        break;
+                    }
+                }
+                Subspace::Declined => break,
+                Subspace::TooWide => {
+                    subspace = false;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// What a subspace step did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Subspace {
+    /// Taken, whole (α = 1) or cut short by the ratio test.
+    Taken { whole: bool },
+    /// Nothing to solve, a singular system, no room to move, or no descent (round-off).
+    Declined,
+    /// The system's envelope is over [`ENVELOPE_MAX`].
+    TooWide,
+}
+
+/// A subspace step of the friction stage (projected Gauss–Seidel with subspace minimisation,
+/// Silcowitz, Niebe & Erleben 2010, with a Newton step along the sliding disks' edges):
+/// block Gauss–Seidel converges linearly, and slowly when contacts are stiffly coupled or sit
+/// on the edge of their friction disk with almost no slip (a domino leaning on the next: its
+/// floor contacts at the stick–slip limit); the sweeps find the active set long before they
+/// converge on it. With the active set the sweeps left, the stage-2 objective
+///
+/// ```text
+/// F(Λ) = K(Λ) + Σ λₙ gₙ/dt           (the objective the sweeps minimise, ≥ K)
+/// ```
+///
+/// is minimised by one Newton step, a direct solve over these unknowns:
+///
+/// - each pushing normal (λₙ > 0), its row `uₙ + gₙ/dt = 0`; the normals at 0 are held;
+/// - each sticking disk (|λ_t| < bound, or on the edge with the slip along λ_t: it wants
+///   in), both tangents, rows `u_t = 0`;
+/// - each sliding disk (on its edge |λ_t| = bound, slip u_t against λ_t): its impulse may
+///   move along the edge, `λ_t = bound (s cos θ + s⊥ sin θ)` with `s = λ_t/|λ_t|`, `s⊥` s
+///   turned by 90°; the unknown is the arc δ = bound·θ along s⊥, whose row carries the
+///   edge's curvature: `∂²F/∂δ² = s⊥ᵀ K_t s⊥ + κ`, `κ = −u_t·s / bound ≥ 0` (the slip speed
+///   over the bound: the Lagrange multiplier ν of the disk update), right-hand side `−u_t·s⊥`.
+///
+/// ```text
+/// (H + ε𝟙) Δ = −∇F      H: the rows' couplings A (the same minimum-norm LDLᵀ as the direct
+///                       solves), plus κ on each edge unknown's diagonal
+/// ```
+///
+/// The step is `αΔ` with the largest α ≤ 1 that keeps every free normal ≥ 0 and every
+/// sticking disk inside its bound, `|λ_t + αΔ_t| ≤ bound` (the positive root of a quadratic
+/// in α); an edge unknown moves its impulse along the circle, `λ_t ← bound (λ_t + αδ s⊥)/|·|`.
+/// The change of F is then measured exactly — F is quadratic in Λ, so
+/// `F(Λ + ΔΛ) − F(Λ) = ΔΛ·(∇F(Λ) + ∇F(Λ + ΔΛ))/2`, with ∇F the rows' velocities (plus gₙ/dt),
+/// summed over the rows that moved: no cancellation against F itself, so even a step of
+/// 1e-20 J is judged right — and a step that did not lower F (H nearly singular, solved
+/// inaccurately) is undone and tried 8 times shorter, [`SUBSPACE_BACKTRACKS`] times at most.
+/// Like every sweep update, an accepted step only lowers F, so K stays below K₀. A step cut
+/// short by the ratio test changes the active set (that normal is held at 0, that disk is
+/// held on its edge whatever its slip says) and the caller solves again, up to
+/// [`SUBSPACE_ROUNDS`] times. The sweeps go on from there and judge convergence as before,
+/// to the same tolerance: the steps change only how fast they get there. The unknowns are
+/// ordered by the last body their row acts on, so a chain of bodies has a banded envelope.
+fn step(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    buffers: &mut Direct,
+) -> Subspace {
+    let Direct {
+        system,
+        saved,
+        unknowns,
+        subspace_rows,
+        pinned,
+        order,
+        ..
+    } = buffers;
+    // Rows ordered by the last body they act on (stable: a pair's rows stay together), so
+    // a body's floor contacts sit beside its contacts with its neighbours: a chain of bodies
+    // (a row of dominoes, a stack) gets a banded envelope, where contact order (every floor
+    // contact first) would reach back over all of them.
+    order.clear();
+    order.extend(0..rows.len());
+    order.sort_by_key(|&i| {
+        let n = &rows[i].normal;
+        n.b.map_or(n.a.body, |b| b.body.max(n.a.body))
+    });
+    unknowns.clear();
+    for &i in order.iter() {
+        let row = &rows[i];
+        if row.lambda > 0.0 {
+            let gradient = row.normal.velocity(motions) + row.bias;
+            unknowns.push(Unknown {
+                row: i,
+                tangent: None,
+                before: [gradient, 0.0],
+                direction: row.normal,
+            });
+        }
+        let bound = row.friction_bound;
+        if bound == 0.0 {
+            continue;
+        }
+        let [t1, t2] = &directions[i];
+        let u = [t1.velocity(motions), t2.velocity(motions)];
+        let l = row.lambda_tangent;
+        let size = (l[0] * l[0] + l[1] * l[1]).sqrt();
+        let slip_along = (u[0] * l[0] + u[1] * l[1]) / size;
+        if size >= bound * (1.0 - SLIDING_EDGE) && (slip_along <= 0.0 || pinned.contains(&i)) {
+            let s = [l[0] / size, l[1] / size];
+            let c = [-s[1], s[0]];
+            unknowns.push(Unknown {
+                row: i,
+                tangent: Some((c, (-slip_along / bound).max(0.0))),
+                before: u,
+                direction: combined(&directions[i], c),
+            });
+        } else {
+            for (k, c) in [[1.0, 0.0], [0.0, 1.0]].into_iter().enumerate() {
+                unknowns.push(Unknown {
+                    row: i,
+                    tangent: Some((c, 0.0)),
+                    before: u,
+                    direction: directions[i][k],
+                });
+            }
+        }
+    }
+    let m = unknowns.len();
+    if m == 0 {
+        return Subspace::Declined;
+    }
+    // H_pq: the couplings of the unknowns' directions (a tangent unknown is c₁ t₁ + c₂ t₂,
+    // combined once: the coupling is bilinear).
+    system.reset(m);
+    for p in 0..m {
+        let up = &unknowns[p];
+        let dp = &up.direction;
+        system.rhs[p] = -match up.tangent {
+            None => up.before[0],
+            Some((c, _)) => c[0] * up.before[0] + c[1] * up.before[1],
+        };
+        system.fill_row(p, dp.bodies(), |q| {
+            let dq = &unknowns[q].direction;
+            if q == p {
+                Some(dp.coupling(dp, motions) + up.tangent.map_or(0.0, |(_, kappa)| kappa))
+            } else {
+                dp.shares_a_body(dq).then(|| dp.coupling(dq, motions))
+            }
+        });
+        if system.stored() > ENVELOPE_MAX {
+            return Subspace::TooWide;
+        }
+    }
+    let Some(delta) = system.solve() else {
+        return Subspace::Declined;
+    };
+    // The ratio test: the largest α ≤ 1 keeping the free normals ≥ 0 and the sticking disks
+    // inside their bounds (an edge unknown stays on its circle whatever α).
+    let mut alpha: f64 = 1.0;
+    let mut blocking = None;
+    let mut p = 0;
+    while p < m {
+        let unknown = &unknowns[p];
+        let row = &rows[unknown.row];
+        match unknown.tangent {
+            None => {
+                if row.lambda + delta[p] < 0.0 && row.lambda / -delta[p] < alpha {
+                    alpha = row.lambda / -delta[p];
+                    blocking = Some(p);
+                }
+                p += 1;
+            }
+            Some(_) if unknowns.get(p + 1).is_none_or(|u| u.row != unknown.row) => {
+                // An edge unknown: the model is quadratic in the arc, the edge is a circle;
+                // turn by at most EDGE_TURN radians, where they agree to second order.
+                let reach = EDGE_TURN * row.friction_bound / delta[p].abs();
+                if reach < alpha {
+                    alpha = reach;
+                    blocking = None;
+                }
+                p += 1;
+            }
+            Some(_) => {
+                // |t + α d|² = bound²: α = (−t·d + √((t·d)² + |d|²(bound² − |t|²))) / |d|².
+                let (t, d) = (row.lambda_tangent, [delta[p], delta[p + 1]]);
+                let dd = d[0] * d[0] + d[1] * d[1];
+                let td = t[0] * d[0] + t[1] * d[1];
+                let inside = row.friction_bound.powi(2) - (t[0] * t[0] + t[1] * t[1]);
+                if dd > 0.0 {
+                    let reach = (-td + (td * td + dd * inside.max(0.0)).sqrt()) / dd;
+                    if reach < alpha {
+                        alpha = reach;
+                        blocking = Some(p);
+                    }
+                }
+                p += 2;
+            }
+        }
+    }
+    if alpha.is_nan() || alpha <= 0.0 {
+        return Subspace::Declined;
+    }
+    // Stage 1 (no friction unknowns) first tries the whole step projected onto λ ≥ 0, which
+    // changes many normals at once (a pyramid settling changes hundreds); the ratio-test step
+    // follows if that one does not lower F.
+    let ratio = (alpha, blocking);
+    let projected_first = directions.is_empty() && alpha < 1.0;
+    if projected_first {
+        (alpha, blocking) = (1.0, None);
+    }
+    saved.clear();
+    saved.extend_from_slice(motions);
+    subspace_rows.clear();
+    subspace_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+    // Backtracking: a step that did not lower F (a nearly singular H solved inaccurately) is
+    // undone and tried again 8 times shorter, a few times.
+    for attempt in 0..SUBSPACE_BACKTRACKS {
+        let mut p = 0;
+        while p < m {
+            let unknown = unknowns[p];
+            let row = &mut rows[unknown.row];
+            match unknown.tangent {
+                None => {
+                    // The normal that cut the step short leaves the active set at exactly 0.
+                    let new = if blocking == Some(p) {
+                        0.0
+                    } else {
+                        (row.lambda + alpha * delta[p]).max(0.0)
+                    };
+                    let step = new - row.lambda;
+                    row.lambda = new;
+                    row.normal.apply(step, motions);
+                    p += 1;
+                }
+                Some((c, _)) => {
+                    let pair = unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row);
+                    let old = row.lambda_tangent;
+                    let step = if pair {
+                        [alpha * delta[p], alpha * delta[p + 1]]
+                    } else {
+                        [alpha * delta[p] * c[0], alpha * delta[p] * c[1]]
+                    };
+                    let mut new = [old[0] + step[0], old[1] + step[1]];
+                    let size = (new[0] * new[0] + new[1] * new[1]).sqrt();
+                    if size > row.friction_bound || !pair || blocking == Some(p) {
+                        // Back onto the edge: a sticking disk that reached it (round-off), or an
+                        // edge unknown moved along its tangent.
+                        let scale = row.friction_bound / size;
+                        new = [new[0] * scale, new[1] * scale];
+                    }
+                    row.lambda_tangent = new;
+                    let [t1, t2] = &directions[unknown.row];
+                    t1.apply(new[0] - old[0], motions);
+                    t2.apply(new[1] - old[1], motions);
+                    p += if pair { 2 } else { 1 };
+                }
+            }
+        }
+        // ΔF = ΔΛ·(∇F before + ∇F after)/2 over the rows that moved (exact: F is quadratic).
+        let mut change = 0.0;
+        let mut p = 0;
+        while p < m {
+            let unknown = &unknowns[p];
+            let row = &rows[unknown.row];
+            let (lambda, tangent) = subspace_rows[unknown.row];
+            match unknown.tangent {
+                None => {
+                    let after = row.normal.velocity(motions) + row.bias;
+                    change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
+                    p += 1;
+                }
+                Some(_) => {
+                    let [t1, t2] = &directions[unknown.row];
+                    let after = [t1.velocity(motions), t2.velocity(motions)];
+                    let moved = [
+                        row.lambda_tangent[0] - tangent[0],
+                        row.lambda_tangent[1] - tangent[1],
+                    ];
+                    change += 0.5
+                        * (moved[0] * (unknown.before[0] + after[0])
+                            + moved[1] * (unknown.before[1] + after[1]));
+                    p += if unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row) {
+                        2
+                    } else {
+                        1
+                    };
+                }
+            }
+        }
+        if change < 0.0 {
+            if let Some(p) = blocking.filter(|&p| unknowns[p].tangent.is_some()) {
+                pinned.push(unknowns[p].row);
+            }
+            return Subspace::Taken {
+                whole: alpha == 1.0 && attempt == 0 && !projected_first,
+            };
+        }
+        motions.copy_from_slice(saved);
+        for (row, &(lambda, tangent)) in rows.iter_mut().zip(subspace_rows.iter()) {
+            row.lambda = lambda;
+            row.lambda_tangent = tangent;
+        }
+        if projected_first && attempt == 0 {
+            (alpha, blocking) = ratio;
+        } else {
+            alpha /= 8.0;
+            blocking = None;
+        }
+    }
+    Subspace::Declined
+}
+
+/// One unknown of the friction subspace step: row `row`'s normal impulse (`tangent` None), or
+/// its tangent impulse along `c₁ t₁ + c₂ t₂` with the curvature κ added to its diagonal
+/// (`tangent` Some((c, κ)): a sticking disk has two, c = (1, 0) and (0, 1), κ = 0; a sliding
+/// one has one, along its edge).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Unknown {
+    row: usize,
+    tangent: Option<([f64; 2], f64)>,
+    /// ∇F along the row's directions before the step: (uₙ + gₙ/dt, 0), or u_t.
+    before: [f64; 2],
+    /// The row's normal, or its tangent `c₁ t₁ + c₂ t₂` with its ends (for the couplings).
+    direction: Axis,
+}
+
+/// The direction `c₁ t₁ + c₂ t₂` of two tangent directions at one contact (the same ends):
+/// d, r×d and I⁻¹(r×d) are linear in d (its k is not used).
+fn combined(t: &[Axis; 2], c: [f64; 2]) -> Axis {
+    let [t1, t2] = t;
+    let end = |e: &End, f: &End| End {
+        body: e.body,
+        rd: e.rd * c[0] + f.rd * c[1],
+        w: e.w * c[0] + f.w * c[1],
+    };
+    Axis {
+        d: t1.d * c[0] + t2.d * c[1],
+        a: end(&t1.a, &t2.a),
+        b: t1.b.as_ref().zip(t2.b.as_ref()).map(|(e, f)| end(e, f)),
+        k: f64::NAN,
+        inv_k: f64::NAN,
+    }
+}
