@@ -108,13 +108,13 @@
 //! slope or on a sphere), and what penetration is left is removed by translation (see there).
 
 use super::contacts;
-use super::dense::Dense;
 use super::position::{self, Fix};
 use super::solver_body::{Axis, End, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
+use crate::physics::envelope::{Envelope, Pivots};
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -131,10 +131,10 @@ pub const MAX_SWEEPS: usize = 2000;
 
 /// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40,
 /// a pyramid of 20 rows about 1600; the system is banded or nearly so there and only its
-/// envelope is stored and factored, see [`Dense`]).
+/// envelope is stored and factored, see [`Envelope`]).
 pub const DIRECT_MAX: usize = 4096;
 
-/// Largest envelope (stored entries of [`Dense`], 8 bytes each) the direct solves take on;
+/// Largest envelope (stored entries of [`Envelope`], 8 bytes each) the direct solves take on;
 /// beyond it the sweeps run. A stack of 40 (banded) stays far below it; a pyramid of 20 rows,
 /// whose rows in contact order reach back over a whole row of cubes, stores about 250 000
 /// while it settles (about 5 ms a factorisation, against seconds of capped sweeps).
@@ -249,7 +249,7 @@ pub struct Scratch {
 /// active rows (in contact order), their impulses, and the rows entering the active set.
 #[derive(Debug, Clone, Default)]
 struct Direct {
-    system: Dense,
+    system: Envelope,
     saved: Vec<SolverBody>,
     active: Vec<usize>,
     lambda: Vec<f64>,
@@ -782,7 +782,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
 }
 
 /// The mean width of the rows' envelope in contact order, `Σ_p (p − first(p) + 1) / m`, with
-/// first(p) the first row acting on one of row p's bodies (as [`Dense`] stores it).
+/// first(p) the first row acting on one of row p's bodies (as [`Envelope`] stores it).
 fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
     body_first.clear();
     let mut sum = 0usize;
@@ -1087,7 +1087,7 @@ fn subspace_step(
             return Subspace::TooWide;
         }
     }
-    let Some(delta) = system.solve() else {
+    let Some(delta) = system.solve(Pivots::Regularised) else {
         return Subspace::Declined;
     };
     // The ratio test: the largest α ≤ 1 keeping the free normals ≥ 0 and the sticking disks
@@ -1351,7 +1351,7 @@ fn direct_inelastic(
                 return false;
             }
         }
-        let Some(solution) = system.solve() else {
+        let Some(solution) = system.solve(Pivots::Regularised) else {
             return false;
         };
         lambda.clear();
@@ -1541,7 +1541,7 @@ fn direct_sticking(
             return false;
         }
     }
-    let Some(solution) = system.solve() else {
+    let Some(solution) = system.solve(Pivots::Regularised) else {
         return false;
     };
     delta.clear();
