@@ -14,6 +14,7 @@
 //! | `free_flow` | the exact torque-free flow over one step (the drift of `exact-splitting`) |
 //! | `integrators` | the integrate phase, one file per method |
 //! | `joints` | joints (constraint rows, multipliers, projection) and springs |
+//! | `envelope` | effective-mass systems J W Jᵀ: envelope LDLᵀ (contacts) or Cholesky (joints) |
 //! | `system` | the derivative of the whole system when springs or joints couple bodies |
 //! | `collision` | the collide phase: obstacles, detection, responses |
 //! | `world` | the loop, phase by phase, over every body |
@@ -30,6 +31,7 @@ pub mod divergence;
 pub mod effects;
 pub mod energy;
 pub mod energy_ledger;
+pub mod envelope;
 pub mod free_flow;
 pub mod free_top;
 pub mod integrators;

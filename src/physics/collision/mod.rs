@@ -17,11 +17,9 @@
 //! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
 //! | `sweep` | fast pairs of bodies: time of impact, rows carried to the end of the step (no tunnelling) |
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
-//! | `dense` | the direct solves' small symmetric systems (LDLᵀ in each row's envelope) |
-
+//!
 pub mod broad_phase;
 pub mod contacts;
-pub mod dense;
 pub mod detect;
 pub mod geometry;
 pub mod impulse;

@@ -54,7 +54,7 @@
 //! the same translation: only the deepest one counts, so they merge into one row of depth
 //! `max dᵢ`, exactly. What is left — one row per pair in a stack — is solved at once with the
 //! rows that penetrate as the active set: `B μ = d`, `B_ij = Σ_shared b (±nᵢ)·(±nⱼ)/M_b`
-//! (`dense`); a row the answer leaves penetrating joins the set and it is solved again (a
+//! (`envelope`); a row the answer leaves penetrating joins the set and it is solved again (a
 //! cube pushed up pushes the one above), a row whose μ comes out negative leaves it (a pair
 //! the others' push-outs already separate: in a pyramid, a cube lifted by one of its two
 //! supports). Accepted when every μ ≥ 0 and every row is separated — the optimality
@@ -64,19 +64,19 @@
 //! stack of n bodies converges by a factor about cos²(π/(n+1)) a sweep: hundreds of sweeps
 //! for 10 cubes.
 
-use super::dense::Dense;
 use super::warm::FastMap;
 use super::{Against, Contact};
 use crate::physics::body::Body;
+use crate::physics::envelope::{Envelope, Pivots};
 use crate::physics::state::State;
 use nalgebra::Vector3;
 use std::collections::hash_map::Entry;
 
 /// Most merged rows the direct push-out takes on (a stack of 10 cubes has 10, a pyramid of
-/// 20 rows about 400; only the system's envelope is stored, see [`Dense`]).
+/// 20 rows about 400; only the system's envelope is stored, see [`Envelope`]).
 pub const DIRECT_MAX: usize = 4096;
 
-/// Largest envelope (stored entries of [`Dense`]) the direct push-out takes on.
+/// Largest envelope (stored entries of [`Envelope`]) the direct push-out takes on.
 pub const ENVELOPE_MAX: usize = 1 << 20;
 
 /// Up to this many contacts the rows are merged by a scan, above it through a hash map.
@@ -101,7 +101,7 @@ pub struct Scratch {
     /// Where each pair and normal sits in `merged` (the merge in O(1) per contact).
     merged_at: FastMap<(usize, Against, [u64; 3]), usize>,
     active: Vec<usize>,
-    dense: Dense,
+    system: Envelope,
 }
 
 /// What the position fix reads: the bodies, their states at the start of the step, dt.
@@ -266,7 +266,7 @@ impl Fix<'_> {
             merged,
             merged_at,
             active,
-            dense,
+            system,
             ..
         } = scratch;
         // One row per pair and normal (bit for bit), with the deepest depth, in the order of
@@ -315,12 +315,12 @@ impl Fix<'_> {
         // next one, so a stack of n takes up to n passes.
         for _ in 0..=merged.len().min(PASSES_MAX) {
             let m = active.len();
-            dense.reset(m);
+            system.reset(m);
             for p in 0..m {
                 let (i, depth) = merged[active[p]];
                 let ci = &contacts[i];
-                dense.rhs[p] = depth;
-                dense.fill_row(p, [Some(ci.body), ci.other_body()], |q| {
+                system.rhs[p] = depth;
+                system.fill_row(p, [Some(ci.body), ci.other_body()], |q| {
                     let cj = &contacts[merged[active[q]].0];
                     let mut sum = None;
                     for (a, sa) in ends(ci) {
@@ -333,11 +333,11 @@ impl Fix<'_> {
                     }
                     sum
                 });
-                if dense.stored() > ENVELOPE_MAX {
+                if system.stored() > ENVELOPE_MAX {
                     return false;
                 }
             }
-            let Some(mu) = dense.solve() else {
+            let Some(mu) = system.solve(Pivots::Regularised) else {
                 return false;
             };
             if mu.iter().any(|&x| x < 0.0) {

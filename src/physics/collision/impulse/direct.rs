@@ -2,7 +2,7 @@
 //! stage is "every approaching contact stops and pushes" (stage 1: a face landing, a body at
 //! rest, the usual case) or "every pushing contact sticks" (stage 2: a body at rest on a
 //! slope), the minimum of K the sweeps converge to is computed at once by a small LDLᵀ solve
-//! ([`Dense`], only each row's envelope stored) and checked against the conditions of the
+//! ([`Envelope`], only each row's envelope stored) and checked against the conditions of the
 //! whole problem; the sweeps run only when that check fails.
 //!
 //! - `inelastic` (stage 1): `(A + ε𝟙) λ = −u` over an active set of normal rows, changed by
@@ -23,19 +23,20 @@
 //! is the contact-space inverse mass over the rows' axes, and ε = 1e-10 · max Aᵢᵢ picks the
 //! minimum-norm answer of a semi-definite A (4 coplanar contacts constrain 3 motions).
 //!
-//! [`Dense`]: crate::physics::collision::dense::Dense
+//! [`Envelope`]: crate::physics::envelope::Envelope
 //! [`WIDE_ENVELOPE`]: super::WIDE_ENVELOPE
 
 #[cfg(doc)]
 use super::GAP_ROUND_OFF;
 use super::{Direct, Row, ENVELOPE_MAX};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
+use crate::physics::envelope::Pivots;
 
 /// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40,
 /// a pyramid of 20 rows about 1600; the system is banded or nearly so there and only its
-/// envelope is stored and factored, see [`Dense`]).
+/// envelope is stored and factored, see [`Envelope`]).
 ///
-/// [`Dense`]: crate::physics::collision::dense::Dense
+/// [`Envelope`]: crate::physics::envelope::Envelope
 pub const DIRECT_MAX: usize = 4096;
 
 /// How many changes of its active set the direct inelastic solve may make (one row out or in
@@ -54,9 +55,9 @@ pub const STICKING_MAX: usize = DIRECT_MAX / 3;
 pub const RESTING_GAP: f64 = 1e-6;
 
 /// The mean width of the rows' envelope in contact order, `Σ_p (p − first(p) + 1) / m`, with
-/// first(p) the first row acting on one of row p's bodies (as [`Dense`] stores it).
+/// first(p) the first row acting on one of row p's bodies (as [`Envelope`] stores it).
 ///
-/// [`Dense`]: crate::physics::collision::dense::Dense
+/// [`Envelope`]: crate::physics::envelope::Envelope
 #[inline]
 pub(super) fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
     body_first.clear();
@@ -143,7 +144,7 @@ pub(super) fn inelastic(
                 return false;
             }
         }
-        let Some(solution) = system.solve() else {
+        let Some(solution) = system.solve(Pivots::Regularised) else {
             return false;
         };
         lambda.clear();
@@ -333,7 +334,7 @@ pub(super) fn sticking(
             return false;
         }
     }
-    let Some(solution) = system.solve() else {
+    let Some(solution) = system.solve(Pivots::Regularised) else {
         return false;
     };
     delta.clear();

@@ -81,13 +81,13 @@ pub mod normal;
 pub mod subspace;
 
 use super::contacts;
-use super::dense::Dense;
 use super::position::{self, Fix};
 use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
+use crate::physics::envelope::Envelope;
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -108,7 +108,7 @@ pub const TOLERANCE: f64 = 1e-10;
 /// number would leave every later step unconverged too.
 pub const MAX_SWEEPS: usize = 2000;
 
-/// Largest envelope (stored entries of [`Dense`], 8 bytes each) the direct solves take on;
+/// Largest envelope (stored entries of [`Envelope`], 8 bytes each) the direct solves take on;
 /// beyond it the sweeps run. A stack of 40 (banded) stays far below it; a pyramid of 20 rows,
 /// whose rows in contact order reach back over a whole row of cubes, stores about 250 000
 /// while it settles (about 5 ms a factorisation, against seconds of capped sweeps).
@@ -165,7 +165,7 @@ pub struct Scratch {
 /// active rows (in contact order), their impulses, and the rows entering the active set.
 #[derive(Debug, Clone, Default)]
 struct Direct {
-    system: Dense,
+    system: Envelope,
     saved: Vec<SolverBody>,
     active: Vec<usize>,
     lambda: Vec<f64>,

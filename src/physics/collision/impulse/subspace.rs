@@ -14,6 +14,7 @@
 
 use super::{friction, normal, Counters, Direct, Row, ENVELOPE_MAX, MAX_SWEEPS};
 use crate::physics::collision::solver_body::{Axis, End, SolverBody};
+use crate::physics::envelope::Pivots;
 
 /// The friction sweeps take a subspace step (`step`) after this many sweeps
 /// that did not converge.
@@ -243,7 +244,7 @@ fn step(
             return Subspace::TooWide;
         }
     }
-    let Some(delta) = system.solve() else {
+    let Some(delta) = system.solve(Pivots::Regularised) else {
         return Subspace::Declined;
     };
     // The ratio test: the largest α ≤ 1 keeping the free normals ≥ 0 and the sticking disks
