@@ -58,7 +58,7 @@
 use super::SLOP;
 use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
-use crate::physics::collision::geometry::{point_shape, Pose};
+use crate::physics::collision::geometry::{point_shape, Pose, Shape};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
@@ -218,6 +218,19 @@ impl Sweeps {
     }
 }
 
+/// A body's contact shape at its pose in `state`, and its world inverse inertia
+/// `R I⁻¹_body Rᵀ`; None for a body without a shape.
+fn shape_at<'a>(body: &'a Body, state: &State) -> Option<(&'a Shape, Pose, Matrix3<f64>)> {
+    let shape = body.shape.as_ref()?;
+    let rotation = state.orientation.matrix();
+    let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+    let pose = Pose {
+        position: state.position,
+        rotation,
+    };
+    Some((shape, pose, inv_inertia))
+}
+
 /// One particle–body contact pass over a cloth: returns the number of contacts.
 ///
 /// `bounce_speed`: approaches slower than this do not bounce.
@@ -232,17 +245,11 @@ pub fn collide_bodies(
     let mut count = 0;
     let mut sweeps = Sweeps::default();
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
-        let Some(shape) = body.shape.as_ref() else {
+        let Some((shape, pose, inv_inertia)) = shape_at(body, state) else {
             continue;
-        };
-        let rotation = state.orientation.matrix();
-        let pose = Pose {
-            position: state.position,
-            rotation,
         };
         // A quick reject: particles farther than the body's radius from its barycenter.
         let reach = body.radius;
-        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
         sweeps.start(body, state, &inv_inertia);
         // An implicit-euler cloth's ties end its particles on the surface: what is left
         // inside at round-off is not a contact.
@@ -319,15 +326,9 @@ pub fn approach_bodies(
     let mut report = Approach::default();
     let mut sweeps = Sweeps::default();
     for ((body, state), before) in bodies.iter().zip(states.iter_mut()).zip(start) {
-        let Some(shape) = body.shape.as_ref() else {
+        let Some((shape, pose, inv_inertia)) = shape_at(body, state) else {
             continue;
         };
-        let rotation = state.orientation.matrix();
-        let pose = Pose {
-            position: state.position,
-            rotation,
-        };
-        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
         let omega = inv_inertia * state.angular_momentum;
         let body_speed = state.linear_momentum.norm() * body.inv_mass + omega.norm() * body.radius;
         let start_rotation = before.orientation.matrix();

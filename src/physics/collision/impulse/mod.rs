@@ -258,11 +258,10 @@ pub fn respond(
     contacts: &mut Vec<Contact>,
     scratch: &mut Scratch,
 ) -> Option<EnergyChange> {
-    let bounce_speed = input
-        .gravity
-        .map_or(0.0, |g| BOUNCE_STEPS * g.norm() * input.dt);
+    let context = input.context();
+    let bounce_speed = context.bounce_speed;
     // Points closer than this to a surface are speculative contacts (module doc).
-    let margin = bounce_speed * input.dt;
+    let margin = context.speculative_margin;
     std::mem::swap(&mut scratch.previous, contacts);
     if !contacts::find(
         input,
