@@ -697,11 +697,19 @@ impl World {
                     list,
                     self.dt,
                     position_factor(self.integrator),
+                    &self.links,
+                    &mut joint_impulses,
                 );
-                now.cloth_attach_loads[k] = held.impulse.map(|j| j / self.dt);
-                if held.taken != 0.0 {
-                    now.ledger.book_contact(held.taken, 0.0);
+                // The joints that hold the attachments' bodies: their share of the reaction.
+                for (load, impulse) in now.joint_loads.iter_mut().zip(&joint_impulses) {
+                    load.force += impulse.force / self.dt;
+                    load.torque += impulse.torque / self.dt;
                 }
+                // An ideal hold does no work: the particle ends on the body's point, and the
+                // pair's impulses ±J act at the same velocity. The kinetic energy the velocity
+                // half gave the particle off its point is symplectic Euler's splitting, left to
+                // the drift, not booked as a contact's loss.
+                now.cloth_attach_loads[k] = held.impulse.map(|j| j / self.dt);
             }
             let lost = cloth.advance_positions(loads, self.dt);
             now.ledger.drag_work -= lost.damping + lost.drag;

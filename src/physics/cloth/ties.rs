@@ -207,6 +207,26 @@ impl BodyJoints {
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
     }
+
+    /// `Q = N (Nᵀ D N)⁻¹ Nᵀ` over the held bodies' stacked 6-vectors, D = blockdiag(`block(b)`)
+    /// for b in [`BodyJoints::bodies`]: the inverse of D on the motions the joints allow (Y = Q w
+    /// minimises ½ Yᵀ D Y − Yᵀ w subject to J Y = 0), 0 when they allow none.
+    pub fn filtered_inverse(
+        &self,
+        block: impl Fn(usize) -> Matrix6<f64>,
+    ) -> nalgebra::DMatrix<f64> {
+        let size = 6 * self.bodies.len();
+        let mut d = nalgebra::DMatrix::<f64>::zeros(size, size);
+        for (g, &b) in self.bodies.iter().enumerate() {
+            d.view_mut((6 * g, 6 * g), (6, 6)).copy_from(&block(b));
+        }
+        let n = &self.basis;
+        let reduced = n.transpose() * &d * n;
+        match reduced.cholesky() {
+            Some(c) if n.ncols() > 0 => n * c.inverse() * n.transpose(),
+            _ => nalgebra::DMatrix::zeros(size, size),
+        }
+    }
 }
 
 /// One particle tied to a body (or to a fixed surface when `body` is None).
@@ -563,19 +583,10 @@ impl Workspace {
         t.held.clear();
         t.held.resize(bodies.len(), false);
         if !joints.is_empty() {
-            let size = 6 * joints.bodies.len();
-            let mut d = nalgebra::DMatrix::<f64>::zeros(size, size);
-            for (g, &b) in joints.bodies.iter().enumerate() {
+            for &b in &joints.bodies {
                 t.held[b] = true;
-                d.view_mut((6 * g, 6 * g), (6, 6))
-                    .copy_from(&body_blocks[b]);
             }
-            let n = &joints.basis;
-            let reduced = n.transpose() * &d * n;
-            t.held_inverse = match reduced.cholesky() {
-                Some(c) if n.ncols() > 0 => n * c.inverse() * n.transpose(),
-                _ => nalgebra::DMatrix::zeros(size, size),
-            };
+            t.held_inverse = joints.filtered_inverse(|b| body_blocks[b]);
         }
         // Reduced right-hand side: Tᵀ(b̄ − Ā z). z is 0 but at the tied particles: on a grid
         // sheet A z is computed only in their rows and their springs' other ends

@@ -2,11 +2,14 @@
 //! half ([`hold_attachments`]), and attached particles carried with their bodies after the
 //! collide phase moved them ([`carry_attachments`]).
 
+use super::tied::HeldJoints;
 use super::{close_gap, move_body, turn_gap, Attachment};
 use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
+use crate::physics::effects::Loads;
+use crate::physics::joints::Links;
 use crate::physics::state::State;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 
 /// What the attachments of an explicit cloth did over a step ([`hold_attachments`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -158,8 +161,25 @@ pub fn carry_attachments(
 /// integrator ignores the correction in its position (factor 0) takes the impulses in its
 /// momenta only.
 ///
+/// **Bodies held by joints** (a pole on a hinge): their corrections must keep the joints'
+/// velocity rows, `J Y = 0` (`tied`'s `HeldJoints`, the rows at the bodies' poses after their
+/// own step), as inside the implicit cloth's solve (`cloth::ties`, "Joints on the bodies").
+/// The held bodies' attachments are solved together, each body's response `M_b⁻¹` replaced by
+/// the joints' filtered inverse Q = N (Nᵀ D N)⁻¹ Nᵀ (N a basis of null(J), D = blockdiag(M_b)),
+///
+/// ```text
+/// K = blockdiag(I/m_p) + factor G Q Gᵀ,   G_a Y = Y_V + Y_ω × r_a  (row a, body b(a)'s columns)
+/// Y = −Q Gᵀ J,   ΔP_b = M Y_V,   ΔL_b = I Y_ω,   joint impulse Jᵀμ = D Y + Gᵀ J
+/// ```
+///
+/// so the pull on the pole turns it only about its hinge, within the step; what the joints
+/// gave is added to their reactions (`joint_impulses`, N·s, one per joint of `links`). A body
+/// whose integrator ignores the correction (factor 0) takes the filtered Y in its momenta
+/// only.
+///
 /// Returns the kinetic energy the impulses took, J (a rigid hold is a perfectly plastic
 /// impact between the particle and the body's point: ≥ 0), and the impulses' sum and moment.
+#[allow(clippy::too_many_arguments)]
 pub fn hold_attachments(
     cloth: &mut Cloth,
     bodies: &[Body],
@@ -167,12 +187,31 @@ pub fn hold_attachments(
     attachments: &[Attachment],
     dt: f64,
     factor: f64,
+    links: &Links,
+    joint_impulses: &mut Vec<Loads>,
 ) -> AttachReport {
-    use nalgebra::{DMatrix, DVector};
     let mut report = AttachReport::default();
+    let moves = |b: usize| !bodies[b].fixed && bodies[b].inv_mass > 0.0;
+    let held = HeldJoints::new(links, states, moves);
+    let is_held = |b: usize| held.filter.bodies.contains(&b);
+    joint_impulses.clear();
+    joint_impulses.resize(links.joints.len(), Loads::default());
+    if attachments.iter().any(|a| is_held(a.body)) {
+        hold_on_joints(
+            cloth,
+            bodies,
+            states,
+            attachments,
+            dt,
+            factor,
+            &held,
+            joint_impulses,
+            &mut report,
+        );
+    }
     for (b, (body, state)) in bodies.iter().zip(states.iter_mut()).enumerate() {
         let list: Vec<&Attachment> = attachments.iter().filter(|a| a.body == b).collect();
-        if list.is_empty() {
+        if list.is_empty() || is_held(b) {
             continue;
         }
         let rotation = state.orientation.matrix();
@@ -246,4 +285,121 @@ pub fn hold_attachments(
         report.taken += before - kinetic(cloth, state);
     }
     report
+}
+
+/// The attachments on the bodies the joints hold, solved together ([`hold_attachments`],
+/// "Bodies held by joints").
+#[allow(clippy::too_many_arguments)]
+fn hold_on_joints(
+    cloth: &mut Cloth,
+    bodies: &[Body],
+    states: &mut [State],
+    attachments: &[Attachment],
+    dt: f64,
+    factor: f64,
+    held: &HeldJoints,
+    joint_impulses: &mut Vec<Loads>,
+    report: &mut AttachReport,
+) {
+    let group = &held.filter.bodies;
+    let column = |b: usize| group.iter().position(|&x| x == b);
+    let list: Vec<(&Attachment, usize)> = (attachments.iter())
+        .filter_map(|a| column(a.body).map(|g| (a, g)))
+        .collect();
+    let rotations: Vec<Matrix3<f64>> = (group.iter())
+        .map(|&b| states[b].orientation.matrix())
+        .collect();
+    // D per body: diag(M, I) with I = R I_body Rᵀ; its inverse's angular part for energies.
+    let inertia =
+        |g: usize| rotations[g] * bodies[group[g]].inertia_body * rotations[g].transpose();
+    let inv_inertia =
+        |g: usize| rotations[g] * bodies[group[g]].inv_inertia_body * rotations[g].transpose();
+    let q = held.filter.filtered_inverse(|b| {
+        let g = column(b).expect("a held body");
+        let mut d = Matrix6::zeros();
+        for k in 0..3 {
+            d[(k, k)] = bodies[b].mass;
+        }
+        d.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia(g));
+        d
+    });
+    let arms: Vec<Vector3<f64>> = (list.iter())
+        .map(|(a, g)| rotations[*g] * a.offset_body)
+        .collect();
+    // G: 3k × 6n, row block a = [I, −[r_a]×] in its body's columns.
+    let (k, n) = (list.len(), group.len());
+    let mut g_matrix = DMatrix::<f64>::zeros(3 * k, 6 * n);
+    let mut rhs = DVector::<f64>::zeros(3 * k);
+    for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
+        g_matrix
+            .fixed_view_mut::<3, 3>(3 * a, 6 * g)
+            .copy_from(&Matrix3::identity());
+        g_matrix
+            .fixed_view_mut::<3, 3>(3 * a, 6 * g + 3)
+            .copy_from(&(-ra.cross_matrix()));
+        let p = att.particle;
+        let point = states[group[*g]].position + ra;
+        let u = (point - cloth.positions[p]) / dt - cloth.velocities[p];
+        rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
+    }
+    let mut matrix = &g_matrix * &q * g_matrix.transpose() * factor;
+    for (a, (att, _)) in list.iter().enumerate() {
+        for c in 0..3 {
+            matrix[(3 * a + c, 3 * a + c)] += cloth.inv_mass(att.particle);
+        }
+    }
+    let Some(cholesky) = matrix.cholesky() else {
+        return;
+    };
+    let impulses = cholesky.solve(&rhs);
+    let kinetic = |cloth: &Cloth, states: &[State]| {
+        let rigid: f64 = (0..n)
+            .map(|g| {
+                let s = &states[group[g]];
+                0.5 * s.linear_momentum.norm_squared() * bodies[group[g]].inv_mass
+                    + 0.5
+                        * s.angular_momentum
+                            .dot(&(inv_inertia(g) * s.angular_momentum))
+            })
+            .sum();
+        list.iter().fold(rigid, |t, (a, _)| {
+            t + 0.5 * cloth.masses[a.particle] * cloth.velocities[a.particle].norm_squared()
+        })
+    };
+    let before = kinetic(cloth, states);
+    for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
+        let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
+        cloth.apply_impulse(att.particle, &j);
+        report.impulse[0] += j;
+        report.impulse[1] += (states[group[*g]].position + ra).cross(&j);
+    }
+    // The particles' pull on the bodies, Gᵀ J; the bodies' filtered response Y = −Q Gᵀ J.
+    let pull = g_matrix.transpose() * &impulses;
+    let y = -(&q * &pull);
+    let mut wrench = DVector::<f64>::zeros(6 * n);
+    for (g, &b) in group.iter().enumerate() {
+        let y_v = Vector3::new(y[6 * g], y[6 * g + 1], y[6 * g + 2]);
+        let y_w = Vector3::new(y[6 * g + 3], y[6 * g + 4], y[6 * g + 5]);
+        let (dp, dl) = (y_v * bodies[b].mass, inertia(g) * y_w);
+        let state = &mut states[b];
+        state.linear_momentum += dp;
+        state.angular_momentum += dl;
+        for c in 0..3 {
+            wrench[6 * g + c] = dp[c] + pull[6 * g + c];
+            wrench[6 * g + 3 + c] = dl[c] + pull[6 * g + 3 + c];
+        }
+        if factor > 0.0 {
+            let (y_v, y_w) = (y_v * factor, y_w * factor);
+            move_body(state, &y_v, &y_w, dt);
+            for ((att, ga), ra) in list.iter().zip(&arms).filter(|((_, ga), _)| *ga == g) {
+                debug_assert_eq!(*ga, g);
+                let gap = turn_gap(&y_w, ra, dt);
+                let j = close_gap(cloth, att.particle, state, ra, &gap, dt);
+                report.impulse[0] += j;
+                report.impulse[1] += (state.position + ra).cross(&j);
+            }
+        }
+    }
+    held.reactions(wrench, joint_impulses);
+    report.taken += before - kinetic(cloth, states);
 }

@@ -325,6 +325,12 @@ pub fn approach_bodies(
 ) -> Approach {
     let mut report = Approach::default();
     let mut sweeps = Sweeps::default();
+    // Attached particles are held to their points (`hold_attachments`), not pushed out of
+    // the body they are sewn into, as in the collide phase (`collide_bodies`).
+    let mut attached = vec![false; cloth.len()];
+    for &(i, _) in &cloth.attached {
+        attached[i] = true;
+    }
     for ((body, state), before) in bodies.iter().zip(states.iter_mut()).zip(start) {
         let Some((shape, pose, inv_inertia)) = shape_at(body, state) else {
             continue;
@@ -338,7 +344,7 @@ pub fn approach_bodies(
         sweeps.start(body, state, &inv_inertia);
         let mut within = 0.0;
         for i in 0..cloth.len() {
-            if cloth.inv_mass(i) == 0.0 {
+            if cloth.inv_mass(i) == 0.0 || attached[i] {
                 continue;
             }
             let x = cloth.positions[i];

@@ -153,7 +153,7 @@ pub fn tied_step(
         .collect();
     // The joints on the bodies that move in the solve, held inside it (`cloth::ties`,
     // "Joints on the bodies").
-    let held_joints = HeldJoints::new(links, states, &solver_bodies);
+    let held_joints = HeldJoints::new(links, states, |b| solver_bodies[b].mass > 0.0);
     // A body's material point at `arm` (from its new barycenter): its own-step displacement.
     let displacement = |b: usize, arm: &Vector3<f64>| -> Vector3<f64> {
         let (now, before) = (&states[b], start.get(b).unwrap_or(&states[b]));
@@ -521,8 +521,8 @@ pub fn tied_step(
 /// projection would move the pole, and with it its attached particles, every step. Inside
 /// the solve the pole never leaves the hinge's motions: at rest it does not move, the hinge
 /// carries (M + m) g within the step, and no ledger row changes.
-struct HeldJoints {
-    filter: BodyJoints,
+pub(super) struct HeldJoints {
+    pub(super) filter: BodyJoints,
     /// The rows, each with its joint (`Row::joint`), and their matrix over the stacked
     /// corrections (rows × 6k).
     rows: Vec<Row>,
@@ -530,8 +530,13 @@ struct HeldJoints {
 }
 
 impl HeldJoints {
-    fn new(links: &Links, states: &[State], solver_bodies: &[TiedBody]) -> HeldJoints {
-        let moves = |b: usize| solver_bodies[b].mass > 0.0;
+    /// The rows of the joints that touch a body for which `moves` holds, over the stacked
+    /// corrections of those bodies.
+    pub(super) fn new(
+        links: &Links,
+        states: &[State],
+        moves: impl Fn(usize) -> bool,
+    ) -> HeldJoints {
         let mut bodies: Vec<usize> = Vec::new();
         for joint in &links.joints {
             for b in std::iter::once(joint.a).chain(joint.b) {
@@ -551,7 +556,7 @@ impl HeldJoints {
         bodies.sort_unstable();
         let poses: Vec<JointPose> = states.iter().map(JointPose::of_state).collect();
         for (index, joint) in links.joints.iter().enumerate() {
-            if moves(joint.a) || joint.b.is_some_and(moves) {
+            if moves(joint.a) || joint.b.is_some_and(&moves) {
                 let b = joint.b.map_or(JointPose::WORLD, |b| poses[b]);
                 rows_of(joint, index, &poses[joint.a], &b, &mut rows);
             }
@@ -611,6 +616,13 @@ impl HeldJoints {
                 wrench[6 * g + 3 + c] += t[c];
             }
         }
+        self.reactions(wrench, out);
+    }
+
+    /// The joints' share of the held bodies' wrench W (stacked as the corrections, N·s and
+    /// N·m·s about each barycenter), added to `out` per joint: W = Jᵀ μ solved for μ by least
+    /// squares, then Σ over each joint's rows of (lin_A μ, ang_A μ).
+    pub(super) fn reactions(&self, wrench: DVector<f64>, out: &mut [Loads]) {
         let svd = self.matrix.transpose().svd(true, true);
         let largest = svd.singular_values.iter().fold(0.0_f64, |m, v| m.max(*v));
         let Ok(mu) = svd.solve(&wrench, 1e-12 * largest) else {
