@@ -298,7 +298,7 @@ fn hold_on_joints(
     dt: f64,
     factor: f64,
     held: &HeldJoints,
-    joint_impulses: &mut Vec<Loads>,
+    joint_impulses: &mut [Loads],
     report: &mut AttachReport,
 ) {
     let group = &held.filter.bodies;

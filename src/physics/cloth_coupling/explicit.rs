@@ -343,6 +343,7 @@ pub fn approach_bodies(
         let start_velocity = before.linear_momentum * body.inv_mass;
         sweeps.start(body, state, &inv_inertia);
         let mut within = 0.0;
+        #[allow(clippy::needless_range_loop)] // the particle index reaches several arrays
         for i in 0..cloth.len() {
             if cloth.inv_mass(i) == 0.0 || attached[i] {
                 continue;
