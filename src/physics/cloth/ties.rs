@@ -278,8 +278,10 @@ pub struct TieBuffers {
     starts: Vec<Start>,
     /// The rounds solved since [`TieBuffers::new_step`].
     round: usize,
-    /// A solve's cold start and reduced right-hand side, kept while its warm start is tried.
+    /// A solve's cold start, kept while its warm start is tried.
     kept: Vec<Vector3<f64>>,
+    /// The particles' reduced right-hand side Tᵀ(b̄ − Ā z) (`start_residual` reads it: a
+    /// start tried and dropped leaves it as it was).
     reduced: Vec<Vector3<f64>>,
     /// The rows of A z to compute, and which are listed (`solve_tied`).
     rows: Vec<usize>,
@@ -614,6 +616,7 @@ impl Workspace {
             );
         }
         t.wrenches.clear();
+        t.reduced.resize(n, Vector3::zeros());
         for i in 0..n {
             let k = t.tie_of[i];
             let mut r = self.rhs[i] - t.full[i];
@@ -632,7 +635,7 @@ impl Workspace {
             if is_pinned[i] {
                 r = Vector3::zeros();
             }
-            self.residual[i] = r;
+            t.reduced[i] = r;
         }
         {
             let mut rhs: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
@@ -658,7 +661,7 @@ impl Workspace {
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
         for i in 0..n {
-            delta0 += self.residual[i].dot(&t.inverse[i].apply(&self.residual[i]));
+            delta0 += t.reduced[i].dot(&t.inverse[i].apply(&t.reduced[i]));
         }
         precondition_bodies(&mut t, joints, true);
         for bv in &t.body {
@@ -687,10 +690,10 @@ impl Workspace {
             // WARM_GATE of the right-hand side's (module doc, "Warm starts").
             let mut warm = None;
             if candidate {
-                // The cold start is kept aside (swapped, not copied).
+                // The cold start is kept aside and the round's last Δv taken, both swapped,
+                // not copied (the round's start is written anew at the end of the solve).
                 std::mem::swap(&mut self.solution, &mut t.kept);
-                t.reduced.clone_from(&self.residual);
-                self.solution.clone_from(&t.starts[round].particles);
+                std::mem::swap(&mut self.solution, &mut t.starts[round].particles);
                 filter_start(&mut self.solution, &t.tie_of);
                 x_body.copy_from_slice(&t.starts[round].bodies);
                 // A body held by joints starts from 0: its last Y kept last step's rows.
@@ -715,7 +718,6 @@ impl Workspace {
                     t.starts[round].pause = TRIAL_PAUSE;
                     // Not good enough: the cold start below, as if never tried.
                     std::mem::swap(&mut self.solution, &mut t.kept);
-                    self.residual.clone_from(&t.reduced);
                     x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                 }
             }
@@ -924,7 +926,7 @@ impl Workspace {
         super::conjugate_gradient::product(blocks, diagonal, order, terms, p, out);
     }
 
-    /// The start's residual r = b − (Tᵀ Ā T) x for x = (`solution`, `x_body`), with `residual`
+    /// The start's residual r = b − (Tᵀ Ā T) x for x = (`solution`, `x_body`), with `reduced`
     /// and the bodies' `rhs` holding b on entry; its preconditioned z; returns δ = r·z.
     /// `product` and `q_body` keep Tᵀ Ā T x (a start worse than zero is undone with it).
     #[allow(clippy::too_many_arguments)]
@@ -954,7 +956,7 @@ impl Workspace {
         self.solution = solution;
         let mut delta = 0.0;
         for i in 0..n {
-            self.residual[i] -= product[i];
+            self.residual[i] = t.reduced[i] - product[i];
             self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
             delta += self.residual[i].dot(&self.preconditioned[i]);
         }
