@@ -18,8 +18,9 @@
 //! particles gathering their springs' terms (below): ~118k instructions per product on the
 //! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). On a grid sheet the
 //! same blocks are also stored by direction and the product runs as a stencil over them
-//! (`stencil`: the same bits, ~66k instructions). A spring whose two ends are pinned has an empty
-//! block: it acts on no free particle. Why not a CSR matrix of 3×3 blocks by rows: each
+//! (`stencil`: the same bits, ~66k instructions; ~35k built for AVX, which it runs when the
+//! CPU has it). A spring whose two ends are pinned has an empty block: it acts on no free
+//! particle. Why not a CSR matrix of 3×3 blocks by rows: each
 //! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
 //! twice as a full 3×3 plus index arrays, ~2× the flops per product (a full 3×3 product per
 //! neighbour against one compact product per spring). A is symmetric positive definite
