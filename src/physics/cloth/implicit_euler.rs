@@ -124,6 +124,26 @@ pub(super) fn solve_tied(
 
 /// The step's setup: a_i, b_i, the springs' blocks and the block-Jacobi preconditioner.
 pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: `assemble_avx` is safe but for its target feature: calling it needs a CPU
+        // with AVX, which was checked just above.
+        unsafe { assemble_avx(cloth, loads, h) };
+        return;
+    }
+    assemble_plain(cloth, loads, h);
+}
+
+/// [`assemble`] compiled with AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn assemble_avx(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
+    assemble_plain(cloth, loads, h);
+}
+
+/// [`assemble`] for any CPU.
+#[inline(always)]
+fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     let n = cloth.positions.len();
     let scratch = &mut cloth.scratch;
     let work = &mut scratch.solver;
