@@ -453,6 +453,43 @@ impl Workspace {
         tolerance: f64,
         max_iterations: usize,
     ) -> super::conjugate_gradient::Outcome {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: `solve_tied_avx` is safe but for its target feature: calling it needs a
+            // CPU with AVX, which was checked just above.
+            return unsafe {
+                self.solve_tied_avx(ties, bodies, joints, v0, tolerance, max_iterations)
+            };
+        }
+        self.solve_tied_plain(ties, bodies, joints, v0, tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve_tied`] compiled with AVX (its loops and products inlined).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn solve_tied_avx(
+        &mut self,
+        ties: &mut [Tie],
+        bodies: &mut [TiedBody],
+        joints: &BodyJoints,
+        v0: &[Vector3<f64>],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> super::conjugate_gradient::Outcome {
+        self.solve_tied_plain(ties, bodies, joints, v0, tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve_tied`] for any CPU.
+    #[inline(always)]
+    fn solve_tied_plain(
+        &mut self,
+        ties: &mut [Tie],
+        bodies: &mut [TiedBody],
+        joints: &BodyJoints,
+        v0: &[Vector3<f64>],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> super::conjugate_gradient::Outcome {
         let n = self.rhs.len();
         let mut t = std::mem::take(&mut self.ties);
         t.tie_of.clear();
@@ -930,6 +967,7 @@ impl Workspace {
     /// and the bodies' `rhs` holding b on entry; its preconditioned z; returns δ = r·z.
     /// `product` and `q_body` keep Tᵀ Ā T x (a start worse than zero is undone with it).
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn start_residual(
         &mut self,
         t: &mut TieBuffers,
@@ -973,6 +1011,7 @@ impl Workspace {
     /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc). `p` is expanded in place (its
     /// tied rows to S p + G Y, its pinned rows to 0) for the product and given back as it came.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn multiply_reduced(
         &self,
         t: &mut TieBuffers,
