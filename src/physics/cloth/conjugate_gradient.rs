@@ -473,6 +473,26 @@ impl Workspace {
     /// Solves A Δv = rhs for the particles not pinned, A built from `blocks` and `diagonal`,
     /// P from `preconditioner` (inverted here); the result is in `solution`.
     pub fn solve(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: `solve_avx` is safe but for its target feature: calling it needs a CPU
+            // with AVX, which was checked just above.
+            return unsafe { self.solve_avx(tolerance, max_iterations) };
+        }
+        self.solve_plain(tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve`] compiled with AVX (its loops inlined; the product is the
+    /// stencil's own AVX build).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    fn solve_avx(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
+        self.solve_plain(tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve`] for any CPU.
+    #[inline(always)]
+    fn solve_plain(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
         // P_i⁻¹ (pinned rows: 0, and the right-hand side and warm start filtered).
         for p in &mut self.preconditioner {
             *p = p.inverse();

@@ -241,6 +241,26 @@ fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
 /// What the step's damping and drag forces were: at v₁, along d̂₀ (a spring with both ends
 /// pinned has v₁_j − v₁_i = 0: no force), for the loss accounting.
 pub(super) fn finish(cloth: &mut Cloth, loads: &ClothLoads) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: `finish_avx` is safe but for its target feature: calling it needs a CPU
+        // with AVX, which was checked just above.
+        unsafe { finish_avx(cloth, loads) };
+        return;
+    }
+    finish_plain(cloth, loads);
+}
+
+/// [`finish`] compiled with AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn finish_avx(cloth: &mut Cloth, loads: &ClothLoads) {
+    finish_plain(cloth, loads);
+}
+
+/// [`finish`] for any CPU.
+#[inline(always)]
+fn finish_plain(cloth: &mut Cloth, loads: &ClothLoads) {
     let n = cloth.positions.len();
     let scratch = &mut cloth.scratch;
     let work = &scratch.solver;
