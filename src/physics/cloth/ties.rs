@@ -517,9 +517,11 @@ impl Workspace {
         // a step's first round only (P does not change between its rounds): a later round
         // puts back the P⁻¹ of the particles the last round's ties filtered.
         if t.round == 0 || t.inverse.len() != n {
-            t.inverse.clear();
-            t.inverse
-                .extend(self.preconditioner.iter().map(Symmetric3::inverse));
+            // (A loop, not `extend`: inlined here, it is compiled for AVX with the rest.)
+            t.inverse.resize(n, Symmetric3::default());
+            for (inverse, p) in t.inverse.iter_mut().zip(&self.preconditioner) {
+                *inverse = p.inverse();
+            }
             for &i in &pinned {
                 t.inverse[i as usize] = Symmetric3::default();
             }
