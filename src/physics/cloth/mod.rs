@@ -16,6 +16,15 @@
 //! | `stability` | the explicit limit 2/ω_max by power iteration |
 //! | `energy` | kinetic, spring and gravitational energy; losses |
 //! | `contact` | particles against fixed obstacles |
+//!
+//! **AVX builds.** The implicit step's hot functions (`stencil`'s product, `implicit_euler`'s
+//! assemble and finish, `conjugate_gradient`'s solve, `ties`' solve) are compiled twice, for
+//! any x86-64 CPU (SSE2) and with AVX (`#[target_feature]`), and run the AVX build when the CPU
+//! has it (checked at run time; each call's `SAFETY` comment says why it is sound). The same
+//! source, the same operations on each number in the same order (a sum stays a sequential
+//! sum; AVX alone has no FMA to contract into): the same bits on either build (the stencil's
+//! test compares them; `examples/cloth_steps` prints the checksums). Measured by callgrind on
+//! the cube on the 21 × 21 trampoline: −26 % instructions over the 2 s cycle.
 
 mod conjugate_gradient;
 pub mod contact;
