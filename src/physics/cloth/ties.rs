@@ -1038,8 +1038,12 @@ impl Workspace {
         }
         for &i in pinned {
             let i = i as usize;
-            t.saved.push((i, p[i]));
-            p[i] = Vector3::zeros();
+            // A row already +0 (as the CG's vectors keep a pinned row) is left as it is: no
+            // saving, the same bits.
+            if p[i].iter().any(|x| x.to_bits() != 0) {
+                t.saved.push((i, p[i]));
+                p[i] = Vector3::zeros();
+            }
         }
         // A p straight into `out`; then the tied rows, and the pinned rows zeroed.
         super::conjugate_gradient::product(
