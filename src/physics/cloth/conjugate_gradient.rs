@@ -474,9 +474,9 @@ impl Workspace {
     /// P from `preconditioner` (inverted here); the result is in `solution`.
     pub fn solve(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
+        if super::avx() {
             // SAFETY: `solve_avx` is safe but for its target feature: calling it needs a CPU
-            // with AVX, which was checked just above.
+            // with AVX, which `avx` checked just above.
             return unsafe { self.solve_avx(tolerance, max_iterations) };
         }
         self.solve_plain(tolerance, max_iterations)

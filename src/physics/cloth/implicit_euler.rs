@@ -125,9 +125,9 @@ pub(super) fn solve_tied(
 /// The step's setup: a_i, b_i, the springs' blocks and the block-Jacobi preconditioner.
 pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx") {
+    if super::avx() {
         // SAFETY: `assemble_avx` is safe but for its target feature: calling it needs a CPU
-        // with AVX, which was checked just above.
+        // with AVX, which `avx` checked just above.
         unsafe { assemble_avx(cloth, loads, h) };
         return;
     }
@@ -242,9 +242,9 @@ fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
 /// pinned has v₁_j − v₁_i = 0: no force), for the loss accounting.
 pub(super) fn finish(cloth: &mut Cloth, loads: &ClothLoads) {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx") {
+    if super::avx() {
         // SAFETY: `finish_avx` is safe but for its target feature: calling it needs a CPU
-        // with AVX, which was checked just above.
+        // with AVX, which `avx` checked just above.
         unsafe { finish_avx(cloth, loads) };
         return;
     }

@@ -22,8 +22,9 @@
 //! any x86-64 CPU (SSE2) and with AVX (`#[target_feature]`), and run the AVX build when the CPU
 //! has it (checked at run time; each call's `SAFETY` comment says why it is sound). The same
 //! source, the same operations on each number in the same order (a sum stays a sequential
-//! sum; AVX alone has no FMA to contract into): the same bits on either build (the stencil's
-//! test compares them; `examples/cloth_steps` prints the checksums). Measured by callgrind on
+//! sum; AVX alone has no FMA to contract into): the same bits on either build (tests compare
+//! them: the stencil's product, and the cube landing on the trampoline with the sheet alone,
+//! AVX against plain; `examples/cloth_steps` prints the checksums). Measured by callgrind on
 //! the cube on the 21 × 21 trampoline: −26 % instructions over the 2 s cycle.
 
 mod conjugate_gradient;
@@ -50,6 +51,25 @@ pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
 pub use ties::{BodyJoints, Tie, TieKind, TiedBody};
 
+/// Whether to run the AVX builds (module doc): true only when the CPU has AVX (with the OS's
+/// support for its registers, as `is_x86_feature_detected` checks); a test may switch them off
+/// on its thread ([`PLAIN`]) to compare the two builds' bits.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn avx() -> bool {
+    #[cfg(test)]
+    if PLAIN.with(std::cell::Cell::get) {
+        return false;
+    }
+    std::arch::is_x86_feature_detected!("avx")
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: run the plain builds on this thread even on a CPU with AVX.
+    static PLAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// How text names a cloth: "cloth sheet" for a cloth named `sheet`, but just "cloth" or
 /// "cloth1" for one whose name already says it (never "cloth cloth").
 pub fn label(name: &str) -> String {
@@ -63,6 +83,81 @@ pub fn label(name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::label;
+
+    /// The bits of the cube on the 21 × 21 trampoline (`examples/cloth_steps`, the tied
+    /// solve) after its landing, and of the sheet alone after 50 steps of 5 ms (the untied
+    /// solve), with the AVX builds or the plain ones (`plain`).
+    fn bits(plain: bool) -> Vec<u64> {
+        use nalgebra::Vector3;
+        super::PLAIN.with(|p| p.set(plain));
+        let scene = r#"
+title = "bench"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
+[body]
+shape = "box"
+size = [0.35, 0.35, 0.35]
+mass = 1.0
+position = [0.0, 1.275, 0.0]
+[[cloth]]
+size = [2.0, 2.0]
+count = [21, 21]
+position = [0.0, 1.0, 0.0]
+mass = 2.0
+stretch = 5000.0
+shear = 1000.0
+damping = 20.0
+pinned = "edges"
+integrator = "implicit-euler"
+"#;
+        let path = std::path::Path::new("bench.toml");
+        let mut world = crate::scene::parse(scene, path).unwrap().scene.world();
+        let mut touched = false;
+        for _ in 0..300 {
+            world.step();
+            touched |= world.cloth_body_contacts(0) > 0;
+        }
+        assert!(touched, "the cube lands within 0.3 s");
+        let mut spec = super::ClothSpec::new([2.0, 2.0], [21, 21], 2.0, 5000.0);
+        spec.shear = 1000.0;
+        spec.damping = 0.5;
+        spec.pinned = super::Pinning::Edges;
+        spec.integrator = super::ClothIntegrator::ImplicitEuler;
+        let mut sheet = super::Cloth::new(&spec).unwrap();
+        let loads = super::ClothLoads {
+            gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
+            drag: None,
+        };
+        for _ in 0..50 {
+            sheet.step(&loads, 5e-3);
+        }
+        super::PLAIN.with(|p| p.set(false));
+        let (cloth, state) = (&world.cloths()[0], world.state());
+        let vectors = (cloth.positions.iter().chain(&cloth.velocities))
+            .chain(sheet.positions.iter().chain(&sheet.velocities))
+            .chain([
+                &state.position,
+                &state.linear_momentum,
+                &state.angular_momentum,
+            ]);
+        let rotation = state.orientation.matrix();
+        (vectors.flat_map(|v| v.iter()).chain(rotation.iter()))
+            .map(|x| x.to_bits())
+            .chain([
+                cloth.losses.damping.to_bits(),
+                sheet.losses.damping.to_bits(),
+            ])
+            .collect()
+    }
+
+    #[test]
+    fn the_avx_builds_have_the_bits_of_the_plain_ones() {
+        // On a CPU without AVX both runs are plain: the test then holds trivially.
+        assert!(bits(false) == bits(true), "AVX and plain builds differ");
+    }
 
     #[test]
     fn a_cloth_is_named_once() {

@@ -192,9 +192,9 @@ impl Stencil {
         out: &mut [Vector3<f64>],
     ) {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
+        if super::avx() {
             // SAFETY: `product_avx` is safe but for its target feature: calling it needs a
-            // CPU with AVX, which was checked just above.
+            // CPU with AVX, which `avx` checked just above.
             unsafe { self.product_avx(diagonal, buffers, p, out) };
             return;
         }

@@ -454,9 +454,9 @@ impl Workspace {
         max_iterations: usize,
     ) -> super::conjugate_gradient::Outcome {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx") {
+        if super::avx() {
             // SAFETY: `solve_tied_avx` is safe but for its target feature: calling it needs a
-            // CPU with AVX, which was checked just above.
+            // CPU with AVX, which `avx` checked just above.
             return unsafe {
                 self.solve_tied_avx(ties, bodies, joints, v0, tolerance, max_iterations)
             };
