@@ -18,7 +18,7 @@
 //! particles gathering their springs' terms (below): ~118k instructions per product on the
 //! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). On a grid sheet the
 //! same blocks are also stored by direction and the product runs as a stencil over them
-//! (`stencil`: the same bits, ~66k instructions; ~35k built for AVX, which it runs when the
+//! (`stencil`: the same bits, ~66k instructions; ~34k built for AVX2, which it runs when the
 //! CPU has it). A spring whose two ends are pinned has an empty block: it acts on no free
 //! particle. Why not a CSR matrix of 3×3 blocks by rows: each
 //! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
@@ -474,19 +474,19 @@ impl Workspace {
     /// P from `preconditioner` (inverted here); the result is in `solution`.
     pub fn solve(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
         #[cfg(target_arch = "x86_64")]
-        if super::avx() {
-            // SAFETY: `solve_avx` is safe but for its target feature: calling it needs a CPU
-            // with AVX, which `avx` checked just above.
-            return unsafe { self.solve_avx(tolerance, max_iterations) };
+        if super::avx2() {
+            // SAFETY: `solve_avx2` is safe but for its target feature: calling it needs a CPU
+            // with AVX2, which `avx2` checked just above.
+            return unsafe { self.solve_avx2(tolerance, max_iterations) };
         }
         self.solve_plain(tolerance, max_iterations)
     }
 
-    /// [`Workspace::solve`] compiled with AVX (its loops inlined; the product is the
-    /// stencil's own AVX build).
+    /// [`Workspace::solve`] compiled with AVX2 (its loops inlined; the product is the
+    /// stencil's own AVX2 build).
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    fn solve_avx(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
+    #[target_feature(enable = "avx2")]
+    fn solve_avx2(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
         self.solve_plain(tolerance, max_iterations)
     }
 

@@ -125,19 +125,19 @@ pub(super) fn solve_tied(
 /// The step's setup: a_i, b_i, the springs' blocks and the block-Jacobi preconditioner.
 pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     #[cfg(target_arch = "x86_64")]
-    if super::avx() {
-        // SAFETY: `assemble_avx` is safe but for its target feature: calling it needs a CPU
-        // with AVX, which `avx` checked just above.
-        unsafe { assemble_avx(cloth, loads, h) };
+    if super::avx2() {
+        // SAFETY: `assemble_avx2` is safe but for its target feature: calling it needs a CPU
+        // with AVX2, which `avx2` checked just above.
+        unsafe { assemble_avx2(cloth, loads, h) };
         return;
     }
     assemble_plain(cloth, loads, h);
 }
 
-/// [`assemble`] compiled with AVX.
+/// [`assemble`] compiled with AVX2.
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-fn assemble_avx(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
+#[target_feature(enable = "avx2")]
+fn assemble_avx2(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     assemble_plain(cloth, loads, h);
 }
 
@@ -242,19 +242,19 @@ fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
 /// pinned has v₁_j − v₁_i = 0: no force), for the loss accounting.
 pub(super) fn finish(cloth: &mut Cloth, loads: &ClothLoads) {
     #[cfg(target_arch = "x86_64")]
-    if super::avx() {
-        // SAFETY: `finish_avx` is safe but for its target feature: calling it needs a CPU
-        // with AVX, which `avx` checked just above.
-        unsafe { finish_avx(cloth, loads) };
+    if super::avx2() {
+        // SAFETY: `finish_avx2` is safe but for its target feature: calling it needs a CPU
+        // with AVX2, which `avx2` checked just above.
+        unsafe { finish_avx2(cloth, loads) };
         return;
     }
     finish_plain(cloth, loads);
 }
 
-/// [`finish`] compiled with AVX.
+/// [`finish`] compiled with AVX2.
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-fn finish_avx(cloth: &mut Cloth, loads: &ClothLoads) {
+#[target_feature(enable = "avx2")]
+fn finish_avx2(cloth: &mut Cloth, loads: &ClothLoads) {
     finish_plain(cloth, loads);
 }
 

@@ -17,15 +17,16 @@
 //! | `energy` | kinetic, spring and gravitational energy; losses |
 //! | `contact` | particles against fixed obstacles |
 //!
-//! **AVX builds.** The implicit step's hot functions (`stencil`'s product, `implicit_euler`'s
+//! **AVX2 builds.** The implicit step's hot functions (`stencil`'s product, `implicit_euler`'s
 //! assemble and finish, `conjugate_gradient`'s solve, `ties`' solve) are compiled twice, for
-//! any x86-64 CPU (SSE2) and with AVX (`#[target_feature]`), and run the AVX build when the CPU
-//! has it (checked at run time; each call's `SAFETY` comment says why it is sound). The same
-//! source, the same operations on each number in the same order (a sum stays a sequential
-//! sum; AVX alone has no FMA to contract into): the same bits on either build (tests compare
-//! them: the stencil's product, and the cube landing on the trampoline with the sheet alone,
-//! AVX against plain; `examples/cloth_steps` prints the checksums). Measured by callgrind on
-//! the cube on the 21 × 21 trampoline: −26 % instructions over the 2 s cycle.
+//! any x86-64 CPU (SSE2) and with AVX2 (`#[target_feature]`), and run the AVX2 build when the
+//! CPU has it (checked at run time; each call's `SAFETY` comment says why it is sound). The
+//! same source, the same operations on each number in the same order (a sum stays a
+//! sequential sum; AVX2 has no FMA to contract into, FMA is a feature of its own, not enabled):
+//! the same bits on either build (tests compare them: the stencil's product, and the cube
+//! landing on the trampoline with the sheet alone, AVX2 against plain; `examples/cloth_steps`
+//! prints the checksums). Measured by callgrind on the cube on the 21 × 21 trampoline: −29 %
+//! instructions over the 2 s cycle.
 
 mod conjugate_gradient;
 pub mod contact;
@@ -51,22 +52,22 @@ pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
 pub use ties::{BodyJoints, Tie, TieKind, TiedBody};
 
-/// Whether to run the AVX builds (module doc): true only when the CPU has AVX (with the OS's
+/// Whether to run the AVX2 builds (module doc): true only when the CPU has AVX2 (with the OS's
 /// support for its registers, as `is_x86_feature_detected` checks); a test may switch them off
 /// on its thread ([`PLAIN`]) to compare the two builds' bits.
 #[cfg(target_arch = "x86_64")]
 #[inline]
-fn avx() -> bool {
+fn avx2() -> bool {
     #[cfg(test)]
     if PLAIN.with(std::cell::Cell::get) {
         return false;
     }
-    std::arch::is_x86_feature_detected!("avx")
+    std::arch::is_x86_feature_detected!("avx2")
 }
 
 #[cfg(test)]
 thread_local! {
-    /// Tests: run the plain builds on this thread even on a CPU with AVX.
+    /// Tests: run the plain builds on this thread even on a CPU with AVX2.
     static PLAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
@@ -86,7 +87,7 @@ mod tests {
 
     /// The bits of the cube on the 21 × 21 trampoline (`examples/cloth_steps`, the tied
     /// solve) after its landing, and of the sheet alone after 50 steps of 5 ms (the untied
-    /// solve), with the AVX builds or the plain ones (`plain`).
+    /// solve), with the AVX2 builds or the plain ones (`plain`).
     fn bits(plain: bool) -> Vec<u64> {
         use nalgebra::Vector3;
         super::PLAIN.with(|p| p.set(plain));
@@ -154,9 +155,9 @@ integrator = "implicit-euler"
     }
 
     #[test]
-    fn the_avx_builds_have_the_bits_of_the_plain_ones() {
-        // On a CPU without AVX both runs are plain: the test then holds trivially.
-        assert!(bits(false) == bits(true), "AVX and plain builds differ");
+    fn the_avx2_builds_have_the_bits_of_the_plain_ones() {
+        // On a CPU without AVX2 both runs are plain: the test then holds trivially.
+        assert!(bits(false) == bits(true), "AVX2 and plain builds differ");
     }
 
     #[test]

@@ -26,13 +26,13 @@
 //! Every term is the same floating-point expression as the gathered product's, summed in the
 //! same order, and a term outside its rectangle reads an exact 0 (its buffer is never written
 //! there; the terms are padded with 2 nx + 1 zeros in front for the k − o of the first rows):
-//! the two products agree to the last bit (test below).
-//!
-//! The product is also compiled for AVX and run so on a CPU that has it (checked at run time):
-//! its loops, elementwise, then take four numbers at once instead of SSE2's two, the same
-//! operations on each (no FMA), the same bits: ~35k instructions instead of ~66k on the
-//! 21 × 21 trampoline (callgrind), the implicit step's whole cycle −20 %. A sheet whose springs fill a direction
+//! the two products agree to the last bit (test below). A sheet whose springs fill a direction
 //! only in part (built by hand) has no stencil and keeps the gathered product.
+//!
+//! The product is also compiled for AVX2 and run so on a CPU that has it (checked at run
+//! time): its loops, elementwise, then take four numbers at once instead of SSE2's two, the
+//! same operations on each (no FMA), the same bits: ~34k instructions instead of ~66k on the
+//! 21 × 21 trampoline (callgrind).
 
 use super::conjugate_gradient::Block;
 use nalgebra::Vector3;
@@ -182,8 +182,8 @@ impl Stencil {
             + self.fields.capacity() * std::mem::size_of::<f64>()
     }
 
-    /// out = A p (module doc), `diagonal` the a_k: compiled for AVX as well, and run so when
-    /// the CPU has it ([`Stencil::product_avx`]), the same bits.
+    /// out = A p (module doc), `diagonal` the a_k: compiled for AVX2 as well, and run so when
+    /// the CPU has it ([`Stencil::product_avx2`]), the same bits.
     pub fn product(
         &self,
         diagonal: &[f64],
@@ -192,21 +192,21 @@ impl Stencil {
         out: &mut [Vector3<f64>],
     ) {
         #[cfg(target_arch = "x86_64")]
-        if super::avx() {
-            // SAFETY: `product_avx` is safe but for its target feature: calling it needs a
-            // CPU with AVX, which `avx` checked just above.
-            unsafe { self.product_avx(diagonal, buffers, p, out) };
+        if super::avx2() {
+            // SAFETY: `product_avx2` is safe but for its target feature: calling it needs a
+            // CPU with AVX2, which `avx2` checked just above.
+            unsafe { self.product_avx2(diagonal, buffers, p, out) };
             return;
         }
         self.product_plain(diagonal, buffers, p, out);
     }
 
-    /// [`Stencil::product`] compiled with AVX: its loops run on four numbers at once instead of
+    /// [`Stencil::product`] compiled with AVX2: its loops run on four numbers at once instead of
     /// two. The same operations on each number (an elementwise loop has no sum to reorder;
-    /// AVX without FMA contracts nothing): the same bits (test below).
+    /// AVX2 without FMA contracts nothing): the same bits (test below).
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    fn product_avx(
+    #[target_feature(enable = "avx2")]
+    fn product_avx2(
         &self,
         diagonal: &[f64],
         buffers: &mut StencilBuffers,
@@ -216,7 +216,7 @@ impl Stencil {
         self.product_plain(diagonal, buffers, p, out);
     }
 
-    /// [`Stencil::product`] for any CPU (inlined into [`Stencil::product_avx`]).
+    /// [`Stencil::product`] for any CPU (inlined into [`Stencil::product_avx2`]).
     #[inline(always)]
     fn product_plain(
         &self,
@@ -510,7 +510,7 @@ mod tests {
 
     #[test]
     fn the_product_for_this_cpu_has_the_bits_of_the_plain_one() {
-        // `product` runs the AVX build where the CPU has AVX; `product_plain` is the build for
+        // `product` runs the AVX2 build where the CPU has AVX2; `product_plain` is the build for
         // any CPU.
         for (count, shear, bend) in [([21, 21], 1000.0, 300.0), ([7, 5], 30.0, 0.0)] {
             let (cloth, blocks, diagonal, p) = case(count, shear, bend);

@@ -454,20 +454,20 @@ impl Workspace {
         max_iterations: usize,
     ) -> super::conjugate_gradient::Outcome {
         #[cfg(target_arch = "x86_64")]
-        if super::avx() {
-            // SAFETY: `solve_tied_avx` is safe but for its target feature: calling it needs a
-            // CPU with AVX, which `avx` checked just above.
+        if super::avx2() {
+            // SAFETY: `solve_tied_avx2` is safe but for its target feature: calling it needs a
+            // CPU with AVX2, which `avx2` checked just above.
             return unsafe {
-                self.solve_tied_avx(ties, bodies, joints, v0, tolerance, max_iterations)
+                self.solve_tied_avx2(ties, bodies, joints, v0, tolerance, max_iterations)
             };
         }
         self.solve_tied_plain(ties, bodies, joints, v0, tolerance, max_iterations)
     }
 
-    /// [`Workspace::solve_tied`] compiled with AVX (its loops and products inlined).
+    /// [`Workspace::solve_tied`] compiled with AVX2 (its loops and products inlined).
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    fn solve_tied_avx(
+    #[target_feature(enable = "avx2")]
+    fn solve_tied_avx2(
         &mut self,
         ties: &mut [Tie],
         bodies: &mut [TiedBody],
@@ -517,7 +517,7 @@ impl Workspace {
         // a step's first round only (P does not change between its rounds): a later round
         // puts back the P⁻¹ of the particles the last round's ties filtered.
         if t.round == 0 || t.inverse.len() != n {
-            // (A loop, not `extend`: inlined here, it is compiled for AVX with the rest.)
+            // (A loop, not `extend`: inlined here, it is compiled for AVX2 with the rest.)
             t.inverse.resize(n, Symmetric3::default());
             for (inverse, p) in t.inverse.iter_mut().zip(&self.preconditioner) {
                 *inverse = p.inverse();
