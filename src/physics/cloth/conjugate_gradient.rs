@@ -18,8 +18,9 @@
 //! particles gathering their springs' terms (below): ~118k instructions per product on the
 //! 21 × 21 trampoline's 2 438 springs (the scatter it replaced: ~105k). On a grid sheet the
 //! same blocks are also stored by direction and the product runs as a stencil over them
-//! (`stencil`: the same bits, ~66k instructions). A spring whose two ends are pinned has an empty
-//! block: it acts on no free particle. Why not a CSR matrix of 3×3 blocks by rows: each
+//! (`stencil`: the same bits, ~66k instructions; ~34k built for AVX2, which it runs when the
+//! CPU has it). A spring whose two ends are pinned has an empty block: it acts on no free
+//! particle. Why not a CSR matrix of 3×3 blocks by rows: each
 //! particle's row holds its ~9 blocks (itself and 8 neighbours), i.e. every spring block stored
 //! twice as a full 3×3 plus index arrays, ~2× the flops per product (a full 3×3 product per
 //! neighbour against one compact product per spring). A is symmetric positive definite
@@ -472,6 +473,26 @@ impl Workspace {
     /// Solves A Δv = rhs for the particles not pinned, A built from `blocks` and `diagonal`,
     /// P from `preconditioner` (inverted here); the result is in `solution`.
     pub fn solve(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
+        #[cfg(target_arch = "x86_64")]
+        if super::avx2() {
+            // SAFETY: `solve_avx2` is safe but for its target feature: calling it needs a CPU
+            // with AVX2, which `avx2` checked just above.
+            return unsafe { self.solve_avx2(tolerance, max_iterations) };
+        }
+        self.solve_plain(tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve`] compiled with AVX2 (its loops inlined; the product is the
+    /// stencil's own AVX2 build).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_avx2(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
+        self.solve_plain(tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve`] for any CPU.
+    #[inline(always)]
+    fn solve_plain(&mut self, tolerance: f64, max_iterations: usize) -> Outcome {
         // P_i⁻¹ (pinned rows: 0, and the right-hand side and warm start filtered).
         for p in &mut self.preconditioner {
             *p = p.inverse();

@@ -124,6 +124,26 @@ pub(super) fn solve_tied(
 
 /// The step's setup: a_i, b_i, the springs' blocks and the block-Jacobi preconditioner.
 pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
+    #[cfg(target_arch = "x86_64")]
+    if super::avx2() {
+        // SAFETY: `assemble_avx2` is safe but for its target feature: calling it needs a CPU
+        // with AVX2, which `avx2` checked just above.
+        unsafe { assemble_avx2(cloth, loads, h) };
+        return;
+    }
+    assemble_plain(cloth, loads, h);
+}
+
+/// [`assemble`] compiled with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn assemble_avx2(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
+    assemble_plain(cloth, loads, h);
+}
+
+/// [`assemble`] for any CPU.
+#[inline(always)]
+fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     let n = cloth.positions.len();
     let scratch = &mut cloth.scratch;
     let work = &mut scratch.solver;
@@ -221,6 +241,26 @@ pub(super) fn assemble(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
 /// What the step's damping and drag forces were: at v₁, along d̂₀ (a spring with both ends
 /// pinned has v₁_j − v₁_i = 0: no force), for the loss accounting.
 pub(super) fn finish(cloth: &mut Cloth, loads: &ClothLoads) {
+    #[cfg(target_arch = "x86_64")]
+    if super::avx2() {
+        // SAFETY: `finish_avx2` is safe but for its target feature: calling it needs a CPU
+        // with AVX2, which `avx2` checked just above.
+        unsafe { finish_avx2(cloth, loads) };
+        return;
+    }
+    finish_plain(cloth, loads);
+}
+
+/// [`finish`] compiled with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn finish_avx2(cloth: &mut Cloth, loads: &ClothLoads) {
+    finish_plain(cloth, loads);
+}
+
+/// [`finish`] for any CPU.
+#[inline(always)]
+fn finish_plain(cloth: &mut Cloth, loads: &ClothLoads) {
     let n = cloth.positions.len();
     let scratch = &mut cloth.scratch;
     let work = &scratch.solver;

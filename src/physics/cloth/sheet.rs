@@ -429,12 +429,16 @@ impl Cloth {
     /// W_drag    = Σ_i k_drag,i v_used,i·Δx_i
     /// ```
     pub fn advance_positions(&mut self, loads: &ClothLoads, dt: f64) -> Losses {
-        self.scratch.start.clone_from(&self.positions);
-        for i in 0..self.positions.len() {
-            if !self.pinned[i] {
-                self.positions[i] += self.velocities[i] * dt;
-            }
-        }
+        // x₁ is written into the scratch and the two swapped: the scratch keeps x₀, uncopied.
+        let next = &mut self.scratch.start;
+        next.clear();
+        let free = self
+            .positions
+            .iter()
+            .zip(&self.velocities)
+            .zip(&self.pinned);
+        next.extend(free.map(|((x, v), &pinned)| if pinned { *x } else { x + v * dt }));
+        std::mem::swap(&mut self.positions, &mut self.scratch.start);
         let mut dissipated = Losses::default();
         let start = &self.scratch.start;
         if self.scratch.damping_force.len() == self.len() {

@@ -28,6 +28,11 @@
 //! there; the terms are padded with 2 nx + 1 zeros in front for the k − o of the first rows):
 //! the two products agree to the last bit (test below). A sheet whose springs fill a direction
 //! only in part (built by hand) has no stencil and keeps the gathered product.
+//!
+//! The product is also compiled for AVX2 and run so on a CPU that has it (checked at run
+//! time): its loops, elementwise, then take four numbers at once instead of SSE2's two, the
+//! same operations on each (no FMA), the same bits: ~34k instructions instead of ~66k on the
+//! 21 × 21 trampoline (callgrind).
 
 use super::conjugate_gradient::Block;
 use nalgebra::Vector3;
@@ -177,8 +182,43 @@ impl Stencil {
             + self.fields.capacity() * std::mem::size_of::<f64>()
     }
 
-    /// out = A p (module doc), `diagonal` the a_k.
+    /// out = A p (module doc), `diagonal` the a_k: compiled for AVX2 as well, and run so when
+    /// the CPU has it ([`Stencil::product_avx2`]), the same bits.
     pub fn product(
+        &self,
+        diagonal: &[f64],
+        buffers: &mut StencilBuffers,
+        p: &[Vector3<f64>],
+        out: &mut [Vector3<f64>],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if super::avx2() {
+            // SAFETY: `product_avx2` is safe but for its target feature: calling it needs a
+            // CPU with AVX2, which `avx2` checked just above.
+            unsafe { self.product_avx2(diagonal, buffers, p, out) };
+            return;
+        }
+        self.product_plain(diagonal, buffers, p, out);
+    }
+
+    /// [`Stencil::product`] compiled with AVX2: its loops run on four numbers at once instead of
+    /// two. The same operations on each number (an elementwise loop has no sum to reorder;
+    /// AVX2 without FMA contracts nothing): the same bits (test below).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn product_avx2(
+        &self,
+        diagonal: &[f64],
+        buffers: &mut StencilBuffers,
+        p: &[Vector3<f64>],
+        out: &mut [Vector3<f64>],
+    ) {
+        self.product_plain(diagonal, buffers, p, out);
+    }
+
+    /// [`Stencil::product`] for any CPU (inlined into [`Stencil::product_avx2`]).
+    #[inline(always)]
+    fn product_plain(
         &self,
         diagonal: &[f64],
         buffers: &mut StencilBuffers,
@@ -465,6 +505,27 @@ mod tests {
                     scattered[k]
                 );
             }
+        }
+    }
+
+    #[test]
+    fn the_product_for_this_cpu_has_the_bits_of_the_plain_one() {
+        // `product` runs the AVX2 build where the CPU has AVX2; `product_plain` is the build for
+        // any CPU.
+        for (count, shear, bend) in [([21, 21], 1000.0, 300.0), ([7, 5], 30.0, 0.0)] {
+            let (cloth, blocks, diagonal, p) = case(count, shear, bend);
+            let springs = cloth.springs.iter().map(|s| (s.i, s.j, s.kind));
+            let order = SpringOrder::of_grid(cloth.count, springs).unwrap();
+            let mut stencil = order.stencil.unwrap();
+            stencil.load(&blocks);
+            let n = cloth.len();
+            let (mut fast, mut plain) = (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]);
+            stencil.product(&diagonal, &mut StencilBuffers::default(), &p, &mut fast);
+            stencil.product_plain(&diagonal, &mut StencilBuffers::default(), &p, &mut plain);
+            assert!(
+                (fast.iter().zip(&plain)).all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits)),
+                "{count:?}"
+            );
         }
     }
 

@@ -298,8 +298,10 @@ pub struct TieBuffers {
     starts: Vec<Start>,
     /// The rounds solved since [`TieBuffers::new_step`].
     round: usize,
-    /// A solve's cold start and reduced right-hand side, kept while its warm start is tried.
+    /// A solve's cold start, kept while its warm start is tried.
     kept: Vec<Vector3<f64>>,
+    /// The particles' reduced right-hand side Tᵀ(b̄ − Ā z) (`start_residual` reads it: a
+    /// start tried and dropped leaves it as it was).
     reduced: Vec<Vector3<f64>>,
     /// The rows of A z to compute, and which are listed (`solve_tied`).
     rows: Vec<usize>,
@@ -471,6 +473,43 @@ impl Workspace {
         tolerance: f64,
         max_iterations: usize,
     ) -> super::conjugate_gradient::Outcome {
+        #[cfg(target_arch = "x86_64")]
+        if super::avx2() {
+            // SAFETY: `solve_tied_avx2` is safe but for its target feature: calling it needs a
+            // CPU with AVX2, which `avx2` checked just above.
+            return unsafe {
+                self.solve_tied_avx2(ties, bodies, joints, v0, tolerance, max_iterations)
+            };
+        }
+        self.solve_tied_plain(ties, bodies, joints, v0, tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve_tied`] compiled with AVX2 (its loops and products inlined).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_tied_avx2(
+        &mut self,
+        ties: &mut [Tie],
+        bodies: &mut [TiedBody],
+        joints: &BodyJoints,
+        v0: &[Vector3<f64>],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> super::conjugate_gradient::Outcome {
+        self.solve_tied_plain(ties, bodies, joints, v0, tolerance, max_iterations)
+    }
+
+    /// [`Workspace::solve_tied`] for any CPU.
+    #[inline(always)]
+    fn solve_tied_plain(
+        &mut self,
+        ties: &mut [Tie],
+        bodies: &mut [TiedBody],
+        joints: &BodyJoints,
+        v0: &[Vector3<f64>],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> super::conjugate_gradient::Outcome {
         let n = self.rhs.len();
         let mut t = std::mem::take(&mut self.ties);
         t.tie_of.clear();
@@ -498,9 +537,11 @@ impl Workspace {
         // a step's first round only (P does not change between its rounds): a later round
         // puts back the P⁻¹ of the particles the last round's ties filtered.
         if t.round == 0 || t.inverse.len() != n {
-            t.inverse.clear();
-            t.inverse
-                .extend(self.preconditioner.iter().map(Symmetric3::inverse));
+            // (A loop, not `extend`: inlined here, it is compiled for AVX2 with the rest.)
+            t.inverse.resize(n, Symmetric3::default());
+            for (inverse, p) in t.inverse.iter_mut().zip(&self.preconditioner) {
+                *inverse = p.inverse();
+            }
             for &i in &pinned {
                 t.inverse[i as usize] = Symmetric3::default();
             }
@@ -625,6 +666,7 @@ impl Workspace {
             );
         }
         t.wrenches.clear();
+        t.reduced.resize(n, Vector3::zeros());
         for i in 0..n {
             let k = t.tie_of[i];
             let mut r = self.rhs[i] - t.full[i];
@@ -643,7 +685,7 @@ impl Workspace {
             if is_pinned[i] {
                 r = Vector3::zeros();
             }
-            self.residual[i] = r;
+            t.reduced[i] = r;
         }
         {
             let mut rhs: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
@@ -669,7 +711,7 @@ impl Workspace {
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
         for i in 0..n {
-            delta0 += self.residual[i].dot(&t.inverse[i].apply(&self.residual[i]));
+            delta0 += t.reduced[i].dot(&t.inverse[i].apply(&t.reduced[i]));
         }
         precondition_bodies(&mut t, joints, true);
         for bv in &t.body {
@@ -698,10 +740,10 @@ impl Workspace {
             // WARM_GATE of the right-hand side's (module doc, "Warm starts").
             let mut warm = None;
             if candidate {
-                // The cold start is kept aside (swapped, not copied).
+                // The cold start is kept aside and the round's last Δv taken, both swapped,
+                // not copied (the round's start is written anew at the end of the solve).
                 std::mem::swap(&mut self.solution, &mut t.kept);
-                t.reduced.clone_from(&self.residual);
-                self.solution.clone_from(&t.starts[round].particles);
+                std::mem::swap(&mut self.solution, &mut t.starts[round].particles);
                 filter_start(&mut self.solution, &t.tie_of);
                 x_body.copy_from_slice(&t.starts[round].bodies);
                 // A body held by joints starts from 0: its last Y kept last step's rows.
@@ -726,7 +768,6 @@ impl Workspace {
                     t.starts[round].pause = TRIAL_PAUSE;
                     // Not good enough: the cold start below, as if never tried.
                     std::mem::swap(&mut self.solution, &mut t.kept);
-                    self.residual.clone_from(&t.reduced);
                     x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                 }
             }
@@ -935,10 +976,11 @@ impl Workspace {
         super::conjugate_gradient::product(blocks, diagonal, order, terms, p, out);
     }
 
-    /// The start's residual r = b − (Tᵀ Ā T) x for x = (`solution`, `x_body`), with `residual`
+    /// The start's residual r = b − (Tᵀ Ā T) x for x = (`solution`, `x_body`), with `reduced`
     /// and the bodies' `rhs` holding b on entry; its preconditioned z; returns δ = r·z.
     /// `product` and `q_body` keep Tᵀ Ā T x (a start worse than zero is undone with it).
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn start_residual(
         &mut self,
         t: &mut TieBuffers,
@@ -965,7 +1007,7 @@ impl Workspace {
         self.solution = solution;
         let mut delta = 0.0;
         for i in 0..n {
-            self.residual[i] -= product[i];
+            self.residual[i] = t.reduced[i] - product[i];
             self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
             delta += self.residual[i].dot(&self.preconditioned[i]);
         }
@@ -982,6 +1024,7 @@ impl Workspace {
     /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc). `p` is expanded in place (its
     /// tied rows to S p + G Y, its pinned rows to 0) for the product and given back as it came.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn multiply_reduced(
         &self,
         t: &mut TieBuffers,
@@ -1006,8 +1049,12 @@ impl Workspace {
         }
         for &i in pinned {
             let i = i as usize;
-            t.saved.push((i, p[i]));
-            p[i] = Vector3::zeros();
+            // A row already +0 (as the CG's vectors keep a pinned row) is left as it is: no
+            // saving, the same bits.
+            if p[i].iter().any(|x| x.to_bits() != 0) {
+                t.saved.push((i, p[i]));
+                p[i] = Vector3::zeros();
+            }
         }
         // A p straight into `out`; then the tied rows, and the pinned rows zeroed.
         super::conjugate_gradient::product(
