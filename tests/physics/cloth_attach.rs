@@ -217,6 +217,20 @@ fn a_flag_on_a_falling_pole_keeps_the_momentum_of_pole_and_flag() {
 }
 
 /// The ledger's rows now: drag, contacts, the joints' correction, drift (J).
+/// A hinge holding the pole at the wall, (0, 2, 0), about `axis`.
+fn wall_hinge(axis: [f64; 3]) -> String {
+    format!(
+        r#"
+[[joint]]
+name = "hinge"
+type = "hinge"
+bodies = ["pole"]
+anchor = [0.0, 2.0, 0.0]
+axis = {axis:?}
+"#
+    )
+}
+
 fn ledger_rows(w: &World) -> [f64; 4] {
     let b = w.energy_balance();
     [
@@ -231,15 +245,7 @@ fn ledger_rows(w: &World) -> [f64; 4] {
 fn a_flag_on_a_hinged_pole_hangs_and_the_hinge_carries_pole_and_flag() {
     // The pole turns about its own axis on a hinge at the wall: the flag swings down, turning
     // the pole, and hangs; the hinge then carries (M + m) g = (2 + 0.3) 9.81 = 22.563 N.
-    let hinge = r#"
-[[joint]]
-name = "hinge"
-type = "hinge"
-bodies = ["pole"]
-anchor = [0.0, 2.0, 0.0]
-axis = [1.0, 0.0, 0.0]
-"#;
-    let mut w = world(&flag("mass = 2.0", 1.0, hinge));
+    let mut w = world(&flag("mass = 2.0", 1.0, &wall_hinge([1.0, 0.0, 0.0])));
     let mut worst = 0.0_f64;
     for _ in 0..7000 {
         step(&mut w);
@@ -312,16 +318,8 @@ fn an_explicit_flag_on_a_hinged_pole_keeps_the_hinge_for_every_body_integrator()
     // pole stepped by each body integrator (position factors 1, ½ and 0). Before the filter
     // the pull moved the pole off its hinge by the step's correction: 1.1e-4 m (symplectic
     // Euler), 5.4e-5 m (rk4) at every step, and the hinge read the load a step late.
-    let hinge = r#"
-[[joint]]
-name = "hinge"
-type = "hinge"
-bodies = ["pole"]
-anchor = [0.0, 2.0, 0.0]
-axis = [1.0, 0.0, 0.0]
-"#;
     for integrator in ["symplectic-euler", "rk4", "euler"] {
-        let source = flag("mass = 2.0", 1.0, hinge)
+        let source = flag("mass = 2.0", 1.0, &wall_hinge([1.0, 0.0, 0.0]))
             .replace("dt = 0.001", "dt = 0.0002")
             .replace(
                 "integrator = \"symplectic-euler\"",
@@ -381,15 +379,7 @@ fn a_pole_swinging_down_on_a_hinge_with_its_flag_keeps_its_hinge_and_reports_its
     // inside the flag's solve: its point never moves, and what it reports is the reaction the
     // pole took in each step — the pole's momentum changes by h (M g⃗ + F_hinge − F_flag),
     // F_flag the force the attachments gave the flag (without the flag: to 1.7e-15 kg·m/s).
-    let hinge = r#"
-[[joint]]
-name = "hinge"
-type = "hinge"
-bodies = ["pole"]
-anchor = [0.0, 2.0, 0.0]
-axis = [0.0, 0.0, 1.0]
-"#;
-    let mut w = world(&flag("mass = 2.0", 0.0, hinge));
+    let mut w = world(&flag("mass = 2.0", 0.0, &wall_hinge([0.0, 0.0, 1.0])));
     let (mut worst_joint, mut worst_attach, mut lowest) = (0.0_f64, 0.0_f64, f64::INFINITY);
     let mut worst_balance = 0.0_f64;
     let h = w.dt();

@@ -85,37 +85,15 @@ pub fn label(name: &str) -> String {
 mod tests {
     use super::label;
 
-    /// The bits of the cube on the 21 × 21 trampoline (`examples/cloth_steps`, the tied
-    /// solve) after its landing, and of the sheet alone after 50 steps of 5 ms (the untied
+    /// The bits of lesson 16's cube on the 21 × 21 trampoline (the tied solve) after its
+    /// landing, and of the sheet alone after 50 steps of 5 ms (the untied
     /// solve), with the AVX2 builds or the plain ones (`plain`).
     fn bits(plain: bool) -> Vec<u64> {
         use nalgebra::Vector3;
         super::PLAIN.with(|p| p.set(plain));
-        let scene = r#"
-title = "bench"
-[scene]
-dt = 0.001
-integrator = "rk4"
-gravity = [0.0, -9.81, 0.0]
-contact = { response = "impulse", restitution = 0.4, friction = 0.5 }
-[body]
-shape = "box"
-size = [0.35, 0.35, 0.35]
-mass = 1.0
-position = [0.0, 1.275, 0.0]
-[[cloth]]
-size = [2.0, 2.0]
-count = [21, 21]
-position = [0.0, 1.0, 0.0]
-mass = 2.0
-stretch = 5000.0
-shear = 1000.0
-damping = 20.0
-pinned = "edges"
-integrator = "implicit-euler"
-"#;
-        let path = std::path::Path::new("bench.toml");
-        let mut world = crate::scene::parse(scene, path).unwrap().scene.world();
+        let path = std::path::Path::new("lessons/16-trampoline.toml");
+        let lesson = include_str!("../../../lessons/16-trampoline.toml");
+        let mut world = crate::scene::parse(lesson, path).unwrap().scene.world();
         let mut touched = false;
         for _ in 0..300 {
             world.step();

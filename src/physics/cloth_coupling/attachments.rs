@@ -14,8 +14,6 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3};
 /// What the attachments of an explicit cloth did over a step ([`hold_attachments`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct AttachReport {
-    /// The kinetic energy the impulses took, J (≥ 0).
-    pub taken: f64,
     /// Σ J_a on the particles (N·s) and its moment about the world origin, Σ x_a × J_a
     /// (N·m·s), x_a the attachment's point.
     pub impulse: [Vector3<f64>; 2],
@@ -177,8 +175,8 @@ pub fn carry_attachments(
 /// whose integrator ignores the correction (factor 0) takes the filtered Y in its momenta
 /// only.
 ///
-/// Returns the kinetic energy the impulses took, J (a rigid hold is a perfectly plastic
-/// impact between the particle and the body's point: ≥ 0), and the impulses' sum and moment.
+/// Returns the impulses' sum and moment. No energy is booked: an ideal hold does no work, and
+/// what the velocity half gave a particle off its point is the splitting's error (the drift).
 #[allow(clippy::too_many_arguments)]
 pub fn hold_attachments(
     cloth: &mut Cloth,
@@ -243,21 +241,6 @@ pub fn hold_attachments(
             continue;
         };
         let impulses = cholesky.solve(&rhs);
-        let kinetic = |cloth: &Cloth, state: &State| {
-            let rigid = if moves {
-                0.5 * state.linear_momentum.norm_squared() * body.inv_mass
-                    + 0.5
-                        * state
-                            .angular_momentum
-                            .dot(&(inv_inertia * state.angular_momentum))
-            } else {
-                0.0
-            };
-            list.iter().fold(rigid, |t, a| {
-                t + 0.5 * cloth.masses[a.particle] * cloth.velocities[a.particle].norm_squared()
-            })
-        };
-        let before = kinetic(cloth, state);
         let (mut total, mut torque) = (Vector3::zeros(), Vector3::zeros());
         for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
             let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
@@ -282,7 +265,6 @@ pub fn hold_attachments(
                 }
             }
         }
-        report.taken += before - kinetic(cloth, state);
     }
     report
 }
@@ -309,11 +291,9 @@ fn hold_on_joints(
     let rotations: Vec<Matrix3<f64>> = (group.iter())
         .map(|&b| states[b].orientation.matrix())
         .collect();
-    // D per body: diag(M, I) with I = R I_body Rᵀ; its inverse's angular part for energies.
+    // D per body: diag(M, I) with I = R I_body Rᵀ.
     let inertia =
         |g: usize| rotations[g] * bodies[group[g]].inertia_body * rotations[g].transpose();
-    let inv_inertia =
-        |g: usize| rotations[g] * bodies[group[g]].inv_inertia_body * rotations[g].transpose();
     let q = held.filter.filtered_inverse(|b| {
         let g = column(b).expect("a held body");
         let mut d = Matrix6::zeros();
@@ -352,21 +332,6 @@ fn hold_on_joints(
         return;
     };
     let impulses = cholesky.solve(&rhs);
-    let kinetic = |cloth: &Cloth, states: &[State]| {
-        let rigid: f64 = (0..n)
-            .map(|g| {
-                let s = &states[group[g]];
-                0.5 * s.linear_momentum.norm_squared() * bodies[group[g]].inv_mass
-                    + 0.5
-                        * s.angular_momentum
-                            .dot(&(inv_inertia(g) * s.angular_momentum))
-            })
-            .sum();
-        list.iter().fold(rigid, |t, (a, _)| {
-            t + 0.5 * cloth.masses[a.particle] * cloth.velocities[a.particle].norm_squared()
-        })
-    };
-    let before = kinetic(cloth, states);
     for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
         let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
         cloth.apply_impulse(att.particle, &j);
@@ -401,5 +366,4 @@ fn hold_on_joints(
         }
     }
     held.reactions(wrench, joint_impulses);
-    report.taken += before - kinetic(cloth, states);
 }
