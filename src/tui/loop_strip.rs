@@ -156,7 +156,17 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             let at = lines.len().min(1);
             lines.splice(at..at, cloth_steps(world, s));
         }
-        Some(Phase::Collide) => lines.extend(cloth_contacts(world, s)),
+        // With no rigid contact the cloths' counts come first: a short strip (80 × 24) then
+        // shows the particles under the cube resting on its sheet.
+        Some(Phase::Collide) if s.contacts.is_empty() => {
+            let (formulas, counts) = cloth_contacts(world, s);
+            lines.splice(0..0, counts);
+            lines.extend(formulas);
+        }
+        Some(Phase::Collide) => {
+            let (formulas, counts) = cloth_contacts(world, s);
+            lines.extend(formulas.into_iter().chain(counts));
+        }
         _ => {}
     }
     lines
@@ -187,7 +197,10 @@ fn cloth_formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             "   (the springs', gravity's and drag's forces on the particles are found inside the particle step, in integrate)",
         )],
         Some(Phase::Integrate) => cloth_steps(world, s),
-        Some(Phase::Collide) => cloth_contacts(world, s),
+        Some(Phase::Collide) => {
+            let (formulas, counts) = cloth_contacts(world, s);
+            formulas.into_iter().chain(counts).collect()
+        }
     }
 }
 
@@ -234,17 +247,16 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     lines
 }
 
-/// Collide: each cloth's particles against obstacles (pushed out) and bodies (both ways).
-fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
-    let mut lines = Vec::new();
+/// Collide: each cloth's particles against obstacles (pushed out) and bodies (both ways):
+/// the formulas, and a line of counts per cloth.
+fn cloth_contacts(world: &World, s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
+    let (mut lines, mut counts) = (Vec::new(), Vec::new());
     if world.cloths().is_empty() {
-        return lines;
+        return (lines, counts);
     }
     if world.contact_model().is_none() {
-        return vec![line(
-            "cloths: no contact declared: nothing to detect, the phase costs nothing",
-            "",
-        )];
+        let none = "cloths: no contact declared: nothing to detect, the phase costs nothing";
+        return (vec![line(none, "")], counts);
     }
     let (obstacles, bodies) = (!world.obstacles().is_empty(), world.body_count() > 0);
     if obstacles {
@@ -274,12 +286,12 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         if what.is_empty() {
             what.push("nothing to touch".to_string());
         }
-        lines.push(line(
+        counts.push(line(
             format!("{}: ", crate::physics::cloth::label(&view.name)),
             what.join(", "),
         ));
     }
-    lines
+    (lines, counts)
 }
 
 fn forces(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
@@ -361,17 +373,23 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         )];
     }
     if s.contacts.is_empty() {
-        let what = match (obstacles.len(), bodies) {
+        let mut what = match (obstacles.len(), bodies) {
             // The deepest penetration beside it is measured on the shape; the solver may stop
             // a body short of, or slightly inside, a surface without a contact in this phase.
-            (n, 1) => format!("{n} obstacle(s), no contact this step: nothing to do"),
-            (0, b) => format!("{b} bodies, no pair touching: nothing to do"),
-            (n, b) => format!("{n} obstacle(s) and {b} bodies, nothing touching: nothing to do"),
+            (0, 1) => "no obstacle and one body: no rigid contact".to_string(),
+            (n, 1) => format!("{n} obstacle(s), no contact this step"),
+            (0, b) => format!("{b} bodies, no pair touching"),
+            (n, b) => format!("{n} obstacle(s) and {b} bodies, nothing touching"),
         };
-        return vec![line(
+        // With cloths there is still work here (their particles' lines).
+        if world.cloths().is_empty() {
+            what.push_str(": nothing to do");
+        }
+        let lines = vec![line(
             what,
             format!("   (deepest penetration {} m)", number_plain(s.penetration)),
         )];
+        return lines;
     }
     let model = world.contact_model();
     let mut lines = Vec::new();
