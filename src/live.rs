@@ -37,6 +37,8 @@ pub enum Value {
 pub struct LiveValues {
     values: BTreeMap<(u64, Quantity), Value>,
     dt: f64,
+    /// Still being simulated (the app computes them on a thread): no value yet.
+    computing: bool,
 }
 
 /// Reads one quantity from a snapshot of body `q.body` (scene-wide ones from its totals).
@@ -85,9 +87,33 @@ pub fn shown(snapshot: &Snapshot, q: &Quantity, x: f64) -> f64 {
 }
 
 impl LiveValues {
+    /// No values yet: they are being simulated elsewhere; each prints as "(computing…)".
+    pub fn computing() -> LiveValues {
+        LiveValues {
+            computing: true,
+            ..LiveValues::default()
+        }
+    }
+
+    /// Still being simulated.
+    pub fn is_computing(&self) -> bool {
+        self.computing
+    }
+
     /// Simulates `world` (at t = 0, with the settings to quote) to every time the lesson's
     /// pages need. A lesson without live numbers or predictions costs nothing.
-    pub fn compute(lesson: &Lesson, mut world: World) -> LiveValues {
+    pub fn compute(lesson: &Lesson, world: World) -> LiveValues {
+        let never = std::sync::atomic::AtomicBool::new(false);
+        Self::compute_unless(lesson, world, &never).expect("never cancelled")
+    }
+
+    /// [`LiveValues::compute`], given up (None) as soon as `cancel` is set (checked at every
+    /// step): for a thread whose values a newer setting has made stale.
+    pub fn compute_unless(
+        lesson: &Lesson,
+        mut world: World,
+        cancel: &std::sync::atomic::AtomicBool,
+    ) -> Option<LiveValues> {
         let dt = world.dt();
         let mut wanted: BTreeMap<u64, Vec<Quantity>> = BTreeMap::new();
         for page in &lesson.pages {
@@ -114,6 +140,9 @@ impl LiveValues {
         for (step, quantities) in wanted {
             if step <= MAX_STEPS {
                 while world.step_count() < step && world.divergence().is_none() {
+                    if cancel.load(std::sync::atomic::Ordering::Relaxed) {
+                        return None;
+                    }
                     world.step();
                     if watch_contacts {
                         let t = world.time();
@@ -155,7 +184,11 @@ impl LiveValues {
                 values.insert((step, q), v);
             }
         }
-        LiveValues { values, dt }
+        Some(LiveValues {
+            values,
+            dt,
+            computing: false,
+        })
     }
 
     /// The value of a quantity at time t (None if the lesson does not quote it there).
@@ -165,7 +198,15 @@ impl LiveValues {
 
     /// A live number as printed: the panels' formatter, then the unit.
     pub fn text(&self, n: &LiveNumber) -> String {
-        text_of(self.value(&n.quantity, n.at), n.quantity.measure)
+        self.describe(&n.quantity, n.at)
+    }
+
+    /// The value of a quantity at time t as printed, or why there is none.
+    pub fn describe(&self, q: &Quantity, t: f64) -> String {
+        if self.computing {
+            return "(computing…)".to_string();
+        }
+        text_of(self.value(q, t), q.measure)
     }
 
     /// A page's text with its live numbers filled in.
@@ -180,7 +221,7 @@ impl LiveValues {
             "predict: {} at t = {} s → {}",
             p.quantity.text,
             number_plain(p.at),
-            text_of(self.value(&p.quantity, p.at), p.quantity.measure)
+            self.describe(&p.quantity, p.at)
         ))
     }
 }

@@ -215,6 +215,11 @@ pub struct App {
     /// when the lesson is opened and when a setting they depend on changes; never per frame.
     pub live: std::sync::Arc<LiveValues>,
     live_settings: LiveSettings,
+    /// The thread simulating them, when the app computes them in the background
+    /// ([`App::interactive`]): its result, and the flag that tells it its values went stale.
+    live_job: Option<std::rc::Rc<LiveJob>>,
+    /// Live numbers are simulated on a thread (the terminal app), not before the first frame.
+    live_in_background: bool,
     /// Each page's answer to its `predict` (Open for pages without one).
     pub guesses: Vec<Guess>,
     /// A run pauses by itself at pages, predictions and the scene's end (off for `tumble
@@ -226,14 +231,41 @@ pub struct App {
     pub quit: bool,
 }
 
+/// Live numbers being simulated on a thread ([`App::interactive`]).
+#[derive(Debug)]
+struct LiveJob {
+    result: std::sync::mpsc::Receiver<LiveValues>,
+    cancel: std::sync::Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl Drop for LiveJob {
+    /// A job no longer wanted (stale settings, another lesson, quit) stops at its next step.
+    fn drop(&mut self) {
+        self.cancel
+            .store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
 impl App {
+    /// The app with its live numbers simulated before it returns (tests, `shot`, `record`:
+    /// every frame shows them).
     pub fn new(lesson: Lesson, options: Options) -> App {
+        App::build(lesson, options, false)
+    }
+
+    /// The terminal app: the first frame is drawn at once and the pages' live numbers read
+    /// "(computing…)" while a thread simulates them (lesson 35's reach 6 s: about 3 s of
+    /// stepping); [`App::poll_live`] takes them when they are ready.
+    pub fn interactive(lesson: Lesson, options: Options) -> App {
+        App::build(lesson, options, true)
+    }
+
+    fn build(lesson: Lesson, options: Options, live_in_background: bool) -> App {
         let world = lesson.scene.world();
         let snapshot = world.snapshot();
         let region = Region::of_world(&world);
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
         let plot_series = PlotSeries::new(&world);
-        let live = std::sync::Arc::new(LiveValues::compute(&lesson, world.clone()));
         let live_settings = LiveSettings::of(&world);
         let guesses = vec![Guess::Open; lesson.pages.len()];
         let real_time = 1.0 / lesson.scene.dt;
@@ -274,18 +306,66 @@ impl App {
             export_requested: false,
             write_dir: PathBuf::from("."),
             selected: 0,
-            live,
+            live: std::sync::Arc::new(LiveValues::computing()),
             live_settings,
+            live_job: None,
+            live_in_background,
             guesses,
             pause_at_stops: true,
             measured_real_time: None,
             quit: false,
         };
+        app.start_live(app.world.clone());
         if let Some(comparison) = options.compare {
             app.start_compare(comparison);
         }
         app.refresh();
         app
+    }
+
+    /// Simulates the live numbers from `world` (at t = 0): here, or on a thread.
+    fn start_live(&mut self, world: World) {
+        if !self.live_in_background {
+            self.live = std::sync::Arc::new(LiveValues::compute(&self.lesson, world));
+            return;
+        }
+        let (send, result) = std::sync::mpsc::channel();
+        let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let (lesson, stop) = (self.lesson.clone(), cancel.clone());
+        std::thread::spawn(move || {
+            if let Some(values) = LiveValues::compute_unless(&lesson, world, &stop) {
+                // The app may be gone, or want newer values: then nobody reads this.
+                let _ = send.send(values);
+            }
+        });
+        // The old job, if any, is dropped (with the last copy of the app holding it): told
+        // to stop.
+        self.live_job = Some(std::rc::Rc::new(LiveJob { result, cancel }));
+        self.live = std::sync::Arc::new(LiveValues::computing());
+    }
+
+    /// Takes the live numbers' thread's values when they are ready; never blocks.
+    pub fn poll_live(&mut self) {
+        let Some(job) = &self.live_job else {
+            return;
+        };
+        match job.result.try_recv() {
+            Ok(values) => {
+                self.live = std::sync::Arc::new(values);
+                self.live_job = None;
+            }
+            Err(std::sync::mpsc::TryRecvError::Empty) => {}
+            Err(std::sync::mpsc::TryRecvError::Disconnected) => {
+                // The thread ended without values (it panicked): they print as not computed.
+                self.live = std::sync::Arc::new(LiveValues::default());
+                self.live_job = None;
+            }
+        }
+    }
+
+    /// Live numbers are being simulated: the event loop must wake up to show them.
+    pub fn live_pending(&self) -> bool {
+        self.live_job.is_some()
     }
 
     /// The context keys are read in.
@@ -677,7 +757,7 @@ impl App {
         }
         let value = self.live.value(&predict.quantity, predict.at);
         let unit = predict.quantity.measure.unit();
-        let simulated = crate::live::text_of(value, predict.quantity.measure);
+        let simulated = self.live.describe(&predict.quantity, predict.at);
         let head = format!("{} at t = {} s", predict.quantity.text, tidy(predict.at));
         Some(match (self.guesses[page], value) {
             (Guess::Given(guess), Some(crate::live::Value::Number(v))) => format!(
@@ -796,7 +876,7 @@ impl App {
         } else {
             View::Loop
         };
-        *self = App::new(lesson, options);
+        *self = App::build(lesson, options, self.live_in_background);
         self.axis = axis;
         self.frame = frame;
         self.trail = trail;
@@ -874,7 +954,7 @@ impl App {
         if settings != self.live_settings {
             let mut world = self.world.clone();
             world.reset();
-            self.live = std::sync::Arc::new(LiveValues::compute(&self.lesson, world));
+            self.start_live(world);
             self.live_settings = settings;
         }
         self.snapshot = self.world.snapshot_of(self.selected);

@@ -90,7 +90,7 @@ pub fn affordable_frames(ns_per_step: Option<f64>) -> u64 {
 
 /// Runs the app on the terminal until the user quits; the terminal is always restored.
 pub fn run(lesson: Lesson, options: Options) -> std::io::Result<()> {
-    let mut app = App::new(lesson, options);
+    let mut app = App::interactive(lesson, options);
     let terminal = ratatui::init();
     let result = event_loop(terminal, &mut app);
     ratatui::restore();
@@ -112,6 +112,7 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
     let mut window: Option<(Instant, f64)> = None;
     loop {
         app.poll_study();
+        app.poll_live();
         if app.export_requested {
             app.export_requested = false;
             let size = terminal.size()?;
@@ -124,7 +125,8 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
         if !app.running {
             // Paused: block until something happens (or, while a study runs, until its
             // progress is worth redrawing).
-            if app.study_running() && !event::poll(RENDER_INTERVAL * 3)? {
+            let waiting = app.study_running() || app.live_pending();
+            if waiting && !event::poll(RENDER_INTERVAL * 3)? {
                 continue;
             }
             handle(app, event::read()?);

@@ -479,3 +479,39 @@ fn the_loop_strip_shows_the_chosen_responses_own_formula() {
         assert!(!strip.contains("seed (the report's)"), "{strip}");
     }
 }
+
+#[test]
+fn the_terminal_app_draws_at_once_and_fills_its_live_numbers_from_a_thread() {
+    // `App::interactive` (the terminal app) simulates the pages' live numbers on a thread:
+    // until they arrive a page reads "(computing…)"; then it reads exactly what `App::new`
+    // (which simulates them first) shows.
+    let lesson = tumble::lessons::load(Path::new("16-trampoline")).unwrap();
+    let page = lesson
+        .pages
+        .iter()
+        .position(|p| !p.live.is_empty())
+        .unwrap();
+    let options = Options {
+        ascii: true,
+        compare: None,
+        show_timing: false,
+    };
+    let expected = App::new(lesson.clone(), options.clone());
+    let expected = expected.live.page_text(&lesson.pages[page]);
+    assert!(!expected.contains("(computing…)"), "{expected}");
+    let mut app = App::interactive(lesson.clone(), options);
+    assert!(app.live_pending());
+    let waiting = app.live.page_text(&lesson.pages[page]);
+    assert!(waiting.contains("(computing…)"), "{waiting}");
+    // A guard against a hang, not a speed claim: the values take about half a second.
+    let start = std::time::Instant::now();
+    while app.live_pending() {
+        app.poll_live();
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "the live numbers never came"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    assert_eq!(app.live.page_text(&lesson.pages[page]), expected);
+}
