@@ -197,9 +197,10 @@ fn cloth_formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             "   (the springs', gravity's and drag's forces on the particles are found inside the particle step, in integrate)",
         )],
         Some(Phase::Integrate) => cloth_steps(world, s),
+        // The counts first, as beside a body with no rigid contact (`formulas`).
         Some(Phase::Collide) => {
             let (formulas, counts) = cloth_contacts(world, s);
-            formulas.into_iter().chain(counts).collect()
+            counts.into_iter().chain(formulas).collect()
         }
     }
 }
