@@ -312,6 +312,21 @@ pub struct TieBuffers {
     /// and per body whether it is held (module doc).
     held_inverse: nalgebra::DMatrix<f64>,
     held: Vec<bool>,
+    /// The bodies' vectors of a solve, kept for their allocations (`solve_tied` takes them).
+    body_scratch: BodyScratch,
+}
+
+/// Per body, what one solve builds beside [`BodyVectors`] (every entry written before read).
+#[derive(Debug, Clone, Default)]
+struct BodyScratch {
+    /// M_b + Σ G_iᵀ P_i G_i, and the terms G_iᵀ P_i G_i of the ties on a moving body.
+    blocks: Vec<Matrix6<f64>>,
+    terms: Vec<(usize, Matrix6<f64>)>,
+    /// The right-hand side; the unknown Y, its product and its search direction.
+    rhs: Vec<Vector6<f64>>,
+    x: Vec<Vector6<f64>>,
+    q: Vec<Vector6<f64>>,
+    direction: Vec<Vector6<f64>>,
 }
 
 /// What one round's solve ended with: Δv per particle, Y per body.
@@ -363,6 +378,12 @@ impl TieBuffers {
             + bytes_of(&self.starts, self.starts.capacity())
             + bytes_of(&self.kept, self.kept.capacity())
             + bytes_of(&self.reduced, self.reduced.capacity())
+            + bytes_of(&self.body_scratch.blocks, self.body_scratch.blocks.capacity())
+            + bytes_of(&self.body_scratch.terms, self.body_scratch.terms.capacity())
+            + bytes_of(&self.body_scratch.rhs, self.body_scratch.rhs.capacity())
+            + bytes_of(&self.body_scratch.x, self.body_scratch.x.capacity())
+            + bytes_of(&self.body_scratch.q, self.body_scratch.q.capacity())
+            + bytes_of(&self.body_scratch.direction, self.body_scratch.direction.capacity())
             + (self.starts.iter())
                 .map(|s| {
                     bytes_of(&s.particles, s.particles.capacity())
@@ -553,18 +574,24 @@ impl Workspace {
         t.filtered.clear();
         t.body.clear();
         t.body.resize(bodies.len(), BodyVectors::default());
-        let mut body_blocks: Vec<Matrix6<f64>> = bodies
-            .iter()
-            .map(|b| {
-                let mut m = Matrix6::zeros();
-                for k in 0..3 {
-                    m[(k, k)] = b.mass;
-                }
-                m.fixed_view_mut::<3, 3>(3, 3).copy_from(&b.inertia);
-                m
-            })
-            .collect();
-        let mut block_terms: Vec<(usize, Matrix6<f64>)> = Vec::new();
+        let BodyScratch {
+            blocks: mut body_blocks,
+            terms: mut block_terms,
+            rhs: mut body_rhs,
+            x: mut x_body,
+            q: mut q_body,
+            direction: mut direction_body,
+        } = std::mem::take(&mut t.body_scratch);
+        body_blocks.clear();
+        body_blocks.extend(bodies.iter().map(|b| {
+            let mut m = Matrix6::zeros();
+            for k in 0..3 {
+                m[(k, k)] = b.mass;
+            }
+            m.fixed_view_mut::<3, 3>(3, 3).copy_from(&b.inertia);
+            m
+        }));
+        block_terms.clear();
         for tie in ties.iter() {
             let i = tie.particle;
             let p = &self.preconditioner[i];
@@ -687,12 +714,11 @@ impl Workspace {
             }
             t.reduced[i] = r;
         }
-        {
-            let mut rhs: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
-            add_wrenches(&mut rhs, &t.wrenches, &mut t.values);
-            for (bv, r) in t.body.iter_mut().zip(rhs) {
-                bv.rhs = r;
-            }
+        body_rhs.clear();
+        body_rhs.resize(bodies.len(), Vector6::zeros());
+        add_wrenches(&mut body_rhs, &t.wrenches, &mut t.values);
+        for (bv, r) in t.body.iter_mut().zip(&body_rhs) {
+            bv.rhs = *r;
         }
         // The warm start: what this round's solve ended with the step before, when there is
         // one for these particles and bodies (module doc, "Warm starts").
@@ -707,7 +733,8 @@ impl Workspace {
             t.starts[round].pause -= 1;
             candidate = false;
         }
-        let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+        x_body.clear();
+        x_body.resize(bodies.len(), Vector6::zeros());
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
         for i in 0..n {
@@ -717,14 +744,17 @@ impl Workspace {
         for bv in &t.body {
             delta0 += bv.rhs.dot(&bv.z);
         }
+        // Filtered: a pinned row to 0, a tied row to its free part S y (only the rows a tie
+        // or a pin names: every other row is left as it is).
         let filter_start = |solution: &mut [Vector3<f64>], tie_of: &[u32]| {
-            for i in 0..n {
-                let k = tie_of[i];
-                if is_pinned[i] {
-                    solution[i] = Vector3::zeros();
-                } else if k != u32::MAX {
-                    solution[i] = ties[k as usize].free(&solution[i]);
+            for (k, tie) in ties.iter().enumerate() {
+                let i = tie.particle;
+                if tie_of[i] == k as u32 && !is_pinned[i] {
+                    solution[i] = tie.free(&solution[i]);
                 }
+            }
+            for &i in &pinned {
+                solution[i as usize] = Vector3::zeros();
             }
         };
         filter_start(&mut self.solution, &t.tie_of);
@@ -734,7 +764,8 @@ impl Workspace {
             relative_residual: 0.0,
         };
         if delta0.is_finite() && delta0 > 0.0 {
-            let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            q_body.clear();
+            q_body.resize(bodies.len(), Vector6::zeros());
             let mut product = std::mem::take(&mut self.product);
             // The round's warm start, kept only when its residual δ_w is already within
             // WARM_GATE of the right-hand side's (module doc, "Warm starts").
@@ -815,7 +846,8 @@ impl Workspace {
                 None => tolerance * tolerance * delta0,
             };
             let mut iterations = 0;
-            let mut direction_body: Vec<Vector6<f64>> = t.body.iter().map(|b| b.z).collect();
+            direction_body.clear();
+            direction_body.extend(t.body.iter().map(|b| b.z));
             while delta > target && iterations < max_iterations {
                 let mut direction = std::mem::take(&mut self.direction);
                 self.multiply_reduced(
@@ -880,14 +912,15 @@ impl Workspace {
             };
         }
         // Δv = T x + z (the warm start of the next step keeps the free parts).
-        for (i, dv) in self.solution.iter_mut().enumerate() {
-            let k = t.tie_of[i];
-            if k != u32::MAX {
-                let tie = &ties[k as usize];
+        // (Only the tied rows change: each once, by the tie `tie_of` names.)
+        for (k, tie) in ties.iter().enumerate() {
+            let i = tie.particle;
+            if t.tie_of[i] == k as u32 {
                 let mut tied = t.offset[i];
                 if moves(tie) {
                     tied += tie.tied(&point(&t.body[tie.body.unwrap()].x, &tie.arm));
                 }
+                let dv = &mut self.solution[i];
                 *dv = tie.free(dv) + tied;
             }
         }
@@ -959,6 +992,14 @@ impl Workspace {
         }
         self.pinned = pinned;
         t.is_pinned = is_pinned;
+        t.body_scratch = BodyScratch {
+            blocks: body_blocks,
+            terms: block_terms,
+            rhs: body_rhs,
+            x: x_body,
+            q: q_body,
+            direction: direction_body,
+        };
         self.ties = t;
         outcome
     }
