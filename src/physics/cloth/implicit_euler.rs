@@ -108,12 +108,11 @@ pub(super) fn solve_tied(
         cloth.solver.tolerance,
         cloth.solver.max_iterations,
     );
-    for (i, v) in cloth.velocities.iter_mut().enumerate() {
-        *v = if cloth.pinned[i] {
-            Vector3::zeros()
-        } else {
-            v0[i] + work.solution[i]
-        };
+    for ((v, &pinned), (v0, dv)) in (cloth.velocities.iter_mut())
+        .zip(&cloth.pinned)
+        .zip(v0.iter().zip(&work.solution))
+    {
+        *v = if pinned { Vector3::zeros() } else { v0 + dv };
     }
     StepReport {
         iterations: outcome.iterations,

@@ -464,7 +464,7 @@ impl Cloth {
             .start_velocity
             .get(i)
             .copied()
-            .unwrap_or(self.velocities[i])
+            .unwrap_or_else(|| self.velocities[i])
     }
 
     /// Per particle, how the last tied step ended (empty before the first).

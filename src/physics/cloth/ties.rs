@@ -378,12 +378,18 @@ impl TieBuffers {
             + bytes_of(&self.starts, self.starts.capacity())
             + bytes_of(&self.kept, self.kept.capacity())
             + bytes_of(&self.reduced, self.reduced.capacity())
-            + bytes_of(&self.body_scratch.blocks, self.body_scratch.blocks.capacity())
+            + bytes_of(
+                &self.body_scratch.blocks,
+                self.body_scratch.blocks.capacity(),
+            )
             + bytes_of(&self.body_scratch.terms, self.body_scratch.terms.capacity())
             + bytes_of(&self.body_scratch.rhs, self.body_scratch.rhs.capacity())
             + bytes_of(&self.body_scratch.x, self.body_scratch.x.capacity())
             + bytes_of(&self.body_scratch.q, self.body_scratch.q.capacity())
-            + bytes_of(&self.body_scratch.direction, self.body_scratch.direction.capacity())
+            + bytes_of(
+                &self.body_scratch.direction,
+                self.body_scratch.direction.capacity(),
+            )
             + (self.starts.iter())
                 .map(|s| {
                     bytes_of(&s.particles, s.particles.capacity())
@@ -433,19 +439,20 @@ fn order_free_sum(values: &mut [f64]) -> f64 {
     positive + negative
 }
 
-/// out\[b\] += Σ the wrenches listed for body b, each component by [`order_free_sum`].
+/// out\[b\] += Σ the wrenches listed for body b, each component by [`order_free_sum`]
+/// (`wrenches` is sorted by body, stably, to find each body's together).
 fn add_wrenches(
     out: &mut [Vector6<f64>],
-    wrenches: &[(usize, Vector6<f64>)],
+    wrenches: &mut [(usize, Vector6<f64>)],
     values: &mut Vec<f64>,
 ) {
-    for (b, o) in out.iter_mut().enumerate() {
+    wrenches.sort_by_key(|w| w.0);
+    for listed in wrenches.chunk_by(|a, b| a.0 == b.0) {
+        let o = &mut out[listed[0].0];
         for c in 0..6 {
             values.clear();
-            values.extend(wrenches.iter().filter(|w| w.0 == b).map(|w| w.1[c]));
-            if !values.is_empty() {
-                o[c] += order_free_sum(values);
-            }
+            values.extend(listed.iter().map(|w| w.1[c]));
+            o[c] += order_free_sum(values);
         }
     }
 }
@@ -627,15 +634,15 @@ impl Workspace {
                 block_terms.push((tie.body.unwrap(), g.transpose() * full * g));
             }
         }
-        // Summed in no particular order (`order_free_sum`).
-        for (b, m) in body_blocks.iter_mut().enumerate() {
+        // Summed in no particular order (`order_free_sum`): each body's terms together (a
+        // stable sort: in the ties' order), then every entry's sum over them.
+        block_terms.sort_by_key(|x| x.0);
+        for terms in block_terms.chunk_by(|a, c| a.0 == c.0) {
+            let m = &mut body_blocks[terms[0].0];
             for e in 0..36 {
                 t.values.clear();
-                t.values
-                    .extend(block_terms.iter().filter(|x| x.0 == b).map(|x| x.1[e]));
-                if !t.values.is_empty() {
-                    m[e] += order_free_sum(&mut t.values);
-                }
+                t.values.extend(terms.iter().map(|x| x.1[e]));
+                m[e] += order_free_sum(&mut t.values);
             }
         }
         t.body_inverse.clear();
@@ -716,7 +723,7 @@ impl Workspace {
         }
         body_rhs.clear();
         body_rhs.resize(bodies.len(), Vector6::zeros());
-        add_wrenches(&mut body_rhs, &t.wrenches, &mut t.values);
+        add_wrenches(&mut body_rhs, &mut t.wrenches, &mut t.values);
         for (bv, r) in t.body.iter_mut().zip(&body_rhs) {
             bv.rhs = *r;
         }
@@ -1128,7 +1135,7 @@ impl Workspace {
         for &(i, row) in &t.tied_rows {
             out[i] = row;
         }
-        add_wrenches(out_body, &t.wrenches, &mut t.values);
+        add_wrenches(out_body, &mut t.wrenches, &mut t.values);
     }
 }
 
