@@ -701,9 +701,12 @@ impl Workspace {
         }
         t.wrenches.clear();
         t.reduced.resize(n, Vector3::zeros());
-        for i in 0..n {
-            let k = t.tie_of[i];
-            let mut r = self.rhs[i] - t.full[i];
+        for (((reduced, (b, full)), &k), &pinned) in (t.reduced[..n].iter_mut())
+            .zip(self.rhs[..n].iter().zip(&t.full[..n]))
+            .zip(&t.tie_of[..n])
+            .zip(&is_pinned[..n])
+        {
+            let mut r = b - full;
             if k != u32::MAX {
                 let tie = &ties[k as usize];
                 r += tie.extra;
@@ -716,10 +719,10 @@ impl Workspace {
                 }
                 r = tie.free(&r);
             }
-            if is_pinned[i] {
+            if pinned {
                 r = Vector3::zeros();
             }
-            t.reduced[i] = r;
+            *reduced = r;
         }
         body_rhs.clear();
         body_rhs.resize(bodies.len(), Vector6::zeros());
@@ -744,8 +747,8 @@ impl Workspace {
         x_body.resize(bodies.len(), Vector6::zeros());
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
-        for i in 0..n {
-            delta0 += t.reduced[i].dot(&t.inverse[i].apply(&t.reduced[i]));
+        for (r, inverse) in t.reduced[..n].iter().zip(&t.inverse[..n]) {
+            delta0 += r.dot(&inverse.apply(r));
         }
         precondition_bodies(&mut t, joints, true);
         for bv in &t.body {
@@ -938,10 +941,14 @@ impl Workspace {
         if pinned.is_empty() && ties.iter().all(moves) && !ties.iter().any(held_tie) {
             let mut gap = Vector3::zeros();
             let mut free_mass = 0.0;
-            for i in 0..n {
-                gap += self.rhs[i] - self.solution[i] * self.diagonal[i];
-                if t.tie_of[i] == u32::MAX {
-                    free_mass += self.diagonal[i];
+            for (((b, dv), &a), &k) in (self.rhs[..n].iter())
+                .zip(&self.solution[..n])
+                .zip(&self.diagonal[..n])
+                .zip(&t.tie_of[..n])
+            {
+                gap += b - dv * a;
+                if k == u32::MAX {
+                    free_mass += a;
                 }
             }
             for (b, bv) in bodies.iter().zip(&t.body) {
@@ -949,9 +956,9 @@ impl Workspace {
             }
             if free_mass > 0.0 {
                 let shift = gap / free_mass;
-                for i in 0..n {
-                    if t.tie_of[i] == u32::MAX {
-                        self.solution[i] += shift;
+                for (dv, &k) in self.solution[..n].iter_mut().zip(&t.tie_of[..n]) {
+                    if k == u32::MAX {
+                        *dv += shift;
                     }
                 }
             }
@@ -1054,10 +1061,15 @@ impl Workspace {
         );
         self.solution = solution;
         let mut delta = 0.0;
-        for i in 0..n {
-            self.residual[i] = t.reduced[i] - product[i];
-            self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-            delta += self.residual[i].dot(&self.preconditioned[i]);
+        for ((((r, z), b), q), inverse) in (self.residual[..n].iter_mut())
+            .zip(&mut self.preconditioned[..n])
+            .zip(&t.reduced[..n])
+            .zip(&product[..n])
+            .zip(&t.inverse[..n])
+        {
+            *r = b - q;
+            *z = inverse.apply(r);
+            delta += r.dot(z);
         }
         for (b, bv) in t.body.iter_mut().enumerate() {
             bv.r = bv.rhs - q_body[b];
