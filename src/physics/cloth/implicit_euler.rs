@@ -268,10 +268,12 @@ fn finish_plain(cloth: &mut Cloth, loads: &ClothLoads) {
     scratch.damping_force.clear();
     if springs.iter().any(|s| s.damping > 0.0) {
         scratch.damping_force.resize(n, Vector3::zeros());
+        // (Both slices of length n: one bounds check per end serves the two.)
+        let (v1, force) = (&v1[..n], &mut scratch.damping_force[..n]);
         for (s, b) in springs.iter().zip(&work.blocks) {
             let f = b.direction * (s.damping * (v1[s.j] - v1[s.i]).dot(&b.direction));
-            scratch.damping_force[s.i] += f;
-            scratch.damping_force[s.j] -= f;
+            force[s.i] += f;
+            force[s.j] -= f;
         }
     }
     if loads.drag.is_some() {

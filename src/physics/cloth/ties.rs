@@ -831,10 +831,14 @@ impl Workspace {
                     self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
                     x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                     delta = 0.0;
-                    for i in 0..n {
-                        self.residual[i] += product[i];
-                        self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-                        delta += self.residual[i].dot(&self.preconditioned[i]);
+                    for (((r, z), q), inverse) in (self.residual[..n].iter_mut())
+                        .zip(&mut self.preconditioned[..n])
+                        .zip(&product[..n])
+                        .zip(&t.inverse[..n])
+                    {
+                        *r += q;
+                        *z = inverse.apply(r);
+                        delta += r.dot(z);
                     }
                     for bv in t.body.iter_mut() {
                         bv.r = bv.rhs;
