@@ -230,9 +230,12 @@ fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     if gathered {
         work.terms.terms[springs.len()] = Vector3::zeros();
         work.matrices[springs.len()] = Symmetric3::default();
+        // (Two slices of one length read at the same slots: one bounds check serves both.)
+        let terms = &work.terms.terms[..=springs.len()];
+        let matrices = &work.matrices[..=springs.len()];
         for (k, (b, p)) in rhs.iter_mut().zip(preconditioner.iter_mut()).enumerate() {
-            *b += work.order.gather(k, &work.terms.terms);
-            p.add(&work.order.gather_blocks(k, &work.matrices));
+            *b += work.order.gather(k, terms);
+            p.add(&work.order.gather_blocks(k, matrices));
         }
     }
 }
