@@ -108,12 +108,11 @@ pub(super) fn solve_tied(
         cloth.solver.tolerance,
         cloth.solver.max_iterations,
     );
-    for (i, v) in cloth.velocities.iter_mut().enumerate() {
-        *v = if cloth.pinned[i] {
-            Vector3::zeros()
-        } else {
-            v0[i] + work.solution[i]
-        };
+    for ((v, &pinned), (v0, dv)) in (cloth.velocities.iter_mut())
+        .zip(&cloth.pinned)
+        .zip(v0.iter().zip(&work.solution))
+    {
+        *v = if pinned { Vector3::zeros() } else { v0 + dv };
     }
     StepReport {
         iterations: outcome.iterations,
@@ -231,9 +230,12 @@ fn assemble_plain(cloth: &mut Cloth, loads: &ClothLoads, h: f64) {
     if gathered {
         work.terms.terms[springs.len()] = Vector3::zeros();
         work.matrices[springs.len()] = Symmetric3::default();
+        // (Two slices of one length read at the same slots: one bounds check serves both.)
+        let terms = &work.terms.terms[..=springs.len()];
+        let matrices = &work.matrices[..=springs.len()];
         for (k, (b, p)) in rhs.iter_mut().zip(preconditioner.iter_mut()).enumerate() {
-            *b += work.order.gather(k, &work.terms.terms);
-            p.add(&work.order.gather_blocks(k, &work.matrices));
+            *b += work.order.gather(k, terms);
+            p.add(&work.order.gather_blocks(k, matrices));
         }
     }
 }
@@ -269,10 +271,12 @@ fn finish_plain(cloth: &mut Cloth, loads: &ClothLoads) {
     scratch.damping_force.clear();
     if springs.iter().any(|s| s.damping > 0.0) {
         scratch.damping_force.resize(n, Vector3::zeros());
+        // (Both slices of length n: one bounds check per end serves the two.)
+        let (v1, force) = (&v1[..n], &mut scratch.damping_force[..n]);
         for (s, b) in springs.iter().zip(&work.blocks) {
             let f = b.direction * (s.damping * (v1[s.j] - v1[s.i]).dot(&b.direction));
-            scratch.damping_force[s.i] += f;
-            scratch.damping_force[s.j] -= f;
+            force[s.i] += f;
+            force[s.j] -= f;
         }
     }
     if loads.drag.is_some() {

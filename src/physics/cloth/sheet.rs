@@ -442,8 +442,11 @@ impl Cloth {
         let mut dissipated = Losses::default();
         let start = &self.scratch.start;
         if self.scratch.damping_force.len() == self.len() {
-            for (i, f) in self.scratch.damping_force.iter().enumerate() {
-                dissipated.damping -= f.dot(&(self.positions[i] - start[i]));
+            for ((f, x1), x0) in (self.scratch.damping_force.iter())
+                .zip(&self.positions)
+                .zip(&start[..self.len()])
+            {
+                dissipated.damping -= f.dot(&(x1 - x0));
             }
         }
         if loads.drag.is_some() && self.scratch.drag_velocity.len() == self.len() {
@@ -464,7 +467,7 @@ impl Cloth {
             .start_velocity
             .get(i)
             .copied()
-            .unwrap_or(self.velocities[i])
+            .unwrap_or_else(|| self.velocities[i])
     }
 
     /// Per particle, how the last tied step ended (empty before the first).

@@ -312,6 +312,21 @@ pub struct TieBuffers {
     /// and per body whether it is held (module doc).
     held_inverse: nalgebra::DMatrix<f64>,
     held: Vec<bool>,
+    /// The bodies' vectors of a solve, kept for their allocations (`solve_tied` takes them).
+    body_scratch: BodyScratch,
+}
+
+/// Per body, what one solve builds beside [`BodyVectors`] (every entry written before read).
+#[derive(Debug, Clone, Default)]
+struct BodyScratch {
+    /// M_b + Σ G_iᵀ P_i G_i, and the terms G_iᵀ P_i G_i of the ties on a moving body.
+    blocks: Vec<Matrix6<f64>>,
+    terms: Vec<(usize, Matrix6<f64>)>,
+    /// The right-hand side; the unknown Y, its product and its search direction.
+    rhs: Vec<Vector6<f64>>,
+    x: Vec<Vector6<f64>>,
+    q: Vec<Vector6<f64>>,
+    direction: Vec<Vector6<f64>>,
 }
 
 /// What one round's solve ended with: Δv per particle, Y per body.
@@ -363,6 +378,18 @@ impl TieBuffers {
             + bytes_of(&self.starts, self.starts.capacity())
             + bytes_of(&self.kept, self.kept.capacity())
             + bytes_of(&self.reduced, self.reduced.capacity())
+            + bytes_of(
+                &self.body_scratch.blocks,
+                self.body_scratch.blocks.capacity(),
+            )
+            + bytes_of(&self.body_scratch.terms, self.body_scratch.terms.capacity())
+            + bytes_of(&self.body_scratch.rhs, self.body_scratch.rhs.capacity())
+            + bytes_of(&self.body_scratch.x, self.body_scratch.x.capacity())
+            + bytes_of(&self.body_scratch.q, self.body_scratch.q.capacity())
+            + bytes_of(
+                &self.body_scratch.direction,
+                self.body_scratch.direction.capacity(),
+            )
             + (self.starts.iter())
                 .map(|s| {
                     bytes_of(&s.particles, s.particles.capacity())
@@ -412,19 +439,20 @@ fn order_free_sum(values: &mut [f64]) -> f64 {
     positive + negative
 }
 
-/// out\[b\] += Σ the wrenches listed for body b, each component by [`order_free_sum`].
+/// out\[b\] += Σ the wrenches listed for body b, each component by [`order_free_sum`]
+/// (`wrenches` is sorted by body, stably, to find each body's together).
 fn add_wrenches(
     out: &mut [Vector6<f64>],
-    wrenches: &[(usize, Vector6<f64>)],
+    wrenches: &mut [(usize, Vector6<f64>)],
     values: &mut Vec<f64>,
 ) {
-    for (b, o) in out.iter_mut().enumerate() {
+    wrenches.sort_by_key(|w| w.0);
+    for listed in wrenches.chunk_by(|a, b| a.0 == b.0) {
+        let o = &mut out[listed[0].0];
         for c in 0..6 {
             values.clear();
-            values.extend(wrenches.iter().filter(|w| w.0 == b).map(|w| w.1[c]));
-            if !values.is_empty() {
-                o[c] += order_free_sum(values);
-            }
+            values.extend(listed.iter().map(|w| w.1[c]));
+            o[c] += order_free_sum(values);
         }
     }
 }
@@ -553,18 +581,24 @@ impl Workspace {
         t.filtered.clear();
         t.body.clear();
         t.body.resize(bodies.len(), BodyVectors::default());
-        let mut body_blocks: Vec<Matrix6<f64>> = bodies
-            .iter()
-            .map(|b| {
-                let mut m = Matrix6::zeros();
-                for k in 0..3 {
-                    m[(k, k)] = b.mass;
-                }
-                m.fixed_view_mut::<3, 3>(3, 3).copy_from(&b.inertia);
-                m
-            })
-            .collect();
-        let mut block_terms: Vec<(usize, Matrix6<f64>)> = Vec::new();
+        let BodyScratch {
+            blocks: mut body_blocks,
+            terms: mut block_terms,
+            rhs: mut body_rhs,
+            x: mut x_body,
+            q: mut q_body,
+            direction: mut direction_body,
+        } = std::mem::take(&mut t.body_scratch);
+        body_blocks.clear();
+        body_blocks.extend(bodies.iter().map(|b| {
+            let mut m = Matrix6::zeros();
+            for k in 0..3 {
+                m[(k, k)] = b.mass;
+            }
+            m.fixed_view_mut::<3, 3>(3, 3).copy_from(&b.inertia);
+            m
+        }));
+        block_terms.clear();
         for tie in ties.iter() {
             let i = tie.particle;
             let p = &self.preconditioner[i];
@@ -600,15 +634,15 @@ impl Workspace {
                 block_terms.push((tie.body.unwrap(), g.transpose() * full * g));
             }
         }
-        // Summed in no particular order (`order_free_sum`).
-        for (b, m) in body_blocks.iter_mut().enumerate() {
+        // Summed in no particular order (`order_free_sum`): each body's terms together (a
+        // stable sort: in the ties' order), then every entry's sum over them.
+        block_terms.sort_by_key(|x| x.0);
+        for terms in block_terms.chunk_by(|a, c| a.0 == c.0) {
+            let m = &mut body_blocks[terms[0].0];
             for e in 0..36 {
                 t.values.clear();
-                t.values
-                    .extend(block_terms.iter().filter(|x| x.0 == b).map(|x| x.1[e]));
-                if !t.values.is_empty() {
-                    m[e] += order_free_sum(&mut t.values);
-                }
+                t.values.extend(terms.iter().map(|x| x.1[e]));
+                m[e] += order_free_sum(&mut t.values);
             }
         }
         t.body_inverse.clear();
@@ -667,9 +701,12 @@ impl Workspace {
         }
         t.wrenches.clear();
         t.reduced.resize(n, Vector3::zeros());
-        for i in 0..n {
-            let k = t.tie_of[i];
-            let mut r = self.rhs[i] - t.full[i];
+        for (((reduced, (b, full)), &k), &pinned) in (t.reduced[..n].iter_mut())
+            .zip(self.rhs[..n].iter().zip(&t.full[..n]))
+            .zip(&t.tie_of[..n])
+            .zip(&is_pinned[..n])
+        {
+            let mut r = b - full;
             if k != u32::MAX {
                 let tie = &ties[k as usize];
                 r += tie.extra;
@@ -682,17 +719,16 @@ impl Workspace {
                 }
                 r = tie.free(&r);
             }
-            if is_pinned[i] {
+            if pinned {
                 r = Vector3::zeros();
             }
-            t.reduced[i] = r;
+            *reduced = r;
         }
-        {
-            let mut rhs: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
-            add_wrenches(&mut rhs, &t.wrenches, &mut t.values);
-            for (bv, r) in t.body.iter_mut().zip(rhs) {
-                bv.rhs = r;
-            }
+        body_rhs.clear();
+        body_rhs.resize(bodies.len(), Vector6::zeros());
+        add_wrenches(&mut body_rhs, &mut t.wrenches, &mut t.values);
+        for (bv, r) in t.body.iter_mut().zip(&body_rhs) {
+            bv.rhs = *r;
         }
         // The warm start: what this round's solve ended with the step before, when there is
         // one for these particles and bodies (module doc, "Warm starts").
@@ -707,24 +743,28 @@ impl Workspace {
             t.starts[round].pause -= 1;
             candidate = false;
         }
-        let mut x_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+        x_body.clear();
+        x_body.resize(bodies.len(), Vector6::zeros());
         // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
         let mut delta0 = 0.0;
-        for i in 0..n {
-            delta0 += t.reduced[i].dot(&t.inverse[i].apply(&t.reduced[i]));
+        for (r, inverse) in t.reduced[..n].iter().zip(&t.inverse[..n]) {
+            delta0 += r.dot(&inverse.apply(r));
         }
         precondition_bodies(&mut t, joints, true);
         for bv in &t.body {
             delta0 += bv.rhs.dot(&bv.z);
         }
+        // Filtered: a pinned row to 0, a tied row to its free part S y (only the rows a tie
+        // or a pin names: every other row is left as it is).
         let filter_start = |solution: &mut [Vector3<f64>], tie_of: &[u32]| {
-            for i in 0..n {
-                let k = tie_of[i];
-                if is_pinned[i] {
-                    solution[i] = Vector3::zeros();
-                } else if k != u32::MAX {
-                    solution[i] = ties[k as usize].free(&solution[i]);
+            for (k, tie) in ties.iter().enumerate() {
+                let i = tie.particle;
+                if tie_of[i] == k as u32 && !is_pinned[i] {
+                    solution[i] = tie.free(&solution[i]);
                 }
+            }
+            for &i in &pinned {
+                solution[i as usize] = Vector3::zeros();
             }
         };
         filter_start(&mut self.solution, &t.tie_of);
@@ -734,7 +774,8 @@ impl Workspace {
             relative_residual: 0.0,
         };
         if delta0.is_finite() && delta0 > 0.0 {
-            let mut q_body: Vec<Vector6<f64>> = vec![Vector6::zeros(); bodies.len()];
+            q_body.clear();
+            q_body.resize(bodies.len(), Vector6::zeros());
             let mut product = std::mem::take(&mut self.product);
             // The round's warm start, kept only when its residual δ_w is already within
             // WARM_GATE of the right-hand side's (module doc, "Warm starts").
@@ -790,10 +831,14 @@ impl Workspace {
                     self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
                     x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
                     delta = 0.0;
-                    for i in 0..n {
-                        self.residual[i] += product[i];
-                        self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-                        delta += self.residual[i].dot(&self.preconditioned[i]);
+                    for (((r, z), q), inverse) in (self.residual[..n].iter_mut())
+                        .zip(&mut self.preconditioned[..n])
+                        .zip(&product[..n])
+                        .zip(&t.inverse[..n])
+                    {
+                        *r += q;
+                        *z = inverse.apply(r);
+                        delta += r.dot(z);
                     }
                     for bv in t.body.iter_mut() {
                         bv.r = bv.rhs;
@@ -815,7 +860,8 @@ impl Workspace {
                 None => tolerance * tolerance * delta0,
             };
             let mut iterations = 0;
-            let mut direction_body: Vec<Vector6<f64>> = t.body.iter().map(|b| b.z).collect();
+            direction_body.clear();
+            direction_body.extend(t.body.iter().map(|b| b.z));
             while delta > target && iterations < max_iterations {
                 let mut direction = std::mem::take(&mut self.direction);
                 self.multiply_reduced(
@@ -880,14 +926,15 @@ impl Workspace {
             };
         }
         // Δv = T x + z (the warm start of the next step keeps the free parts).
-        for (i, dv) in self.solution.iter_mut().enumerate() {
-            let k = t.tie_of[i];
-            if k != u32::MAX {
-                let tie = &ties[k as usize];
+        // (Only the tied rows change: each once, by the tie `tie_of` names.)
+        for (k, tie) in ties.iter().enumerate() {
+            let i = tie.particle;
+            if t.tie_of[i] == k as u32 {
                 let mut tied = t.offset[i];
                 if moves(tie) {
                     tied += tie.tied(&point(&t.body[tie.body.unwrap()].x, &tie.arm));
                 }
+                let dv = &mut self.solution[i];
                 *dv = tie.free(dv) + tied;
             }
         }
@@ -898,10 +945,14 @@ impl Workspace {
         if pinned.is_empty() && ties.iter().all(moves) && !ties.iter().any(held_tie) {
             let mut gap = Vector3::zeros();
             let mut free_mass = 0.0;
-            for i in 0..n {
-                gap += self.rhs[i] - self.solution[i] * self.diagonal[i];
-                if t.tie_of[i] == u32::MAX {
-                    free_mass += self.diagonal[i];
+            for (((b, dv), &a), &k) in (self.rhs[..n].iter())
+                .zip(&self.solution[..n])
+                .zip(&self.diagonal[..n])
+                .zip(&t.tie_of[..n])
+            {
+                gap += b - dv * a;
+                if k == u32::MAX {
+                    free_mass += a;
                 }
             }
             for (b, bv) in bodies.iter().zip(&t.body) {
@@ -909,9 +960,9 @@ impl Workspace {
             }
             if free_mass > 0.0 {
                 let shift = gap / free_mass;
-                for i in 0..n {
-                    if t.tie_of[i] == u32::MAX {
-                        self.solution[i] += shift;
+                for (dv, &k) in self.solution[..n].iter_mut().zip(&t.tie_of[..n]) {
+                    if k == u32::MAX {
+                        *dv += shift;
                     }
                 }
             }
@@ -959,6 +1010,14 @@ impl Workspace {
         }
         self.pinned = pinned;
         t.is_pinned = is_pinned;
+        t.body_scratch = BodyScratch {
+            blocks: body_blocks,
+            terms: block_terms,
+            rhs: body_rhs,
+            x: x_body,
+            q: q_body,
+            direction: direction_body,
+        };
         self.ties = t;
         outcome
     }
@@ -1006,10 +1065,15 @@ impl Workspace {
         );
         self.solution = solution;
         let mut delta = 0.0;
-        for i in 0..n {
-            self.residual[i] = t.reduced[i] - product[i];
-            self.preconditioned[i] = t.inverse[i].apply(&self.residual[i]);
-            delta += self.residual[i].dot(&self.preconditioned[i]);
+        for ((((r, z), b), q), inverse) in (self.residual[..n].iter_mut())
+            .zip(&mut self.preconditioned[..n])
+            .zip(&t.reduced[..n])
+            .zip(&product[..n])
+            .zip(&t.inverse[..n])
+        {
+            *r = b - q;
+            *z = inverse.apply(r);
+            delta += r.dot(z);
         }
         for (b, bv) in t.body.iter_mut().enumerate() {
             bv.r = bv.rhs - q_body[b];
@@ -1087,7 +1151,7 @@ impl Workspace {
         for &(i, row) in &t.tied_rows {
             out[i] = row;
         }
-        add_wrenches(out_body, &t.wrenches, &mut t.values);
+        add_wrenches(out_body, &mut t.wrenches, &mut t.values);
     }
 }
 
