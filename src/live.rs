@@ -95,11 +95,6 @@ impl LiveValues {
         }
     }
 
-    /// Still being simulated.
-    pub fn is_computing(&self) -> bool {
-        self.computing
-    }
-
     /// Simulates `world` (at t = 0, with the settings to quote) to every time the lesson's
     /// pages need. A lesson without live numbers or predictions costs nothing.
     pub fn compute(lesson: &Lesson, world: World) -> LiveValues {

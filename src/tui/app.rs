@@ -254,8 +254,8 @@ impl App {
     }
 
     /// The terminal app: the first frame is drawn at once and the pages' live numbers read
-    /// "(computing…)" while a thread simulates them (lesson 35's reach 6 s: about 3 s of
-    /// stepping); [`App::poll_live`] takes them when they are ready.
+    /// "(computing…)" while a thread simulates them (lesson 35's pages quote t = 6 s:
+    /// about 3 s of stepping); [`App::poll_live`] takes them when they are ready.
     pub fn interactive(lesson: Lesson, options: Options) -> App {
         App::build(lesson, options, true)
     }
