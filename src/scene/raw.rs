@@ -53,6 +53,8 @@ pub struct RawContact {
     pub response: Spanned<String>,
     pub restitution: Option<Spanned<f64>>,
     pub friction: Option<Spanned<f64>>,
+    /// `impulse` only: propagate | simultaneous.
+    pub impacts: Option<Spanned<String>>,
     /// `soft-step` only: contact frequency (Hz), damping ratio, sub-steps per step.
     pub hertz: Option<Spanned<f64>>,
     pub damping_ratio: Option<Spanned<f64>>,
