@@ -304,3 +304,42 @@ fn the_superball_stack_throws_the_small_ball_up_at_the_closed_form_speed() {
         "rise {rise} of {expected_rise}"
     );
 }
+
+#[test]
+fn the_impacts_key_is_checked_where_it_is_written() {
+    let error = |source: &str| {
+        tumble::scene::parse(source, std::path::Path::new("impacts.toml"))
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    };
+    let scene = |contact: &str| {
+        format!(
+            "title = \"t\"\n[scene]\ndt = 0.001\nintegrator = \"rk4\"\ncontact = {{ {contact} }}\n\
+             [[obstacle]]\ntype = \"ground\"\nheight = 0.0\n[body]\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\nmass = 1.0\n"
+        )
+    };
+    let typo = error(&scene(r#"response = "impulse", impacts = "propagated""#));
+    assert!(
+        typo.ends_with(
+            "impacts.toml:5:45: unknown impact law `propagated` (did you mean `propagate`?); \
+             valid laws: propagate, simultaneous"
+        ),
+        "{typo}"
+    );
+    let seed = error(&scene(r#"response = "seed", impacts = "simultaneous""#));
+    assert!(
+        seed.ends_with(
+            "impacts.toml:5:42: `impacts` is a key of the `impulse` response, not of `seed`"
+        ),
+        "{seed}"
+    );
+    let soft = error(&scene(r#"response = "soft-step", impacts = "propagate""#));
+    assert!(soft.contains("not of `soft-step`"), "{soft}");
+    for law in ["propagate", "simultaneous"] {
+        let ok = error(&scene(&format!(
+            r#"response = "impulse", impacts = "{law}""#
+        )));
+        assert!(ok.is_empty(), "{ok}");
+    }
+}
