@@ -211,6 +211,19 @@ pub struct RawJoint {
     pub axis: Option<Vec3>,
     pub anchors: Option<Spanned<Vec<[f64; 3]>>>,
     pub length: Option<Spanned<f64>>,
+    /// hinge (degrees) or slider (m): `[lo, hi]`.
+    pub limits: Option<Spanned<Vec<f64>>>,
+    /// hinge or slider: `{ speed, max_torque }` or `{ speed, max_force }`.
+    pub motor: Option<Spanned<RawMotor>>,
+}
+
+/// A joint's `motor = { speed, max_force }` (slider) or `{ speed, max_torque }` (hinge).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMotor {
+    pub speed: Option<Spanned<f64>>,
+    pub max_force: Option<Spanned<f64>>,
+    pub max_torque: Option<Spanned<f64>>,
 }
 
 /// A `[[spring]]` table: a Hooke spring with damping.
