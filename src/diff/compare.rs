@@ -196,7 +196,11 @@ pub fn row_differences(columns: &[Column], values: &[f64], ours: &Sample) -> Vec
         .iter()
         .zip(values)
         .map(|(&c, &v)| {
-            let theirs = if matches!(c, Column::Q(_)) { sign * v } else { v };
+            let theirs = if matches!(c, Column::Q(_)) {
+                sign * v
+            } else {
+                v
+            };
             if !theirs.is_finite() {
                 f64::INFINITY
             } else {

@@ -400,11 +400,8 @@ impl<'a> Planted<'a> {
         }
         let vertex = (self.integrator == Integrator::EulerSeed) != self.knobs.vertex_torque_swapped;
         if vertex {
-            loads.torque += crate::physics::integrators::vertex_torque(
-                self.body,
-                &d.rotation,
-                &loads.force,
-            );
+            loads.torque +=
+                crate::physics::integrators::vertex_torque(self.body, &d.rotation, &loads.force);
         }
         if self.knobs.torque_about_origin {
             let count = if vertex { points } else { 1.0 };
@@ -460,7 +457,10 @@ impl<'a> Planted<'a> {
                         let r = r + d.angular_velocity.cross_matrix() * r * dt;
                         self.turn = Turn::Matrix(match self.knobs.rotation {
                             Rotation::GramSchmidt => gram_schmidt(&r),
-                            Rotation::Nearest => Orientation::Matrix(r).quaternion().to_rotation_matrix().into_inner(),
+                            Rotation::Nearest => Orientation::Matrix(r)
+                                .quaternion()
+                                .to_rotation_matrix()
+                                .into_inner(),
                             _ => r,
                         });
                     }

@@ -129,7 +129,9 @@ fn candidates(subject: &Subject, world: &World, theirs: &Theirs, ours: &Ours) ->
             }
         }
     }
-    factors.extend([2.0, 0.5, 10.0, 0.1, 4.0, 0.25, 5.0, 0.2, 100.0, 0.01, 1000.0, 0.001]);
+    factors.extend([
+        2.0, 0.5, 10.0, 0.1, 4.0, 0.25, 5.0, 0.2, 100.0, 0.01, 1000.0, 0.001,
+    ]);
     let mut kept: Vec<f64> = Vec::new();
     for f in factors {
         let usable = f.is_finite() && f > 0.0 && (f - 1.0).abs() > 1e-9 && f * dt > 0.0;
@@ -313,8 +315,7 @@ fn report(
                         yours = -yours;
                     }
                 }
-                let (phase, formula) =
-                    written_by(*quantity, integrator, outcome.ours.collided[*r]);
+                let (phase, formula) = written_by(*quantity, integrator, outcome.ours.collided[*r]);
                 let _ = writeln!(
                     out,
                     "  {:<17} {:<7} {:>6}  {:<10} {:<24} {:<24} {} ({formula})",

@@ -209,8 +209,7 @@ fn report_name(name: &str) -> Option<Column> {
 }
 
 /// `run`'s columns, for error messages.
-const RUN_COLUMNS: &str =
-    "step t x y z qw qx qy qz vx vy vz wx wy wz Lx Ly Lz energy penetration";
+const RUN_COLUMNS: &str = "step t x y z qw qx qy qz vx vy vz wx wy wz Lx Ly Lz energy penetration";
 
 /// One row of THEIRS.csv.
 #[derive(Debug, Clone, PartialEq)]
@@ -288,7 +287,10 @@ pub fn parse(text: &str, dt: f64) -> Result<Theirs, (usize, String)> {
     let Some((header_line, header)) = lines.next() else {
         return Err((1, "empty: expected a header line naming the columns".into()));
     };
-    let names: Vec<&str> = header.split(',').map(|s| s.trim().trim_matches('"')).collect();
+    let names: Vec<&str> = header
+        .split(',')
+        .map(|s| s.trim().trim_matches('"'))
+        .collect();
     let mut all = Vec::with_capacity(names.len());
     for name in &names {
         let column = Column::from_name(name).ok_or_else(|| {
@@ -366,7 +368,9 @@ pub fn parse(text: &str, dt: f64) -> Result<Theirs, (usize, String)> {
                 )
             })?;
             if Some(k) == step_index {
-                if !(value >= 0.0 && value.fract() == 0.0 && value <= crate::limits::MAX_STEPS as f64)
+                if !(value >= 0.0
+                    && value.fract() == 0.0
+                    && value <= crate::limits::MAX_STEPS as f64)
                 {
                     return Err((
                         line,
@@ -424,11 +428,7 @@ pub fn parse(text: &str, dt: f64) -> Result<Theirs, (usize, String)> {
             }
         }
         last_t = t.unwrap_or(last_t);
-        rows.push(Row {
-            line,
-            step,
-            values,
-        });
+        rows.push(Row { line, step, values });
     }
     if rows.is_empty() {
         return Err((header_line, "no rows after the header".into()));
@@ -446,7 +446,10 @@ mod tests {
         assert_eq!(Column::from_name("_Position[2]"), Some(Column::X(2)));
         assert_eq!(Column::from_name("_Vitesse.x"), Some(Column::V(0)));
         assert_eq!(Column::from_name("_VitesseAngulaire.z"), Some(Column::W(2)));
-        assert_eq!(Column::from_name("_QuantiteMouvement.z"), Some(Column::P(2)));
+        assert_eq!(
+            Column::from_name("_QuantiteMouvement.z"),
+            Some(Column::P(2))
+        );
         assert_eq!(Column::from_name("_MomentCinetique.x"), Some(Column::L(0)));
         assert_eq!(Column::from_name("_Rotation[1][2]"), Some(Column::R(1, 2)));
         assert_eq!(Column::from_name("R23"), Some(Column::R(1, 2)));
