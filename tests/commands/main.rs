@@ -4,6 +4,7 @@ mod bad_input;
 mod cli_lessons;
 mod cli_names_and_errors;
 mod cloth_cli;
+mod diff;
 mod divergence_cli;
 mod hostile;
 mod lesson_claims;
