@@ -298,8 +298,10 @@ fn accuracy_run(
         // Exact references are evaluated at the run's own time, numeric ones at the sample.
         // Every body counts: the error is the worst body's.
         let truth = reference.at(index, now);
-        for ((run, reference_pose), body) in
-            super::reference::poses(&world).iter().zip(&truth).zip(&scene.bodies)
+        for ((run, reference_pose), body) in super::reference::poses(&world)
+            .iter()
+            .zip(&truth)
+            .zip(&scene.bodies)
         {
             let (error, angle, distance) =
                 super::reference::pose_error(run, reference_pose, body.body.radius);

@@ -61,7 +61,11 @@ pub fn poses(world: &World) -> Vec<Pose> {
 pub fn pose_error(run: &Pose, reference: &Pose, radius: f64) -> (f64, f64, f64) {
     let angle = rotation_angle_between(&reference.orientation, &run.orientation);
     let distance = (run.position - reference.position).norm();
-    (angle + distance / radius.max(f64::MIN_POSITIVE), angle, distance)
+    (
+        angle + distance / radius.max(f64::MIN_POSITIVE),
+        angle,
+        distance,
+    )
 }
 
 /// How far halving the reference's step moved it: the error measure and the distance (m),
@@ -165,8 +169,16 @@ impl Reference {
             for ((pa, pb), body) in a.iter().zip(b).zip(&scene.bodies) {
                 let (e, _, d) = pose_error(pa, pb, body.body.radius);
                 // NaN (a diverged reference) counts as not converged.
-                spread.error = if e.is_nan() { f64::INFINITY } else { spread.error.max(e) };
-                spread.position = if d.is_nan() { f64::INFINITY } else { spread.position.max(d) };
+                spread.error = if e.is_nan() {
+                    f64::INFINITY
+                } else {
+                    spread.error.max(e)
+                };
+                spread.position = if d.is_nan() {
+                    f64::INFINITY
+                } else {
+                    spread.position.max(d)
+                };
             }
         }
         Reference::Numeric {

@@ -121,7 +121,10 @@ fn the_csv_and_json_carry_the_contact_solver_rows() {
     assert!(output.status.success());
     let csv = String::from_utf8(output.stdout).unwrap();
     let header = csv.lines().next().unwrap();
-    assert!(header.ends_with(",solver,substeps,sink,below_floor"), "{header}");
+    assert!(
+        header.ends_with(",solver,substeps,sink,below_floor"),
+        "{header}"
+    );
     let columns = header.split(',').count();
     let solver_rows: Vec<&str> = csv
         .lines()
@@ -158,6 +161,9 @@ fn the_csv_and_json_carry_the_contact_solver_rows() {
     // `diverged` is true or false on every run, never null; the message goes in `divergence`.
     for run in scene["runs"].as_array().unwrap().iter().chain(runs) {
         assert!(run["diverged"].is_boolean(), "{run}");
-        assert_eq!(run["diverged"].as_bool(), Some(!run["divergence"].is_null()));
+        assert_eq!(
+            run["diverged"].as_bool(),
+            Some(!run["divergence"].is_null())
+        );
     }
 }
