@@ -13,5 +13,6 @@ mod live_numbers;
 mod study;
 mod study_cloth;
 mod study_contact;
+mod study_models;
 mod study_table;
 mod walk;
