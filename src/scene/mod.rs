@@ -224,41 +224,27 @@ impl Lesson {
 
 /// Reads and validates a lesson or scene file.
 pub fn load(path: &Path) -> Result<Lesson, LoadError> {
-    if path.is_dir() {
-        return Err(LoadError::file(path, "is a directory, not a scene file"));
-    }
-    if let Ok(meta) = std::fs::metadata(path) {
-        if meta.len() > crate::limits::MAX_FILE_BYTES {
-            return Err(LoadError::file(
-                path,
-                format!(
-                    "file is {} bytes, more than the limit of {} for a scene file",
-                    meta.len(),
-                    crate::limits::MAX_FILE_BYTES
-                ),
-            ));
-        }
-    }
-    let bytes = std::fs::read(path).map_err(|e| {
-        let reason = match e.kind() {
-            std::io::ErrorKind::NotFound => "no such file".to_string(),
-            _ => e.to_string(),
-        };
-        LoadError::file(path, format!("cannot read: {reason}"))
-    })?;
+    parse(&read(path)?, path)
+}
+
+/// The text of a scene file: read as every input is ([`crate::limits::read_bounded_bytes`]:
+/// at most [`crate::limits::MAX_FILE_BYTES`] bytes read, special files refused), UTF-8.
+pub fn read(path: &Path) -> Result<String, LoadError> {
+    let bytes =
+        crate::limits::read_bounded_bytes(path, crate::limits::MAX_FILE_BYTES, "scene file")
+            .map_err(|e| LoadError::file(path, e.reason))?;
     if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
         return Err(LoadError::file(
             path,
             "UTF-16 text: a scene file is UTF-8 (save it as UTF-8)",
         ));
     }
-    let source = String::from_utf8(bytes).map_err(|_| {
+    String::from_utf8(bytes).map_err(|_| {
         LoadError::file(
             path,
             "not a text file (invalid UTF-8): expected a TOML scene",
         )
-    })?;
-    parse(&source, path)
+    })
 }
 
 /// Parses and validates a lesson from its source text; `path` names it in errors and anchors
