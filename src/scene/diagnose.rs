@@ -47,7 +47,10 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
         Ok(_) => return Vec::new(),
         Err(e) => e,
     };
-    if first.location.is_none() || DeTable::parse(source).is_err() {
+    if first.location.is_none()
+        || first.message.contains(LIMIT_WORDS)
+        || DeTable::parse(source).is_err()
+    {
         return vec![first];
     }
     let mut text = source.to_string();
@@ -104,6 +107,12 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                 .cloned()
         });
         match (value, entry) {
+            // "… need(s) a collision response: add `contact = …` to [scene]": the file gets
+            // one (a sub-table after its end), so the next body, obstacle or cloth is checked
+            // for its own errors, not for the same missing key.
+            _ if current.message.contains(ADD_CONTACT) && !text.contains(CONTACT_PLACEHOLDER) => {
+                text.push_str(CONTACT_PLACEHOLDER);
+            }
             _ if retry.is_some() => {
                 let entry = retry.unwrap_or_default();
                 let key = key_name(&text[entry.clone()]);
@@ -178,6 +187,11 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
     errors.sort_by_key(|e| e.location);
     errors
 }
+
+/// The words of the errors whose fix is a `contact` table in [scene] (several bodies,
+/// obstacles, a cloth), and that table, appended as a sub-table after the end of the file.
+const ADD_CONTACT: &str = "add `contact = {";
+const CONTACT_PLACEHOLDER: &str = "\n[scene.contact]\nresponse = \"impulse\"\n";
 
 /// The words of an error about a limit on the file as a whole ("… more than the limit of
 /// 1000 joints"): blanking one table past it would only find the next.
