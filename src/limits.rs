@@ -212,14 +212,15 @@ pub fn count(count: f64, limit: u64, what: &str, unit: &str, fix: &str) -> Resul
     Ok(count.max(0.0) as u64)
 }
 
-/// A screen size checked against [`MAX_SIDE`] and [`MAX_CELLS`].
-pub fn screen(cols: u16, rows: u16) -> Result<(), String> {
-    if cols > MAX_SIDE || rows > MAX_SIDE {
+/// A screen size checked against [`MAX_SIDE`] and [`MAX_CELLS`] (any size a user can type:
+/// `99999x99999` is over the limit, not malformed).
+pub fn screen(cols: u64, rows: u64) -> Result<(), String> {
+    if cols > u64::from(MAX_SIDE) || rows > u64::from(MAX_SIDE) {
         return Err(format!(
             "size {cols}x{rows} is larger than the limit of {MAX_SIDE} cells a side"
         ));
     }
-    let cells = u64::from(cols) * u64::from(rows);
+    let cells = cols * rows;
     if cells > MAX_CELLS {
         return Err(format!(
             "size {cols}x{rows} is {cells} cells, more than the limit of {MAX_CELLS}"
@@ -253,6 +254,7 @@ mod tests {
         assert_eq!(count(10.0, MAX_SAMPLES, "x", "samples", "z"), Ok(10));
         assert!(screen(120, 40).is_ok());
         assert!(screen(30000, 30000).is_err());
+        assert!(screen(99999, 99999).unwrap_err().contains("limit of 4000"));
         // 1001 × 1000 = 1 001 000 cells > 10⁶.
         assert!(screen(1001, 1000).is_err());
     }
