@@ -90,26 +90,23 @@ fn find(argument: &Path) -> Option<Found> {
 /// Loads a lesson or scene file, or a bundled lesson by name (see the module doc); an unknown
 /// name gets a suggestion among the bundled ones.
 pub fn load(argument: &Path) -> Result<Lesson, LoadError> {
+    let (path, text) = read(argument)?;
+    scene::parse(&text, &path)
+}
+
+/// The path (as errors name it) and text of the lesson an argument names: the one read every
+/// command goes through (a file is read once: `/dev/stdin` cannot be read twice).
+pub fn read(argument: &Path) -> Result<(PathBuf, String), LoadError> {
     match find(argument) {
-        Some(Found::Disk(path)) => scene::load(&path),
-        Some(Found::Compiled(path, text)) => scene::parse(text, &path),
+        Some(Found::Disk(path)) => scene::read(&path).map(|text| (path, text)),
+        Some(Found::Compiled(path, text)) => Ok((path, text.to_string())),
         None => Err(not_found(argument)),
     }
 }
 
-/// The path (as errors name it) and text of the lesson an argument names, when it has one.
+/// [`read`], when it can be read.
 pub fn source(argument: &Path) -> Option<(PathBuf, String)> {
-    match find(argument)? {
-        Found::Disk(path) => {
-            // A file past the loader's size limit is never read (its one error says why).
-            if std::fs::metadata(&path).ok()?.len() > crate::limits::MAX_FILE_BYTES {
-                return None;
-            }
-            let text = std::fs::read_to_string(&path).ok()?;
-            Some((path, text))
-        }
-        Found::Compiled(path, text) => Some((path, text.to_string())),
-    }
+    read(argument).ok()
 }
 
 /// "no such file" for an argument that is neither a file nor a bundled lesson.

@@ -8,16 +8,19 @@ use crate::lessons;
 use crate::scene::{self, LoadError};
 use std::path::PathBuf;
 
-/// Every error of one file (at least one when it does not load).
-fn errors(path: &std::path::Path, first: LoadError) -> Vec<LoadError> {
-    let all = lessons::source(path)
-        .map(|(path, text)| scene::check_every_error(&text, &path))
-        .unwrap_or_default();
-    if all.is_empty() {
-        vec![first]
-    } else {
-        all
-    }
+/// The lesson of one argument, or every error of it (at least one): the file is read once,
+/// as every command reads it, and `check` lists each independent error of the text the
+/// loader refused ([`crate::scene::check_every_error`]), the loader's own error among them.
+fn errors(argument: &std::path::Path) -> Result<scene::Lesson, Vec<LoadError>> {
+    let (path, text) = lessons::read(argument).map_err(|e| vec![e])?;
+    scene::parse(&text, &path).map_err(|first| {
+        let all = scene::check_every_error(&text, &path);
+        if all.is_empty() {
+            vec![first]
+        } else {
+            all
+        }
+    })
 }
 
 /// The `ok` line of a valid file (its title's control characters escaped).
@@ -33,10 +36,9 @@ fn ok(path: &std::path::Path, title: &str) -> Result<(), Failure> {
 pub fn check(files: &[PathBuf]) -> Result<(), Failure> {
     if let [path] = files {
         // One file: its errors are the lines (no summary line after them).
-        return match lessons::load(path) {
+        return match errors(path) {
             Ok(lesson) => ok(path, &lesson.title),
-            Err(first) => {
-                let mut all = errors(path, first);
+            Err(mut all) => {
                 let last = all.pop().map(|e| e.to_string()).unwrap_or_default();
                 for e in all {
                     warn(&e.to_string());
@@ -47,10 +49,10 @@ pub fn check(files: &[PathBuf]) -> Result<(), Failure> {
     }
     let mut failed = 0;
     for path in files {
-        match lessons::load(path) {
+        match errors(path) {
             Ok(lesson) => ok(path, &lesson.title)?,
-            Err(first) => {
-                for e in errors(path, first) {
+            Err(all) => {
+                for e in all {
                     warn(&e.to_string());
                 }
                 failed += 1;

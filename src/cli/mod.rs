@@ -437,16 +437,38 @@ fn app(file: Option<&Path>, _ascii: bool, _compare: Option<&str>) -> Result<(), 
     ))
 }
 
+/// A command-line parser's error (clap's paragraphs: `error: …`, a tip, `Usage: …`, "For
+/// more information, try '--help'.") as the one line every bad input gets: the error, its
+/// tip and the usage, joined.
+pub fn usage_error(rendered: &str) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for paragraph in rendered.split("\n\n") {
+        let text = paragraph.split_whitespace().collect::<Vec<_>>().join(" ");
+        if text.is_empty() || text.starts_with("For more information") {
+            continue;
+        }
+        let text = text.strip_prefix("error: ").unwrap_or(&text);
+        match text.strip_prefix("Usage: ") {
+            Some(usage) => parts.push(format!("(usage: {usage})")),
+            None => parts.push(text.to_string()),
+        }
+    }
+    parts.join("; ").replace("; (usage:", " (usage:")
+}
+
 /// Runs the command line; returns the process exit code.
 pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            output::warn(&usage_error(&e.render().to_string()));
+            return ExitCode::from(EXIT_BAD_INPUT);
+        }
         Err(e) => {
-            let code = if e.use_stderr() { EXIT_BAD_INPUT } else { 0 };
             // `--help | head -1`: a closed stdout ends the help quietly, never a panic.
             return match e.print() {
-                Err(io) if !e.use_stderr() => ExitCode::from(output::failure(io).code),
-                _ => ExitCode::from(code),
+                Err(io) => ExitCode::from(output::failure(io).code),
+                Ok(()) => ExitCode::SUCCESS,
             };
         }
     };

@@ -14,8 +14,11 @@
 //! ```
 //!
 //! An error that only the blanking caused is never reported: it names a blanked key, or has
-//! no place in the file, or lies in the appended placeholder (the search stops there). An
-//! error whose message was already reported (obstacles that need a `contact`) is reported once.
+//! no place in the file, or lies in the appended placeholder (the search stops there), or
+//! calls unknown a body that the blanking removed (a joint, a spring, an `attach` entry or a
+//! live number naming a body whose `[[body]]` was blanked for its own error). An error whose
+//! message was already reported (obstacles that need a `contact`) is reported once.
+//! An error about a limit on the whole file (more joints than the limit) stops the search.
 //! A TOML syntax error stops the search: nothing after it can be trusted.
 
 use super::{parse, LoadError};
@@ -44,13 +47,17 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
         Ok(_) => return Vec::new(),
         Err(e) => e,
     };
-    if first.location.is_none() || DeTable::parse(source).is_err() {
+    if first.location.is_none()
+        || first.message.contains(LIMIT_WORDS)
+        || DeTable::parse(source).is_err()
+    {
         return vec![first];
     }
     let mut text = source.to_string();
     let mut errors = vec![first.clone()];
     let mut current = first;
     let mut touched: Vec<Touched> = Vec::new();
+    let names = body_names(source);
     for _ in 0..200 {
         let Some(offset) = offset_of(&text, current.location) else {
             break;
@@ -60,7 +67,8 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
         };
         // A table missing from the file as a whole has no part to blank.
         let whole_file = current.message.starts_with("missing table")
-            || (section.bare && current.message.starts_with("this table has no"));
+            || (section.bare && current.message.starts_with("this table has no"))
+            || current.message.contains(LIMIT_WORDS);
         if whole_file {
             break;
         }
@@ -99,6 +107,12 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                 .cloned()
         });
         match (value, entry) {
+            // "… need(s) a collision response: add `contact = …` to [scene]": the file gets
+            // one (a sub-table after its end), so the next body, obstacle or cloth is checked
+            // for its own errors, not for the same missing key.
+            _ if current.message.contains(ADD_CONTACT) && !text.contains(CONTACT_PLACEHOLDER) => {
+                text.push_str(CONTACT_PLACEHOLDER);
+            }
             _ if retry.is_some() => {
                 let entry = retry.unwrap_or_default();
                 let key = key_name(&text[entry.clone()]);
@@ -163,7 +177,8 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
             break;
         }
         let caused = section_at(&text, next_offset)
-            .is_some_and(|s| caused_by(&touched, &s, next_offset, &next.message));
+            .is_some_and(|s| caused_by(&touched, &s, next_offset, &next.message))
+            || names_a_removed_body(&names, &text, &next.message);
         if !caused && !errors.iter().any(|e| e.message == next.message) {
             errors.push(next.clone());
         }
@@ -171,6 +186,63 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
     }
     errors.sort_by_key(|e| e.location);
     errors
+}
+
+/// The words of the errors whose fix is a `contact` table in [scene] (several bodies,
+/// obstacles, a cloth), and that table, appended as a sub-table after the end of the file.
+const ADD_CONTACT: &str = "add `contact = {";
+const CONTACT_PLACEHOLDER: &str = "\n[scene.contact]\nresponse = \"impulse\"\n";
+
+/// The words of an error about a limit on the file as a whole ("… more than the limit of
+/// 1000 joints"): blanking one table past it would only find the next.
+const LIMIT_WORDS: &str = "more than the limit of";
+
+/// The names of the bodies of a document, as the loader names them: `name`, else `body{n}`
+/// for the n-th (1-based).
+fn body_names(text: &str) -> Vec<String> {
+    let Ok(document) = DeTable::parse(text) else {
+        return Vec::new();
+    };
+    let named = |table: &DeTable<'_>, n: usize| {
+        table
+            .iter()
+            .find(|(k, _)| k.get_ref() == "name")
+            .and_then(|(_, v)| match v.get_ref() {
+                DeValue::String(s) => Some(s.to_string()),
+                _ => None,
+            })
+            .unwrap_or_else(|| format!("body{n}"))
+    };
+    let body = document
+        .get_ref()
+        .iter()
+        .find(|(k, _)| k.get_ref() == "body")
+        .map(|(_, v)| v.get_ref());
+    match body {
+        Some(DeValue::Table(table)) => vec![named(table, 1)],
+        Some(DeValue::Array(array)) => array
+            .iter()
+            .enumerate()
+            .filter_map(|(i, e)| match e.get_ref() {
+                DeValue::Table(t) => Some(named(t, i + 1)),
+                _ => None,
+            })
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// An error calling unknown (or missing) a body of the original file that blanking removed:
+/// the body exists, and its own error was reported already.
+fn names_a_removed_body(original: &[String], text: &str, message: &str) -> bool {
+    if !(message.contains("unknown body") || message.contains("no body")) {
+        return false;
+    }
+    let now = body_names(text);
+    let removed: Vec<&String> = original.iter().filter(|n| !now.contains(n)).collect();
+    !removed.is_empty()
+        && (message.contains("has no body")
+            || removed.iter().any(|n| message.contains(&format!("`{n}`"))))
 }
 
 /// An entry blanked or replaced by a value that passes.
@@ -504,6 +576,32 @@ mod tests {
                 "s.toml:8:8: mass must be > 0, found -1",
             ]
         );
+    }
+
+    #[test]
+    fn a_body_blanked_for_its_own_error_is_not_unknown_to_joints_and_springs() {
+        // The second body carries the error (several bodies, no `contact`); the joint and
+        // the spring naming it are right, and `run` reports only the first line.
+        let body = |name: &str, x: f64| {
+            format!(
+                "[[body]]\nname = \"{name}\"\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\n\
+                 mass = 1.0\nposition = [{x}, 0.0, 0.0]\n"
+            )
+        };
+        let source = format!(
+            "title = \"t\"\n[scene]\ndt = 0.01\nintegrator = \"rk4\"\n{}{}{}\
+             [[joint]]\ntype = \"ball\"\nbodies = [\"a\", \"b\"]\nanchor = [1.5, 0.0, 0.0]\n\
+             [[spring]]\nbodies = [\"b\", \"c\"]\nanchors = [[3.0, 0.0, 0.0], [6.0, 0.0, 0.0]]\n\
+             stiffness = 10.0\n",
+            body("a", 0.0),
+            body("b", 3.0),
+            body("c", 6.0)
+        );
+        let found = lines(&source);
+        assert_eq!(found.len(), 1, "{found:#?}");
+        assert!(found[0].contains("several bodies need a collision response"));
+        let first = parse(&source, Path::new("s.toml")).unwrap_err().to_string();
+        assert_eq!(found[0], first);
     }
 
     proptest::proptest! {

@@ -14,8 +14,11 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
     if path.is_dir() {
         return Err("is a directory, not an .obj file".to_string());
     }
-    let text = if path.is_file() {
-        let bytes = std::fs::read(path).map_err(|e| format!("cannot read: {e}"))?;
+    // Anything on disk (a FIFO, a device too) is read as every input is: bounded, special
+    // files refused by their type.
+    let text = if std::fs::symlink_metadata(path).is_ok() {
+        let bytes = crate::limits::read_bounded_bytes(path, crate::limits::MAX_FILE_BYTES, "mesh")
+            .map_err(|e| e.reason)?;
         String::from_utf8(bytes)
             .map_err(|_| "malformed .obj: not a text file (invalid UTF-8)".to_string())?
     } else {

@@ -224,41 +224,27 @@ impl Lesson {
 
 /// Reads and validates a lesson or scene file.
 pub fn load(path: &Path) -> Result<Lesson, LoadError> {
-    if path.is_dir() {
-        return Err(LoadError::file(path, "is a directory, not a scene file"));
-    }
-    if let Ok(meta) = std::fs::metadata(path) {
-        if meta.len() > crate::limits::MAX_FILE_BYTES {
-            return Err(LoadError::file(
-                path,
-                format!(
-                    "file is {} bytes, more than the limit of {} for a scene file",
-                    meta.len(),
-                    crate::limits::MAX_FILE_BYTES
-                ),
-            ));
-        }
-    }
-    let bytes = std::fs::read(path).map_err(|e| {
-        let reason = match e.kind() {
-            std::io::ErrorKind::NotFound => "no such file".to_string(),
-            _ => e.to_string(),
-        };
-        LoadError::file(path, format!("cannot read: {reason}"))
-    })?;
+    parse(&read(path)?, path)
+}
+
+/// The text of a scene file: read as every input is ([`crate::limits::read_bounded_bytes`]:
+/// at most [`crate::limits::MAX_FILE_BYTES`] bytes read, special files refused), UTF-8.
+pub fn read(path: &Path) -> Result<String, LoadError> {
+    let bytes =
+        crate::limits::read_bounded_bytes(path, crate::limits::MAX_FILE_BYTES, "scene file")
+            .map_err(|e| LoadError::file(path, e.reason))?;
     if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
         return Err(LoadError::file(
             path,
             "UTF-16 text: a scene file is UTF-8 (save it as UTF-8)",
         ));
     }
-    let source = String::from_utf8(bytes).map_err(|_| {
+    String::from_utf8(bytes).map_err(|_| {
         LoadError::file(
             path,
             "not a text file (invalid UTF-8): expected a TOML scene",
         )
-    })?;
-    parse(&source, path)
+    })
 }
 
 /// Parses and validates a lesson from its source text; `path` names it in errors and anchors
@@ -276,18 +262,16 @@ pub fn parse(source: &str, path: &Path) -> Result<Lesson, LoadError> {
             "not a text file (contains NUL bytes): expected a TOML scene",
         ));
     }
-    // Syntax first, so that a syntax error is called one, then the shape of a scene.
-    if let Err(e) = source.parse::<toml::Table>() {
-        let token = e.span().and_then(|s| source.get(s)).unwrap_or("");
-        return Err(located(
-            path,
-            source,
-            e.span(),
-            messages::syntax(e.message(), token),
-        ));
-    }
-    let raw: RawLesson = toml::from_str(source)
-        .map_err(|e| located(path, source, e.span(), messages::shape(e.message())))?;
+    // A file that does not deserialize is read again as plain TOML: a syntax error is called
+    // one (it comes first), else the error is about the shape of a scene. (One parse of a
+    // valid file, not two.)
+    let raw: RawLesson = toml::from_str(source).map_err(|shape| {
+        if let Err(e) = source.parse::<toml::Table>() {
+            let token = e.span().and_then(|s| source.get(s)).unwrap_or("");
+            return located(path, source, e.span(), messages::syntax(e.message(), token));
+        }
+        located(path, source, shape.span(), messages::shape(shape.message()))
+    })?;
     Validator { source, path }.lesson(raw)
 }
 
@@ -310,6 +294,7 @@ impl Validator<'_> {
     }
 
     fn lesson(&self, raw: RawLesson) -> Result<Lesson, LoadError> {
+        self.counts(&raw)?;
         let bodies = self.bodies(raw.body, !raw.cloths.is_empty())?;
         let links = self.links(&raw.scene, &raw.joints, &raw.springs, &bodies)?;
         self.no_overlap(&bodies, &links)?;
@@ -558,6 +543,11 @@ impl Validator<'_> {
     /// No body may start inside another: the first pair whose shapes overlap at their initial
     /// poses (geometric depth > 1e-9 m; touching is fine) is an error at the later body.
     /// Bodies joined directly by a joint may overlap (they do not collide).
+    ///
+    /// Only pairs whose bounding spheres meet are tested (sweep and prune along x: bodies
+    /// sorted by x − r, each compared with those whose interval is still open), so a chain of
+    /// n links costs n log n, not n²; the pairs are tested in the order of the file (later
+    /// body, then earlier), so the error names the same pair as a test of every pair would.
     fn no_overlap(
         &self,
         bodies: &[(SceneBody, Range<usize>)],
@@ -568,39 +558,102 @@ impl Validator<'_> {
             position: b.initial.position,
             rotation: b.initial.orientation.matrix(),
         };
-        let mut points = Vec::new();
-        for (j, (later, span)) in bodies.iter().enumerate() {
-            let Some(shape_j) = &later.body.shape else {
-                continue;
-            };
-            for (i, (earlier, _)) in bodies[..j].iter().enumerate() {
-                let Some(shape_i) = &earlier.body.shape else {
-                    continue;
-                };
-                if links.joined(i, j) {
-                    continue;
-                }
-                points.clear();
-                shape_shape(
-                    shape_j,
-                    &pose(later),
-                    shape_i,
-                    &pose(earlier),
-                    0.0,
-                    &mut points,
-                );
-                let depth = deepest(&points);
-                if depth > 1e-9 {
-                    return Err(self.error(
-                        span.clone(),
-                        format!(
-                            "body `{}` starts inside body `{}` (overlap {depth:.3e} m): move \
-                             them apart so that they at most touch",
-                            later.name, earlier.name
-                        ),
-                    ));
+        let joined: std::collections::HashSet<(usize, usize)> =
+            links.joined_pairs().into_iter().collect();
+        // (index, centre, bounding radius) of every body with a shape, by x − r.
+        let mut spheres: Vec<(usize, Vector3<f64>, f64)> = bodies
+            .iter()
+            .enumerate()
+            .filter_map(|(i, (b, _))| {
+                let shape = b.body.shape.as_ref()?;
+                Some((i, b.initial.position, shape.bounding_radius()))
+            })
+            .collect();
+        spheres.sort_by(|a, b| (a.1.x - a.2).total_cmp(&(b.1.x - b.2)));
+        let mut open: Vec<(usize, Vector3<f64>, f64)> = Vec::new();
+        let mut candidates: Vec<(usize, usize)> = Vec::new();
+        for &(j, centre, radius) in &spheres {
+            open.retain(|(_, c, r)| !(c.x + r < centre.x - radius));
+            for &(i, c, r) in &open {
+                let (low, high) = (i.min(j), i.max(j));
+                // A margin of 1e-9 m over the radii: the depth threshold of the test below.
+                let apart = (c - centre).norm() > r + radius + 1e-9;
+                if !apart && !joined.contains(&(low, high)) {
+                    candidates.push((high, low));
                 }
             }
+            open.push((j, centre, radius));
+        }
+        candidates.sort_unstable();
+        let mut points = Vec::new();
+        for (j, i) in candidates {
+            let (later, span) = &bodies[j];
+            let earlier = &bodies[i].0;
+            let (Some(shape_j), Some(shape_i)) = (&later.body.shape, &earlier.body.shape) else {
+                continue;
+            };
+            points.clear();
+            shape_shape(
+                shape_j,
+                &pose(later),
+                shape_i,
+                &pose(earlier),
+                0.0,
+                &mut points,
+            );
+            let depth = deepest(&points);
+            if depth > 1e-9 {
+                return Err(self.error(
+                    span.clone(),
+                    format!(
+                        "body `{}` starts inside body `{}` (overlap {depth:.3e} m): move \
+                         them apart so that they at most touch",
+                        later.name, earlier.name
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// At most [`crate::limits::MAX_BODIES`] bodies and [`crate::limits::MAX_LINKS`] joints
+    /// and springs: past a limit, an error at the first table beyond it, before any of them
+    /// is validated.
+    fn counts(&self, raw: &RawLesson) -> Result<(), LoadError> {
+        use crate::limits::{MAX_BODIES, MAX_LINKS};
+        if let Some(RawBodies::Many(list)) = raw.body.as_ref().map(Spanned::get_ref) {
+            if let Some(past) = list.get(MAX_BODIES) {
+                return Err(self.error(
+                    past.span(),
+                    format!(
+                        "this scene has {} bodies, more than the limit of {MAX_BODIES} bodies a \
+                         scene may have",
+                        list.len()
+                    ),
+                ));
+            }
+        }
+        let links = raw.joints.len() + raw.springs.len();
+        if links > MAX_LINKS {
+            let past = raw
+                .joints
+                .get(MAX_LINKS)
+                .map(Spanned::span)
+                .or_else(|| {
+                    raw.springs
+                        .get(MAX_LINKS - raw.joints.len())
+                        .map(Spanned::span)
+                })
+                .unwrap_or(0..0);
+            return Err(self.error(
+                past,
+                format!(
+                    "this scene has {} joints and {} springs, {links} links, more than the limit \
+                     of {MAX_LINKS} joints and springs together a scene may have",
+                    raw.joints.len(),
+                    raw.springs.len()
+                ),
+            ));
         }
         Ok(())
     }
@@ -670,7 +723,9 @@ impl Validator<'_> {
             }
             // Bodies joined directly do not collide: a response is needed only when some
             // pair is not joined.
-            let all_joined = (0..bodies.len()).all(|j| (0..j).all(|i| links.joined(i, j)));
+            // (The pairs joined are distinct and ordered: all are when they are n(n−1)/2.)
+            let n = bodies.len();
+            let all_joined = links.joined_pairs().len() == n * n.saturating_sub(1) / 2;
             if let (Some((_, second)), false) = (bodies.get(1), all_joined) {
                 return Err(self.error(
                     second.clone(),

@@ -322,8 +322,19 @@ pub fn record(app: &mut App, duration: f64, width: u16, height: u16) -> String {
 pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
     let bad = || format!("size must be COLSxROWS, e.g. 120x40, found `{text}`");
     let (c, r) = text.split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let cols: u16 = c.trim().parse().map_err(|_| bad())?;
-    let rows: u16 = r.trim().parse().map_err(|_| bad())?;
+    // Any run of digits is a size (past u64, larger than any limit): a size over the limits
+    // is refused by them, naming them, not called malformed.
+    let number = |t: &str| {
+        let t = t.trim();
+        (!t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()))
+            .then(|| t.parse::<u64>().unwrap_or(u64::MAX))
+            .ok_or_else(bad)
+    };
+    let (cols, rows) = (number(c)?, number(r)?);
+    crate::limits::screen(cols, rows)
+        .map_err(|e| e.replace(&format!("{cols}x{rows}"), text.trim()))?;
+    // Within MAX_SIDE (4000): both fit in u16.
+    let (cols, rows) = (cols as u16, rows as u16);
     if cols < super::screen::MIN_WIDTH || rows < super::screen::MIN_HEIGHT {
         return Err(format!(
             "size {cols}x{rows} is below the app's smallest screen, {}x{}",
@@ -331,6 +342,5 @@ pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
             super::screen::MIN_HEIGHT
         ));
     }
-    crate::limits::screen(cols, rows)?;
     Ok((cols, rows))
 }
