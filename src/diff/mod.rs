@@ -13,7 +13,7 @@ pub mod compare;
 pub mod mistakes;
 pub mod theirs;
 
-use crate::physics::World;
+use crate::physics::{Integrator, World};
 use crate::scene::Scene;
 use compare::{compare, loop_phase, row_differences, run_ours, written_by, Ours, Sample, Scales};
 use mistakes::{Mistake, Plant, Planted};
@@ -206,9 +206,15 @@ fn reproduces(
     }
 }
 
-/// A number in full (shortest round-trip) precision, as `run` prints it.
+/// A number in full (shortest round-trip) precision; very small or large ones in scientific
+/// notation (`2.675688237956691e-6`), so that the digits stay readable.
 fn full(v: f64) -> String {
-    v.to_string()
+    let a = v.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e15).contains(&a) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
 }
 
 /// A difference in three digits.
@@ -283,6 +289,36 @@ fn report(
     }
     let _ = writeln!(out);
     // Per quantity: its first parting row.
+    if outcome.first_row.is_some() {
+        write_per_quantity(&mut out, theirs, outcome, integrator);
+        let _ = writeln!(out);
+    }
+    write_table(&mut out, theirs, comparison);
+    if outcome.first_row.is_none() {
+        return out;
+    }
+    let _ = writeln!(out);
+    write_cause(
+        &mut out,
+        subject,
+        theirs,
+        tolerance,
+        outcome,
+        state_parts,
+        integrator,
+    );
+    out
+}
+
+/// The per-quantity lines: where each quantity first parts, theirs, ours, the phase.
+fn write_per_quantity(
+    out: &mut String,
+    theirs: &Theirs,
+    outcome: &Outcome,
+    integrator: Integrator,
+) {
+    let comparison = &outcome.comparison;
+    let row_at = |r: usize| &theirs.rows[r];
     let _ = writeln!(out, "first parting, per quantity:");
     let per = comparison.per_quantity();
     let _ = writeln!(
@@ -330,17 +366,20 @@ fn report(
             }
         }
     }
-    let _ = writeln!(out);
+}
+
+/// The table of how far apart each column is over the run.
+fn write_table(out: &mut String, theirs: &Theirs, comparison: &compare::Comparison) {
     let _ = writeln!(out, "how far apart, per column, over the run:");
     let _ = writeln!(
         out,
-        "  {:<7} {:>20} {:>14}  first parting step",
+        "  {:<11} {:>20} {:>14}  first parting step",
         "column", "max |theirs − ours|", "max relative"
     );
     for c in &comparison.columns {
         let _ = writeln!(
             out,
-            "  {:<7} {:>20} {:>14}  {}",
+            "  {:<11} {:>20} {:>14}  {}",
             c.column.name(),
             brief(c.max_abs),
             brief(c.max_rel),
@@ -348,17 +387,25 @@ fn report(
                 .map_or("—".to_string(), |r| theirs.rows[r].step.to_string())
         );
     }
-    if outcome.first_row.is_none() {
-        return out;
-    }
-    let _ = writeln!(out);
+}
+
+/// The cause: the known mistakes that reproduce theirs, or unknown.
+fn write_cause(
+    out: &mut String,
+    subject: &Subject,
+    theirs: &Theirs,
+    tolerance: f64,
+    outcome: &Outcome,
+    state_parts: bool,
+    integrator: Integrator,
+) {
     if !state_parts {
         let _ = writeln!(
             out,
             "cause: not searched: only t, the energy or the penetration part, while the state \
              and its velocities agree (check how your loop measures them)"
         );
-        return out;
+        return;
     }
     if outcome.causes.is_empty() {
         let _ = writeln!(
@@ -380,21 +427,24 @@ fn report(
             subject.scene_name,
             outcome.first_row.map_or(0, |r| theirs.rows[r].step)
         );
-        return out;
+        return;
     }
-    for (i, m) in outcome.causes.iter().enumerate() {
-        let _ = writeln!(
-            out,
-            "{} {} reproduces your numbers (every row, to {}).",
-            if i == 0 { "cause:" } else { "also: " },
-            m.what,
-            brief(tolerance).replace(".00e", "e")
-        );
+    let _ = writeln!(
+        out,
+        "cause: {} reproduces your numbers (every row, to {}):",
+        if outcome.causes.len() == 1 {
+            "a known mistake"
+        } else {
+            "each of these known mistakes"
+        },
+        brief(tolerance).replace(".00e", "e")
+    );
+    for m in &outcome.causes {
+        let _ = writeln!(out, "  {}", m.what);
         let _ = writeln!(out, "  phase:  {}", m.phase.name());
         let _ = writeln!(out, "  fix:    {}", m.fix);
         let _ = writeln!(out, "  lesson: tumble {}", m.lesson);
     }
-    out
 }
 
 #[cfg(test)]
