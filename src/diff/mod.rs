@@ -16,7 +16,7 @@ pub mod theirs;
 use crate::physics::{Integrator, World};
 use crate::scene::Scene;
 use compare::{compare, loop_phase, row_differences, run_ours, written_by, Ours, Sample, Scales};
-use mistakes::{Mistake, Plant, Planted};
+use mistakes::{Knobs, Mistake, Plant, Planted};
 use std::fmt::Write as _;
 use theirs::{Column, Theirs};
 
@@ -102,10 +102,7 @@ fn matched(c: Column) -> bool {
 /// the time step by the factors their numbers suggest and the usual ones.
 fn candidates(subject: &Subject, world: &World, theirs: &Theirs, ours: &Ours) -> Vec<Mistake> {
     let integrator = world.integrator();
-    let plantable = mistakes::plantable(integrator)
-        && world.body_count() == 1
-        && subject.scene.links.is_empty()
-        && subject.scene.cloths.is_empty();
+    let plantable = plantable_scene(subject, world);
     let mut factors: Vec<f64> = Vec::new();
     let dt = world.dt();
     // Their t at their last row, if it says another dt.
@@ -142,6 +139,15 @@ fn candidates(subject: &Subject, world: &World, theirs: &Theirs, ours: &Ours) ->
     mistakes::known(integrator, plantable, &kept, dt)
 }
 
+/// Whether the variant loop can run this scene: one body, no joints, springs or cloths, and
+/// one of the report's explicit integrators.
+fn plantable_scene(subject: &Subject, world: &World) -> bool {
+    mistakes::plantable(world.integrator())
+        && world.body_count() == 1
+        && subject.scene.links.is_empty()
+        && subject.scene.cloths.is_empty()
+}
+
 /// Whether the mistake, planted alone, gives their numbers on every row (the matched columns,
 /// to the tolerance).
 fn reproduces(
@@ -152,15 +158,32 @@ fn reproduces(
     tolerance: f64,
     mistake: &Mistake,
 ) -> bool {
+    // On the quantity's scale, or on the number itself where the planted run has grown past
+    // it (a mistake that blows up grows far beyond tumble's scales).
     let agrees = |values: &[f64], sample: &Sample| {
         let abs = row_differences(&theirs.columns, values, sample);
         (theirs.columns.iter().zip(abs)).all(|(&c, a)| {
-            !matched(c) || a / c.quantity().map_or(1.0, |q| scales.of(q)) <= tolerance
+            let scale = c.quantity().map_or(1.0, |q| scales.of(q));
+            !matched(c) || a / scale.max(sample.value(c).abs()) <= tolerance
         })
     };
+    // A planted run whose numbers overflow at step s reproduces a run of theirs that does so
+    // too: every row before s agrees, and theirs is not finite at one of its next two rows.
+    let blows_up_too = |step: u64| {
+        (theirs.rows.iter())
+            .filter(|r| r.step >= step)
+            .take(2)
+            .any(|r| r.values.iter().any(|v| !v.is_finite()))
+    };
     let dt = world.dt();
-    match mistake.plant {
-        Plant::Knobs(knobs) => {
+    let plantable = plantable_scene(subject, world);
+    let (knobs, dt) = match mistake.plant {
+        Plant::Knobs(knobs) => (Some(knobs), dt),
+        Plant::TimeStep(factor) if plantable => (Some(Knobs::default()), factor * dt),
+        Plant::TimeStep(factor) => (None, factor * dt),
+    };
+    match knobs {
+        Some(knobs) => {
             let mut planted = Planted::new(
                 world.body(),
                 world.effects(),
@@ -177,7 +200,7 @@ fn reproduces(
                     planted.step();
                     step += 1;
                     if !planted.is_finite() {
-                        return false;
+                        return blows_up_too(step);
                     }
                 }
                 if !agrees(&row.values, &planted.sample(step as f64 * dt)) {
@@ -186,8 +209,10 @@ fn reproduces(
             }
             true
         }
-        Plant::TimeStep(factor) => {
-            let mut world = subject.scene.world_with(world.integrator(), factor * dt);
+        None => {
+            // Another integrator: the scene itself at the other dt (its guard stops a run that
+            // blows up before its numbers overflow, so such a run is not matched).
+            let mut world = subject.scene.world_with(world.integrator(), dt);
             let mut step = 0;
             for row in &theirs.rows {
                 while step < row.step {
