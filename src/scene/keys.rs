@@ -16,12 +16,14 @@ use super::error::did_you_mean;
 use std::ops::Range;
 
 /// A kind of table (a shape, a joint type) and the keys it takes beside the common ones.
+#[derive(Debug)]
 pub struct Kind {
     pub name: &'static str,
     pub keys: &'static [&'static str],
 }
 
 /// A family of kinds: the keys every kind takes, and each kind's own.
+#[derive(Debug)]
 pub struct Family {
     /// "body", "joint": how the table is called in messages.
     pub table: &'static str,
