@@ -21,7 +21,8 @@ use nalgebra::Vector3;
 use std::hint::black_box;
 use std::time::Duration;
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Response, State, World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Response, State,
+    World,
 };
 
 const SIDE: f64 = 0.2;
@@ -45,6 +46,7 @@ fn model(restitution: f64) -> Option<ContactModel> {
         response: Response::Impulse,
         restitution,
         friction: 0.5,
+        impacts: Impacts::default(),
     })
 }
 
@@ -131,6 +133,7 @@ fn rolling(body: Body, lying: bool) -> World {
             response: Response::Impulse,
             restitution: 0.0,
             friction: 0.5,
+            impacts: Impacts::default(),
         }),
         Integrator::Rk4,
         1e-3,

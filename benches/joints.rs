@@ -22,8 +22,8 @@ use std::hint::black_box;
 use std::time::Duration;
 use tumble::physics::joints::{Correction, Joint, JointKind, Links};
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
-    State, World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
+    Response, State, World,
 };
 
 fn gravity() -> Effects {
@@ -128,6 +128,7 @@ fn landing(count: usize) -> World {
         response: Response::Impulse,
         restitution: 0.0,
         friction: 0.5,
+        impacts: Impacts::default(),
     };
     World::with_bodies(
         bodies,

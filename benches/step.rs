@@ -26,7 +26,8 @@ use std::hint::black_box;
 use std::time::Duration;
 use tumble::physics::free_top::{rotation_angle_between, FreeBody};
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State, World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Response,
+    State, World,
 };
 
 /// Steps between two restarts from the initial state (restoring costs one `Vec` clone).
@@ -78,6 +79,7 @@ fn resting_cube(integrator: Integrator) -> World {
             response: Response::Impulse,
             restitution: 0.4,
             friction: 0.5,
+            impacts: Impacts::default(),
         }),
         integrator,
         1e-3,

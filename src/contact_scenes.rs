@@ -11,8 +11,8 @@
 //! Every scene: μ = 0.5, e = 0, dt = 1e-3, `rk4`, gravity −9.81 m/s² along y.
 
 use crate::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
-    State, World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
+    Response, State, World,
 };
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -29,6 +29,7 @@ pub fn model(response: Response) -> ContactModel {
         response,
         restitution: 0.0,
         friction: 0.5,
+        impacts: Impacts::default(),
     }
 }
 

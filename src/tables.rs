@@ -288,7 +288,11 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         energy_rows.push(scalar_row("U springs", springs, "J"));
     }
     energy_rows.push(scalar_row_at("E − E₀", b.change, "J", energy_resolution));
-    for (label, value) in [("  drag work", b.drag_work), ("  contacts", b.contacts)] {
+    for (label, value) in [
+        ("  drag work", b.drag_work),
+        ("  contacts", b.contacts),
+        ("  motor", b.motor),
+    ] {
         if let Some(value) = value {
             energy_rows.push(scalar_row_at(label, value, "J", energy_resolution));
         }
@@ -545,10 +549,63 @@ pub fn joint_panel(j: &JointView) -> Panel {
     if let Some(length) = j.length {
         rows.push(scalar_row("length", length, "m"));
     }
+    rows.extend(drive_rows(j));
     Panel {
         title: format!("joint {}: {} · {} – {other}", j.name, j.kind, j.bodies.0),
         rows,
     }
+}
+
+/// A slider's travel, and a hinge's angle when it has a limit or a motor, with its rate; the
+/// limits; what the stops and the motor applied over the last step (along the axis, on the
+/// first body).
+fn drive_rows(j: &JointView) -> Vec<Row> {
+    let Some((q, rate)) = j.coordinate else {
+        return Vec::new();
+    };
+    let slider = j.kind == "slider";
+    if !slider && j.limits.is_none() && j.motor.is_none() {
+        return Vec::new();
+    }
+    let (scale, unit, rate_unit, load, load_unit) = if slider {
+        (1.0, "m", "m/s", "F", "N")
+    } else {
+        (1.0_f64.to_degrees(), "°", "rad/s", "τ", "N·m")
+    };
+    let (name, dot) = if slider {
+        ("travel", "ṡ")
+    } else {
+        ("angle", "θ̇")
+    };
+    let mut rows = vec![
+        scalar_row(name, q * scale, unit),
+        scalar_row(dot, rate, rate_unit),
+    ];
+    if let Some([lo, hi]) = j.limits {
+        rows.push(Row {
+            label: "limits".to_string(),
+            cells: vec![number(lo * scale), number(hi * scale)],
+            unit,
+        });
+        rows.push(scalar_row(
+            &format!("limit {load}"),
+            j.drive.limit,
+            load_unit,
+        ));
+    }
+    if let Some(motor) = j.motor {
+        rows.push(Row {
+            label: format!("motor {dot}, max"),
+            cells: vec![number(motor.speed), number(motor.max)],
+            unit: if slider { "m/s, N" } else { "rad/s, N·m" },
+        });
+        rows.push(scalar_row(
+            &format!("motor {load}"),
+            j.drive.motor,
+            load_unit,
+        ));
+    }
+    rows
 }
 
 /// The energy the joints' correction changed since t = 0 (numerical: an ideal joint does no

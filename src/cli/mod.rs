@@ -1,9 +1,10 @@
 //! The command line: `tumble [FILE]`, `run`, `check`, `lessons`, `walk`, `study`, `shot`,
-//! `record`.
+//! `record`, `diff`.
 //!
 //! Exit codes: 0 ok, 2 bad input (one line on stderr), 3 the simulation diverged.
 
 mod check;
+pub mod diff;
 mod lessons;
 pub mod output;
 #[cfg(feature = "tui")]
@@ -65,6 +66,9 @@ pub enum Command {
     Lessons,
     /// Print the loop's numbers frame by frame (or phase by phase) as plain text.
     Walk(walk::WalkArgs),
+    /// Check a trajectory computed elsewhere (your own loop's CSV) against tumble's run of
+    /// the same scene, step by step, and name the known mistake that reproduces it.
+    Diff(diff::DiffArgs),
     /// The app's screen at time T as an SVG (for slides and handouts).
     #[cfg(feature = "tui")]
     Shot(shot::ShotArgs),
@@ -474,6 +478,7 @@ pub fn main() -> ExitCode {
         Some(Command::Study(args)) => study::study(&args),
         Some(Command::Lessons) => lessons::list(),
         Some(Command::Walk(args)) => walk::walk(&args),
+        Some(Command::Diff(args)) => diff::diff(&args),
         #[cfg(feature = "tui")]
         Some(Command::Shot(args)) => shot::shot(&args),
         #[cfg(feature = "tui")]

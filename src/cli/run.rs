@@ -140,12 +140,31 @@ fn finite(values: &[f64]) -> bool {
 }
 
 /// The `--joint` rows: joint `index`, every kept step.
+///
+/// A joint with limits has the column `limit` appended, one with a motor `motor` (after
+/// `limit` when both): what the stops and the motor applied over the step along the axis on the
+/// first body (N for a slider, N·m for a hinge; already part of its force and torque).
 fn run_joint(args: &RunArgs, world: crate::physics::World, index: usize) -> Result<(), Failure> {
-    run_rows(args, world, JOINT_HEADER, |world| {
+    let joint = &world.links().joints[index];
+    let (limited, motorised) = (joint.limits.is_some(), joint.motor.is_some());
+    let mut header = JOINT_HEADER.to_string();
+    if limited {
+        header.push_str(",limit");
+    }
+    if motorised {
+        header.push_str(",motor");
+    }
+    run_rows(args, world, &header, |world| {
         let s = world.snapshot();
         let j = &s.joints[index];
         let (f, t) = (j.force, j.torque);
-        let numbers = [s.time, j.error, f.x, f.y, f.z, t.x, t.y, t.z];
+        let mut numbers = vec![s.time, j.error, f.x, f.y, f.z, t.x, t.y, t.z];
+        if limited {
+            numbers.push(j.drive.limit);
+        }
+        if motorised {
+            numbers.push(j.drive.motor);
+        }
         finite(&numbers).then(|| csv_line(s.step, &numbers))
     })
 }

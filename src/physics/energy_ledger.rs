@@ -16,8 +16,12 @@
 //! ΔE_contacts = Σ over collide phases (E after the response − E before it)
 //!               (the response's own measurement, `EnergyChange`, when it has one)
 //! ΔE_springs  = energy stored in springs (none in a world of rigid bodies: absent)
+//! W_motor     = Σ over the joints' motor rows, per step, λ (J u⁻ + J u⁺)/2: the kinetic
+//!               energy the motor's impulse λ changes, exactly (`joints::drive`)
 //! drift       = the remainder: what the integrator itself created or destroyed
 //! ```
+//!
+//! (`E − E₀` then also has `+ W_motor`; a joint's limit stop is booked with the contacts.)
 //!
 //! The corrected trapezoid rule is fourth-order accurate (local error `dt⁵/720 · p⁽⁴⁾`), as
 //! accurate as `rk4`, so the booked drag work never passes the quadrature's own error off as the
@@ -60,6 +64,8 @@ pub struct EnergyLedger {
     /// Energy the joints' projection changed (numerical: an ideal joint does no work; still
     /// part of the drift, booked here to show how much of it the correction made), J.
     pub joint_correction: f64,
+    /// W_motor: work done by the joints' motors since t = 0, J (`joints::drive`).
+    pub motor_work: f64,
 }
 
 /// The change of energy since t = 0, split by cause.
@@ -73,6 +79,8 @@ pub struct EnergyBalance {
     pub contacts: Option<f64>,
     /// Energy stored in springs, J (None: no springs; cloths will fill it).
     pub springs: Option<f64>,
+    /// Work done by the joints' motors, J (None: no motor).
+    pub motor: Option<f64>,
     /// The remainder: the numerical drift of the integrator, J.
     pub drift: f64,
     /// drift / max(|E₀|, |K₀|): the drift relative to the scene's energy scale (0 when both are 0).
@@ -122,6 +130,7 @@ impl EnergyLedger {
             contact_gain: 0.0,
             contact_loss: 0.0,
             joint_correction: 0.0,
+            motor_work: 0.0,
         }
     }
 
@@ -147,15 +156,16 @@ impl EnergyLedger {
         self.contact_gain + self.contact_loss
     }
 
-    /// `E₀ + W_drag + ΔE_contacts`: the energy the world would have if the integrator were
-    /// exact, J.
+    /// `E₀ + W_drag + ΔE_contacts + W_motor`: the energy the world would have if the
+    /// integrator were exact, J.
     pub fn accounted(&self) -> f64 {
-        self.initial + self.drag_work + self.contacts()
+        self.initial + self.drag_work + self.contacts() + self.motor_work
     }
 
-    /// `E₀ + Σ max(0, ΔE_collide)`: the most energy the scene has supplied (drag only takes), J.
+    /// `E₀ + Σ max(0, ΔE_collide) + max(0, W_motor)`: the most energy the scene has supplied
+    /// (drag only takes), J.
     pub fn supplied(&self) -> f64 {
-        self.initial + self.contact_gain
+        self.initial + self.contact_gain + self.motor_work.max(0.0)
     }
 
     /// The split of `E − E₀`. `initial` and `now` are the energies at t = 0 and now; `has_drag`
@@ -176,6 +186,7 @@ impl EnergyLedger {
             drag_work: has_drag.then_some(self.drag_work),
             contacts: has_contacts.then_some(self.contacts()),
             springs: None,
+            motor: None,
             drift,
             relative_drift: if scale > 0.0 { drift / scale } else { 0.0 },
         }

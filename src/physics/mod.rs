@@ -42,7 +42,9 @@ pub mod system;
 pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
-pub use collision::{Against, Contact, ContactModel, Feature, Obstacle, Response, SoftStep};
+pub use collision::{
+    Against, Contact, ContactModel, Feature, Impacts, Obstacle, Response, SoftStep,
+};
 pub use divergence::Divergence;
 pub use effects::{Effect, Effects};
 pub use energy::Energy;

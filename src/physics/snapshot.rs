@@ -11,7 +11,8 @@ use super::derive::{congruence, derive};
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
 use super::energy_ledger::EnergyBalance;
 use super::integrators::Integrator;
-use super::joints::{JointKind, Pose as LinkPose};
+use super::joints::drive::Drive;
+use super::joints::{coordinate, JointKind, Motor, Pose as LinkPose};
 use super::state::State;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -89,13 +90,14 @@ pub struct Snapshot {
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointView {
     pub name: String,
-    /// ball, hinge, fixed, distance.
+    /// ball, hinge, fixed, distance, slider.
     pub kind: &'static str,
     /// Its first body's name, and the second's (None: the world).
     pub bodies: (String, Option<String>),
     /// The anchor points now, world frame: on the first body, on the second (or the world).
     pub anchors: [Vector3<f64>; 2],
-    /// Hinge: the axis now (the first body's), world frame.
+    /// Hinge: the axis now (the first body's), world frame; slider: the rail's (the second
+    /// body's or the world's).
     pub axis: Option<Vector3<f64>>,
     /// Distance: the rod's length, m.
     pub length: Option<f64>,
@@ -107,6 +109,16 @@ pub struct JointView {
     pub force: Vector3<f64>,
     /// Its torque about the first body's barycenter, N·m (same convention).
     pub torque: Vector3<f64>,
+    /// Hinge and slider: the coordinate q now and its rate q̇ (hinge: the angle from the
+    /// t = 0 pose, rad, and rad/s; slider: the travel, m, and m/s).
+    pub coordinate: Option<(f64, f64)>,
+    /// Its limits [lo, hi] (rad or m).
+    pub limits: Option<[f64; 2]>,
+    /// Its motor.
+    pub motor: Option<Motor>,
+    /// What the limit and the motor applied over the last step, along the axis on the first
+    /// body (N or N·m; part of `force` and `torque`).
+    pub drive: Drive,
 }
 
 /// A spring as the panels and `walk` show it.
@@ -134,6 +146,7 @@ impl JointView {
         }
         let states = world.states();
         let names = world.body_names();
+        let bodies = world.bodies();
         let instant = (world.step_count() == 0).then(|| world.system_loads_now().1);
         links
             .joints
@@ -144,16 +157,35 @@ impl JointView {
                     Some(loads) => loads[i],
                     None => world.joint_load(i),
                 };
+                let pose = |i: usize| {
+                    let k = derive(&bodies[i], &states[i]);
+                    LinkPose {
+                        x: states[i].position,
+                        r: k.rotation,
+                        v: k.velocity,
+                        w: k.angular_velocity,
+                    }
+                };
+                let (pa, pb) = (pose(j.a), j.b.map_or(LinkPose::WORLD, pose));
+                let axis = match j.kind {
+                    JointKind::Hinge => Some(j.axis(states)),
+                    JointKind::Slider => Some(pb.r * j.axis_b),
+                    _ => None,
+                };
                 JointView {
                     name: j.name.clone(),
                     kind: j.kind.name(),
                     bodies: (names[j.a].clone(), j.b.map(|b| names[b].clone())),
                     anchors: j.anchors(states),
-                    axis: (j.kind == JointKind::Hinge).then(|| j.axis(states)),
+                    axis,
                     length: (j.kind == JointKind::Distance).then_some(j.length),
                     error: j.error(states),
                     force: load.force,
                     torque: load.torque,
+                    coordinate: coordinate(j, i, &pa, &pb).map(|(row, q)| (q, row.rate(&pa, &pb))),
+                    limits: j.limits,
+                    motor: j.motor,
+                    drive: world.joint_drive(i),
                 }
             })
             .collect()

@@ -34,6 +34,7 @@ use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
+use super::joints::drive::{drive, Buffers as DriveBuffers, Drive, Scene as DriveScene};
 use super::joints::{hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers};
 use super::snapshot::Snapshot;
 use super::state::State;
@@ -126,6 +127,8 @@ pub struct Checkpoint {
     start_damping_power: f64,
     /// Per joint: its reaction on its body A averaged over the last step (impulse / dt).
     joint_loads: Vec<Loads>,
+    /// Per joint: what its limit and motor applied over the last step (`joints::drive`).
+    joint_drives: Vec<Drive>,
     /// Per body, when some body holds attached particles: how the last collide phase moved
     /// it (the attached particles' lead in the next step, `cloth_coupling::tied_step`).
     collide_moves: Vec<BodyMove>,
@@ -229,8 +232,11 @@ pub struct World {
     projection_buffers: ProjectionBuffers,
     /// The joints held while the contacts act (`joints::contact`).
     contact_joint_buffers: ContactBuffers,
-    /// `symplectic-euler` with projection: the states at the step's start (`joints::shake`).
+    /// `symplectic-euler` with projection, or a joint with a limit or a motor: the states at
+    /// the step's start (`joints::shake`, `joints::drive`).
     step_start: Vec<State>,
+    /// The joints' limits and motors (`joints::drive`).
+    drive_buffers: DriveBuffers,
     /// The states before the rigid response, when some body holds attached particles
     /// (`carry_attached`).
     carry_start: Vec<State>,
@@ -302,6 +308,7 @@ impl World {
             projection_buffers: ProjectionBuffers::default(),
             contact_joint_buffers: ContactBuffers::default(),
             step_start: Vec::new(),
+            drive_buffers: DriveBuffers::default(),
             carry_start: Vec::new(),
         }
     }
@@ -324,6 +331,16 @@ impl World {
     /// force, and torque about A's barycenter. Zero before the first step.
     pub fn joint_load(&self, index: usize) -> Loads {
         self.now.joint_loads.get(index).copied().unwrap_or_default()
+    }
+
+    /// What joint `index`'s limit and motor applied over the last step, along its axis
+    /// (`joints::drive`; zero before the first step).
+    pub fn joint_drive(&self, index: usize) -> Drive {
+        self.now
+            .joint_drives
+            .get(index)
+            .copied()
+            .unwrap_or_default()
     }
 
     /// The whole system's loads at the current states, as the next forces phase will compute
@@ -532,7 +549,8 @@ impl World {
         let shaken = self.integrator == Integrator::SymplecticEuler
             && self.links.correction == Correction::Projection
             && !self.links.joints.is_empty();
-        if shaken {
+        let driven = self.links.driven();
+        if shaken || driven {
             self.step_start.clone_from(&now.states);
         }
         let start = Start {
@@ -581,6 +599,27 @@ impl World {
             let after = total_energy(&self.bodies, &self.effects, &now.states).total
                 + self.links.potential(&now.states);
             now.ledger.joint_correction += after - before;
+        }
+        if driven {
+            // Limits and motors, with the joints held (`joints::drive`).
+            let scene = DriveScene {
+                links: &self.links,
+                bodies: &self.bodies,
+                effects: &self.effects,
+                restitution: self.contact.as_ref().map_or(0.0, |m| m.restitution),
+                dt: self.dt,
+            };
+            let done = drive(
+                &scene,
+                &mut now.states,
+                &self.step_start,
+                &mut now.joint_loads,
+                &mut now.joint_drives,
+                &mut self.drive_buffers,
+            );
+            now.ledger.motor_work += done.motor_work;
+            now.ledger.book_contact(0.0, done.stops);
+            now.ledger.joint_correction += done.joints;
         }
         let gravity: f64 = self
             .bodies
@@ -1341,8 +1380,13 @@ impl World {
             &self.initial_total_energy(),
             &self.total_energy(),
             self.effects.depends_on_velocity() || damped || self.links.damped(),
-            self.can_touch() || (!cloths.is_empty() && self.contact.is_some()),
+            self.can_touch()
+                || (!cloths.is_empty() && self.contact.is_some())
+                || self.links.joints.iter().any(|j| j.limits.is_some()),
         );
+        if self.links.motorised() {
+            balance.motor = Some(self.now.ledger.motor_work);
+        }
         if !cloths.is_empty() {
             // Shown, not subtracted: the springs' energy is part of E already.
             balance.springs = Some(cloths.iter().map(Cloth::spring_energy).sum());
@@ -1571,6 +1615,7 @@ fn fresh(
         start_joint_loads: Vec::new(),
         start_damping_power: 0.0,
         joint_loads: Vec::new(),
+        joint_drives: Vec::new(),
         collide_moves: Vec::new(),
     }
 }

@@ -89,7 +89,7 @@ pub const JOINTS: Family = Family {
         },
         Kind {
             name: "hinge",
-            keys: &["anchor", "axis"],
+            keys: &["anchor", "axis", "limits", "motor"],
         },
         Kind {
             name: "fixed",
@@ -98,6 +98,10 @@ pub const JOINTS: Family = Family {
         Kind {
             name: "distance",
             keys: &["anchors", "length"],
+        },
+        Kind {
+            name: "slider",
+            keys: &["anchor", "axis", "limits", "motor"],
         },
     ],
 };
@@ -196,6 +200,16 @@ mod tests {
             .kind("sphre")
             .unwrap_err()
             .contains("(did you mean `sphere`?)"));
+    }
+
+    #[test]
+    fn the_tables_name_every_joint_kind_and_no_other() {
+        use crate::physics::joints::JointKind;
+        let mut table = JOINTS.names();
+        let mut model: Vec<&str> = JointKind::ALL.iter().map(|k| k.name()).collect();
+        table.sort_unstable();
+        model.sort_unstable();
+        assert_eq!(table, model);
     }
 
     #[test]

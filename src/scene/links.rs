@@ -3,22 +3,24 @@
 //!
 //! | rule | error |
 //! |---|---|
-//! | `type` a joint kind | unknown joint type `hing` (did you mean `hinge`?); valid types: ball, hinge, fixed, distance |
+//! | `type` a joint kind | unknown joint type `hing` (did you mean `hinge`?); valid types: ball, hinge, fixed, distance, slider |
 //! | `bodies` one or two known names | joint `bodies` needs one body name (jointed to the world) or two, found 3 |
 //! | | unknown body `bbo` in joint `bodies` (did you mean `bob`?); bodies: bob, arm |
 //! | two different bodies | a joint's two bodies must differ, found `bob` twice |
-//! | ball, hinge, fixed: `anchor`; distance, spring: `anchors` (two points) | a hinge joint needs `anchor` |
-//! | keys of other kinds refused (`keys::JOINTS`) | `axis` does not apply to a ball joint (it is a key of hinge); valid keys of a ball joint: … |
-//! | hinge `axis` non-zero | hinge `axis` has zero length: give a non-zero axis |
+//! | ball, hinge, fixed, slider: `anchor`; distance, spring: `anchors` (two points) | a hinge joint needs `anchor` |
+//! | keys of other kinds refused (`keys::JOINTS`; `limits`, `motor`: hinge and slider only) | `axis` does not apply to a ball joint (it is a key of hinge, slider); valid keys of a ball joint: … |
+//! | hinge, slider `axis` non-zero | hinge `axis` has zero length: give a non-zero axis |
+//! | `limits` two finite numbers, lo ≤ 0 ≤ hi (hinge: hi − lo < 360°) | hinge `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found [10, 90] |
+//! | `motor` has `speed` and its bound: `max_torque` (hinge), `max_force` (slider), > 0 | a slider's motor takes `max_force` (N), not `max_torque` |
 //! | distance `length` > 0, or the anchors apart at t = 0 | distance joint anchors coincide at t = 0: give `length` > 0 or two different points |
 //! | spring `stiffness` > 0, `damping`, `rest_length` ≥ 0 | stiffness must be > 0, found 0 |
 //! | names unique | duplicate joint name `pivot`: joint names must be unique in the file |
 //! | `joint_correction` | unknown joint_correction `projektion` (did you mean `projection`?); valid: projection, baumgarte, none |
 
 use super::error::did_you_mean;
-use super::raw::{RawJoint, RawScene, RawSpring};
+use super::raw::{RawJoint, RawMotor, RawScene, RawSpring};
 use super::{LoadError, SceneBody, Validator};
-use crate::physics::joints::{Correction, Joint, JointKind, Links, Spring};
+use crate::physics::joints::{Correction, Joint, JointKind, Links, Motor, Spring};
 use crate::physics::State;
 use nalgebra::Vector3;
 use std::ops::Range;
@@ -234,19 +236,120 @@ impl Validator<'_> {
         }
         let anchor = self.vector(j.anchor.as_ref().ok_or_else(|| needs("anchor"))?, "anchor")?;
         let axis = match (kind, &j.axis) {
-            (JointKind::Hinge, None) => return Err(needs("axis")),
-            (JointKind::Hinge, Some(axis)) => {
-                let v = self.vector(axis, "hinge axis")?;
+            (JointKind::Hinge | JointKind::Slider, None) => return Err(needs("axis")),
+            (JointKind::Hinge | JointKind::Slider, Some(axis)) => {
+                let v = self.vector(axis, &format!("{kind_name} axis"))?;
                 if v.norm() < 1e-12 {
                     return Err(self.error(
                         axis.span(),
-                        "hinge `axis` has zero length: give a non-zero axis",
+                        format!("{kind_name} `axis` has zero length: give a non-zero axis"),
                     ));
                 }
                 v
             }
             _ => Vector3::z(),
         };
-        Ok(Joint::at_point(name, kind, a, b, anchor, axis, states))
+        let mut joint = Joint::at_point(name, kind, a, b, anchor, axis, states);
+        if let Some(limits) = &j.limits {
+            joint.limits = Some(self.joint_limits(limits, kind)?);
+        }
+        if let Some(motor) = &j.motor {
+            joint.motor = Some(self.joint_motor(motor, kind)?);
+        }
+        Ok(joint)
+    }
+
+    /// A hinge's or slider's `limits = [lo, hi]`: finite, lo ≤ 0 ≤ hi (the t = 0 pose is
+    /// inside); a hinge's in degrees, less than a full turn apart, returned in radians.
+    fn joint_limits(
+        &self,
+        raw: &Spanned<Vec<f64>>,
+        kind: JointKind,
+    ) -> Result<[f64; 2], LoadError> {
+        let list = raw.get_ref();
+        let kind_name = kind.name();
+        let unit = if kind == JointKind::Hinge {
+            "degrees"
+        } else {
+            "m"
+        };
+        let &[lo, hi] = list.as_slice() else {
+            return Err(self.error(
+                raw.span(),
+                format!(
+                    "{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {} numbers",
+                    list.len()
+                ),
+            ));
+        };
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Err(self.error(
+                raw.span(),
+                format!("{kind_name} `limits` must be finite numbers, found [{lo}, {hi}]"),
+            ));
+        }
+        if !(lo <= 0.0 && 0.0 <= hi) {
+            return Err(self.error(
+                raw.span(),
+                format!(
+                    "{kind_name} `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found \
+                     [{lo}, {hi}]"
+                ),
+            ));
+        }
+        if kind == JointKind::Hinge {
+            if hi - lo >= 360.0 {
+                return Err(self.error(
+                    raw.span(),
+                    format!(
+                        "hinge `limits` must be less than a full turn apart (hi − lo < 360°), \
+                         found [{lo}, {hi}]"
+                    ),
+                ));
+            }
+            return Ok([lo.to_radians(), hi.to_radians()]);
+        }
+        Ok([lo, hi])
+    }
+
+    /// A hinge's `motor = { speed, max_torque }` (rad/s, N·m) or a slider's
+    /// `{ speed, max_force }` (m/s, N).
+    fn joint_motor(&self, raw: &Spanned<RawMotor>, kind: JointKind) -> Result<Motor, LoadError> {
+        let m = raw.get_ref();
+        let (key, other, unit) = if kind == JointKind::Hinge {
+            ("max_torque", &m.max_force, "N·m")
+        } else {
+            ("max_force", &m.max_torque, "N")
+        };
+        if let Some(other) = other {
+            let wrong = if kind == JointKind::Hinge {
+                "max_force"
+            } else {
+                "max_torque"
+            };
+            return Err(self.error(
+                other.span(),
+                format!(
+                    "a {}'s motor takes `{key}` ({unit}), not `{wrong}`",
+                    kind.name()
+                ),
+            ));
+        }
+        let needs = |what: &str| {
+            self.error(
+                raw.span(),
+                format!("a {} joint's `motor` needs `{what}`", kind.name()),
+            )
+        };
+        let speed = m.speed.as_ref().ok_or_else(|| needs("speed"))?;
+        let speed = self.finite(speed, "motor `speed`")?;
+        let bound = if kind == JointKind::Hinge {
+            &m.max_torque
+        } else {
+            &m.max_force
+        };
+        let bound = bound.as_ref().ok_or_else(|| needs(key))?;
+        let max = self.positive(bound, &format!("motor `{key}`"))?;
+        Ok(Motor { speed, max })
     }
 }

@@ -24,8 +24,8 @@ pub use page_panels::PagePanel;
 use crate::physics::cloth::{Cloth, ClothIntegrator, ClothSpec};
 use crate::physics::joints::Links;
 use crate::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, Response,
-    SoftStep, State, World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
+    Response, SoftStep, State, World,
 };
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use raw::{RawBodies, RawBody, RawLesson, RawObstacle, RawScene, Vec3};
@@ -790,6 +790,10 @@ impl Validator<'_> {
             .friction
             .as_ref()
             .map_or(Ok(0.0), |f| self.non_negative(f, "friction"))?;
+        let impacts = match &c.impacts {
+            Some(word) => self.impacts(word, response)?,
+            None => Impacts::default(),
+        };
         let response = match response {
             Response::SoftStep(defaults) => Response::SoftStep(self.soft_step(c, defaults)?),
             other => {
@@ -814,6 +818,34 @@ impl Validator<'_> {
             response,
             restitution,
             friction,
+            impacts,
+        })
+    }
+
+    /// `impacts = "propagate" | "simultaneous"`: a key of the `impulse` response only (`seed`
+    /// and `soft-step` have no impact law to choose, so the key on them is refused).
+    fn impacts(&self, word: &Spanned<String>, response: Response) -> Result<Impacts, LoadError> {
+        let name = word.get_ref();
+        if response != Response::Impulse {
+            return Err(self.error(
+                word.span(),
+                format!(
+                    "`impacts` is a key of the `impulse` response, not of `{}`",
+                    response.name()
+                ),
+            ));
+        }
+        Impacts::from_name(name).ok_or_else(|| {
+            let hint = did_you_mean(name, Impacts::ALL.map(Impacts::name))
+                .map(|s| format!(" (did you mean `{s}`?)"))
+                .unwrap_or_default();
+            self.error(
+                word.span(),
+                format!(
+                    "unknown impact law `{name}`{hint}; valid laws: {}",
+                    Impacts::names()
+                ),
+            )
         })
     }
 

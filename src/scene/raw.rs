@@ -58,6 +58,8 @@ pub struct RawContact {
     pub response: Spanned<String>,
     pub restitution: Option<Spanned<f64>>,
     pub friction: Option<Spanned<f64>>,
+    /// `impulse` only: propagate | simultaneous.
+    pub impacts: Option<Spanned<String>>,
     /// `soft-step` only: contact frequency (Hz), damping ratio, sub-steps per step.
     pub hertz: Option<Spanned<f64>>,
     pub damping_ratio: Option<Spanned<f64>>,
@@ -237,6 +239,19 @@ pub struct RawJoint {
     #[serde(default, deserialize_with = "exact::option_list")]
     pub anchors: Option<Spanned<Vec<[f64; 3]>>>,
     pub length: Option<Spanned<f64>>,
+    /// hinge (degrees) or slider (m): `[lo, hi]`.
+    pub limits: Option<Spanned<Vec<f64>>>,
+    /// hinge or slider: `{ speed, max_torque }` or `{ speed, max_force }`.
+    pub motor: Option<Spanned<RawMotor>>,
+}
+
+/// A joint's `motor = { speed, max_force }` (slider) or `{ speed, max_torque }` (hinge).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMotor {
+    pub speed: Option<Spanned<f64>>,
+    pub max_force: Option<Spanned<f64>>,
+    pub max_torque: Option<Spanned<f64>>,
 }
 
 /// A `[[spring]]` table: a Hooke spring with damping.
@@ -275,7 +290,7 @@ impl RawBody {
 impl RawJoint {
     /// The type-dependent keys present (every joint takes `name`, `type`, `bodies`).
     pub fn present(&self) -> Present {
-        present!(self, anchor, axis, anchors, length)
+        present!(self, anchor, axis, anchors, length, limits, motor)
     }
 }
 

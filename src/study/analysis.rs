@@ -4,10 +4,14 @@
 //! frontier:  run r is on it  ⇔  no other run s has cost(s) ≤ cost(r) and error(s) ≤ error(r),
 //!            one of them strictly    (cost = µs per simulated second; error = Row::measure:
 //!            the pose error, or in a scene with contact the contact error)
+//! floor:     max(FLOOR, SPREAD_BAND × the reference's spread): below it an error is round-off
+//!            or the reference's own error, not the run's; runs below it are not ranked
+//!            against each other (the frontier sees their error as the floor) nor fitted
 //! order:     least-squares slope of ln(error) against ln(dt) over the asymptotic range:
-//!            runs that did not diverge with FLOOR ≤ error ≤ CEILING (below the floor round-off
-//!            dominates; above the ceiling the error saturates — angles wrap at π);
-//!            none for an integrator exact on the scene (its error is round-off)
+//!            runs that did not diverge with floor < error ≤ CEILING (above the ceiling the
+//!            error saturates — angles wrap at π); none (null) when fewer than two runs are
+//!            in that range, and the output says why (diverged, saturated, below the floor;
+//!            an integrator exact on the scene has only round-off)
 //! ```
 
 use super::measure::Row;
@@ -33,14 +37,37 @@ pub struct Order {
     /// [`crate::physics::integrators::Descriptor::exact_without_torque`]): its error is
     /// round-off, which grows with the number of steps, so no order is fitted.
     pub exact: bool,
+    /// Runs left out of the fit because they diverged, saturated (error > CEILING) or lie
+    /// below the floor.
+    pub diverged: usize,
+    pub saturated: usize,
+    pub below_floor: usize,
 }
 
-/// Fits the observed order of `integrator` from the rows of one scene.
-pub fn fit_order(integrator: Integrator, rows: &[Row]) -> Order {
-    let points: Vec<(f64, f64)> = rows
-        .iter()
-        .filter(|r| r.integrator == integrator && r.ok())
-        .filter(|r| (FLOOR..=CEILING).contains(&r.error))
+impl Order {
+    /// Why no order was fitted (`None` when one was).
+    pub fn why_not(&self) -> Option<String> {
+        if self.slope.is_some() {
+            return None;
+        }
+        if self.exact {
+            return Some("exact on this scene: its error is round-off, with no order".into());
+        }
+        Some(format!(
+            "fewer than 2 runs in the asymptotic range ({} usable; {} diverged, {} saturated \
+             above {CEILING:.0e}, {} below the floor)",
+            self.points, self.diverged, self.saturated, self.below_floor
+        ))
+    }
+}
+
+/// Fits the observed order of `integrator` from the rows of one scene, over the runs with
+/// `floor < error ≤ CEILING` that did not diverge.
+pub fn fit_order(integrator: Integrator, rows: &[Row], floor: f64) -> Order {
+    let floor = floor.max(FLOOR);
+    let mine = || rows.iter().filter(|r| r.integrator == integrator);
+    let points: Vec<(f64, f64)> = mine()
+        .filter(|r| r.ok() && r.error > floor && r.error <= CEILING)
         .map(|r| (r.dt.ln(), r.error.ln()))
         .collect();
     let n = points.len();
@@ -56,6 +83,9 @@ pub fn fit_order(integrator: Integrator, rows: &[Row]) -> Order {
         slope,
         points: n,
         exact: false,
+        diverged: mine().filter(|r| !r.ok()).count(),
+        saturated: mine().filter(|r| r.ok() && r.error > CEILING).count(),
+        below_floor: mine().filter(|r| r.ok() && r.error <= floor).count(),
     }
 }
 
@@ -66,20 +96,29 @@ pub fn exact_order(integrator: Integrator) -> Order {
         slope: None,
         points: 0,
         exact: true,
+        diverged: 0,
+        saturated: 0,
+        below_floor: 0,
     }
 }
 
-/// Marks the runs no other run beats on both error and cost.
-pub fn mark_frontier(rows: &mut [Row]) {
+/// Marks the runs below `floor` and the runs no other run beats on both error and cost; an
+/// error below the floor counts as the floor (runs inside it are not ranked by their
+/// round-off: the cheapest of them is the frontier's end).
+pub fn mark_frontier(rows: &mut [Row], floor: f64) {
+    let floor = floor.max(FLOOR);
+    for row in rows.iter_mut() {
+        row.below_floor = row.ok() && row.measure() <= floor;
+    }
     let usable =
         |r: &Row| r.ok() && r.measure().is_finite() && r.us_per_simulated_second.is_finite();
     let candidates: Vec<(f64, f64)> = rows
         .iter()
         .filter(|r| usable(r))
-        .map(|r| (r.us_per_simulated_second, r.measure()))
+        .map(|r| (r.us_per_simulated_second, r.measure().max(floor)))
         .collect();
     for row in rows.iter_mut() {
-        let (cost, error) = (row.us_per_simulated_second, row.measure());
+        let (cost, error) = (row.us_per_simulated_second, row.measure().max(floor));
         row.frontier = usable(row)
             && !candidates
                 .iter()

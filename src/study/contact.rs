@@ -99,7 +99,7 @@ pub fn study(
     let reference_scene = with_response(scene, Response::Impulse);
     let mut reference = Reference::for_scene(&reference_scene, times, dt);
     let last = times.len() - 1;
-    let truth = reference.at(last, duration).position;
+    let truth = reference.at(last, duration)[0].position;
     let up = scene
         .effects
         .gravity()

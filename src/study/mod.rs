@@ -117,8 +117,12 @@ pub struct SceneStudy {
     pub duration: f64,
     /// What the errors are measured against.
     pub reference: String,
-    /// "exact" or "numeric".
+    /// "exact", "converged", "not-converged" (the same model at a finer step, checked by
+    /// halving it) or "numeric" (contact).
     pub reference_kind: &'static str,
+    /// Errors at or below this are round-off or the reference's own error: not ranked, not
+    /// fitted ([`analysis`]).
+    pub floor: f64,
     /// Sorted by cost (µs per simulated second), diverged runs last.
     pub rows: Vec<Row>,
     /// The observed order of each integrator.
@@ -172,6 +176,7 @@ pub fn study_case(
         }
     }
     let exact_reference = reference.kind() == "exact";
+    let floor = analysis::FLOOR.max(reference.floor());
     let orders = config
         .integrators
         .iter()
@@ -179,7 +184,7 @@ pub fn study_case(
             if exact_reference && i.descriptor().exact_without_torque {
                 analysis::exact_order(i)
             } else {
-                fit_order(i, &rows)
+                fit_order(i, &rows, floor)
             }
         })
         .collect();
@@ -201,8 +206,26 @@ pub fn study_case(
             case.duration,
         ),
     };
-    mark_frontier(&mut rows);
+    mark_frontier(&mut rows, floor);
     analysis::sort_by_cost(&mut rows);
+    let sentence = match (reference.kind(), reference.spread()) {
+        ("not-converged", Some(spread)) => format!(
+            "No converged reference: halving rk4's step from {} s moved the reference by {} \
+             (angle + pos/radius) over {} s — the motion amplifies every difference (chaos) until \
+             no reference holds, so these errors measure the reference as much as the runs. {sentence}",
+            analysis::format_dt(spread.coarse_dt),
+            analysis::format_number(spread.error),
+            case.duration
+        ),
+        _ if rows.iter().all(|r| !r.ok() || r.below_floor) && rows.iter().any(|r| r.ok()) => {
+            format!(
+                "Every run that finished is within the floor ({}): the reference does not \
+                 resolve their errors. {sentence}",
+                analysis::format_number(floor)
+            )
+        }
+        _ => sentence,
+    };
     let contact_solvers = response.map(|_| {
         let chart = contact::study(
             &case.name,
@@ -220,6 +243,7 @@ pub fn study_case(
         duration: case.duration,
         reference: reference.describe(),
         reference_kind: reference.kind(),
+        floor,
         rows,
         orders,
         sentence,
@@ -305,6 +329,7 @@ fn study_cloth_case(
         duration: case.duration,
         reference: cloth.reference.clone(),
         reference_kind: "numeric",
+        floor: analysis::FLOOR,
         rows: Vec::new(),
         orders: Vec::new(),
         sentence: cloth.sentence.clone(),

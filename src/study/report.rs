@@ -25,7 +25,17 @@ use std::fmt::Write;
 pub const CSV_HEADER: &str = "scene,integrator,dt,steps,ns_per_step,error,energy_drift,\
 momentum_drift,orthonormality,us_per_simulated_second,omega_error,position_error,penetration,\
 impact_energy,rest_error,frontier,status,reference,angle_error,end_pose_error,contact_error,\
-case,limit_ratio,drift_j,booked_losses,numerical_damping,energy_rise,solver,substeps,sink";
+case,limit_ratio,drift_j,booked_losses,numerical_damping,energy_rise,solver,substeps,sink,\
+below_floor";
+
+/// A number as a CSV cell: full precision, empty where it does not apply (NaN).
+fn cell(x: f64) -> String {
+    if x.is_nan() {
+        String::new()
+    } else {
+        x.to_string()
+    }
+}
 
 /// A measured number in the table.
 fn sci(x: f64) -> String {
@@ -74,8 +84,8 @@ pub fn table(studies: &[SceneStudy]) -> String {
         let _ = writeln!(out, "reference: {}", study.reference);
         let _ = writeln!(
             out,
-            "angle = max angle(q_ref⁻¹q) (rad), pos = max |x − x_ref| (m), ω = max |ω − ω_ref| \
-             (rad/s), over samples every 0.1 s; drifts are relative maxima"
+            "{ERROR_MEASURE}; angle = max angle(q_ref⁻¹q) (rad), pos = max |x − x_ref| (m), \
+             ω = max |ω − ω_ref| (rad/s), the same maxima; drifts are relative maxima"
         );
         if contact {
             let _ = writeln!(
@@ -90,12 +100,14 @@ pub fn table(studies: &[SceneStudy]) -> String {
         }
         let _ = writeln!(
             out,
-            "* = Pareto frontier: no run is both cheaper and more accurate (by {})",
+            "* = Pareto frontier: no run is both cheaper and more accurate (by {}); ~ = error at \
+             or below the floor {} (round-off or the reference's own error): not ranked",
             if contact {
                 "the contact error"
             } else {
                 "angle + pos/radius"
-            }
+            },
+            format_number(study.floor)
         );
         let mut header = format!(
             "  {:<17}{:>6}{:>9}{:>9}{:>11}{:>10}{:>10}{:>10}{:>10}{:>10}{:>10}",
@@ -129,14 +141,19 @@ pub fn table(studies: &[SceneStudy]) -> String {
             .map(|o| match o.slope {
                 _ if o.exact => format!("{} exact (error = round-off)", o.integrator.name()),
                 Some(s) => format!("{} {:.2} ({} runs)", o.integrator.name(), s, o.points),
-                None => format!("{} not resolved", o.integrator.name()),
+                None => format!(
+                    "{} none ({})",
+                    o.integrator.name(),
+                    o.why_not().unwrap_or_default()
+                ),
             })
             .collect();
         if !contact {
             let _ = writeln!(
                 out,
-                "observed order (slope of log error vs log dt, errors in [1e-11, 1e-1]): {}",
-                orders.join(", ")
+                "observed order (least-squares slope of log error vs log dt, runs not diverged \
+                 with floor < error ≤ 1e-1): {}",
+                orders.join("; ")
             );
         }
         if let Some(chart) = &study.contact_solvers {
@@ -300,7 +317,11 @@ fn cloth_row(row: &ClothRow, damped_limit: f64) -> String {
 }
 
 fn table_row(row: &Row, contact: bool) -> String {
-    let mark = if row.frontier { '*' } else { ' ' };
+    let mark = match (row.frontier, row.below_floor) {
+        (true, _) => '*',
+        (false, true) => '~',
+        _ => ' ',
+    };
     let (ns, cost) = if row.ns_per_step.is_finite() {
         (
             format!("{:.0}", row.ns_per_step),
@@ -364,17 +385,17 @@ fn run_columns(r: &Row) -> String {
         r.integrator.name(),
         r.dt,
         r.steps,
-        r.ns_per_step,
-        r.error,
-        r.energy_drift,
-        r.momentum_drift,
-        r.orthonormality,
-        r.us_per_simulated_second,
-        r.omega_error,
-        r.position_error,
-        r.penetration,
-        r.impact_energy,
-        r.rest_error
+        cell(r.ns_per_step),
+        cell(r.error),
+        cell(r.energy_drift),
+        cell(r.momentum_drift),
+        cell(r.orthonormality),
+        cell(r.us_per_simulated_second),
+        cell(r.omega_error),
+        cell(r.position_error),
+        cell(r.penetration),
+        cell(r.impact_energy),
+        cell(r.rest_error)
     )
 }
 
@@ -387,15 +408,16 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             let status = csv_status(&r.status);
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},body,NaN,NaN,NaN,NaN,NaN,{},NaN,NaN",
+                "{},{},{},{},{},{},{},body,,,,,,{},,,{}",
                 run_columns(r),
                 r.frontier,
                 status,
                 study.reference_kind,
-                r.angle_error,
-                r.end_pose_error,
-                r.contact_error,
-                study.response.map_or("", |r| r.name())
+                cell(r.angle_error),
+                cell(r.end_pose_error),
+                cell(r.contact_error),
+                study.response.map_or("", |r| r.name()),
+                r.below_floor
             );
         }
         for row in study.contact_solvers.iter().flat_map(|c| &c.rows) {
@@ -403,46 +425,58 @@ pub fn csv(studies: &[SceneStudy]) -> String {
             let status = csv_status(&r.status);
             let _ = writeln!(
                 out,
-                "{},{},{},numeric,{},{},{},contact-solver,NaN,NaN,NaN,NaN,NaN,{},{},{}",
+                "{},{},{},numeric,{},{},{},contact-solver,,,,,,{},{},{},",
                 run_columns(r),
                 row.frontier,
                 status,
-                r.angle_error,
-                r.end_pose_error,
-                r.contact_error,
+                cell(r.angle_error),
+                cell(r.end_pose_error),
+                cell(r.contact_error),
                 row.response.name(),
                 row.substeps,
-                row.sink
+                cell(row.sink)
             );
         }
         for r in study.cloth.iter().flat_map(|c| &c.rows) {
             let status = csv_status(&r.status);
-            let nan = f64::NAN;
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{nan},{nan},{},{nan},{},{nan},{nan},{nan},{},{},{},{nan},\
-                 {nan},{nan},cloth,{},{},{},{},{},,{nan},{nan}",
+                "{},{},{},{},{},{},{},,,{},,{},,,,{},{},{},,\
+                 ,,cloth,{},{},{},{},{},,,,",
                 r.scene,
                 r.integrator.name(),
                 r.dt,
                 r.steps,
-                r.ns_per_step,
-                r.error,
-                r.energy_drift,
-                r.us_per_simulated_second,
-                r.error,
+                cell(r.ns_per_step),
+                cell(r.error),
+                cell(r.energy_drift),
+                cell(r.us_per_simulated_second),
+                cell(r.error),
                 r.frontier,
                 status,
                 study.reference_kind,
-                r.limit_ratio,
-                r.drift_j,
-                r.booked_losses,
-                r.numerical_damping,
-                r.energy_rise
+                cell(r.limit_ratio),
+                cell(r.drift_j),
+                cell(r.booked_losses),
+                cell(r.numerical_damping),
+                cell(r.energy_rise)
             );
         }
     }
     out
+}
+
+/// What a study's `error` is, in one line (the table, the JSON, the charts, `--help`).
+pub const ERROR_MEASURE: &str = "error = max over samples (every 0.1 s and the end) and \
+bodies of angle(q_ref⁻¹q) + |x − x_ref|/radius (rad; x the barycenter, radius the body's \
+bounding radius)";
+
+/// A run's divergence message, or null.
+fn divergence(status: &Status) -> serde_json::Value {
+    match status {
+        Status::Ok => serde_json::Value::Null,
+        Status::Diverged(m) => m.clone().into(),
+    }
 }
 
 /// Everything as JSON (NaN as null).
@@ -473,10 +507,9 @@ pub fn json(studies: &[SceneStudy]) -> String {
                         "impact_energy": r.impact_energy,
                         "rest_error": r.rest_error,
                         "frontier": r.frontier,
-                        "diverged": match &r.status {
-                            Status::Ok => serde_json::Value::Null,
-                            Status::Diverged(m) => m.clone().into(),
-                        },
+                        "below_floor": r.below_floor,
+                        "diverged": !r.ok(),
+                        "divergence": divergence(&r.status),
                     })
                 })
                 .collect();
@@ -487,6 +520,7 @@ pub fn json(studies: &[SceneStudy]) -> String {
                     serde_json::json!({
                         "integrator": o.integrator.name(),
                         "order": o.slope,
+                        "order_note": o.why_not(),
                         "points": o.points,
                         "exact": o.exact,
                     })
@@ -498,6 +532,8 @@ pub fn json(studies: &[SceneStudy]) -> String {
                 "duration": s.duration,
                 "reference": s.reference,
                 "reference_kind": s.reference_kind,
+                "error_measure": ERROR_MEASURE,
+                "floor": s.floor,
                 "sentence": s.sentence,
                 "orders": orders,
                 "runs": rows,
@@ -536,10 +572,8 @@ fn solvers_json(chart: &ContactStudy) -> serde_json::Value {
                 "contact_error": r.contact_error,
                 "rest_error": r.rest_error,
                 "frontier": row.frontier,
-                "diverged": match &r.status {
-                    Status::Ok => serde_json::Value::Null,
-                    Status::Diverged(m) => m.clone().into(),
-                },
+                "diverged": !r.ok(),
+                "divergence": divergence(&r.status),
             })
         })
         .collect();
@@ -574,10 +608,8 @@ fn cloth_json(cloth: &ClothStudy) -> serde_json::Value {
                 "numerical_damping": r.numerical_damping,
                 "energy_rise": r.energy_rise,
                 "frontier": r.frontier,
-                "diverged": match &r.status {
-                    Status::Ok => serde_json::Value::Null,
-                    Status::Diverged(m) => m.clone().into(),
-                },
+                "diverged": r.status != Status::Ok,
+                "divergence": divergence(&r.status),
             })
         })
         .collect();
@@ -588,6 +620,10 @@ fn cloth_json(cloth: &ClothStudy) -> serde_json::Value {
             serde_json::json!({
                 "integrator": o.integrator.name(),
                 "order": o.slope,
+                "order_note": o.slope.is_none().then(|| format!(
+                    "fewer than 2 runs below 2/ω_max that did not diverge ({} usable)",
+                    o.points
+                )),
                 "points": o.points,
             })
         })

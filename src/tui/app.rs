@@ -228,8 +228,25 @@ pub struct App {
     /// Simulated seconds per wall-clock second over the last second of running, measured by
     /// the event loop only (never in tests or exports: it varies between runs).
     pub measured_real_time: Option<f64>,
+    /// A jump (`J`) under way: the event loop runs it a slice at a time ([`App::work`]) so
+    /// keys and the screen never wait on it; Esc cancels it, `q` quits at once.
+    pub job: Option<JumpJob>,
+    /// Jumps run as jobs a slice at a time (the terminal app), or at once (tests, `shot`,
+    /// `record`: one call, one result).
+    pub background_jobs: bool,
     pub quit: bool,
 }
+
+/// A jump under way: from `from` to `target` (frame counts), asked for time `t`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JumpJob {
+    pub from: u64,
+    pub target: u64,
+    pub t: f64,
+}
+
+/// How long one slice of a job may run before the event loop looks at the keys again.
+pub const JOB_SLICE: std::time::Duration = std::time::Duration::from_millis(40);
 
 /// Live numbers being simulated on a thread ([`App::interactive`]).
 #[derive(Debug)]
@@ -313,6 +330,8 @@ impl App {
             guesses,
             pause_at_stops: true,
             measured_real_time: None,
+            job: None,
+            background_jobs: live_in_background,
             quit: false,
         };
         app.start_live(app.world.clone());
@@ -410,6 +429,26 @@ impl App {
     pub fn update(&mut self, message: Message) -> Option<Effect> {
         self.notice = None;
         self.stop = None;
+        if let Some(job) = self.job {
+            // A jump under way: q quits at once (the job is dropped with it), Esc cancels it
+            // where it is; other keys wait for it.
+            match message {
+                Message::Quit => {
+                    self.job = None;
+                    self.quit = true;
+                }
+                Message::Back => {
+                    self.job = None;
+                    self.notice = Some(format!(
+                        "jump cancelled at t = {} s (step {})",
+                        tidy(self.world.time()),
+                        self.world.step_count()
+                    ));
+                }
+                _ => self.notice = Some(self.job_progress(&job)),
+            }
+            return None;
+        }
         if self.overlay == Overlay::Help && matches!(message, Message::ToggleHelp | Message::Back) {
             // `?` and Esc close the help.
             self.overlay = Overlay::None;
@@ -893,7 +932,8 @@ impl App {
     }
 
     /// Goes to time t (rounded to a step): forward from here, or replayed from t = 0 when t is
-    /// earlier; paused there. A frame in progress is finished first.
+    /// earlier; paused there. A frame in progress is finished first. With
+    /// [`App::background_jobs`] the frames are run by [`App::work`], a slice at a time.
     pub fn jump_to(&mut self, t: f64) {
         self.running = false;
         while !self.at_frame_start() && self.divergence.is_none() {
@@ -912,13 +952,72 @@ impl App {
             ));
             return;
         }
+        let job = JumpJob {
+            from: self.world.step_count(),
+            target,
+            t,
+        };
+        if self.background_jobs {
+            self.notice = Some(self.job_progress(&job));
+            self.job = Some(job);
+            self.work(JOB_SLICE);
+            return;
+        }
         self.step_frames(frames);
+        self.jump_done();
+    }
+
+    fn jump_done(&mut self) {
         if self.divergence.is_none() {
             self.notice = Some(format!(
                 "jumped to t = {} s (step {})",
                 tidy(self.world.time()),
                 self.world.step_count()
             ));
+        }
+    }
+
+    /// The status line of a job under way: `jumping to t = 50 s: 12 % (t = 6.03 s) · Esc
+    /// cancels, q quits`.
+    fn job_progress(&self, job: &JumpJob) -> String {
+        let done = self.world.step_count().saturating_sub(job.from);
+        let all = job.target.saturating_sub(job.from).max(1);
+        format!(
+            "jumping to t = {} s: {} % (t = {} s) · Esc cancels, q quits",
+            tidy(job.t),
+            100 * done / all,
+            tidy(self.world.time()),
+        )
+    }
+
+    /// Runs the job under way (if any) for about `budget` of wall-clock time, in chunks of
+    /// frames sized by the measured cost per frame; returns whether work is left. The event
+    /// loop calls it between looking at the keys, so a key waits at most one slice.
+    pub fn work(&mut self, budget: std::time::Duration) -> bool {
+        let start = Instant::now();
+        while let Some(job) = self.job {
+            let left = job.target.saturating_sub(self.world.step_count());
+            if left == 0 || self.divergence.is_some() {
+                self.job = None;
+                self.jump_done();
+                return false;
+            }
+            // A chunk of about a quarter of the budget at the measured cost per frame.
+            let chunk = match self.ns_per_step {
+                Some(ns) if ns > 0.0 => ((budget.as_secs_f64() * 0.25e9 / ns) as u64).max(1),
+                _ => 16,
+            };
+            self.step_frames(chunk.min(left));
+            if start.elapsed() >= budget {
+                break;
+            }
+        }
+        match self.job {
+            Some(job) => {
+                self.notice = Some(self.job_progress(&job));
+                true
+            }
+            None => false,
         }
     }
 

@@ -113,6 +113,8 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
     loop {
         app.poll_study();
         app.poll_live();
+        // A jump under way runs a slice, then the screen and the keys have their turn.
+        app.work(app::JOB_SLICE);
         if app.export_requested {
             app.export_requested = false;
             let size = terminal.size()?;
@@ -126,7 +128,11 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
             // Paused: block until something happens (or, while a study runs, until its
             // progress is worth redrawing).
             let waiting = app.study_running() || app.live_pending();
-            if waiting && !event::poll(RENDER_INTERVAL * 3)? {
+            if app.job.is_some() {
+                if !event::poll(Duration::ZERO)? {
+                    continue;
+                }
+            } else if waiting && !event::poll(RENDER_INTERVAL * 3)? {
                 continue;
             }
             handle(app, event::read()?);

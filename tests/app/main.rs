@@ -4,6 +4,7 @@
 mod classroom;
 mod findings;
 mod history;
+mod jobs;
 mod plot;
 mod tui;
 mod tui_cloth;

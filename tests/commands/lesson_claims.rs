@@ -900,10 +900,37 @@ fn lesson_14_equal_cubes_exchange_velocities_and_keep_p_and_e() {
 }
 
 #[test]
-fn lesson_14_touching_cubes_keep_p_and_e_but_are_no_cradle() {
+fn lesson_14_touching_cubes_are_a_cradle_when_impacts_propagate() {
     let l = lesson_edited(
         "14-head-on.toml",
         &[("position = [0.21, 0.0, 0.0]", "position = [0.2, 0.0, 0.0]")],
+    );
+    let mut world = l.scene.world();
+    for _ in 0..1000 {
+        world.step();
+    }
+    let v = [
+        velocity(&world, "left").x,
+        velocity(&world, "middle").x,
+        velocity(&world, "right").x,
+    ];
+    // The page: v = (0, 0, 1) m/s, left–middle exchange, then middle–right.
+    for (seen, quoted) in v.iter().zip([0.0, 0.0, 1.0]) {
+        assert_near(*seen, quoted, 1e-9, "velocity");
+    }
+}
+
+#[test]
+fn lesson_14_touching_cubes_keep_p_and_e_but_are_no_cradle_when_simultaneous() {
+    let l = lesson_edited(
+        "14-head-on.toml",
+        &[
+            ("position = [0.21, 0.0, 0.0]", "position = [0.2, 0.0, 0.0]"),
+            (
+                "friction = 0.0 }",
+                "friction = 0.0, impacts = \"simultaneous\" }",
+            ),
+        ],
     );
     let mut world = l.scene.world();
     for _ in 0..1000 {

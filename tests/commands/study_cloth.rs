@@ -274,7 +274,7 @@ fn study_of_a_cloth_file_extends_the_csv_and_json_and_draws_its_panel() {
         header,
         format!(
             "{},case,limit_ratio,drift_j,booked_losses,numerical_damping,energy_rise,solver,\
-             substeps,sink",
+             substeps,sink,below_floor",
             "scene,integrator,dt,steps,ns_per_step,error,energy_drift,momentum_drift,\
              orthonormality,us_per_simulated_second,omega_error,position_error,penetration,\
              impact_energy,rest_error,frontier,status,reference,angle_error,end_pose_error,\

@@ -121,7 +121,10 @@ fn the_csv_and_json_carry_the_contact_solver_rows() {
     assert!(output.status.success());
     let csv = String::from_utf8(output.stdout).unwrap();
     let header = csv.lines().next().unwrap();
-    assert!(header.ends_with(",solver,substeps,sink"), "{header}");
+    assert!(
+        header.ends_with(",solver,substeps,sink,below_floor"),
+        "{header}"
+    );
     let columns = header.split(',').count();
     let solver_rows: Vec<&str> = csv
         .lines()
@@ -133,7 +136,7 @@ fn the_csv_and_json_carry_the_contact_solver_rows() {
     }
     let substeps: Vec<&str> = solver_rows
         .iter()
-        .map(|r| r.split(',').nth(columns - 2).unwrap())
+        .map(|r| r.split(',').nth(columns - 3).unwrap())
         .collect();
     assert_eq!(substeps, ["0", "1", "2", "4", "8"]);
     let output = assert_cmd::Command::cargo_bin("tumble")
@@ -155,4 +158,12 @@ fn the_csv_and_json_carry_the_contact_solver_rows() {
     assert_eq!(runs.len(), 5);
     assert_eq!(runs[0]["solver"], "impulse");
     assert_eq!(runs[4]["substeps"], 8);
+    // `diverged` is true or false on every run, never null; the message goes in `divergence`.
+    for run in scene["runs"].as_array().unwrap().iter().chain(runs) {
+        assert!(run["diverged"].is_boolean(), "{run}");
+        assert_eq!(
+            run["diverged"].as_bool(),
+            Some(!run["divergence"].is_null())
+        );
+    }
 }

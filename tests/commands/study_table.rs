@@ -29,6 +29,7 @@ fn row(integrator: Integrator, dt: f64, ns_per_step: f64, error: f64, status: St
         contact_error: f64::NAN,
         status,
         frontier: false,
+        below_floor: false,
     }
 }
 
@@ -39,6 +40,7 @@ fn study(rows: Vec<Row>, response: Option<Response>) -> SceneStudy {
         duration: 1.0,
         reference: "exact: by hand".to_string(),
         reference_kind: "exact",
+        floor: 1e-11,
         rows,
         orders: Vec::new(),
         sentence: "One sentence.".to_string(),

@@ -9,7 +9,7 @@ use std::path::Path;
 use tumble::physics::collision::{collide, CollideInput};
 use tumble::physics::effects::Loads;
 use tumble::physics::snapshot::kinetic_energy;
-use tumble::physics::{Body, ContactModel, Orientation, Response, State, World};
+use tumble::physics::{Body, ContactModel, Impacts, Orientation, Response, State, World};
 use tumble::scene::parse;
 
 fn world(source: &str) -> World {
@@ -390,7 +390,7 @@ proptest! {
             s.position -= s.linear_momentum * dt;
             s
         });
-        let model = ContactModel { response: Response::Impulse, restitution, friction };
+        let model = ContactModel { response: Response::Impulse, restitution, friction, impacts: Impacts::default() };
         let input = CollideInput {
             bodies: &bodies,
             obstacles: &[],

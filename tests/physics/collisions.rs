@@ -8,8 +8,8 @@ use tumble::physics::collision::{collide, Against, CollideInput};
 use tumble::physics::effects::Loads;
 use tumble::physics::snapshot::{deepest_penetration, kinetic_energy};
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Phase, Response, State,
-    World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Phase,
+    Response, State, World,
 };
 
 const G: f64 = 9.81;
@@ -21,6 +21,7 @@ fn impulse(restitution: f64, friction: f64) -> ContactModel {
         response: Response::Impulse,
         restitution,
         friction,
+        impacts: Impacts::default(),
     }
 }
 

@@ -3,8 +3,8 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Phase, Response, State,
-    World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Phase,
+    Response, State, World,
 };
 
 const G: f64 = 9.81;
@@ -126,6 +126,7 @@ fn dropped(response: Response) -> World {
             response,
             restitution: 0.5,
             friction: 0.0,
+            impacts: Impacts::default(),
         }),
         Integrator::Rk4,
         1e-3,

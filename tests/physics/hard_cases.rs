@@ -650,8 +650,8 @@ mod contact {
     use tumble::physics::snapshot::deepest_penetration;
     use tumble::physics::Against;
     use tumble::physics::{
-        Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Response, State,
-        World,
+        Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Response,
+        State, World,
     };
 
     const GROUND: Obstacle = Obstacle::Ground { height: 0.0 };
@@ -666,6 +666,7 @@ mod contact {
             response: Response::Impulse,
             restitution,
             friction,
+            impacts: Impacts::default(),
         }
     }
 

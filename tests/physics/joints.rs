@@ -5,7 +5,8 @@ use nalgebra::{UnitQuaternion, Vector3};
 use tumble::physics::joints::{Correction, Joint, JointKind, Links, Spring};
 use tumble::physics::Orientation;
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Response, State, World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Response, State,
+    World,
 };
 
 const G: f64 = 9.81;
@@ -521,6 +522,7 @@ fn landing_chain(count: usize, l: f64, tilt: f64, height: f64) -> World {
         response: Response::Impulse,
         restitution: 0.0,
         friction: 0.5,
+        impacts: Impacts::default(),
     };
     World::with_bodies(
         bodies,

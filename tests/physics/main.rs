@@ -12,6 +12,7 @@ mod energy_ledger;
 mod exact_splitting;
 mod geometry;
 mod hard_cases;
+mod impacts;
 mod joints;
 mod physics_core;
 mod properties;

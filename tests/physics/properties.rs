@@ -9,8 +9,8 @@ use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use tumble::physics::snapshot::kinetic_energy;
 use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Integrator, Obstacle, Orientation, Phase, Response, State,
-    World,
+    Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Phase,
+    Response, State, World,
 };
 
 /// A fixed seed: CI explores the same cases every run (change it locally to explore others).
@@ -213,7 +213,7 @@ proptest! {
             Obstacle::Ground { height: 0.0 },
             Obstacle::Sphere { center: Vector3::new(0.4, 0.0, 0.0), radius: 0.3 },
         ];
-        let model = ContactModel { response: Response::Impulse, restitution, friction };
+        let model = ContactModel { response: Response::Impulse, restitution, friction, impacts: Impacts::default() };
         let mut world = World::new(
             body,
             Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -9.81, 0.0))]),

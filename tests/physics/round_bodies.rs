@@ -593,8 +593,8 @@ mod random_pairs {
     use proptest::prelude::*;
     use tumble::physics::snapshot::geometric_penetration;
     use tumble::physics::{
-        Body, ContactModel, Effects, Integrator, NamedBody, Orientation, Response, SoftStep, State,
-        World,
+        Body, ContactModel, Effects, Impacts, Integrator, NamedBody, Orientation, Response,
+        SoftStep, State, World,
     };
 
     fn body(kind: usize, mass: f64) -> Body {
@@ -669,7 +669,7 @@ mod random_pairs {
                 named("b", b.clone(), 0.3, -speed, turn(axes.1, angles.1), -spin),
             ];
             let name = response.name();
-            let model = ContactModel { response, restitution, friction };
+            let model = ContactModel { response, restitution, friction, impacts: Impacts::default() };
             let mut w = World::with_bodies(
                 bodies, Effects::new(vec![]), vec![], Some(model), Integrator::Rk4, 1e-3,
             );

@@ -86,7 +86,8 @@ fn energy_never_rises_above_the_documented_bound() {
     // A cube dropped from 0.3 m (edge first, tilted 20°) with e = 0, 0.5 and 1, and a stack.
     use nalgebra::{UnitQuaternion, Vector3};
     use tumble::physics::{
-        Body, ContactModel, Effect, Effects, Integrator, NamedBody, Obstacle, Orientation, State,
+        Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
+        State,
     };
     let cube = Body::solid_box(Vector3::repeat(SIDE), 1.0).unwrap();
     for restitution in [0.0, 0.5, 1.0] {
@@ -107,6 +108,7 @@ fn energy_never_rises_above_the_documented_bound() {
                 response: soft(),
                 restitution,
                 friction: 0.5,
+                impacts: Impacts::default(),
             }),
             Integrator::Rk4,
             DT,

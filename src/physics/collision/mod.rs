@@ -32,6 +32,7 @@ pub mod step_context;
 pub mod sweep;
 pub mod warm;
 
+pub use impulse::propagate::Impacts;
 pub use response::{Descriptor as ResponseDescriptor, Response};
 pub use soft_step::SoftStep;
 pub use step_context::StepContext;
@@ -135,6 +136,9 @@ pub struct ContactModel {
     pub restitution: f64,
     /// Coulomb friction coefficient μ ≥ 0 (`impulse`, `soft-step`).
     pub friction: f64,
+    /// How `impulse` answers impacts among touching bodies (`impulse::propagate`); the other
+    /// responses ignore it.
+    pub impacts: Impacts,
 }
 
 /// What body A touches.

@@ -95,7 +95,7 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
 mod tests {
     use super::*;
     use crate::physics::body::Body;
-    use crate::physics::collision::{ContactModel, Obstacle, Response};
+    use crate::physics::collision::{ContactModel, Impacts, Obstacle, Response};
     use crate::physics::effects::Loads;
     use crate::physics::state::State;
     use nalgebra::Vector3;
@@ -115,6 +115,7 @@ mod tests {
             response: Response::Seed,
             restitution: 0.9,
             friction: 0.9,
+            impacts: Impacts::default(),
         };
         let loads = Loads {
             force: Vector3::new(0.0, -9.81, 0.0),

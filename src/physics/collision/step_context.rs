@@ -56,7 +56,7 @@ impl StepContext {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::collision::Response;
+    use crate::physics::collision::{Impacts, Response};
 
     #[test]
     fn the_bounce_speed_is_three_steps_of_free_fall_and_the_margin_one_step_of_it() {
@@ -64,6 +64,7 @@ mod tests {
             response: Response::Impulse,
             restitution: 0.4,
             friction: 0.5,
+            impacts: Impacts::default(),
         };
         let c = StepContext::new(2e-3, Some(Vector3::new(0.0, -9.81, 0.0)), Some(&model));
         assert_eq!(c.bounce_speed, 3.0 * 9.81 * 2e-3);

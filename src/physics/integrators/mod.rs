@@ -14,6 +14,8 @@ mod splitting;
 mod symplectic_euler;
 pub mod system;
 
+pub use euler_seed::vertex_torque;
+
 use super::body::Body;
 use super::derive::Kinematics;
 use super::effects::{Effects, Loads};

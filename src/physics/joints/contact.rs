@@ -200,7 +200,7 @@ fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact],
 }
 
 /// `J δ` of one row for per-body changes δ = (linear, angular).
-fn along(row: &Row, delta: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
+pub(super) fn along(row: &Row, delta: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
     let (la, aa) = &delta[row.a];
     let mut s = row.lin_a.dot(la) + row.ang_a.dot(aa);
     if let Some(j) = row.b {

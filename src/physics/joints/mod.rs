@@ -60,13 +60,14 @@
 //! counted in the drift.
 
 pub mod contact;
+pub mod drive;
 mod projection;
 mod rows;
 pub mod solve;
 
 pub use contact::{hold, Buffers as ContactBuffers};
 pub use projection::{project, shake, Buffers as ProjectionBuffers};
-pub use rows::{rows_of, Pose, Row};
+pub use rows::{coordinate, rows_of, Pose, Row};
 pub use solve::{multipliers, Solver};
 
 use super::state::State;
@@ -83,15 +84,18 @@ pub enum JointKind {
     Fixed,
     /// A rod of fixed length between two points: 1 row.
     Distance,
+    /// A common orientation and a rail: the anchor moves only along the axis, 5 rows.
+    Slider,
 }
 
 impl JointKind {
     /// Every kind, as scene files name them.
-    pub const ALL: [JointKind; 4] = [
+    pub const ALL: [JointKind; 5] = [
         JointKind::Ball,
         JointKind::Hinge,
         JointKind::Fixed,
         JointKind::Distance,
+        JointKind::Slider,
     ];
 
     /// The scene-file name.
@@ -101,6 +105,7 @@ impl JointKind {
             JointKind::Hinge => "hinge",
             JointKind::Fixed => "fixed",
             JointKind::Distance => "distance",
+            JointKind::Slider => "slider",
         }
     }
 
@@ -116,6 +121,7 @@ impl JointKind {
             JointKind::Hinge => 5,
             JointKind::Fixed => 6,
             JointKind::Distance => 1,
+            JointKind::Slider => 5,
         }
     }
 }
@@ -177,6 +183,24 @@ pub struct Joint {
     pub rest: Matrix3<f64>,
     /// Distance: the rod's length, m.
     pub length: f64,
+    /// Slider: the rail's direction in B's frame or the world's (unit).
+    pub axis_b: Vector3<f64>,
+    /// Hinge: a unit vector ⊥ the axis in A's frame, along `normals_b[0]` at t = 0 (where the
+    /// angle is 0).
+    pub reference_a: Vector3<f64>,
+    /// Hinge (rad) or slider (m): the stops [lo, hi] of its coordinate, lo ≤ 0 ≤ hi
+    /// (`drive`).
+    pub limits: Option<[f64; 2]>,
+    /// Hinge or slider: its motor (`drive`).
+    pub motor: Option<Motor>,
+}
+
+/// A joint's motor: drives the rate of the joint's coordinate (hinge: the angle, rad/s;
+/// slider: the travel, m/s) towards `speed` with a force (N) or torque (N·m) of at most `max`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Motor {
+    pub speed: f64,
+    pub max: f64,
 }
 
 /// The pose of a body at t = 0 or of the world.
@@ -193,8 +217,8 @@ fn local(frame: &(Vector3<f64>, Matrix3<f64>), p: &Vector3<f64>) -> Vector3<f64>
 }
 
 impl Joint {
-    /// A ball, hinge or fixed joint at world point `anchor` (t = 0 poses `states`); `axis`
-    /// (world, non-zero) for a hinge.
+    /// A ball, hinge, fixed or slider joint at world point `anchor` (t = 0 poses `states`);
+    /// `axis` (world, non-zero) for a hinge or a slider.
     pub fn at_point(
         name: String,
         kind: JointKind,
@@ -225,6 +249,10 @@ impl Joint {
             normals_b: [fb.1.tr_mul(&p), fb.1.tr_mul(&q)],
             rest: fb.1.tr_mul(&fa.1),
             length: 0.0,
+            axis_b: fb.1.tr_mul(&axis),
+            reference_a: fa.1.tr_mul(&p),
+            limits: None,
+            motor: None,
         }
     }
 
@@ -251,6 +279,10 @@ impl Joint {
             normals_b: [Vector3::zeros(); 2],
             rest: Matrix3::identity(),
             length: length.unwrap_or((anchor_a - anchor_b).norm()),
+            axis_b: Vector3::zeros(),
+            reference_a: Vector3::zeros(),
+            limits: None,
+            motor: None,
         }
     }
 
@@ -262,14 +294,38 @@ impl Joint {
     }
 
     /// The joint's position error, m: for ball, hinge and fixed the distance between its two
-    /// anchor points, for distance |separation − length|.
+    /// anchor points, for distance |separation − length|; for a slider the distance of A's
+    /// anchor from the rail (the line through B's anchor along the axis) plus the angle (rad)
+    /// A has turned away from its orientation relative to B, times 1 m (how far a point 1 m
+    /// from the anchor has drifted, to first order).
     pub fn error(&self, states: &[State]) -> f64 {
         let [pa, pb] = self.anchors(states);
         let separation = (pa - pb).norm();
         match self.kind {
             JointKind::Distance => (separation - self.length).abs(),
+            JointKind::Slider => {
+                let (_, ra) = frame_of(states, Some(self.a));
+                let (_, rb) = frame_of(states, self.b);
+                let axis = rb * self.axis_b;
+                let d = pa - pb;
+                let lateral = (d - axis * axis.dot(&d)).norm();
+                lateral + rows::turned(&ra, &rb, &self.rest)
+            }
             _ => separation,
         }
+    }
+
+    /// Hinge: the angle A has turned about the axis relative to B since t = 0, rad; slider: the
+    /// travel of A's anchor along the axis relative to B's, m (`drive`). None for other kinds.
+    pub fn coordinate(&self, states: &[State]) -> Option<f64> {
+        let pa = Pose::of_state(&states[self.a]);
+        let pb = self.b.map_or(Pose::WORLD, |b| Pose::of_state(&states[b]));
+        rows::coordinate(self, usize::MAX, &pa, &pb).map(|(_, value)| value)
+    }
+
+    /// Whether it has a limit or a motor.
+    pub fn driven(&self) -> bool {
+        self.limits.is_some() || self.motor.is_some()
     }
 
     /// Hinge: its axis now, world frame (A's axis).
@@ -382,6 +438,16 @@ impl Links {
     /// No joint and no spring: every body moves on its own (the single-body fast path).
     pub fn is_empty(&self) -> bool {
         self.joints.is_empty() && self.springs.is_empty()
+    }
+
+    /// Whether some joint has a limit or a motor (the `drive` pass runs).
+    pub fn driven(&self) -> bool {
+        self.joints.iter().any(Joint::driven)
+    }
+
+    /// Whether some joint has a motor (the ledger has its row).
+    pub fn motorised(&self) -> bool {
+        self.joints.iter().any(|j| j.motor.is_some())
     }
 
     /// Constraint rows in all.

@@ -103,6 +103,28 @@ pub fn rows_of(joint: &Joint, index: usize, a: &Pose, b: &Pose, out: &mut Vec<Ro
         ));
         return;
     }
+    if joint.kind == JointKind::Slider {
+        // Two linear rows t·d = 0 for t ⊥ the rail (B's normals), d = p_A − p_B:
+        // Ċ = t·ḋ + (ω_B×t)·d, C̈ − J u̇ = t·(ω_A×(ω_A×r_A) − ω_B×(ω_B×r_B)) + 2 (ω_B×t)·ḋ
+        // + (ω_B×(ω_B×t))·d.
+        let rate = a.v + a.w.cross(&ra) - b.v - b.w.cross(&rb);
+        for normal in &joint.normals_b {
+            let t = b.r * normal;
+            let wt = b.w.cross(&t);
+            out.push(row(
+                t,
+                ra.cross(&t),
+                -t,
+                t.cross(&separation) - rb.cross(&t),
+                t.dot(&separation),
+                t.dot(&centripetal) + 2.0 * wt.dot(&rate) + b.w.cross(&wt).dot(&separation),
+            ));
+        }
+        orientation_rows(joint, a, b, |ang, c| {
+            out.push(row(Vector3::zeros(), ang, Vector3::zeros(), -ang, c, 0.0));
+        });
+        return;
+    }
     for k in 0..3 {
         let e = Vector3::ith(k, 1.0);
         out.push(row(
@@ -133,27 +155,86 @@ pub fn rows_of(joint: &Joint, index: usize, a: &Pose, b: &Pose, out: &mut Vec<Ro
                 ));
             }
         }
-        JointKind::Fixed => {
-            // E = R_A (R_B R₀)ᵀ: the rotation A has turned away from where B holds it; its skew
-            // part (E − Eᵀ)/2 is sin θ times the axis, the error vector.
-            let e = a.r * (b.r * joint.rest).transpose();
-            let error = Vector3::new(
-                0.5 * (e[(2, 1)] - e[(1, 2)]),
-                0.5 * (e[(0, 2)] - e[(2, 0)]),
-                0.5 * (e[(1, 0)] - e[(0, 1)]),
-            );
-            for k in 0..3 {
-                let axis = Vector3::ith(k, 1.0);
-                out.push(row(
-                    Vector3::zeros(),
-                    axis,
-                    Vector3::zeros(),
-                    -axis,
-                    error[k],
-                    0.0,
-                ));
-            }
+        JointKind::Fixed => orientation_rows(joint, a, b, |ang, c| {
+            out.push(row(Vector3::zeros(), ang, Vector3::zeros(), -ang, c, 0.0));
+        }),
+        JointKind::Ball | JointKind::Distance | JointKind::Slider => {}
+    }
+}
+
+/// The skew part of E = R_A (R_B R₀)ᵀ, the rotation A has turned away from where B holds it:
+/// (E − Eᵀ)/2 is sin θ times the axis, the error vector.
+fn orientation_error(ra: &Matrix3<f64>, rb: &Matrix3<f64>, rest: &Matrix3<f64>) -> Vector3<f64> {
+    let e = ra * (rb * rest).transpose();
+    Vector3::new(
+        0.5 * (e[(2, 1)] - e[(1, 2)]),
+        0.5 * (e[(0, 2)] - e[(2, 0)]),
+        0.5 * (e[(1, 0)] - e[(0, 1)]),
+    )
+}
+
+/// The angle θ of E = R_A (R_B R₀)ᵀ, rad (0 when A keeps its orientation relative to B):
+/// θ = atan2(|skew E|, (tr E − 1)/2).
+pub(super) fn turned(ra: &Matrix3<f64>, rb: &Matrix3<f64>, rest: &Matrix3<f64>) -> f64 {
+    let e = ra * (rb * rest).transpose();
+    let sine = orientation_error(ra, rb, rest).norm();
+    sine.atan2(0.5 * (e.trace() - 1.0))
+}
+
+/// The three orientation rows of fixed and slider, (0, e_k | 0, −e_k) with C_k the k-th
+/// component of the error vector, J̇u = 0 (they hold ω_A − ω_B = 0): `push(e_k, C_k)`.
+#[inline]
+fn orientation_rows(joint: &Joint, a: &Pose, b: &Pose, mut push: impl FnMut(Vector3<f64>, f64)) {
+    let error = orientation_error(&a.r, &b.r, &joint.rest);
+    for k in 0..3 {
+        push(Vector3::ith(k, 1.0), error[k]);
+    }
+}
+
+/// A hinge's or a slider's coordinate at poses `a`, `b` and the row of its rate, J u = q̇
+/// (`drive`'s limit and motor rows); None for other kinds.
+///
+/// ```text
+/// hinge   θ = atan2(p·t₂, p·t₁)   p = R_A p_A (⊥ the axis, = t₁ at t = 0), t₁, t₂ = R_B n_B
+///         (B's two normals, t₂ = u × t₁), wrapped to (c − π, c + π], c the limits' middle
+///         θ̇ = u·(ω_A − ω_B):                     (0, u | 0, −u)
+/// slider  s = a·d     a = R_B a_B the rail's axis, d = p_A − p_B
+///         ṡ = a·ḋ + (ω_B×a)·d:                    (a, r_A×a | −a, −r_B×a + a×d)
+/// ```
+pub fn coordinate(joint: &Joint, index: usize, a: &Pose, b: &Pose) -> Option<(Row, f64)> {
+    let row = |lin_a, ang_a, lin_b, ang_b, c| Row {
+        joint: index,
+        a: joint.a,
+        b: joint.b,
+        lin_a,
+        ang_a,
+        lin_b,
+        ang_b,
+        c,
+        bias: 0.0,
+    };
+    match joint.kind {
+        JointKind::Hinge => {
+            let u = a.r * joint.axis_a;
+            let p = a.r * joint.reference_a;
+            let raw = p
+                .dot(&(b.r * joint.normals_b[1]))
+                .atan2(p.dot(&(b.r * joint.normals_b[0])));
+            let middle = joint.limits.map_or(0.0, |[lo, hi]| 0.5 * (lo + hi));
+            let turn = std::f64::consts::TAU;
+            let angle = middle + (raw - middle + 0.5 * turn).rem_euclid(turn) - 0.5 * turn;
+            let zero = Vector3::zeros();
+            Some((row(zero, u, zero, -u, angle), angle))
         }
-        JointKind::Ball | JointKind::Distance => {}
+        JointKind::Slider => {
+            let ra = a.r * joint.anchor_a;
+            let rb = b.r * joint.anchor_b;
+            let d = a.x + ra - b.x - rb;
+            let axis = b.r * joint.axis_b;
+            let travel = axis.dot(&d);
+            let ang_b = axis.cross(&d) - rb.cross(&axis);
+            Some((row(axis, ra.cross(&axis), -axis, ang_b, travel), travel))
+        }
+        _ => None,
     }
 }

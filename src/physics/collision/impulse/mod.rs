@@ -78,6 +78,7 @@
 pub mod direct;
 pub mod friction;
 pub mod normal;
+pub mod propagate;
 pub mod subspace;
 
 use super::contacts;
@@ -95,6 +96,7 @@ pub use super::step_context::BOUNCE_STEPS;
 pub use direct::{DIRECT_MAX, PIVOT_ROUNDS, RESTING_GAP, STICKING_MAX};
 pub(super) use friction::tangents;
 pub use normal::GAP_ROUND_OFF;
+pub use propagate::{Impacts, IMPACT_ROUNDS};
 pub use subspace::{
     EDGE_TURN, NORMAL_SUBSPACE_MAX, SUBSPACE_BACKTRACKS, SUBSPACE_EVERY, SUBSPACE_ROUNDS,
 };
@@ -155,6 +157,8 @@ pub struct Scratch {
     change: Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     /// Which bodies the position fix advances from the start of the step.
     advanced: Vec<bool>,
+    /// The impact rounds' buffers (`propagate`).
+    impacts: propagate::Scratch,
     /// What the solver did since the world was built (the solver path, for tests).
     pub counters: Counters,
     /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
@@ -211,6 +215,10 @@ pub struct Counters {
     /// Subspace steps the normal sweeps of a large system took (stage 1: the same step with
     /// no friction unknowns).
     pub normal_subspace: u64,
+    /// Impact rounds run (`propagate`), and steps whose rounds hit [`IMPACT_ROUNDS`] with a
+    /// contact still approaching (the final simultaneous solve took the rest).
+    pub impact_rounds: u64,
+    pub impacts_unconverged: u64,
 }
 
 /// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
@@ -346,6 +354,7 @@ pub fn respond(
         bounce_speed,
         dt: input.dt,
         lift,
+        impacts: input.model.impacts,
     };
     let Scratch {
         rows,
@@ -358,6 +367,7 @@ pub fn respond(
         change,
         advanced,
         counters,
+        impacts,
         ..
     } = scratch;
     advanced.clear();
@@ -370,6 +380,7 @@ pub fn respond(
         change,
         bounced: advanced,
         counters,
+        impacts,
     };
     // A bounce says nothing about the next step's load: stored as no impulse.
     warm.store(previous.iter().map(|p| {
@@ -435,6 +446,17 @@ struct Buffers<'a> {
     /// re-advance it).
     bounced: &'a mut Vec<bool>,
     counters: &'a mut Counters,
+    impacts: &'a mut propagate::Scratch,
+}
+
+/// What the stages work on besides the rows and contacts (the bodies and the buffers).
+pub(super) struct Stage<'a> {
+    tangents: &'a mut Vec<[Axis; 2]>,
+    motions: &'a mut [SolverBody],
+    direct: &'a mut Direct,
+    change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    bounced: &'a mut [bool],
+    counters: &'a mut Counters,
 }
 
 /// What the velocity stages need besides the bodies and the contacts.
@@ -449,37 +471,120 @@ struct Settings {
     dt: f64,
     /// The push-out's work against gravity, J: paid from the bounce.
     lift: f64,
+    /// The impact law (`propagate`).
+    impacts: Impacts,
 }
 
 /// The velocity stages (module doc) for `contacts` (point, depth, normal and levers filled
-/// in); fills in each contact's normal velocity, denominator and impulse, and the motions.
+/// in), after the impact rounds when the law is `propagate` ([`propagate`]); fills in each
+/// contact's normal velocity, denominator and impulse, and the motions.
 fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, buffers: Buffers) {
+    let Buffers {
+        rows,
+        tangents,
+        motions,
+        direct,
+        change,
+        bounced,
+        counters,
+        impacts,
+    } = buffers;
+    // The energy the velocities may keep: K₀ less the push-out's work against gravity.
+    let kinetic_allowed = motions.iter().map(SolverBody::kinetic).sum::<f64>() - settings.lift;
+    let prepare = |rows: &mut Vec<Row>, motions: &[SolverBody]| {
+        rows.clear();
+        rows.extend(
+            contacts
+                .iter()
+                .map(|c| normal::prepare(c, previous, settings.dt, motions)),
+        );
+        let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
+        TOLERANCE * (1.0 + fastest)
+    };
+    let tolerance = prepare(rows, motions);
+    let mut stage = Stage {
+        tangents,
+        motions,
+        direct,
+        change,
+        bounced,
+        counters,
+    };
+    // Propagate: the impact rounds first, when something approaches faster than a resting
+    // contact does (at e = 0 they are skipped: module doc of `propagate`).
+    let threshold = settings.bounce_speed.max(tolerance);
+    if settings.impacts == Impacts::Propagate
+        && settings.restitution > 0.0
+        && rows.iter().any(|r| r.approach + r.bias < -threshold)
+    {
+        propagate::rounds(
+            settings,
+            contacts,
+            rows,
+            previous,
+            threshold,
+            tolerance,
+            kinetic_allowed,
+            &mut stage,
+            impacts,
+        );
+        // Then resting contact: every row at once, from the velocities the rounds left.
+        let tolerance = prepare(rows, stage.motions);
+        let left = stage.motions.iter().map(SolverBody::kinetic).sum::<f64>();
+        stages(
+            settings,
+            rows,
+            contacts,
+            tolerance,
+            kinetic_allowed.min(left),
+            &mut stage,
+        );
+        normal::store(contacts, rows);
+        friction::store(contacts, rows, stage.tangents);
+        propagate::add(contacts, &impacts.records);
+        return;
+    }
+    stages(
+        settings,
+        rows,
+        contacts,
+        tolerance,
+        kinetic_allowed,
+        &mut stage,
+    );
+    // Store: the impulses into the contacts (normal, then the tangents when stage 2 ran).
+    normal::store(contacts, rows);
+    friction::store(contacts, rows, stage.tangents);
+}
+
+/// Stages 1 to 3 (module doc) on `rows` (prepared from `contacts`, the same order), with
+/// the sweeps' `tolerance` and the kinetic energy the velocities may keep.
+fn stages(
+    settings: &Settings,
+    rows: &mut [Row],
+    contacts: &[Contact],
+    tolerance: f64,
+    kinetic_allowed: f64,
+    stage: &mut Stage,
+) {
     let Settings {
         restitution,
         friction,
         bounce_speed,
         dt,
-        lift,
+        ..
     } = *settings;
-    let Buffers {
-        rows,
+    let Stage {
         tangents: tangent_directions,
         motions,
         direct: buffers_direct,
         change,
         bounced,
         counters,
-    } = buffers;
-    // The energy the velocities may keep: K₀ less the push-out's work against gravity.
-    let kinetic_allowed = motions.iter().map(SolverBody::kinetic).sum::<f64>() - lift;
-    rows.clear();
-    rows.extend(
-        contacts
-            .iter()
-            .map(|c| normal::prepare(c, previous, dt, motions)),
-    );
-    let fastest = rows.iter().map(|r| -r.approach).fold(0.0, f64::max);
-    let tolerance = TOLERANCE * (1.0 + fastest);
+    } = stage;
+    let motions: &mut [SolverBody] = motions;
+    let buffers_direct: &mut Direct = buffers_direct;
+    let counters: &mut Counters = counters;
 
     // Stage 1: inelastic normal impulses, λ ≥ 0. A large system first tries a few sweeps from
     // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
@@ -616,8 +721,4 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         change,
         bounced,
     );
-
-    // Store: the impulses into the contacts (normal, then the tangents when stage 2 ran).
-    normal::store(contacts, rows);
-    friction::store(contacts, rows, tangent_directions);
 }

@@ -1,0 +1,439 @@
+//! The study on scenes with joints and springs, against independent truth: each scene's motion
+//! is also solved here, in minimal coordinates, by a hand-written integrator (closed form for the
+//! spring; RK4 at a step fine enough that halving it changes nothing above 1e-12 m for the
+//! pendulum and the double pendulum). The study's reported `position_error` (against its own
+//! reference: the same model at a finer step) must be within a factor 3 of the true error of
+//! every run whose true error is above 1e-9 m, and the fitted orders must be each integrator's.
+
+use std::path::Path;
+use tumble::physics::Integrator;
+use tumble::scene::Scene;
+use tumble::study::{self, measure, Case, Config, SceneStudy, Timing};
+
+const G: f64 = 9.81;
+
+fn scene(source: &str) -> Scene {
+    tumble::scene::parse(source, Path::new("inline.toml"))
+        .expect("valid scene")
+        .scene
+}
+
+fn untimed(integrators: &[Integrator], dts: &[f64]) -> Config {
+    Config {
+        integrators: integrators.to_vec(),
+        dts: dts.to_vec(),
+        timing: Timing {
+            repeats: 0,
+            sample_interval: 0.1,
+        },
+        target_error: 1e-6,
+    }
+}
+
+fn run_study(scene: &Scene, duration: f64, config: &Config) -> SceneStudy {
+    let case = Case {
+        name: "model".into(),
+        description: "a model with a known solution".into(),
+        scene: scene.clone(),
+        duration,
+    };
+    study::study_case(&case, config, &mut |_, _| {})
+}
+
+/// The largest distance, over the study's sample times and the bodies, between the run of
+/// `scene` by `integrator` at `dt` and the true barycenters `truth(t)`.
+fn true_error(
+    scene: &Scene,
+    integrator: Integrator,
+    dt: f64,
+    duration: f64,
+    truth: &dyn Fn(f64) -> Vec<[f64; 2]>,
+) -> f64 {
+    let mut world = scene.world_with(integrator, dt);
+    let mut worst: f64 = 0.0;
+    for t in measure::sample_times(duration, 0.1) {
+        let target = (t / dt).round() as u64;
+        while world.step_count() < target {
+            world.step();
+        }
+        for (state, x) in world.states().iter().zip(truth(t)) {
+            let d = ((state.position.x - x[0]).powi(2) + (state.position.y - x[1]).powi(2)).sqrt();
+            worst = worst.max(if d.is_nan() { f64::INFINITY } else { d });
+        }
+    }
+    worst
+}
+
+/// Every run with a true error above 1e-9 m: reported within a factor 3 of true.
+fn assert_reported_errors_are_true(
+    study: &SceneStudy,
+    scene: &Scene,
+    duration: f64,
+    truth: &dyn Fn(f64) -> Vec<[f64; 2]>,
+) -> Vec<(Integrator, f64, f64, f64)> {
+    let mut checked = Vec::new();
+    for row in study.rows.iter().filter(|r| r.ok()) {
+        let truth = true_error(scene, row.integrator, row.dt, duration, truth);
+        if truth > 1e-9 {
+            let ratio = row.position_error / truth;
+            assert!(
+                (1.0 / 3.0..=3.0).contains(&ratio),
+                "{} dt {:e}: reported {:.3e} m, true {:.3e} m",
+                row.integrator.name(),
+                row.dt,
+                row.position_error,
+                truth
+            );
+            checked.push((row.integrator, row.dt, row.position_error, truth));
+        }
+    }
+    assert!(checked.len() >= 4, "too few runs checked: {checked:?}");
+    checked
+}
+
+fn order(study: &SceneStudy, integrator: Integrator) -> f64 {
+    let o = study
+        .orders
+        .iter()
+        .find(|o| o.integrator == integrator)
+        .expect("an order per integrator");
+    o.slope.unwrap_or_else(|| {
+        panic!(
+            "{}: no order ({:?}); rows {:?}",
+            integrator.name(),
+            o.why_not(),
+            study
+                .rows
+                .iter()
+                .filter(|r| r.integrator == integrator)
+                .map(|r| (r.dt, r.error, r.below_floor))
+                .collect::<Vec<_>>()
+        )
+    })
+}
+
+/// RK4 on a first-order system y' = f(y), from 0 to t in n steps.
+fn rk4<const N: usize>(
+    f: &dyn Fn(&[f64; N]) -> [f64; N],
+    y0: [f64; N],
+    t: f64,
+    n: usize,
+) -> [f64; N] {
+    let h = t / n as f64;
+    let mut y = y0;
+    let add = |y: &[f64; N], k: &[f64; N], s: f64| {
+        let mut out = *y;
+        for i in 0..N {
+            out[i] += s * k[i];
+        }
+        out
+    };
+    for _ in 0..n {
+        let k1 = f(&y);
+        let k2 = f(&add(&y, &k1, h / 2.0));
+        let k3 = f(&add(&y, &k2, h / 2.0));
+        let k4 = f(&add(&y, &k3, h));
+        for i in 0..N {
+            y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+    }
+    y
+}
+
+/// The minimal-coordinate solution at each sample time, checked by halving its step: the
+/// samples and the halved run agree to `tolerance` (m).
+fn converged_samples<const N: usize>(
+    f: &dyn Fn(&[f64; N]) -> [f64; N],
+    y0: [f64; N],
+    positions: &dyn Fn(&[f64; N]) -> Vec<[f64; 2]>,
+    duration: f64,
+    steps_per_sample: usize,
+    tolerance: f64,
+) -> Vec<(f64, Vec<[f64; 2]>)> {
+    let times = measure::sample_times(duration, 0.1);
+    let solve = |per: usize| {
+        let mut y = y0;
+        let mut before = 0.0;
+        times
+            .iter()
+            .map(|&t| {
+                y = rk4(f, y, t - before, per);
+                before = t;
+                (t, positions(&y))
+            })
+            .collect::<Vec<_>>()
+    };
+    let coarse = solve(steps_per_sample);
+    let fine = solve(2 * steps_per_sample);
+    for ((_, a), (_, b)) in coarse.iter().zip(&fine) {
+        for (p, q) in a.iter().zip(b) {
+            let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+            assert!(
+                d < tolerance,
+                "the test's own solution is not converged: {d:e}"
+            );
+        }
+    }
+    fine
+}
+
+fn lookup(samples: &[(f64, Vec<[f64; 2]>)], t: f64) -> Vec<[f64; 2]> {
+    samples
+        .iter()
+        .find(|(s, _)| (s - t).abs() < 1e-9)
+        .map(|(_, x)| x.clone())
+        .expect("a sample time")
+}
+
+fn pendulum_scene(theta0: f64) -> String {
+    let (x, y) = (theta0.sin(), -theta0.cos());
+    format!(
+        r#"title = "pendulum"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+[body]
+name = "bob"
+shape = "box"
+size = [0.1, 0.1, 0.1]
+mass = 1.0
+position = [{x:?}, {y:?}, 0.0]
+[[joint]]
+name = "rod"
+type = "distance"
+bodies = ["bob"]
+anchors = [[{x:?}, {y:?}, 0.0], [0.0, 0.0, 0.0]]
+"#
+    )
+}
+
+#[test]
+fn a_pendulum_is_measured_against_itself_at_a_finer_step_not_a_projectile() {
+    // θ'' = −(g/L) sin θ, L = 1 m, θ₀ = 0.2 rad, over 2 s.
+    let (theta0, duration) = (0.2, 2.0);
+    let scene = scene(&pendulum_scene(theta0));
+    let samples = converged_samples(
+        &|y: &[f64; 2]| [y[1], -G * y[0].sin()],
+        [theta0, 0.0],
+        &|y: &[f64; 2]| vec![[y[0].sin(), -y[0].cos()]],
+        duration,
+        200,
+        1e-12,
+    );
+    let truth = |t: f64| lookup(&samples, t);
+    let integrators = [
+        Integrator::Euler,
+        Integrator::SymplecticEuler,
+        Integrator::Rk4,
+        Integrator::Splitting,
+        Integrator::ExactSplitting,
+        Integrator::ExactSplitting4,
+    ];
+    let dts = [1e-2, 5e-3, 2.5e-3, 1.25e-3];
+    let study = run_study(&scene, duration, &untimed(&integrators, &dts));
+    assert_eq!(study.reference_kind, "converged", "{}", study.reference);
+    assert!(
+        study.reference.contains("same model"),
+        "{}",
+        study.reference
+    );
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth);
+    for (integrator, dt, reported, truth) in &checked {
+        println!(
+            "pendulum {} dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m",
+            integrator.name()
+        );
+    }
+    for (integrator, nominal) in [
+        (Integrator::Euler, 1.0),
+        (Integrator::SymplecticEuler, 1.0),
+        (Integrator::Rk4, 4.0),
+        (Integrator::Splitting, 2.0),
+        (Integrator::ExactSplitting, 2.0),
+    ] {
+        let p = order(&study, integrator);
+        println!("pendulum order {}: {p:.3}", integrator.name());
+        assert!(
+            (p - nominal).abs() <= 0.5,
+            "{}: order {p:.3}, nominal {nominal}",
+            integrator.name()
+        );
+    }
+    // exact-splitting-4 with a distance joint: order ≈ 3, not 4 (the joint's force is not
+    // composed to fourth order); measured and printed, asserted to be at least third.
+    let p = order(&study, Integrator::ExactSplitting4);
+    println!("pendulum order exact-splitting-4: {p:.3}");
+    assert!(p > 2.5, "exact-splitting-4: order {p:.3}");
+}
+
+#[test]
+fn a_spring_is_measured_against_itself_and_every_order_is_nominal() {
+    // A 1 kg block on a spring k = 100 N/m, ℓ₀ = 0.5 m from (0, 1, 0), released at rest at
+    // the origin under gravity: y(t) = y_eq (1 − cos ωt), y_eq = 0.5 − mg/k, ω = 10 rad/s.
+    let duration = 1.0;
+    let scene = scene(
+        r#"title = "spring"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+[body]
+name = "block"
+shape = "box"
+size = [0.1, 0.1, 0.1]
+mass = 1.0
+position = [0.0, 0.0, 0.0]
+[[spring]]
+bodies = ["block"]
+anchors = [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+stiffness = 100.0
+rest_length = 0.5
+"#,
+    );
+    let y_eq = 0.5 - G / 100.0;
+    let truth = |t: f64| vec![[0.0, y_eq * (1.0 - (10.0 * t).cos())]];
+    let integrators = [
+        Integrator::Euler,
+        Integrator::SymplecticEuler,
+        Integrator::Rk4,
+        Integrator::Splitting,
+        Integrator::ExactSplitting,
+        Integrator::ExactSplitting4,
+    ];
+    // Down to 1.5625e-4 s so that euler's error (angle + pos/radius ≈ 0.25 at 1.25e-3 s) gets below
+    // the ceiling 0.1 at two steps.
+    let dts = [1e-2, 5e-3, 2.5e-3, 1.25e-3, 6.25e-4, 3.125e-4, 1.5625e-4];
+    let study = run_study(&scene, duration, &untimed(&integrators, &dts));
+    assert_eq!(study.reference_kind, "converged", "{}", study.reference);
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth);
+    for (integrator, dt, reported, truth) in &checked {
+        println!(
+            "spring {} dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m",
+            integrator.name()
+        );
+    }
+    for integrator in integrators {
+        let p = order(&study, integrator);
+        println!("spring order {}: {p:.3}", integrator.name());
+        let nominal = integrator.order() as f64;
+        assert!(
+            (p - nominal).abs() <= 0.5,
+            "{}: order {p:.3}, nominal {nominal}",
+            integrator.name()
+        );
+    }
+}
+
+#[test]
+fn a_double_pendulum_is_measured_against_itself() {
+    // Two 1 kg point bobs on rods of 1 m (distance joints at the barycenters), both released
+    // from θ = 60°, over 1 s: the classic minimal-coordinate equations.
+    let duration = 1.0;
+    let t0 = 60f64.to_radians();
+    let (x1, y1) = (t0.sin(), -t0.cos());
+    let (x2, y2) = (2.0 * x1, 2.0 * y1);
+    let scene = scene(&format!(
+        r#"title = "double"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+[[body]]
+name = "a"
+shape = "box"
+size = [0.1, 0.1, 0.1]
+mass = 1.0
+position = [{x1:?}, {y1:?}, 0.0]
+[[body]]
+name = "b"
+shape = "box"
+size = [0.1, 0.1, 0.1]
+mass = 1.0
+position = [{x2:?}, {y2:?}, 0.0]
+[[joint]]
+type = "distance"
+bodies = ["a"]
+anchors = [[{x1:?}, {y1:?}, 0.0], [0.0, 0.0, 0.0]]
+[[joint]]
+type = "distance"
+bodies = ["b", "a"]
+anchors = [[{x2:?}, {y2:?}, 0.0], [{x1:?}, {y1:?}, 0.0]]
+"#
+    ));
+    let f = |y: &[f64; 4]| {
+        let (a, b, wa, wb) = (y[0], y[1], y[2], y[3]);
+        let d = a - b;
+        let den = 3.0 - (2.0 * d).cos();
+        let aa = (-3.0 * G * a.sin()
+            - G * (a - 2.0 * b).sin()
+            - 2.0 * d.sin() * (wb * wb + wa * wa * d.cos()))
+            / den;
+        let bb = 2.0 * d.sin() * (2.0 * wa * wa + 2.0 * G * a.cos() + wb * wb * d.cos()) / den;
+        [wa, wb, aa, bb]
+    };
+    let positions = |y: &[f64; 4]| {
+        let p1 = [y[0].sin(), -y[0].cos()];
+        vec![p1, [p1[0] + y[1].sin(), p1[1] - y[1].cos()]]
+    };
+    let samples = converged_samples(&f, [t0, t0, 0.0, 0.0], &positions, duration, 400, 1e-11);
+    let truth = |t: f64| lookup(&samples, t);
+    let integrators = [
+        Integrator::SymplecticEuler,
+        Integrator::Rk4,
+        Integrator::Splitting,
+    ];
+    let dts = [1e-2, 5e-3, 2.5e-3, 1.25e-3];
+    let study = run_study(&scene, duration, &untimed(&integrators, &dts));
+    assert_eq!(study.reference_kind, "converged", "{}", study.reference);
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth);
+    for (integrator, dt, reported, truth) in &checked {
+        println!(
+            "double {} dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m",
+            integrator.name()
+        );
+    }
+}
+
+#[test]
+fn runs_past_the_explicit_limit_are_diverged_in_the_json_and_the_others_are_not() {
+    // The spring above, ω = 10 rad/s: symplectic Euler is stable below dt = 2/ω = 0.2 s and
+    // grows by |λ| ≈ 4 a step at dt = 0.25 s (trace 2 − (ω dt)² = −4.25).
+    let scene = scene(
+        r#"title = "spring"
+[scene]
+dt = 0.001
+integrator = "rk4"
+[body]
+name = "block"
+shape = "box"
+size = [0.1, 0.1, 0.1]
+mass = 1.0
+position = [0.0, 0.0, 0.0]
+[[spring]]
+bodies = ["block"]
+anchors = [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+stiffness = 100.0
+rest_length = 0.5
+"#,
+    );
+    let study = run_study(
+        &scene,
+        20.0,
+        &untimed(&[Integrator::SymplecticEuler], &[0.25, 0.1]),
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&study::report::json(std::slice::from_ref(&study))).unwrap();
+    let runs = json["scenes"][0]["runs"].as_array().unwrap();
+    for run in runs {
+        let dt = run["dt"].as_f64().unwrap();
+        assert_eq!(run["diverged"].as_bool(), Some(dt > 0.2), "{run}");
+        assert_eq!(run["divergence"].is_null(), dt < 0.2, "{run}");
+    }
+    let order = &json["scenes"][0]["orders"][0];
+    assert!(order["order"].is_null(), "{order}");
+    assert!(
+        order["order_note"].as_str().unwrap().contains("1 diverged"),
+        "{order}"
+    );
+}

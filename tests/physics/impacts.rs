@@ -1,0 +1,345 @@
+//! Impacts among touching bodies (`contact = { impacts = "propagate" | "simultaneous" }`):
+//! a touching Newton's cradle, a touching row in empty space, a rack of balls and the
+//! superball stack against their closed forms and conservation laws.
+
+use nalgebra::Vector3;
+use std::fmt::Write;
+use tumble::physics::World;
+
+const G: f64 = 9.81;
+/// Ball radius and rod length of the cradle, m.
+const R: f64 = 0.05;
+const L: f64 = 1.0;
+
+fn world(source: &str) -> World {
+    tumble::scene::parse(source, std::path::Path::new("impacts.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
+        .world()
+}
+
+fn header(gravity: bool, restitution: f64, impacts: &str) -> String {
+    let mut s = String::from("title = \"t\"\n[scene]\ndt = 0.001\nintegrator = \"rk4\"\n");
+    if gravity {
+        s += "gravity = [0.0, -9.81, 0.0]\n";
+    }
+    writeln!(
+        s,
+        "contact = {{ response = \"impulse\", restitution = {restitution}, friction = 0.0, impacts = \"{impacts}\" }}"
+    )
+    .unwrap();
+    s
+}
+
+fn ball(s: &mut String, name: &str, radius: f64, mass: f64, at: Vector3<f64>, v: Vector3<f64>) {
+    writeln!(
+        s,
+        "[[body]]\nname = \"{name}\"\nshape = \"sphere\"\nradius = {radius}\nmass = {mass}\n\
+         position = [{}, {}, {}]\nvelocity = [{}, {}, {}]",
+        at.x, at.y, at.z, v.x, v.y, v.z
+    )
+    .unwrap();
+}
+
+/// Five balls touching in a row on 1 m rods, the first `pulled` released from θ₀ = 30°.
+fn cradle(restitution: f64, impacts: &str, pulled: usize) -> String {
+    let mut s = header(true, restitution, impacts);
+    let theta: f64 = 30f64.to_radians();
+    for i in 0..5 {
+        let pivot = Vector3::new(2.0 * R * i as f64, 0.0, 0.0);
+        let at = if i < pulled {
+            pivot + Vector3::new(-L * theta.sin(), -L * theta.cos(), 0.0)
+        } else {
+            pivot - Vector3::new(0.0, L, 0.0)
+        };
+        ball(&mut s, &format!("b{i}"), R, 1.0, at, Vector3::zeros());
+        writeln!(
+            s,
+            "[[joint]]\ntype = \"distance\"\nbodies = [\"b{i}\"]\nanchors = [[{}, {}, 0.0], [{}, 0.0, 0.0]]",
+            at.x, at.y, pivot.x
+        )
+        .unwrap();
+    }
+    s
+}
+
+fn speeds(w: &World) -> Vec<f64> {
+    w.states()
+        .iter()
+        .zip(w.bodies())
+        .map(|(s, b)| s.linear_momentum.x / b.mass)
+        .collect()
+}
+
+/// Steps until the last ball moves (the impact and its rounds happen within that step), then
+/// 5 ms more (balls pulled aside together may meet a step apart). Returns the scene's energy
+/// before the impact and after, and the kinetic energy before.
+fn impact(w: &mut World) -> (f64, f64, f64) {
+    for _ in 0..2000 {
+        let before = w.total_energy();
+        w.step();
+        if speeds(w)[4].abs() > 1e-3 {
+            for _ in 0..5 {
+                w.step();
+            }
+            return (before.total, w.total_energy().total, before.kinetic);
+        }
+    }
+    panic!("no impact");
+}
+
+#[test]
+fn a_touching_cradle_sends_the_last_ball_off_with_the_first_ones_speed() {
+    let arrival = (2.0 * G * L * (1.0 - 30f64.to_radians().cos())).sqrt();
+    let mut w = world(&cradle(1.0, "propagate", 1));
+    let (e0, e, k) = impact(&mut w);
+    let v = speeds(&w);
+    println!("cradle propagate: v = {v:?}, arrival {arrival}, E {e0} -> {e} (K {k})");
+    assert!(v[4] >= 0.99 * arrival, "last ball {} of {arrival}", v[4]);
+    for (i, vi) in v[..4].iter().enumerate() {
+        assert!(vi.abs() <= 0.01 * arrival, "ball {i} keeps {vi}");
+    }
+    assert!(((e - e0) / e0).abs() < 1e-6, "E {e0} -> {e}");
+}
+
+#[test]
+fn under_simultaneous_impact_a_touching_cradle_acts_as_one_block() {
+    let arrival = (2.0 * G * L * (1.0 - 30f64.to_radians().cos())).sqrt();
+    let mut w = world(&cradle(1.0, "simultaneous", 1));
+    impact(&mut w);
+    let v = speeds(&w);
+    println!("cradle simultaneous: v = {v:?}");
+    // The first ball bounces back, the other four leave together, slower.
+    assert!(v[0] < -0.2 * arrival, "{v:?}");
+    assert!(
+        v[1..].iter().all(|x| (x - v[4]).abs() < 1e-3 * arrival),
+        "{v:?}"
+    );
+    assert!(v[4] < 0.5 * arrival, "{v:?}");
+}
+
+#[test]
+fn pulling_two_and_three_aside_sends_two_and_three_off() {
+    let arrival = (2.0 * G * L * (1.0 - 30f64.to_radians().cos())).sqrt();
+    for pulled in [2, 3] {
+        let mut w = world(&cradle(1.0, "propagate", pulled));
+        let (e0, e, k) = impact(&mut w);
+        let v = speeds(&w);
+        println!("{pulled} pulled: v = {v:?}, E {e0} -> {e} (K {k})");
+        for (i, vi) in v.iter().enumerate() {
+            if i >= 5 - pulled {
+                assert!(*vi >= 0.99 * arrival, "{pulled} pulled: ball {i} at {vi}");
+            } else {
+                assert!(
+                    vi.abs() <= 0.01 * arrival,
+                    "{pulled} pulled: ball {i} at {vi}"
+                );
+            }
+        }
+        assert!(((e - e0) / e0).abs() < 1e-6, "E {e0} -> {e}");
+    }
+}
+
+/// Five balls touching in empty space, the first arriving at `v0` from 1 cm away.
+fn row(restitution: f64, impacts: &str, v0: f64) -> String {
+    let mut s = header(false, restitution, impacts);
+    for i in 0..5 {
+        let x = 2.0 * R * i as f64 + if i == 0 { -0.01 } else { 0.0 };
+        let v = if i == 0 { v0 } else { 0.0 };
+        ball(
+            &mut s,
+            &format!("b{i}"),
+            R,
+            1.0,
+            Vector3::new(x, 0.0, 0.0),
+            Vector3::new(v, 0.0, 0.0),
+        );
+    }
+    s
+}
+
+#[test]
+fn a_touching_row_in_empty_space_keeps_momentum_and_only_the_last_ball_moves() {
+    let v0 = 1.0;
+    let mut w = world(&row(1.0, "propagate", v0));
+    let p0: Vector3<f64> = w.states().iter().map(|s| s.linear_momentum).sum();
+    let e0 = w.total_energy().total;
+    for _ in 0..100 {
+        w.step();
+    }
+    let p: Vector3<f64> = w.states().iter().map(|s| s.linear_momentum).sum();
+    let v = speeds(&w);
+    println!("row: v = {v:?}, P {p0:?} -> {p:?}");
+    assert!((p - p0).norm() < 1e-9, "P {p0:?} -> {p:?}");
+    assert!((w.total_energy().total - e0).abs() < 1e-9 * e0);
+    assert!((v[4] - v0).abs() < 1e-9, "{v:?}");
+    assert!(v[..4].iter().all(|x| x.abs() < 1e-9), "{v:?}");
+}
+
+#[test]
+fn at_e_0_both_laws_share_the_blow_among_all_five() {
+    let v0 = 1.0;
+    for impacts in ["propagate", "simultaneous"] {
+        let mut w = world(&row(0.0, impacts, v0));
+        for _ in 0..100 {
+            w.step();
+        }
+        let v = speeds(&w);
+        println!("e = 0, {impacts}: v = {v:?}");
+        assert!(
+            v.iter().all(|x| (x - v0 / 5.0).abs() < 1e-9),
+            "{impacts}: {v:?}"
+        );
+    }
+}
+
+/// A touching triangle rack of `rows` rows in empty space (apex towards −x), hit along its
+/// axis by a cue ball at 2 m/s.
+fn rack(rows: usize) -> String {
+    let mut s = header(false, 1.0, "propagate");
+    let r = 0.0286;
+    let dx = 2.0 * r * 3f64.sqrt() / 2.0;
+    for k in 0..rows {
+        for j in 0..=k {
+            let z = (j as f64 - k as f64 / 2.0) * 2.0 * r;
+            ball(
+                &mut s,
+                &format!("r{k}_{j}"),
+                r,
+                0.17,
+                Vector3::new(k as f64 * dx, 0.0, z),
+                Vector3::zeros(),
+            );
+        }
+    }
+    ball(
+        &mut s,
+        "cue",
+        r,
+        0.17,
+        Vector3::new(-2.0 * r - 0.01, 0.0, 0.0),
+        Vector3::new(2.0, 0.0, 0.0),
+    );
+    s
+}
+
+#[test]
+fn a_touching_rack_breaks_with_momentum_and_energy_kept_and_mirror_symmetric() {
+    let rows = 4;
+    let mut w = world(&rack(rows));
+    let p0: Vector3<f64> = w.states().iter().map(|s| s.linear_momentum).sum();
+    let e0 = w.total_energy().total;
+    for _ in 0..300 {
+        w.step();
+    }
+    let p: Vector3<f64> = w.states().iter().map(|s| s.linear_momentum).sum();
+    let e = w.total_energy().total;
+    // Ball (k, j) mirrors ball (k, k − j) about the cue line z = 0.
+    let mut worst: f64 = 0.0;
+    let mut i = 0;
+    for k in 0..rows {
+        for j in 0..=k {
+            let mirror = i - j + (k - j);
+            let (a, b) = (w.states()[i].position, w.states()[mirror].position);
+            worst = worst
+                .max((a.x - b.x).abs())
+                .max((a.z + b.z).abs())
+                .max((a.y - b.y).abs());
+            i += 1;
+        }
+    }
+    let cue = w.states()[i].linear_momentum / 0.17;
+    println!("rack: P {p0:?} -> {p:?}, E {e0} -> {e}, mirror error {worst:e} m, cue {cue:?}");
+    assert!((p - p0).norm() < 1e-9, "P {p0:?} -> {p:?}");
+    assert!(((e - e0) / e0).abs() < 1e-6, "E {e0} -> {e}");
+    assert!(worst < 1e-6, "mirror error {worst} m");
+    // The break happened: the rack moves.
+    assert!(cue.x < 1.0, "cue {cue:?}");
+}
+
+#[test]
+fn the_superball_stack_throws_the_small_ball_up_at_the_closed_form_speed() {
+    // A small ball (m₂) resting on a big one (m₁), dropped together from 1 m.
+    let (m1, m2, r1, r2, h) = (1.0, 0.1, 0.1, 0.03, 1.0);
+    let mut s = header(true, 1.0, "propagate");
+    s += "[[obstacle]]\ntype = \"ground\"\nheight = 0.0\n";
+    ball(
+        &mut s,
+        "big",
+        r1,
+        m1,
+        Vector3::new(0.0, h + r1, 0.0),
+        Vector3::zeros(),
+    );
+    ball(
+        &mut s,
+        "small",
+        r2,
+        m2,
+        Vector3::new(0.0, h + 2.0 * r1 + r2, 0.0),
+        Vector3::zeros(),
+    );
+    let mut w = world(&s);
+    let v = (2.0 * G * h).sqrt();
+    let expected = v * (3.0 * m1 - m2) / (m1 + m2);
+    let mut top: f64 = 0.0;
+    let mut launch: f64 = 0.0;
+    // Down 1 m (0.45 s), then up about 7 m (1.2 s); the small ball comes down on the big one
+    // later.
+    for _ in 0..1700 {
+        w.step();
+        let small = w.states()[1];
+        if w.time() < 0.6 {
+            launch = launch.max(small.linear_momentum.y / m2);
+        }
+        top = top.max(small.position.y);
+    }
+    let rise = top - (2.0 * r1 + r2);
+    let expected_rise = expected * expected / (2.0 * G);
+    println!(
+        "superball: leaves at {launch} (closed form {expected}), rises {rise} m of {expected_rise}"
+    );
+    assert!(
+        (rise / expected_rise - 1.0).abs() < 0.02,
+        "rise {rise} of {expected_rise}"
+    );
+}
+
+#[test]
+fn the_impacts_key_is_checked_where_it_is_written() {
+    let error = |source: &str| {
+        tumble::scene::parse(source, std::path::Path::new("impacts.toml"))
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    };
+    let scene = |contact: &str| {
+        format!(
+            "title = \"t\"\n[scene]\ndt = 0.001\nintegrator = \"rk4\"\ncontact = {{ {contact} }}\n\
+             [[obstacle]]\ntype = \"ground\"\nheight = 0.0\n[body]\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\nmass = 1.0\n"
+        )
+    };
+    let typo = error(&scene(r#"response = "impulse", impacts = "propagated""#));
+    assert!(
+        typo.ends_with(
+            "impacts.toml:5:45: unknown impact law `propagated` (did you mean `propagate`?); \
+             valid laws: propagate, simultaneous"
+        ),
+        "{typo}"
+    );
+    let seed = error(&scene(r#"response = "seed", impacts = "simultaneous""#));
+    assert!(
+        seed.ends_with(
+            "impacts.toml:5:42: `impacts` is a key of the `impulse` response, not of `seed`"
+        ),
+        "{seed}"
+    );
+    let soft = error(&scene(r#"response = "soft-step", impacts = "propagate""#));
+    assert!(soft.contains("not of `soft-step`"), "{soft}");
+    for law in ["propagate", "simultaneous"] {
+        let ok = error(&scene(&format!(
+            r#"response = "impulse", impacts = "{law}""#
+        )));
+        assert!(ok.is_empty(), "{ok}");
+    }
+}
