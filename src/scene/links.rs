@@ -277,8 +277,9 @@ impl Validator<'_> {
             return Err(self.error(
                 raw.span(),
                 format!(
-                    "{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {} numbers",
-                    list.len()
+                    "{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {} number{}",
+                    list.len(),
+                    if list.len() == 1 { "" } else { "s" }
                 ),
             ));
         };

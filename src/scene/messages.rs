@@ -99,6 +99,9 @@ fn expected_kind(expected: &str) -> String {
         "struct RawCloth" => "a [[cloth]] table".to_string(),
         "struct RawJoint" => "a [[joint]] table".to_string(),
         "struct RawSpring" => "a [[spring]] table".to_string(),
+        "struct RawMotor" => "a table `{ speed = …, max_force = … }` (slider) or `{ speed = …, \
+                               max_torque = … }` (hinge)"
+            .to_string(),
         "struct RawPredict" => "a table `{ quantity = \"cube.y\", at = 1.0 }`".to_string(),
         "struct RawAttach" => {
             "a table `{ particle = [i, j], body = \"name\" }` or `{ edge = \"-x\", body = \"name\" }`"

@@ -789,3 +789,394 @@ fn usage_errors_are_one_line_naming_the_flag() {
         );
     }
 }
+
+// --- 6. This round's keys: joint limits, motors, sliders, impacts ---------------------------
+
+/// Runs `check` and `run` on `jointed(joint)` for each case: (joint lines, at, words).
+fn joint_cases(name: &str, cases: &[(&str, &str, &[&str])]) {
+    for (i, (joint, at, words)) in cases.iter().enumerate() {
+        let path = file(&format!("{name}-{i}.toml"), jointed(joint));
+        let mut all = vec![*at];
+        all.extend_from_slice(words);
+        check_and_run_refuse(&path, &all);
+    }
+}
+
+/// A hinge about z at the origin, with `extra` (line 16).
+const HINGE: &str = "type = \"hinge\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\naxis = [0, 0, 1]";
+/// A slider along x at the origin, with `extra` (line 16).
+const SLIDER: &str = "type = \"slider\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\naxis = [1, 0, 0]";
+
+#[test]
+fn joint_limits_out_of_order_malformed_or_misplaced() {
+    let with = |extra: &str| format!("{HINGE}\n{extra}");
+    let cases: Vec<(String, &str, &[&str])> = vec![
+        (
+            with("limits = [10, 90]"),
+            ":16:10:",
+            &["hinge `limits` must hold 0", "lo ≤ 0 ≤ hi"],
+        ),
+        (
+            with("limits = [-90, -10]"),
+            ":16:10:",
+            &["hinge `limits` must hold 0"],
+        ),
+        (
+            with("limits = [\"a\", 1]"),
+            ":16:11:",
+            &["expected a number, found the string \"a\""],
+        ),
+        (
+            with("limits = [-1, 0, 1]"),
+            ":16:10:",
+            &["needs two numbers [lo, hi] (degrees), found 3 numbers"],
+        ),
+        (with("limits = [-1]"), ":16:10:", &["found 1 number"]),
+        (with("limits = []"), ":16:10:", &["found 0 numbers"]),
+        (
+            with("limits = [-200, 200]"),
+            ":16:10:",
+            &["less than a full turn apart (hi − lo < 360°)"],
+        ),
+        (
+            with("limits = [-inf, 1]"),
+            ":16:10:",
+            &["must be finite numbers"],
+        ),
+        (
+            with("limits = [nan, 1]"),
+            ":16:10:",
+            &["must be finite numbers"],
+        ),
+        (with("limits = \"wide\""), ":16:10:", &["expected an array"]),
+        (
+            format!("{SLIDER}\nlimits = [0.5, 1.0]"),
+            ":16:10:",
+            &["slider `limits` must hold 0"],
+        ),
+        (
+            "type = \"ball\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\nlimits = [-1, 1]".into(),
+            ":15:10:",
+            &[
+                "`limits` does not apply to a ball joint",
+                "a key of hinge, slider",
+            ],
+        ),
+        (
+            "type = \"distance\"\nbodies = [\"arm\"]\nanchors = [[0, 0, 0], [1, 0, 0]]\n\
+             limits = [-1, 1]"
+                .into(),
+            ":15:10:",
+            &["`limits` does not apply to a distance joint"],
+        ),
+    ];
+    let cases: Vec<(&str, &str, &[&str])> =
+        cases.iter().map(|(j, a, w)| (j.as_str(), *a, *w)).collect();
+    joint_cases("limits", &cases);
+}
+
+#[test]
+fn joint_motors_with_wrong_bounds_missing_keys_or_on_the_wrong_joint() {
+    let hinge = |extra: &str| format!("{HINGE}\n{extra}");
+    let slider = |extra: &str| format!("{SLIDER}\n{extra}");
+    let cases: Vec<(String, &str, &[&str])> = vec![
+        (
+            hinge("motor = { speed = 1.0, max_torque = -5.0 }"),
+            ":16:37:",
+            &["motor `max_torque` must be > 0, found -5"],
+        ),
+        (
+            slider("motor = { speed = 1.0, max_force = -1.0 }"),
+            ":16:36:",
+            &["motor `max_force` must be > 0, found -1"],
+        ),
+        (
+            slider("motor = { speed = 1.0, max_force = 0.0 }"),
+            ":16:36:",
+            &["motor `max_force` must be > 0, found 0"],
+        ),
+        (
+            hinge("motor = { max_torque = 5.0 }"),
+            ":16:9:",
+            &["a hinge joint's `motor` needs `speed`"],
+        ),
+        (
+            slider("motor = { speed = 1.0 }"),
+            ":16:9:",
+            &["a slider joint's `motor` needs `max_force`"],
+        ),
+        (
+            slider("motor = { speed = 1.0, max_torque = 5.0 }"),
+            ":16:37:",
+            &["a slider's motor takes `max_force` (N), not `max_torque`"],
+        ),
+        (
+            hinge("motor = { speed = 1.0, max_force = 5.0 }"),
+            ":16:36:",
+            &["a hinge's motor takes `max_torque` (N·m), not `max_force`"],
+        ),
+        (
+            slider("motor = { speed = nan, max_force = 5.0 }"),
+            ":16:19:",
+            &["motor `speed` must be a finite number"],
+        ),
+        (
+            slider("motor = { speed = \"fast\", max_force = 5.0 }"),
+            ":16:19:",
+            &["expected a number, found the string \"fast\""],
+        ),
+        (
+            slider("motor = { speed = 1.0, max_force = 5.0, torque = 1 }"),
+            ":16:41:",
+            &["unknown key `torque`", "speed, max_force, max_torque"],
+        ),
+        (
+            slider("motor = 5.0"),
+            ":16:9:",
+            &["expected a table `{ speed = …, max_force = … }` (slider)"],
+        ),
+        (
+            "type = \"distance\"\nbodies = [\"arm\"]\nanchors = [[0, 0, 0], [1, 0, 0]]\n\
+             motor = { speed = 1.0, max_force = 5.0 }"
+                .into(),
+            ":15:9:",
+            &[
+                "`motor` does not apply to a distance joint",
+                "a key of hinge, slider",
+            ],
+        ),
+        (
+            "type = \"fixed\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\n\
+             motor = { speed = 1.0, max_torque = 5.0 }"
+                .into(),
+            ":15:9:",
+            &["`motor` does not apply to a fixed joint"],
+        ),
+        (
+            "type = \"ball\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\n\
+             motor = { speed = 1.0, max_torque = 5.0 }"
+                .into(),
+            ":15:9:",
+            &["`motor` does not apply to a ball joint"],
+        ),
+    ];
+    let cases: Vec<(&str, &str, &[&str])> =
+        cases.iter().map(|(j, a, w)| (j.as_str(), *a, *w)).collect();
+    joint_cases("motor", &cases);
+}
+
+#[test]
+fn sliders_without_an_axis_or_anchor_or_with_keys_of_other_joints() {
+    joint_cases(
+        "slider",
+        &[
+            (
+                "type = \"slider\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\naxis = [0, 0, 0]",
+                ":15:8:",
+                &["slider `axis` has zero length"],
+            ),
+            (
+                "type = \"slider\"\nbodies = [\"arm\"]\naxis = [1, 0, 0]",
+                ":11:1:",
+                &["a slider joint needs `anchor`"],
+            ),
+            (
+                "type = \"slider\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]",
+                ":11:1:",
+                &["a slider joint needs `axis`"],
+            ),
+            (
+                "type = \"slidr\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\naxis = [1, 0, 0]",
+                ":12:8:",
+                &[
+                    "unknown joint type `slidr` (did you mean `slider`?)",
+                    "slider",
+                ],
+            ),
+            (
+                "type = \"slider\"\nbodies = [\"arm\"]\nanchors = [[0, 0, 0], [1, 0, 0]]\n\
+                 axis = [1, 0, 0]",
+                ":14:11:",
+                &["`anchors` does not apply to a slider joint (did you mean `anchor`?"],
+            ),
+            (
+                "type = \"slider\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\naxis = [1, 0, 0]\n\
+                 length = 1.0",
+                ":16:10:",
+                &[
+                    "`length` does not apply to a slider joint",
+                    "a key of distance",
+                ],
+            ),
+            (
+                "type = \"slider\"\nbodies = [\"arm\"]\nanchor = [0, 0, 0]\naxis = [1, 0, 0, 0]",
+                ":15:8:",
+                &["expected an array of 3 numbers, found 4 elements"],
+            ),
+            (
+                "type = \"slider\"\nbodies = [\"arm\", \"arm\"]\nanchor = [0, 0, 0]\n\
+                 axis = [1, 0, 0]",
+                ":13:19:",
+                &["a joint's two bodies must differ, found `arm` twice"],
+            ),
+        ],
+    );
+}
+
+#[test]
+fn impacts_words_on_every_response() {
+    // (response, impacts value, column, words); the contact table is line 5.
+    let cases: [(&str, &str, &str, &[&str]); 8] = [
+        (
+            "impulse",
+            "\"propogate\"",
+            ":5:45:",
+            &["unknown impact law `propogate` (did you mean `propagate`?)"],
+        ),
+        (
+            "impulse",
+            "\"PROPAGATE\"",
+            ":5:45:",
+            &["unknown impact law `PROPAGATE`", "propagate, simultaneous"],
+        ),
+        ("impulse", "\"\"", ":5:45:", &["unknown impact law ``"]),
+        (
+            "impulse",
+            "1",
+            ":5:45:",
+            &["expected a string, found the integer 1"],
+        ),
+        (
+            "impulse",
+            "[\"propagate\"]",
+            ":5:45:",
+            &["expected a string, found an array"],
+        ),
+        (
+            "impulse",
+            "true",
+            ":5:45:",
+            &["expected a string, found the boolean true"],
+        ),
+        (
+            "seed",
+            "\"propagate\"",
+            ":5:42:",
+            &["`impacts` is a key of the `impulse` response, not of `seed`"],
+        ),
+        (
+            "soft-step",
+            "\"simultaneous\"",
+            ":5:47:",
+            &["`impacts` is a key of the `impulse` response, not of `soft-step`"],
+        ),
+    ];
+    for (i, (response, value, at, words)) in cases.into_iter().enumerate() {
+        let scene = format!(
+            "{}[body]\nshape = \"box\"\nsize = [1, 1, 1]\nmass = 1.0\n",
+            head(&format!(
+                "contact = {{ response = \"{response}\", impacts = {value} }}"
+            ))
+        );
+        let path = file(&format!("impacts-{i}.toml"), scene);
+        let mut all = vec![at];
+        all.extend_from_slice(words);
+        check_and_run_refuse(&path, &all);
+    }
+}
+
+// --- 7. `diff`: the hostile extras (its own suite tests malformed CSVs) ---------------------
+
+#[test]
+fn diff_reads_its_csv_bounded_and_refuses_special_files() {
+    let mut cases: Vec<(String, Vec<&str>)> = Vec::new();
+    if std::path::Path::new("/dev/zero").exists() {
+        cases.push(("/dev/zero".into(), vec!["/dev/zero: is a character device"]));
+    }
+    let fifo = scratch().join("diff.fifo");
+    let _ = std::fs::remove_file(&fifo);
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        cases.push((
+            fifo.to_string_lossy().into_owned(),
+            vec!["diff.fifo: is a named pipe (FIFO)"],
+        ));
+    }
+    // A 1 GB file (sparse: nothing written): refused before it is read, naming the limit.
+    let huge = scratch().join("huge.csv");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len(1 << 30)
+        .unwrap();
+    cases.push((
+        huge.to_string_lossy().into_owned(),
+        vec!["1073741824 bytes, more than the limit of 268435456 for a CSV"],
+    ));
+    cases.push((
+        scratch().to_string_lossy().into_owned(),
+        vec!["is a directory, not a CSV"],
+    ));
+    cases.push((
+        scratch().join("none.csv").to_string_lossy().into_owned(),
+        vec!["none.csv: cannot read: no such file"],
+    ));
+    for (csv, words) in &cases {
+        let out = tumble(&["diff", "01-the-loop", csv]);
+        refused(&out, words);
+        assert!(!out.stderr.contains(":0:"), "{}", out.stderr);
+    }
+    // An endless standard input: stopped at the bound.
+    if std::path::Path::new("/dev/zero").exists() {
+        let out = tumble_with(
+            &["diff", "01-the-loop", "/dev/stdin"],
+            Stdio::from(std::fs::File::open("/dev/zero").unwrap()),
+        );
+        refused(
+            &out,
+            &["/dev/stdin: more than the limit of 268435456 bytes for a CSV"],
+        );
+    }
+}
+
+#[test]
+fn diff_flags_and_scenes_are_refused_in_one_line() {
+    let csv = file("ok.csv", "step,x\n0,0\n");
+    let escape = file("escape.csv", "step,x\n0,1\u{1b}[2J\n");
+    let utf16 = file("utf16.csv", [0xff, 0xfe, b's', 0, b't', 0]);
+    let cases: [(&[&str], &[&str]); 6] = [
+        (
+            &["diff", "01-the-loop", &csv, "--tolerance", "-1"],
+            &["--tolerance", "must be a number > 0"],
+        ),
+        (
+            &["diff", "01-the-loop", &csv, "--tolerance", "nan"],
+            &["--tolerance", "must be a number > 0"],
+        ),
+        (
+            &["diff", "/dev/zero", &csv],
+            &["/dev/zero: is a character device"],
+        ),
+        (
+            &["diff", "01-the-loop", &csv, "--body", "cub"],
+            &["no body named `cub`", "bodies: body1"],
+        ),
+        (&["diff", "01-the-loop", &escape], &["\\u{1b}[2J", ":2:"]),
+        (
+            &["diff", "01-the-loop", &utf16],
+            &["utf16.csv:1:", "not UTF-8"],
+        ),
+    ];
+    for (args, words) in cases {
+        let out = tumble(args);
+        refused(&out, words);
+        assert!(
+            !out.stderr.contains("-- -1"),
+            "no wrong tip: {}",
+            out.stderr
+        );
+        assert!(!out.stderr.contains('\u{1b}'));
+    }
+}
