@@ -24,7 +24,7 @@ pub struct DiffArgs {
     pub body: Option<String>,
     /// Largest difference that still agrees, relative to each quantity's largest norm over
     /// the run (1 for a rotation).
-    #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_parser = parse_tolerance)]
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_parser = parse_tolerance, allow_negative_numbers = true)]
     pub tolerance: f64,
     #[command(flatten)]
     pub overrides: Overrides,

@@ -243,7 +243,11 @@ pub struct CsvError {
 
 impl fmt::Display for CsvError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}: {}", self.file, self.line, self.message)
+        // Line 0: an error about the file as a whole (it cannot be read).
+        match self.line {
+            0 => write!(f, "{}: {}", self.file, self.message),
+            line => write!(f, "{}:{line}: {}", self.file, self.message),
+        }
     }
 }
 
@@ -259,16 +263,10 @@ pub fn read(path: &Path, dt: f64) -> Result<Theirs, CsvError> {
         line,
         message,
     };
-    let size = std::fs::metadata(path)
-        .map_err(|e| fail(0, format!("cannot read: {e}")))?
-        .len();
-    if size > MAX_CSV_BYTES {
-        return Err(fail(
-            0,
-            format!("{size} bytes, more than the {MAX_CSV_BYTES} a CSV may have"),
-        ));
-    }
-    let text = std::fs::read(path).map_err(|e| fail(0, format!("cannot read: {e}")))?;
+    // Read as every input is (`limits::read_bounded_bytes`): at most MAX_CSV_BYTES bytes
+    // read, whatever the metadata says (/dev/zero says 0), FIFOs and devices refused by type.
+    let text = crate::limits::read_bounded_bytes(path, MAX_CSV_BYTES, "CSV")
+        .map_err(|e| fail(0, e.reason))?;
     let text = String::from_utf8(text).map_err(|e| {
         let line = 1 + e.as_bytes()[..e.utf8_error().valid_up_to()]
             .iter()

@@ -14,6 +14,7 @@
 //! | names not empty | cloth `name` must not be empty |
 //! | names unique | duplicate cloth name `sheet`: cloth names must be unique in the file |
 //! | `attach` particle in the grid, body known, not pinned, once | attach: unknown body `bob`; bodies in this file: cube |
+//! | `attach` names its `body` | this attach entry has no `body`: each entry names the body its particles move with, … |
 //! | `attach` one of `particle` and `edge` | an attach entry needs one of `particle = [i, j]` or `edge = "-x"` (-x, +x, -z, +z, all), not both |
 //! | `attach` edge a known name | unknown attach edge `top`; valid: -x, +x, -z, +z, all (-x is the edge i = 0, …) |
 //! | a cloth touches things | a cloth needs a collision response: add `contact = …` to [scene] |
@@ -177,27 +178,36 @@ impl Validator<'_> {
         let mut attach: Vec<Attach> = Vec::new();
         for entry in c.attach.iter().flatten() {
             let a = entry.get_ref();
-            let particles: Vec<[usize; 2]> = match (a.particle, &a.edge) {
-                (Some([i, j]), None) => {
-                    if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
-                        return Err(self.error(
-                            entry.span(),
-                            format!(
+            let Some(body_name) = &a.body else {
+                return Err(self.error(
+                    entry.span(),
+                    "this attach entry has no `body`: each entry names the body its particles \
+                     move with, e.g. { particle = [0, 0], body = \"bob\" }",
+                ));
+            };
+            let particles: Vec<[usize; 2]> =
+                match (a.particle.as_ref().map(|p| *p.get_ref()), &a.edge) {
+                    (Some([i, j]), None) => {
+                        if i < 0 || j < 0 || i as usize >= count[0] || j as usize >= count[1] {
+                            return Err(self.error(
+                                entry.span(),
+                                format!(
                                 "attached particle [{i}, {j}] is outside the {}×{} grid: i must \
                                  be in 0..{} and j in 0..{}",
                                 count[0], count[1], count[0], count[1]
                             ),
-                        ));
+                            ));
+                        }
+                        vec![[i as usize, j as usize]]
                     }
-                    vec![[i as usize, j as usize]]
-                }
-                (None, Some(edge)) => edge_particles(edge.get_ref(), count).ok_or_else(|| {
-                    let hint = did_you_mean(edge.get_ref(), EDGES)
-                        .map(|s| format!(" (did you mean `{s}`?)"))
-                        .unwrap_or_default();
-                    self.error(
-                        edge.span(),
-                        format!(
+                    (None, Some(edge)) => {
+                        edge_particles(edge.get_ref(), count).ok_or_else(|| {
+                            let hint = did_you_mean(edge.get_ref(), EDGES)
+                                .map(|s| format!(" (did you mean `{s}`?)"))
+                                .unwrap_or_default();
+                            self.error(
+                                edge.span(),
+                                format!(
                             "unknown attach edge `{}`{hint}; valid: {} (-x is the edge i = 0, \
                              +x i = {}, -z j = 0, +z j = {}, all the whole rim)",
                             edge.get_ref(),
@@ -205,22 +215,23 @@ impl Validator<'_> {
                             count[0] - 1,
                             count[1] - 1
                         ),
-                    )
-                })?,
-                _ => {
-                    return Err(self.error(
-                        entry.span(),
-                        "an attach entry needs one of `particle = [i, j]` or `edge = \"-x\"` \
+                            )
+                        })?
+                    }
+                    _ => {
+                        return Err(self.error(
+                            entry.span(),
+                            "an attach entry needs one of `particle = [i, j]` or `edge = \"-x\"` \
                          (-x, +x, -z, +z, all), not both",
-                    ))
-                }
-            };
-            let Some(body) = bodies.iter().position(|b| *b == a.body.get_ref()) else {
+                        ))
+                    }
+                };
+            let Some(body) = bodies.iter().position(|b| *b == body_name.get_ref()) else {
                 return Err(self.error(
-                    a.body.span(),
+                    body_name.span(),
                     format!(
                         "attach: unknown body `{}`; bodies in this file: {}",
-                        a.body.get_ref(),
+                        body_name.get_ref(),
                         bodies.join(", ")
                     ),
                 ));

@@ -16,8 +16,10 @@
 //! An error that only the blanking caused is never reported: it names a blanked key, or has
 //! no place in the file, or lies in the appended placeholder (the search stops there), or
 //! calls unknown a body that the blanking removed (a joint, a spring, an `attach` entry or a
-//! live number naming a body whose `[[body]]` was blanked for its own error). An error whose
-//! message was already reported (obstacles that need a `contact`) is reported once.
+//! live number naming a body whose `[[body]]` was blanked for its own error). The same error
+//! (place and message) is reported once; two keys with the same mistake are two lines. An
+//! error asking for a `contact` in [scene] (bodies, obstacles, a cloth need one) is answered
+//! by appending one, so each is reported once and the search goes on.
 //! An error about a limit on the whole file (more joints than the limit) stops the search.
 //! A TOML syntax error stops the search: nothing after it can be trusted.
 
@@ -179,7 +181,7 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
         let caused = section_at(&text, next_offset)
             .is_some_and(|s| caused_by(&touched, &s, next_offset, &next.message))
             || names_a_removed_body(&names, &text, &next.message);
-        if !caused && !errors.iter().any(|e| e.message == next.message) {
+        if !caused && !errors.contains(&next) {
             errors.push(next.clone());
         }
         current = next;

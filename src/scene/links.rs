@@ -8,7 +8,7 @@
 //! | | unknown body `bbo` in joint `bodies` (did you mean `bob`?); bodies: bob, arm |
 //! | two different bodies | a joint's two bodies must differ, found `bob` twice |
 //! | ball, hinge, fixed, slider: `anchor`; distance, spring: `anchors` (two points) | a hinge joint needs `anchor` |
-//! | keys of other kinds refused (`limits`, `motor`: hinge and slider only) | `axis` does not apply to a ball joint; valid keys: … |
+//! | keys of other kinds refused (`keys::JOINTS`; `limits`, `motor`: hinge and slider only) | `axis` does not apply to a ball joint (it is a key of hinge, slider); valid keys of a ball joint: … |
 //! | hinge, slider `axis` non-zero | hinge `axis` has zero length: give a non-zero axis |
 //! | `limits` two finite numbers, lo ≤ 0 ≤ hi (hinge: hi − lo < 360°) | hinge `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found [10, 90] |
 //! | `motor` has `speed` and its bound: `max_torque` (hinge), `max_force` (slider), > 0 | a slider's motor takes `max_force` (N), not `max_torque` |
@@ -202,44 +202,18 @@ impl Validator<'_> {
         states: &[State],
     ) -> Result<Joint, LoadError> {
         let j = raw.get_ref();
-        let kind = JointKind::from_name(j.kind.get_ref()).ok_or_else(|| {
-            let hint = did_you_mean(j.kind.get_ref(), JointKind::ALL.map(JointKind::name))
-                .map(|s| format!(" (did you mean `{s}`?)"))
-                .unwrap_or_default();
-            self.error(
-                j.kind.span(),
-                format!(
-                    "unknown joint type `{}`{hint}; valid types: ball, hinge, fixed, distance, slider",
-                    j.kind.get_ref()
-                ),
-            )
-        })?;
-        let kind_name = kind.name();
-        let allowed: &[&str] = match kind {
-            JointKind::Ball | JointKind::Fixed => &["anchor"],
-            JointKind::Hinge | JointKind::Slider => &["anchor", "axis", "limits", "motor"],
-            JointKind::Distance => &["anchors", "length"],
-        };
-        let present = [
-            ("anchor", j.anchor.as_ref().map(|v| v.span())),
-            ("axis", j.axis.as_ref().map(|v| v.span())),
-            ("anchors", j.anchors.as_ref().map(|v| v.span())),
-            ("length", j.length.as_ref().map(|v| v.span())),
-            ("limits", j.limits.as_ref().map(|v| v.span())),
-            ("motor", j.motor.as_ref().map(|v| v.span())),
-        ];
-        for (key, span) in present {
-            if let (Some(span), false) = (span, allowed.contains(&key)) {
-                return Err(self.error(
-                    span,
-                    format!(
-                        "`{key}` does not apply to a {kind_name} joint; valid keys: name, type, \
-                         bodies, {}",
-                        allowed.join(", ")
-                    ),
-                ));
-            }
+        // The type word first, then the keys it takes (one table: `keys::JOINTS`).
+        let family = &super::keys::JOINTS;
+        let keys = family
+            .kind(j.kind.get_ref())
+            .map_err(|message| self.error(j.kind.span(), message))?;
+        if let Some((at, message)) = family.misplaced(keys, &j.present()) {
+            return Err(self.error(at, message));
         }
+        let Some(kind) = JointKind::from_name(keys.name) else {
+            return Err(self.error(j.kind.span(), "a joint type without a model"));
+        };
+        let kind_name = kind.name();
         let (a, b) = self.pair(&j.bodies, bodies, "joint")?;
         let needs =
             |key: &str| self.error(raw.span(), format!("a {kind_name} joint needs `{key}`"));
@@ -303,8 +277,9 @@ impl Validator<'_> {
             return Err(self.error(
                 raw.span(),
                 format!(
-                    "{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {} numbers",
-                    list.len()
+                    "{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {} number{}",
+                    list.len(),
+                    if list.len() == 1 { "" } else { "s" }
                 ),
             ));
         };

@@ -97,10 +97,22 @@ fn expected_kind(expected: &str) -> String {
         "struct RawObstacle" => "an [[obstacle]] table".to_string(),
         "struct RawPage" => "a [[page]] table".to_string(),
         "struct RawCloth" => "a [[cloth]] table".to_string(),
+        "struct RawJoint" => "a [[joint]] table".to_string(),
+        "struct RawSpring" => "a [[spring]] table".to_string(),
+        "struct RawMotor" => "a table `{ speed = …, max_force = … }` (slider) or `{ speed = …, \
+                               max_torque = … }` (hinge)"
+            .to_string(),
+        "struct RawPredict" => "a table `{ quantity = \"cube.y\", at = 1.0 }`".to_string(),
+        "struct RawAttach" => {
+            "a table `{ particle = [i, j], body = \"name\" }` or `{ edge = \"-x\", body = \"name\" }`"
+                .to_string()
+        }
         "i64" | "u64" | "usize" => "an integer".to_string(),
         other => match other.strip_prefix("an array of length ") {
             Some(n) => format!("an array of {n} numbers"),
-            None => other.trim_start_matches("struct ").to_string(),
+            // No internal type's name reaches a user: any other table is "a table".
+            None if other.starts_with("struct ") => "a table".to_string(),
+            None => other.to_string(),
         },
     }
 }

@@ -8,6 +8,7 @@ mod cloth;
 mod diagnose;
 pub mod edit;
 mod error;
+mod keys;
 mod links;
 pub mod live;
 mod mesh;
@@ -991,6 +992,13 @@ impl Validator<'_> {
         let span = raw.span();
         let b = raw.into_inner();
         let shape = b.shape.get_ref().as_str();
+        // The shape word first (an unknown one is blamed, not its keys), then its keys.
+        let kind = keys::SHAPES
+            .kind(shape)
+            .map_err(|message| self.error(b.shape.span(), message))?;
+        if let Some((at, message)) = keys::SHAPES.misplaced(kind, &b.present()) {
+            return Err(self.error(at, message));
+        }
         let needs = |key: &str| self.error(span.clone(), format!("a {shape} body needs `{key}`"));
         let fixed = b.fixed.as_ref().is_some_and(|f| *f.get_ref());
         let mass = b.mass.as_ref().map(|m| self.mass(m)).transpose()?;
@@ -1013,15 +1021,6 @@ impl Validator<'_> {
             },
         };
         let round = matches!(shape, "sphere" | "capsule" | "cylinder");
-        if let (false, Some(key)) = (round, b.radius.as_ref().or(b.length.as_ref())) {
-            return Err(self.error(
-                key.span(),
-                format!(
-                    "`radius` and `length` do not apply to a {shape} body (they are for sphere, \
-                     capsule and cylinder)"
-                ),
-            ));
-        }
         match inertia {
             Some(("shell", at)) if !matches!(shape, "sphere" | "cylinder") => {
                 return Err(self.error(
@@ -1080,13 +1079,8 @@ impl Validator<'_> {
             "sphere" | "capsule" | "cylinder" => {
                 let radius_raw = b.radius.as_ref().ok_or_else(|| needs("radius"))?;
                 let radius = self.positive(radius_raw, "radius")?;
+                // (`length` on a sphere was refused with the shape's keys.)
                 let length = match (&b.length, shape) {
-                    (Some(l), "sphere") => {
-                        return Err(self.error(
-                            l.span(),
-                            "`length` does not apply to a sphere (only `radius`)",
-                        ))
-                    }
                     (Some(l), _) => self.positive(l, "length")?,
                     (None, "sphere") => 0.0,
                     (None, _) => return Err(needs("length")),
@@ -1158,20 +1152,10 @@ impl Validator<'_> {
                 Body::from_points(&points, &[], mass, edges)
                     .map_err(|e| body_error(file_raw.span(), e))?
             }
+            // Every shape of `keys::SHAPES` is built above.
             other => {
-                let hint = did_you_mean(
-                    other,
-                    ["box", "points", "mesh", "sphere", "capsule", "cylinder"],
-                )
-                .map(|s| format!(" (did you mean `{s}`?)"))
-                .unwrap_or_default();
-                return Err(self.error(
-                    b.shape.span(),
-                    format!(
-                        "unknown shape `{other}`{hint}; valid shapes: box, points, mesh, sphere, \
-                         capsule, cylinder"
-                    ),
-                ));
+                let message = keys::SHAPES.kind(other).err().unwrap_or_default();
+                return Err(self.error(b.shape.span(), message));
             }
         };
         let orientation = match &b.orientation {

@@ -1,6 +1,10 @@
 //! The scene file as written, before validation: the keys of `design.md`, each with its span.
 //!
 //! Unknown keys are errors (`deny_unknown_fields`): a typo must not silently drop an effect.
+//! Arrays of a fixed length (`[x, y, z]`, `[i, j]`, a quaternion) take exactly that many
+//! elements ([`exact`]): `[1, 2, 3, 4]` as a position is an error, not three numbers and a
+//! fourth dropped. Which keys each shape and joint type takes is decided in `keys.rs`, from
+//! the keys present (`present`).
 
 use serde::Deserialize;
 use toml::Spanned;
@@ -33,6 +37,7 @@ pub struct RawScene {
     pub dt: Spanned<f64>,
     pub duration: Option<Spanned<f64>>,
     pub integrator: Spanned<String>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub gravity: Option<Vec3>,
     pub drag: Option<Spanned<RawDrag>>,
     pub contact: Option<Spanned<RawContact>>,
@@ -101,7 +106,9 @@ pub struct RawBody {
     /// `[[body]]` only: unique in the file (default body1, body2, …).
     pub name: Option<Spanned<String>>,
     pub shape: Spanned<String>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub size: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option_list")]
     pub points: Option<Spanned<Vec<[f64; 3]>>>,
     pub masses: Option<Spanned<Vec<f64>>>,
     pub file: Option<Spanned<String>>,
@@ -113,18 +120,24 @@ pub struct RawBody {
     pub fixed: Option<Spanned<bool>>,
     pub mass: Option<Spanned<f64>>,
     pub inertia: Option<Spanned<String>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub position: Option<Vec3>,
     pub orientation: Option<Spanned<RawOrientation>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub velocity: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub angular_velocity: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub angular_velocity_body: Option<Vec3>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawOrientation {
+    #[serde(default, deserialize_with = "exact::option")]
     pub axis: Option<Vec3>,
     pub degrees: Option<Spanned<f64>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub quaternion: Option<Spanned<[f64; 4]>>,
 }
 
@@ -134,12 +147,17 @@ pub struct RawObstacle {
     #[serde(rename = "type")]
     pub kind: Spanned<String>,
     pub height: Option<Spanned<f64>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub center: Option<Vec3>,
     pub radius: Option<Spanned<f64>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub min: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub max: Option<Vec3>,
     /// plane: a point of it and its outward normal.
+    #[serde(default, deserialize_with = "exact::option")]
     pub point: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub normal: Option<Vec3>,
     /// box: turned about its centre.
     pub orientation: Option<Spanned<RawOrientation>>,
@@ -170,9 +188,12 @@ pub struct RawPredict {
 #[serde(deny_unknown_fields)]
 pub struct RawCloth {
     pub name: Option<Spanned<String>>,
+    #[serde(deserialize_with = "exact::required")]
     pub size: Spanned<[f64; 2]>,
     /// Integers, signed so that a negative count gets our message, not serde's.
+    #[serde(deserialize_with = "exact::required")]
     pub count: Spanned<[i64; 2]>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub position: Option<Vec3>,
     pub mass: Spanned<f64>,
     pub stretch: Spanned<f64>,
@@ -181,6 +202,7 @@ pub struct RawCloth {
     pub damping: Option<Spanned<f64>>,
     /// A keyword (corners, edges, none) or an array of [i, j]: read by hand for clear errors.
     pub pinned: Option<Spanned<toml::Value>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub velocity: Option<Vec3>,
     pub integrator: Option<Spanned<String>>,
     /// Particles held to bodies: `[{ particle = [i, j], body = "name" }, …]`.
@@ -192,11 +214,14 @@ pub struct RawCloth {
 #[serde(deny_unknown_fields)]
 pub struct RawAttach {
     /// Signed so that a negative index gets our message, not serde's.
-    pub particle: Option<[i64; 2]>,
+    #[serde(default, deserialize_with = "exact::option")]
+    pub particle: Option<Spanned<[i64; 2]>>,
     /// `-x`, `+x`, `-z`, `+z` (the particles with i = 0, i = nx − 1, j = 0, j = nz − 1) or
     /// `all` (the whole rim).
     pub edge: Option<Spanned<String>>,
-    pub body: Spanned<String>,
+    /// Required: optional here so that its absence is called the entry's, not the file's
+    /// `[body]`'s.
+    pub body: Option<Spanned<String>>,
 }
 
 /// A `[[joint]]` table: an ideal constraint between two bodies or a body and the world.
@@ -207,8 +232,11 @@ pub struct RawJoint {
     #[serde(rename = "type")]
     pub kind: Spanned<String>,
     pub bodies: Spanned<Vec<Spanned<String>>>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub anchor: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option")]
     pub axis: Option<Vec3>,
+    #[serde(default, deserialize_with = "exact::option_list")]
     pub anchors: Option<Spanned<Vec<[f64; 3]>>>,
     pub length: Option<Spanned<f64>>,
     /// hinge (degrees) or slider (m): `[lo, hi]`.
@@ -232,8 +260,93 @@ pub struct RawMotor {
 pub struct RawSpring {
     pub name: Option<Spanned<String>>,
     pub bodies: Spanned<Vec<Spanned<String>>>,
+    #[serde(deserialize_with = "exact::list")]
     pub anchors: Spanned<Vec<[f64; 3]>>,
     pub stiffness: Spanned<f64>,
     pub damping: Option<Spanned<f64>>,
     pub rest_length: Option<Spanned<f64>>,
+}
+
+/// The keys of a table that are present, with their spans: what `keys.rs` checks against the
+/// keys its kind takes. (A key added to a struct is added here too.)
+pub type Present = Vec<(&'static str, std::ops::Range<usize>)>;
+
+/// `(key, span)` of each `Some` field named.
+macro_rules! present {
+    ($raw:expr, $($key:ident),*) => {{
+        let mut out: Present = Vec::new();
+        $(if let Some(v) = &$raw.$key { out.push((stringify!($key), v.span())); })*
+        out
+    }};
+}
+
+impl RawBody {
+    /// The shape-dependent keys present (every shape takes the others).
+    pub fn present(&self) -> Present {
+        present!(self, size, points, masses, file, radius, length)
+    }
+}
+
+impl RawJoint {
+    /// The type-dependent keys present (every joint takes `name`, `type`, `bodies`).
+    pub fn present(&self) -> Present {
+        present!(self, anchor, axis, anchors, length, limits, motor)
+    }
+}
+
+/// Arrays of exactly N elements: serde reads the first N of a longer array and stops.
+mod exact {
+    use serde::de::{Deserialize, Deserializer, Error};
+    use toml::Spanned;
+
+    fn array<'de, D: Deserializer<'de>, T, const N: usize>(
+        list: Vec<T>,
+    ) -> Result<[T; N], D::Error> {
+        let n = list.len();
+        list.try_into()
+            .map_err(|_| D::Error::invalid_length(n, &format!("an array of length {N}").as_str()))
+    }
+
+    pub fn required<'de, D, T, const N: usize>(d: D) -> Result<Spanned<[T; N]>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        let list = Spanned::<Vec<T>>::deserialize(d)?;
+        let span = list.span();
+        Ok(Spanned::new(span, array::<D, T, N>(list.into_inner())?))
+    }
+
+    pub fn option<'de, D, T, const N: usize>(d: D) -> Result<Option<Spanned<[T; N]>>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        required(d).map(Some)
+    }
+
+    pub fn list<'de, D, T, const N: usize>(d: D) -> Result<Spanned<Vec<[T; N]>>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        let lists = Spanned::<Vec<Vec<T>>>::deserialize(d)?;
+        let span = lists.span();
+        let arrays = lists
+            .into_inner()
+            .into_iter()
+            .map(array::<D, T, N>)
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Spanned::new(span, arrays))
+    }
+
+    pub fn option_list<'de, D, T, const N: usize>(
+        d: D,
+    ) -> Result<Option<Spanned<Vec<[T; N]>>>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        list(d).map(Some)
+    }
 }

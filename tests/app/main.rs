@@ -3,6 +3,7 @@
 
 mod classroom;
 mod findings;
+mod fuzz;
 mod history;
 mod jobs;
 mod plot;

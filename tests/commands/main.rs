@@ -7,6 +7,7 @@ mod cloth_cli;
 mod diff;
 mod divergence_cli;
 mod hostile;
+mod hostile_round4;
 mod lesson_claims;
 mod lessons;
 mod live_numbers;
