@@ -1188,7 +1188,15 @@ impl App {
                     timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
                 if let Some(stop) = stop {
                     self.running = false;
-                    self.notice = Some(stop.notice.clone());
+                    // A prediction due at a page's own time: its comparison comes first.
+                    self.notice = Some(match self.prediction_reached() {
+                        Some(result) => format!(
+                            "{} · {}",
+                            result.trim_end_matches(": Enter continues"),
+                            stop.notice
+                        ),
+                        None => stop.notice.clone(),
+                    });
                     self.stop = Some(stop);
                     break;
                 }

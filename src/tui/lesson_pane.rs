@@ -35,6 +35,22 @@ fn page(app: &App) -> (String, String) {
                 text.push_str("\n\n");
                 text.push_str(&line);
             }
+            // A guess of another page due at this page's time (lesson 32 asks on page 1 for
+            // t = 0.643 s, page 3's time): its comparison shows here, where the run paused.
+            let dt = app.world.dt();
+            let here = crate::live::step_at(page.at, dt);
+            for (j, other) in lesson.pages.iter().enumerate() {
+                let due_here = other
+                    .predict
+                    .as_ref()
+                    .is_some_and(|p| crate::live::step_at(p.at, dt) == here);
+                if j != i && due_here && matches!(app.guesses[j], super::app::Guess::Given(_)) {
+                    if let Some(result) = app.prediction_result(j) {
+                        // First, where it is read before any scrolling.
+                        text = format!("Prediction (page {}): {result}.\n\n{text}", j + 1);
+                    }
+                }
+            }
             (
                 format!(" page {}/{}: {} ", i + 1, lesson.pages.len(), page.title),
                 text,
