@@ -37,6 +37,7 @@ fn world_of(
         response: Response::Impulse,
         restitution,
         friction: 0.0,
+        impacts: tumble::physics::Impacts::default(),
     });
     World::with_bodies(bodies, effects, Vec::new(), contact, Integrator::Rk4, 1e-3).with_links(
         Links {
