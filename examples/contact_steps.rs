@@ -8,15 +8,16 @@
 //! ```
 //!
 //! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes` (or `dominoes-D`, the first
-//! tipped D°); RESPONSE: `impulse` (default) or `soft-step`, whose parameters `SOFT_HERTZ`,
+//! tipped D°), `wall` (30 bricks in running bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball
+//! at 6 m/s), their restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate); RESPONSE: `impulse` (default) or `soft-step`, whose parameters `SOFT_HERTZ`,
 //! `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise). Every `CONTACT_STEPS_EVERY`
 //! steps (1000) a line gives the largest sideways (x–z) distance of a body from its start (a
 //! stack's lean), the solver's path counters and µs/step; `CONTACT_STEPS_STATES` prints the
 //! final states.
 
 use std::time::Instant;
-use tumble::contact_scenes::{dominoes, dominoes_tipped, pyramid, stack};
-use tumble::physics::Response;
+use tumble::contact_scenes::{dominoes, dominoes_tipped, pyramid, stack, wall};
+use tumble::physics::{Impacts, Response};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -40,6 +41,13 @@ fn main() {
             None => (rest, 0.0),
         };
         pyramid(rows.parse().expect(usage), gap, response)
+    } else if scene == "wall" || scene == "wall-ball" {
+        let e = std::env::var("WALL_E").ok().and_then(|s| s.parse().ok());
+        let impacts = std::env::var("WALL_IMPACTS").ok();
+        let impacts = impacts.as_deref().map_or(Impacts::Propagate, |name| {
+            Impacts::from_name(name).expect("propagate or simultaneous")
+        });
+        wall(scene == "wall-ball", e.unwrap_or(0.0), impacts, response)
     } else if scene == "dominoes" {
         dominoes(response)
     } else if let Some(degrees) = scene.strip_prefix("dominoes-") {
@@ -67,7 +75,7 @@ fn main() {
                 .fold(0.0, f64::max);
             println!(
                 "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
-                step as f64 * 1e-3,
+                world.time(),
                 sideways,
                 now.direct - last.direct,
                 now.declined - last.declined,

@@ -139,3 +139,55 @@ pub fn dominoes_tipped(degrees: f64, response: Response) -> World {
         .collect();
     world(bodies, response)
 }
+
+/// A brick's size (length along x, height, depth), m, and mass, kg.
+pub const BRICK: [f64; 3] = [0.4, 0.2, 0.2];
+pub const BRICK_MASS: f64 = 2.0;
+
+/// A running-bond wall of 30 bricks (6 courses of 5, every other course shifted by half a
+/// brick) on the ground, dt = 5 ms; with `ball`, a 50 kg ball (r = 0.25 m) at 6 m/s along z
+/// towards its middle, 0.3 m from its face. Contact: μ = 0.5 and restitution `restitution`
+/// with the given impact law.
+pub fn wall(ball: bool, restitution: f64, impacts: Impacts, response: Response) -> World {
+    let brick = Body::solid_box(Vector3::from(BRICK), BRICK_MASS).expect("a valid box");
+    let [length, height, depth] = BRICK;
+    let mut bodies = Vec::new();
+    for course in 0..6 {
+        let shift = if course % 2 == 1 { length / 2.0 } else { 0.0 };
+        for i in 0..5 {
+            let x = (i as f64 - 2.0) * length + shift;
+            let y = height / 2.0 + height * course as f64;
+            bodies.push(body_at(
+                format!("c{course}b{i}"),
+                &brick,
+                Vector3::new(x, y, 0.0),
+                UnitQuaternion::identity(),
+            ));
+        }
+    }
+    if ball {
+        let radius = 0.25;
+        let body = Body::sphere(radius, 50.0, false).expect("a valid ball");
+        bodies.push(NamedBody {
+            name: "ball".into(),
+            initial: State {
+                position: Vector3::new(0.1, 0.6, -(depth / 2.0 + radius + 0.3)),
+                linear_momentum: Vector3::new(0.0, 0.0, 50.0 * 6.0),
+                ..State::at_rest()
+            },
+            body,
+        });
+    }
+    World::with_bodies(
+        bodies,
+        Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
+        vec![Obstacle::Ground { height: 0.0 }],
+        Some(ContactModel {
+            restitution,
+            impacts,
+            ..model(response)
+        }),
+        Integrator::Rk4,
+        5e-3,
+    )
+}

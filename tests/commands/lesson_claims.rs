@@ -2,7 +2,7 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4, 9–21, 25–28, 33–37.
+//! with the formula that gives it in a comment. Lessons: 1–4, 9–21, 25–28, 33–37, 39, 40.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
@@ -3532,4 +3532,113 @@ fn lesson_44_the_motor_holds_its_speed_with_the_loads_torque_and_books_its_work(
         1e-9,
         "½ I ω²",
     );
+
+// Lesson 39: Newton's cradle (touching balls on rods, both impact laws)
+// ---------------------------------------------------------------------------------------------
+
+/// The five balls' x velocities at `t` (s).
+fn cradle_at(lesson: &Lesson, t: f64) -> (World, [f64; 5]) {
+    let mut world = lesson.scene.world();
+    for _ in 0..steps_for(t, lesson.scene.dt) {
+        world.step();
+    }
+    let v = ["b1", "b2", "b3", "b4", "b5"].map(|b| velocity(&world, b).x);
+    (world, v)
+}
+
+#[test]
+fn lesson_39_the_last_ball_leaves_with_the_first_ones_arrival_speed() {
+    let l = lesson("39-newtons-cradle.toml");
+    // v₀ = √(2 g L (1 − cos 30°)), L = 1 m: the page's 1.6213 m/s.
+    let v0 = (2.0 * G * (1.0 - 30f64.to_radians().cos())).sqrt();
+    assert_near(v0, 1.6213, 5e-5, "v₀ quoted");
+    let (world, v) = cradle_at(&l, 0.52);
+    // b5 has climbed for ~10 ms: within 0.1 % of v₀; the others stay still (< 1e-4 m/s).
+    assert_near(v[4], v0, 1e-3 * v0, "b5");
+    for (i, vi) in v[..4].iter().enumerate() {
+        assert_near(*vi, 0.0, 1e-4, &format!("b{}", i + 1));
+    }
+    // Energy kept through the blow to 1e-5 of the kinetic energy (the page's two numbers).
+    let mut before = lesson("39-newtons-cradle.toml").scene.world();
+    for _ in 0..steps_for(0.5, 1e-3) {
+        before.step();
+    }
+    let (e0, e) = (before.total_energy().total, world.total_energy().total);
+    assert_near(e, e0, 1e-5 * 1.3143, "E through the blow");
+}
+
+#[test]
+fn lesson_39_simultaneous_impacts_throw_b1_back_and_lose_30_percent() {
+    let l = lesson_edited(
+        "39-newtons-cradle.toml",
+        &[("impacts = \"propagate\"", "impacts = \"simultaneous\"")],
+    );
+    let v0 = (2.0 * G * (1.0 - 30f64.to_radians().cos())).sqrt();
+    let (_, v) = cradle_at(&l, 0.52);
+    // The page's row: b1 −0.701, b2–b5 +0.581 each.
+    assert_near(v[0], -0.701, 1e-3, "b1");
+    for (i, vi) in v[1..].iter().enumerate() {
+        assert_near(*vi, 0.581, 1e-3, &format!("b{}", i + 2));
+    }
+    // Momentum along x kept (Σ v = v₀ within the rods' pull over 10 ms), 30 % of K lost.
+    assert_near(v.iter().sum::<f64>(), v0, 2e-3, "Σ v");
+    let kept = v.iter().map(|x| x * x).sum::<f64>() / (v0 * v0);
+    assert_near(1.0 - kept, 0.30, 0.01, "fraction of K lost");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 40: the superball stack
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_40_the_small_ball_leaves_at_the_closed_form_speed_and_climbs_seven_metres() {
+    let l = lesson("40-the-superball-stack.toml");
+    let (m1, m2) = (1.0, 0.1);
+    let v = (2.0 * G * 1.0).sqrt();
+    assert_near(v, 4.429, 5e-4, "v quoted");
+    let v2 = v * (3.0 * m1 - m2) / (m1 + m2);
+    let v1 = v * (m1 - 3.0 * m2) / (m1 + m2);
+    assert_near(v2, 11.68, 5e-3, "v₂ quoted");
+    assert_near(v1, 2.82, 5e-3, "v₁ quoted");
+    assert_near(v2 * v2 / (2.0 * G), 6.95, 5e-3, "rise quoted");
+    let mut world = l.scene.world();
+    for _ in 0..steps_for(0.453, l.scene.dt) {
+        world.step();
+    }
+    // One step after the touch: gravity has taken up to 2 g dt since.
+    assert_near(velocity(&world, "small").y, v2, 0.03, "small leaves");
+    assert_near(velocity(&world, "big").y, v1, 0.03, "big leaves");
+    let mut top: f64 = 0.0;
+    for _ in 453..1700 {
+        world.step();
+        top = top.max(position(&world, "small").y);
+    }
+    // The page's 0.23 + 6.95 = 7.18 m, within 2 % of the rise.
+    assert_near(top, 0.23 + v2 * v2 / (2.0 * G), 0.02 * 6.95, "small's top");
+}
+
+#[test]
+fn lesson_40_simultaneous_impacts_bounce_the_big_ball_alone_then_the_small_one() {
+    let l = lesson_edited(
+        "40-the-superball-stack.toml",
+        &[("impacts = \"propagate\"", "impacts = \"simultaneous\"")],
+    );
+    let mut world = l.scene.world();
+    for _ in 0..steps_for(0.453, l.scene.dt) {
+        world.step();
+    }
+    // The page: restitution only at the ground, on the big ball alone, capped by the energy
+    // clamp at √(2 K₀/m₁) = √(1.1) v = 4.65 m/s (K₀ = ½ (m₁ + m₂) v²); the step after, the big
+    // ball catches the small one: small 8.44, big 3.79 m/s.
+    let v = (2.0 * G).sqrt();
+    assert_near(1.1f64.sqrt() * v, 4.65, 5e-3, "capped speed quoted");
+    assert_near(velocity(&world, "small").y, 8.44, 5e-3, "small");
+    assert_near(velocity(&world, "big").y, 3.79, 5e-3, "big");
+    let mut top: f64 = 0.0;
+    for _ in 453..1400 {
+        world.step();
+        top = top.max(position(&world, "small").y);
+    }
+    // It climbs 8.44²/2g = 3.6 m.
+    assert_near(top - 0.23, 3.6, 0.05, "small's rise");
 }

@@ -10,7 +10,7 @@
 //! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
 //! | `response` | the responses a scene can choose, each described once (name, formulas, README row, colour) |
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
-//! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added; a file per constraint kind (`normal`, `friction`) and per method (`direct`, `subspace`) |
+//! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added; a file per constraint kind (`normal`, `friction`), per method (`direct`, `subspace`) and for the impact law (`propagate`) |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
 //! | `solver_body` | solver bodies (v, ω, L, 1/M, I⁻¹) and constraint axes between two ends: what every solver works on |
 //! | `step_context` | the constants every contact pass of a step reads (bounce speed, margins, e, μ), computed once |

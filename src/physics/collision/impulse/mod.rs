@@ -17,6 +17,7 @@
 //! | friction row: the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
+//! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
 //! # Many contacts (a face landing flat has 4), in three stages
 //!
@@ -49,6 +50,11 @@
 //! 3. **Restitution** (Poisson's, e times the stage-1 impulse, only at contacts that
 //!    approached faster than [`BOUNCE_STEPS`]·|g|·dt), scaled so that K does not exceed K₀ less
 //!    the push-out's work against gravity ([`normal`]: the energy clamp).
+//!
+//! Under `impacts = "propagate"` (the default; [`propagate`]) with e > 0, when a contact
+//! approaches faster than the bounce speed, the three stages first run in *impact rounds* on
+//! the approaching pairs alone, until nothing approaches; then once more on every row, for
+//! resting contact. A single body landing is one round on all its rows: the same numbers.
 //!
 //! Last, each row's impulses are stored into its contact (the normal row's `store`, then
 //! the friction row's), where they also warm-start the next step ([`WarmCache`]).
