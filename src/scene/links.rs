@@ -302,10 +302,7 @@ impl Validator<'_> {
         let &[lo, hi] = list.as_slice() else {
             return Err(self.error(
                 raw.span(),
-                format!(
-                    "{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {} numbers",
-                    list.len()
-                ),
+                format!("{kind_name} `limits` needs two numbers [lo, hi] ({unit}), found {list:?}"),
             ));
         };
         if !(lo.is_finite() && hi.is_finite()) {

@@ -6,6 +6,7 @@ mod cli_names_and_errors;
 mod cloth_cli;
 mod divergence_cli;
 mod hostile;
+mod joint_keys;
 mod lesson_claims;
 mod lessons;
 mod live_numbers;
