@@ -8,6 +8,7 @@ mod diff;
 mod divergence_cli;
 mod hostile;
 mod hostile_round4;
+mod joint_keys;
 mod lesson_claims;
 mod lessons;
 mod live_numbers;

@@ -34,7 +34,15 @@
 //! fixed     ball + the skew part of R_A (R_B R₀)ᵀ = 0:    3 rows (0, e_k | 0, −e_k),  J̇u = 0
 //! distance  C = |d| − ℓ, d = p_A − p_B, n = d/|d|:       (n, r_A×n | −n, −r_B×n)
 //!           J̇u = n·(ω_A×(ω_A×r_A) − ω_B×(ω_B×r_B)) + (|ḋ|² − (n·ḋ)²)/|d|
+//! slider    C = t·d for t ∈ {t₁, t₂} = R_B n_B ⊥ the rail (2 rows):
+//!                                                      (t, r_A×t | −t, −r_B×t + t×d)
+//!           J̇u = t·(ω_A×(ω_A×r_A) − ω_B×(ω_B×r_B)) + 2 (ω_B×t)·ḋ + (ω_B×(ω_B×t))·d
+//!           + fixed's 3 orientation rows (0, e_k | 0, −e_k), J̇u = 0
+//!           error: the anchor's distance from the rail + the relative turn (rad) × 1 m
 //! ```
+//!
+//! A hinge's or slider's limits and motor are rows with bounds, solved as impulses at the end
+//! of the step with these rows held (`drive`).
 //!
 //! Holding C̈ = 0 keeps C and Ċ where they started only up to the integrator's error: they
 //! drift. `joint_correction` chooses what is done about it:
