@@ -5,6 +5,9 @@
 use crate::diff::theirs::{Column, Theirs};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 
+/// A body's pose: barycenter x and rotation R (body → world).
+pub type Pose = (Vector3<f64>, Matrix3<f64>);
+
 /// Their run as the app shows it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Against {
@@ -12,7 +15,7 @@ pub struct Against {
     pub name: String,
     /// Per row: its step, and the body's pose when their columns give one (x y z; R, else q,
     /// else unturned).
-    pub poses: Vec<(u64, Option<(Vector3<f64>, Matrix3<f64>)>)>,
+    pub poses: Vec<(u64, Option<Pose>)>,
     /// The first step where they part, and the column farthest apart there (None: they agree).
     pub parting: Option<(u64, String)>,
 }
@@ -63,7 +66,7 @@ impl Against {
     }
 
     /// Their pose at `step`: their last row at or before it.
-    pub fn pose_at(&self, step: u64) -> Option<(Vector3<f64>, Matrix3<f64>)> {
+    pub fn pose_at(&self, step: u64) -> Option<Pose> {
         let k = self.poses.partition_point(|(s, _)| *s <= step);
         k.checked_sub(1).and_then(|k| self.poses[k].1)
     }
