@@ -76,3 +76,36 @@ pub fn diff(args: &DiffArgs) -> Result<(), Failure> {
         }),
     }
 }
+
+/// `tumble FILE --against THEIRS.csv`: their rows checked as `tumble diff` checks them (the
+/// first body, the scene's settings, the default tolerance), for the app to draw.
+#[cfg(feature = "tui")]
+pub fn against(
+    path: &std::path::Path,
+    lesson: &crate::scene::Lesson,
+    csv: &std::path::Path,
+) -> Result<crate::tui::Against, Failure> {
+    if lesson.scene.bodies.is_empty() {
+        return Err(Failure::bad_input(format!(
+            "{}: --against needs a scene with a body",
+            path.display()
+        )));
+    }
+    let theirs =
+        theirs::read(csv, lesson.scene.dt).map_err(|e| Failure::bad_input(e.to_string()))?;
+    let subject = Subject {
+        scene: &lesson.scene,
+        scene_name: &path.display().to_string(),
+        theirs_name: &csv.display().to_string(),
+        body: 0,
+    };
+    let outcome = check(&subject, &theirs, DEFAULT_TOLERANCE).map_err(|message| Failure {
+        code: EXIT_DIVERGED,
+        message: format!("tumble's own run diverged before their last row: {message}"),
+    })?;
+    Ok(crate::tui::Against::new(
+        csv.display().to_string(),
+        &theirs,
+        &outcome,
+    ))
+}

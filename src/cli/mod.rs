@@ -45,6 +45,10 @@ pub struct Cli {
     /// Run a second world in lock-step with this integrator or collision response (a ghost).
     #[arg(long, value_name = "NAME")]
     pub compare: Option<String>,
+    /// Draw a run computed elsewhere (a CSV as `tumble diff` reads it) as the ghost, and pause
+    /// at the first step where it parts from tumble's.
+    #[arg(long, value_name = "THEIRS.csv")]
+    pub against: Option<PathBuf>,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -369,11 +373,20 @@ fn app_file(file: Option<&Path>) -> Result<PathBuf, Failure> {
 /// `tumble [FILE] [--ascii] [--compare NAME]`: the terminal app. The file and the options are
 /// checked before the terminal is touched.
 #[cfg(feature = "tui")]
-fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Failure> {
+fn app(
+    file: Option<&Path>,
+    ascii: bool,
+    compare: Option<&str>,
+    against: Option<&Path>,
+) -> Result<(), Failure> {
     use crate::tui::{Comparison, Options};
     use std::io::IsTerminal;
     let path = app_file(file)?;
     let lesson = crate::lessons::load(&path)?;
+    let against = match against {
+        None => None,
+        Some(csv) => Some(diff::against(&path, &lesson, csv)?),
+    };
     let compare = match compare {
         None => None,
         Some(name) => {
@@ -432,12 +445,18 @@ fn app(file: Option<&Path>, ascii: bool, compare: Option<&str>) -> Result<(), Fa
         compare,
         show_timing: true,
     };
-    crate::tui::run(lesson, options).map_err(|e| Failure::bad_input(format!("terminal error: {e}")))
+    crate::tui::run_against(lesson, options, against)
+        .map_err(|e| Failure::bad_input(format!("terminal error: {e}")))
 }
 
 /// Without the `tui` feature there is no terminal app: the file is still checked.
 #[cfg(not(feature = "tui"))]
-fn app(file: Option<&Path>, _ascii: bool, _compare: Option<&str>) -> Result<(), Failure> {
+fn app(
+    file: Option<&Path>,
+    _ascii: bool,
+    _compare: Option<&str>,
+    _against: Option<&Path>,
+) -> Result<(), Failure> {
     let path = app_file(file)?;
     crate::lessons::load(&path)?;
     Err(Failure::bad_input(
@@ -491,7 +510,12 @@ pub fn main() -> ExitCode {
         Some(Command::Shot(args)) => shot::shot(&args),
         #[cfg(feature = "tui")]
         Some(Command::Record(args)) => record::record(&args),
-        None => app(cli.file.as_deref(), cli.ascii, cli.compare.as_deref()),
+        None => app(
+            cli.file.as_deref(),
+            cli.ascii,
+            cli.compare.as_deref(),
+            cli.against.as_deref(),
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -169,6 +169,8 @@ pub struct App {
     /// The snapshot before the last action (changed cells are highlighted).
     pub previous: Option<Snapshot>,
     pub ghost: Option<Ghost>,
+    /// Their run (`--against THEIRS.csv`): drawn as a ghost, its first parting step marked.
+    pub against: Option<super::Against>,
     pub history: History,
     pub series: EnergySeries,
     /// Every plottable quantity over the run (key `p` picks which one the graph shows).
@@ -279,6 +281,18 @@ impl App {
         App::build(lesson, options, true)
     }
 
+    /// The pause at the first step where their run (`--against`) parts from tumble's.
+    fn against_parts_here(&self) -> Option<timeline::Stop> {
+        let (step, column) = self.against.as_ref()?.parting.as_ref()?;
+        (*step == self.world.step_count()).then(|| timeline::Stop {
+            label: "they part".into(),
+            notice: format!(
+                "their run parts from tumble's here (step {step}, column {column}): n steps \
+                 phase by phase, ← back, Enter runs on"
+            ),
+        })
+    }
+
     fn build(lesson: Lesson, options: Options, live_in_background: bool) -> App {
         let world = lesson.scene.world();
         let snapshot = world.snapshot();
@@ -298,6 +312,7 @@ impl App {
             snapshot,
             previous: None,
             ghost: None,
+            against: None,
             history: History::new(DEFAULT_CAPACITY),
             series,
             plot_series,
@@ -1186,6 +1201,7 @@ impl App {
             if self.running && self.pause_at_stops {
                 let stop =
                     timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
+                let stop = stop.or_else(|| self.against_parts_here());
                 if let Some(stop) = stop {
                     self.running = false;
                     // A prediction due at a page's own time: its comparison comes first.

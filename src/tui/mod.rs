@@ -29,6 +29,7 @@
 //! at most [`MAX_STEP_TIME_PER_RENDER`] of measured physics: a heavy scene runs slower than
 //! asked rather than freeze the screen).
 
+pub mod against;
 pub mod app;
 pub mod cloth_panel;
 pub mod divergence_dialog;
@@ -60,6 +61,7 @@ pub mod theme;
 pub mod timeline;
 pub mod viewport;
 
+pub use against::Against;
 pub use app::{App, Comparison, Effect, Options, Overlay, View};
 
 use crate::scene::Lesson;
@@ -90,7 +92,17 @@ pub fn affordable_frames(ns_per_step: Option<f64>) -> u64 {
 
 /// Runs the app on the terminal until the user quits; the terminal is always restored.
 pub fn run(lesson: Lesson, options: Options) -> std::io::Result<()> {
+    run_against(lesson, options, None)
+}
+
+/// [`run`] with their run drawn as the ghost (`tumble FILE --against THEIRS.csv`).
+pub fn run_against(
+    lesson: Lesson,
+    options: Options,
+    against: Option<Against>,
+) -> std::io::Result<()> {
     let mut app = App::interactive(lesson, options);
+    app.against = against;
     let terminal = ratatui::init();
     let result = event_loop(terminal, &mut app);
     ratatui::restore();

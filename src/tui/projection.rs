@@ -157,6 +157,9 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
     if let Some(g) = &app.ghost {
         items.push(item(":", theme::GHOST, g.comparison.name().into()));
     }
+    if app.against.is_some() {
+        items.push(item(":", theme::GHOST, "theirs".into()));
+    }
     let (length, cols) = scale_bar(mapping.scale);
     let bar = format!(
         "├{}┤ {} m ",
@@ -744,6 +747,26 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
             ghost.colour = theme::GHOST;
             ghost.ascii = Some(':');
             add_body(&mut scene, axis, &ghost);
+        }
+        // Their run (`--against`): the body's points at their pose, in the ghost's colour.
+        let theirs = (app.against.as_ref())
+            .and_then(|a| a.pose_at(app.snapshot.step))
+            .map(|(x, r)| {
+                let points: Vec<_> = body.points_body.iter().map(|p| x + r * p).collect();
+                (x, r, points)
+            });
+        if let Some((position, rotation, vertices)) = &theirs {
+            let picture = BodyPicture {
+                vertices,
+                edges: &body.edges,
+                position: *position,
+                rotation: *rotation,
+                radius: body.radius,
+                colour: theme::GHOST,
+                ascii: Some(':'),
+                arrows: None,
+            };
+            add_body(&mut scene, axis, &picture);
         }
         let own_wire = view
             .and_then(|v| v.shape.as_ref().map(|s| wire(s, &v.position, &v.rotation)))

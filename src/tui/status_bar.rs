@@ -75,6 +75,9 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
             },
         ));
     }
+    if let Some(against) = &app.against {
+        fields.push(("theirs", against.status()));
+    }
     fields.push((
         "effects",
         if effects.is_empty() {
