@@ -3532,7 +3532,9 @@ fn lesson_44_the_motor_holds_its_speed_with_the_loads_torque_and_books_its_work(
         1e-9,
         "½ I ω²",
     );
+}
 
+// ---------------------------------------------------------------------------------------------
 // Lesson 39: Newton's cradle (touching balls on rods, both impact laws)
 // ---------------------------------------------------------------------------------------------
 
