@@ -4,6 +4,7 @@
 mod class_pages;
 mod classroom;
 mod findings;
+mod forces;
 mod history;
 mod jobs;
 mod plot;

@@ -9,6 +9,7 @@ mod hostile;
 mod lesson_claims;
 mod lessons;
 mod live_numbers;
+mod shot_forces;
 mod study;
 mod study_cloth;
 mod study_contact;
