@@ -84,3 +84,25 @@ fn f_draws_the_arrows_with_a_scale_and_a_legend() {
     insta::assert_snapshot!("forces_spring_80x24", after);
     insta::assert_snapshot!("forces_spring_120x40", screen(&app, 120, 40));
 }
+
+#[test]
+fn the_period_timer_times_the_pendulum_from_the_horizontal_to_the_elliptic_integral() {
+    // Lesson 25: L = 1 m, g = 9.81, θ₀ = 90°: T = 4 √(L/g) K(sin 45°) = 4 × 0.3192754 ×
+    // 1.8540747 = 2.367842 s (the small-angle 2π√(L/g) = 2.006 s is 18 % short). Timed on the
+    // bob's x over 8 s (3 periods), dt = 1 ms.
+    use tumble::tui::period_timer::periods;
+    let mut app = app_of(
+        tumble::lessons::load(Path::new("25-the-pendulum")).unwrap_or_else(|e| panic!("{e}")),
+    );
+    let (mut t, mut x) = (vec![app.snapshot.time], vec![app.snapshot.position.x]);
+    for _ in 0..8000 {
+        app.world.step();
+        t.push(app.world.time());
+        x.push(app.world.states()[0].position.x);
+    }
+    let p = periods(&t, &x).unwrap();
+    assert_eq!(p.count, 2, "{p:?}");
+    let exact = 4.0 * (1.0f64 / 9.81).sqrt() * 1.854_074_677;
+    assert!((p.mean - exact).abs() < 1e-4, "{p:?} against {exact}");
+    assert!(p.spread < 1e-4, "{p:?}");
+}
