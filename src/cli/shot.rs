@@ -28,6 +28,9 @@ pub struct ScreenArgs {
     /// Leave out the body axes and the ω and L arrows (key `a`).
     #[arg(long)]
     pub no_arrows: bool,
+    /// Draw the force arrows (key `F`): gravity, contacts, joint reactions, springs.
+    #[arg(long)]
+    pub forces: bool,
     /// The energy graph in place of the drawing (key `g`).
     #[arg(long)]
     pub graph: bool,
@@ -86,6 +89,7 @@ impl ScreenArgs {
         }
         app.axis = self.view;
         app.arrows = !self.no_arrows;
+        app.forces = self.forces;
         if self.graph {
             app.view = View::Energy;
         }

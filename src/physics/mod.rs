@@ -32,6 +32,7 @@ pub mod effects;
 pub mod energy;
 pub mod energy_ledger;
 pub mod envelope;
+pub mod force_arrows;
 pub mod free_flow;
 pub mod free_top;
 pub mod integrators;

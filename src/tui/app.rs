@@ -207,6 +207,8 @@ pub struct App {
     pub study: Option<crate::study::background::Job>,
     /// Body axes and the ω and L arrows drawn (key `a`).
     pub arrows: bool,
+    /// The force arrows drawn (key `F`): gravity, contacts, joint reactions, springs.
+    pub forces: bool,
     /// The screen layout (key `L`).
     pub layout: super::layout::ScreenLayout,
     /// Key `x` asked for an SVG of the screen; the event loop writes it (it knows the size).
@@ -337,6 +339,7 @@ impl App {
             ns_per_step: None,
             study: None,
             arrows: true,
+            forces: false,
             layout: Default::default(),
             export_requested: false,
             write_dir: PathBuf::from("."),
@@ -671,6 +674,7 @@ impl App {
             Message::PickerOpen => self.open_selected(),
             Message::Close => self.overlay = Overlay::None,
             Message::ToggleArrows => self.arrows = !self.arrows,
+            Message::ToggleForces => self.forces = !self.forces,
             Message::NextLayout => self.layout = self.layout.next(),
             Message::ExportSvg => self.export_requested = true,
             Message::OpenPlot => {
@@ -930,7 +934,7 @@ impl App {
         let real_time = self.frames_per_second() * self.world.dt();
         let (axis, frame, trail, write_dir) =
             (self.axis, self.frame, self.trail, self.write_dir.clone());
-        let (arrows, layout) = (self.arrows, self.layout);
+        let (arrows, layout, forces) = (self.arrows, self.layout, self.forces);
         // The quantity graph's quantities are the old scene's: it does not carry over.
         let view = if self.view == View::Energy {
             View::Energy
@@ -943,7 +947,7 @@ impl App {
         self.trail = trail;
         self.view = view;
         self.write_dir = write_dir;
-        (self.arrows, self.layout) = (arrows, layout);
+        (self.arrows, self.layout, self.forces) = (arrows, layout, forces);
         let dt = self.world.dt();
         self.speed = (0..SPEEDS.len())
             .min_by(|&a, &b| {

@@ -37,6 +37,8 @@ pub enum Message {
     PickerOpen,
     Close,
     ToggleArrows,
+    /// `F`: the force arrows.
+    ToggleForces,
     NextLayout,
     ExportSvg,
     /// Esc: closes the innermost window (help, picker, form, prompt), else the graph or the
@@ -372,6 +374,13 @@ pub const KEYS: &[Binding] = &[
         "a arrows",
         "body axes and the ω and L arrows on / off",
         Message::ToggleArrows,
+    ),
+    bind(
+        &[Char('F')],
+        "F",
+        "",
+        "force arrows on / off: gravity g, contacts c, joint reactions j, springs s (one scale)",
+        Message::ToggleForces,
     ),
     bind(
         &[Char('L')],

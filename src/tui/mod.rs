@@ -46,6 +46,7 @@ pub mod lesson_pane;
 pub mod loop_strip;
 pub mod loop_view;
 pub mod panels;
+pub mod period_timer;
 pub mod picker;
 pub mod plot;
 pub mod plot_graph;

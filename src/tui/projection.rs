@@ -66,7 +66,12 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ..inner
     };
     let mapping = Mapping::fit(&app.region, app.axis, drawing.width, drawing.height);
-    let scene = scene_2d(app, mapping.scale);
+    let mut scene = scene_2d(app, mapping.scale);
+    let forces = if app.forces {
+        add_forces(app, &mapping, &mut scene)
+    } else {
+        None
+    };
     if app.ascii {
         draw_ascii(&scene, &mapping, drawing, buf);
     } else {
@@ -75,6 +80,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     legend(
         app,
         &mapping,
+        forces,
         Rect {
             y: inner.y + inner.height - 1,
             height: 1,
@@ -106,7 +112,13 @@ pub fn short_length(x: f64) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
+fn legend(
+    app: &App,
+    mapping: &Mapping,
+    forces: Option<(f64, usize)>,
+    area: Rect,
+    buf: &mut Buffer,
+) {
     let dim = theme::DIM;
     let item = |mark: &str, colour: Color, what: String| {
         vec![
@@ -115,6 +127,27 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
         ]
     };
     let mut items = Vec::new();
+    if let Some((newtons, cols)) = forces {
+        // First: the force scale and the arrows' letters in their colours.
+        let mut forces = vec![Span::styled(
+            format!(
+                "├{}┤ {} N ",
+                "─".repeat(cols.saturating_sub(2)),
+                short_length(newtons)
+            ),
+            dim,
+        )];
+        for (letter, colour) in [
+            ("g", theme::FORCE_GRAVITY),
+            ("c", theme::FORCE_CONTACT),
+            ("j", theme::FORCE_JOINT),
+            ("s", theme::FORCE_SPRING),
+        ] {
+            forces.push(Span::styled(letter, Style::new().fg(colour)));
+        }
+        forces.push(Span::styled(" forces ", dim));
+        items.push(forces);
+    }
     let body = app.world.bodies().get(app.selected);
     let arrows = app.arrows && arrows_fit(app, mapping.scale);
     if arrows {
@@ -183,6 +216,50 @@ fn legend(app: &App, mapping: &Mapping, area: Rect, buf: &mut Buffer) {
     if area.width > bar_width {
         buf.set_string(area.x + area.width - bar_width, area.y, bar, dim);
     }
+}
+
+/// The longest force arrow, columns.
+pub const FORCE_ARROW_COLUMNS: f64 = 8.0;
+
+/// Adds the force arrows (key `F`, [`crate::physics::force_arrows`]) to the drawing: one
+/// scale for all, the largest force [`FORCE_ARROW_COLUMNS`] long; a force under 2 % of the
+/// largest is left out. Returns the legend's scale bar: a round force (1, 2 or 5 × 10ⁿ N) and
+/// its width in columns (None: no force to draw).
+fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64, usize)> {
+    use crate::physics::force_arrows::{force_arrows, ForceKind};
+    let arrows = force_arrows(&app.snapshot, app.world.effects().gravity());
+    let largest = arrows.iter().map(|a| a.force.norm()).fold(0.0, f64::max);
+    if largest <= 0.0 || !largest.is_finite() {
+        return None;
+    }
+    // Metres of drawing per newton.
+    let per_newton = FORCE_ARROW_COLUMNS * mapping.scale / largest;
+    for a in arrows {
+        let f = a.force.norm();
+        if f < 0.02 * largest {
+            continue;
+        }
+        let colour = match a.kind {
+            ForceKind::Gravity => theme::FORCE_GRAVITY,
+            ForceKind::Contact => theme::FORCE_CONTACT,
+            ForceKind::Joint => theme::FORCE_JOINT,
+            ForceKind::Spring => theme::FORCE_SPRING,
+        };
+        arrow(
+            scene,
+            app.axis,
+            a.at,
+            a.force / f,
+            f * per_newton,
+            colour,
+            a.kind.letter(),
+            2,
+        );
+    }
+    // The bar: a round force near half the largest, in columns of its arrow length.
+    let (newtons, _) = scale_bar(largest / 2.0 / 6.0);
+    let cols = (newtons * per_newton / mapping.scale).round().max(2.0) as usize;
+    Some((newtons, cols))
 }
 
 /// A screen segment: ends, colour, its ASCII character (None: chosen by slope), dashed.

@@ -37,6 +37,11 @@ pub const PINNED: Color = Color::LightRed;
 pub const JOINT: Color = Color::Gray;
 /// Springs, drawn as a zigzag between their ends.
 pub const SPRING: Color = Color::LightMagenta;
+/// The force arrows (key `F`): gravity, contacts, joint reactions, springs.
+pub const FORCE_GRAVITY: Color = Color::LightYellow;
+pub const FORCE_CONTACT: Color = Color::LightRed;
+pub const FORCE_JOINT: Color = Color::LightBlue;
+pub const FORCE_SPRING: Color = Color::LightMagenta;
 
 /// Row labels of the numeric panels.
 pub const LABEL: Style = Style::new().fg(Color::Cyan);

@@ -5,6 +5,7 @@ mod against;
 mod class_pages;
 mod classroom;
 mod findings;
+mod forces;
 mod fuzz;
 mod history;
 mod jobs;
