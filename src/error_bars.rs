@@ -215,3 +215,81 @@ pub fn values(s: &Snapshot) -> Vec<(String, String, Vec<f64>)> {
     out.push(row("energy", "drift/E₀", vec![b.relative_drift]));
     out
 }
+
+/// The app's `±` (key `u`): a reference that follows the shown world frame by frame, with the
+/// errors of the selected body's numbers and the measured cost of both runs.
+#[derive(Debug, Clone)]
+pub struct Follow {
+    reference: ReferenceRun,
+    /// Shown steps the reference has covered.
+    steps: u64,
+    dt: f64,
+    /// The errors at `steps` (None while catching up).
+    pub errors: Option<Vec<RowError>>,
+    /// Wall time of the reference per shown step (both runs), ns, measured.
+    pub reference_ns: Option<f64>,
+}
+
+/// Shown steps the app's reference catches up per refresh at most (a jump far ahead is
+/// followed over several frames, the app answering keys meanwhile).
+pub const CATCH_UP: u64 = 2000;
+
+impl Follow {
+    pub fn new(scene: &Scene, world: &World) -> Follow {
+        let mut scene = scene.clone();
+        scene.contact = world.contact_model().copied();
+        Follow {
+            reference: ReferenceRun::new(&scene, world.dt()),
+            steps: 0,
+            dt: world.dt(),
+            errors: None,
+            reference_ns: None,
+        }
+    }
+
+    /// Brings the reference to the shown world's step (restarting it after a rewind or a new
+    /// dt), then measures the selected body's errors; mid-frame the last errors stay.
+    pub fn follow(&mut self, scene: &Scene, world: &World, selected: usize) {
+        let whole = matches!(
+            world.last_phase(),
+            None | Some(crate::physics::Phase::Collide)
+        );
+        if !whole {
+            return;
+        }
+        let target = world.step_count();
+        if target < self.steps || (world.dt() - self.dt).abs() > 0.0 {
+            *self = Follow::new(scene, world);
+        }
+        let todo = (target - self.steps).min(CATCH_UP);
+        if todo > 0 {
+            let started = std::time::Instant::now();
+            for _ in 0..todo {
+                self.reference.advance();
+            }
+            self.steps += todo;
+            self.reference_ns = Some(started.elapsed().as_nanos() as f64 / todo as f64);
+        }
+        self.errors = (self.steps == target).then(|| self.reference.errors(world, selected));
+    }
+
+    /// One line: the reference and what both runs cost.
+    pub fn describe(&self, world: &World, shown_ns: Option<f64>) -> String {
+        let cost = |ns: Option<f64>| ns.map_or("—".to_string(), |n| format!("{n:.0} ns"));
+        format!(
+            "± vs {} at dt = {} s (and {} s), {} steps per shown step · cost per shown step: \
+             shown {} ({}), reference {}",
+            INTEGRATOR.name(),
+            number_plain(self.dt / SUBSTEPS as f64),
+            number_plain(self.dt / (2 * SUBSTEPS) as f64),
+            3 * SUBSTEPS,
+            cost(shown_ns),
+            world.integrator().name(),
+            if self.errors.is_none() {
+                "catching up…".to_string()
+            } else {
+                cost(self.reference_ns)
+            }
+        )
+    }
+}

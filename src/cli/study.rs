@@ -113,8 +113,8 @@ pub fn study(args: &StudyArgs) -> Result<(), Failure> {
     let elapsed = started.elapsed().as_secs_f64();
     let text = match args.format {
         Format::Table => format!(
-            "{}study: {} runs in {elapsed:.1} s (ns/step: median of {} timed runs after a warm-up, \
-             each the median of its 1000-step chunks)\n",
+            "{}study: {} runs in {elapsed:.1} s (ns/step: the minimum of up to {} timed runs after \
+             a warm-up, each the median of its 1000-step chunks)\n",
             report::table(&studies),
             studies
                 .iter()

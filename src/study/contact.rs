@@ -14,7 +14,7 @@
 //! penetration    = deepest depth a step reaches before the response, m
 //! impact_energy  = energy added by collide phases, J
 //! contact_error  = as the body rows' (end pose + ‖RᵀR − 𝟙‖ + penetration/radius + gain/(M g radius))
-//! cost           = ns per step of plain World::step (median of 1000-step chunks)
+//! cost           = ns per step of plain World::step (minimum over runs of the median 1000-step chunk)
 //! ```
 //!
 //! `*` marks the solvers no other solver beats on both cost and contact error.

@@ -344,9 +344,9 @@ fn study_cloth_case(
 /// `progress(done, total)` counts runs over all cases, called on the caller's thread.
 ///
 /// Each run is still timed alone on its thread: a case's rows compare integrators measured
-/// under the same conditions, and its ns/step is the median of its 1000-step chunks
-/// ([`measure`]), which a neighbour on the other core does not shift the way a shared
-/// time slice would.
+/// under the same conditions, and its ns/step is the minimum over its timed runs of each
+/// one's median 1000-step chunk ([`measure`]), which a neighbour on the other core does not
+/// shift the way a shared time slice would.
 pub fn study(
     cases: &[Case],
     config: &Config,

@@ -203,6 +203,8 @@ pub struct App {
     pub show_timing: bool,
     /// Measured physics cost, ns per frame (all four phases), when running.
     pub ns_per_step: Option<f64>,
+    /// The measured error under each number (key `u`): a reference run that follows the world.
+    pub error_bars: Option<crate::error_bars::Follow>,
     /// The study of this scene, once asked for (key `s`); it runs on its own thread.
     pub study: Option<crate::study::background::Job>,
     /// Body axes and the ω and L arrows drawn (key `a`).
@@ -338,6 +340,7 @@ impl App {
             show_timing: options.show_timing,
             ns_per_step: None,
             study: None,
+            error_bars: None,
             arrows: true,
             forces: false,
             layout: Default::default(),
@@ -616,6 +619,16 @@ impl App {
             Message::NextAxis => self.axis = self.axis.next(),
             Message::ToggleFrame => self.frame = self.frame.toggle(),
             Message::ToggleTrail => self.trail = !self.trail,
+            Message::ToggleErrors => {
+                self.error_bars = match self.error_bars {
+                    Some(_) => None,
+                    None => Some(crate::error_bars::Follow::new(
+                        &self.lesson.scene,
+                        &self.world,
+                    )),
+                };
+                self.refresh();
+            }
             Message::ToggleEnergy => {
                 self.view = match self.view {
                     View::Energy => View::Loop,
@@ -1083,6 +1096,9 @@ impl App {
             self.live_settings = settings;
         }
         self.snapshot = self.world.snapshot_of(self.selected);
+        if let Some(bars) = &mut self.error_bars {
+            bars.follow(&self.lesson.scene, &self.world, self.selected);
+        }
         let mut shown = shown_points(&self.world);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot_of(self.selected);

@@ -23,6 +23,8 @@ pub enum Message {
     ToggleFrame,
     ToggleTrail,
     ToggleEnergy,
+    /// `u`: the measured error (±) under each number of the panels.
+    ToggleErrors,
     ToggleStudy,
     OpenPicker,
     ScrollUp,
@@ -353,6 +355,13 @@ pub const KEYS: &[Binding] = &[
         "g graph",
         "energy graph: kinetic, potential, total, drift",
         Message::ToggleEnergy,
+    ),
+    bind(
+        &[Char('u')],
+        "u",
+        "",
+        "± under each number: its error against a reference run (rk4 at dt/10), and its cost",
+        Message::ToggleErrors,
     ),
     bind(
         &[Char('s')],

@@ -255,12 +255,27 @@ impl Stacked {
 /// springs, the body's other panels, each body's energy (several bodies) and the system panel
 /// (with no body: one line saying so, the cloth panels, the scene's energy).
 fn views(app: &App) -> Vec<Stacked> {
-    let panels = tables::panels(&app.snapshot, app.frame);
-    let previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
-    let compare = app
+    let mut panels = tables::panels(&app.snapshot, app.frame);
+    let mut previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
+    let mut compare = app
         .ghost
         .as_ref()
         .map(|g| (tables::panels(&g.snapshot, app.frame), g.comparison.name()));
+    // Key `u`: the ± rows (world frame only: the errors are of the world-frame numbers), in
+    // every copy of the panels so that rows still line up for the highlight and the ghost.
+    let bars = app
+        .error_bars
+        .as_ref()
+        .filter(|_| app.frame == Frame::World);
+    if let Some(errors) = bars.and_then(|b| b.errors.as_ref()) {
+        crate::error_bars::annotate(&mut panels, errors);
+        if let Some(p) = &mut previous {
+            crate::error_bars::annotate(p, errors);
+        }
+        if let Some((p, _)) = &mut compare {
+            crate::error_bars::annotate(p, errors);
+        }
+    }
     let no_body = app.snapshot.bodies.is_empty();
     let shown: Vec<usize> = if no_body {
         vec![PanelId::Energy.index()]
@@ -273,6 +288,18 @@ fn views(app: &App) -> Vec<Stacked> {
             None,
             vec![Line::styled(NO_BODY.to_string(), UNIT)],
             NO_BODY.to_string(),
+        ));
+    }
+    if let Some(bars) = &app.error_bars {
+        let line = if app.frame == Frame::World {
+            bars.describe(&app.world, app.ns_per_step)
+        } else {
+            "± shown in the world frame only (f)".to_string()
+        };
+        views.push(Stacked::whole(
+            None,
+            vec![Line::styled(line.clone(), UNIT)],
+            line,
         ));
     }
     let energy_at = PanelId::Energy.index();

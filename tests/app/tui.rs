@@ -866,3 +866,27 @@ fn stepping_back_restores_every_body_after_a_collision() {
         "one frame back is exact for every body"
     );
 }
+
+#[test]
+fn key_u_puts_the_measured_error_under_each_number_and_off_again() {
+    let mut app = app("tui-spring.toml");
+    keys(&mut app, "u>>>>>");
+    let errors = app
+        .error_bars
+        .as_ref()
+        .and_then(|b| b.errors.as_ref())
+        .expect("errors measured after whole frames");
+    let x = errors
+        .iter()
+        .find(|e| e.panel == "state" && e.label == "x")
+        .unwrap();
+    assert!(x.converged, "{x:?}");
+    // rk4 at 1 ms on a spring, 5 steps: its error is tiny but not zero.
+    assert!(x.errors[1] > 0.0 && x.errors[1] < 1e-9, "{x:?}");
+    let shown = screen(&app, 160, 60);
+    assert!(shown.contains("± vs rk4 at dt = 1.0000e-4 s"), "{shown}");
+    assert!(shown.contains("│ ±  "), "{shown}");
+    press(&mut app, KeyCode::Char('u'));
+    assert!(app.error_bars.is_none());
+    assert!(!screen(&app, 160, 60).contains("± vs rk4"));
+}
