@@ -1016,7 +1016,7 @@ fn sliders_without_an_axis_or_anchor_or_with_keys_of_other_joints() {
             (
                 "type = \"slider\"\nbodies = [\"arm\", \"arm\"]\nanchor = [0, 0, 0]\n\
                  axis = [1, 0, 0]",
-                ":13:19:",
+                ":13:18:",
                 &["a joint's two bodies must differ, found `arm` twice"],
             ),
         ],
