@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod contact_scenes;
 pub mod diff;
+pub mod error_bars;
 pub mod lessons;
 pub mod limits;
 pub mod live;

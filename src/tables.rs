@@ -573,9 +573,9 @@ fn drive_rows(j: &JointView) -> Vec<Row> {
         (1.0_f64.to_degrees(), "°", "rad/s", "τ", "N·m")
     };
     let (name, dot) = if slider {
-        ("travel", "ṡ")
+        ("travel", "ds/dt")
     } else {
-        ("angle", "θ̇")
+        ("angle", "dθ/dt")
     };
     let mut rows = vec![
         scalar_row(name, q * scale, unit),

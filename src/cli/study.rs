@@ -2,9 +2,10 @@
 //!
 //! Without files, the built-in scenes ([`crate::study::scenes`]). A FILE (or a bundled lesson's
 //! name) runs for its own `duration` ([`crate::study::DEFAULT_DURATION`] without one); its
-//! reference is exact when it has no obstacles and no drag (a torque-free or
-//! gravity-only case), otherwise `rk4` at a tenth of the smallest swept step — the output says
-//! which. A FILE with `[[cloth]]` is a cloth case ([`crate::study::cloth`]): the particle
+//! reference is exact for one free body (no joint, spring, obstacle or drag); with joints,
+//! springs, drag or several bodies it is the same model stepped by `rk4` at a tenth of the
+//! smallest swept step, checked by halving it ([`crate::study::reference`]); with contact
+//! `rk4` at a tenth of the smallest swept step — the output says which. A FILE with `[[cloth]]` is a cloth case ([`crate::study::cloth`]): the particle
 //! integrators over a ladder of dt around the sheets' explicit limit, against a converged
 //! `symplectic-euler` reference.
 

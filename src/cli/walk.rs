@@ -30,6 +30,13 @@ pub struct WalkArgs {
     /// With several bodies, print only this body's tables (default: every body's, in turn).
     #[arg(long)]
     pub body: Option<String>,
+    /// Under each number of the state, angular velocity, momentum and energy tables, its
+    /// measured error (a `±` row): the difference from a converged reference run of the same
+    /// scene (rk4 at a tenth of the step, checked by halving it; the header names it and its
+    /// cost in steps). Where no reference converges (an impact, a stick–slip switch) the row
+    /// says so. With --phases, the errors are printed after each whole frame.
+    #[arg(long)]
+    pub error: bool,
     #[command(flatten)]
     pub overrides: Overrides,
 }
@@ -58,11 +65,12 @@ pub fn walk(args: &WalkArgs) -> Result<(), Failure> {
     };
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
-    let result = write_walk_bodies(
+    let result = write_walk_with(
         &lesson,
         args.frames,
         args.phases,
         bodies.as_deref(),
+        args.error,
         &mut out,
     );
     let flushed = out.flush();
@@ -95,13 +103,38 @@ pub fn write_walk_bodies(
     bodies: Option<&[usize]>,
     out: &mut impl Write,
 ) -> Result<(), WalkError> {
+    write_walk_with(lesson, frames, phases, bodies, false, out)
+}
+
+/// [`write_walk_bodies`], with the `±` rows of [`crate::error_bars`] when `error`.
+pub fn write_walk_with(
+    lesson: &Lesson,
+    frames: u64,
+    phases: bool,
+    bodies: Option<&[usize]>,
+    error: bool,
+    out: &mut impl Write,
+) -> Result<(), WalkError> {
     let mut world = lesson.scene.world();
+    let mut reference =
+        error.then(|| crate::error_bars::ReferenceRun::new(&lesson.scene, world.dt()));
     let live = crate::live::LiveValues::compute(lesson, world.clone());
     let every: Vec<usize> = (0..world.body_count()).collect();
     let bodies = bodies.unwrap_or(&every);
     write_header(lesson, &world, out)?;
+    if let Some(reference) = &reference {
+        writeln!(out, "{}", reference.describe(&world))?;
+    }
     let mut shown_page = None;
-    write_block(lesson, &live, &world, bodies, &mut shown_page, out)?;
+    write_block(
+        lesson,
+        &live,
+        &world,
+        bodies,
+        reference.as_ref(),
+        &mut shown_page,
+        out,
+    )?;
     // One block per frame, or one per phase of every frame.
     let blocks_per_frame = if phases { 4 } else { 1 };
     for _ in 0..frames {
@@ -111,7 +144,16 @@ pub fn write_walk_bodies(
             } else {
                 world.step();
             }
-            write_block(lesson, &live, &world, bodies, &mut shown_page, out)?;
+            // The reference keeps pace by whole frames: the errors are printed after each.
+            let whole = matches!(
+                world.last_phase(),
+                None | Some(crate::physics::Phase::Collide)
+            );
+            if let (Some(reference), true) = (&mut reference, whole) {
+                reference.advance();
+            }
+            let errors = reference.as_ref().filter(|_| whole);
+            write_block(lesson, &live, &world, bodies, errors, &mut shown_page, out)?;
         }
         if let Some(divergence) = world.divergence() {
             writeln!(out)?;
@@ -200,6 +242,7 @@ fn write_block(
     live: &crate::live::LiveValues,
     world: &World,
     bodies: &[usize],
+    reference: Option<&crate::error_bars::ReferenceRun>,
     shown_page: &mut Option<usize>,
     out: &mut impl Write,
 ) -> std::io::Result<()> {
@@ -277,6 +320,11 @@ fn write_block(
             // share would swamp the others in the total.
             let at = scene_panels.len().min(1);
             scene_panels.insert(at, crate::tables::body_energy_panel(&snapshot));
+        }
+        if let Some(reference) = reference {
+            let errors = reference.errors(world, index);
+            crate::error_bars::annotate(&mut all, &errors);
+            crate::error_bars::annotate(&mut scene_panels, &errors);
         }
         if !obstacles.is_empty() || several {
             all.push(contact_panel(&snapshot, obstacles));

@@ -182,7 +182,8 @@ pub struct Comparison {
     pub apart: Vec<Vec<f64>>,
 }
 
-/// |theirs − ours| per column of one row, with a quaternion's sign brought nearest ours.
+/// |theirs − ours| per column of one row, with a quaternion's sign brought nearest ours (∞
+/// when one of the two is not finite, 0 when neither is).
 pub fn row_differences(columns: &[Column], values: &[f64], ours: &Sample) -> Vec<f64> {
     // q and −q: one rotation.
     let dot: f64 = (columns.iter().zip(values))
@@ -201,10 +202,12 @@ pub fn row_differences(columns: &[Column], values: &[f64], ours: &Sample) -> Vec
             } else {
                 v
             };
-            if !theirs.is_finite() {
-                f64::INFINITY
-            } else {
-                (theirs - ours.value(c)).abs()
+            let mine = ours.value(c);
+            match (theirs.is_finite(), mine.is_finite()) {
+                (true, true) => (theirs - mine).abs(),
+                // Both blew up (a planted run that overflows as theirs does).
+                (false, false) => 0.0,
+                _ => f64::INFINITY,
             }
         })
         .collect()

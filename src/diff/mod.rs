@@ -13,10 +13,10 @@ pub mod compare;
 pub mod mistakes;
 pub mod theirs;
 
-use crate::physics::World;
+use crate::physics::{Integrator, World};
 use crate::scene::Scene;
 use compare::{compare, loop_phase, row_differences, run_ours, written_by, Ours, Sample, Scales};
-use mistakes::{Mistake, Plant, Planted};
+use mistakes::{Knobs, Mistake, Plant, Planted};
 use std::fmt::Write as _;
 use theirs::{Column, Theirs};
 
@@ -102,10 +102,7 @@ fn matched(c: Column) -> bool {
 /// the time step by the factors their numbers suggest and the usual ones.
 fn candidates(subject: &Subject, world: &World, theirs: &Theirs, ours: &Ours) -> Vec<Mistake> {
     let integrator = world.integrator();
-    let plantable = mistakes::plantable(integrator)
-        && world.body_count() == 1
-        && subject.scene.links.is_empty()
-        && subject.scene.cloths.is_empty();
+    let plantable = plantable_scene(subject, world);
     let mut factors: Vec<f64> = Vec::new();
     let dt = world.dt();
     // Their t at their last row, if it says another dt.
@@ -142,6 +139,15 @@ fn candidates(subject: &Subject, world: &World, theirs: &Theirs, ours: &Ours) ->
     mistakes::known(integrator, plantable, &kept, dt)
 }
 
+/// Whether the variant loop can run this scene: one body, no joints, springs or cloths, and
+/// one of the report's explicit integrators.
+fn plantable_scene(subject: &Subject, world: &World) -> bool {
+    mistakes::plantable(world.integrator())
+        && world.body_count() == 1
+        && subject.scene.links.is_empty()
+        && subject.scene.cloths.is_empty()
+}
+
 /// Whether the mistake, planted alone, gives their numbers on every row (the matched columns,
 /// to the tolerance).
 fn reproduces(
@@ -152,15 +158,32 @@ fn reproduces(
     tolerance: f64,
     mistake: &Mistake,
 ) -> bool {
+    // On the quantity's scale, or on the number itself where the planted run has grown past
+    // it (a mistake that blows up grows far beyond tumble's scales).
     let agrees = |values: &[f64], sample: &Sample| {
         let abs = row_differences(&theirs.columns, values, sample);
         (theirs.columns.iter().zip(abs)).all(|(&c, a)| {
-            !matched(c) || a / c.quantity().map_or(1.0, |q| scales.of(q)) <= tolerance
+            let scale = c.quantity().map_or(1.0, |q| scales.of(q));
+            !matched(c) || a / scale.max(sample.value(c).abs()) <= tolerance
         })
     };
+    // A planted run whose numbers overflow at step s reproduces a run of theirs that does so
+    // too: every row before s agrees, and theirs is not finite at one of its next two rows.
+    let blows_up_too = |step: u64| {
+        (theirs.rows.iter())
+            .filter(|r| r.step >= step)
+            .take(2)
+            .any(|r| r.values.iter().any(|v| !v.is_finite()))
+    };
     let dt = world.dt();
-    match mistake.plant {
-        Plant::Knobs(knobs) => {
+    let plantable = plantable_scene(subject, world);
+    let (knobs, dt) = match mistake.plant {
+        Plant::Knobs(knobs) => (Some(knobs), dt),
+        Plant::TimeStep(factor) if plantable => (Some(Knobs::default()), factor * dt),
+        Plant::TimeStep(factor) => (None, factor * dt),
+    };
+    match knobs {
+        Some(knobs) => {
             let mut planted = Planted::new(
                 world.body(),
                 world.effects(),
@@ -177,7 +200,7 @@ fn reproduces(
                     planted.step();
                     step += 1;
                     if !planted.is_finite() {
-                        return false;
+                        return blows_up_too(step);
                     }
                 }
                 if !agrees(&row.values, &planted.sample(step as f64 * dt)) {
@@ -186,8 +209,10 @@ fn reproduces(
             }
             true
         }
-        Plant::TimeStep(factor) => {
-            let mut world = subject.scene.world_with(world.integrator(), factor * dt);
+        None => {
+            // Another integrator: the scene itself at the other dt (its guard stops a run that
+            // blows up before its numbers overflow, so such a run is not matched).
+            let mut world = subject.scene.world_with(world.integrator(), dt);
             let mut step = 0;
             for row in &theirs.rows {
                 while step < row.step {
@@ -206,9 +231,15 @@ fn reproduces(
     }
 }
 
-/// A number in full (shortest round-trip) precision, as `run` prints it.
+/// A number in full (shortest round-trip) precision; very small or large ones in scientific
+/// notation (`2.675688237956691e-6`), so that the digits stay readable.
 fn full(v: f64) -> String {
-    v.to_string()
+    let a = v.abs();
+    if a != 0.0 && a.is_finite() && !(1e-4..1e15).contains(&a) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
 }
 
 /// A difference in three digits.
@@ -283,6 +314,36 @@ fn report(
     }
     let _ = writeln!(out);
     // Per quantity: its first parting row.
+    if outcome.first_row.is_some() {
+        write_per_quantity(&mut out, theirs, outcome, integrator);
+        let _ = writeln!(out);
+    }
+    write_table(&mut out, theirs, comparison);
+    if outcome.first_row.is_none() {
+        return out;
+    }
+    let _ = writeln!(out);
+    write_cause(
+        &mut out,
+        subject,
+        theirs,
+        tolerance,
+        outcome,
+        state_parts,
+        integrator,
+    );
+    out
+}
+
+/// The per-quantity lines: where each quantity first parts, theirs, ours, the phase.
+fn write_per_quantity(
+    out: &mut String,
+    theirs: &Theirs,
+    outcome: &Outcome,
+    integrator: Integrator,
+) {
+    let comparison = &outcome.comparison;
+    let row_at = |r: usize| &theirs.rows[r];
     let _ = writeln!(out, "first parting, per quantity:");
     let per = comparison.per_quantity();
     let _ = writeln!(
@@ -330,17 +391,20 @@ fn report(
             }
         }
     }
-    let _ = writeln!(out);
+}
+
+/// The table of how far apart each column is over the run.
+fn write_table(out: &mut String, theirs: &Theirs, comparison: &compare::Comparison) {
     let _ = writeln!(out, "how far apart, per column, over the run:");
     let _ = writeln!(
         out,
-        "  {:<7} {:>20} {:>14}  first parting step",
+        "  {:<11} {:>20} {:>14}  first parting step",
         "column", "max |theirs − ours|", "max relative"
     );
     for c in &comparison.columns {
         let _ = writeln!(
             out,
-            "  {:<7} {:>20} {:>14}  {}",
+            "  {:<11} {:>20} {:>14}  {}",
             c.column.name(),
             brief(c.max_abs),
             brief(c.max_rel),
@@ -348,17 +412,25 @@ fn report(
                 .map_or("—".to_string(), |r| theirs.rows[r].step.to_string())
         );
     }
-    if outcome.first_row.is_none() {
-        return out;
-    }
-    let _ = writeln!(out);
+}
+
+/// The cause: the known mistakes that reproduce theirs, or unknown.
+fn write_cause(
+    out: &mut String,
+    subject: &Subject,
+    theirs: &Theirs,
+    tolerance: f64,
+    outcome: &Outcome,
+    state_parts: bool,
+    integrator: Integrator,
+) {
     if !state_parts {
         let _ = writeln!(
             out,
             "cause: not searched: only t, the energy or the penetration part, while the state \
              and its velocities agree (check how your loop measures them)"
         );
-        return out;
+        return;
     }
     if outcome.causes.is_empty() {
         let _ = writeln!(
@@ -380,21 +452,24 @@ fn report(
             subject.scene_name,
             outcome.first_row.map_or(0, |r| theirs.rows[r].step)
         );
-        return out;
+        return;
     }
-    for (i, m) in outcome.causes.iter().enumerate() {
-        let _ = writeln!(
-            out,
-            "{} {} reproduces your numbers (every row, to {}).",
-            if i == 0 { "cause:" } else { "also: " },
-            m.what,
-            brief(tolerance).replace(".00e", "e")
-        );
+    let _ = writeln!(
+        out,
+        "cause: {} reproduces your numbers (every row, to {}):",
+        if outcome.causes.len() == 1 {
+            "a known mistake"
+        } else {
+            "each of these known mistakes"
+        },
+        brief(tolerance).replace(".00e", "e")
+    );
+    for m in &outcome.causes {
+        let _ = writeln!(out, "  {}", m.what);
         let _ = writeln!(out, "  phase:  {}", m.phase.name());
         let _ = writeln!(out, "  fix:    {}", m.fix);
         let _ = writeln!(out, "  lesson: tumble {}", m.lesson);
     }
-    out
 }
 
 #[cfg(test)]

@@ -173,6 +173,9 @@ impl Column {
     }
 }
 
+/// A vector column by its axis (`Column::X`, …).
+type Axis = fn(usize) -> Column;
+
 /// The report's member names: `_Position.x`, `_Position[0]`, `_Rotation[i][j]`, ….
 fn report_name(name: &str) -> Option<Column> {
     if let Some(rest) = name.strip_prefix("_Rotation") {
@@ -186,7 +189,7 @@ fn report_name(name: &str) -> Option<Column> {
             _ => None,
         };
     }
-    let members: [(&str, fn(usize) -> Column); 5] = [
+    let members: [(&str, Axis); 5] = [
         ("_Position", Column::X),
         ("_VitesseAngulaire", Column::W),
         ("_Vitesse", Column::V),
@@ -354,7 +357,7 @@ pub fn parse(text: &str, dt: f64) -> Result<Theirs, (usize, String)> {
         let mut values = Vec::with_capacity(columns.len());
         let mut step = None;
         let mut t = None;
-        for (k, (cell, column)) in cells.iter().zip(&all).enumerate() {
+        for (k, cell) in cells.iter().enumerate() {
             let value: f64 = cell.parse().map_err(|_| {
                 (
                     line,
@@ -385,7 +388,6 @@ pub fn parse(text: &str, dt: f64) -> Result<Theirs, (usize, String)> {
                 }
                 values.push(value);
             }
-            let _ = column;
         }
         let step = match (step, t) {
             (Some(step), _) => step,

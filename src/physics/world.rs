@@ -532,6 +532,34 @@ impl World {
             let end = self.drag_power();
             self.now.ledger.book_drag(&start, &end, self.dt);
         }
+        if self.links.driven() {
+            self.drive_joints();
+        }
+    }
+
+    /// The joints' limits and motors at the end of the step, with the joints held
+    /// (`joints::drive`: after the drag is booked, whose quadrature is over the step's own
+    /// flow); books the motors' work, the stops' energy with the contacts.
+    fn drive_joints(&mut self) {
+        let now = &mut self.now;
+        let scene = DriveScene {
+            links: &self.links,
+            bodies: &self.bodies,
+            effects: &self.effects,
+            restitution: self.contact.as_ref().map_or(0.0, |m| m.restitution),
+            dt: self.dt,
+        };
+        let done = drive(
+            &scene,
+            &mut now.states,
+            &self.step_start,
+            &mut now.joint_loads,
+            &mut now.joint_drives,
+            &mut self.drive_buffers,
+        );
+        now.ledger.motor_work += done.motor_work;
+        now.ledger.book_contact(0.0, done.stops);
+        now.ledger.joint_correction += done.joints;
     }
 
     /// One step of the whole coupled system, then the joints' correction; books the springs'
@@ -599,27 +627,6 @@ impl World {
             let after = total_energy(&self.bodies, &self.effects, &now.states).total
                 + self.links.potential(&now.states);
             now.ledger.joint_correction += after - before;
-        }
-        if driven {
-            // Limits and motors, with the joints held (`joints::drive`).
-            let scene = DriveScene {
-                links: &self.links,
-                bodies: &self.bodies,
-                effects: &self.effects,
-                restitution: self.contact.as_ref().map_or(0.0, |m| m.restitution),
-                dt: self.dt,
-            };
-            let done = drive(
-                &scene,
-                &mut now.states,
-                &self.step_start,
-                &mut now.joint_loads,
-                &mut now.joint_drives,
-                &mut self.drive_buffers,
-            );
-            now.ledger.motor_work += done.motor_work;
-            now.ledger.book_contact(0.0, done.stops);
-            now.ledger.joint_correction += done.joints;
         }
         let gravity: f64 = self
             .bodies

@@ -108,11 +108,12 @@ fn drawable(r: &super::measure::Row) -> bool {
 /// The title, in lines that fit a picture `width` px wide (about 8 px a character at 16 px).
 fn title_lines(width: u32) -> Vec<&'static str> {
     const FIRST: &str = "tumble study: error against cost, log–log";
-    const SECOND: &str = "(lower left is better; ringed = Pareto frontier; labels = dt in s)";
+    const SECOND: &str =
+        "(lower left is better; ringed = Pareto frontier; labels = dt in s; p = fitted order)";
     if (FIRST.chars().count() + SECOND.chars().count() + 1) * 8 + 32 <= width as usize {
-        vec!["tumble study: error against cost, log–log (lower left is better; ringed = Pareto frontier; labels = dt in s)"]
+        vec!["tumble study: error against cost, log–log (lower left is better; ringed = Pareto frontier; labels = dt in s; p = fitted order)", super::report::ERROR_MEASURE]
     } else {
-        vec![FIRST, SECOND]
+        vec![FIRST, SECOND, super::report::ERROR_MEASURE]
     }
 }
 
@@ -258,12 +259,29 @@ fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::erro
         study.name, study.duration, study.reference_kind
     );
     let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
-    let mut chart = cost_chart(area, &caption, PER_SECOND, "error, rad", points)?;
+    let mut chart = cost_chart(
+        area,
+        &caption,
+        PER_SECOND,
+        "error = max angle + |x − x_ref|/radius",
+        points,
+    )?;
+    // The floor band: errors inside it are round-off or the reference's own, not ranked.
+    let (x_range, y_range) = (
+        chart.plotting_area().get_x_range(),
+        chart.plotting_area().get_y_range(),
+    );
+    let band_top = study.floor.max(FLOOR).min(y_range.end);
+    if band_top > y_range.start {
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(x_range.start, y_range.start), (x_range.end, band_top)],
+            RGBColor(200, 200, 200).mix(0.35).filled(),
+        )))?;
+    }
     let mut integrators: Vec<Integrator> = ok.iter().map(|r| r.integrator).collect();
-    integrators.dedup();
     integrators.sort_by_key(|i| Integrator::ALL.iter().position(|a| a == i));
     integrators.dedup();
-    for integrator in integrators {
+    for (k, &integrator) in integrators.iter().enumerate() {
         let c = color(integrator);
         let mut points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
         points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
@@ -272,7 +290,9 @@ fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::erro
             .map(|r| (r.us_per_simulated_second, r.error.max(FLOOR)))
             .collect();
         chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
-        chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+        // Integrators whose points coincide stay apart: each has its own ring size.
+        let size = 3 + 2 * k as i32;
+        chart.draw_series(xy.iter().map(|&p| Circle::new(p, size, c.stroke_width(2))))?;
         chart.draw_series(points.iter().map(|r| {
             label!(
                 format_dt(r.dt),
@@ -280,14 +300,67 @@ fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::erro
                 &c,
             )
         }))?;
+        // The fitted order beside the integrator's finest run.
+        if let (Some(last), Some(order)) = (
+            xy.last(),
+            study.orders.iter().find(|o| o.integrator == integrator),
+        ) {
+            let text = match order.slope {
+                Some(p) => format!("{} p = {p:.2}", integrator.name()),
+                None if order.exact => format!("{} exact", integrator.name()),
+                None => format!("{} p: none", integrator.name()),
+            };
+            chart.draw_series(std::iter::once(
+                EmptyElement::at(*last)
+                    + Text::new(text, (9, 2), ("sans-serif", 11).into_font().color(&c)),
+            ))?;
+        }
     }
     chart.draw_series(ok.iter().filter(|r| r.frontier).map(|r| {
         Circle::new(
             (r.us_per_simulated_second, r.error.max(FLOOR)),
-            7,
+            7 + 2 * integrators.len() as i32,
             BLACK.stroke_width(1),
         )
     }))?;
+    // Diverged runs are listed on the chart; with none drawable, a note says why.
+    let diverged: Vec<String> = study
+        .rows
+        .iter()
+        .filter(|r| !r.ok())
+        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+        .collect();
+    let mut notes = Vec::new();
+    if ok.is_empty() {
+        notes.push(if diverged.is_empty() {
+            "no run to draw".to_string()
+        } else {
+            "every run diverged: nothing to draw".to_string()
+        });
+    }
+    if !diverged.is_empty() {
+        for chunk in diverged.chunks(4) {
+            let lead = if notes.len() <= usize::from(ok.is_empty()) {
+                "diverged: "
+            } else {
+                "  "
+            };
+            notes.push(format!("{lead}{}", chunk.join(", ")));
+        }
+    }
+    if study.floor > FLOOR {
+        notes.push(format!(
+            "grey band: below the floor {:.1e} (round-off or the reference's own error)",
+            study.floor
+        ));
+    }
+    for (i, note) in notes.iter().enumerate() {
+        area.draw(&Text::new(
+            note.clone(),
+            (80, 40 + 14 * i as i32),
+            ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0)),
+        ))?;
+    }
     Ok(())
 }
 

@@ -193,6 +193,8 @@ pub struct App {
     /// The largest useful scroll of the page as last drawn (its lines less the pane's height),
     /// set by the lesson pane when it renders, so PgDn stops at the page's end.
     pub lesson_scroll_max: std::cell::Cell<u16>,
+    /// How far the page's long formula and table lines are scrolled sideways (`{` `}`).
+    pub lesson_hscroll: u16,
     /// The lesson page shown (the scroll starts over when it changes).
     pub page: Option<usize>,
     pub ascii: bool,
@@ -313,6 +315,7 @@ impl App {
             stop: None,
             lesson_scroll: 0,
             lesson_scroll_max: std::cell::Cell::new(u16::MAX),
+            lesson_hscroll: 0,
             page: None,
             ascii: options.ascii,
             show_timing: options.show_timing,
@@ -627,6 +630,10 @@ impl App {
                     .lesson_scroll
                     .saturating_add(3)
                     .min(self.lesson_scroll_max.get())
+            }
+            Message::ScrollLeft => self.lesson_hscroll = self.lesson_hscroll.saturating_sub(8),
+            Message::ScrollRight => {
+                self.lesson_hscroll = self.lesson_hscroll.saturating_add(8).min(200)
             }
             Message::ToggleHelp => self.overlay = Overlay::Help,
             Message::Quit => self.quit = true,
@@ -1070,6 +1077,7 @@ impl App {
         if page != self.page {
             self.page = page;
             self.lesson_scroll = 0;
+            self.lesson_hscroll = 0;
         }
     }
 
@@ -1180,7 +1188,15 @@ impl App {
                     timeline::stop_at(&self.lesson, self.world.dt(), self.world.step_count());
                 if let Some(stop) = stop {
                     self.running = false;
-                    self.notice = Some(stop.notice.clone());
+                    // A prediction due at a page's own time: its comparison comes first.
+                    self.notice = Some(match self.prediction_reached() {
+                        Some(result) => format!(
+                            "{} · {}",
+                            result.trim_end_matches(": Enter continues"),
+                            stop.notice
+                        ),
+                        None => stop.notice.clone(),
+                    });
                     self.stop = Some(stop);
                     break;
                 }

@@ -27,6 +27,9 @@ pub enum Message {
     OpenPicker,
     ScrollUp,
     ScrollDown,
+    /// `{` `}`: the page's long formula and table lines, sideways.
+    ScrollLeft,
+    ScrollRight,
     ToggleHelp,
     Quit,
     PickerUp,
@@ -425,6 +428,20 @@ pub const KEYS: &[Binding] = &[
         "",
         "scroll the lesson page down",
         Message::ScrollDown,
+    ),
+    bind(
+        &[Char('{')],
+        "{",
+        "",
+        "scroll the page's cut formula and table lines left (marked …)",
+        Message::ScrollLeft,
+    ),
+    bind(
+        &[Char('}')],
+        "}",
+        "",
+        "scroll the page's cut formula and table lines right",
+        Message::ScrollRight,
     ),
     pick(
         &[Up, Char('k')],

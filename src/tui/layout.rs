@@ -5,9 +5,10 @@
 //!   [`PAGE_WIDTH`] + 2 wide the page sits under the drawing; otherwise it keeps the left column
 //!   and wraps without breaking formulas.
 //! - [`ScreenLayout::Stage`]: a large drawing with the essential numbers beside it (the loop
-//!   strip under them where there is room) or under it in a narrow terminal, and the lesson page
-//!   across the whole width below — wide enough for its authors' lines from 88 columns on. For a
-//!   class.
+//!   strip under them where there is room) or under it in a narrow terminal (left out when
+//!   the drawing would keep fewer than [`MIN_DRAWING_HEIGHT`] rows), and the lesson page across
+//!   the whole width below — wide enough for its authors' lines from 88 columns on, a third of
+//!   the height (two fifths below 30 rows). For a class.
 //!
 //! Panels never get cut: a panel wider or taller than its room is left out whole (and named).
 
@@ -16,6 +17,9 @@ use ratatui::layout::{Constraint, Layout, Rect};
 /// The width lesson pages are written for (`docs/lesson-format.md`: lines under about 86
 /// characters); pages wrap at this width or the pane's, whichever is narrower.
 pub const PAGE_WIDTH: u16 = 86;
+
+/// The lowest drawing over the essentials in the stage layout, rows (with its border).
+pub const MIN_DRAWING_HEIGHT: u16 = 8;
 
 /// The narrowest drawing beside the panels, columns.
 pub const MIN_DRAWING_WIDTH: u16 = 26;
@@ -97,11 +101,14 @@ pub fn areas(
             }
         }
         ScreenLayout::Stage => {
-            let lesson_height = if area.height >= 30 {
-                (page_lines + 2).clamp(4, (area.height / 3).max(4))
+            // A short terminal (80×24) gives the page two fifths of the height: the page is
+            // what a class reads.
+            let share = if area.height >= 30 {
+                area.height / 3
             } else {
-                0
+                area.height * 2 / 5
             };
+            let lesson_height = (page_lines + 2).clamp(4, share.max(4)).min(area.height);
             let [upper, lesson] =
                 Layout::vertical([Constraint::Min(0), Constraint::Length(lesson_height)])
                     .areas(area);
@@ -119,13 +126,22 @@ pub fn areas(
                     panels: Some(panels),
                     strip: (rest.height >= 4).then_some(rest),
                 }
-            } else {
+            } else if upper.height >= eh + MIN_DRAWING_HEIGHT {
                 let [drawing, panels] =
                     Layout::vertical([Constraint::Min(0), Constraint::Length(eh)]).areas(upper);
                 Areas {
                     drawing,
                     lesson,
                     panels: Some(panels),
+                    strip: None,
+                }
+            } else {
+                // No room for the essentials under the drawing: the drawing and the page (the
+                // numbers layout, L, shows every number).
+                Areas {
+                    drawing: upper,
+                    lesson,
+                    panels: None,
                     strip: None,
                 }
             }

@@ -35,6 +35,22 @@ fn page(app: &App) -> (String, String) {
                 text.push_str("\n\n");
                 text.push_str(&line);
             }
+            // A guess of another page due at this page's time (lesson 32 asks on page 1 for
+            // t = 0.643 s, page 3's time): its comparison shows here, where the run paused.
+            let dt = app.world.dt();
+            let here = crate::live::step_at(page.at, dt);
+            for (j, other) in lesson.pages.iter().enumerate() {
+                let due_here = other
+                    .predict
+                    .as_ref()
+                    .is_some_and(|p| crate::live::step_at(p.at, dt) == here);
+                if j != i && due_here && matches!(app.guesses[j], super::app::Guess::Given(_)) {
+                    if let Some(result) = app.prediction_result(j) {
+                        // First, where it is read before any scrolling.
+                        text = format!("Prediction (page {}): {result}.\n\n{text}", j + 1);
+                    }
+                }
+            }
             (
                 format!(" page {}/{}: {} ", i + 1, lesson.pages.len(), page.title),
                 text,
@@ -68,13 +84,17 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         .title_bottom(Line::styled(" PgUp/PgDn scroll ", theme::DIM).right_aligned())
         .title_style(Style::new().add_modifier(Modifier::BOLD));
     let inner = block.inner(area);
-    let lines: Vec<Line> = wrap(
+    let wrapped = wrap(
         &text,
         usize::from(inner.width.clamp(1, super::layout::PAGE_WIDTH)),
-    )
-    .into_iter()
-    .map(Line::from)
-    .collect();
+    );
+    let cut = wrapped
+        .iter()
+        .any(|l| l.chars().count() > usize::from(inner.width));
+    let lines: Vec<Line> = wrapped
+        .iter()
+        .map(|l| Line::from(fit(l, usize::from(inner.width), app.lesson_hscroll)))
+        .collect();
     let total = lines.len() as u16;
     let scroll = app.lesson_scroll.min(total.saturating_sub(inner.height));
     app.lesson_scroll_max
@@ -83,6 +103,9 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     // After i or c the page's numbers are another method's: the page says whose they are.
     if let Some(note) = app.page_settings_note() {
         block = block.title(Line::styled(note, theme::NOTICE).right_aligned());
+    }
+    if cut && inner.width >= 40 {
+        block = block.title_bottom(Line::styled(" { } sideways ", theme::NOTICE).centered());
     }
     if total > inner.height {
         block = block.title_bottom(
@@ -104,10 +127,34 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         .render(area, buf);
 }
 
+/// A page line in `width` columns, seen from column `offset` (the sideways scroll, `{` `}`):
+/// a line that does not fit is cut with `…` where text is hidden (left or right); a line that
+/// fits is shown whole, unscrolled.
+pub fn fit(line: &str, width: usize, offset: u16) -> String {
+    let chars: Vec<char> = line.chars().collect();
+    if chars.len() <= width || width < 2 {
+        return line.to_string();
+    }
+    let offset = usize::from(offset).min(chars.len() - width);
+    let mut shown: String = if offset > 0 {
+        std::iter::once('…')
+            .chain(chars[offset + 1..].iter().copied())
+            .collect()
+    } else {
+        chars.iter().collect()
+    };
+    let count = shown.chars().count();
+    if count > width {
+        shown = shown.chars().take(width - 1).chain(['…']).collect();
+    }
+    shown
+}
+
 /// Characters that make a space next to them part of a formula (`a = b`, `x + y`).
 const OPERATORS: &str = "=+−-×·/<>≤≥≈→⊗∝";
 
-/// Word-wraps `text` to `width` columns without breaking formulas where it can help it.
+/// Word-wraps `text` to `width` columns without breaking formulas: a line that starts with
+/// spaces (a formula, a table row) is kept whole (the pane cuts it with a marker, [`fit`]).
 ///
 /// A continuation line is indented like the text after the first gap of two or more spaces on
 /// its line (`  x  where the…` continues under `where`), or, for an indented line (a formula),
@@ -123,6 +170,12 @@ const OPERATORS: &str = "=+−-×·/<>≤≥≈→⊗∝";
 /// When a line is wider than `width`, the prose is reflowed first (`reflow`): the author's
 /// line breaks inside a paragraph would otherwise leave a short orphan after every wrapped line.
 pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    wrap_with(text, width, true)
+}
+
+/// As [`wrap`], and an indented line is wrapped too (with the hanging indents below) when
+/// `keep_indented` is false (the loop strip, whose lines are indented prose).
+pub fn wrap_with(text: &str, width: usize, keep_indented: bool) -> Vec<String> {
     let width = width.max(1);
     let reflowed;
     let text = if text.lines().all(|l| l.trim_end().chars().count() <= width) {
@@ -139,6 +192,12 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
             continue;
         }
         let lead = chars.iter().take_while(|c| **c == ' ').count();
+        if lead > 0 && keep_indented {
+            // A formula or a table row keeps its line: the pane cuts it with a marker and
+            // scrolls sideways ([`fit`]).
+            out.push(chars.iter().collect());
+            continue;
+        }
         let formula = lead > 0;
         let gap = (lead..chars.len().saturating_sub(2))
             .find(|&i| chars[i] == ' ' && chars[i + 1] == ' ' && i > lead)
@@ -257,10 +316,22 @@ mod tests {
     use super::wrap;
 
     #[test]
+    fn an_indented_line_is_never_rewrapped_in_a_page_and_is_cut_with_a_marker() {
+        let line = "  L = I ω = (0.0015 × 8, 0, 0.041 × 8) = (0.012, 0, 0.328) kg·m²/s,";
+        assert_eq!(wrap(line, 50), vec![line.to_string()]);
+        // 20 columns from the left: 19 characters and the marker; scrolled by 10, a marker
+        // each side; scrolled past the end, the line's last 19 characters.
+        assert_eq!(super::fit(line, 20, 0), "  L = I ω = (0.0015…");
+        assert_eq!(super::fit(line, 20, 10), "… (0.0015 × 8, 0, 0…");
+        assert_eq!(super::fit(line, 20, 200), "… 0, 0.328) kg·m²/s,");
+        assert_eq!(super::fit("  short", 20, 5), "  short");
+    }
+
+    #[test]
     fn continuation_lines_hang_under_the_text_after_a_double_space() {
         // The second line has room for 19 columns: "turned (a unit" would break inside the
         // brackets; the break outside them, after "turned", still fills a third of the line.
-        let lines = wrap("  q  how the body is turned (a unit quaternion)", 24);
+        let lines = super::wrap_with("  q  how the body is turned (a unit quaternion)", 24, false);
         assert_eq!(
             lines,
             vec![
@@ -277,7 +348,7 @@ mod tests {
         // brackets that keeps most on the first line, and continues 2 deeper than the line.
         let line = "  L = I ω = (0.0015 × 8, 0, 0.041 × 8) = (0.012, 0, 0.328) kg·m²/s,";
         assert_eq!(
-            wrap(line, 50),
+            super::wrap_with(line, 50, false),
             vec![
                 "  L = I ω = (0.0015 × 8, 0, 0.041 × 8)",
                 "    = (0.012, 0, 0.328) kg·m²/s,",

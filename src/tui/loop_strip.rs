@@ -59,7 +59,7 @@ pub fn fit(lines: Vec<Line<'static>>, width: u16) -> Vec<Line<'static>> {
         }
         let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
         out.extend(
-            super::lesson_pane::wrap(&text, usize::from(width))
+            super::lesson_pane::wrap_with(&text, usize::from(width), false)
                 .into_iter()
                 .map(Line::from),
         );

@@ -1,6 +1,7 @@
 //! The terminal app: screens, panels, history, the study view (one test binary, built with the tui feature).
 #![cfg(feature = "tui")]
 
+mod class_pages;
 mod classroom;
 mod findings;
 mod fuzz;

@@ -3382,3 +3382,154 @@ fn lesson_37_is_the_contact_scenes_domino_run() {
         assert!((ma.inertia_body - mb.inertia_body).norm() < 1e-18);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Lessons 42–44: a door that stops, a mass on a rail, a motor
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn lesson_42_the_stop_takes_one_plus_e_times_the_angular_momentum_about_the_hinge() {
+    // Slab a = 1 m (across the hinge), c = 0.05 m thick, m = 10 kg, turning at ω = 2 rad/s about
+    // its edge: I_h = m (a² + c²)/12 + m (a/2)² (Huygens–Steiner). About the fixed hinge the
+    // hinge's own force has no moment, so the stop's angular impulse is the change of
+    // I_h ω: from ω⁻ = 2 to ω⁺ = −e ω⁻, λ = (1 + e) I_h ω⁻; a stop at r from the axis takes
+    // J = λ/r, the hinge the rest of m Δv (Δv = (1 + e) ω a/2).
+    let lesson = lesson("42-a-door-that-stops.toml");
+    let (m, a, c, omega, e) = (10.0, 1.0, 0.05, 2.0, 0.5);
+    let inertia = m * (a * a + c * c) / 12.0 + m * (a / 2.0) * (a / 2.0);
+    assert_near(inertia, 3.335417, 5e-7, "I_h");
+    let closed = (1.0 + e) * inertia * omega;
+    assert_near(closed, 10.00625, 1e-12, "(1 + e) I_h ω");
+    let mut world = lesson.scene.world();
+    let dt = world.dt();
+    let mut blows = Vec::new();
+    for _ in 0..steps_for(2.0, dt) {
+        world.step();
+        let s = world.snapshot();
+        let limit = s.joints[0].drive.limit;
+        if limit != 0.0 {
+            blows.push((s.time, limit, s.angular_velocity.y));
+        }
+    }
+    assert_eq!(blows.len(), 1, "one blow, at the upper stop: {blows:?}");
+    let (t, torque, after) = blows[0];
+    // θ = ω t reaches π/2 during the step that ends at 0.786 s.
+    assert_near(t, 0.786, 1e-9, "the step of the blow");
+    // The upper stop pushes towards smaller θ: its torque on the door is −λ/dt.
+    let lambda = -torque * dt;
+    assert_near(lambda, closed, 1e-5 * closed, "the stop's angular impulse");
+    assert_near(lambda, 10.006246, 5e-7, "the page's 10.006246");
+    assert_near(after, -e * omega, 1e-5, "ω⁺ = −e ω⁻");
+    // The stop at the door's edge (r = 1 m) and the hinge share m Δv.
+    let momentum = m * (1.0 + e) * omega * a / 2.0;
+    assert_near(momentum, 15.0, 1e-12, "m Δv");
+    // Energy: (1 − e²) ½ I_h ω² taken, booked with the contacts.
+    let taken = (1.0 - e * e) * 0.5 * inertia * omega * omega;
+    assert_near(taken, 5.003125, 1e-6, "(1 − e²) ½ I_h ω²");
+    let balance = world.energy_balance();
+    assert_near(
+        balance.contacts.expect("a limit books with the contacts"),
+        -taken,
+        1e-5,
+        "the stop's energy in the ledger",
+    );
+    assert!(balance.drift.abs() < 1e-5, "drift {}", balance.drift);
+}
+
+#[test]
+fn lesson_43_the_cart_oscillates_with_the_two_springs_in_parallel() {
+    // m s̈ = −(k₁ + k₂) s: T = 2π √(m/(k₁ + k₂)), the crossings of x = 0 every T/2.
+    let lesson = lesson("43-a-mass-on-a-rail.toml");
+    let (m, k1, k2, x0): (f64, f64, f64, f64) = (1.0, 30.0, 10.0, 0.1);
+    let omega = ((k1 + k2) / m).sqrt();
+    let period = std::f64::consts::TAU / omega;
+    assert_near(period, 0.993459, 5e-7, "T");
+    assert_near(omega * x0, 0.632456, 5e-7, "|v| at x = 0");
+    let mut world = lesson.scene.world();
+    let mut samples = vec![(0.0, world.state().position.x)];
+    let mut worst_error: f64 = 0.0;
+    for _ in 0..steps_for(3.0, world.dt()) {
+        world.step();
+        samples.push((world.time(), world.state().position.x));
+        let s = world.snapshot();
+        worst_error = worst_error.max(s.joints[0].error);
+        assert!(
+            (s.joints[0].force - Vector3::new(0.0, 9.81, 0.0)).norm() < 1e-9,
+            "the rail holds the weight: {:?}",
+            s.joints[0].force
+        );
+    }
+    let crossings = sign_changes(&samples);
+    assert!(crossings.len() >= 5, "{crossings:?}");
+    assert_near(crossings[0], period / 4.0, 1e-6, "first pass through x = 0");
+    assert_near(
+        crossings[4] - crossings[0],
+        2.0 * period,
+        2e-6,
+        "two periods",
+    );
+    assert!(worst_error < 1e-12, "the rail's error {worst_error}");
+}
+
+#[test]
+fn lesson_44_the_motor_holds_its_speed_with_the_loads_torque_and_books_its_work() {
+    // I = ½ m r² = 0.5; spin-up at τ_max against τ = −k_a ω: ω(t) = (τ_max/k_a)(1 − e^(−k_a t/I))
+    // reaches ω_s at t = (I/k_a) ln(1/(1 − k_a ω_s/τ_max)); then τ = k_a ω_s, P = τ ω_s.
+    let lesson = lesson("44-a-motor.toml");
+    let (inertia, k_a, tau_max, speed): (f64, f64, f64, f64) = (0.5, 0.05, 2.0, 10.0);
+    let reach = inertia / k_a * (1.0 / (1.0 - k_a * speed / tau_max)).ln();
+    assert_near(reach, 2.876821, 5e-7, "the time to reach 10 rad/s");
+    let mut world = lesson.scene.world();
+    let dt = world.dt();
+    let mut reached = None;
+    let mut work_at_4 = 0.0;
+    for _ in 0..steps_for(6.0, dt) {
+        world.step();
+        let s = world.snapshot();
+        let j = &s.joints[0];
+        assert!(
+            j.drive.motor.abs() <= tau_max * (1.0 + 1e-12),
+            "never above max_torque: {}",
+            j.drive.motor
+        );
+        let omega = s.angular_velocity.y;
+        if reached.is_none() && omega > speed - 1e-9 {
+            reached = Some(s.time);
+        }
+        if s.time > 3.0 - 1e-9 {
+            // Steady: the drag of one step, at the mean of ω over it, is what the motor gives.
+            assert_near(omega, speed, 1e-9, "ω held");
+            let drag = k_a * (speed - 0.5 * k_a * speed * dt / inertia);
+            assert_near(j.drive.motor, drag, 1e-6, "τ_motor = τ_load");
+            assert_near(j.drive.motor, 0.5, 3e-5, "the page's 0.5 N·m");
+        }
+        if (s.time - 4.0).abs() < 1e-9 {
+            work_at_4 = world.energy_ledger().motor_work;
+        }
+    }
+    let reached = reached.expect("the wheel reaches its speed");
+    assert_near(
+        reached,
+        reach,
+        2.0 * dt,
+        "reached when the closed form says",
+    );
+    let ledger = world.energy_ledger();
+    let power = (ledger.motor_work - work_at_4) / 2.0;
+    assert_near(power, k_a * speed * speed, 1e-3, "P = τ ω = 5 W");
+    // E − E₀ = motor + drag work: the motor row is ∫ τ ω dt.
+    let balance = world.energy_balance();
+    assert_near(
+        balance.motor.expect("a motor row"),
+        balance.change - balance.drag_work.expect("drag"),
+        1e-9,
+        "motor = ΔE − drag work",
+    );
+    assert!(balance.drift.abs() < 1e-10, "drift {}", balance.drift);
+    assert_near(
+        balance.change,
+        0.5 * inertia * speed * speed,
+        1e-9,
+        "½ I ω²",
+    );
+}

@@ -17,3 +17,4 @@ mod study_contact;
 mod study_models;
 mod study_table;
 mod walk;
+mod walk_error;

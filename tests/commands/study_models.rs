@@ -437,3 +437,25 @@ rest_length = 0.5
         "{order}"
     );
 }
+
+#[test]
+fn the_chart_of_a_scene_where_every_run_diverges_says_so_and_lists_them() {
+    // Lesson 5 with the `seed` response: every integrator diverges at every dt.
+    let dir = std::env::temp_dir().join(format!("tumble-all-diverged-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("l5.svg");
+    let output = assert_cmd::Command::cargo_bin("tumble")
+        .unwrap()
+        .args(["study", "05-ground-collision", "--format", "json", "--svg"])
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let runs = json["scenes"][0]["runs"].as_array().unwrap();
+    assert!(runs.iter().all(|r| r["diverged"] == true), "{runs:?}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("every run diverged: nothing to draw"));
+    assert!(text.contains("diverged: euler-seed 1e-1"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -13,6 +13,7 @@ mod exact_splitting;
 mod geometry;
 mod hard_cases;
 mod impacts;
+mod joint_drives;
 mod joints;
 mod physics_core;
 mod properties;

@@ -33,9 +33,14 @@
 //! Energy, exactly: u⁺ = u⁻ + W Jᵀ λ changes the kinetic energy by
 //! ΔK = λᵀ J (u⁻ + u⁺)/2 = Σ_rows λ_i (J_i u⁻ + J_i u⁺)/2. The motor rows' terms are the
 //! motor's work (the ledger's `motor` row); a stop's term is λ (1 − e) J u⁻/2 ≤ 0 when it
-//! strikes (a stop never makes energy at e ≤ 1) and is booked with the contacts, with what the
-//! position pass changed; the joint rows' terms (≈ 0: J u⁻ = 0 after the projection) with the
-//! joints' correction.
+//! strikes and is booked with the contacts, with what the position pass changed; the joint
+//! rows' terms (≈ 0: J u⁻ = 0 after the projection) with the joints' correction.
+//!
+//! The energy clamp: a stop struck within the step put back on its limit by the position pass
+//! keeps the work the loads did past it (m g δh for a weight); when the stops' total
+//! (position change + their ΔK shares) would be a gain, their restitution is lowered to
+//! e'² = e² − 2 excess / Σ m_e r⁻² and the velocities solved again, so a stop never makes
+//! energy at e ≤ 1 (a bob on a hinge bouncing off a 60° stop at e = 1 gives back 1e-11 J).
 
 use super::contact::along;
 use super::projection::{joint_rows, shift};
@@ -92,6 +97,10 @@ pub struct Buffers {
     /// Per joint: its coordinate's rate at the step's start (the bounce test).
     start_rates: Vec<f64>,
     r: Vec<f64>,
+    /// The velocity pass: per row J u⁻, its restitution and its bounds.
+    before: Vec<f64>,
+    restitution: Vec<f64>,
+    bounds: Vec<(f64, f64)>,
     mu: Vec<f64>,
     sides: Vec<Side>,
     subset: Vec<Row>,
@@ -160,46 +169,53 @@ pub fn drive(
         };
         b.start_rates.push(rate);
     }
-    out.stops += positions(scene, states, b);
+    let moved = positions(scene, states, b);
+    out.stops += moved;
     // Velocities, at the last build's positions.
     build(scene, states, TOUCHING, true, b);
-    b.r.clear();
-    let mut bounds = Vec::with_capacity(b.rows.len());
+    b.before.clear();
+    b.restitution.clear();
     for (row, kind) in b.rows.iter().zip(&b.kinds) {
         let pb = row.b.map_or(Pose::WORLD, |j| b.poses[j]);
         let rate = row.rate(&b.poses[row.a], &pb);
-        match *kind {
-            Kind::Joint => {
-                b.r.push(rate);
-                bounds.push((f64::NEG_INFINITY, f64::INFINITY));
-            }
+        b.before.push(rate);
+        b.restitution.push(match *kind {
             Kind::Stop(sign) => {
                 let from_loads = rate - sign * b.start_rates[row.joint];
-                let e = if -rate > BOUNCE_STEPS * from_loads.abs() {
+                if -rate > BOUNCE_STEPS * from_loads.abs() {
                     scene.restitution
                 } else {
                     0.0
-                };
-                b.r.push(rate + e * rate.min(0.0));
-                bounds.push((0.0, f64::INFINITY));
+                }
             }
-            Kind::Motor(bound) => {
-                let speed = links.joints[row.joint].motor.map_or(0.0, |m| m.speed);
-                b.r.push(rate - speed);
-                bounds.push((-bound, bound));
+            _ => 0.0,
+        });
+    }
+    let mut shares = velocities(links, b);
+    // The energy clamp: a stop struck within the step was met before the step's end, and the
+    // position pass put the body back on it without taking the work the loads did past it
+    // (m g δh for a weight). If the stops would then give energy, their restitution is
+    // lowered so that they give none: a stop's share is −½ m_e r⁻² (1 − e²) (m_e its
+    // effective mass, r⁻ = J u⁻), and λ = m_e (1 + e)(−r⁻), so e'² = e² − 2 excess / Σ m_e r⁻²
+    // with Σ m_e r⁻² = Σ λ (−r⁻)/(1 + e) over the stops that bounce.
+    let excess = moved + shares.stops;
+    if excess > 0.0 {
+        let mut struck = 0.0;
+        for (i, kind) in b.kinds.iter().enumerate() {
+            if matches!(kind, Kind::Stop(_)) && b.restitution[i] > 0.0 && b.mu[i] > 0.0 {
+                struck += b.mu[i] * (-b.before[i]) / (1.0 + b.restitution[i]);
             }
         }
+        if struck > 0.0 {
+            for (i, kind) in b.kinds.iter().enumerate() {
+                if matches!(kind, Kind::Stop(_)) && b.restitution[i] > 0.0 {
+                    let e = b.restitution[i];
+                    b.restitution[i] = (e * e - 2.0 * excess / struck).max(0.0).sqrt();
+                }
+            }
+            shares = velocities(links, b);
+        }
     }
-    // The rates before the impulses, J u⁻ (r less the targets).
-    let before: Vec<f64> = b
-        .rows
-        .iter()
-        .map(|row| {
-            let pb = row.b.map_or(Pose::WORLD, |j| b.poses[j]);
-            row.rate(&b.poses[row.a], &pb)
-        })
-        .collect();
-    bounded(&bounds, VELOCITY_TOLERANCE, b);
     let dt = scene.dt;
     for (i, (row, &mu)) in b.rows.iter().zip(&b.mu).enumerate() {
         if mu == 0.0 {
@@ -213,18 +229,54 @@ pub fn drive(
         }
         loads[row.joint].force += row.lin_a * (mu / dt);
         loads[row.joint].torque += row.ang_a * (mu / dt);
-        // ΔK's share of this row: λ (J u⁻ + J u⁺)/2, J u⁺ = J u⁻ + J δ.
-        let share = mu * (before[i] + 0.5 * along(row, &b.delta));
+        match b.kinds[i] {
+            Kind::Joint => {}
+            Kind::Stop(sign) => drives[row.joint].limit += sign * mu / dt,
+            Kind::Motor(_) => drives[row.joint].motor += mu / dt,
+        }
+    }
+    out.stops += shares.stops;
+    out.motor_work += shares.motor_work;
+    out.joints += shares.joints;
+    out
+}
+
+/// The velocity pass's problem at the rows built (`b.before` = J u⁻, `b.restitution` per
+/// row): solves it for `b.mu` and returns each kind's share of ΔK, λ (J u⁻ + J u⁺)/2 with
+/// J u⁺ = J u⁻ + J δ (`stops`: the stops' rows only).
+fn velocities(links: &Links, b: &mut Buffers) -> Driven {
+    b.r.clear();
+    b.bounds.clear();
+    for (i, kind) in b.kinds.iter().enumerate() {
+        let rate = b.before[i];
+        let (r, bounds) = match *kind {
+            Kind::Joint => (rate, (f64::NEG_INFINITY, f64::INFINITY)),
+            Kind::Stop(_) => (
+                rate + b.restitution[i] * rate.min(0.0),
+                (0.0, f64::INFINITY),
+            ),
+            Kind::Motor(bound) => {
+                let joint = b.rows[i].joint;
+                let speed = links.joints[joint].motor.map_or(0.0, |m| m.speed);
+                (rate - speed, (-bound, bound))
+            }
+        };
+        b.r.push(r);
+        b.bounds.push(bounds);
+    }
+    let bounds = std::mem::take(&mut b.bounds);
+    bounded(&bounds, VELOCITY_TOLERANCE, b);
+    b.bounds = bounds;
+    let mut out = Driven::default();
+    for (i, (row, &mu)) in b.rows.iter().zip(&b.mu).enumerate() {
+        if mu == 0.0 {
+            continue;
+        }
+        let share = mu * (b.before[i] + 0.5 * along(row, &b.delta));
         match b.kinds[i] {
             Kind::Joint => out.joints += share,
-            Kind::Stop(sign) => {
-                out.stops += share;
-                drives[row.joint].limit += sign * mu / dt;
-            }
-            Kind::Motor(_) => {
-                out.motor_work += share;
-                drives[row.joint].motor += mu / dt;
-            }
+            Kind::Stop(_) => out.stops += share,
+            Kind::Motor(_) => out.motor_work += share,
         }
     }
     out
