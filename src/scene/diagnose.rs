@@ -124,6 +124,7 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                     entry,
                     key,
                     renamed: false,
+                    suggested: suggestion(&current.message),
                 });
             }
             (Some((span, key, value)), _) if !caused => {
@@ -134,6 +135,7 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                     entry: span,
                     key,
                     renamed: value.starts_with('"'),
+                    suggested: None,
                 });
             }
             (None, Some(entry)) if !caused => {
@@ -144,6 +146,7 @@ pub fn check(source: &str, path: &Path) -> Vec<LoadError> {
                     entry,
                     key,
                     renamed: false,
+                    suggested: suggestion(&current.message),
                 });
             }
             _ => {
@@ -256,6 +259,15 @@ struct Touched {
     /// Replaced by the suggested name (say `type = "ground"`): what the section needs then is
     /// not the author's error.
     renamed: bool,
+    /// A blanked key whose error suggested another (`anchors` on a ball joint: "did you mean
+    /// `anchor`?"): that the section then lacks the suggested key is the same mistake.
+    suggested: Option<String>,
+}
+
+/// The key an error suggests: "(did you mean `anchor`?".
+fn suggestion(message: &str) -> Option<String> {
+    let (_, rest) = message.split_once("(did you mean `")?;
+    rest.split_once('`').map(|(key, _)| key.to_string())
 }
 
 /// An error that blanking or replacing an entry made: it lies in a replaced entry, names a key
@@ -266,6 +278,9 @@ fn caused_by(touched: &[Touched], section: &Section, offset: usize, message: &st
     touched.iter().any(|t| {
         (t.header == section.header
             && (t.entry.contains(&offset)
+                || t.suggested
+                    .as_ref()
+                    .is_some_and(|k| message.contains(&format!("needs `{k}`")))
                 || message.contains(&format!("`{}`", t.key))
                 || (t.renamed && section.header.contains(&offset))))
             || message.contains(&format!("add `{} = ", t.key))

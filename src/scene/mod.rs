@@ -574,7 +574,7 @@ impl Validator<'_> {
         let mut open: Vec<(usize, Vector3<f64>, f64)> = Vec::new();
         let mut candidates: Vec<(usize, usize)> = Vec::new();
         for &(j, centre, radius) in &spheres {
-            open.retain(|(_, c, r)| !(c.x + r < centre.x - radius));
+            open.retain(|(_, c, r)| c.x + r >= centre.x - radius);
             for &(i, c, r) in &open {
                 let (low, high) = (i.min(j), i.max(j));
                 // A margin of 1e-9 m over the radii: the depth threshold of the test below.

@@ -325,7 +325,10 @@ mod exact {
         required(d).map(Some)
     }
 
-    pub fn list<'de, D, T, const N: usize>(d: D) -> Result<Spanned<Vec<[T; N]>>, D::Error>
+    /// A list of points of N numbers each, with its span.
+    pub type Points<T, const N: usize> = Spanned<Vec<[T; N]>>;
+
+    pub fn list<'de, D, T, const N: usize>(d: D) -> Result<Points<T, N>, D::Error>
     where
         D: Deserializer<'de>,
         T: Deserialize<'de>,
@@ -340,9 +343,7 @@ mod exact {
         Ok(Spanned::new(span, arrays))
     }
 
-    pub fn option_list<'de, D, T, const N: usize>(
-        d: D,
-    ) -> Result<Option<Spanned<Vec<[T; N]>>>, D::Error>
+    pub fn option_list<'de, D, T, const N: usize>(d: D) -> Result<Option<Points<T, N>>, D::Error>
     where
         D: Deserializer<'de>,
         T: Deserialize<'de>,

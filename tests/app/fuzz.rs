@@ -5,7 +5,7 @@
 //! that `q` then ends the app, whatever window, prompt or form is open.
 //!
 //! Left out: `s` (a study starts a thread of many runs: minutes of CPU, not an input case)
-//! and `q` itself until the end. Files the app writes (`W`, `X`) go to a scratch folder.
+//! and `q` and Ctrl-C, the quit keys, until the end. Files the app writes (`W`, `X`) go to a scratch folder.
 #![cfg(feature = "tui")]
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
@@ -104,7 +104,11 @@ fn fuzz(path: &str, seed: u64, events: usize) {
             }
             _ => {
                 let code = codes[rng.below(codes.len() as u64) as usize];
-                let modifier = modifiers[rng.below(modifiers.len() as u64) as usize];
+                let mut modifier = modifiers[rng.below(modifiers.len() as u64) as usize];
+                // Ctrl-C quits, as in any terminal program: the other quit key, kept for the end.
+                if code == KeyCode::Char('c') && modifier == KeyModifiers::CONTROL {
+                    modifier = KeyModifiers::NONE;
+                }
                 log.push(format!("{code:?}+{modifier:?}"));
                 app.handle_key(&KeyEvent::new(code, modifier));
             }

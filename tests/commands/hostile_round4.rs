@@ -1016,7 +1016,7 @@ fn sliders_without_an_axis_or_anchor_or_with_keys_of_other_joints() {
             (
                 "type = \"slider\"\nbodies = [\"arm\", \"arm\"]\nanchor = [0, 0, 0]\n\
                  axis = [1, 0, 0]",
-                ":13:19:",
+                ":13:18:",
                 &["a joint's two bodies must differ, found `arm` twice"],
             ),
         ],
@@ -1179,4 +1179,58 @@ fn diff_flags_and_scenes_are_refused_in_one_line() {
         );
         assert!(!out.stderr.contains('\u{1b}'));
     }
+}
+
+// --- 8. `walk --error` with bad frames and files --------------------------------------------
+
+#[test]
+fn walk_error_with_bad_frames_and_files_is_one_line() {
+    let cases: [(&[&str], &[&str]); 6] = [
+        (
+            &["walk", "01-the-loop", "--frames", "x", "--error"],
+            &["invalid value 'x' for '--frames"],
+        ),
+        (
+            &["walk", "01-the-loop", "--frames", "-1", "--error"],
+            &["'--frames", "must be a whole number ≥ 0"],
+        ),
+        (
+            &["walk", "01-the-loop", "--frames", "1.5", "--error"],
+            &["'--frames", "no decimal point or exponent"],
+        ),
+        (
+            &[
+                "walk",
+                "01-the-loop",
+                "--frames",
+                "99999999999999999999",
+                "--error",
+            ],
+            &["'--frames", "at most 18446744073709551615"],
+        ),
+        (
+            &["walk", "01-the-loop", "--frames", "1", "--error", "--error"],
+            &["--error", "cannot be used multiple times"],
+        ),
+        (
+            &["walk", "/dev/zero", "--frames", "1", "--error"],
+            &["/dev/zero: is a character device"],
+        ),
+    ];
+    for (args, words) in cases {
+        let out = tumble(args);
+        refused(&out, words);
+        assert_eq!(out.stdout, "", "{args:?}");
+    }
+    // A diverging scene: exit 3 with its one line, the frames before it printed.
+    let out = tumble(&[
+        "walk",
+        "tests/fixtures/diverging/euler-seed-fast-spin.toml",
+        "--frames",
+        "100",
+        "--error",
+    ]);
+    assert_eq!(out.code, 3, "{}", out.stderr);
+    assert_eq!(out.stderr.lines().count(), 1, "{}", out.stderr);
+    assert!(out.stderr.contains("simulation diverged at step 5"));
 }
