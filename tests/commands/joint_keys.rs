@@ -54,7 +54,7 @@ fn every_broken_joint_key_rule_is_one_error_at_its_key() {
         ("type = \"fixed\"\nmotor = { speed = 1.0, max_torque = 1.0 }", "16:9: `motor` does not apply to a fixed joint (it is a key of hinge, slider); valid keys of a fixed joint: name, type, bodies, anchor"),
         ("type = \"hinge\"\naxis = [0.0, 0.0, 1.0]\nlimits = [10.0, 90.0]", "17:10: hinge `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found [10, 90]"),
         ("type = \"hinge\"\naxis = [0.0, 0.0, 1.0]\nlimits = [-200.0, 170.0]", "17:10: hinge `limits` must be less than a full turn apart (hi − lo < 360°), found [-200, 170]"),
-        ("type = \"slider\"\naxis = [1.0, 0.0, 0.0]\nlimits = [-1.0]", "17:10: slider `limits` needs two numbers [lo, hi] (m), found [-1.0]"),
+        ("type = \"slider\"\naxis = [1.0, 0.0, 0.0]\nlimits = [-1.0]", "17:10: slider `limits` needs two numbers [lo, hi] (m), found 1 number"),
         ("type = \"slider\"\naxis = [1.0, 0.0, 0.0]\nmotor = { speed = 1.0, max_torque = 5.0 }", "17:37: a slider's motor takes `max_force` (N), not `max_torque`"),
         ("type = \"hinge\"\naxis = [0.0, 0.0, 1.0]\nmotor = { speed = 1.0 }", "17:9: a hinge joint's `motor` needs `max_torque`"),
         ("type = \"hinge\"\naxis = [0.0, 0.0, 1.0]\nmotor = { max_torque = 1.0 }", "17:9: a hinge joint's `motor` needs `speed`"),
