@@ -154,15 +154,7 @@ pub fn hold(
     }
     held.rounds += complementarity(joint_rows, VELOCITY_TOLERANCE, b);
     for (row, &mu) in b.rows.iter().zip(&b.mu) {
-        if mu == 0.0 {
-            continue;
-        }
-        states[row.a].linear_momentum += row.lin_a * mu;
-        states[row.a].angular_momentum += row.ang_a * mu;
-        if let Some(j) = row.b {
-            states[j].linear_momentum += row.lin_b * mu;
-            states[j].angular_momentum += row.ang_b * mu;
-        }
+        apply(row, mu, states);
     }
     for (row, &mu) in b.rows[..joint_rows].iter().zip(&b.mu) {
         impulses[row.joint].force += row.lin_a * mu;
@@ -196,6 +188,19 @@ fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact],
             c: 0.0,
             bias: 0.0,
         });
+    }
+}
+
+/// Applies the impulse μ of one row to its bodies: `ΔP = J_linᵀ μ`, `ΔL = J_angᵀ μ` on each end.
+pub(super) fn apply(row: &Row, mu: f64, states: &mut [State]) {
+    if mu == 0.0 {
+        return;
+    }
+    states[row.a].linear_momentum += row.lin_a * mu;
+    states[row.a].angular_momentum += row.ang_a * mu;
+    if let Some(j) = row.b {
+        states[j].linear_momentum += row.lin_b * mu;
+        states[j].angular_momentum += row.ang_b * mu;
     }
 }
 

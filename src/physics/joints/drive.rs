@@ -42,7 +42,7 @@
 //! e'² = e² − 2 excess / Σ m_e r⁻² and the velocities solved again, so a stop never makes
 //! energy at e ≤ 1 (a bob on a hinge bouncing off a 60° stop at e = 1 gives back 1e-11 J).
 
-use super::contact::along;
+use super::contact::{along, apply};
 use super::projection::{joint_rows, shift};
 use super::rows::{coordinate, Pose, Row};
 use super::solve::{multipliers, Inverse, Solver};
@@ -221,12 +221,7 @@ pub fn drive(
         if mu == 0.0 {
             continue;
         }
-        states[row.a].linear_momentum += row.lin_a * mu;
-        states[row.a].angular_momentum += row.ang_a * mu;
-        if let Some(j) = row.b {
-            states[j].linear_momentum += row.lin_b * mu;
-            states[j].angular_momentum += row.ang_b * mu;
-        }
+        apply(row, mu, states);
         loads[row.joint].force += row.lin_a * (mu / dt);
         loads[row.joint].torque += row.ang_a * (mu / dt);
         match b.kinds[i] {
