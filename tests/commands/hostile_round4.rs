@@ -1234,3 +1234,49 @@ fn walk_error_with_bad_frames_and_files_is_one_line() {
     assert_eq!(out.stderr.lines().count(), 1, "{}", out.stderr);
     assert!(out.stderr.contains("simulation diverged at step 5"));
 }
+
+// --- The force arrows in `shot` and `record` (merged after the suite was written) -------------
+
+#[test]
+fn force_arrows_in_shot_and_record_refuse_bad_values_in_one_line() {
+    let svg = scratch().join("f.svg").to_string_lossy().into_owned();
+    let cast = scratch().join("f.cast").to_string_lossy().into_owned();
+    let pendulum = "25-the-pendulum";
+    let cases: [(&[&str], &[&str]); 5] = [
+        (
+            &["shot", pendulum, "--forces", "--at", "-1", "--svg", &svg],
+            &["--at", "found -1"],
+        ),
+        (
+            &["shot", pendulum, "--forces=yes", "--at", "1", "--svg", &svg],
+            &["'yes'", "--forces"],
+        ),
+        (
+            &[
+                "shot", pendulum, "--forces", "--forces", "--at", "1", "--svg", &svg,
+            ],
+            &["--forces", "multiple times"],
+        ),
+        (
+            &[
+                "shot", pendulum, "--forces", "--at", "1", "--svg", &svg, "--size", "20x5",
+            ],
+            &["--size", "80x24"],
+        ),
+        (
+            &[
+                "record",
+                pendulum,
+                "--forces",
+                "--duration",
+                "nan",
+                "--out",
+                &cast,
+            ],
+            &["--duration", "NaN"],
+        ),
+    ];
+    for (args, words) in cases {
+        refused(&tumble(args), words);
+    }
+}
