@@ -87,7 +87,8 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
         Line::from(
             "Every integrator at dt = 1e-1 … 1e-4 (with cloths: each particle integrator on a \
              ladder of dt around 2/ω_max), each run measured against a reference and timed \
-             (median of 5 runs), the cheapest runs first: the chart appears when all are done.",
+             (the fastest of up to 5 timed runs), the cheapest runs first: the chart appears \
+             when all are done.",
         ),
         Line::from(
             "The simulation and every other key keep working meanwhile; s leaves this view \
