@@ -7,12 +7,16 @@
 //! loops check the flag, [`super::cancel`]); dropping every handle cancels it too.
 //!
 //! ```text
-//! time left ≈ (wall time since the runs started) / (steps made by the finished runs)
-//!             × (steps the remaining runs will make)      ([`super::run_steps`])
+//! time left ≈ (wall time so far) / (steps made so far)
+//!             × (steps the reference and the unfinished runs will still make)
 //! ```
+//!
+//! the steps counted as the study makes them ([`super::cancel::check`]) and planned from the
+//! scene ([`super::reference_steps`], [`super::run_steps`]): the cost per step measured so far,
+//! scaled by each remaining run's steps. A cloth case gives no estimate.
 
 use super::{cancel, study_case, Case, Config, SceneStudy};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 use std::sync::{Arc, Mutex};
 use std::thread::{self, JoinHandle};
@@ -24,7 +28,8 @@ enum Message {
     Progress {
         done: usize,
         total: usize,
-        at: Instant,
+        /// Steps made when the message was sent.
+        made: u64,
     },
     Done(Box<SceneStudy>),
 }
@@ -48,21 +53,24 @@ struct Inner {
     lost: bool,
     /// Why the study was refused before it started ([`super::check_work`]).
     refused: Option<String>,
-    /// Set to stop the thread ([`Job::cancel`]).
-    cancel: Arc<AtomicBool>,
+    /// The cancel flag ([`Job::cancel`]) and the steps made so far.
+    control: cancel::Control,
     /// The study thread, until joined ([`Job::join`]).
     thread: Option<JoinHandle<()>>,
-    /// Steps each run makes, in the order they are made ([`super::run_steps`]).
-    steps: Vec<u64>,
-    /// When the first run started (the reference was made) and when the last one finished.
-    started: Option<Instant>,
-    latest: Option<Instant>,
+    /// Steps of the reference, then of each run in the order they are made (none: a cloth
+    /// case, no estimate).
+    plan: Option<(u64, Vec<u64>)>,
+    /// The reference is made (the study said "0 runs done").
+    reference_made: bool,
+    /// Steps made at the latest message.
+    made_at_latest: u64,
+    spawned: Instant,
 }
 
 impl Drop for Inner {
     /// The last handle is gone: nobody will read the result, so stop the work.
     fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
+        self.control.cancel.store(true, Ordering::Relaxed);
     }
 }
 
@@ -84,24 +92,27 @@ impl Job {
                     result: None,
                     lost: true,
                     refused: Some(why),
-                    cancel: Arc::new(AtomicBool::new(true)),
+                    control: cancel::Control::default(),
                     thread: None,
-                    steps: Vec::new(),
-                    started: None,
-                    latest: None,
+                    plan: None,
+                    reference_made: false,
+                    made_at_latest: 0,
+                    spawned: Instant::now(),
                 })),
             };
         }
         let total = super::runs(&case, &config);
-        let steps = super::run_steps(&case, &config);
-        let cancel = Arc::new(AtomicBool::new(false));
-        let flag = cancel.clone();
+        let plan = super::run_steps(&case, &config)
+            .map(|runs| (super::reference_steps(&case, &config), runs));
+        let control = cancel::Control::default();
+        let shared = control.clone();
         let thread = thread::spawn(move || {
+            let steps = shared.steps.clone();
             let mut report = |done, total| {
-                let at = Instant::now();
-                let _ = sender.send(Message::Progress { done, total, at });
+                let made = steps.load(Ordering::Relaxed);
+                let _ = sender.send(Message::Progress { done, total, made });
             };
-            if let Some(study) = cancel::run(flag, || study_case(&case, &config, &mut report)) {
+            if let Some(study) = cancel::run(shared, || study_case(&case, &config, &mut report)) {
                 let _ = sender.send(Message::Done(Box::new(study)));
             }
         });
@@ -115,24 +126,24 @@ impl Job {
                 result: None,
                 lost: false,
                 refused: None,
-                cancel,
+                control,
                 thread: Some(thread),
-                steps,
-                // Until the study says its reference is made (a cloth case does not).
-                started: Some(Instant::now()),
-                latest: None,
+                plan,
+                reference_made: false,
+                made_at_latest: 0,
+                spawned: Instant::now(),
             })),
         }
     }
 
     /// Stops the study at its next step (the thread then ends; see [`Job::join`]).
     pub fn cancel(&self) {
-        self.with(|inner| inner.cancel.store(true, Ordering::Relaxed));
+        self.with(|inner| inner.control.cancel.store(true, Ordering::Relaxed));
     }
 
     /// The study was cancelled.
     pub fn cancelled(&self) -> bool {
-        self.with(|inner| inner.cancel.load(Ordering::Relaxed))
+        self.with(|inner| inner.control.cancel.load(Ordering::Relaxed))
     }
 
     /// The study thread has ended (finished, cancelled or died), or never started.
@@ -147,19 +158,21 @@ impl Job {
         }
     }
 
-    /// The estimated wall time left, once a run has finished ([`estimate`]).
+    /// The estimated wall time left ([`estimate`], module doc), after the first second; none
+    /// for a cloth case.
     pub fn time_left(&self) -> Option<Duration> {
         self.with(|inner| {
-            if inner.result.is_some() || inner.cancel.load(Ordering::Relaxed) {
+            if inner.result.is_some() || inner.control.cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let (started, latest) = (inner.started?, inner.latest?);
-            estimate(
-                &inner.steps,
-                inner.done,
-                latest.duration_since(started),
-                latest.elapsed(),
-            )
+            let (reference, runs) = inner.plan.as_ref()?;
+            let made = inner.control.steps.load(Ordering::Relaxed);
+            let planned = if inner.reference_made { 0 } else { *reference }
+                + runs.iter().skip(inner.done).sum::<u64>();
+            let left = planned.saturating_sub(made - inner.made_at_latest.min(made));
+            // The first second's pace (allocations, caches) says little of the rest.
+            let spent = inner.spawned.elapsed();
+            (spent >= Duration::from_secs(1)).then(|| estimate(left, made, spent))?
         })
     }
 
@@ -180,12 +193,9 @@ impl Job {
     pub fn poll(&self) {
         self.with(|inner| loop {
             match inner.receiver.try_recv() {
-                Ok(Message::Progress { done, total, at }) => {
-                    if done == 0 {
-                        inner.started = Some(at);
-                    } else {
-                        inner.latest = Some(at);
-                    }
+                Ok(Message::Progress { done, total, made }) => {
+                    inner.reference_made = true;
+                    inner.made_at_latest = made;
                     (inner.done, inner.total) = (done, total);
                 }
                 Ok(Message::Done(study)) => {
@@ -194,7 +204,8 @@ impl Job {
                 }
                 Err(TryRecvError::Empty) => break,
                 Err(TryRecvError::Disconnected) => {
-                    inner.lost = inner.result.is_none() && !inner.cancel.load(Ordering::Relaxed);
+                    inner.lost =
+                        inner.result.is_none() && !inner.control.cancel.load(Ordering::Relaxed);
                     break;
                 }
             }
@@ -214,7 +225,7 @@ impl Job {
     /// Finished (with a result, because the thread died, or cancelled).
     pub fn finished(&self) -> bool {
         self.with(|inner| {
-            inner.result.is_some() || inner.lost || inner.cancel.load(Ordering::Relaxed)
+            inner.result.is_some() || inner.lost || inner.control.cancel.load(Ordering::Relaxed)
         })
     }
 
@@ -229,19 +240,10 @@ impl Job {
     }
 }
 
-/// The wall time left when the first `done` runs (of the runs making `steps` steps each)
-/// took `spent`, and `since` has passed since the last one finished: the cost per step of the
-/// finished runs times the steps of the others, less `since`; `None` before a run finished.
-pub fn estimate(steps: &[u64], done: usize, spent: Duration, since: Duration) -> Option<Duration> {
-    let made: u64 = steps.iter().take(done).sum();
-    if done == 0 || made == 0 {
-        return None;
-    }
-    let left: u64 = steps.iter().skip(done).sum();
-    let per_step = spent.as_secs_f64() / made as f64;
-    Some(Duration::from_secs_f64(
-        (per_step * left as f64 - since.as_secs_f64()).max(0.0),
-    ))
+/// The wall time left when `made` steps took `spent` and `left` steps are still to make:
+/// `spent / made × left`; `None` before any step.
+pub fn estimate(left: u64, made: u64, spent: Duration) -> Option<Duration> {
+    (made > 0).then(|| Duration::from_secs_f64(spent.as_secs_f64() / made as f64 * left as f64))
 }
 
 #[cfg(test)]
@@ -284,19 +286,13 @@ mod tests {
     }
 
     #[test]
-    fn the_time_left_scales_the_finished_runs_cost_per_step_by_the_steps_left() {
-        let steps = [10, 90, 900, 9000];
+    fn the_time_left_scales_the_cost_per_step_so_far_by_the_steps_left() {
         let s = Duration::from_secs_f64;
-        assert_eq!(estimate(&steps, 0, s(1.0), s(0.0)), None, "no run finished");
-        // 100 steps in 2 s: 20 ms a step; 9900 steps left: 198 s, less the 8 s since.
-        let left = estimate(&steps, 2, s(2.0), s(8.0)).unwrap();
-        assert!((left.as_secs_f64() - 190.0).abs() < 1e-9, "{left:?}");
-        assert_eq!(estimate(&steps, 4, s(2.0), s(0.0)), Some(Duration::ZERO));
-        assert_eq!(
-            estimate(&steps, 2, s(0.1), s(20.0)),
-            Some(Duration::ZERO),
-            "overdue"
-        );
+        assert_eq!(estimate(100, 0, s(1.0)), None, "no step made yet");
+        // 100 steps in 2 s: 20 ms a step; 9900 steps left: 198 s.
+        let left = estimate(9900, 100, s(2.0)).unwrap();
+        assert!((left.as_secs_f64() - 198.0).abs() < 1e-9, "{left:?}");
+        assert_eq!(estimate(0, 100, s(2.0)), Some(Duration::ZERO));
     }
 
     #[test]
@@ -316,7 +312,16 @@ mod tests {
             .map(|(index, _, dt)| (index, dt))
             .collect();
         assert_eq!(order, [(1, 1e-1), (3, 1e-1), (0, 1e-2), (2, 1e-2)]);
-        assert_eq!(crate::study::run_steps(&case, &config), [10, 10, 100, 100]);
+        assert_eq!(
+            crate::study::run_steps(&case, &config),
+            Some(vec![10, 10, 100, 100]),
+            "untimed: the accuracy run only"
+        );
+        assert_eq!(
+            crate::study::reference_steps(&case, &config),
+            0,
+            "a closed form"
+        );
         let mut calls = Vec::new();
         let study = crate::study::study_case(&case, &config, &mut |done, _| calls.push(done));
         assert_eq!(calls, [0, 1, 2, 3, 4], "the reference, then each run");

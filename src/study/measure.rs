@@ -237,8 +237,8 @@ pub(super) fn cost_per_step(world: impl Fn() -> World, steps: u64, timing: &Timi
 fn time_chunks(mut world: World, steps: u64, chunks: &mut Vec<f64>) {
     let mut left = steps;
     while left > 0 {
-        super::cancel::check();
         let n = left.min(CHUNK);
+        super::cancel::check(n);
         let started = Instant::now();
         for _ in 0..n {
             world.step();
@@ -279,7 +279,7 @@ fn accuracy_run(
     };
     let mut sample = 0;
     while world.step_count() < steps {
-        super::cancel::check();
+        super::cancel::check(1);
         if contact {
             let mut before = 0.0;
             loop {

@@ -319,11 +319,12 @@ pub fn sweep(case: &Case, config: &Config) -> Vec<(usize, Integrator, f64)> {
 
 /// The steps each run of a study makes in all ([`measure::steps_made`]: accuracy run, warm-up,
 /// timed runs), in the order the runs are made ([`sweep`], then the contact solvers at the
-/// scene's dt): what a front end's estimate of the time left is scaled by. A cloth case counts
-/// one step per run (its ladder is not known before its explicit limit is).
-pub fn run_steps(case: &Case, config: &Config) -> Vec<u64> {
+/// scene's dt, the first with the contact chart's reference): what a front end's estimate of
+/// the time left is scaled by. `None` for a cloth case (its ladder is not known before its
+/// explicit limit is).
+pub fn run_steps(case: &Case, config: &Config) -> Option<Vec<u64>> {
     if !case.scene.cloths.is_empty() {
-        return vec![1; runs(case, config)];
+        return None;
     }
     let made = |dt| measure::steps_made(measure::steps_for(case.duration, dt), &config.timing);
     let mut steps: Vec<u64> = sweep(case, config)
@@ -332,11 +333,30 @@ pub fn run_steps(case: &Case, config: &Config) -> Vec<u64> {
         .collect();
     let contact = case.scene.contact.is_some() && !case.scene.obstacles.is_empty();
     if contact {
-        // Each solver: its accuracy and timed runs, and one more run to the end (the sink).
+        // Each solver: its accuracy and timed runs, and one more run to the end (the sink);
+        // before the first, the chart's reference at a tenth of the scene's dt.
         let each = made(case.scene.dt) + measure::steps_for(case.duration, case.scene.dt);
-        steps.extend(std::iter::repeat_n(each, contact::solvers().len()));
+        let first = each + measure::steps_for(case.duration, case.scene.dt / 10.0);
+        steps.push(first);
+        steps.extend(std::iter::repeat_n(each, contact::solvers().len() - 1));
     }
-    steps
+    Some(steps)
+}
+
+/// The steps of the reference a (non-cloth) study makes before its first run
+/// ([`Reference::for_scene`]): none for a closed form, else rk4 at a tenth of the smallest dt
+/// and, without obstacles, again at half that step.
+pub fn reference_steps(case: &Case, config: &Config) -> u64 {
+    if reference::has_closed_form(&case.scene) {
+        return 0;
+    }
+    let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
+    let coarse = measure::steps_for(case.duration, smallest / 10.0);
+    if case.scene.obstacles.is_empty() {
+        coarse + measure::steps_for(case.duration, smallest / 20.0)
+    } else {
+        coarse
+    }
 }
 
 /// How many runs studying `case` with `config` makes.

@@ -99,14 +99,13 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
     .render(text, buf);
 }
 
-/// The gauge's label: "k of N runs", and the estimated time left once a run has finished
+/// The gauge's label: "k of N runs", and the estimated time left once there is one
 /// ([`Job::time_left`]).
 pub fn progress_label(done: usize, total: usize, left: Option<std::time::Duration>) -> String {
     let runs = format!("{done} of {total} runs");
     match left {
-        Some(left) => format!("{runs} · about {} left", duration(left)),
-        None if done < total => format!("{runs} · estimating the time left"),
-        None => runs,
+        Some(left) if done < total => format!("{runs} · about {} left", duration(left)),
+        _ => runs,
     }
 }
 

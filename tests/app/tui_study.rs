@@ -212,13 +212,21 @@ fn esc_cancels_a_heavy_study_and_its_thread_ends_and_q_quits_meanwhile() {
     let job = app.study.clone().expect("`s` starts a study");
     let runs = Integrator::ALL.len() * 4 + tumble::study::contact::solvers().len();
     assert_eq!(job.progress(), (0, runs), "nothing done yet");
-    // The progress is on the screen: runs done of all, and (no run done yet) no estimate yet.
+    // The progress is on the screen: runs done of all (the reference comes first).
     let shown = screen(&app, 120, 40);
-    assert!(
-        shown.contains(&format!("0 of {runs} runs · estimating the time left")),
-        "{shown}"
-    );
+    assert!(shown.contains(&format!("0 of {runs} runs")), "{shown}");
     assert!(shown.contains("Esc leaves it and"), "{shown}");
+    // After its first second the gauge estimates the time left (the reference's and every
+    // run's steps at the pace measured so far).
+    let started = Instant::now();
+    while job.time_left().is_none() {
+        assert!(started.elapsed() < Duration::from_secs(60), "no estimate");
+        std::thread::sleep(Duration::from_millis(50));
+        app.poll_study();
+    }
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains(" runs · about "), "{shown}");
+    assert!(shown.contains(" left"), "{shown}");
     // Every key answers meanwhile.
     press(&mut app, KeyCode::Right);
     assert_eq!(app.snapshot.step, 1, "stepping works while the study runs");
@@ -250,13 +258,10 @@ fn esc_cancels_a_heavy_study_and_its_thread_ends_and_q_quits_meanwhile() {
 }
 
 #[test]
-fn the_progress_label_gives_the_time_left_once_a_run_is_done() {
+fn the_progress_label_gives_the_time_left_while_runs_are_left() {
     use tumble::tui::study_view::progress_label;
     let s = Duration::from_secs;
-    assert_eq!(
-        progress_label(0, 36, None),
-        "0 of 36 runs · estimating the time left"
-    );
+    assert_eq!(progress_label(0, 36, None), "0 of 36 runs");
     assert_eq!(
         progress_label(5, 36, Some(s(200))),
         "5 of 36 runs · about 3 min 20 s left"
@@ -265,5 +270,5 @@ fn the_progress_label_gives_the_time_left_once_a_run_is_done() {
         progress_label(35, 36, Some(s(42))),
         "35 of 36 runs · about 42 s left"
     );
-    assert_eq!(progress_label(36, 36, None), "36 of 36 runs");
+    assert_eq!(progress_label(36, 36, Some(s(0))), "36 of 36 runs");
 }
