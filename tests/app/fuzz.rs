@@ -104,7 +104,10 @@ fn fuzz(path: &str, seed: u64, events: usize) {
             }
             _ => {
                 let code = codes[rng.below(codes.len() as u64) as usize];
-                let modifier = modifiers[rng.below(modifiers.len() as u64) as usize];
+                let mut modifier = modifiers[rng.below(modifiers.len() as u64) as usize];
+                if code == KeyCode::Char('c') && modifier == KeyModifiers::CONTROL {
+                    modifier = KeyModifiers::NONE; // Ctrl-C quits, as q does
+                }
                 log.push(format!("{code:?}+{modifier:?}"));
                 app.handle_key(&KeyEvent::new(code, modifier));
             }
