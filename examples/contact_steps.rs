@@ -1,0 +1,110 @@
+//! Steps one of the contact benches' scenes (`tumble::contact_scenes`) a given number of times
+//! and prints the solver's path counters, for profiles (`perf record`) or instruction counts
+//! (`valgrind --tool=callgrind`), stable where wall-clock times are not:
+//!
+//! ```text
+//! cargo build --release --example contact_steps
+//! target/release/examples/contact_steps SCENE STEPS [RESPONSE]
+//! ```
+//!
+//! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes` (or `dominoes-D`, the first
+//! tipped D°), `wall` (30 bricks in running bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball
+//! at 6 m/s), their restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate); RESPONSE: `impulse` (default) or `soft-step`, whose parameters `SOFT_HERTZ`,
+//! `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise). Every `CONTACT_STEPS_EVERY`
+//! steps (1000) a line gives the largest sideways (x–z) distance of a body from its start (a
+//! stack's lean), the solver's path counters and µs/step; `CONTACT_STEPS_STATES` prints the
+//! final states.
+
+use std::time::Instant;
+use tumble::contact_scenes::{dominoes, dominoes_tipped, pyramid, stack, wall};
+use tumble::physics::{Impacts, Response};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let usage = "usage: contact_steps SCENE STEPS [RESPONSE]";
+    let scene = args.get(1).expect(usage);
+    let steps: u64 = args.get(2).and_then(|s| s.parse().ok()).expect(usage);
+    let mut response = Response::from_name(args.get(3).map_or("impulse", String::as_str))
+        .expect("a response name");
+    // SOFT_HERTZ, SOFT_ZETA, SOFT_SUBSTEPS: soft-step's parameters (defaults otherwise).
+    if let Response::SoftStep(soft) = &mut response {
+        let var = |name: &str| std::env::var(name).ok().and_then(|s| s.parse::<f64>().ok());
+        soft.hertz = var("SOFT_HERTZ").unwrap_or(soft.hertz);
+        soft.damping_ratio = var("SOFT_ZETA").unwrap_or(soft.damping_ratio);
+        soft.substeps = var("SOFT_SUBSTEPS").map_or(soft.substeps, |n| n as u32);
+    }
+    let mut world = if let Some(n) = scene.strip_prefix("stack-") {
+        stack(n.parse().expect(usage), response)
+    } else if let Some(rest) = scene.strip_prefix("pyramid-") {
+        let (rows, gap) = match rest.strip_suffix("-gap") {
+            Some(rows) => (rows, 0.01),
+            None => (rest, 0.0),
+        };
+        pyramid(rows.parse().expect(usage), gap, response)
+    } else if scene == "wall" || scene == "wall-ball" {
+        let e = std::env::var("WALL_E").ok().and_then(|s| s.parse().ok());
+        let impacts = std::env::var("WALL_IMPACTS").ok();
+        let impacts = impacts.as_deref().map_or(Impacts::Propagate, |name| {
+            Impacts::from_name(name).expect("propagate or simultaneous")
+        });
+        wall(scene == "wall-ball", e.unwrap_or(0.0), impacts, response)
+    } else if scene == "dominoes" {
+        dominoes(response)
+    } else if let Some(degrees) = scene.strip_prefix("dominoes-") {
+        dominoes_tipped(degrees.parse().expect(usage), response)
+    } else {
+        panic!("{usage}")
+    };
+    let every: u64 = std::env::var("CONTACT_STEPS_EVERY")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1000);
+    let start = Instant::now();
+    let mut last = world.contact_counters();
+    let mut last_time = start;
+    for step in 1..=steps {
+        world.step();
+        if step % every == 0 || step == steps {
+            let now = world.contact_counters();
+            let t = Instant::now();
+            let sideways = world
+                .states()
+                .iter()
+                .zip(world.initial_states())
+                .map(|(s, s0)| (s.position - s0.position).xz().norm())
+                .fold(0.0, f64::max);
+            println!(
+                "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5}  {:9.1} µs/step",
+                world.time(),
+                sideways,
+                now.direct - last.direct,
+                now.declined - last.declined,
+                now.warm - last.warm,
+                now.normal_sweeps - last.normal_sweeps,
+                now.friction_warm - last.friction_warm,
+                now.friction_direct - last.friction_direct,
+                now.friction_sweeps - last.friction_sweeps,
+                now.friction_subspace - last.friction_subspace,
+                now.normal_subspace - last.normal_subspace,
+                (t - last_time).as_secs_f64() * 1e6 / every as f64,
+            );
+            last = now;
+            last_time = t;
+        }
+    }
+    let drift = world
+        .states()
+        .iter()
+        .zip(world.initial_states())
+        .map(|(s, s0)| (s.position - s0.position).norm())
+        .fold(0.0, f64::max);
+    println!("largest displacement {drift:.3e} m");
+    if std::env::var_os("CONTACT_STEPS_STATES").is_some() {
+        for s in world.states() {
+            println!(
+                "{:?} {:?} {:?} {:?}",
+                s.position, s.orientation, s.linear_momentum, s.angular_momentum
+            );
+        }
+    }
+}
