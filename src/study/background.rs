@@ -1,19 +1,36 @@
 //! A study of one scene on a background thread, for front ends that must stay responsive.
 //!
 //! [`Job::spawn`] starts the thread; [`Job::poll`] drains its messages without blocking and
-//! keeps the latest progress and, at the end, the result. A job is a cheap handle (clones share
-//! one thread and one result); dropping every handle detaches the thread: it finishes its scene
-//! and its messages go nowhere.
+//! keeps the latest progress, an estimate of the time left and, at the end, the result. The
+//! runs are made the cheapest first ([`super::sweep`]). A job is a cheap handle (clones share
+//! one thread and one result). [`Job::cancel`] stops the thread at its next step (the study's
+//! loops check the flag, [`super::cancel`]); dropping every handle cancels it too.
+//!
+//! ```text
+//! time left ≈ (wall time so far) / (steps made so far)
+//!             × (steps the reference and the unfinished runs will still make)
+//! ```
+//!
+//! the steps counted as the study makes them ([`super::cancel::check`]) and planned from the
+//! scene ([`super::reference_steps`], [`super::run_steps`]): the cost per step measured so far,
+//! scaled by each remaining run's steps. A cloth case gives no estimate.
 
-use super::{study_case, Case, Config, SceneStudy};
+use super::{cancel, study_case, Case, Config, SceneStudy};
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 use std::sync::{Arc, Mutex};
-use std::thread;
+use std::thread::{self, JoinHandle};
+use std::time::{Duration, Instant};
 
 /// What the study thread reports.
 #[derive(Debug)]
 enum Message {
-    Progress { done: usize, total: usize },
+    Progress {
+        done: usize,
+        total: usize,
+        /// Steps made when the message was sent.
+        made: u64,
+    },
     Done(Box<SceneStudy>),
 }
 
@@ -36,6 +53,25 @@ struct Inner {
     lost: bool,
     /// Why the study was refused before it started ([`super::check_work`]).
     refused: Option<String>,
+    /// The cancel flag ([`Job::cancel`]) and the steps made so far.
+    control: cancel::Control,
+    /// The study thread, until joined ([`Job::join`]).
+    thread: Option<JoinHandle<()>>,
+    /// Steps of the reference, then of each run in the order they are made (none: a cloth
+    /// case, no estimate).
+    plan: Option<(u64, Vec<u64>)>,
+    /// The reference is made (the study said "0 runs done").
+    reference_made: bool,
+    /// Steps made at the latest message.
+    made_at_latest: u64,
+    spawned: Instant,
+}
+
+impl Drop for Inner {
+    /// The last handle is gone: nobody will read the result, so stop the work.
+    fn drop(&mut self) {
+        self.control.cancel.store(true, Ordering::Relaxed);
+    }
 }
 
 impl Job {
@@ -56,16 +92,29 @@ impl Job {
                     result: None,
                     lost: true,
                     refused: Some(why),
+                    control: cancel::Control::default(),
+                    thread: None,
+                    plan: None,
+                    reference_made: false,
+                    made_at_latest: 0,
+                    spawned: Instant::now(),
                 })),
             };
         }
         let total = super::runs(&case, &config);
-        thread::spawn(move || {
+        let plan = super::run_steps(&case, &config)
+            .map(|runs| (super::reference_steps(&case, &config), runs));
+        let control = cancel::Control::default();
+        let shared = control.clone();
+        let thread = thread::spawn(move || {
+            let steps = shared.steps.clone();
             let mut report = |done, total| {
-                let _ = sender.send(Message::Progress { done, total });
+                let made = steps.load(Ordering::Relaxed);
+                let _ = sender.send(Message::Progress { done, total, made });
             };
-            let study = study_case(&case, &config, &mut report);
-            let _ = sender.send(Message::Done(Box::new(study)));
+            if let Some(study) = cancel::run(shared, || study_case(&case, &config, &mut report)) {
+                let _ = sender.send(Message::Done(Box::new(study)));
+            }
         });
         Job {
             name,
@@ -77,8 +126,54 @@ impl Job {
                 result: None,
                 lost: false,
                 refused: None,
+                control,
+                thread: Some(thread),
+                plan,
+                reference_made: false,
+                made_at_latest: 0,
+                spawned: Instant::now(),
             })),
         }
+    }
+
+    /// Stops the study at its next step (the thread then ends; see [`Job::join`]).
+    pub fn cancel(&self) {
+        self.with(|inner| inner.control.cancel.store(true, Ordering::Relaxed));
+    }
+
+    /// The study was cancelled.
+    pub fn cancelled(&self) -> bool {
+        self.with(|inner| inner.control.cancel.load(Ordering::Relaxed))
+    }
+
+    /// The study thread has ended (finished, cancelled or died), or never started.
+    pub fn ended(&self) -> bool {
+        self.with(|inner| inner.thread.as_ref().is_none_or(|t| t.is_finished()))
+    }
+
+    /// Waits for the study thread to end (after [`Job::cancel`], within a step of the scene).
+    pub fn join(&self) {
+        if let Some(thread) = self.with(|inner| inner.thread.take()) {
+            let _ = thread.join();
+        }
+    }
+
+    /// The estimated wall time left ([`estimate`], module doc), after the first second; none
+    /// for a cloth case.
+    pub fn time_left(&self) -> Option<Duration> {
+        self.with(|inner| {
+            if inner.result.is_some() || inner.control.cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            let (reference, runs) = inner.plan.as_ref()?;
+            let made = inner.control.steps.load(Ordering::Relaxed);
+            let planned = if inner.reference_made { 0 } else { *reference }
+                + runs.iter().skip(inner.done).sum::<u64>();
+            let left = planned.saturating_sub(made - inner.made_at_latest.min(made));
+            // The first second's pace (allocations, caches) says little of the rest.
+            let spent = inner.spawned.elapsed();
+            (spent >= Duration::from_secs(1)).then(|| estimate(left, made, spent))?
+        })
     }
 
     fn with<T>(&self, f: impl FnOnce(&mut Inner) -> T) -> T {
@@ -98,14 +193,19 @@ impl Job {
     pub fn poll(&self) {
         self.with(|inner| loop {
             match inner.receiver.try_recv() {
-                Ok(Message::Progress { done, total }) => (inner.done, inner.total) = (done, total),
+                Ok(Message::Progress { done, total, made }) => {
+                    inner.reference_made = true;
+                    inner.made_at_latest = made;
+                    (inner.done, inner.total) = (done, total);
+                }
                 Ok(Message::Done(study)) => {
                     inner.done = inner.total;
                     inner.result = Some(*study);
                 }
                 Err(TryRecvError::Empty) => break,
                 Err(TryRecvError::Disconnected) => {
-                    inner.lost = inner.result.is_none();
+                    inner.lost =
+                        inner.result.is_none() && !inner.control.cancel.load(Ordering::Relaxed);
                     break;
                 }
             }
@@ -122,9 +222,11 @@ impl Job {
         self.with(|inner| inner.result.clone())
     }
 
-    /// Finished (with a result, or because the thread died).
+    /// Finished (with a result, because the thread died, or cancelled).
     pub fn finished(&self) -> bool {
-        self.with(|inner| inner.result.is_some() || inner.lost)
+        self.with(|inner| {
+            inner.result.is_some() || inner.lost || inner.control.cancel.load(Ordering::Relaxed)
+        })
     }
 
     /// The thread ended without a result (it panicked), or the study was refused.
@@ -136,6 +238,12 @@ impl Job {
     pub fn refusal(&self) -> Option<String> {
         self.with(|inner| inner.refused.clone())
     }
+}
+
+/// The wall time left when `made` steps took `spent` and `left` steps are still to make:
+/// `spent / made × left`; `None` before any step.
+pub fn estimate(left: u64, made: u64, spent: Duration) -> Option<Duration> {
+    (made > 0).then(|| Duration::from_secs_f64(spent.as_secs_f64() / made as f64 * left as f64))
 }
 
 #[cfg(test)]
@@ -172,5 +280,69 @@ mod tests {
         }
         assert_eq!(job.progress(), (4, 4));
         assert_eq!(job.result().map(|s| s.rows.len()), Some(4));
+        assert!(job.time_left().is_none(), "nothing left");
+        job.join();
+        assert!(job.ended());
+    }
+
+    #[test]
+    fn the_time_left_scales_the_cost_per_step_so_far_by_the_steps_left() {
+        let s = Duration::from_secs_f64;
+        assert_eq!(estimate(100, 0, s(1.0)), None, "no step made yet");
+        // 100 steps in 2 s: 20 ms a step; 9900 steps left: 198 s.
+        let left = estimate(9900, 100, s(2.0)).unwrap();
+        assert!((left.as_secs_f64() - 198.0).abs() < 1e-9, "{left:?}");
+        assert_eq!(estimate(0, 100, s(2.0)), Some(Duration::ZERO));
+    }
+
+    #[test]
+    fn the_runs_go_cheapest_first_and_the_rows_come_back_in_the_sweep_order() {
+        let case = scenes::builtin().remove(2); // the projectile, 1 s
+        let config = Config {
+            integrators: vec![Integrator::Rk4, Integrator::Splitting],
+            dts: vec![1e-2, 1e-1],
+            timing: Timing {
+                repeats: 0,
+                sample_interval: 0.1,
+            },
+            target_error: 1e-6,
+        };
+        let order: Vec<(usize, f64)> = crate::study::sweep(&case, &config)
+            .into_iter()
+            .map(|(index, _, dt)| (index, dt))
+            .collect();
+        assert_eq!(order, [(1, 1e-1), (3, 1e-1), (0, 1e-2), (2, 1e-2)]);
+        assert_eq!(
+            crate::study::run_steps(&case, &config),
+            Some(vec![10, 10, 100, 100]),
+            "untimed: the accuracy run only"
+        );
+        assert_eq!(
+            crate::study::reference_steps(&case, &config),
+            0,
+            "a closed form"
+        );
+        let mut calls = Vec::new();
+        let study = crate::study::study_case(&case, &config, &mut |done, _| calls.push(done));
+        assert_eq!(calls, [0, 1, 2, 3, 4], "the reference, then each run");
+        let rows: Vec<(Integrator, f64)> =
+            study.rows.iter().map(|r| (r.integrator, r.dt)).collect();
+        assert_eq!(rows.len(), 4);
+        for pair in [(Integrator::Rk4, 1e-2), (Integrator::Splitting, 1e-1)] {
+            assert!(rows.contains(&pair), "{pair:?} in {rows:?}");
+        }
+    }
+
+    #[test]
+    fn a_cancelled_job_stops_and_its_thread_ends() {
+        let mut case = scenes::builtin().remove(2);
+        case.duration = 50.0; // 500 000 steps at 1e-4, several timed: far longer than the test
+        let job = Job::spawn(case, Config::default());
+        job.cancel();
+        job.join();
+        assert!(job.ended() && job.finished() && job.cancelled());
+        job.poll();
+        assert!(!job.failed(), "a cancelled study did not die");
+        assert!(job.result().is_none());
     }
 }

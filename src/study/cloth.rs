@@ -380,6 +380,7 @@ fn reference_run(scene: &Scene, times: &[f64], h: f64) -> Vec<Vec<Vector3<f64>>>
         .into_iter()
         .map(|target| {
             while world.step_count() < target {
+                super::cancel::check(1);
                 world.step();
             }
             points(&world)
@@ -466,6 +467,7 @@ fn measure(
     let targets = sample_steps(times, dt, steps);
     let mut sample = 0;
     while world.step_count() < steps {
+        super::cancel::check(1);
         world.step();
         if let Some(divergence) = world.divergence() {
             row.status = Status::Diverged(divergence.to_string());

@@ -122,6 +122,7 @@ pub fn study(
             let sink = if run.ok() {
                 let mut world = solver_scene.world_with(integrator, dt);
                 while world.step_count() < run.steps {
+                    super::cancel::check(1);
                     world.step();
                 }
                 (truth - world.state().position).dot(&up)

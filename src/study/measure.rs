@@ -115,6 +115,11 @@ pub struct Timing {
     pub sample_interval: f64,
 }
 
+/// Steps to cover `duration` at `dt` (at least one).
+pub fn steps_for(duration: f64, dt: f64) -> u64 {
+    (duration / dt).round().max(1.0) as u64
+}
+
 /// A world of `scene` stepped by `integrator` at `dt`.
 pub fn world_for(scene: &Scene, integrator: Integrator, dt: f64) -> World {
     scene.world_with(integrator, dt)
@@ -140,7 +145,7 @@ pub fn measure(
     times: &[f64],
     timing: Timing,
 ) -> Row {
-    let steps = (duration / dt).round().max(1.0) as u64;
+    let steps = steps_for(duration, dt);
     let mut row = Row {
         scene: name.to_string(),
         integrator,
@@ -192,6 +197,19 @@ pub(super) const TIMED_CHUNKS: u64 = 100;
 /// Steps of the warm-up before the timed runs (caches, branch predictors, clock).
 const WARM_UP: u64 = 10 * CHUNK;
 
+/// Steps a run of `steps` steps makes in all: the accuracy run, then (when timed) the warm-up
+/// and the timed runs of [`cost_per_step`] — what a front end scales its estimate of the time
+/// left by.
+pub fn steps_made(steps: u64, timing: &Timing) -> u64 {
+    if timing.repeats == 0 {
+        return steps;
+    }
+    let runs = TIMED_CHUNKS
+        .div_ceil(steps.div_ceil(CHUNK))
+        .clamp(1, timing.repeats.max(1) as u64);
+    steps + steps.min(WARM_UP) + runs * steps
+}
+
 /// Wall time per step of `steps` plain steps of fresh worlds made by `world`, ns: after a
 /// warm-up of [`WARM_UP`] steps, ⌈[`TIMED_CHUNKS`] / chunks per run⌉ runs (at least one, at
 /// most `timing.repeats`), each timed as the median of its [`CHUNK`]-step chunks; the result is
@@ -220,6 +238,7 @@ fn time_chunks(mut world: World, steps: u64, chunks: &mut Vec<f64>) {
     let mut left = steps;
     while left > 0 {
         let n = left.min(CHUNK);
+        super::cancel::check(n);
         let started = Instant::now();
         for _ in 0..n {
             world.step();
@@ -260,6 +279,7 @@ fn accuracy_run(
     };
     let mut sample = 0;
     while world.step_count() < steps {
+        super::cancel::check(1);
         if contact {
             let mut before = 0.0;
             loop {

@@ -13,6 +13,7 @@
 
 pub mod analysis;
 pub mod background;
+pub mod cancel;
 pub mod cloth;
 pub mod contact;
 pub mod measure;
@@ -159,22 +160,26 @@ pub fn study_case(
     let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
     let mut reference = Reference::for_scene(&case.scene, &times, smallest);
     let total = config.integrators.len() * config.dts.len();
-    let mut rows = Vec::with_capacity(total);
-    for &integrator in &config.integrators {
-        for &dt in &config.dts {
-            rows.push(measure::measure(
-                &case.name,
-                &case.scene,
-                case.duration,
-                integrator,
-                dt,
-                &mut reference,
-                &times,
-                config.timing,
-            ));
-            progress(rows.len(), total);
-        }
+    progress(0, total); // the reference is made: the runs start
+                        // The cheapest runs first ([`sweep`]), so that a front end's progress moves early; the
+                        // rows then go back to the sweep's order (integrator by integrator), as if run in it.
+    let mut measured: Vec<(usize, Row)> = Vec::with_capacity(total);
+    for (index, integrator, dt) in sweep(case, config) {
+        let row = measure::measure(
+            &case.name,
+            &case.scene,
+            case.duration,
+            integrator,
+            dt,
+            &mut reference,
+            &times,
+            config.timing,
+        );
+        measured.push((index, row));
+        progress(measured.len(), total);
     }
+    measured.sort_by_key(|&(index, _)| index);
+    let mut rows: Vec<Row> = measured.into_iter().map(|(_, row)| row).collect();
     let exact_reference = reference.kind() == "exact";
     let floor = analysis::FLOOR.max(reference.floor());
     let orders = config
@@ -297,6 +302,63 @@ pub fn cloth_config(config: &Config) -> ClothConfig {
     }
 }
 
+/// The integrator runs of a study in the order they are made: (index in the order integrator
+/// by integrator, then dt; integrator; dt), the fewest steps first (the largest dt), ties in
+/// the integrators' order.
+pub fn sweep(case: &Case, config: &Config) -> Vec<(usize, Integrator, f64)> {
+    let mut runs: Vec<(usize, Integrator, f64)> = config
+        .integrators
+        .iter()
+        .flat_map(|&integrator| config.dts.iter().map(move |&dt| (integrator, dt)))
+        .enumerate()
+        .map(|(index, (integrator, dt))| (index, integrator, dt))
+        .collect();
+    runs.sort_by_key(|&(index, _, dt)| (measure::steps_for(case.duration, dt), index));
+    runs
+}
+
+/// The steps each run of a study makes in all ([`measure::steps_made`]: accuracy run, warm-up,
+/// timed runs), in the order the runs are made ([`sweep`], then the contact solvers at the
+/// scene's dt, the first with the contact chart's reference): what a front end's estimate of
+/// the time left is scaled by. `None` for a cloth case (its ladder is not known before its
+/// explicit limit is).
+pub fn run_steps(case: &Case, config: &Config) -> Option<Vec<u64>> {
+    if !case.scene.cloths.is_empty() {
+        return None;
+    }
+    let made = |dt| measure::steps_made(measure::steps_for(case.duration, dt), &config.timing);
+    let mut steps: Vec<u64> = sweep(case, config)
+        .into_iter()
+        .map(|(_, _, dt)| made(dt))
+        .collect();
+    let contact = case.scene.contact.is_some() && !case.scene.obstacles.is_empty();
+    if contact {
+        // Each solver: its accuracy and timed runs, and one more run to the end (the sink);
+        // before the first, the chart's reference at a tenth of the scene's dt.
+        let each = made(case.scene.dt) + measure::steps_for(case.duration, case.scene.dt);
+        let first = each + measure::steps_for(case.duration, case.scene.dt / 10.0);
+        steps.push(first);
+        steps.extend(std::iter::repeat_n(each, contact::solvers().len() - 1));
+    }
+    Some(steps)
+}
+
+/// The steps of the reference a (non-cloth) study makes before its first run
+/// ([`Reference::for_scene`]): none for a closed form, else rk4 at a tenth of the smallest dt
+/// and, without obstacles, again at half that step.
+pub fn reference_steps(case: &Case, config: &Config) -> u64 {
+    if reference::has_closed_form(&case.scene) {
+        return 0;
+    }
+    let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
+    let coarse = measure::steps_for(case.duration, smallest / 10.0);
+    if case.scene.obstacles.is_empty() {
+        coarse + measure::steps_for(case.duration, smallest / 20.0)
+    } else {
+        coarse
+    }
+}
+
 /// How many runs studying `case` with `config` makes.
 pub fn runs(case: &Case, config: &Config) -> usize {
     if case.scene.cloths.is_empty() {
@@ -386,8 +448,10 @@ pub fn study(
             scope.spawn(move || loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
                 let Some(&i) = order.get(k) else { break };
-                let study = study_case(&cases[i], config, &mut |_, _| {
-                    let _ = sender.send((i, None));
+                let study = study_case(&cases[i], config, &mut |done, _| {
+                    if done > 0 {
+                        let _ = sender.send((i, None));
+                    }
                 });
                 let _ = sender.send((i, Some(Box::new(study))));
             });

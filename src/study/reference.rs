@@ -123,6 +123,7 @@ fn sampled(scene: &Scene, integrator: Integrator, dt: f64, times: &[f64]) -> Vec
         .map(|&t| {
             let target = (t / dt).round() as u64;
             while world.step_count() < target {
+                super::cancel::check(1);
                 world.step();
             }
             poses(&world)

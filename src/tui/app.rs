@@ -439,6 +439,13 @@ impl App {
         }
     }
 
+    /// Stops the study's thread at its next step and forgets the study.
+    pub fn cancel_study(&mut self) {
+        if let Some(job) = self.study.take() {
+            job.cancel();
+        }
+    }
+
     /// A study is running: the event loop must wake up to show its progress.
     pub fn study_running(&self) -> bool {
         self.study.as_ref().is_some_and(|job| !job.finished())
@@ -459,6 +466,7 @@ impl App {
             match message {
                 Message::Quit => {
                     self.job = None;
+                    self.cancel_study();
                     self.quit = true;
                 }
                 Message::Back => {
@@ -667,7 +675,10 @@ impl App {
                 self.lesson_hscroll = self.lesson_hscroll.saturating_add(8).min(200)
             }
             Message::ToggleHelp => self.overlay = Overlay::Help,
-            Message::Quit => self.quit = true,
+            Message::Quit => {
+                self.cancel_study();
+                self.quit = true;
+            }
             Message::PickerUp | Message::PickerDown => {
                 let n = match &self.overlay {
                     Overlay::Picker { lessons, .. } => lessons.len(),
@@ -865,6 +876,11 @@ impl App {
         if self.overlay != Overlay::None {
             self.overlay = Overlay::None;
         } else if self.view != View::Loop {
+            if self.view == View::Study && self.study_running() {
+                // Esc leaves the study and stops its work (`s` leaves it running).
+                self.cancel_study();
+                self.notice = Some("study cancelled: s starts it again".into());
+            }
             self.view = View::Loop;
         } else {
             self.notice = Some("nothing to close: q quits".into());

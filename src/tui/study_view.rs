@@ -1,7 +1,8 @@
 //! The study view (key `s`): error against cost of every integrator × time step on the current
 //! scene, as a log–log chart — the same numbers as `tumble study FILE`, computed on a background
 //! thread ([`crate::study::background`]) while the rest of the app keeps running. Until the
-//! study is done, a gauge shows its progress; the view can be left and re-entered meanwhile.
+//! study is done, a gauge shows its progress ("k of N runs · about … left", the cheapest runs
+//! first); `s` leaves the view with the study going on, Esc leaves it and cancels the study.
 //! The study uses the collision response in use (after `c`, entering the view again studies
 //! the new one) and marks the integrator in use. A scene with cloths shows the cloth case: one
 //! line per particle integrator ([`crate::study::cloth`]).
@@ -79,21 +80,43 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
         } else {
             done as f64 / total as f64
         })
-        .label(format!("{done} of {total} runs"))
+        .label(progress_label(done, total, job.time_left()))
         .render(gauge, buf);
     Paragraph::new(vec![
         Line::from(""),
         Line::from(
             "Every integrator at dt = 1e-1 … 1e-4 (with cloths: each particle integrator on a \
              ladder of dt around 2/ω_max), each run measured against a reference and timed \
-             (median of 5 runs): the chart appears when all are done.",
+             (the fastest of up to 5 timed runs), the cheapest runs first: the chart appears \
+             when all are done.",
         ),
         Line::from(
-            "The simulation and every other key keep working meanwhile; s leaves this view.",
+            "The simulation and every other key keep working meanwhile; s leaves this view \
+             (the study goes on), Esc leaves it and cancels the study.",
         ),
     ])
     .wrap(Wrap { trim: true })
     .render(text, buf);
+}
+
+/// The gauge's label: "k of N runs", and the estimated time left once there is one
+/// ([`Job::time_left`]).
+pub fn progress_label(done: usize, total: usize, left: Option<std::time::Duration>) -> String {
+    let runs = format!("{done} of {total} runs");
+    match left {
+        Some(left) if done < total => format!("{runs} · about {} left", duration(left)),
+        _ => runs,
+    }
+}
+
+/// A wall-clock duration to the second: "45 s", "3 min 20 s", "1 h 05 min".
+fn duration(d: std::time::Duration) -> String {
+    let s = d.as_secs_f64().round() as u64;
+    match s {
+        0..60 => format!("{s} s"),
+        60..3600 => format!("{} min {:02} s", s / 60, s % 60),
+        _ => format!("{} h {:02} min", s / 3600, (s % 3600) / 60),
+    }
 }
 
 /// Integer decades covering [lo, hi] (log10 values), at least one decade wide.

@@ -195,3 +195,80 @@ fn a_scene_with_a_cloth_shows_the_cloth_case() {
     assert!(text.contains("── implicit-euler"), "{text}");
     assert!(text.contains("Explicit limit 2/ω_max ="), "{text}");
 }
+
+#[test]
+fn esc_cancels_a_heavy_study_and_its_thread_ends_and_q_quits_meanwhile() {
+    // Lesson 38: a 16-body tower over 12 s; its study (every integrator down to dt = 1e-4,
+    // then the contact solvers) is minutes of stepping.
+    let lesson = tumble::lessons::load(Path::new("38-a-tower-that-buckles"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let options = || Options {
+        ascii: true,
+        compare: None,
+        show_timing: false,
+    };
+    let mut app = App::new(lesson.clone(), options());
+    press(&mut app, KeyCode::Char('s'));
+    let job = app.study.clone().expect("`s` starts a study");
+    let runs = Integrator::ALL.len() * 4 + tumble::study::contact::solvers().len();
+    assert_eq!(job.progress(), (0, runs), "nothing done yet");
+    // The progress is on the screen: runs done of all (the reference comes first).
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains(&format!("0 of {runs} runs")), "{shown}");
+    assert!(shown.contains("Esc leaves it and"), "{shown}");
+    // After its first second the gauge estimates the time left (the reference's and every
+    // run's steps at the pace measured so far).
+    let started = Instant::now();
+    while job.time_left().is_none() {
+        assert!(started.elapsed() < Duration::from_secs(60), "no estimate");
+        std::thread::sleep(Duration::from_millis(50));
+        app.poll_study();
+    }
+    let shown = screen(&app, 120, 40);
+    assert!(shown.contains(" runs · about "), "{shown}");
+    assert!(shown.contains(" left"), "{shown}");
+    // Every key answers meanwhile.
+    press(&mut app, KeyCode::Right);
+    assert_eq!(app.snapshot.step, 1, "stepping works while the study runs");
+    app.poll_study();
+    assert!(app.study_running(), "not done in a moment");
+    // Esc: the view closes, the study is cancelled and forgotten, its thread ends.
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.view, View::Loop);
+    assert!(app.study.is_none(), "the study is dropped");
+    assert!(job.cancelled());
+    job.join();
+    assert!(job.ended(), "the study thread ended after the cancel");
+    job.poll();
+    assert!(!job.failed() && job.result().is_none());
+    assert_eq!(
+        app.notice.as_deref(),
+        Some("study cancelled: s starts it again")
+    );
+
+    // q while a study runs: quits in the same call, and the study's thread stops.
+    let mut app = App::new(lesson, options());
+    press(&mut app, KeyCode::Char('s'));
+    let job = app.study.clone().unwrap();
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit);
+    assert!(job.cancelled());
+    job.join();
+    assert!(job.ended());
+}
+
+#[test]
+fn the_progress_label_gives_the_time_left_while_runs_are_left() {
+    use tumble::tui::study_view::progress_label;
+    let s = Duration::from_secs;
+    assert_eq!(progress_label(0, 36, None), "0 of 36 runs");
+    assert_eq!(
+        progress_label(5, 36, Some(s(200))),
+        "5 of 36 runs · about 3 min 20 s left"
+    );
+    assert_eq!(
+        progress_label(35, 36, Some(s(42))),
+        "35 of 36 runs · about 42 s left"
+    );
+    assert_eq!(progress_label(36, 36, Some(s(0))), "36 of 36 runs");
+}
