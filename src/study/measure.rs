@@ -198,7 +198,7 @@ pub(super) const TIMED_CHUNKS: u64 = 100;
 const WARM_UP: u64 = 10 * CHUNK;
 
 /// Steps a run of `steps` steps makes in all: the accuracy run, then (when timed) the warm-up
-/// and the timed runs of [`cost_per_step`] — what a front end scales its estimate of the time
+/// and the timed runs of `cost_per_step` — what a front end scales its estimate of the time
 /// left by.
 pub fn steps_made(steps: u64, timing: &Timing) -> u64 {
     if timing.repeats == 0 {
