@@ -15,10 +15,10 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// What one run of the binary gave.
-struct Output {
-    code: i32,
-    stdout: String,
-    stderr: String,
+pub(super) struct Output {
+    pub code: i32,
+    pub stdout: String,
+    pub stderr: String,
 }
 
 /// The longest any hostile case may take: far above the milliseconds each needs, far below a
@@ -31,11 +31,16 @@ fn binary() -> PathBuf {
 
 /// Runs `tumble ARGS` from the crate root with empty stdin; kills it past [`TIMEOUT`] and
 /// fails. Never a panic, never a signal.
-fn tumble(args: &[&str]) -> Output {
+pub(super) fn tumble(args: &[&str]) -> Output {
+    tumble_with(args, Stdio::null())
+}
+
+/// As [`tumble`], with `stdin` as its standard input (hostile_round4 feeds `/dev/zero`).
+pub(super) fn tumble_with(args: &[&str], stdin: Stdio) -> Output {
     let mut child = Command::new(binary())
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .args(args)
-        .stdin(Stdio::null())
+        .stdin(stdin)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()

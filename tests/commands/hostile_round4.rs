@@ -9,76 +9,9 @@
 //! bodies and links and a check linear in them; one table of the keys each shape and joint
 //! takes (and arrays of exactly their length); the wrong thing blamed; command-line limits.
 
-use std::io::Read;
+use super::hostile::{tumble, tumble_with, Output};
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
-
-/// What one run of the binary gave.
-struct Output {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-/// Far above the milliseconds each case needs, far below a hang.
-const TIMEOUT: Duration = Duration::from_secs(20);
-
-fn binary() -> PathBuf {
-    PathBuf::from(env!("CARGO_BIN_EXE_tumble"))
-}
-
-/// Runs `tumble ARGS` from the crate root with `stdin` (empty by default); kills it past
-/// [`TIMEOUT`] and fails. Never a panic, never a signal.
-fn tumble_with(args: &[&str], stdin: Stdio) -> Output {
-    let mut child = Command::new(binary())
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .stdin(stdin)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("tumble starts");
-    let (mut out, mut err) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
-    let reader = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        let _ = out.read_to_end(&mut s);
-        s
-    });
-    let err_reader = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        let _ = err.read_to_end(&mut s);
-        s
-    });
-    let started = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("wait") {
-            break status;
-        }
-        if started.elapsed() > TIMEOUT {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("tumble {args:?} did not answer within {TIMEOUT:?} (a hang)");
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    };
-    let stdout = String::from_utf8_lossy(&reader.join().unwrap()).into_owned();
-    let stderr = String::from_utf8_lossy(&err_reader.join().unwrap()).into_owned();
-    let code = status.code().unwrap_or_else(|| {
-        panic!("tumble {args:?} was killed by a signal (an abort?): {status:?}\n{stderr}")
-    });
-    assert_ne!(code, 101, "tumble {args:?} panicked:\n{stderr}");
-    assert!(!stderr.contains("panicked"), "tumble {args:?}:\n{stderr}");
-    Output {
-        code,
-        stdout,
-        stderr,
-    }
-}
-
-fn tumble(args: &[&str]) -> Output {
-    tumble_with(args, Stdio::null())
-}
 
 /// A scratch folder of this test binary (under target/).
 fn scratch() -> PathBuf {
