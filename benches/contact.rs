@@ -13,6 +13,24 @@
 //! stack 10: 18.7 / 10.8 / 22.9 µs; stack 20: 31.7 / 18.4 / 44.7 µs; stack 40: 55 / 34 / 123 µs;
 //! pyramid 10: 0.14 / 0.08 / 0.38 ms; pyramid 20: 0.59 / 0.33 / 2.0–2.6 ms.
 //!
+//! Issue 35's scenes, each stepped over a whole run (restarted at its end, so the figure is
+//! the mean over the run):
+//!
+//! - `wall` / `wall-ball`: 30 bricks (0.4 × 0.2 × 0.2 m, 2 kg) in running bond, dt = 5 ms, at
+//!   rest / hit by a 50 kg ball at 6 m/s, over 2 s. Not quite at rest: the last brick of the
+//!   top course (shifted half a brick) has its barycenter right above the edge of the brick
+//!   below, so it topples whatever the solver (soft-step and Rapier within 1 s, `impulse`
+//!   after 3–4 s, when its cost jumps);
+//! - `knife-wall` / `knife-wall-ball`: the same bricks turned 90° about y, each upper brick on
+//!   two bare edges, at rest / hit, over 1 s;
+//! - `cradle`: a touching Newton's cradle of five balls on rods, e = 1, μ = 0, over 3 s;
+//! - `dominoes16`: 16 dominoes over their whole fall, 2.5 s.
+//!
+//! Anchors (issue 35, Rapier 0.36 f64 / f32): knife-edge wall at rest 92 µs (f64), hit
+//! about 97 µs (f64); 8 dominoes 21 / 13 µs, 16 dominoes 24 µs (f32). The same scenes run in
+//! Rapier with `benches/rapier` (`cargo run --release -- SCENE STEPS f32|f64`); ratios
+//! measured in one run are in the commit that added them.
+//!
 //! `contact/at-rest`: a stack of 10 in its first second and after standing 99 s (the cost of a
 //! scene at rest stays flat).
 //!
@@ -23,8 +41,10 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
-use tumble::contact_scenes::{dominoes, pyramid, stack, DT, G, SIDE};
-use tumble::physics::{Response, SoftStep, World};
+use tumble::contact_scenes::{
+    cradle, domino_run, dominoes, knife_edge_wall, pyramid, stack, wall, DT, G, SIDE,
+};
+use tumble::physics::{Impacts, Response, SoftStep, World};
 
 /// A benchmarked scene: its name, its world, and how many steps between restarts.
 struct Case {
@@ -56,7 +76,38 @@ fn cases(response: Response) -> Vec<Case> {
         world: dominoes(response),
         restart: 1_300,
     });
+    cases.extend(issue_35(response));
     cases
+}
+
+/// Issue 35's scenes (module doc), each restarted at the end of its run.
+fn issue_35(response: Response) -> Vec<Case> {
+    let case = |name: &str, world: World, seconds: f64| Case {
+        name: name.into(),
+        restart: (seconds / world.dt()).round() as u64,
+        world,
+    };
+    let e = 0.0;
+    vec![
+        case("wall", wall(false, e, Impacts::Propagate, response), 2.0),
+        case(
+            "wall-ball",
+            wall(true, e, Impacts::Propagate, response),
+            2.0,
+        ),
+        case(
+            "knife-wall",
+            knife_edge_wall(false, e, Impacts::Propagate, response),
+            1.0,
+        ),
+        case(
+            "knife-wall-ball",
+            knife_edge_wall(true, e, Impacts::Propagate, response),
+            1.0,
+        ),
+        case("cradle", cradle(response), 3.0),
+        case("dominoes16", domino_run(16, 10.0, response), 2.5),
+    ]
 }
 
 /// `response`, but for `soft-step` on a stack taller than its contacts hold (the module

@@ -8,15 +8,21 @@
 //! ```
 //!
 //! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes` (or `dominoes-D`, the first
-//! tipped D°), `wall` (30 bricks in running bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball
-//! at 6 m/s), their restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate); RESPONSE: `impulse` (default) or `soft-step`, whose parameters `SOFT_HERTZ`,
-//! `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise). Every `CONTACT_STEPS_EVERY`
-//! steps (1000) a line gives the largest sideways (x–z) distance of a body from its start (a
-//! stack's lean), the solver's path counters and µs/step; `CONTACT_STEPS_STATES` prints the
-//! final states.
+//! tipped D°), `dominoes16` (16 of them, or `dominoes16-D`), `wall` (30 bricks in running
+//! bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball at 6 m/s), `knife-wall` or
+//! `knife-wall-ball` (the bricks turned 90°, each upper one on two bare edges), their
+//! restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate), `cradle` (a touching
+//! Newton's cradle, e = 1); RESPONSE: `impulse` (default) or `soft-step`, whose parameters
+//! `SOFT_HERTZ`, `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise). Every
+//! `CONTACT_STEPS_EVERY` steps (1000) a line gives the largest sideways (x–z) distance of a
+//! body from its start (a stack's lean), the solver's path counters and µs/step; the last
+//! line the mean CPU time per step (the thread's run time, Linux, beside benches/rapier's);
+//! `CONTACT_STEPS_STATES` prints the final states.
 
 use std::time::Instant;
-use tumble::contact_scenes::{dominoes, dominoes_tipped, pyramid, stack, wall};
+use tumble::contact_scenes::{
+    cradle, domino_run, dominoes, dominoes_tipped, knife_edge_wall, pyramid, stack, wall,
+};
 use tumble::physics::{Impacts, Response};
 
 fn main() {
@@ -41,13 +47,33 @@ fn main() {
             None => (rest, 0.0),
         };
         pyramid(rows.parse().expect(usage), gap, response)
-    } else if scene == "wall" || scene == "wall-ball" {
+    } else if let Some(kind) = ["wall", "knife-wall"].into_iter().find(|w| {
+        scene
+            .strip_prefix(w)
+            .is_some_and(|r| r.is_empty() || r == "-ball")
+    }) {
         let e = std::env::var("WALL_E").ok().and_then(|s| s.parse().ok());
         let impacts = std::env::var("WALL_IMPACTS").ok();
         let impacts = impacts.as_deref().map_or(Impacts::Propagate, |name| {
             Impacts::from_name(name).expect("propagate or simultaneous")
         });
-        wall(scene == "wall-ball", e.unwrap_or(0.0), impacts, response)
+        let build = if kind == "wall" {
+            wall
+        } else {
+            knife_edge_wall
+        };
+        build(
+            scene.ends_with("-ball"),
+            e.unwrap_or(0.0),
+            impacts,
+            response,
+        )
+    } else if scene == "cradle" {
+        cradle(response)
+    } else if scene == "dominoes16" {
+        domino_run(16, 10.0, response)
+    } else if let Some(degrees) = scene.strip_prefix("dominoes16-") {
+        domino_run(16, degrees.parse().expect(usage), response)
     } else if scene == "dominoes" {
         dominoes(response)
     } else if let Some(degrees) = scene.strip_prefix("dominoes-") {
@@ -59,6 +85,7 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1000);
+    let cpu_start = cpu_seconds();
     let start = Instant::now();
     let mut last = world.contact_counters();
     let mut last_time = start;
@@ -98,6 +125,13 @@ fn main() {
         .zip(world.initial_states())
         .map(|(s, s0)| (s.position - s0.position).norm())
         .fold(0.0, f64::max);
+    let cpu = cpu_seconds().zip(cpu_start).map(|(end, start)| end - start);
+    if let Some(cpu) = cpu {
+        println!(
+            "{scene}: {:.2} µs/step over {steps} steps (CPU)",
+            cpu * 1e6 / steps as f64
+        );
+    }
     println!("largest displacement {drift:.3e} m");
     if std::env::var_os("CONTACT_STEPS_STATES").is_some() {
         for s in world.states() {
@@ -107,4 +141,11 @@ fn main() {
             );
         }
     }
+}
+
+/// The thread's CPU run time so far, s (`/proc/thread-self/schedstat`, Linux), None elsewhere.
+fn cpu_seconds() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
 }

@@ -6,10 +6,16 @@
 //! - `pyramid(rows, gap)`: a 2-D pyramid of such cubes, `rows` on the bottom row, each row
 //!   above one cube shorter and centred, neighbours `gap` apart (0 or 1 cm);
 //! - `dominoes()`: 8 dominoes 2 × 20 × 10 cm (thickness along x), 50 g, 12 cm apart along x,
-//!   the first tipped 10° about z towards the others.
+//!   the first tipped 10° about z towards the others (`domino_run`: any number of them).
 //!
 //! Every scene: μ = 0.5, e = 0, dt = 1e-3, `rk4`, gravity −9.81 m/s² along y.
+//!
+//! Issue 35's scenes, on the same terms unless they say otherwise: `wall` (30 bricks in
+//! running bond, dt = 5 ms, optionally hit by a heavy ball), `knife_edge_wall` (the same
+//! bricks turned 90° about y, so that each upper brick rests on two bare edges), `cradle` (a
+//! touching Newton's cradle of five balls on rods, e = 1, μ = 0) and `domino_run(16, …)`.
 
+use crate::physics::joints::{Joint, Links};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
     Response, State, World,
@@ -115,10 +121,15 @@ pub fn dominoes(response: Response) -> World {
 /// trajectory. The run is chaotic, so its cost is compared over a few of them
 /// (`examples/contact_steps dominoes-D`); the resting test takes 10° and 15°.
 pub fn dominoes_tipped(degrees: f64, response: Response) -> World {
+    domino_run(8, degrees, response)
+}
+
+/// `count` dominoes in a row along x as in [`dominoes`], the first tipped `degrees`.
+pub fn domino_run(count: usize, degrees: f64, response: Response) -> World {
     let [t, h, _] = DOMINO;
     let body = Body::solid_box(Vector3::from(DOMINO), DOMINO_MASS).expect("a valid box");
     let tilt = degrees.to_radians();
-    let bodies = (0..8)
+    let bodies = (0..count)
         .map(|i| {
             let x = i as f64 * DOMINO_PITCH;
             let (position, q) = if i == 0 {
@@ -149,7 +160,39 @@ pub const BRICK_MASS: f64 = 2.0;
 /// towards its middle, 0.3 m from its face. Contact: μ = 0.5 and restitution `restitution`
 /// with the given impact law.
 pub fn wall(ball: bool, restitution: f64, impacts: Impacts, response: Response) -> World {
-    let brick = Body::solid_box(Vector3::from(BRICK), BRICK_MASS).expect("a valid box");
+    brick_wall(BRICK, ball, restitution, impacts, response)
+}
+
+/// [`wall`] with each brick turned 90° about y (0.2 m along x, 0.4 m deep) but laid at the
+/// same places, a teacher's first draft (issue 35): the bricks of a course stand 0.2 m apart
+/// and each brick of the course above spans such a gap, so it rests on two bare edges
+/// (supports of zero width) of the bricks below.
+pub fn knife_edge_wall(
+    ball: bool,
+    restitution: f64,
+    impacts: Impacts,
+    response: Response,
+) -> World {
+    let [length, height, depth] = BRICK;
+    brick_wall(
+        [depth, height, length],
+        ball,
+        restitution,
+        impacts,
+        response,
+    )
+}
+
+/// Six courses of five bricks of `size`, centred `BRICK[0]` apart along x, every other course
+/// shifted by half of that; the ball, if any, `0.3 m` from the face of the running-bond wall.
+fn brick_wall(
+    size: [f64; 3],
+    ball: bool,
+    restitution: f64,
+    impacts: Impacts,
+    response: Response,
+) -> World {
+    let brick = Body::solid_box(Vector3::from(size), BRICK_MASS).expect("a valid box");
     let [length, height, depth] = BRICK;
     let mut bodies = Vec::new();
     for course in 0..6 {
@@ -190,4 +233,69 @@ pub fn wall(ball: bool, restitution: f64, impacts: Impacts, response: Response) 
         Integrator::Rk4,
         5e-3,
     )
+}
+
+/// Ball radius and rod length of [`cradle`], m.
+pub const CRADLE_RADIUS: f64 = 0.05;
+pub const CRADLE_ROD: f64 = 1.0;
+
+/// A touching Newton's cradle (lesson 39): five balls of 1 kg, radius 5 cm, touching in a
+/// row along x, each hanging from a pivot at y = 1 m on a rod of 1 m (a distance joint), the
+/// first pulled aside to 30°; e = 1, μ = 0, no ground, dt = 1e-3, `rk4`.
+pub fn cradle(response: Response) -> World {
+    let ball = Body::sphere(CRADLE_RADIUS, 1.0, false).expect("a valid ball");
+    let theta = 30f64.to_radians();
+    let pivots: Vec<Vector3<f64>> = (0..5)
+        .map(|i| Vector3::new(2.0 * CRADLE_RADIUS * i as f64, CRADLE_ROD, 0.0))
+        .collect();
+    let bodies: Vec<NamedBody> = pivots
+        .iter()
+        .enumerate()
+        .map(|(i, pivot)| {
+            let hang = if i == 0 {
+                Vector3::new(-theta.sin(), -theta.cos(), 0.0)
+            } else {
+                -Vector3::y()
+            };
+            body_at(
+                format!("b{}", i + 1),
+                &ball,
+                pivot + hang * CRADLE_ROD,
+                UnitQuaternion::identity(),
+            )
+        })
+        .collect();
+    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
+    let joints = pivots
+        .iter()
+        .enumerate()
+        .map(|(i, pivot)| {
+            let at = states[i].position;
+            Joint::distance(
+                format!("rod{}", i + 1),
+                i,
+                None,
+                [at, *pivot],
+                None,
+                &states,
+            )
+        })
+        .collect();
+    World::with_bodies(
+        bodies,
+        Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
+        Vec::new(),
+        Some(ContactModel {
+            response,
+            restitution: 1.0,
+            friction: 0.0,
+            impacts: Impacts::default(),
+        }),
+        Integrator::Rk4,
+        DT,
+    )
+    .with_links(Links {
+        joints,
+        ..Links::default()
+    })
 }
