@@ -17,12 +17,14 @@
 //! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
 //! | `sweep` | fast pairs of bodies: time of impact, rows carried to the end of the step (no tunnelling) |
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
+//! | `kept` | `soft-step`'s rows carried across steps while the bodies barely move (contact recycling) |
 //!
 pub mod broad_phase;
 pub mod contacts;
 pub mod detect;
 pub mod geometry;
 pub mod impulse;
+pub mod kept;
 pub mod position;
 pub mod response;
 pub mod seed;

@@ -112,6 +112,7 @@
 
 use super::contacts;
 use super::impulse::tangents;
+use super::kept::Kept;
 use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
@@ -352,7 +353,7 @@ fn each_row(
 
 impl Row {
     /// The separation at the bodies' current poses.
-    #[inline]
+    #[inline(always)]
     fn separation_now(&self, places: &[Placement]) -> f64 {
         let a = &places[self.normal.a.body];
         let mut d = a.position - a.detected_position + a.turned * self.lever;
@@ -384,6 +385,8 @@ pub struct Scratch {
     broad: super::broad_phase::BroadPhase,
     /// Last step's per-sub-step impulses, by contact feature.
     warm: WarmCache,
+    /// The last detection's rows, carried while the bodies barely move (`kept`).
+    kept: Kept,
 }
 
 /// Detects contacts and runs the sub-stepped soft response on `states` (module doc). Returns
@@ -403,16 +406,33 @@ pub fn respond(
     // Speculative rows: anything a body could reach within the step at the bounce speed,
     // and at least a millimetre (the rows' separations are tracked within the step).
     let margin = (bounce_speed * dt).max(1e-3);
-    if !contacts::find(
-        input,
-        states,
-        margin,
-        contacts,
-        &mut scratch.points,
-        &mut scratch.broad,
-    ) {
+    // Last step's rows carried over while the bodies barely move (`kept`), else detected.
+    let carried = match input.recorded {
+        None => scratch
+            .kept
+            .carry(input.bodies, input.before, states, margin, contacts),
+        Some(_) => None,
+    };
+    let touching = carried.unwrap_or_else(|| {
+        let touching = contacts::find(
+            input,
+            states,
+            margin,
+            contacts,
+            &mut scratch.points,
+            &mut scratch.broad,
+        );
+        if input.recorded.is_none() {
+            scratch
+                .kept
+                .remember(input.bodies, states, margin, contacts);
+        }
+        touching
+    });
+    if !touching {
         contacts.clear();
         scratch.warm.clear();
+        scratch.kept.ended_at(states);
         return None;
     }
     let potential = |i: usize, x: &Vector3<f64>| {
@@ -757,6 +777,7 @@ pub fn respond(
             }),
     );
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    scratch.kept.ended_at(states);
     let after = total(states);
     Some(EnergyChange { before, after })
 }

@@ -114,6 +114,7 @@ pub struct Axis {
 impl Axis {
     /// The axis d from body `a` at lever `lever_a` to body `b` (if any) at its lever, over
     /// `bodies` (indexed as `a` and `b` are). A fixed B gets no end.
+    #[inline]
     pub fn new(
         d: Vector3<f64>,
         (a, lever_a): (usize, &Vector3<f64>),
