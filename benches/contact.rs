@@ -26,10 +26,21 @@
 //! - `cradle`: a touching Newton's cradle of five balls on rods, e = 1, μ = 0, over 3 s;
 //! - `dominoes16`: 16 dominoes over their whole fall, 2.5 s.
 //!
-//! Anchors (issue 35, Rapier 0.36 f64 / f32): knife-edge wall at rest 92 µs (f64), hit
-//! about 97 µs (f64); 8 dominoes 21 / 13 µs, 16 dominoes 24 µs (f32). The same scenes run in
-//! Rapier with `benches/rapier` (`cargo run --release -- SCENE STEPS f32|f64`); ratios
-//! measured in one run are in the commit that added them.
+//! The same scenes run in Rapier with `benches/rapier` (`cargo run --release -- SCENE STEPS
+//! f32|f64`). Measured in one run (CPU µs per step over the whole run, `contact_steps` beside
+//! `benches/rapier`, this loaded 2-core machine; soft-step with its kept rows):
+//!
+//! | scene (steps) | impulse | soft-step | Rapier f32 | Rapier f64 |
+//! |---|---|---|---|---|
+//! | stack-10 (3000) | 12.8 | 22.4 | 14.2 | 23.8 |
+//! | pyramid-10 (1000) | 119 | 290 | 114 | 199 |
+//! | dominoes (1300) | 312 | 22.1 | 13.3 | 21.4 |
+//! | dominoes16 (2500) | 1,300 | 46.5 | 25.9 | 38.7 |
+//! | wall (400) | 535 | 162 | 61.1 | 105 |
+//! | wall-ball (400) | 42,626 | 156 | 52.7 | 84.7 |
+//! | knife-wall (200) | 154,289 | 160 | 59.1 | 96.7 |
+//! | knife-wall-ball (200) | 44,652 | 201 | 55.1 | 83.8 |
+//! | cradle (3000) | 4.1 | 5.6 | 7.0 | 8.5 |
 //!
 //! `contact/at-rest`: a stack of 10 in its first second and after standing 99 s (the cost of a
 //! scene at rest stays flat).
