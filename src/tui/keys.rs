@@ -2,6 +2,7 @@
 //! the help overlay are both generated from [`KEYS`], so they can never drift from what the keys
 //! really do.
 
+use super::tools::ToolKey;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 /// What a key asks the app to do.
@@ -76,6 +77,8 @@ pub enum Message {
     PlotAgainstTime,
     /// `X`: what the graph shown plots, as CSV.
     ExportCsv,
+    /// The measuring tools' keys (`w` `o` `O` `T` `m` `M` `A` `V`: `tools.rs`).
+    Tool(ToolKey),
 }
 
 /// Where a binding applies.
@@ -432,6 +435,62 @@ pub const KEYS: &[Binding] = &[
         "",
         "write what the graph plots as CSV (./tumble-LESSON-QUANTITY.csv)",
         Message::ExportCsv,
+    ),
+    bind(
+        &[Char('w')],
+        "w",
+        "",
+        "stopwatch: start / stop, on simulated time (shows it)",
+        Message::Tool(ToolKey::StartStop),
+    ),
+    bind(
+        &[Char('o')],
+        "o",
+        "",
+        "stopwatch: lap (its reading and the time since the last lap)",
+        Message::Tool(ToolKey::Lap),
+    ),
+    bind(
+        &[Char('O')],
+        "O",
+        "",
+        "stopwatch: zero and hide",
+        Message::Tool(ToolKey::Zero),
+    ),
+    bind(
+        &[Char('T')],
+        "T",
+        "",
+        "period timer on / off: the quantity graphed (p), its upward crossings, mean T, spread",
+        Message::Tool(ToolKey::Period),
+    ),
+    bind(
+        &[Char('m')],
+        "m",
+        "",
+        "ruler: on, then its first end through the bodies and anchors, then off",
+        Message::Tool(ToolKey::RulerFrom),
+    ),
+    bind(
+        &[Char('M')],
+        "M",
+        "",
+        "ruler: its second end through the bodies and anchors",
+        Message::Tool(ToolKey::RulerTo),
+    ),
+    bind(
+        &[Char('A')],
+        "A",
+        "",
+        "protractor: on, then through every body axis, then off",
+        Message::Tool(ToolKey::ProtractorAxis),
+    ),
+    bind(
+        &[Char('V')],
+        "V",
+        "",
+        "protractor: against the vertical, or another body's axis",
+        Message::Tool(ToolKey::ProtractorAgainst),
     ),
     bind(
         &[PageUp, Char('[')],
