@@ -158,6 +158,18 @@ impl App {
         Some((watch, column))
     }
 
+    /// The period timer's reading over the run so far: the periods found (None: fewer than
+    /// two crossings) and the level crossed (None: no quantity to time).
+    pub fn period_reading(&self) -> (Option<period::Periods>, Option<f64>) {
+        match self.period_watch() {
+            Some((watch, Some(c))) => {
+                let q: Vec<f64> = self.plot_series.column(c).collect();
+                period::periods_at(self.plot_series.times(), &q, watch.level)
+            }
+            _ => (None, None),
+        }
+    }
+
     /// The stopwatch's reading now and whether it runs: the keys', or the page's schedule
     /// while no key worked it.
     pub fn stopwatch_reading(&self) -> (f64, bool) {
