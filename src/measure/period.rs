@@ -35,7 +35,7 @@ pub fn mid_range(q: &[f64]) -> Option<f64> {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
             (a.min(x), b.max(x))
         });
-    (lo <= hi).then(|| 0.5 * (lo + hi))
+    (lo <= hi).then_some(0.5 * (lo + hi))
 }
 
 /// The upward crossings of the mid-range of `q` sampled at times `t` (same length).
