@@ -230,3 +230,36 @@ fn the_tools_are_shown_first_at_every_size() {
     keys(&mut stage, "L");
     insta::assert_snapshot!("tools_stage_120x40", screen(&stage, 120, 40));
 }
+
+#[test]
+fn v_measures_against_the_other_bodys_axes_then_the_vertical_again() {
+    // Lesson 27 at t = 0: both bobs unturned (identity). A: upper.y against the vertical, 0°;
+    // V: against lower.x, 90°; V: lower.y, 0°; V: lower.z, 90°; V: the vertical again.
+    let mut app = lesson("27-the-double-pendulum");
+    let read = |app: &App| {
+        app.protractor()
+            .unwrap()
+            .degrees(app.world.states())
+            .unwrap()
+    };
+    keys(&mut app, "A");
+    assert_eq!(read(&app), 0.0);
+    for (expected, name) in [(90.0, "lower.x"), (0.0, "lower.y"), (90.0, "lower.z")] {
+        keys(&mut app, "V");
+        assert_eq!(read(&app), expected, "{name}");
+        let title = app.tool_panel(PagePanel::Protractor).title;
+        assert_eq!(title, format!("protractor upper.y ∠ {name}"));
+    }
+    keys(&mut app, "V");
+    let title = app.tool_panel(PagePanel::Protractor).title;
+    assert_eq!(title, "protractor upper.y ∠ the vertical");
+    // O zeroes and hides the stopwatch; r starts it over.
+    keys(&mut app, "w");
+    app.step_frames(5);
+    assert!(app.stopwatch_reading().0 > 0.0);
+    keys(&mut app, "r");
+    assert_eq!(app.stopwatch_reading(), (0.0, false));
+    assert!(app.tools_shown().contains(&PagePanel::Stopwatch));
+    keys(&mut app, "O");
+    assert!(!app.tools_shown().contains(&PagePanel::Stopwatch));
+}
