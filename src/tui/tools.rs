@@ -328,6 +328,29 @@ impl App {
         }
     }
 
+    /// Shows a tool as its key does (`tumble shot --tool NAME`): the stopwatch started at
+    /// t = 0, the period timer of the quantity graphed (else the page's or the first), the
+    /// ruler and the protractor as the page or the defaults set them.
+    pub fn show_tool(&mut self, tool: PagePanel) {
+        match tool {
+            PagePanel::Stopwatch => {
+                self.tools.stopwatch_shown = true;
+                self.tools.stopwatch_used = true;
+                self.tools.stopwatch.start(0.0);
+            }
+            PagePanel::Period => {
+                self.tools.period_shown = true;
+                self.tools.period = self.plot.map(|p| Watch {
+                    quantity: self.plot_series.columns[p.y].name.clone(),
+                    level: None,
+                });
+            }
+            PagePanel::Ruler => self.tools.ruler_shown = true,
+            PagePanel::Protractor => self.tools.protractor_shown = true,
+            _ => {}
+        }
+    }
+
     /// Sets an end of the ruler (0: from, 1: to) from a point of the world, as a click on
     /// the drawing does: on the body nearest in the view within `reach` (m) the point moves
     /// with it, else it stays fixed in the world. The ruler is shown.

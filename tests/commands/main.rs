@@ -14,6 +14,7 @@ mod lessons;
 mod live_numbers;
 mod page_tools;
 mod shot_forces;
+mod shot_tools;
 mod study;
 mod study_cloth;
 mod study_contact;
