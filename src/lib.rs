@@ -11,6 +11,7 @@ pub mod error_bars;
 pub mod lessons;
 pub mod limits;
 pub mod live;
+pub mod measure;
 pub mod physics;
 pub mod scene;
 pub mod study;

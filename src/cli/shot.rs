@@ -3,8 +3,9 @@
 //! terminal). The screen is set as in the app: the view (`--view`, key `v`), the arrows
 //! (`--no-arrows`, key `a`), the energy graph (`--graph`, key `g`), the compare ghost
 //! (`--compare NAME`, key `k`), the stage layout (`--stage`, key `L`), the graph of a quantity
-//! (`--plot NAME`, against another with `--plot-x NAME`: key `p`); `tumble record` takes the
-//! same options ([`ScreenArgs`]).
+//! (`--plot NAME`, against another with `--plot-x NAME`: key `p`), the measuring tools
+//! (`--tool NAME`: keys `w` `T` `m` `A`); `tumble record` takes the same options
+//! ([`ScreenArgs`]).
 
 use super::{load_with, Failure, Overrides};
 use crate::tui::export;
@@ -46,6 +47,20 @@ pub struct ScreenArgs {
     /// With `--plot`: the quantity on the horizontal axis (a phase portrait).
     #[arg(long, value_name = "QUANTITY", requires = "plot")]
     pub plot_x: Option<String>,
+    /// Show a measuring tool (keys `w` `T` `m` `A`), as set by the page or by default: the
+    /// stopwatch (started at t = 0), the period timer (of the quantity `--plot` graphs, else
+    /// the page's or the first), the ruler, the protractor. Repeat for several.
+    #[arg(long = "tool", value_name = "NAME", value_parser = parse_tool)]
+    pub tools: Vec<crate::scene::PagePanel>,
+}
+
+fn parse_tool(name: &str) -> Result<crate::scene::PagePanel, String> {
+    crate::scene::PagePanel::from_name(name)
+        .ok()
+        .filter(|p| p.is_tool())
+        .ok_or_else(|| {
+            format!("unknown tool `{name}` (tools: stopwatch, period, ruler, protractor)")
+        })
 }
 
 fn parse_view(name: &str) -> Result<Axis, String> {
@@ -111,6 +126,9 @@ impl ScreenArgs {
             };
             app.plot = Some(crate::tui::plot::PlotChoice { y, x });
             app.view = View::Plot;
+        }
+        for tool in &self.tools {
+            app.show_tool(*tool);
         }
         Ok(app)
     }

@@ -14,6 +14,7 @@ pub mod live;
 mod mesh;
 mod messages;
 mod page_panels;
+mod page_tools;
 mod raw;
 
 pub use diagnose::check as check_every_error;
@@ -45,8 +46,12 @@ pub struct Page {
     pub live: Vec<live::LiveNumber>,
     /// What the student is asked to predict on this page.
     pub predict: Option<live::Prediction>,
-    /// The panels the page names (`panels = [...]`), shown first at any size.
+    /// The panels the page names (`panels = [...]`), shown first at any size; a tool's
+    /// table (`ruler = {...}`) names its panel too.
     pub panels: Vec<PagePanel>,
+    /// What the page sets its measuring tools to (`stopwatch`, `period`, `ruler`,
+    /// `protractor`).
+    pub tools: crate::measure::PageTools,
 }
 
 /// Everything a world is built from.
@@ -347,6 +352,7 @@ impl Validator<'_> {
             if pages.last().is_some_and(|p: &Page| p.at > at) {
                 return Err(self.error(span, "pages must be in order of `at`"));
             }
+            let tools = self.page_tools(&page, at, &scene)?;
             let names: Vec<String> = scene.bodies.iter().map(|b| b.name.clone()).collect();
             let text_span = page.text.span();
             let text = page.text.into_inner();
@@ -366,7 +372,7 @@ impl Validator<'_> {
                     Some(live::Prediction { quantity, at: when })
                 }
             };
-            let panels = page
+            let mut panels = page
                 .panels
                 .iter()
                 .flatten()
@@ -375,6 +381,16 @@ impl Validator<'_> {
                         .map_err(|e| self.error(name.span(), format!("page `panels`: {e}")))
                 })
                 .collect::<Result<Vec<_>, _>>()?;
+            for (set, panel) in [
+                (tools.stopwatch.is_some(), PagePanel::Stopwatch),
+                (tools.period.is_some(), PagePanel::Period),
+                (tools.ruler.is_some(), PagePanel::Ruler),
+                (tools.protractor.is_some(), PagePanel::Protractor),
+            ] {
+                if set && !panels.contains(&panel) {
+                    panels.push(panel);
+                }
+            }
             pages.push(Page {
                 at,
                 title: page.title,
@@ -382,6 +398,7 @@ impl Validator<'_> {
                 live,
                 predict,
                 panels,
+                tools,
             });
         }
         Ok(Lesson {

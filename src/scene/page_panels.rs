@@ -27,11 +27,19 @@ pub enum PagePanel {
     Cloth,
     /// The joint and spring panels.
     Joints,
+    /// The stopwatch on simulated time (a page's `stopwatch` table, or keys `w` `o`).
+    Stopwatch,
+    /// The period timer (a page's `period` table, or key `T`).
+    Period,
+    /// The ruler (a page's `ruler` table, or keys `m` `M`).
+    Ruler,
+    /// The protractor (a page's `protractor` table, or keys `A` `V`).
+    Protractor,
 }
 
 impl PagePanel {
     /// Every name, in the order the panels are stacked.
-    pub const ALL: [(PagePanel, &'static str); 11] = [
+    pub const ALL: [(PagePanel, &'static str); 15] = [
         (PagePanel::State, "state"),
         (PagePanel::Inertia, "inertia"),
         (PagePanel::AngularVelocity, "angular-velocity"),
@@ -43,7 +51,24 @@ impl PagePanel {
         (PagePanel::System, "system"),
         (PagePanel::Cloth, "cloth"),
         (PagePanel::Joints, "joints"),
+        (PagePanel::Stopwatch, "stopwatch"),
+        (PagePanel::Period, "period"),
+        (PagePanel::Ruler, "ruler"),
+        (PagePanel::Protractor, "protractor"),
     ];
+
+    /// The measuring tools (`measure`), in the order their panels are stacked.
+    pub const TOOLS: [PagePanel; 4] = [
+        PagePanel::Stopwatch,
+        PagePanel::Period,
+        PagePanel::Ruler,
+        PagePanel::Protractor,
+    ];
+
+    /// One of the measuring tools.
+    pub fn is_tool(self) -> bool {
+        PagePanel::TOOLS.contains(&self)
+    }
 
     /// The panel written `name`, or an error listing the names.
     pub fn from_name(name: &str) -> Result<PagePanel, String> {

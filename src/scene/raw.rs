@@ -174,6 +174,48 @@ pub struct RawPage {
     pub predict: Option<Spanned<RawPredict>>,
     /// `["energy", "momentum"]`: panels the app shows first (`page_panels.rs`).
     pub panels: Option<Vec<Spanned<String>>>,
+    /// `{ start = 0.5, stop = 2.0 }`: the stopwatch runs on simulated time (`measure`).
+    pub stopwatch: Option<Spanned<RawStopwatch>>,
+    /// `{ quantity = "bob.x", level = 0.0 }`: what the period timer watches.
+    pub period: Option<Spanned<RawPeriod>>,
+    /// `{ from = "bob", to = "rod.b" }`: the ruler's ends.
+    pub ruler: Option<Spanned<RawRuler>>,
+    /// `{ axis = "cube.y", against = "vertical" }`: the protractor's two directions.
+    pub protractor: Option<Spanned<RawProtractor>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStopwatch {
+    pub start: Option<Spanned<f64>>,
+    pub stop: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPeriod {
+    pub quantity: Spanned<String>,
+    pub level: Option<Spanned<f64>>,
+}
+
+/// Each end: a name (`from`: a body, or a joint's or spring's anchor `rod.a`), a point
+/// (`from_point`: in the named body's frame, or without a name a fixed world point), or both.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRuler {
+    pub from: Option<Spanned<String>>,
+    #[serde(default, deserialize_with = "exact::option")]
+    pub from_point: Option<Vec3>,
+    pub to: Option<Spanned<String>>,
+    #[serde(default, deserialize_with = "exact::option")]
+    pub to_point: Option<Vec3>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProtractor {
+    pub axis: Spanned<String>,
+    pub against: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

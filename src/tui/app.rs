@@ -242,6 +242,8 @@ pub struct App {
     /// Jumps run as jobs a slice at a time (the terminal app), or at once (tests, `shot`,
     /// `record`: one call, one result).
     pub background_jobs: bool,
+    /// The measuring tools (`tools.rs`): stopwatch, period timer, ruler, protractor.
+    pub tools: super::tools::Tools,
     pub quit: bool,
 }
 
@@ -356,6 +358,7 @@ impl App {
             measured_real_time: None,
             job: None,
             background_jobs: live_in_background,
+            tools: Default::default(),
             quit: false,
         };
         app.start_live(app.world.clone());
@@ -722,6 +725,7 @@ impl App {
                 }
             }
             Message::ExportCsv => return self.export_csv(),
+            Message::Tool(key) => self.tool_key(key),
         }
         None
     }
@@ -1359,6 +1363,8 @@ impl App {
         self.region = Region::of_world(&self.world);
         self.series = EnergySeries::new(&self.snapshot, self.lesson.scene.duration);
         self.plot_series = PlotSeries::new(&self.world);
+        // The stopwatch's times were of the run replaced: it starts over (shown as it was).
+        self.tools.stopwatch = Default::default();
         self.refresh();
     }
 

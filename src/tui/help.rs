@@ -29,7 +29,11 @@ pub fn lines() -> Vec<Line<'static>> {
             heading,
             Style::new().add_modifier(Modifier::UNDERLINED),
         ));
-        for b in KEYS.iter().filter(|b| b.context == context) {
+        // A binding without help text is described on its group's first line (`w o O`).
+        for b in KEYS
+            .iter()
+            .filter(|b| b.context == context && !b.help.is_empty())
+        {
             lines.push(Line::from(vec![
                 Span::styled(format!("  {:<8}", b.label), key),
                 Span::raw(b.help),

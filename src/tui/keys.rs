@@ -2,6 +2,7 @@
 //! the help overlay are both generated from [`KEYS`], so they can never drift from what the keys
 //! really do.
 
+use super::tools::ToolKey;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 /// What a key asks the app to do.
@@ -76,6 +77,8 @@ pub enum Message {
     PlotAgainstTime,
     /// `X`: what the graph shown plots, as CSV.
     ExportCsv,
+    /// The measuring tools' keys (`w` `o` `O` `T` `m` `M` `A` `V`: `tools.rs`).
+    Tool(ToolKey),
 }
 
 /// Where a binding applies.
@@ -433,6 +436,29 @@ pub const KEYS: &[Binding] = &[
         "write what the graph plots as CSV (./tumble-LESSON-QUANTITY.csv)",
         Message::ExportCsv,
     ),
+    // The measuring tools (`tools.rs`): two help lines, on the first key's binding of each
+    // group (the others' help is empty: the help overlay lists a binding only with its text;
+    // at 120×40 the overlay's one column is full, 38 rows).
+    bind(
+        &[Char('w')],
+        "w o O",
+        "",
+        "stopwatch on simulated time: start / stop (w), lap (o), zero and hide (O)",
+        Message::Tool(ToolKey::StartStop),
+    ),
+    bind(&[Char('o')], "o", "", "", Message::Tool(ToolKey::Lap)),
+    bind(&[Char('O')], "O", "", "", Message::Tool(ToolKey::Zero)),
+    bind(
+        &[Char('T')],
+        "T m M A V",
+        "",
+        "period timer (T, of the quantity graphed), ruler ends (m M), protractor (A axis, V against)",
+        Message::Tool(ToolKey::Period),
+    ),
+    bind(&[Char('m')], "m", "", "", Message::Tool(ToolKey::RulerFrom)),
+    bind(&[Char('M')], "M", "", "", Message::Tool(ToolKey::RulerTo)),
+    bind(&[Char('A')], "A", "", "", Message::Tool(ToolKey::ProtractorAxis)),
+    bind(&[Char('V')], "V", "", "", Message::Tool(ToolKey::ProtractorAgainst)),
     bind(
         &[PageUp, Char('[')],
         "PgUp [",

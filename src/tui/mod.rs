@@ -23,6 +23,7 @@
 //! | `help`, `picker`, `plot_picker`, `divergence_dialog` | the overlays |
 //! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
 //! | `jump_prompt`, `timeline` | the jump prompt (`J`); where a run pauses by itself |
+//! | `tools` | the measuring tools (`w` `o` `O` `T` `m` `M` `A` `V`): state, keys, readout panels |
 //!
 //! When paused the app blocks on input; when running it advances on a fixed dt, as many frames
 //! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`], and
@@ -60,6 +61,7 @@ pub mod status_bar;
 pub mod study_view;
 pub mod theme;
 pub mod timeline;
+pub mod tools;
 pub mod viewport;
 
 pub use against::Against;

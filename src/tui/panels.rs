@@ -185,10 +185,12 @@ pub fn panel_of_measure(m: Measure, several: bool) -> Option<PagePanel> {
 pub fn quoted(app: &App) -> Vec<PagePanel> {
     let (named, measures) = page_quotes(app);
     let several = app.snapshot.bodies.len() > 1;
+    // The measuring tools shown (by a key or by the page) are quoted too: shown first.
     let mut quoted: Vec<PagePanel> = measures
         .iter()
         .filter_map(|&(m, _)| panel_of_measure(m, several))
         .chain(named)
+        .chain(app.tools_shown())
         .collect();
     quoted.sort();
     quoted.dedup();
@@ -365,6 +367,17 @@ fn views(app: &App) -> Vec<Stacked> {
         Stacked::of(PagePanel::Joints, panel, &view)
     });
     views.splice(after_cloths..after_cloths, links.collect::<Vec<_>>());
+    // The measuring tools shown come first: what the class is measuring now.
+    let tools = app.tools_shown().into_iter().map(|tool| {
+        let panel = app.tool_panel(tool);
+        let view = PanelView {
+            panel: &panel,
+            previous: None,
+            compare: None,
+        };
+        Stacked::of(tool, &panel, &view)
+    });
+    views.splice(0..0, tools.collect::<Vec<_>>());
     views
 }
 
@@ -491,7 +504,9 @@ pub fn essentials_for(
                     extra.extend(p.rows.into_iter().take(2));
                 }
             }
+            // The tools' rows come from the app (`essentials_of`).
             PagePanel::BodyEnergy | PagePanel::System | PagePanel::Cloth => {}
+            _ if name.is_tool() => {}
             _ if s.bodies.is_empty() && name != PagePanel::Energy => {}
             _ => {
                 let id = PanelId::ALL
@@ -524,7 +539,24 @@ pub fn essentials_for(
 /// The essentials of the app's page (see [`essentials_for`]) for snapshot `s` of the app.
 pub fn essentials_of(app: &App, s: &Snapshot) -> Panel {
     let (named, measures) = page_quotes(app);
-    essentials_for(s, app.frame, &named, &measures)
+    let mut panel = essentials_for(s, app.frame, &named, &measures);
+    // The measuring tools shown: their readouts (of the world now).
+    for tool in app.tools_shown() {
+        let readout = app.tool_panel(tool);
+        // One row each: the time, the mean period (or the count, 0), the distance, the angle.
+        let first = readout.rows.into_iter().next().map(|mut r| {
+            r.label = match tool {
+                PagePanel::Stopwatch => "stopwatch",
+                PagePanel::Period => "period",
+                PagePanel::Ruler => "ruler",
+                _ => "angle",
+            }
+            .to_string();
+            r
+        });
+        panel.rows.extend(first);
+    }
+    panel
 }
 
 /// The page's `panels`, and its live numbers' and prediction's quantities with their body.

@@ -10,6 +10,7 @@ mod fuzz;
 mod history;
 mod jobs;
 mod plot;
+mod tools;
 mod tui;
 mod tui_cloth;
 mod tui_screens;
