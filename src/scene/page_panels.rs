@@ -27,11 +27,13 @@ pub enum PagePanel {
     Cloth,
     /// The joint and spring panels.
     Joints,
+    /// The energy bars: kinetic, potential, springs, and what contacts, drag and motors took.
+    EnergyBars,
 }
 
 impl PagePanel {
     /// Every name, in the order the panels are stacked.
-    pub const ALL: [(PagePanel, &'static str); 11] = [
+    pub const ALL: [(PagePanel, &'static str); 12] = [
         (PagePanel::State, "state"),
         (PagePanel::Inertia, "inertia"),
         (PagePanel::AngularVelocity, "angular-velocity"),
@@ -43,6 +45,7 @@ impl PagePanel {
         (PagePanel::System, "system"),
         (PagePanel::Cloth, "cloth"),
         (PagePanel::Joints, "joints"),
+        (PagePanel::EnergyBars, "energy-bars"),
     ];
 
     /// The panel written `name`, or an error listing the names.

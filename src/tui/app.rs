@@ -5,7 +5,7 @@
 
 use super::history::{History, DEFAULT_CAPACITY};
 use super::keys::{self, Context, Message};
-use super::plot::{PlotChoice, PlotSeries};
+use super::plot::{curve_axes, PlotChoice, PlotSeries, MAX_CURVES};
 use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
@@ -177,6 +177,9 @@ pub struct App {
     pub plot_series: PlotSeries,
     /// What the quantity graph shows (None until picked).
     pub plot: Option<PlotChoice>,
+    /// Further curves on the quantity graph after `plot`'s own (column indices; the picker's
+    /// `a` adds and removes them, see [`App::plot_curves`]).
+    pub plot_extra: Vec<usize>,
     pub region: Region,
     pub axis: Axis,
     pub frame: Frame,
@@ -321,6 +324,7 @@ impl App {
             series,
             plot_series,
             plot: None,
+            plot_extra: Vec::new(),
             region,
             axis: Axis::Front,
             frame: Frame::World,
@@ -711,19 +715,100 @@ impl App {
                         Message::PlotAgainstTime => *x = None,
                         Message::PlotAsX => *x = Some(*selected),
                         _ => {
-                            self.plot = Some(PlotChoice {
+                            let choice = PlotChoice {
                                 y: *selected,
                                 x: *x,
-                            });
+                            };
                             self.overlay = Overlay::None;
-                            self.view = View::Plot;
+                            self.graph(choice);
                         }
                     }
+                }
+            }
+            Message::PlotAdd => {
+                if let Overlay::PlotPicker { selected, x } = self.overlay {
+                    self.overlay = Overlay::None;
+                    self.toggle_curve(selected, x);
                 }
             }
             Message::ExportCsv => return self.export_csv(),
         }
         None
+    }
+
+    /// Shows the quantity graph of `choice`, one curve (the picker's Enter).
+    pub fn graph(&mut self, choice: PlotChoice) {
+        self.plot = Some(choice);
+        self.plot_extra.clear();
+        self.view = View::Plot;
+    }
+
+    /// The curves of the quantity graph, first `plot`'s own, then the others (at most
+    /// [`MAX_CURVES`], of at most two units: see [`curve_axes`]); empty before a pick.
+    pub fn plot_curves(&self) -> Vec<usize> {
+        let Some(choice) = self.plot else {
+            return Vec::new();
+        };
+        let wanted: Vec<usize> = std::iter::once(choice.y)
+            .chain(self.plot_extra.iter().copied())
+            .collect();
+        curve_axes(&self.plot_series.columns, &wanted).curves
+    }
+
+    /// The picker's `a`: column `column` joins the graph as another curve, or leaves it if it
+    /// is on it; against `x` (the picker's horizontal axis) when nothing is graphed yet.
+    fn toggle_curve(&mut self, column: usize, x: Option<usize>) {
+        let name = |app: &App| app.plot_series.columns[column].name.clone();
+        let Some(choice) = self.plot else {
+            self.graph(PlotChoice { y: column, x });
+            return;
+        };
+        let mut curves = self.plot_curves();
+        self.view = View::Plot;
+        if let Some(at) = curves.iter().position(|&c| c == column) {
+            if curves.len() == 1 {
+                self.notice = Some(format!(
+                    "{} is the graph's only curve: Enter graphs another instead",
+                    name(self)
+                ));
+                return;
+            }
+            curves.remove(at);
+            self.plot = Some(PlotChoice {
+                y: curves[0],
+                x: choice.x,
+            });
+            self.plot_extra = curves[1..].to_vec();
+            self.notice = Some(format!("{} taken off the graph", name(self)));
+            return;
+        }
+        curves.push(column);
+        let axes = curve_axes(&self.plot_series.columns, &curves);
+        if !axes.curves.contains(&column) {
+            let units = match axes.right {
+                Some(right) => format!("{} and {right}", axes.left),
+                None => axes.left.to_string(),
+            };
+            self.notice = Some(if axes.curves.len() == MAX_CURVES {
+                format!("the graph has {MAX_CURVES} curves already: `a` on one takes it off")
+            } else {
+                format!(
+                    "the graph's two axes are in {units}: {} needs a third (Enter graphs it \
+                     alone)",
+                    name(self)
+                )
+            });
+            return;
+        }
+        self.plot_extra = axes.curves[1..].to_vec();
+        self.notice = Some(match axes.right {
+            Some(right) => format!(
+                "{} added: two axes, {} on the left, {right} on the right",
+                name(self),
+                axes.left
+            ),
+            None => format!("{} added: one shared axis, {}", name(self), axes.left),
+        });
     }
 
     /// The file `X` writes: `tumble-NAME-energy.csv`, or `tumble-NAME-Y.csv` /
@@ -746,7 +831,7 @@ impl App {
                 let p = self.plot?;
                 let columns = &self.plot_series.columns;
                 p.x.into_iter()
-                    .chain([p.y])
+                    .chain(self.plot_curves())
                     .map(|c| clean(&columns[c].name))
                     .collect::<Vec<_>>()
                     .join("-")
@@ -760,7 +845,9 @@ impl App {
     fn export_csv(&mut self) -> Option<Effect> {
         let text = match (self.view, self.plot) {
             (View::Energy, _) => self.series.csv(self.world.dt()),
-            (View::Plot, Some(choice)) => self.plot_series.csv(choice),
+            (View::Plot, Some(choice)) => {
+                self.plot_series.csv_of(choice.x, &self.plot_curves())
+            }
             _ => {
                 self.notice = Some(
                     "no graph shown: g shows the energy graph, p picks a quantity to graph".into(),
@@ -1263,7 +1350,9 @@ impl App {
                 }
             }
         }
-        if frames > 1 && done > 0 {
+        // Every run of frames is measured, one frame too: a heavy scene runs one frame per
+        // render (`affordable_frames`), and its ns/step must not freeze at the last longer run.
+        if done > 0 {
             let ns = cost * 1e9 / done as f64;
             self.ns_per_step = Some(match self.ns_per_step {
                 Some(old) => 0.8 * old + 0.2 * ns,

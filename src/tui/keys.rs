@@ -74,6 +74,9 @@ pub enum Message {
     PlotAsX,
     /// In the quantity picker: the horizontal axis is time again.
     PlotAgainstTime,
+    /// In the quantity picker: the selected quantity joins the graph shown as another curve
+    /// (or, on the graph already, leaves it).
+    PlotAdd,
     /// `X`: what the graph shown plots, as CSV.
     ExportCsv,
 }
@@ -520,6 +523,13 @@ pub const KEYS: &[Binding] = &[
         "t",
         "plot: time on the horizontal axis",
         Message::PlotAgainstTime,
+    ),
+    within(
+        Context::PlotPicker,
+        &[Char('a'), Char('+')],
+        "a",
+        "plot: add as another curve (again: remove)",
+        Message::PlotAdd,
     ),
     within(
         Context::PlotPicker,

@@ -365,6 +365,14 @@ fn views(app: &App) -> Vec<Stacked> {
         Stacked::of(PagePanel::Joints, panel, &view)
     });
     views.splice(after_cloths..after_cloths, links.collect::<Vec<_>>());
+    // The energy bars, when the page names them.
+    if page_quotes(app).0.contains(&PagePanel::EnergyBars) {
+        let lines = super::energy_bars::lines(s);
+        let title = lines
+            .first()
+            .map_or_else(String::new, |l| l.spans.iter().map(|s| s.content.clone()).collect());
+        views.push(Stacked::whole(Some(PagePanel::EnergyBars), lines, title));
+    }
     views
 }
 
@@ -491,7 +499,10 @@ pub fn essentials_for(
                     extra.extend(p.rows.into_iter().take(2));
                 }
             }
-            PagePanel::BodyEnergy | PagePanel::System | PagePanel::Cloth => {}
+            PagePanel::BodyEnergy
+            | PagePanel::System
+            | PagePanel::Cloth
+            | PagePanel::EnergyBars => {}
             _ if s.bodies.is_empty() && name != PagePanel::Energy => {}
             _ => {
                 let id = PanelId::ALL
