@@ -845,9 +845,7 @@ impl App {
     fn export_csv(&mut self) -> Option<Effect> {
         let text = match (self.view, self.plot) {
             (View::Energy, _) => self.series.csv(self.world.dt()),
-            (View::Plot, Some(choice)) => {
-                self.plot_series.csv_of(choice.x, &self.plot_curves())
-            }
+            (View::Plot, Some(choice)) => self.plot_series.csv_of(choice.x, &self.plot_curves()),
             _ => {
                 self.notice = Some(
                     "no graph shown: g shows the energy graph, p picks a quantity to graph".into(),

@@ -130,7 +130,11 @@ pub fn lines(s: &Snapshot) -> Vec<Line<'static>> {
     };
     // The zero column: room on its left for the most negative bar.
     let zero = ((-lo * per_joule).round() as usize).min(BAR_WIDTH);
-    let label_width = BARS.iter().map(|b| b.label.chars().count()).max().unwrap_or(0);
+    let label_width = BARS
+        .iter()
+        .map(|b| b.label.chars().count())
+        .max()
+        .unwrap_or(0);
     let row = |label: &str, value: f64, colour: Color| -> Line<'static> {
         let value = resolved(value, ROUND_OFF * scale);
         let cells = bar_cells(value * per_joule);

@@ -368,9 +368,9 @@ fn views(app: &App) -> Vec<Stacked> {
     // The energy bars, when the page names them.
     if page_quotes(app).0.contains(&PagePanel::EnergyBars) {
         let lines = super::energy_bars::lines(s);
-        let title = lines
-            .first()
-            .map_or_else(String::new, |l| l.spans.iter().map(|s| s.content.clone()).collect());
+        let title = lines.first().map_or_else(String::new, |l| {
+            l.spans.iter().map(|s| s.content.clone()).collect()
+        });
         views.push(Stacked::whole(Some(PagePanel::EnergyBars), lines, title));
     }
     views

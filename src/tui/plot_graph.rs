@@ -249,7 +249,12 @@ fn render_curves(app: &App, choice: PlotChoice, curves: &[usize], area: Rect, bu
             .style(Style::new().fg(Color::Yellow).add_modifier(Modifier::BOLD))
             .data(&now),
     );
-    let title = legend(app, &axes, choice, usize::from(area.width).saturating_sub(2));
+    let title = legend(
+        app,
+        &axes,
+        choice,
+        usize::from(area.width).saturating_sub(2),
+    );
     let keys = format!(
         " {} another · {} CSV ",
         key_of(Message::OpenPlot),

@@ -30,7 +30,10 @@ pub fn render(
         .iter()
         .enumerate()
         .map(|(i, c)| {
-            let curve = curves.iter().position(|&c| c == i).filter(|_| curves.len() > 1);
+            let curve = curves
+                .iter()
+                .position(|&c| c == i)
+                .filter(|_| curves.len() > 1);
             let axis = if Some(i) == x {
                 "  ← horizontal axis".to_string()
             } else if let Some(k) = curve {

@@ -4,6 +4,7 @@
 mod against;
 mod class_pages;
 mod classroom;
+mod energy_bars;
 mod findings;
 mod forces;
 mod fuzz;
