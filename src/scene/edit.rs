@@ -34,6 +34,7 @@ use super::{Naming, Scene};
 use crate::physics::cloth::ClothIntegrator;
 use crate::physics::derive::derive;
 use crate::physics::effects::{Effect, Effects};
+use crate::physics::joints::JointKind;
 use crate::physics::state::Orientation;
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use std::path::Path;
@@ -67,6 +68,38 @@ pub struct SceneEdits {
     pub drag: Option<(f64, f64)>,
     /// Each cloth's particle integrator and stiffnesses, in scene order.
     pub cloths: Vec<ClothEdit>,
+    /// Each spring's stiffness, damping and rest length, in scene order.
+    pub springs: Vec<SpringEdit>,
+    /// Each hinge's and slider's limits and motor (those that have one), in scene order.
+    pub joints: Vec<JointEdit>,
+}
+
+/// The edited values of one spring (`[[spring]]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpringEdit {
+    /// Its index among the scene's springs, and its name.
+    pub index: usize,
+    pub name: String,
+    /// k, N/m (> 0).
+    pub stiffness: f64,
+    /// c, N·s/m (≥ 0).
+    pub damping: f64,
+    /// ℓ₀, m (≥ 0).
+    pub rest_length: f64,
+}
+
+/// The edited limits and motor of one hinge or slider (`[[joint]]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointEdit {
+    /// Its index among the scene's joints, and its name.
+    pub index: usize,
+    pub name: String,
+    /// A hinge (limits in degrees, motor in rad/s and N·m), else a slider (m, m/s and N).
+    pub hinge: bool,
+    /// `[lo, hi]` from the t = 0 pose, as the file writes them (hinge: degrees), lo ≤ 0 ≤ hi.
+    pub limits: Option<[f64; 2]>,
+    /// The motor's speed and its bound (max_torque or max_force, > 0).
+    pub motor: Option<(f64, f64)>,
 }
 
 /// The edited value of one cloth.
@@ -111,7 +144,32 @@ impl SceneEdits {
             Effect::Drag { linear, angular } => Some((*linear, *angular)),
             Effect::Gravity(_) => None,
         });
+        let springs = (scene.links.springs.iter().enumerate())
+            .map(|(index, s)| SpringEdit {
+                index,
+                name: s.name.clone(),
+                stiffness: s.stiffness,
+                damping: s.damping,
+                rest_length: s.rest_length,
+            })
+            .collect();
+        let joints = (scene.links.joints.iter().enumerate())
+            .filter(|(_, j)| j.limits.is_some() || j.motor.is_some())
+            .map(|(index, j)| {
+                let hinge = j.kind == JointKind::Hinge;
+                let unit = |x: f64| if hinge { x.to_degrees() } else { x };
+                JointEdit {
+                    index,
+                    name: j.name.clone(),
+                    hinge,
+                    limits: j.limits.map(|[lo, hi]| [unit(lo), unit(hi)]),
+                    motor: j.motor.map(|m| (m.speed, m.max)),
+                }
+            })
+            .collect();
         let mut edits = SceneEdits {
+            springs,
+            joints,
             body: None,
             dt: scene.dt,
             restitution: scene.contact.map(|c| c.restitution),
@@ -171,6 +229,45 @@ impl SceneEdits {
             for (what, k) in [("drag.linear", linear), ("drag.angular", angular)] {
                 if !(k >= 0.0 && k.is_finite()) {
                     return Some(format!("{what} must be ≥ 0, found {k}"));
+                }
+            }
+        }
+        for s in &self.springs {
+            if !(s.stiffness > 0.0 && s.stiffness.is_finite()) {
+                return Some(format!(
+                    "spring {}: stiffness must be > 0, found {}",
+                    s.name, s.stiffness
+                ));
+            }
+            for (what, x) in [("damping", s.damping), ("rest_length", s.rest_length)] {
+                if !(x >= 0.0 && x.is_finite()) {
+                    return Some(format!("spring {}: {what} must be ≥ 0, found {x}", s.name));
+                }
+            }
+        }
+        for j in &self.joints {
+            if let Some([lo, hi]) = j.limits {
+                if !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi) {
+                    return Some(format!(
+                        "joint {}: `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found \
+                         [{lo}, {hi}]",
+                        j.name
+                    ));
+                }
+                if j.hinge && hi - lo >= 360.0 {
+                    return Some(format!(
+                        "joint {}: hinge `limits` must be less than a full turn apart",
+                        j.name
+                    ));
+                }
+            }
+            if let Some((speed, max)) = j.motor {
+                if !speed.is_finite() || !(max > 0.0 && max.is_finite()) {
+                    return Some(format!(
+                        "joint {}: the motor needs a finite speed and a bound > 0, found \
+                         {speed} and {max}",
+                        j.name
+                    ));
                 }
             }
         }
@@ -245,6 +342,22 @@ impl SceneEdits {
             cloth.stretch = edit.stretch;
             cloth.shear = edit.shear;
             cloth.bend = edit.bend;
+        }
+        for edit in &self.springs {
+            if let Some(spring) = out.links.springs.get_mut(edit.index) {
+                spring.stiffness = edit.stiffness;
+                spring.damping = edit.damping;
+                spring.rest_length = edit.rest_length;
+            }
+        }
+        for edit in &self.joints {
+            if let Some(joint) = out.links.joints.get_mut(edit.index) {
+                let unit = |x: f64| if edit.hinge { x.to_radians() } else { x };
+                joint.limits = edit.limits.map(|[lo, hi]| [unit(lo), unit(hi)]);
+                if let (Some(motor), Some((speed, max))) = (&mut joint.motor, edit.motor) {
+                    (motor.speed, motor.max) = (speed, max);
+                }
+            }
         }
         if let Some(index) = self.body {
             self.apply_body(&mut out, index)?;
@@ -559,6 +672,8 @@ lines."""
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             drag: None,
             cloths: Vec::new(),
+            springs: Vec::new(),
+            joints: Vec::new(),
         }
     }
 

@@ -507,9 +507,13 @@ impl App {
             }
             Message::OpenSettings => {
                 self.running = false;
-                self.overlay = Overlay::Settings(Box::new(SettingsForm::new(SceneEdits::of(
-                    &self.lesson.scene,
-                ))));
+                // The body the panels show (Tab picks it), named in the form's title.
+                let body = self
+                    .selected
+                    .min(self.lesson.scene.bodies.len().saturating_sub(1));
+                let mut form = SettingsForm::new(SceneEdits::of_body(&self.lesson.scene, body));
+                form.body_name = self.lesson.scene.bodies.get(body).map(|b| b.name.clone());
+                self.overlay = Overlay::Settings(Box::new(form));
             }
             Message::WriteScene => return self.write_scene(),
             Message::Type(c) => match &mut self.overlay {
@@ -868,7 +872,9 @@ impl App {
                 let written = crate::lessons::source(source)
                     .map(|(_, text)| text)
                     .ok_or_else(|| format!("cannot read {}", source.display()))
-                    .and_then(|text| edits.write_into(&text, 0, source.parent()))
+                    .and_then(|text| {
+                        edits.write_into(&text, edits.body.unwrap_or(0), source.parent())
+                    })
                     .and_then(|text| std::fs::write(&to, text).map_err(|e| e.to_string()))
                     .and_then(|()| crate::scene::load(&to).map_err(|e| e.to_string()));
                 self.notice = Some(match written {
@@ -993,7 +999,7 @@ impl App {
                     return None;
                 }
             },
-            _ => SceneEdits::of(&self.lesson.scene),
+            _ => SceneEdits::of_body(&self.lesson.scene, self.selected),
         };
         // The written file must pass what the loader checks: the same rules here.
         if let Err(e) = edits.apply(&self.lesson.scene) {
@@ -1023,17 +1029,86 @@ impl App {
             }
         };
         let changes = form.changes(&edits);
+        if form.live_only() {
+            let tunings = form.tunings(&edits);
+            self.apply_live(edits, tunings, changes);
+            return;
+        }
         match edits.apply(&self.lesson.scene) {
             Ok(scene) => {
                 let mut lesson = self.lesson.clone();
                 lesson.scene = scene;
+                let selected = self.selected;
                 self.open(lesson);
+                // The body edited stays the one the panels show.
+                if selected < self.world.body_count() {
+                    self.selected = selected;
+                    self.refresh();
+                }
                 self.notice = Some(format!(
                     "settings applied ({changes}): the scene restarted at t = 0"
                 ));
             }
             Err(e) => form.error = Some(e),
         }
+    }
+
+    /// Enter in the form when only continuous values changed (g, drag, e, μ, a spring's k, a
+    /// motor's speed): the world takes them where it is ([`World::tune`]) and the run goes
+    /// on — t and the state kept, as PhET's sliders do; the scene keeps them for a reset.
+    fn apply_live(
+        &mut self,
+        edits: SceneEdits,
+        tunings: Vec<crate::physics::Tuning>,
+        changes: String,
+    ) {
+        // The scene as edited (its bodies untouched: no body value changed).
+        let scene = SceneEdits {
+            body: None,
+            ..edits
+        }
+        .apply(&self.lesson.scene);
+        let scene = match scene {
+            Ok(scene) => scene,
+            Err(e) => {
+                if let Overlay::Settings(form) = &mut self.overlay {
+                    form.error = Some(e);
+                }
+                return;
+            }
+        };
+        self.overlay = Overlay::None;
+        if tunings.is_empty() {
+            self.notice = Some("settings: no value changed".into());
+            return;
+        }
+        // A frame in progress is finished first: the change acts between frames.
+        while !self.at_frame_start() && self.divergence.is_none() {
+            self.step_phase();
+        }
+        self.before_change();
+        for &tuning in &tunings {
+            if let Err(e) = self.world.tune(tuning) {
+                self.notice = Some(format!("settings: {e}"));
+                return;
+            }
+            if let Some(ghost) = &mut self.ghost {
+                ghost.world.tune(tuning).ok();
+            }
+        }
+        self.lesson.scene = scene;
+        // Frames before the change replay with the new values: the history restarts here.
+        self.history.break_segment();
+        // The pages' live numbers are simulated again with the new values; the ± reference
+        // ran the old ones.
+        self.start_live(self.lesson.scene.world());
+        let bars = self.error_bars.take().is_some();
+        self.refresh();
+        self.notice = Some(format!(
+            "applied live ({changes}): the run goes on from t = {} s{}",
+            tidy(self.world.time()),
+            if bars { "; u shows the ± again" } else { "" }
+        ));
     }
 
     /// Replaces the lesson, keeping what carries across lessons: the view axis, the numbers'

@@ -412,7 +412,7 @@ pub const KEYS: &[Binding] = &[
         &[Char('e')],
         "e",
         "e settings",
-        "settings: e, μ, mass, dt, v₀, ω₀ (applying restarts)",
+        "settings of the body Tab picks: g, drag, e, μ, k, motors live; mass, dt, x₀, v₀… restart",
         Message::OpenSettings,
     ),
     bind(
@@ -577,7 +577,7 @@ pub const KEYS: &[Binding] = &[
         Context::Form,
         &[Enter],
         "Enter",
-        "settings: apply, restart at t = 0",
+        "settings: apply (~ live, else restart at t = 0)",
         Message::Submit,
     ),
     within(

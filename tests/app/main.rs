@@ -11,6 +11,7 @@ mod fuzz;
 mod history;
 mod jobs;
 mod plot;
+mod settings_live;
 mod tui;
 mod tui_cloth;
 mod tui_screens;
