@@ -16,6 +16,9 @@
 //!                        differs from what the file gives the cloth, its own or the scene's)
 //! cloth NAME stretch,    [[cloth]] stretch, shear, bend (written only when changed)
 //!   shear, bend
+//! spring NAME k, c, ℓ₀   [[spring]] stiffness, damping, rest_length (written only when changed)
+//! joint NAME limits,     [[joint]] limits (hinge: degrees), motor = { speed, max_torque |
+//!   motor speed, bound     max_force } (hinges and sliders that have them; only when changed)
 //! ```
 //!
 //! A scene of cloths only has no body values: `body` is None and dt, the contact values,
@@ -352,8 +355,13 @@ impl SceneEdits {
         }
         for edit in &self.joints {
             if let Some(joint) = out.links.joints.get_mut(edit.index) {
+                // Limits the form left as shown keep their value exactly (degrees → radians
+                // → degrees need not give back the same last bit).
+                let shown = |x: f64| if edit.hinge { x.to_degrees() } else { x };
                 let unit = |x: f64| if edit.hinge { x.to_radians() } else { x };
-                joint.limits = edit.limits.map(|[lo, hi]| [unit(lo), unit(hi)]);
+                if joint.limits.map(|[lo, hi]| [shown(lo), shown(hi)]) != edit.limits {
+                    joint.limits = edit.limits.map(|[lo, hi]| [unit(lo), unit(hi)]);
+                }
                 if let (Some(motor), Some((speed, max))) = (&mut joint.motor, edit.motor) {
                     (motor.speed, motor.max) = (speed, max);
                 }
@@ -441,6 +449,7 @@ impl SceneEdits {
             }
         }
         self.write_cloths(&mut doc)?;
+        self.write_links(&mut doc)?;
         if let Some(body) = self.body.map(|_| body) {
             self.write_body(&mut doc, body, mesh_from)?;
         }
@@ -492,6 +501,88 @@ impl SceneEdits {
                     .or(absent);
                 if current != Some(k) {
                     set(table, key, Value::from(k));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Each spring's stiffness, damping and rest length, each joint's limits and motor, where
+    /// they differ from what the file gives (a `[[spring]]` or `[[joint]]` found by its name,
+    /// or its default name `spring1`, `joint2`, …).
+    fn write_links(&self, doc: &mut DocumentMut) -> Result<(), String> {
+        fn table<'a>(
+            doc: &'a mut DocumentMut,
+            kind: &str,
+            name: &str,
+        ) -> Result<&'a mut toml_edit::Table, String> {
+            doc.get_mut(kind)
+                .and_then(Item::as_array_of_tables_mut)
+                .and_then(|tables| {
+                    tables.iter_mut().enumerate().find_map(|(k, t)| {
+                        let named = t
+                            .get("name")
+                            .and_then(Item::as_str)
+                            .map_or_else(|| format!("{kind}{}", k + 1), str::to_owned);
+                        (named == name).then_some(t)
+                    })
+                })
+                .ok_or_else(|| format!("the scene file has no {kind} named `{name}`"))
+        }
+        let value_of =
+            |t: &toml_edit::Table, key: &str| t.get(key).and_then(Item::as_value).and_then(number);
+        for edit in &self.springs {
+            let t = table(doc, "spring", &edit.name)?;
+            if value_of(t, "stiffness") != Some(edit.stiffness) {
+                set(t, "stiffness", Value::from(edit.stiffness));
+            }
+            if value_of(t, "damping").unwrap_or(0.0) != edit.damping {
+                set(t, "damping", Value::from(edit.damping));
+            }
+            // Absent, the rest length is the anchors' distance at t = 0.
+            let given = value_of(t, "rest_length").or_else(|| {
+                let anchors = t.get("anchors")?.as_array()?;
+                let ends: Vec<Vec<f64>> = anchors
+                    .iter()
+                    .map(|a| a.as_array().map(|a| a.iter().filter_map(number).collect()))
+                    .collect::<Option<_>>()?;
+                let [a, b] = &ends[..] else { return None };
+                Some(
+                    a.iter()
+                        .zip(b)
+                        .map(|(x, y)| (x - y).powi(2))
+                        .sum::<f64>()
+                        .sqrt(),
+                )
+            });
+            if given != Some(edit.rest_length) {
+                set(t, "rest_length", Value::from(edit.rest_length));
+            }
+        }
+        for edit in &self.joints {
+            let t = table(doc, "joint", &edit.name)?;
+            if let Some([lo, hi]) = edit.limits {
+                let close = |file: Vec<f64>| {
+                    file.len() == 2
+                        && (file[0] - lo).abs() <= 1e-9 * lo.abs()
+                        && (file[1] - hi).abs() <= 1e-9 * hi.abs()
+                };
+                if !numbers(t.get("limits")).is_some_and(close) {
+                    set(t, "limits", Value::Array([lo, hi].into_iter().collect()));
+                }
+            }
+            if let Some((speed, max)) = edit.motor {
+                let bound = if edit.hinge {
+                    "max_torque"
+                } else {
+                    "max_force"
+                };
+                if let Some(motor) = t.get_mut("motor").and_then(Item::as_table_like_mut) {
+                    for (key, x) in [("speed", speed), (bound, max)] {
+                        if motor.get(key).and_then(Item::as_value).and_then(number) != Some(x) {
+                            set(motor, key, Value::from(x));
+                        }
+                    }
                 }
             }
         }

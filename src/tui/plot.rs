@@ -357,6 +357,28 @@ mod tests {
     use super::*;
 
     #[test]
+    fn curves_of_one_unit_share_an_axis_a_second_unit_takes_the_right_one() {
+        let lesson =
+            crate::lessons::load(std::path::Path::new("lessons/05-ground-collision.toml")).unwrap();
+        let columns = columns(&lesson.scene.world());
+        let at = |name: &str| columns.iter().position(|c| c.name == name).unwrap();
+        let (y, x, vy, k) = (
+            at("body1.y"),
+            at("body1.x"),
+            at("body1.vy"),
+            at("body1.kinetic"),
+        );
+        let axes = curve_axes(&columns, &[y, x]);
+        assert_eq!((axes.left, axes.right), ("m", None));
+        assert_eq!(axes.on_right, [false, false]);
+        // m/s goes right; J would be a third unit: left out; a repeat is kept once.
+        let axes = curve_axes(&columns, &[y, vy, k, x, y]);
+        assert_eq!(axes.curves, [y, vy, x]);
+        assert_eq!((axes.left, axes.right), ("m", Some("m/s")));
+        assert_eq!(axes.on_right, [false, true, false]);
+    }
+
+    #[test]
     fn thinning_keeps_every_other_row_and_the_columns_aligned() {
         let lesson =
             crate::lessons::load(std::path::Path::new("lessons/05-ground-collision.toml")).unwrap();

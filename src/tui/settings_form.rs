@@ -1,8 +1,15 @@
 //! The settings form's state (key `e`): one text field per value of [`SceneEdits`] — restitution,
-//! friction, mass, dt, the body's initial position, orientation (axis and degrees), velocity
-//! and angular velocity component by component, gravity and drag, and each cloth's particle
-//! integrator by name and its stiffnesses. A scene of cloths only has no body fields. Typing replaces the selected field's value (then appends); the values are read and
-//! checked only when the form is applied or written, with the loader's own rules.
+//! friction, mass, dt, the initial position, orientation (axis and degrees), velocity and
+//! angular velocity component by component of the body the panels show (Tab picks it; the
+//! form's title names it), gravity and drag, each spring's k, c and ℓ₀, each hinge's or
+//! slider's limits and motor (speed and bound), and each cloth's particle integrator by name
+//! and its stiffnesses. A scene of cloths only has no body fields. Typing replaces the
+//! selected field's value (then appends); the values are read and checked only when the form
+//! is applied or written, with the loader's own rules.
+//!
+//! Continuous values ([`FieldKind::is_live`]: g, drag, e, μ, a spring's k, a motor's speed)
+//! apply while the run goes on ([`SettingsForm::tunings`], `World::tune`), as PhET's sliders
+//! do; any other change restarts the scene at t = 0.
 
 use crate::physics::Tuning;
 use crate::scene::edit::cloth_integrator;

@@ -181,3 +181,52 @@ fn a_live_g_does_not_restart_the_run() {
     assert_eq!(app.world.step_count(), 0);
     assert_eq!(app.world.effects().gravity().unwrap().y, -1.62);
 }
+
+#[test]
+fn a_motors_speed_applies_live_and_w_writes_the_links_values() {
+    // Lesson 44: a wheel on a hinge motor (10 rad/s, at most 2 N·m) against drag.
+    let lesson = tumble::lessons::load(Path::new("44-a-motor")).unwrap();
+    let mut app = App::new(
+        lesson,
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    app.step_frames(200);
+    let step = app.world.step_count();
+    press(&mut app, KeyCode::Char('e'));
+    let Overlay::Settings(form) = &app.overlay else {
+        panic!("e opens the form");
+    };
+    let name = app.world.links().joints[0].name.clone();
+    let speed = form
+        .fields
+        .iter()
+        .find(|f| form.label(f).0 == format!("joint {name} motor speed"))
+        .expect("the motor's speed field");
+    assert_eq!(speed.text, "10");
+    set_field(&mut app, &format!("joint {name} motor speed"), "4");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.world.step_count(), step, "{:?}", app.notice);
+    assert_eq!(app.world.links().joints[0].motor.unwrap().speed, 4.0);
+    // The motor now holds 4 rad/s, not 10 (the drag's 0.05 · 4 = 0.2 N·m is within its
+    // 2 N·m): at about 4 rad/s² it gets there within a second.
+    app.step_frames(2000);
+    let w = app.snapshot.angular_velocity.norm();
+    assert!((w - 4.0).abs() < 1e-3, "ω = {w} rad/s");
+    // The bound restarts; W writes both into the file the loader reads back.
+    press(&mut app, KeyCode::Char('e'));
+    set_field(&mut app, &format!("joint {name} motor max torque"), "3");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.world.step_count(), 0, "{:?}", app.notice);
+    let dir = std::env::temp_dir().join(format!("tumble-settings-live-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    app.write_dir = dir.clone();
+    press(&mut app, KeyCode::Char('W'));
+    let written = tumble::scene::load(&app.write_path()).unwrap_or_else(|e| panic!("{e}"));
+    let motor = written.scene.links.joints[0].motor.unwrap();
+    assert_eq!((motor.speed, motor.max), (4.0, 3.0));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
