@@ -265,7 +265,7 @@ impl SceneEdits {
                 }
             }
             if let Some((speed, max)) = j.motor {
-                if !speed.is_finite() || !(max > 0.0 && max.is_finite()) {
+                if !(speed.is_finite() && max > 0.0 && max.is_finite()) {
                     return Some(format!(
                         "joint {}: the motor needs a finite speed and a bound > 0, found \
                          {speed} and {max}",

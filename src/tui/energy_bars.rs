@@ -95,7 +95,7 @@ fn bar_cells(cells: f64) -> String {
     if cells >= 0.0 {
         let eighths = (cells * 8.0).round() as usize;
         let mut s = "█".repeat(eighths / 8);
-        if eighths % 8 > 0 {
+        if !eighths.is_multiple_of(8) {
             s.push(['▏', '▎', '▍', '▌', '▋', '▊', '▉'][eighths % 8 - 1]);
         }
         s
