@@ -35,10 +35,12 @@
 
 use super::{Naming, Scene};
 use crate::physics::cloth::ClothIntegrator;
+use crate::physics::collision::geometry::Shape;
 use crate::physics::derive::derive;
 use crate::physics::effects::{Effect, Effects};
 use crate::physics::joints::JointKind;
 use crate::physics::state::Orientation;
+use crate::physics::Body;
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use std::path::Path;
 use toml_edit::{Array, DocumentMut, Item, TableLike, Value};
@@ -75,6 +77,10 @@ pub struct SceneEdits {
     pub springs: Vec<SpringEdit>,
     /// Each hinge's and slider's limits and motor (those that have one), in scene order.
     pub joints: Vec<JointEdit>,
+    /// The body's size, by its shape ([`SceneEdits::size_names`]): a box's sides x, y, z; a
+    /// sphere's radius; a capsule's or cylinder's radius and length, m (empty: a body of
+    /// points or a mesh, or a fixed one, or no body).
+    pub size: Vec<f64>,
 }
 
 /// The edited values of one spring (`[[spring]]`).
@@ -171,6 +177,7 @@ impl SceneEdits {
             })
             .collect();
         let mut edits = SceneEdits {
+            size: Vec::new(),
             springs,
             joints,
             body: None,
@@ -189,6 +196,7 @@ impl SceneEdits {
         if let Some(b) = scene.bodies.get(index) {
             let kinematics = derive(&b.body, &b.initial);
             edits.body = Some(index);
+            edits.size = size_of(&b.body);
             edits.mass = b.body.mass;
             edits.position = b.initial.position;
             edits.orientation = b.initial.orientation.quaternion();
@@ -234,6 +242,9 @@ impl SceneEdits {
                     return Some(format!("{what} must be ≥ 0, found {k}"));
                 }
             }
+        }
+        if let Some(x) = self.size.iter().find(|x| !(**x > 0.0 && x.is_finite())) {
+            return Some(format!("sizes must be > 0, found {x}"));
         }
         for s in &self.springs {
             if !(s.stiffness > 0.0 && s.stiffness.is_finite()) {
@@ -382,6 +393,9 @@ impl SceneEdits {
             .bodies
             .get_mut(index)
             .ok_or_else(|| format!("the scene has no body number {}", index + 1))?;
+        if !self.size.is_empty() && self.size != size_of(&edited.body) {
+            edited.body = resized(&edited.body, &self.size).map_err(|e| e.to_string())?;
+        }
         edited.body = edited
             .body
             .with_mass(self.mass)
@@ -619,6 +633,32 @@ impl SceneEdits {
             }
             _ => set(body_table, "mass", Value::from(self.mass)),
         }
+        let size_keys: &[&str] = match self.size.len() {
+            3 => &["size"],
+            1 => &["radius"],
+            2 => &["radius", "length"],
+            _ => &[],
+        };
+        if size_keys == ["size"] {
+            if numbers(body_table.get("size")) != Some(self.size.clone()) {
+                set(
+                    body_table,
+                    "size",
+                    Value::Array(self.size.iter().copied().collect()),
+                );
+            }
+        } else {
+            for (key, x) in size_keys.iter().zip(&self.size) {
+                if body_table
+                    .get(key)
+                    .and_then(Item::as_value)
+                    .and_then(number)
+                    != Some(*x)
+                {
+                    set(body_table, key, Value::from(*x));
+                }
+            }
+        }
         if numbers(body_table.get("position")).unwrap_or_else(|| vec![0.0; 3])
             != self.position.iter().copied().collect::<Vec<f64>>()
         {
@@ -658,6 +698,68 @@ impl SceneEdits {
             }
         }
         Ok(())
+    }
+}
+
+/// What the form calls each entry of [`SceneEdits::size`] for a body of this size.
+pub fn size_names(size: &[f64]) -> &'static [&'static str] {
+    match size.len() {
+        3 => &["size x", "size y", "size z"],
+        1 => &["radius"],
+        2 => &["radius", "length"],
+        _ => &[],
+    }
+}
+
+/// A body's size as the form edits it (see [`SceneEdits::size`]).
+fn size_of(body: &Body) -> Vec<f64> {
+    if body.fixed {
+        return Vec::new();
+    }
+    match &body.shape {
+        // A box of mass points has its corners as points: 8 of them.
+        Some(Shape::Box { half }) => (2.0 * half).iter().copied().collect(),
+        Some(Shape::Ball { radius }) => vec![*radius],
+        Some(Shape::Capsule {
+            radius,
+            half_length,
+        })
+        | Some(Shape::Cylinder {
+            radius,
+            half_length,
+        }) => vec![*radius, 2.0 * half_length],
+        _ => Vec::new(),
+    }
+}
+
+/// The same body (same mass, same inertia model) at another size: a solid box or a box of
+/// corner points, a solid ball or a shell, a solid cylinder or a tube, a capsule — the model
+/// read off the inertia the body has (`I = ⅔ M r²` is a shell, `I_axis = M r²` a tube, a box
+/// whose tensor is not the solid one's is its corners).
+fn resized(body: &Body, size: &[f64]) -> Result<Body, crate::physics::BodyError> {
+    let m = body.mass;
+    let i = &body.inertia_body;
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+    match (&body.shape, size) {
+        (Some(Shape::Box { half }), &[x, y, z]) => {
+            let (a, b, c) = (2.0 * half.x, 2.0 * half.y, 2.0 * half.z);
+            let solid = near(i[(0, 0)], m * (b * b + c * c) / 12.0)
+                && near(i[(1, 1)], m * (a * a + c * c) / 12.0);
+            let size = Vector3::new(x, y, z);
+            if solid {
+                Body::solid_box(size, m)
+            } else {
+                Body::box_of_corners(size, m)
+            }
+        }
+        (Some(Shape::Ball { radius }), &[r]) => {
+            Body::sphere(r, m, near(i[(0, 0)], 2.0 / 3.0 * m * radius * radius))
+        }
+        (Some(Shape::Cylinder { radius, .. }), &[r, l]) => {
+            Body::cylinder(r, l, m, near(i[(1, 1)], m * radius * radius))
+        }
+        (Some(Shape::Capsule { .. }), &[r, l]) => Body::capsule(r, l, m),
+        _ => Ok(body.clone()),
     }
 }
 
@@ -765,6 +867,7 @@ lines."""
             cloths: Vec::new(),
             springs: Vec::new(),
             joints: Vec::new(),
+            size: Vec::new(),
         }
     }
 

@@ -45,6 +45,8 @@ pub enum FieldKind {
     ClothStretch(usize),
     ClothShear(usize),
     ClothBend(usize),
+    /// Entry `i` of the body's size ([`SceneEdits::size`]: a box's side, a radius, a length).
+    Size(usize),
     /// Spring `i`'s (its index in [`SceneEdits::springs`]) stiffness k, damping c, rest
     /// length ℓ₀.
     SpringStiffness(usize),
@@ -81,6 +83,7 @@ impl FieldKind {
             FieldKind::ClothStretch(_) => ("stretch", "N/m"),
             FieldKind::ClothShear(_) => ("shear", "N/m"),
             FieldKind::ClothBend(_) => ("bend", "N/m"),
+            FieldKind::Size(_) => ("size", "m"),
             FieldKind::SpringStiffness(_) => ("stiffness k", "N/m"),
             FieldKind::SpringDamping(_) => ("damping c", "N·s/m"),
             FieldKind::SpringRestLength(_) => ("rest length ℓ₀", "m"),
@@ -164,6 +167,9 @@ impl SettingsForm {
         let body = base.body.is_some();
         if body {
             add(FieldKind::Mass, base.mass);
+            for (i, x) in base.size.iter().enumerate() {
+                add(FieldKind::Size(i), *x);
+            }
         }
         add(FieldKind::Dt, base.dt);
         if body {
@@ -273,6 +279,13 @@ impl SettingsForm {
         let joint_name = joint.map_or("?", |j| j.name.as_str());
         let hinge = joint.is_some_and(|j| j.hinge);
         match field.kind {
+            FieldKind::Size(i) => (
+                crate::scene::edit::size_names(&self.base.size)
+                    .get(i)
+                    .map_or("size", |n| n)
+                    .to_string(),
+                "m",
+            ),
             FieldKind::SpringStiffness(i)
             | FieldKind::SpringDamping(i)
             | FieldKind::SpringRestLength(i) => {
@@ -341,6 +354,7 @@ impl SettingsForm {
             FieldKind::ClothStretch(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.stretch),
             FieldKind::ClothShear(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.shear),
             FieldKind::ClothBend(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.bend),
+            FieldKind::Size(i) => b.size.get(i).copied().unwrap_or(f64::NAN),
             FieldKind::SpringStiffness(i) => b.springs.get(i).map_or(f64::NAN, |s| s.stiffness),
             FieldKind::SpringDamping(i) => b.springs.get(i).map_or(f64::NAN, |s| s.damping),
             FieldKind::SpringRestLength(i) => b.springs.get(i).map_or(f64::NAN, |s| s.rest_length),
@@ -459,6 +473,11 @@ impl SettingsForm {
                         } = value;
                     }
                 }
+                FieldKind::Size(i) => {
+                    if let Some(x) = edits.size.get_mut(i) {
+                        *x = value;
+                    }
+                }
                 FieldKind::SpringStiffness(i)
                 | FieldKind::SpringDamping(i)
                 | FieldKind::SpringRestLength(i) => {
@@ -534,6 +553,10 @@ impl SettingsForm {
         let body = b.body.is_some();
         if body {
             note(&mut parts, "mass", b.mass, edits.mass, "kg");
+            let names = crate::scene::edit::size_names(&b.size);
+            for ((name, old), new) in names.iter().zip(&b.size).zip(&edits.size) {
+                note(&mut parts, name, *old, *new, "m");
+            }
         }
         note(&mut parts, "dt", b.dt, edits.dt, "s");
         const AXES: [&str; 3] = ["x", "y", "z"];
@@ -657,6 +680,7 @@ mod tests {
             cloths: Vec::new(),
             springs: Vec::new(),
             joints: Vec::new(),
+            size: Vec::new(),
         }
     }
 

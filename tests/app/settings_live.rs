@@ -102,6 +102,7 @@ fn after_tab_the_form_edits_the_second_body_and_names_it() {
         .iter()
         .any(|f| form.label(f).0 == "spring tie stiffness k"));
     set_field(&mut app, "mass M", "5");
+    set_field(&mut app, "size x", "0.4");
     press(&mut app, KeyCode::Enter);
     assert_eq!(app.overlay, Overlay::None, "{:?}", app.notice);
     // A mass restarts the scene: body 2 is 5 kg, body 1 is still 1 kg, and the panels still
@@ -112,6 +113,19 @@ fn after_tab_the_form_edits_the_second_body_and_names_it() {
     assert_eq!(app.lesson.scene.bodies[0].body.mass, 1.0);
     assert_eq!(app.selected, 1);
     assert_eq!(app.snapshot.body_name, "right");
+    // Its size: a solid 0.4 × 0.2 × 0.2 box of 5 kg, I_yy = M (a² + c²)/12 = 5 · 0.2/12.
+    let i = app.world.bodies()[1].inertia_body;
+    assert!(
+        (i[(1, 1)] - 5.0 * (0.16 + 0.04) / 12.0).abs() < 1e-15,
+        "{i}"
+    );
+    let original = tumble::scene::parse(TWO, Path::new("two.toml")).unwrap();
+    assert_eq!(
+        app.world.bodies()[0],
+        original.scene.bodies[0].body,
+        "body 1 untouched"
+    );
+    assert_eq!(app.world.states()[0], original.scene.world().states()[0]);
     // Its velocity was kept: P₀ = M' v₀ = 5 · 3.
     assert_eq!(app.snapshot.linear_momentum.y, 15.0);
     let notice = app.notice.clone().unwrap();
