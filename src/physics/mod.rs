@@ -40,6 +40,7 @@ pub mod joints;
 pub mod snapshot;
 pub mod state;
 pub mod system;
+pub mod tuning;
 pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
@@ -53,4 +54,5 @@ pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
 pub use snapshot::{BodyView, ClothView, JointView, Snapshot, SpringView, SystemTotals};
 pub use state::{Orientation, State};
+pub use tuning::Tuning;
 pub use world::{Checkpoint, NamedBody, Phase, Stepping, World};

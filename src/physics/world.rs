@@ -29,7 +29,7 @@ use super::collision::StepContext;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
 use super::derive::{derive, Kinematics};
 use super::divergence::{not_finite, Divergence, EnergyGuard};
-use super::effects::{Effects, Loads};
+use super::effects::{Effect, Effects, Loads};
 use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
@@ -227,6 +227,9 @@ pub struct World {
     links: Links,
     /// The pairs of bodies joined directly (they do not collide).
     joined: Vec<(usize, usize)>,
+    /// A parameter was changed while running ([`World::tune`]): E₀ is the ledger's (which
+    /// booked the change) until the next reset.
+    tuned: bool,
     system_scratch: SystemScratch,
     system_buffers: SystemBuffers,
     projection_buffers: ProjectionBuffers,
@@ -303,6 +306,7 @@ impl World {
             cloth_attachments: Vec::new(),
             links: Links::default(),
             joined: Vec::new(),
+            tuned: false,
             system_scratch: SystemScratch::default(),
             system_buffers: SystemBuffers::default(),
             projection_buffers: ProjectionBuffers::default(),
@@ -1224,6 +1228,84 @@ impl World {
         }
     }
 
+    /// Changes one continuous parameter while the world runs (module `tuning`): it acts from
+    /// the next step on, with t and the state kept; the energy the change itself adds or
+    /// removes (a new g moves V, a new k moves U) is booked into the ledger's E₀, so the drift
+    /// stays the integrator's. As with [`World::set_integrator`], a frame in progress counts
+    /// as done, and the forces are evaluated anew with the new value.
+    pub fn tune(&mut self, tuning: super::tuning::Tuning) -> Result<(), String> {
+        use super::tuning::Tuning;
+        if let Some(problem) = tuning.problem() {
+            return Err(problem);
+        }
+        let before = self.total_energy().total;
+        match tuning {
+            Tuning::Gravity(g) => {
+                let mut list: Vec<Effect> = (self.effects.list().iter())
+                    .filter(|e| !matches!(e, Effect::Gravity(_)))
+                    .copied()
+                    .collect();
+                list.extend(g.map(Effect::Gravity));
+                self.effects = Effects::new(list);
+            }
+            Tuning::Drag(drag) => {
+                let mut list: Vec<Effect> = (self.effects.list().iter())
+                    .filter(|e| !matches!(e, Effect::Drag { .. }))
+                    .copied()
+                    .collect();
+                list.extend(drag.map(|(linear, angular)| Effect::Drag { linear, angular }));
+                self.effects = Effects::new(list);
+            }
+            Tuning::Restitution(e) => {
+                self.contact
+                    .as_mut()
+                    .ok_or("the scene has no contact model: no restitution to change")?
+                    .restitution = e;
+            }
+            Tuning::Friction(mu) => {
+                self.contact
+                    .as_mut()
+                    .ok_or("the scene has no contact model: no friction to change")?
+                    .friction = mu;
+            }
+            Tuning::SpringStiffness { spring, stiffness } => {
+                self.links
+                    .springs
+                    .get_mut(spring)
+                    .ok_or_else(|| format!("the scene has no spring number {}", spring + 1))?
+                    .stiffness = stiffness;
+            }
+            Tuning::MotorSpeed { joint, speed } => {
+                self.links
+                    .joints
+                    .get_mut(joint)
+                    .and_then(|j| j.motor.as_mut())
+                    .ok_or_else(|| format!("the scene has no motor on joint number {}", joint + 1))?
+                    .speed = speed;
+            }
+        }
+        self.cloth_loads = ClothLoads::from_effects(&self.effects);
+        // The forces at the current state, with the new value (a frame in progress counts
+        // as done).
+        let now = &mut self.now;
+        if now.last != Some(Phase::Collide) && now.last.is_some() {
+            now.last = Some(Phase::Collide);
+        }
+        for (i, body) in self.bodies.iter().enumerate() {
+            now.kinematics[i] = derive(body, &now.states[i]);
+            now.loads[i] = self
+                .integrator
+                .loads(body, &self.effects, &now.kinematics[i]);
+        }
+        if !self.links.is_empty() {
+            self.system_loads();
+        }
+        let after = self.total_energy().total;
+        self.now.ledger.initial += after - before;
+        self.tuned = true;
+        Ok(())
+    }
+
     /// Switches the collision response (takes effect at the next collide phase).
     pub fn set_contact_model(&mut self, model: ContactModel) {
         self.contact = Some(model);
@@ -1284,6 +1366,7 @@ impl World {
 
     /// Back to t = 0.
     pub fn reset(&mut self) {
+        self.tuned = false;
         let mut now = fresh(
             &self.bodies,
             &self.effects,
@@ -1383,8 +1466,16 @@ impl World {
         let damped = cloths
             .iter()
             .any(|c| c.springs.iter().any(|s| s.damping > 0.0));
+        // After a live change of a parameter, E₀ is the ledger's, which booked it.
+        let initial = match self.initial_total_energy() {
+            e if self.tuned => Energy {
+                total: self.now.ledger.initial,
+                ..e
+            },
+            e => e,
+        };
         let mut balance = self.now.ledger.balance(
-            &self.initial_total_energy(),
+            &initial,
             &self.total_energy(),
             self.effects.depends_on_velocity() || damped || self.links.damped(),
             self.can_touch()

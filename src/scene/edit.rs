@@ -16,6 +16,9 @@
 //!                        differs from what the file gives the cloth, its own or the scene's)
 //! cloth NAME stretch,    [[cloth]] stretch, shear, bend (written only when changed)
 //!   shear, bend
+//! spring NAME k, c, ℓ₀   [[spring]] stiffness, damping, rest_length (written only when changed)
+//! joint NAME limits,     [[joint]] limits (hinge: degrees), motor = { speed, max_torque |
+//!   motor speed, bound     max_force } (hinges and sliders that have them; only when changed)
 //! ```
 //!
 //! A scene of cloths only has no body values: `body` is None and dt, the contact values,
@@ -32,9 +35,12 @@
 
 use super::{Naming, Scene};
 use crate::physics::cloth::ClothIntegrator;
+use crate::physics::collision::geometry::Shape;
 use crate::physics::derive::derive;
 use crate::physics::effects::{Effect, Effects};
+use crate::physics::joints::JointKind;
 use crate::physics::state::Orientation;
+use crate::physics::Body;
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use std::path::Path;
 use toml_edit::{Array, DocumentMut, Item, TableLike, Value};
@@ -67,6 +73,42 @@ pub struct SceneEdits {
     pub drag: Option<(f64, f64)>,
     /// Each cloth's particle integrator and stiffnesses, in scene order.
     pub cloths: Vec<ClothEdit>,
+    /// Each spring's stiffness, damping and rest length, in scene order.
+    pub springs: Vec<SpringEdit>,
+    /// Each hinge's and slider's limits and motor (those that have one), in scene order.
+    pub joints: Vec<JointEdit>,
+    /// The body's size, by its shape ([`SceneEdits::size_names`]): a box's sides x, y, z; a
+    /// sphere's radius; a capsule's or cylinder's radius and length, m (empty: a body of
+    /// points or a mesh, or a fixed one, or no body).
+    pub size: Vec<f64>,
+}
+
+/// The edited values of one spring (`[[spring]]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpringEdit {
+    /// Its index among the scene's springs, and its name.
+    pub index: usize,
+    pub name: String,
+    /// k, N/m (> 0).
+    pub stiffness: f64,
+    /// c, N·s/m (≥ 0).
+    pub damping: f64,
+    /// ℓ₀, m (≥ 0).
+    pub rest_length: f64,
+}
+
+/// The edited limits and motor of one hinge or slider (`[[joint]]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointEdit {
+    /// Its index among the scene's joints, and its name.
+    pub index: usize,
+    pub name: String,
+    /// A hinge (limits in degrees, motor in rad/s and N·m), else a slider (m, m/s and N).
+    pub hinge: bool,
+    /// `[lo, hi]` from the t = 0 pose, as the file writes them (hinge: degrees), lo ≤ 0 ≤ hi.
+    pub limits: Option<[f64; 2]>,
+    /// The motor's speed and its bound (max_torque or max_force, > 0).
+    pub motor: Option<(f64, f64)>,
 }
 
 /// The edited value of one cloth.
@@ -111,7 +153,33 @@ impl SceneEdits {
             Effect::Drag { linear, angular } => Some((*linear, *angular)),
             Effect::Gravity(_) => None,
         });
+        let springs = (scene.links.springs.iter().enumerate())
+            .map(|(index, s)| SpringEdit {
+                index,
+                name: s.name.clone(),
+                stiffness: s.stiffness,
+                damping: s.damping,
+                rest_length: s.rest_length,
+            })
+            .collect();
+        let joints = (scene.links.joints.iter().enumerate())
+            .filter(|(_, j)| j.limits.is_some() || j.motor.is_some())
+            .map(|(index, j)| {
+                let hinge = j.kind == JointKind::Hinge;
+                let unit = |x: f64| if hinge { x.to_degrees() } else { x };
+                JointEdit {
+                    index,
+                    name: j.name.clone(),
+                    hinge,
+                    limits: j.limits.map(|[lo, hi]| [unit(lo), unit(hi)]),
+                    motor: j.motor.map(|m| (m.speed, m.max)),
+                }
+            })
+            .collect();
         let mut edits = SceneEdits {
+            size: Vec::new(),
+            springs,
+            joints,
             body: None,
             dt: scene.dt,
             restitution: scene.contact.map(|c| c.restitution),
@@ -128,6 +196,7 @@ impl SceneEdits {
         if let Some(b) = scene.bodies.get(index) {
             let kinematics = derive(&b.body, &b.initial);
             edits.body = Some(index);
+            edits.size = size_of(&b.body);
             edits.mass = b.body.mass;
             edits.position = b.initial.position;
             edits.orientation = b.initial.orientation.quaternion();
@@ -171,6 +240,48 @@ impl SceneEdits {
             for (what, k) in [("drag.linear", linear), ("drag.angular", angular)] {
                 if !(k >= 0.0 && k.is_finite()) {
                     return Some(format!("{what} must be ≥ 0, found {k}"));
+                }
+            }
+        }
+        if let Some(x) = self.size.iter().find(|x| !(**x > 0.0 && x.is_finite())) {
+            return Some(format!("sizes must be > 0, found {x}"));
+        }
+        for s in &self.springs {
+            if !(s.stiffness > 0.0 && s.stiffness.is_finite()) {
+                return Some(format!(
+                    "spring {}: stiffness must be > 0, found {}",
+                    s.name, s.stiffness
+                ));
+            }
+            for (what, x) in [("damping", s.damping), ("rest_length", s.rest_length)] {
+                if !(x >= 0.0 && x.is_finite()) {
+                    return Some(format!("spring {}: {what} must be ≥ 0, found {x}", s.name));
+                }
+            }
+        }
+        for j in &self.joints {
+            if let Some([lo, hi]) = j.limits {
+                if !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi) {
+                    return Some(format!(
+                        "joint {}: `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found \
+                         [{lo}, {hi}]",
+                        j.name
+                    ));
+                }
+                if j.hinge && hi - lo >= 360.0 {
+                    return Some(format!(
+                        "joint {}: hinge `limits` must be less than a full turn apart",
+                        j.name
+                    ));
+                }
+            }
+            if let Some((speed, max)) = j.motor {
+                if !(speed.is_finite() && max > 0.0 && max.is_finite()) {
+                    return Some(format!(
+                        "joint {}: the motor needs a finite speed and a bound > 0, found \
+                         {speed} and {max}",
+                        j.name
+                    ));
                 }
             }
         }
@@ -246,6 +357,27 @@ impl SceneEdits {
             cloth.shear = edit.shear;
             cloth.bend = edit.bend;
         }
+        for edit in &self.springs {
+            if let Some(spring) = out.links.springs.get_mut(edit.index) {
+                spring.stiffness = edit.stiffness;
+                spring.damping = edit.damping;
+                spring.rest_length = edit.rest_length;
+            }
+        }
+        for edit in &self.joints {
+            if let Some(joint) = out.links.joints.get_mut(edit.index) {
+                // Limits the form left as shown keep their value exactly (degrees → radians
+                // → degrees need not give back the same last bit).
+                let shown = |x: f64| if edit.hinge { x.to_degrees() } else { x };
+                let unit = |x: f64| if edit.hinge { x.to_radians() } else { x };
+                if joint.limits.map(|[lo, hi]| [shown(lo), shown(hi)]) != edit.limits {
+                    joint.limits = edit.limits.map(|[lo, hi]| [unit(lo), unit(hi)]);
+                }
+                if let (Some(motor), Some((speed, max))) = (&mut joint.motor, edit.motor) {
+                    (motor.speed, motor.max) = (speed, max);
+                }
+            }
+        }
         if let Some(index) = self.body {
             self.apply_body(&mut out, index)?;
         }
@@ -261,6 +393,9 @@ impl SceneEdits {
             .bodies
             .get_mut(index)
             .ok_or_else(|| format!("the scene has no body number {}", index + 1))?;
+        if !self.size.is_empty() && self.size != size_of(&edited.body) {
+            edited.body = resized(&edited.body, &self.size).map_err(|e| e.to_string())?;
+        }
         edited.body = edited
             .body
             .with_mass(self.mass)
@@ -328,6 +463,7 @@ impl SceneEdits {
             }
         }
         self.write_cloths(&mut doc)?;
+        self.write_links(&mut doc)?;
         if let Some(body) = self.body.map(|_| body) {
             self.write_body(&mut doc, body, mesh_from)?;
         }
@@ -385,6 +521,88 @@ impl SceneEdits {
         Ok(())
     }
 
+    /// Each spring's stiffness, damping and rest length, each joint's limits and motor, where
+    /// they differ from what the file gives (a `[[spring]]` or `[[joint]]` found by its name,
+    /// or its default name `spring1`, `joint2`, …).
+    fn write_links(&self, doc: &mut DocumentMut) -> Result<(), String> {
+        fn table<'a>(
+            doc: &'a mut DocumentMut,
+            kind: &str,
+            name: &str,
+        ) -> Result<&'a mut toml_edit::Table, String> {
+            doc.get_mut(kind)
+                .and_then(Item::as_array_of_tables_mut)
+                .and_then(|tables| {
+                    tables.iter_mut().enumerate().find_map(|(k, t)| {
+                        let named = t
+                            .get("name")
+                            .and_then(Item::as_str)
+                            .map_or_else(|| format!("{kind}{}", k + 1), str::to_owned);
+                        (named == name).then_some(t)
+                    })
+                })
+                .ok_or_else(|| format!("the scene file has no {kind} named `{name}`"))
+        }
+        let value_of =
+            |t: &toml_edit::Table, key: &str| t.get(key).and_then(Item::as_value).and_then(number);
+        for edit in &self.springs {
+            let t = table(doc, "spring", &edit.name)?;
+            if value_of(t, "stiffness") != Some(edit.stiffness) {
+                set(t, "stiffness", Value::from(edit.stiffness));
+            }
+            if value_of(t, "damping").unwrap_or(0.0) != edit.damping {
+                set(t, "damping", Value::from(edit.damping));
+            }
+            // Absent, the rest length is the anchors' distance at t = 0.
+            let given = value_of(t, "rest_length").or_else(|| {
+                let anchors = t.get("anchors")?.as_array()?;
+                let ends: Vec<Vec<f64>> = anchors
+                    .iter()
+                    .map(|a| a.as_array().map(|a| a.iter().filter_map(number).collect()))
+                    .collect::<Option<_>>()?;
+                let [a, b] = &ends[..] else { return None };
+                Some(
+                    a.iter()
+                        .zip(b)
+                        .map(|(x, y)| (x - y).powi(2))
+                        .sum::<f64>()
+                        .sqrt(),
+                )
+            });
+            if given != Some(edit.rest_length) {
+                set(t, "rest_length", Value::from(edit.rest_length));
+            }
+        }
+        for edit in &self.joints {
+            let t = table(doc, "joint", &edit.name)?;
+            if let Some([lo, hi]) = edit.limits {
+                let close = |file: Vec<f64>| {
+                    file.len() == 2
+                        && (file[0] - lo).abs() <= 1e-9 * lo.abs()
+                        && (file[1] - hi).abs() <= 1e-9 * hi.abs()
+                };
+                if !numbers(t.get("limits")).is_some_and(close) {
+                    set(t, "limits", Value::Array([lo, hi].into_iter().collect()));
+                }
+            }
+            if let Some((speed, max)) = edit.motor {
+                let bound = if edit.hinge {
+                    "max_torque"
+                } else {
+                    "max_force"
+                };
+                if let Some(motor) = t.get_mut("motor").and_then(Item::as_table_like_mut) {
+                    for (key, x) in [("speed", speed), (bound, max)] {
+                        if motor.get(key).and_then(Item::as_value).and_then(number) != Some(x) {
+                            set(motor, key, Value::from(x));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The body values into `[body]` or the `body`-th `[[body]]`.
     fn write_body(
         &self,
@@ -414,6 +632,32 @@ impl SceneEdits {
                 }
             }
             _ => set(body_table, "mass", Value::from(self.mass)),
+        }
+        let size_keys: &[&str] = match self.size.len() {
+            3 => &["size"],
+            1 => &["radius"],
+            2 => &["radius", "length"],
+            _ => &[],
+        };
+        if size_keys == ["size"] {
+            if numbers(body_table.get("size")) != Some(self.size.clone()) {
+                set(
+                    body_table,
+                    "size",
+                    Value::Array(self.size.iter().copied().collect()),
+                );
+            }
+        } else {
+            for (key, x) in size_keys.iter().zip(&self.size) {
+                if body_table
+                    .get(key)
+                    .and_then(Item::as_value)
+                    .and_then(number)
+                    != Some(*x)
+                {
+                    set(body_table, key, Value::from(*x));
+                }
+            }
         }
         if numbers(body_table.get("position")).unwrap_or_else(|| vec![0.0; 3])
             != self.position.iter().copied().collect::<Vec<f64>>()
@@ -454,6 +698,68 @@ impl SceneEdits {
             }
         }
         Ok(())
+    }
+}
+
+/// What the form calls each entry of [`SceneEdits::size`] for a body of this size.
+pub fn size_names(size: &[f64]) -> &'static [&'static str] {
+    match size.len() {
+        3 => &["size x", "size y", "size z"],
+        1 => &["radius"],
+        2 => &["radius", "length"],
+        _ => &[],
+    }
+}
+
+/// A body's size as the form edits it (see [`SceneEdits::size`]).
+fn size_of(body: &Body) -> Vec<f64> {
+    if body.fixed {
+        return Vec::new();
+    }
+    match &body.shape {
+        // A box of mass points has its corners as points: 8 of them.
+        Some(Shape::Box { half }) => (2.0 * half).iter().copied().collect(),
+        Some(Shape::Ball { radius }) => vec![*radius],
+        Some(Shape::Capsule {
+            radius,
+            half_length,
+        })
+        | Some(Shape::Cylinder {
+            radius,
+            half_length,
+        }) => vec![*radius, 2.0 * half_length],
+        _ => Vec::new(),
+    }
+}
+
+/// The same body (same mass, same inertia model) at another size: a solid box or a box of
+/// corner points, a solid ball or a shell, a solid cylinder or a tube, a capsule — the model
+/// read off the inertia the body has (`I = ⅔ M r²` is a shell, `I_axis = M r²` a tube, a box
+/// whose tensor is not the solid one's is its corners).
+fn resized(body: &Body, size: &[f64]) -> Result<Body, crate::physics::BodyError> {
+    let m = body.mass;
+    let i = &body.inertia_body;
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+    match (&body.shape, size) {
+        (Some(Shape::Box { half }), &[x, y, z]) => {
+            let (a, b, c) = (2.0 * half.x, 2.0 * half.y, 2.0 * half.z);
+            let solid = near(i[(0, 0)], m * (b * b + c * c) / 12.0)
+                && near(i[(1, 1)], m * (a * a + c * c) / 12.0);
+            let size = Vector3::new(x, y, z);
+            if solid {
+                Body::solid_box(size, m)
+            } else {
+                Body::box_of_corners(size, m)
+            }
+        }
+        (Some(Shape::Ball { radius }), &[r]) => {
+            Body::sphere(r, m, near(i[(0, 0)], 2.0 / 3.0 * m * radius * radius))
+        }
+        (Some(Shape::Cylinder { radius, .. }), &[r, l]) => {
+            Body::cylinder(r, l, m, near(i[(1, 1)], m * radius * radius))
+        }
+        (Some(Shape::Capsule { .. }), &[r, l]) => Body::capsule(r, l, m),
+        _ => Ok(body.clone()),
     }
 }
 
@@ -559,6 +865,9 @@ lines."""
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             drag: None,
             cloths: Vec::new(),
+            springs: Vec::new(),
+            joints: Vec::new(),
+            size: Vec::new(),
         }
     }
 

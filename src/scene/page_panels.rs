@@ -35,11 +35,13 @@ pub enum PagePanel {
     Ruler,
     /// The protractor (a page's `protractor` table, or keys `A` `V`).
     Protractor,
+    /// The energy bars: kinetic, potential, springs, and what contacts, drag and motors took.
+    EnergyBars,
 }
 
 impl PagePanel {
     /// Every name, in the order the panels are stacked.
-    pub const ALL: [(PagePanel, &'static str); 15] = [
+    pub const ALL: [(PagePanel, &'static str); 16] = [
         (PagePanel::State, "state"),
         (PagePanel::Inertia, "inertia"),
         (PagePanel::AngularVelocity, "angular-velocity"),
@@ -55,6 +57,7 @@ impl PagePanel {
         (PagePanel::Period, "period"),
         (PagePanel::Ruler, "ruler"),
         (PagePanel::Protractor, "protractor"),
+        (PagePanel::EnergyBars, "energy-bars"),
     ];
 
     /// The measuring tools (`measure`), in the order their panels are stacked.

@@ -5,7 +5,7 @@
 
 use super::history::{History, DEFAULT_CAPACITY};
 use super::keys::{self, Context, Message};
-use super::plot::{PlotChoice, PlotSeries};
+use super::plot::{curve_axes, PlotChoice, PlotSeries, MAX_CURVES};
 use super::series::{graphed_energy, EnergySeries};
 use super::settings_form::{tidy, SettingsForm};
 use super::timeline;
@@ -177,6 +177,9 @@ pub struct App {
     pub plot_series: PlotSeries,
     /// What the quantity graph shows (None until picked).
     pub plot: Option<PlotChoice>,
+    /// Further curves on the quantity graph after `plot`'s own (column indices; the picker's
+    /// `a` adds and removes them, see [`App::plot_curves`]).
+    pub plot_extra: Vec<usize>,
     pub region: Region,
     pub axis: Axis,
     pub frame: Frame,
@@ -323,6 +326,7 @@ impl App {
             series,
             plot_series,
             plot: None,
+            plot_extra: Vec::new(),
             region,
             axis: Axis::Front,
             frame: Frame::World,
@@ -506,9 +510,13 @@ impl App {
             }
             Message::OpenSettings => {
                 self.running = false;
-                self.overlay = Overlay::Settings(Box::new(SettingsForm::new(SceneEdits::of(
-                    &self.lesson.scene,
-                ))));
+                // The body the panels show (Tab picks it), named in the form's title.
+                let body = self
+                    .selected
+                    .min(self.lesson.scene.bodies.len().saturating_sub(1));
+                let mut form = SettingsForm::new(SceneEdits::of_body(&self.lesson.scene, body));
+                form.body_name = self.lesson.scene.bodies.get(body).map(|b| b.name.clone());
+                self.overlay = Overlay::Settings(Box::new(form));
             }
             Message::WriteScene => return self.write_scene(),
             Message::Type(c) => match &mut self.overlay {
@@ -714,20 +722,101 @@ impl App {
                         Message::PlotAgainstTime => *x = None,
                         Message::PlotAsX => *x = Some(*selected),
                         _ => {
-                            self.plot = Some(PlotChoice {
+                            let choice = PlotChoice {
                                 y: *selected,
                                 x: *x,
-                            });
+                            };
                             self.overlay = Overlay::None;
-                            self.view = View::Plot;
+                            self.graph(choice);
                         }
                     }
+                }
+            }
+            Message::PlotAdd => {
+                if let Overlay::PlotPicker { selected, x } = self.overlay {
+                    self.overlay = Overlay::None;
+                    self.toggle_curve(selected, x);
                 }
             }
             Message::ExportCsv => return self.export_csv(),
             Message::Tool(key) => self.tool_key(key),
         }
         None
+    }
+
+    /// Shows the quantity graph of `choice`, one curve (the picker's Enter).
+    pub fn graph(&mut self, choice: PlotChoice) {
+        self.plot = Some(choice);
+        self.plot_extra.clear();
+        self.view = View::Plot;
+    }
+
+    /// The curves of the quantity graph, first `plot`'s own, then the others (at most
+    /// [`MAX_CURVES`], of at most two units: see [`curve_axes`]); empty before a pick.
+    pub fn plot_curves(&self) -> Vec<usize> {
+        let Some(choice) = self.plot else {
+            return Vec::new();
+        };
+        let wanted: Vec<usize> = std::iter::once(choice.y)
+            .chain(self.plot_extra.iter().copied())
+            .collect();
+        curve_axes(&self.plot_series.columns, &wanted).curves
+    }
+
+    /// The picker's `a`: column `column` joins the graph as another curve, or leaves it if it
+    /// is on it; against `x` (the picker's horizontal axis) when nothing is graphed yet.
+    fn toggle_curve(&mut self, column: usize, x: Option<usize>) {
+        let name = |app: &App| app.plot_series.columns[column].name.clone();
+        let Some(choice) = self.plot else {
+            self.graph(PlotChoice { y: column, x });
+            return;
+        };
+        let mut curves = self.plot_curves();
+        self.view = View::Plot;
+        if let Some(at) = curves.iter().position(|&c| c == column) {
+            if curves.len() == 1 {
+                self.notice = Some(format!(
+                    "{} is the graph's only curve: Enter graphs another instead",
+                    name(self)
+                ));
+                return;
+            }
+            curves.remove(at);
+            self.plot = Some(PlotChoice {
+                y: curves[0],
+                x: choice.x,
+            });
+            self.plot_extra = curves[1..].to_vec();
+            self.notice = Some(format!("{} taken off the graph", name(self)));
+            return;
+        }
+        curves.push(column);
+        let axes = curve_axes(&self.plot_series.columns, &curves);
+        if !axes.curves.contains(&column) {
+            let units = match axes.right {
+                Some(right) => format!("{} and {right}", axes.left),
+                None => axes.left.to_string(),
+            };
+            self.notice = Some(if axes.curves.len() == MAX_CURVES {
+                format!("the graph has {MAX_CURVES} curves already: `a` on one takes it off")
+            } else {
+                format!(
+                    "the graph's two axes are in {units}: {} needs a third (Enter graphs it \
+                     alone)",
+                    name(self)
+                )
+            });
+            return;
+        }
+        self.plot_extra = axes.curves[1..].to_vec();
+        self.notice = Some(match axes.right {
+            Some(right) => format!(
+                "{} added: two axes, {} on the left, {right} on the right",
+                name(self),
+                axes.left
+            ),
+            None => format!("{} added: one shared axis, {}", name(self), axes.left),
+        });
     }
 
     /// The file `X` writes: `tumble-NAME-energy.csv`, or `tumble-NAME-Y.csv` /
@@ -750,7 +839,7 @@ impl App {
                 let p = self.plot?;
                 let columns = &self.plot_series.columns;
                 p.x.into_iter()
-                    .chain([p.y])
+                    .chain(self.plot_curves())
                     .map(|c| clean(&columns[c].name))
                     .collect::<Vec<_>>()
                     .join("-")
@@ -764,7 +853,7 @@ impl App {
     fn export_csv(&mut self) -> Option<Effect> {
         let text = match (self.view, self.plot) {
             (View::Energy, _) => self.series.csv(self.world.dt()),
-            (View::Plot, Some(choice)) => self.plot_series.csv(choice),
+            (View::Plot, Some(choice)) => self.plot_series.csv_of(choice.x, &self.plot_curves()),
             _ => {
                 self.notice = Some(
                     "no graph shown: g shows the energy graph, p picks a quantity to graph".into(),
@@ -787,7 +876,9 @@ impl App {
                 let written = crate::lessons::source(source)
                     .map(|(_, text)| text)
                     .ok_or_else(|| format!("cannot read {}", source.display()))
-                    .and_then(|text| edits.write_into(&text, 0, source.parent()))
+                    .and_then(|text| {
+                        edits.write_into(&text, edits.body.unwrap_or(0), source.parent())
+                    })
                     .and_then(|text| std::fs::write(&to, text).map_err(|e| e.to_string()))
                     .and_then(|()| crate::scene::load(&to).map_err(|e| e.to_string()));
                 self.notice = Some(match written {
@@ -912,7 +1003,7 @@ impl App {
                     return None;
                 }
             },
-            _ => SceneEdits::of(&self.lesson.scene),
+            _ => SceneEdits::of_body(&self.lesson.scene, self.selected),
         };
         // The written file must pass what the loader checks: the same rules here.
         if let Err(e) = edits.apply(&self.lesson.scene) {
@@ -942,17 +1033,86 @@ impl App {
             }
         };
         let changes = form.changes(&edits);
+        if form.live_only() {
+            let tunings = form.tunings(&edits);
+            self.apply_live(edits, tunings, changes);
+            return;
+        }
         match edits.apply(&self.lesson.scene) {
             Ok(scene) => {
                 let mut lesson = self.lesson.clone();
                 lesson.scene = scene;
+                let selected = self.selected;
                 self.open(lesson);
+                // The body edited stays the one the panels show.
+                if selected < self.world.body_count() {
+                    self.selected = selected;
+                    self.refresh();
+                }
                 self.notice = Some(format!(
                     "settings applied ({changes}): the scene restarted at t = 0"
                 ));
             }
             Err(e) => form.error = Some(e),
         }
+    }
+
+    /// Enter in the form when only continuous values changed (g, drag, e, μ, a spring's k, a
+    /// motor's speed): the world takes them where it is ([`World::tune`]) and the run goes
+    /// on — t and the state kept, as PhET's sliders do; the scene keeps them for a reset.
+    fn apply_live(
+        &mut self,
+        edits: SceneEdits,
+        tunings: Vec<crate::physics::Tuning>,
+        changes: String,
+    ) {
+        // The scene as edited (its bodies untouched: no body value changed).
+        let scene = SceneEdits {
+            body: None,
+            ..edits
+        }
+        .apply(&self.lesson.scene);
+        let scene = match scene {
+            Ok(scene) => scene,
+            Err(e) => {
+                if let Overlay::Settings(form) = &mut self.overlay {
+                    form.error = Some(e);
+                }
+                return;
+            }
+        };
+        self.overlay = Overlay::None;
+        if tunings.is_empty() {
+            self.notice = Some("settings: no value changed".into());
+            return;
+        }
+        // A frame in progress is finished first: the change acts between frames.
+        while !self.at_frame_start() && self.divergence.is_none() {
+            self.step_phase();
+        }
+        self.before_change();
+        for &tuning in &tunings {
+            if let Err(e) = self.world.tune(tuning) {
+                self.notice = Some(format!("settings: {e}"));
+                return;
+            }
+            if let Some(ghost) = &mut self.ghost {
+                ghost.world.tune(tuning).ok();
+            }
+        }
+        self.lesson.scene = scene;
+        // Frames before the change replay with the new values: the history restarts here.
+        self.history.break_segment();
+        // The pages' live numbers are simulated again with the new values; the ± reference
+        // ran the old ones.
+        self.start_live(self.lesson.scene.world());
+        let bars = self.error_bars.take().is_some();
+        self.refresh();
+        self.notice = Some(format!(
+            "applied live ({changes}): the run goes on from t = {} s{}",
+            tidy(self.world.time()),
+            if bars { "; u shows the ± again" } else { "" }
+        ));
     }
 
     /// Replaces the lesson, keeping what carries across lessons: the view axis, the numbers'
@@ -1267,7 +1427,9 @@ impl App {
                 }
             }
         }
-        if frames > 1 && done > 0 {
+        // Every run of frames is measured, one frame too: a heavy scene runs one frame per
+        // render (`affordable_frames`), and its ns/step must not freeze at the last longer run.
+        if done > 0 {
             let ns = cost * 1e9 / done as f64;
             self.ns_per_step = Some(match self.ns_per_step {
                 Some(old) => 0.8 * old + 0.2 * ns,

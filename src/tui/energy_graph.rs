@@ -12,21 +12,42 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Widget};
 
-/// An axis label with the digits the axis needs: two significant digits of its span
-/// (`172.7` on an axis spanning 3, not `172.741806`); scientific beyond 1e-4 and 1e5.
+/// An axis label with the digits the axis needs: the value rounded to two significant digits
+/// of the span (`172.7` on an axis spanning 3, not `172.741806`), so a value within that
+/// rounding of 0 prints `0` (the middle of a range symmetric about 0 is `2e-14` in floating
+/// point, not a number to print). Scientific below 1e-4 and from 1e5, with the mantissa
+/// digits the span needs (`1.5e-7` on a span of 1e-6).
 pub fn axis_label(x: f64, span: f64) -> String {
-    if x == 0.0 {
+    if !x.is_finite() {
+        return crate::tables::number_plain(x);
+    }
+    let span = span.abs();
+    // The place of the span's second significant digit (the span of |x| itself when the
+    // axis has none).
+    let scale = if span > 0.0 && span.is_finite() {
+        span
+    } else {
+        x.abs()
+    };
+    if scale == 0.0 {
         return "0".to_string();
     }
-    if !(1e-4..1e5).contains(&x.abs()) {
-        return format!("{x:.1e}");
+    let step = scale.log10().floor() as i32 - 1;
+    if x.abs() < 0.5 * 10f64.powi(step) {
+        return "0".to_string();
     }
-    let decimals = (1.0 - span.abs().max(1e-12).log10().floor()).clamp(0.0, 6.0) as usize;
-    let s = format!("{x:.decimals$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    let s = if (1e-4..1e5).contains(&x.abs()) && step >= -12 {
+        let decimals = (-step).max(0) as usize;
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
     } else {
-        s
+        let exponent = x.abs().log10().floor() as i32;
+        let digits = (exponent - step).clamp(1, 12) as usize;
+        format!("{x:.digits$e}")
     };
     if s == "-0" {
         "0".to_string()
@@ -176,8 +197,35 @@ mod tests {
         assert_eq!(axis_label(30.692080, 0.002), "30.6921");
         // Whole numbers lose their zeros; zero prints as 0, -0 too.
         assert_eq!(axis_label(2.0, 2.0), "2");
-        assert_eq!(axis_label(-0.00001, 100.0), "-1.0e-5");
+        assert_eq!(axis_label(-0.0, 2.0), "0");
         assert_eq!(axis_label(-0.01, 100.0), "0");
         assert_eq!(axis_label(1.5e-7, 1e-6), "1.5e-7");
+        assert_eq!(axis_label(3.0e6, 1e6), "3.0e6");
+        assert_eq!(axis_label(3.25e6, 1e5), "3.25e6");
+    }
+
+    #[test]
+    fn zero_prints_as_0_whatever_its_round_off() {
+        // The middle of a phase portrait's range symmetric about 0 (issue 38: "2.0e-14").
+        let (lo, hi) = (-4.7, 4.7 + 4e-14);
+        assert_eq!(axis_label(0.5 * (lo + hi), hi - lo), "0");
+        // Round-off far below the span's digits, of either sign, on any span.
+        assert_eq!(axis_label(-0.00001, 100.0), "0");
+        assert_eq!(axis_label(5e-21, 4e-5), "0");
+        assert_eq!(axis_label(-3e-17, 0.3), "0");
+        // A small value the span resolves is not 0.
+        assert_eq!(axis_label(2e-5, 4e-5), "2.0e-5");
+        assert_eq!(axis_label(0.01, 0.1), "0.01");
+    }
+
+    #[test]
+    fn a_middle_label_carries_the_spans_digits_not_the_sums_round_off() {
+        // 0.1 + 0.2 = 0.30000000000000004: on a span of 0.6 it prints 0.3.
+        assert_eq!(axis_label(0.5 * (0.1 + 0.5), 0.4), "0.3");
+        assert_eq!(axis_label(0.1 + 0.2, 0.6), "0.3");
+        // A flat line widened to a billionth around 1 m: the labels tell its ends apart.
+        let (lo, hi) = (1.0 - 0.5e-9, 1.0 + 0.5e-9);
+        let labels = [lo, 1.0, hi].map(|x| axis_label(x, hi - lo));
+        assert_eq!(labels, ["0.9999999995", "1", "1.0000000005"]);
     }
 }

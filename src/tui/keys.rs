@@ -75,6 +75,9 @@ pub enum Message {
     PlotAsX,
     /// In the quantity picker: the horizontal axis is time again.
     PlotAgainstTime,
+    /// In the quantity picker: the selected quantity joins the graph shown as another curve
+    /// (or, on the graph already, leaves it).
+    PlotAdd,
     /// `X`: what the graph shown plots, as CSV.
     ExportCsv,
     /// The measuring tools' keys (`w` `o` `O` `T` `m` `M` `A` `V`: `tools.rs`).
@@ -412,7 +415,7 @@ pub const KEYS: &[Binding] = &[
         &[Char('e')],
         "e",
         "e settings",
-        "settings: e, μ, mass, dt, v₀, ω₀ (applying restarts)",
+        "settings of the body Tab picks: g, drag, e, μ, k, motors live; mass, dt, x₀, v₀… restart",
         Message::OpenSettings,
     ),
     bind(
@@ -549,6 +552,13 @@ pub const KEYS: &[Binding] = &[
     ),
     within(
         Context::PlotPicker,
+        &[Char('a'), Char('+')],
+        "a",
+        "plot: add as another curve (again: remove)",
+        Message::PlotAdd,
+    ),
+    within(
+        Context::PlotPicker,
         &[Esc],
         "Esc",
         "plot: close",
@@ -593,7 +603,7 @@ pub const KEYS: &[Binding] = &[
         Context::Form,
         &[Enter],
         "Enter",
-        "settings: apply, restart at t = 0",
+        "settings: apply (~ live, else restart at t = 0)",
         Message::Submit,
     ),
     within(

@@ -34,6 +34,7 @@ pub mod against;
 pub mod app;
 pub mod cloth_panel;
 pub mod divergence_dialog;
+pub mod energy_bars;
 pub mod energy_graph;
 pub mod energy_view;
 pub mod export;

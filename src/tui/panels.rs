@@ -378,6 +378,14 @@ fn views(app: &App) -> Vec<Stacked> {
         Stacked::of(tool, &panel, &view)
     });
     views.splice(0..0, tools.collect::<Vec<_>>());
+    // The energy bars, when the page names them.
+    if page_quotes(app).0.contains(&PagePanel::EnergyBars) {
+        let lines = super::energy_bars::lines(s);
+        let title = lines.first().map_or_else(String::new, |l| {
+            l.spans.iter().map(|s| s.content.clone()).collect()
+        });
+        views.push(Stacked::whole(Some(PagePanel::EnergyBars), lines, title));
+    }
     views
 }
 
@@ -505,7 +513,10 @@ pub fn essentials_for(
                 }
             }
             // The tools' rows come from the app (`essentials_of`).
-            PagePanel::BodyEnergy | PagePanel::System | PagePanel::Cloth => {}
+            PagePanel::BodyEnergy
+            | PagePanel::System
+            | PagePanel::Cloth
+            | PagePanel::EnergyBars => {}
             _ if name.is_tool() => {}
             _ if s.bodies.is_empty() && name != PagePanel::Energy => {}
             _ => {

@@ -164,6 +164,56 @@ pub struct PlotChoice {
     pub x: Option<usize>,
 }
 
+/// Most curves one graph shows (the picker's `a` adds them after the first).
+pub const MAX_CURVES: usize = 4;
+
+/// Which axis each curve of a graph reads on: the first curve's unit on the left axis, a
+/// second unit on a right axis of its own; a curve of a third unit has no axis and is left
+/// out (the picker refuses to add it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveAxes {
+    /// The curves kept, in order (column indices).
+    pub curves: Vec<usize>,
+    /// The left axis's unit (the first curve's).
+    pub left: &'static str,
+    /// The right axis's unit, when some curve's unit differs from the first's.
+    pub right: Option<&'static str>,
+    /// Per kept curve: it reads on the right axis.
+    pub on_right: Vec<bool>,
+}
+
+/// The axes of a graph of `curves` (column indices, the first one's unit on the left).
+pub fn curve_axes(columns: &[Column], curves: &[usize]) -> CurveAxes {
+    let mut out = CurveAxes {
+        curves: Vec::new(),
+        left: curves
+            .first()
+            .and_then(|&c| columns.get(c))
+            .map_or("", |c| c.unit),
+        right: None,
+        on_right: Vec::new(),
+    };
+    for &c in curves {
+        let Some(column) = columns.get(c) else {
+            continue;
+        };
+        if out.curves.contains(&c) || out.curves.len() == MAX_CURVES {
+            continue;
+        }
+        let right = if column.unit == out.left {
+            false
+        } else if out.right.is_none_or(|r| r == column.unit) {
+            out.right = Some(column.unit);
+            true
+        } else {
+            continue;
+        };
+        out.curves.push(c);
+        out.on_right.push(right);
+    }
+    out
+}
+
 /// Every column's values over the run, one row per kept frame.
 #[derive(Debug, Clone)]
 pub struct PlotSeries {
@@ -273,7 +323,12 @@ impl PlotSeries {
     /// The CSV of what is plotted: `step,t,` then the x column (if any) and the y column's
     /// name; every value printed in full (the shortest text that reads back to the same f64).
     pub fn csv(&self, choice: PlotChoice) -> String {
-        let picked: Vec<usize> = choice.x.into_iter().chain([choice.y]).collect();
+        self.csv_of(choice.x, &[choice.y])
+    }
+
+    /// The CSV of several curves: `step,t,` then the x column (if any) and each curve's.
+    pub fn csv_of(&self, x: Option<usize>, curves: &[usize]) -> String {
+        let picked: Vec<usize> = x.into_iter().chain(curves.iter().copied()).collect();
         let mut out = String::from("step,t");
         for &c in &picked {
             out.push(',');
@@ -300,6 +355,28 @@ pub fn label(column: &Column) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn curves_of_one_unit_share_an_axis_a_second_unit_takes_the_right_one() {
+        let lesson =
+            crate::lessons::load(std::path::Path::new("lessons/05-ground-collision.toml")).unwrap();
+        let columns = columns(&lesson.scene.world());
+        let at = |name: &str| columns.iter().position(|c| c.name == name).unwrap();
+        let (y, x, vy, k) = (
+            at("body1.y"),
+            at("body1.x"),
+            at("body1.vy"),
+            at("body1.kinetic"),
+        );
+        let axes = curve_axes(&columns, &[y, x]);
+        assert_eq!((axes.left, axes.right), ("m", None));
+        assert_eq!(axes.on_right, [false, false]);
+        // m/s goes right; J would be a third unit: left out; a repeat is kept once.
+        let axes = curve_axes(&columns, &[y, vy, k, x, y]);
+        assert_eq!(axes.curves, [y, vy, x]);
+        assert_eq!((axes.left, axes.right), ("m", Some("m/s")));
+        assert_eq!(axes.on_right, [false, true, false]);
+    }
 
     #[test]
     fn thinning_keeps_every_other_row_and_the_columns_aligned() {

@@ -1,5 +1,6 @@
 //! The quantity picker (key `p`): every quantity the graph can show, with its unit; Enter
-//! graphs the selected one, `x` makes it the horizontal axis (a phase portrait). Its keys are
+//! graphs the selected one, `x` makes it the horizontal axis (a phase portrait), `a` adds it
+//! to the graph shown as another curve (or takes it off). Its keys are
 //! listed at its bottom, from the key table.
 
 use super::keys::{Context, KEYS};
@@ -11,7 +12,15 @@ use ratatui::layout::Rect;
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
-pub fn render(columns: &[Column], selected: usize, x: Option<usize>, area: Rect, buf: &mut Buffer) {
+/// `curves`: the curves on the graph shown (marked when there are several).
+pub fn render(
+    columns: &[Column],
+    selected: usize,
+    x: Option<usize>,
+    curves: &[usize],
+    area: Rect,
+    buf: &mut Buffer,
+) {
     let name_width = columns
         .iter()
         .map(|c| c.name.chars().count())
@@ -21,10 +30,16 @@ pub fn render(columns: &[Column], selected: usize, x: Option<usize>, area: Rect,
         .iter()
         .enumerate()
         .map(|(i, c)| {
+            let curve = curves
+                .iter()
+                .position(|&c| c == i)
+                .filter(|_| curves.len() > 1);
             let axis = if Some(i) == x {
-                "  ← horizontal axis"
+                "  ← horizontal axis".to_string()
+            } else if let Some(k) = curve {
+                format!("  ← curve {}", k + 1)
             } else {
-                ""
+                String::new()
             };
             let text = format!(" {:<name_width$}  {}{axis} ", c.name, c.unit);
             if i == selected {

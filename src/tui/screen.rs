@@ -45,7 +45,8 @@ impl Widget for &App {
             Overlay::Help => help::render(area, buf),
             Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
             Overlay::PlotPicker { selected, x } => {
-                plot_picker::render(&self.plot_series.columns, *selected, *x, area, buf)
+                let curves = self.plot_curves();
+                plot_picker::render(&self.plot_series.columns, *selected, *x, &curves, area, buf)
             }
             Overlay::Settings(form) => settings_view::render(form, area, buf),
             Overlay::Jump { text } => jump_prompt::render(text, self.snapshot.time, area, buf),

@@ -1,9 +1,17 @@
 //! The settings form's state (key `e`): one text field per value of [`SceneEdits`] — restitution,
-//! friction, mass, dt, the body's initial position, orientation (axis and degrees), velocity
-//! and angular velocity component by component, gravity and drag, and each cloth's particle
-//! integrator by name and its stiffnesses. A scene of cloths only has no body fields. Typing replaces the selected field's value (then appends); the values are read and
-//! checked only when the form is applied or written, with the loader's own rules.
+//! friction, mass, dt, the initial position, orientation (axis and degrees), velocity and
+//! angular velocity component by component of the body the panels show (Tab picks it; the
+//! form's title names it), gravity and drag, each spring's k, c and ℓ₀, each hinge's or
+//! slider's limits and motor (speed and bound), and each cloth's particle integrator by name
+//! and its stiffnesses. A scene of cloths only has no body fields. Typing replaces the
+//! selected field's value (then appends); the values are read and checked only when the form
+//! is applied or written, with the loader's own rules.
+//!
+//! Continuous values ([`FieldKind::is_live`]: g, drag, e, μ, a spring's k, a motor's speed)
+//! apply while the run goes on ([`SettingsForm::tunings`], `World::tune`), as PhET's sliders
+//! do; any other change restarts the scene at t = 0.
 
+use crate::physics::Tuning;
 use crate::scene::edit::cloth_integrator;
 use crate::scene::SceneEdits;
 use nalgebra::{Unit, UnitQuaternion, Vector3};
@@ -37,6 +45,19 @@ pub enum FieldKind {
     ClothStretch(usize),
     ClothShear(usize),
     ClothBend(usize),
+    /// Entry `i` of the body's size ([`SceneEdits::size`]: a box's side, a radius, a length).
+    Size(usize),
+    /// Spring `i`'s (its index in [`SceneEdits::springs`]) stiffness k, damping c, rest
+    /// length ℓ₀.
+    SpringStiffness(usize),
+    SpringDamping(usize),
+    SpringRestLength(usize),
+    /// Joint `i`'s (its index in [`SceneEdits::joints`]) lower and upper limit.
+    JointLimitLo(usize),
+    JointLimitHi(usize),
+    /// Joint `i`'s motor: its speed and its bound (max torque or force).
+    MotorSpeed(usize),
+    MotorMax(usize),
 }
 
 impl FieldKind {
@@ -62,7 +83,30 @@ impl FieldKind {
             FieldKind::ClothStretch(_) => ("stretch", "N/m"),
             FieldKind::ClothShear(_) => ("shear", "N/m"),
             FieldKind::ClothBend(_) => ("bend", "N/m"),
+            FieldKind::Size(_) => ("size", "m"),
+            FieldKind::SpringStiffness(_) => ("stiffness k", "N/m"),
+            FieldKind::SpringDamping(_) => ("damping c", "N·s/m"),
+            FieldKind::SpringRestLength(_) => ("rest length ℓ₀", "m"),
+            FieldKind::JointLimitLo(_) => ("lower limit", ""),
+            FieldKind::JointLimitHi(_) => ("upper limit", ""),
+            FieldKind::MotorSpeed(_) => ("motor speed", ""),
+            FieldKind::MotorMax(_) => ("motor max", ""),
         }
+    }
+
+    /// A continuous value applied while the scene runs, without a restart (as PhET's
+    /// sliders): g, drag, e, μ, a spring's k, a motor's speed. The others restart the scene.
+    pub fn is_live(self) -> bool {
+        matches!(
+            self,
+            FieldKind::Restitution
+                | FieldKind::Friction
+                | FieldKind::Gravity(_)
+                | FieldKind::DragLinear
+                | FieldKind::DragAngular
+                | FieldKind::SpringStiffness(_)
+                | FieldKind::MotorSpeed(_)
+        )
     }
 }
 
@@ -84,6 +128,8 @@ pub struct SettingsForm {
     pub fresh: bool,
     /// Why the values could not be applied or written.
     pub error: Option<String>,
+    /// The name of the body the body fields edit (None: no body).
+    pub body_name: Option<String>,
 }
 
 /// An orientation as an axis (unit length; z for none) and an angle in degrees.
@@ -121,6 +167,9 @@ impl SettingsForm {
         let body = base.body.is_some();
         if body {
             add(FieldKind::Mass, base.mass);
+            for (i, x) in base.size.iter().enumerate() {
+                add(FieldKind::Size(i), *x);
+            }
         }
         add(FieldKind::Dt, base.dt);
         if body {
@@ -146,6 +195,21 @@ impl SettingsForm {
         let (linear, angular) = base.drag.unwrap_or((0.0, 0.0));
         add(FieldKind::DragLinear, linear);
         add(FieldKind::DragAngular, angular);
+        for (i, spring) in base.springs.iter().enumerate() {
+            add(FieldKind::SpringStiffness(i), spring.stiffness);
+            add(FieldKind::SpringDamping(i), spring.damping);
+            add(FieldKind::SpringRestLength(i), spring.rest_length);
+        }
+        for (i, joint) in base.joints.iter().enumerate() {
+            if let Some([lo, hi]) = joint.limits {
+                add(FieldKind::JointLimitLo(i), lo);
+                add(FieldKind::JointLimitHi(i), hi);
+            }
+            if let Some((speed, max)) = joint.motor {
+                add(FieldKind::MotorSpeed(i), speed);
+                add(FieldKind::MotorMax(i), max);
+            }
+        }
         for (i, cloth) in base.cloths.iter().enumerate() {
             add_text(
                 FieldKind::ClothIntegrator(i),
@@ -162,6 +226,7 @@ impl SettingsForm {
             selected: 0,
             fresh: true,
             error: None,
+            body_name: None,
         }
     }
 
@@ -203,7 +268,48 @@ impl SettingsForm {
         let cloth = |i: usize| {
             crate::physics::cloth::label(self.base.cloths.get(i).map_or("?", |c| c.name.as_str()))
         };
+        let spring = |i: usize| self.base.springs.get(i).map_or("?", |s| s.name.as_str());
+        let joint = self.base.joints.get(match field.kind {
+            FieldKind::JointLimitLo(i)
+            | FieldKind::JointLimitHi(i)
+            | FieldKind::MotorSpeed(i)
+            | FieldKind::MotorMax(i) => i,
+            _ => usize::MAX,
+        });
+        let joint_name = joint.map_or("?", |j| j.name.as_str());
+        let hinge = joint.is_some_and(|j| j.hinge);
         match field.kind {
+            FieldKind::Size(i) => (
+                crate::scene::edit::size_names(&self.base.size)
+                    .get(i)
+                    .map_or("size", |n| n)
+                    .to_string(),
+                "m",
+            ),
+            FieldKind::SpringStiffness(i)
+            | FieldKind::SpringDamping(i)
+            | FieldKind::SpringRestLength(i) => {
+                let (label, unit) = field.kind.label();
+                (format!("spring {} {label}", spring(i)), unit)
+            }
+            FieldKind::JointLimitLo(_) | FieldKind::JointLimitHi(_) => {
+                let (label, _) = field.kind.label();
+                (
+                    format!("joint {joint_name} {label}"),
+                    if hinge { "°" } else { "m" },
+                )
+            }
+            FieldKind::MotorSpeed(_) => (
+                format!("joint {joint_name} motor speed"),
+                if hinge { "rad/s" } else { "m/s" },
+            ),
+            FieldKind::MotorMax(_) => (
+                format!(
+                    "joint {joint_name} motor {}",
+                    if hinge { "max torque" } else { "max force" }
+                ),
+                if hinge { "N·m" } else { "N" },
+            ),
             FieldKind::ClothIntegrator(i) => (format!("{} integrator", cloth(i)), ""),
             FieldKind::ClothStretch(i) | FieldKind::ClothShear(i) | FieldKind::ClothBend(i) => {
                 let (label, unit) = field.kind.label();
@@ -248,7 +354,75 @@ impl SettingsForm {
             FieldKind::ClothStretch(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.stretch),
             FieldKind::ClothShear(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.shear),
             FieldKind::ClothBend(i) => b.cloths.get(i).map_or(f64::NAN, |c| c.bend),
+            FieldKind::Size(i) => b.size.get(i).copied().unwrap_or(f64::NAN),
+            FieldKind::SpringStiffness(i) => b.springs.get(i).map_or(f64::NAN, |s| s.stiffness),
+            FieldKind::SpringDamping(i) => b.springs.get(i).map_or(f64::NAN, |s| s.damping),
+            FieldKind::SpringRestLength(i) => b.springs.get(i).map_or(f64::NAN, |s| s.rest_length),
+            FieldKind::JointLimitLo(i) | FieldKind::JointLimitHi(i) => b
+                .joints
+                .get(i)
+                .and_then(|j| j.limits)
+                .map_or(f64::NAN, |[lo, hi]| {
+                    if matches!(kind, FieldKind::JointLimitLo(_)) {
+                        lo
+                    } else {
+                        hi
+                    }
+                }),
+            FieldKind::MotorSpeed(i) => b
+                .joints
+                .get(i)
+                .and_then(|j| j.motor)
+                .map_or(f64::NAN, |m| m.0),
+            FieldKind::MotorMax(i) => b
+                .joints
+                .get(i)
+                .and_then(|j| j.motor)
+                .map_or(f64::NAN, |m| m.1),
         }
+    }
+
+    /// Whether the values typed change only what applies live ([`FieldKind::is_live`]).
+    pub fn live_only(&self) -> bool {
+        self.fields
+            .iter()
+            .all(|f| f.kind.is_live() || f.text == self.base_text(f.kind))
+    }
+
+    /// The live changes `edits` (this form's [`SettingsForm::edits`]) make, one per changed
+    /// parameter, as the world takes them ([`World::tune`]).
+    ///
+    /// [`World::tune`]: crate::physics::World::tune
+    pub fn tunings(&self, edits: &SceneEdits) -> Vec<Tuning> {
+        let mut out: Vec<Tuning> = Vec::new();
+        for field in &self.fields {
+            if !field.kind.is_live() || field.text == self.base_text(field.kind) {
+                continue;
+            }
+            let tuning = match field.kind {
+                FieldKind::Restitution => edits.restitution.map(Tuning::Restitution),
+                FieldKind::Friction => edits.friction.map(Tuning::Friction),
+                FieldKind::Gravity(_) => Some(Tuning::Gravity(edits.gravity)),
+                FieldKind::DragLinear | FieldKind::DragAngular => Some(Tuning::Drag(edits.drag)),
+                FieldKind::SpringStiffness(i) => {
+                    edits.springs.get(i).map(|s| Tuning::SpringStiffness {
+                        spring: s.index,
+                        stiffness: s.stiffness,
+                    })
+                }
+                FieldKind::MotorSpeed(i) => edits.joints.get(i).and_then(|j| {
+                    j.motor.map(|(speed, _)| Tuning::MotorSpeed {
+                        joint: j.index,
+                        speed,
+                    })
+                }),
+                _ => None,
+            };
+            if let Some(t) = tuning.filter(|t| !out.contains(t)) {
+                out.push(t);
+            }
+        }
+        out
     }
 
     /// The values typed, checked with the loader's rules; the error names the field. A field
@@ -299,6 +473,43 @@ impl SettingsForm {
                         } = value;
                     }
                 }
+                FieldKind::Size(i) => {
+                    if let Some(x) = edits.size.get_mut(i) {
+                        *x = value;
+                    }
+                }
+                FieldKind::SpringStiffness(i)
+                | FieldKind::SpringDamping(i)
+                | FieldKind::SpringRestLength(i) => {
+                    if let Some(spring) = edits.springs.get_mut(i) {
+                        *match field.kind {
+                            FieldKind::SpringStiffness(_) => &mut spring.stiffness,
+                            FieldKind::SpringDamping(_) => &mut spring.damping,
+                            _ => &mut spring.rest_length,
+                        } = value;
+                    }
+                }
+                FieldKind::JointLimitLo(i) | FieldKind::JointLimitHi(i) => {
+                    if let Some([lo, hi]) = edits.joints.get_mut(i).and_then(|j| j.limits.as_mut())
+                    {
+                        *if matches!(field.kind, FieldKind::JointLimitLo(_)) {
+                            lo
+                        } else {
+                            hi
+                        } = value;
+                    }
+                }
+                FieldKind::MotorSpeed(i) | FieldKind::MotorMax(i) => {
+                    if let Some((speed, max)) =
+                        edits.joints.get_mut(i).and_then(|j| j.motor.as_mut())
+                    {
+                        *if matches!(field.kind, FieldKind::MotorSpeed(_)) {
+                            speed
+                        } else {
+                            max
+                        } = value;
+                    }
+                }
                 FieldKind::ClothIntegrator(_) => {}
             }
         }
@@ -342,6 +553,10 @@ impl SettingsForm {
         let body = b.body.is_some();
         if body {
             note(&mut parts, "mass", b.mass, edits.mass, "kg");
+            let names = crate::scene::edit::size_names(&b.size);
+            for ((name, old), new) in names.iter().zip(&b.size).zip(&edits.size) {
+                note(&mut parts, name, *old, *new, "m");
+            }
         }
         note(&mut parts, "dt", b.dt, edits.dt, "s");
         const AXES: [&str; 3] = ["x", "y", "z"];
@@ -403,6 +618,37 @@ impl SettingsForm {
                 );
             }
         }
+        for (old, new) in b.springs.iter().zip(&edits.springs) {
+            for (what, o, n, unit) in [
+                ("k", old.stiffness, new.stiffness, "N/m"),
+                ("c", old.damping, new.damping, "N·s/m"),
+                ("ℓ₀", old.rest_length, new.rest_length, "m"),
+            ] {
+                note(
+                    &mut parts,
+                    &format!("spring {} {what}", old.name),
+                    o,
+                    n,
+                    unit,
+                );
+            }
+        }
+        for (old, new) in b.joints.iter().zip(&edits.joints) {
+            let (limit, speed) = if old.hinge {
+                ("°", "rad/s")
+            } else {
+                ("m", "m/s")
+            };
+            if let (Some(o), Some(n)) = (old.limits, new.limits) {
+                note(&mut parts, &format!("{} lo", old.name), o[0], n[0], limit);
+                note(&mut parts, &format!("{} hi", old.name), o[1], n[1], limit);
+            }
+            if let (Some(o), Some(n)) = (old.motor, new.motor) {
+                note(&mut parts, &format!("{} motor", old.name), o.0, n.0, speed);
+                let bound = if old.hinge { "N·m" } else { "N" };
+                note(&mut parts, &format!("{} max", old.name), o.1, n.1, bound);
+            }
+        }
         if parts.is_empty() {
             "no value changed".into()
         } else {
@@ -432,6 +678,9 @@ mod tests {
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             drag: None,
             cloths: Vec::new(),
+            springs: Vec::new(),
+            joints: Vec::new(),
+            size: Vec::new(),
         }
     }
 

@@ -43,7 +43,7 @@ pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
         (first, shown)
     };
     let mut lines = vec![Line::styled(
-        " The scene's settings: Enter restarts the scene with them.",
+        " ~ applies live; the other values restart the scene.",
         Style::new().fg(Color::Gray),
     )];
     let dim = Style::new().fg(Color::DarkGray);
@@ -53,11 +53,14 @@ pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
     for (i, field) in form.fields.iter().enumerate().skip(first).take(shown) {
         let (label, unit) = form.label(field);
         let value = format!(" {:<14}", field.text);
+        // Live values are marked: they apply without a restart.
+        let live = if field.kind.is_live() { " ~" } else { "  " };
         lines.push(Line::from(vec![
             Span::styled(
-                format!(" {label:>label_width$} "),
+                format!(" {label:>label_width$}"),
                 Style::new().fg(Color::Cyan),
             ),
+            Span::styled(live, Style::new().fg(Color::Green)),
             if i == form.selected {
                 Span::styled(value, selected)
             } else {
@@ -85,7 +88,10 @@ pub fn render(form: &SettingsForm, area: Rect, buf: &mut Buffer) {
     Paragraph::new(lines)
         .block(
             Block::bordered()
-                .title(" settings — Esc closes, nothing applied ")
+                .title(match &form.body_name {
+                    Some(name) => format!(" settings of {name} — Esc closes, nothing applied "),
+                    None => " settings — Esc closes, nothing applied ".to_string(),
+                })
                 .border_style(Style::new().fg(Color::Yellow)),
         )
         .render(popup, buf);

@@ -450,10 +450,10 @@ fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
     let Overlay::Settings(form) = &app.overlay else {
         panic!("e opens the form");
     };
-    // restitution, friction, mass, dt, x₀ ×3, axis ×3, angle, v₀ ×3, ω₀ ×3, g ×3, drag ×2,
-    // then the cloth's integrator, stretch, shear and bend.
-    assert_eq!(form.fields.len(), 26);
-    assert_eq!(form.label(&form.fields[22]).0, "cloth sheet integrator");
+    // restitution, friction, mass, size ×3 (the box's sides), dt, x₀ ×3, axis ×3, angle,
+    // v₀ ×3, ω₀ ×3, g ×3, drag ×2, then the cloth's integrator, stretch, shear and bend.
+    assert_eq!(form.fields.len(), 29);
+    assert_eq!(form.label(&form.fields[25]).0, "cloth sheet integrator");
     for _ in 0..4 {
         press(&mut app, KeyCode::Up);
     }

@@ -4,12 +4,14 @@
 mod against;
 mod class_pages;
 mod classroom;
+mod energy_bars;
 mod findings;
 mod forces;
 mod fuzz;
 mod history;
 mod jobs;
 mod plot;
+mod settings_live;
 mod tools;
 mod tui;
 mod tui_cloth;

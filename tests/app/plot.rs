@@ -309,3 +309,84 @@ fn stepping_back_and_resetting_cut_the_plotted_past() {
     app.reset();
     assert_eq!(app.plot_series.len(), 1);
 }
+
+#[test]
+fn several_curves_share_one_graph_with_one_axis_per_unit() {
+    let mut app = lesson_app("32-predict-the-bounce");
+    app.write_dir = scratch("curves");
+    app.step_frames(1100);
+    pick(&mut app, "cube.y", KeyCode::Enter);
+    // `a` adds cube.vy: another unit, so a right axis of its own.
+    pick(&mut app, "cube.vy", KeyCode::Char('a'));
+    assert_eq!(app.view, View::Plot);
+    let (y, vy) = (column(&app, "cube.y"), column(&app, "cube.vy"));
+    assert_eq!(app.plot_curves(), [y, vy]);
+    let notice = app.notice.clone().unwrap();
+    assert!(
+        notice.contains("two axes, m on the left, m/s on the right"),
+        "{notice}"
+    );
+    for (w, h) in [(80, 24), (120, 40)] {
+        let shown = screen(&app, w, h);
+        // The legend says which axis each curve reads on where it has room.
+        let title = if w == 80 {
+            "┌ • cube.y ▄ cube.vy ─"
+        } else {
+            "┌ • cube.y (left) ▄ cube.vy (right) ─"
+        };
+        assert!(shown.contains(title), "{w}x{h}: the legend\n{shown}");
+        insta::assert_snapshot!(format!("plot_two_axes_{w}x{h}"), shown);
+    }
+    // The right axis's labels are cube.vy's range (-4.5 to 2.4 m/s, as the phase portrait's
+    // vertical axis reads), the left one's cube.y's (0.06 to 1.04 m), on the same rows.
+    let shown = screen(&app, 120, 40);
+    let lines: Vec<&str> = shown.lines().collect();
+    assert!(
+        lines[2].starts_with("│1.04") && lines[2].contains("│2.4"),
+        "{shown}"
+    );
+    let bottom = lines.iter().find(|l| l.starts_with("│0.06")).unwrap();
+    assert!(bottom.contains("│-4.5"), "{shown}");
+    let wide = screen(&app, 200, 60);
+    assert!(
+        wide.contains("┌ • cube.y, m (left) ▄ cube.vy, m/s (right) against time: two axes ─"),
+        "{wide}"
+    );
+    // The picker marks the curves; a third unit (J) is refused.
+    press(&mut app, KeyCode::Char('p'));
+    let list = screen(&app, 120, 40);
+    assert!(list.contains("← curve 2"), "{list}");
+    press(&mut app, KeyCode::Esc);
+    pick(&mut app, "cube.kinetic", KeyCode::Char('a'));
+    assert_eq!(app.plot_curves(), [y, vy], "a third unit has no axis");
+    let notice = app.notice.clone().unwrap();
+    assert!(notice.contains("two axes are in m and m/s"), "{notice}");
+    // The CSV has every curve.
+    press(&mut app, KeyCode::Char('X'));
+    let path = app.csv_path().unwrap();
+    assert!(
+        path.ends_with("tumble-32-predict-the-bounce-cube.y-cube.vy.csv"),
+        "{path:?}"
+    );
+    let (header, rows) = rows(&std::fs::read_to_string(&path).unwrap());
+    assert_eq!(header, ["step", "t", "cube.y", "cube.vy"]);
+    let last = rows.last().unwrap();
+    assert_eq!(last[2], app.world.state().position.y);
+    assert_eq!(last[3], app.snapshot.velocity.y);
+    // `a` on a curve takes it off; Enter graphs one curve again.
+    pick(&mut app, "cube.y", KeyCode::Char('a'));
+    assert_eq!(app.plot_curves(), [vy]);
+    // Same unit: one shared axis, said in the title.
+    pick(&mut app, "cube.kinetic", KeyCode::Enter);
+    pick(&mut app, "cube.potential", KeyCode::Char('a'));
+    pick(&mut app, "cube.energy", KeyCode::Char('a'));
+    assert_eq!(app.plot_curves().len(), 3);
+    let shown = screen(&app, 200, 60);
+    assert!(
+        shown.contains("against time: one axis, J"),
+        "one shared axis\n{shown}"
+    );
+    pick(&mut app, "cube.x", KeyCode::Enter);
+    assert_eq!(app.plot_curves(), [column(&app, "cube.x")]);
+    std::fs::remove_dir_all(&app.write_dir).ok();
+}
