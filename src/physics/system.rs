@@ -11,8 +11,10 @@
 //!
 //! The integrators step this f (`integrators::system`), so every stage of rk4 is a stage of
 //! the whole world: a spring between two bodies, or a pendulum's rod, is then integrated to
-//! the method's full order. A world without springs or joints never comes here: each body is
-//! stepped alone as before (the single-body fast path, bit for bit what it was).
+//! the method's full order. A world without springs or joints is a system too, whose
+//! evaluation is per body ([`System::coupled`] is false): each body's f is its effects alone,
+//! and the integrators use the per-body shortcuts there (the exact kick of `exact-splitting`,
+//! ω from L without I⁻¹_world at rk4's stages).
 
 use super::body::Body;
 use super::derive::{congruence, Kinematics};
@@ -71,6 +73,12 @@ pub fn kinematics(
 }
 
 impl System<'_> {
+    /// Whether springs or joints couple the bodies (otherwise each body's f is its own).
+    #[inline]
+    pub fn coupled(&self) -> bool {
+        !self.links.is_empty()
+    }
+
     /// f(Y)'s forces: fills `scratch.loads` (total F, τ per body), `scratch.joint_loads` and
     /// `scratch.damping_power`, from each body's position, kinematics and angular momentum.
     pub fn evaluate(

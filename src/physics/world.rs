@@ -21,8 +21,8 @@
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::{
-    approach_bodies, carry_attachments, collide_bodies, hold_attachments, position_factor,
-    tied_step, Attachment, BodyMove, Carried,
+    approach_bodies, carry_attachments, collide_bodies, hold_attachments, tied_step, Attachment,
+    BodyMove, Carried,
 };
 use super::collision::impulse::Scratch;
 use super::collision::StepContext;
@@ -32,7 +32,7 @@ use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effects, Loads};
 use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
-use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
+use super::integrators::system::{Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
 use super::joints::drive::{drive, Buffers as DriveBuffers, Drive, Scene as DriveScene};
 use super::joints::{hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers};
@@ -486,8 +486,8 @@ impl World {
         }
     }
 
-    /// *integrate*: one integrator step per body (the states before it are kept for the
-    /// collide phase).
+    /// *integrate*: one integrator step of the whole system, then the cloths (the states
+    /// before it are kept for the collide phase).
     #[inline]
     fn integrate_phase(&mut self) {
         // Energy ledger: the drag power at the start of the step (see `energy_ledger`).
@@ -498,29 +498,8 @@ impl World {
         if can_touch || !now.cloths.0.is_empty() {
             now.before.clone_from(&now.states);
         }
-        let mut potential = 0.0;
         let has_cloths = !now.cloths.0.is_empty();
-        if self.links.is_empty() {
-            for (i, body) in self.bodies.iter().enumerate() {
-                if body.fixed {
-                    // Never integrated: it stays where the scene put it.
-                    continue;
-                }
-                let state = &mut now.states[i];
-                self.integrator.advance(
-                    body,
-                    &self.effects,
-                    state,
-                    &now.kinematics[i],
-                    &now.loads[i],
-                    self.dt,
-                );
-                potential += self.effects.potential_energy(body, &state.position);
-            }
-        }
-        if !self.links.is_empty() {
-            potential += self.integrate_system();
-        }
+        let mut potential = self.integrate_bodies();
         if has_cloths {
             potential += self.integrate_cloths();
         }
@@ -562,10 +541,11 @@ impl World {
         now.ledger.joint_correction += done.joints;
     }
 
-    /// One step of the whole coupled system, then the joints' correction; books the springs'
-    /// damping as drag work and the projection's energy change as the correction's work.
-    /// Returns the potential energy after the step (gravity and springs, for the guard).
-    fn integrate_system(&mut self) -> f64 {
+    /// One integrator step of every body, the whole system at once (`integrators::system`);
+    /// with joints, then their correction, booking the springs' damping as drag work and the
+    /// projection's energy change as the correction's work. Returns the potential energy
+    /// after the step (gravity and springs, for the guard).
+    fn integrate_bodies(&mut self) -> f64 {
         let system = System {
             bodies: &self.bodies,
             effects: &self.effects,
@@ -587,14 +567,24 @@ impl World {
             joint_loads: &now.start_joint_loads,
             damping_power: now.start_damping_power,
         };
-        system_step::advance(
-            self.integrator,
+        self.integrator.advance(
             &system,
             &mut now.states,
             &start,
             self.dt,
             &mut self.system_buffers,
         );
+        if !system.coupled() {
+            // Fixed bodies are the world: no potential energy booked.
+            let moving = self
+                .bodies
+                .iter()
+                .zip(&now.states)
+                .filter(|(b, _)| !b.fixed);
+            return moving.fold(0.0, |u, (b, s)| {
+                u + self.effects.potential_energy(b, &s.position)
+            });
+        }
         now.joint_loads.clone_from(&self.system_buffers.joint_loads);
         now.ledger.drag_work += self.system_buffers.damping_work;
         if self.links.correction == Correction::Projection && !self.links.joints.is_empty() {
@@ -678,7 +668,7 @@ impl World {
                     &self.obstacles,
                     self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
                     friction,
-                    position_factor(self.integrator),
+                    self.integrator.position_factor(),
                     &self.links,
                     &mut joint_impulses,
                     &now.collide_moves,
@@ -742,7 +732,7 @@ impl World {
                     &mut now.states,
                     list,
                     self.dt,
-                    position_factor(self.integrator),
+                    self.integrator.position_factor(),
                     &self.links,
                     &mut joint_impulses,
                 );

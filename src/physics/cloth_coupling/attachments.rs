@@ -143,7 +143,7 @@ pub fn carry_attachments(
 /// Attachment a holds particle p at its body's point P_a = x_b + r_a (the body already at
 /// the end of its own step). Unknown: the impulse J_a on the particle, −J_a on the body at
 /// r_a. The body's correction ΔV = −Σ J/M, Δω = −I⁻¹ Σ r × J moves its position by
-/// factor·h·(ΔV, Δω) ([`position_factor`](super::position_factor)), so the particle ends on its point when
+/// factor·h·(ΔV, Δω) ([`Integrator::position_factor`](crate::physics::Integrator::position_factor)), so the particle ends on its point when
 ///
 /// ```text
 /// x_p + h (v_p + J_a/m_p) = P_a + factor h (ΔV + Δω × r_a)      (linearised turn)

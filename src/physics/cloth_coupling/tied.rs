@@ -61,7 +61,7 @@ pub struct TiedReport {
 /// # Where the particle must end: positions, not velocities
 ///
 /// The body has already moved by its own step when the cloth steps; what its correction
-/// (ΔV, Δω) adds to its position is `factor`·h·(ΔV, Δω) ([`position_factor`](super::position_factor)). So a particle
+/// (ΔV, Δω) adds to its position is `factor`·h·(ΔV, Δω) ([`Integrator::position_factor`](crate::physics::Integrator::position_factor)). So a particle
 /// at gap g from the body's new pose ends on its surface when
 ///
 /// ```text
