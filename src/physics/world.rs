@@ -22,7 +22,7 @@ use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::{
     approach_bodies, carry_attachments, collide_bodies, hold_attachments, tied_step, Attachment,
-    BodyMove, Carried,
+    BodyMove, Carried, TiedScene,
 };
 use super::collision::impulse::Scratch;
 use super::collision::StepContext;
@@ -658,21 +658,19 @@ impl World {
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
                 // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
-                let tied = tied_step(
-                    cloth,
+                let scene = TiedScene {
                     loads,
-                    self.dt,
-                    &self.bodies,
-                    &now.before,
-                    &mut now.states,
-                    &self.obstacles,
-                    self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
+                    dt: self.dt,
+                    bodies: &self.bodies,
+                    start: &now.before,
+                    obstacles: &self.obstacles,
+                    attachments: self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
                     friction,
-                    self.integrator.position_factor(),
-                    &self.links,
-                    &mut joint_impulses,
-                    &now.collide_moves,
-                );
+                    factor: self.integrator.position_factor(),
+                    links: &self.links,
+                    predicted: &now.collide_moves,
+                };
+                let tied = tied_step(cloth, &scene, &mut now.states, &mut joint_impulses);
                 // The joints held inside the solve: their share of the step's reaction.
                 for (load, impulse) in now.joint_loads.iter_mut().zip(&joint_impulses) {
                     load.force += impulse.force / self.dt;

@@ -26,7 +26,7 @@ pub mod tied;
 
 pub use attachments::{carry_attachments, hold_attachments, AttachReport, BodyMove, Carried};
 pub use explicit::{approach_bodies, collide_bodies, Approach, SWEEPS};
-pub use tied::{tied_step, TiedReport, TIE_ROUNDS};
+pub use tied::{tied_step, TiedReport, TiedScene, TIE_ROUNDS};
 
 use crate::physics::cloth::Cloth;
 use crate::physics::state::State;

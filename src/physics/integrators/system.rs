@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! f(Y) at the start     the forces phase's kinematics and loads (`Start`)
-//! stage_rates(Y)        f at a stage Y (rk4): per body, or the coupled evaluation
+//! stage_rates(Y)        f at a stage Y (rk4): the coupled evaluation; body_rates, one body's
 //! kick(h)               P, L += h (F, τ); per body the method's own kick (exact or midpoint),
 //!                       coupled at the kick's midpoint P + h/2 F: the joints' reactions depend
 //!                       on the velocities (the centripetal term), a kick at the start alone
@@ -20,7 +20,7 @@
 
 use super::super::body::Body;
 use super::super::derive::{derive, Kinematics};
-use super::super::effects::Loads;
+use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
 use super::super::system::{kinematics, Scratch, System};
 use super::exact_splitting::Kick;
@@ -49,7 +49,6 @@ pub struct Buffers {
     pub(super) y: Vec<Flat>,
     pub(super) stage: Vec<Flat>,
     pub(super) sum: Vec<Flat>,
-    pub(super) pair: Vec<Flat>,
     pub(super) k: Vec<Flat>,
     loads: Vec<Loads>,
     reactions: Vec<Loads>,
@@ -129,6 +128,17 @@ impl Flat {
         }
     }
 
+    /// `h self`.
+    #[inline]
+    pub fn scaled(&self, h: f64) -> Flat {
+        Flat {
+            x: self.x * h,
+            q: self.q * h,
+            p: self.p * h,
+            l: self.l * h,
+        }
+    }
+
     /// A state as a flat element.
     #[inline]
     pub fn of(s: &State) -> Flat {
@@ -187,37 +197,47 @@ pub(super) fn start_rates(y: &[Flat], start: &Start, out: &mut Vec<Flat>) {
 /// The rates `(v, ½ ω ⊗ q, F, τ)` at flat states `y` from their kinematics and loads.
 fn rates(y: &[Flat], kinematics: &[Kinematics], loads: &[Loads], out: &mut Vec<Flat>) {
     out.clear();
-    out.extend(y.iter().zip(kinematics).zip(loads).map(|((s, k), f)| Flat {
-        x: k.velocity,
-        q: quaternion_rate(&k.angular_velocity, &s.q),
-        p: f.force,
-        l: f.torque,
-    }));
+    out.extend(
+        y.iter()
+            .zip(kinematics)
+            .zip(loads)
+            .map(|((s, k), f)| rates_at(s, k, f)),
+    );
 }
 
-/// f(Y) at a stage `y` (q not normalised: R is that of q/|q|). Per body: the derive phase's
-/// `v = P/M`, `ω = R I⁻¹_body Rᵀ L` (three matrix–vector products: a stage needs ω, not
-/// I⁻¹_world), then the effects; coupled: the whole system's evaluation, whose reactions
-/// [`Buffers::book_evaluation`] books.
-pub(super) fn stage_rates(system: &System, y: &[Flat], b: &mut Buffers, out: &mut Vec<Flat>) {
-    if system.coupled() {
-        evaluate_flat(system, y, b);
-        rates(y, &b.kinematics, &b.eval.loads, out);
-        return;
+/// The rates `(v, ½ ω ⊗ q, F, τ)` of one body at flat state `y` from its kinematics and loads.
+#[inline]
+pub(super) fn rates_at(y: &Flat, k: &Kinematics, f: &Loads) -> Flat {
+    Flat {
+        x: k.velocity,
+        q: quaternion_rate(&k.angular_velocity, &y.q),
+        p: f.force,
+        l: f.torque,
     }
-    out.clear();
-    out.extend(system.bodies.iter().zip(y).map(|(body, y)| {
-        let rotation = rotation_of(&y.q);
-        let angular_velocity = rotation * (body.inv_inertia_body * rotation.tr_mul(&y.l));
-        let velocity = y.p * body.inv_mass;
-        let loads = system.effects.loads_at(body, &velocity, &angular_velocity);
-        Flat {
-            x: velocity,
-            q: quaternion_rate(&angular_velocity, &y.q),
-            p: loads.force,
-            l: loads.torque,
-        }
-    }));
+}
+
+/// f(Y) of the coupled system at a stage `y` (q not normalised: R is that of q/|q|): the
+/// whole system's evaluation, whose reactions [`Buffers::book_evaluation`] books.
+pub(super) fn stage_rates(system: &System, y: &[Flat], b: &mut Buffers, out: &mut Vec<Flat>) {
+    evaluate_flat(system, y, b);
+    rates(y, &b.kinematics, &b.eval.loads, out);
+}
+
+/// f of one body alone at a flat state `y` (q not normalised: R is that of q/|q|): the
+/// derive phase's `v = P/M`, `ω = R I⁻¹_body Rᵀ L` (three matrix–vector products: a stage
+/// needs ω, not I⁻¹_world), then its effects.
+#[inline]
+pub(super) fn body_rates(body: &Body, effects: &Effects, y: &Flat) -> Flat {
+    let rotation = rotation_of(&y.q);
+    let angular_velocity = rotation * (body.inv_inertia_body * rotation.tr_mul(&y.l));
+    let velocity = y.p * body.inv_mass;
+    let loads = effects.loads_at(body, &velocity, &angular_velocity);
+    Flat {
+        x: velocity,
+        q: quaternion_rate(&angular_velocity, &y.q),
+        p: loads.force,
+        l: loads.torque,
+    }
 }
 
 /// Evaluates the coupled system's forces at flat states (q normalised on the way).
