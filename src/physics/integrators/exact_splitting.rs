@@ -40,9 +40,8 @@ pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &m
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Exact,
-        drift,
     };
-    compose(&plan, system, states, start, dt, b);
+    compose(&plan, drift, system, states, start, dt, b);
 }
 
 /// The declared effects, summed: what the exact kick needs.

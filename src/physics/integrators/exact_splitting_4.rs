@@ -43,9 +43,8 @@ pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &m
         kicks: &KICKS,
         flows: &FLOWS,
         kick: KickRule::Exact,
-        drift: exact_splitting::drift,
     };
-    compose(&plan, system, states, start, dt, b);
+    compose(&plan, exact_splitting::drift, system, states, start, dt, b);
 }
 
 #[cfg(test)]

@@ -43,9 +43,8 @@ pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &m
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Midpoint,
-        drift,
     };
-    compose(&plan, system, states, start, dt, b);
+    compose(&plan, drift, system, states, start, dt, b);
 }
 
 /// The free motion over `h` in place: x moves with P, the body turns by the split free

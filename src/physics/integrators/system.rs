@@ -270,32 +270,48 @@ pub(super) struct Composition<'a> {
     pub kicks: &'a [f64],
     pub flows: &'a [f64],
     pub kick: KickRule,
-    /// The free flow of one body over h, in place.
-    pub drift: fn(&Body, &mut State, f64),
 }
 
-/// One step of a kick–drift composition over the whole system, in place.
+/// One step of a kick–drift composition over the whole system, in place; `drift` is the
+/// free flow of one body over h. Coupled, every kick is the whole system's (at its
+/// midpoint); without links each body is a system of its own, composed alone (in
+/// registers) with the method's own kick.
 pub(super) fn compose(
     plan: &Composition,
+    drift: impl Fn(&Body, &mut State, f64),
     system: &System,
     states: &mut [State],
     start: &Start,
     dt: f64,
     b: &mut Buffers,
 ) {
-    let exact = Kick::of(system.effects);
+    if !system.coupled() {
+        let exact = (plan.kick == KickRule::Exact).then(|| Kick::of(system.effects));
+        each_moving(system, states, |i, body, state| {
+            for (j, &kick) in plan.kicks.iter().enumerate() {
+                let start = (j == 0).then_some(start);
+                match &exact {
+                    Some(exact) => exact_kick(
+                        exact,
+                        body,
+                        state,
+                        start.map(|s| &s.kinematics[i]),
+                        kick * dt,
+                    ),
+                    None => body_midpoint_kick(system, i, body, state, start, kick * dt),
+                }
+                if let Some(&flow) = plan.flows.get(j) {
+                    drift(body, state, flow * dt);
+                }
+            }
+        });
+        return;
+    }
     for (i, &kick) in plan.kicks.iter().enumerate() {
-        let start = (i == 0).then_some(start);
-        if system.coupled() {
-            midpoint_kick(system, states, start, kick * dt, b);
-        } else if plan.kick == KickRule::Exact {
-            exact_kick(&exact, system, states, start, kick * dt);
-        } else {
-            body_midpoint_kick(system, states, start, kick * dt);
-        }
+        midpoint_kick(system, states, (i == 0).then_some(start), kick * dt, b);
         if let Some(&flow) = plan.flows.get(i) {
             each_moving(system, states, |_, body, state| {
-                (plan.drift)(body, state, flow * dt)
+                drift(body, state, flow * dt)
             });
         }
     }
@@ -305,38 +321,40 @@ pub(super) fn compose(
     }
 }
 
-/// The exact kick of the declared effects on every body (none when they do nothing); R held
+/// The exact kick of the declared effects on one body (none when they do nothing); R held
 /// is the start's when given.
-fn exact_kick(kick: &Kick, system: &System, states: &mut [State], start: Option<&Start>, h: f64) {
+#[inline]
+fn exact_kick(kick: &Kick, body: &Body, state: &mut State, start: Option<&Kinematics>, h: f64) {
     if !kick.acts() {
         return;
     }
-    each_moving(system, states, |i, body, state| {
-        let rotation =
-            start.map_or_else(|| state.orientation.matrix(), |s| s.kinematics[i].rotation);
-        kick.apply(body, state, &rotation, h);
-    });
+    let rotation = start.map_or_else(|| state.orientation.matrix(), |k| k.rotation);
+    kick.apply(body, state, &rotation, h);
 }
 
-/// The midpoint kick of the declared effects on every body (none without effects); the loads
+/// The midpoint kick of the declared effects on body `i` (none without effects); the loads
 /// and I⁻¹_world at the kick's start are the start's when given.
-fn body_midpoint_kick(system: &System, states: &mut [State], start: Option<&Start>, h: f64) {
+#[inline]
+fn body_midpoint_kick(
+    system: &System,
+    i: usize,
+    body: &Body,
+    state: &mut State,
+    start: Option<&Start>,
+    h: f64,
+) {
     let effects = system.effects;
-    if start.is_none() && effects.list().is_empty() {
-        return;
-    }
-    each_moving(system, states, |i, body, state| {
-        let (loads, inv_inertia_world) = match start {
-            Some(s) => (s.loads[i], s.kinematics[i].inv_inertia_world),
-            None => {
-                let k = derive(body, state);
-                (effects.loads(body, &k), k.inv_inertia_world)
-            }
-        };
-        let momenta = (state.linear_momentum, state.angular_momentum);
-        (state.linear_momentum, state.angular_momentum) =
-            splitting::kick(body, effects, momenta, &inv_inertia_world, &loads, h);
-    });
+    let (loads, inv_inertia_world) = match start {
+        Some(s) => (s.loads[i], s.kinematics[i].inv_inertia_world),
+        None if effects.list().is_empty() => return,
+        None => {
+            let k = derive(body, state);
+            (effects.loads(body, &k), k.inv_inertia_world)
+        }
+    };
+    let momenta = (state.linear_momentum, state.angular_momentum);
+    (state.linear_momentum, state.angular_momentum) =
+        splitting::kick(body, effects, momenta, &inv_inertia_world, &loads, h);
 }
 
 /// The coupled kick: `P, L += h (F, τ)` evaluated at `P + h/2 F, L + h/2 τ` (x and q held);
