@@ -22,7 +22,7 @@ use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::{
     approach_bodies, carry_attachments, collide_bodies, hold_attachments, tied_step, Attachment,
-    BodyMove, Carried, TiedScene,
+    BodyMove, Carried, Holding, TiedScene,
 };
 use super::collision::impulse::Scratch;
 use super::collision::StepContext;
@@ -637,12 +637,12 @@ impl World {
     /// velocity pass's energy as contact energy; returns the cloths' spring and gravitational
     /// energy after the step (for the guard).
     fn integrate_cloths(&mut self) -> f64 {
+        let context = self.step_context();
         let StepContext {
             restitution,
             friction,
-            bounce_speed,
             ..
-        } = self.step_context();
+        } = context;
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
@@ -706,16 +706,8 @@ impl World {
                 }
             }
             if self.contact.is_some() && !self.bodies.is_empty() {
-                let approach = approach_bodies(
-                    cloth,
-                    &self.bodies,
-                    &now.before,
-                    &mut now.states,
-                    restitution,
-                    friction,
-                    bounce_speed,
-                    self.dt,
-                );
+                let approach =
+                    approach_bodies(cloth, &self.bodies, &now.before, &mut now.states, &context);
                 // Counted with the collide phase's own (`cloth_body_contacts`).
                 now.cloth_body_contacts[k] = approach.contacts;
                 if approach.energy_taken != 0.0 {
@@ -724,16 +716,14 @@ impl World {
             }
             if let Some(list) = self.cloth_attachments.get(k).filter(|l| !l.is_empty()) {
                 // An explicit cloth's attachments: impulses after the velocity half.
-                let held = hold_attachments(
-                    cloth,
-                    &self.bodies,
-                    &mut now.states,
-                    list,
-                    self.dt,
-                    self.integrator.position_factor(),
-                    &self.links,
-                    &mut joint_impulses,
-                );
+                let holding = Holding {
+                    bodies: &self.bodies,
+                    attachments: list,
+                    dt: self.dt,
+                    factor: self.integrator.position_factor(),
+                    links: &self.links,
+                };
+                let held = hold_attachments(cloth, &holding, &mut now.states, &mut joint_impulses);
                 // The joints that hold the attachments' bodies: their share of the reaction.
                 for (load, impulse) in now.joint_loads.iter_mut().zip(&joint_impulses) {
                     load.force += impulse.force / self.dt;

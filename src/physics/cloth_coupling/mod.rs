@@ -24,7 +24,9 @@ pub mod attachments;
 pub mod explicit;
 pub mod tied;
 
-pub use attachments::{carry_attachments, hold_attachments, AttachReport, BodyMove, Carried};
+pub use attachments::{
+    carry_attachments, hold_attachments, AttachReport, BodyMove, Carried, Holding,
+};
 pub use explicit::{approach_bodies, collide_bodies, Approach, SWEEPS};
 pub use tied::{tied_step, TiedReport, TiedScene, TIE_ROUNDS};
 
