@@ -88,6 +88,25 @@ impl System<'_> {
         angular_momenta: &[Vector3<f64>],
         scratch: &mut Scratch,
     ) {
+        self.effect_loads(positions, kinematics, scratch);
+        self.add_springs(scratch);
+        scratch.joint_loads.clear();
+        scratch
+            .joint_loads
+            .resize(self.links.joints.len(), Loads::default());
+        if !self.links.joints.is_empty() {
+            self.add_joint_reactions(kinematics, angular_momenta, scratch);
+        }
+    }
+
+    /// Each body's pose, and its F and τ of the declared effects (and the integrator's
+    /// forces phase: `euler-seed`'s vertex torque).
+    fn effect_loads(
+        &self,
+        positions: &[Vector3<f64>],
+        kinematics: &[Kinematics],
+        scratch: &mut Scratch,
+    ) {
         let n = self.bodies.len();
         scratch.poses.clear();
         scratch.poses.extend((0..n).map(|i| Pose {
@@ -103,7 +122,10 @@ impl System<'_> {
                 .zip(kinematics)
                 .map(|(b, k)| self.integrator.loads(b, self.effects, k)),
         );
-        // Springs: equal and opposite forces at the two ends.
+    }
+
+    /// Springs: equal and opposite forces at the two ends; their damping power.
+    fn add_springs(&self, scratch: &mut Scratch) {
         scratch.damping_power = 0.0;
         for spring in &self.links.springs {
             let a = &scratch.poses[spring.a];
@@ -118,14 +140,17 @@ impl System<'_> {
                 scratch.loads[b].torque -= rb.cross(&f);
             }
         }
-        scratch.joint_loads.clear();
-        scratch
-            .joint_loads
-            .resize(self.links.joints.len(), Loads::default());
-        if self.links.joints.is_empty() {
-            return;
-        }
-        // Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction.
+    }
+
+    /// Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction; each row's J_iᵀ λ added to its
+    /// bodies' loads and to its joint's reaction on A.
+    fn add_joint_reactions(
+        &self,
+        kinematics: &[Kinematics],
+        angular_momenta: &[Vector3<f64>],
+        scratch: &mut Scratch,
+    ) {
+        let n = self.bodies.len();
         scratch.rows.clear();
         for (index, joint) in self.links.joints.iter().enumerate() {
             let a = &scratch.poses[joint.a];
