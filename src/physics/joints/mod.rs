@@ -455,7 +455,8 @@ pub struct Links {
 }
 
 impl Links {
-    /// No joint and no spring: every body moves on its own (the single-body fast path).
+    /// No joint and no spring: every body moves on its own (the system's evaluation is per body:
+    /// `System::coupled`).
     pub fn is_empty(&self) -> bool {
         self.joints.is_empty() && self.springs.is_empty()
     }
