@@ -11,8 +11,10 @@
 //!
 //! The integrators step this f (`integrators::system`), so every stage of rk4 is a stage of
 //! the whole world: a spring between two bodies, or a pendulum's rod, is then integrated to
-//! the method's full order. A world without springs or joints never comes here: each body is
-//! stepped alone as before (the single-body fast path, bit for bit what it was).
+//! the method's full order. A world without springs or joints is a system too, whose
+//! evaluation is per body ([`System::coupled`] is false): each body's f is its effects alone,
+//! and the integrators use the per-body shortcuts there (the exact kick of `exact-splitting`,
+//! ω from L without I⁻¹_world at rk4's stages).
 
 use super::body::Body;
 use super::derive::{congruence, Kinematics};
@@ -71,6 +73,12 @@ pub fn kinematics(
 }
 
 impl System<'_> {
+    /// Whether springs or joints couple the bodies (otherwise each body's f is its own).
+    #[inline]
+    pub fn coupled(&self) -> bool {
+        !self.links.is_empty()
+    }
+
     /// f(Y)'s forces: fills `scratch.loads` (total F, τ per body), `scratch.joint_loads` and
     /// `scratch.damping_power`, from each body's position, kinematics and angular momentum.
     pub fn evaluate(
@@ -78,6 +86,25 @@ impl System<'_> {
         positions: &[Vector3<f64>],
         kinematics: &[Kinematics],
         angular_momenta: &[Vector3<f64>],
+        scratch: &mut Scratch,
+    ) {
+        self.effect_loads(positions, kinematics, scratch);
+        self.add_springs(scratch);
+        scratch.joint_loads.clear();
+        scratch
+            .joint_loads
+            .resize(self.links.joints.len(), Loads::default());
+        if !self.links.joints.is_empty() {
+            self.add_joint_reactions(kinematics, angular_momenta, scratch);
+        }
+    }
+
+    /// Each body's pose, and its F and τ of the declared effects (and the integrator's
+    /// forces phase: `euler-seed`'s vertex torque).
+    fn effect_loads(
+        &self,
+        positions: &[Vector3<f64>],
+        kinematics: &[Kinematics],
         scratch: &mut Scratch,
     ) {
         let n = self.bodies.len();
@@ -95,7 +122,10 @@ impl System<'_> {
                 .zip(kinematics)
                 .map(|(b, k)| self.integrator.loads(b, self.effects, k)),
         );
-        // Springs: equal and opposite forces at the two ends.
+    }
+
+    /// Springs: equal and opposite forces at the two ends; their damping power.
+    fn add_springs(&self, scratch: &mut Scratch) {
         scratch.damping_power = 0.0;
         for spring in &self.links.springs {
             let a = &scratch.poses[spring.a];
@@ -110,14 +140,17 @@ impl System<'_> {
                 scratch.loads[b].torque -= rb.cross(&f);
             }
         }
-        scratch.joint_loads.clear();
-        scratch
-            .joint_loads
-            .resize(self.links.joints.len(), Loads::default());
-        if self.links.joints.is_empty() {
-            return;
-        }
-        // Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction.
+    }
+
+    /// Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction; each row's J_iᵀ λ added to its
+    /// bodies' loads and to its joint's reaction on A.
+    fn add_joint_reactions(
+        &self,
+        kinematics: &[Kinematics],
+        angular_momenta: &[Vector3<f64>],
+        scratch: &mut Scratch,
+    ) {
+        let n = self.bodies.len();
         scratch.rows.clear();
         for (index, joint) in self.links.joints.iter().enumerate() {
             let a = &scratch.poses[joint.a];

@@ -21,8 +21,8 @@
 use super::body::Body;
 use super::cloth::{Cloth, ClothIntegrator, ClothLoads, ExplicitLimit, ParticleContact};
 use super::cloth_coupling::{
-    approach_bodies, carry_attachments, collide_bodies, hold_attachments, position_factor,
-    tied_step, Attachment, BodyMove, Carried,
+    approach_bodies, carry_attachments, collide_bodies, hold_attachments, tied_step, Attachment,
+    BodyMove, Carried, Holding, TiedScene,
 };
 use super::collision::impulse::Scratch;
 use super::collision::StepContext;
@@ -32,7 +32,7 @@ use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effect, Effects, Loads};
 use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
-use super::integrators::system::{self as system_step, Buffers as SystemBuffers, Start};
+use super::integrators::system::{Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
 use super::joints::drive::{drive, Buffers as DriveBuffers, Drive, Scene as DriveScene};
 use super::joints::{hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers};
@@ -490,8 +490,8 @@ impl World {
         }
     }
 
-    /// *integrate*: one integrator step per body (the states before it are kept for the
-    /// collide phase).
+    /// *integrate*: one integrator step of the whole system, then the cloths (the states
+    /// before it are kept for the collide phase).
     #[inline]
     fn integrate_phase(&mut self) {
         // Energy ledger: the drag power at the start of the step (see `energy_ledger`).
@@ -502,29 +502,8 @@ impl World {
         if can_touch || !now.cloths.0.is_empty() {
             now.before.clone_from(&now.states);
         }
-        let mut potential = 0.0;
         let has_cloths = !now.cloths.0.is_empty();
-        if self.links.is_empty() {
-            for (i, body) in self.bodies.iter().enumerate() {
-                if body.fixed {
-                    // Never integrated: it stays where the scene put it.
-                    continue;
-                }
-                let state = &mut now.states[i];
-                self.integrator.advance(
-                    body,
-                    &self.effects,
-                    state,
-                    &now.kinematics[i],
-                    &now.loads[i],
-                    self.dt,
-                );
-                potential += self.effects.potential_energy(body, &state.position);
-            }
-        }
-        if !self.links.is_empty() {
-            potential += self.integrate_system();
-        }
+        let mut potential = self.integrate_bodies();
         if has_cloths {
             potential += self.integrate_cloths();
         }
@@ -566,10 +545,11 @@ impl World {
         now.ledger.joint_correction += done.joints;
     }
 
-    /// One step of the whole coupled system, then the joints' correction; books the springs'
-    /// damping as drag work and the projection's energy change as the correction's work.
-    /// Returns the potential energy after the step (gravity and springs, for the guard).
-    fn integrate_system(&mut self) -> f64 {
+    /// One integrator step of every body, the whole system at once (`integrators::system`);
+    /// with joints, then their correction, booking the springs' damping as drag work and the
+    /// projection's energy change as the correction's work. Returns the potential energy
+    /// after the step (gravity and springs, for the guard).
+    fn integrate_bodies(&mut self) -> f64 {
         let system = System {
             bodies: &self.bodies,
             effects: &self.effects,
@@ -591,14 +571,24 @@ impl World {
             joint_loads: &now.start_joint_loads,
             damping_power: now.start_damping_power,
         };
-        system_step::advance(
-            self.integrator,
+        self.integrator.advance(
             &system,
             &mut now.states,
             &start,
             self.dt,
             &mut self.system_buffers,
         );
+        if !system.coupled() {
+            // Fixed bodies are the world: no potential energy booked.
+            let moving = self
+                .bodies
+                .iter()
+                .zip(&now.states)
+                .filter(|(b, _)| !b.fixed);
+            return moving.fold(0.0, |u, (b, s)| {
+                u + self.effects.potential_energy(b, &s.position)
+            });
+        }
         now.joint_loads.clone_from(&self.system_buffers.joint_loads);
         now.ledger.drag_work += self.system_buffers.damping_work;
         if self.links.correction == Correction::Projection && !self.links.joints.is_empty() {
@@ -651,12 +641,12 @@ impl World {
     /// velocity pass's energy as contact energy; returns the cloths' spring and gravitational
     /// energy after the step (for the guard).
     fn integrate_cloths(&mut self) -> f64 {
+        let context = self.step_context();
         let StepContext {
             restitution,
             friction,
-            bounce_speed,
             ..
-        } = self.step_context();
+        } = context;
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
@@ -672,21 +662,19 @@ impl World {
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
             if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
                 // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
-                let tied = tied_step(
-                    cloth,
+                let scene = TiedScene {
                     loads,
-                    self.dt,
-                    &self.bodies,
-                    &now.before,
-                    &mut now.states,
-                    &self.obstacles,
-                    self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
+                    dt: self.dt,
+                    bodies: &self.bodies,
+                    start: &now.before,
+                    obstacles: &self.obstacles,
+                    attachments: self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
                     friction,
-                    position_factor(self.integrator),
-                    &self.links,
-                    &mut joint_impulses,
-                    &now.collide_moves,
-                );
+                    factor: self.integrator.position_factor(),
+                    links: &self.links,
+                    predicted: &now.collide_moves,
+                };
+                let tied = tied_step(cloth, &scene, &mut now.states, &mut joint_impulses);
                 // The joints held inside the solve: their share of the step's reaction.
                 for (load, impulse) in now.joint_loads.iter_mut().zip(&joint_impulses) {
                     load.force += impulse.force / self.dt;
@@ -722,16 +710,8 @@ impl World {
                 }
             }
             if self.contact.is_some() && !self.bodies.is_empty() {
-                let approach = approach_bodies(
-                    cloth,
-                    &self.bodies,
-                    &now.before,
-                    &mut now.states,
-                    restitution,
-                    friction,
-                    bounce_speed,
-                    self.dt,
-                );
+                let approach =
+                    approach_bodies(cloth, &self.bodies, &now.before, &mut now.states, &context);
                 // Counted with the collide phase's own (`cloth_body_contacts`).
                 now.cloth_body_contacts[k] = approach.contacts;
                 if approach.energy_taken != 0.0 {
@@ -740,16 +720,14 @@ impl World {
             }
             if let Some(list) = self.cloth_attachments.get(k).filter(|l| !l.is_empty()) {
                 // An explicit cloth's attachments: impulses after the velocity half.
-                let held = hold_attachments(
-                    cloth,
-                    &self.bodies,
-                    &mut now.states,
-                    list,
-                    self.dt,
-                    position_factor(self.integrator),
-                    &self.links,
-                    &mut joint_impulses,
-                );
+                let holding = Holding {
+                    bodies: &self.bodies,
+                    attachments: list,
+                    dt: self.dt,
+                    factor: self.integrator.position_factor(),
+                    links: &self.links,
+                };
+                let held = hold_attachments(cloth, &holding, &mut now.states, &mut joint_impulses);
                 // The joints that hold the attachments' bodies: their share of the reaction.
                 for (load, impulse) in now.joint_loads.iter_mut().zip(&joint_impulses) {
                     load.force += impulse.force / self.dt;

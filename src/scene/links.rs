@@ -20,7 +20,7 @@
 use super::error::did_you_mean;
 use super::raw::{RawJoint, RawMotor, RawScene, RawSpring};
 use super::{LoadError, SceneBody, Validator};
-use crate::physics::joints::{Correction, Joint, JointKind, Links, Motor, Spring};
+use crate::physics::joints::{Correction, Joint, JointKind, Links, Motor, Spring, SpringLaw};
 use crate::physics::State;
 use nalgebra::Vector3;
 use std::ops::Range;
@@ -114,9 +114,14 @@ impl Validator<'_> {
                 .as_ref()
                 .map(|r| self.non_negative(r, "rest_length"))
                 .transpose()?;
-            links.springs.push(Spring::new(
-                name, a, b, anchors, stiffness, damping, rest, &states,
-            ));
+            let law = SpringLaw {
+                stiffness,
+                damping,
+                rest_length: rest,
+            };
+            links
+                .springs
+                .push(Spring::new(name, a, b, anchors, law, &states));
         }
         Ok(links)
     }

@@ -2,7 +2,7 @@
 //! minimal-coordinate ODE solved here by a high-order method.
 
 use nalgebra::{UnitQuaternion, Vector3};
-use tumble::physics::joints::{Correction, Joint, JointKind, Links, Spring};
+use tumble::physics::joints::{Correction, Joint, JointKind, Links, Spring, SpringLaw};
 use tumble::physics::Orientation;
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Response, State,
@@ -294,9 +294,11 @@ fn spring_body(k: f64, c: f64, stretch: f64, integrator: Integrator) -> World {
         0,
         None,
         [x0, Vector3::zeros()],
-        k,
-        c,
-        Some(1.0),
+        SpringLaw {
+            stiffness: k,
+            damping: c,
+            rest_length: Some(1.0),
+        },
         &states,
     );
     World::with_bodies(
@@ -378,9 +380,11 @@ fn two_bodies_on_a_spring_keep_their_total_momentum_to_round_off() {
                 xa + Vector3::new(0.05, 0.05, 0.0),
                 xb - Vector3::new(0.05, 0.0, 0.05),
             ],
-            50.0,
-            0.5,
-            Some(0.8),
+            SpringLaw {
+                stiffness: 50.0,
+                damping: 0.5,
+                rest_length: Some(0.8),
+            },
             &states,
         );
         let mut world = World::with_bodies(

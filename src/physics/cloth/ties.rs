@@ -487,6 +487,52 @@ fn body_mass(b: &TiedBody, y: &Vector6<f64>) -> Vector6<f64> {
     Vector6::new(b.mass * y[0], b.mass * y[1], b.mass * y[2], w.x, w.y, w.z)
 }
 
+/// What a tied solve is over: the ties, the bodies, the joints on them, the pinned particles.
+struct Over<'a> {
+    ties: &'a [Tie],
+    bodies: &'a [TiedBody],
+    joints: &'a BodyJoints,
+    pinned: &'a [u32],
+}
+
+impl Over<'_> {
+    /// Whether a tie has body terms: its body can move.
+    #[inline(always)]
+    fn moves(&self, tie: &Tie) -> bool {
+        tie.body.is_some_and(|b| self.bodies[b].mass > 0.0)
+    }
+}
+
+/// The workspace's buffers a tied solve takes while it runs (given back by `end_round`).
+struct Taken {
+    t: TieBuffers,
+    is_pinned: Vec<bool>,
+    body: BodyScratch,
+}
+
+/// A round of the tied solve: its number in the step, whether its warm start is tried, and
+/// δ₀ of its right-hand side.
+struct Round {
+    round: usize,
+    candidate: bool,
+    delta0: f64,
+}
+
+/// A start filtered: a pinned row to 0, a tied row to its free part S y (only the rows a tie
+/// or a pin names: every other row is left as it is).
+#[inline(always)]
+fn filter_start(solution: &mut [Vector3<f64>], tie_of: &[u32], over: &Over, is_pinned: &[bool]) {
+    for (k, tie) in over.ties.iter().enumerate() {
+        let i = tie.particle;
+        if tie_of[i] == k as u32 && !is_pinned[i] {
+            solution[i] = tie.free(&solution[i]);
+        }
+    }
+    for &i in over.pinned {
+        solution[i as usize] = Vector3::zeros();
+    }
+}
+
 impl Workspace {
     /// Solves the tied system of the module doc. Before: `blocks`, `diagonal`, `rhs` and the
     /// (uninverted) `preconditioner` as the spring pass left them, `pinned` listed; `v0` the
@@ -527,7 +573,8 @@ impl Workspace {
         self.solve_tied_plain(ties, bodies, joints, v0, tolerance, max_iterations)
     }
 
-    /// [`Workspace::solve_tied`] for any CPU.
+    /// [`Workspace::solve_tied`] for any CPU, in named steps (each inlined: the AVX2 build
+    /// compiles them all with its target feature).
     #[inline(always)]
     fn solve_tied_plain(
         &mut self,
@@ -538,6 +585,42 @@ impl Workspace {
         tolerance: f64,
         max_iterations: usize,
     ) -> super::conjugate_gradient::Outcome {
+        let pinned = std::mem::take(&mut self.pinned);
+        let mut s = self.take_tied(ties, bodies.len(), &pinned, v0);
+        let over = Over {
+            ties,
+            bodies,
+            joints,
+            pinned: &pinned,
+        };
+        self.assemble_bodies(&mut s, &over);
+        self.reduce_rhs(&mut s, &over);
+        let round = self.begin_round(&mut s, &over);
+        let outcome = if round.delta0.is_finite() && round.delta0 > 0.0 {
+            self.iterate_tied(&mut s, &over, &round, (tolerance, max_iterations))
+        } else {
+            super::conjugate_gradient::Outcome {
+                iterations: 0,
+                relative_residual: 0.0,
+            }
+        };
+        self.expand_solution(&s, &over);
+        self.tie_impulses(&mut s, ties);
+        self.end_round(s, bodies, round.round, pinned);
+        outcome
+    }
+
+    /// The solve's buffers taken out of the workspace, with each particle's tie (`tie_of`),
+    /// which are pinned, the prescribed part z (`offset`) and the particles' preconditioner
+    /// S P⁻¹ S before the ties filter it.
+    #[inline(always)]
+    fn take_tied(
+        &mut self,
+        ties: &[Tie],
+        body_count: usize,
+        pinned: &[u32],
+        v0: &[Vector3<f64>],
+    ) -> Taken {
         let n = self.rhs.len();
         let mut t = std::mem::take(&mut self.ties);
         t.tie_of.clear();
@@ -545,15 +628,12 @@ impl Workspace {
         for (k, tie) in ties.iter().enumerate() {
             t.tie_of[tie.particle] = k as u32;
         }
-        let pinned = std::mem::take(&mut self.pinned);
         let mut is_pinned = std::mem::take(&mut t.is_pinned);
         is_pinned.clear();
         is_pinned.resize(n, false);
-        for &i in &pinned {
+        for &i in pinned {
             is_pinned[i as usize] = true;
         }
-        // Body terms are only for bodies that can move.
-        let moves = |tie: &Tie| tie.body.is_some_and(|b| bodies[b].mass > 0.0);
         // z: the prescribed part (module doc).
         t.offset.clear();
         t.offset.resize(n, Vector3::zeros());
@@ -570,7 +650,7 @@ impl Workspace {
             for (inverse, p) in t.inverse.iter_mut().zip(&self.preconditioner) {
                 *inverse = p.inverse();
             }
-            for &i in &pinned {
+            for &i in pinned {
                 t.inverse[i as usize] = Symmetric3::default();
             }
         } else {
@@ -580,17 +660,18 @@ impl Workspace {
         }
         t.filtered.clear();
         t.body.clear();
-        t.body.resize(bodies.len(), BodyVectors::default());
-        let BodyScratch {
-            blocks: mut body_blocks,
-            terms: mut block_terms,
-            rhs: mut body_rhs,
-            x: mut x_body,
-            q: mut q_body,
-            direction: mut direction_body,
-        } = std::mem::take(&mut t.body_scratch);
-        body_blocks.clear();
-        body_blocks.extend(bodies.iter().map(|b| {
+        t.body.resize(body_count, BodyVectors::default());
+        let body = std::mem::take(&mut t.body_scratch);
+        Taken { t, is_pinned, body }
+    }
+
+    /// The ties filter the particles' preconditioners; each moving body's block
+    /// M_b + Σ G_iᵀ P_i G_i and its inverse; the joints' Q over the held bodies.
+    #[inline(always)]
+    fn assemble_bodies(&self, s: &mut Taken, over: &Over) {
+        let Taken { t, body, .. } = s;
+        body.blocks.clear();
+        body.blocks.extend(over.bodies.iter().map(|b| {
             let mut m = Matrix6::zeros();
             for k in 0..3 {
                 m[(k, k)] = b.mass;
@@ -598,8 +679,8 @@ impl Workspace {
             m.fixed_view_mut::<3, 3>(3, 3).copy_from(&b.inertia);
             m
         }));
-        block_terms.clear();
-        for tie in ties.iter() {
+        body.terms.clear();
+        for tie in over.ties.iter() {
             let i = tie.particle;
             let p = &self.preconditioner[i];
             let [a, e, f, b, c, d] = p.0;
@@ -623,7 +704,7 @@ impl Workspace {
                 filtered[(0, 2)],
                 filtered[(1, 2)],
             ]);
-            if moves(tie) {
+            if over.moves(tie) {
                 // G = (I − S) [I, −[r]×]
                 let r = tie.arm;
                 let cross = Matrix3::new(0.0, -r.z, r.y, r.z, 0.0, -r.x, -r.y, r.x, 0.0);
@@ -631,14 +712,15 @@ impl Workspace {
                 g.fixed_view_mut::<3, 3>(0, 0).copy_from(&projector);
                 g.fixed_view_mut::<3, 3>(0, 3)
                     .copy_from(&(-(projector * cross)));
-                block_terms.push((tie.body.unwrap(), g.transpose() * full * g));
+                body.terms
+                    .push((tie.body.unwrap(), g.transpose() * full * g));
             }
         }
         // Summed in no particular order (`order_free_sum`): each body's terms together (a
         // stable sort: in the ties' order), then every entry's sum over them.
-        block_terms.sort_by_key(|x| x.0);
-        for terms in block_terms.chunk_by(|a, c| a.0 == c.0) {
-            let m = &mut body_blocks[terms[0].0];
+        body.terms.sort_by_key(|x| x.0);
+        for terms in body.terms.chunk_by(|a, c| a.0 == c.0) {
+            let m = &mut body.blocks[terms[0].0];
             for e in 0..36 {
                 t.values.clear();
                 t.values.extend(terms.iter().map(|x| x.1[e]));
@@ -647,7 +729,7 @@ impl Workspace {
         }
         t.body_inverse.clear();
         t.body_inverse
-            .extend(body_blocks.iter().zip(bodies.iter()).map(|(m, b)| {
+            .extend(body.blocks.iter().zip(over.bodies.iter()).map(|(m, b)| {
                 if b.mass > 0.0 {
                     m.try_inverse().unwrap_or_else(Matrix6::zeros)
                 } else {
@@ -656,17 +738,25 @@ impl Workspace {
             }));
         // Joints on the bodies: Q = N (Nᵀ D N)⁻¹ Nᵀ over the held bodies (module doc).
         t.held.clear();
-        t.held.resize(bodies.len(), false);
-        if !joints.is_empty() {
-            for &b in &joints.bodies {
+        t.held.resize(over.bodies.len(), false);
+        if !over.joints.is_empty() {
+            for &b in &over.joints.bodies {
                 t.held[b] = true;
             }
-            t.held_inverse = joints.filtered_inverse(|b| body_blocks[b]);
+            let blocks = &body.blocks;
+            t.held_inverse = over.joints.filtered_inverse(|b| blocks[b]);
         }
-        // Reduced right-hand side: Tᵀ(b̄ − Ā z). z is 0 but at the tied particles: on a grid
-        // sheet A z is computed only in their rows and their springs' other ends
-        // (`SpringOrder::row`, the bits of the whole product); every other row of the whole
-        // product is +0 (all its terms are), and so it is here.
+    }
+
+    /// Reduced right-hand side: Tᵀ(b̄ − Ā z) for the particles (`reduced`) and the bodies.
+    #[inline(always)]
+    fn reduce_rhs(&self, s: &mut Taken, over: &Over) {
+        let n = self.rhs.len();
+        let Taken { t, is_pinned, body } = s;
+        let ties = over.ties;
+        // z is 0 but at the tied particles: on a grid sheet A z is computed only in their rows
+        // and their springs' other ends (`SpringOrder::row`, the bits of the whole product);
+        // every other row of the whole product is +0 (all its terms are), and so it is here.
         if self.order.springs == self.blocks.len() && self.order.slots.len() == n {
             t.full.clear();
             t.full.resize(n, Vector3::zeros());
@@ -710,7 +800,7 @@ impl Workspace {
             if k != u32::MAX {
                 let tie = &ties[k as usize];
                 r += tie.extra;
-                if moves(tie) {
+                if over.moves(tie) {
                     let b = tie.body.unwrap();
                     t.wrenches.push((
                         b,
@@ -724,225 +814,235 @@ impl Workspace {
             }
             *reduced = r;
         }
-        body_rhs.clear();
-        body_rhs.resize(bodies.len(), Vector6::zeros());
-        add_wrenches(&mut body_rhs, &mut t.wrenches, &mut t.values);
-        for (bv, r) in t.body.iter_mut().zip(&body_rhs) {
+        body.rhs.clear();
+        body.rhs.resize(over.bodies.len(), Vector6::zeros());
+        add_wrenches(&mut body.rhs, &mut t.wrenches, &mut t.values);
+        for (bv, r) in t.body.iter_mut().zip(&body.rhs) {
             bv.rhs = *r;
         }
-        // The warm start: what this round's solve ended with the step before, when there is
-        // one for these particles and bodies (module doc, "Warm starts").
+    }
+
+    /// The round's number, whether its warm start is to be tried (module doc, "Warm
+    /// starts"), and δ₀ from the reduced right-hand side; x starts from the last solve's,
+    /// filtered, the bodies' Y from 0.
+    #[inline(always)]
+    fn begin_round(&mut self, s: &mut Taken, over: &Over) -> Round {
+        let n = self.rhs.len();
+        let Taken { t, is_pinned, body } = s;
+        let bodies = over.bodies;
         let round = t.round;
         t.round += 1;
         let mut candidate = (t.starts.get(round))
             .filter(|s| s.particles.len() == n && s.bodies.len() == bodies.len())
             .is_some()
-            && ties.iter().any(moves)
-            && !ties.iter().any(|tie| tie.permanent);
+            && over.ties.iter().any(|tie| over.moves(tie))
+            && !over.ties.iter().any(|tie| tie.permanent);
         if candidate && t.starts[round].pause > 0 {
             t.starts[round].pause -= 1;
             candidate = false;
         }
-        x_body.clear();
-        x_body.resize(bodies.len(), Vector6::zeros());
-        // δ₀ from the reduced right-hand side; x starts from the warm start, filtered.
+        body.x.clear();
+        body.x.resize(bodies.len(), Vector6::zeros());
         let mut delta0 = 0.0;
         for (r, inverse) in t.reduced[..n].iter().zip(&t.inverse[..n]) {
             delta0 += r.dot(&inverse.apply(r));
         }
-        precondition_bodies(&mut t, joints, true);
+        precondition_bodies(t, over.joints, true);
         for bv in &t.body {
             delta0 += bv.rhs.dot(&bv.z);
         }
-        // Filtered: a pinned row to 0, a tied row to its free part S y (only the rows a tie
-        // or a pin names: every other row is left as it is).
-        let filter_start = |solution: &mut [Vector3<f64>], tie_of: &[u32]| {
-            for (k, tie) in ties.iter().enumerate() {
-                let i = tie.particle;
-                if tie_of[i] == k as u32 && !is_pinned[i] {
-                    solution[i] = tie.free(&solution[i]);
-                }
-            }
-            for &i in &pinned {
-                solution[i as usize] = Vector3::zeros();
-            }
-        };
-        filter_start(&mut self.solution, &t.tie_of);
-
-        let mut outcome = super::conjugate_gradient::Outcome {
-            iterations: 0,
-            relative_residual: 0.0,
-        };
-        if delta0.is_finite() && delta0 > 0.0 {
-            q_body.clear();
-            q_body.resize(bodies.len(), Vector6::zeros());
-            let mut product = std::mem::take(&mut self.product);
-            // The round's warm start, kept only when its residual δ_w is already within
-            // WARM_GATE of the right-hand side's (module doc, "Warm starts").
-            let mut warm = None;
-            if candidate {
-                // The cold start is kept aside and the round's last Δv taken, both swapped,
-                // not copied (the round's start is written anew at the end of the solve).
-                std::mem::swap(&mut self.solution, &mut t.kept);
-                std::mem::swap(&mut self.solution, &mut t.starts[round].particles);
-                filter_start(&mut self.solution, &t.tie_of);
-                x_body.copy_from_slice(&t.starts[round].bodies);
-                // A body held by joints starts from 0: its last Y kept last step's rows.
-                for (x, &held) in x_body.iter_mut().zip(&t.held) {
-                    if held {
-                        *x = Vector6::zeros();
-                    }
-                }
-                let delta = self.start_residual(
-                    &mut t,
-                    ties,
-                    bodies,
-                    &pinned,
-                    joints,
-                    &x_body,
-                    &mut product,
-                    &mut q_body,
-                );
-                if delta <= WARM_GATE * WARM_GATE * delta0 {
-                    warm = Some(delta);
-                } else {
-                    t.starts[round].pause = TRIAL_PAUSE;
-                    // Not good enough: the cold start below, as if never tried.
-                    std::mem::swap(&mut self.solution, &mut t.kept);
-                    x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
-                }
-            }
-            let mut delta;
-            if let Some(warm) = warm {
-                delta = warm;
-            } else {
-                delta = self.start_residual(
-                    &mut t,
-                    ties,
-                    bodies,
-                    &pinned,
-                    joints,
-                    &x_body,
-                    &mut product,
-                    &mut q_body,
-                );
-                if delta > delta0 {
-                    // A warm start worse than zero: start from zero.
-                    self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
-                    x_body.iter_mut().for_each(|x| *x = Vector6::zeros());
-                    delta = 0.0;
-                    for (((r, z), q), inverse) in (self.residual[..n].iter_mut())
-                        .zip(&mut self.preconditioned[..n])
-                        .zip(&product[..n])
-                        .zip(&t.inverse[..n])
-                    {
-                        *r += q;
-                        *z = inverse.apply(r);
-                        delta += r.dot(z);
-                    }
-                    for bv in t.body.iter_mut() {
-                        bv.r = bv.rhs;
-                    }
-                    precondition_bodies(&mut t, joints, false);
-                    for bv in &t.body {
-                        delta += bv.r.dot(&bv.z);
-                    }
-                }
-            }
-            // p = z: swapped, not copied (every iteration writes all of z before reading it).
-            std::mem::swap(&mut self.direction, &mut self.preconditioned);
-            // Stop at ε of the right-hand side; from the round's warm start, not before its
-            // residual has shrunk by CONTRACTION (module doc, "Warm starts").
-            let target = match warm {
-                Some(warm) => {
-                    (CONTRACTION * CONTRACTION * warm).min(tolerance * tolerance * delta0)
-                }
-                None => tolerance * tolerance * delta0,
-            };
-            let mut iterations = 0;
-            direction_body.clear();
-            direction_body.extend(t.body.iter().map(|b| b.z));
-            while delta > target && iterations < max_iterations {
-                let mut direction = std::mem::take(&mut self.direction);
-                self.multiply_reduced(
-                    &mut t,
-                    ties,
-                    bodies,
-                    &pinned,
-                    &mut direction,
-                    &direction_body,
-                    &mut product,
-                    &mut q_body,
-                );
-                self.direction = direction;
-                let mut curvature: f64 = (self.direction[..n].iter())
-                    .zip(&product[..n])
-                    .map(|(p, q)| p.dot(q))
-                    .sum();
-                for (b, q) in q_body.iter().enumerate() {
-                    curvature += direction_body[b].dot(q);
-                }
-                if curvature.is_nan() || curvature <= 0.0 {
-                    break;
-                }
-                let alpha = delta / curvature;
-                let mut next = 0.0;
-                for ((((x, r), z), (p, q)), inverse) in (self.solution[..n].iter_mut())
-                    .zip(&mut self.residual[..n])
-                    .zip(&mut self.preconditioned[..n])
-                    .zip(self.direction[..n].iter().zip(&product[..n]))
-                    .zip(&t.inverse[..n])
-                {
-                    *x += p * alpha;
-                    *r -= q * alpha;
-                    *z = inverse.apply(r);
-                    next += r.dot(z);
-                }
-                for (b, bv) in t.body.iter_mut().enumerate() {
-                    x_body[b] += direction_body[b] * alpha;
-                    bv.r -= q_body[b] * alpha;
-                }
-                precondition_bodies(&mut t, joints, false);
-                for bv in &t.body {
-                    next += bv.r.dot(&bv.z);
-                }
-                let beta = next / delta;
-                for (p, z) in (self.direction[..n].iter_mut()).zip(&self.preconditioned[..n]) {
-                    *p = z + *p * beta;
-                }
-                for (b, bv) in t.body.iter().enumerate() {
-                    direction_body[b] = bv.z + direction_body[b] * beta;
-                }
-                delta = next;
-                iterations += 1;
-            }
-            self.product = product;
-            for (bv, x) in t.body.iter_mut().zip(&x_body) {
-                bv.x = *x;
-            }
-            outcome = super::conjugate_gradient::Outcome {
-                iterations,
-                relative_residual: (delta / delta0).max(0.0).sqrt(),
-            };
+        filter_start(&mut self.solution, &t.tie_of, over, is_pinned);
+        Round {
+            round,
+            candidate,
+            delta0,
         }
-        // Δv = T x + z (the warm start of the next step keeps the free parts).
+    }
+
+    /// Preconditioned CG on the reduced system from the round's start (warm when it passes
+    /// the gate, else cold); the bodies' Y left in their vectors' `x`.
+    #[inline(always)]
+    fn iterate_tied(
+        &mut self,
+        s: &mut Taken,
+        over: &Over,
+        round: &Round,
+        (tolerance, max_iterations): (f64, usize),
+    ) -> super::conjugate_gradient::Outcome {
+        let n = self.rhs.len();
+        let delta0 = round.delta0;
+        let mut product = std::mem::take(&mut self.product);
+        let (warm, mut delta) = self.start_tied(s, over, round, &mut product);
+        let Taken { t, body, .. } = s;
+        // p = z: swapped, not copied (every iteration writes all of z before reading it).
+        std::mem::swap(&mut self.direction, &mut self.preconditioned);
+        // Stop at ε of the right-hand side; from the round's warm start, not before its
+        // residual has shrunk by CONTRACTION (module doc, "Warm starts").
+        let target = match warm {
+            Some(warm) => (CONTRACTION * CONTRACTION * warm).min(tolerance * tolerance * delta0),
+            None => tolerance * tolerance * delta0,
+        };
+        let mut iterations = 0;
+        body.direction.clear();
+        body.direction.extend(t.body.iter().map(|b| b.z));
+        while delta > target && iterations < max_iterations {
+            let mut direction = std::mem::take(&mut self.direction);
+            self.multiply_reduced(
+                t,
+                over,
+                &mut direction,
+                &body.direction,
+                &mut product,
+                &mut body.q,
+            );
+            self.direction = direction;
+            let mut curvature: f64 = (self.direction[..n].iter())
+                .zip(&product[..n])
+                .map(|(p, q)| p.dot(q))
+                .sum();
+            for (b, q) in body.q.iter().enumerate() {
+                curvature += body.direction[b].dot(q);
+            }
+            if curvature.is_nan() || curvature <= 0.0 {
+                break;
+            }
+            let alpha = delta / curvature;
+            let mut next = 0.0;
+            for ((((x, r), z), (p, q)), inverse) in (self.solution[..n].iter_mut())
+                .zip(&mut self.residual[..n])
+                .zip(&mut self.preconditioned[..n])
+                .zip(self.direction[..n].iter().zip(&product[..n]))
+                .zip(&t.inverse[..n])
+            {
+                *x += p * alpha;
+                *r -= q * alpha;
+                *z = inverse.apply(r);
+                next += r.dot(z);
+            }
+            for (b, bv) in t.body.iter_mut().enumerate() {
+                body.x[b] += body.direction[b] * alpha;
+                bv.r -= body.q[b] * alpha;
+            }
+            precondition_bodies(t, over.joints, false);
+            for bv in &t.body {
+                next += bv.r.dot(&bv.z);
+            }
+            let beta = next / delta;
+            for (p, z) in (self.direction[..n].iter_mut()).zip(&self.preconditioned[..n]) {
+                *p = z + *p * beta;
+            }
+            for (b, bv) in t.body.iter().enumerate() {
+                body.direction[b] = bv.z + body.direction[b] * beta;
+            }
+            delta = next;
+            iterations += 1;
+        }
+        self.product = product;
+        for (bv, x) in t.body.iter_mut().zip(&body.x) {
+            bv.x = *x;
+        }
+        super::conjugate_gradient::Outcome {
+            iterations,
+            relative_residual: (delta / delta0).max(0.0).sqrt(),
+        }
+    }
+
+    /// The round's start: its warm start, kept only when its residual δ_w is already within
+    /// WARM_GATE of the right-hand side's (module doc, "Warm starts"), else the cold start
+    /// (the last solve's Δv, filtered; zero when that is worse than zero). Returns (δ_w when
+    /// warm, δ of the start).
+    #[inline(always)]
+    fn start_tied(
+        &mut self,
+        s: &mut Taken,
+        over: &Over,
+        round: &Round,
+        product: &mut [Vector3<f64>],
+    ) -> (Option<f64>, f64) {
+        let n = self.rhs.len();
+        let Taken { t, is_pinned, body } = s;
+        body.q.clear();
+        body.q.resize(over.bodies.len(), Vector6::zeros());
+        let mut warm = None;
+        if round.candidate {
+            let r = round.round;
+            // The cold start is kept aside and the round's last Δv taken, both swapped,
+            // not copied (the round's start is written anew at the end of the solve).
+            std::mem::swap(&mut self.solution, &mut t.kept);
+            std::mem::swap(&mut self.solution, &mut t.starts[r].particles);
+            filter_start(&mut self.solution, &t.tie_of, over, is_pinned);
+            body.x.copy_from_slice(&t.starts[r].bodies);
+            // A body held by joints starts from 0: its last Y kept last step's rows.
+            for (x, &held) in body.x.iter_mut().zip(&t.held) {
+                if held {
+                    *x = Vector6::zeros();
+                }
+            }
+            let delta = self.start_residual(t, over, &body.x, product, &mut body.q);
+            if delta <= WARM_GATE * WARM_GATE * round.delta0 {
+                warm = Some(delta);
+            } else {
+                t.starts[r].pause = TRIAL_PAUSE;
+                // Not good enough: the cold start below, as if never tried.
+                std::mem::swap(&mut self.solution, &mut t.kept);
+                body.x.iter_mut().for_each(|x| *x = Vector6::zeros());
+            }
+        }
+        if let Some(warm) = warm {
+            return (Some(warm), warm);
+        }
+        let mut delta = self.start_residual(t, over, &body.x, product, &mut body.q);
+        if delta > round.delta0 {
+            // A warm start worse than zero: start from zero.
+            self.solution.iter_mut().for_each(|x| *x = Vector3::zeros());
+            body.x.iter_mut().for_each(|x| *x = Vector6::zeros());
+            delta = 0.0;
+            for (((r, z), q), inverse) in (self.residual[..n].iter_mut())
+                .zip(&mut self.preconditioned[..n])
+                .zip(&product[..n])
+                .zip(&t.inverse[..n])
+            {
+                *r += q;
+                *z = inverse.apply(r);
+                delta += r.dot(z);
+            }
+            for bv in t.body.iter_mut() {
+                bv.r = bv.rhs;
+            }
+            precondition_bodies(t, over.joints, false);
+            for bv in &t.body {
+                delta += bv.r.dot(&bv.z);
+            }
+        }
+        (None, delta)
+    }
+
+    /// Δv = T x + z (the warm start of the next step keeps the free parts); then, with
+    /// nothing pinned and every tie to a moving body, none of them held by a joint, the
+    /// untied particles take the uniform shift that closes Σ a Δv = Σ b − Σ M ΔV (module doc,
+    /// momentum).
+    #[inline(always)]
+    fn expand_solution(&mut self, s: &Taken, over: &Over) {
+        let n = self.rhs.len();
+        let t = &s.t;
+        let ties = over.ties;
         // (Only the tied rows change: each once, by the tie `tie_of` names.)
         for (k, tie) in ties.iter().enumerate() {
             let i = tie.particle;
             if t.tie_of[i] == k as u32 {
                 let mut tied = t.offset[i];
-                if moves(tie) {
+                if over.moves(tie) {
                     tied += tie.tied(&point(&t.body[tie.body.unwrap()].x, &tie.arm));
                 }
                 let dv = &mut self.solution[i];
                 *dv = tie.free(dv) + tied;
             }
         }
-        // Momentum (module doc): with nothing pinned and every tie to a moving body, none of
-        // them held by a joint, the untied particles take the uniform shift that closes
-        // Σ a Δv = Σ b − Σ M ΔV.
         let held_tie = |tie: &Tie| tie.body.is_some_and(|b| t.held[b]);
-        if pinned.is_empty() && ties.iter().all(moves) && !ties.iter().any(held_tie) {
+        if over.pinned.is_empty()
+            && ties.iter().all(|tie| over.moves(tie))
+            && !ties.iter().any(held_tie)
+        {
             let mut gap = Vector3::zeros();
             let mut free_mass = 0.0;
             for (((b, dv), &a), &k) in (self.rhs[..n].iter())
@@ -955,7 +1055,7 @@ impl Workspace {
                     free_mass += a;
                 }
             }
-            for (b, bv) in bodies.iter().zip(&t.body) {
+            for (b, bv) in over.bodies.iter().zip(&t.body) {
                 gap -= Vector3::new(bv.x[0], bv.x[1], bv.x[2]) * b.mass;
             }
             if free_mass > 0.0 {
@@ -967,8 +1067,14 @@ impl Workspace {
                 }
             }
         }
-        // λ_i = (I − S_i)(A Δv − b − e)_i: A Δv at the tied particles only when the springs
-        // are the grid's (`SpringOrder::row`, the same bits as the whole product).
+    }
+
+    /// λ_i = (I − S_i)(A Δv − b − e)_i: A Δv at the tied particles only when the springs
+    /// are the grid's (`SpringOrder::row`, the same bits as the whole product).
+    #[inline(always)]
+    fn tie_impulses(&self, s: &mut Taken, ties: &mut [Tie]) {
+        let n = self.rhs.len();
+        let t = &mut s.t;
         let by_rows = self.order.springs == self.blocks.len() && self.order.slots.len() == n;
         if !by_rows {
             Self::multiply_plain(
@@ -990,7 +1096,17 @@ impl Workspace {
             };
             tie.impulse = tie.tied(&(product - self.rhs[i] - tie.extra));
         }
-        // This round's start for the next step.
+    }
+
+    /// Keeps this round's solution as its start for the next step, gives each body its
+    /// correction, and puts the buffers back into the workspace.
+    #[inline(always)]
+    fn end_round(&mut self, s: Taken, bodies: &mut [TiedBody], round: usize, pinned: Vec<u32>) {
+        let Taken {
+            mut t,
+            is_pinned,
+            body,
+        } = s;
         if t.starts.len() <= round {
             t.starts.resize(round + 1, Start::default());
         }
@@ -1010,16 +1126,8 @@ impl Workspace {
         }
         self.pinned = pinned;
         t.is_pinned = is_pinned;
-        t.body_scratch = BodyScratch {
-            blocks: body_blocks,
-            terms: block_terms,
-            rhs: body_rhs,
-            x: x_body,
-            q: q_body,
-            direction: direction_body,
-        };
+        t.body_scratch = body;
         self.ties = t;
-        outcome
     }
 
     /// out = A p, no filter (`conjugate_gradient::product`).
@@ -1038,31 +1146,18 @@ impl Workspace {
     /// The start's residual r = b − (Tᵀ Ā T) x for x = (`solution`, `x_body`), with `reduced`
     /// and the bodies' `rhs` holding b on entry; its preconditioned z; returns δ = r·z.
     /// `product` and `q_body` keep Tᵀ Ā T x (a start worse than zero is undone with it).
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn start_residual(
         &mut self,
         t: &mut TieBuffers,
-        ties: &[Tie],
-        bodies: &[TiedBody],
-        pinned: &[u32],
-        joints: &BodyJoints,
+        over: &Over,
         x_body: &[Vector6<f64>],
         product: &mut [Vector3<f64>],
         q_body: &mut [Vector6<f64>],
     ) -> f64 {
         let n = self.rhs.len();
         let mut solution = std::mem::take(&mut self.solution);
-        self.multiply_reduced(
-            t,
-            ties,
-            bodies,
-            pinned,
-            &mut solution,
-            x_body,
-            product,
-            q_body,
-        );
+        self.multiply_reduced(t, over, &mut solution, x_body, product, q_body);
         self.solution = solution;
         let mut delta = 0.0;
         for ((((r, z), b), q), inverse) in (self.residual[..n].iter_mut())
@@ -1078,7 +1173,7 @@ impl Workspace {
         for (b, bv) in t.body.iter_mut().enumerate() {
             bv.r = bv.rhs - q_body[b];
         }
-        precondition_bodies(t, joints, false);
+        precondition_bodies(t, over.joints, false);
         for bv in &t.body {
             delta += bv.r.dot(&bv.z);
         }
@@ -1087,19 +1182,17 @@ impl Workspace {
 
     /// (out, out_body) = Tᵀ Ā T (p, p_body) (module doc). `p` is expanded in place (its
     /// tied rows to S p + G Y, its pinned rows to 0) for the product and given back as it came.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn multiply_reduced(
         &self,
         t: &mut TieBuffers,
-        ties: &[Tie],
-        bodies: &[TiedBody],
-        pinned: &[u32],
+        over: &Over,
         p: &mut [Vector3<f64>],
         p_body: &[Vector6<f64>],
         out: &mut [Vector3<f64>],
         out_body: &mut [Vector6<f64>],
     ) {
+        let (ties, bodies, pinned) = (over.ties, over.bodies, over.pinned);
         let n = p.len();
         t.saved.clear();
         for tie in ties {

@@ -136,6 +136,17 @@ pub fn carry_attachments(
     change + springs_energy(cloth)
 }
 
+/// What holding a cloth's attachments reads: the bodies, the attachments, the step, the
+/// bodies' integrator's position factor (`Integrator::position_factor`) and the joints.
+#[derive(Debug, Clone, Copy)]
+pub struct Holding<'a> {
+    pub bodies: &'a [Body],
+    pub attachments: &'a [Attachment],
+    pub dt: f64,
+    pub factor: f64,
+    pub links: &'a Links,
+}
+
 /// Attachments of an explicit (`symplectic-euler`) cloth, held by impulses after its
 /// velocity half and the bodies' own step (the implicit cloth holds them inside its solve,
 /// [`tied_step`](super::tied_step)).
@@ -143,7 +154,7 @@ pub fn carry_attachments(
 /// Attachment a holds particle p at its body's point P_a = x_b + r_a (the body already at
 /// the end of its own step). Unknown: the impulse J_a on the particle, −J_a on the body at
 /// r_a. The body's correction ΔV = −Σ J/M, Δω = −I⁻¹ Σ r × J moves its position by
-/// factor·h·(ΔV, Δω) ([`position_factor`](super::position_factor)), so the particle ends on its point when
+/// factor·h·(ΔV, Δω) ([`Integrator::position_factor`](crate::physics::Integrator::position_factor)), so the particle ends on its point when
 ///
 /// ```text
 /// x_p + h (v_p + J_a/m_p) = P_a + factor h (ΔV + Δω × r_a)      (linearised turn)
@@ -177,17 +188,19 @@ pub fn carry_attachments(
 ///
 /// Returns the impulses' sum and moment. No energy is booked: an ideal hold does no work, and
 /// what the velocity half gave a particle off its point is the splitting's error (the drift).
-#[allow(clippy::too_many_arguments)]
 pub fn hold_attachments(
     cloth: &mut Cloth,
-    bodies: &[Body],
+    holding: &Holding,
     states: &mut [State],
-    attachments: &[Attachment],
-    dt: f64,
-    factor: f64,
-    links: &Links,
     joint_impulses: &mut Vec<Loads>,
 ) -> AttachReport {
+    let Holding {
+        bodies,
+        attachments,
+        dt,
+        factor,
+        links,
+    } = *holding;
     let mut report = AttachReport::default();
     let moves = |b: usize| !bodies[b].fixed && bodies[b].inv_mass > 0.0;
     let held = HeldJoints::new(links, states, moves);
@@ -195,17 +208,7 @@ pub fn hold_attachments(
     joint_impulses.clear();
     joint_impulses.resize(links.joints.len(), Loads::default());
     if attachments.iter().any(|a| is_held(a.body)) {
-        hold_on_joints(
-            cloth,
-            bodies,
-            states,
-            attachments,
-            dt,
-            factor,
-            &held,
-            joint_impulses,
-            &mut report,
-        );
+        hold_on_joints(cloth, holding, &held, states, joint_impulses, &mut report);
     }
     for (b, (body, state)) in bodies.iter().zip(states.iter_mut()).enumerate() {
         let list: Vec<&Attachment> = attachments.iter().filter(|a| a.body == b).collect();
@@ -271,18 +274,21 @@ pub fn hold_attachments(
 
 /// The attachments on the bodies the joints hold, solved together ([`hold_attachments`],
 /// "Bodies held by joints").
-#[allow(clippy::too_many_arguments)]
 fn hold_on_joints(
     cloth: &mut Cloth,
-    bodies: &[Body],
-    states: &mut [State],
-    attachments: &[Attachment],
-    dt: f64,
-    factor: f64,
+    holding: &Holding,
     held: &HeldJoints,
+    states: &mut [State],
     joint_impulses: &mut [Loads],
     report: &mut AttachReport,
 ) {
+    let Holding {
+        bodies,
+        attachments,
+        dt,
+        factor,
+        ..
+    } = *holding;
     let group = &held.filter.bodies;
     let column = |b: usize| group.iter().position(|&x| x == b);
     let list: Vec<(&Attachment, usize)> = (attachments.iter())

@@ -60,6 +60,7 @@ use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
 use crate::physics::collision::geometry::{point_shape, Pose, Shape};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
+use crate::physics::collision::StepContext;
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -298,7 +299,7 @@ pub struct Approach {
 
 /// Pass 1 against bodies (module doc): between the particles' velocity half-step and their
 /// positions' update, with every body already at the end of its step (`states`; `start` are
-/// the bodies' states at the start of the step). Each free particle whose velocity would
+/// the bodies' states at the start of the step; `context` gives e, μ, the bounce speed and h). Each free particle whose velocity would
 /// carry it into a body within the step is stopped on its surface (or bounces off it) by
 /// equal and opposite impulses.
 ///
@@ -312,17 +313,20 @@ pub struct Approach {
 /// ```
 ///
 /// with u_n the relative normal velocity after the velocity half, u₀,n at the start of the step.
-#[allow(clippy::too_many_arguments)]
 pub fn approach_bodies(
     cloth: &mut Cloth,
     bodies: &[Body],
     start: &[State],
     states: &mut [State],
-    restitution: f64,
-    friction: f64,
-    bounce_speed: f64,
-    dt: f64,
+    context: &StepContext,
 ) -> Approach {
+    let StepContext {
+        restitution,
+        friction,
+        bounce_speed,
+        dt,
+        ..
+    } = *context;
     let mut report = Approach::default();
     let mut sweeps = Sweeps::default();
     // Attached particles are held to their points (`hold_attachments`), not pushed out of

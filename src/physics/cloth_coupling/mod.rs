@@ -24,9 +24,11 @@ pub mod attachments;
 pub mod explicit;
 pub mod tied;
 
-pub use attachments::{carry_attachments, hold_attachments, AttachReport, BodyMove, Carried};
+pub use attachments::{
+    carry_attachments, hold_attachments, AttachReport, BodyMove, Carried, Holding,
+};
 pub use explicit::{approach_bodies, collide_bodies, Approach, SWEEPS};
-pub use tied::{tied_step, TiedReport, TIE_ROUNDS};
+pub use tied::{tied_step, TiedReport, TiedScene, TIE_ROUNDS};
 
 use crate::physics::cloth::Cloth;
 use crate::physics::state::State;
@@ -38,19 +40,6 @@ use nalgebra::Vector3;
 /// and the next step's tie moves it with the surface (pushing it out would stretch its
 /// springs: energy made).
 pub const SLOP: f64 = 1e-8;
-
-/// How far a body's position moves under a constant extra force F over a step, in units of
-/// h²F/M: what its integrator makes of the ties' impulse J = F h when the correction
-/// ΔV = J/M is applied after the step (symplectic Euler drifts with the new velocity: 1;
-/// rk4 and the kick–drift–kick splittings: ½; explicit Euler: 0).
-pub fn position_factor(integrator: crate::physics::integrators::Integrator) -> f64 {
-    use crate::physics::integrators::Integrator as I;
-    match integrator {
-        I::EulerSeed | I::Euler => 0.0,
-        I::SymplecticEuler => 1.0,
-        I::Rk4 | I::Splitting | I::ExactSplitting | I::ExactSplitting4 => 0.5,
-    }
-}
 
 /// A particle held to a body's point (`attach`): its offset in the body's frame at t = 0.
 #[derive(Debug, Clone, Copy, PartialEq)]

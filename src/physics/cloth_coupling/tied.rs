@@ -4,7 +4,7 @@
 use super::attachments::BodyMove;
 use super::{close_gap, move_body, turn_gap, Attachment};
 use crate::physics::body::Body;
-use crate::physics::cloth::{BodyJoints, Cloth, Held, Tie, TiedBody};
+use crate::physics::cloth::{BodyJoints, Cloth, Held, Tie, TieKind, TiedBody};
 use crate::physics::collision::geometry::{point_shape, Pose};
 use crate::physics::effects::Loads;
 use crate::physics::joints::{rows_of, Links, Pose as JointPose, Row};
@@ -53,6 +53,26 @@ pub struct TiedReport {
     pub attach_impulse: [Vector3<f64>; 2],
 }
 
+/// What a tied step reads: the step, the bodies and obstacles the cloth touches, its
+/// attachments and the joints on the bodies (see [`tied_step`]).
+#[derive(Debug, Clone, Copy)]
+pub struct TiedScene<'a> {
+    pub loads: &'a crate::physics::cloth::ClothLoads,
+    pub dt: f64,
+    pub bodies: &'a [Body],
+    /// The bodies' states at the start of the step.
+    pub start: &'a [State],
+    pub obstacles: &'a [crate::physics::collision::Obstacle],
+    pub attachments: &'a [Attachment],
+    /// μ of the contacts (0: frictionless, normal ties only).
+    pub friction: f64,
+    /// The bodies' integrator's position factor (`Integrator::position_factor`).
+    pub factor: f64,
+    pub links: &'a Links,
+    /// How the last collide phase moved each body (the attached particles' lead).
+    pub predicted: &'a [BodyMove],
+}
+
 /// One velocity half of an `implicit-euler` cloth with its contacts against the bodies and
 /// the obstacles, and its attachments, all inside the linear solve (`cloth::ties`). `start`:
 /// the bodies' states at the start of the step; `states`: after their own step, where the
@@ -61,7 +81,7 @@ pub struct TiedReport {
 /// # Where the particle must end: positions, not velocities
 ///
 /// The body has already moved by its own step when the cloth steps; what its correction
-/// (ΔV, Δω) adds to its position is `factor`·h·(ΔV, Δω) ([`position_factor`](super::position_factor)). So a particle
+/// (ΔV, Δω) adds to its position is `factor`·h·(ΔV, Δω) ([`Integrator::position_factor`](crate::physics::Integrator::position_factor)). So a particle
 /// at gap g from the body's new pose ends on its surface when
 ///
 /// ```text
@@ -110,131 +130,199 @@ pub struct TiedReport {
 /// tie's work along it, −λ·lead h, is booked with the contacts like any tie's (above); it is
 /// what the body takes from the sheet's pull over the lead, and the response's own booking
 /// takes it back when it puts the body where the lead said (at rest the two cancel exactly).
-#[allow(clippy::too_many_arguments)]
 pub fn tied_step(
     cloth: &mut Cloth,
-    loads: &crate::physics::cloth::ClothLoads,
-    dt: f64,
-    bodies: &[Body],
-    start: &[State],
+    scene: &TiedScene,
     states: &mut [State],
-    obstacles: &[crate::physics::collision::Obstacle],
-    attachments: &[Attachment],
-    friction: f64,
-    factor: f64,
-    links: &Links,
     joint_impulses: &mut Vec<Loads>,
-    predicted: &[BodyMove],
 ) -> TiedReport {
-    use crate::physics::cloth::TieKind;
-    use crate::physics::collision::detect;
-    cloth.begin_tied_step(loads, dt);
-    let gravity = loads.gravity.unwrap_or_else(Vector3::zeros);
-    let mut solver_bodies: Vec<TiedBody> = bodies
-        .iter()
-        .zip(states.iter())
-        .map(|(body, state)| {
-            let rotation = state.orientation.matrix();
-            let moves = body.inv_mass > 0.0 && !body.fixed && factor > 0.0;
-            let inertia = if moves {
-                rotation * body.inertia_body * rotation.transpose() / factor
-            } else {
-                Matrix3::zeros()
-            };
-            let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
-            TiedBody {
-                mass: if moves { body.mass / factor } else { 0.0 },
-                inertia,
-                velocity: state.linear_momentum * body.inv_mass,
-                angular_velocity: inv_inertia * state.angular_momentum,
-                correction: [Vector3::zeros(); 2],
-            }
-        })
-        .collect();
+    cloth.begin_tied_step(scene.loads, scene.dt);
+    let mut solver_bodies = scene.solver_bodies(states);
     // The joints on the bodies that move in the solve, held inside it (`cloth::ties`,
     // "Joints on the bodies").
-    let held_joints = HeldJoints::new(links, states, |b| solver_bodies[b].mass > 0.0);
-    // A body's material point at `arm` (from its new barycenter): its own-step displacement.
-    let displacement = |b: usize, arm: &Vector3<f64>| -> Vector3<f64> {
-        let (now, before) = (&states[b], start.get(b).unwrap_or(&states[b]));
-        let back = before.orientation.matrix() * now.orientation.matrix().transpose();
-        now.position + arm - (before.position + back * arm)
-    };
-    // Candidates: the nearest surface of each free particle within what it can close.
+    let held_joints = HeldJoints::new(scene.links, states, |b| solver_bodies[b].mass > 0.0);
     let held: Vec<Held> = cloth.held().to_vec();
-    let mut candidates: Vec<Candidate> = Vec::new();
-    // A broad phase: each body's reach at the fastest free particle's speed bounds every
-    // particle's reach below (sqrt, + and × by positive numbers round monotonically; a NaN
-    // speed makes it NaN, which rejects nothing), so a particle farther than it from every
-    // body is skipped with the same candidates as before.
-    let fastest = (0..cloth.len())
-        .filter(|&i| !cloth.pinned[i])
-        .map(|i| cloth.start_velocity(i).norm_squared())
-        .fold(0.0, |m: f64, v| if v > m || v.is_nan() { v } else { m })
-        .sqrt();
-    let body_speed =
-        |body: &Body, sb: &TiedBody| sb.velocity.norm() + sb.angular_velocity.norm() * body.radius;
-    let widest: Vec<f64> = (bodies.iter().zip(&solver_bodies))
-        .map(|(body, sb)| {
-            let margin = (fastest + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
-            let reach = body.radius + margin;
-            reach * reach
-        })
-        .collect();
-    for i in 0..cloth.len() {
-        if cloth.inv_mass(i) == 0.0 || attachments.iter().any(|a| a.particle == i) {
-            continue;
-        }
-        let x = cloth.positions[i];
-        let far = (states.iter().zip(&widest))
-            .all(|(state, &widest)| (x - state.position).norm_squared() > widest);
-        if far && obstacles.is_empty() {
-            continue;
-        }
-        let v = cloth.start_velocity(i);
-        let mut best: Option<Candidate> = None;
-        for (b, ((body, state), sb)) in bodies
+    let candidates = scene.candidates(cloth, states, &solver_bodies);
+    let mut report = TiedReport::default();
+    let ties = scene.solve_rounds(
+        cloth,
+        states,
+        &Contacts {
+            candidates: &candidates,
+            held: &held,
+        },
+        &mut solver_bodies,
+        &held_joints,
+        &mut report,
+    );
+    cloth.finish_tied_step(scene.loads);
+    cloth.record_solves(crate::physics::cloth::SolveCounts {
+        solves: report.rounds,
+        iterations: report.iterations,
+    });
+    scene.book_ties(cloth, states, &ties, &solver_bodies, &mut report);
+    cloth.set_held(
+        candidates.iter().map(|c| c.particle),
+        ties.iter().filter(|t| !t.permanent).map(|t| t.particle),
+    );
+    joint_impulses.clear();
+    joint_impulses.resize(scene.links.joints.len(), Loads::default());
+    held_joints.impulses(&ties, &solver_bodies, joint_impulses);
+    scene.push_bodies(states, &ties, &solver_bodies);
+    scene.close_turns(cloth, states, &ties, &solver_bodies, &mut report);
+    scene.attach_reactions(states, &ties, &mut report);
+    report
+}
+
+/// The contact candidates of a step and which particles the last step held.
+struct Contacts<'a> {
+    candidates: &'a [Candidate],
+    held: &'a [Held],
+}
+
+/// The correction's velocity at a candidate's point, (Y_V + Y_ω × r).
+fn correction_at(sb: &[TiedBody], body: Option<usize>, arm: &Vector3<f64>) -> Vector3<f64> {
+    body.map_or(Vector3::zeros(), |b| {
+        let [dv, dw] = sb[b].correction;
+        dv + dw.cross(arm)
+    })
+}
+
+impl TiedScene<'_> {
+    /// The bodies as the solve sees them: a body that moves in the solve has mass M/factor
+    /// and inertia I/factor (module doc of [`tied_step`]); V and ω after its own step.
+    fn solver_bodies(&self, states: &[State]) -> Vec<TiedBody> {
+        let factor = self.factor;
+        self.bodies
             .iter()
             .zip(states.iter())
-            .zip(&solver_bodies)
-            .enumerate()
-        {
-            let Some(shape) = body.shape.as_ref() else {
-                continue;
-            };
-            if (x - state.position).norm_squared() > widest[b] {
+            .map(|(body, state)| {
+                let rotation = state.orientation.matrix();
+                let moves = body.inv_mass > 0.0 && !body.fixed && factor > 0.0;
+                let inertia = if moves {
+                    rotation * body.inertia_body * rotation.transpose() / factor
+                } else {
+                    Matrix3::zeros()
+                };
+                let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
+                TiedBody {
+                    mass: if moves { body.mass / factor } else { 0.0 },
+                    inertia,
+                    velocity: state.linear_momentum * body.inv_mass,
+                    angular_velocity: inv_inertia * state.angular_momentum,
+                    correction: [Vector3::zeros(); 2],
+                }
+            })
+            .collect()
+    }
+
+    /// A body's material point at `arm` (from its new barycenter): its own-step displacement.
+    fn displacement(&self, states: &[State], b: usize, arm: &Vector3<f64>) -> Vector3<f64> {
+        let (now, before) = (&states[b], self.start.get(b).unwrap_or(&states[b]));
+        let back = before.orientation.matrix() * now.orientation.matrix().transpose();
+        now.position + arm - (before.position + back * arm)
+    }
+
+    /// Candidates: the nearest surface of each free particle within what it can close.
+    fn candidates(
+        &self,
+        cloth: &Cloth,
+        states: &[State],
+        solver_bodies: &[TiedBody],
+    ) -> Vec<Candidate> {
+        let (bodies, dt) = (self.bodies, self.dt);
+        let gravity = self.loads.gravity.unwrap_or_else(Vector3::zeros);
+        let mut candidates: Vec<Candidate> = Vec::new();
+        // A broad phase: each body's reach at the fastest free particle's speed bounds every
+        // particle's reach below (sqrt, + and × by positive numbers round monotonically; a NaN
+        // speed makes it NaN, which rejects nothing), so a particle farther than it from every
+        // body is skipped with the same candidates as before.
+        let fastest = (0..cloth.len())
+            .filter(|&i| !cloth.pinned[i])
+            .map(|i| cloth.start_velocity(i).norm_squared())
+            .fold(0.0, |m: f64, v| if v > m || v.is_nan() { v } else { m })
+            .sqrt();
+        let body_speed = |body: &Body, sb: &TiedBody| {
+            sb.velocity.norm() + sb.angular_velocity.norm() * body.radius
+        };
+        let widest: Vec<f64> = (bodies.iter().zip(solver_bodies))
+            .map(|(body, sb)| {
+                let margin = (fastest + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
+                let reach = body.radius + margin;
+                reach * reach
+            })
+            .collect();
+        for i in 0..cloth.len() {
+            if cloth.inv_mass(i) == 0.0 || self.attachments.iter().any(|a| a.particle == i) {
                 continue;
             }
-            let margin = (v.norm() + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
-            let reach = body.radius + margin;
-            if (x - state.position).norm_squared() > reach * reach {
+            let x = cloth.positions[i];
+            let far = (states.iter().zip(&widest))
+                .all(|(state, &widest)| (x - state.position).norm_squared() > widest);
+            if far && self.obstacles.is_empty() {
                 continue;
             }
-            let pose = Pose {
-                position: state.position,
-                rotation: state.orientation.matrix(),
-            };
-            let Some(cp) = point_shape(&x, shape, &pose, margin) else {
-                continue;
-            };
-            let arm = cp.point - state.position;
-            let c = Candidate {
-                particle: i,
-                body: Some(b),
-                gap: -cp.depth,
-                normal: cp.normal,
-                arm,
-                drift: displacement(b, &arm) / dt,
-            };
-            if best.is_none_or(|o| c.gap < o.gap) {
-                best = Some(c);
+            let v = cloth.start_velocity(i);
+            let mut best: Option<Candidate> = None;
+            for (b, ((body, state), sb)) in bodies
+                .iter()
+                .zip(states.iter())
+                .zip(solver_bodies)
+                .enumerate()
+            {
+                let Some(shape) = body.shape.as_ref() else {
+                    continue;
+                };
+                if (x - state.position).norm_squared() > widest[b] {
+                    continue;
+                }
+                let margin =
+                    (v.norm() + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
+                let reach = body.radius + margin;
+                if (x - state.position).norm_squared() > reach * reach {
+                    continue;
+                }
+                let pose = Pose {
+                    position: state.position,
+                    rotation: state.orientation.matrix(),
+                };
+                let Some(cp) = point_shape(&x, shape, &pose, margin) else {
+                    continue;
+                };
+                let arm = cp.point - state.position;
+                let c = Candidate {
+                    particle: i,
+                    body: Some(b),
+                    gap: -cp.depth,
+                    normal: cp.normal,
+                    arm,
+                    drift: self.displacement(states, b, &arm) / dt,
+                };
+                if best.is_none_or(|o| c.gap < o.gap) {
+                    best = Some(c);
+                }
             }
-        }
-        for obstacle in obstacles {
             let margin = (v.norm() + gravity.norm() * dt) * dt + TOUCHING;
-            let (gap, normal) = match detect::inside(obstacle, &x) {
+            self.nearest_obstacle(i, &x, margin, &mut best);
+            candidates.extend(best);
+        }
+        candidates
+    }
+
+    /// Particle `i` at `x`: an obstacle surface within `margin` nearer than `best` becomes
+    /// `best` (the first of equal gaps).
+    fn nearest_obstacle(
+        &self,
+        i: usize,
+        x: &Vector3<f64>,
+        margin: f64,
+        best: &mut Option<Candidate>,
+    ) {
+        use crate::physics::collision::detect;
+        for obstacle in self.obstacles {
+            let (gap, normal) = match detect::inside(obstacle, x) {
                 Some(p) => (-p.depth, p.normal),
-                None => match detect::near(obstacle, &x, margin) {
+                None => match detect::near(obstacle, x, margin) {
                     Some(near) => near,
                     None => continue,
                 },
@@ -248,19 +336,13 @@ pub fn tied_step(
                 drift: Vector3::zeros(),
             };
             if best.is_none_or(|o| c.gap < o.gap) {
-                best = Some(c);
+                *best = Some(c);
             }
         }
-        candidates.extend(best);
     }
-    // The correction's velocity at a candidate's point, (Y_V + Y_ω × r).
-    let correction_at = |sb: &[TiedBody], body: Option<usize>, arm: &Vector3<f64>| {
-        body.map_or(Vector3::zeros(), |b| {
-            let [dv, dw] = sb[b].correction;
-            dv + dw.cross(arm)
-        })
-    };
-    let tie_of = |c: &Candidate| {
+
+    /// The tie of a candidate contact.
+    fn tie_of(&self, c: &Candidate) -> Tie {
         // Arrive on the surface (−gap/h) and no faster: a plastic contact. The sheet's rebound
         // is its springs' (they are inside the same solve); a restitution rule on a 4.5 g
         // particle tied to the body would kick the patch apart step after step and make
@@ -268,9 +350,10 @@ pub fn tied_step(
         // One already inside at the start of the step (gap₀ = gap + h n·drift < 0) is not
         // pushed out by a velocity (energy made): it moves with the surface, the collide
         // phase pushes it out. Against an obstacle (drift 0): stop there.
+        let dt = self.dt;
         let start_gap = c.gap + dt * c.normal.dot(&c.drift);
         let along = c.normal * ((-c.gap + start_gap.min(0.0)) / dt);
-        let kind = if friction > 0.0 {
+        let kind = if self.friction > 0.0 {
             TieKind::Full
         } else {
             TieKind::Normal
@@ -287,107 +370,165 @@ pub fn tied_step(
             permanent: false,
             impulse: Vector3::zeros(),
         }
-    };
-    // Where the particle ends along n relative to the surface, for a velocity v₁ (< 0: inside).
-    let end_gap = |c: &Candidate, v: &Vector3<f64>, sb: &[TiedBody]| {
-        c.gap + dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
-    };
-    // First guess: touching, or carried inside by its start velocity and gravity; against a
-    // body also held at the end of the last step and still within a step's fall (g h²) of
-    // its surface (a warm start of the contact set: the rounds below correct it).
-    // The gap is measured at the start of the step from the body's material point (it has
-    // moved by its own step since: a body pushed up by the sheet moves away from the
-    // particles that hold it by h·V every step).
-    // (Against a body only: an obstacle's contacts are found afresh each step.)
-    let was_held = |c: &Candidate| {
-        let start_gap = c.gap + dt * c.normal.dot(&c.drift);
-        c.body.is_some()
-            && held.get(c.particle) == Some(&Held::Touching)
-            && start_gap <= TOUCHING + gravity.norm() * dt * dt
-    };
-    let mut active: Vec<bool> = candidates
-        .iter()
-        .map(|c| {
-            let v = cloth.start_velocity(c.particle) + gravity * dt;
-            was_held(c) || c.gap <= TOUCHING || end_gap(c, &v, &solver_bodies) < 0.0
-        })
-        .collect();
-    let mut ties: Vec<Tie> = Vec::new();
-    let mut kinds: Vec<(TieKind, Vector3<f64>)> = candidates
-        .iter()
-        .map(|c| (tie_of(c).kind, Vector3::zeros()))
-        .collect();
-    let mut report = TiedReport::default();
-    // Where each attached particle aims beyond its point after the body's own step: the move
-    // the collide phase gave the body last step ([`BodyMove`]), over h.
-    let lead: Vec<Vector3<f64>> = attachments
-        .iter()
-        .map(|a| {
-            let state = &states[a.body];
-            let arm = state.orientation.matrix() * a.offset_body;
-            predicted
-                .get(a.body)
-                .map_or(Vector3::zeros(), |m| m.of_point(&arm) / dt)
-        })
-        .collect();
-    let attach_ties = |states: &[State], cloth: &Cloth| -> Vec<Tie> {
-        attachments
+    }
+
+    /// Where the particle ends along n relative to the surface, for a velocity v₁ (< 0:
+    /// inside).
+    fn end_gap(&self, c: &Candidate, v: &Vector3<f64>, sb: &[TiedBody]) -> f64 {
+        c.gap + self.dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
+    }
+
+    /// First guess of the contact set: touching, or carried inside by its start velocity and
+    /// gravity; against a body also held at the end of the last step and still within a
+    /// step's fall (g h²) of its surface (a warm start of the contact set: the rounds correct
+    /// it). The gap is measured at the start of the step from the body's material point (it
+    /// has moved by its own step since: a body pushed up by the sheet moves away from the
+    /// particles that hold it by h·V every step). (Against a body only: an obstacle's
+    /// contacts are found afresh each step.)
+    fn first_guess(&self, cloth: &Cloth, contacts: &Contacts, sb: &[TiedBody]) -> Vec<bool> {
+        let dt = self.dt;
+        let gravity = self.loads.gravity.unwrap_or_else(Vector3::zeros);
+        let was_held = |c: &Candidate| {
+            let start_gap = c.gap + dt * c.normal.dot(&c.drift);
+            c.body.is_some()
+                && contacts.held.get(c.particle) == Some(&Held::Touching)
+                && start_gap <= TOUCHING + gravity.norm() * dt * dt
+        };
+        contacts
+            .candidates
             .iter()
-            .zip(&lead)
-            .map(|(a, lead)| {
-                let state = &states[a.body];
-                let arm = state.orientation.matrix() * a.offset_body;
-                let target = state.position + arm;
-                // The body is already at the end of its own step (`target`): the particle
-                // gets there, plus what the collide phase is predicted to move it (`lead`),
-                // plus what the correction moves the point.
-                Tie {
-                    particle: a.particle,
-                    body: Some(a.body),
-                    arm,
-                    normal: Vector3::y(),
-                    kind: TieKind::Full,
-                    target: (target - cloth.positions[a.particle]) / dt + lead,
-                    extra: Vector3::zeros(),
-                    permanent: true,
-                    impulse: Vector3::zeros(),
-                }
+            .map(|c| {
+                let v = cloth.start_velocity(c.particle) + gravity * dt;
+                was_held(c) || c.gap <= TOUCHING || self.end_gap(c, &v, sb) < 0.0
             })
             .collect()
-    };
-    let mut index: Vec<usize> = Vec::new();
-    for round in 0..TIE_ROUNDS {
-        ties.clear();
-        index.clear();
-        for (k, c) in candidates.iter().enumerate() {
-            if active[k] {
-                let mut tie = tie_of(c);
-                (tie.kind, tie.extra) = kinds[k];
-                ties.push(tie);
-                index.push(k);
+    }
+
+    /// Where each attached particle aims beyond its point after the body's own step: the move
+    /// the collide phase gave the body last step ([`BodyMove`]), over h.
+    fn leads(&self, states: &[State]) -> Vec<Vector3<f64>> {
+        self.attachments
+            .iter()
+            .map(|a| {
+                let state = &states[a.body];
+                let arm = state.orientation.matrix() * a.offset_body;
+                self.predicted
+                    .get(a.body)
+                    .map_or(Vector3::zeros(), |m| m.of_point(&arm) / self.dt)
+            })
+            .collect()
+    }
+
+    /// The attachments' ties, appended to `ties` in the order of `attachments`.
+    fn attach_ties(
+        &self,
+        states: &[State],
+        cloth: &Cloth,
+        lead: &[Vector3<f64>],
+        ties: &mut Vec<Tie>,
+    ) {
+        ties.extend(self.attachments.iter().zip(lead).map(|(a, lead)| {
+            let state = &states[a.body];
+            let arm = state.orientation.matrix() * a.offset_body;
+            let target = state.position + arm;
+            // The body is already at the end of its own step (`target`): the particle gets
+            // there, plus what the collide phase is predicted to move it (`lead`), plus what
+            // the correction moves the point.
+            Tie {
+                particle: a.particle,
+                body: Some(a.body),
+                arm,
+                normal: Vector3::y(),
+                kind: TieKind::Full,
+                target: (target - cloth.positions[a.particle]) / self.dt + lead,
+                extra: Vector3::zeros(),
+                permanent: true,
+                impulse: Vector3::zeros(),
+            }
+        }));
+    }
+
+    /// The rounds of the tied solve, each after the contact set changed (a contact released
+    /// because it pulled, a new one found, a stuck one that started to slide), at most
+    /// [`TIE_ROUNDS`]; returns the last round's ties (the contacts', then the attachments').
+    fn solve_rounds(
+        &self,
+        cloth: &mut Cloth,
+        states: &[State],
+        contacts: &Contacts,
+        solver_bodies: &mut [TiedBody],
+        held_joints: &HeldJoints,
+        report: &mut TiedReport,
+    ) -> Vec<Tie> {
+        let candidates = contacts.candidates;
+        let mut active = self.first_guess(cloth, contacts, solver_bodies);
+        let mut ties: Vec<Tie> = Vec::new();
+        let mut kinds: Vec<(TieKind, Vector3<f64>)> = candidates
+            .iter()
+            .map(|c| (self.tie_of(c).kind, Vector3::zeros()))
+            .collect();
+        let lead = self.leads(states);
+        let mut index: Vec<usize> = Vec::new();
+        for round in 0..TIE_ROUNDS {
+            ties.clear();
+            index.clear();
+            for (k, c) in candidates.iter().enumerate() {
+                if active[k] {
+                    let mut tie = self.tie_of(c);
+                    (tie.kind, tie.extra) = kinds[k];
+                    ties.push(tie);
+                    index.push(k);
+                }
+            }
+            self.attach_ties(states, cloth, &lead, &mut ties);
+            let step = cloth.solve_tied(&mut ties, solver_bodies, &held_joints.filter);
+            report.rounds = round + 1;
+            report.iterations += step.iterations;
+            let mut changed =
+                self.release_or_slide(&ties, &index, candidates, &mut active, &mut kinds);
+            for (k, c) in candidates.iter().enumerate() {
+                if !active[k]
+                    && self.end_gap(c, &cloth.velocities[c.particle], solver_bodies) < -TOUCHING
+                {
+                    active[k] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
             }
         }
-        ties.extend(attach_ties(states, cloth));
-        let step = cloth.solve_tied(&mut ties, &mut solver_bodies, &held_joints.filter);
-        report.rounds = round + 1;
-        report.iterations += step.iterations;
+        ties
+    }
+
+    /// After a solve: a contact that pulls lets go, one out of its friction cone slides with
+    /// the bounded impulse, a sliding one's impulse follows its new direction. Whether the
+    /// contact set changed.
+    fn release_or_slide(
+        &self,
+        ties: &[Tie],
+        index: &[usize],
+        candidates: &[Candidate],
+        active: &mut [bool],
+        kinds: &mut [(TieKind, Vector3<f64>)],
+    ) -> bool {
         let mut changed = false;
-        for (tie, &k) in ties.iter().zip(&index) {
+        for (tie, &k) in ties.iter().zip(index) {
             let n = tie.normal;
             let normal_impulse = tie.impulse.dot(&n);
             if normal_impulse < 0.0 {
                 // It would pull the particle onto the body: let go (B&W §6.2).
                 active[k] = false;
-                kinds[k] = (tie_of(&candidates[k]).kind, Vector3::zeros());
+                kinds[k] = (self.tie_of(&candidates[k]).kind, Vector3::zeros());
                 changed = true;
                 continue;
             }
-            if friction > 0.0 {
+            if self.friction > 0.0 {
                 let tangential = match tie.kind {
                     TieKind::Full => tie.impulse - n * normal_impulse,
                     TieKind::Normal => tie.extra,
                 };
-                let limit = friction * normal_impulse;
+                let limit = self.friction * normal_impulse;
                 let size = tangential.norm();
                 if tie.kind == TieKind::Full && size > limit {
                     // Out of the cone: slide, with the bounded impulse.
@@ -401,108 +542,114 @@ pub fn tied_step(
                 }
             }
         }
-        for (k, c) in candidates.iter().enumerate() {
-            if !active[k] && end_gap(c, &cloth.velocities[c.particle], &solver_bodies) < -TOUCHING {
-                active[k] = true;
-                changed = true;
+        changed
+    }
+
+    /// The energy the ties took (module doc of [`tied_step`]): the impulses' work along the
+    /// particle's motion relative to the body's material point; and the contacts counted.
+    fn book_ties(
+        &self,
+        cloth: &Cloth,
+        states: &[State],
+        ties: &[Tie],
+        solver_bodies: &[TiedBody],
+        report: &mut TiedReport,
+    ) {
+        for tie in ties {
+            let drift = tie.body.map_or(Vector3::zeros(), |b| {
+                self.displacement(states, b, &tie.arm) / self.dt
+            });
+            let u = cloth.velocities[tie.particle]
+                - drift
+                - correction_at(solver_bodies, tie.body, &tie.arm);
+            report.energy_taken -= (tie.impulse + tie.extra).dot(&u);
+        }
+        report.contacts = ties
+            .iter()
+            .filter(|t| !t.permanent && t.body.is_some())
+            .count();
+        report.obstacle_contacts = ties.iter().filter(|t| t.body.is_none()).count();
+    }
+
+    /// The bodies take the opposite impulses: through their correction when they are
+    /// unknowns of the solve, summed afterwards when they are not (factor 0).
+    fn push_bodies(&self, states: &mut [State], ties: &[Tie], solver_bodies: &[TiedBody]) {
+        let mut pushed = vec![[Vector3::zeros(); 2]; self.bodies.len()];
+        for tie in ties {
+            if let Some(b) = tie.body {
+                let j = tie.impulse + tie.extra;
+                pushed[b][0] -= j;
+                pushed[b][1] -= tie.arm.cross(&j);
             }
         }
-        if !changed {
-            break;
+        for (((body, state), sb), push) in self
+            .bodies
+            .iter()
+            .zip(states.iter_mut())
+            .zip(solver_bodies)
+            .zip(&pushed)
+        {
+            if body.fixed || body.inv_mass == 0.0 {
+                continue;
+            }
+            if sb.mass == 0.0 {
+                state.linear_momentum += push[0];
+                state.angular_momentum += push[1];
+                continue;
+            }
+            let [dv, dw] = sb.correction;
+            if dv == Vector3::zeros() && dw == Vector3::zeros() {
+                continue;
+            }
+            state.linear_momentum += dv * sb.mass;
+            state.angular_momentum += sb.inertia * dw;
+            move_body(state, &dv, &dw, self.dt);
         }
     }
-    cloth.finish_tied_step(loads);
-    cloth.record_solves(crate::physics::cloth::SolveCounts {
-        solves: report.rounds,
-        iterations: report.iterations,
-    });
-    // The energy the ties took (doc above): the impulses' work along the particle's motion
-    // relative to the body's material point.
-    for tie in &ties {
-        let drift = tie
-            .body
-            .map_or(Vector3::zeros(), |b| displacement(b, &tie.arm) / dt);
-        let u = cloth.velocities[tie.particle]
-            - drift
-            - correction_at(&solver_bodies, tie.body, &tie.arm);
-        report.energy_taken -= (tie.impulse + tie.extra).dot(&u);
+
+    /// Tied particles: the body turned by the rotation h Y_ω, their tie moved them along its
+    /// tangent h Y_ω × r; the difference in the tied components, (I − S)((R(h Y_ω) − I) r −
+    /// h Y_ω × r) = O(h² |Y_ω|² r), is made up within the step (module doc of
+    /// `hold_attachments`), so that an attached particle stays on its point and a contact on
+    /// the surface to round-off.
+    fn close_turns(
+        &self,
+        cloth: &mut Cloth,
+        states: &mut [State],
+        ties: &[Tie],
+        solver_bodies: &[TiedBody],
+        report: &mut TiedReport,
+    ) {
+        for tie in ties {
+            let Some(b) = tie.body else { continue };
+            let sb = &solver_bodies[b];
+            if sb.mass == 0.0 {
+                continue;
+            }
+            let mut gap = turn_gap(&sb.correction[1], &tie.arm, self.dt);
+            if tie.kind == TieKind::Normal {
+                gap = tie.normal * tie.normal.dot(&gap);
+            }
+            let made_up = close_gap(cloth, tie.particle, &mut states[b], &tie.arm, &gap, self.dt);
+            if tie.permanent {
+                let point = states[b].position + tie.arm;
+                report.attach_impulse[0] += made_up;
+                report.attach_impulse[1] += point.cross(&made_up);
+            }
+        }
     }
-    report.contacts = ties
-        .iter()
-        .filter(|t| !t.permanent && t.body.is_some())
-        .count();
-    report.obstacle_contacts = ties.iter().filter(|t| t.body.is_none()).count();
-    cloth.set_held(
-        candidates.iter().map(|c| c.particle),
-        ties.iter().filter(|t| !t.permanent).map(|t| t.particle),
-    );
-    joint_impulses.clear();
-    joint_impulses.resize(links.joints.len(), Loads::default());
-    held_joints.impulses(&ties, &solver_bodies, joint_impulses);
-    // The bodies take the opposite impulses: through their correction when they are unknowns
-    // of the solve, summed afterwards when they are not (factor 0).
-    let mut pushed = vec![[Vector3::zeros(); 2]; bodies.len()];
-    for tie in &ties {
-        if let Some(b) = tie.body {
+
+    /// The attachments' reactions on the cloth (their point on the body at the step's end).
+    /// (`attach_ties` appends them after the contacts, in the order of `attachments`.)
+    fn attach_reactions(&self, states: &[State], ties: &[Tie], report: &mut TiedReport) {
+        for (tie, a) in ties.iter().filter(|t| t.permanent).zip(self.attachments) {
+            let state = &states[a.body];
+            let point = state.position + state.orientation.matrix() * a.offset_body;
             let j = tie.impulse + tie.extra;
-            pushed[b][0] -= j;
-            pushed[b][1] -= tie.arm.cross(&j);
+            report.attach_impulse[0] += j;
+            report.attach_impulse[1] += point.cross(&j);
         }
     }
-    for (((body, state), sb), push) in bodies
-        .iter()
-        .zip(states.iter_mut())
-        .zip(&solver_bodies)
-        .zip(&pushed)
-    {
-        if body.fixed || body.inv_mass == 0.0 {
-            continue;
-        }
-        if sb.mass == 0.0 {
-            state.linear_momentum += push[0];
-            state.angular_momentum += push[1];
-            continue;
-        }
-        let [dv, dw] = sb.correction;
-        if dv == Vector3::zeros() && dw == Vector3::zeros() {
-            continue;
-        }
-        state.linear_momentum += dv * sb.mass;
-        state.angular_momentum += sb.inertia * dw;
-        move_body(state, &dv, &dw, dt);
-    }
-    // Tied particles: the body turned by the rotation h Y_ω, their tie moved them along its
-    // tangent h Y_ω × r; the difference in the tied components, (I − S)((R(h Y_ω) − I) r −
-    // h Y_ω × r) = O(h² |Y_ω|² r), is made up within the step (module doc of
-    // `hold_attachments`), so that an attached particle stays on its point and a contact on
-    // the surface to round-off.
-    for tie in &ties {
-        let Some(b) = tie.body else { continue };
-        let sb = &solver_bodies[b];
-        if sb.mass == 0.0 {
-            continue;
-        }
-        let mut gap = turn_gap(&sb.correction[1], &tie.arm, dt);
-        if tie.kind == TieKind::Normal {
-            gap = tie.normal * tie.normal.dot(&gap);
-        }
-        let made_up = close_gap(cloth, tie.particle, &mut states[b], &tie.arm, &gap, dt);
-        if tie.permanent {
-            let point = states[b].position + tie.arm;
-            report.attach_impulse[0] += made_up;
-            report.attach_impulse[1] += point.cross(&made_up);
-        }
-    }
-    // The attachments' reactions on the cloth (their point on the body at the step's end).
-    // (`attach_ties` appends them after the contacts, in the order of `attachments`.)
-    for (tie, a) in ties.iter().filter(|t| t.permanent).zip(attachments) {
-        let state = &states[a.body];
-        let point = state.position + state.orientation.matrix() * a.offset_body;
-        let j = tie.impulse + tie.extra;
-        report.attach_impulse[0] += j;
-        report.attach_impulse[1] += point.cross(&j);
-    }
-    report
 }
 
 /// The joints' velocity rows on the bodies that move in a tied solve (`cloth::ties`, "Joints

@@ -15,11 +15,22 @@
 use super::super::derive::Kinematics;
 use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
+use super::super::system::System;
+use super::system::{each_moving, Buffers, Start};
 use super::{advance_quaternion, quaternion_of};
 
-/// One explicit Euler step, in place.
+/// One explicit Euler step over the whole system (F and τ from the start of the step).
+pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
+    b.clear(start);
+    each_moving(system, states, |i, _, state| {
+        body_step(state, &start.kinematics[i], &start.loads[i], dt)
+    });
+    b.book_start(start, dt);
+}
+
+/// One explicit Euler step of one body, in place.
 #[inline]
-pub fn step(state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
+fn body_step(state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
     state.position += start.velocity * dt;
     state.orientation = Orientation::Quaternion(advance_quaternion(
         &quaternion_of(state),

@@ -20,7 +20,18 @@ use super::super::body::Body;
 use super::super::derive::Kinematics;
 use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
+use super::super::system::System;
+use super::system::{each_moving, Buffers, Start};
 use nalgebra::{Matrix3, Vector3};
+
+/// One step of the original loop over the whole system (F and τ from the start of the step).
+pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
+    b.clear(start);
+    each_moving(system, states, |i, _, state| {
+        body_step(state, &start.kinematics[i], &start.loads[i], dt)
+    });
+    b.book_start(start, dt);
+}
 
 /// The report's torque: the total force applied at every vertex, `Σᵢ (R r₀ᵢ) × F`, N·m.
 pub fn vertex_torque(body: &Body, rotation: &Matrix3<f64>, force: &Vector3<f64>) -> Vector3<f64> {
@@ -32,7 +43,7 @@ pub fn vertex_torque(body: &Body, rotation: &Matrix3<f64>, force: &Vector3<f64>)
 /// One step of the original loop, in place; `loads` already holds the vertex torque sum
 /// (see [`super::Integrator::loads`]).
 #[inline]
-pub fn step(state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
+fn body_step(state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
     let r = start.rotation;
     state.position += start.velocity * dt;
     state.orientation = Orientation::Matrix(r + start.angular_velocity.cross_matrix() * r * dt);

@@ -25,23 +25,23 @@
 //! over 10 s, a simulated second costs about 60 times less than with `rk4`: `benches/step.rs`).
 
 use super::super::body::Body;
-use super::super::derive::Kinematics;
 use super::super::effects::{Effect, Effects};
 use super::super::free_flow::free_flow;
 use super::super::state::{Orientation, State};
+use super::super::system::System;
+use super::system::{compose, Buffers, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Vector3};
 
-/// One kick–flow–kick step, in place.
-pub fn step(body: &Body, effects: &Effects, state: &mut State, start: &Kinematics, dt: f64) {
-    let kick = Kick::of(effects);
-    let half = 0.5 * dt;
-    kick.apply(body, state, &start.rotation, half);
-    drift(body, state, dt);
-    if kick.acts() {
-        let rotation = state.orientation.matrix();
-        kick.apply(body, state, &rotation, half);
-    }
+/// One kick–flow–kick step over the whole system, in place.
+pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
+    b.clear(start);
+    let plan = Composition {
+        kicks: &[0.5, 0.5],
+        flows: &[1.0],
+        kick: KickRule::Exact,
+    };
+    compose(&plan, drift, system, states, start, dt, b);
 }
 
 /// The declared effects, summed: what the exact kick needs.

@@ -1,9 +1,11 @@
 //! The *integrate* phase (the report's `Solve`): one step of a chosen integrator.
 //!
-//! Every integrator takes the state at the start of the step with what the derive and forces
-//! phases computed from it (`start`, `loads`) and returns the state one step `dt` later.
-//! One file per method; each module doc gives its update equations, its order and what it
-//! conserves or breaks.
+//! Every integrator takes the states of the whole system at the start of the step with what
+//! the derive and forces phases computed from them (`system::Start`) and makes them the states
+//! one step `dt` later. It is written once, against the system's derivative (`system`): a
+//! world without springs or joints is a system whose evaluation is per body. One file per
+//! method; each module doc gives its update equations, its order and what it conserves or
+//! breaks.
 
 mod euler;
 mod euler_seed;
@@ -20,13 +22,16 @@ use super::body::Body;
 use super::derive::Kinematics;
 use super::effects::{Effects, Loads};
 use super::state::{Orientation, State};
+use super::system::System;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use system::{Buffers, Start};
 
 /// Everything the front ends say about an integrator, in one place: the scene-file name, the
 /// order, the formulas the loop strip shows, the README's row, the study's colour. Adding an
-/// integrator is its file, one variant in `integrators!` and one descriptor in
-/// [`Integrator::descriptor`] (a missing one does not compile).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// integrator is its file (a `step` over the whole system, from `system`'s pieces), one
+/// variant in `integrators!`, one descriptor in [`Integrator::descriptor`] and one arm in
+/// [`Integrator::advance`] (a missing one does not compile).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Descriptor {
     /// The name used in scene files and on the command line.
     pub name: &'static str,
@@ -46,6 +51,11 @@ pub struct Descriptor {
     /// body, or one under uniform gravity. Its error there is round-off, not truncation, and
     /// has no order to fit.
     pub exact_without_torque: bool,
+    /// How far a body's position moves under a constant extra force F over a step, in units
+    /// of h²F/M: what the method makes of an impulse J = F h applied as ΔV = J/M after the
+    /// step (`cloth_coupling`'s ties). Symplectic Euler drifts with the new velocity: 1;
+    /// rk4 and the kick–drift–kick splittings: ½; explicit Euler: 0.
+    pub position_factor: f64,
 }
 
 /// Declares the enum and [`Integrator::ALL`] from one list, so that no variant can be left out
@@ -98,6 +108,7 @@ impl Integrator {
                 rate: "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
                 formula: "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
                 colour: (200, 30, 30),
+                position_factor: 0.0,
                 exact_without_torque: false,
             },
             Integrator::Euler => &Descriptor {
@@ -108,6 +119,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
                 colour: (230, 140, 0),
+                position_factor: 0.0,
                 exact_without_torque: false,
             },
             Integrator::SymplecticEuler => &Descriptor {
@@ -118,6 +130,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
                 colour: (30, 150, 60),
+                position_factor: 1.0,
                 exact_without_torque: false,
             },
             Integrator::Rk4 => &Descriptor {
@@ -128,6 +141,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
                 colour: (30, 80, 210),
+                position_factor: 0.5,
                 exact_without_torque: false,
             },
             Integrator::Splitting => &Descriptor {
@@ -138,6 +152,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
                 colour: (150, 40, 170),
+                position_factor: 0.5,
                 exact_without_torque: false,
             },
             Integrator::ExactSplitting => &Descriptor {
@@ -148,6 +163,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "exact-splitting: kick P,L by dt/2; drift x and the exact free rotation (sn, cn, dn); kick dt/2",
                 colour: (0, 160, 170),
+                position_factor: 0.5,
                 exact_without_torque: true,
             },
             Integrator::ExactSplitting4 => &Descriptor {
@@ -158,6 +174,7 @@ impl Integrator {
                 rate: QUATERNION_RATE,
                 formula: "exact-splitting-4: kicks ξ,χ,1−2(ξ+χ),χ,ξ·dt around exact free rotations (1−2λ)/2,λ,λ,(1−2λ)/2·dt",
                 colour: (120, 90, 20),
+                position_factor: 0.5,
                 exact_without_torque: true,
             },
         }
@@ -176,6 +193,12 @@ impl Integrator {
     /// Every valid name, comma-separated (for error messages).
     pub fn names() -> String {
         Integrator::ALL.map(Integrator::name).join(", ")
+    }
+
+    /// How far a body moves under a constant extra force over a step, in h²F/M
+    /// ([`Descriptor::position_factor`]).
+    pub fn position_factor(self) -> f64 {
+        self.descriptor().position_factor
     }
 
     /// Order of accuracy of the global error.
@@ -208,44 +231,26 @@ impl Integrator {
         loads
     }
 
-    /// One step of length `dt` from `state`, given the derive and forces phases' results there.
-    #[inline]
-    pub fn step(
-        self,
-        body: &Body,
-        effects: &Effects,
-        state: &State,
-        start: &Kinematics,
-        loads: &Loads,
-        dt: f64,
-    ) -> State {
-        let mut next = *state;
-        self.advance(body, effects, &mut next, start, loads, dt);
-        next
-    }
-
-    /// [`Integrator::step`] in place: `state` becomes the state one step `dt` later (the loop's
-    /// integrate phase uses this, so the state is not copied through a temporary).
-    #[inline]
+    /// One step of length `dt` of the whole system, in place: `states` become the states one
+    /// step later, from the forces phase's results at the start (`start`); `buffers` says
+    /// what the joints and springs did over the step.
     pub fn advance(
         self,
-        body: &Body,
-        effects: &Effects,
-        state: &mut State,
-        start: &Kinematics,
-        loads: &Loads,
+        system: &System,
+        states: &mut [State],
+        start: &Start,
         dt: f64,
+        buffers: &mut Buffers,
     ) {
+        let (s, b) = (states, buffers);
         match self {
-            Integrator::EulerSeed => euler_seed::step(state, start, loads, dt),
-            Integrator::Euler => euler::step(state, start, loads, dt),
-            Integrator::SymplecticEuler => symplectic_euler::step(body, state, start, loads, dt),
-            Integrator::Rk4 => *state = rk4::step(body, effects, state, start, loads, dt),
-            Integrator::Splitting => {
-                *state = splitting::step(body, effects, state, start, loads, dt)
-            }
-            Integrator::ExactSplitting => exact_splitting::step(body, effects, state, start, dt),
-            Integrator::ExactSplitting4 => exact_splitting_4::step(body, effects, state, start, dt),
+            Integrator::EulerSeed => euler_seed::step(system, s, start, dt, b),
+            Integrator::Euler => euler::step(system, s, start, dt, b),
+            Integrator::SymplecticEuler => symplectic_euler::step(system, s, start, dt, b),
+            Integrator::Rk4 => rk4::step(system, s, start, dt, b),
+            Integrator::Splitting => splitting::step(system, s, start, dt, b),
+            Integrator::ExactSplitting => exact_splitting::step(system, s, start, dt, b),
+            Integrator::ExactSplitting4 => exact_splitting_4::step(system, s, start, dt, b),
         }
     }
 }

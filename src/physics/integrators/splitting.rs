@@ -29,57 +29,36 @@
 //! and its second order buys less than `rk4`'s fourth.
 
 use super::super::body::Body;
-use super::super::derive::{derive, Kinematics};
 use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
+use super::super::system::System;
+use super::system::{compose, Buffers, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 
-/// One kick–drift–kick step with the split free rotation.
-pub fn step(
-    body: &Body,
-    effects: &Effects,
-    state: &State,
-    start: &Kinematics,
-    loads: &Loads,
-    dt: f64,
-) -> State {
-    let half = dt / 2.0;
-    let (linear_momentum, angular_momentum) = kick(
-        body,
-        effects,
-        (state.linear_momentum, state.angular_momentum),
-        &start.inv_inertia_world,
-        loads,
-        half,
-    );
-    let position = state.position + linear_momentum * (body.inv_mass * dt);
-    let orientation = free_rotation(body, &quaternion_of(state), &angular_momentum, dt);
-    let mut end = State {
-        position,
-        orientation: Orientation::Quaternion(orientation),
-        linear_momentum,
-        angular_momentum,
+/// One kick–drift–kick step with the split free rotation over the whole system, in place.
+pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
+    b.clear(start);
+    let plan = Composition {
+        kicks: &[0.5, 0.5],
+        flows: &[1.0],
+        kick: KickRule::Midpoint,
     };
-    if !effects.list().is_empty() {
-        let kinematics = derive(body, &end);
-        let loads = effects.loads(body, &kinematics);
-        (end.linear_momentum, end.angular_momentum) = kick(
-            body,
-            effects,
-            (end.linear_momentum, end.angular_momentum),
-            &kinematics.inv_inertia_world,
-            &loads,
-            half,
-        );
-    }
-    end
+    compose(&plan, drift, system, states, start, dt, b);
+}
+
+/// The free motion over `h` in place: x moves with P, the body turns by the split free
+/// rotation of its L (which it keeps).
+fn drift(body: &Body, state: &mut State, h: f64) {
+    state.position += state.linear_momentum * (body.inv_mass * h);
+    let q = free_rotation(body, &quaternion_of(state), &state.angular_momentum, h);
+    state.orientation = Orientation::Quaternion(q);
 }
 
 /// The kick `K(h)`: (P, L) under the declared effects with x and R held; `loads` are those at
 /// (P, L) and `inv_inertia_world` that of the held R.
 #[inline]
-fn kick(
+pub(super) fn kick(
     body: &Body,
     effects: &Effects,
     (p, l): (Vector3<f64>, Vector3<f64>),
@@ -96,7 +75,7 @@ fn kick(
 }
 
 /// The Strang-split free rotation over `dt` with world angular momentum `l`.
-pub(super) fn free_rotation(
+fn free_rotation(
     body: &Body,
     q: &UnitQuaternion<f64>,
     l: &Vector3<f64>,

@@ -15,11 +15,22 @@ use super::super::body::Body;
 use super::super::derive::Kinematics;
 use super::super::effects::Loads;
 use super::super::state::{Orientation, State};
+use super::super::system::System;
+use super::system::{each_moving, Buffers, Start};
 use super::{advance_quaternion, quaternion_of};
 
-/// One semi-implicit Euler step, in place.
+/// One semi-implicit Euler step over the whole system (F and τ from the start of the step).
+pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
+    b.clear(start);
+    each_moving(system, states, |i, body, state| {
+        body_step(body, state, &start.kinematics[i], &start.loads[i], dt)
+    });
+    b.book_start(start, dt);
+}
+
+/// One semi-implicit Euler step of one body, in place.
 #[inline]
-pub fn step(body: &Body, state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
+fn body_step(body: &Body, state: &mut State, start: &Kinematics, loads: &Loads, dt: f64) {
     state.linear_momentum += loads.force * dt;
     state.angular_momentum += loads.torque * dt;
     let velocity = state.linear_momentum * body.inv_mass;

@@ -1,32 +1,30 @@
-//! Every integrator over the whole system, when springs or joints couple the bodies: the
-//! derivative is `system::System::evaluate`, the forces of all bodies at once.
+//! What every integrator steps: the whole system's state Y and its derivative f(Y)
+//! (`system::System`). A world without springs or joints is a system whose evaluation is per
+//! body; with them, f is the forces of all bodies at once. Each integrator is one function
+//! `step(system, states, start, dt, buffers)` written against the pieces here, once.
 //!
 //! ```text
-//! euler-seed, euler, symplectic-euler   each body's own update, with the system's F and τ at
-//!                                       the start of the step (one evaluation)
-//! rk4        k₁…k₄ = f(Y) at world stages: every body at t + dt/2 together, so a spring or a
-//!            joint between two bodies is integrated to fourth order (four evaluations)
-//! splitting, exact-splitting            kick(dt/2) · drift(dt) · kick(dt/2)
-//! exact-splitting-4                     the Omelyan–Mryglod–Folk composition of the same
-//! kick(h)    P, L += h (F, τ) at the kick's midpoint (P + h/2 F): the joints' reactions depend
-//!            on the velocities (the centripetal term), a kick at the start alone would make
-//!            the method first order
-//! drift(h)   each body's own free flow (its method's: split or exact rotation)
+//! f(Y) at the start     the forces phase's kinematics and loads (`Start`)
+//! stage_rates(Y)        f at a stage Y (rk4): the coupled evaluation; body_rates, one body's
+//! kick(h)               P, L += h (F, τ); per body the method's own kick (exact or midpoint),
+//!                       coupled at the kick's midpoint P + h/2 F: the joints' reactions depend
+//!                       on the velocities (the centripetal term), a kick at the start alone
+//!                       would make the method first order
+//! drift(h)              each body's own free flow (its method's: split or exact rotation)
+//! compose               kick · drift · kick · … · kick, each a fraction of dt
 //! ```
 //!
 //! The reaction each joint applied is averaged over the step with the method's own weights
 //! (rk4: (j₁ + 2j₂ + 2j₃ + j₄)/6; a kick: its midpoint's), so `--joint` prints impulse / dt;
-//! the springs' damping work is summed with the same weights.
+//! the springs' damping work is summed with the same weights. A fixed body is never stepped.
 
 use super::super::body::Body;
-use super::super::derive::Kinematics;
-use super::super::effects::Loads;
+use super::super::derive::{derive, Kinematics};
+use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
 use super::super::system::{kinematics, Scratch, System};
-use super::{
-    euler, euler_seed, exact_splitting, exact_splitting_4, normalize, quaternion_of,
-    quaternion_rate, rotation_of, splitting, symplectic_euler, Integrator,
-};
+use super::exact_splitting::Kick;
+use super::{normalize, quaternion_of, quaternion_rate, rotation_of, splitting};
 use nalgebra::{Quaternion, Vector3};
 
 /// What the forces phase computed at the start of the step.
@@ -35,7 +33,7 @@ pub struct Start<'a> {
     pub kinematics: &'a [Kinematics],
     /// Total F and τ per body (effects, springs, joints).
     pub loads: &'a [Loads],
-    /// Each joint's reaction on its body A.
+    /// Each joint's reaction on its body A (empty without joints).
     pub joint_loads: &'a [Loads],
     /// The springs' damping power, W.
     pub damping_power: f64,
@@ -48,33 +46,118 @@ pub struct Buffers {
     kinematics: Vec<Kinematics>,
     positions: Vec<Vector3<f64>>,
     momenta: Vec<Vector3<f64>>,
-    y: Vec<Flat>,
-    stage: Vec<Flat>,
-    sum: Vec<Flat>,
-    k: Vec<Flat>,
+    pub(super) y: Vec<Flat>,
+    pub(super) stage: Vec<Flat>,
+    pub(super) sum: Vec<Flat>,
+    pub(super) k: Vec<Flat>,
+    loads: Vec<Loads>,
+    reactions: Vec<Loads>,
     /// Result: each joint's reaction on its body A, averaged over the step.
     pub joint_loads: Vec<Loads>,
     /// Result: the springs' damping work over the step, J (≤ 0).
     pub damping_work: f64,
 }
 
+impl Buffers {
+    /// Clears the step's results (one reaction per joint of `start`).
+    pub(super) fn clear(&mut self, start: &Start) {
+        self.joint_loads.clear();
+        self.joint_loads
+            .resize(start.joint_loads.len(), Loads::default());
+        self.damping_work = 0.0;
+    }
+
+    /// Books `w ×` the last evaluation's reactions and damping power.
+    pub(super) fn book_evaluation(&mut self, w: f64) {
+        self.book_evaluation_reactions(w);
+        self.damping_work += self.eval.damping_power * w;
+    }
+
+    /// Books `w ×` the last evaluation's reactions.
+    pub(super) fn book_evaluation_reactions(&mut self, w: f64) {
+        accumulate(&mut self.joint_loads, &self.eval.joint_loads, w);
+    }
+
+    /// Books `w ×` these reactions.
+    pub(super) fn book_reactions(&mut self, reactions: &[Loads], w: f64) {
+        accumulate(&mut self.joint_loads, reactions, w);
+    }
+
+    /// The last evaluation's damping power, W.
+    pub(super) fn damping_power(&self) -> f64 {
+        self.eval.damping_power
+    }
+
+    /// Books the start's reactions as the step's, and its damping power over dt (the
+    /// one-evaluation methods).
+    pub(super) fn book_start(&mut self, start: &Start, dt: f64) {
+        self.joint_loads.copy_from_slice(start.joint_loads);
+        self.damping_work = start.damping_power * dt;
+    }
+}
+
 /// One body's state as a vector-space element (quaternion not normalised).
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Flat {
-    x: Vector3<f64>,
-    q: Quaternion<f64>,
-    p: Vector3<f64>,
-    l: Vector3<f64>,
+pub(super) struct Flat {
+    pub x: Vector3<f64>,
+    pub q: Quaternion<f64>,
+    pub p: Vector3<f64>,
+    pub l: Vector3<f64>,
 }
 
 impl Flat {
+    /// `self + h k`.
     #[inline]
-    fn plus(&self, k: &Flat, h: f64) -> Flat {
+    pub fn plus(&self, k: &Flat, h: f64) -> Flat {
         Flat {
             x: self.x + k.x * h,
             q: self.q + k.q * h,
             p: self.p + k.p * h,
             l: self.l + k.l * h,
+        }
+    }
+
+    /// `a + b`.
+    #[inline]
+    pub fn sum(a: &Flat, b: &Flat) -> Flat {
+        Flat {
+            x: a.x + b.x,
+            q: a.q + b.q,
+            p: a.p + b.p,
+            l: a.l + b.l,
+        }
+    }
+
+    /// `h self`.
+    #[inline]
+    pub fn scaled(&self, h: f64) -> Flat {
+        Flat {
+            x: self.x * h,
+            q: self.q * h,
+            p: self.p * h,
+            l: self.l * h,
+        }
+    }
+
+    /// A state as a flat element.
+    #[inline]
+    pub fn of(s: &State) -> Flat {
+        Flat {
+            x: s.position,
+            q: *quaternion_of(s).quaternion(),
+            p: s.linear_momentum,
+            l: s.angular_momentum,
+        }
+    }
+
+    /// The state of a flat element (q normalised).
+    #[inline]
+    pub fn state(&self) -> State {
+        State {
+            position: self.x,
+            orientation: Orientation::Quaternion(normalize(self.q)),
+            linear_momentum: self.p,
+            angular_momentum: self.l,
         }
     }
 }
@@ -87,151 +170,149 @@ fn accumulate(into: &mut [Loads], from: &[Loads], w: f64) {
     }
 }
 
-/// One step of `integrator` over the whole system, in place.
-pub fn advance(
-    integrator: Integrator,
+/// Applies `update` to every body that moves (a fixed body never does), with its index.
+#[inline]
+pub(super) fn each_moving(
     system: &System,
     states: &mut [State],
-    start: &Start,
-    dt: f64,
-    buffers: &mut Buffers,
+    mut update: impl FnMut(usize, &Body, &mut State),
 ) {
-    buffers.joint_loads.clear();
-    buffers
-        .joint_loads
-        .resize(start.joint_loads.len(), Loads::default());
-    let bodies = system.bodies;
-    match integrator {
-        Integrator::EulerSeed | Integrator::Euler | Integrator::SymplecticEuler => {
-            for (i, (state, body)) in states.iter_mut().zip(bodies).enumerate() {
-                let (k, loads) = (&start.kinematics[i], &start.loads[i]);
-                match integrator {
-                    Integrator::EulerSeed => euler_seed::step(state, k, loads, dt),
-                    Integrator::Euler => euler::step(state, k, loads, dt),
-                    _ => symplectic_euler::step(body, state, k, loads, dt),
-                }
-            }
-            buffers.joint_loads.copy_from_slice(start.joint_loads);
-            buffers.damping_work = start.damping_power * dt;
+    for (i, (state, body)) in states.iter_mut().zip(system.bodies).enumerate() {
+        if !body.fixed {
+            update(i, body, state);
         }
-        Integrator::Rk4 => rk4(system, states, start, dt, buffers),
-        Integrator::Splitting | Integrator::ExactSplitting => compose(
-            integrator,
-            system,
-            states,
-            start,
-            &[0.5, 0.5],
-            &[1.0],
-            dt,
-            buffers,
-        ),
-        Integrator::ExactSplitting4 => compose(
-            integrator,
-            system,
-            states,
-            start,
-            &exact_splitting_4::KICKS,
-            &exact_splitting_4::FLOWS,
-            dt,
-            buffers,
-        ),
     }
 }
 
-/// Evaluates f's forces at flat states (q normalised on the way).
-fn evaluate_flat(system: &System, y: &[Flat], buffers: &mut Buffers) {
-    buffers.kinematics.clear();
-    buffers.positions.clear();
-    buffers.momenta.clear();
-    for (body, s) in system.bodies.iter().zip(y) {
-        buffers
-            .kinematics
-            .push(kinematics(body, rotation_of(&s.q), &s.p, &s.l));
-        buffers.positions.push(s.x);
-        buffers.momenta.push(s.l);
-    }
-    system.evaluate(
-        &buffers.positions,
-        &buffers.kinematics,
-        &buffers.momenta,
-        &mut buffers.eval,
+/// Writes flat elements back into the states of the bodies that move.
+pub(super) fn write_back(system: &System, states: &mut [State], y: &[Flat]) {
+    each_moving(system, states, |i, _, state| *state = y[i].state());
+}
+
+/// f's rates at the start of the step, at flat states `y`.
+pub(super) fn start_rates(y: &[Flat], start: &Start, out: &mut Vec<Flat>) {
+    rates(y, start.kinematics, start.loads, out);
+}
+
+/// The rates `(v, ½ ω ⊗ q, F, τ)` at flat states `y` from their kinematics and loads.
+fn rates(y: &[Flat], kinematics: &[Kinematics], loads: &[Loads], out: &mut Vec<Flat>) {
+    out.clear();
+    out.extend(
+        y.iter()
+            .zip(kinematics)
+            .zip(loads)
+            .map(|((s, k), f)| rates_at(s, k, f)),
     );
 }
 
-/// The stage rates from the last evaluation, at flat states `y`.
-fn rates(y: &[Flat], kinematics: &[Kinematics], loads: &[Loads], out: &mut Vec<Flat>) {
-    out.clear();
-    out.extend(y.iter().zip(kinematics).zip(loads).map(|((s, k), f)| Flat {
+/// The rates `(v, ½ ω ⊗ q, F, τ)` of one body at flat state `y` from its kinematics and loads.
+#[inline]
+pub(super) fn rates_at(y: &Flat, k: &Kinematics, f: &Loads) -> Flat {
+    Flat {
         x: k.velocity,
-        q: quaternion_rate(&k.angular_velocity, &s.q),
+        q: quaternion_rate(&k.angular_velocity, &y.q),
         p: f.force,
         l: f.torque,
-    }));
+    }
 }
 
-/// Classical RK4 with world stages.
-fn rk4(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.y.clear();
-    b.y.extend(states.iter().map(|s| Flat {
-        x: s.position,
-        q: *quaternion_of(s).quaternion(),
-        p: s.linear_momentum,
-        l: s.angular_momentum,
-    }));
-    // k₁ from the forces phase.
-    let mut k = std::mem::take(&mut b.k);
-    rates(&b.y, start.kinematics, start.loads, &mut k);
-    b.sum.clear();
-    b.sum.extend_from_slice(&k);
-    accumulate(&mut b.joint_loads, start.joint_loads, 1.0 / 6.0);
-    let mut work = start.damping_power / 6.0;
-    for (h, w) in [(0.5, 2.0), (0.5, 2.0), (1.0, 1.0)] {
-        b.stage.clear();
-        b.stage
-            .extend(b.y.iter().zip(&k).map(|(y, ki)| y.plus(ki, h * dt)));
-        let stage = std::mem::take(&mut b.stage);
-        evaluate_flat(system, &stage, b);
-        rates(&stage, &b.kinematics, &b.eval.loads, &mut k);
-        b.stage = stage;
-        for (s, ki) in b.sum.iter_mut().zip(&k) {
-            *s = s.plus(ki, w);
-        }
-        accumulate(&mut b.joint_loads, &b.eval.joint_loads, w / 6.0);
-        work += b.eval.damping_power * w / 6.0;
-    }
-    for (state, (y, s)) in states.iter_mut().zip(b.y.iter().zip(&b.sum)) {
-        let end = y.plus(s, dt / 6.0);
-        *state = State {
-            position: end.x,
-            orientation: Orientation::Quaternion(normalize(end.q)),
-            linear_momentum: end.p,
-            angular_momentum: end.l,
-        };
-    }
-    b.damping_work = work * dt;
-    b.k = k;
+/// f(Y) of the coupled system at a stage `y` (q not normalised: R is that of q/|q|): the
+/// whole system's evaluation, whose reactions [`Buffers::book_evaluation`] books.
+pub(super) fn stage_rates(system: &System, y: &[Flat], b: &mut Buffers, out: &mut Vec<Flat>) {
+    evaluate_flat(system, y, b);
+    rates(y, &b.kinematics, &b.eval.loads, out);
 }
 
-/// Kicks and drifts, alternating: `kicks[0]` · `flows[0]` · `kicks[1]` · … · `kicks[last]`,
+/// f of one body alone at a flat state `y` (q not normalised: R is that of q/|q|): the
+/// derive phase's `v = P/M`, `ω = R I⁻¹_body Rᵀ L` (three matrix–vector products: a stage
+/// needs ω, not I⁻¹_world), then its effects.
+#[inline]
+pub(super) fn body_rates(body: &Body, effects: &Effects, y: &Flat) -> Flat {
+    let rotation = rotation_of(&y.q);
+    let angular_velocity = rotation * (body.inv_inertia_body * rotation.tr_mul(&y.l));
+    let velocity = y.p * body.inv_mass;
+    let loads = effects.loads_at(body, &velocity, &angular_velocity);
+    Flat {
+        x: velocity,
+        q: quaternion_rate(&angular_velocity, &y.q),
+        p: loads.force,
+        l: loads.torque,
+    }
+}
+
+/// Evaluates the coupled system's forces at flat states (q normalised on the way).
+fn evaluate_flat(system: &System, y: &[Flat], b: &mut Buffers) {
+    b.kinematics.clear();
+    b.positions.clear();
+    b.momenta.clear();
+    for (body, s) in system.bodies.iter().zip(y) {
+        b.kinematics
+            .push(kinematics(body, rotation_of(&s.q), &s.p, &s.l));
+        b.positions.push(s.x);
+        b.momenta.push(s.l);
+    }
+    system.evaluate(&b.positions, &b.kinematics, &b.momenta, &mut b.eval);
+}
+
+/// How a kick changes the momenta when the forces are the declared effects alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum KickRule {
+    /// `P, L += h F(P + h/2 F, L + h/2 τ)`: exact for constant loads, second order with drag.
+    Midpoint,
+    /// The exact flow of gravity and drag with x and R held (`exact_splitting::Kick`).
+    Exact,
+}
+
+/// A kick–drift composition: `kicks[0]` · `flows[0]` · `kicks[1]` · … · `kicks[last]`,
 /// each a fraction of dt.
-#[allow(clippy::too_many_arguments)]
-fn compose(
-    integrator: Integrator,
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Composition<'a> {
+    pub kicks: &'a [f64],
+    pub flows: &'a [f64],
+    pub kick: KickRule,
+}
+
+/// One step of a kick–drift composition over the whole system, in place; `drift` is the
+/// free flow of one body over h. Coupled, every kick is the whole system's (at its
+/// midpoint); without links each body is a system of its own, composed alone (in
+/// registers) with the method's own kick.
+pub(super) fn compose(
+    plan: &Composition,
+    drift: impl Fn(&Body, &mut State, f64),
     system: &System,
     states: &mut [State],
     start: &Start,
-    kicks: &[f64],
-    flows: &[f64],
     dt: f64,
     b: &mut Buffers,
 ) {
-    b.damping_work = 0.0;
-    for (i, &kick) in kicks.iter().enumerate() {
-        midpoint_kick(system, states, (i == 0).then_some(start), kick * dt, b);
-        if let Some(&flow) = flows.get(i) {
-            for (state, body) in states.iter_mut().zip(system.bodies) {
-                drift(integrator, body, state, flow * dt);
+    if !system.coupled() {
+        let exact = (plan.kick == KickRule::Exact).then(|| Kick::of(system.effects));
+        each_moving(system, states, |i, body, state| {
+            for (j, &kick) in plan.kicks.iter().enumerate() {
+                let start = (j == 0).then_some(start);
+                match &exact {
+                    Some(exact) => exact_kick(
+                        exact,
+                        body,
+                        state,
+                        start.map(|s| &s.kinematics[i]),
+                        kick * dt,
+                    ),
+                    None => body_midpoint_kick(system, i, body, state, start, kick * dt),
+                }
+                if let Some(&flow) = plan.flows.get(j) {
+                    drift(body, state, flow * dt);
+                }
             }
+        });
+        return;
+    }
+    for (i, &kick) in plan.kicks.iter().enumerate() {
+        midpoint_kick(system, states, (i == 0).then_some(start), kick * dt, b);
+        if let Some(&flow) = plan.flows.get(i) {
+            each_moving(system, states, |_, body, state| {
+                drift(body, state, flow * dt)
+            });
         }
     }
     for j in &mut b.joint_loads {
@@ -240,19 +321,45 @@ fn compose(
     }
 }
 
-/// The free flow of one body over h, as `integrator` drifts.
-fn drift(integrator: Integrator, body: &Body, state: &mut State, h: f64) {
-    if integrator == Integrator::Splitting {
-        state.position += state.linear_momentum * (body.inv_mass * h);
-        let q = splitting::free_rotation(body, &quaternion_of(state), &state.angular_momentum, h);
-        state.orientation = Orientation::Quaternion(q);
-    } else {
-        exact_splitting::drift(body, state, h);
+/// The exact kick of the declared effects on one body (none when they do nothing); R held
+/// is the start's when given.
+#[inline]
+fn exact_kick(kick: &Kick, body: &Body, state: &mut State, start: Option<&Kinematics>, h: f64) {
+    if !kick.acts() {
+        return;
     }
+    let rotation = start.map_or_else(|| state.orientation.matrix(), |k| k.rotation);
+    kick.apply(body, state, &rotation, h);
 }
 
-/// `P, L += h (F, τ)` evaluated at `P + h/2 F, L + h/2 τ` (x and q held); the forces at the
-/// kick's start are `start`'s when given. Books h × the midpoint's reactions and damping power.
+/// The midpoint kick of the declared effects on body `i` (none without effects); the loads
+/// and I⁻¹_world at the kick's start are the start's when given.
+#[inline]
+fn body_midpoint_kick(
+    system: &System,
+    i: usize,
+    body: &Body,
+    state: &mut State,
+    start: Option<&Start>,
+    h: f64,
+) {
+    let effects = system.effects;
+    let (loads, inv_inertia_world) = match start {
+        Some(s) => (s.loads[i], s.kinematics[i].inv_inertia_world),
+        None if effects.list().is_empty() => return,
+        None => {
+            let k = derive(body, state);
+            (effects.loads(body, &k), k.inv_inertia_world)
+        }
+    };
+    let momenta = (state.linear_momentum, state.angular_momentum);
+    (state.linear_momentum, state.angular_momentum) =
+        splitting::kick(body, effects, momenta, &inv_inertia_world, &loads, h);
+}
+
+/// The coupled kick: `P, L += h (F, τ)` evaluated at `P + h/2 F, L + h/2 τ` (x and q held);
+/// the forces at the kick's start are `start`'s when given. Books h × the midpoint's
+/// reactions and damping power.
 fn midpoint_kick(
     system: &System,
     states: &mut [State],
@@ -260,39 +367,32 @@ fn midpoint_kick(
     h: f64,
     b: &mut Buffers,
 ) {
-    if start.is_none() {
-        b.y.clear();
-        b.y.extend(states.iter().map(flat_of));
-        evaluate_flat(system, &b.y.clone(), b);
+    let mut y = std::mem::take(&mut b.y);
+    let mut loads = std::mem::take(&mut b.loads);
+    loads.clear();
+    match start {
+        Some(s) => loads.extend_from_slice(s.loads),
+        None => {
+            y.clear();
+            y.extend(states.iter().map(Flat::of));
+            evaluate_flat(system, &y, b);
+            loads.extend_from_slice(&b.eval.loads);
+        }
     }
-    let loads: Vec<Loads> = match start {
-        Some(s) => s.loads.to_vec(),
-        None => b.eval.loads.clone(),
-    };
-    b.y.clear();
-    b.y.extend(states.iter().zip(&loads).map(|(s, f)| {
-        let mut y = flat_of(s);
+    y.clear();
+    y.extend(states.iter().zip(&loads).map(|(s, f)| {
+        let mut y = Flat::of(s);
         y.p += f.force * (h / 2.0);
         y.l += f.torque * (h / 2.0);
         y
     }));
-    let mid = std::mem::take(&mut b.y);
-    evaluate_flat(system, &mid, b);
-    b.y = mid;
-    for (state, f) in states.iter_mut().zip(&b.eval.loads) {
+    evaluate_flat(system, &y, b);
+    each_moving(system, states, |i, _, state| {
+        let f = &b.eval.loads[i];
         state.linear_momentum += f.force * h;
         state.angular_momentum += f.torque * h;
-    }
-    accumulate(&mut b.joint_loads, &b.eval.joint_loads.clone(), h);
-    b.damping_work += b.eval.damping_power * h;
-}
-
-/// A state as a flat element.
-fn flat_of(s: &State) -> Flat {
-    Flat {
-        x: s.position,
-        q: *quaternion_of(s).quaternion(),
-        p: s.linear_momentum,
-        l: s.angular_momentum,
-    }
+    });
+    b.book_evaluation(h);
+    b.y = y;
+    b.loads = loads;
 }

@@ -376,20 +376,32 @@ pub struct SpringLoad {
     pub damping_power: f64,
 }
 
+/// A spring's law: `F = −k (|d| − ℓ₀) − c ḋ·n` along the line of its ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringLaw {
+    /// k, N/m.
+    pub stiffness: f64,
+    /// c, N·s/m.
+    pub damping: f64,
+    /// ℓ₀, m; None: the ends' distance at t = 0.
+    pub rest_length: Option<f64>,
+}
+
 impl Spring {
-    /// A spring between world points (t = 0 poses `states`); `rest_length` None: their
-    /// distance at t = 0.
-    #[allow(clippy::too_many_arguments)]
+    /// A spring between world points (t = 0 poses `states`) with its law.
     pub fn new(
         name: String,
         a: usize,
         b: Option<usize>,
         [anchor_a, anchor_b]: [Vector3<f64>; 2],
-        stiffness: f64,
-        damping: f64,
-        rest_length: Option<f64>,
+        law: SpringLaw,
         states: &[State],
     ) -> Spring {
+        let SpringLaw {
+            stiffness,
+            damping,
+            rest_length,
+        } = law;
         Spring {
             name,
             a,
@@ -443,7 +455,8 @@ pub struct Links {
 }
 
 impl Links {
-    /// No joint and no spring: every body moves on its own (the single-body fast path).
+    /// No joint and no spring: every body moves on its own (the system's evaluation is per body:
+    /// `System::coupled`).
     pub fn is_empty(&self) -> bool {
         self.joints.is_empty() && self.springs.is_empty()
     }
