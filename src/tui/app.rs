@@ -178,6 +178,11 @@ pub struct App {
     /// What the quantity graph shows (None until picked).
     pub plot: Option<PlotChoice>,
     pub region: Region,
+    /// The user's zoom over the fitted region (mouse wheel, `z` / `Z`).
+    pub zoom: super::viewport::Zoom,
+    /// The whole screen as last drawn (set by the rendering: the mouse reads where things are
+    /// from it).
+    pub screen_area: std::cell::Cell<ratatui::layout::Rect>,
     pub axis: Axis,
     pub frame: Frame,
     pub view: View,
@@ -322,6 +327,8 @@ impl App {
             plot_series,
             plot: None,
             region,
+            zoom: Default::default(),
+            screen_area: Default::default(),
             axis: Axis::Front,
             frame: Frame::World,
             view: View::Loop,
@@ -426,6 +433,15 @@ impl App {
     /// performed.
     pub fn handle_key(&mut self, event: &KeyEvent) {
         if let Some(message) = keys::message(event, self.context()) {
+            if let Some(effect) = self.update(message) {
+                self.perform(effect);
+            }
+        }
+    }
+
+    /// A mouse event: made a message ([`super::mouse::message`]) and applied like a key.
+    pub fn handle_mouse(&mut self, event: &crossterm::event::MouseEvent) {
+        if let Some(message) = super::mouse::message(event) {
             if let Some(effect) = self.update(message) {
                 self.perform(effect);
             }
@@ -722,6 +738,9 @@ impl App {
                 }
             }
             Message::ExportCsv => return self.export_csv(),
+            Message::ZoomIn => self.zoom_by(1, None),
+            Message::ZoomOut => self.zoom_by(-1, None),
+            Message::Mouse(m) => self.mouse(m),
         }
         None
     }
@@ -1090,6 +1109,10 @@ impl App {
     /// its barycenter only (see `history`).
     fn remember(&mut self) {
         if self.at_frame_start() {
+            if self.world.hand().is_some() {
+                // The hand's pull follows the pointer, which replay cannot know: kept whole.
+                self.history.break_segment();
+            }
             self.history.push(
                 self.world.state().position,
                 &self.world,
@@ -1103,7 +1126,7 @@ impl App {
     }
 
     /// Re-reads the snapshots and keeps the bodies in frame.
-    fn refresh(&mut self) {
+    pub(super) fn refresh(&mut self) {
         let settings = LiveSettings::of(&self.world);
         if settings != self.live_settings {
             let mut world = self.world.clone();
@@ -1324,11 +1347,22 @@ impl App {
             return;
         }
         self.before_change();
+        // Frames rebuilt from a keyframe are stepped again as they ran: frames the hand pulled
+        // are keyframes (see `remember`), so the replayed ones ran without it.
+        let hand = self.world.hand().copied();
+        self.world.set_hand(None);
+        if let Some(ghost) = &mut self.ghost {
+            ghost.world.set_hand(None);
+        }
         let restored = self.history.pop_frames_into(
             frames,
             &mut self.world,
             self.ghost.as_mut().map(|g| &mut g.world),
         );
+        self.world.set_hand(hand);
+        if let Some(ghost) = &mut self.ghost {
+            ghost.world.set_hand(hand);
+        }
         if let Some(ghost) = &mut self.ghost {
             if !restored.is_some_and(|r| r.compare) {
                 ghost.world = self.world.clone();

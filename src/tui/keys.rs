@@ -76,6 +76,12 @@ pub enum Message {
     PlotAgainstTime,
     /// `X`: what the graph shown plots, as CSV.
     ExportCsv,
+    /// `z` / `Z`: the drawing larger / smaller, about its centre (the wheel zooms about the
+    /// pointer).
+    ZoomIn,
+    ZoomOut,
+    /// A mouse event (never from the key table: see `mouse::message`).
+    Mouse(super::mouse::Mouse),
 }
 
 /// Where a binding applies.
@@ -432,6 +438,20 @@ pub const KEYS: &[Binding] = &[
         "",
         "write what the graph plots as CSV (./tumble-LESSON-QUANTITY.csv)",
         Message::ExportCsv,
+    ),
+    bind(
+        &[Char('z')],
+        "z",
+        "",
+        "zoom in (the mouse wheel zooms about the pointer)",
+        Message::ZoomIn,
+    ),
+    bind(
+        &[Char('Z')],
+        "Z",
+        "",
+        "zoom out (back to the fitted view after as many z)",
+        Message::ZoomOut,
     ),
     bind(
         &[PageUp, Char('[')],

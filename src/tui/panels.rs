@@ -690,3 +690,53 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
 pub fn titles(app: &App) -> Vec<(Option<PagePanel>, String)> {
     views(app).into_iter().map(|v| (v.key, v.title)).collect()
 }
+
+/// A click on a panel row: which panel, the row's label (trimmed) and which of its numbers
+/// (0 for a click on the label; the cell under the pointer otherwise, counted from the first
+/// number, so the unit after the last number counts as one more).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RowHit {
+    pub panel: Option<PagePanel>,
+    pub label: String,
+    pub cell: usize,
+}
+
+/// The panel row under terminal cell (`col`, `row`) in the panels column `area`, as
+/// [`render`] lays them out (None: a title, a cloth panel, or no row there).
+pub fn row_at(app: &App, area: Rect, col: u16, row: u16) -> Option<RowHit> {
+    let inner = Block::new().borders(Borders::LEFT).inner(area);
+    if col < inner.x || col >= inner.x + inner.width || row < inner.y {
+        return None;
+    }
+    let mut y = inner.y;
+    for (view, rows) in arrange(app, inner.width, inner.height) {
+        let Some(rows) = rows else {
+            continue;
+        };
+        for g in rows {
+            for line in &view.groups[g] {
+                if y == row {
+                    let label = view.labels.get(g.checked_sub(1)?)?.clone();
+                    // The row's spans: " ", label, " ", then one per number, then the unit.
+                    let mut x = inner.x;
+                    let mut span = line.spans.len();
+                    for (k, s) in line.spans.iter().enumerate() {
+                        let w = s.width() as u16;
+                        if col < x + w {
+                            span = k;
+                            break;
+                        }
+                        x += w;
+                    }
+                    return Some(RowHit {
+                        panel: view.key,
+                        label,
+                        cell: span.saturating_sub(3),
+                    });
+                }
+                y += 1;
+            }
+        }
+    }
+    None
+}
