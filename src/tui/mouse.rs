@@ -86,7 +86,7 @@ impl App {
             (Action::Drag, Place::Drawing(view)) => self.drag(&view, m.col, m.row),
             (Action::Drag, _) => {
                 // Beyond the drawing the mapping goes on: the hand still follows.
-                if let Some(view) = self.drawing_viewport() {
+                if let Some(view) = self.viewport() {
                     self.drag(&view, m.col, m.row);
                 }
             }
@@ -98,8 +98,9 @@ impl App {
         }
     }
 
-    /// The projection as last drawn (None: another view, or nothing drawn yet).
-    fn drawing_viewport(&self) -> Option<Viewport> {
+    /// The projection as last drawn: its cells and their mapping to the world (None: another
+    /// view, or nothing drawn yet). [`Viewport::world_at`] turns a clicked cell into a point.
+    pub fn viewport(&self) -> Option<Viewport> {
         if self.view != View::Loop {
             return None;
         }
@@ -132,7 +133,7 @@ impl App {
     /// `notches` of zoom (in: > 0) about fractional cell `at` of the drawing (None: its centre).
     pub(super) fn zoom_by(&mut self, notches: i32, at: Option<(f64, f64)>) {
         let area = self
-            .drawing_viewport()
+            .viewport()
             .map_or(ratatui::layout::Rect::new(0, 0, 80, 24), |v| v.area);
         let fit = Mapping::fit(&self.region, self.axis, area.width, area.height);
         self.zoom.wheel(&fit, notches, at);
@@ -185,14 +186,12 @@ impl App {
         };
         let target = view.world_through(col, row, &pull.at);
         self.hold(Some(Hand { target, ..hand }));
-        if let Some(pull) = self.world.hand_pull() {
-            self.notice = Some(format!(
-                "the hand pulls {} with {} N{}",
-                self.world.body_names()[hand.body],
-                super::projection::short_length(pull.force.norm()),
-                if self.running { "" } else { " · space runs" }
-            ));
-        }
+        self.notice = Some(format!(
+            "the hand pulls {} towards the pointer (its pull is drawn; its work is the energy \
+             panel's hand row){}",
+            self.world.body_names()[hand.body],
+            if self.running { "" } else { " · space runs" }
+        ));
     }
 
     /// The button came up: the hand lets go (the ledger keeps its work).

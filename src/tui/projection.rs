@@ -175,6 +175,10 @@ fn legend(
         forces.push(Span::styled(" forces ", dim));
         items.push(forces);
     }
+    if app.world.hand().is_some() {
+        // First while a body is held: what the line from it to the pointer is.
+        items.push(item("o~x", theme::HAND, "hand".into()));
+    }
     let body = app.world.bodies().get(app.selected);
     let arrows = app.arrows && arrows_fit(app, mapping.scale);
     if arrows {
@@ -213,9 +217,6 @@ fn legend(
     items.push(item("*", theme::CONTACT, "contact".into()));
     if app.trail && body.is_some() {
         items.push(item(".", theme::TRAIL, "trail".into()));
-    }
-    if app.world.hand().is_some() {
-        items.push(item("o:x", theme::HAND, "hand".into()));
     }
     if let Some(g) = &app.ghost {
         items.push(item(":", theme::GHOST, g.comparison.name().into()));
@@ -303,7 +304,7 @@ fn add_hand(app: &App, scene: &mut Scene2d) {
         from,
         to,
         colour: theme::HAND,
-        ascii: Some(':'),
+        ascii: Some('~'),
         dashed: false,
     });
     scene.points.push((from, theme::HAND, 'o'));

@@ -416,6 +416,19 @@ impl Viewport {
         )
     }
 
+    /// The terminal cell (column, row) a world point is drawn in (None: outside the drawing).
+    pub fn terminal_cell(&self, p: &Vector3<f64>) -> Option<(u16, u16)> {
+        let (h, v) = self.axis.project(p);
+        let (c, r) = self.mapping.cell(h, v);
+        let (w, h) = (f64::from(self.area.width), f64::from(self.area.height));
+        ((0.0..w).contains(&c) && (0.0..h).contains(&r)).then(|| {
+            (
+                self.area.x + c.floor() as u16,
+                self.area.y + r.floor() as u16,
+            )
+        })
+    }
+
     /// The world point under terminal cell (column, row)'s centre in the projection plane
     /// through the origin (the coordinate along the view direction is 0); None outside the
     /// drawing.

@@ -9,6 +9,7 @@ mod forces;
 mod fuzz;
 mod history;
 mod jobs;
+mod mouse;
 mod plot;
 mod tui;
 mod tui_cloth;
