@@ -374,6 +374,50 @@ mod tests {
     use super::*;
 
     #[test]
+    fn left_button_and_wheel_events_are_messages_moves_are_not() {
+        use crossterm::event::KeyModifiers;
+        let event = |kind| MouseEvent {
+            kind,
+            column: 7,
+            row: 3,
+            modifiers: KeyModifiers::NONE,
+        };
+        let at = |action| {
+            Some(Message::Mouse(Mouse {
+                action,
+                col: 7,
+                row: 3,
+            }))
+        };
+        let left = MouseButton::Left;
+        assert_eq!(
+            message(&event(MouseEventKind::Down(left))),
+            at(Action::Press)
+        );
+        assert_eq!(
+            message(&event(MouseEventKind::Drag(left))),
+            at(Action::Drag)
+        );
+        assert_eq!(
+            message(&event(MouseEventKind::Up(left))),
+            at(Action::Release)
+        );
+        assert_eq!(
+            message(&event(MouseEventKind::ScrollUp)),
+            at(Action::WheelUp)
+        );
+        assert_eq!(
+            message(&event(MouseEventKind::ScrollDown)),
+            at(Action::WheelDown)
+        );
+        // Moves without a button (any-event tracking reports every one) and other buttons
+        // never reach the update loop: they would clear the status line.
+        assert_eq!(message(&event(MouseEventKind::Moved)), None);
+        let right = MouseButton::Right;
+        assert_eq!(message(&event(MouseEventKind::Down(right))), None);
+    }
+
+    #[test]
     fn a_point_is_inside_the_hull_of_a_square_or_its_distance_away() {
         // The unit square's corners and its centre, shuffled: the hull is the four corners;
         // (0.5, 0.5) is inside, (2, 0.5) is 1 from the right side, (2, 2) √2 from a corner.
