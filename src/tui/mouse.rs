@@ -122,8 +122,12 @@ impl App {
                 return Place::Drawing(view);
             }
         }
-        if let (Some(area), ScreenLayout::Numbers) = (areas.panels, self.layout) {
-            if let Some(hit) = panels::row_at(self, area, col, row) {
+        if let Some(area) = areas.panels {
+            let hit = match self.layout {
+                ScreenLayout::Numbers => panels::row_at(self, area, col, row),
+                ScreenLayout::Stage => panels::essentials_row_at(self, area, col, row),
+            };
+            if let Some(hit) = hit {
                 return Place::Panels(hit);
             }
         }

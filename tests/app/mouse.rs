@@ -262,6 +262,30 @@ fn the_wheel_zooms_about_the_pointer_and_z_zooms_about_the_centre() {
     assert_eq!(app.zoom.steps, 0);
 }
 
+/// The column of the `n`-th number (0-based) right of column `from` in a line's characters.
+fn number_col(chars: &[char], from: usize, n: usize) -> u16 {
+    let mut found = 0;
+    let mut col = from;
+    while col < chars.len() {
+        if chars[col] == ' ' {
+            col += 1;
+            continue;
+        }
+        let start = col;
+        while col < chars.len() && chars[col] != ' ' {
+            col += 1;
+        }
+        let token: String = chars[start..col].iter().collect();
+        if token.parse::<f64>().is_ok() {
+            if found == n {
+                return start as u16;
+            }
+            found += 1;
+        }
+    }
+    panic!("no number {n} in {}", chars.iter().collect::<String>());
+}
+
 /// The terminal cell of the `n`-th number (0-based) of the panel row whose label is `label`,
 /// found in the drawn screen (the panels column is right of the drawing's border).
 fn number_cell(shown: &str, panel_title: &str, label: &str, n: usize) -> (u16, u16) {
@@ -274,10 +298,8 @@ fn number_cell(shown: &str, panel_title: &str, label: &str, n: usize) -> (u16, u
         let chars: Vec<char> = line.chars().collect();
         let text: String = chars.iter().collect();
         if let Some(at) = text.find(&format!("│ {label} ")) {
-            let col = text[..at].chars().count() + 1;
-            // " label " then numbers 12 wide: the middle of number n.
-            let x = col + 1 + label.chars().count() + 1 + 12 * n + 8;
-            return (x as u16, y as u16);
+            let col = text[..at].chars().count() + 2 + label.chars().count();
+            return (number_col(&chars, col, n), y as u16);
         }
     }
     panic!("no row {label} under {panel_title}:\n{shown}");
@@ -327,6 +349,35 @@ fn a_click_on_a_panel_row_graphs_that_quantity() {
     );
     assert_eq!(app.view, View::Loop);
     assert!(app.notice.as_deref().unwrap_or("").contains("no graph"));
+}
+
+#[test]
+fn in_the_stage_layout_a_click_on_an_essential_row_graphs_it() {
+    // L: the essentials box beside the drawing; its ω row's z number is box.wz, its v row's
+    // x number box.vx.
+    let mut app = app_of(FREE_BOX);
+    app.update(Message::NextLayout);
+    let shown = screen(&app, 120, 40);
+    let essentials = |shown: &str, label: &str, n: usize| {
+        let (y, line) = shown
+            .lines()
+            .enumerate()
+            .find(|(_, l)| {
+                l.contains(&format!("│ {label} ")) && l.contains("rad/s") == (label == "ω")
+            })
+            .unwrap_or_else(|| panic!("no {label}:\n{shown}"));
+        let at = line.rfind(&format!("│ {label} ")).unwrap();
+        let col = line[..at].chars().count() + 2 + label.chars().count();
+        let chars: Vec<char> = line.chars().collect();
+        (number_col(&chars, col, n), y as u16)
+    };
+    mouse(&mut app, Action::Press, essentials(&shown, "ω", 2));
+    assert_eq!(app.view, View::Plot, "{shown}");
+    assert_eq!(app.plot_series.columns[app.plot.unwrap().y].name, "box.wz");
+    app.update(Message::Back);
+    let shown = screen(&app, 120, 40);
+    mouse(&mut app, Action::Press, essentials(&shown, "v", 0));
+    assert_eq!(app.plot_series.columns[app.plot.unwrap().y].name, "box.vx");
 }
 
 #[test]
