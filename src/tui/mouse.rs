@@ -206,8 +206,13 @@ impl App {
         }
     }
 
-    /// The hand on both worlds (the compare world is pulled the same way).
+    /// The hand on both worlds (the compare world is pulled the same way). Stepping back
+    /// rebuilds frames from keyframes by stepping them again, which cannot know where the
+    /// pointer was: the next frame start is kept whole (and while a body is held, every one:
+    /// `App::remember`), so no frame the hand pulled is ever replayed, and none it did not
+    /// is replayed with it.
     fn hold(&mut self, hand: Option<Hand>) {
+        self.history.break_segment();
         self.world.set_hand(hand);
         if let Some(ghost) = &mut self.ghost {
             ghost.world.set_hand(hand);

@@ -403,3 +403,53 @@ fn a_drag_in_progress_at_120x40() {
     assert!((force.norm() - 26.249).abs() < 1e-3, "{}", force.norm());
     insta::assert_snapshot!("drag_120x40", screen(&app, 120, 40));
 }
+
+#[test]
+fn stepping_back_over_a_drag_restores_every_frame_exactly() {
+    // A cube over a trampoline (a cloth: the history keeps a whole checkpoint only every K
+    // frames and rebuilds the others by stepping again). A ring with room for twenty
+    // checkpoints in 100 frames: K = 6 (⌈100/6⌉ + ⌈√6⌉ = 20). The hand pulls from frame 5 to
+    // frame 15 (eleven keyframes kept whole); ← back to
+    // t = 0 must give every frame's checkpoint bit for bit — replay cannot know the pointer,
+    // so the frames it pulled, and the first after it let go, are kept whole.
+    let lesson = tumble::scene::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tui-cloth-trampoline.toml"),
+    )
+    .unwrap();
+    let mut app = App::new(
+        lesson,
+        Options {
+            ascii: true,
+            compare: None,
+            show_timing: false,
+        },
+    );
+    let one = {
+        let mut world = app.world.clone();
+        world.step();
+        world.checkpoint().heap_bytes()
+    };
+    app.history = tumble::tui::history::History::with_budget(100, 100 * 32 + 20 * (one + 1024));
+    let mut expected = vec![app.world.checkpoint()];
+    let step = |app: &mut App, frames: usize, expected: &mut Vec<_>| {
+        for _ in 0..frames {
+            app.step_frames(1);
+            expected.push(app.world.checkpoint());
+        }
+    };
+    step(&mut app, 5, &mut expected);
+    screen(&app, 120, 40);
+    let cube = app.world.states()[0].position;
+    at(&mut app, Action::Press, cube);
+    at(&mut app, Action::Drag, cube + Vector3::new(0.2, 0.1, 0.0));
+    step(&mut app, 10, &mut expected);
+    mouse(&mut app, Action::Release, (0, 0));
+    step(&mut app, 10, &mut expected);
+    assert_eq!(app.history.interval(), 6);
+    assert!(app.world.energy_balance().hand.unwrap() != 0.0);
+    for frame in (0..25).rev() {
+        app.step_back();
+        assert_eq!(app.world.step_count(), frame as u64);
+        assert!(app.world.checkpoint() == expected[frame], "frame {frame}");
+    }
+}
