@@ -292,6 +292,7 @@ pub fn panels(s: &Snapshot, frame: Frame) -> Vec<Panel> {
         ("  drag work", b.drag_work),
         ("  contacts", b.contacts),
         ("  motor", b.motor),
+        ("  hand", b.hand),
     ] {
         if let Some(value) = value {
             energy_rows.push(scalar_row_at(label, value, "J", energy_resolution));

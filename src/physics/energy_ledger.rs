@@ -18,10 +18,12 @@
 //! ΔE_springs  = energy stored in springs (none in a world of rigid bodies: absent)
 //! W_motor     = Σ over the joints' motor rows, per step, λ (J u⁻ + J u⁺)/2: the kinetic
 //!               energy the motor's impulse λ changes, exactly (`joints::drive`)
+//! W_hand      = Σ over the hand's kicks (K after − K before): the work of the mouse's drag
+//!               spring, exactly (`hand`)
 //! drift       = the remainder: what the integrator itself created or destroyed
 //! ```
 //!
-//! (`E − E₀` then also has `+ W_motor`; a joint's limit stop is booked with the contacts.)
+//! (`E − E₀` then also has `+ W_motor + W_hand`; a joint's limit stop is booked with the contacts.)
 //!
 //! The corrected trapezoid rule is fourth-order accurate (local error `dt⁵/720 · p⁽⁴⁾`), as
 //! accurate as `rk4`, so the booked drag work never passes the quadrature's own error off as the
@@ -66,6 +68,10 @@ pub struct EnergyLedger {
     pub joint_correction: f64,
     /// W_motor: work done by the joints' motors since t = 0, J (`joints::drive`).
     pub motor_work: f64,
+    /// W_hand: work done by the hand (the mouse's drag spring) since t = 0, J (`hand`).
+    pub hand_work: f64,
+    /// The part of it that gave energy: Σ max(0, ΔK_kick) ≥ 0, J (for `supplied`).
+    pub hand_gain: f64,
 }
 
 /// The change of energy since t = 0, split by cause.
@@ -81,6 +87,8 @@ pub struct EnergyBalance {
     pub springs: Option<f64>,
     /// Work done by the joints' motors, J (None: no motor).
     pub motor: Option<f64>,
+    /// Work done by the hand (the mouse's drag spring), J (None: never held since t = 0).
+    pub hand: Option<f64>,
     /// The remainder: the numerical drift of the integrator, J.
     pub drift: f64,
     /// drift / max(|E₀|, |K₀|): the drift relative to the scene's energy scale (0 when both are 0).
@@ -131,6 +139,8 @@ impl EnergyLedger {
             contact_loss: 0.0,
             joint_correction: 0.0,
             motor_work: 0.0,
+            hand_work: 0.0,
+            hand_gain: 0.0,
         }
     }
 
@@ -151,21 +161,27 @@ impl EnergyLedger {
         }
     }
 
+    /// Books the work of one kick of the hand (`hand::Hand::kick`).
+    pub fn book_hand(&mut self, work: f64) {
+        self.hand_work += work;
+        self.hand_gain += work.max(0.0);
+    }
+
     /// ΔE_contacts: the net energy change of every collide phase so far (< 0: taken), J.
     pub fn contacts(&self) -> f64 {
         self.contact_gain + self.contact_loss
     }
 
-    /// `E₀ + W_drag + ΔE_contacts + W_motor`: the energy the world would have if the
+    /// `E₀ + W_drag + ΔE_contacts + W_motor + W_hand`: the energy the world would have if the
     /// integrator were exact, J.
     pub fn accounted(&self) -> f64 {
-        self.initial + self.drag_work + self.contacts() + self.motor_work
+        self.initial + self.drag_work + self.contacts() + self.motor_work + self.hand_work
     }
 
-    /// `E₀ + Σ max(0, ΔE_collide) + max(0, W_motor)`: the most energy the scene has supplied
-    /// (drag only takes), J.
+    /// `E₀ + Σ max(0, ΔE_collide) + max(0, W_motor) + Σ max(0, ΔK_hand)`: the most energy
+    /// the scene has supplied (drag only takes), J.
     pub fn supplied(&self) -> f64 {
-        self.initial + self.contact_gain + self.motor_work.max(0.0)
+        self.initial + self.contact_gain + self.motor_work.max(0.0) + self.hand_gain
     }
 
     /// The split of `E − E₀`. `initial` and `now` are the energies at t = 0 and now; `has_drag`
@@ -187,6 +203,7 @@ impl EnergyLedger {
             contacts: has_contacts.then_some(self.contacts()),
             springs: None,
             motor: None,
+            hand: None,
             drift,
             relative_drift: if scale > 0.0 { drift / scale } else { 0.0 },
         }

@@ -20,7 +20,8 @@
 //! | `world` | the loop, phase by phase, over every body |
 //! | `snapshot` | every quantity a user is shown |
 //! | `divergence` | the guard against non-finite or runaway states |
-//! | `energy_ledger` | where the energy went: drag work, contacts, and the remainder (drift) |
+//! | `energy_ledger` | where the energy went: drag work, contacts, the hand, and the remainder (drift) |
+//! | `hand` | the mouse's drag spring: a body pulled towards the pointer, its work booked |
 
 pub mod body;
 pub mod cloth;
@@ -35,6 +36,7 @@ pub mod envelope;
 pub mod force_arrows;
 pub mod free_flow;
 pub mod free_top;
+pub mod hand;
 pub mod integrators;
 pub mod joints;
 pub mod snapshot;

@@ -32,6 +32,7 @@ use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effect, Effects, Loads};
 use super::energy::{energy, Energy};
 use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
+use super::hand::{Hand, Pull};
 use super::integrators::system::{Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
 use super::joints::drive::{drive, Buffers as DriveBuffers, Drive, Scene as DriveScene};
@@ -243,6 +244,9 @@ pub struct World {
     /// The states before the rigid response, when some body holds attached particles
     /// (`carry_attached`).
     carry_start: Vec<State>,
+    /// The hand (the mouse's drag spring), while a front end holds a body (`hand`): an input,
+    /// like the pointer, so no part of a checkpoint.
+    hand: Option<Hand>,
 }
 
 impl World {
@@ -314,6 +318,7 @@ impl World {
             step_start: Vec::new(),
             drive_buffers: DriveBuffers::default(),
             carry_start: Vec::new(),
+            hand: None,
         }
     }
 
@@ -467,13 +472,46 @@ impl World {
         phase
     }
 
-    /// *derive*: I⁻¹_world, ω and v of every body from its state.
+    /// *derive*: I⁻¹_world, ω and v of every body from its state (after the hand's kick, while
+    /// a body is held: see `hand`).
     #[inline]
     fn derive_phase(&mut self) {
+        if let Some(hand) = self.hand {
+            self.kick_hand(&hand);
+        }
         let now = &mut self.now;
         for ((k, body), state) in now.kinematics.iter_mut().zip(&self.bodies).zip(&now.states) {
             *k = derive(body, state);
         }
+    }
+
+    /// The hand's kick at the start of a frame, its work booked (`hand`).
+    fn kick_hand(&mut self, hand: &Hand) {
+        let (Some(body), Some(state)) = (
+            self.bodies.get(hand.body),
+            self.now.states.get_mut(hand.body),
+        ) else {
+            return;
+        };
+        let work = hand.kick(body, state, self.dt);
+        self.now.ledger.book_hand(work);
+    }
+
+    /// Holds a body with the hand (the mouse's drag spring) from the next frame on, or lets
+    /// go (None). See `hand`.
+    pub fn set_hand(&mut self, hand: Option<Hand>) {
+        self.hand = hand;
+    }
+
+    /// The hand, while a body is held.
+    pub fn hand(&self) -> Option<&Hand> {
+        self.hand.as_ref()
+    }
+
+    /// Where the hand holds its body and how hard it pulls now (None: nothing held).
+    pub fn hand_pull(&self) -> Option<Pull> {
+        let hand = self.hand.as_ref()?;
+        Some(hand.pull(self.bodies.get(hand.body)?, self.now.states.get(hand.body)?))
     }
 
     /// *forces*: F and τ of the declared effects at the derived velocities (for `euler-seed`,
@@ -1462,6 +1500,9 @@ impl World {
         );
         if self.links.motorised() {
             balance.motor = Some(self.now.ledger.motor_work);
+        }
+        if self.hand.is_some() || self.now.ledger.hand_work != 0.0 {
+            balance.hand = Some(self.now.ledger.hand_work);
         }
         if !cloths.is_empty() {
             // Shown, not subtracted: the springs' energy is part of E already.

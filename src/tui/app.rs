@@ -181,6 +181,11 @@ pub struct App {
     /// `a` adds and removes them, see [`App::plot_curves`]).
     pub plot_extra: Vec<usize>,
     pub region: Region,
+    /// The user's zoom over the fitted region (mouse wheel, `z` / `Z`).
+    pub zoom: super::viewport::Zoom,
+    /// The whole screen as last drawn (set by the rendering: the mouse reads where things are
+    /// from it).
+    pub screen_area: std::cell::Cell<ratatui::layout::Rect>,
     pub axis: Axis,
     pub frame: Frame,
     pub view: View,
@@ -328,6 +333,8 @@ impl App {
             plot: None,
             plot_extra: Vec::new(),
             region,
+            zoom: Default::default(),
+            screen_area: Default::default(),
             axis: Axis::Front,
             frame: Frame::World,
             view: View::Loop,
@@ -433,6 +440,15 @@ impl App {
     /// performed.
     pub fn handle_key(&mut self, event: &KeyEvent) {
         if let Some(message) = keys::message(event, self.context()) {
+            if let Some(effect) = self.update(message) {
+                self.perform(effect);
+            }
+        }
+    }
+
+    /// A mouse event: made a message ([`super::mouse::message`]) and applied like a key.
+    pub fn handle_mouse(&mut self, event: &crossterm::event::MouseEvent) {
+        if let Some(message) = super::mouse::message(event) {
             if let Some(effect) = self.update(message) {
                 self.perform(effect);
             }
@@ -740,6 +756,9 @@ impl App {
             }
             Message::ExportCsv => return self.export_csv(),
             Message::Tool(key) => self.tool_key(key),
+            Message::ZoomIn => self.zoom_by(1, None),
+            Message::ZoomOut => self.zoom_by(-1, None),
+            Message::Mouse(m) => self.mouse(m),
         }
         None
     }
@@ -1254,6 +1273,10 @@ impl App {
     /// its barycenter only (see `history`).
     fn remember(&mut self) {
         if self.at_frame_start() {
+            if self.world.hand().is_some() {
+                // The hand's pull follows the pointer, which replay cannot know: kept whole.
+                self.history.break_segment();
+            }
             self.history.push(
                 self.world.state().position,
                 &self.world,
@@ -1267,7 +1290,7 @@ impl App {
     }
 
     /// Re-reads the snapshots and keeps the bodies in frame.
-    fn refresh(&mut self) {
+    pub(super) fn refresh(&mut self) {
         let settings = LiveSettings::of(&self.world);
         if settings != self.live_settings {
             let mut world = self.world.clone();
@@ -1490,11 +1513,22 @@ impl App {
             return;
         }
         self.before_change();
+        // Frames rebuilt from a keyframe are stepped again as they ran: frames the hand pulled
+        // are keyframes (see `remember`), so the replayed ones ran without it.
+        let hand = self.world.hand().copied();
+        self.world.set_hand(None);
+        if let Some(ghost) = &mut self.ghost {
+            ghost.world.set_hand(None);
+        }
         let restored = self.history.pop_frames_into(
             frames,
             &mut self.world,
             self.ghost.as_mut().map(|g| &mut g.world),
         );
+        self.world.set_hand(hand);
+        if let Some(ghost) = &mut self.ghost {
+            ghost.world.set_hand(hand);
+        }
         if let Some(ghost) = &mut self.ghost {
             if !restored.is_some_and(|r| r.compare) {
                 ghost.world = self.world.clone();

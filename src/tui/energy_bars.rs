@@ -61,6 +61,11 @@ pub const BARS: &[BarKind] = &[
         colour: Color::Yellow,
         read: |_, b| b.motor.map(|w| -w),
     },
+    BarKind {
+        label: "→ hand",
+        colour: Color::LightYellow,
+        read: |_, b| b.hand.map(|w| -w),
+    },
 ];
 
 /// Cells of the longest bar.

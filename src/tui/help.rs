@@ -17,6 +17,13 @@ pub const CARRIED: [&str; 2] = [
     "compare ghost (k), speed relative to real time, ASCII. They start paused at t = 0.",
 ];
 
+/// What the mouse does (everything it does, a key does too).
+pub const MOUSE: [&str; 3] = [
+    "Mouse: click a body to select it; drag it to pull it with a spring (its work is the",
+    "energy panel's hand row); the wheel zooms about the pointer; click a panel row (ω, L, x,",
+    "v, K V E) to graph that quantity (as p does).",
+];
+
 /// The help text, one line per binding (also what the tests read).
 pub fn lines() -> Vec<Line<'static>> {
     let key = theme::ACCENT.add_modifier(Modifier::BOLD);
@@ -39,6 +46,10 @@ pub fn lines() -> Vec<Line<'static>> {
                 Span::raw(b.help),
             ]));
         }
+    }
+    lines.push(Line::raw(""));
+    for line in MOUSE {
+        lines.push(Line::styled(line, theme::SOFT));
     }
     lines.push(Line::raw(""));
     for line in CARRIED {

@@ -82,6 +82,12 @@ pub enum Message {
     ExportCsv,
     /// The measuring tools' keys (`w` `o` `O` `T` `m` `M` `A` `V`: `tools.rs`).
     Tool(ToolKey),
+    /// `z` / `Z`: the drawing larger / smaller, about its centre (the wheel zooms about the
+    /// pointer).
+    ZoomIn,
+    ZoomOut,
+    /// A mouse event (never from the key table: see `mouse::message`).
+    Mouse(super::mouse::Mouse),
 }
 
 /// Where a binding applies.
@@ -462,6 +468,14 @@ pub const KEYS: &[Binding] = &[
     bind(&[Char('M')], "M", "", "", Message::Tool(ToolKey::RulerTo)),
     bind(&[Char('A')], "A", "", "", Message::Tool(ToolKey::ProtractorAxis)),
     bind(&[Char('V')], "V", "", "", Message::Tool(ToolKey::ProtractorAgainst)),
+    bind(
+        &[Char('z')],
+        "z Z",
+        "",
+        "zoom in / out (as many Z as z: the fitted view; the wheel zooms about the pointer)",
+        Message::ZoomIn,
+    ),
+    bind(&[Char('Z')], "Z", "", "", Message::ZoomOut),
     bind(
         &[PageUp, Char('[')],
         "PgUp [",

@@ -24,6 +24,7 @@
 //! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
 //! | `jump_prompt`, `timeline` | the jump prompt (`J`); where a run pauses by itself |
 //! | `tools` | the measuring tools (`w` `o` `O` `T` `m` `M` `A` `V`): state, keys, readout panels |
+//! | `mouse` | select, pull (the hand), zoom, graph a panel row: mouse events as messages |
 //!
 //! When paused the app blocks on input; when running it advances on a fixed dt, as many frames
 //! as the chosen speed asks for since the last render (at most [`MAX_FRAMES_PER_RENDER`], and
@@ -47,6 +48,7 @@ pub mod layout;
 pub mod lesson_pane;
 pub mod loop_strip;
 pub mod loop_view;
+pub mod mouse;
 pub mod panels;
 pub mod period_timer;
 pub mod picker;
@@ -108,16 +110,50 @@ pub fn run_against(
     let mut app = App::interactive(lesson, options);
     app.against = against;
     let terminal = ratatui::init();
+    let capture = MouseCapture::enable();
     let result = event_loop(terminal, &mut app);
+    drop(capture);
     ratatui::restore();
     result
 }
 
-fn handle(app: &mut App, event: Event) {
-    if let Event::Key(key) = event {
-        app.handle_key(&key);
+/// Mouse capture while the app runs: disabled again when dropped, and by the panic hook
+/// (before ratatui's, which restores the rest of the terminal), so a shell never inherits it.
+struct MouseCapture;
+
+impl MouseCapture {
+    fn enable() -> MouseCapture {
+        static HOOK: std::sync::Once = std::sync::Once::new();
+        HOOK.call_once(|| {
+            let previous = std::panic::take_hook();
+            std::panic::set_hook(Box::new(move |info| {
+                disable_mouse_capture();
+                previous(info);
+            }));
+        });
+        // A terminal without mouse support still runs the app, by keys.
+        let _ = crossterm::execute!(std::io::stdout(), crossterm::event::EnableMouseCapture);
+        MouseCapture
     }
-    // Resize: the next draw uses the new size.
+}
+
+impl Drop for MouseCapture {
+    fn drop(&mut self) {
+        disable_mouse_capture();
+    }
+}
+
+fn disable_mouse_capture() {
+    let _ = crossterm::execute!(std::io::stdout(), crossterm::event::DisableMouseCapture);
+}
+
+fn handle(app: &mut App, event: Event) {
+    match event {
+        Event::Key(key) => app.handle_key(&key),
+        Event::Mouse(mouse) => app.handle_mouse(&mouse),
+        // Resize: the next draw uses the new size.
+        _ => {}
+    }
 }
 
 fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<()> {

@@ -589,18 +589,30 @@ fn page_quotes(app: &App) -> (Vec<PagePanel>, Vec<(Measure, usize)>) {
 
 /// The essentials panel's lines (with the ghost's in compare mode).
 fn essentials_lines(app: &App) -> Vec<Line<'static>> {
+    essentials_groups(app).0.into_iter().flatten().collect()
+}
+
+/// The essentials panel's lines in groups (the title, then each row with its ghost row) and
+/// its rows' labels.
+fn essentials_groups(app: &App) -> (Vec<Vec<Line<'static>>>, Vec<String>) {
     let panel = essentials_of(app, &app.snapshot);
     let previous = app.previous.as_ref().map(|p| essentials_of(app, p));
     let compare = app
         .ghost
         .as_ref()
         .map(|g| (essentials_of(app, &g.snapshot), g.comparison.name()));
-    PanelView {
+    let groups = PanelView {
         panel: &panel,
         previous: previous.as_ref(),
         compare: compare.as_ref().map(|(p, name)| (p, *name)),
     }
-    .lines()
+    .groups();
+    let labels = panel
+        .rows
+        .iter()
+        .map(|r| r.label.trim().to_string())
+        .collect();
+    (groups, labels)
 }
 
 /// The essentials panel's size with its border: (width, height); its title goes in the border.
@@ -732,4 +744,100 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
 /// Each panel of the stack (in stacking order) by the name a page gives it, with its title.
 pub fn titles(app: &App) -> Vec<(Option<PagePanel>, String)> {
     views(app).into_iter().map(|v| (v.key, v.title)).collect()
+}
+
+/// A click on a panel row: which panel, the row's label (trimmed) and which of its numbers
+/// (0 for a click on the label; the cell under the pointer otherwise, counted from the first
+/// number, so the unit after the last number counts as one more).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RowHit {
+    pub panel: Option<PagePanel>,
+    pub label: String,
+    pub cell: usize,
+}
+
+/// The number under column `col` of a panel row's line drawn from column `x`: its spans are
+/// " ", the label, " ", one per number, then the unit (0 on the label).
+fn cell_at(line: &Line, mut x: u16, col: u16) -> usize {
+    let mut span = line.spans.len();
+    for (k, s) in line.spans.iter().enumerate() {
+        let w = s.width() as u16;
+        if col < x + w {
+            span = k;
+            break;
+        }
+        x += w;
+    }
+    span.saturating_sub(3)
+}
+
+/// The essentials row under terminal cell (`col`, `row`) in the stage layout's essentials box
+/// `area`, as [`render_essentials`] draws it; its panel is the one each essential row comes
+/// from (None: the border, or no row there).
+pub fn essentials_row_at(app: &App, area: Rect, col: u16, row: u16) -> Option<RowHit> {
+    let inner = Block::bordered().inner(area);
+    if col < inner.x || col >= inner.x + inner.width || row < inner.y {
+        return None;
+    }
+    let (groups, labels) = essentials_groups(app);
+    let rows: Vec<&Line> = groups.iter().skip(1).flatten().collect();
+    let widest_row = rows.iter().map(|l| l.width()).max().unwrap_or(0);
+    if widest_row > usize::from(inner.width) || rows.len() > usize::from(inner.height) {
+        return None; // "… enlarge for the numbers"
+    }
+    let mut y = inner.y;
+    // The title line is the box's title; the rows follow inside.
+    for (g, group) in groups.iter().enumerate().skip(1) {
+        for line in group {
+            if y == row {
+                let label = labels.get(g - 1)?.clone();
+                let panel = match label.as_str() {
+                    "x" => PagePanel::State,
+                    "v" | "P" => PagePanel::Momentum,
+                    "ω" => PagePanel::AngularVelocity,
+                    "L" => PagePanel::AngularMomentum,
+                    "K, V, E" => PagePanel::Energy,
+                    "P total" => PagePanel::System,
+                    name if app.world.body_index(name).is_some() => PagePanel::BodyEnergy,
+                    _ => return None,
+                };
+                return Some(RowHit {
+                    panel: Some(panel),
+                    label,
+                    cell: cell_at(line, inner.x, col),
+                });
+            }
+            y += 1;
+        }
+    }
+    None
+}
+
+/// The panel row under terminal cell (`col`, `row`) in the panels column `area`, as
+/// [`render`] lays them out (None: a title, a cloth panel, or no row there).
+pub fn row_at(app: &App, area: Rect, col: u16, row: u16) -> Option<RowHit> {
+    let inner = Block::new().borders(Borders::LEFT).inner(area);
+    if col < inner.x || col >= inner.x + inner.width || row < inner.y {
+        return None;
+    }
+    let mut y = inner.y;
+    for (view, rows) in arrange(app, inner.width, inner.height) {
+        let Some(rows) = rows else {
+            continue;
+        };
+        for g in rows {
+            for line in &view.groups[g] {
+                if y == row {
+                    let label = view.labels.get(g.checked_sub(1)?)?.clone();
+                    return Some(RowHit {
+                        panel: view.key,
+                        label,
+                        cell: cell_at(line, inner.x, col),
+                    });
+                }
+                y += 1;
+            }
+        }
+    }
+    None
 }

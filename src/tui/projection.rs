@@ -16,7 +16,7 @@
 
 use super::app::App;
 use super::theme;
-use super::viewport::{Axis, Mapping};
+use super::viewport::{Axis, Mapping, Viewport};
 use crate::physics::body::{box_corners, box_edges};
 use crate::physics::cloth::Cloth;
 use crate::physics::collision::geometry::Shape;
@@ -53,25 +53,52 @@ pub fn arrows_fit(app: &App, scale: f64) -> bool {
         .is_some_and(|b| b.radius >= MIN_ARROW_RADIUS_COLUMNS * scale)
 }
 
+/// The drawing's cells inside the projection pane `area` (its border and legend line left
+/// out), None when too small to draw.
+fn drawing_area(area: Rect) -> Option<Rect> {
+    let inner = Block::bordered().inner(area);
+    if inner.width < 4 || inner.height < 3 {
+        return None;
+    }
+    Some(Rect {
+        height: inner.height - 1,
+        ..inner
+    })
+}
+
+/// Where the projection pane `area` draws the world: its drawing's cells and their mapping
+/// (the view region fitted, then the user's zoom). What the mouse points at
+/// ([`Viewport::world_at`]).
+pub fn viewport(app: &App, area: Rect) -> Option<Viewport> {
+    let drawing = drawing_area(area)?;
+    let mapping = Mapping::fit(&app.region, app.axis, drawing.width, drawing.height);
+    Some(Viewport {
+        area: drawing,
+        mapping: mapping.zoomed(&app.zoom),
+        axis: app.axis,
+    })
+}
+
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let title = format!(" {} ({}) ", app.axis.name(), app.axis.legend());
     let block = Block::bordered().title(title);
     let inner = block.inner(area);
     block.render(area, buf);
-    if inner.width < 4 || inner.height < 3 {
+    let Some(Viewport {
+        area: drawing,
+        mapping,
+        ..
+    }) = viewport(app, area)
+    else {
         return;
-    }
-    let drawing = Rect {
-        height: inner.height - 1,
-        ..inner
     };
-    let mapping = Mapping::fit(&app.region, app.axis, drawing.width, drawing.height);
     let mut scene = scene_2d(app, mapping.scale);
     let forces = if app.forces {
         add_forces(app, &mapping, &mut scene)
     } else {
         None
     };
+    add_hand(app, &mut scene);
     if app.ascii {
         draw_ascii(&scene, &mapping, drawing, buf);
     } else {
@@ -147,6 +174,10 @@ fn legend(
         }
         forces.push(Span::styled(" forces ", dim));
         items.push(forces);
+    }
+    if app.world.hand().is_some() {
+        // First while a body is held: what the line from it to the pointer is.
+        items.push(item("o~x", theme::HAND, "hand".into()));
     }
     let body = app.world.bodies().get(app.selected);
     let arrows = app.arrows && arrows_fit(app, mapping.scale);
@@ -260,6 +291,31 @@ fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64,
     let (newtons, _) = scale_bar(largest / 2.0 / 6.0);
     let cols = (newtons * per_newton / mapping.scale).round().max(2.0) as usize;
     Some((newtons, cols))
+}
+
+/// The hand (the mouse's drag spring, `physics::hand`), while a body is held: a line from the
+/// grabbed point to the pointer, a mark at each end, and the pull's size at the pointer.
+fn add_hand(app: &App, scene: &mut Scene2d) {
+    let (Some(hand), Some(pull)) = (app.world.hand(), app.world.hand_pull()) else {
+        return;
+    };
+    let (from, to) = (app.axis.project(&pull.at), app.axis.project(&hand.target));
+    scene.segments.push(Segment {
+        from,
+        to,
+        colour: theme::HAND,
+        ascii: Some('~'),
+        dashed: false,
+    });
+    scene.points.push((from, theme::HAND, 'o'));
+    scene.points.push((to, theme::HAND, 'x'));
+    scene.labels.push(Label {
+        at: to,
+        colour: theme::HAND,
+        text: format!("hand {} N", short_length(pull.force.norm())),
+        past: None,
+        shift: (1, 0),
+    });
 }
 
 /// A screen segment: ends, colour, its ASCII character (None: chosen by slope), dashed.

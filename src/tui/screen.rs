@@ -18,18 +18,30 @@ use ratatui::widgets::{Paragraph, Widget, Wrap};
 pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
 
-impl Widget for &App {
-    fn render(self, area: Rect, buf: &mut Buffer) {
-        if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
-            enlarge_message(area, buf);
-            return;
-        }
-        let [top, main, status] = Layout::vertical([
+/// The header line, the main area and the status bar of a screen `area` (None: too small, the
+/// "enlarge" message instead).
+pub fn split(app: &App, area: Rect) -> Option<[Rect; 3]> {
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        return None;
+    }
+    Some(
+        Layout::vertical([
             Constraint::Length(1),
             Constraint::Min(0),
-            Constraint::Length(status_bar::height(self, area.width, area.height)),
+            Constraint::Length(status_bar::height(app, area.width, area.height)),
         ])
-        .areas(area);
+        .areas(area),
+    )
+}
+
+impl Widget for &App {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        // The mouse reads the screen as last drawn.
+        self.screen_area.set(area);
+        let Some([top, main, status]) = split(self, area) else {
+            enlarge_message(area, buf);
+            return;
+        };
         header::render(self, top, buf);
         match self.view {
             View::Loop => loop_view::render(self, main, buf),

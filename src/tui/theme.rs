@@ -42,6 +42,8 @@ pub const FORCE_GRAVITY: Color = Color::LightYellow;
 pub const FORCE_CONTACT: Color = Color::LightRed;
 pub const FORCE_JOINT: Color = Color::LightBlue;
 pub const FORCE_SPRING: Color = Color::LightMagenta;
+/// The hand (the mouse's drag spring) and its pull.
+pub const HAND: Color = Color::LightCyan;
 
 /// Row labels of the numeric panels.
 pub const LABEL: Style = Style::new().fg(Color::Cyan);

@@ -49,6 +49,8 @@ pub struct Tools {
     pub protractor_shown: bool,
     /// Set by keys; None: the page's, else the first body's y axis against the vertical.
     pub protractor: Option<Protractor>,
+    /// Clicks on empty drawing that set a ruler end (even: the next sets `from`, odd: `to`).
+    pub ruler_clicks: usize,
 }
 
 /// The axis a view looks along: its coordinate of a clicked point is unknown.

@@ -2,10 +2,12 @@
 //! the world kept in frame, which grows (a little at a time) whenever a body or a cloth would
 //! leave it,
 //! and the mapping to terminal cells with the right aspect ratio (a cell is about twice as tall
-//! as wide).
+//! as wide); the user's zoom (mouse wheel, keys `z` `Z`) on top of it; and the way back from a
+//! terminal cell to the world ([`Viewport::world_at`]: what the mouse points at).
 
 use crate::physics::{Body, Obstacle, World};
 use nalgebra::Vector3;
+use ratatui::layout::Rect;
 
 /// The view direction of the orthographic projection.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -60,6 +62,17 @@ impl Axis {
             Axis::Front => Vector3::z(),
             Axis::Side => -Vector3::x(),
             Axis::Top => Vector3::y(),
+        }
+    }
+
+    /// The world point with screen coordinates (right, up) = (h, v) whose coordinate along the
+    /// view direction is `through`'s (the inverse of [`Axis::project`] in the plane through
+    /// that point).
+    pub fn unproject(self, h: f64, v: f64, through: &Vector3<f64>) -> Vector3<f64> {
+        match self {
+            Axis::Front => Vector3::new(h, v, through.z),
+            Axis::Side => Vector3::new(through.x, v, h),
+            Axis::Top => Vector3::new(h, through.y, -v),
         }
     }
 
@@ -286,6 +299,37 @@ impl Mapping {
         )
     }
 
+    /// Screen coordinates of fractional cell coordinates (the inverse of [`Mapping::cell`]);
+    /// a cell's centre is at (column + ½, row + ½).
+    pub fn screen_at(&self, col: f64, row: f64) -> (f64, f64) {
+        (
+            self.left + col * self.scale,
+            self.top - row * 2.0 * self.scale,
+        )
+    }
+
+    /// Screen coordinates of the grid's centre.
+    pub fn centre(&self) -> (f64, f64) {
+        self.screen_at(0.5 * f64::from(self.cols), 0.5 * f64::from(self.rows))
+    }
+
+    /// This (fitted) mapping with the user's zoom: `ZOOM_STEP^steps` times larger, its centre
+    /// moved by the zoom's offset.
+    pub fn zoomed(&self, zoom: &Zoom) -> Mapping {
+        if *zoom == Zoom::default() {
+            return *self;
+        }
+        let scale = self.scale / zoom.factor();
+        let (h, v) = self.centre();
+        let (h, v) = (h + zoom.offset.0, v + zoom.offset.1);
+        Mapping {
+            scale,
+            left: h - 0.5 * f64::from(self.cols) * scale,
+            top: v + f64::from(self.rows) * scale,
+            ..*self
+        }
+    }
+
     /// Horizontal and vertical screen bounds covered by the grid.
     pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
         let right = self.left + f64::from(self.cols) * self.scale;
@@ -294,9 +338,175 @@ impl Mapping {
     }
 }
 
+/// One notch of the wheel (or `z`) draws the view this many times larger.
+pub const ZOOM_STEP: f64 = 1.25;
+/// The most notches out and in from the fitted view (1.25⁻⁶ ≈ 0.26×, 1.25¹⁶ ≈ 36×).
+pub const ZOOM_STEPS: std::ops::RangeInclusive<i32> = -6..=16;
+
+/// The user's zoom over the fitted view: notches of [`ZOOM_STEP`] and where it looks.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Zoom {
+    /// Notches in (> 0) or out (< 0); 0 is the fitted view, whatever the offset.
+    pub steps: i32,
+    /// The view's centre from the fitted view's centre, screen coordinates (right, up), m.
+    pub offset: (f64, f64),
+}
+
+impl Zoom {
+    /// How many times larger than the fitted view things are drawn.
+    pub fn factor(&self) -> f64 {
+        ZOOM_STEP.powi(self.steps)
+    }
+
+    /// `notches` more (in: > 0, out: < 0), keeping the point under fractional cell `at`
+    /// (column, row of the grid; None: the centre) where it is on screen. `fit` is the fitted
+    /// mapping the zoom applies to. Back at 0 notches the view is the fitted one again.
+    ///
+    /// ```text
+    /// (h, v) = the screen point under `at` before;  s' = s_fit / 1.25^steps
+    /// left' = h − col·s',  top' = v + 2 row·s'      (the same cell shows the same point)
+    /// offset = centre(left', top') − centre(fit)
+    /// ```
+    pub fn wheel(&mut self, fit: &Mapping, notches: i32, at: Option<(f64, f64)>) {
+        let steps = (self.steps + notches).clamp(*ZOOM_STEPS.start(), *ZOOM_STEPS.end());
+        if steps == 0 {
+            *self = Zoom::default();
+            return;
+        }
+        let before = fit.zoomed(self);
+        let (cols, rows) = (f64::from(fit.cols), f64::from(fit.rows));
+        let (col, row) = at.unwrap_or((0.5 * cols, 0.5 * rows));
+        let (h, v) = before.screen_at(col, row);
+        let scale = fit.scale / ZOOM_STEP.powi(steps);
+        let centre = (
+            h + (0.5 * cols - col) * scale,
+            v - (0.5 * rows - row) * 2.0 * scale,
+        );
+        let (fh, fv) = fit.centre();
+        *self = Zoom {
+            steps,
+            offset: (centre.0 - fh, centre.1 - fv),
+        };
+    }
+}
+
+/// Where the projection was last drawn: its cells on the terminal, their mapping and the view
+/// axis. The way back from a terminal cell to the world (the mouse; a ruler's clicked points).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Viewport {
+    /// The drawing's cells, terminal coordinates.
+    pub area: Rect,
+    pub mapping: Mapping,
+    pub axis: Axis,
+}
+
+impl Viewport {
+    /// Whether terminal cell (column, row) is in the drawing.
+    pub fn contains(&self, col: u16, row: u16) -> bool {
+        let a = self.area;
+        col >= a.x && col < a.x + a.width && row >= a.y && row < a.y + a.height
+    }
+
+    /// Fractional cell coordinates in the grid of terminal cell (column, row)'s centre (outside
+    /// the drawing too: the mapping goes on).
+    pub fn cell_of(&self, col: u16, row: u16) -> (f64, f64) {
+        (
+            f64::from(col) - f64::from(self.area.x) + 0.5,
+            f64::from(row) - f64::from(self.area.y) + 0.5,
+        )
+    }
+
+    /// The terminal cell (column, row) a world point is drawn in (None: outside the drawing).
+    pub fn terminal_cell(&self, p: &Vector3<f64>) -> Option<(u16, u16)> {
+        let (h, v) = self.axis.project(p);
+        let (c, r) = self.mapping.cell(h, v);
+        let (w, h) = (f64::from(self.area.width), f64::from(self.area.height));
+        ((0.0..w).contains(&c) && (0.0..h).contains(&r)).then(|| {
+            (
+                self.area.x + c.floor() as u16,
+                self.area.y + r.floor() as u16,
+            )
+        })
+    }
+
+    /// The world point under terminal cell (column, row)'s centre in the projection plane
+    /// through the origin (the coordinate along the view direction is 0); None outside the
+    /// drawing.
+    pub fn world_at(&self, col: u16, row: u16) -> Option<Vector3<f64>> {
+        self.contains(col, row)
+            .then(|| self.world_through(col, row, &Vector3::zeros()))
+    }
+
+    /// The world point under terminal cell (column, row)'s centre in the projection plane
+    /// through `through` (its coordinate along the view direction kept), also outside the
+    /// drawing.
+    pub fn world_through(&self, col: u16, row: u16, through: &Vector3<f64>) -> Vector3<f64> {
+        let (c, r) = self.cell_of(col, row);
+        let (h, v) = self.mapping.screen_at(c, r);
+        self.axis.unproject(h, v, through)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn world_at_inverts_the_projection_in_every_view() {
+        // A 40 × 20 drawing at terminal (10, 5) of the unit cube region: 1/40 m per column.
+        // Cell (0, 0)'s centre is (0.0125, 0.975) on screen; in the front view that is
+        // x = 0.0125, y = 0.975 in the plane z = 0; from the side z and y, from above x and −z.
+        let region = Region {
+            min: Vector3::zeros(),
+            max: Vector3::repeat(1.0),
+            max_extent: 1.0,
+        };
+        for axis in [Axis::Front, Axis::Side, Axis::Top] {
+            let view = Viewport {
+                area: Rect::new(10, 5, 40, 20),
+                mapping: Mapping::fit(&region, axis, 40, 20),
+                axis,
+            };
+            let p = view.world_at(10, 5).unwrap();
+            let (h, v) = axis.project(&p);
+            let (h0, v0) = axis.project(&region.min);
+            let (h1, v1) = axis.project(&region.max);
+            assert!((h - (h0.min(h1) + 0.0125)).abs() < 1e-12, "{axis:?} {p}");
+            assert!((v - (v0.max(v1) - 0.025)).abs() < 1e-12, "{axis:?} {p}");
+            assert!(
+                p.dot(&axis.toward_viewer()).abs() < 1e-12,
+                "in the plane through 0"
+            );
+            assert_eq!(view.world_at(9, 5), None, "left of the drawing");
+            assert_eq!(view.world_at(50, 5), None, "right of it");
+        }
+    }
+
+    #[test]
+    fn the_wheel_zooms_about_the_pointer_and_back_to_the_fitted_view() {
+        // Two notches in at cell (10, 5) of a 40 × 20 grid: 1.5625× larger, and the screen
+        // point under that cell stays under it; two notches out: the fitted view again.
+        let region = Region {
+            min: Vector3::zeros(),
+            max: Vector3::repeat(1.0),
+            max_extent: 1.0,
+        };
+        let fit = Mapping::fit(&region, Axis::Front, 40, 20);
+        let under = fit.screen_at(10.0, 5.0);
+        let mut zoom = Zoom::default();
+        zoom.wheel(&fit, 1, Some((10.0, 5.0)));
+        zoom.wheel(&fit, 1, Some((10.0, 5.0)));
+        let m = fit.zoomed(&zoom);
+        assert!((m.scale - fit.scale / 1.5625).abs() < 1e-15);
+        let (c, r) = m.cell(under.0, under.1);
+        assert!(
+            (c - 10.0).abs() < 1e-9 && (r - 5.0).abs() < 1e-9,
+            "({c}, {r})"
+        );
+        zoom.wheel(&fit, -2, Some((30.0, 2.0)));
+        assert_eq!(zoom, Zoom::default());
+        assert_eq!(fit.zoomed(&zoom), fit);
+    }
 
     #[test]
     fn a_square_spans_twice_as_many_columns_as_rows() {

@@ -10,6 +10,7 @@ mod forces;
 mod fuzz;
 mod history;
 mod jobs;
+mod mouse;
 mod plot;
 mod settings_live;
 mod tools;
