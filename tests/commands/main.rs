@@ -12,6 +12,7 @@ mod joint_keys;
 mod lesson_claims;
 mod lessons;
 mod live_numbers;
+mod ode;
 mod shot_forces;
 mod study;
 mod study_cloth;
