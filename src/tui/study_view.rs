@@ -419,7 +419,7 @@ impl Widget for LogChart<'_> {
             for r in first..plot.bottom() {
                 for c in plot.x..plot.right() {
                     let cell = &mut buf[(c, r)];
-                    if cell.symbol() == " " && (c - plot.x) % 2 == 0 {
+                    if cell.symbol() == " " && (c - plot.x).is_multiple_of(2) {
                         cell.set_symbol(if self.ascii { "." } else { "·" });
                         cell.set_fg(Color::Gray);
                     }
@@ -735,9 +735,9 @@ fn draw_charts(
     };
     let band = Some(study.floor.log10());
     let error_title = if study.contact() {
-        "contact error"
+        "contact error (worst body)"
     } else {
-        "error, rad (+ m/radius)"
+        "error, rad (+ m/radius), worst body"
     };
     LogChart {
         title: " error against cost, log–log ".to_string(),
