@@ -737,7 +737,7 @@ fn draw_charts(
     let error_title = if study.contact() {
         "contact error (worst body)"
     } else {
-        "error, rad (+ m/radius), worst body"
+        "error, rad (worst body)"
     };
     LogChart {
         title: " error against cost, log–log ".to_string(),
