@@ -15,7 +15,8 @@
 //! scene ([`super::reference_steps`], [`super::run_steps`]): the cost per step measured so far,
 //! scaled by each remaining run's steps. A cloth case gives no estimate.
 
-use super::{cancel, study_case, Case, Config, SceneStudy};
+use super::measure::Row;
+use super::{cancel, study_case_streaming, Case, Config, Partial, SceneStudy};
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 use std::sync::{Arc, Mutex};
@@ -31,7 +32,35 @@ enum Message {
         /// Steps made when the message was sent.
         made: u64,
     },
+    /// The reference, then each finished run.
+    Partial(Partial),
     Done(Box<SceneStudy>),
+}
+
+/// A case's name, description, duration and (with contact) collision response.
+type About = (String, String, f64, Option<crate::physics::Response>);
+
+/// The [`About`] of `case`.
+fn about(case: &Case) -> About {
+    let contact = case
+        .scene
+        .contact
+        .filter(|_| !case.scene.obstacles.is_empty());
+    (
+        case.name.clone(),
+        case.description.clone(),
+        case.duration,
+        contact.map(|m| m.response),
+    )
+}
+
+/// What has finished so far, to draw before the end ([`Job::partial`]).
+#[derive(Debug, Clone)]
+struct Finished {
+    floor: f64,
+    kind: &'static str,
+    description: String,
+    rows: Vec<Row>,
 }
 
 /// A running (or finished) study of one scene.
@@ -65,6 +94,12 @@ struct Inner {
     /// Steps made at the latest message.
     made_at_latest: u64,
     spawned: Instant,
+    /// The case (name, description, duration, the response of a scene with contact) and the
+    /// integrators swept, for the partial chart.
+    case: About,
+    integrators: Vec<crate::physics::Integrator>,
+    /// The reference and the runs finished so far (none for a cloth case).
+    finished: Option<Finished>,
 }
 
 impl Drop for Inner {
@@ -98,9 +133,14 @@ impl Job {
                     reference_made: false,
                     made_at_latest: 0,
                     spawned: Instant::now(),
+                    case: about(&case),
+                    integrators: config.integrators.clone(),
+                    finished: None,
                 })),
             };
         }
+        let about = about(&case);
+        let integrators = config.integrators.clone();
         let total = super::runs(&case, &config);
         let plan = super::run_steps(&case, &config)
             .map(|runs| (super::reference_steps(&case, &config), runs));
@@ -108,11 +148,18 @@ impl Job {
         let shared = control.clone();
         let thread = thread::spawn(move || {
             let steps = shared.steps.clone();
+            let progress = sender.clone();
             let mut report = |done, total| {
                 let made = steps.load(Ordering::Relaxed);
-                let _ = sender.send(Message::Progress { done, total, made });
+                let _ = progress.send(Message::Progress { done, total, made });
             };
-            if let Some(study) = cancel::run(shared, || study_case(&case, &config, &mut report)) {
+            let partial = sender.clone();
+            let mut partial = |p| {
+                let _ = partial.send(Message::Partial(p));
+            };
+            if let Some(study) = cancel::run(shared, || {
+                study_case_streaming(&case, &config, &mut report, &mut partial)
+            }) {
                 let _ = sender.send(Message::Done(Box::new(study)));
             }
         });
@@ -132,8 +179,47 @@ impl Job {
                 reference_made: false,
                 made_at_latest: 0,
                 spawned: Instant::now(),
+                case: about,
+                integrators,
+                finished: None,
             })),
         }
+    }
+
+    /// The study so far, before it ends: the runs finished (the cheapest first), their
+    /// floor band, frontier and fitted orders ([`super::summarise`]), and a sentence saying
+    /// how many runs are still to come. `None` before the reference is made, for a cloth case
+    /// and once the study is done ([`Job::result`]).
+    pub fn partial(&self) -> Option<SceneStudy> {
+        self.with(|inner| {
+            if inner.result.is_some() {
+                return None;
+            }
+            let finished = inner.finished.as_ref()?;
+            let mut rows = finished.rows.clone();
+            let orders =
+                super::summarise(&inner.integrators, &mut rows, finished.kind, finished.floor);
+            let (name, description, duration, response) = inner.case.clone();
+            Some(SceneStudy {
+                name,
+                description,
+                duration,
+                reference: finished.description.clone(),
+                reference_kind: finished.kind,
+                floor: finished.floor,
+                sentence: format!(
+                    "{} of {} runs finished (the cheapest first): the chart fills as the \
+                     others finish; the orders are fitted on the runs so far.",
+                    rows.len(),
+                    inner.total
+                ),
+                rows,
+                orders,
+                response,
+                cloth: None,
+                contact_solvers: None,
+            })
+        })
     }
 
     /// Stops the study at its next step (the thread then ends; see [`Job::join`]).
@@ -197,6 +283,23 @@ impl Job {
                     inner.reference_made = true;
                     inner.made_at_latest = made;
                     (inner.done, inner.total) = (done, total);
+                }
+                Ok(Message::Partial(Partial::Reference {
+                    floor,
+                    kind,
+                    description,
+                })) => {
+                    inner.finished = Some(Finished {
+                        floor,
+                        kind,
+                        description,
+                        rows: Vec::new(),
+                    });
+                }
+                Ok(Message::Partial(Partial::Run(row))) => {
+                    if let Some(finished) = inner.finished.as_mut() {
+                        finished.rows.push(*row);
+                    }
                 }
                 Ok(Message::Done(study)) => {
                     inner.done = inner.total;

@@ -21,10 +21,13 @@
 //! orthonormality  = max ‖RᵀR − 𝟙‖
 //! penetration     = deepest vertex depth a step reaches, before the response pushes out  (m)
 //! impact_energy   = Σ max(0, E after collide − E before collide)                       (J)
-//! rest_error      = |v| + radius·|ω| at the end (speed of the fastest point)           (m/s)
-//! end_pose_error  = max over vertices |(pᵢ − pᵢ,ref)·up| / radius at the end   (up = −g/|g|)
-//! contact_error   = end_pose_error + orthonormality + penetration / radius
-//!                   + impact_energy / (M·|g|·radius)          (contact scenes only; else NaN)
+//! rest_error      = max over bodies |v| + radius·|ω| at the end (the fastest point)     (m/s)
+//! end_pose_error  = max over bodies and their vertices |(pᵢ − pᵢ,ref)·up| / radius at the end
+//!                   (up = −g/|g|; each body in its own radius)
+//! contact_error   = end_pose_error + orthonormality + max over bodies penetration / radius
+//!                   + impact_energy / Σ (M·|g|·radius)        (contact scenes only; else NaN)
+//!                   (every body counts: orthonormality, penetration and impact_energy are
+//!                   the worst body's, the last the whole scene's energy gained)
 //! ```
 //!
 //! With contact the path is not smooth: a step size that moves an impact by a step changes
@@ -267,7 +270,6 @@ fn accuracy_run(
 ) {
     let mut world = world_for(scene, integrator, dt);
     let contact = !scene.obstacles.is_empty();
-    let radius = scene.first().body.radius.max(f64::MIN_POSITIVE);
     let start = world.snapshot();
     let (e0, l0) = (start.energy.total, start.angular_momentum.norm());
     let relative = |x: f64, x0: f64| {
@@ -278,6 +280,8 @@ fn accuracy_run(
         }
     };
     let mut sample = 0;
+    // The deepest penetration of any body, in its own radii.
+    let mut deepest = 0.0f64;
     while world.step_count() < steps {
         super::cancel::check(1);
         if contact {
@@ -285,16 +289,21 @@ fn accuracy_run(
             loop {
                 match world.step_phase() {
                     Phase::Integrate => {
-                        before = world.energy_of(world.state()).total;
-                        let depth = deepest_penetration(world.obstacles(), &world.vertices());
-                        row.penetration = row.penetration.max(depth);
+                        before = world.total_energy().total;
+                        for (index, body) in scene.bodies.iter().enumerate() {
+                            let depth =
+                                deepest_penetration(world.obstacles(), &world.vertices_of(index));
+                            let radius = body.body.radius.max(f64::MIN_POSITIVE);
+                            row.penetration = row.penetration.max(depth);
+                            deepest = deepest.max(depth / radius);
+                        }
                     }
                     Phase::Collide => break,
                     _ => {}
                 }
             }
             if !world.contacts().is_empty() {
-                let after = world.energy_of(world.state()).total;
+                let after = world.total_energy().total;
                 row.impact_energy += (after - before).max(0.0);
             }
         } else {
@@ -337,7 +346,6 @@ fn accuracy_run(
                 .omega_error
                 .max((run.omega_body - reference_pose.omega_body).norm());
         }
-        let truth = truth[0];
         // The energy ledger's drift: what drag and contacts did to E is not the integrator's.
         row.energy_drift = row
             .energy_drift
@@ -345,9 +353,22 @@ fn accuracy_run(
         row.momentum_drift = row
             .momentum_drift
             .max(relative(s.angular_momentum.norm(), l0));
-        row.orthonormality = row.orthonormality.max(s.orthonormality_error);
+        for index in 0..scene.bodies.len() {
+            let error = if index == 0 {
+                s.orthonormality_error
+            } else {
+                world.snapshot_of(index).orthonormality_error
+            };
+            row.orthonormality = row.orthonormality.max(error);
+        }
         if step == steps {
-            row.rest_error = s.velocity.norm() + radius * s.angular_velocity.norm();
+            // The fastest point of any body.
+            row.rest_error = (0..scene.bodies.len())
+                .map(|index| {
+                    let b = world.snapshot_of(index);
+                    b.velocity.norm() + scene.bodies[index].body.radius * b.angular_velocity.norm()
+                })
+                .fold(0.0, f64::max);
         }
         if step == steps && contact {
             let up = scene
@@ -355,27 +376,37 @@ fn accuracy_run(
                 .gravity()
                 .and_then(|g| (-g).try_normalize(0.0))
                 .unwrap_or_else(Vector3::y);
-            let rotation = truth.orientation.to_rotation_matrix();
-            row.end_pose_error = world
-                .vertices()
-                .iter()
-                .zip(&scene.first().body.points_body)
-                .map(|(p, r0)| ((p - (truth.position + rotation * r0)).dot(&up)).abs())
-                .fold(0.0, f64::max)
-                / radius;
+            // Every body's vertex heights, each in its own radii; the worst body's.
+            for (index, (body, pose)) in scene.bodies.iter().zip(&truth).enumerate() {
+                let rotation = pose.orientation.to_rotation_matrix();
+                let height = world
+                    .vertices_of(index)
+                    .iter()
+                    .zip(&body.body.points_body)
+                    .map(|(p, r0)| ((p - (pose.position + rotation * r0)).dot(&up)).abs())
+                    .fold(0.0, f64::max);
+                row.end_pose_error = row
+                    .end_pose_error
+                    .max(height / body.body.radius.max(f64::MIN_POSITIVE));
+            }
         }
     }
     if contact {
-        // The work that lifts the body by its radius (or, without gravity, its initial energy).
-        let lift =
-            scene.first().body.mass * scene.effects.gravity().map_or(0.0, |g| g.norm()) * radius;
+        // The work that lifts every body by its own radius (or, without gravity, the initial
+        // energy).
+        let g = scene.effects.gravity().map_or(0.0, |g| g.norm());
+        let lift: f64 = scene
+            .bodies
+            .iter()
+            .map(|b| b.body.mass * g * b.body.radius)
+            .filter(|w| w.is_finite())
+            .sum();
         let scale = if lift > 0.0 { lift } else { e0.abs() };
         let gained = if scale > 0.0 {
             row.impact_energy / scale
         } else {
             0.0
         };
-        row.contact_error =
-            row.end_pose_error + row.orthonormality + row.penetration / radius + gained;
+        row.contact_error = row.end_pose_error + row.orthonormality + deepest + gained;
     }
 }

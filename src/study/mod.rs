@@ -147,11 +147,60 @@ impl SceneStudy {
     }
 }
 
+/// What a front end can draw before a study ends ([`study_case_streaming`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Partial {
+    /// The reference is made: the floor below which errors are not ranked, the reference's
+    /// kind and one line saying what it is.
+    Reference {
+        floor: f64,
+        kind: &'static str,
+        description: String,
+    },
+    /// One run has finished (its accuracy and timing measured).
+    Run(Box<Row>),
+}
+
 /// Studies one scene. `progress(done, total)` is called after each run.
 pub fn study_case(
     case: &Case,
     config: &Config,
     progress: &mut dyn FnMut(usize, usize),
+) -> SceneStudy {
+    study_case_streaming(case, config, progress, &mut |_| {})
+}
+
+/// The orders of `integrators` from `rows` (against a reference of kind `reference_kind`,
+/// errors above `floor`), and the rows marked (floor band, frontier) and sorted by cost: what
+/// the study and a front end's partial chart ([`Partial`]) both do with finished runs.
+pub fn summarise(
+    integrators: &[Integrator],
+    rows: &mut [Row],
+    reference_kind: &str,
+    floor: f64,
+) -> Vec<Order> {
+    let orders = integrators
+        .iter()
+        .map(|&i| {
+            if reference_kind == "exact" && i.descriptor().exact_without_torque {
+                analysis::exact_order(i)
+            } else {
+                fit_order(i, rows, floor)
+            }
+        })
+        .collect();
+    mark_frontier(rows, floor);
+    analysis::sort_by_cost(rows);
+    orders
+}
+
+/// [`study_case`], telling `partial` of the reference once it is made and of each run as it
+/// finishes (the cheapest first: a front end's chart fills early). A cloth case tells nothing.
+pub fn study_case_streaming(
+    case: &Case,
+    config: &Config,
+    progress: &mut dyn FnMut(usize, usize),
+    partial: &mut dyn FnMut(Partial),
 ) -> SceneStudy {
     if !case.scene.cloths.is_empty() {
         return study_cloth_case(case, config, progress);
@@ -159,10 +208,17 @@ pub fn study_case(
     let times = measure::sample_times(case.duration, config.timing.sample_interval);
     let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
     let mut reference = Reference::for_scene(&case.scene, &times, smallest);
+    let floor = analysis::FLOOR.max(reference.floor());
+    partial(Partial::Reference {
+        floor,
+        kind: reference.kind(),
+        description: reference.describe(),
+    });
     let total = config.integrators.len() * config.dts.len();
-    progress(0, total); // the reference is made: the runs start
-                        // The cheapest runs first ([`sweep`]), so that a front end's progress moves early; the
-                        // rows then go back to the sweep's order (integrator by integrator), as if run in it.
+    // The reference is made: the runs start. The cheapest runs first ([`sweep`]), so that a
+    // front end's progress moves early; the rows then go back to the sweep's order
+    // (integrator by integrator), as if run in it.
+    progress(0, total);
     let mut measured: Vec<(usize, Row)> = Vec::with_capacity(total);
     for (index, integrator, dt) in sweep(case, config) {
         let row = measure::measure(
@@ -175,24 +231,12 @@ pub fn study_case(
             &times,
             config.timing,
         );
+        partial(Partial::Run(Box::new(row.clone())));
         measured.push((index, row));
         progress(measured.len(), total);
     }
     measured.sort_by_key(|&(index, _)| index);
     let mut rows: Vec<Row> = measured.into_iter().map(|(_, row)| row).collect();
-    let exact_reference = reference.kind() == "exact";
-    let floor = analysis::FLOOR.max(reference.floor());
-    let orders = config
-        .integrators
-        .iter()
-        .map(|&i| {
-            if exact_reference && i.descriptor().exact_without_torque {
-                analysis::exact_order(i)
-            } else {
-                fit_order(i, &rows, floor)
-            }
-        })
-        .collect();
     let response = case
         .scene
         .contact
@@ -211,8 +255,7 @@ pub fn study_case(
             case.duration,
         ),
     };
-    mark_frontier(&mut rows, floor);
-    analysis::sort_by_cost(&mut rows);
+    let orders = summarise(&config.integrators, &mut rows, reference.kind(), floor);
     let sentence = match (reference.kind(), reference.spread()) {
         ("not-converged", Some(spread)) => format!(
             "No converged reference: halving rk4's step from {} s moved the reference by {} \

@@ -432,7 +432,7 @@ fn solvers_panel(
         area,
         &caption,
         PER_SECOND,
-        "contact error (end pose, shape, penetration, gain)",
+        "contact error (worst body: end pose, shape, penetration; gain)",
         ok.iter().map(|r| at(r)),
     )?;
     let soft: Vec<_> = ok.iter().filter(|r| r.substeps > 0).collect();

@@ -90,12 +90,13 @@ pub fn table(studies: &[SceneStudy]) -> String {
         if contact {
             let _ = writeln!(
                 out,
-                "contact: end pose = largest vertex height error at the end, in radii (the rest pose; \
-                 where it slid and its heading are left out); penetr. = deepest \
-                 depth a step reaches before the response (m); gain = energy added by collide \
-                 phases (J); rest = |v| + radius·|ω| at the end (m/s); contact err = end + \
-                 ‖RᵀR−I‖ + penetr./radius + gain/(M·g·radius): the pose along the way depends on \
-                 when each impact falls, so * ranks by the contact error"
+                "contact (every body, the worst one's): end pose = largest vertex height error at \
+                 the end, in radii (the rest pose; where it slid and its heading are left out); \
+                 penetr. = deepest depth a step reaches before the response (m); gain = energy \
+                 the collide phases add to the scene (J); rest = |v| + radius·|ω| at the end \
+                 (m/s); contact err = end + ‖RᵀR−I‖ + penetr./radius + gain/Σ(M·g·radius): the \
+                 pose along the way depends on when each impact falls, so * ranks by the \
+                 contact error"
             );
         }
         let _ = writeln!(

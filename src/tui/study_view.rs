@@ -48,9 +48,27 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
             .render(area, buf);
         return;
     };
-    match job.result() {
-        Some(study) => render_study(app, &study, area, buf),
-        None => render_progress(job, area, buf),
+    let shown = Shown {
+        ascii: app.ascii,
+        in_use: app.world.integrator(),
+        dt: app.world.dt(),
+    };
+    match (job.result(), job.partial()) {
+        (Some(study), _) => match &study.cloth {
+            Some(cloth) => render_cloth_study(app, &study, cloth, area, buf),
+            None => draw_study(&study, &shown, None, area, buf),
+        },
+        // The runs finished so far, the chart filling as the others finish.
+        (None, Some(partial)) if job.refusal().is_none() && !job.failed() => {
+            let (done, total) = job.progress();
+            let progress = Progress {
+                done,
+                total,
+                left: job.time_left(),
+            };
+            draw_study(&partial, &shown, Some(progress), area, buf)
+        }
+        _ => render_progress(job, area, buf),
     }
 }
 
@@ -87,8 +105,8 @@ fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
         Line::from(
             "Every integrator at dt = 1e-1 … 1e-4 (with cloths: each particle integrator on a \
              ladder of dt around 2/ω_max), each run measured against a reference and timed \
-             (the fastest of up to 5 timed runs), the cheapest runs first: the chart appears \
-             when all are done.",
+             (the fastest of up to 5 timed runs), the cheapest runs first: the reference is \
+             being made, then the chart fills as the runs finish.",
         ),
         Line::from(
             "The simulation and every other key keep working meanwhile; s leaves this view \
@@ -287,136 +305,481 @@ fn render_cloth_study(
         .render(text_area, buf);
 }
 
-fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
-    if let Some(cloth) = &study.cloth {
-        render_cloth_study(app, study, cloth, area, buf);
-        return;
+/// What the view marks of the app's own run: the integrator and dt in use, and whether to
+/// draw in ASCII.
+#[derive(Debug, Clone, Copy)]
+pub struct Shown {
+    pub ascii: bool,
+    pub in_use: Integrator,
+    pub dt: f64,
+}
+
+/// A study still running: runs finished, runs in all, the estimated time left.
+#[derive(Debug, Clone, Copy)]
+pub struct Progress {
+    pub done: usize,
+    pub total: usize,
+    pub left: Option<std::time::Duration>,
+}
+
+/// The background of the floor band's cells.
+const BAND: Color = Color::Rgb(58, 58, 58);
+
+/// One line of a chart: its colour and (log₁₀ x, log₁₀ y) points in order.
+struct Series {
+    color: Color,
+    points: Vec<(f64, f64)>,
+}
+
+/// A log–log chart drawn on a [`Canvas`] with its own axes, so that the floor band can be laid
+/// under the exact rows the canvas maps below the floor: y title on the first row, decade
+/// labels left and under the plot, the x title in the bottom border.
+struct LogChart<'a> {
+    title: String,
+    x_title: &'a str,
+    y_title: &'a str,
+    /// log₁₀ bounds, whole decades.
+    x: (f64, f64),
+    y: (f64, f64),
+    /// log₁₀ of the floor: the rows at and below it are the band.
+    band: Option<f64>,
+    series: Vec<Series>,
+    /// Frontier runs, ringed.
+    rings: Vec<(f64, f64)>,
+    /// Said in the plot's middle (nothing to draw).
+    note: Option<String>,
+    ascii: bool,
+}
+
+/// The cell (0 at the low end) a value falls in, as the canvas maps it: `sub` dots per cell
+/// (braille: 2 across, 4 down; one per cell in ASCII), truncated as the canvas does.
+fn cell(offset: f64, span: f64, cells: u16, sub: u16) -> u16 {
+    let dots = f64::from(cells * sub);
+    let dot = (offset * (dots - 1.0) / span).max(0.0) as u16;
+    (dot / sub).min(cells.saturating_sub(1))
+}
+
+impl Widget for LogChart<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        use ratatui::widgets::canvas::{Canvas, Line as Segment};
+        let block = Block::bordered()
+            .title(self.title.clone())
+            .title_bottom(Line::from(format!(" {} ", self.x_title)).right_aligned());
+        let inner = block.inner(area);
+        block.render(area, buf);
+        let ((x0, x1), (y0, y1)) = (self.x, self.y);
+        let y_labels: Vec<(f64, String)> = (y0.round() as i32..=y1.round() as i32)
+            .map(|e| (f64::from(e), format!("1e{e}")))
+            .collect();
+        let gutter = y_labels.iter().map(|(_, l)| l.len()).max().unwrap_or(3) as u16 + 1;
+        if inner.width < gutter + 8 || inner.height < 6 {
+            return;
+        }
+        let axis = theme::CHART_AXIS;
+        buf.set_stringn(inner.x, inner.y, self.y_title, inner.width as usize, axis);
+        let plot = Rect {
+            x: inner.x + gutter,
+            y: inner.y + 1,
+            width: inner.width - gutter,
+            height: inner.height - 3,
+        };
+        let (sub_x, sub_y) = if self.ascii { (1, 1) } else { (2, 4) };
+        let row = |y: f64| plot.bottom() - 1 - cell(y - y0, y1 - y0, plot.height, sub_y);
+        let col = |x: f64| plot.x + cell(x - x0, x1 - x0, plot.width, sub_x);
+        let marker = if self.ascii {
+            Marker::Dot
+        } else {
+            Marker::Braille
+        };
+        let rings = if self.ascii { "O" } else { "◆" };
+        Canvas::default()
+            .x_bounds([x0, x1])
+            .y_bounds([y0, y1])
+            .marker(marker)
+            .paint(|ctx| {
+                for series in &self.series {
+                    for pair in series.points.windows(2) {
+                        ctx.draw(&Segment::new(
+                            pair[0].0,
+                            pair[0].1,
+                            pair[1].0,
+                            pair[1].1,
+                            series.color,
+                        ));
+                    }
+                    if let [only] = series.points[..] {
+                        ctx.draw(&Segment::new(only.0, only.1, only.0, only.1, series.color));
+                    }
+                }
+            })
+            .render(plot, buf);
+        // The band: every cell at or below the floor's row, a dot in each other empty one.
+        if let Some(top) = self.band.filter(|&t| t > y0) {
+            let first = if top >= y1 { plot.y } else { row(top) };
+            for r in first..plot.bottom() {
+                for c in plot.x..plot.right() {
+                    let cell = &mut buf[(c, r)];
+                    if cell.symbol() == " " && (c - plot.x).is_multiple_of(2) {
+                        cell.set_symbol(if self.ascii { "." } else { "·" });
+                        cell.set_fg(Color::Gray);
+                    }
+                    cell.set_bg(BAND);
+                }
+            }
+        }
+        for &(x, y) in &self.rings {
+            if (x0..=x1).contains(&x) && (y0..=y1).contains(&y) {
+                buf[(col(x), row(y))]
+                    .set_symbol(rings)
+                    .set_style(theme::FRONTIER);
+            }
+        }
+        // Axes and decade labels.
+        for r in plot.y..plot.bottom() {
+            buf[(plot.x - 1, r)].set_symbol("│").set_style(axis);
+        }
+        buf[(plot.x - 1, plot.bottom())]
+            .set_symbol("└")
+            .set_style(axis);
+        for c in plot.x..plot.right() {
+            buf[(c, plot.bottom())].set_symbol("─").set_style(axis);
+        }
+        let rows_per_decade = f64::from(plot.height) / (y1 - y0).max(1.0);
+        let stride = (2.0 / rows_per_decade).ceil().max(1.0) as usize;
+        let mut last_row = None;
+        for (value, label) in y_labels.iter().rev().step_by(stride) {
+            let r = row(*value);
+            if last_row.is_some_and(|l: u16| r <= l) {
+                continue;
+            }
+            last_row = Some(r);
+            let x = plot.x - 1 - label.len() as u16;
+            buf.set_string(x, r, label, axis);
+        }
+        let mut free = inner.x;
+        for e in x0.round() as i32..=x1.round() as i32 {
+            let label = format!("1e{e}");
+            let width = label.len() as u16;
+            let centre = col(f64::from(e));
+            let start = centre
+                .saturating_sub(width / 2)
+                .clamp(inner.x, inner.right().saturating_sub(width));
+            if start < free {
+                continue;
+            }
+            buf.set_string(start, plot.bottom() + 1, &label, axis);
+            free = start + width + 1;
+        }
+        if let Some(note) = &self.note {
+            let width = note.chars().count().min(plot.width as usize) as u16;
+            let x = plot.x + (plot.width - width) / 2;
+            buf.set_stringn(
+                x,
+                plot.y + plot.height / 2,
+                note,
+                width as usize,
+                theme::ERROR,
+            );
+        }
     }
-    let text_height = (area.height / 3).clamp(4, 9);
-    let [chart_area, text_area] =
-        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
-    let points = |integrator: Option<Integrator>, frontier_only: bool| -> Vec<(f64, f64)> {
-        let mut rows: Vec<_> = study
+}
+
+/// The log₁₀ of an error as drawn (exact zeros at 1e-16).
+fn log_error(e: f64) -> f64 {
+    e.max(1e-16).log10()
+}
+
+/// The pairs of integrators whose drawn points coincide (the same dts, errors within 5 %):
+/// one line hides the other on the chart.
+fn coinciding(study: &SceneStudy) -> Vec<(Integrator, Integrator)> {
+    let runs = |i: Integrator| -> Vec<(f64, f64)> {
+        let mut v: Vec<(f64, f64)> = study
             .rows
             .iter()
-            .filter(|r| r.ok() && r.measure().is_finite() && r.us_per_simulated_second > 0.0)
-            .filter(|r| integrator.is_none_or(|i| r.integrator == i))
-            .filter(|r| !frontier_only || r.frontier)
+            .filter(|r| r.integrator == i && r.ok() && r.measure().is_finite())
+            .map(|r| (r.dt, r.measure()))
             .collect();
-        rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
-        rows.iter()
-            .map(|r| {
-                (
-                    r.us_per_simulated_second.log10(),
-                    r.measure().max(1e-16).log10(),
-                )
-            })
-            .collect()
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v
     };
-    let all = points(None, false);
-    let ((x0, x1), (y0, y1)) = bounds(&all);
-    let marker = if app.ascii {
-        Marker::Dot
-    } else {
-        Marker::Braille
-    };
-    let in_use = app.world.integrator();
-    let names: Vec<String> = Integrator::ALL
-        .into_iter()
-        .map(|i| {
-            if i == in_use {
-                format!("{} (in use)", i.name())
-            } else {
-                i.name().to_string()
+    let mut pairs = Vec::new();
+    for (k, &a) in Integrator::ALL.iter().enumerate() {
+        for &b in &Integrator::ALL[k + 1..] {
+            let (ra, rb) = (runs(a), runs(b));
+            let same = !ra.is_empty()
+                && ra.len() == rb.len()
+                && ra.iter().zip(&rb).all(|(p, q)| {
+                    p.0 == q.0 && (log_error(p.1) - log_error(q.1)).abs() < 1.05f64.log10()
+                });
+            if same {
+                pairs.push((a, b));
             }
-        })
-        .collect();
-    let lines: Vec<(Integrator, Vec<(f64, f64)>)> = Integrator::ALL
-        .into_iter()
-        .map(|i| (i, points(Some(i), false)))
-        .filter(|(_, p)| !p.is_empty())
-        .collect();
-    let frontier = points(None, true);
-    let mut datasets: Vec<Dataset> = lines
-        .iter()
-        .map(|(i, p)| {
-            let index = Integrator::ALL.iter().position(|x| x == i).unwrap_or(0);
-            let style = Style::new().fg(colour(*i));
-            Dataset::default()
-                .name(names[index].clone())
-                .marker(marker)
-                .graph_type(GraphType::Line)
-                .style(if *i == in_use {
-                    style.add_modifier(Modifier::BOLD)
-                } else {
-                    style
-                })
-                .data(p)
-        })
-        .collect();
-    datasets.push(
-        Dataset::default()
-            .name("frontier")
-            .marker(Marker::Block)
-            .graph_type(GraphType::Scatter)
-            .style(theme::FRONTIER)
-            .data(&frontier),
-    );
-    let axis = |title: &'static str, lo: f64, hi: f64| {
-        Axis::default()
-            .title(title)
-            .style(theme::CHART_AXIS)
-            .bounds([lo, hi])
-            .labels(labels(lo, hi))
-    };
-    Chart::new(datasets)
-        .block(Block::bordered().title(format!(
-            " study of {} ({} s, {} reference): error against cost, log–log ",
-            study.name, study.duration, study.reference_kind
-        )))
-        .x_axis(axis("µs per simulated s", x0, x1))
-        .y_axis(axis(
-            if study.contact() {
-                "contact error"
-            } else {
-                "error, rad"
-            },
-            y0,
-            y1,
-        ))
-        // The legend goes under the chart, where it cannot cover a curve.
-        .legend_position(None)
-        .render(chart_area, buf);
-    let mut legend: Vec<ratatui::text::Span> = vec![ratatui::text::Span::raw(" ")];
-    for (i, _) in &lines {
-        let mark = if *i == in_use { " (in use)" } else { "" };
-        legend.push(ratatui::text::Span::styled(
-            format!("── {}{mark}  ", i.name()),
-            Style::new().fg(colour(*i)),
-        ));
+        }
     }
-    legend.push(ratatui::text::Span::raw("█ frontier"));
-    let orders: Vec<String> = study
-        .orders
-        .iter()
-        .map(|o| match o.slope {
-            _ if o.exact => format!("{} exact", o.integrator.name()),
-            Some(s) => format!("{} {:.1}", o.integrator.name(), s),
-            None => format!("{} –", o.integrator.name()),
-        })
-        .collect();
-    let best = study
+    pairs
+}
+
+/// The runs a chart draws (finished, with a finite error and a cost) and their integrators.
+fn drawn(study: &SceneStudy) -> (Vec<&crate::study::Row>, Vec<Integrator>) {
+    let drawable: Vec<_> = study
         .rows
         .iter()
-        .filter(|r| r.frontier)
-        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)));
-    let dt = app.world.dt();
+        .filter(|r| r.ok() && r.measure().is_finite() && r.us_per_simulated_second > 0.0)
+        .collect();
+    let integrators = Integrator::ALL
+        .into_iter()
+        .filter(|i| drawable.iter().any(|r| r.integrator == *i))
+        .collect();
+    (drawable, integrators)
+}
+
+/// The study view of a scene's integrators: error against cost and error against dt side by
+/// side (the same error axis), the floor band under both, the fitted order beside each
+/// integrator in the legend, the diverged runs listed; with `progress`, the runs finished so
+/// far under a gauge (the chart fills as the others finish).
+pub fn draw_study(
+    study: &SceneStudy,
+    shown: &Shown,
+    progress: Option<Progress>,
+    area: Rect,
+    buf: &mut Buffer,
+) {
+    let mut area = area;
+    if let Some(p) = progress {
+        let [gauge, rest] =
+            Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+        Gauge::default()
+            .gauge_style(theme::GAUGE)
+            .ratio(if p.total == 0 {
+                0.0
+            } else {
+                (p.done as f64 / p.total as f64).min(1.0)
+            })
+            .label(progress_label(p.done, p.total, p.left))
+            .render(gauge, buf);
+        area = rest;
+    }
+    let (drawable, integrators) = drawn(study);
+    let dim = Style::new().add_modifier(Modifier::DIM);
+    let order_of = |i: Integrator| {
+        study
+            .orders
+            .iter()
+            .find(|o| o.integrator == i)
+            .map(|o| match o.slope {
+                _ if o.exact => "exact".to_string(),
+                Some(s) => format!("p {s:.2}"),
+                None => "p –".to_string(),
+            })
+    };
+    // The legend, each entry whole on a line (packed to the text's width).
+    let width = area.width.saturating_sub(2).max(1) as usize;
+    let mut entries: Vec<ratatui::text::Span> = integrators
+        .iter()
+        .map(|&i| {
+            let mark = if i == shown.in_use { " (in use)" } else { "" };
+            let order = match order_of(i) {
+                Some(o) if !study.contact() => format!(" {o}"),
+                _ => String::new(),
+            };
+            ratatui::text::Span::styled(
+                format!("── {}{mark}{order}", i.name()),
+                Style::new().fg(colour(i)),
+            )
+        })
+        .collect();
+    entries.push(ratatui::text::Span::raw(if shown.ascii {
+        "O frontier"
+    } else {
+        "◆ frontier"
+    }));
+    let mut legend: Vec<Line> = vec![Line::default()];
+    for entry in entries {
+        let last = legend.last_mut().expect("one line at least");
+        let used = last.width();
+        if used > 0 && used + 2 + entry.width() > width {
+            legend.push(Line::from(entry));
+        } else {
+            if used > 0 {
+                last.push_span(ratatui::text::Span::raw("  "));
+            }
+            last.push_span(entry);
+        }
+    }
+    let inside = drawable.iter().filter(|r| r.below_floor).count();
+    let band_line = format!(
+        "{} grey band: below the floor {} (round-off or the reference's own error): the {inside} \
+         run{} inside it are not ranked against each other nor fitted",
+        if shown.ascii { "..." } else { "···" },
+        format_number(study.floor),
+        if inside == 1 { "" } else { "s" },
+    );
+    let diverged: Vec<String> = study
+        .rows
+        .iter()
+        .filter(|r| !r.ok())
+        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+        .collect();
+    // The lines that matter most first: the legend with the orders, the run in use, the
+    // diverged runs, the band; the sentence last (the longest, cut on a small screen).
+    let mut text = legend;
+    text.push(Line::from(in_use_line(study, shown)));
+    text.push(Line::styled(
+        format!(
+            "diverged (no point): {}",
+            if diverged.is_empty() {
+                "none".to_string()
+            } else {
+                diverged.join(", ")
+            }
+        ),
+        if diverged.is_empty() {
+            dim
+        } else {
+            Style::new().fg(Color::LightRed)
+        },
+    ));
+    if study.contact() && study.rows.iter().all(|r| !r.ok()) && progress.is_none() {
+        text.push(Line::styled(
+            "press c for another collision response, then s twice to study it",
+            Style::new().fg(Color::Yellow),
+        ));
+    }
+    text.push(Line::styled(band_line, dim));
+    for (a, b) in coinciding(study) {
+        text.push(Line::styled(
+            format!(
+                "{} and {} coincide at every dt: one line hides the other",
+                a.name(),
+                b.name()
+            ),
+            dim,
+        ));
+    }
+    text.push(Line::styled(
+        format!(
+            "frontier (cheapest first): {}",
+            study
+                .rows
+                .iter()
+                .filter(|r| r.frontier)
+                .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        dim,
+    ));
+    text.push(Line::from(study.sentence.clone()));
+    // As many rows as the wrapped text needs, up to half the view; the charts keep the rest.
+    let needed: usize = text
+        .iter()
+        .map(|l| l.width().div_ceil(width).max(1))
+        .sum::<usize>()
+        + 2;
+    let text_height = (needed as u16).clamp(5, (area.height / 2).max(5));
+    let [charts, text_area] =
+        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
+    let [cost_area, dt_area] =
+        Layout::horizontal([Constraint::Percentage(58), Constraint::Min(0)]).areas(charts);
+    draw_charts(study, shown, cost_area, dt_area, buf);
+    Paragraph::new(text)
+        .block(Block::bordered().title(format!(
+            " study of {} ({} s, {} reference) ",
+            study.name, study.duration, study.reference_kind
+        )))
+        .wrap(Wrap { trim: true })
+        .render(text_area, buf);
+}
+
+/// The two charts of [`draw_study`]: error against cost (frontier ringed) and against dt,
+/// on the same error axis, the floor band under both.
+fn draw_charts(
+    study: &SceneStudy,
+    shown: &Shown,
+    cost_area: Rect,
+    dt_area: Rect,
+    buf: &mut Buffer,
+) {
+    let (drawable, integrators) = drawn(study);
+    let line = |i: Integrator, x: &dyn Fn(&crate::study::Row) -> f64| -> Series {
+        let mut rows: Vec<_> = drawable.iter().filter(|r| r.integrator == i).collect();
+        rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+        Series {
+            color: colour(i),
+            points: rows
+                .iter()
+                .map(|r| (x(r), log_error(r.measure())))
+                .collect(),
+        }
+    };
+    let cost = |r: &crate::study::Row| r.us_per_simulated_second.log10();
+    let step = |r: &crate::study::Row| r.dt.log10();
+    let all_cost: Vec<(f64, f64)> = drawable
+        .iter()
+        .map(|r| (cost(r), log_error(r.measure())))
+        .collect();
+    let all_dt: Vec<(f64, f64)> = drawable
+        .iter()
+        .map(|r| (step(r), log_error(r.measure())))
+        .collect();
+    let ((cx0, cx1), (ey0, ey1)) = bounds(&all_cost);
+    let ((dx0, dx1), _) = bounds(&all_dt);
+    let note = if drawable.is_empty() {
+        Some(if study.rows.iter().any(|r| !r.ok()) {
+            "every run diverged: nothing to draw".to_string()
+        } else {
+            "no run finished yet".to_string()
+        })
+    } else {
+        None
+    };
+    let band = Some(study.floor.log10());
+    let error_title = if study.contact() {
+        "contact error (worst body)"
+    } else {
+        "error, rad (worst body)"
+    };
+    LogChart {
+        title: " error against cost, log–log ".to_string(),
+        x_title: "µs per simulated s",
+        y_title: error_title,
+        x: (cx0, cx1),
+        y: (ey0, ey1),
+        band,
+        series: integrators.iter().map(|&i| line(i, &cost)).collect(),
+        rings: drawable
+            .iter()
+            .filter(|r| r.frontier)
+            .map(|r| (cost(r), log_error(r.measure())))
+            .collect(),
+        note: note.clone(),
+        ascii: shown.ascii,
+    }
+    .render(cost_area, buf);
+    LogChart {
+        title: " error against dt: slope = p ".to_string(),
+        x_title: "dt, s",
+        y_title: error_title,
+        x: (dx0, dx1),
+        y: (ey0, ey1),
+        band,
+        series: integrators.iter().map(|&i| line(i, &step)).collect(),
+        rings: Vec::new(),
+        note,
+        ascii: shown.ascii,
+    }
+    .render(dt_area, buf);
+}
+
+/// "in use: rk4 at dt = 0.001 s; the study's nearest run (dt = 1e-3): error 3.1e-9".
+fn in_use_line(study: &SceneStudy, shown: &Shown) -> String {
+    let (in_use, dt) = (shown.in_use, shown.dt);
     let nearest = study
         .rows
         .iter()
         .filter(|r| r.integrator == in_use)
         .min_by(|a, b| (a.dt / dt).ln().abs().total_cmp(&(b.dt / dt).ln().abs()));
-    let in_use_line = match nearest {
+    match nearest {
         Some(r) if r.ok() => format!(
             "in use: {} at dt = {} s; the study's nearest run (dt = {}): {} {}",
             in_use.name(),
@@ -435,32 +798,6 @@ fn render_study(app: &App, study: &SceneStudy, area: Rect, buf: &mut Buffer) {
             format_number(dt),
             format_dt(r.dt)
         ),
-        None => format!("in use: {} (not in the study)", in_use.name()),
-    };
-    let all_diverged = study.rows.iter().all(|r| !r.ok());
-    let mut text = vec![Line::from(legend), Line::from(study.sentence.clone())];
-    if all_diverged && study.contact() {
-        text.push(Line::styled(
-            "press c for another collision response, then s twice to study it",
-            Style::new().fg(Color::Yellow),
-        ));
+        None => format!("in use: {} (not in the study yet)", in_use.name()),
     }
-    if !study.contact() {
-        text.push(Line::styled(
-            format!("observed orders: {}", orders.join(", ")),
-            Style::new().add_modifier(Modifier::DIM),
-        ));
-    }
-    text.push(Line::from(in_use_line));
-    text.push(Line::styled(
-        format!(
-            "frontier (█ on the chart, cheapest first): {}",
-            best.collect::<Vec<_>>().join(", ")
-        ),
-        Style::new().add_modifier(Modifier::DIM),
-    ));
-    Paragraph::new(text)
-        .block(Block::bordered().title(format!(" reference: {} ", study.reference_kind)))
-        .wrap(Wrap { trim: true })
-        .render(text_area, buf);
 }

@@ -103,11 +103,13 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
     assert_eq!(result.rows.len(), Integrator::ALL.len() * 4);
     let shown = screen(&app, 160, 50);
     assert!(shown.contains("error against cost, log–log"), "{shown}");
+    assert!(shown.contains("error against dt: slope = p"), "{shown}");
     assert!(
         shown.contains("To keep the error under 1e-6 rad over 0.2 s"),
         "{shown}"
     );
-    assert!(shown.contains("observed orders"), "{shown}");
+    // The fitted order beside each integrator that has one (rk4 on a tumble: about 4).
+    assert!(shown.contains("── rk4 (in use) p 4."), "{shown}");
     for integrator in Integrator::ALL {
         assert!(
             shown.contains(integrator.name()),
@@ -271,4 +273,226 @@ fn the_progress_label_gives_the_time_left_while_runs_are_left() {
         "35 of 36 runs · about 42 s left"
     );
     assert_eq!(progress_label(36, 36, Some(s(0))), "36 of 36 runs");
+}
+
+/// The study of a spring (ω = 10 rad/s, under gravity, 2 s) by every integrator at dt = 1e-1 …
+/// 1e-4, untimed, its cost made deterministic: each integrator's force evaluations per step
+/// (euler-seed, euler, symplectic-euler 1; splitting, exact-splitting 2; rk4 4; exact-splitting-4 6) ×
+/// 100 ns, per simulated second. Euler at 0.1 s diverges (its energy doubles every step,
+/// 1 + (ω dt)²), rk4 and exact-splitting-4 reach the floor at the finest steps.
+fn spring_study() -> tumble::study::SceneStudy {
+    use tumble::study::{self, Case, Config, Timing};
+    let scene = tumble::scene::parse(
+        r#"title = "spring"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+[body]
+name = "block"
+shape = "box"
+size = [0.1, 0.1, 0.1]
+mass = 1.0
+position = [0.0, 0.0, 0.0]
+[[spring]]
+bodies = ["block"]
+anchors = [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+stiffness = 100.0
+rest_length = 0.5
+"#,
+        Path::new("spring.toml"),
+    )
+    .unwrap()
+    .scene;
+    let case = Case {
+        name: "spring".into(),
+        description: "a block on a spring".into(),
+        scene,
+        duration: 2.0,
+    };
+    let config = Config {
+        integrators: Integrator::ALL.to_vec(),
+        dts: vec![1e-1, 1e-2, 1e-3, 1e-4],
+        timing: Timing {
+            repeats: 0,
+            sample_interval: 0.1,
+        },
+        target_error: 1e-6,
+    };
+    let mut study = study::study_case(&case, &config, &mut |_, _| {});
+    for row in &mut study.rows {
+        let evaluations = match row.integrator {
+            Integrator::EulerSeed | Integrator::Euler | Integrator::SymplecticEuler => 1.0,
+            Integrator::Splitting | Integrator::ExactSplitting => 2.0,
+            Integrator::Rk4 => 4.0,
+            Integrator::ExactSplitting4 => 6.0,
+        };
+        row.ns_per_step = 100.0 * evaluations;
+        row.us_per_simulated_second = row.ns_per_step / row.dt / 1000.0;
+    }
+    // Ties of cost keep the integrators' order (the untimed study sorted by measured time).
+    study.rows.sort_by(|a, b| {
+        let index = |i: Integrator| Integrator::ALL.iter().position(|&x| x == i);
+        index(a.integrator)
+            .cmp(&index(b.integrator))
+            .then(b.dt.total_cmp(&a.dt))
+    });
+    // The sentence again, from the deterministic costs.
+    study.sentence =
+        study::analysis::sentence(&study.rows, &config.integrators, 1e-6, case.duration);
+    study::summarise(
+        &config.integrators,
+        &mut study.rows,
+        study.reference_kind,
+        study.floor,
+    );
+    study
+}
+
+fn draw(study: &tumble::study::SceneStudy, width: u16, height: u16, done: Option<usize>) -> String {
+    use tumble::tui::study_view::{draw_study, Progress, Shown};
+    let area = ratatui::layout::Rect::new(0, 0, width, height);
+    let mut buf = ratatui::buffer::Buffer::empty(area);
+    let shown = Shown {
+        ascii: false,
+        in_use: Integrator::Rk4,
+        dt: 0.001,
+    };
+    let progress = done.map(|done| Progress {
+        done,
+        total: 28,
+        left: Some(Duration::from_secs(75)),
+    });
+    draw_study(study, &shown, progress, area, &mut buf);
+    (0..height)
+        .map(|y| {
+            (0..width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+                .trim_end()
+                .to_string()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn the_study_view_draws_both_charts_the_floor_band_the_orders_and_the_diverged_runs() {
+    let study = spring_study();
+    // The numbers the snapshots show, checked first.
+    let diverged: Vec<_> = study.rows.iter().filter(|r| !r.ok()).collect();
+    let diverged: Vec<_> = diverged.iter().map(|r| (r.integrator, r.dt)).collect();
+    // Explicit Euler's energy grows by 1 + (ω dt)² a step: ×2 at 0.1 s, ×1.01 at 0.01 s (×3.6
+    // by step 130, where the guard trips); no other run diverges.
+    assert_eq!(diverged.len(), 4, "{diverged:?}");
+    for run in [
+        (Integrator::EulerSeed, 0.1),
+        (Integrator::Euler, 0.1),
+        (Integrator::EulerSeed, 0.01),
+        (Integrator::Euler, 0.01),
+    ] {
+        assert!(diverged.contains(&run), "{run:?} in {diverged:?}");
+    }
+    let order = |i: Integrator| {
+        study
+            .orders
+            .iter()
+            .find(|o| o.integrator == i)
+            .unwrap()
+            .slope
+    };
+    assert!((order(Integrator::Rk4).unwrap() - 4.0).abs() < 0.5);
+    assert!((order(Integrator::Splitting).unwrap() - 2.0).abs() < 0.2);
+    assert!(
+        study.rows.iter().any(|r| r.below_floor),
+        "a run inside the band"
+    );
+    let wide = draw(&study, 120, 40, None);
+    for expected in [
+        "error against cost, log–log",
+        "error against dt: slope = p",
+        "── rk4 (in use) p 3.98",
+        "── splitting p 2.00",
+        "grey band: below the floor",
+        "diverged (no point): euler-seed 1e-1, euler 1e-1",
+        "splitting and exact-splitting coincide at every dt",
+        "◆",
+        "·",
+    ] {
+        assert!(wide.contains(expected), "no `{expected}` in:\n{wide}");
+    }
+    insta::assert_snapshot!("study_view_spring_120x40", wide);
+    insta::assert_snapshot!("study_view_spring_80x24", draw(&study, 80, 24, None));
+}
+
+#[test]
+fn the_chart_fills_as_runs_finish_cheapest_first() {
+    // The runs as the study tells them: the reference first, then each run, the largest dt
+    // (fewest steps) first; the partial chart of the first runs is drawn under the gauge.
+    use tumble::study::{self, Config, Partial, Timing};
+    let case = tumble::study::scenes::builtin().remove(2); // the projectile, 1 s
+    let config = Config {
+        integrators: vec![Integrator::Rk4, Integrator::Splitting],
+        dts: vec![1e-2, 1e-1],
+        timing: Timing {
+            repeats: 0,
+            sample_interval: 0.1,
+        },
+        target_error: 1e-6,
+    };
+    let mut told = Vec::new();
+    let full = study::study_case_streaming(&case, &config, &mut |_, _| {}, &mut |p| told.push(p));
+    assert!(matches!(told[0], Partial::Reference { kind: "exact", .. }));
+    let dts: Vec<f64> = told[1..]
+        .iter()
+        .map(|p| match p {
+            Partial::Run(row) => row.dt,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(dts, [1e-1, 1e-1, 1e-2, 1e-2]);
+    for p in &told[1..] {
+        let Partial::Run(row) = p else { unreachable!() };
+        let same = full
+            .rows
+            .iter()
+            .find(|r| r.integrator == row.integrator && r.dt == row.dt)
+            .unwrap();
+        assert_eq!(row.error, same.error, "the streamed run is the study's");
+    }
+    // A job's partial study grows with the runs done and gives way to the result.
+    let job = tumble::study::background::Job::spawn(case, config);
+    let started = Instant::now();
+    let mut seen = Vec::new();
+    while job.result().is_none() {
+        job.poll();
+        if let Some(partial) = job.partial() {
+            assert_eq!(partial.rows.len(), job.progress().0.min(partial.rows.len()));
+            seen.push(partial.rows.len());
+        }
+        assert!(started.elapsed() < Duration::from_secs(60));
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    assert!(
+        job.partial().is_none(),
+        "the result replaces the partial study"
+    );
+    assert!(seen.windows(2).all(|w| w[0] <= w[1]), "{seen:?}");
+    // The spring's first 14 runs (dt = 1e-1 and 1e-2), as the view draws them mid-study.
+    let study = spring_study();
+    let mut partial = study.clone();
+    partial.rows.retain(|r| r.dt >= 1e-2);
+    partial.orders = study::summarise(
+        &Integrator::ALL,
+        &mut partial.rows,
+        partial.reference_kind,
+        partial.floor,
+    );
+    partial.sentence = "14 of 28 runs finished".into();
+    let text = draw(&partial, 120, 40, Some(14));
+    assert!(
+        text.contains("14 of 28 runs · about 1 min 15 s left"),
+        "{text}"
+    );
+    assert!(text.contains("error against dt"), "{text}");
 }

@@ -12,6 +12,7 @@ mod joint_keys;
 mod lesson_claims;
 mod lessons;
 mod live_numbers;
+mod ode;
 mod page_tools;
 mod shot_forces;
 mod shot_tools;
