@@ -42,29 +42,82 @@ pub fn lines() -> Vec<Line<'static>> {
             .filter(|b| b.context == context && !b.help.is_empty())
         {
             lines.push(Line::from(vec![
-                Span::styled(format!("  {:<8}", b.label), key),
+                Span::styled(format!("  {:<9} ", b.label), key),
                 Span::raw(b.help),
             ]));
         }
     }
+    // The notes are paragraphs: `render` wraps them to the column.
     lines.push(Line::raw(""));
-    for line in MOUSE {
-        lines.push(Line::styled(line, theme::SOFT));
-    }
+    lines.push(Line::styled(MOUSE.join(" "), theme::SOFT));
     lines.push(Line::raw(""));
-    for line in CARRIED {
-        lines.push(Line::styled(line, theme::SOFT));
-    }
+    lines.push(Line::styled(CARRIED.join(" "), theme::SOFT));
     lines
 }
 
-/// The help in one column, or in two side by side when one is taller than the screen.
+/// `line` cut at word boundaries into lines at most `width` wide; a binding's continuation
+/// lines are indented under its help text, the key column left blank.
+fn wrap(line: Line<'static>, width: usize) -> Vec<Line<'static>> {
+    if line.width() <= width {
+        return vec![line];
+    }
+    let (lead, text, style) = match line.spans.as_slice() {
+        [key, help] => (key.clone(), help.content.to_string(), help.style),
+        _ => (
+            Span::raw(""),
+            line.spans.iter().map(|s| s.content.as_ref()).collect(),
+            line.spans.first().map_or(line.style, |s| s.style),
+        ),
+    };
+    let indent = lead.width();
+    let room = width.saturating_sub(indent).max(8);
+    let mut rows: Vec<String> = vec![String::new()];
+    for word in text.split(' ') {
+        let last = rows.last_mut().expect("one row at least");
+        if !last.is_empty() && last.chars().count() + 1 + word.chars().count() > room {
+            rows.push(word.to_string());
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(word);
+        }
+    }
+    rows.into_iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let first = if i == 0 {
+                lead.clone()
+            } else {
+                Span::raw(" ".repeat(indent))
+            };
+            Line::from(vec![first, Span::styled(row, style)])
+        })
+        .collect()
+}
+
+/// The help in one column, or in two side by side when one is taller than the screen (each
+/// half the screen wide, long lines wrapped under their text).
 pub fn render(area: Rect, buf: &mut Buffer) {
     let lines = lines();
     let room = usize::from(area.height.saturating_sub(2));
-    let columns: Vec<Vec<Line>> = if lines.len() <= room {
-        vec![lines]
+    // The widest key line sets the column (the notes wrap to it).
+    let widest = lines
+        .iter()
+        .filter(|l| l.spans.len() == 2)
+        .map(|l| l.width())
+        .max()
+        .unwrap_or(0);
+    let one: Vec<Line> = lines
+        .iter()
+        .cloned()
+        .flat_map(|l| wrap(l, widest))
+        .collect();
+    let columns: Vec<Vec<Line>> = if one.len() <= room && widest + 4 <= usize::from(area.width) {
+        vec![one]
     } else {
+        let half = usize::from(area.width.saturating_sub(4) / 2).saturating_sub(2);
+        let lines: Vec<Line> = lines.into_iter().flat_map(|l| wrap(l, half)).collect();
         // Split at a blank line (between sections) near the middle, if there is one.
         let middle = lines.len().div_ceil(2);
         let split = (middle..lines.len())

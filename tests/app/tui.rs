@@ -262,7 +262,13 @@ fn help_overlay_lists_every_bound_key() {
             Context::PlotPicker => "p",
         };
         keys(app, open);
-        screen(app, 120, 40)
+        // At 200×60 the main help is one column, every line whole (at 120×40 it is two, long
+        // lines wrapped: checked below).
+        if context == Context::Main {
+            screen(app, 200, 60)
+        } else {
+            screen(app, 120, 40)
+        }
     };
     for b in KEYS {
         let shown = shown_in(b.context, &mut app);
@@ -276,7 +282,26 @@ fn help_overlay_lists_every_bound_key() {
     }
     press(&mut app, KeyCode::Esc);
     keys(&mut app, "?");
-    assert!(screen(&app, 120, 40).contains("help — ? or Esc closes"));
+    let small = screen(&app, 120, 40);
+    assert!(small.contains("help — ? or Esc closes"));
+    // At 120×40 in two columns: every key is there, and every help's last word (nothing cut
+    // off at a column's edge or the bottom).
+    for b in KEYS
+        .iter()
+        .filter(|b| b.context == Context::Main && !b.help.is_empty())
+    {
+        assert!(
+            small.contains(b.label),
+            "120×40 help lacks `{}`:\n{small}",
+            b.label
+        );
+        let last = b.help.split(' ').next_back().unwrap_or_default();
+        assert!(
+            small.contains(last),
+            "120×40 help cuts `{}`:\n{small}",
+            b.help
+        );
+    }
     keys(&mut app, "?");
     assert!(!screen(&app, 120, 40).contains("help — ? or Esc closes"));
 }
