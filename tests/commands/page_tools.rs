@@ -126,7 +126,7 @@ fn every_mistake_in_a_tool_is_refused_where_it_is() {
             r#"panels = ["stopwatch", "clock"]"#,
             "rod.toml:26:24: page `panels`: unknown panel `clock` (panels: state, inertia, \
              angular-velocity, forces, momentum, angular-momentum, energy, body-energy, system, \
-             cloth, joints, stopwatch, period, ruler, protractor)",
+             cloth, joints, stopwatch, period, ruler, protractor, energy-bars)",
         ),
     ];
     for (line, expected) in cases {
