@@ -8,7 +8,8 @@
 //! ```
 //!
 //! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes` (or `dominoes-D`, the first
-//! tipped D°), `wall` (30 bricks in running bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball
+//! tipped D°), `bonded-wall` or `edge-wall` (stable walls: half bricks at the ends, bricks
+//! on bare edges; `-ball` hit by the ball), `wall` (30 bricks in running bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball
 //! at 6 m/s), their restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate); RESPONSE: `impulse` (default) or `soft-step`, whose parameters `SOFT_HERTZ`,
 //! `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise). Every `CONTACT_STEPS_EVERY`
 //! steps (1000) a line gives the largest sideways (x–z) distance of a body from its start (a
@@ -16,6 +17,7 @@
 //! final states.
 
 use std::time::Instant;
+use tumble::contact_scenes::{bonded_wall, edge_wall};
 use tumble::contact_scenes::{dominoes, dominoes_tipped, pyramid, stack, wall};
 use tumble::physics::{Impacts, Response};
 
@@ -33,7 +35,28 @@ fn main() {
         soft.damping_ratio = var("SOFT_ZETA").unwrap_or(soft.damping_ratio);
         soft.substeps = var("SOFT_SUBSTEPS").map_or(soft.substeps, |n| n as u32);
     }
-    let mut world = if let Some(n) = scene.strip_prefix("stack-") {
+    let wall_e = || std::env::var("WALL_E").ok().and_then(|s| s.parse().ok());
+    let wall_impacts = || {
+        let impacts = std::env::var("WALL_IMPACTS").ok();
+        impacts.as_deref().map_or(Impacts::Propagate, |name| {
+            Impacts::from_name(name).expect("propagate or simultaneous")
+        })
+    };
+    let mut world = if let Some(rest) = scene.strip_prefix("bonded-wall") {
+        bonded_wall(
+            rest == "-ball",
+            wall_e().unwrap_or(0.0),
+            wall_impacts(),
+            response,
+        )
+    } else if let Some(rest) = scene.strip_prefix("edge-wall") {
+        edge_wall(
+            rest == "-ball",
+            wall_e().unwrap_or(0.0),
+            wall_impacts(),
+            response,
+        )
+    } else if let Some(n) = scene.strip_prefix("stack-") {
         stack(n.parse().expect(usage), response)
     } else if let Some(rest) = scene.strip_prefix("pyramid-") {
         let (rows, gap) = match rest.strip_suffix("-gap") {
