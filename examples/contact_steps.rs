@@ -83,10 +83,16 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(1000);
     let start = Instant::now();
+    // Per step: the solver's work (row updates, deterministic) and the wall-clock time.
+    let mut works = Vec::new();
+    let mut times = Vec::new();
     let mut last = world.contact_counters();
     let mut last_time = start;
     for step in 1..=steps {
+        let t0 = Instant::now();
         world.step();
+        times.push(t0.elapsed().as_secs_f64() * 1e6);
+        works.push(world.contact_report().work);
         if step % every == 0 || step == steps {
             let now = world.contact_counters();
             let t = Instant::now();
@@ -122,6 +128,19 @@ fn main() {
         .map(|(s, s0)| (s.position - s0.position).norm())
         .fold(0.0, f64::max);
     println!("largest displacement {drift:.3e} m");
+    // The work budget (issue 35): no step far above the scene's median.
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        (v[v.len() / 2], v[v.len() - 1])
+    };
+    let (work_median, work_max) = median(&mut works.iter().map(|&w| w as f64).collect());
+    let (time_median, time_max) = median(&mut times);
+    println!(
+        "work per step (row updates): median {work_median} max {work_max} (×{:.1}); time per step median {time_median:.1} µs max {time_max:.1} µs (×{:.1}); unconverged steps {}",
+        work_max / work_median.max(1.0),
+        time_max / time_median.max(1e-9),
+        world.contact_counters().unconverged
+    );
     if std::env::var_os("CONTACT_STEPS_STATES").is_some() {
         for s in world.states() {
             println!(

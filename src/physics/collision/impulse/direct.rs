@@ -111,6 +111,8 @@ pub(super) fn inelastic(
         active,
         lambda,
         entering,
+        work,
+        budget,
         ..
     } = buffers;
     active.clear();
@@ -132,6 +134,11 @@ pub(super) fn inelastic(
     saved.clear();
     saved.extend_from_slice(motions);
     for round in 0..=PIVOT_ROUNDS {
+        // Within the step's work budget (`WORK_BUDGET`): a search that has spent it gives way
+        // to the sweeps (which then run their floor of sweeps, and say so if unconverged).
+        if round > 0 && *work >= *budget {
+            return false; // the motions are the saved ones at the start of every round
+        }
         system.reset(m);
         for p in 0..m {
             let ni = &rows[active[p]].normal;
@@ -144,6 +151,7 @@ pub(super) fn inelastic(
                 return false;
             }
         }
+        *work += super::factorisation_work(system.stored(), m);
         let Some(solution) = system.solve(Pivots::Regularised) else {
             return false;
         };
@@ -282,6 +290,7 @@ pub(super) fn sticking(
         saved,
         active,
         lambda: delta,
+        work,
         ..
     } = buffers;
     active.clear();
@@ -334,6 +343,7 @@ pub(super) fn sticking(
             return false;
         }
     }
+    *work += super::factorisation_work(system.stored(), 3 * m);
     let Some(solution) = system.solve(Pivots::Regularised) else {
         return false;
     };
