@@ -13,7 +13,7 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tumble::contact_scenes::{bonded_wall, edge_wall};
-use tumble::physics::collision::impulse::Counters;
+use tumble::physics::collision::impulse::{Counters, BUDGET_MAX_SWEEPS};
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
     Response, State, World,
@@ -128,4 +128,42 @@ fn a_box_on_a_box_on_two_boxes_stands_without_creep() {
     let moved = largest_displacement(&world);
     assert!(moved < 1e-6, "a box moved {moved:e} m in 10 s");
     assert_direct(&counters, 1000);
+}
+
+#[test]
+fn a_wall_knocked_down_keeps_to_its_work_budget_and_says_when_it_stops_unconverged() {
+    // The bonded wall hit by a 50 kg ball at 6 m/s: bricks tumbling on each other. Without a
+    // budget its stages ran to their caps (2000 sweeps each, with subspace steps between):
+    // 0.1 to 1.7 s a step. With it every step stays within its budget (the first step's and
+    // the floors' overshoot aside: at most 1000 sweeps' worth over its rows, twice that
+    // allowed), a step that stops unconverged reports its residual, and the counters count
+    // exactly those steps. The scene's energy is never made: E(t) ≤ E(0) at every step.
+    let mut world = bonded_wall(true, 0.0, Impacts::Propagate, Response::Impulse);
+    let initial = world.total_energy().total;
+    let start = world.contact_counters().unconverged;
+    let (mut unconverged, mut worst_ratio, mut highest) = (0, 0.0f64, f64::NEG_INFINITY);
+    for _ in 0..100 {
+        world.step();
+        let report = world.contact_report();
+        if let Some(residual) = report.unconverged {
+            assert!(residual.is_finite() && residual > 0.0, "{report:?}");
+            unconverged += 1;
+        }
+        if report.rows > 0 {
+            worst_ratio = worst_ratio
+                .max(report.work as f64 / (BUDGET_MAX_SWEEPS as f64 * report.rows as f64));
+        }
+        highest = highest.max(world.total_energy().total);
+    }
+    assert_eq!(world.contact_counters().unconverged - start, unconverged);
+    assert!(unconverged > 0, "the tumbling wall converged every step");
+    assert!(
+        worst_ratio <= 2.0,
+        "a step did {worst_ratio} times its largest budget"
+    );
+    assert!(
+        highest <= initial + 1e-9 * initial.abs(),
+        "E rose from {initial} J to {highest} J"
+    );
+    eprintln!("unconverged {unconverged}/100, worst work/budget {worst_ratio}, E0 {initial} max E {highest}");
 }

@@ -136,7 +136,7 @@ pub(super) fn inelastic(
     for round in 0..=PIVOT_ROUNDS {
         // Within the step's work budget (`WORK_BUDGET`): a search that has spent it gives way
         // to the sweeps (which then run their floor of sweeps, and say so if unconverged).
-        if round > 0 && *work >= *budget {
+        if *work >= *budget {
             return false; // the motions are the saved ones at the start of every round
         }
         system.reset(m);
@@ -291,12 +291,13 @@ pub(super) fn sticking(
         active,
         lambda: delta,
         work,
+        budget,
         ..
     } = buffers;
     active.clear();
     active.extend((0..rows.len()).filter(|&i| rows[i].lambda > 0.0));
     let m = active.len();
-    if m == 0 || m > STICKING_MAX {
+    if m == 0 || m > STICKING_MAX || *work >= *budget {
         return false;
     }
     // Ordered by the last body each acts on (stable), as the subspace step's unknowns: a chain

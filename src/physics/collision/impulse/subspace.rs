@@ -93,6 +93,9 @@ pub(super) fn sweep(
         // reaching its edge changes the active set; solve again on the new one.
         buffers.pinned.clear();
         for _ in 0..SUBSPACE_ROUNDS {
+            if buffers.spent() {
+                break;
+            }
             match step(rows, directions, motions, buffers) {
                 Subspace::Taken { whole } => {
                     steps_left = steps_left.saturating_sub(1);
