@@ -146,7 +146,7 @@ pub const TRIAL_WAIT_MAX: u32 = 32;
 
 /// The work budget of one step, in sweeps over its rows: the sweeps, subspace steps and
 /// pivot rounds of all stages together may do at most `WORK_BUDGET · rows` row updates (one
-/// sweep over the rows costs `rows`, a factorisation its estimate [`factorisation_work`];
+/// sweep over the rows costs `rows`, a factorisation its estimate `factorisation_work`;
 /// each checks the budget before it starts, so a step overshoots by one at most). A step
 /// that spends it, or whose sweeps reach their cap ([`MAX_SWEEPS`]), stops where it is —
 /// every impulse still in its bounds (λ ≥ 0, |λ_t| ≤ μ λ), so K still only went down — and
