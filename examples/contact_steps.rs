@@ -8,20 +8,24 @@
 //! ```
 //!
 //! SCENE: `stack-N`, `pyramid-R`, `pyramid-R-gap`, `dominoes` (or `dominoes-D`, the first
-//! tipped D°), `dominoes16` (16 of them, or `dominoes16-D`), `wall` (30 bricks in running
-//! bond, dt 5 ms) or `wall-ball` (hit by a 50 kg ball at 6 m/s), `knife-wall` or
-//! `knife-wall-ball` (the bricks turned 90°, each upper one on two bare edges), their
-//! restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate), `cradle` (a touching
-//! Newton's cradle, e = 1); RESPONSE: `impulse` (default) or `soft-step`, whose parameters
-//! `SOFT_HERTZ`, `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise). Every
-//! `CONTACT_STEPS_EVERY` steps (1000) a line gives the largest sideways (x–z) distance of a
-//! body from its start (a stack's lean), the solver's path counters and µs/step; the last
-//! line the mean CPU time per step (the thread's run time, Linux, beside benches/rapier's);
+//! tipped D°), `dominoes16` (16 of them, or `dominoes16-D`), `bonded-wall` or `edge-wall`
+//! (walls at rest: a running bond closed with half bricks; turned bricks each on 1 mm of two
+//! bricks; `-ball`: hit by the ball), `wall` (30 bricks in running bond, dt 5 ms: its shifted
+//! courses' end bricks balance on an edge and topple) or `wall-ball` (hit by a 50 kg ball at
+//! 6 m/s), `knife-wall` or `knife-wall-ball` (the bricks turned 90°, each upper one on two bare
+//! edges), their restitution `WALL_E` (0) and impact law `WALL_IMPACTS` (propagate), `cradle`
+//! (a touching Newton's cradle, e = 1); RESPONSE: `impulse` (default) or `soft-step`, whose
+//! parameters `SOFT_HERTZ`, `SOFT_ZETA` and `SOFT_SUBSTEPS` set (its defaults otherwise).
+//! Every `CONTACT_STEPS_EVERY` steps (1000) a line gives the largest sideways (x–z) distance
+//! of a body from its start (a stack's lean), the solver's path counters and µs/step; the
+//! last lines the mean CPU time per step (the thread's run time, Linux, beside
+//! benches/rapier's) and the work per step (median, max, unconverged steps);
 //! `CONTACT_STEPS_STATES` prints the final states.
 
 use std::time::Instant;
 use tumble::contact_scenes::{
-    cradle, domino_run, dominoes, dominoes_tipped, knife_edge_wall, pyramid, stack, wall,
+    bonded_wall, cradle, domino_run, dominoes, dominoes_tipped, edge_wall, knife_edge_wall,
+    pyramid, stack, wall,
 };
 use tumble::physics::{Impacts, Response};
 
@@ -39,7 +43,28 @@ fn main() {
         soft.damping_ratio = var("SOFT_ZETA").unwrap_or(soft.damping_ratio);
         soft.substeps = var("SOFT_SUBSTEPS").map_or(soft.substeps, |n| n as u32);
     }
-    let mut world = if let Some(n) = scene.strip_prefix("stack-") {
+    let wall_e = || std::env::var("WALL_E").ok().and_then(|s| s.parse().ok());
+    let wall_impacts = || {
+        let impacts = std::env::var("WALL_IMPACTS").ok();
+        impacts.as_deref().map_or(Impacts::Propagate, |name| {
+            Impacts::from_name(name).expect("propagate or simultaneous")
+        })
+    };
+    let mut world = if let Some(rest) = scene.strip_prefix("bonded-wall") {
+        bonded_wall(
+            rest == "-ball",
+            wall_e().unwrap_or(0.0),
+            wall_impacts(),
+            response,
+        )
+    } else if let Some(rest) = scene.strip_prefix("edge-wall") {
+        edge_wall(
+            rest == "-ball",
+            wall_e().unwrap_or(0.0),
+            wall_impacts(),
+            response,
+        )
+    } else if let Some(n) = scene.strip_prefix("stack-") {
         stack(n.parse().expect(usage), response)
     } else if let Some(rest) = scene.strip_prefix("pyramid-") {
         let (rows, gap) = match rest.strip_suffix("-gap") {
@@ -87,10 +112,16 @@ fn main() {
         .unwrap_or(1000);
     let cpu_start = cpu_seconds();
     let start = Instant::now();
+    // Per step: the solver's work (row updates, deterministic) and the wall-clock time.
+    let mut works = Vec::new();
+    let mut times = Vec::new();
     let mut last = world.contact_counters();
     let mut last_time = start;
     for step in 1..=steps {
+        let t0 = Instant::now();
         world.step();
+        times.push(t0.elapsed().as_secs_f64() * 1e6);
+        works.push(world.contact_report().work);
         if step % every == 0 || step == steps {
             let now = world.contact_counters();
             let t = Instant::now();
@@ -133,6 +164,19 @@ fn main() {
         );
     }
     println!("largest displacement {drift:.3e} m");
+    // The work budget (issue 35): no step far above the scene's median.
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        (v[v.len() / 2], v[v.len() - 1])
+    };
+    let (work_median, work_max) = median(&mut works.iter().map(|&w| w as f64).collect());
+    let (time_median, time_max) = median(&mut times);
+    println!(
+        "work per step (row updates): median {work_median} max {work_max} (×{:.1}); time per step median {time_median:.1} µs max {time_max:.1} µs (×{:.1}); unconverged steps {}",
+        work_max / work_median.max(1.0),
+        time_max / time_median.max(1e-9),
+        world.contact_counters().unconverged
+    );
     if std::env::var_os("CONTACT_STEPS_STATES").is_some() {
         for s in world.states() {
             println!(

@@ -1224,6 +1224,12 @@ impl World {
         self.scratch.counters
     }
 
+    /// What the `impulse` solver did in the last collide phase: its work and, when it stopped
+    /// at its work budget unconverged, the residual (the loop strip shows it).
+    pub fn contact_report(&self) -> super::collision::impulse::StepReport {
+        self.scratch.report
+    }
+
     /// Switches integrator, keeping t and the state (the orientation changes representation;
     /// a drifted `euler-seed` matrix becomes the nearest rotation). The current frame restarts
     /// at its derive phase.

@@ -448,5 +448,15 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             "",
         ));
     }
+    // A step that met the solver's work budget unconverged says so, with its residual.
+    if let Some(residual) = world.contact_report().unconverged {
+        lines.push(Line::from(vec![Span::styled(
+            format!(
+                " unconverged: the solver met its work budget, residual {} m/s (converged: < 1e-10)",
+                number_plain(residual)
+            ),
+            theme::NOTICE,
+        )]));
+    }
     lines
 }

@@ -20,3 +20,4 @@ mod properties;
 mod round_bodies;
 mod soft_step;
 mod tunnelling;
+mod walls;

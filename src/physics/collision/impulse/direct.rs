@@ -111,6 +111,8 @@ pub(super) fn inelastic(
         active,
         lambda,
         entering,
+        work,
+        budget,
         ..
     } = buffers;
     active.clear();
@@ -132,6 +134,11 @@ pub(super) fn inelastic(
     saved.clear();
     saved.extend_from_slice(motions);
     for round in 0..=PIVOT_ROUNDS {
+        // Within the step's work budget (`WORK_BUDGET`): a search that has spent it gives way
+        // to the sweeps (which then run their floor of sweeps, and say so if unconverged).
+        if *work >= *budget {
+            return false; // the motions are the saved ones at the start of every round
+        }
         system.reset(m);
         for p in 0..m {
             let ni = &rows[active[p]].normal;
@@ -144,6 +151,7 @@ pub(super) fn inelastic(
                 return false;
             }
         }
+        *work += super::factorisation_work(system.stored(), m);
         let Some(solution) = system.solve(Pivots::Regularised) else {
             return false;
         };
@@ -282,12 +290,14 @@ pub(super) fn sticking(
         saved,
         active,
         lambda: delta,
+        work,
+        budget,
         ..
     } = buffers;
     active.clear();
     active.extend((0..rows.len()).filter(|&i| rows[i].lambda > 0.0));
     let m = active.len();
-    if m == 0 || m > STICKING_MAX {
+    if m == 0 || m > STICKING_MAX || *work >= *budget {
         return false;
     }
     // Ordered by the last body each acts on (stable), as the subspace step's unknowns: a chain
@@ -334,6 +344,7 @@ pub(super) fn sticking(
             return false;
         }
     }
+    *work += super::factorisation_work(system.stored(), 3 * m);
     let Some(solution) = system.solve(Pivots::Regularised) else {
         return false;
     };

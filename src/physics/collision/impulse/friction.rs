@@ -206,16 +206,18 @@ fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
 }
 
 /// Block coordinate descent on the normal and friction impulses, at most `cap` sweeps;
-/// returns whether they converged and how many ran.
+/// returns whether they converged, how many ran, and the residual (the largest change of a
+/// contact velocity the last sweep made, m/s).
 pub(super) fn sweep(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
     tolerance: f64,
     cap: u64,
-) -> (bool, u64) {
+) -> (bool, u64, f64) {
+    let mut largest: f64 = 0.0;
     for sweep in 1..=cap {
-        let mut largest: f64 = 0.0;
+        largest = 0.0;
         for (row, directions) in rows.iter_mut().zip(directions.iter()) {
             let bound = row.friction_bound;
             largest = largest.max(normal::update(row, motions));
@@ -226,10 +228,10 @@ pub(super) fn sweep(
             largest = largest.max(change);
         }
         if largest <= tolerance {
-            return (true, sweep);
+            return (true, sweep, largest);
         }
     }
-    (false, cap)
+    (false, cap, largest)
 }
 
 /// Adds each row's tangent impulses to its contact's impulse (after the normal row's

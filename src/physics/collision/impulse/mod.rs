@@ -144,6 +144,55 @@ pub const TRIAL_SWEEPS: u64 = 8;
 /// The longest wait, in steps, between stage-1 trials that keep failing.
 pub const TRIAL_WAIT_MAX: u32 = 32;
 
+/// The work budget of one step, in sweeps over its rows: the sweeps, subspace steps and
+/// pivot rounds of all stages together may do at most `WORK_BUDGET · rows` row updates (one
+/// sweep over the rows costs `rows`, a factorisation its estimate `factorisation_work`;
+/// each checks the budget before it starts, so a step overshoots by one at most). A step
+/// that spends it, or whose sweeps reach their cap ([`MAX_SWEEPS`]), stops where it is —
+/// every impulse still in its bounds (λ ≥ 0, |λ_t| ≤ μ λ), so K still only went down — and
+/// says so: its [`StepReport`] carries the residual, the loop strip shows it,
+/// [`Counters::unconverged`] counts it. Never silent.
+///
+/// Measured (issue 35): the bonded wall knocked down by the ball, its bricks tumbling on
+/// each other, ran each stage to its cap with subspace steps between, 0.1 to 1.7 s a step.
+/// A budget of 1000 sweeps held it to 5–12 ms a step, 2000 (with this estimate of a
+/// factorisation) to 35–70 ms; but either also cut the dominoes' sliding steps (84 of 3000
+/// unconverged) and moved lesson 37's claim "rises after the landing" from 0.00163 to
+/// 0.00100–0.00132 m. Relative to a running median of the scene's steps (16×) it did the
+/// same, and cost the dominoes 11 % more instructions in all (a cut step's warm start is
+/// worse for the next). So the budget is set where no bundled lesson nor scaling scene meets
+/// it: it bounds the worst step rather than making a tumbling wall cheap (that needs a better
+/// friction method: issue 35, item 3).
+pub const WORK_BUDGET: u64 = 20_000;
+
+/// The sweeps a stage runs even when the budget is spent (the last stage of a step always
+/// gets some work done).
+pub const BUDGET_FLOOR: u64 = 8;
+
+/// The work of one factorisation of `m` unknowns whose envelope stores `stored` entries, in
+/// row updates (a friction sweep's row update is about 200 instructions): filling it (a
+/// coupling an entry, about a quarter of a row update) plus the factorisation's
+/// `Σ width²/2 ≈ stored²/2m` multiply–adds at about 100 to a row update.
+#[inline]
+pub(super) fn factorisation_work(stored: usize, m: usize) -> u64 {
+    let (stored, m) = (stored as u64, m.max(1) as u64);
+    stored / 4 + stored * stored / (200 * m)
+}
+
+/// What the solver did in the last step: its work, and whether it stopped at its budget
+/// ([`WORK_BUDGET`]) or its caps before converging.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepReport {
+    /// The work done, in row updates (sweeps × rows, factorisations by their estimate).
+    pub work: u64,
+    /// The rows (contacts) solved.
+    pub rows: usize,
+    /// `Some(residual)` when a stage stopped unconverged: the largest change of a contact
+    /// velocity its last sweep made, m/s (converged means below [`TOLERANCE`], 1e-10 m/s,
+    /// plus the same fraction of the fastest approach).
+    pub unconverged: Option<f64>,
+}
+
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -167,6 +216,8 @@ pub struct Scratch {
     impacts: propagate::Scratch,
     /// What the solver did since the world was built (the solver path, for tests).
     pub counters: Counters,
+    /// What it did in the last step (its work, whether it converged).
+    pub report: StepReport,
     /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
     pub(super) soft: super::soft_step::Scratch,
 }
@@ -197,6 +248,40 @@ struct Direct {
     /// The rows in the order the subspace step takes its unknowns.
     order: Vec<usize>,
     subspace_rows: Vec<(f64, [f64; 2])>,
+    /// This step's work so far and its budget, in row updates ([`WORK_BUDGET`]).
+    work: u64,
+    budget: u64,
+    /// The last sweeps' residual (m/s), and this step's largest residual of a stage that
+    /// stopped unconverged.
+    residual: f64,
+    unconverged: Option<f64>,
+}
+
+impl Direct {
+    /// A new step's budget over `rows` rows ([`WORK_BUDGET`]).
+    fn start(&mut self, rows: usize) {
+        self.work = 0;
+        self.residual = 0.0;
+        self.unconverged = None;
+        self.budget = WORK_BUDGET * rows as u64;
+    }
+
+    /// Whether this step's work budget is spent.
+    fn spent(&self) -> bool {
+        self.work >= self.budget
+    }
+
+    /// The sweeps a stage over `rows` rows may run now, at most `cap`: what the budget has
+    /// left, but at least [`BUDGET_FLOOR`].
+    fn sweeps_left(&self, rows: usize, cap: u64) -> u64 {
+        let left = self.budget.saturating_sub(self.work) / rows.max(1) as u64;
+        cap.min(left.max(BUDGET_FLOOR))
+    }
+
+    /// Notes a stage that ended unconverged with `residual`.
+    fn unconverged(&mut self, residual: f64) {
+        self.unconverged = Some(self.unconverged.map_or(residual, |r| r.max(residual)));
+    }
 }
 
 /// Counts of the solver's paths, summed over steps: a resting scene that keeps its cost keeps
@@ -225,6 +310,9 @@ pub struct Counters {
     /// contact still approaching (the final simultaneous solve took the rest).
     pub impact_rounds: u64,
     pub impacts_unconverged: u64,
+    /// Steps in which a stage stopped unconverged (its work budget spent, [`WORK_BUDGET`], or
+    /// its sweeps' cap reached).
+    pub unconverged: u64,
 }
 
 /// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
@@ -287,6 +375,7 @@ pub fn respond(
     ) {
         // Nothing has touched: speculative contacts alone never act.
         contacts.clear();
+        scratch.report = StepReport::default();
         return None;
     }
     // Every body's velocities, with I⁻¹_world exactly as the derive phase (and the energy
@@ -374,6 +463,7 @@ pub fn respond(
         advanced,
         counters,
         impacts,
+        report,
         ..
     } = scratch;
     advanced.clear();
@@ -382,10 +472,10 @@ pub fn respond(
         rows,
         tangents,
         motions,
-        direct,
+        direct: &mut *direct,
         change,
         bounced: advanced,
-        counters,
+        counters: &mut *counters,
         impacts,
     };
     // A bounce says nothing about the next step's load: stored as no impulse.
@@ -398,6 +488,14 @@ pub fn respond(
         (p, j)
     }));
     resolve(&settings, contacts, warm, buffers);
+    *report = StepReport {
+        work: direct.work,
+        rows: contacts.len(),
+        unconverged: direct.unconverged,
+    };
+    if direct.unconverged.is_some() {
+        counters.unconverged += 1;
+    }
     for (state, m) in states.iter_mut().zip(motions.iter()) {
         if m.touched {
             state.linear_momentum = m.v / m.inv_mass;
@@ -508,6 +606,8 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         TOLERANCE * (1.0 + fastest)
     };
     let tolerance = prepare(rows, motions);
+    // This step's work budget (the impact rounds and the resting solve share it).
+    direct.start(rows.len());
     let mut stage = Stage {
         tangents,
         motions,
@@ -605,7 +705,8 @@ fn stages(
         buffers_direct.trial.clear();
         buffers_direct.trial.extend_from_slice(motions);
         normal::warm_start(rows, motions);
-        let (converged, sweeps) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
+        let (converged, sweeps, _) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
+        buffers_direct.work += sweeps * rows.len() as u64;
         counters.normal_sweeps += sweeps;
         if converged {
             counters.warm += 1;
@@ -628,11 +729,17 @@ fn stages(
         } else {
             counters.declined += 1;
             normal::warm_start(rows, motions);
-            let (_, sweeps) = if large {
+            let (converged, sweeps, residual) = if large {
                 subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
             } else {
-                normal::sweep(rows, motions, tolerance, MAX_SWEEPS as u64)
+                let cap = buffers_direct.sweeps_left(rows.len(), MAX_SWEEPS as u64);
+                let swept = normal::sweep(rows, motions, tolerance, cap);
+                buffers_direct.work += swept.1 * rows.len() as u64;
+                swept
             };
+            if !converged {
+                buffers_direct.unconverged(residual);
+            }
             counters.normal_sweeps += sweeps;
         }
     }
@@ -662,7 +769,10 @@ fn stages(
         let mut solved = false;
         if large {
             let Direct {
-                trial, trial_rows, ..
+                trial,
+                trial_rows,
+                work,
+                ..
             } = &mut *buffers_direct;
             trial.clear();
             trial.extend_from_slice(motions);
@@ -674,8 +784,9 @@ fn stages(
             // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
             normal::warm_start_again(rows, motions);
             friction::warm_start(rows, tangent_directions, motions);
-            let (converged, sweeps) =
+            let (converged, sweeps, _) =
                 friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
+            *work += sweeps * rows.len() as u64;
             counters.friction_sweeps += sweeps;
             if converged {
                 counters.friction_warm += 1;
@@ -705,7 +816,7 @@ fn stages(
         }
         if !solved {
             friction::warm_start(rows, tangent_directions, motions);
-            let (_, sweeps) = subspace::sweep(
+            let (converged, sweeps, residual) = subspace::sweep(
                 rows,
                 tangent_directions,
                 motions,
@@ -713,6 +824,9 @@ fn stages(
                 buffers_direct,
                 counters,
             );
+            if !converged {
+                buffers_direct.unconverged(residual);
+            }
             counters.friction_sweeps += sweeps;
         }
     }

@@ -12,6 +12,8 @@
 //! The step's formulas (the objective F, the edge unknowns' curvature, the ratio test and the
 //! exact measure of the change of F) are on `step`.
 
+#[cfg(doc)]
+use super::WORK_BUDGET;
 use super::{friction, normal, Counters, Direct, Row, ENVELOPE_MAX, MAX_SWEEPS};
 use crate::physics::collision::solver_body::{Axis, End, SolverBody};
 use crate::physics::envelope::Pivots;
@@ -40,8 +42,9 @@ pub const EDGE_TURN: f64 = 0.25;
 const SLIDING_EDGE: f64 = 1e-9;
 
 /// Sweeps with a subspace step ([`step`]) after every [`SUBSPACE_EVERY`]
-/// sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in all; returns whether they
-/// converged and how many sweeps ran. With friction directions these are the friction sweeps
+/// sweeps that did not converge, at most [`MAX_SWEEPS`] sweeps in all and within the step's
+/// work budget ([`WORK_BUDGET`]: once it is spent, no more subspace steps, and the sweeps
+/// stop); returns whether they converged, how many sweeps ran and the last sweep's residual. With friction directions these are the friction sweeps
 /// ([`friction::sweep`]); with none (stage 1, every friction bound 0) the normal sweeps
 /// ([`normal::sweep`]), and the subspace step solves the pushing normals alone. A system too
 /// wide for the direct solve ([`ENVELOPE_MAX`]) stops trying the subspace steps.
@@ -52,10 +55,11 @@ pub(super) fn sweep(
     tolerance: f64,
     buffers: &mut Direct,
     counters: &mut Counters,
-) -> (bool, u64) {
+) -> (bool, u64, f64) {
     let cap = MAX_SWEEPS as u64;
     let normals_only = directions.is_empty();
     let mut total = 0;
+    let rows_count = rows.len();
     let mut subspace = true;
     let mut steps_left = if normals_only {
         NORMAL_SUBSPACE_MAX
@@ -63,21 +67,35 @@ pub(super) fn sweep(
         usize::MAX
     };
     loop {
-        subspace &= steps_left > 0;
+        subspace &= steps_left > 0 && !buffers.spent();
         let burst = if subspace { SUBSPACE_EVERY } else { cap }.min(cap - total);
-        let (converged, sweeps) = if normals_only {
+        // The first burst always runs; later ones only within the budget.
+        let burst = if total == 0 {
+            buffers.sweeps_left(rows_count, burst)
+        } else {
+            burst.min(buffers.budget.saturating_sub(buffers.work) / rows_count.max(1) as u64)
+        };
+        if burst == 0 {
+            return (false, total, buffers.residual);
+        }
+        let (converged, sweeps, residual) = if normals_only {
             normal::sweep(rows, motions, tolerance, burst)
         } else {
             friction::sweep(rows, directions, motions, tolerance, burst)
         };
+        buffers.work += sweeps * rows_count as u64;
+        buffers.residual = residual;
         total += sweeps;
         if converged || total >= cap {
-            return (converged, total);
+            return (converged, total, residual);
         }
         // An active-set search: a step cut short by a normal reaching 0 or a sticking disk
         // reaching its edge changes the active set; solve again on the new one.
         buffers.pinned.clear();
         for _ in 0..SUBSPACE_ROUNDS {
+            if buffers.spent() {
+                break;
+            }
             match step(rows, directions, motions, buffers) {
                 Subspace::Taken { whole } => {
                     steps_left = steps_left.saturating_sub(1);
@@ -165,6 +183,7 @@ fn step(
         subspace_rows,
         pinned,
         order,
+        work,
         ..
     } = buffers;
     // Rows ordered by the last body they act on (stable: a pair's rows stay together), so
@@ -244,6 +263,7 @@ fn step(
             return Subspace::TooWide;
         }
     }
+    *work += super::factorisation_work(system.stored(), m);
     let Some(delta) = system.solve(Pivots::Regularised) else {
         return Subspace::Declined;
     };
