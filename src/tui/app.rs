@@ -1120,15 +1120,17 @@ impl App {
             }
         }
         self.lesson.scene = scene;
-        // Frames before the change replay with the new values: the history restarts here.
-        self.history.break_segment();
+        // Frames before the change could only be replayed with the new values (a keyframe
+        // keeps the state, not g, k or a motor's speed): stepping back stops at the change.
+        self.history.clear();
         // The pages' live numbers are simulated again with the new values; the ± reference
         // ran the old ones.
         self.start_live(self.lesson.scene.world());
         let bars = self.error_bars.take().is_some();
         self.refresh();
         self.notice = Some(format!(
-            "applied live ({changes}): the run goes on from t = {} s{}",
+            "applied live ({changes}): the run goes on from t = {} s (, steps back to here, \
+             not before){}",
             tidy(self.world.time()),
             if bars { "; u shows the ± again" } else { "" }
         ));

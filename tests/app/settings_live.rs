@@ -190,6 +190,13 @@ fn a_live_g_does_not_restart_the_run() {
     // rk4's own drift on the spring's oscillation (about 1e-7 J here), not a jump of ΔV.
     let drift = app.world.energy_balance().drift;
     assert!(drift.abs() < 1e-5, "drift {drift}");
+    // Stepping back goes exactly to the change and no further: the frames before it ran
+    // with the old g and k, which no replay under the new ones would give back.
+    for _ in 0..60 {
+        press(&mut app, KeyCode::Char(','));
+    }
+    assert_eq!(app.world.step_count(), 100);
+    assert_eq!(app.world.states(), &states[..]);
     // A reset starts over with the new g.
     press(&mut app, KeyCode::Char('r'));
     assert_eq!(app.world.step_count(), 0);
