@@ -77,7 +77,7 @@ pub struct SceneEdits {
     pub springs: Vec<SpringEdit>,
     /// Each hinge's and slider's limits and motor (those that have one), in scene order.
     pub joints: Vec<JointEdit>,
-    /// The body's size, by its shape ([`SceneEdits::size_names`]): a box's sides x, y, z; a
+    /// The body's size, by its shape ([`size_names`]): a box's sides x, y, z; a
     /// sphere's radius; a capsule's or cylinder's radius and length, m (empty: a body of
     /// points or a mesh, or a fixed one, or no body).
     pub size: Vec<f64>,
