@@ -1,7 +1,7 @@
 //! `--svg PATH`: error against cost on log–log axes, one panel per scene, one line per
 //! integrator (its points in order of dt, each labelled with its dt); frontier runs are ringed.
 //! Beside each scene's cost panel, its error against dt (log–log, the same markers and colours,
-//! the fitted order p beside each line: the slope of that line).
+//! the fitted order p beside each line: the slope of that line), on the same row of the grid.
 //! A cloth case's panel has one line per particle integrator (error in m; runs past the
 //! explicit limit that diverged have no point).
 
@@ -40,6 +40,8 @@ enum Panel<'s> {
     Cloth(&'s SceneStudy, &'s ClothStudy),
     /// A contact scene's collision responses at its own integrator and dt.
     Solvers(&'s SceneStudy, &'s ContactStudy),
+    /// A blank slot, so that a scene's cost and dt panels share a row.
+    Blank,
 }
 
 /// The horizontal axis of a scene's integrators' panel.
@@ -135,6 +137,9 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
         match &study.cloth {
             Some(cloth) => panels.push(Panel::Cloth(study, cloth)),
             None => {
+                if panels.len() % 2 == 1 {
+                    panels.push(Panel::Blank);
+                }
                 panels.push(Panel::Bodies(study, Against::Cost));
                 panels.push(Panel::Bodies(study, Against::Dt));
             }
@@ -161,6 +166,7 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
             Panel::Bodies(study, against) => bodies_panel(study, *against, area),
             Panel::Cloth(study, cloth) => cloth_panel(study, cloth, area),
             Panel::Solvers(study, chart) => solvers_panel(study, chart, area),
+            Panel::Blank => Ok(()),
         }
         .map_err(|e| fail(&e))?;
     }
