@@ -1,5 +1,7 @@
 //! `--svg PATH`: error against cost on log–log axes, one panel per scene, one line per
 //! integrator (its points in order of dt, each labelled with its dt); frontier runs are ringed.
+//! Beside each scene's cost panel, its error against dt (log–log, the same markers and colours,
+//! the fitted order p beside each line: the slope of that line), on the same row of the grid.
 //! A cloth case's panel has one line per particle integrator (error in m; runs past the
 //! explicit limit that diverged have no point).
 
@@ -32,12 +34,23 @@ const FLOOR: f64 = 1e-16;
 
 /// One panel of the picture.
 enum Panel<'s> {
-    /// A scene's integrators: error against cost.
-    Bodies(&'s SceneStudy),
+    /// A scene's integrators: error against cost, or against dt.
+    Bodies(&'s SceneStudy, Against),
     /// A cloth case's particle integrators.
     Cloth(&'s SceneStudy, &'s ClothStudy),
     /// A contact scene's collision responses at its own integrator and dt.
     Solvers(&'s SceneStudy, &'s ContactStudy),
+    /// A blank slot, so that a scene's cost and dt panels share a row.
+    Blank,
+}
+
+/// The horizontal axis of a scene's integrators' panel.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Against {
+    /// µs of wall time per simulated second (frontier ringed, points labelled with dt).
+    Cost,
+    /// The time step (its slope is the fitted order; no timing in it).
+    Dt,
 }
 
 /// What the legend lists: only what some panel draws.
@@ -107,11 +120,11 @@ fn drawable(r: &super::measure::Row) -> bool {
 
 /// The title, in lines that fit a picture `width` px wide (about 8 px a character at 16 px).
 fn title_lines(width: u32) -> Vec<&'static str> {
-    const FIRST: &str = "tumble study: error against cost, log–log";
+    const FIRST: &str = "tumble study: error against cost and against dt, log–log";
     const SECOND: &str =
         "(lower left is better; ringed = Pareto frontier; labels = dt in s; p = fitted order)";
     if (FIRST.chars().count() + SECOND.chars().count() + 1) * 8 + 32 <= width as usize {
-        vec!["tumble study: error against cost, log–log (lower left is better; ringed = Pareto frontier; labels = dt in s; p = fitted order)", super::report::ERROR_MEASURE]
+        vec!["tumble study: error against cost and against dt, log–log (lower left is better; ringed = Pareto frontier; labels = dt in s; p = fitted order)", super::report::ERROR_MEASURE]
     } else {
         vec![FIRST, SECOND, super::report::ERROR_MEASURE]
     }
@@ -123,7 +136,13 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
     for study in studies {
         match &study.cloth {
             Some(cloth) => panels.push(Panel::Cloth(study, cloth)),
-            None => panels.push(Panel::Bodies(study)),
+            None => {
+                if panels.len() % 2 == 1 {
+                    panels.push(Panel::Blank);
+                }
+                panels.push(Panel::Bodies(study, Against::Cost));
+                panels.push(Panel::Bodies(study, Against::Dt));
+            }
         }
         if let Some(chart) = &study.contact_solvers {
             panels.push(Panel::Solvers(study, chart));
@@ -144,9 +163,10 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
     let areas = body.split_evenly((rows, columns));
     for (panel, area) in panels.iter().zip(areas.iter()) {
         match panel {
-            Panel::Bodies(study) => bodies_panel(study, area),
+            Panel::Bodies(study, against) => bodies_panel(study, *against, area),
             Panel::Cloth(study, cloth) => cloth_panel(study, cloth, area),
             Panel::Solvers(study, chart) => solvers_panel(study, chart, area),
+            Panel::Blank => Ok(()),
         }
         .map_err(|e| fail(&e))?;
     }
@@ -210,6 +230,9 @@ macro_rules! label {
 /// The cost axis of the panels that sweep dt.
 const PER_SECOND: &str = "cost: µs of wall time per simulated second";
 
+/// The time-step axis of the panels of error against dt.
+pub const TIME_STEP: &str = "time step dt (s)";
+
 /// Error against cost, both axes logarithmic.
 type CostChart<'a, 'b> =
     ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
@@ -252,17 +275,37 @@ fn cost_chart<'a, 'b>(
     Ok(chart)
 }
 
-fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::error::Error>> {
+/// A scene's integrators' panel: error against cost (frontier ringed, points labelled with
+/// their dt) or against dt (slope = order); in both the floor band, the fitted order beside
+/// each line's finest run and the diverged runs listed.
+fn bodies_panel(
+    study: &SceneStudy,
+    against: Against,
+    area: &Area,
+) -> Result<(), Box<dyn std::error::Error>> {
     let ok: Vec<_> = study.rows.iter().filter(|r| drawable(r)).collect();
-    let caption = format!(
-        "{} ({} s, {} reference)",
-        study.name, study.duration, study.reference_kind
-    );
-    let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
+    let x = |r: &super::measure::Row| match against {
+        Against::Cost => r.us_per_simulated_second,
+        Against::Dt => r.dt,
+    };
+    let (caption, x_desc) = match against {
+        Against::Cost => (
+            format!(
+                "{} ({} s, {} reference)",
+                study.name, study.duration, study.reference_kind
+            ),
+            PER_SECOND,
+        ),
+        Against::Dt => (
+            format!("{}: error against dt (slope = p)", study.name),
+            TIME_STEP,
+        ),
+    };
+    let points = ok.iter().map(|r| (x(r), r.error));
     let mut chart = cost_chart(
         area,
         &caption,
-        PER_SECOND,
+        x_desc,
         "error = max angle + |x − x_ref|/radius",
         points,
     )?;
@@ -285,21 +328,18 @@ fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::erro
         let c = color(integrator);
         let mut points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
         points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
-        let xy: Vec<(f64, f64)> = points
-            .iter()
-            .map(|r| (r.us_per_simulated_second, r.error.max(FLOOR)))
-            .collect();
+        let xy: Vec<(f64, f64)> = points.iter().map(|r| (x(r), r.error.max(FLOOR))).collect();
         chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
         // Integrators whose points coincide stay apart: each has its own ring size.
         let size = 3 + 2 * k as i32;
         chart.draw_series(xy.iter().map(|&p| Circle::new(p, size, c.stroke_width(2))))?;
-        chart.draw_series(points.iter().map(|r| {
-            label!(
-                format_dt(r.dt),
-                (r.us_per_simulated_second, r.error.max(FLOOR)),
-                &c,
-            )
-        }))?;
+        if against == Against::Cost {
+            chart.draw_series(
+                points
+                    .iter()
+                    .map(|r| label!(format_dt(r.dt), (x(r), r.error.max(FLOOR)), &c)),
+            )?;
+        }
         // The fitted order beside the integrator's finest run.
         if let (Some(last), Some(order)) = (
             xy.last(),
@@ -316,9 +356,10 @@ fn bodies_panel(study: &SceneStudy, area: &Area) -> Result<(), Box<dyn std::erro
             ))?;
         }
     }
-    chart.draw_series(ok.iter().filter(|r| r.frontier).map(|r| {
+    let frontier = ok.iter().filter(|r| r.frontier && against == Against::Cost);
+    chart.draw_series(frontier.map(|r| {
         Circle::new(
-            (r.us_per_simulated_second, r.error.max(FLOOR)),
+            (x(r), r.error.max(FLOOR)),
             7 + 2 * integrators.len() as i32,
             BLACK.stroke_width(1),
         )

@@ -291,7 +291,35 @@ fn study_of_a_file_prints_the_csv_contract_and_an_svg() {
             "legend lacks {}",
             integrator.name()
         );
+        // The fitted order beside the integrator's line in both charts (cost and dt).
+        assert_eq!(
+            picture
+                .lines()
+                .filter(|l| l.starts_with(&format!("{} ", integrator.name())))
+                .count(),
+            2,
+            "{} order not beside both lines",
+            integrator.name()
+        );
     }
+    // Beside error against cost, error against dt: its axis, and one marker per run that did not
+    // diverge in each chart (the frontier's black rings aside).
+    assert_eq!(
+        picture.matches("time step dt (s)").count(),
+        1,
+        "no dt chart"
+    );
+    let status = 16;
+    let ok = rows
+        .iter()
+        .filter(|r| r.split(',').nth(status) == Some("ok"))
+        .count();
+    assert!(ok > 0, "{text}");
+    let markers = picture
+        .lines()
+        .filter(|l| l.contains("<circle") && !l.contains("stroke=\"#000000\""))
+        .count();
+    assert_eq!(markers, 2 * ok, "one marker per run in each chart");
     std::fs::remove_dir_all(&dir).ok();
 }
 
