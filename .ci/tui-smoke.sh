@@ -84,15 +84,15 @@ tmux send-keys -t "$session" Escape
 wait_for "nothing to close: q quits"
 [[ -s "$work/exit" ]] && fail "Esc quit the app"
 
-# The settings form: change the third field, apply (the scene restarts), then Esc closes a reopened form.
+# The settings form (of the body the panels show): change the third field (the box's size y), apply (the scene restarts), then Esc closes a reopened form.
 tmux send-keys -t "$session" e
-wait_for "settings — Esc closes"
+wait_for "— Esc closes, nothing applied"
 for _ in 1 2; do tmux send-keys -t "$session" Down; done
 tmux send-keys -t "$session" 3 Enter
 wait_for "settings applied ("
 wait_for "step 0 "
 tmux send-keys -t "$session" e
-wait_for "settings — Esc closes"
+wait_for "— Esc closes, nothing applied"
 tmux send-keys -t "$session" Escape
 wait_for "settings closed: nothing applied"
 [[ -s "$work/exit" ]] && fail "Esc quit the app from the form"
