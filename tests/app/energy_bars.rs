@@ -2,33 +2,12 @@
 //! ledger's, and they add up to E₀ — checked on a falling body (K + V = E₀, K = ½ M (g t)²)
 //! and on a block that friction stops (its kinetic energy booked to the contacts).
 
-use std::path::Path;
+use crate::common::screen;
 use tumble::tui::energy_bars::{bars, total};
-use tumble::tui::export;
-use tumble::tui::{App, Options};
+use tumble::tui::App;
 
 fn app(source: &str) -> App {
-    let lesson = tumble::scene::parse(source, Path::new("energy-bars.toml"))
-        .unwrap_or_else(|e| panic!("{e}"));
-    App::new(
-        lesson,
-        Options {
-            ascii: true,
-            compare: None,
-            show_timing: false,
-        },
-    )
-}
-
-fn screen(app: &App, width: u16, height: u16) -> String {
-    let buf = export::render(app, width, height);
-    (0..buf.area.height)
-        .map(|y| {
-            let row: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-            row.trim_end().to_string()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+    crate::common::app_of(source, "energy-bars.toml")
 }
 
 /// The value of bar `label` now.

@@ -4,6 +4,7 @@
 mod against;
 mod class_pages;
 mod classroom;
+mod common;
 mod energy_bars;
 mod findings;
 mod forces;

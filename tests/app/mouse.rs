@@ -3,39 +3,15 @@
 //! ledger's hand row, against the impulse–energy theorem), the wheel zooms about the pointer,
 //! a click on a panel row graphs that quantity.
 
+use crate::common::screen;
 use nalgebra::Vector3;
-use ratatui::backend::TestBackend;
-use ratatui::Terminal;
-use std::path::Path;
 use tumble::physics::derive::derive;
 use tumble::tui::keys::Message;
 use tumble::tui::mouse::{Action, Mouse};
-use tumble::tui::{App, Options, View};
+use tumble::tui::{App, View};
 
-fn app_of(source: &str) -> App {
-    let lesson = tumble::scene::parse(source, Path::new("mouse.toml")).unwrap();
-    App::new(
-        lesson,
-        Options {
-            ascii: true,
-            compare: None,
-            show_timing: false,
-        },
-    )
-}
-
-/// Draws the app (the mouse reads where things are from the screen as last drawn).
-fn screen(app: &App, width: u16, height: u16) -> String {
-    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
-    terminal.draw(|f| f.render_widget(app, f.area())).unwrap();
-    let buf = terminal.backend().buffer();
-    (0..buf.area.height)
-        .map(|y| {
-            let row: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-            row.trim_end().to_string()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+fn app_of_(source: &str) -> App {
+    crate::common::app_of(source, "mouse.toml")
 }
 
 fn mouse(app: &mut App, action: Action, (col, row): (u16, u16)) {
@@ -111,7 +87,7 @@ position = [0.0, 0.0, 0.0]
 
 #[test]
 fn a_click_selects_the_body_under_the_pointer_and_not_empty_space() {
-    let mut app = app_of(TWO_CUBES);
+    let mut app = app_of_(TWO_CUBES);
     screen(&app, 120, 40);
     assert_eq!(app.selected, 0);
     // A click on `right`'s barycenter, then near its corner (0.15 m from its centre along
@@ -135,7 +111,7 @@ fn a_click_selects_the_body_under_the_pointer_and_not_empty_space() {
 
 #[test]
 fn dragging_pulls_a_resting_body_towards_the_pointer() {
-    let mut app = app_of(RESTING);
+    let mut app = app_of_(RESTING);
     screen(&app, 120, 40);
     let start = app.world.states()[0].position;
     at(&mut app, Action::Press, start);
@@ -181,7 +157,7 @@ fn the_hands_work_is_the_ledgers_hand_row_and_the_balance_closes() {
     // for 0.5 s. Independent truth, frame by frame: the impulse–energy theorem. A kick J at a
     // point whose velocity goes from u⁻ to u⁺ does work J·(u⁻ + u⁺)/2, with
     //   u = v + ω × r,  v⁺ = v + J/M,  ω⁺ = I⁻¹_world (L + r × J).
-    let mut app = app_of(FREE_BOX);
+    let mut app = app_of_(FREE_BOX);
     screen(&app, 120, 40);
     let grab = Vector3::new(0.25, 0.1, 0.0);
     at(&mut app, Action::Press, grab);
@@ -231,7 +207,7 @@ fn the_hands_work_is_the_ledgers_hand_row_and_the_balance_closes() {
 
 #[test]
 fn the_wheel_zooms_about_the_pointer_and_z_zooms_about_the_centre() {
-    let mut app = app_of(TWO_CUBES);
+    let mut app = app_of_(TWO_CUBES);
     screen(&app, 120, 40);
     let before = app.viewport().unwrap();
     let at = cell_of(&app, Vector3::new(1.0, 0.1, 0.0));
@@ -307,7 +283,7 @@ fn number_cell(shown: &str, panel_title: &str, label: &str, n: usize) -> (u16, u
 
 #[test]
 fn a_click_on_a_panel_row_graphs_that_quantity() {
-    let mut app = app_of(FREE_BOX);
+    let mut app = app_of_(FREE_BOX);
     let shown = screen(&app, 120, 40);
     // ω_z of the angular-velocity table: box.wz against time, as the picker (p) sets it.
     mouse(
@@ -355,7 +331,7 @@ fn a_click_on_a_panel_row_graphs_that_quantity() {
 fn in_the_stage_layout_a_click_on_an_essential_row_graphs_it() {
     // L: the essentials box beside the drawing; its ω row's z number is box.wz, its v row's
     // x number box.vx.
-    let mut app = app_of(FREE_BOX);
+    let mut app = app_of_(FREE_BOX);
     app.update(Message::NextLayout);
     let shown = screen(&app, 120, 40);
     let essentials = |shown: &str, label: &str, n: usize| {
@@ -385,7 +361,7 @@ fn a_drag_in_progress_at_120x40() {
     // The resting cube held at its top right corner and pulled up and right for 0.3 s: the
     // hand's line from the grabbed point (o) to the pointer (x), its pull in newtons, the
     // legend's hand entry and the energy panel's hand row.
-    let mut app = app_of(RESTING);
+    let mut app = app_of_(RESTING);
     screen(&app, 120, 40);
     at(&mut app, Action::Press, Vector3::new(0.15, 0.35, 0.0));
     at(&mut app, Action::Drag, Vector3::new(0.45, 0.7, 0.0));
@@ -412,18 +388,10 @@ fn stepping_back_over_a_drag_restores_every_frame_exactly() {
     // frame 15 (eleven keyframes kept whole); ← back to
     // t = 0 must give every frame's checkpoint bit for bit — replay cannot know the pointer,
     // so the frames it pulled, and the first after it let go, are kept whole.
-    let lesson = tumble::scene::load(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tui-cloth-trampoline.toml"),
-    )
-    .unwrap();
-    let mut app = App::new(
-        lesson,
-        Options {
-            ascii: true,
-            compare: None,
-            show_timing: false,
-        },
-    );
+    let mut app = crate::common::lesson(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/tui-cloth-trampoline.toml"
+    ));
     let one = {
         let mut world = app.world.clone();
         world.step();

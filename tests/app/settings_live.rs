@@ -2,10 +2,10 @@
 //! continuous values (g, drag, e, μ, a spring's k, a motor's speed) apply while the run goes
 //! on, the others restart the scene.
 
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use crate::common::{app_of, press, screen};
+use crossterm::event::KeyCode;
 use std::path::Path;
-use tumble::tui::export;
-use tumble::tui::{App, Options, Overlay};
+use tumble::tui::{App, Overlay};
 
 const TWO: &str = r#"
 title = "Two boxes fall"
@@ -35,30 +35,7 @@ stiffness = 50.0
 "#;
 
 fn app() -> App {
-    let lesson = tumble::scene::parse(TWO, Path::new("two.toml")).unwrap_or_else(|e| panic!("{e}"));
-    App::new(
-        lesson,
-        Options {
-            ascii: true,
-            compare: None,
-            show_timing: false,
-        },
-    )
-}
-
-fn press(app: &mut App, code: KeyCode) {
-    app.handle_key(&KeyEvent::new(code, KeyModifiers::NONE));
-}
-
-fn screen(app: &App, width: u16, height: u16) -> String {
-    let buf = export::render(app, width, height);
-    (0..buf.area.height)
-        .map(|y| {
-            let row: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-            row.trim_end().to_string()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+    app_of(TWO, "two.toml")
 }
 
 /// Selects the form's field labelled `label` and types `text` into it.
@@ -206,15 +183,7 @@ fn a_live_g_does_not_restart_the_run() {
 #[test]
 fn a_motors_speed_applies_live_and_w_writes_the_links_values() {
     // Lesson 44: a wheel on a hinge motor (10 rad/s, at most 2 N·m) against drag.
-    let lesson = tumble::lessons::load(Path::new("44-a-motor")).unwrap();
-    let mut app = App::new(
-        lesson,
-        Options {
-            ascii: true,
-            compare: None,
-            show_timing: false,
-        },
-    );
+    let mut app = crate::common::lesson("44-a-motor");
     app.step_frames(200);
     let step = app.world.step_count();
     press(&mut app, KeyCode::Char('e'));

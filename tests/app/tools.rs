@@ -2,44 +2,11 @@
 //! `ruler`, `protractor`): readings against closed forms and hand-computed poses, and the
 //! screens that show them.
 
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use crate::common::{keys, lesson, screen};
 use nalgebra::Vector3;
-use ratatui::backend::TestBackend;
-use ratatui::Terminal;
-use std::path::Path;
 use tumble::scene::PagePanel;
 use tumble::tui::plot::PlotChoice;
-use tumble::tui::{App, Options};
-
-fn lesson(name: &str) -> App {
-    App::new(
-        tumble::lessons::load(Path::new(name)).unwrap_or_else(|e| panic!("{e}")),
-        Options {
-            ascii: true,
-            compare: None,
-            show_timing: false,
-        },
-    )
-}
-
-fn keys(app: &mut App, text: &str) {
-    for c in text.chars() {
-        app.handle_key(&KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
-    }
-}
-
-fn screen(app: &App, width: u16, height: u16) -> String {
-    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
-    terminal.draw(|f| f.render_widget(app, f.area())).unwrap();
-    let buf = terminal.backend().buffer();
-    (0..buf.area.height)
-        .map(|y| {
-            let row: String = (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect();
-            row.trim_end().to_string()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
+use tumble::tui::App;
 
 /// T = 4 √(L/g) K(sin(θ₀/2)), K by the arithmetic–geometric mean: K(k) = π / (2 AGM(1, √(1−k²))).
 fn exact_period(length: f64, g: f64, theta0: f64) -> f64 {
