@@ -17,6 +17,7 @@
 //! | `envelope` | effective-mass systems J W Jᵀ: envelope LDLᵀ (contacts) or Cholesky (joints) |
 //! | `system` | the derivative of the whole system when springs or joints couple bodies |
 //! | `collision` | the collide phase: obstacles, detection, responses |
+//! | `constraints` | the constraint layer: solver bodies (bodies, particles, static things) and rows with bounds |
 //! | `world` | the loop, phase by phase, over every body |
 //! | `snapshot` | every quantity a user is shown |
 //! | `divergence` | the guard against non-finite or runaway states |
@@ -27,6 +28,7 @@ pub mod body;
 pub mod cloth;
 pub mod cloth_coupling;
 pub mod collision;
+pub mod constraints;
 pub mod derive;
 pub mod divergence;
 pub mod effects;

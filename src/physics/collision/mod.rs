@@ -12,7 +12,7 @@
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added; a file per constraint kind (`normal`, `friction`), per method (`direct`, `subspace`) and for the impact law (`propagate`) |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
-//! | `solver_body` | solver bodies (v, ω, L, 1/M, I⁻¹) and constraint axes between two ends: what every solver works on |
+//! | `solver_body` | solver bodies and constraint axes, re-exported from the constraint layer (`physics::constraints`) |
 //! | `step_context` | the constants every contact pass of a step reads (bounce speed, margins, e, μ), computed once |
 //! | `soft_step` | sub-stepped soft contacts with a relax pass (Box2D v3's soft step): fast, sags |
 //! | `sweep` | fast pairs of bodies: time of impact, rows carried to the end of the step (no tunnelling) |

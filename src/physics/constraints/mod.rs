@@ -1,0 +1,30 @@
+//! The constraint layer: what every constraint solver works on, whatever it holds.
+//!
+//! Every moving thing is a **solver body** (`solver_body`): a rigid body, a cloth particle
+//! (one without rotational inertia), or a static thing (a fixed body or an obstacle: no
+//! inverse mass, no inverse inertia). Every constraint is made of **rows** (`row`): one
+//! scalar direction between two ends, with bounds [lo, hi] on its accumulated impulse and a
+//! bias. For one row with Jacobian J over the velocities v of its two ends and W their
+//! inverse masses,
+//!
+//! ```text
+//! k  = J W Jᵀ                                    effective inverse mass
+//! λ' = clamp(λ − (J·v + b)/k, lo, hi)            one projected Gauss–Seidel update
+//! v ← v + W Jᵀ (λ' − λ),   λ ← λ'                equal and opposite on the two ends
+//! ```
+//!
+//! | file | idea |
+//! |---|---|
+//! | `solver_body` | solver bodies (v, ω, L, 1/M, I⁻¹): a body, a particle, a static thing |
+//! | `row` | axes between two ends (J, k, the rate J·v, an impulse along J) and rows (an axis with bounds [lo, hi] and bias b, the projected update) |
+//!
+//! Users: the rigid contact solvers (`collision::impulse`, `collision::soft_step`, through
+//! the re-export `collision::solver_body`), and the particle contacts of a
+//! `symplectic-euler` cloth (`cloth::contact` against obstacles, `cloth_coupling::explicit`
+//! against bodies). The layer depends on nalgebra only, no other `physics` folder.
+
+pub mod row;
+pub mod solver_body;
+
+pub use row::{within_disc, Axis, End, Row};
+pub use solver_body::SolverBody;
