@@ -32,6 +32,11 @@
 //! `ΔV = −m g·(depth n)` is paid from the bounce (the restitution part is scaled down so that
 //! T_after ≤ T_before − max(0, ΔV)), as for bodies.
 //!
+//! Each contact is the constraint layer's particle contact against a static thing
+//! (`constraints::particle_contact::against_static`): a normal row with bounds [0, ∞) on a
+//! solver body without rotational inertia, solved exactly by its one update, per unit mass
+//! (Δu_n above is its λ), and Coulomb friction within μ λ.
+//!
 //! The energy the contacts took is measured, not assumed: T + U + V before minus after, over
 //! the touched particles and the springs attached to them.
 //!
@@ -44,6 +49,7 @@ use super::sheet::{Cloth, StepReport};
 use crate::physics::collision::detect;
 use crate::physics::collision::Obstacle;
 use crate::physics::collision::StepContext;
+use crate::physics::constraints::particle_contact::{against_static, coulomb};
 use nalgebra::Vector3;
 
 /// One particle found inside an obstacle, and what the response did.
@@ -64,18 +70,6 @@ pub struct ParticleContact {
 /// (`collision::step_context`).
 fn bounce_speed(loads: &ClothLoads, dt: f64) -> f64 {
     StepContext::new(dt, loads.gravity, None).bounce_speed
-}
-
-/// The tangential velocity after Coulomb friction with a normal velocity change `stop` ≥ 0.
-#[inline]
-fn coulomb(v: &Vector3<f64>, n: &Vector3<f64>, friction: f64, stop: f64) -> Vector3<f64> {
-    let tangential = v - n * v.dot(n);
-    let slip = tangential.norm();
-    if slip <= friction * stop {
-        Vector3::zeros()
-    } else {
-        tangential * (1.0 - friction * stop / slip)
-    }
 }
 
 /// A start this close to a surface (m) counts as on it.
@@ -173,10 +167,13 @@ impl Cloth {
                 };
                 let un = v.dot(&n);
                 let target = -gap / dt;
-                if un >= target || (restitution > 0.0 && -un > bounce_speed) {
+                // The normal row against a static thing, per unit mass: λ = target − u_n.
+                let Some(stop) = against_static(&v, &n, target) else {
+                    continue;
+                };
+                if restitution > 0.0 && -un > bounce_speed {
                     continue;
                 }
-                let stop = target - un;
                 let tangential = coulomb(&v, &n, friction, stop);
                 let after = tangential + n * target;
                 // Along n, only the approach the particle had at the start of the step is
@@ -256,11 +253,11 @@ impl Cloth {
                     normal_velocity: un,
                 });
                 self.positions[i] += n * hit.depth;
-                if un >= 0.0 {
+                // Inelastic part: the normal row aiming at u_n = 0 (λ = −u_n per unit mass),
+                // then friction within μ Δu_n.
+                let Some(stop) = against_static(&v, &n, 0.0) else {
                     continue;
-                }
-                // Inelastic part: stop the approach, then friction within μ Δu_n.
-                let stop = -un;
+                };
                 let tangential = coulomb(&v, &n, friction, stop);
                 // Restitution, paid for the push-out's work against gravity.
                 let mut bounce = if -un > bounce_speed {

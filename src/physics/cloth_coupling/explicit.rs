@@ -1,5 +1,5 @@
 //! Contacts of a `symplectic-euler` cloth's particles with bodies: two passes, on velocities
-//! then on positions, with the sweeps on solver bodies.
+//! then on positions, with the sweeps on the constraint layer's rows and solver bodies.
 //!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
 //!
@@ -42,9 +42,10 @@
 //! sweep corrects the impulse found so far, the normal total stays ≥ 0 and aims at the
 //! velocity −e·u_n the contact started with, the tangential total stays in the cone μ j_n), so
 //! that a body resting on many particles is held by all of them, not the first one met.
-//! They run on the contact solvers' solver bodies and axes (`collision::solver_body`): the
+//! They are the constraint layer's particle contacts (`constraints::particle_contact`): the
 //! body and each touching particle are solver bodies (a particle has no rotational inertia
-//! and lever 0), k(n) is the normal axis's k, and each impulse is applied to both ends at once.
+//! and lever 0), each contact a normal row with bounds [0, ∞) whose k(n) is its axis's k,
+//! friction within the disc μ j_n, and each impulse is applied to both ends at once.
 //! v_p ← v_p + J/m_p,   P ← P − J,   L ← L − r × J
 //! x_p ← x_p + depth n                            the particle is pushed out, not the body
 //! ```
@@ -59,163 +60,56 @@ use super::SLOP;
 use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
 use crate::physics::collision::geometry::{point_shape, Pose, Shape};
-use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::collision::StepContext;
+use crate::physics::constraints::particle_contact::{body_of, ParticleContacts};
 use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
-/// Sweeps over a body's contacts (module doc): one sweep lets the first particle met take
-/// all of a resting body's weight and tilts it; a few sweeps with accumulated impulses share it.
-pub const SWEEPS: usize = 4;
+/// Sweeps over a body's contacts (module doc): the constraint layer's
+/// (`constraints::particle_contact`).
+pub use crate::physics::constraints::particle_contact::SWEEPS;
 
-/// One contact of a particle with a body, while the sweeps run: a row between two solver
-/// bodies ([`Sweeps`]), the particle's (A, lever 0) and the body's (B, lever `arm`).
-#[derive(Debug, Clone, Copy)]
-struct Touch {
-    particle: usize,
-    /// The particle's solver body in [`Sweeps::motions`].
-    index: usize,
-    /// The normal axis: d = n out of the body, k = 1/m_p + 1/M + (r×n)·I⁻¹(r×n).
-    normal: Axis,
-    /// Contact point relative to the barycenter, m.
+/// Starts a body's particle contacts: its solver body from its momenta, at the pose of
+/// `inv_inertia` (a fixed body is static: no inverse mass, no inverse inertia).
+fn start_body(
+    sweeps: &mut ParticleContacts,
+    body: &Body,
+    state: &State,
+    inv_inertia: &Matrix3<f64>,
+) {
+    sweeps.start(body_of(
+        &state.linear_momentum,
+        state.angular_momentum,
+        body.inv_mass,
+        inv_inertia,
+    ));
+}
+
+/// Adds particle `i`'s contact at the body's point `arm`, normal n out of the body.
+fn touch(
+    sweeps: &mut ParticleContacts,
+    cloth: &Cloth,
+    i: usize,
+    n: &Vector3<f64>,
     arm: Vector3<f64>,
-    /// The normal velocity the sweeps aim at, −e·u_n at the start (0 for a resting contact).
-    target: f64,
-    /// The target is the particle's own normal velocity, not the relative one (pass 1: the
-    /// body is already at the end of its step, so where the particle ends is its business).
-    absolute: bool,
-    /// Accumulated normal impulse (≥ 0) and tangential impulse, N·s.
-    normal_impulse: f64,
-    tangential_impulse: Vector3<f64>,
+    target: (f64, bool),
+) {
+    let particle = (i, cloth.particle_velocity(i), cloth.inv_mass(i));
+    sweeps.touch(particle, n, arm, target);
 }
 
-/// One body's contacts with a cloth's particles on solver bodies (`collision::solver_body`):
-/// the body at index 0, each touching particle after it, a point mass with no rotational
-/// inertia.
-#[derive(Debug, Clone, Default)]
-struct Sweeps {
-    motions: Vec<SolverBody>,
-    touches: Vec<Touch>,
-}
-
-impl Sweeps {
-    /// Starts a body's contacts: its solver body from its momenta, at the pose of `inv_inertia`
-    /// (a fixed body is the world: no inverse mass, no inverse inertia).
-    fn start(&mut self, body: &Body, state: &State, inv_inertia: &Matrix3<f64>) {
-        self.touches.clear();
-        self.motions.clear();
-        self.motions.push(SolverBody::new(
-            state.linear_momentum * body.inv_mass,
-            state.angular_momentum,
-            body.inv_mass,
-            *inv_inertia,
-        ));
+/// Runs the sweeps (`ParticleContacts::solve`), then the particles' velocities and the
+/// body's momenta take what they applied (the body −ΣJ, so particle + body keep their
+/// momentum to round-off).
+fn solve(sweeps: &mut ParticleContacts, cloth: &mut Cloth, state: &mut State, friction: f64) {
+    sweeps.solve(friction);
+    for (particle, velocity) in sweeps.particles() {
+        cloth.velocities[particle] = velocity;
     }
-
-    /// Adds particle `particle`'s contact at `arm` with normal n (out of the body).
-    fn touch(
-        &mut self,
-        cloth: &Cloth,
-        particle: usize,
-        normal: &Vector3<f64>,
-        arm: Vector3<f64>,
-        (target, absolute): (f64, bool),
-    ) {
-        let index = self.motions.len();
-        self.motions.push(SolverBody::new(
-            cloth.particle_velocity(particle),
-            Vector3::zeros(),
-            cloth.inv_mass(particle),
-            Matrix3::zeros(),
-        ));
-        let normal = Axis::new(
-            *normal,
-            (index, &Vector3::zeros()),
-            Some((0, &arm)),
-            &self.motions,
-        );
-        self.touches.push(Touch {
-            particle,
-            index,
-            normal,
-            arm,
-            target,
-            absolute,
-            normal_impulse: 0.0,
-            tangential_impulse: Vector3::zeros(),
-        });
-    }
-
-    /// u = v_p − (v_b + ω × r) of particle `particle` at the body's point `arm` (before it
-    /// is a contact), m/s.
-    fn approach(&self, cloth: &Cloth, particle: usize, arm: &Vector3<f64>) -> Vector3<f64> {
-        cloth.particle_velocity(particle) - self.motions[0].point_velocity(arm)
-    }
-
-    /// u = v_p − (v_b + ω × r) of a contact, m/s.
-    fn relative_velocity(&self, t: &Touch) -> Vector3<f64> {
-        self.motions[t.index].v - self.motions[0].point_velocity(&t.arm)
-    }
-
-    /// [`SWEEPS`] projected Gauss–Seidel sweeps over the contacts (module doc), forward then
-    /// backward so that no particle of the grid is favoured by its index; then the particles'
-    /// velocities and the body's momenta take what the sweeps applied (the body −ΣJ, so
-    /// particle + body keep their momentum to round-off).
-    fn solve(&mut self, cloth: &mut Cloth, state: &mut State, friction: f64) {
-        let count = self.touches.len();
-        for pass in 0..SWEEPS {
-            for k in 0..count {
-                let k = if pass % 2 == 0 { k } else { count - 1 - k };
-                let t = self.touches[k];
-                let n = t.normal.d;
-                let u = self.relative_velocity(&t);
-                // Normal: reach the target velocity, the accumulated impulse never pulls.
-                let particle = &self.motions[t.index];
-                let total = if t.absolute {
-                    let vn = particle.v.dot(&n);
-                    t.normal_impulse + (t.target - vn) / particle.inv_mass
-                } else {
-                    t.normal_impulse + (t.target - u.dot(&n)) / t.normal.k
-                }
-                .max(0.0);
-                let mut impulse = n * (total - t.normal_impulse);
-                let touch = &mut self.touches[k];
-                touch.normal_impulse = total;
-                // Tangential: stop the slip, within the cone μ j_n.
-                if friction > 0.0 {
-                    let ut = u - n * u.dot(&n);
-                    let slip = ut.norm();
-                    let mut jt = t.tangential_impulse;
-                    if slip > 0.0 {
-                        let d = ut / slip;
-                        let along = Axis::new(
-                            d,
-                            (t.index, &Vector3::zeros()),
-                            Some((0, &t.arm)),
-                            &self.motions,
-                        );
-                        jt -= d * (slip / along.k);
-                    }
-                    let limit = friction * total;
-                    if jt.norm() > limit {
-                        jt *= limit / jt.norm();
-                    }
-                    impulse += jt - t.tangential_impulse;
-                    self.touches[k].tangential_impulse = jt;
-                }
-                self.motions[t.index].apply_at(&impulse, &Vector3::zeros());
-                self.motions[0].apply_at(&-impulse, &t.arm);
-            }
-        }
-        let mut total = Vector3::zeros();
-        for t in &self.touches {
-            cloth.velocities[t.particle] = self.motions[t.index].v;
-            total += t.normal.d * t.normal_impulse + t.tangential_impulse;
-        }
-        if !self.motions[0].fixed() {
-            state.linear_momentum -= total;
-            state.angular_momentum = self.motions[0].l;
-        }
+    let total = sweeps.total_impulse();
+    if !sweeps.body().fixed() {
+        state.linear_momentum -= total;
+        state.angular_momentum = sweeps.body().l;
     }
 }
 
@@ -244,14 +138,14 @@ pub fn collide_bodies(
     bounce_speed: f64,
 ) -> usize {
     let mut count = 0;
-    let mut sweeps = Sweeps::default();
+    let mut sweeps = ParticleContacts::default();
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
         let Some((shape, pose, inv_inertia)) = shape_at(body, state) else {
             continue;
         };
         // A quick reject: particles farther than the body's radius from its barycenter.
         let reach = body.radius;
-        sweeps.start(body, state, &inv_inertia);
+        start_body(&mut sweeps, body, state, &inv_inertia);
         // An implicit-euler cloth's ties end its particles on the surface: what is left
         // inside at round-off is not a contact.
         let slop = if cloth.integrator == crate::physics::cloth::ClothIntegrator::ImplicitEuler {
@@ -277,12 +171,12 @@ pub fn collide_bodies(
             let n = cp.normal;
             cloth.displace(i, &(n * cp.depth));
             let arm = cp.point - state.position;
-            let un = sweeps.approach(cloth, i, &arm).dot(&n);
+            let un = sweeps.approach(&cloth.particle_velocity(i), &arm).dot(&n);
             let e = if -un > bounce_speed { restitution } else { 0.0 };
-            sweeps.touch(cloth, i, &n, arm, ((-e * un).max(0.0), false));
+            touch(&mut sweeps, cloth, i, &n, arm, ((-e * un).max(0.0), false));
         }
-        count += sweeps.touches.len();
-        sweeps.solve(cloth, state, friction);
+        count += sweeps.len();
+        solve(&mut sweeps, cloth, state, friction);
     }
     count
 }
@@ -328,7 +222,7 @@ pub fn approach_bodies(
         ..
     } = *context;
     let mut report = Approach::default();
-    let mut sweeps = Sweeps::default();
+    let mut sweeps = ParticleContacts::default();
     // Attached particles are held to their points (`hold_attachments`), not pushed out of
     // the body they are sewn into, as in the collide phase (`collide_bodies`).
     let mut attached = vec![false; cloth.len()];
@@ -345,7 +239,7 @@ pub fn approach_bodies(
         let start_inv_inertia = start_rotation * body.inv_inertia_body * start_rotation.transpose();
         let start_omega = start_inv_inertia * before.angular_momentum;
         let start_velocity = before.linear_momentum * body.inv_mass;
-        sweeps.start(body, state, &inv_inertia);
+        start_body(&mut sweeps, body, state, &inv_inertia);
         let mut within = 0.0;
         #[allow(clippy::needless_range_loop)] // the particle index reaches several arrays
         for i in 0..cloth.len() {
@@ -366,7 +260,7 @@ pub fn approach_bodies(
             let gap = -cp.depth;
             let n = cp.normal;
             let arm = cp.point - state.position;
-            let un = sweeps.approach(cloth, i, &arm).dot(&n);
+            let un = sweeps.approach(&cloth.particle_velocity(i), &arm).dot(&n);
             // Bounce or rest is decided by the approach the pair had at the start of the
             // step: a particle carrying the body's weight is driven into it at h·F/m_p within
             // every step (0.3 m/s on a trampoline), and that is no impact.
@@ -383,27 +277,27 @@ pub fn approach_bodies(
             if cloth.velocities[i].dot(&n) >= target {
                 continue;
             }
-            sweeps.touch(cloth, i, &n, arm, (target, true));
-            let k_n = sweeps.touches.last().map_or(f64::NAN, |t| t.normal.k);
+            touch(&mut sweeps, cloth, i, &n, arm, (target, true));
+            let k_n = sweeps.last_k();
             within += 0.5 * (un.min(0.0).powi(2) - approach * approach) / k_n;
         }
-        if sweeps.touches.is_empty() {
+        if sweeps.is_empty() {
             continue;
         }
-        let kinetic = |cloth: &Cloth, state: &State, touches: &[Touch]| {
+        let kinetic = |cloth: &Cloth, state: &State, sweeps: &ParticleContacts| {
             let rigid = 0.5 * state.linear_momentum.norm_squared() * body.inv_mass
                 + 0.5
                     * state
                         .angular_momentum
                         .dot(&(inv_inertia * state.angular_momentum));
-            touches.iter().fold(rigid, |t, c| {
-                t + 0.5 * cloth.masses[c.particle] * cloth.velocities[c.particle].norm_squared()
+            sweeps.particles().fold(rigid, |t, (p, _)| {
+                t + 0.5 * cloth.masses[p] * cloth.velocities[p].norm_squared()
             })
         };
-        let before_sweeps = kinetic(cloth, state, &sweeps.touches);
-        sweeps.solve(cloth, state, friction);
-        let after_sweeps = kinetic(cloth, state, &sweeps.touches);
-        report.contacts += sweeps.touches.len();
+        let before_sweeps = kinetic(cloth, state, &sweeps);
+        solve(&mut sweeps, cloth, state, friction);
+        let after_sweeps = kinetic(cloth, state, &sweeps);
+        report.contacts += sweeps.len();
         report.energy_taken += before_sweeps - after_sweeps - within;
     }
     report

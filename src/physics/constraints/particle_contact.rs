@@ -1,0 +1,300 @@
+//! Particle contacts: a particle (a solver body without rotational inertia) against a body or
+//! a static thing, as rows of the layer (`row`): a normal row with bounds [0, ∞) aiming at a
+//! target normal velocity, and friction within the cone μ λ_n.
+//!
+//! # Against a body: [`ParticleContacts`]
+//!
+//! The body is solver body 0 and each touching particle one after it (1/m_p, I⁻¹ = 0). A
+//! contact at the body's point r (from its barycenter), normal n out of the body, is the row
+//! along the axis +n on the particle (lever 0) and −n on the body at r:
+//!
+//! ```text
+//! u    = v_p − (v_b + ω × r)                    relative velocity, u_n = u·n
+//! k(d) = 1/m_p + 1/M + (r×d)·I⁻¹(r×d)           the axis's k = J W Jᵀ along a unit d
+//! λ_n' = clamp(λ_n − (u_n − target)/k(n), 0, ∞)   the normal row (b = −target)
+//! t    = u_t/|u_t|,  u_t = u − u_n n
+//! j_t' = j_t − t |u_t|/k(t),  then within the disc |j_t'| ≤ μ λ_n'     friction
+//! J    = (λ_n' − λ_n) n + (j_t' − j_t)         to the particle, −J to the body at r
+//! ```
+//!
+//! [`ParticleContacts::solve`] sweeps the rows [`SWEEPS`] times (projected Gauss–Seidel with
+//! accumulated impulses, forward then backward so that no particle of a grid is favoured by
+//! its index), so that a body resting on many particles is held by all of them, not the first
+//! one met. An *absolute* row measures the particle's own normal velocity v_p·n with
+//! k = 1/m_p (its Jacobian on the particle's end only) while its impulse still acts on both
+//! ends: the body is already where it ends the step, so where the particle ends is the
+//! particle's business (`cloth_coupling::explicit`, pass 1).
+//!
+//! # Against a static thing: [`against_static`]
+//!
+//! A static thing (an obstacle) has no end, so a lone particle's row is solved exactly by its
+//! one update. Per unit mass (the row scaled by m_p: k = 1, λ a velocity change, the cone
+//! μ λ_n scales with it), aiming at v·n = target:
+//!
+//! ```text
+//! λ_n = clamp(0 − (v·n − target)/1, 0, ∞) = max(target − v·n, 0)
+//! v'  = v_t' + target n,   v_t = v − (v·n) n,   v_t' = 0 if |v_t| ≤ μ λ_n else v_t (1 − μ λ_n/|v_t|)
+//! ```
+//!
+//! (v + λ_n n written as v_t + target n, its closed form: the numbers the cloth's obstacle
+//! contacts have always computed).
+
+use super::{within_disc, Axis, Row, SolverBody};
+use nalgebra::{Matrix3, Vector3};
+
+/// Sweeps over a body's particle rows: one sweep lets the first particle met take all of a
+/// resting body's weight and tilts it; a few with accumulated impulses share it.
+pub const SWEEPS: usize = 4;
+
+/// The lone particle's normal row against a static thing, per unit mass (module doc): the
+/// velocity change λ_n ≥ 0 along n that brings v·n to `target`; None when the bound holds
+/// (v·n ≥ target: the contact would pull).
+#[inline]
+pub fn against_static(v: &Vector3<f64>, n: &Vector3<f64>, target: f64) -> Option<f64> {
+    let unit = Axis {
+        d: *n,
+        k: 1.0,
+        inv_k: 1.0,
+        ..Axis::default()
+    };
+    let stop = Row::contact(unit, target).update(v.dot(n), 1.0);
+    (stop > 0.0).then_some(stop)
+}
+
+/// The tangential velocity after Coulomb friction with a normal velocity change `stop` ≥ 0
+/// (module doc, per unit mass): stopped within the cone μ·stop, else slowed by it.
+#[inline]
+pub fn coulomb(v: &Vector3<f64>, n: &Vector3<f64>, friction: f64, stop: f64) -> Vector3<f64> {
+    let tangential = v - n * v.dot(n);
+    let slip = tangential.norm();
+    if slip <= friction * stop {
+        Vector3::zeros()
+    } else {
+        tangential * (1.0 - friction * stop / slip)
+    }
+}
+
+/// One particle's contact with the body: its normal row and accumulated friction impulse.
+#[derive(Debug, Clone, Copy)]
+struct Touch {
+    /// The particle's index in its cloth.
+    particle: usize,
+    /// Its solver body in [`ParticleContacts`] (≥ 1).
+    index: usize,
+    /// The normal row: axis d = n out of the body, k = 1/m_p + 1/M + (r×n)·I⁻¹(r×n), bounds
+    /// [0, ∞), λ the accumulated normal impulse.
+    normal: Row,
+    /// Contact point relative to the body's barycenter, m.
+    arm: Vector3<f64>,
+    /// The row measures v_p·n with k = 1/m_p (module doc), not the relative u·n.
+    absolute: bool,
+    /// Accumulated tangential impulse, N·s (within the disc μ λ_n).
+    tangential_impulse: Vector3<f64>,
+}
+
+/// One body's contacts with particles (module doc): the body is solver body 0, each touching
+/// particle a solver body after it.
+#[derive(Debug, Clone, Default)]
+pub struct ParticleContacts {
+    bodies: Vec<SolverBody>,
+    touches: Vec<Touch>,
+}
+
+impl ParticleContacts {
+    /// Starts a body's contacts, the body's solver body first (a fixed body is static: no
+    /// inverse mass, no inverse inertia).
+    pub fn start(&mut self, body: SolverBody) {
+        self.touches.clear();
+        self.bodies.clear();
+        self.bodies.push(body);
+    }
+
+    /// Adds particle `particle`'s contact (velocity `velocity`, inverse mass `inv_mass`) at the
+    /// body's point `arm` with normal n out of the body, aiming at `target` (relative normal
+    /// velocity, or the particle's own when `absolute`).
+    pub fn touch(
+        &mut self,
+        (particle, velocity, inv_mass): (usize, Vector3<f64>, f64),
+        normal: &Vector3<f64>,
+        arm: Vector3<f64>,
+        (target, absolute): (f64, bool),
+    ) {
+        let index = self.bodies.len();
+        self.bodies.push(SolverBody::particle(velocity, inv_mass));
+        let axis = Axis::new(
+            *normal,
+            (index, &Vector3::zeros()),
+            Some((0, &arm)),
+            &self.bodies,
+        );
+        self.touches.push(Touch {
+            particle,
+            index,
+            normal: Row::contact(axis, target),
+            arm,
+            absolute,
+            tangential_impulse: Vector3::zeros(),
+        });
+    }
+
+    /// u = v_p − (v_b + ω × r) of a particle moving at `velocity` at the body's point `arm`
+    /// (before it is a contact), m/s.
+    pub fn approach(&self, velocity: &Vector3<f64>, arm: &Vector3<f64>) -> Vector3<f64> {
+        velocity - self.bodies[0].point_velocity(arm)
+    }
+
+    /// u = v_p − (v_b + ω × r) of a contact, m/s.
+    fn relative_velocity(&self, t: &Touch) -> Vector3<f64> {
+        self.bodies[t.index].v - self.bodies[0].point_velocity(&t.arm)
+    }
+
+    /// The number of contacts.
+    pub fn len(&self) -> usize {
+        self.touches.len()
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.touches.is_empty()
+    }
+
+    /// The normal axis's k of the last contact added (NaN if none).
+    pub fn last_k(&self) -> f64 {
+        self.touches.last().map_or(f64::NAN, |t| t.normal.axis.k)
+    }
+
+    /// The body's solver body.
+    pub fn body(&self) -> &SolverBody {
+        &self.bodies[0]
+    }
+
+    /// Each contact's particle (its index in the cloth) and its velocity now.
+    pub fn particles(&self) -> impl Iterator<Item = (usize, Vector3<f64>)> + '_ {
+        (self.touches.iter()).map(|t| (t.particle, self.bodies[t.index].v))
+    }
+
+    /// ΣJ, the impulse the particles took (the body took −ΣJ), N·s: each contact's
+    /// λ_n n + j_t, summed in order.
+    pub fn total_impulse(&self) -> Vector3<f64> {
+        let mut total = Vector3::zeros();
+        for t in &self.touches {
+            total += t.normal.axis.d * t.normal.lambda + t.tangential_impulse;
+        }
+        total
+    }
+
+    /// [`SWEEPS`] projected Gauss–Seidel sweeps over the rows (module doc), forward then
+    /// backward; friction with coefficient μ = `friction`.
+    pub fn solve(&mut self, friction: f64) {
+        let count = self.touches.len();
+        for pass in 0..SWEEPS {
+            for k in 0..count {
+                let k = if pass % 2 == 0 { k } else { count - 1 - k };
+                self.sweep_one(k, friction);
+            }
+        }
+    }
+
+    /// One contact's update within a sweep: the normal row, then friction in its disc, the
+    /// impulse applied to the particle and the opposite to the body.
+    #[inline]
+    fn sweep_one(&mut self, k: usize, friction: f64) {
+        let t = self.touches[k];
+        let n = t.normal.axis.d;
+        let u = self.relative_velocity(&t);
+        // Normal: reach the target velocity, the accumulated impulse never pulls.
+        let particle = &self.bodies[t.index];
+        let total = if t.absolute {
+            t.normal.update(particle.v.dot(&n), particle.inv_mass)
+        } else {
+            t.normal.update(u.dot(&n), t.normal.axis.k)
+        };
+        let mut impulse = n * (total - t.normal.lambda);
+        self.touches[k].normal.lambda = total;
+        // Tangential: stop the slip, within the cone μ λ_n.
+        if friction > 0.0 {
+            let ut = u - n * u.dot(&n);
+            let slip = ut.norm();
+            let mut jt = t.tangential_impulse;
+            if slip > 0.0 {
+                let d = ut / slip;
+                let along = Axis::new(
+                    d,
+                    (t.index, &Vector3::zeros()),
+                    Some((0, &t.arm)),
+                    &self.bodies,
+                );
+                jt -= d * (slip / along.k);
+            }
+            within_disc(&mut jt, friction * total);
+            impulse += jt - t.tangential_impulse;
+            self.touches[k].tangential_impulse = jt;
+        }
+        self.bodies[t.index].apply_at(&impulse, &Vector3::zeros());
+        self.bodies[0].apply_at(&-impulse, &t.arm);
+    }
+}
+
+/// A body's solver body from its momenta P, L at the pose of `inv_inertia` (world I⁻¹), with
+/// inverse mass `inv_mass`: v = P/M, ω = I⁻¹ L.
+pub fn body_of(
+    linear_momentum: &Vector3<f64>,
+    angular_momentum: Vector3<f64>,
+    inv_mass: f64,
+    inv_inertia: &Matrix3<f64>,
+) -> SolverBody {
+    SolverBody::new(
+        linear_momentum * inv_mass,
+        angular_momentum,
+        inv_mass,
+        *inv_inertia,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_particle_on_a_resting_body_stops_and_momentum_is_kept() {
+        // A 0.5 kg cube (1/M = 2) at rest, a 0.01 kg particle falling on it at 2 m/s at lever
+        // (0.1, 0.2, 0): after the sweeps the relative normal velocity is 0 and P + p is kept.
+        let inertia = 0.5 * 0.2 * 0.2 / 6.0;
+        let mut contacts = ParticleContacts::default();
+        contacts.start(body_of(
+            &Vector3::zeros(),
+            Vector3::zeros(),
+            2.0,
+            &(Matrix3::identity() / inertia),
+        ));
+        let arm = Vector3::new(0.1, 0.2, 0.0);
+        let v = Vector3::new(0.3, -2.0, 0.0);
+        contacts.touch((7, v, 100.0), &Vector3::y(), arm, (0.0, false));
+        let mut rubbing = contacts.clone();
+        contacts.solve(0.0);
+        let (p, vp) = contacts.particles().next().unwrap();
+        assert_eq!(p, 7);
+        let u = contacts.approach(&vp, &arm);
+        assert!(u.y.abs() < 1e-12, "{u}");
+        let total = contacts.total_impulse();
+        assert!((vp - (v + total * 100.0)).norm() < 1e-12);
+        let momentum = 0.01 * vp + contacts.body().v / 2.0;
+        assert!((momentum - 0.01 * v).norm() < 1e-15);
+        // With friction μ = 0.5, within its cone: |j_t| ≤ μ λ_n.
+        rubbing.solve(0.5);
+        let total = rubbing.total_impulse();
+        assert!(total.y > 0.0 && total.x.abs() <= 0.5 * total.y * (1.0 + 1e-15));
+    }
+
+    #[test]
+    fn a_lone_particle_against_a_static_thing_lands_on_its_target() {
+        let n = Vector3::y();
+        let v = Vector3::new(1.0, -2.0, 0.0);
+        // Aiming at v·n = 0: λ = 2 m/s; friction 0.25 takes 0.5 of the 1 m/s slip.
+        let stop = against_static(&v, &n, 0.0).unwrap();
+        assert_eq!(stop, 2.0);
+        assert_eq!(coulomb(&v, &n, 0.25, stop), Vector3::new(0.5, 0.0, 0.0));
+        // Moving away already: the bound holds, no contact.
+        assert_eq!(against_static(&Vector3::new(0.0, 0.1, 0.0), &n, 0.0), None);
+    }
+}
