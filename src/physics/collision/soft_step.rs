@@ -111,6 +111,7 @@
 //! penetration reached (a test).
 
 mod bodies;
+mod lanes;
 mod rows;
 mod sweep;
 
@@ -122,6 +123,7 @@ use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
 use crate::physics::state::State;
 use bodies::Bodies;
+use lanes::Lanes;
 use nalgebra::Vector3;
 use rows::Rows;
 use std::hash::{Hash, Hasher};
@@ -245,6 +247,8 @@ impl Softness {
 pub struct Scratch {
     rows: Rows,
     bodies: Bodies,
+    /// The runs' schedule for the sweeps (`lanes`).
+    lanes: Lanes,
     points: Vec<super::geometry::ContactPoint>,
     /// The broad phase's buffers (`broad_phase`).
     broad: super::broad_phase::BroadPhase,
@@ -281,7 +285,11 @@ pub fn respond(
 
     // The bodies in contact taken back to the start of the step, and their rows.
     let Scratch {
-        rows, bodies, warm, ..
+        rows,
+        bodies,
+        warm,
+        lanes,
+        ..
     } = scratch;
     let kinetic_free = bodies.gather(input.bodies, input.before, states, contacts, n);
     let hertz = params.hertz_at(dt);
@@ -290,13 +298,14 @@ pub fn respond(
     let friction = context.friction;
     rows.build(contacts, bodies, warm, friction, (dynamic, fixed));
     rows.measure(contacts, bodies);
+    lanes.schedule(rows, bodies.members.len());
 
     // An impact (a row meeting faster than the bounce speed) gets IMPACT_SWEEPS sweeps per
     // sub-step: one Gauss–Seidel sweep over a face's 4 coupled rows leaves part of a fast
     // approach, which then goes deep (or, for a thin body, through).
     let impact = rows.totals.iter().any(|t| t.approach < -bounce_speed);
     let passes = if impact { IMPACT_SWEEPS } else { 1 };
-    substeps(rows, bodies, n, passes, friction, h);
+    substeps(rows, lanes, bodies, n, passes, friction, h);
     // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
     if context.restitution > 0.0 {
         let motions = &mut bodies.motions;
@@ -347,19 +356,27 @@ fn detect(
 }
 
 /// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax.
-fn substeps(rows: &mut Rows, bodies: &mut Bodies, n: u32, passes: usize, friction: f64, h: f64) {
+fn substeps(
+    rows: &mut Rows,
+    lanes: &Lanes,
+    bodies: &mut Bodies,
+    n: u32,
+    passes: usize,
+    friction: f64,
+    h: f64,
+) {
     for substep in 0..n {
         bodies.begin_substep();
         if substep == 0 {
             sweep::warm_start(rows, &mut bodies.motions);
         }
         for _ in 0..passes {
-            sweep::sweep(rows, &mut bodies.motions, friction, h, true);
+            lanes.sweep(rows, &mut bodies.motions, friction, h, true);
         }
         bodies.advance(h);
         rows.refresh_gaps(bodies);
         for _ in 0..passes {
-            sweep::sweep(rows, &mut bodies.motions, friction, h, false);
+            lanes.sweep(rows, &mut bodies.motions, friction, h, false);
         }
         bodies.end_substep();
         rows.add_totals();

@@ -14,7 +14,7 @@
 //! tangents and applies both at once.
 
 use super::bodies::Motion;
-use super::rows::{Row, Rows, Totals};
+use super::rows::{Row, Rows, Run, Totals};
 use super::{clamp_disk, Softness, MAX_PUSH};
 
 /// A pass over the rows: what it does to one row with the run's two motions (`PAIR`: the
@@ -105,49 +105,41 @@ pub(super) fn warm_start(rows: &mut Rows, motions: &mut [Motion]) {
     each_row(rows, motions, &mut Warm);
 }
 
-/// One sweep over the rows: the soft, biased solve (`biased`) or the rigid relax.
-pub(super) fn sweep(rows: &mut Rows, motions: &mut [Motion], friction: f64, h: f64, biased: bool) {
-    struct Sweep {
-        friction: f64,
-        h: f64,
-        biased: bool,
-    }
-    impl Pass for Sweep {
-        #[inline(always)]
-        fn row<const PAIR: bool>(
-            &mut self,
-            row: &mut Row,
-            _: &mut Totals,
-            soft: &Softness,
-            a: &mut Motion,
-            b: &mut Motion,
-        ) {
-            solve(row, soft, a, b, PAIR, self.friction, self.h, self.biased);
-        }
-    }
-    let mut pass = Sweep {
-        friction,
-        h,
-        biased,
-    };
-    each_row(rows, motions, &mut pass);
-}
-
-/// One row's soft (or relax) normal update, then its friction in the disk `|λ_t| ≤ μ λ`.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn solve(
-    row: &mut Row,
-    soft: &Softness,
-    a: &mut Motion,
-    b: &mut Motion,
-    pair: bool,
+/// One run's rows, solved in order with its two motions (the scalar sweep, `lanes` takes
+/// the runs in its schedule): the soft, biased solve (`biased`) or the rigid relax.
+pub(super) fn solve_run(
+    run: &Run,
+    rows: &mut [Row],
+    motions: &mut [Motion],
     friction: f64,
     h: f64,
     biased: bool,
 ) {
-    let s = row.gap;
-    let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+    let mut a = motions[run.a];
+    let rows = &mut rows[run.rows.clone()];
+    match run.b {
+        Some(i) => {
+            let mut b = motions[i];
+            for row in rows {
+                solve::<true>(row, &run.soft, &mut a, &mut b, friction, h, biased);
+            }
+            motions[i] = b;
+        }
+        None => {
+            let mut b = Motion::default();
+            for row in rows {
+                solve::<false>(row, &run.soft, &mut a, &mut b, friction, h, biased);
+            }
+        }
+    }
+    motions[run.a] = a;
+}
+
+/// The bias, mass scale and impulse scale of a row at separation `s`: rigid with bias `s/h`
+/// when speculative (s > 0), soft when `biased`, rigid without bias in the relax.
+#[inline(always)]
+pub(super) fn coefficients(s: f64, soft: &Softness, h: f64, biased: bool) -> (f64, f64, f64) {
+    if s > 0.0 {
         (s / h, 1.0, 0.0)
     } else if biased {
         (
@@ -157,7 +149,23 @@ fn solve(
         )
     } else {
         (0.0, 1.0, 0.0)
-    };
+    }
+}
+
+/// One row's soft (or relax) normal update, then its friction in the disk `|λ_t| ≤ μ λ`
+/// (`PAIR`: the row has a B end).
+#[inline(always)]
+pub(super) fn solve<const PAIR: bool>(
+    row: &mut Row,
+    soft: &Softness,
+    a: &mut Motion,
+    b: &mut Motion,
+    friction: f64,
+    h: f64,
+    biased: bool,
+) {
+    let pair = PAIR;
+    let (bias, mass_scale, impulse_scale) = coefficients(row.gap, soft, h, biased);
     let u = normal_rate(row, a, b, pair);
     let j = -row.inv_k[0] * mass_scale * (u + bias) - impulse_scale * row.lambda;
     let new = (row.lambda + j).max(0.0);
