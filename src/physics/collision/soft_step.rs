@@ -109,6 +109,16 @@
 //! `Σ M |g|·Δy` where Δy is how much higher than its free flight the contacts left a body.
 //! Over a run the total energy stays below `E(0) + Σ M|g|·d_max`, d_max the deepest
 //! penetration reached (a test).
+//!
+//! # Where it is done
+//!
+//! [`respond`] reads as the step above: `bodies` takes the bodies in contact back to the
+//! start of the step and moves them through the sub-steps; `rows` prepares each contact once
+//! per step into what the sweeps read (normal, tangents, levers, `r×n`, `I₀⁻¹(r×d)`, `1/k`:
+//! no matrix work is left for the sweeps) and refreshes the separations; `sweep` holds the
+//! passes over one row (warm start, soft solve and relax, restitution); `lanes` schedules the
+//! runs of rows so that two runs sharing no body are solved side by side in SIMD lanes, in an
+//! order that gives the sequential sweep's numbers bit for bit.
 
 mod bodies;
 mod lanes;
