@@ -109,17 +109,33 @@
 //! `Σ M |g|·Δy` where Δy is how much higher than its free flight the contacts left a body.
 //! Over a run the total energy stays below `E(0) + Σ M|g|·d_max`, d_max the deepest
 //! penetration reached (a test).
+//!
+//! # Where it is done
+//!
+//! [`respond`] reads as the step above: `bodies` takes the bodies in contact back to the
+//! start of the step and moves them through the sub-steps; `rows` prepares each contact once
+//! per step into what the sweeps read (normal, tangents, levers, `r×n`, `I₀⁻¹(r×d)`, `1/k`:
+//! no matrix work is left for the sweeps) and refreshes the separations; `sweep` holds the
+//! passes over one row (warm start, soft solve and relax, restitution); `lanes` schedules the
+//! runs of rows so that two runs sharing no body are solved side by side in SIMD lanes, in an
+//! order that gives the sequential sweep's numbers bit for bit.
+
+mod bodies;
+mod lanes;
+mod rows;
+mod sweep;
 
 use super::contacts;
-use super::impulse::tangents;
 use super::kept::Kept;
-use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
-use crate::physics::state::{Orientation, State};
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use crate::physics::state::State;
+use bodies::Bodies;
+use lanes::Lanes;
+use nalgebra::Vector3;
+use rows::Rows;
 use std::hash::{Hash, Hasher};
 
 /// The highest push-out speed a soft row may ask for, m/s (Box2D's `contactPushMaxVelocity`).
@@ -236,150 +252,13 @@ impl Softness {
     }
 }
 
-/// Where a solver body is within the sub-steps (its velocities are the [`SolverBody`] of the
-/// same index).
-#[derive(Debug, Clone, Copy)]
-struct Placement {
-    position: Vector3<f64>,
-    q: UnitQuaternion<f64>,
-    /// The detection pose.
-    detected_position: Vector3<f64>,
-    detected_inverse: UnitQuaternion<f64>,
-    /// Rotation since the detection pose, minus 𝟙.
-    turned: Matrix3<f64>,
-    /// The external velocity change per sub-step: Δv/n, ΔL/n and I₀⁻¹ ΔL/n.
-    dv: Vector3<f64>,
-    dl: Vector3<f64>,
-    dw: Vector3<f64>,
-}
-
-/// One contact as the sub-steps see it.
-#[derive(Debug, Clone, Copy)]
-struct Row {
-    normal: Axis,
-    tangents: [Axis; 2],
-    lever: Vector3<f64>,
-    lever_other: Vector3<f64>,
-    /// Separation at the detection pose, m.
-    separation: f64,
-    /// Separation at the bodies' current poses, m: refreshed whenever the poses move (once
-    /// per sub-step), read by every sweep.
-    gap: f64,
-    /// Normal velocity before the response, m/s.
-    approach: f64,
-    soft: Softness,
-    lambda: f64,
-    lambda_tangent: [f64; 2],
-    max_lambda: f64,
-    /// Every impulse applied over the step along the normal and the two tangents (N·s, on
-    /// A): the row's impulse is `n Λ₀ + t₁ Λ₁ + t₂ Λ₂`, and its share of each body's angular
-    /// momentum `(r×d) Λ` summed over the three axes.
-    applied: [f64; 3],
-}
-
-/// A body's motion inside the sub-steps: v, ω (= I₀⁻¹ L) and 1/M. Its angular momentum is
-/// not kept in step impulse by impulse: L at the end is L₀ plus the external change plus each
-/// row's `(r×d) Λ` ([`Row::applied`]).
-#[derive(Debug, Clone, Copy, Default)]
-struct Motion {
-    v: Vector3<f64>,
-    omega: Vector3<f64>,
-    inv_mass: f64,
-}
-
-impl Motion {
-    /// The rate of `axis`, A relative to B (`b` unread when the axis has no B end):
-    /// `d·v_A + (r_A×d)·ω_A − d·v_B + (r_B×(−d))·ω_B`.
-    #[inline]
-    fn rate(axis: &Axis, a: &Motion, b: &Motion) -> f64 {
-        let mut u = axis.d.dot(&a.v) + axis.a.rd.dot(&a.omega);
-        if let Some(e) = &axis.b {
-            u += -axis.d.dot(&b.v) + e.rd.dot(&b.omega);
-        }
-        u
-    }
-
-    /// The velocity of A's point at lever `ra` relative to B's at `rb`,
-    /// `v_A + ω_A×r_A − v_B − ω_B×r_B` (B still when the row has no B end): any axis's rate
-    /// is its `d·` this.
-    #[inline]
-    fn relative(a: &Motion, b: &Motion, ra: &Vector3<f64>, rb: &Vector3<f64>) -> Vector3<f64> {
-        a.v + a.omega.cross(ra) - b.v - b.omega.cross(rb)
-    }
-
-    /// Applies the impulse j along `axis`: `v_A += j d/M_A`, `ω_A += j I_A⁻¹(r_A×d)`, the
-    /// opposite on B.
-    #[inline]
-    fn push(axis: &Axis, j: f64, a: &mut Motion, b: &mut Motion) {
-        a.v += axis.d * (j * a.inv_mass);
-        a.omega += axis.a.w * j;
-        if let Some(e) = &axis.b {
-            b.v += axis.d * (-j * b.inv_mass);
-            b.omega += e.w * j;
-        }
-    }
-}
-
-/// Consecutive rows between the same two bodies (B: None for an obstacle or a fixed body):
-/// a sweep copies their motions in once, solves the rows, and copies them back.
-#[derive(Debug, Clone, Copy)]
-struct Run {
-    a: usize,
-    b: Option<usize>,
-    rows: (usize, usize),
-}
-
-/// Calls `solve` on each row with its two bodies' motions, run by run (`b` is a still
-/// stand-in when the row has no B end).
-#[inline]
-fn each_row(
-    runs: &[Run],
-    rows: &mut [Row],
-    motions: &mut [Motion],
-    mut solve: impl FnMut(&mut Row, &mut Motion, &mut Motion),
-) {
-    for run in runs {
-        let mut a = motions[run.a];
-        let mut b = run.b.map_or(Motion::default(), |b| motions[b]);
-        for row in &mut rows[run.rows.0..run.rows.1] {
-            solve(row, &mut a, &mut b);
-        }
-        motions[run.a] = a;
-        if let Some(i) = run.b {
-            motions[i] = b;
-        }
-    }
-}
-
-impl Row {
-    /// The separation at the bodies' current poses.
-    #[inline(always)]
-    fn separation_now(&self, places: &[Placement]) -> f64 {
-        let a = &places[self.normal.a.body];
-        let mut d = a.position - a.detected_position + a.turned * self.lever;
-        if let Some(b) = &self.normal.b {
-            let s = &places[b.body];
-            d -= s.position - s.detected_position + s.turned * self.lever_other;
-        }
-        self.separation + self.normal.d.dot(&d)
-    }
-}
-
 /// Buffers reused from step to step.
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
-    rows: Vec<Row>,
-    runs: Vec<Run>,
-    /// Per solver body, what the contacts changed of its v and ω over the last sub-step.
-    kicks: Vec<(Vector3<f64>, Vector3<f64>)>,
-    bodies: Vec<SolverBody>,
-    motions: Vec<Motion>,
-    places: Vec<Placement>,
-    /// Each solver body's free flight (the integrate phase's result): v, ω and world I⁻¹.
-    flight: Vec<(Vector3<f64>, Vector3<f64>, Matrix3<f64>)>,
-    /// Index of each world body among the solver bodies (usize::MAX: not in contact).
-    slot: Vec<usize>,
-    members: Vec<usize>,
+    rows: Rows,
+    bodies: Bodies,
+    /// The runs' schedule for the sweeps (`lanes`).
+    lanes: Lanes,
     points: Vec<super::geometry::ContactPoint>,
     /// The broad phase's buffers (`broad_phase`).
     broad: super::broad_phase::BroadPhase,
@@ -406,14 +285,69 @@ pub fn respond(
     // Speculative rows: anything a body could reach within the step at the bounce speed,
     // and at least a millimetre (the rows' separations are tracked within the step).
     let margin = (bounce_speed * dt).max(1e-3);
-    // Last step's rows carried over while the bodies barely move (`kept`), else detected.
+    if !detect(input, states, margin, contacts, scratch) {
+        contacts.clear();
+        scratch.warm.clear();
+        scratch.kept.ended_at(states);
+        return None;
+    }
+    let before = total_energy(input, states);
+
+    // The bodies in contact taken back to the start of the step, and their rows.
+    let Scratch {
+        rows,
+        bodies,
+        warm,
+        lanes,
+        ..
+    } = scratch;
+    let kinetic_free = bodies.gather(input.bodies, input.before, states, contacts, n);
+    let hertz = params.hertz_at(dt);
+    let dynamic = Softness::new(hertz, params.damping_ratio, h);
+    let fixed = Softness::new(2.0 * hertz, params.damping_ratio, h);
+    let friction = context.friction;
+    rows.build(contacts, bodies, warm, friction, (dynamic, fixed));
+    rows.measure(contacts, bodies);
+    lanes.schedule(rows, bodies.members.len());
+
+    // An impact (a row meeting faster than the bounce speed) gets IMPACT_SWEEPS sweeps per
+    // sub-step: one Gauss–Seidel sweep over a face's 4 coupled rows leaves part of a fast
+    // approach, which then goes deep (or, for a thin body, through).
+    let impact = rows.totals.iter().any(|t| t.approach < -bounce_speed);
+    let passes = if impact { IMPACT_SWEEPS } else { 1 };
+    substeps(rows, lanes, bodies, n, passes, friction, h);
+    // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
+    if context.restitution > 0.0 {
+        let motions = &mut bodies.motions;
+        sweep::restitution(rows, motions, context.restitution, bounce_speed);
+    }
+    // L from each row's impulses, then back into the states, the kinetic energy capped at
+    // the free flight's.
+    rows.add_angular_momentum(&mut bodies.l);
+    bodies.write_back(input.bodies, states);
+    cap_kinetic(input, &bodies.members, states, kinetic_free);
+    store(contacts, rows, warm, bounce_speed);
+    scratch.kept.ended_at(states);
+    let after = total_energy(input, states);
+    Some(EnergyChange { before, after })
+}
+
+/// The step's rows: last step's carried over while the bodies barely move (`kept`), else
+/// detected (and kept). Whether any row touches.
+fn detect(
+    input: &CollideInput,
+    states: &[State],
+    margin: f64,
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> bool {
     let carried = match input.recorded {
         None => scratch
             .kept
             .carry(input.bodies, input.before, states, margin, contacts),
         Some(_) => None,
     };
-    let touching = carried.unwrap_or_else(|| {
+    carried.unwrap_or_else(|| {
         let touching = contacts::find(
             input,
             states,
@@ -428,286 +362,64 @@ pub fn respond(
                 .remember(input.bodies, states, margin, contacts);
         }
         touching
-    });
-    if !touching {
-        contacts.clear();
-        scratch.warm.clear();
-        scratch.kept.ended_at(states);
-        return None;
-    }
-    let potential = |i: usize, x: &Vector3<f64>| {
-        input
-            .gravity
-            .map_or(0.0, |g| -input.bodies[i].mass * g.dot(x))
-    };
-    let total = |states: &[State]| {
-        let mut e = Energy::default();
-        for (i, s) in states.iter().enumerate() {
-            let k = kinetic_energy_with(
-                &input.bodies[i],
-                &derive(&input.bodies[i], s).inv_inertia_world,
-                &s.linear_momentum,
-                &s.angular_momentum,
-            );
-            let v = potential(i, &s.position);
-            e = e + Energy {
-                kinetic: k,
-                potential: v,
-                total: k + v,
-            };
-        }
-        e
-    };
-    let before = total(states);
+    })
+}
 
-    // The bodies in contact, as solver bodies at the start of the step.
-    let Scratch {
-        rows,
-        runs,
-        kicks,
-        bodies,
-        motions,
-        places,
-        flight,
-        slot,
-        members,
-        warm,
-        ..
-    } = scratch;
-    slot.clear();
-    slot.resize(states.len(), usize::MAX);
-    members.clear();
-    bodies.clear();
-    places.clear();
-    flight.clear();
-    let inv = n as f64;
-    for c in contacts.iter() {
-        for b in std::iter::once(c.body).chain(c.other_body()) {
-            if slot[b] != usize::MAX {
-                continue;
-            }
-            slot[b] = bodies.len();
-            members.push(b);
-            let body = &input.bodies[b];
-            let start = &input.before[b];
-            let free = &states[b];
-            let k0 = derive(body, start);
-            let k_free = derive(body, free);
-            flight.push((
-                free.linear_momentum * body.inv_mass,
-                k_free.angular_velocity,
-                k_free.inv_inertia_world,
-            ));
-            let q_free = free.orientation.quaternion();
-            bodies.push(SolverBody {
-                v: start.linear_momentum * body.inv_mass,
-                omega: k0.angular_velocity,
-                l: start.angular_momentum,
-                inv_mass: body.inv_mass,
-                inv_inertia: k0.inv_inertia_world,
-                touched: false,
-            });
-            places.push(Placement {
-                position: start.position,
-                q: start.orientation.quaternion(),
-                detected_position: free.position,
-                detected_inverse: q_free.inverse(),
-                turned: Matrix3::zeros(),
-                dv: (free.linear_momentum - start.linear_momentum) * body.inv_mass / inv,
-                dl: (free.angular_momentum - start.angular_momentum) / inv,
-                dw: k0.inv_inertia_world * ((free.angular_momentum - start.angular_momentum) / inv),
-            });
-        }
-    }
-    let kinetic_free: f64 = members
-        .iter()
-        .zip(flight.iter())
-        .map(|(&b, (_, _, inv_inertia))| {
-            let s = &states[b];
-            kinetic_energy_with(
-                &input.bodies[b],
-                inv_inertia,
-                &s.linear_momentum,
-                &s.angular_momentum,
-            )
-        })
-        .sum();
-    for p in places.iter_mut() {
-        p.turned = turned(p);
-    }
-
-    let hertz = params.hertz_at(dt);
-    let dynamic = Softness::new(hertz, params.damping_ratio, h);
-    let fixed = Softness::new(2.0 * hertz, params.damping_ratio, h);
-    let friction = context.friction;
-    rows.clear();
-    for c in contacts.iter_mut() {
-        // Levers as solver-body indices.
-        let b = c.other_body().map(|b| slot[b]);
-        let a = (slot[c.body], &c.lever);
-        let other = b.map(|b| (b, &c.lever_other));
-        let axis = |d: Vector3<f64>| {
-            let mut axis = Axis::new(d, a, other, bodies);
-            axis.with_inverse();
-            axis
-        };
-        let normal = axis(c.normal);
-        let (t1, t2) = tangents(&c.normal);
-        let tangents = [axis(t1), axis(t2)];
-        let against_fixed = b.is_none_or(|b| bodies[b].inv_mass == 0.0);
-        // The last step's per-sub-step impulse at the same feature and point.
-        let w = warm.find(c).unwrap_or_else(Vector3::zeros);
-        let lambda = w.dot(&c.normal).max(0.0);
-        let mut lambda_tangent = [w.dot(&t1), w.dot(&t2)];
-        clamp_disk(&mut lambda_tangent, friction * lambda);
-        rows.push(Row {
-            normal,
-            tangents,
-            lever: c.lever,
-            lever_other: c.lever_other,
-            separation: -c.depth,
-            gap: 0.0,
-            approach: 0.0,
-            soft: if against_fixed { fixed } else { dynamic },
-            lambda,
-            lambda_tangent,
-            max_lambda: 0.0,
-            applied: [0.0; 3],
-        });
-        c.denominator = normal.k;
-    }
-    runs.clear();
-    for (i, row) in rows.iter().enumerate() {
-        let (a, b) = (row.normal.a.body, row.normal.b.map(|e| e.body));
-        match runs.last_mut() {
-            Some(run) if run.a == a && run.b == b => run.rows.1 = i + 1,
-            _ => runs.push(Run {
-                a,
-                b,
-                rows: (i, i + 1),
-            }),
-        }
-    }
-    motions.clear();
-    motions.extend(bodies.iter().map(|s| Motion {
-        v: s.v,
-        omega: s.omega,
-        inv_mass: s.inv_mass,
-    }));
-
-    // The approach is measured at the free flight's velocities (what the contact meets).
-    for (row, c) in rows.iter_mut().zip(contacts.iter()) {
-        let (v, omega, _) = &flight[slot[c.body]];
-        let mut u = v + omega.cross(&c.lever);
-        if let Some(b) = c.other_body() {
-            let (v, omega, _) = &flight[slot[b]];
-            u -= v + omega.cross(&c.lever_other);
-        }
-        row.approach = u.dot(&c.normal);
-        row.gap = row.separation_now(places);
-    }
-
-    // An impact (a row meeting faster than the bounce speed) gets IMPACT_SWEEPS sweeps per
-    // sub-step: one Gauss–Seidel sweep over a face's 4 coupled rows leaves part of a fast
-    // approach, which then goes deep (or, for a thin body, through).
-    let impact = rows.iter().any(|row| row.approach < -bounce_speed);
-    let passes = if impact { IMPACT_SWEEPS } else { 1 };
-    kicks.clear();
-    kicks.resize(motions.len(), (Vector3::zeros(), Vector3::zeros()));
+/// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax.
+fn substeps(
+    rows: &mut Rows,
+    lanes: &Lanes,
+    bodies: &mut Bodies,
+    n: u32,
+    passes: usize,
+    friction: f64,
+    h: f64,
+) {
     for substep in 0..n {
-        for ((m, s), (p, kick)) in motions
-            .iter_mut()
-            .zip(bodies.iter_mut())
-            .zip(places.iter().zip(kicks.iter_mut()))
-        {
-            m.v += p.dv;
-            s.l += p.dl;
-            m.omega += p.dw;
-            // The warm start of a later sub-step: what the contacts did to the body over the
-            // last one (module doc); `kick` keeps the motion before it until the sub-step ends.
-            let start = (m.v, m.omega);
-            m.v += kick.0;
-            m.omega += kick.1;
-            *kick = start;
-        }
+        bodies.begin_substep();
         if substep == 0 {
-            each_row(runs, rows, motions, |row, a, b| {
-                let [t1, t2] = &row.tangents;
-                Motion::push(&row.normal, row.lambda, a, b);
-                Motion::push(t1, row.lambda_tangent[0], a, b);
-                Motion::push(t2, row.lambda_tangent[1], a, b);
-            });
+            sweep::warm_start(rows, &mut bodies.motions);
         }
         for _ in 0..passes {
-            sweep(runs, rows, motions, friction, h, true);
+            lanes.sweep(rows, &mut bodies.motions, friction, h, true);
         }
-        for (s, p) in motions.iter().zip(places.iter_mut()) {
-            p.position += s.v * h;
-            let w = s.omega * (0.5 * h);
-            let dq = Quaternion::new(0.0, w.x, w.y, w.z) * p.q.into_inner();
-            p.q = UnitQuaternion::new_normalize(p.q.into_inner() + dq);
-            p.turned = turned(p);
-        }
-        for row in rows.iter_mut() {
-            row.gap = row.separation_now(places);
-        }
+        bodies.advance(h);
+        rows.refresh_gaps(bodies);
         for _ in 0..passes {
-            sweep(runs, rows, motions, friction, h, false);
+            lanes.sweep(rows, &mut bodies.motions, friction, h, false);
         }
-        for (m, kick) in motions.iter().zip(kicks.iter_mut()) {
-            *kick = (m.v - kick.0, m.omega - kick.1);
-        }
-        for row in rows.iter_mut() {
-            row.applied[0] += row.lambda;
-            row.applied[1] += row.lambda_tangent[0];
-            row.applied[2] += row.lambda_tangent[1];
-        }
+        bodies.end_substep();
+        rows.add_totals();
     }
-    // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
-    let restitution = context.restitution;
-    if restitution > 0.0 {
-        each_row(runs, rows, motions, |row, a, b| {
-            if row.approach >= -bounce_speed || row.max_lambda == 0.0 {
-                return;
-            }
-            let u = Motion::rate(&row.normal, a, b);
-            let j = -row.normal.inv_k * (u + restitution * row.approach);
-            let new = (row.lambda + j).max(0.0);
-            let change = new - row.lambda;
-            row.lambda = new;
-            Motion::push(&row.normal, change, a, b);
-            row.applied[0] += change;
-        });
-    }
-    // The motions back into the solver bodies: v, ω, and L from each row's impulses.
-    for (s, m) in bodies.iter_mut().zip(motions.iter()) {
-        s.v = m.v;
-        s.omega = m.omega;
-    }
-    for row in rows.iter() {
-        let axes = [&row.normal, &row.tangents[0], &row.tangents[1]];
-        for (axis, &total) in axes.into_iter().zip(row.applied.iter()) {
-            bodies[axis.a.body].l += axis.a.rd * total;
-            if let Some(e) = &axis.b {
-                bodies[e.body].l += e.rd * total;
-            }
-        }
-    }
+}
 
-    // Back into the states, the kinetic energy capped at the free flight's.
-    for ((&b, s), p) in members.iter().zip(bodies.iter()).zip(places.iter()) {
-        if s.fixed() {
-            continue; // a fixed body does not move
-        }
-        let state = &mut states[b];
-        state.position = p.position;
-        state.orientation = match state.orientation {
-            Orientation::Matrix(_) => Orientation::Matrix(p.q.to_rotation_matrix().into_inner()),
-            Orientation::Quaternion(_) => Orientation::Quaternion(p.q),
+/// The energy of every body: kinetic, and potential in the declared gravity.
+fn total_energy(input: &CollideInput, states: &[State]) -> Energy {
+    let mut e = Energy::default();
+    for (i, s) in states.iter().enumerate() {
+        let body = &input.bodies[i];
+        let k = kinetic_energy_with(
+            body,
+            &derive(body, s).inv_inertia_world,
+            &s.linear_momentum,
+            &s.angular_momentum,
+        );
+        let v = input
+            .gravity
+            .map_or(0.0, |g| -body.mass * g.dot(&s.position));
+        e = e + Energy {
+            kinetic: k,
+            potential: v,
+            total: k + v,
         };
-        state.linear_momentum = s.v * input.bodies[b].mass;
-        state.angular_momentum = s.l;
     }
+    e
+}
+
+/// Caps the kinetic energy of the bodies in contact (`members`) at the free flight's,
+/// keeping the linear momentum: only the motion relative to the moving members' common
+/// barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy").
+fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], free: f64) {
     let kinetic_of = |states: &[State]| -> f64 {
         members
             .iter()
@@ -722,8 +434,6 @@ pub fn respond(
             })
             .sum()
     };
-    // The cap keeps the linear momentum: only the motion relative to the moving members'
-    // common barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy").
     let moving = |b: &&usize| input.bodies[**b].inv_mass > 0.0;
     let mass: f64 = members
         .iter()
@@ -732,7 +442,7 @@ pub fn respond(
         .sum();
     for _ in 0..4 {
         let kinetic = kinetic_of(states);
-        if kinetic <= kinetic_free || mass == 0.0 {
+        if kinetic <= free || mass == 0.0 {
             break;
         }
         let momentum: Vector3<f64> = members
@@ -743,8 +453,8 @@ pub fn respond(
         let v_cm = momentum / mass;
         let k_cm = 0.5 * mass * v_cm.norm_squared();
         let k_rel = kinetic - k_cm;
-        let scale = if k_rel > 0.0 && kinetic_free > k_cm {
-            ((kinetic_free - k_cm) / k_rel).sqrt() * (1.0 - 4.0 * f64::EPSILON)
+        let scale = if k_rel > 0.0 && free > k_cm {
+            ((free - k_cm) / k_rel).sqrt() * (1.0 - 4.0 * f64::EPSILON)
         } else {
             0.0
         };
@@ -755,89 +465,31 @@ pub fn respond(
             states[b].angular_momentum *= scale;
         }
     }
+}
 
-    // Store: the step's impulses on the contacts, the last sub-step's for the next warm start
-    // (none after a bounce: it says nothing about the next step's load).
-    for (c, row) in contacts.iter_mut().zip(rows.iter()) {
-        c.normal_velocity = row.approach;
+/// Stores the step's impulses on the contacts, and the last sub-step's for the next warm
+/// start (none after a bounce: it says nothing about the next step's load); drops the
+/// speculative rows that pushed nothing.
+fn store(contacts: &mut Vec<Contact>, rows: &Rows, warm: &mut WarmCache, bounce_speed: f64) {
+    for ((c, row), t) in contacts.iter_mut().zip(&rows.rows).zip(&rows.totals) {
+        c.normal_velocity = t.approach;
         let [t1, t2] = &row.tangents;
-        c.impulse = row.normal.d * row.applied[0] + t1.d * row.applied[1] + t2.d * row.applied[2];
+        c.impulse = row.normal * t.applied[0] + t1 * t.applied[1] + t2 * t.applied[2];
     }
     warm.store(
         contacts
             .iter()
-            .zip(rows.iter())
-            .filter(|(_, row)| row.approach >= -bounce_speed)
-            .map(|(c, row)| {
+            .zip(rows.rows.iter().zip(&rows.totals))
+            .filter(|(_, (_, t))| t.approach >= -bounce_speed)
+            .map(|(c, (row, _))| {
                 let [t1, t2] = &row.tangents;
-                let j = row.normal.d * row.lambda
-                    + t1.d * row.lambda_tangent[0]
-                    + t2.d * row.lambda_tangent[1];
+                let j = row.normal * row.lambda
+                    + t1 * row.lambda_tangent[0]
+                    + t2 * row.lambda_tangent[1];
                 (c, j)
             }),
     );
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
-    scratch.kept.ended_at(states);
-    let after = total(states);
-    Some(EnergyChange { before, after })
-}
-
-/// One sweep over the rows: the soft, biased solve (`biased`) or the rigid relax.
-fn sweep(
-    runs: &[Run],
-    rows: &mut [Row],
-    motions: &mut [Motion],
-    friction: f64,
-    h: f64,
-    biased: bool,
-) {
-    each_row(runs, rows, motions, |row, a, b| {
-        let s = row.gap;
-        let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-            (s / h, 1.0, 0.0)
-        } else if biased {
-            let soft = row.soft;
-            (
-                (soft.bias_rate * s).max(-MAX_PUSH),
-                soft.mass_scale,
-                soft.impulse_scale,
-            )
-        } else {
-            (0.0, 1.0, 0.0)
-        };
-        let u = Motion::rate(&row.normal, a, b);
-        let j = -row.normal.inv_k * mass_scale * (u + bias) - impulse_scale * row.lambda;
-        let new = (row.lambda + j).max(0.0);
-        let change = new - row.lambda;
-        row.lambda = new;
-        row.max_lambda = row.max_lambda.max(new);
-        if change != 0.0 {
-            Motion::push(&row.normal, change, a, b);
-        }
-        if friction > 0.0 {
-            let bound = friction * row.lambda;
-            let [t1, t2] = &row.tangents;
-            let old = row.lambda_tangent;
-            let slip = Motion::relative(a, b, &row.lever, &row.lever_other);
-            let mut new = [
-                old[0] - t1.inv_k * t1.d.dot(&slip),
-                old[1] - t2.inv_k * t2.d.dot(&slip),
-            ];
-            clamp_disk(&mut new, bound);
-            let step = [new[0] - old[0], new[1] - old[1]];
-            if step != [0.0; 2] {
-                // Both tangents at once: Δv_A = (t₁ s₁ + t₂ s₂)/M_A, Δω_A = I_A⁻¹(r_A×t₁) s₁ + …
-                let p = t1.d * step[0] + t2.d * step[1];
-                a.v += p * a.inv_mass;
-                a.omega += t1.a.w * step[0] + t2.a.w * step[1];
-                if let (Some(e1), Some(e2)) = (&t1.b, &t2.b) {
-                    b.v -= p * b.inv_mass;
-                    b.omega += e1.w * step[0] + e2.w * step[1];
-                }
-                row.lambda_tangent = new;
-            }
-        }
-    });
 }
 
 /// Scales a tangent impulse into the disk of radius `bound`.
@@ -847,9 +499,4 @@ fn clamp_disk(t: &mut [f64; 2], bound: f64) {
         let scale = if size > 0.0 { bound / size } else { 0.0 };
         *t = [t[0] * scale, t[1] * scale];
     }
-}
-
-/// The rotation since the detection pose, minus 𝟙.
-fn turned(s: &Placement) -> Matrix3<f64> {
-    (s.q * s.detected_inverse).to_rotation_matrix().into_inner() - Matrix3::identity()
 }
