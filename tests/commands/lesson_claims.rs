@@ -3804,9 +3804,11 @@ fn lesson_41_the_wall_stands_the_blow_moves_momentum_to_the_ground_and_energy_ne
     let (mut worst_p, mut worst_ball) = (0.0_f64, 0.0_f64);
     let (mut quiet_move, mut quiet_friction) = (0.0_f64, 0.0_f64);
     let mut first_step_ground_z = 0.0;
+    let mut resting = None;
     let mut hit = None;
     for _ in 0..steps_for(2.8, dt) {
         let (p_before, ball_before) = (total_momentum(&w), w.states()[ball].linear_momentum);
+        let before_blow = w.contact_counters();
         w.step();
         let (ground, on_ball, touched) = wall_impulses(&w, ball);
         // Third law: the bricks' pushes on each other cancel; only gravity and the ground
@@ -3822,6 +3824,7 @@ fn lesson_41_the_wall_stands_the_blow_moves_momentum_to_the_ground_and_energy_ne
             first_step_ground_z = ground.z;
         }
         if hit.is_none() && !touched.is_empty() {
+            resting = Some(before_blow);
             hit = Some((w.step_count(), touched.clone(), ball_before, p_before));
         }
         if hit.is_none() {
@@ -3908,6 +3911,23 @@ fn lesson_41_the_wall_stands_the_blow_moves_momentum_to_the_ground_and_energy_ne
         "P_z fell by the ball's loss",
     );
     assert!(lost > 1.0, "the ball lost only {lost} kg·m/s");
+    // Page 6: resting, the solver's warm start (the last step's impulses) answered every step
+    // after the first two; after the blow the friction sweeps ran, and some steps stopped at
+    // the work budget unconverged (the loop strip says so).
+    let (resting, end) = (resting.unwrap(), w.contact_counters());
+    println!("lesson 41: solver counters resting {resting:?}, at 2.8 s {end:?}");
+    assert_eq!(resting.warm + resting.direct + resting.declined, 100);
+    assert!(
+        resting.warm >= 98,
+        "warm-started resting steps {}",
+        resting.warm
+    );
+    assert_eq!(resting.unconverged, 0);
+    assert!(end.friction_sweeps > 0, "no friction sweeps after the blow");
+    assert!(
+        end.unconverged > 0,
+        "every step converged: page 6 says otherwise"
+    );
     // Page 4: E never rose by 1e-11 J in a step; the ledger closes to 1e-8 J.
     assert!(
         highest_rise < 1e-11,
