@@ -2,7 +2,7 @@
 //!
 //! A lesson page that tells a class "after one frame P_y = 2.9019" must stay true when the core
 //! changes: each test below reruns the lesson's scene and asserts the number its page quotes,
-//! with the formula that gives it in a comment. Lessons: 1–4, 9–21, 25–28, 33–37, 39, 40.
+//! with the formula that gives it in a comment. Lessons: 1–4, 9–21, 25–28, 33–37, 39–44.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use std::path::PathBuf;
@@ -3703,4 +3703,414 @@ fn lesson_40_simultaneous_impacts_bounce_the_big_ball_alone_then_the_small_one()
     }
     // It climbs 8.44²/2g = 3.6 m.
     assert_near(top - 0.23, 3.6, 0.05, "small's rise");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lesson 41: a wall (running bond, knocked down by a rolling ball)
+// ---------------------------------------------------------------------------------------------
+
+/// The wall's 14 bricks weigh 24 kg (four courses of 6 kg: 3 × 2 kg, or 2 × 2 kg + 2 × 1 kg);
+/// the ball 50 kg.
+const WALL_BRICKS: f64 = 24.0;
+const WALL_BALL: f64 = 50.0;
+
+/// Every body's momentum summed.
+fn total_momentum(world: &World) -> Vector3<f64> {
+    world.states().iter().map(|s| s.linear_momentum).sum()
+}
+
+/// What the ground gave in the last collide phase (Σ of its contacts' impulses), and what the
+/// other bodies gave the ball (each contact gives A its impulse and B the opposite).
+fn wall_impulses(world: &World, ball: usize) -> (Vector3<f64>, Vector3<f64>, Vec<usize>) {
+    let (mut ground, mut on_ball, mut touched) = (Vector3::zeros(), Vector3::zeros(), Vec::new());
+    for c in world.contacts() {
+        match c.against {
+            Against::Obstacle(_) => {
+                ground += c.impulse;
+                if c.body == ball {
+                    on_ball += c.impulse;
+                }
+            }
+            Against::Body(other) if c.body == ball => {
+                on_ball += c.impulse;
+                touched.push(other);
+            }
+            Against::Body(other) if other == ball => {
+                on_ball -= c.impulse;
+                touched.push(c.body);
+            }
+            Against::Body(_) => {}
+        }
+    }
+    (ground, on_ball, touched)
+}
+
+#[test]
+fn lesson_41_the_wall_stands_the_blow_moves_momentum_to_the_ground_and_energy_never_rises() {
+    let l = lesson("41-a-wall.toml");
+    let mut w = l.scene.world();
+    let dt = w.dt();
+    let ball = w.body_index("ball").unwrap();
+    let names = w.body_names().to_vec();
+    // The geometry of `contact_scenes::bonded_wall`: its bricks and half bricks.
+    let [length, height, _] = tumble::contact_scenes::BRICK;
+    let total: f64 = w.bodies().iter().map(|b| b.mass).sum();
+    assert_eq!(w.body_count(), 15);
+    assert_near(total - WALL_BALL, WALL_BRICKS, 1e-12, "the bricks' mass");
+    for (i, b) in w.bodies().iter().enumerate() {
+        if i != ball {
+            let half = names[i].contains('h');
+            let expected = if half { 0.5 } else { 1.0 } * tumble::contact_scenes::BRICK_MASS;
+            assert_eq!(b.mass, expected, "{}", names[i]);
+            let y = w.states()[i].position.y;
+            let course = ((y - height / 2.0) / height).round();
+            assert_near(y, height / 2.0 + course * height, 1e-12, "on a course");
+            let x = w.states()[i].position.x;
+            // Whole bricks of even courses at multiples of L, of odd courses halfway between;
+            // half bricks close the odd courses at ±(1.5 L − L/4).
+            let slot = if half {
+                (x.abs() - (1.5 * length - length / 4.0)).abs()
+            } else {
+                let shift = if course as i64 % 2 == 1 {
+                    length / 2.0
+                } else {
+                    0.0
+                };
+                ((x - shift) / length - ((x - shift) / length).round()).abs()
+            };
+            assert!(slot < 1e-12, "{} at x = {x}", names[i]);
+        }
+    }
+    // Page 1: the ground carries (50 + 24) kg × 9.81 = 725.94 N; P_z = m v = 300 kg·m/s;
+    // E₀: the rolling ball's K = ½ m v² + ½ (⅖ m r²)(v/r)² = 0.7 m v² = 1260 J, and the
+    // potential of ball and bricks, 216.801 J.
+    assert_near(total * G, 725.94, 1e-9, "the weight");
+    assert_near(total_momentum(&w).z, 300.0, 1e-12, "P_z");
+    let e0 = w.total_energy();
+    assert_near(0.7 * WALL_BALL * 36.0, 1260.0, 1e-9, "0.7 m v²");
+    assert_near(e0.kinetic, 1260.0, 1e-9, "K₀");
+    // V = m g y: the ball at 0.25 m, each course's 6 kg at 0.1, 0.3, 0.5, 0.7 m.
+    assert_near(
+        G * (WALL_BALL * 0.25 + 6.0 * 1.6),
+        216.801,
+        1e-9,
+        "V₀ by hand",
+    );
+    assert_near(e0.potential, 216.801, 1e-9, "V₀");
+    let start: Vec<_> = w.states().to_vec();
+    let gravity = Vector3::new(0.0, -G * total * dt, 0.0);
+    let ball_gravity = Vector3::new(0.0, -G * WALL_BALL * dt, 0.0);
+    let (mut previous_e, mut highest_rise) = (e0.total, f64::NEG_INFINITY);
+    let (mut worst_p, mut worst_ball) = (0.0_f64, 0.0_f64);
+    let (mut quiet_move, mut quiet_friction) = (0.0_f64, 0.0_f64);
+    let mut first_step_ground_z = 0.0;
+    let mut resting = None;
+    let mut hit = None;
+    for _ in 0..steps_for(2.8, dt) {
+        let (p_before, ball_before) = (total_momentum(&w), w.states()[ball].linear_momentum);
+        let before_blow = w.contact_counters();
+        w.step();
+        let (ground, on_ball, touched) = wall_impulses(&w, ball);
+        // Third law: the bricks' pushes on each other cancel; only gravity and the ground
+        // change the scene's momentum, P(t + dt) − P(t) = M g dt + Σ J_ground, and the ball's
+        // changes by its weight and what touches it.
+        worst_p = worst_p.max((total_momentum(&w) - p_before - gravity - ground).norm());
+        let ball_change = w.states()[ball].linear_momentum - ball_before;
+        worst_ball = worst_ball.max((ball_change - ball_gravity - on_ball).norm());
+        let e = w.total_energy().total;
+        highest_rise = highest_rise.max(e - previous_e);
+        previous_e = e;
+        if w.step_count() == 1 {
+            first_step_ground_z = ground.z;
+        }
+        if hit.is_none() && !touched.is_empty() {
+            resting = Some(before_blow);
+            hit = Some((w.step_count(), touched.clone(), ball_before, p_before));
+        }
+        if hit.is_none() {
+            for (i, (s, s0)) in w.states().iter().zip(&start).enumerate() {
+                if i != ball {
+                    let turned = s
+                        .orientation
+                        .quaternion()
+                        .angle_to(&s0.orientation.quaternion());
+                    quiet_move = quiet_move.max((s.position - s0.position).norm().max(turned));
+                }
+            }
+            // At rest every contact force is vertical: no friction at the bricks' feet, and
+            // the ground carries the whole weight every step (after the ball's first step).
+            for c in w.contacts().iter().filter(|c| c.body != ball) {
+                let tangential = c.impulse - c.impulse.dot(&c.normal) * c.normal;
+                quiet_friction = quiet_friction.max(tangential.norm());
+            }
+            if w.step_count() > 1 {
+                assert_near(ground.y, G * total * dt, 1e-9, "the ground's push per step");
+                assert!(ground.z.abs() < 1e-12, "friction at rest: {}", ground.z);
+            }
+        }
+    }
+    println!(
+        "lesson 41: quiet move {quiet_move:e}, quiet friction {quiet_friction:e} N·s, P residual \
+         {worst_p:e}, ball residual {worst_ball:e}, highest rise of E {highest_rise:e} J"
+    );
+    // Page 2: no brick moved by 1e-12 m (nor turned by 1e-12 rad) before the blow, which
+    // comes in step 101 (t = 0.505 s): the ball meets c1b0 and c1b1 at their joint, and c0b1.
+    assert!(
+        quiet_move < 1e-12,
+        "the wall moved {quiet_move:e} m before the blow"
+    );
+    assert!(
+        quiet_friction < 1e-12,
+        "friction at rest {quiet_friction:e} N·s"
+    );
+    let (hit_step, touched, ball_before, p_before) = hit.expect("the ball hits the wall");
+    assert_eq!(hit_step, 101, "the step of the blow");
+    let mut touched: Vec<&str> = touched.iter().map(|&i| names[i].as_str()).collect();
+    touched.sort();
+    touched.dedup();
+    assert_eq!(
+        touched,
+        ["c0b1", "c1b0", "c1b1"],
+        "the bricks the ball touches first"
+    );
+    // The ball rolled at 6 m/s less what the ground took in the first step (page 3's 0.021).
+    assert_near(
+        first_step_ground_z,
+        -0.021,
+        5e-4,
+        "the first step's friction",
+    );
+    assert_near(
+        ball_before.z,
+        300.0 + first_step_ground_z,
+        1e-9,
+        "the ball's p before the blow",
+    );
+    assert_near(p_before.z, ball_before.z, 1e-12, "all of P_z is the ball's");
+    // Page 3: momentum bookkeeping to round-off.
+    assert!(worst_p < 1e-9, "ΔP − M g dt − J_ground up to {worst_p:e}");
+    assert!(
+        worst_ball < 1e-9,
+        "the ball's Δp − m g dt − J up to {worst_ball:e}"
+    );
+    // At 2.8 s the bricks lie still: the ball's lost momentum is all in the ground.
+    for (i, s) in w.states().iter().enumerate() {
+        if i != ball {
+            assert!(
+                s.linear_momentum.norm() < 1e-9 && s.angular_momentum.norm() < 1e-9,
+                "{} still moving at 2.8 s",
+                names[i]
+            );
+        }
+    }
+    let lost = ball_before.z - w.states()[ball].linear_momentum.z;
+    assert_near(
+        p_before.z - total_momentum(&w).z,
+        lost,
+        1e-9,
+        "P_z fell by the ball's loss",
+    );
+    assert!(lost > 1.0, "the ball lost only {lost} kg·m/s");
+    // Page 6: resting, the solver's warm start (the last step's impulses) answered every step
+    // after the first two; after the blow the friction sweeps ran, and some steps stopped at
+    // the work budget unconverged (the loop strip says so).
+    let (resting, end) = (resting.unwrap(), w.contact_counters());
+    println!("lesson 41: solver counters resting {resting:?}, at 2.8 s {end:?}");
+    assert_eq!(resting.warm + resting.direct + resting.declined, 100);
+    assert!(
+        resting.warm >= 98,
+        "warm-started resting steps {}",
+        resting.warm
+    );
+    assert_eq!(resting.unconverged, 0);
+    assert!(end.friction_sweeps > 0, "no friction sweeps after the blow");
+    assert!(
+        end.unconverged > 0,
+        "every step converged: page 6 says otherwise"
+    );
+    // Page 4: E never rose by 1e-11 J in a step; the ledger closes to 1e-8 J.
+    assert!(
+        highest_rise < 1e-11,
+        "E rose by {highest_rise:e} J in a step"
+    );
+    let b = w.energy_balance();
+    assert_near(b.contacts.unwrap(), b.change, 1e-8, "the contacts' row");
+    assert!(b.drift.abs() < 1e-8, "drift {:e}", b.drift);
+    assert!(
+        w.energy_ledger().contact_gain < 1e-10,
+        "the contacts gave energy"
+    );
+    // The bricks fell: V is lower than at t = 0.
+    assert!(w.total_energy().potential < e0.potential - 1.0);
+}
+
+/// A brick of `contact_scenes::BRICK` on the ground and a second one on it, shifted by half
+/// its length and turned `tilt` rad about the first one's edge (x = L/2, y = h), outward.
+fn end_brick(tilt: f64, dt: f64) -> World {
+    let (l, h) = (0.4_f64, 0.2_f64);
+    let (x, y) = (l / 2.0 + h / 2.0 * tilt.sin(), h + h / 2.0 * tilt.cos());
+    let source = format!(
+        "title = \"end brick\"\n[scene]\ndt = {dt:?}\nintegrator = \"rk4\"\n\
+         gravity = [0.0, -9.81, 0.0]\n\
+         contact = {{ response = \"impulse\", restitution = 0.0, friction = 0.5 }}\n\
+         [[body]]\nname = \"below\"\nshape = \"box\"\nsize = [0.4, 0.2, 0.2]\nmass = 2.0\n\
+         position = [0.0, 0.1, 0.0]\n\
+         [[body]]\nname = \"end\"\nshape = \"box\"\nsize = [0.4, 0.2, 0.2]\nmass = 2.0\n\
+         position = [{x:?}, {y:?}, 0.0]\n\
+         orientation = {{ axis = [0.0, 0.0, 1.0], degrees = {:?} }}\n\
+         [[obstacle]]\ntype = \"ground\"\nheight = 0.0\n",
+        -tilt.to_degrees()
+    );
+    let path = std::path::Path::new("end-brick.toml");
+    tumble::scene::parse(&source, path)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
+        .world()
+}
+
+/// The angle body `i` has turned from its start, rad.
+fn turned(world: &World, start: &[tumble::physics::State], i: usize) -> f64 {
+    (world.states()[i].orientation.quaternion()).angle_to(&start[i].orientation.quaternion())
+}
+
+/// The inverted pendulum of page 5: the end brick's barycenter d = h/2 above the edge it
+/// turns about, I_edge = M (L² + h²)/12 + M d², λ = √(M g d / I_edge).
+fn end_brick_rate() -> f64 {
+    let (l, h) = (0.4_f64, 0.2_f64);
+    let d = h / 2.0;
+    let inertia = (l * l + h * h) / 12.0 + d * d;
+    assert_near(inertia, 0.026667, 5e-7, "I_edge / M");
+    (G * d / inertia).sqrt()
+}
+
+#[test]
+fn lesson_41_the_end_brick_balanced_on_an_edge_falls_as_cosh_of_lambda_t() {
+    let lambda = end_brick_rate();
+    assert_near(lambda, 6.065, 5e-4, "λ quoted");
+    assert_near(
+        std::f64::consts::LN_2 / lambda,
+        0.114,
+        5e-4,
+        "doubling time",
+    );
+    let to_tenth = (1e5_f64).acosh() / lambda;
+    assert_near(to_tenth, 2.0, 0.05, "1e-6 rad to 0.1 rad");
+    let mut errors = Vec::new();
+    for (dt, tolerance) in [(5e-3, 0.01), (1e-3, 0.003)] {
+        let mut w = end_brick(1e-6, dt);
+        let upright: Vec<_> = {
+            let mut s = w.states().to_vec();
+            s[1].orientation = s[0].orientation;
+            s
+        };
+        let (mut at_1, mut at_1_5, mut tenth) = (0.0, 0.0, None);
+        while w.time() < 2.5 - dt / 2.0 && tenth.is_none() {
+            w.step();
+            let theta = turned(&w, &upright, 1);
+            match w.step_count() {
+                n if n == steps_for(1.0, dt) => at_1 = theta,
+                n if n == steps_for(1.5, dt) => at_1_5 = theta,
+                _ => {}
+            }
+            if theta >= 0.1 {
+                tenth = Some(w.time());
+            }
+        }
+        // θ₀ cosh(λ t) ≈ θ₀ e^(λt)/2 once λ t > 6: the rate from t = 1 s to 1.5 s.
+        let rate = (at_1_5 / at_1).ln() / 0.5;
+        let tenth = tenth.expect("the end brick tips past 0.1 rad");
+        println!("end brick at dt = {dt}: λ seen {rate}, 0.1 rad at {tenth} s (closed form {lambda}, {to_tenth} s)");
+        assert_near(rate, lambda, tolerance * lambda, "the growth rate");
+        assert_near(tenth, to_tenth, 0.05, "the time to 0.1 rad");
+        errors.push(rate - lambda);
+        // Friction holds the edge meanwhile: the lower brick has not moved.
+        assert!(w.states()[0].linear_momentum.norm() < 1e-6);
+    }
+    // The step's error in λ is first order: a fifth of it at a fifth of dt.
+    assert_near(
+        errors[0] / errors[1],
+        5.0,
+        1.0,
+        "error ratio, dt 5 ms against 1 ms",
+    );
+}
+
+#[test]
+fn lesson_41_a_plain_running_bond_drops_its_top_end_brick_by_itself() {
+    // Page 5's wall: the lesson's courses, 1 and 3 laid as three whole bricks at x = −0.2,
+    // 0.2, 0.6 (no halves). Course 3's brick at 0.6 has its barycenter above the edge of
+    // course 2's brick at 0.4; course 1's brick at 0.6 is held by course 2 on its inner half.
+    let mut source = String::from(
+        "title = \"plain bond\"\n[scene]\ndt = 0.005\nintegrator = \"rk4\"\n\
+         gravity = [0.0, -9.81, 0.0]\n\
+         contact = { response = \"impulse\", restitution = 0.0, friction = 0.5 }\n",
+    );
+    for course in 0..4 {
+        for i in 0..3 {
+            let shift = if course % 2 == 1 { 0.2 } else { 0.0 };
+            let x = (i as f64 - 1.0) * 0.4 + shift;
+            let y = 0.1 + 0.2 * course as f64;
+            source += &format!(
+                "[[body]]\nname = \"c{course}b{i}\"\nshape = \"box\"\nsize = [0.4, 0.2, 0.2]\n\
+                 mass = 2.0\nposition = [{x:?}, {y:?}, 0.0]\n"
+            );
+        }
+    }
+    source += "[[obstacle]]\ntype = \"ground\"\nheight = 0.0\n";
+    let scene = tumble::scene::parse(&source, std::path::Path::new("plain.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene;
+    let mut w = scene.world();
+    let (top, lower) = (w.body_index("c3b2").unwrap(), w.body_index("c1b2").unwrap());
+    let start = w.states().to_vec();
+    let (mut small, mut large) = (None, None);
+    while w.time() < 5.0 && large.is_none() {
+        w.step();
+        let theta = turned(&w, &start, top);
+        if small.is_none() && theta >= 1e-5 {
+            small = Some((w.time(), theta));
+        }
+        if theta >= 1e-3 {
+            large = Some((w.time(), theta));
+        }
+    }
+    let ((t1, a), (t2, b)) = (small.unwrap(), large.expect("the end brick tips by itself"));
+    let rate = (b / a).ln() / (t2 - t1);
+    println!("plain bond: tilt 1e-5 rad at {t1} s, 1e-3 rad at {t2} s, rate {rate} 1/s");
+    assert_near(
+        rate,
+        end_brick_rate(),
+        0.03 * end_brick_rate(),
+        "the growth rate",
+    );
+    let held = turned(&w, &start, lower);
+    assert!(held < 1e-9, "course 1's end brick turned {held:e} rad");
+}
+
+#[test]
+fn lesson_41_soft_step_sinks_and_spreads_the_wall_before_the_ball_arrives() {
+    // Page 6: under soft-step the top course has sunk about half a millimetre by 0.5 s, and
+    // the bricks have moved sideways (impulse: not by 1e-12 m).
+    let l = lesson_edited(
+        "41-a-wall.toml",
+        &[("response = \"impulse\"", "response = \"soft-step\"")],
+    );
+    let mut w = l.scene.world();
+    let start = w.states().to_vec();
+    for _ in 0..steps_for(0.5, w.dt()) {
+        w.step();
+    }
+    let names = w.body_names().to_vec();
+    let mut spread: f64 = 0.0;
+    for (i, name) in names.iter().enumerate().filter(|(_, n)| *n != "ball") {
+        let (s, s0) = (&w.states()[i], &start[i]);
+        spread = spread.max((s.position.x - s0.position.x).abs());
+        if name.starts_with("c3") {
+            let sunk = (s0.position.y - s.position.y) * 1e3;
+            println!("soft-step: {name} sunk {sunk} mm");
+            assert!((0.4..0.65).contains(&sunk), "{name} sunk {sunk} mm");
+        }
+    }
+    println!("soft-step: spread {spread:e} m");
+    assert!(spread > 1e-5, "spread only {spread:e} m");
 }
