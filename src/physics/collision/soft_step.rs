@@ -117,10 +117,11 @@
 //! per step into what the sweeps read (normal, tangents, levers, `r×n`, `I₀⁻¹(r×d)`, `1/k`:
 //! no matrix work is left for the sweeps) and refreshes the separations; `sweep` holds the
 //! passes over one row (warm start, soft solve and relax, restitution); `lanes` schedules the
-//! runs of rows so that two runs sharing no body are solved side by side in SIMD lanes, in an
-//! order that gives the sequential sweep's numbers bit for bit.
+//! runs of rows so that two runs sharing no body are solved side by side in SIMD lanes (`f2`), in
+//! an order that gives the sequential sweep's numbers bit for bit.
 
 mod bodies;
+mod f2;
 mod lanes;
 mod rows;
 mod sweep;
