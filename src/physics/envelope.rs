@@ -187,6 +187,19 @@ impl Envelope {
         }
     }
 
+    /// Factors A in place (regularised, as [`Envelope::solve`]) for several right-hand sides
+    /// solved by [`Envelope::substitute_regularised`]; false if a pivot is not positive.
+    pub fn factor_regularised(&mut self) -> bool {
+        self.factor(Pivots::Regularised)
+    }
+
+    /// x of `A x = b` over `b` (its first m entries), A factored by
+    /// [`Envelope::factor_regularised`].
+    pub fn substitute_regularised(&mut self, b: &mut [f64]) {
+        let m = self.m;
+        self.substitute(Pivots::Regularised, &mut b[..m]);
+    }
+
     #[inline(always)]
     fn factor_and_substitute(&mut self, pivots: Pivots, b: &mut [f64]) -> bool {
         if !self.factor(pivots) {

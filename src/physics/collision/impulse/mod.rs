@@ -17,6 +17,7 @@
 //! | friction row: the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
+//! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |
 //! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
 //! # Many contacts (a face landing flat has 4), in three stages
@@ -81,6 +82,7 @@
 //! where it was at the start of the step with its *corrected* velocity (no creep at rest, on a
 //! slope or on a sphere), and what penetration is left is removed by translation (see there).
 
+pub mod admm;
 pub mod direct;
 pub mod friction;
 pub mod normal;
@@ -193,6 +195,16 @@ pub struct StepReport {
     pub unconverged: Option<f64>,
 }
 
+/// Whether a large, wide system whose direct solve declined starts its sweeps from an ADMM
+/// solve in body space ([`admm`]), stage 1 and stage 2. Off: measured on the knocked walls
+/// (issue 35, 2026-12-06, this machine under load), it takes stage 1 of the bonded wall from
+/// its cap (2000 sweeps and 32 subspace steps in half the steps) to 9–17 sweeps and halves
+/// the unconverged steps (71 → 31 of 100; wall-ball 150 → 96 of 200), but the CPU per step
+/// does not fall (bonded-wall-ball 42.5 → 45 ms, wall-ball 32 → 51 ms): ADMM needs 300 to
+/// 3000 iterations (about 25 µs each) to reach 1e-7 m/s, and from there the friction sweeps
+/// and subspace steps still often spend the budget closing 1e-7 to 1e-10 m/s.
+pub const ADMM_STAGES: bool = false;
+
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -248,6 +260,8 @@ struct Direct {
     /// The rows in the order the subspace step takes its unknowns.
     order: Vec<usize>,
     subspace_rows: Vec<(f64, [f64; 2])>,
+    /// The ADMM solve's buffers (stage 2 of a large system).
+    admm: admm::Scratch,
     /// This step's work so far and its budget, in row updates ([`WORK_BUDGET`]).
     work: u64,
     budget: u64,
@@ -729,6 +743,10 @@ fn stages(
         } else {
             counters.declined += 1;
             normal::warm_start(rows, motions);
+            if large && ADMM_STAGES {
+                buffers_direct.work +=
+                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
+            }
             let (converged, sweeps, residual) = if large {
                 subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
             } else {
@@ -816,6 +834,18 @@ fn stages(
         }
         if !solved {
             friction::warm_start(rows, tangent_directions, motions);
+            if large && ADMM_STAGES {
+                buffers_direct.work += admm::solve(
+                    rows,
+                    tangent_directions,
+                    motions,
+                    tolerance,
+                    &mut buffers_direct.admm,
+                )
+                .work;
+            }
+        }
+        if !solved {
             let (converged, sweeps, residual) = subspace::sweep(
                 rows,
                 tangent_directions,
