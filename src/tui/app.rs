@@ -310,9 +310,9 @@ impl App {
     fn build(lesson: Lesson, options: Options, live_in_background: bool) -> App {
         let world = lesson.scene.world();
         let snapshot = world.snapshot();
-        let region = Region::of_world(&world);
+        let region = Region::of_world(&snapshot);
         let series = EnergySeries::new(&snapshot, lesson.scene.duration);
-        let plot_series = PlotSeries::new(&world);
+        let plot_series = PlotSeries::new(&snapshot);
         let live_settings = LiveSettings::of(&world);
         let guesses = vec![Guess::Open; lesson.pages.len()];
         let real_time = 1.0 / lesson.scene.dt;
@@ -1304,12 +1304,12 @@ impl App {
         if let Some(bars) = &mut self.error_bars {
             bars.follow(&self.lesson.scene, &self.world, self.selected);
         }
-        let mut shown = shown_points(&self.world);
+        let mut shown = shown_points(&self.snapshot);
         if let Some(ghost) = &mut self.ghost {
             ghost.snapshot = ghost.world.snapshot_of(self.selected);
             // A diverged ghost's runaway positions would take the view with them.
             if ghost.diverged.is_none() {
-                shown.extend(shown_points(&ghost.world));
+                shown.extend(shown_points(&ghost.snapshot));
             }
         }
         self.region.include(&shown);
@@ -1396,7 +1396,9 @@ impl App {
             drift,
             ghost,
         );
-        self.plot_series.record(&self.world);
+        if self.plot_series.keeps(self.world.step_count()) {
+            self.plot_series.record(&self.world.snapshot());
+        }
     }
 
     /// Runs up to `frames` whole frames (both worlds); stops at a divergence.
@@ -1558,9 +1560,9 @@ impl App {
         self.divergence = None;
         self.running = false;
         self.snapshot = self.world.snapshot_of(self.selected);
-        self.region = Region::of_world(&self.world);
+        self.region = Region::of_world(&self.snapshot);
         self.series = EnergySeries::new(&self.snapshot, self.lesson.scene.duration);
-        self.plot_series = PlotSeries::new(&self.world);
+        self.plot_series = PlotSeries::new(&self.snapshot);
         // The stopwatch's times were of the run replaced: it starts over (shown as it was).
         self.tools.stopwatch = Default::default();
         self.refresh();

@@ -303,27 +303,23 @@ fn body_under(app: &App, view: &Viewport, col: u16, row: u16) -> Option<usize> {
     let pointer = view.world_through(col, row, &Vector3::zeros());
     let (h, v) = axis.project(&pointer);
     let tolerance = view.mapping.scale;
-    let states = app.world.states();
-    (0..app.world.body_count())
+    let bodies = &app.snapshot.bodies;
+    (0..bodies.len())
         .filter(|&i| {
-            let body = &app.world.bodies()[i];
+            let body = &bodies[i];
             let outline: Vec<(f64, f64)> = if body.points_body.is_empty() {
                 Vec::new()
             } else {
-                app.world
-                    .vertices_of(i)
-                    .iter()
-                    .map(|p| axis.project(p))
-                    .collect()
+                body.vertices.iter().map(|p| axis.project(p)).collect()
             };
             if outline.is_empty() {
-                let (ch, cv) = axis.project(&states[i].position);
+                let (ch, cv) = axis.project(&body.position);
                 return (h - ch).hypot(v - cv) <= body.radius + tolerance;
             }
             distance_to_hull(&convex_hull(outline), (h, v)) <= tolerance
         })
         .max_by(|&a, &b| {
-            let depth = |i: usize| states[i].position.dot(&axis.toward_viewer());
+            let depth = |i: usize| bodies[i].position.dot(&axis.toward_viewer());
             depth(a).total_cmp(&depth(b))
         })
 }

@@ -169,14 +169,14 @@ pub fn panel_of_measure(m: Measure, several: bool) -> Option<PagePanel> {
         Measure::Position(_) => PagePanel::State,
         Measure::Velocity(_) | Measure::Speed => PagePanel::Momentum,
         Measure::AngularVelocity(_) => PagePanel::AngularVelocity,
-        Measure::AngularMomentum(_) => PagePanel::AngularMomentum,
+        Measure::AngularMomentum(_) | Measure::AngularMomentumNorm => PagePanel::AngularMomentum,
         Measure::Kinetic | Measure::Potential | Measure::Energy if several => PagePanel::BodyEnergy,
         Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => {
             PagePanel::Energy
         }
         Measure::SceneMomentum(_) if several => PagePanel::System,
         Measure::SceneMomentum(_) => PagePanel::Momentum,
-        Measure::Time | Measure::ContactTime => return None,
+        Measure::Time | Measure::ContactTime | Measure::JointError(_) => return None,
     })
 }
 

@@ -18,9 +18,9 @@ use super::app::App;
 use super::theme;
 use super::viewport::{Axis, Mapping, Viewport};
 use crate::physics::body::{box_corners, box_edges};
-use crate::physics::cloth::Cloth;
 use crate::physics::collision::geometry::Shape;
 use crate::physics::snapshot::BodyView;
+use crate::physics::ClothView;
 use crate::physics::{Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 use ratatui::buffer::Buffer;
@@ -47,8 +47,8 @@ pub const MIN_ARROW_RADIUS_COLUMNS: f64 = 3.0;
 
 /// Whether the selected body is large enough on screen (`scale` m per column) for its arrows.
 pub fn arrows_fit(app: &App, scale: f64) -> bool {
-    app.world
-        .bodies()
+    app.snapshot
+        .bodies
         .get(app.selected)
         .is_some_and(|b| b.radius >= MIN_ARROW_RADIUS_COLUMNS * scale)
 }
@@ -179,7 +179,7 @@ fn legend(
         // First while a body is held: what the line from it to the pointer is.
         items.push(item("o~x", theme::HAND, "hand".into()));
     }
-    let body = app.world.bodies().get(app.selected);
+    let body = app.snapshot.bodies.get(app.selected);
     let arrows = app.arrows && arrows_fit(app, mapping.scale);
     if arrows {
         items.push(item("ω", theme::OMEGA, "ang. vel.".into()));
@@ -190,9 +190,9 @@ fn legend(
     if body.is_some() {
         items.push(item("@", theme::BODY, "center".into()));
     }
-    if !app.world.cloths().is_empty() {
+    if !app.snapshot.cloths.is_empty() {
         items.push(item("#", theme::CLOTH, "cloth".into()));
-        if app.world.cloths().iter().any(|c| c.pinned.contains(&true)) {
+        if app.snapshot.cloths.iter().any(|c| c.pins.contains(&true)) {
             items.push(item("x", theme::PINNED, "pinned".into()));
         }
     }
@@ -620,11 +620,11 @@ fn arrow(
 pub fn add_cloth(
     scene: &mut Scene2d,
     axis: Axis,
-    cloth: &Cloth,
+    cloth: &ClothView,
     colour: Color,
     ascii: Option<char>,
 ) {
-    let [nx, nz] = cloth.count;
+    let [nx, nz] = cloth.grid;
     let p: Vec<(f64, f64)> = cloth.positions.iter().map(|x| axis.project(x)).collect();
     scene.segments.reserve(2 * nx * nz);
     for j in 0..nz {
@@ -648,7 +648,7 @@ pub fn add_cloth(
         }
     }
     if ascii.is_none() {
-        for (k, &pinned) in cloth.pinned.iter().enumerate() {
+        for (k, &pinned) in cloth.pins.iter().enumerate() {
             if pinned {
                 scene.points.push((p[k], theme::PINNED, 'x'));
             }
@@ -766,7 +766,7 @@ pub fn add_links(scene: &mut Scene2d, axis: Axis, s: &Snapshot, scale: f64) {
 fn scene_2d(app: &App, scale: f64) -> Scene2d {
     let axis = app.axis;
     let mut scene = Scene2d::default();
-    for o in app.world.obstacles() {
+    for o in &app.snapshot.obstacles {
         match *o {
             Obstacle::Ground { height } => {
                 if axis.shows_ground_line() {
@@ -816,18 +816,18 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
             }
         }
     }
-    if app.trail && app.world.body_count() > 0 {
+    if app.trail && !app.snapshot.bodies.is_empty() {
         for p in app.history.trail(TRAIL_LENGTH) {
             scene.points.push((axis.project(p), theme::TRAIL, '.'));
         }
     }
     // The cloths under the bodies (a body resting on a sheet is drawn on top of it).
     if let Some(g) = &app.ghost {
-        for cloth in g.world.cloths() {
+        for cloth in &g.snapshot.cloths {
             add_cloth(&mut scene, axis, cloth, theme::GHOST, Some(':'));
         }
     }
-    for cloth in app.world.cloths() {
+    for cloth in &app.snapshot.cloths {
         add_cloth(&mut scene, axis, cloth, theme::CLOTH, None);
     }
     // The joints and springs under the bodies they hold.
@@ -838,7 +838,7 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
         if i == app.selected {
             continue;
         }
-        let other = &app.world.bodies()[i];
+        let other = view;
         let wire = view
             .shape
             .as_ref()
@@ -864,8 +864,8 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
         add_outline(&mut scene, axis, view);
         add_body(&mut scene, axis, &picture);
     }
-    if let Some(body) = app.world.bodies().get(app.selected) {
-        let view = app.snapshot.bodies.get(app.selected);
+    if let Some(body) = app.snapshot.bodies.get(app.selected) {
+        let view = Some(body);
         if let Some(g) = &app.ghost {
             let ghost_wire = g
                 .snapshot

@@ -113,9 +113,9 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
 /// cloths).
 fn cloth_integrators(app: &App) -> Option<String> {
     let mut names: Vec<&str> = Vec::new();
-    for c in app.world.cloths() {
-        if !names.contains(&c.integrator.name()) {
-            names.push(c.integrator.name());
+    for c in &app.snapshot.cloths {
+        if !names.contains(&c.integrator) {
+            names.push(c.integrator);
         }
     }
     (!names.is_empty()).then(|| names.join(" + "))

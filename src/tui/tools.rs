@@ -95,7 +95,17 @@ impl App {
 
     /// The named points of the scene (bodies' barycenters, joints' and springs' anchors).
     pub fn named_points(&self) -> Vec<End> {
-        ruler::named_points(self.world.body_names(), self.world.links())
+        let s = &self.snapshot;
+        let names: Vec<String> = s.bodies.iter().map(|b| b.name.clone()).collect();
+        let joints = s.joints.iter().map(|j| {
+            let [a, b] = j.local_anchors;
+            (j.name.as_str(), j.body_indices.0, j.body_indices.1, a, b)
+        });
+        let springs = s.springs.iter().map(|j| {
+            let [a, b] = j.local_anchors;
+            (j.name.as_str(), j.body_indices.0, j.body_indices.1, a, b)
+        });
+        ruler::named_points_of(&names, joints.chain(springs))
     }
 
     /// The ruler in effect: set by keys or a click, else the page's, else from the first
@@ -357,7 +367,7 @@ impl App {
     /// the drawing does: on the body nearest in the view within `reach` (m) the point moves
     /// with it, else it stays fixed in the world. The ruler is shown.
     pub fn set_ruler_end(&mut self, end: usize, p: Vector3<f64>, reach: f64) {
-        let movable: Vec<bool> = self.world.bodies().iter().map(|b| !b.fixed).collect();
+        let movable: Vec<bool> = self.snapshot.bodies.iter().map(|b| !b.fixed).collect();
         let point = ruler::point_at(
             p,
             self.world.states(),

@@ -44,7 +44,7 @@ fn the_view_grows_a_little_at_a_time_and_keeps_every_body_in_it() {
                 let (e0, e1) = (before.max[i] - before.min[i], after.max[i] - after.min[i]);
                 worst = worst.max(e1 / e0);
             }
-            for p in shown_points(&app.world) {
+            for p in shown_points(&app.snapshot) {
                 for i in 0..3 {
                     assert!(
                         p[i] >= app.region.min[i] && p[i] <= app.region.max[i],

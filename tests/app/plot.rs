@@ -96,6 +96,7 @@ fn from_snapshot(world: &World, q: Quantity) -> f64 {
                 Kinetic => s.energy.kinetic,
                 Potential => s.energy.potential,
                 Energy => s.energy.total,
+                _ => unreachable!("not a body's column"),
             }
         }
         Quantity::SceneEnergy => world.snapshot().system.energy.total,

@@ -319,6 +319,8 @@ fn the_ghost_draws_its_cloth_in_the_ghost_colour() {
         for _ in 0..100 {
             g.world.step();
         }
+        // Every pane draws from the snapshots: the ghost's is read again.
+        g.snapshot = g.world.snapshot();
     }
     let buf = export::render(&app, 120, 40);
     let area = drawing_rect(&app, 120, 40);
