@@ -245,8 +245,9 @@ pub struct ClothView {
     pub method: ClothIntegrator,
     /// Particles along the sheet's two sides: particle (i, j) is `positions[j·nx + i]`.
     pub grid: [usize; 2],
-    /// Every particle's position now, m.
+    /// Every particle's position now, m, and velocity, m/s.
     pub positions: Vec<Vector3<f64>>,
+    pub velocities: Vec<Vector3<f64>>,
     /// Which particles are pinned.
     pub pins: Vec<bool>,
     pub particles: usize,
@@ -292,6 +293,7 @@ impl ClothView {
                     method: c.integrator,
                     grid: c.count,
                     positions: c.positions.clone(),
+                    velocities: c.velocities.clone(),
                     pins: c.pinned.clone(),
                     particles: c.len(),
                     springs: c.springs.len(),
@@ -318,6 +320,11 @@ impl ClothView {
     /// The index of particle (i, j).
     pub fn index(&self, i: usize, j: usize) -> usize {
         j * self.grid[0] + i
+    }
+
+    /// The (i, j) of particle `k`.
+    pub fn cell(&self, k: usize) -> (usize, usize) {
+        (k % self.grid[0], k / self.grid[0])
     }
 }
 

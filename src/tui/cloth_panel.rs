@@ -123,6 +123,7 @@ mod tests {
             method: crate::physics::cloth::ClothIntegrator::from_name(integrator).unwrap(),
             grid: [3, 3],
             positions: vec![nalgebra::Vector3::zeros(); 9],
+            velocities: vec![nalgebra::Vector3::zeros(); 9],
             pins: vec![true; 9],
             particles: 9,
             springs: 12,

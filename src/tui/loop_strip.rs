@@ -26,7 +26,7 @@ pub fn vector(v: &Vector3<f64>) -> String {
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     let title = match s.phase {
         Some(p) => format!(" the loop — frame {}, after {} ", frame_number(s), p),
         None => " the loop — t = 0, nothing has run yet ".to_string(),
@@ -42,9 +42,9 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
 
 /// The strip's lines before wrapping: the phase line, then the formulas with their numbers.
 pub fn lines(app: &App) -> Vec<Line<'static>> {
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     let mut lines = vec![phase_line(s)];
-    lines.extend(formulas(&app.world, s));
+    lines.extend(formulas(&app.session.world, s));
     lines
 }
 

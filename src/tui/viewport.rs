@@ -221,35 +221,7 @@ impl Region {
 /// A side the points cross moves out by an extra 1/GROWTH_MARGIN of the region's extent.
 pub const GROWTH_MARGIN: f64 = 8.0;
 
-/// What the view keeps in frame: every body's vertices, every cloth's particles, every
-/// joint's anchors and every spring's ends.
-pub fn shown_points(snapshot: &Snapshot) -> Vec<Vector3<f64>> {
-    let mut points: Vec<Vector3<f64>> = snapshot
-        .bodies
-        .iter()
-        .flat_map(|b| b.vertices.iter().copied())
-        .collect();
-    // A round body has no vertices: its extreme points along the world axes.
-    for body in &snapshot.bodies {
-        if body.points_body.is_empty() && body.shape.is_some() {
-            for axis in [Vector3::x(), Vector3::y(), Vector3::z()] {
-                points.push(body.position + axis * body.radius);
-                points.push(body.position - axis * body.radius);
-            }
-        }
-    }
-    for c in &snapshot.cloths {
-        points.extend_from_slice(&c.positions);
-    }
-    // The joints' anchors and the springs' ends (a pendulum's pivot is in no body).
-    for j in &snapshot.joints {
-        points.extend(j.anchors);
-    }
-    for s in &snapshot.springs {
-        points.extend(s.ends);
-    }
-    points
-}
+pub use crate::session::shown_points;
 
 /// The mapping from screen coordinates (right, up) to a grid of `cols × rows` cells.
 #[derive(Debug, Clone, Copy, PartialEq)]
