@@ -1,7 +1,9 @@
 //! The app's state and its update function (the Elm architecture): a key becomes a
 //! [`Message`], [`App::update`] changes the state, and rendering (`screen.rs`) is a pure
-//! function of the state. The simulation is a [`World`] (and, in compare mode, a second one in
-//! lock-step); every number shown comes from their snapshots.
+//! function of the state. The run is a [`Session`] (the world and, in compare mode, a second
+//! one in lock-step, with their history, series and jobs; `shot` and `record` drive the same
+//! one); every number and shape drawn comes from its snapshots. [`Preferences`] carry from
+//! lesson to lesson; [`Ui`] is the screen's own state.
 
 use super::keys::{self, Context, Message};
 use super::plot::{curve_axes, PlotChoice, MAX_CURVES};

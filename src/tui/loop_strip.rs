@@ -113,7 +113,7 @@ fn line(formula: impl Into<String>, numbers: impl Into<String>) -> Line<'static>
 }
 
 fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
-    if s.bodies.len() == 0 {
+    if s.bodies.is_empty() {
         return cloth_formulas(world, s);
     }
     let mut lines = match s.phase {
@@ -221,7 +221,7 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         for formula in view.method.formula() {
             lines.push(line(format!("  {formula}"), ""));
         }
-        if s.bodies.len() > 0 && world.contact_model().is_some() {
+        if !s.bodies.is_empty() && world.contact_model().is_some() {
             lines.push(line(
                 "  before x moves: a particle headed into a body gets +J, the body −J, so that \
                  vₚ·n ≥ −gap/h (it ends on the surface)",
@@ -259,7 +259,7 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<
         let none = "cloths: no contact declared: nothing to detect, the phase costs nothing";
         return (vec![line(none, "")], counts);
     }
-    let (obstacles, bodies) = (!s.obstacles.is_empty(), s.bodies.len() > 0);
+    let (obstacles, bodies) = (!s.obstacles.is_empty(), !s.bodies.is_empty());
     if obstacles {
         lines.push(line(
             "particle in an obstacle: x ← x + depth·n,  v·n ← −(1+e)·v·n if fast, else 0  (+ friction)",
