@@ -14,6 +14,7 @@ pub mod live;
 pub mod measure;
 pub mod physics;
 pub mod scene;
+pub mod session;
 pub mod study;
 pub mod tables;
 #[cfg(feature = "tui")]

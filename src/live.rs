@@ -6,7 +6,7 @@
 //! there. Values come from the world's [`Snapshot`], like every panel; they print with the
 //! panels' formatter ([`number_plain`]) and the quantity's unit.
 
-use crate::physics::{Snapshot, World};
+use crate::physics::{BodyView, Snapshot, World};
 use crate::scene::live::{LiveNumber, Measure, Quantity};
 use crate::scene::{Lesson, Page};
 use crate::tables::number_plain;
@@ -41,21 +41,44 @@ pub struct LiveValues {
     computing: bool,
 }
 
-/// Reads one quantity from a snapshot of body `q.body` (scene-wide ones from its totals).
+/// Reads one quantity from a snapshot: body `q.body`'s from its [`BodyView`], scene-wide ones
+/// from the totals (see [`value`]).
 pub fn read(snapshot: &Snapshot, q: &Quantity) -> f64 {
+    value(snapshot, q.body, q.measure)
+}
+
+/// The value of `measure` of body `body` (ignored when scene-wide) in a snapshot: the one
+/// reader of every live number, prediction and plotted quantity, so a page, a panel and the
+/// graph never disagree. NaN for a body or joint the snapshot does not hold.
+///
+/// ```text
+/// x   v = P/M   ω = I⁻¹_world L   L   |L|   speed = |v|
+/// kinetic = ½ M v·v + ½ ω·L   potential = −M g·x   energy = kinetic + potential
+/// scene: energy (bodies, particles, springs), P = Σ P, t; joint: its position error
+/// ```
+pub fn value(snapshot: &Snapshot, body: usize, measure: Measure) -> f64 {
     let s = snapshot;
-    match q.measure {
-        Measure::Position(i) => s.position[i],
-        Measure::Velocity(i) => s.velocity[i],
-        Measure::AngularVelocity(i) => s.angular_velocity[i],
-        Measure::AngularMomentum(i) => s.angular_momentum[i],
-        Measure::Speed => s.velocity.norm(),
-        Measure::Kinetic => s.energy.kinetic,
-        Measure::Potential => s.energy.potential,
-        Measure::Energy => s.energy.total,
+    let of = |f: fn(&BodyView) -> f64| s.bodies.get(body).map_or(f64::NAN, f);
+    match measure {
+        Measure::Position(i) => s.bodies.get(body).map_or(f64::NAN, |b| b.position[i]),
+        Measure::Velocity(i) => s.bodies.get(body).map_or(f64::NAN, |b| b.velocity[i]),
+        Measure::AngularVelocity(i) => s
+            .bodies
+            .get(body)
+            .map_or(f64::NAN, |b| b.angular_velocity[i]),
+        Measure::AngularMomentum(i) => s
+            .bodies
+            .get(body)
+            .map_or(f64::NAN, |b| b.angular_momentum[i]),
+        Measure::AngularMomentumNorm => of(|b| b.angular_momentum.norm()),
+        Measure::Speed => of(|b| b.velocity.norm()),
+        Measure::Kinetic => of(|b| b.energy.kinetic),
+        Measure::Potential => of(|b| b.energy.potential),
+        Measure::Energy => of(|b| b.energy.total),
         Measure::SceneEnergy => s.system.energy.total,
         Measure::SceneMomentum(i) => s.system.linear_momentum[i],
         Measure::Time => s.time,
+        Measure::JointError(j) => s.joints.get(j).map_or(f64::NAN, |j| j.error),
         // Not a state quantity: `LiveValues::compute` tracks it while stepping.
         Measure::ContactTime => f64::NAN,
     }
@@ -74,14 +97,14 @@ pub fn shown(snapshot: &Snapshot, q: &Quantity, x: f64) -> f64 {
         Measure::AngularVelocity(_) => {
             (ROUND_OFF * s.angular_velocity.norm()).max(r.angular_velocity)
         }
-        Measure::AngularMomentum(_) => {
+        Measure::AngularMomentum(_) | Measure::AngularMomentumNorm => {
             (ROUND_OFF * s.angular_momentum.norm()).max(r.angular_momentum)
         }
         Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => {
             ROUND_OFF * r.energy_scale
         }
         Measure::SceneMomentum(_) => (ROUND_OFF * s.system.linear_momentum.norm()).max(r.momentum),
-        Measure::Time | Measure::ContactTime => 0.0,
+        Measure::Time | Measure::ContactTime | Measure::JointError(_) => 0.0,
     };
     resolved(x, resolution)
 }

@@ -40,7 +40,7 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
     let what = format!("--duration {} s", crate::limits::short(args.duration));
     let steps = crate::limits::steps(
         args.duration,
-        app.snapshot.dt,
+        app.session.snapshot.dt,
         &what,
         "record a shorter time or use a larger time step (--dt)",
     )
@@ -67,7 +67,7 @@ pub fn record(args: &RecordArgs) -> Result<(), Failure> {
         "wrote {} ({cols}x{rows}, {} frames, t = {} s)",
         args.out.display(),
         cast.lines().count() - 1,
-        crate::tables::number_plain(app.snapshot.time)
+        crate::tables::number_plain(app.session.snapshot.time)
     ));
-    super::diverged(app.divergence.as_ref())
+    super::diverged(app.session.divergence.as_ref())
 }

@@ -145,7 +145,7 @@ fn finite(values: &[f64]) -> bool {
 /// `limit` when both): what the stops and the motor applied over the step along the axis on the
 /// first body (N for a slider, N·m for a hinge; already part of its force and torque).
 fn run_joint(args: &RunArgs, world: crate::physics::World, index: usize) -> Result<(), Failure> {
-    let joint = &world.links().joints[index];
+    let joint = &world.snapshot().joints[index];
     let (limited, motorised) = (joint.limits.is_some(), joint.motor.is_some());
     let mut header = JOINT_HEADER.to_string();
     if limited {
@@ -172,11 +172,12 @@ fn run_joint(args: &RunArgs, world: crate::physics::World, index: usize) -> Resu
 /// The `--cloth` rows: every particle of cloth `index`, every kept step.
 fn run_cloth(args: &RunArgs, world: crate::physics::World, index: usize) -> Result<(), Failure> {
     run_rows(args, world, CLOTH_HEADER, |world| {
-        let cloth = &world.cloths()[index];
-        let energy = world.total_energy().total;
+        let s = world.snapshot();
+        let cloth = &s.cloths[index];
+        let energy = s.system.energy.total;
         let mut text = String::new();
         for (k, (x, v)) in cloth.positions.iter().zip(&cloth.velocities).enumerate() {
-            let (i, j) = cloth.grid(k);
+            let (i, j) = cloth.cell(k);
             let numbers = [x.x, x.y, x.z, v.x, v.y, v.z, energy];
             if !finite(&numbers) || !world.time().is_finite() {
                 return None;

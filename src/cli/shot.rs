@@ -100,17 +100,17 @@ impl ScreenArgs {
             app.start_compare(comparison);
         }
         if self.stage {
-            app.layout = ScreenLayout::Stage;
+            app.prefs.layout = ScreenLayout::Stage;
         }
-        app.axis = self.view;
-        app.arrows = !self.no_arrows;
-        app.forces = self.forces;
+        app.prefs.axis = self.view;
+        app.prefs.arrows = !self.no_arrows;
+        app.prefs.forces = self.forces;
         if self.graph {
-            app.view = View::Energy;
+            app.ui.view = View::Energy;
         }
         if let Some(y) = &self.plot {
             let column = |name: &str, flag: &str| -> Result<usize, Failure> {
-                let columns = &app.plot_series.columns;
+                let columns = &app.session.plot_series.columns;
                 columns.iter().position(|c| c.name == name).ok_or_else(|| {
                     let names: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
                     Failure::bad_input(format!(
@@ -124,8 +124,8 @@ impl ScreenArgs {
                 Some(x) => Some(column(x, "--plot-x")?),
                 None => None,
             };
-            app.plot = Some(crate::tui::plot::PlotChoice { y, x });
-            app.view = View::Plot;
+            app.ui.plot = Some(crate::tui::plot::PlotChoice { y, x });
+            app.ui.view = View::Plot;
         }
         for tool in &self.tools {
             app.show_tool(*tool);
@@ -169,14 +169,14 @@ pub fn app_at(
     let mut app = screen.app(lesson)?;
     let steps = crate::limits::steps(
         at,
-        app.snapshot.dt,
+        app.session.snapshot.dt,
         &format!("--at {} s", crate::limits::short(at)),
         "choose a nearer time or a larger time step (--dt)",
     )
     .map_err(Failure::bad_input)?;
     // In chunks, so a divergence stops the run where it happens.
     let mut left = steps;
-    while left > 0 && app.divergence.is_none() {
+    while left > 0 && app.session.divergence.is_none() {
         let n = left.min(10_000);
         app.step_frames(n);
         left -= n;
@@ -195,7 +195,7 @@ pub fn shot(args: &ShotArgs) -> Result<(), Failure> {
     super::output::warn(&format!(
         "wrote {} ({cols}x{rows}, t = {} s)",
         args.svg.display(),
-        crate::tables::number_plain(app.snapshot.time)
+        crate::tables::number_plain(app.session.snapshot.time)
     ));
-    super::diverged(app.divergence.as_ref())
+    super::diverged(app.session.divergence.as_ref())
 }

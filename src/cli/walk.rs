@@ -180,7 +180,8 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
     } else {
         effects.join(", ")
     };
-    let obstacles: Vec<&str> = world.obstacles().iter().map(|o| o.kind()).collect();
+    let snapshot = world.snapshot();
+    let obstacles: Vec<&str> = snapshot.obstacles.iter().map(|o| o.kind()).collect();
     let obstacles = if obstacles.is_empty() {
         "none".to_string()
     } else {
@@ -205,14 +206,14 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
         .collect();
     let mut settings = if bodies.is_empty() {
         // A scene of cloths only: no body uses the scene's integrator; each cloth has its own.
-        let cloths: Vec<String> = world
-            .cloths()
+        let cloths: Vec<String> = snapshot
+            .cloths
             .iter()
             .map(|c| {
                 format!(
                     "{}, {}",
                     crate::physics::cloth::label(&c.name),
-                    c.integrator.name()
+                    c.integrator
                 )
             })
             .collect();
@@ -247,7 +248,7 @@ fn write_block(
     out: &mut impl Write,
 ) -> std::io::Result<()> {
     let snapshot = &world.snapshot_of(bodies.first().copied().unwrap_or(0));
-    let obstacles = world.obstacles();
+    let obstacles = &snapshot.obstacles;
     writeln!(out)?;
     let when = format!("t = {} s", number_plain(snapshot.time));
     let line = match snapshot.phase {

@@ -75,6 +75,26 @@ impl Ruler {
 /// barycenter (`bob`), then each joint's and each spring's two anchors (`rod.a` on its first
 /// body, `rod.b` on its second body or in the world).
 pub fn named_points(bodies: &[String], links: &Links) -> Vec<End> {
+    let pairs = links
+        .joints
+        .iter()
+        .map(|j| (j.name.as_str(), j.a, j.b, j.anchor_a, j.anchor_b))
+        .chain(
+            links
+                .springs
+                .iter()
+                .map(|s| (s.name.as_str(), s.a, s.b, s.anchor_a, s.anchor_b)),
+        );
+    named_points_of(bodies, pairs)
+}
+
+/// [`named_points`] of the bodies' names and each link's (name, first body, second body or
+/// the world, anchor on the first in its frame, anchor on the second in its frame or the
+/// world's), joints first, then springs.
+pub fn named_points_of<'a>(
+    bodies: &[String],
+    links: impl IntoIterator<Item = (&'a str, usize, Option<usize>, Vector3<f64>, Vector3<f64>)>,
+) -> Vec<End> {
     let mut ends: Vec<End> = bodies
         .iter()
         .enumerate()
@@ -86,17 +106,7 @@ pub fn named_points(bodies: &[String], links: &Links) -> Vec<End> {
             name: name.clone(),
         })
         .collect();
-    let pairs = links
-        .joints
-        .iter()
-        .map(|j| (&j.name, j.a, j.b, j.anchor_a, j.anchor_b))
-        .chain(
-            links
-                .springs
-                .iter()
-                .map(|s| (&s.name, s.a, s.b, s.anchor_a, s.anchor_b)),
-        );
-    for (name, a, b, anchor_a, anchor_b) in pairs {
+    for (name, a, b, anchor_a, anchor_b) in links {
         ends.push(End {
             point: Point::Body {
                 body: a,

@@ -5,6 +5,7 @@
 //! is exactly why the phase order matters. Between frames (after *collide*, or at t = 0) they
 //! are those of the current state, i.e. what the next *derive* will compute.
 
+use super::cloth::ClothIntegrator;
 use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape};
 use super::collision::{Against, Contact, Obstacle};
 use super::derive::{congruence, derive};
@@ -72,8 +73,11 @@ pub struct Snapshot {
     /// Which body the fields above describe: its index and name.
     pub body_index: usize,
     pub body_name: String,
-    /// Every body, for drawing (the one above included).
+    /// Every body, for drawing and for its numbers (the one above included).
     pub bodies: Vec<BodyView>,
+    /// Every obstacle: the scene's fixed things that are not bodies, each with its shape
+    /// (ground, ramp, sphere, box), as the collide phase meets them.
+    pub obstacles: Vec<Obstacle>,
     /// The whole scene: total momenta and energy.
     pub system: SystemTotals,
     /// Every cloth's numbers (empty without cloths).
@@ -94,8 +98,12 @@ pub struct JointView {
     pub kind: &'static str,
     /// Its first body's name, and the second's (None: the world).
     pub bodies: (String, Option<String>),
+    /// The same bodies' indices.
+    pub body_indices: (usize, Option<usize>),
     /// The anchor points now, world frame: on the first body, on the second (or the world).
     pub anchors: [Vector3<f64>; 2],
+    /// The anchor points in their bodies' frames (the second in the world's without one).
+    pub local_anchors: [Vector3<f64>; 2],
     /// Hinge: the axis now (the first body's), world frame; slider: the rail's (the second
     /// body's or the world's).
     pub axis: Option<Vector3<f64>>,
@@ -126,6 +134,10 @@ pub struct JointView {
 pub struct SpringView {
     pub name: String,
     pub bodies: (String, Option<String>),
+    /// The same bodies' indices.
+    pub body_indices: (usize, Option<usize>),
+    /// Its ends in their bodies' frames (the second in the world's without one).
+    pub local_anchors: [Vector3<f64>; 2],
     /// Its ends now, world frame.
     pub ends: [Vector3<f64>; 2],
     /// |d|, m.
@@ -176,7 +188,9 @@ impl JointView {
                     name: j.name.clone(),
                     kind: j.kind.name(),
                     bodies: (names[j.a].clone(), j.b.map(|b| names[b].clone())),
+                    body_indices: (j.a, j.b),
                     anchors: j.anchors(states),
+                    local_anchors: [j.anchor_a, j.anchor_b],
                     axis,
                     length: (j.kind == JointKind::Distance).then_some(j.length),
                     error: j.error(states),
@@ -209,6 +223,8 @@ impl SpringView {
                 SpringView {
                     name: s.name.clone(),
                     bodies: (names[s.a].clone(), s.b.map(|b| names[b].clone())),
+                    body_indices: (s.a, s.b),
+                    local_anchors: [s.anchor_a, s.anchor_b],
                     ends: load.ends,
                     length: load.length,
                     rest_length: s.rest_length,
@@ -225,6 +241,15 @@ impl SpringView {
 pub struct ClothView {
     pub name: String,
     pub integrator: &'static str,
+    /// The same particle integrator (its formulas).
+    pub method: ClothIntegrator,
+    /// Particles along the sheet's two sides: particle (i, j) is `positions[j·nx + i]`.
+    pub grid: [usize; 2],
+    /// Every particle's position now, m, and velocity, m/s.
+    pub positions: Vec<Vector3<f64>>,
+    pub velocities: Vec<Vector3<f64>>,
+    /// Which particles are pinned.
+    pub pins: Vec<bool>,
     pub particles: usize,
     pub springs: usize,
     pub pinned: usize,
@@ -265,6 +290,11 @@ impl ClothView {
                 ClothView {
                     name: c.name.clone(),
                     integrator: c.integrator.name(),
+                    method: c.integrator,
+                    grid: c.count,
+                    positions: c.positions.clone(),
+                    velocities: c.velocities.clone(),
+                    pins: c.pinned.clone(),
                     particles: c.len(),
                     springs: c.springs.len(),
                     pinned: c.pinned.iter().filter(|&&p| p).count(),
@@ -286,12 +316,37 @@ impl ClothView {
     }
 }
 
-/// What a view needs to draw one body.
+impl ClothView {
+    /// The index of particle (i, j).
+    pub fn index(&self, i: usize, j: usize) -> usize {
+        j * self.grid[0] + i
+    }
+
+    /// The (i, j) of particle `k`.
+    pub fn cell(&self, k: usize) -> (usize, usize) {
+        (k % self.grid[0], k / self.grid[0])
+    }
+}
+
+/// What a view needs to draw one body, and its numbers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyView {
     pub name: String,
     /// Barycenter x, m.
     pub position: Vector3<f64>,
+    /// v = P/M and ω = I⁻¹_world L (world frame), m/s and rad/s: between frames those of the
+    /// current state (what the next *derive* computes), mid-frame the loop's own (as the
+    /// snapshot's top fields).
+    pub velocity: Vector3<f64>,
+    pub angular_velocity: Vector3<f64>,
+    /// P, kg·m/s and L about the barycenter, kg·m²/s (world frame).
+    pub linear_momentum: Vector3<f64>,
+    pub angular_momentum: Vector3<f64>,
+    /// The radius of its bounding sphere about the barycenter, m.
+    pub radius: f64,
+    /// Its points in the body frame r₀ᵢ, and its edges (pairs of point indices).
+    pub points_body: Vec<Vector3<f64>>,
+    pub edges: Vec<(usize, usize)>,
     /// Vertex positions pᵢ = x + R r₀ᵢ, m (none for a round body: draw its `shape`).
     pub vertices: Vec<Vector3<f64>>,
     /// R, body → world.
@@ -391,20 +446,36 @@ impl Snapshot {
         let vertices = world.vertices_of(index);
         let penetration = geometric_penetration(world, index, &vertices);
         let bodies = (0..world.body_count())
-            .map(|i| BodyView {
-                name: world.body_names()[i].clone(),
-                position: world.states()[i].position,
-                vertices: if i == index {
-                    vertices.clone()
+            .map(|i| {
+                let k = if i == index {
+                    kinematics
+                } else if between_frames {
+                    derive(&world.bodies()[i], &world.states()[i])
                 } else {
-                    world.vertices_of(i)
-                },
-                rotation: world.states()[i].orientation.matrix(),
-                shape: world.bodies()[i].shape.clone(),
-                fixed: world.bodies()[i].fixed,
-                energy: world.body_energy(i),
-                potential_scale: potential_scale(world, i),
-                mass: world.bodies()[i].mass,
+                    *world.kinematics_of(i)
+                };
+                BodyView {
+                    name: world.body_names()[i].clone(),
+                    position: world.states()[i].position,
+                    velocity: k.velocity,
+                    angular_velocity: k.angular_velocity,
+                    linear_momentum: world.states()[i].linear_momentum,
+                    angular_momentum: world.states()[i].angular_momentum,
+                    radius: world.bodies()[i].radius,
+                    points_body: world.bodies()[i].points_body.clone(),
+                    edges: world.bodies()[i].edges.clone(),
+                    vertices: if i == index {
+                        vertices.clone()
+                    } else {
+                        world.vertices_of(i)
+                    },
+                    rotation: world.states()[i].orientation.matrix(),
+                    shape: world.bodies()[i].shape.clone(),
+                    fixed: world.bodies()[i].fixed,
+                    energy: world.body_energy(i),
+                    potential_scale: potential_scale(world, i),
+                    mass: world.bodies()[i].mass,
+                }
             })
             .collect();
         Snapshot {
@@ -440,6 +511,7 @@ impl Snapshot {
             body_index: index,
             body_name: world.body_names()[index].clone(),
             bodies,
+            obstacles: world.obstacles().to_vec(),
             system: SystemTotals::of(world),
             cloths: ClothView::all(world),
             joints: JointView::all(world),
@@ -488,6 +560,7 @@ impl Snapshot {
             body_index: 0,
             body_name: String::new(),
             bodies: Vec::new(),
+            obstacles: world.obstacles().to_vec(),
             system: SystemTotals::of(world),
             cloths: ClothView::all(world),
             joints: JointView::all(world),

@@ -22,6 +22,8 @@ pub enum Measure {
     AngularVelocity(usize),
     /// Angular momentum component (world frame, about the barycenter), kg·m²/s.
     AngularMomentum(usize),
+    /// |L|, kg·m²/s (the plot's `BODY.|L|`; not a page's name).
+    AngularMomentumNorm,
     /// |v|, m/s.
     Speed,
     /// ½ M v·v + ½ ω·L, J.
@@ -38,6 +40,8 @@ pub enum Measure {
     Time,
     /// The time of the body's first contact with an obstacle or another body (by then), s.
     ContactTime,
+    /// Joint `j`'s position error, m (the plot's `JOINT.error`; not a page's name).
+    JointError(usize),
 }
 
 impl Measure {
@@ -47,10 +51,11 @@ impl Measure {
             Measure::Position(_) => "m",
             Measure::Velocity(_) | Measure::Speed => "m/s",
             Measure::AngularVelocity(_) => "rad/s",
-            Measure::AngularMomentum(_) => "kg·m²/s",
+            Measure::AngularMomentum(_) | Measure::AngularMomentumNorm => "kg·m²/s",
             Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => "J",
             Measure::SceneMomentum(_) => "kg·m/s",
             Measure::Time | Measure::ContactTime => "s",
+            Measure::JointError(_) => "m",
         }
     }
 
@@ -58,7 +63,10 @@ impl Measure {
     pub fn scene_wide(self) -> bool {
         matches!(
             self,
-            Measure::SceneEnergy | Measure::SceneMomentum(_) | Measure::Time
+            Measure::SceneEnergy
+                | Measure::SceneMomentum(_)
+                | Measure::Time
+                | Measure::JointError(_)
         )
     }
 }

@@ -120,6 +120,11 @@ mod tests {
         ClothView {
             name: "sheet".into(),
             integrator,
+            method: crate::physics::cloth::ClothIntegrator::from_name(integrator).unwrap(),
+            grid: [3, 3],
+            positions: vec![nalgebra::Vector3::zeros(); 9],
+            velocities: vec![nalgebra::Vector3::zeros(); 9],
+            pins: vec![true; 9],
             particles: 9,
             springs: 12,
             pinned: 8,

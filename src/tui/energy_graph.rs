@@ -97,7 +97,7 @@ fn title_with_legend(name: &str, curves: &[(String, ratatui::style::Color)]) -> 
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let series = &app.series;
+    let series = &app.session.series;
     let samples = series.samples();
     let pick = |f: &dyn Fn(&super::series::Sample) -> Option<f64>| -> Vec<(f64, f64)> {
         samples
@@ -110,7 +110,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let total = pick(&|s| Some(s.total));
     let compare = pick(&|s| s.compare_total);
     let drift = pick(&|s| Some(s.drift));
-    let marker = if app.ascii {
+    let marker = if app.prefs.ascii {
         Marker::Dot
     } else {
         Marker::Braille
@@ -128,7 +128,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         ("potential".to_string(), theme::POTENTIAL),
         ("total".to_string(), theme::TOTAL),
     ];
-    if let Some(g) = &app.ghost {
+    if let Some(g) = &app.session.ghost {
         curves.push((format!("total ({})", g.comparison.name()), theme::GHOST));
     }
     let data = [&kinetic, &potential, &total, &compare];
@@ -150,7 +150,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
             .zip(["K", "V", "E", "E"])
             .enumerate()
             .map(|(i, ((_, colour), symbol))| {
-                let label = match (i, &app.ghost) {
+                let label = match (i, &app.session.ghost) {
                     (3, Some(g)) => format!("{symbol} {}", g.comparison.name()),
                     _ => symbol.to_string(),
                 };

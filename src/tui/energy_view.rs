@@ -14,21 +14,21 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     // The graph takes the drawing's place and, in the numbers layout, the page's under it (the
     // energy view shows no page there): a drift chart needs the rows.
     let graph = match areas.lesson {
-        Some(l) if app.layout == ScreenLayout::Numbers && l.x == areas.drawing.x => {
+        Some(l) if app.prefs.layout == ScreenLayout::Numbers && l.x == areas.drawing.x => {
             areas.drawing.union(l)
         }
         _ => areas.drawing,
     };
-    if app.view == View::Plot {
+    if app.ui.view == View::Plot {
         plot_graph::render(app, graph, buf);
     } else {
         energy_graph::render(app, graph, buf);
     }
-    if let (Some(l), ScreenLayout::Stage) = (areas.lesson, app.layout) {
+    if let (Some(l), ScreenLayout::Stage) = (areas.lesson, app.prefs.layout) {
         super::lesson_pane::render(app, l, buf);
     }
     if let Some(p) = areas.panels {
-        match app.layout {
+        match app.prefs.layout {
             ScreenLayout::Numbers => panels::render(app, p, buf),
             ScreenLayout::Stage => panels::render_essentials(app, p, buf),
         }

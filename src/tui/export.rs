@@ -249,11 +249,12 @@ pub fn ansi(buf: &Buffer) -> String {
 /// A file name for the current screen: `tumble-<lesson>-t<time>.svg` (time in s, 3 decimals).
 pub fn screen_file_name(app: &App) -> String {
     let stem = app
+        .session
         .lesson
         .path
         .file_stem()
         .map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
-    format!("tumble-{stem}-t{:.3}.svg", app.snapshot.time)
+    format!("tumble-{stem}-t{:.3}.svg", app.session.snapshot.time)
 }
 
 /// Writes the screen as SVG in the current folder (key `x`); returns the line for the status
@@ -275,7 +276,7 @@ pub fn record(app: &mut App, duration: f64, width: u16, height: u16) -> String {
         "version": 2,
         "width": width,
         "height": height,
-        "title": format!("tumble — {}", app.lesson.title),
+        "title": format!("tumble — {}", app.session.lesson.title),
         "env": { "TERM": "xterm-256color" },
     });
     let mut out = header.to_string();
@@ -287,30 +288,30 @@ pub fn record(app: &mut App, duration: f64, width: u16, height: u16) -> String {
     };
     // The recording runs on through pages (a pause would freeze the picture while the
     // header said "paused … Enter continues" and the time kept going).
-    app.running = true;
-    app.pause_at_stops = false;
+    app.ui.running = true;
+    app.ui.pause_at_stops = false;
     let first = format!("\x1b[2J{}", ansi(&render(app, width, height)));
     event(&mut out, 0, first);
     let mut pending = 0.0;
     let mut frame = 0u64;
-    let end = duration - 0.5 * app.snapshot.dt;
-    while app.snapshot.time < end && app.divergence.is_none() {
+    let end = duration - 0.5 * app.session.snapshot.dt;
+    while app.session.snapshot.time < end && app.session.divergence.is_none() {
         pending += app.frames_per_second() / CAST_FPS;
-        let left = ((duration - app.snapshot.time) / app.snapshot.dt)
+        let left = ((duration - app.session.snapshot.time) / app.session.snapshot.dt)
             .round()
             .max(1.0);
         let steps = pending.floor().min(left) as u64;
         pending -= steps as f64;
         if steps > 0 {
-            let before = app.snapshot.time;
+            let before = app.session.snapshot.time;
             app.step_frames(steps);
-            if app.snapshot.time <= before && app.divergence.is_none() {
+            if app.session.snapshot.time <= before && app.session.divergence.is_none() {
                 break;
             }
         }
         frame += 1;
-        if app.snapshot.time >= end || app.divergence.is_some() {
-            app.running = false;
+        if app.session.snapshot.time >= end || app.session.divergence.is_some() {
+            app.ui.running = false;
         }
         event(&mut out, frame, ansi(&render(app, width, height)));
     }

@@ -9,25 +9,25 @@ use ratatui::text::{Line, Span};
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let fps = app.frames_per_second();
-    let real = fps * app.snapshot.dt;
-    let state = if app.divergence.is_some() {
+    let real = fps * app.session.snapshot.dt;
+    let state = if app.session.divergence.is_some() {
         Span::styled(" ✖ diverged ", theme::DIVERGED)
-    } else if let (false, Some(stop)) = (app.running, &app.stop) {
+    } else if let (false, Some(stop)) = (app.ui.running, &app.ui.stop) {
         Span::styled(format!(" ❚❚ paused: {} ", stop.label), theme::PAUSED)
-    } else if app.running {
+    } else if app.ui.running {
         Span::styled(" ▶ running ", theme::RUNNING)
     } else {
         Span::styled(" ❚❚ paused ", theme::PAUSED)
     };
-    let measured = app.measured_real_time.filter(|_| app.running);
+    let measured = app.ui.measured_real_time.filter(|_| app.ui.running);
     let speed = speed_text(fps, real, measured);
     let right = Line::from(vec![state, Span::raw(speed)]);
     let right_width = right.width() as u16;
     let left_width = area.width.saturating_sub(right_width + 1);
-    let title = format!(" {} ", app.lesson.title);
+    let title = format!(" {} ", app.session.lesson.title);
     // The summary ends with `…` where it is cut.
     let room = usize::from(left_width).saturating_sub(8 + title.chars().count());
-    let mut summary = format!("— {}", app.lesson.summary);
+    let mut summary = format!("— {}", app.session.lesson.summary);
     if summary.chars().count() > room {
         summary = summary
             .chars()

@@ -12,16 +12,23 @@ use ratatui::widgets::{Block, Paragraph, Widget};
 
 /// The page's title and text at the app's time.
 fn page(app: &App) -> (String, String) {
-    let lesson = &app.lesson;
-    match lesson.page_at(app.snapshot.time) {
+    let lesson = &app.session.lesson;
+    match lesson.page_at(app.session.snapshot.time) {
         Some((i, page)) => {
             // Live numbers filled in with the values simulated for the settings in use.
-            let mut text = app.live.page_text(page).trim_matches('\n').to_string();
+            let mut text = app
+                .session
+                .live
+                .page_text(page)
+                .trim_matches('\n')
+                .to_string();
             if page.predict.is_some() {
                 let line = match app.prediction_result(i) {
                     Some(result) => format!("Prediction: {result}."),
                     // A recording (`tumble record`) runs on and asks nothing.
-                    None if app.guesses[i] == super::app::Guess::Open && app.pause_at_stops => {
+                    None if app.ui.guesses[i] == super::app::Guess::Open
+                        && app.ui.pause_at_stops =>
+                    {
                         format!(
                             "Predict: {} Enter asks for your guess.",
                             app.prediction_question(i)
@@ -37,14 +44,14 @@ fn page(app: &App) -> (String, String) {
             }
             // A guess of another page due at this page's time (lesson 32 asks on page 1 for
             // t = 0.643 s, page 3's time): its comparison shows here, where the run paused.
-            let dt = app.world.dt();
+            let dt = app.session.world.dt();
             let here = crate::live::step_at(page.at, dt);
             for (j, other) in lesson.pages.iter().enumerate() {
                 let due_here = other
                     .predict
                     .as_ref()
                     .is_some_and(|p| crate::live::step_at(p.at, dt) == here);
-                if j != i && due_here && matches!(app.guesses[j], super::app::Guess::Given(_)) {
+                if j != i && due_here && matches!(app.ui.guesses[j], super::app::Guess::Given(_)) {
                     if let Some(result) = app.prediction_result(j) {
                         // First, where it is read before any scrolling.
                         text = format!("Prediction (page {}): {result}.\n\n{text}", j + 1);
@@ -93,11 +100,12 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         .any(|l| l.chars().count() > usize::from(inner.width));
     let lines: Vec<Line> = wrapped
         .iter()
-        .map(|l| Line::from(fit(l, usize::from(inner.width), app.lesson_hscroll)))
+        .map(|l| Line::from(fit(l, usize::from(inner.width), app.ui.lesson_hscroll)))
         .collect();
     let total = lines.len() as u16;
-    let scroll = app.lesson_scroll.min(total.saturating_sub(inner.height));
-    app.lesson_scroll_max
+    let scroll = app.ui.lesson_scroll.min(total.saturating_sub(inner.height));
+    app.ui
+        .lesson_scroll_max
         .set(total.saturating_sub(inner.height));
     let mut block = block;
     // After i or c the page's numbers are another method's: the page says whose they are.

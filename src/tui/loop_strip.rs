@@ -26,7 +26,7 @@ pub fn vector(v: &Vector3<f64>) -> String {
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     let title = match s.phase {
         Some(p) => format!(" the loop — frame {}, after {} ", frame_number(s), p),
         None => " the loop — t = 0, nothing has run yet ".to_string(),
@@ -42,9 +42,9 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
 
 /// The strip's lines before wrapping: the phase line, then the formulas with their numbers.
 pub fn lines(app: &App) -> Vec<Line<'static>> {
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     let mut lines = vec![phase_line(s)];
-    lines.extend(formulas(&app.world, s));
+    lines.extend(formulas(&app.session.world, s));
     lines
 }
 
@@ -113,7 +113,7 @@ fn line(formula: impl Into<String>, numbers: impl Into<String>) -> Line<'static>
 }
 
 fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
-    if world.body_count() == 0 {
+    if s.bodies.is_empty() {
         return cloth_formulas(world, s);
     }
     let mut lines = match s.phase {
@@ -140,7 +140,7 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
                 format!(
                     " = {} / {} = {} m/s",
                     vector(&s.linear_momentum),
-                    number_plain(body_mass(world, s)),
+                    number_plain(body_mass(s)),
                     vector(&s.velocity)
                 ),
             ),
@@ -173,8 +173,8 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
 }
 
 /// The mass of the body the panels show.
-fn body_mass(world: &World, s: &Snapshot) -> f64 {
-    world.bodies().get(s.body_index).map_or(0.0, |b| b.mass)
+fn body_mass(s: &Snapshot) -> f64 {
+    s.bodies.get(s.body_index).map_or(0.0, |b| b.mass)
 }
 
 /// A scene of cloths only: derive and forces have no body to work on; integrate is the
@@ -208,7 +208,7 @@ fn cloth_formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
 /// Integrate: each cloth's particle step, its formulas and what it produced.
 fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
-    for (c, view) in world.cloths().iter().zip(&s.cloths) {
+    for view in &s.cloths {
         lines.push(line(
             format!("{}: ", crate::physics::cloth::label(&view.name)),
             format!(
@@ -218,10 +218,10 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
                 number_plain(s.dt)
             ),
         ));
-        for formula in c.integrator.formula() {
+        for formula in view.method.formula() {
             lines.push(line(format!("  {formula}"), ""));
         }
-        if world.body_count() > 0 && world.contact_model().is_some() {
+        if !s.bodies.is_empty() && world.contact_model().is_some() {
             lines.push(line(
                 "  before x moves: a particle headed into a body gets +J, the body −J, so that \
                  vₚ·n ≥ −gap/h (it ends on the surface)",
@@ -229,7 +229,7 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             ));
         }
         let [stopped, _] = view.obstacle_contacts;
-        let obstacles = if world.obstacles().is_empty() {
+        let obstacles = if s.obstacles.is_empty() {
             String::new()
         } else {
             format!(", {stopped} stopped at an obstacle's surface")
@@ -252,14 +252,14 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
 /// the formulas, and a line of counts per cloth.
 fn cloth_contacts(world: &World, s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
     let (mut lines, mut counts) = (Vec::new(), Vec::new());
-    if world.cloths().is_empty() {
+    if s.cloths.is_empty() {
         return (lines, counts);
     }
     if world.contact_model().is_none() {
         let none = "cloths: no contact declared: nothing to detect, the phase costs nothing";
         return (vec![line(none, "")], counts);
     }
-    let (obstacles, bodies) = (!world.obstacles().is_empty(), world.body_count() > 0);
+    let (obstacles, bodies) = (!s.obstacles.is_empty(), !s.bodies.is_empty());
     if obstacles {
         lines.push(line(
             "particle in an obstacle: x ← x + depth·n,  v·n ← −(1+e)·v·n if fast, else 0  (+ friction)",
@@ -297,7 +297,7 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<
 
 fn forces(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
-    let mass = body_mass(world, s);
+    let mass = body_mass(s);
     if world.effects().list().is_empty() {
         lines.push(line("no effects declared: F = 0, τ = 0", ""));
     }
@@ -365,9 +365,9 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
 }
 
 fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
-    let obstacles = world.obstacles();
-    let bodies = world.body_count();
-    if obstacles.is_empty() && bodies < 2 && world.cloths().is_empty() {
+    let obstacles = &s.obstacles;
+    let bodies = s.bodies.len();
+    if obstacles.is_empty() && bodies < 2 && s.cloths.is_empty() {
         return vec![line(
             "no obstacles declared: nothing to detect, the phase costs nothing",
             "",
@@ -383,7 +383,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             (n, b) => format!("{n} obstacle(s) and {b} bodies, nothing touching"),
         };
         // With cloths there is still work here (their particles' lines).
-        if world.cloths().is_empty() {
+        if s.cloths.is_empty() {
             what.push_str(": nothing to do");
         }
         let lines = vec![line(

@@ -15,7 +15,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         lesson_pane::render(app, lesson, buf);
     }
     if let Some(p) = areas.panels {
-        match app.layout {
+        match app.prefs.layout {
             ScreenLayout::Numbers => panels::render(app, p, buf),
             ScreenLayout::Stage => panels::render_essentials(app, p, buf),
         }

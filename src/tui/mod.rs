@@ -41,7 +41,6 @@ pub mod energy_view;
 pub mod export;
 pub mod header;
 pub mod help;
-pub mod history;
 pub mod jump_prompt;
 pub mod keys;
 pub mod layout;
@@ -52,12 +51,10 @@ pub mod mouse;
 pub mod panels;
 pub mod period_timer;
 pub mod picker;
-pub mod plot;
 pub mod plot_graph;
 pub mod plot_picker;
 pub mod projection;
 pub mod screen;
-pub mod series;
 pub mod settings_form;
 pub mod settings_view;
 pub mod status_bar;
@@ -67,6 +64,7 @@ pub mod timeline;
 pub mod tools;
 pub mod viewport;
 
+pub use crate::session::{history, plot, series};
 pub use against::Against;
 pub use app::{App, Comparison, Effect, Options, Overlay, View};
 
@@ -108,7 +106,7 @@ pub fn run_against(
     against: Option<Against>,
 ) -> std::io::Result<()> {
     let mut app = App::interactive(lesson, options);
-    app.against = against;
+    app.ui.against = against;
     let terminal = ratatui::init();
     let capture = MouseCapture::enable();
     let result = event_loop(terminal, &mut app);
@@ -167,20 +165,20 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
         app.poll_live();
         // A jump under way runs a slice, then the screen and the keys have their turn.
         app.work(app::JOB_SLICE);
-        if app.export_requested {
-            app.export_requested = false;
+        if app.ui.export_requested {
+            app.ui.export_requested = false;
             let size = terminal.size()?;
-            app.notice = Some(export::save_screen(app, size.width, size.height));
+            app.ui.notice = Some(export::save_screen(app, size.width, size.height));
         }
         terminal.draw(|frame| frame.render_widget(&*app, frame.area()))?;
-        if app.quit {
+        if app.ui.quit {
             return Ok(());
         }
-        if !app.running {
+        if !app.ui.running {
             // Paused: block until something happens (or, while a study runs, until its
             // progress is worth redrawing).
             let waiting = app.study_running() || app.live_pending();
-            if app.job.is_some() {
+            if app.session.job.is_some() {
                 if !event::poll(Duration::ZERO)? {
                     continue;
                 }
@@ -191,7 +189,7 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
             last = Instant::now();
             pending = 0.0;
             window = None;
-            app.measured_real_time = None;
+            app.ui.measured_real_time = None;
             continue;
         }
         let deadline = Instant::now() + RENDER_INTERVAL;
@@ -201,11 +199,11 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
                 break;
             }
             handle(app, event::read()?);
-            if app.quit || !app.running {
+            if app.ui.quit || !app.ui.running {
                 break;
             }
         }
-        if !app.running {
+        if !app.ui.running {
             continue;
         }
         let now = Instant::now();
@@ -218,7 +216,7 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
         }
         // A heavy scene (a large cloth) must not freeze the screen: at most
         // MAX_STEP_TIME_PER_RENDER of physics between renders, the backlog dropped.
-        let affordable = affordable_frames(app.ns_per_step);
+        let affordable = affordable_frames(app.session.ns_per_step);
         let frames = if frames > affordable {
             pending = 0.0;
             affordable
@@ -228,11 +226,11 @@ fn event_loop(mut terminal: DefaultTerminal, app: &mut App) -> std::io::Result<(
         if frames > 0 {
             app.step_frames(frames);
         }
-        let (start, simulated) = *window.get_or_insert((now, app.snapshot.time));
+        let (start, simulated) = *window.get_or_insert((now, app.session.snapshot.time));
         let wall = now.duration_since(start).as_secs_f64();
         if wall >= 1.0 {
-            app.measured_real_time = Some((app.snapshot.time - simulated) / wall);
-            window = Some((now, app.snapshot.time));
+            app.ui.measured_real_time = Some((app.session.snapshot.time - simulated) / wall);
+            window = Some((now, app.session.snapshot.time));
         }
     }
 }

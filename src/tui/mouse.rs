@@ -77,7 +77,7 @@ impl App {
             self.let_go();
             return;
         }
-        if self.overlay != Overlay::None {
+        if self.ui.overlay != Overlay::None {
             return;
         }
         match (m.action, self.place(m.col, m.row)) {
@@ -101,19 +101,19 @@ impl App {
     /// The projection as last drawn: its cells and their mapping to the world (None: another
     /// view, or nothing drawn yet). [`Viewport::world_at`] turns a clicked cell into a point.
     pub fn viewport(&self) -> Option<Viewport> {
-        if self.view != View::Loop {
+        if self.ui.view != View::Loop {
             return None;
         }
-        let [_, main, _] = screen::split(self, self.screen_area.get())?;
+        let [_, main, _] = screen::split(self, self.ui.screen_area.get())?;
         super::projection::viewport(self, screen::main_areas(self, main).drawing)
     }
 
     /// What the screen as last drawn shows at terminal cell (`col`, `row`).
     fn place(&self, col: u16, row: u16) -> Place {
-        let Some([_, main, _]) = screen::split(self, self.screen_area.get()) else {
+        let Some([_, main, _]) = screen::split(self, self.ui.screen_area.get()) else {
             return Place::Elsewhere;
         };
-        if self.view != View::Loop {
+        if self.ui.view != View::Loop {
             return Place::Elsewhere;
         }
         let areas = screen::main_areas(self, main);
@@ -123,7 +123,7 @@ impl App {
             }
         }
         if let Some(area) = areas.panels {
-            let hit = match self.layout {
+            let hit = match self.prefs.layout {
                 ScreenLayout::Numbers => panels::row_at(self, area, col, row),
                 ScreenLayout::Stage => panels::essentials_row_at(self, area, col, row),
             };
@@ -139,14 +139,14 @@ impl App {
         let area = self
             .viewport()
             .map_or(ratatui::layout::Rect::new(0, 0, 80, 24), |v| v.area);
-        let fit = Mapping::fit(&self.region, self.axis, area.width, area.height);
-        self.zoom.wheel(&fit, notches, at);
-        self.notice = Some(if self.zoom.steps == 0 {
+        let fit = Mapping::fit(&self.ui.region, self.prefs.axis, area.width, area.height);
+        self.ui.zoom.wheel(&fit, notches, at);
+        self.ui.notice = Some(if self.ui.zoom.steps == 0 {
             "the fitted view (z zooms in)".to_string()
         } else {
             format!(
                 "zoom ×{}: z / Z or the wheel (as many Z as z: the fitted view)",
-                super::settings_form::tidy((self.zoom.factor() * 1000.0).round() / 1000.0)
+                super::settings_form::tidy((self.ui.zoom.factor() * 1000.0).round() / 1000.0)
             )
         });
     }
@@ -159,10 +159,10 @@ impl App {
         let Some(index) = body_under(self, view, col, row) else {
             if self.tools_shown().contains(&PagePanel::Ruler) {
                 if let Some(p) = view.world_at(col, row) {
-                    let end = self.tools.ruler_clicks % 2;
-                    self.tools.ruler_clicks += 1;
+                    let end = self.ui.tools.ruler_clicks % 2;
+                    self.ui.tools.ruler_clicks += 1;
                     self.set_ruler_end(end, p, 0.0);
-                    self.notice = Some(format!(
+                    self.ui.notice = Some(format!(
                         "the ruler's {} end is the clicked point (a click on empty space sets \
                          the {} end next)",
                         ["first", "second"][end],
@@ -172,51 +172,60 @@ impl App {
             }
             return;
         };
-        if index != self.selected {
-            self.selected = index;
-            self.previous = None;
+        if index != self.session.selected {
+            self.session.selected = index;
+            self.session.previous = None;
             self.refresh();
         }
-        let name = self.world.body_names()[index].clone();
-        let body = &self.world.bodies()[index];
-        if body.fixed {
-            self.notice = Some(format!(
+        let name = self.session.snapshot.bodies[index].name.clone();
+        let position = self.session.snapshot.bodies[index].position;
+        let grabbed = view.world_through(col, row, &position);
+        let Some(hand) = self.session.grab(index, grabbed) else {
+            self.ui.notice = Some(format!(
                 "the panels show body {name}: it is fixed, the hand cannot move it"
             ));
             return;
-        }
-        let state = self.world.states()[index];
-        let grabbed = view.world_through(col, row, &state.position);
-        let hand = Hand::new(index, body, &state, grabbed, grabbed, self.world.dt());
+        };
         self.hold(Some(hand));
-        self.notice = Some(format!(
+        self.ui.notice = Some(format!(
             "the panels show body {name}; drag to pull it (a spring of k = {} N/m){}",
             super::settings_form::tidy(round3(hand.stiffness)),
-            if self.running { "" } else { " · space runs" }
+            if self.ui.running {
+                ""
+            } else {
+                " · space runs"
+            }
         ));
     }
 
     /// A move with the button down: the hand's target follows the pointer (in the plane
     /// through the grabbed point).
     fn drag(&mut self, view: &Viewport, col: u16, row: u16) {
-        let (Some(hand), Some(pull)) = (self.world.hand().copied(), self.world.hand_pull()) else {
+        let (Some(hand), Some(pull)) = (
+            self.session.world.hand().copied(),
+            self.session.world.hand_pull(),
+        ) else {
             return;
         };
         let target = view.world_through(col, row, &pull.at);
         self.hold(Some(Hand { target, ..hand }));
-        self.notice = Some(format!(
+        self.ui.notice = Some(format!(
             "the hand pulls {} towards the pointer (its pull is drawn; its work is the energy \
              panel's hand row){}",
-            self.world.body_names()[hand.body],
-            if self.running { "" } else { " · space runs" }
+            self.session.world.body_names()[hand.body],
+            if self.ui.running {
+                ""
+            } else {
+                " · space runs"
+            }
         ));
     }
 
     /// The button came up: the hand lets go (the ledger keeps its work).
     fn let_go(&mut self) {
-        if self.world.hand().is_some() {
+        if self.session.world.hand().is_some() {
             self.hold(None);
-            self.notice = Some("the hand let go".into());
+            self.ui.notice = Some("the hand let go".into());
         }
     }
 
@@ -226,9 +235,9 @@ impl App {
     /// `App::remember`), so no frame the hand pulled is ever replayed, and none it did not
     /// is replayed with it.
     fn hold(&mut self, hand: Option<Hand>) {
-        self.history.break_segment();
-        self.world.set_hand(hand);
-        if let Some(ghost) = &mut self.ghost {
+        self.session.history.break_segment();
+        self.session.world.set_hand(hand);
+        if let Some(ghost) = &mut self.session.ghost {
             ghost.world.set_hand(hand);
         }
     }
@@ -237,7 +246,8 @@ impl App {
     /// set it; a row no plotted quantity matches says so.
     fn graph_row(&mut self, hit: &RowHit) {
         let column = quantity_of(self, hit).and_then(|q| {
-            self.plot_series
+            self.session
+                .plot_series
                 .columns
                 .iter()
                 .position(|c| c.quantity == q)
@@ -245,7 +255,7 @@ impl App {
         match column {
             Some(y) => self.graph(PlotChoice { y, x: None }),
             None => {
-                self.notice = Some(format!(
+                self.ui.notice = Some(format!(
                     "`{}` has no graph (p lists what can be graphed)",
                     hit.label
                 ))
@@ -264,11 +274,11 @@ fn round3(x: f64) -> f64 {
 /// world frame only (the plot list's components are world components); the panels show the
 /// selected body.
 fn quantity_of(app: &App, hit: &RowHit) -> Option<Quantity> {
-    let body = app.selected;
-    let world_frame = app.frame == Frame::World;
+    let body = app.session.selected;
+    let world_frame = app.prefs.frame == Frame::World;
     let i = hit.cell.min(2);
     let own = |measure| Some(Quantity::Body { body, measure });
-    let several = app.world.body_count() > 1;
+    let several = app.session.world.body_count() > 1;
     match (hit.panel?, hit.label.as_str()) {
         (PagePanel::State, "x") => own(Measure::Position(i)),
         (PagePanel::AngularVelocity, "ω") => own(Measure::AngularVelocity(i)),
@@ -279,7 +289,7 @@ fn quantity_of(app: &App, hit: &RowHit) -> Option<Quantity> {
         (PagePanel::Energy, "K, V, E") if !several => own(energy_measure(i)),
         (PagePanel::Energy, "K, V, E") if i == 2 => Some(Quantity::SceneEnergy),
         (PagePanel::BodyEnergy, name) => Some(Quantity::Body {
-            body: app.world.body_index(name)?,
+            body: app.session.world.body_index(name)?,
             measure: energy_measure(i),
         }),
         (PagePanel::System, "P total") => Some(Quantity::SceneMomentum(i)),
@@ -303,27 +313,23 @@ fn body_under(app: &App, view: &Viewport, col: u16, row: u16) -> Option<usize> {
     let pointer = view.world_through(col, row, &Vector3::zeros());
     let (h, v) = axis.project(&pointer);
     let tolerance = view.mapping.scale;
-    let states = app.world.states();
-    (0..app.world.body_count())
+    let bodies = &app.session.snapshot.bodies;
+    (0..bodies.len())
         .filter(|&i| {
-            let body = &app.world.bodies()[i];
+            let body = &bodies[i];
             let outline: Vec<(f64, f64)> = if body.points_body.is_empty() {
                 Vec::new()
             } else {
-                app.world
-                    .vertices_of(i)
-                    .iter()
-                    .map(|p| axis.project(p))
-                    .collect()
+                body.vertices.iter().map(|p| axis.project(p)).collect()
             };
             if outline.is_empty() {
-                let (ch, cv) = axis.project(&states[i].position);
+                let (ch, cv) = axis.project(&body.position);
                 return (h - ch).hypot(v - cv) <= body.radius + tolerance;
             }
             distance_to_hull(&convex_hull(outline), (h, v)) <= tolerance
         })
         .max_by(|&a, &b| {
-            let depth = |i: usize| states[i].position.dot(&axis.toward_viewer());
+            let depth = |i: usize| bodies[i].position.dot(&axis.toward_viewer());
             depth(a).total_cmp(&depth(b))
         })
 }

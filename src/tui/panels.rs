@@ -169,14 +169,14 @@ pub fn panel_of_measure(m: Measure, several: bool) -> Option<PagePanel> {
         Measure::Position(_) => PagePanel::State,
         Measure::Velocity(_) | Measure::Speed => PagePanel::Momentum,
         Measure::AngularVelocity(_) => PagePanel::AngularVelocity,
-        Measure::AngularMomentum(_) => PagePanel::AngularMomentum,
+        Measure::AngularMomentum(_) | Measure::AngularMomentumNorm => PagePanel::AngularMomentum,
         Measure::Kinetic | Measure::Potential | Measure::Energy if several => PagePanel::BodyEnergy,
         Measure::Kinetic | Measure::Potential | Measure::Energy | Measure::SceneEnergy => {
             PagePanel::Energy
         }
         Measure::SceneMomentum(_) if several => PagePanel::System,
         Measure::SceneMomentum(_) => PagePanel::Momentum,
-        Measure::Time | Measure::ContactTime => return None,
+        Measure::Time | Measure::ContactTime | Measure::JointError(_) => return None,
     })
 }
 
@@ -184,7 +184,7 @@ pub fn panel_of_measure(m: Measure, several: bool) -> Option<PagePanel> {
 /// panels it names (`panels = [...]`), each once, in stacking order.
 pub fn quoted(app: &App) -> Vec<PagePanel> {
     let (named, measures) = page_quotes(app);
-    let several = app.snapshot.bodies.len() > 1;
+    let several = app.session.snapshot.bodies.len() > 1;
     // The measuring tools shown (by a key or by the page) are quoted too: shown first.
     let mut quoted: Vec<PagePanel> = measures
         .iter()
@@ -257,18 +257,25 @@ impl Stacked {
 /// springs, the body's other panels, each body's energy (several bodies) and the system panel
 /// (with no body: one line saying so, the cloth panels, the scene's energy).
 fn views(app: &App) -> Vec<Stacked> {
-    let mut panels = tables::panels(&app.snapshot, app.frame);
-    let mut previous = app.previous.as_ref().map(|p| tables::panels(p, app.frame));
-    let mut compare = app
-        .ghost
+    let mut panels = tables::panels(&app.session.snapshot, app.prefs.frame);
+    let mut previous = app
+        .session
+        .previous
         .as_ref()
-        .map(|g| (tables::panels(&g.snapshot, app.frame), g.comparison.name()));
+        .map(|p| tables::panels(p, app.prefs.frame));
+    let mut compare = app.session.ghost.as_ref().map(|g| {
+        (
+            tables::panels(&g.snapshot, app.prefs.frame),
+            g.comparison.name(),
+        )
+    });
     // Key `u`: the ± rows (world frame only: the errors are of the world-frame numbers), in
     // every copy of the panels so that rows still line up for the highlight and the ghost.
     let bars = app
+        .session
         .error_bars
         .as_ref()
-        .filter(|_| app.frame == Frame::World);
+        .filter(|_| app.prefs.frame == Frame::World);
     if let Some(errors) = bars.and_then(|b| b.errors.as_ref()) {
         crate::error_bars::annotate(&mut panels, errors);
         if let Some(p) = &mut previous {
@@ -278,7 +285,7 @@ fn views(app: &App) -> Vec<Stacked> {
             crate::error_bars::annotate(p, errors);
         }
     }
-    let no_body = app.snapshot.bodies.is_empty();
+    let no_body = app.session.snapshot.bodies.is_empty();
     let shown: Vec<usize> = if no_body {
         vec![PanelId::Energy.index()]
     } else {
@@ -292,9 +299,9 @@ fn views(app: &App) -> Vec<Stacked> {
             NO_BODY.to_string(),
         ));
     }
-    if let Some(bars) = &app.error_bars {
-        let line = if app.frame == Frame::World {
-            bars.describe(&app.world, app.ns_per_step)
+    if let Some(bars) = &app.session.error_bars {
+        let line = if app.prefs.frame == Frame::World {
+            bars.describe(&app.session.world, app.session.ns_per_step)
         } else {
             "± shown in the world frame only (f)".to_string()
         };
@@ -305,7 +312,7 @@ fn views(app: &App) -> Vec<Stacked> {
         ));
     }
     let energy_at = PanelId::Energy.index();
-    let several = app.snapshot.bodies.len() > 1;
+    let several = app.session.snapshot.bodies.len() > 1;
     for i in shown {
         let view = PanelView {
             panel: &panels[i],
@@ -317,9 +324,10 @@ fn views(app: &App) -> Vec<Stacked> {
         views.push(Stacked::of(page_panel_of(i), &panels[i], &view));
         if i == energy_at && several {
             // Each body's own energy, under the scene's.
-            let own = tables::body_energy_panel(&app.snapshot);
-            let before = app.previous.as_ref().map(tables::body_energy_panel);
+            let own = tables::body_energy_panel(&app.session.snapshot);
+            let before = app.session.previous.as_ref().map(tables::body_energy_panel);
             let ghost = app
+                .session
                 .ghost
                 .as_ref()
                 .map(|g| (tables::body_energy_panel(&g.snapshot), g.comparison.name()));
@@ -334,11 +342,12 @@ fn views(app: &App) -> Vec<Stacked> {
     // The cloth panels come second: after the body's state, or after the line saying there
     // is no body (a scene with a cloth is about it: in a small terminal the other panels are
     // left out before them).
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     let at = views.len().min(1);
     let cloths = s.cloths.iter().enumerate().map(|(k, c)| {
-        let before = app.previous.as_ref().and_then(|p| p.cloths.get(k));
+        let before = app.session.previous.as_ref().and_then(|p| p.cloths.get(k));
         let ghost = app
+            .session
             .ghost
             .as_ref()
             .and_then(|g| g.snapshot.cloths.get(k).map(|c| (c, g.comparison.name())));
@@ -351,8 +360,9 @@ fn views(app: &App) -> Vec<Stacked> {
     // Then the joints and springs (`tables::joint_panel`, `spring_panel`: the numbers `walk`
     // prints): a pendulum's lesson is about the rod's pull and its error |C|.
     let links = link_panels(s);
-    let before = app.previous.as_ref().map(link_panels);
+    let before = app.session.previous.as_ref().map(link_panels);
     let ghost = app
+        .session
         .ghost
         .as_ref()
         .map(|g| (link_panels(&g.snapshot), g.comparison.name()));
@@ -550,7 +560,7 @@ pub fn essentials_for(
 /// The essentials of the app's page (see [`essentials_for`]) for snapshot `s` of the app.
 pub fn essentials_of(app: &App, s: &Snapshot) -> Panel {
     let (named, measures) = page_quotes(app);
-    let mut panel = essentials_for(s, app.frame, &named, &measures);
+    let mut panel = essentials_for(s, app.prefs.frame, &named, &measures);
     // The measuring tools shown: their readouts (of the world now).
     for tool in app.tools_shown() {
         let readout = app.tool_panel(tool);
@@ -572,7 +582,7 @@ pub fn essentials_of(app: &App, s: &Snapshot) -> Panel {
 
 /// The page's `panels`, and its live numbers' and prediction's quantities with their body.
 fn page_quotes(app: &App) -> (Vec<PagePanel>, Vec<(Measure, usize)>) {
-    let Some((_, page)) = app.lesson.page_at(app.snapshot.time) else {
+    let Some((_, page)) = app.session.lesson.page_at(app.session.snapshot.time) else {
         return (Vec::new(), Vec::new());
     };
     let mut measures: Vec<(Measure, usize)> = page
@@ -595,9 +605,10 @@ fn essentials_lines(app: &App) -> Vec<Line<'static>> {
 /// The essentials panel's lines in groups (the title, then each row with its ghost row) and
 /// its rows' labels.
 fn essentials_groups(app: &App) -> (Vec<Vec<Line<'static>>>, Vec<String>) {
-    let panel = essentials_of(app, &app.snapshot);
-    let previous = app.previous.as_ref().map(|p| essentials_of(app, p));
+    let panel = essentials_of(app, &app.session.snapshot);
+    let previous = app.session.previous.as_ref().map(|p| essentials_of(app, p));
     let compare = app
+        .session
         .ghost
         .as_ref()
         .map(|g| (essentials_of(app, &g.snapshot), g.comparison.name()));
@@ -798,7 +809,7 @@ pub fn essentials_row_at(app: &App, area: Rect, col: u16, row: u16) -> Option<Ro
                     "L" => PagePanel::AngularMomentum,
                     "K, V, E" => PagePanel::Energy,
                     "P total" => PagePanel::System,
-                    name if app.world.body_index(name).is_some() => PagePanel::BodyEnergy,
+                    name if app.session.world.body_index(name).is_some() => PagePanel::BodyEnergy,
                     _ => return None,
                 };
                 return Some(RowHit {

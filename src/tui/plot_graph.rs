@@ -51,12 +51,19 @@ pub fn data_range(values: impl Iterator<Item = f64>) -> Range {
 /// The time axis: from 0 to the scene's duration (or 100 steps), or to now once past it.
 pub fn time_range(app: &App) -> Range {
     let end = app
+        .session
         .lesson
         .scene
         .duration
         .filter(|d| *d > 0.0)
-        .unwrap_or(100.0 * app.world.dt());
-    let now = app.plot_series.times().last().copied().unwrap_or(0.0);
+        .unwrap_or(100.0 * app.session.world.dt());
+    let now = app
+        .session
+        .plot_series
+        .times()
+        .last()
+        .copied()
+        .unwrap_or(0.0);
     Range {
         lo: 0.0,
         hi: end.max(now),
@@ -71,7 +78,7 @@ fn key_of(message: Message) -> &'static str {
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let Some(choice) = app.plot else {
+    let Some(choice) = app.ui.plot else {
         let text = format!(
             " nothing picked yet: {} lists the quantities",
             key_of(Message::OpenPlot)
@@ -91,7 +98,7 @@ fn render_choice(app: &App, choice: PlotChoice, area: Rect, buf: &mut Buffer) {
         render_curves(app, choice, &curves, area, buf);
         return;
     }
-    let series = &app.plot_series;
+    let series = &app.session.plot_series;
     let columns = &series.columns;
     let points = series.points(choice);
     let finite: Vec<(f64, f64)> = points
@@ -104,7 +111,7 @@ fn render_choice(app: &App, choice: PlotChoice, area: Rect, buf: &mut Buffer) {
         None => (time_range(app), "t, s".to_string()),
         Some(x) => (data_range(series.column(x)), label(&columns[x])),
     };
-    let marker = if app.ascii {
+    let marker = if app.prefs.ascii {
         Marker::Dot
     } else {
         Marker::Braille
@@ -116,7 +123,7 @@ fn render_choice(app: &App, choice: PlotChoice, area: Rect, buf: &mut Buffer) {
         .style(Style::new().fg(theme::TOTAL))
         .data(&finite);
     let mark = Dataset::default()
-        .marker(if app.ascii {
+        .marker(if app.prefs.ascii {
             Marker::Dot
         } else {
             Marker::Block
@@ -187,7 +194,7 @@ fn rescale(y: f64, from: Range, to: Range) -> f64 {
 /// on the left and the other on a right axis (each curve drawn on its axis's scale); the
 /// legend in the title names each curve in its colour and says which axis it reads on.
 fn render_curves(app: &App, choice: PlotChoice, curves: &[usize], area: Rect, buf: &mut Buffer) {
-    let series = &app.plot_series;
+    let series = &app.session.plot_series;
     let columns = &series.columns;
     let axes = curve_axes(columns, curves);
     let range_of = |right: bool| {
@@ -226,7 +233,7 @@ fn render_curves(app: &App, choice: PlotChoice, curves: &[usize], area: Rect, bu
         .iter()
         .enumerate()
         .map(|(i, d)| {
-            let marker = if app.ascii {
+            let marker = if app.prefs.ascii {
                 ASCII_MARKERS[i].0
             } else {
                 Marker::Braille
@@ -240,7 +247,7 @@ fn render_curves(app: &App, choice: PlotChoice, curves: &[usize], area: Rect, bu
         .collect();
     datasets.push(
         Dataset::default()
-            .marker(if app.ascii {
+            .marker(if app.prefs.ascii {
                 Marker::Dot
             } else {
                 Marker::Block
@@ -332,7 +339,7 @@ fn draw_right_axis(buf: &mut Buffer, chart: Rect, labels: &[String], unit: &str)
 /// The graph's title: each curve's name in its colour (its glyph first), which axis it reads
 /// on when there are two, and what the curves are against — shortened to fit `room`.
 fn legend(app: &App, axes: &CurveAxes, choice: PlotChoice, room: usize) -> Line<'static> {
-    let columns = &app.plot_series.columns;
+    let columns = &app.session.plot_series.columns;
     let two = axes.right.is_some();
     let against = match choice.x {
         None => "time".to_string(),
@@ -344,7 +351,11 @@ fn legend(app: &App, axes: &CurveAxes, choice: PlotChoice, room: usize) -> Line<
         let mut spans = vec![Span::raw(" ")];
         for (i, (&c, &right)) in axes.curves.iter().zip(&axes.on_right).enumerate() {
             let colour = Style::new().fg(CURVE_COLOURS[i]);
-            let glyph = if app.ascii { ASCII_MARKERS[i].1 } else { "━" };
+            let glyph = if app.prefs.ascii {
+                ASCII_MARKERS[i].1
+            } else {
+                "━"
+            };
             let name = if form == 0 {
                 label(&columns[c])
             } else {

@@ -18,9 +18,9 @@ use super::app::App;
 use super::theme;
 use super::viewport::{Axis, Mapping, Viewport};
 use crate::physics::body::{box_corners, box_edges};
-use crate::physics::cloth::Cloth;
 use crate::physics::collision::geometry::Shape;
 use crate::physics::snapshot::BodyView;
+use crate::physics::ClothView;
 use crate::physics::{Obstacle, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 use ratatui::buffer::Buffer;
@@ -47,9 +47,10 @@ pub const MIN_ARROW_RADIUS_COLUMNS: f64 = 3.0;
 
 /// Whether the selected body is large enough on screen (`scale` m per column) for its arrows.
 pub fn arrows_fit(app: &App, scale: f64) -> bool {
-    app.world
-        .bodies()
-        .get(app.selected)
+    app.session
+        .snapshot
+        .bodies
+        .get(app.session.selected)
         .is_some_and(|b| b.radius >= MIN_ARROW_RADIUS_COLUMNS * scale)
 }
 
@@ -71,16 +72,21 @@ fn drawing_area(area: Rect) -> Option<Rect> {
 /// ([`Viewport::world_at`]).
 pub fn viewport(app: &App, area: Rect) -> Option<Viewport> {
     let drawing = drawing_area(area)?;
-    let mapping = Mapping::fit(&app.region, app.axis, drawing.width, drawing.height);
+    let mapping = Mapping::fit(
+        &app.ui.region,
+        app.prefs.axis,
+        drawing.width,
+        drawing.height,
+    );
     Some(Viewport {
         area: drawing,
-        mapping: mapping.zoomed(&app.zoom),
-        axis: app.axis,
+        mapping: mapping.zoomed(&app.ui.zoom),
+        axis: app.prefs.axis,
     })
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let title = format!(" {} ({}) ", app.axis.name(), app.axis.legend());
+    let title = format!(" {} ({}) ", app.prefs.axis.name(), app.prefs.axis.legend());
     let block = Block::bordered().title(title);
     let inner = block.inner(area);
     block.render(area, buf);
@@ -93,13 +99,13 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         return;
     };
     let mut scene = scene_2d(app, mapping.scale);
-    let forces = if app.forces {
+    let forces = if app.prefs.forces {
         add_forces(app, &mapping, &mut scene)
     } else {
         None
     };
     add_hand(app, &mut scene);
-    if app.ascii {
+    if app.prefs.ascii {
         draw_ascii(&scene, &mapping, drawing, buf);
     } else {
         draw_braille(&scene, &mapping, drawing, buf);
@@ -175,35 +181,41 @@ fn legend(
         forces.push(Span::styled(" forces ", dim));
         items.push(forces);
     }
-    if app.world.hand().is_some() {
+    if app.session.world.hand().is_some() {
         // First while a body is held: what the line from it to the pointer is.
         items.push(item("o~x", theme::HAND, "hand".into()));
     }
-    let body = app.world.bodies().get(app.selected);
-    let arrows = app.arrows && arrows_fit(app, mapping.scale);
+    let body = app.session.snapshot.bodies.get(app.session.selected);
+    let arrows = app.prefs.arrows && arrows_fit(app, mapping.scale);
     if arrows {
         items.push(item("ω", theme::OMEGA, "ang. vel.".into()));
         items.push(item("L", theme::MOMENTUM, "ang. mom.".into()));
-    } else if app.arrows && body.is_some() {
+    } else if app.prefs.arrows && body.is_some() {
         items.push(item("ω L", Color::DarkGray, "hidden: body small".into()));
     }
     if body.is_some() {
         items.push(item("@", theme::BODY, "center".into()));
     }
-    if !app.world.cloths().is_empty() {
+    if !app.session.snapshot.cloths.is_empty() {
         items.push(item("#", theme::CLOTH, "cloth".into()));
-        if app.world.cloths().iter().any(|c| c.pinned.contains(&true)) {
+        if app
+            .session
+            .snapshot
+            .cloths
+            .iter()
+            .any(|c| c.pins.contains(&true))
+        {
             items.push(item("x", theme::PINNED, "pinned".into()));
         }
     }
-    if !app.snapshot.joints.is_empty() {
+    if !app.session.snapshot.joints.is_empty() {
         items.push(item("o", theme::JOINT, "pivot, rod".into()));
     }
-    if !app.snapshot.springs.is_empty() {
+    if !app.session.snapshot.springs.is_empty() {
         items.push(item("/\\/", theme::SPRING, "spring".into()));
     }
     if body.is_some_and(|b| !b.edges.is_empty()) {
-        let mark = if app.ascii { "..." } else { "- -" };
+        let mark = if app.prefs.ascii { "..." } else { "- -" };
         items.push(item(mark, theme::HIDDEN, "hidden".into()));
     }
     if arrows {
@@ -215,13 +227,13 @@ fn legend(
         ]);
     }
     items.push(item("*", theme::CONTACT, "contact".into()));
-    if app.trail && body.is_some() {
+    if app.prefs.trail && body.is_some() {
         items.push(item(".", theme::TRAIL, "trail".into()));
     }
-    if let Some(g) = &app.ghost {
+    if let Some(g) = &app.session.ghost {
         items.push(item(":", theme::GHOST, g.comparison.name().into()));
     }
-    if app.against.is_some() {
+    if app.ui.against.is_some() {
         items.push(item(":", theme::GHOST, "theirs".into()));
     }
     let (length, cols) = scale_bar(mapping.scale);
@@ -258,7 +270,7 @@ pub const FORCE_ARROW_COLUMNS: f64 = 8.0;
 /// its width in columns (None: no force to draw).
 fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64, usize)> {
     use crate::physics::force_arrows::{force_arrows, ForceKind};
-    let arrows = force_arrows(&app.snapshot, app.world.effects().gravity());
+    let arrows = force_arrows(&app.session.snapshot, app.session.world.effects().gravity());
     let largest = arrows.iter().map(|a| a.force.norm()).fold(0.0, f64::max);
     if largest <= 0.0 || !largest.is_finite() {
         return None;
@@ -278,7 +290,7 @@ fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64,
         };
         arrow(
             scene,
-            app.axis,
+            app.prefs.axis,
             a.at,
             a.force / f,
             f * per_newton,
@@ -296,10 +308,13 @@ fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64,
 /// The hand (the mouse's drag spring, `physics::hand`), while a body is held: a line from the
 /// grabbed point to the pointer, a mark at each end, and the pull's size at the pointer.
 fn add_hand(app: &App, scene: &mut Scene2d) {
-    let (Some(hand), Some(pull)) = (app.world.hand(), app.world.hand_pull()) else {
+    let (Some(hand), Some(pull)) = (app.session.world.hand(), app.session.world.hand_pull()) else {
         return;
     };
-    let (from, to) = (app.axis.project(&pull.at), app.axis.project(&hand.target));
+    let (from, to) = (
+        app.prefs.axis.project(&pull.at),
+        app.prefs.axis.project(&hand.target),
+    );
     scene.segments.push(Segment {
         from,
         to,
@@ -620,11 +635,11 @@ fn arrow(
 pub fn add_cloth(
     scene: &mut Scene2d,
     axis: Axis,
-    cloth: &Cloth,
+    cloth: &ClothView,
     colour: Color,
     ascii: Option<char>,
 ) {
-    let [nx, nz] = cloth.count;
+    let [nx, nz] = cloth.grid;
     let p: Vec<(f64, f64)> = cloth.positions.iter().map(|x| axis.project(x)).collect();
     scene.segments.reserve(2 * nx * nz);
     for j in 0..nz {
@@ -648,7 +663,7 @@ pub fn add_cloth(
         }
     }
     if ascii.is_none() {
-        for (k, &pinned) in cloth.pinned.iter().enumerate() {
+        for (k, &pinned) in cloth.pins.iter().enumerate() {
             if pinned {
                 scene.points.push((p[k], theme::PINNED, 'x'));
             }
@@ -764,9 +779,9 @@ pub fn add_links(scene: &mut Scene2d, axis: Axis, s: &Snapshot, scale: f64) {
 }
 
 fn scene_2d(app: &App, scale: f64) -> Scene2d {
-    let axis = app.axis;
+    let axis = app.prefs.axis;
     let mut scene = Scene2d::default();
-    for o in app.world.obstacles() {
+    for o in &app.session.snapshot.obstacles {
         match *o {
             Obstacle::Ground { height } => {
                 if axis.shows_ground_line() {
@@ -812,33 +827,33 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
                 }
             }
             Obstacle::Plane { point, normal } => {
-                add_plane(&mut scene, axis, &point, &normal, app.region.max_extent);
+                add_plane(&mut scene, axis, &point, &normal, app.ui.region.max_extent);
             }
         }
     }
-    if app.trail && app.world.body_count() > 0 {
-        for p in app.history.trail(TRAIL_LENGTH) {
+    if app.prefs.trail && !app.session.snapshot.bodies.is_empty() {
+        for p in app.session.history.trail(TRAIL_LENGTH) {
             scene.points.push((axis.project(p), theme::TRAIL, '.'));
         }
     }
     // The cloths under the bodies (a body resting on a sheet is drawn on top of it).
-    if let Some(g) = &app.ghost {
-        for cloth in g.world.cloths() {
+    if let Some(g) = &app.session.ghost {
+        for cloth in &g.snapshot.cloths {
             add_cloth(&mut scene, axis, cloth, theme::GHOST, Some(':'));
         }
     }
-    for cloth in app.world.cloths() {
+    for cloth in &app.session.snapshot.cloths {
         add_cloth(&mut scene, axis, cloth, theme::CLOTH, None);
     }
     // The joints and springs under the bodies they hold.
-    add_links(&mut scene, axis, &app.snapshot, scale);
+    add_links(&mut scene, axis, &app.session.snapshot, scale);
     // Every other body, in its own colour (the panels show the selected one); a fixed body
     // in the obstacles' colour.
-    for (i, view) in app.snapshot.bodies.iter().enumerate() {
-        if i == app.selected {
+    for (i, view) in app.session.snapshot.bodies.iter().enumerate() {
+        if i == app.session.selected {
             continue;
         }
-        let other = &app.world.bodies()[i];
+        let other = view;
         let wire = view
             .shape
             .as_ref()
@@ -864,13 +879,13 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
         add_outline(&mut scene, axis, view);
         add_body(&mut scene, axis, &picture);
     }
-    if let Some(body) = app.world.bodies().get(app.selected) {
-        let view = app.snapshot.bodies.get(app.selected);
-        if let Some(g) = &app.ghost {
+    if let Some(body) = app.session.snapshot.bodies.get(app.session.selected) {
+        let view = Some(body);
+        if let Some(g) = &app.session.ghost {
             let ghost_wire = g
                 .snapshot
                 .bodies
-                .get(app.selected)
+                .get(app.session.selected)
                 .and_then(|v| v.shape.as_ref().map(|s| wire(s, &v.position, &v.rotation)))
                 .flatten();
             let mut ghost = BodyPicture::of(&g.snapshot, &body.edges, body.radius);
@@ -882,8 +897,8 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
             add_body(&mut scene, axis, &ghost);
         }
         // Their run (`--against`): the body's points at their pose, in the ghost's colour.
-        let theirs = (app.against.as_ref())
-            .and_then(|a| a.pose_at(app.snapshot.step))
+        let theirs = (app.ui.against.as_ref())
+            .and_then(|a| a.pose_at(app.session.snapshot.step))
             .map(|(x, r)| {
                 let points: Vec<_> = body.points_body.iter().map(|p| x + r * p).collect();
                 (x, r, points)
@@ -904,22 +919,25 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
         let own_wire = view
             .and_then(|v| v.shape.as_ref().map(|s| wire(s, &v.position, &v.rotation)))
             .flatten();
-        let mut picture = BodyPicture::of(&app.snapshot, &body.edges, body.radius);
+        let mut picture = BodyPicture::of(&app.session.snapshot, &body.edges, body.radius);
         if let Some((v, e)) = &own_wire {
             (picture.vertices, picture.edges) = (v, e);
         }
         if body.fixed {
             picture.colour = theme::OBSTACLE;
         }
-        if app.arrows && arrows_fit(app, scale) {
-            picture.arrows = Some((app.snapshot.angular_velocity, app.snapshot.angular_momentum));
+        if app.prefs.arrows && arrows_fit(app, scale) {
+            picture.arrows = Some((
+                app.session.snapshot.angular_velocity,
+                app.session.snapshot.angular_momentum,
+            ));
         }
         if let Some(view) = view {
             add_outline(&mut scene, axis, view);
         }
         add_body(&mut scene, axis, &picture);
     }
-    for c in &app.snapshot.contacts {
+    for c in &app.session.snapshot.contacts {
         scene
             .points
             .push((axis.project(&c.point), theme::CONTACT, '*'));

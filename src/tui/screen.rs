@@ -37,31 +37,40 @@ pub fn split(app: &App, area: Rect) -> Option<[Rect; 3]> {
 impl Widget for &App {
     fn render(self, area: Rect, buf: &mut Buffer) {
         // The mouse reads the screen as last drawn.
-        self.screen_area.set(area);
+        self.ui.screen_area.set(area);
         let Some([top, main, status]) = split(self, area) else {
             enlarge_message(area, buf);
             return;
         };
         header::render(self, top, buf);
-        match self.view {
+        match self.ui.view {
             View::Loop => loop_view::render(self, main, buf),
             View::Energy | View::Plot => energy_view::render(self, main, buf),
             View::Study => study_view::render(self, main, buf),
         }
         status_bar::render(self, status, buf);
-        if let Some(d) = &self.divergence {
+        if let Some(d) = &self.session.divergence {
             divergence_dialog::render(d, area, buf);
         }
-        match &self.overlay {
+        match &self.ui.overlay {
             Overlay::None => {}
             Overlay::Help => help::render(area, buf),
             Overlay::Picker { lessons, selected } => picker::render(lessons, *selected, area, buf),
             Overlay::PlotPicker { selected, x } => {
                 let curves = self.plot_curves();
-                plot_picker::render(&self.plot_series.columns, *selected, *x, &curves, area, buf)
+                plot_picker::render(
+                    &self.session.plot_series.columns,
+                    *selected,
+                    *x,
+                    &curves,
+                    area,
+                    buf,
+                )
             }
             Overlay::Settings(form) => settings_view::render(form, area, buf),
-            Overlay::Jump { text } => jump_prompt::render(text, self.snapshot.time, area, buf),
+            Overlay::Jump { text } => {
+                jump_prompt::render(text, self.session.snapshot.time, area, buf)
+            }
             Overlay::Predict { page, text } => {
                 jump_prompt::render_predict(&self.prediction_question(*page), text, area, buf)
             }
@@ -71,25 +80,25 @@ impl Widget for &App {
 
 /// The panes of the main area in the app's layout (see [`super::layout`]).
 pub fn main_areas(app: &App, area: Rect) -> Areas {
-    let essentials = match app.layout {
+    let essentials = match app.prefs.layout {
         ScreenLayout::Stage => panels::essentials_size(app),
         ScreenLayout::Numbers => (0, 0),
     };
-    let panels_width = match app.layout {
+    let panels_width = match app.prefs.layout {
         ScreenLayout::Numbers => panels::width(app),
         ScreenLayout::Stage => 0,
     };
-    let quoted_width = match app.layout {
+    let quoted_width = match app.prefs.layout {
         ScreenLayout::Numbers => panels::quoted_width(app),
         ScreenLayout::Stage => 0,
     };
-    let page_lines = match app.layout {
+    let page_lines = match app.prefs.layout {
         ScreenLayout::Stage => lesson_pane::line_count(app, area.width.saturating_sub(2)),
         ScreenLayout::Numbers => 0,
     };
     layout::areas(
         area,
-        app.layout,
+        app.prefs.layout,
         panels_width,
         quoted_width,
         essentials,

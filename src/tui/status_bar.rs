@@ -15,11 +15,15 @@ const DIM: Style = theme::DIM;
 
 /// The status fields, each a group of spans (the notice last, when `notice` and there is one).
 fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
-    let s = &app.snapshot;
-    let effects = app.world.effects().names();
-    let response = app.world.contact_model().map_or("—", |m| m.response.name());
+    let s = &app.session.snapshot;
+    let effects = app.session.world.effects().names();
+    let response = app
+        .session
+        .world
+        .contact_model()
+        .map_or("—", |m| m.response.name());
     let mut fields: Vec<(&str, String)> = Vec::new();
-    let no_body = app.world.body_count() == 0;
+    let no_body = app.session.world.body_count() == 0;
     if no_body {
         fields.push(("", super::panels::NO_BODY.to_string()));
     }
@@ -29,9 +33,10 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
             format!("{} ({}/{})", s.body_name, s.body_index + 1, s.bodies.len()),
         ));
     }
-    let comparison = app.ghost.as_ref().map(|g| g.comparison);
+    let comparison = app.session.ghost.as_ref().map(|g| g.comparison);
     // A diverged ghost is marked where its name is shown.
     let frozen = app
+        .session
         .ghost
         .as_ref()
         .and_then(|g| g.diverged.as_ref())
@@ -43,7 +48,7 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
     ]);
     // In compare mode, "A vs B" on the setting the ghost differs by, and only there. The
     // body settings only when there are bodies, the particle integrator only with cloths.
-    let bodies = app.world.body_count() > 0;
+    let bodies = app.session.world.body_count() > 0;
     fields.extend(
         [
             (
@@ -75,7 +80,7 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
             },
         ));
     }
-    if let Some(against) = &app.against {
+    if let Some(against) = &app.ui.against {
         fields.push(("theirs", against.status()));
     }
     fields.push((
@@ -86,8 +91,8 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
             effects.join(", ")
         },
     ));
-    if app.show_timing {
-        if let Some(ns) = app.ns_per_step {
+    if app.prefs.show_timing {
+        if let Some(ns) = app.session.ns_per_step {
             fields.push(("", format!("{ns:.0} ns/step")));
         }
     }
@@ -103,7 +108,7 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
         ));
         items.push(item);
     }
-    if let Some(notice) = app.notice.as_ref().filter(|_| notice) {
+    if let Some(notice) = app.ui.notice.as_ref().filter(|_| notice) {
         items.push(vec![Span::styled(notice.clone(), theme::NOTICE)]);
     }
     items
@@ -113,9 +118,9 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
 /// cloths).
 fn cloth_integrators(app: &App) -> Option<String> {
     let mut names: Vec<&str> = Vec::new();
-    for c in app.world.cloths() {
-        if !names.contains(&c.integrator.name()) {
-            names.push(c.integrator.name());
+    for c in &app.session.snapshot.cloths {
+        if !names.contains(&c.integrator) {
+            names.push(c.integrator);
         }
     }
     (!names.is_empty()).then(|| names.join(" + "))
@@ -165,7 +170,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     let mut fields = field_lines(app, area.width);
     if fields.len() > usize::from(area.height) {
         // No hint row left for the notice: it takes the last row (what the user must read).
-        if let Some(notice) = &app.notice {
+        if let Some(notice) = &app.ui.notice {
             fields = lines_of(fields_without_notice(app), area.width);
             fields.truncate(usize::from(area.height).saturating_sub(1));
             fields.push(Line::from(vec![

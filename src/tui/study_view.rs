@@ -25,14 +25,14 @@ use ratatui::widgets::{Axis, Block, Chart, Dataset, Gauge, GraphType, Paragraph,
 /// Starts the study of a lesson's scene (every integrator, dt = 1e-1 … 1e-4) with the
 /// collision response in use.
 pub fn spawn(app: &App) -> Job {
-    let mut case = Case::from_lesson(&app.lesson);
-    case.scene.contact = app.world.contact_model().copied();
+    let mut case = Case::from_lesson(&app.session.lesson);
+    case.scene.contact = app.session.world.contact_model().copied();
     Job::spawn(case, Config::default())
 }
 
 /// The study was made with the collision response in use (else it must be made again).
 pub fn is_current(job: &Job, app: &App) -> bool {
-    job.response == app.world.contact_model().map(|m| m.response)
+    job.response == app.session.world.contact_model().map(|m| m.response)
 }
 
 /// The colour of an integrator, as in the SVG plot.
@@ -42,16 +42,16 @@ fn colour(integrator: Integrator) -> Color {
 }
 
 pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
-    let Some(job) = &app.study else {
+    let Some(job) = &app.session.study else {
         Paragraph::new("press s to study this scene")
             .block(Block::bordered().title(" study "))
             .render(area, buf);
         return;
     };
     let shown = Shown {
-        ascii: app.ascii,
-        in_use: app.world.integrator(),
-        dt: app.world.dt(),
+        ascii: app.prefs.ascii,
+        in_use: app.session.world.integrator(),
+        dt: app.session.world.dt(),
     };
     match (job.result(), job.partial()) {
         (Some(study), _) => match &study.cloth {
@@ -212,7 +212,7 @@ fn render_cloth_study(
     };
     let all = points(None, false);
     let ((x0, x1), (y0, y1)) = bounds(&all);
-    let marker = if app.ascii {
+    let marker = if app.prefs.ascii {
         Marker::Dot
     } else {
         Marker::Braille

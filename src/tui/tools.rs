@@ -65,20 +65,22 @@ pub fn depth_of(axis: Axis) -> usize {
 impl App {
     /// The page shown's tools.
     fn page_tools(&self) -> Option<&crate::measure::PageTools> {
-        self.lesson
-            .page_at(self.snapshot.time)
+        self.session
+            .lesson
+            .page_at(self.session.snapshot.time)
             .map(|(_, page)| &page.tools)
     }
 
     fn page_names(&self, panel: PagePanel) -> bool {
-        self.lesson
-            .page_at(self.snapshot.time)
+        self.session
+            .lesson
+            .page_at(self.session.snapshot.time)
             .is_some_and(|(_, page)| page.panels.contains(&panel))
     }
 
     /// The tools shown, in stacking order: by a key, or named by the page shown.
     pub fn tools_shown(&self) -> Vec<PagePanel> {
-        let t = &self.tools;
+        let t = &self.ui.tools;
         PagePanel::TOOLS
             .into_iter()
             .filter(|&p| {
@@ -95,13 +97,24 @@ impl App {
 
     /// The named points of the scene (bodies' barycenters, joints' and springs' anchors).
     pub fn named_points(&self) -> Vec<End> {
-        ruler::named_points(self.world.body_names(), self.world.links())
+        let s = &self.session.snapshot;
+        let names: Vec<String> = s.bodies.iter().map(|b| b.name.clone()).collect();
+        let joints = s.joints.iter().map(|j| {
+            let [a, b] = j.local_anchors;
+            (j.name.as_str(), j.body_indices.0, j.body_indices.1, a, b)
+        });
+        let springs = s.springs.iter().map(|j| {
+            let [a, b] = j.local_anchors;
+            (j.name.as_str(), j.body_indices.0, j.body_indices.1, a, b)
+        });
+        ruler::named_points_of(&names, joints.chain(springs))
     }
 
     /// The ruler in effect: set by keys or a click, else the page's, else from the first
     /// named point to the second (or to the origin).
     pub fn ruler(&self) -> Ruler {
         if let Some(r) = self
+            .ui
             .tools
             .ruler
             .clone()
@@ -124,11 +137,12 @@ impl App {
     /// The protractor in effect: set by keys, else the page's, else the first body's y axis
     /// against the vertical (None: no body).
     pub fn protractor(&self) -> Option<Protractor> {
-        if self.world.body_count() == 0 {
+        if self.session.world.body_count() == 0 {
             return None;
         }
         Some(
-            self.tools
+            self.ui
+                .tools
                 .protractor
                 .or_else(|| self.page_tools()?.protractor)
                 .unwrap_or(Protractor {
@@ -142,17 +156,19 @@ impl App {
     /// of the plot list; and its column there (None: not in this scene's list).
     pub fn period_watch(&self) -> Option<(Watch, Option<usize>)> {
         let watch = self
+            .ui
             .tools
             .period
             .clone()
             .or_else(|| self.page_tools()?.period.clone())
             .or_else(|| {
-                self.plot_series.columns.first().map(|c| Watch {
+                self.session.plot_series.columns.first().map(|c| Watch {
                     quantity: c.name.clone(),
                     level: None,
                 })
             })?;
         let column = self
+            .session
             .plot_series
             .columns
             .iter()
@@ -165,8 +181,8 @@ impl App {
     pub fn period_reading(&self) -> (Option<period::Periods>, Option<f64>) {
         match self.period_watch() {
             Some((watch, Some(c))) => {
-                let q: Vec<f64> = self.plot_series.column(c).collect();
-                period::periods_at(self.plot_series.times(), &q, watch.level)
+                let q: Vec<f64> = self.session.plot_series.column(c).collect();
+                period::periods_at(self.session.plot_series.times(), &q, watch.level)
             }
             _ => (None, None),
         }
@@ -175,27 +191,27 @@ impl App {
     /// The stopwatch's reading now and whether it runs: the keys', or the page's schedule
     /// while no key worked it.
     pub fn stopwatch_reading(&self) -> (f64, bool) {
-        let t = self.world.time();
+        let t = self.session.world.time();
         match self.page_tools().and_then(|p| p.stopwatch) {
-            Some(s) if !self.tools.stopwatch_used => (s.reading(t), s.running(t)),
+            Some(s) if !self.ui.tools.stopwatch_used => (s.reading(t), s.running(t)),
             _ => (
-                self.tools.stopwatch.reading(t),
-                self.tools.stopwatch.running(),
+                self.ui.tools.stopwatch.reading(t),
+                self.ui.tools.stopwatch.running(),
             ),
         }
     }
 
     /// A key of the tools (see the module's table).
     pub fn tool_key(&mut self, key: ToolKey) {
-        let t = self.world.time();
+        let t = self.session.world.time();
         let tidy = super::settings_form::tidy;
         match key {
             ToolKey::StartStop => {
-                self.tools.stopwatch_shown = true;
-                self.tools.stopwatch_used = true;
-                self.tools.stopwatch.toggle(t);
+                self.ui.tools.stopwatch_shown = true;
+                self.ui.tools.stopwatch_used = true;
+                self.ui.tools.stopwatch.toggle(t);
                 let (r, running) = self.stopwatch_reading();
-                self.notice = Some(if running {
+                self.ui.notice = Some(if running {
                     format!("stopwatch started at t = {} s (o lap, w stop)", tidy(t))
                 } else {
                     format!(
@@ -206,36 +222,36 @@ impl App {
                 });
             }
             ToolKey::Lap => {
-                self.tools.stopwatch_shown = true;
-                if self.tools.stopwatch.running() {
-                    self.tools.stopwatch_used = true;
-                    self.tools.stopwatch.lap(t);
-                    let laps = self.tools.stopwatch.laps();
+                self.ui.tools.stopwatch_shown = true;
+                if self.ui.tools.stopwatch.running() {
+                    self.ui.tools.stopwatch_used = true;
+                    self.ui.tools.stopwatch.lap(t);
+                    let laps = self.ui.tools.stopwatch.laps();
                     let (r, split) = laps.last().copied().unwrap_or_default();
-                    self.notice = Some(format!(
+                    self.ui.notice = Some(format!(
                         "lap {} at {} s (+{} s)",
                         laps.len(),
                         number_plain(r),
                         number_plain(split)
                     ));
                 } else {
-                    self.notice = Some("the stopwatch is stopped: w starts it".into());
+                    self.ui.notice = Some("the stopwatch is stopped: w starts it".into());
                 }
             }
             ToolKey::Zero => {
-                self.tools.stopwatch = Stopwatch::default();
-                self.tools.stopwatch_shown = false;
-                self.tools.stopwatch_used = false;
-                self.notice = Some("stopwatch zeroed and hidden (w starts it)".into());
+                self.ui.tools.stopwatch = Stopwatch::default();
+                self.ui.tools.stopwatch_shown = false;
+                self.ui.tools.stopwatch_used = false;
+                self.ui.notice = Some("stopwatch zeroed and hidden (w starts it)".into());
             }
             ToolKey::Period => {
-                self.tools.period_shown = !self.tools.period_shown;
+                self.ui.tools.period_shown = !self.ui.tools.period_shown;
                 // The graphed quantity, if any (against time: its y).
-                self.tools.period = self.plot.map(|p| Watch {
-                    quantity: self.plot_series.columns[p.y].name.clone(),
+                self.ui.tools.period = self.ui.plot.map(|p| Watch {
+                    quantity: self.session.plot_series.columns[p.y].name.clone(),
                     level: None,
                 });
-                self.notice = Some(match (self.tools.period_shown, self.period_watch()) {
+                self.ui.notice = Some(match (self.ui.tools.period_shown, self.period_watch()) {
                     (true, Some((w, _))) => format!(
                         "period timer on {}: upward crossings of its mid-range (p graphs \
                          another, then T T)",
@@ -247,13 +263,13 @@ impl App {
             }
             ToolKey::RulerFrom | ToolKey::RulerTo => {
                 let named = self.named_points();
-                if !self.tools.ruler_shown && key == ToolKey::RulerFrom {
-                    self.tools.ruler_shown = true;
+                if !self.ui.tools.ruler_shown && key == ToolKey::RulerFrom {
+                    self.ui.tools.ruler_shown = true;
                 } else if named.is_empty() {
-                    self.notice = Some("no named point in this scene (a click sets one)".into());
+                    self.ui.notice = Some("no named point in this scene (a click sets one)".into());
                     return;
                 } else {
-                    self.tools.ruler_shown = true;
+                    self.ui.tools.ruler_shown = true;
                     let mut r = self.ruler();
                     let end = if key == ToolKey::RulerFrom {
                         &mut r.from
@@ -264,47 +280,47 @@ impl App {
                     match at {
                         // Past the last named point, `m` puts the ruler away.
                         Some(i) if i + 1 == named.len() && key == ToolKey::RulerFrom => {
-                            self.tools.ruler_shown = false;
-                            self.tools.ruler = None;
-                            self.notice = Some("ruler off".into());
+                            self.ui.tools.ruler_shown = false;
+                            self.ui.tools.ruler = None;
+                            self.ui.notice = Some("ruler off".into());
                             return;
                         }
                         Some(i) => *end = named[(i + 1) % named.len()].clone(),
                         None => *end = named[0].clone(),
                     }
-                    self.tools.ruler = Some(r);
+                    self.ui.tools.ruler = Some(r);
                 }
                 let r = self.ruler();
-                self.notice = Some(format!(
+                self.ui.notice = Some(format!(
                     "ruler {} → {} (m: next first end, M: next second end)",
                     r.from.name, r.to.name
                 ));
             }
             ToolKey::ProtractorAxis | ToolKey::ProtractorAgainst => {
                 let Some(mut p) = self.protractor() else {
-                    self.notice = Some("no body in this scene: no axis to measure".into());
+                    self.ui.notice = Some("no body in this scene: no axis to measure".into());
                     return;
                 };
-                let count = self.world.body_count();
+                let count = self.session.world.body_count();
                 if key == ToolKey::ProtractorAxis {
-                    if !self.tools.protractor_shown {
-                        self.tools.protractor_shown = true;
+                    if !self.ui.tools.protractor_shown {
+                        self.ui.tools.protractor_shown = true;
                     } else {
                         let next = p.axis.body * 3 + p.axis.axis + 1;
                         if next >= 3 * count {
-                            self.tools.protractor_shown = false;
-                            self.tools.protractor = None;
-                            self.notice = Some("protractor off".into());
+                            self.ui.tools.protractor_shown = false;
+                            self.ui.tools.protractor = None;
+                            self.ui.notice = Some("protractor off".into());
                             return;
                         }
                         p.axis = BodyAxis {
                             body: next / 3,
                             axis: next % 3,
                         };
-                        self.tools.protractor = Some(p);
+                        self.ui.tools.protractor = Some(p);
                     }
                 } else {
-                    self.tools.protractor_shown = true;
+                    self.ui.tools.protractor_shown = true;
                     // vertical → every axis of the other bodies → vertical.
                     let others: Vec<BodyAxis> = (0..count)
                         .filter(|&b| b != p.axis.body)
@@ -319,10 +335,10 @@ impl App {
                             _ => Reference::Vertical,
                         },
                     };
-                    self.tools.protractor = Some(p);
+                    self.ui.tools.protractor = Some(p);
                 }
                 let p = self.protractor().expect("a body");
-                self.notice = Some(format!(
+                self.ui.notice = Some(format!(
                     "protractor {} (A: next axis, V: against what)",
                     self.protractor_title(&p)
                 ));
@@ -336,19 +352,19 @@ impl App {
     pub fn show_tool(&mut self, tool: PagePanel) {
         match tool {
             PagePanel::Stopwatch => {
-                self.tools.stopwatch_shown = true;
-                self.tools.stopwatch_used = true;
-                self.tools.stopwatch.start(0.0);
+                self.ui.tools.stopwatch_shown = true;
+                self.ui.tools.stopwatch_used = true;
+                self.ui.tools.stopwatch.start(0.0);
             }
             PagePanel::Period => {
-                self.tools.period_shown = true;
-                self.tools.period = self.plot.map(|p| Watch {
-                    quantity: self.plot_series.columns[p.y].name.clone(),
+                self.ui.tools.period_shown = true;
+                self.ui.tools.period = self.ui.plot.map(|p| Watch {
+                    quantity: self.session.plot_series.columns[p.y].name.clone(),
                     level: None,
                 });
             }
-            PagePanel::Ruler => self.tools.ruler_shown = true,
-            PagePanel::Protractor => self.tools.protractor_shown = true,
+            PagePanel::Ruler => self.ui.tools.ruler_shown = true,
+            PagePanel::Protractor => self.ui.tools.protractor_shown = true,
             _ => {}
         }
     }
@@ -357,31 +373,38 @@ impl App {
     /// the drawing does: on the body nearest in the view within `reach` (m) the point moves
     /// with it, else it stays fixed in the world. The ruler is shown.
     pub fn set_ruler_end(&mut self, end: usize, p: Vector3<f64>, reach: f64) {
-        let movable: Vec<bool> = self.world.bodies().iter().map(|b| !b.fixed).collect();
+        let movable: Vec<bool> = self
+            .session
+            .snapshot
+            .bodies
+            .iter()
+            .map(|b| !b.fixed)
+            .collect();
         let point = ruler::point_at(
             p,
-            self.world.states(),
+            self.session.world.states(),
             &movable,
-            Some(depth_of(self.axis)),
+            Some(depth_of(self.prefs.axis)),
             reach,
         );
         let name = match point {
             Point::World(p) => ruler::world_name(&p),
             Point::Body { body, offset } => format!(
                 "{}+{}",
-                self.world.body_names()[body],
+                self.session.world.body_names()[body],
                 ruler::world_name(&offset.map(|c| (c * 1e4).round() / 1e4))
             ),
         };
         let mut r = self.ruler();
         let slot = if end == 0 { &mut r.from } else { &mut r.to };
         *slot = End { point, name };
-        self.tools.ruler = Some(r);
-        self.tools.ruler_shown = true;
+        self.ui.tools.ruler = Some(r);
+        self.ui.tools.ruler_shown = true;
     }
 
     fn body_axis_name(&self, a: &BodyAxis) -> String {
         let name = self
+            .session
             .world
             .body_names()
             .get(a.body)
@@ -407,7 +430,7 @@ impl App {
         match tool {
             PagePanel::Stopwatch => {
                 let (reading, running) = self.stopwatch_reading();
-                let scheduled = !self.tools.stopwatch_used
+                let scheduled = !self.ui.tools.stopwatch_used
                     && self.page_tools().and_then(|p| p.stopwatch).is_some();
                 let state = match (running, scheduled) {
                     (true, false) => "running: w stops, o laps",
@@ -417,7 +440,7 @@ impl App {
                 };
                 let mut rows = vec![row("time", vec![number(reading)], "s")];
                 if !scheduled {
-                    let laps = self.tools.stopwatch.laps();
+                    let laps = self.ui.tools.stopwatch.laps();
                     let skip = laps.len().saturating_sub(LAPS_SHOWN);
                     for (i, (r, split)) in laps.iter().enumerate().skip(skip) {
                         rows.push(row(
@@ -445,9 +468,10 @@ impl App {
                         rows: Vec::new(),
                     };
                 };
-                let unit = self.plot_series.columns[c].unit;
-                let q: Vec<f64> = self.plot_series.column(c).collect();
-                let (found, level) = period::periods_at(self.plot_series.times(), &q, watch.level);
+                let unit = self.session.plot_series.columns[c].unit;
+                let q: Vec<f64> = self.session.plot_series.column(c).collect();
+                let (found, level) =
+                    period::periods_at(self.session.plot_series.times(), &q, watch.level);
                 let level = level.map_or_else(String::new, |l| {
                     format!(" ↑ {} {unit}", number_plain(tidy_level(l, &q)))
                 });
@@ -476,7 +500,7 @@ impl App {
             PagePanel::Ruler => {
                 let r = self.ruler();
                 let title = format!("ruler {} → {}", r.from.name, r.to.name);
-                let rows = match r.read(self.world.states()) {
+                let rows = match r.read(self.session.world.states()) {
                     Some(m) => vec![
                         row("distance", vec![number(m.distance)], "m"),
                         row("Δ", m.delta.iter().map(|&c| number(c)).collect(), "m"),
@@ -489,7 +513,7 @@ impl App {
                 Some(p) => Panel {
                     title: format!("protractor {}", self.protractor_title(&p)),
                     rows: p
-                        .degrees(self.world.states())
+                        .degrees(self.session.world.states())
                         .map(|d| row("angle", vec![number(d)], "°"))
                         .into_iter()
                         .collect(),

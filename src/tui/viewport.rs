@@ -5,7 +5,7 @@
 //! as wide); the user's zoom (mouse wheel, keys `z` `Z`) on top of it; and the way back from a
 //! terminal cell to the world ([`Viewport::world_at`]: what the mouse points at).
 
-use crate::physics::{Body, Obstacle, World};
+use crate::physics::{Body, Obstacle, Snapshot};
 use nalgebra::Vector3;
 use ratatui::layout::Rect;
 
@@ -141,12 +141,12 @@ impl Region {
         }
     }
 
-    /// The initial region of a whole world: every body's vertices and every cloth's particles
-    /// where they start, the obstacles, padded by the first body's radius — or, with cloths
-    /// only, by a tenth of the cloths' largest extent.
-    pub fn of_world(world: &World) -> Region {
-        let points = shown_points(world);
-        let pad = if let Some(body) = world.bodies().first() {
+    /// The initial region of a whole world (its snapshot at t = 0): every body's vertices and
+    /// every cloth's particles where they start, the obstacles, padded by the first body's
+    /// radius — or, with cloths only, by a tenth of the cloths' largest extent.
+    pub fn of_world(snapshot: &Snapshot) -> Region {
+        let points = shown_points(snapshot);
+        let pad = if let Some(body) = snapshot.bodies.first() {
             body.radius
         } else {
             let (lo, hi) = points.iter().fold(
@@ -158,7 +158,7 @@ impl Region {
             );
             0.1 * (hi - lo).max()
         };
-        Region::padded(pad, &points, world.obstacles())
+        Region::padded(pad, &points, &snapshot.obstacles)
     }
 
     /// Moves until every point is inside, smoothly: a side a point has crossed moves out to
@@ -221,40 +221,7 @@ impl Region {
 /// A side the points cross moves out by an extra 1/GROWTH_MARGIN of the region's extent.
 pub const GROWTH_MARGIN: f64 = 8.0;
 
-/// What the view keeps in frame: every body's vertices, every cloth's particles, every
-/// joint's anchors and every spring's ends.
-pub fn shown_points(world: &World) -> Vec<Vector3<f64>> {
-    let mut points: Vec<Vector3<f64>> = (0..world.body_count())
-        .flat_map(|i| world.vertices_of(i))
-        .collect();
-    // A round body has no vertices: its extreme points along the world axes.
-    for (body, state) in world.bodies().iter().zip(world.states()) {
-        if body.points_body.is_empty() && body.shape.is_some() {
-            for axis in [Vector3::x(), Vector3::y(), Vector3::z()] {
-                points.push(state.position + axis * body.radius);
-                points.push(state.position - axis * body.radius);
-            }
-        }
-    }
-    for c in world.cloths() {
-        points.extend_from_slice(&c.positions);
-    }
-    // The joints' anchors and the springs' ends (a pendulum's pivot is in no body).
-    let states = world.states();
-    let end = |body: Option<usize>, anchor: &Vector3<f64>| match body {
-        Some(i) => states[i].position + states[i].orientation.matrix() * anchor,
-        None => *anchor,
-    };
-    let links = world.links();
-    for j in &links.joints {
-        points.extend(j.anchors(states));
-    }
-    for s in &links.springs {
-        points.push(end(Some(s.a), &s.anchor_a));
-        points.push(end(s.b, &s.anchor_b));
-    }
-    points
-}
+pub use crate::session::shown_points;
 
 /// The mapping from screen coordinates (right, up) to a grid of `cols × rows` cells.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -33,27 +33,27 @@ fn the_app_pauses_where_their_run_parts_and_names_it() {
     // Their pose at step 45 is their row 45: tumble's x + 1 cm.
     let (x, _) = against.pose_at(45).expect("x y z given");
     let mut app = App::new(lesson, Options::default());
-    app.against = Some(against);
+    app.ui.against = Some(against);
     // Run on through the lesson's page stops until the run pauses by itself at step 30.
     for _ in 0..10 {
-        if app.world.step_count() >= 30 {
+        if app.session.world.step_count() >= 30 {
             break;
         }
-        app.running = true;
+        app.ui.running = true;
         app.step_frames(100);
     }
-    assert_eq!(app.world.step_count(), 30);
-    assert!(!app.running);
+    assert_eq!(app.session.world.step_count(), 30);
+    assert!(!app.ui.running);
     assert_eq!(
-        app.stop.as_ref().map(|s| s.label.as_str()),
+        app.ui.stop.as_ref().map(|s| s.label.as_str()),
         Some("they part")
     );
     let screen = screen(&app);
     assert!(screen.contains("theirs part at step 30 (x)"), "{screen}");
     assert!(screen.contains("theirs"), "{screen}");
-    app.running = true;
+    app.ui.running = true;
     app.step_frames(15);
-    assert!((x.x - app.snapshot.position.x - 0.01).abs() < 1e-12);
+    assert!((x.x - app.session.snapshot.position.x - 0.01).abs() < 1e-12);
 }
 
 /// The screen's text at 200 × 50.

@@ -38,8 +38,8 @@ fn screen(app: &App, width: u16, height: u16) -> String {
 
 /// Runs until the run pauses by itself.
 fn run_to_pause(app: &mut App) {
-    assert!(app.running);
-    while app.running {
+    assert!(app.ui.running);
+    while app.ui.running {
         app.step_frames(10);
     }
 }
@@ -55,11 +55,11 @@ fn lesson_32s_guess_is_compared_at_page_3s_own_time() {
     }
     press(&mut app, KeyCode::Enter);
     run_to_pause(&mut app); // page 2, the touch
-    assert_eq!(app.world.step_count(), 429);
+    assert_eq!(app.session.world.step_count(), 429);
     press(&mut app, KeyCode::Enter);
     run_to_pause(&mut app);
-    assert_eq!(app.world.step_count(), 643);
-    let notice = app.notice.clone().unwrap();
+    assert_eq!(app.session.world.step_count(), 643);
+    let notice = app.ui.notice.clone().unwrap();
     assert!(
         notice.starts_with("cube.y at t = 0.643 s: your guess 0.3 m · simulated "),
         "{notice}"
@@ -80,8 +80,8 @@ fn lesson_16_quotes_at_its_touch_the_velocity_the_panel_shows() {
     let mut app = lesson_app("16-trampoline");
     press(&mut app, KeyCode::Char(' '));
     run_to_pause(&mut app);
-    assert_eq!(app.world.step_count(), 272);
-    let vy = app.snapshot.velocity.y;
+    assert_eq!(app.session.world.step_count(), 272);
+    let vy = app.session.snapshot.velocity.y;
     assert!((vy - -2.570462).abs() < 1e-6, "{vy}");
     let shown = screen(&app, 200, 60);
     assert!(

@@ -38,12 +38,20 @@ fn a_diverging_ghost_freezes_and_the_run_goes_on() {
         "06-sphere-obstacle",
         Some(Comparison::Response(Response::Seed)),
     );
-    app.running = true;
-    app.pause_at_stops = false;
+    app.ui.running = true;
+    app.ui.pause_at_stops = false;
     app.step_frames(700);
-    assert!(app.divergence.is_none(), "{:?}", app.divergence);
-    assert_eq!(app.world.step_count(), 700, "the impulse run went on");
-    let ghost = app.ghost.as_ref().expect("compare mode on");
+    assert!(
+        app.session.divergence.is_none(),
+        "{:?}",
+        app.session.divergence
+    );
+    assert_eq!(
+        app.session.world.step_count(),
+        700,
+        "the impulse run went on"
+    );
+    let ghost = app.session.ghost.as_ref().expect("compare mode on");
     let at = ghost
         .diverged
         .as_ref()
@@ -51,11 +59,14 @@ fn a_diverging_ghost_freezes_and_the_run_goes_on() {
         .step;
     assert!(at < 700, "diverged at {at}");
     assert_eq!(ghost.world.step_count(), at, "frozen at its divergence");
-    assert!(app.running, "still running");
+    assert!(app.ui.running, "still running");
     // The run is the lesson's own impulse run, stepped alone.
     let mut alone = lesson_app("06-sphere-obstacle", None);
     alone.step_frames(700);
-    assert_eq!(alone.world.checkpoint(), app.world.checkpoint());
+    assert_eq!(
+        alone.session.world.checkpoint(),
+        app.session.world.checkpoint()
+    );
     let shown = screen(&app, 200, 60);
     assert!(
         shown.contains(&format!("impulse vs seed (diverged at step {at})")),
@@ -63,10 +74,17 @@ fn a_diverging_ghost_freezes_and_the_run_goes_on() {
     );
     // Stepping back before the divergence thaws the ghost; forward again, it freezes again.
     app.step_back_frames(700 - at as usize + 5);
-    assert!(app.ghost.as_ref().unwrap().diverged.is_none());
+    assert!(app.session.ghost.as_ref().unwrap().diverged.is_none());
     app.step_frames(20);
     assert_eq!(
-        app.ghost.as_ref().unwrap().diverged.as_ref().unwrap().step,
+        app.session
+            .ghost
+            .as_ref()
+            .unwrap()
+            .diverged
+            .as_ref()
+            .unwrap()
+            .step,
         at
     );
 }
@@ -78,34 +96,49 @@ fn when_the_lessons_own_world_diverges_the_run_follows_the_ghost() {
         "08-climbing-bug",
         Some(Comparison::Response(Response::Impulse)),
     );
-    app.pause_at_stops = false;
+    app.ui.pause_at_stops = false;
     let mut alone = lesson_app("08-climbing-bug", None);
     alone.step_frames(3000);
-    let at = alone.divergence.as_ref().expect("seed diverges alone").step;
+    let at = alone
+        .session
+        .divergence
+        .as_ref()
+        .expect("seed diverges alone")
+        .step;
     app.step_frames(at + 200);
-    assert!(app.divergence.is_none(), "{:?}", app.divergence);
-    assert_eq!(app.world.step_count(), at + 200);
+    assert!(
+        app.session.divergence.is_none(),
+        "{:?}",
+        app.session.divergence
+    );
+    assert_eq!(app.session.world.step_count(), at + 200);
     assert_eq!(
-        app.world.contact_model().unwrap().response,
+        app.session.world.contact_model().unwrap().response,
         Response::Impulse,
         "the run follows the impulse world"
     );
-    let ghost = app.ghost.as_ref().unwrap();
+    let ghost = app.session.ghost.as_ref().unwrap();
     assert_eq!(ghost.comparison, Comparison::Response(Response::Seed));
     assert_eq!(ghost.diverged.as_ref().unwrap().step, at);
     assert_eq!(ghost.world.step_count(), at);
     // Exactly the impulse run alone.
     let mut impulse = lesson_app("08-climbing-bug", None);
-    let mut model = *impulse.world.contact_model().unwrap();
+    let mut model = *impulse.session.world.contact_model().unwrap();
     model.response = Response::Impulse;
-    impulse.world.set_contact_model(model);
+    impulse.session.world.set_contact_model(model);
     impulse.step_frames(at + 200);
-    assert_eq!(impulse.world.checkpoint(), app.world.checkpoint());
+    assert_eq!(
+        impulse.session.world.checkpoint(),
+        app.session.world.checkpoint()
+    );
     // Step back across the swap: the impulse world's own earlier frames.
     app.step_back_frames(300);
     impulse.step_back_frames(300);
-    assert_eq!(impulse.world.checkpoint(), app.world.checkpoint());
-    assert!(app.ghost.as_ref().unwrap().diverged.is_none());
+    assert_eq!(
+        impulse.session.world.checkpoint(),
+        app.session.world.checkpoint()
+    );
+    assert!(app.session.ghost.as_ref().unwrap().diverged.is_none());
 }
 
 fn press(app: &mut App, code: crossterm::event::KeyCode) {
@@ -118,7 +151,7 @@ fn press(app: &mut App, code: crossterm::event::KeyCode) {
 /// Selects the form's field labelled `label` and types `text` into it.
 fn set_field(app: &mut App, label: &str, text: &str) {
     use crossterm::event::KeyCode;
-    let tumble::tui::Overlay::Settings(form) = &app.overlay else {
+    let tumble::tui::Overlay::Settings(form) = &app.ui.overlay else {
         panic!("the form is not open");
     };
     let at = form
@@ -126,7 +159,7 @@ fn set_field(app: &mut App, label: &str, text: &str) {
         .iter()
         .position(|f| form.label(f).0 == label)
         .unwrap_or_else(|| panic!("no field `{label}`"));
-    while !matches!(&app.overlay, tumble::tui::Overlay::Settings(f) if f.selected == at) {
+    while !matches!(&app.ui.overlay, tumble::tui::Overlay::Settings(f) if f.selected == at) {
         press(app, KeyCode::Down);
     }
     for c in text.chars() {
@@ -140,16 +173,16 @@ fn the_settings_form_edits_a_scene_of_cloths_only() {
     use tumble::physics::cloth::ClothIntegrator;
     // Lesson 18 tells the student to switch the sheet to implicit-euler with `e`.
     let mut app = lesson_app("18-explicit-limit", None);
-    assert_eq!(app.world.body_count(), 0);
+    assert_eq!(app.session.world.body_count(), 0);
     press(&mut app, KeyCode::Char('e'));
     assert!(
-        matches!(app.overlay, tumble::tui::Overlay::Settings(_)),
+        matches!(app.ui.overlay, tumble::tui::Overlay::Settings(_)),
         "{:?}",
-        app.notice
+        app.ui.notice
     );
     let shown = screen(&app, 80, 24);
     assert!(shown.contains("time step dt"), "{shown}");
-    let name = app.world.cloths()[0].name.clone();
+    let name = app.session.world.cloths()[0].name.clone();
     set_field(
         &mut app,
         &format!("cloth {name} integrator"),
@@ -158,20 +191,25 @@ fn the_settings_form_edits_a_scene_of_cloths_only() {
     set_field(&mut app, &format!("cloth {name} stretch"), "1500");
     set_field(&mut app, "time step dt", "0.01");
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.overlay, tumble::tui::Overlay::None, "{:?}", app.notice);
-    assert_eq!(app.world.dt(), 0.01);
     assert_eq!(
-        app.world.cloths()[0].integrator,
+        app.ui.overlay,
+        tumble::tui::Overlay::None,
+        "{:?}",
+        app.ui.notice
+    );
+    assert_eq!(app.session.world.dt(), 0.01);
+    assert_eq!(
+        app.session.world.cloths()[0].integrator,
         ClothIntegrator::ImplicitEuler
     );
-    assert_eq!(app.lesson.scene.cloths[0].stretch, 1500.0);
-    let notice = app.notice.clone().unwrap();
+    assert_eq!(app.session.lesson.scene.cloths[0].stretch, 1500.0);
+    let notice = app.ui.notice.clone().unwrap();
     assert!(notice.contains("→ implicit-euler"), "{notice}");
     assert!(notice.contains("stretch"), "{notice}");
     // W writes a file the loader reads back with the same values.
     let dir = std::env::temp_dir().join(format!("tumble-classroom-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    app.write_dir = dir.clone();
+    app.prefs.write_dir = dir.clone();
     press(&mut app, KeyCode::Char('W'));
     let written = tumble::scene::load(&app.write_path()).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(written.scene.dt, 0.01);
@@ -188,7 +226,7 @@ fn the_in_app_study_runs_on_a_scene_of_cloths_only() {
     use crossterm::event::KeyCode;
     let mut app = lesson_app("18-explicit-limit", None);
     press(&mut app, KeyCode::Char('s'));
-    let job = app.study.as_ref().expect("a study started");
+    let job = app.session.study.as_ref().expect("a study started");
     assert!(job.refusal().is_none(), "{:?}", job.refusal());
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("study of"), "{shown}");
@@ -212,8 +250,13 @@ fn the_form_moves_orients_and_sets_gravity_and_drag() {
     set_field(&mut app, "g y", "-1.62");
     set_field(&mut app, "drag k (F = −k v)", "0.2");
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.overlay, tumble::tui::Overlay::None, "{:?}", app.notice);
-    let initial = &app.lesson.scene.bodies[0].initial;
+    assert_eq!(
+        app.ui.overlay,
+        tumble::tui::Overlay::None,
+        "{:?}",
+        app.ui.notice
+    );
+    let initial = &app.session.lesson.scene.bodies[0].initial;
     assert_eq!(initial.position.x, 0.5);
     // 45° about x: the body's y axis goes to (0, cos 45°, sin 45°).
     let y = initial.orientation.matrix() * nalgebra::Vector3::y();
@@ -223,10 +266,11 @@ fn the_form_moves_orients_and_sets_gravity_and_drag() {
         "{y}"
     );
     assert_eq!(
-        app.lesson.scene.effects.gravity(),
+        app.session.lesson.scene.effects.gravity(),
         Some(nalgebra::Vector3::new(0.0, -1.62, 0.0))
     );
     assert!(app
+        .session
         .lesson
         .scene
         .effects
@@ -236,8 +280,8 @@ fn the_form_moves_orients_and_sets_gravity_and_drag() {
             angular: 0.0
         }));
     // One frame: the force panel's F = M g − k v with v = 0 at t = 0 is M g.
-    let m = app.lesson.scene.bodies[0].body.mass;
-    let force = app.snapshot.force;
+    let m = app.session.lesson.scene.bodies[0].body.mass;
+    let force = app.session.snapshot.force;
     assert!((force.y + 1.62 * m).abs() < 1e-12, "{force}");
 }
 
@@ -250,9 +294,9 @@ fn the_apps_response_and_ghost_pass_the_scenes_rules() {
     let mut seen = Vec::new();
     for _ in 0..Response::ALL.len() {
         press(&mut app, KeyCode::Char('c'));
-        let response = app.world.contact_model().unwrap().response;
-        assert_ne!(response, Response::Seed, "{:?}", app.notice);
-        if let Some(notice) = &app.notice {
+        let response = app.session.world.contact_model().unwrap().response;
+        assert_ne!(response, Response::Seed, "{:?}", app.ui.notice);
+        if let Some(notice) = &app.ui.notice {
             seen.push(notice.clone());
         }
     }
@@ -263,14 +307,15 @@ fn the_apps_response_and_ghost_pass_the_scenes_rules() {
         "{seen:?}"
     );
     app.start_compare(Comparison::Response(Response::Seed));
-    assert!(app.ghost.is_none());
+    assert!(app.session.ghost.is_none());
     assert!(
-        app.notice
+        app.ui
+            .notice
             .as_deref()
             .unwrap()
             .starts_with("no ghost: the `seed` response knows one body"),
         "{:?}",
-        app.notice
+        app.ui.notice
     );
     assert!(!app
         .comparisons()
@@ -304,7 +349,7 @@ fn compare_with_the_lessons_own_setting_is_refused() {
 
 /// The cells of the row labelled `label` in the panel titled `title` (its first match).
 fn cells(app: &App, title: &str, label: &str) -> Vec<String> {
-    tumble::tables::panels(&app.snapshot, tumble::tables::Frame::World)
+    tumble::tables::panels(&app.session.snapshot, tumble::tables::Frame::World)
         .into_iter()
         .filter(|p| p.title.starts_with(title))
         .flat_map(|p| p.rows)
@@ -322,14 +367,14 @@ fn round_off_prints_as_zero_and_is_never_highlighted() {
     // Lesson 14: after the first blow `left` stops; the solver stops within its tolerance,
     // 1e-10 m/s (impulse::TOLERANCE): the page says P = 0, and so does the panel.
     let mut app = lesson_app("14-head-on", None);
-    app.pause_at_stops = false;
+    app.ui.pause_at_stops = false;
     app.step_frames(505);
-    assert_eq!(app.snapshot.body_name, "left");
+    assert_eq!(app.session.snapshot.body_name, "left");
     assert!(
-        app.snapshot.linear_momentum.x.abs() > 0.0,
+        app.session.snapshot.linear_momentum.x.abs() > 0.0,
         "a residue is there"
     );
-    assert!(app.snapshot.linear_momentum.x.abs() <= 2e-10);
+    assert!(app.session.snapshot.linear_momentum.x.abs() <= 2e-10);
     assert_eq!(cells(&app, "linear momentum", "P"), ["0.000000"; 3]);
     assert_eq!(cells(&app, "linear momentum", "v"), ["0.000000"; 3]);
     assert_eq!(cells(&app, "energy", "E − E₀"), ["0.000000"]);
@@ -339,7 +384,7 @@ fn round_off_prints_as_zero_and_is_never_highlighted() {
     // A spinning box (lesson 7, impulse): the world inertia tensor's off-diagonal 1e-19
     // entries print as 0, so a frame never highlights them as changed.
     let mut app = lesson_app("07-box-obstacle", None);
-    app.pause_at_stops = false;
+    app.ui.pause_at_stops = false;
     app.step_frames(300);
     let before = cells(&app, "inertia tensor", "I");
     app.step_frames(1);
@@ -406,9 +451,10 @@ fn after_c_the_page_says_it_describes_the_lessons_own_settings() {
 fn wording_of_the_loop_strip_and_the_divergence() {
     // |ω|·dt in fixed decimals, not `3.4937e0`.
     let mut app = lesson_app("05-ground-collision", None);
-    app.pause_at_stops = false;
+    app.ui.pause_at_stops = false;
     app.step_frames(3000);
     let d = app
+        .session
         .divergence
         .as_ref()
         .expect("lesson 5 diverges with seed");
@@ -426,7 +472,7 @@ fn wording_of_the_loop_strip_and_the_divergence() {
             show_timing: false,
         },
     );
-    app.pause_at_stops = false;
+    app.ui.pause_at_stops = false;
     let mut seen = false;
     for _ in 0..400 {
         app.step_frames(1);
@@ -457,14 +503,14 @@ fn the_loop_strip_shows_the_chosen_responses_own_formula() {
         ),
     ] {
         let mut app = lesson_app("05-ground-collision", None);
-        app.pause_at_stops = false;
-        let mut model = *app.world.contact_model().unwrap();
+        app.ui.pause_at_stops = false;
+        let mut model = *app.session.world.contact_model().unwrap();
         model.response = response;
-        app.world.set_contact_model(model);
+        app.session.world.set_contact_model(model);
         let mut touched = false;
         for _ in 0..2000 {
             app.step_frames(1);
-            if !app.snapshot.contacts.is_empty() {
+            if !app.session.snapshot.contacts.is_empty() {
                 touched = true;
                 break;
             }
@@ -497,11 +543,11 @@ fn the_terminal_app_draws_at_once_and_fills_its_live_numbers_from_a_thread() {
         show_timing: false,
     };
     let expected = App::new(lesson.clone(), options.clone());
-    let expected = expected.live.page_text(&lesson.pages[page]);
+    let expected = expected.session.live.page_text(&lesson.pages[page]);
     assert!(!expected.contains("(computing…)"), "{expected}");
     let mut app = App::interactive(lesson.clone(), options);
     assert!(app.live_pending());
-    let waiting = app.live.page_text(&lesson.pages[page]);
+    let waiting = app.session.live.page_text(&lesson.pages[page]);
     assert!(waiting.contains("(computing…)"), "{waiting}");
     // A guard against a hang, not a speed claim: the values take about half a second.
     let start = std::time::Instant::now();
@@ -513,5 +559,5 @@ fn the_terminal_app_draws_at_once_and_fills_its_live_numbers_from_a_thread() {
         );
         std::thread::sleep(std::time::Duration::from_millis(10));
     }
-    assert_eq!(app.live.page_text(&lesson.pages[page]), expected);
+    assert_eq!(app.session.live.page_text(&lesson.pages[page]), expected);
 }

@@ -12,7 +12,7 @@ fn app(source: &str) -> App {
 
 /// The value of bar `label` now.
 fn bar(app: &App, label: &str) -> Option<f64> {
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     bars(&s.system.energy, &s.energy_balance)
         .into_iter()
         .find(|(k, _)| k.label == label)
@@ -51,7 +51,7 @@ fn a_falling_bodys_bars_trade_potential_for_kinetic_and_add_up_to_e0() {
         "V = {v}"
     );
     // The ledger's numbers, as the energy panel reads them.
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     assert_eq!(k, s.system.energy.kinetic);
     assert_eq!(v, s.system.energy.potential);
     // No spring, no contact, no drag: no such bar.
@@ -109,7 +109,7 @@ fn a_sliding_blocks_kinetic_energy_is_booked_to_the_contacts() {
     assert!(k < 1e-9, "stopped: K = {k}");
     let taken = bar(&app, "→ contacts").unwrap();
     // ½ M v₀² = 3 J went to the contacts (V changes by the block's settling only).
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     assert_eq!(taken, -s.energy_balance.contacts.unwrap());
     // Stopped where it started its slide's height: E − E₀ = −½ M v₀² = −3 J, all of it
     // booked to the contacts but the integrator's own drift (symplectic Euler's settling on

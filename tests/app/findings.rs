@@ -37,20 +37,20 @@ fn the_view_grows_a_little_at_a_time_and_keeps_every_body_in_it() {
         let mut app = lesson_app(name);
         let mut worst: f64 = 1.0;
         for _ in 0..frames {
-            let before = app.region;
+            let before = app.ui.region;
             app.step_frames(1);
-            let after = app.region;
+            let after = app.ui.region;
             for i in 0..3 {
                 let (e0, e1) = (before.max[i] - before.min[i], after.max[i] - after.min[i]);
                 worst = worst.max(e1 / e0);
             }
-            for p in shown_points(&app.world) {
+            for p in shown_points(&app.session.snapshot) {
                 for i in 0..3 {
                     assert!(
-                        p[i] >= app.region.min[i] && p[i] <= app.region.max[i],
+                        p[i] >= app.ui.region.min[i] && p[i] <= app.ui.region.max[i],
                         "{name} t = {}: {p:?} outside {:?}",
-                        app.world.time(),
-                        app.region
+                        app.session.world.time(),
+                        app.ui.region
                     );
                 }
             }
@@ -96,7 +96,7 @@ fn a_stopped_bodys_energy_below_the_panels_round_off_prints_as_zero() {
     // shows for `right` (64 ε of it is 7e-15 J), so it prints as 0, as the page says.
     let mut app = lesson_app("14-head-on");
     app.step_frames(2000);
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     assert!(s.bodies[0].energy.kinetic.abs() < 1e-18 && s.bodies[0].energy.kinetic != 0.0);
     let panel = tumble::tables::body_energy_panel(s);
     let cells = |row: usize| -> Vec<String> {
@@ -117,9 +117,9 @@ fn at_a_contact_page_the_inertia_tensor_yields_before_the_energy() {
     // Fc and τc rows, and not every panel fits. The cube's inertia tensor is constant (a cube
     // is isotropic): it yields first, the energy panel stays (it was left out before).
     let mut app = lesson_app("08-climbing-bug");
-    app.running = true;
+    app.ui.running = true;
     app.step_frames(1000);
-    assert_eq!(app.world.step_count(), 317, "paused at page 2");
+    assert_eq!(app.session.world.step_count(), 317, "paused at page 2");
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("K, V, E"), "{shown}");
     assert!(shown.contains("Fc") && shown.contains("τc"), "{shown}");

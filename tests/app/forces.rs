@@ -45,7 +45,7 @@ fn a_stretched_spring_pulls_k_times_its_stretch_and_gravity_m_g() {
     // tui-spring: 1 kg hanging 1 m below (0, 1, 0) on k = 100 N/m, ℓ₀ = 0.5 m: at t = 0 the
     // spring pulls (0, 50, 0) N at the block's anchor, gravity (0, −9.81, 0) N at x.
     let app = fixture("tui-spring.toml");
-    let arrows = force_arrows(&app.snapshot, app.world.effects().gravity());
+    let arrows = force_arrows(&app.session.snapshot, app.session.world.effects().gravity());
     assert_eq!(arrows.len(), 2, "{arrows:?}");
     let spring = arrows.iter().find(|a| a.kind == ForceKind::Spring).unwrap();
     assert!((spring.force - Vector3::new(0.0, 50.0, 0.0)).norm() < 1e-12);
@@ -65,11 +65,11 @@ fn the_pendulums_rod_pulls_3_m_g_at_the_bottom() {
         tumble::lessons::load(Path::new("25-the-pendulum")).unwrap_or_else(|e| panic!("{e}")),
     );
     app.step_frames(592);
-    let arrows = force_arrows(&app.snapshot, app.world.effects().gravity());
+    let arrows = force_arrows(&app.session.snapshot, app.session.world.effects().gravity());
     let joint = arrows.iter().find(|a| a.kind == ForceKind::Joint).unwrap();
     assert!((joint.force.y - 29.43).abs() < 0.01, "{joint:?}");
     assert!(joint.force.x.abs() < 0.1, "{joint:?}");
-    assert!((joint.at - app.snapshot.position).norm() < 1e-9);
+    assert!((joint.at - app.session.snapshot.position).norm() < 1e-9);
     assert_eq!(arrows.len(), 2, "the rod and gravity: {arrows:?}");
 }
 
@@ -79,7 +79,7 @@ fn f_draws_the_arrows_with_a_scale_and_a_legend() {
     let before = screen(&app, 80, 24);
     assert!(!before.contains("gcjs forces"));
     app.handle_key(&KeyEvent::new(KeyCode::Char('F'), KeyModifiers::NONE));
-    assert!(app.forces);
+    assert!(app.prefs.forces);
     let after = screen(&app, 80, 24);
     insta::assert_snapshot!("forces_spring_80x24", after);
     insta::assert_snapshot!("forces_spring_120x40", screen(&app, 120, 40));
@@ -94,11 +94,14 @@ fn the_period_timer_times_the_pendulum_from_the_horizontal_to_the_elliptic_integ
     let mut app = app_of(
         tumble::lessons::load(Path::new("25-the-pendulum")).unwrap_or_else(|e| panic!("{e}")),
     );
-    let (mut t, mut x) = (vec![app.snapshot.time], vec![app.snapshot.position.x]);
+    let (mut t, mut x) = (
+        vec![app.session.snapshot.time],
+        vec![app.session.snapshot.position.x],
+    );
     for _ in 0..8000 {
-        app.world.step();
-        t.push(app.world.time());
-        x.push(app.world.states()[0].position.x);
+        app.session.world.step();
+        t.push(app.session.world.time());
+        x.push(app.session.world.states()[0].position.x);
     }
     let p = periods(&t, &x).unwrap();
     assert_eq!(p.count, 2, "{p:?}");

@@ -91,7 +91,7 @@ fn fuzz(path: &str, seed: u64, events: usize) {
             show_timing: false,
         },
     );
-    app.write_dir = scratch();
+    app.prefs.write_dir = scratch();
     let mut terminal = Terminal::new(TestBackend::new(120, 40)).unwrap();
     let mut log: Vec<String> = Vec::new();
     for _ in 0..events {
@@ -114,12 +114,12 @@ fn fuzz(path: &str, seed: u64, events: usize) {
             }
         }
         assert!(
-            !app.quit,
+            !app.ui.quit,
             "{path} seed {seed}: quit without q after {log:?}"
         );
         // As the event loop: a slice of a jump, a few frames while running, then a draw.
         app.work(Duration::from_millis(2));
-        if app.running && app.job.is_none() && app.divergence.is_none() {
+        if app.ui.running && app.session.job.is_none() && app.session.divergence.is_none() {
             app.step_frames(1 + rng.below(3));
         }
         terminal
@@ -129,7 +129,7 @@ fn fuzz(path: &str, seed: u64, events: usize) {
     app.handle_key(&KeyEvent::new(KeyCode::Char('q'), KeyModifiers::NONE));
     let tail = &log[log.len().saturating_sub(12)..];
     assert!(
-        app.quit,
+        app.ui.quit,
         "{path} seed {seed}: q did not end the app after …{tail:?}"
     );
 }

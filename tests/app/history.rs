@@ -170,9 +170,9 @@ fn a_30x30_sheet_keeps_the_ring_under_budget_and_steps_back_exactly() {
     const FRAMES: u64 = 2000;
     let mut app = app(ClothIntegrator::SymplecticEuler);
     app.step_frames(FRAMES);
-    assert_eq!(app.world.step_count(), FRAMES);
-    let history = &app.history;
-    let one = app.world.checkpoint().heap_bytes();
+    assert_eq!(app.session.world.step_count(), FRAMES);
+    let history = &app.session.history;
+    let one = app.session.world.checkpoint().heap_bytes();
     eprintln!(
         "after {FRAMES} frames: {} frames kept, K = {}, {} keyframes, {} bytes (budget {DEFAULT_BUDGET}, \
          one checkpoint {one} bytes)",
@@ -203,19 +203,23 @@ fn a_30x30_sheet_keeps_the_ring_under_budget_and_steps_back_exactly() {
     let expected = forward(&mut plain, FRAMES, &at);
     assert_eq!(
         bits(&plain),
-        bits(&app.world),
+        bits(&app.session.world),
         "the app steps as a plain world"
     );
     for (b, (checkpoint, bits_then)) in back.iter().zip(expected.iter().rev()) {
         let mut stepped = app.clone();
         stepped.step_back_frames(*b as usize);
-        assert_eq!(stepped.world.step_count(), FRAMES - b);
-        assert_eq!(bits(&stepped.world), *bits_then, "{b} frames back");
-        assert_eq!(stepped.world.checkpoint(), *checkpoint, "{b} frames back");
-        assert_eq!(stepped.history.len(), (FRAMES - b) as usize);
+        assert_eq!(stepped.session.world.step_count(), FRAMES - b);
+        assert_eq!(bits(&stepped.session.world), *bits_then, "{b} frames back");
+        assert_eq!(
+            stepped.session.world.checkpoint(),
+            *checkpoint,
+            "{b} frames back"
+        );
+        assert_eq!(stepped.session.history.len(), (FRAMES - b) as usize);
     }
     // ← one frame at a time across a keyframe, every frame exact.
-    let k = app.history.interval() as u64;
+    let k = app.session.history.interval() as u64;
     let last_key = (FRAMES - 1) / k * k;
     let mut plain = lesson(ClothIntegrator::SymplecticEuler).scene.world();
     let frames: Vec<u64> = (last_key - 3..FRAMES).collect();
@@ -224,13 +228,13 @@ fn a_30x30_sheet_keeps_the_ring_under_budget_and_steps_back_exactly() {
     let marks = (k as f64).sqrt().ceil() as usize;
     for (frame, (_, bits_then)) in frames.iter().zip(&expected).rev() {
         app.step_back();
-        assert_eq!(app.world.step_count(), *frame);
-        assert_eq!(bits(&app.world), *bits_then, "frame {frame}");
-        assert!(app.history.rewind_bytes() <= marks * (one + 1024));
+        assert_eq!(app.session.world.step_count(), *frame);
+        assert_eq!(bits(&app.session.world), *bits_then, "frame {frame}");
+        assert!(app.session.history.rewind_bytes() <= marks * (one + 1024));
     }
     // A frame pushed drops the marks.
     app.step_frames(1);
-    assert_eq!(app.history.rewind_bytes(), 0);
+    assert_eq!(app.session.history.rewind_bytes(), 0);
 }
 
 #[test]
@@ -281,19 +285,19 @@ fn a_small_budget_drops_the_oldest_frames_with_their_keyframe() {
 fn a_switch_of_body_integrator_mid_segment_is_replayed_with_the_old_one() {
     // Frames 0..30 under rk4, then euler: stepping back to frame 20 must replay rk4.
     let mut app = app(ClothIntegrator::SymplecticEuler);
-    assert!(app.history.is_empty());
+    assert!(app.session.history.is_empty());
     app.step_frames(30);
     app.update(tumble::tui::keys::Message::NextIntegrator);
-    let switched = app.world.integrator();
+    let switched = app.session.world.integrator();
     assert_ne!(switched, Integrator::Rk4);
     app.step_frames(10);
     let mut plain = lesson(ClothIntegrator::SymplecticEuler).scene.world();
     let expected = forward(&mut plain, 30, &[20]);
     app.step_back_frames(20);
-    assert_eq!(app.world.step_count(), 20);
-    assert_eq!(bits(&app.world), expected[0].1);
+    assert_eq!(app.session.world.step_count(), 20);
+    assert_eq!(bits(&app.session.world), expected[0].1);
     assert_eq!(
-        app.world.integrator(),
+        app.session.world.integrator(),
         switched,
         "the world keeps the integrator chosen last"
     );
@@ -309,21 +313,21 @@ fn compare_ghost_with_implicit_euler_on_a_symplectic_sheet_runs_and_differs() {
     )));
     assert!(offered.contains(&Comparison::Integrator(Integrator::Euler)));
     app.start_compare(Comparison::ClothIntegrator(ClothIntegrator::ImplicitEuler));
-    let ghost = app.ghost.as_ref().expect("a ghost");
+    let ghost = app.session.ghost.as_ref().expect("a ghost");
     assert_eq!(
         ghost.world.cloths()[0].integrator,
         ClothIntegrator::ImplicitEuler
     );
     assert_eq!(
-        app.world.cloths()[0].integrator,
+        app.session.world.cloths()[0].integrator,
         ClothIntegrator::SymplecticEuler
     );
     app.step_frames(200);
-    assert!(app.divergence.is_none());
-    let ghost = &app.ghost.as_ref().unwrap().world;
+    assert!(app.session.divergence.is_none());
+    let ghost = &app.session.ghost.as_ref().unwrap().world;
     assert_eq!(ghost.step_count(), 200);
     // Backward Euler damps the sheet's fast modes: the two sheets part.
-    let apart = app.world.cloths()[0]
+    let apart = app.session.world.cloths()[0]
         .positions
         .iter()
         .zip(&ghost.cloths()[0].positions)
@@ -345,10 +349,16 @@ fn compare_ghost_with_implicit_euler_on_a_symplectic_sheet_runs_and_differs() {
     let mut alone = lesson(ClothIntegrator::ImplicitEuler).scene.world();
     let expected = forward(&mut alone, 200, &[147, 148, 149, 150]);
     app.step_back_frames(50);
-    assert_eq!(bits(&app.ghost.as_ref().unwrap().world), expected[3].1);
+    assert_eq!(
+        bits(&app.session.ghost.as_ref().unwrap().world),
+        expected[3].1
+    );
     for back in (0..3).rev() {
         app.step_back();
-        assert_eq!(bits(&app.ghost.as_ref().unwrap().world), expected[back].1);
+        assert_eq!(
+            bits(&app.session.ghost.as_ref().unwrap().world),
+            expected[back].1
+        );
     }
 }
 
@@ -444,10 +454,10 @@ fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
             show_timing: false,
         },
     );
-    app.write_dir = dir.clone();
+    app.prefs.write_dir = dir.clone();
     app.step_frames(10);
     typed(&mut app, "e");
-    let Overlay::Settings(form) = &app.overlay else {
+    let Overlay::Settings(form) = &app.ui.overlay else {
         panic!("e opens the form");
     };
     // restitution, friction, mass, size ×3 (the box's sides), dt, x₀ ×3, axis ×3, angle,
@@ -459,7 +469,7 @@ fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
     }
     typed(&mut app, "implicit-eulr");
     press(&mut app, KeyCode::Enter);
-    let Overlay::Settings(form) = &app.overlay else {
+    let Overlay::Settings(form) = &app.ui.overlay else {
         panic!("a bad name keeps the form open");
     };
     assert!(
@@ -481,14 +491,14 @@ fn the_form_switches_a_cloths_integrator_on_restart_and_w_writes_it() {
     let to = to.clone();
     app.perform(effect);
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.overlay, Overlay::None);
-    assert_eq!(app.world.step_count(), 0, "restarted at t = 0");
+    assert_eq!(app.ui.overlay, Overlay::None);
+    assert_eq!(app.session.world.step_count(), 0, "restarted at t = 0");
     assert_eq!(
-        app.world.cloths()[0].integrator,
+        app.session.world.cloths()[0].integrator,
         ClothIntegrator::ImplicitEuler
     );
     assert_eq!(
-        app.notice.as_deref(),
+        app.ui.notice.as_deref(),
         Some(
             "settings applied (cloth sheet symplectic-euler → implicit-euler): the scene \
              restarted at t = 0"

@@ -15,7 +15,7 @@ fn lesson_app(name: &str) -> App {
             show_timing: false,
         },
     );
-    app.background_jobs = true;
+    app.session.background_jobs = true;
     app
 }
 
@@ -37,23 +37,26 @@ fn a_long_jump_is_a_job_and_q_quits_in_the_same_update() {
     // returns after one slice with the job under way and its progress in the status line.
     let mut app = lesson_app("16-trampoline");
     jump(&mut app, "5000");
-    let job = app.job.expect("the jump runs as a job");
-    assert_eq!(job.target, (5000.0 / app.world.dt()).round() as u64);
-    assert!(app.world.step_count() < job.target, "not done in one slice");
-    let notice = app.notice.clone().unwrap();
+    let job = app.session.job.expect("the jump runs as a job");
+    assert_eq!(job.target, (5000.0 / app.session.world.dt()).round() as u64);
+    assert!(
+        app.session.world.step_count() < job.target,
+        "not done in one slice"
+    );
+    let notice = app.ui.notice.clone().unwrap();
     assert!(notice.starts_with("jumping to t = 5000 s: "), "{notice}");
     assert!(notice.contains("Esc cancels, q quits"), "{notice}");
     // A slice more runs frames and returns.
-    let before = app.world.step_count();
+    let before = app.session.world.step_count();
     assert!(app.work(Duration::from_millis(5)));
-    assert!(app.world.step_count() > before);
+    assert!(app.session.world.step_count() > before);
     // q: handled in this very call, the job is dropped (nothing steps it any more).
     press(&mut app, KeyCode::Char('q'));
-    assert!(app.quit);
-    assert!(app.job.is_none(), "the job is told to stop");
-    let stopped = app.world.step_count();
+    assert!(app.ui.quit);
+    assert!(app.session.job.is_none(), "the job is told to stop");
+    let stopped = app.session.world.step_count();
     assert!(!app.work(Duration::from_millis(5)));
-    assert_eq!(app.world.step_count(), stopped);
+    assert_eq!(app.session.world.step_count(), stopped);
 }
 
 #[test]
@@ -62,39 +65,42 @@ fn ctrl_c_quits_and_esc_cancels_a_jump_where_it_got_to() {
     jump(&mut app, "5000");
     // Other keys wait for the job (and say so); Esc cancels it.
     press(&mut app, KeyCode::Char(' '));
-    assert!(!app.running);
-    assert!(app.notice.as_deref().unwrap().contains("Esc cancels"));
+    assert!(!app.ui.running);
+    assert!(app.ui.notice.as_deref().unwrap().contains("Esc cancels"));
     press(&mut app, KeyCode::Esc);
-    assert!(app.job.is_none());
-    assert!(!app.quit);
-    let at = app.world.step_count();
+    assert!(app.session.job.is_none());
+    assert!(!app.ui.quit);
+    let at = app.session.world.step_count();
     assert!(at > 0);
     assert_eq!(
-        app.notice.as_deref().unwrap(),
+        app.ui.notice.as_deref().unwrap(),
         format!(
             "jump cancelled at t = {} s (step {at})",
-            tumble::tui::settings_form::tidy(app.world.time())
+            tumble::tui::settings_form::tidy(app.session.world.time())
         )
     );
     // The app goes on from there; a second jump is quit with Ctrl-C.
     jump(&mut app, "5000");
-    assert!(app.job.is_some());
+    assert!(app.session.job.is_some());
     app.handle_key(&KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
-    assert!(app.quit && app.job.is_none());
+    assert!(app.ui.quit && app.session.job.is_none());
 }
 
 #[test]
 fn a_short_jump_as_a_job_ends_where_the_direct_jump_does() {
     let mut direct = lesson_app("16-trampoline");
-    direct.background_jobs = false;
+    direct.session.background_jobs = false;
     jump(&mut direct, "0.5");
     let mut job = lesson_app("16-trampoline");
     jump(&mut job, "0.5");
     while job.work(Duration::from_millis(20)) {}
-    assert_eq!(job.world.checkpoint(), direct.world.checkpoint());
-    assert_eq!(job.notice, direct.notice);
     assert_eq!(
-        direct.notice.as_deref(),
+        job.session.world.checkpoint(),
+        direct.session.world.checkpoint()
+    );
+    assert_eq!(job.ui.notice, direct.ui.notice);
+    assert_eq!(
+        direct.ui.notice.as_deref(),
         Some("jumped to t = 0.5 s (step 500)")
     );
 }

@@ -89,36 +89,36 @@ position = [0.0, 0.0, 0.0]
 fn a_click_selects_the_body_under_the_pointer_and_not_empty_space() {
     let mut app = app_of_(TWO_CUBES);
     screen(&app, 120, 40);
-    assert_eq!(app.selected, 0);
+    assert_eq!(app.session.selected, 0);
     // A click on `right`'s barycenter, then near its corner (0.15 m from its centre along
     // both axes): `right`, held by the hand where clicked.
     at(&mut app, Action::Press, Vector3::new(1.0, 0.0, 0.0));
-    assert_eq!(app.selected, 1);
-    assert_eq!(app.snapshot.body_name, "right");
-    assert_eq!(app.world.hand().map(|h| h.body), Some(1));
+    assert_eq!(app.session.selected, 1);
+    assert_eq!(app.session.snapshot.body_name, "right");
+    assert_eq!(app.session.world.hand().map(|h| h.body), Some(1));
     mouse(&mut app, Action::Release, (0, 0));
-    assert!(app.world.hand().is_none(), "released: let go");
+    assert!(app.session.world.hand().is_none(), "released: let go");
     at(&mut app, Action::Press, Vector3::new(-0.85, 0.15, 0.0));
-    assert_eq!(app.snapshot.body_name, "left");
+    assert_eq!(app.session.snapshot.body_name, "left");
     mouse(&mut app, Action::Release, (0, 0));
     // Empty space between them (0.6 m from either cube's side): nothing selected, nothing held.
     at(&mut app, Action::Press, Vector3::new(0.0, 0.0, 0.0));
-    assert_eq!(app.selected, 0, "still left");
-    assert!(app.world.hand().is_none());
+    assert_eq!(app.session.selected, 0, "still left");
+    assert!(app.session.world.hand().is_none());
     // A click never moved anything: the hand did no work, the ledger has no hand row.
-    assert_eq!(app.world.energy_balance().hand, None);
+    assert_eq!(app.session.world.energy_balance().hand, None);
 }
 
 #[test]
 fn dragging_pulls_a_resting_body_towards_the_pointer() {
     let mut app = app_of_(RESTING);
     screen(&app, 120, 40);
-    let start = app.world.states()[0].position;
+    let start = app.session.world.states()[0].position;
     at(&mut app, Action::Press, start);
     // Drag to 0.5 m right and 0.4 m up of where it rests.
     let cell = cell_of(&app, start + Vector3::new(0.5, 0.4, 0.0));
     mouse(&mut app, Action::Drag, cell);
-    let target = app.world.hand().unwrap().target;
+    let target = app.session.world.hand().unwrap().target;
     assert!(
         (target - (start + Vector3::new(0.5, 0.4, 0.0))).norm() < 0.05,
         "{target}"
@@ -127,14 +127,14 @@ fn dragging_pulls_a_resting_body_towards_the_pointer() {
     // held barycenter below the pointer by M g / k = g / ω_h² = 9.81 / 400 = 0.0245 m (the
     // grab is at the barycenter: m_eff = M).
     app.step_frames(200);
-    let end = app.world.states()[0].position;
+    let end = app.session.world.states()[0].position;
     let sag = 9.81 / 400.0;
     assert!(
         (end - (target - Vector3::new(0.0, sag, 0.0))).norm() < 0.01,
         "held at {end}, pointer at {target}"
     );
     // The hand lifted it: its work is at least the potential energy gained, M g Δy.
-    let balance = app.world.energy_balance();
+    let balance = app.session.world.energy_balance();
     let lifted = 2.0 * 9.81 * (end.y - start.y);
     let hand = balance.hand.expect("a hand row");
     assert!(hand >= lifted, "hand {hand} J < M g Δy = {lifted} J");
@@ -143,9 +143,9 @@ fn dragging_pulls_a_resting_body_towards_the_pointer() {
     assert!(shown.contains("  hand"), "{shown}");
     assert!(shown.contains("hand") && shown.contains(" N"), "{shown}");
     mouse(&mut app, Action::Release, cell);
-    assert!(app.world.hand().is_none());
+    assert!(app.session.world.hand().is_none());
     assert_eq!(
-        app.world.energy_balance().hand,
+        app.session.world.energy_balance().hand,
         Some(hand),
         "the work stays booked"
     );
@@ -162,16 +162,16 @@ fn the_hands_work_is_the_ledgers_hand_row_and_the_balance_closes() {
     let grab = Vector3::new(0.25, 0.1, 0.0);
     at(&mut app, Action::Press, grab);
     at(&mut app, Action::Drag, Vector3::new(0.5, 0.4, 0.0));
-    let body = app.world.bodies()[0].clone();
-    let dt = app.world.dt();
+    let body = app.session.world.bodies()[0].clone();
+    let dt = app.session.world.dt();
     let mut expected = 0.0;
     let mut scale = 0.0_f64;
     for frame in 0..150 {
         if frame == 100 {
             mouse(&mut app, Action::Release, (0, 0));
         }
-        if let Some(hand) = app.world.hand().copied() {
-            let s = app.world.states()[0];
+        if let Some(hand) = app.session.world.hand().copied() {
+            let s = app.session.world.states()[0];
             let k = derive(&body, &s);
             let r = k.rotation * hand.point_body;
             let j = hand.pull(&body, &s).force * dt;
@@ -183,7 +183,7 @@ fn the_hands_work_is_the_ledgers_hand_row_and_the_balance_closes() {
         }
         app.step_frames(1);
     }
-    let balance = app.world.energy_balance();
+    let balance = app.session.world.energy_balance();
     let booked = balance.hand.unwrap();
     assert!(booked > 0.1, "the hand set it moving: {booked} J");
     // The same sum two ways (the ledger: K after − K before): round-off only.
@@ -213,7 +213,7 @@ fn the_wheel_zooms_about_the_pointer_and_z_zooms_about_the_centre() {
     let at = cell_of(&app, Vector3::new(1.0, 0.1, 0.0));
     let under = before.world_at(at.0, at.1).unwrap();
     mouse(&mut app, Action::WheelUp, at);
-    assert_eq!(app.zoom.steps, 1);
+    assert_eq!(app.ui.zoom.steps, 1);
     screen(&app, 120, 40);
     let after = app.viewport().unwrap();
     assert!((after.mapping.scale - before.mapping.scale / 1.25).abs() < 1e-12);
@@ -221,7 +221,7 @@ fn the_wheel_zooms_about_the_pointer_and_z_zooms_about_the_centre() {
     assert!((after.world_at(at.0, at.1).unwrap() - under).norm() < 1e-9);
     mouse(&mut app, Action::WheelDown, at);
     screen(&app, 120, 40);
-    assert_eq!(app.zoom.steps, 0);
+    assert_eq!(app.ui.zoom.steps, 0);
     assert_eq!(app.viewport().unwrap(), before, "back to the fitted view");
     // Keys: z in, Z out, about the centre.
     app.update(Message::ZoomIn);
@@ -235,7 +235,7 @@ fn the_wheel_zooms_about_the_pointer_and_z_zooms_about_the_centre() {
     );
     app.update(Message::ZoomOut);
     app.update(Message::ZoomOut);
-    assert_eq!(app.zoom.steps, 0);
+    assert_eq!(app.ui.zoom.steps, 0);
 }
 
 /// The column of the `n`-th number (0-based) right of column `from` in a line's characters.
@@ -291,9 +291,9 @@ fn a_click_on_a_panel_row_graphs_that_quantity() {
         Action::Press,
         number_cell(&shown, "angular velocity", "ω", 2),
     );
-    assert_eq!(app.view, View::Plot);
-    let plot = app.plot.unwrap();
-    assert_eq!(app.plot_series.columns[plot.y].name, "box.wz");
+    assert_eq!(app.ui.view, View::Plot);
+    let plot = app.ui.plot.unwrap();
+    assert_eq!(app.session.plot_series.columns[plot.y].name, "box.wz");
     assert_eq!(plot.x, None);
     // Back (Esc), then x's y component and the energy row's K.
     app.update(Message::Back);
@@ -303,7 +303,10 @@ fn a_click_on_a_panel_row_graphs_that_quantity() {
         Action::Press,
         number_cell(&shown, "state", "x", 1),
     );
-    assert_eq!(app.plot_series.columns[app.plot.unwrap().y].name, "box.y");
+    assert_eq!(
+        app.session.plot_series.columns[app.ui.plot.unwrap().y].name,
+        "box.y"
+    );
     app.update(Message::Back);
     let shown = screen(&app, 120, 40);
     mouse(
@@ -312,7 +315,7 @@ fn a_click_on_a_panel_row_graphs_that_quantity() {
         number_cell(&shown, "energy", "K, V, E", 0),
     );
     assert_eq!(
-        app.plot_series.columns[app.plot.unwrap().y].name,
+        app.session.plot_series.columns[app.ui.plot.unwrap().y].name,
         "box.kinetic"
     );
     // A row the plot list lacks (ωbody): no graph, and a notice saying so.
@@ -323,8 +326,8 @@ fn a_click_on_a_panel_row_graphs_that_quantity() {
         Action::Press,
         number_cell(&shown, "angular velocity", "ωbody", 0),
     );
-    assert_eq!(app.view, View::Loop);
-    assert!(app.notice.as_deref().unwrap_or("").contains("no graph"));
+    assert_eq!(app.ui.view, View::Loop);
+    assert!(app.ui.notice.as_deref().unwrap_or("").contains("no graph"));
 }
 
 #[test]
@@ -348,12 +351,18 @@ fn in_the_stage_layout_a_click_on_an_essential_row_graphs_it() {
         (number_col(&chars, col, n), y as u16)
     };
     mouse(&mut app, Action::Press, essentials(&shown, "ω", 2));
-    assert_eq!(app.view, View::Plot, "{shown}");
-    assert_eq!(app.plot_series.columns[app.plot.unwrap().y].name, "box.wz");
+    assert_eq!(app.ui.view, View::Plot, "{shown}");
+    assert_eq!(
+        app.session.plot_series.columns[app.ui.plot.unwrap().y].name,
+        "box.wz"
+    );
     app.update(Message::Back);
     let shown = screen(&app, 120, 40);
     mouse(&mut app, Action::Press, essentials(&shown, "v", 0));
-    assert_eq!(app.plot_series.columns[app.plot.unwrap().y].name, "box.vx");
+    assert_eq!(
+        app.session.plot_series.columns[app.ui.plot.unwrap().y].name,
+        "box.vx"
+    );
 }
 
 #[test]
@@ -369,10 +378,10 @@ fn a_drag_in_progress_at_120x40() {
     // The label is the pull's size, k (p* − p) − c u at this state: pointer (0.437, 0.710),
     // grabbed corner (0.427, 0.658), k = 0.744 kg × 400 s⁻² = 297.7 N/m (1/m = 1/2 +
     // 0.045/0.0533), c = 29.8 N·s/m.
-    let hand = *app.world.hand().unwrap();
-    let pull = app.world.hand_pull().unwrap();
-    let s = app.world.states()[0];
-    let k = derive(&app.world.bodies()[0], &s);
+    let hand = *app.session.world.hand().unwrap();
+    let pull = app.session.world.hand_pull().unwrap();
+    let s = app.session.world.states()[0];
+    let k = derive(&app.session.world.bodies()[0], &s);
     let r = pull.at - s.position;
     let u = k.velocity + k.angular_velocity.cross(&r);
     let force = hand.stiffness * (hand.target - pull.at) - hand.damping * u;
@@ -393,31 +402,35 @@ fn stepping_back_over_a_drag_restores_every_frame_exactly() {
         "/tests/fixtures/tui-cloth-trampoline.toml"
     ));
     let one = {
-        let mut world = app.world.clone();
+        let mut world = app.session.world.clone();
         world.step();
         world.checkpoint().heap_bytes()
     };
-    app.history = tumble::tui::history::History::with_budget(100, 100 * 32 + 20 * (one + 1024));
-    let mut expected = vec![app.world.checkpoint()];
+    app.session.history =
+        tumble::tui::history::History::with_budget(100, 100 * 32 + 20 * (one + 1024));
+    let mut expected = vec![app.session.world.checkpoint()];
     let step = |app: &mut App, frames: usize, expected: &mut Vec<_>| {
         for _ in 0..frames {
             app.step_frames(1);
-            expected.push(app.world.checkpoint());
+            expected.push(app.session.world.checkpoint());
         }
     };
     step(&mut app, 5, &mut expected);
     screen(&app, 120, 40);
-    let cube = app.world.states()[0].position;
+    let cube = app.session.world.states()[0].position;
     at(&mut app, Action::Press, cube);
     at(&mut app, Action::Drag, cube + Vector3::new(0.2, 0.1, 0.0));
     step(&mut app, 10, &mut expected);
     mouse(&mut app, Action::Release, (0, 0));
     step(&mut app, 10, &mut expected);
-    assert_eq!(app.history.interval(), 6);
-    assert!(app.world.energy_balance().hand.unwrap() != 0.0);
+    assert_eq!(app.session.history.interval(), 6);
+    assert!(app.session.world.energy_balance().hand.unwrap() != 0.0);
     for frame in (0..25).rev() {
         app.step_back();
-        assert_eq!(app.world.step_count(), frame as u64);
-        assert!(app.world.checkpoint() == expected[frame], "frame {frame}");
+        assert_eq!(app.session.world.step_count(), frame as u64);
+        assert!(
+            app.session.world.checkpoint() == expected[frame],
+            "frame {frame}"
+        );
     }
 }

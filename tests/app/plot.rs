@@ -38,7 +38,8 @@ fn screen(app: &App, width: u16, height: u16) -> String {
 
 /// The picker's line of a quantity, by name.
 fn column(app: &App, name: &str) -> usize {
-    app.plot_series
+    app.session
+        .plot_series
         .columns
         .iter()
         .position(|c| c.name == name)
@@ -51,9 +52,9 @@ fn pick(app: &mut App, name: &str, key: KeyCode) {
     press(app, KeyCode::Char('p'));
     let target = column(app, name);
     // The picker opens on the current choice: go back to the top first.
-    for _ in 0..app.plot_series.columns.len() {
+    for _ in 0..app.session.plot_series.columns.len() {
         press(app, KeyCode::Up);
-        if let tumble::tui::Overlay::PlotPicker { selected: 0, .. } = app.overlay {
+        if let tumble::tui::Overlay::PlotPicker { selected: 0, .. } = app.ui.overlay {
             break;
         }
     }
@@ -96,6 +97,7 @@ fn from_snapshot(world: &World, q: Quantity) -> f64 {
                 Kinetic => s.energy.kinetic,
                 Potential => s.energy.potential,
                 Energy => s.energy.total,
+                _ => unreachable!("not a body's column"),
             }
         }
         Quantity::SceneEnergy => world.snapshot().system.energy.total,
@@ -110,9 +112,9 @@ fn the_quantity_graph_against_time_and_as_a_phase_portrait_at_three_sizes() {
     // The drop, the bounce (e = 0.5) and most of the climb back.
     app.step_frames(1100);
     pick(&mut app, "cube.y", KeyCode::Enter);
-    assert_eq!(app.view, View::Plot);
+    assert_eq!(app.ui.view, View::Plot);
     assert_eq!(
-        app.plot,
+        app.ui.plot,
         Some(PlotChoice {
             y: column(&app, "cube.y"),
             x: None
@@ -139,7 +141,7 @@ fn the_quantity_graph_against_time_and_as_a_phase_portrait_at_three_sizes() {
     press(&mut app, KeyCode::Down);
     press(&mut app, KeyCode::Enter);
     assert_eq!(
-        app.plot,
+        app.ui.plot,
         Some(PlotChoice {
             y: column(&app, "cube.vy"),
             x: Some(column(&app, "cube.y"))
@@ -159,9 +161,9 @@ fn the_quantity_graph_against_time_and_as_a_phase_portrait_at_three_sizes() {
     press(&mut app, KeyCode::Char('p'));
     press(&mut app, KeyCode::Char('t'));
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.plot.unwrap().x, None);
+    assert_eq!(app.ui.plot.unwrap().x, None);
     press(&mut app, KeyCode::Esc);
-    assert_eq!(app.view, View::Loop);
+    assert_eq!(app.ui.view, View::Loop);
 }
 
 #[test]
@@ -171,18 +173,18 @@ fn the_csv_of_every_quantity_holds_the_simulations_numbers() {
     // snapshots at the same steps (bit for bit: the same state, read the panels' way).
     for (name, frames) in [("14-head-on", 700), ("27-the-double-pendulum", 300)] {
         let mut app = lesson_app(name);
-        app.write_dir = scratch(name);
+        app.prefs.write_dir = scratch(name);
         app.step_frames(frames);
-        let count = app.plot_series.columns.len();
-        let mut reference = app.lesson.scene.world();
+        let count = app.session.plot_series.columns.len();
+        let mut reference = app.session.lesson.scene.world();
         let mut columns: Vec<(Quantity, Vec<Vec<f64>>)> = Vec::new();
         for c in 0..count {
             // Through the keys: p, down to it, Enter, then X writes the file.
-            let wanted = app.plot_series.columns[c].name.clone();
+            let wanted = app.session.plot_series.columns[c].name.clone();
             pick(&mut app, &wanted, KeyCode::Enter);
             press(&mut app, KeyCode::Char('X'));
             let path = app.csv_path().expect("a graph is shown");
-            let notice = app.notice.clone().unwrap_or_default();
+            let notice = app.ui.notice.clone().unwrap_or_default();
             assert!(
                 notice.starts_with(&format!("wrote {}", path.display())),
                 "{notice}"
@@ -191,10 +193,14 @@ fn the_csv_of_every_quantity_holds_the_simulations_numbers() {
             let (header, rows) = rows(&text);
             assert_eq!(
                 header,
-                ["step", "t", app.plot_series.columns[c].name.as_str()]
+                [
+                    "step",
+                    "t",
+                    app.session.plot_series.columns[c].name.as_str()
+                ]
             );
             assert_eq!(rows.len(), frames as usize + 1, "every frame from t = 0");
-            columns.push((app.plot_series.columns[c].quantity, rows));
+            columns.push((app.session.plot_series.columns[c].quantity, rows));
         }
         for step in 0..=frames {
             if step > 0 {
@@ -215,6 +221,7 @@ fn the_csv_of_every_quantity_holds_the_simulations_numbers() {
         // The names cover the list: components, |L|, energy per body and the scene's,
         // and the joints' errors.
         let names: Vec<&str> = app
+            .session
             .plot_series
             .columns
             .iter()
@@ -233,18 +240,18 @@ fn the_csv_of_every_quantity_holds_the_simulations_numbers() {
                 "{names:?}"
             );
         }
-        std::fs::remove_dir_all(&app.write_dir).ok();
+        std::fs::remove_dir_all(&app.prefs.write_dir).ok();
     }
 }
 
 #[test]
 fn the_phase_portrait_csv_has_both_columns_and_the_energy_graph_writes_its_own() {
     let mut app = lesson_app("05-ground-collision");
-    app.write_dir = scratch("phase");
+    app.prefs.write_dir = scratch("phase");
     app.step_frames(200);
     pick(&mut app, "body1.y", KeyCode::Char('x'));
     let vy = column(&app, "body1.vy");
-    while !matches!(app.overlay, tumble::tui::Overlay::PlotPicker { selected, .. } if selected == vy)
+    while !matches!(app.ui.overlay, tumble::tui::Overlay::PlotPicker { selected, .. } if selected == vy)
     {
         press(&mut app, KeyCode::Down);
     }
@@ -258,8 +265,8 @@ fn the_phase_portrait_csv_has_both_columns_and_the_energy_graph_writes_its_own()
     let (header, phase) = rows(&std::fs::read_to_string(&path).unwrap());
     assert_eq!(header, ["step", "t", "body1.y", "body1.vy"]);
     let last = phase.last().unwrap();
-    assert_eq!(last[2], app.world.state().position.y);
-    assert_eq!(last[3], app.snapshot.velocity.y);
+    assert_eq!(last[2], app.session.world.state().position.y);
+    assert_eq!(last[3], app.session.snapshot.velocity.y);
     // The energy graph (g) writes its curves: K + V = E on every row, drift last.
     press(&mut app, KeyCode::Char('g'));
     press(&mut app, KeyCode::Char('X'));
@@ -280,48 +287,48 @@ fn the_phase_portrait_csv_has_both_columns_and_the_energy_graph_writes_its_own()
             "{r:?}"
         );
     }
-    assert_eq!(energy[200][4], app.snapshot.energy.total);
+    assert_eq!(energy[200][4], app.session.snapshot.energy.total);
     // On the loop view there is nothing to write: the notice says which keys graph.
     press(&mut app, KeyCode::Esc);
     press(&mut app, KeyCode::Char('X'));
-    let notice = app.notice.clone().unwrap();
+    let notice = app.ui.notice.clone().unwrap();
     assert!(
         notice.contains("g shows") && notice.contains("p picks"),
         "{notice}"
     );
-    std::fs::remove_dir_all(&app.write_dir).ok();
+    std::fs::remove_dir_all(&app.prefs.write_dir).ok();
 }
 
 #[test]
 fn stepping_back_and_resetting_cut_the_plotted_past() {
     let mut app = lesson_app("05-ground-collision");
     app.step_frames(50);
-    assert_eq!(app.plot_series.len(), 51);
+    assert_eq!(app.session.plot_series.len(), 51);
     app.step_back_frames(10);
-    assert_eq!(app.plot_series.len(), 41);
+    assert_eq!(app.session.plot_series.len(), 41);
     assert_eq!(
-        *app.plot_series.times().last().unwrap(),
-        app.world.time(),
+        *app.session.plot_series.times().last().unwrap(),
+        app.session.world.time(),
         "the last row is the frame shown"
     );
     app.step_frames(10);
-    assert_eq!(app.plot_series.len(), 51);
+    assert_eq!(app.session.plot_series.len(), 51);
     app.reset();
-    assert_eq!(app.plot_series.len(), 1);
+    assert_eq!(app.session.plot_series.len(), 1);
 }
 
 #[test]
 fn several_curves_share_one_graph_with_one_axis_per_unit() {
     let mut app = lesson_app("32-predict-the-bounce");
-    app.write_dir = scratch("curves");
+    app.prefs.write_dir = scratch("curves");
     app.step_frames(1100);
     pick(&mut app, "cube.y", KeyCode::Enter);
     // `a` adds cube.vy: another unit, so a right axis of its own.
     pick(&mut app, "cube.vy", KeyCode::Char('a'));
-    assert_eq!(app.view, View::Plot);
+    assert_eq!(app.ui.view, View::Plot);
     let (y, vy) = (column(&app, "cube.y"), column(&app, "cube.vy"));
     assert_eq!(app.plot_curves(), [y, vy]);
-    let notice = app.notice.clone().unwrap();
+    let notice = app.ui.notice.clone().unwrap();
     assert!(
         notice.contains("two axes, m on the left, m/s on the right"),
         "{notice}"
@@ -359,7 +366,7 @@ fn several_curves_share_one_graph_with_one_axis_per_unit() {
     press(&mut app, KeyCode::Esc);
     pick(&mut app, "cube.kinetic", KeyCode::Char('a'));
     assert_eq!(app.plot_curves(), [y, vy], "a third unit has no axis");
-    let notice = app.notice.clone().unwrap();
+    let notice = app.ui.notice.clone().unwrap();
     assert!(notice.contains("two axes are in m and m/s"), "{notice}");
     // The CSV has every curve.
     press(&mut app, KeyCode::Char('X'));
@@ -371,8 +378,8 @@ fn several_curves_share_one_graph_with_one_axis_per_unit() {
     let (header, rows) = rows(&std::fs::read_to_string(&path).unwrap());
     assert_eq!(header, ["step", "t", "cube.y", "cube.vy"]);
     let last = rows.last().unwrap();
-    assert_eq!(last[2], app.world.state().position.y);
-    assert_eq!(last[3], app.snapshot.velocity.y);
+    assert_eq!(last[2], app.session.world.state().position.y);
+    assert_eq!(last[3], app.session.snapshot.velocity.y);
     // `a` on a curve takes it off; Enter graphs one curve again.
     pick(&mut app, "cube.y", KeyCode::Char('a'));
     assert_eq!(app.plot_curves(), [vy]);
@@ -388,5 +395,5 @@ fn several_curves_share_one_graph_with_one_axis_per_unit() {
     );
     pick(&mut app, "cube.x", KeyCode::Enter);
     assert_eq!(app.plot_curves(), [column(&app, "cube.x")]);
-    std::fs::remove_dir_all(&app.write_dir).ok();
+    std::fs::remove_dir_all(&app.prefs.write_dir).ok();
 }

@@ -27,17 +27,17 @@ fn a_hand_on_the_stopwatch_times_the_pendulum_to_a_frame() {
     assert!((exact - 2.367842).abs() < 1e-6, "{exact}");
     let mut app = lesson("25-the-pendulum");
     keys(&mut app, "w");
-    let mut x = app.snapshot.position.x;
+    let mut x = app.session.snapshot.position.x;
     for _ in 0..7000 {
         app.step_frames(1);
-        let now = app.snapshot.position.x;
+        let now = app.session.snapshot.position.x;
         if x < 0.0 && now >= 0.0 {
             keys(&mut app, "o");
         }
         x = now;
     }
     keys(&mut app, "w");
-    let laps = app.tools.stopwatch.laps();
+    let laps = app.ui.tools.stopwatch.laps();
     assert_eq!(laps.len(), 3, "{laps:?}");
     assert!((laps[0].0 - 0.75 * exact).abs() <= 1e-3, "{laps:?}");
     for &(_, split) in &laps[1..] {
@@ -57,12 +57,13 @@ fn t_times_the_quantity_graphed_to_the_elliptic_integral() {
     // upward crossings of the mid-range (x = 0 by symmetry), two periods.
     let mut app = lesson("25-the-pendulum");
     let x = app
+        .session
         .plot_series
         .columns
         .iter()
         .position(|c| c.name == "bob.x")
         .unwrap();
-    app.plot = Some(PlotChoice { y: x, x: None });
+    app.ui.plot = Some(PlotChoice { y: x, x: None });
     keys(&mut app, "T");
     assert_eq!(app.tools_shown(), vec![PagePanel::Period]);
     app.step_frames(7000);
@@ -102,13 +103,13 @@ fn the_ruler_and_the_protractor_read_the_poses_by_hand() {
     // 0.5 m from the hinge at the origin: ruler pivot.b → rod reads Δ = (0.25, −0.433013, 0),
     // 0.5 m; the rod's y axis (−sin 30°, cos 30°, 0) is 30° from the vertical.
     let app = lesson("46-measuring-a-swing");
-    let r = app.ruler().read(app.world.states()).unwrap();
+    let r = app.ruler().read(app.session.world.states()).unwrap();
     assert!((r.distance - 0.5).abs() < 1e-15, "{r:?}");
     assert!((r.delta - Vector3::new(0.25, -0.4330127018922193, 0.0)).norm() < 1e-15);
     let angle = app
         .protractor()
         .unwrap()
-        .degrees(app.world.states())
+        .degrees(app.session.world.states())
         .unwrap();
     assert!((angle - 30.0).abs() < 1e-12, "{angle}");
 
@@ -119,7 +120,7 @@ fn the_ruler_and_the_protractor_read_the_poses_by_hand() {
     let read = |app: &App| {
         app.protractor()
             .unwrap()
-            .degrees(app.world.states())
+            .degrees(app.session.world.states())
             .unwrap()
     };
     assert!((read(&app) - 50.0).abs() < 1e-12, "{}", read(&app));
@@ -136,7 +137,7 @@ fn the_ruler_and_the_protractor_read_the_poses_by_hand() {
         (r.from.name.as_str(), r.to.name.as_str()),
         ("cube", "edge.a")
     );
-    let d = r.read(app.world.states()).unwrap().distance;
+    let d = r.read(app.session.world.states()).unwrap().distance;
     assert!((d - 0.5f64.sqrt()).abs() < 1e-12, "{d}");
     keys(&mut app, "M");
     assert_eq!(app.ruler().to.name, "edge.b");
@@ -150,9 +151,9 @@ fn a_clicked_point_on_a_body_moves_with_it() {
     let mut app = lesson("26-the-physical-pendulum");
     keys(&mut app, "mM");
     assert_eq!(app.ruler().to.name, "edge.b");
-    let centre = app.snapshot.position;
+    let centre = app.session.snapshot.position;
     app.set_ruler_end(0, centre + Vector3::new(0.1, 0.0, 3.0), 0.3);
-    let before = app.ruler().read(app.world.states()).unwrap();
+    let before = app.ruler().read(app.session.world.states()).unwrap();
     assert!(
         app.ruler().from.name.starts_with("cube+("),
         "{:?}",
@@ -160,7 +161,7 @@ fn a_clicked_point_on_a_body_moves_with_it() {
     );
     assert!((before.from - (centre + Vector3::new(0.1, 0.0, 0.0))).norm() < 1e-12);
     app.step_frames(500);
-    let after = app.ruler().read(app.world.states()).unwrap();
+    let after = app.ruler().read(app.session.world.states()).unwrap();
     assert!(
         (after.from - before.from).norm() > 0.01,
         "{before:?} {after:?}"
@@ -206,7 +207,7 @@ fn v_measures_against_the_other_bodys_axes_then_the_vertical_again() {
     let read = |app: &App| {
         app.protractor()
             .unwrap()
-            .degrees(app.world.states())
+            .degrees(app.session.world.states())
             .unwrap()
     };
     keys(&mut app, "A");

@@ -72,8 +72,8 @@ const SEQUENCE: &str = "nnn>>>>nnn";
 fn whole_screen_at_120x40_after_a_fixed_key_sequence() {
     let mut app = app("tui-box.toml");
     keys(&mut app, SEQUENCE);
-    assert_eq!(app.snapshot.step, 5);
-    assert_eq!(app.snapshot.phase, Some(Phase::Integrate));
+    assert_eq!(app.session.snapshot.step, 5);
+    assert_eq!(app.session.snapshot.phase, Some(Phase::Integrate));
     insta::assert_snapshot!("screen_120x40", screen(&app, 120, 40));
 }
 
@@ -81,8 +81,8 @@ fn whole_screen_at_120x40_after_a_fixed_key_sequence() {
 fn each_numeric_panel_after_a_fixed_key_sequence() {
     let mut app = app("tui-box.toml");
     keys(&mut app, SEQUENCE);
-    let panels = tables::panels(&app.snapshot, tables::Frame::World);
-    let previous = tables::panels(app.previous.as_ref().unwrap(), tables::Frame::World);
+    let panels = tables::panels(&app.session.snapshot, tables::Frame::World);
+    let previous = tables::panels(app.session.previous.as_ref().unwrap(), tables::Frame::World);
     assert_eq!(panels.len(), 7);
     for (panel, before) in panels.iter().zip(&previous) {
         let view = PanelView {
@@ -104,7 +104,7 @@ fn panels_show_the_same_text_as_the_tables_module() {
     // on screen (the screen adds only styling).
     let mut app = app("tui-box.toml");
     keys(&mut app, SEQUENCE);
-    let panels = tables::panels(&app.snapshot, tables::Frame::World);
+    let panels = tables::panels(&app.session.snapshot, tables::Frame::World);
     for panel in &panels {
         let view = PanelView {
             panel,
@@ -134,7 +134,7 @@ fn compare_mode_draws_the_ghost_numbers_under_the_first() {
         },
     );
     keys(&mut app, ">>>>>>>>>>");
-    let ghost = app.ghost.as_ref().expect("compare mode on");
+    let ghost = app.session.ghost.as_ref().expect("compare mode on");
     assert_eq!(ghost.snapshot.step, 10, "the ghost runs in lock-step");
     assert_eq!(ghost.snapshot.integrator, Integrator::EulerSeed);
     // euler-seed's matrix drifts from a rotation, rk4's quaternion does not.
@@ -143,20 +143,20 @@ fn compare_mode_draws_the_ghost_numbers_under_the_first() {
         "euler-seed drift {}",
         ghost.snapshot.orthonormality_error
     );
-    assert!(app.snapshot.orthonormality_error < 1e-12);
+    assert!(app.session.snapshot.orthonormality_error < 1e-12);
     insta::assert_snapshot!("screen_compare_120x40", screen(&app, 120, 40));
 }
 
 #[test]
 fn space_runs_and_pauses() {
     let mut app = app("tui-box.toml");
-    assert!(!app.running);
+    assert!(!app.ui.running);
     keys(&mut app, " ");
-    assert!(app.running);
+    assert!(app.ui.running);
     app.step_frames(3); // what the event loop does while running
-    assert_eq!(app.snapshot.step, 3);
+    assert_eq!(app.session.snapshot.step, 3);
     keys(&mut app, " ");
-    assert!(!app.running);
+    assert!(!app.ui.running);
 }
 
 #[test]
@@ -165,7 +165,7 @@ fn n_runs_the_phases_in_loop_order() {
     let mut seen = Vec::new();
     for _ in 0..5 {
         keys(&mut app, "n");
-        seen.push((app.snapshot.phase, app.snapshot.step));
+        seen.push((app.session.snapshot.phase, app.session.snapshot.step));
     }
     use Phase::*;
     assert_eq!(
@@ -184,44 +184,44 @@ fn n_runs_the_phases_in_loop_order() {
 fn stepping_back_restores_the_exact_previous_state() {
     let mut app = app("tui-box.toml");
     keys(&mut app, ">>>>");
-    let before = app.world.checkpoint();
-    let snapshot = app.snapshot.clone();
+    let before = app.session.world.checkpoint();
+    let snapshot = app.session.snapshot.clone();
     keys(&mut app, ">");
-    assert_ne!(app.world.checkpoint(), before);
+    assert_ne!(app.session.world.checkpoint(), before);
     keys(&mut app, "<");
     assert_eq!(
-        app.world.checkpoint(),
+        app.session.world.checkpoint(),
         before,
         "bit-for-bit the state of frame 4"
     );
-    assert_eq!(app.snapshot, snapshot);
+    assert_eq!(app.session.snapshot, snapshot);
     // Mid-frame, ← goes back to the start of the current frame.
     keys(&mut app, "nn<");
-    assert_eq!(app.world.checkpoint(), before);
+    assert_eq!(app.session.world.checkpoint(), before);
     // Back to t = 0, then nothing earlier is kept.
     keys(&mut app, "<<<<<");
-    assert_eq!(app.snapshot.step, 0);
-    assert_eq!(app.notice.as_deref(), Some("no earlier frame kept"));
+    assert_eq!(app.session.snapshot.step, 0);
+    assert_eq!(app.ui.notice.as_deref(), Some("no earlier frame kept"));
 }
 
 #[test]
 fn reset_returns_to_t_zero_and_pauses() {
     let mut app = app("tui-box.toml");
-    let start = app.world.checkpoint();
+    let start = app.session.world.checkpoint();
     keys(&mut app, ">>>nn ");
     keys(&mut app, "r");
-    assert!(!app.running);
-    assert_eq!(app.world.checkpoint(), start);
-    assert!(app.history.is_empty());
+    assert!(!app.ui.running);
+    assert_eq!(app.session.world.checkpoint(), start);
+    assert!(app.session.history.is_empty());
 }
 
 #[test]
 fn switching_integrator_keeps_time_and_state() {
     let mut app = app("tui-box.toml");
     keys(&mut app, ">>>>>>>>>>");
-    let before = app.snapshot.clone();
+    let before = app.session.snapshot.clone();
     keys(&mut app, "i");
-    let after = &app.snapshot;
+    let after = &app.session.snapshot;
     // rk4 → splitting (the next in Integrator::ALL); both use a quaternion, so nothing moves.
     assert_eq!(after.integrator, Integrator::Splitting);
     assert_eq!(after.time, before.time);
@@ -231,16 +231,18 @@ fn switching_integrator_keeps_time_and_state() {
     // Then exact-splitting, exact-splitting-4, and euler-seed: R becomes a matrix equal to the
     // rotation of q.
     keys(&mut app, "ii");
-    assert_eq!(app.snapshot.integrator, Integrator::ExactSplitting4);
+    assert_eq!(app.session.snapshot.integrator, Integrator::ExactSplitting4);
     keys(&mut app, "i");
-    assert_eq!(app.snapshot.integrator, Integrator::EulerSeed);
-    let dr = (app.snapshot.rotation - before.rotation).abs().max();
+    assert_eq!(app.session.snapshot.integrator, Integrator::EulerSeed);
+    let dr = (app.session.snapshot.rotation - before.rotation)
+        .abs()
+        .max();
     assert!(dr < 1e-12, "rotation changed by {dr}");
     keys(&mut app, ">");
-    assert_eq!(app.snapshot.step, 11);
-    assert!(app.snapshot.energy.total.is_finite());
+    assert_eq!(app.session.snapshot.step, 11);
+    assert!(app.session.snapshot.energy.total.is_finite());
     // Energy stays within 1 % over one 10 ms frame of a 2 kg box (E ≈ 30 J).
-    let drift = (app.snapshot.energy.total - before.energy.total).abs();
+    let drift = (app.session.snapshot.energy.total - before.energy.total).abs();
     assert!(
         drift < 0.01 * before.energy.total.abs(),
         "energy changed by {drift} J"
@@ -410,17 +412,17 @@ fn views_cycle_front_side_top() {
 fn energy_graph_replaces_the_projection() {
     let mut app = app("tui-box.toml");
     keys(&mut app, ">>>>>g");
-    assert_eq!(app.view, View::Energy);
+    assert_eq!(app.ui.view, View::Energy);
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("energy, J"), "{shown}");
     assert!(shown.contains("drift (E − E₀ not booked), J"), "{shown}");
     // The time axis ends at the scene's duration, 2 s, and does not move while running.
-    let axis = app.series.time_axis;
+    let axis = app.session.series.time_axis;
     keys(&mut app, ">>>>>");
-    assert_eq!(app.series.time_axis, axis);
+    assert_eq!(app.session.series.time_axis, axis);
     assert_eq!(axis.hi, 2.0);
     keys(&mut app, "g");
-    assert_eq!(app.view, View::Loop);
+    assert_eq!(app.ui.view, View::Loop);
 }
 
 #[test]
@@ -429,43 +431,47 @@ fn a_diverging_run_pauses_with_a_dialog_and_the_app_keeps_going() {
     keys(&mut app, " ");
     app.step_frames(100);
     let d = app
+        .session
         .divergence
         .clone()
         .expect("euler-seed at dt = 0.1 with ω = 20 rad/s diverges");
-    assert!(!app.running, "paused by the divergence");
+    assert!(!app.ui.running, "paused by the divergence");
     assert_eq!(
-        app.snapshot.step, d.step,
+        app.session.snapshot.step, d.step,
         "stopped at the step that diverged"
     );
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("The simulation diverged"), "{shown}");
     assert!(shown.contains("euler-seed"), "{shown}");
     keys(&mut app, ">");
-    assert_eq!(app.snapshot.step, d.step, "no stepping past a divergence");
+    assert_eq!(
+        app.session.snapshot.step, d.step,
+        "no stepping past a divergence"
+    );
     keys(&mut app, "<");
-    assert!(app.divergence.is_none());
-    assert_eq!(app.snapshot.step, d.step - 1);
+    assert!(app.session.divergence.is_none());
+    assert_eq!(app.session.snapshot.step, d.step - 1);
     keys(&mut app, "r");
-    assert_eq!(app.snapshot.step, 0);
+    assert_eq!(app.session.snapshot.step, 0);
 }
 
 #[test]
 fn quit_keys_and_key_releases() {
     let mut app = app("tui-box.toml");
     press(&mut app, KeyCode::Char('q'));
-    assert!(app.quit);
+    assert!(app.ui.quit);
     let mut app = self::app("tui-box.toml");
     press(&mut app, KeyCode::Esc);
-    assert!(!app.quit, "Esc never quits");
-    assert_eq!(app.notice.as_deref(), Some("nothing to close: q quits"));
+    assert!(!app.ui.quit, "Esc never quits");
+    assert_eq!(app.ui.notice.as_deref(), Some("nothing to close: q quits"));
     let mut app = self::app("tui-box.toml");
     app.handle_key(&KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
-    assert!(app.quit, "Ctrl-C quits");
+    assert!(app.ui.quit, "Ctrl-C quits");
     let mut app = self::app("tui-box.toml");
     let mut release = KeyEvent::new(KeyCode::Right, KeyModifiers::NONE);
     release.kind = KeyEventKind::Release;
     app.handle_key(&release);
-    assert_eq!(app.snapshot.step, 0, "only key presses count");
+    assert_eq!(app.session.snapshot.step, 0, "only key presses count");
 }
 
 #[test]
@@ -496,8 +502,36 @@ fn lesson_picker_lists_and_opens_bundled_lessons() {
     assert!(shown.contains(&name), "{shown}");
     // The fixture is not bundled: the first lesson is selected; Enter opens it.
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.lesson.path.file_name(), first.file_name());
-    assert_eq!(app.snapshot.step, 0);
+    assert_eq!(app.session.lesson.path.file_name(), first.file_name());
+    assert_eq!(app.session.snapshot.step, 0);
+}
+
+#[test]
+fn preferences_carry_to_the_next_lesson_and_the_run_starts_over() {
+    use tumble::tui::keys::Message;
+    let mut app = app("tui-box.toml");
+    for m in [
+        Message::NextAxis,
+        Message::ToggleFrame,
+        Message::ToggleTrail,
+        Message::ToggleArrows,
+        Message::ToggleForces,
+        Message::NextLayout,
+    ] {
+        app.update(m);
+    }
+    app.prefs.write_dir = std::path::PathBuf::from("elsewhere");
+    let chosen = app.prefs.clone();
+    assert_ne!(chosen, self::app("tui-box.toml").prefs);
+    app.step_frames(5);
+    // The picker's second lesson: another scene, at t = 0, seen as the student set it.
+    app.update(Message::OpenPicker);
+    app.update(Message::PickerDown);
+    app.update(Message::PickerOpen);
+    let second = tumble::lessons::bundled().into_iter().nth(1).unwrap();
+    assert_eq!(app.session.lesson.path.file_name(), second.file_name());
+    assert_eq!(app.session.snapshot.step, 0);
+    assert_eq!(app.prefs, chosen);
 }
 
 #[test]
@@ -505,8 +539,8 @@ fn cells_changed_by_the_last_action_are_highlighted() {
     use ratatui::style::Color;
     let mut app = app("tui-box.toml");
     keys(&mut app, ">");
-    let panels = tables::panels(&app.snapshot, tables::Frame::World);
-    let previous = tables::panels(app.previous.as_ref().unwrap(), tables::Frame::World);
+    let panels = tables::panels(&app.session.snapshot, tables::Frame::World);
+    let previous = tables::panels(app.session.previous.as_ref().unwrap(), tables::Frame::World);
     // Panel "force and torque": F = M g did not change over the frame; "state": x did.
     let style_of_first_cell = |i: usize| {
         let view = PanelView {
@@ -572,11 +606,11 @@ fn the_lesson_page_follows_time_and_scrolls() {
     // the same page (so the scroll stays where it was).
     let mut app = app("tui-box.toml");
     press(&mut app, KeyCode::PageDown);
-    assert_eq!(app.lesson_scroll, 3);
+    assert_eq!(app.ui.lesson_scroll, 3);
     assert!(screen(&app, 120, 40).contains("page 1/1: Fixture"));
     press(&mut app, KeyCode::PageUp);
     press(&mut app, KeyCode::PageUp);
-    assert_eq!(app.lesson_scroll, 0);
+    assert_eq!(app.ui.lesson_scroll, 0);
 }
 
 #[test]
@@ -599,34 +633,34 @@ fn esc_closes_what_is_open_innermost_first_and_never_quits() {
     let mut app = app("tui-box.toml");
     // The help over the graph: Esc closes the help, then the graph, then nothing.
     keys(&mut app, "g?");
-    assert_eq!(app.overlay, Overlay::Help);
+    assert_eq!(app.ui.overlay, Overlay::Help);
     press(&mut app, KeyCode::Esc);
-    assert_eq!(app.overlay, Overlay::None);
-    assert_eq!(app.view, View::Energy);
+    assert_eq!(app.ui.overlay, Overlay::None);
+    assert_eq!(app.ui.view, View::Energy);
     press(&mut app, KeyCode::Esc);
-    assert_eq!(app.view, View::Loop);
+    assert_eq!(app.ui.view, View::Loop);
     // The study view (set directly: `s` would start the background study).
-    app.view = View::Study;
+    app.ui.view = View::Study;
     press(&mut app, KeyCode::Esc);
-    assert_eq!(app.view, View::Loop);
+    assert_eq!(app.ui.view, View::Loop);
     // The picker, the form, the jump prompt.
     for open in ["l", "e", "J"] {
         keys(&mut app, open);
-        assert_ne!(app.overlay, Overlay::None, "`{open}` opens a window");
+        assert_ne!(app.ui.overlay, Overlay::None, "`{open}` opens a window");
         press(&mut app, KeyCode::Esc);
         assert_eq!(
-            app.overlay,
+            app.ui.overlay,
             Overlay::None,
             "Esc closes what `{open}` opened"
         );
     }
     press(&mut app, KeyCode::Esc);
-    assert!(!app.quit);
+    assert!(!app.ui.quit);
     insta::assert_snapshot!("screen_after_esc_120x40", screen(&app, 120, 40));
     // q quits from any window.
     keys(&mut app, "e");
     keys(&mut app, "q");
-    assert!(app.quit, "q quits from the form");
+    assert!(app.ui.quit, "q quits from the form");
 }
 
 #[test]
@@ -635,24 +669,24 @@ fn a_run_pauses_at_each_page_and_at_the_duration_and_enter_continues() {
     let mut app = app("tui-pages.toml");
     keys(&mut app, " ");
     app.step_frames(500); // what the event loop does while running
-    assert!(!app.running);
-    assert_eq!(app.snapshot.step, 50);
-    let notice = app.notice.clone().unwrap();
+    assert!(!app.ui.running);
+    assert_eq!(app.session.snapshot.step, 50);
+    let notice = app.ui.notice.clone().unwrap();
     assert!(notice.contains("page 2/2 “Halfway”"), "{notice}");
     let shown = screen(&app, 120, 40);
     assert!(shown.contains("Half a second has passed."), "{shown}");
     assert!(shown.contains("❚❚ paused: page 2/2"), "{shown}");
     press(&mut app, KeyCode::Enter);
-    assert!(app.running, "Enter continues");
+    assert!(app.ui.running, "Enter continues");
     app.step_frames(500);
-    assert_eq!(app.snapshot.step, 100);
-    assert!(!app.running);
+    assert_eq!(app.session.snapshot.step, 100);
+    assert!(!app.ui.running);
     insta::assert_snapshot!("screen_end_of_scene_120x40", screen(&app, 120, 40));
     // Past the end it runs on when asked.
     keys(&mut app, " ");
     app.step_frames(10);
-    assert_eq!(app.snapshot.step, 110);
-    assert!(app.running);
+    assert_eq!(app.session.snapshot.step, 110);
+    assert!(app.ui.running);
 }
 
 #[test]
@@ -660,16 +694,16 @@ fn j_jumps_forward_and_back_to_a_typed_time() {
     let mut app = app("tui-box.toml");
     keys(&mut app, "nJ1.25");
     assert_eq!(
-        app.overlay,
+        app.ui.overlay,
         Overlay::Jump {
             text: "1.25".into()
         }
     );
     insta::assert_snapshot!("screen_jump_prompt_80x24", screen(&app, 80, 24));
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.snapshot.step, 125, "t = 1.25 s at dt = 0.01 s");
+    assert_eq!(app.session.snapshot.step, 125, "t = 1.25 s at dt = 0.01 s");
     assert_eq!(
-        app.notice.as_deref(),
+        app.ui.notice.as_deref(),
         Some("jumped to t = 1.25 s (step 125)")
     );
     // Back to 0.3 s: replayed from t = 0, bit for bit the state 30 plain frames reach.
@@ -677,11 +711,14 @@ fn j_jumps_forward_and_back_to_a_typed_time() {
     press(&mut app, KeyCode::Enter);
     let mut plain = self::app("tui-box.toml");
     plain.step_frames(30);
-    assert_eq!(app.snapshot.step, 30);
-    assert_eq!(app.world.checkpoint(), plain.world.checkpoint());
+    assert_eq!(app.session.snapshot.step, 30);
+    assert_eq!(
+        app.session.world.checkpoint(),
+        plain.session.world.checkpoint()
+    );
     keys(&mut app, "J");
     press(&mut app, KeyCode::Enter);
-    assert!(app.notice.unwrap().contains("is not a time"));
+    assert!(app.ui.notice.unwrap().contains("is not a time"));
 }
 
 #[test]
@@ -689,7 +726,7 @@ fn the_settings_form_changes_the_body_and_restarts_the_scene() {
     let mut app = app("tui-box.toml");
     keys(&mut app, ">>>v");
     keys(&mut app, "e");
-    let Overlay::Settings(form) = &app.overlay else {
+    let Overlay::Settings(form) = &app.ui.overlay else {
         panic!("e opens the form");
     };
     assert_eq!(form.fields[0].text, "0.5", "restitution of the fixture");
@@ -701,22 +738,22 @@ fn the_settings_form_changes_the_body_and_restarts_the_scene() {
     insta::assert_snapshot!("screen_settings_form_120x40", screen(&app, 120, 40));
     insta::assert_snapshot!("screen_settings_form_80x24", screen(&app, 80, 24));
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.overlay, Overlay::None);
-    assert_eq!(app.snapshot.step, 0, "restarted at t = 0");
-    assert_eq!(app.world.body().mass, 3.0);
-    assert_eq!(app.world.contact_model().unwrap().restitution, 0.8);
+    assert_eq!(app.ui.overlay, Overlay::None);
+    assert_eq!(app.session.snapshot.step, 0, "restarted at t = 0");
+    assert_eq!(app.session.world.body().mass, 3.0);
+    assert_eq!(app.session.world.contact_model().unwrap().restitution, 0.8);
     // The velocity was kept: P₀ = M' v₀ = 3 · (0.3, 1, 0).
-    let p = app.snapshot.linear_momentum;
+    let p = app.session.snapshot.linear_momentum;
     assert!(
         (p - nalgebra::Vector3::new(0.9, 3.0, 0.0)).norm() < 1e-12,
         "{p}"
     );
     assert_eq!(
-        app.notice.as_deref(),
+        app.ui.notice.as_deref(),
         Some("settings applied (e 0.5 → 0.8, mass 2 → 3 kg): the scene restarted at t = 0")
     );
     assert_eq!(
-        app.axis,
+        app.prefs.axis,
         tumble::tui::viewport::Axis::Side,
         "the view axis is kept"
     );
@@ -727,7 +764,7 @@ fn a_bad_value_stays_in_the_form_with_the_reason() {
     let mut app = app("tui-box.toml");
     keys(&mut app, "e2");
     press(&mut app, KeyCode::Enter);
-    let Overlay::Settings(form) = &app.overlay else {
+    let Overlay::Settings(form) = &app.ui.overlay else {
         panic!("the form stays open");
     };
     assert_eq!(
@@ -735,7 +772,7 @@ fn a_bad_value_stays_in_the_form_with_the_reason() {
         Some("restitution must be between 0 and 1, found 2")
     );
     assert!(screen(&app, 120, 40).contains("✖ restitution must be between 0 and 1"));
-    assert_eq!(app.world.contact_model().unwrap().restitution, 0.5);
+    assert_eq!(app.session.world.contact_model().unwrap().restitution, 0.5);
 }
 
 #[test]
@@ -743,7 +780,7 @@ fn w_asks_for_a_write_and_the_written_scene_loads() {
     let dir = std::env::temp_dir().join(format!("tumble-tui-write-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut app = app("tui-box.toml");
-    app.write_dir = dir.clone();
+    app.prefs.write_dir = dir.clone();
     keys(&mut app, "e");
     press(&mut app, KeyCode::Down);
     press(&mut app, KeyCode::Down);
@@ -758,7 +795,7 @@ fn w_asks_for_a_write_and_the_written_scene_loads() {
     assert!(!to.exists());
     app.perform(effect.clone());
     assert_eq!(
-        app.notice,
+        app.ui.notice,
         Some(format!("wrote {} (tumble check accepts it)", to.display()))
     );
     let written = tumble::scene::load(to).unwrap_or_else(|e| panic!("{e}"));
@@ -802,16 +839,20 @@ fn the_compare_label_names_what_differs() {
 fn another_lesson_keeps_the_speed_relative_to_real_time() {
     let mut app = app("tui-box.toml");
     keys(&mut app, "++f");
-    let ratio = app.frames_per_second() * app.world.dt();
+    let ratio = app.frames_per_second() * app.session.world.dt();
     keys(&mut app, "l");
     press(&mut app, KeyCode::Enter);
-    let after = app.frames_per_second() * app.world.dt();
+    let after = app.frames_per_second() * app.session.world.dt();
     // SPEEDS steps by ×2 or ×2.5, so the nearest is within a factor 1.6.
     assert!(
         after / ratio < 1.6 && ratio / after < 1.6,
         "×{ratio} real time before, ×{after} after"
     );
-    assert_eq!(app.frame, tumble::tables::Frame::Body, "the frame is kept");
+    assert_eq!(
+        app.prefs.frame,
+        tumble::tables::Frame::Body,
+        "the frame is kept"
+    );
 }
 
 /// Lesson 14: three cubes in a row.
@@ -829,18 +870,18 @@ fn head_on_app() -> App {
 #[test]
 fn tab_picks_the_body_the_panels_show_and_every_body_is_drawn() {
     let mut app = head_on_app();
-    assert_eq!(app.snapshot.body_name, "left");
+    assert_eq!(app.session.snapshot.body_name, "left");
     let shown = screen(&app, 160, 50);
     assert!(shown.contains("body left (1/3)"), "{shown}");
     assert!(shown.contains("system: 3 bodies"), "{shown}");
     // left starts at x = −0.7, middle at 0, right at 0.21: the panels show left's x.
     assert!(shown.contains("-0.700000"), "{shown}");
     press(&mut app, KeyCode::Tab);
-    assert_eq!(app.snapshot.body_name, "middle");
-    assert_eq!(app.snapshot.position.x, 0.0);
+    assert_eq!(app.session.snapshot.body_name, "middle");
+    assert_eq!(app.session.snapshot.position.x, 0.0);
     press(&mut app, KeyCode::Tab);
     press(&mut app, KeyCode::Tab);
-    assert_eq!(app.snapshot.body_name, "left", "Tab wraps around");
+    assert_eq!(app.session.snapshot.body_name, "left", "Tab wraps around");
     // Every body is in the drawing: each barycenter is marked '@' (not the legend's "@ center").
     let centres: usize = shown
         .lines()
@@ -857,21 +898,22 @@ fn with_several_bodies_c_skips_seed_and_says_why() {
     let mut app = head_on_app();
     press(&mut app, KeyCode::Char('c'));
     assert_eq!(
-        app.world.contact_model().map(|m| m.response.name()),
+        app.session.world.contact_model().map(|m| m.response.name()),
         Some("soft-step")
     );
     press(&mut app, KeyCode::Char('c'));
     assert_eq!(
-        app.world.contact_model().map(|m| m.response.name()),
+        app.session.world.contact_model().map(|m| m.response.name()),
         Some("impulse")
     );
     assert!(
-        app.notice
+        app.ui
+            .notice
             .as_deref()
             .unwrap_or("")
             .contains("the `seed` response knows one body"),
         "{:?}",
-        app.notice
+        app.ui.notice
     );
 }
 
@@ -882,11 +924,11 @@ fn stepping_back_restores_every_body_after_a_collision() {
     for _ in 0..520 {
         press(&mut app, KeyCode::Right);
     }
-    let later = app.world.states().to_vec();
+    let later = app.session.world.states().to_vec();
     press(&mut app, KeyCode::Right);
     press(&mut app, KeyCode::Left);
     assert_eq!(
-        app.world.states(),
+        app.session.world.states(),
         &later[..],
         "one frame back is exact for every body"
     );
@@ -897,6 +939,7 @@ fn key_u_puts_the_measured_error_under_each_number_and_off_again() {
     let mut app = app("tui-spring.toml");
     keys(&mut app, "u>>>>>");
     let errors = app
+        .session
         .error_bars
         .as_ref()
         .and_then(|b| b.errors.as_ref())
@@ -912,6 +955,6 @@ fn key_u_puts_the_measured_error_under_each_number_and_off_again() {
     assert!(shown.contains("± vs rk4 at dt = 1.0000e-4 s"), "{shown}");
     assert!(shown.contains("│ ±  "), "{shown}");
     press(&mut app, KeyCode::Char('u'));
-    assert!(app.error_bars.is_none());
+    assert!(app.session.error_bars.is_none());
     assert!(!screen(&app, 160, 60).contains("± vs rk4"));
 }

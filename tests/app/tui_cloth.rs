@@ -184,11 +184,12 @@ fn the_explicit_limit_is_named_when_dt_exceeds_it() {
     assert!(shown.contains("below the limit: dt = 0.50 × h*"), "{shown}");
     // A sheet above its limit (the CLI fixture: dt = 1.1 × 2/ω_max, undamped): said so.
     let above = app("tests/fixtures/cloth/sheet-alone.toml", true);
-    let view = &above.snapshot.cloths[0];
+    let view = &above.session.snapshot.cloths[0];
     assert!(
-        cloth_panel::verdict(view, above.snapshot.dt).starts_with("above the limit: dt = 1.10"),
+        cloth_panel::verdict(view, above.session.snapshot.dt)
+            .starts_with("above the limit: dt = 1.10"),
         "{}",
-        cloth_panel::verdict(view, above.snapshot.dt)
+        cloth_panel::verdict(view, above.session.snapshot.dt)
     );
     assert!(screen_text(&above, 160, 60).contains("above the limit: dt = 1.10 × h*"));
 }
@@ -215,11 +216,11 @@ fn pinned_particles_are_drawn_where_their_positions_project() {
     let (width, height) = (120, 40);
     let buf = export::render(&app, width, height);
     let area = drawing_rect(&app, width, height);
-    let mapping = Mapping::fit(&app.region, app.axis, area.width, area.height);
-    let cloth = &app.world.cloths()[0];
+    let mapping = Mapping::fit(&app.ui.region, app.prefs.axis, area.width, area.height);
+    let cloth = &app.session.world.cloths()[0];
     let mut checked = 0;
     for (k, _) in cloth.pinned.iter().enumerate().filter(|(_, p)| **p) {
-        let (h, v) = app.axis.project(&cloth.positions[k]);
+        let (h, v) = app.prefs.axis.project(&cloth.positions[k]);
         let (c, r) = mapping.cell(h, v);
         let cell = &buf[(area.x + c.floor() as u16, area.y + r.floor() as u16)];
         assert_eq!(
@@ -243,9 +244,9 @@ fn pinned_particles_are_drawn_where_their_positions_project() {
     braille.step_frames(25);
     keys(&mut braille, "vv");
     let buf = export::render(&braille, width, height);
-    let cloth = &braille.world.cloths()[0];
+    let cloth = &braille.session.world.cloths()[0];
     for (k, _) in cloth.pinned.iter().enumerate().filter(|(_, p)| **p) {
-        let (h, v) = braille.axis.project(&cloth.positions[k]);
+        let (h, v) = braille.prefs.axis.project(&cloth.positions[k]);
         let (c, r) = mapping.cell(h, v);
         let near = (-1..=1).any(|dc: i32| {
             (-1..=1).any(|dr: i32| {
@@ -269,40 +270,40 @@ fn a_scene_of_cloths_only_works_in_every_view_without_a_panic() {
     // Tab has no body to pick, and says so.
     keys(&mut app, "\t");
     assert_eq!(
-        app.notice.as_deref(),
+        app.ui.notice.as_deref(),
         Some("no rigid body in this scene: Tab has nothing to pick")
     );
     // Phases, frames, step back, axes, frame, trail, arrows, layouts, compare, graph, study.
     keys(&mut app, "nnnn>>>>vvvftaic,,e");
     assert!(
-        matches!(app.overlay, tumble::tui::Overlay::Settings(_)),
+        matches!(app.ui.overlay, tumble::tui::Overlay::Settings(_)),
         "the form opens on cloths only"
     );
-    app.overlay = tumble::tui::Overlay::None;
+    app.ui.overlay = tumble::tui::Overlay::None;
     for (w, h) in [(80, 24), (120, 40), (200, 60)] {
         for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
-            app.layout = layout;
+            app.prefs.layout = layout;
             let shown = screen_text(&app, w, h);
             assert!(shown.contains("no rigid body in this scene"), "{shown}");
         }
     }
     keys(&mut app, "k");
-    assert!(app.ghost.is_some());
+    assert!(app.session.ghost.is_some());
     keys(&mut app, ">>");
     screen_text(&app, 120, 40);
     keys(&mut app, "g");
-    assert_eq!(app.view, View::Energy);
+    assert_eq!(app.ui.view, View::Energy);
     screen_text(&app, 120, 40);
     keys(&mut app, "s");
-    assert_eq!(app.view, View::Study);
+    assert_eq!(app.ui.view, View::Study);
     let shown = screen_text(&app, 120, 40);
     assert!(shown.contains("study of"), "{shown}");
     assert!(
-        app.study.is_some(),
+        app.session.study.is_some(),
         "the study runs on cloths only, as `tumble study` does"
     );
     keys(&mut app, "r");
-    assert_eq!(app.snapshot.step, 0);
+    assert_eq!(app.session.snapshot.step, 0);
 }
 
 #[test]
@@ -315,10 +316,12 @@ fn the_ghost_draws_its_cloth_in_the_ghost_colour() {
     let mut app = app(TRAMPOLINE, true);
     keys(&mut app, "k");
     app.step_frames(20);
-    if let Some(g) = &mut app.ghost {
+    if let Some(g) = &mut app.session.ghost {
         for _ in 0..100 {
             g.world.step();
         }
+        // Every pane draws from the snapshots: the ghost's is read again.
+        g.snapshot = g.world.snapshot();
     }
     let buf = export::render(&app, 120, 40);
     let area = drawing_rect(&app, 120, 40);
@@ -388,9 +391,9 @@ fn the_view_keeps_every_particle_in_frame() {
     for _ in 0..10 {
         app.step_frames(20);
         let area = drawing_rect(&app, 120, 40);
-        let mapping = Mapping::fit(&app.region, app.axis, area.width, area.height);
-        for p in &app.world.cloths()[0].positions {
-            let (h, v) = app.axis.project(p);
+        let mapping = Mapping::fit(&app.ui.region, app.prefs.axis, area.width, area.height);
+        for p in &app.session.world.cloths()[0].positions {
+            let (h, v) = app.prefs.axis.project(p);
             let (c, r) = mapping.cell(h, v);
             assert!(
                 (0.0..f64::from(area.width)).contains(&c)
@@ -444,8 +447,8 @@ integrator = "implicit-euler"
         },
     );
     app.step_frames(500);
-    assert_eq!(app.world.cloth_obstacle_contacts(0), [25, 0]);
-    assert_eq!(app.snapshot.cloths[0].obstacle_contacts, [25, 0]);
+    assert_eq!(app.session.world.cloth_obstacle_contacts(0), [25, 0]);
+    assert_eq!(app.session.snapshot.cloths[0].obstacle_contacts, [25, 0]);
     let shown = screen_text(&app, 120, 40);
     assert!(
         shown.contains("with obstacles: 25 integrate, 0 collide"),

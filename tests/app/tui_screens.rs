@@ -78,12 +78,12 @@ fn screens_at_80x24_120x40_and_200x60() {
         insta::assert_snapshot!(format!("numbers_{w}x{h}"), screen(&app, w, h));
     }
     keys(&mut app, "L");
-    assert_eq!(app.layout, ScreenLayout::Stage);
+    assert_eq!(app.prefs.layout, ScreenLayout::Stage);
     for (w, h) in [(80, 24), (120, 40)] {
         insta::assert_snapshot!(format!("stage_{w}x{h}"), screen(&app, w, h));
     }
     keys(&mut app, "L");
-    assert_eq!(app.layout, ScreenLayout::Numbers);
+    assert_eq!(app.prefs.layout, ScreenLayout::Numbers);
 }
 
 #[test]
@@ -167,11 +167,11 @@ fn words(lines: &[String]) -> Vec<String> {
 /// full text (a cut word would differ).
 fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
     let lines: Vec<&str> = shown.lines().collect();
-    let mut all = tables::panels(&app.snapshot, app.frame);
-    all.push(panels::essentials_of(app, &app.snapshot));
-    all.push(tables::body_energy_panel(&app.snapshot));
-    for c in &app.snapshot.cloths {
-        let (panel, text) = cloth_panel::panel(c, app.snapshot.dt);
+    let mut all = tables::panels(&app.session.snapshot, app.prefs.frame);
+    all.push(panels::essentials_of(app, &app.session.snapshot));
+    all.push(tables::body_energy_panel(&app.session.snapshot));
+    for c in &app.session.snapshot.cloths {
+        let (panel, text) = cloth_panel::panel(c, app.session.snapshot.dt);
         let title = format!("│{}", panel.title);
         if lines.iter().any(|l| l.ends_with(&title)) {
             for t in &text {
@@ -197,7 +197,7 @@ fn assert_nothing_cut(app: &App, shown: &str, context: &str) {
             );
         }
     }
-    let s = &app.snapshot;
+    let s = &app.session.snapshot;
     for field in [
         format!("t {} s", tables::number_plain(s.time)),
         format!("dt {} s", tables::number_plain(s.dt)),
@@ -268,7 +268,7 @@ fn no_number_or_unit_is_cut_at_any_width_from_80_to_240() {
     ];
     for (name, app) in &mut apps {
         for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
-            app.layout = layout;
+            app.prefs.layout = layout;
             for height in [24, 31, 40, 60] {
                 for width in 80..=240 {
                     let shown = screen(app, width, height);
@@ -416,7 +416,7 @@ fn the_svg_of_a_screen_parses_and_holds_the_panel_text() {
     assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
     let content = xml_text(&svg);
     // Every number of the state and energy panels, as the panel prints it.
-    let panels = tables::panels(&app.snapshot, Frame::World);
+    let panels = tables::panels(&app.session.snapshot, Frame::World);
     for panel in [&panels[0], &panels[6]] {
         for row in &panel.rows {
             for cell in &row.cells {
@@ -439,11 +439,11 @@ fn the_svg_of_a_screen_parses_and_holds_the_panel_text() {
 fn x_asks_for_an_export_and_the_file_name_names_lesson_and_time() {
     let mut app = fixture("tui-box.toml");
     keys(&mut app, ">>>x");
-    assert!(app.export_requested);
+    assert!(app.ui.export_requested);
     assert_eq!(export::screen_file_name(&app), "tumble-tui-box-t0.030.svg");
     // Rendering is untouched by the request; the event loop writes the file at the
     // terminal's size and clears the request.
-    assert_eq!(app.snapshot.step, 3);
+    assert_eq!(app.session.snapshot.step, 3);
 }
 
 #[test]
@@ -471,7 +471,7 @@ fn a_recording_has_an_asciicast_header_and_increasing_event_times() {
     // the last frame shows t = 0.2 s (dt = 0.01 s: 20 steps).
     assert_eq!(events, 7);
     assert!((last - 0.2).abs() < 1e-6, "{last}");
-    assert_eq!(app.snapshot.step, 20);
+    assert_eq!(app.session.snapshot.step, 20);
 }
 
 #[test]
@@ -485,7 +485,7 @@ fn a_recording_never_shows_a_pause_it_does_not_make() {
         assert!(!line.contains("paused"), "frame {i} shows a pause: {line}");
         assert!(!line.contains("Enter continues"), "frame {i}: {line}");
     }
-    assert_eq!(app.snapshot.step, 60);
+    assert_eq!(app.session.snapshot.step, 60);
 }
 
 #[test]
@@ -640,9 +640,9 @@ fn a_hinge_seen_end_on_is_a_circled_dot_and_a_spring_a_zigzag() {
 
 /// Runs the app as the event loop does (running, pausing at page times) to its next pause.
 fn run_to_next_pause(app: &mut App) {
-    app.running = true;
+    app.ui.running = true;
     app.step_frames(10_000_000);
-    app.running = false;
+    app.ui.running = false;
 }
 
 #[test]
@@ -661,12 +661,12 @@ fn a_pause_line_never_hides_a_panel() {
         let mut app = lesson(name);
         for pause in 1..=2 {
             run_to_next_pause(&mut app);
-            assert!(app.notice.is_some(), "{name}: no pause {pause}");
+            assert!(app.ui.notice.is_some(), "{name}: no pause {pause}");
             let mut quiet = app.clone();
-            quiet.notice = None;
+            quiet.ui.notice = None;
             for layout in [ScreenLayout::Numbers, ScreenLayout::Stage] {
-                app.layout = layout;
-                quiet.layout = layout;
+                app.prefs.layout = layout;
+                quiet.prefs.layout = layout;
                 for (w, h) in [(80, 24), (100, 31), (120, 40), (200, 60)] {
                     let (with, without) = (screen(&app, w, h), screen(&quiet, w, h));
                     let status = 4; // the status bar is at most 4 rows
@@ -681,7 +681,7 @@ fn a_pause_line_never_hides_a_panel() {
                         main(&without),
                         "{name} pause {pause}, {layout:?} {w}×{h}: the notice moved the screen:\n{with}"
                     );
-                    let notice = app.notice.clone().unwrap();
+                    let notice = app.ui.notice.clone().unwrap();
                     let head: String = notice.chars().take(20).collect();
                     assert!(
                         with.contains(&head),
@@ -720,11 +720,11 @@ fn the_panels_a_page_quotes_are_shown_at_every_width_from_80_to_240() {
         "16-trampoline.toml",
     ] {
         let mut app = lesson(name);
-        let times: Vec<f64> = app.lesson.pages.iter().map(|p| p.at).collect();
+        let times: Vec<f64> = app.session.lesson.pages.iter().map(|p| p.at).collect();
         let mut quoting = 0;
         for at in times {
-            let steps = tumble::tui::timeline::step_at(at, app.snapshot.dt);
-            app.step_frames(steps - app.snapshot.step);
+            let steps = tumble::tui::timeline::step_at(at, app.session.snapshot.dt);
+            app.step_frames(steps - app.session.snapshot.step);
             let quoted = panels::quoted(&app);
             if quoted.is_empty() {
                 continue;
@@ -757,9 +757,16 @@ fn the_panels_a_page_quotes_are_shown_at_every_width_from_80_to_240() {
                 }
             }
             // The stage layout's essentials hold the rows of the panels the page names.
-            app.layout = ScreenLayout::Stage;
-            let essentials = panels::essentials_of(&app, &app.snapshot);
-            for key in &app.lesson.page_at(app.snapshot.time).unwrap().1.panels {
+            app.prefs.layout = ScreenLayout::Stage;
+            let essentials = panels::essentials_of(&app, &app.session.snapshot);
+            for key in &app
+                .session
+                .lesson
+                .page_at(app.session.snapshot.time)
+                .unwrap()
+                .1
+                .panels
+            {
                 if *key == PagePanel::AngularVelocity {
                     assert!(
                         essentials.rows.iter().any(|r| r.label == "ωbody"),
@@ -769,7 +776,7 @@ fn the_panels_a_page_quotes_are_shown_at_every_width_from_80_to_240() {
                     assert!(shown.contains("ωbody"), "{name}:\n{shown}");
                 }
             }
-            app.layout = ScreenLayout::Numbers;
+            app.prefs.layout = ScreenLayout::Numbers;
         }
         assert!(quoting >= 2, "{name}: {quoting} pages quote panels");
     }
@@ -857,15 +864,16 @@ fn several_bodies_flying_apart_all_stay_in_the_drawing() {
     let mut app = lesson("14-head-on.toml");
     for (frames, t) in [(2000, 2.0), (3000, 5.0)] {
         app.step_frames(frames);
-        assert!((app.snapshot.time - t).abs() < 1e-9);
+        assert!((app.session.snapshot.time - t).abs() < 1e-9);
         for (w, h) in [(80, 24), (120, 40)] {
             let main = ratatui::layout::Rect::new(0, 1, w, h - 4);
             let drawing = tumble::tui::screen::main_areas(&app, main).drawing;
             let (cols, rows) = (drawing.width - 2, drawing.height - 2);
-            let mapping = tumble::tui::viewport::Mapping::fit(&app.region, app.axis, cols, rows);
-            for body in &app.snapshot.bodies {
+            let mapping =
+                tumble::tui::viewport::Mapping::fit(&app.ui.region, app.prefs.axis, cols, rows);
+            for body in &app.session.snapshot.bodies {
                 for v in &body.vertices {
-                    let (hx, vy) = app.axis.project(v);
+                    let (hx, vy) = app.prefs.axis.project(v);
                     let (c, r) = mapping.cell(hx, vy);
                     assert!(
                         (0.0..=f64::from(cols)).contains(&c)
@@ -936,7 +944,10 @@ fn the_energy_graphs_labels_never_overlap_and_its_legend_is_out_of_the_curves() 
     for (w, h) in [(80, 24), (100, 31), (120, 40), (200, 60)] {
         let shown = screen(&app, w, h);
         let mut allowed = Vec::new();
-        for r in [app.series.energy_axis, app.series.drift_axis] {
+        for r in [
+            app.session.series.energy_axis,
+            app.session.series.drift_axis,
+        ] {
             let span = r.hi - r.lo;
             for x in [r.lo, 0.5 * (r.lo + r.hi), r.hi] {
                 allowed.push(axis_label(x, span));

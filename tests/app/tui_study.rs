@@ -60,10 +60,10 @@ fn wait_for_study(app: &mut App) {
 #[test]
 fn the_study_runs_in_the_background_while_the_app_keeps_working() {
     let mut app = app("study/short-tumble.toml");
-    assert!(app.study.is_none(), "nothing is studied before `s`");
+    assert!(app.session.study.is_none(), "nothing is studied before `s`");
     press(&mut app, KeyCode::Char('s'));
-    assert_eq!(app.view, View::Study);
-    let job = app.study.clone().expect("`s` starts a study");
+    assert_eq!(app.ui.view, View::Study);
+    let job = app.session.study.clone().expect("`s` starts a study");
     assert_eq!(
         job.progress().1,
         Integrator::ALL.len() * 4,
@@ -75,26 +75,30 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
 
     // The rest of the app answers meanwhile: a frame steps, another view opens.
     press(&mut app, KeyCode::Right);
-    assert_eq!(app.snapshot.step, 1, "stepping works while the study runs");
+    assert_eq!(
+        app.session.snapshot.step, 1,
+        "stepping works while the study runs"
+    );
     press(&mut app, KeyCode::Char('g'));
     assert_eq!(
-        app.view,
+        app.ui.view,
         View::Energy,
         "the study view can be left while it runs"
     );
     press(&mut app, KeyCode::Char('s'));
-    assert_eq!(app.view, View::Study);
+    assert_eq!(app.ui.view, View::Study);
     assert_eq!(
-        app.study.as_ref().map(|j| j.name.clone()),
+        app.session.study.as_ref().map(|j| j.name.clone()),
         Some(job.name.clone())
     );
     assert!(
-        !app.study_running() || app.study.as_ref().unwrap().progress().0 <= 20,
+        !app.study_running() || app.session.study.as_ref().unwrap().progress().0 <= 20,
         "re-entering keeps the same study"
     );
 
     wait_for_study(&mut app);
     let result = app
+        .session
         .study
         .as_ref()
         .unwrap()
@@ -119,8 +123,8 @@ fn the_study_runs_in_the_background_while_the_app_keeps_working() {
     }
     // `s` again goes back to the loop view; the finished study is kept for next time.
     press(&mut app, KeyCode::Char('s'));
-    assert_eq!(app.view, View::Loop);
-    assert!(app.study.as_ref().unwrap().result().is_some());
+    assert_eq!(app.ui.view, View::Loop);
+    assert!(app.session.study.as_ref().unwrap().result().is_some());
     // The small terminal still renders the view.
     press(&mut app, KeyCode::Char('s'));
     let small = screen(&app, 80, 24);
@@ -143,7 +147,7 @@ fn the_study_follows_the_response_in_use_and_blames_it_when_every_integrator_div
         },
     );
     press(&mut app, KeyCode::Char('s'));
-    let first = app.study.clone().expect("a study started");
+    let first = app.session.study.clone().expect("a study started");
     assert_eq!(first.response, Some(tumble::physics::Response::Seed));
     wait_for_study(&mut app);
     let shown = screen(&app, 160, 50);
@@ -160,11 +164,11 @@ fn the_study_follows_the_response_in_use_and_blames_it_when_every_integrator_div
     press(&mut app, KeyCode::Char('s')); // leave the view
     press(&mut app, KeyCode::Char('c')); // seed → impulse
     press(&mut app, KeyCode::Char('s')); // the study is made again, with impulse
-    let job = app.study.clone().unwrap();
+    let job = app.session.study.clone().unwrap();
     assert_eq!(job.response, Some(tumble::physics::Response::Impulse));
     press(&mut app, KeyCode::Char('s'));
     press(&mut app, KeyCode::Char('s')); // re-entering with the same response keeps the study
-    assert!(job.same(app.study.as_ref().unwrap()));
+    assert!(job.same(app.session.study.as_ref().unwrap()));
 }
 
 #[test]
@@ -172,7 +176,7 @@ fn the_chart_marks_the_integrator_in_use() {
     let mut app = app("study/short-tumble.toml");
     press(&mut app, KeyCode::Char('s'));
     wait_for_study(&mut app);
-    let in_use = app.world.integrator().name();
+    let in_use = app.session.world.integrator().name();
     let shown = screen(&app, 160, 50);
     assert!(
         shown.contains(&format!("{in_use} (in use)")),
@@ -211,7 +215,7 @@ fn esc_cancels_a_heavy_study_and_its_thread_ends_and_q_quits_meanwhile() {
     };
     let mut app = App::new(lesson.clone(), options());
     press(&mut app, KeyCode::Char('s'));
-    let job = app.study.clone().expect("`s` starts a study");
+    let job = app.session.study.clone().expect("`s` starts a study");
     let runs = Integrator::ALL.len() * 4 + tumble::study::contact::solvers().len();
     assert_eq!(job.progress(), (0, runs), "nothing done yet");
     // The progress is on the screen: runs done of all (the reference comes first).
@@ -231,29 +235,32 @@ fn esc_cancels_a_heavy_study_and_its_thread_ends_and_q_quits_meanwhile() {
     assert!(shown.contains(" left"), "{shown}");
     // Every key answers meanwhile.
     press(&mut app, KeyCode::Right);
-    assert_eq!(app.snapshot.step, 1, "stepping works while the study runs");
+    assert_eq!(
+        app.session.snapshot.step, 1,
+        "stepping works while the study runs"
+    );
     app.poll_study();
     assert!(app.study_running(), "not done in a moment");
     // Esc: the view closes, the study is cancelled and forgotten, its thread ends.
     press(&mut app, KeyCode::Esc);
-    assert_eq!(app.view, View::Loop);
-    assert!(app.study.is_none(), "the study is dropped");
+    assert_eq!(app.ui.view, View::Loop);
+    assert!(app.session.study.is_none(), "the study is dropped");
     assert!(job.cancelled());
     job.join();
     assert!(job.ended(), "the study thread ended after the cancel");
     job.poll();
     assert!(!job.failed() && job.result().is_none());
     assert_eq!(
-        app.notice.as_deref(),
+        app.ui.notice.as_deref(),
         Some("study cancelled: s starts it again")
     );
 
     // q while a study runs: quits in the same call, and the study's thread stops.
     let mut app = App::new(lesson, options());
     press(&mut app, KeyCode::Char('s'));
-    let job = app.study.clone().unwrap();
+    let job = app.session.study.clone().unwrap();
     press(&mut app, KeyCode::Char('q'));
-    assert!(app.quit);
+    assert!(app.ui.quit);
     assert!(job.cancelled());
     job.join();
     assert!(job.ended());

@@ -271,12 +271,12 @@ mod app {
         app.update(Message::Continue);
         app.step_frames(1000);
         // The run stops at page 2 (t = 0.5 s); Enter asks for the guess instead of running.
-        assert_eq!(app.world.step_count(), 50);
+        assert_eq!(app.session.world.step_count(), 50);
         assert!(screen(&app).contains("Enter asks for your guess"));
         app.update(Message::Continue);
-        assert!(!app.running);
+        assert!(!app.ui.running);
         assert!(matches!(
-            app.overlay,
+            app.ui.overlay,
             tumble::tui::app::Overlay::Predict { .. }
         ));
         assert!(screen(&app).contains("what will cube.y be at t = 0.6 s (in m)?"));
@@ -284,16 +284,16 @@ mod app {
             app.update(Message::Type(c));
         }
         app.update(Message::Submit);
-        assert!(app.running);
+        assert!(app.ui.running);
         app.step_frames(1000);
         // Stopped at t = 0.6 s (step 60): y = 0.204770 m; |0.3 − 0.20477| / 0.20477 = 46.5 %.
-        assert_eq!(app.world.step_count(), 60);
+        assert_eq!(app.session.world.step_count(), 60);
         let expected =
             "cube.y at t = 0.6 s: your guess 0.3 m · simulated 0.204770 m · relative error 46.5 %";
         assert!(
-            app.notice.as_deref().unwrap_or("").contains(expected),
+            app.ui.notice.as_deref().unwrap_or("").contains(expected),
             "{:?}",
-            app.notice
+            app.ui.notice
         );
         assert!(screen(&app).contains(expected), "{}", screen(&app));
     }
@@ -306,7 +306,7 @@ mod app {
         // Explicit Euler (the next integrator after symplectic Euler? whichever `i` gives):
         // the page now quotes that integrator's value, simulated again from t = 0.
         app.update(Message::NextIntegrator);
-        let mut world = app.world.clone();
+        let mut world = app.session.world.clone();
         world.reset();
         for _ in 0..50 {
             world.step();

@@ -13,28 +13,15 @@
 //! per joint  error: ball, hinge, fixed |anchor A − anchor B|; distance |separation − length|
 //! ```
 //!
-//! Values are read between frames from the world's state the way its snapshot reads them, so a
-//! plotted number is the one the panels show at that frame.
+//! Values are read from the world's snapshot between frames by the live numbers' reader
+//! ([`crate::live::value`]), so a plotted number is the one the panels and the pages show at
+//! that frame.
 
-use crate::physics::derive::derive;
-use crate::physics::{SystemTotals, World};
+use crate::physics::Snapshot;
+pub use crate::scene::live::Measure;
 
 /// Rows kept before the series is thinned to every other row.
 pub const MAX_ROWS: usize = 4096;
-
-/// What one column measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Measure {
-    Position(usize),
-    Velocity(usize),
-    AngularVelocity(usize),
-    AngularMomentum(usize),
-    AngularMomentumNorm,
-    Speed,
-    Kinetic,
-    Potential,
-    Energy,
-}
 
 /// A plottable quantity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,18 +65,30 @@ const BODY_COLUMNS: [(&str, Measure, &str); 17] = [
     ("energy", Measure::Energy, "J"),
 ];
 
-/// Every quantity a world offers, in the picker's order: each moving body's, then the
+impl Quantity {
+    /// The body and measure the live numbers' reader takes (scene-wide ones of body 0).
+    pub fn reading(self) -> (usize, Measure) {
+        match self {
+            Quantity::Body { body, measure } => (body, measure),
+            Quantity::SceneEnergy => (0, Measure::SceneEnergy),
+            Quantity::SceneMomentum(i) => (0, Measure::SceneMomentum(i)),
+            Quantity::JointError(j) => (0, Measure::JointError(j)),
+        }
+    }
+}
+
+/// Every quantity a snapshot offers, in the picker's order: each moving body's, then the
 /// scene's, then each joint's error.
-pub fn columns(world: &World) -> Vec<Column> {
+pub fn columns(snapshot: &Snapshot) -> Vec<Column> {
     let mut out = Vec::new();
-    for (body, name) in world.body_names().iter().enumerate() {
-        if world.bodies()[body].fixed {
+    for (body, view) in snapshot.bodies.iter().enumerate() {
+        if view.fixed {
             continue;
         }
         for (what, measure, unit) in BODY_COLUMNS {
             out.push(Column {
                 quantity: Quantity::Body { body, measure },
-                name: format!("{name}.{what}"),
+                name: format!("{}.{what}", view.name),
                 unit,
             });
         }
@@ -106,7 +105,7 @@ pub fn columns(world: &World) -> Vec<Column> {
             unit: "kg·m/s",
         });
     }
-    for (joint, j) in world.links().joints.iter().enumerate() {
+    for (joint, j) in snapshot.joints.iter().enumerate() {
         out.push(Column {
             quantity: Quantity::JointError(joint),
             name: format!("{}.error", j.name),
@@ -116,41 +115,13 @@ pub fn columns(world: &World) -> Vec<Column> {
     out
 }
 
-/// The value of every column now (between frames), in the columns' order.
-pub fn values(world: &World, columns: &[Column]) -> Vec<f64> {
-    let mut derived: Vec<Option<crate::physics::derive::Kinematics>> =
-        vec![None; world.body_count()];
-    let mut totals: Option<SystemTotals> = None;
+/// The value of every column in a snapshot, in the columns' order.
+pub fn values(snapshot: &Snapshot, columns: &[Column]) -> Vec<f64> {
     columns
         .iter()
-        .map(|c| match c.quantity {
-            Quantity::Body { body, measure } => {
-                let state = &world.states()[body];
-                let k = *derived[body].get_or_insert_with(|| derive(&world.bodies()[body], state));
-                match measure {
-                    Measure::Position(i) => state.position[i],
-                    Measure::Velocity(i) => k.velocity[i],
-                    Measure::AngularVelocity(i) => k.angular_velocity[i],
-                    Measure::AngularMomentum(i) => state.angular_momentum[i],
-                    Measure::AngularMomentumNorm => state.angular_momentum.norm(),
-                    Measure::Speed => k.velocity.norm(),
-                    Measure::Kinetic => world.body_energy(body).kinetic,
-                    Measure::Potential => world.body_energy(body).potential,
-                    Measure::Energy => world.body_energy(body).total,
-                }
-            }
-            Quantity::SceneEnergy => {
-                totals
-                    .get_or_insert_with(|| SystemTotals::of(world))
-                    .energy
-                    .total
-            }
-            Quantity::SceneMomentum(i) => {
-                totals
-                    .get_or_insert_with(|| SystemTotals::of(world))
-                    .linear_momentum[i]
-            }
-            Quantity::JointError(j) => world.links().joints[j].error(world.states()),
+        .map(|c| {
+            let (body, measure) = c.quantity.reading();
+            crate::live::value(snapshot, body, measure)
         })
         .collect()
 }
@@ -227,22 +198,29 @@ pub struct PlotSeries {
 }
 
 impl PlotSeries {
-    /// A series holding the world's state now (t = 0).
-    pub fn new(world: &World) -> PlotSeries {
+    /// A series holding the snapshot of the world now (t = 0).
+    pub fn new(snapshot: &Snapshot) -> PlotSeries {
         let mut series = PlotSeries {
-            columns: columns(world),
+            columns: columns(snapshot),
             steps: Vec::new(),
             times: Vec::new(),
             values: Vec::new(),
             stride: 1,
         };
-        series.record(world);
+        series.record(snapshot);
         series
     }
 
-    /// Records the world after a whole frame, if its step is one kept (one in `stride`).
-    pub fn record(&mut self, world: &World) {
-        let step = world.step_count();
+    /// Whether the frame of `step` is one kept (one in `stride`): only then does
+    /// [`PlotSeries::record`] need its snapshot.
+    pub fn keeps(&self, step: u64) -> bool {
+        step.is_multiple_of(self.stride)
+    }
+
+    /// Records the snapshot of a world after a whole frame, if its step is one kept (one in
+    /// `stride`).
+    pub fn record(&mut self, snapshot: &Snapshot) {
+        let step = snapshot.step;
         if !step.is_multiple_of(self.stride) {
             return;
         }
@@ -250,8 +228,8 @@ impl PlotSeries {
             self.truncate_after_step(step.saturating_sub(1));
         }
         self.steps.push(step);
-        self.times.push(world.time());
-        self.values.extend(values(world, &self.columns));
+        self.times.push(snapshot.time);
+        self.values.extend(values(snapshot, &self.columns));
         if self.steps.len() > MAX_ROWS {
             self.stride *= 2;
             let n = self.columns.len();
@@ -360,7 +338,7 @@ mod tests {
     fn curves_of_one_unit_share_an_axis_a_second_unit_takes_the_right_one() {
         let lesson =
             crate::lessons::load(std::path::Path::new("lessons/05-ground-collision.toml")).unwrap();
-        let columns = columns(&lesson.scene.world());
+        let columns = columns(&lesson.scene.world().snapshot());
         let at = |name: &str| columns.iter().position(|c| c.name == name).unwrap();
         let (y, x, vy, k) = (
             at("body1.y"),
@@ -383,7 +361,7 @@ mod tests {
         let lesson =
             crate::lessons::load(std::path::Path::new("lessons/05-ground-collision.toml")).unwrap();
         let mut world = lesson.scene.world();
-        let mut series = PlotSeries::new(&world);
+        let mut series = PlotSeries::new(&world.snapshot());
         let t = series
             .columns
             .iter()
@@ -391,7 +369,7 @@ mod tests {
             .unwrap();
         for _ in 0..(MAX_ROWS as u64 + 10) {
             world.step();
-            series.record(&world);
+            series.record(&world.snapshot());
         }
         // 4107 rows were offered; past 4096 the stride doubled: even steps only.
         assert!(series.len() <= MAX_ROWS && series.len() > MAX_ROWS / 2);
