@@ -6,41 +6,46 @@
 //! ```
 //!
 //! **Blocks.** Consecutive rows acting on the same two bodies (a joint's 1 to 6 rows, or a run
-//! of contact rows) form one block of K. Block P's envelope starts at the first row of the
-//! first block sharing one of its bodies, column `first(P)`; no factor entry lies left of it
-//! (fill-in stays inside the envelope), so only the entries `first(P)..=p` of each row p are
-//! stored, one row after the other. A chain's blocks are tridiagonal (joint k shares body k−1
-//! with joint k−1 only): block row k holds K_{k,k−1} and K_{k,k}, and the factorisation is
-//! the block-tridiagonal Cholesky
+//! of contact rows) form one block of K. When every block shares bodies only with the block
+//! just before it (a chain in order: joint k joins body k to body k − 1), K is
+//! block-tridiagonal, and it is solved in blocks padded to S = the widest block's rows
+//! (S ≤ 6; a padding row has K_ii = 1, no coupling and rhs 0, so its multiplier is 0 and the
+//! others are exactly those of the unpadded system), with loops of fixed length S:
 //!
 //! ```text
-//! L_{k,k−1} = K_{k,k−1} L_{k−1,k−1}⁻ᵀ,    L_kk L_kkᵀ = K_kk − L_{k,k−1} L_{k,k−1}ᵀ
+//! K_kk      = Σ_{β ∈ k}  Lin_kβ Lin_kβᵀ / m_β + Ang_kβ (I⁻¹_β Ang_kβᵀ)       (lower half)
+//! K_{k,k−1} = Σ_{β ∈ k ∩ k−1}  Lin_kβ Lin_{k−1,β}ᵀ / m_β + Ang_kβ (I⁻¹_β Ang_{k−1,β}ᵀ)
+//! B_k = K_{k,k−1} L_{k−1}⁻ᵀ,   L_k L_kᵀ = K_kk − B_k B_kᵀ
+//! y_k = L_k⁻¹ (b_k − B_k y_{k−1}),   x_k = L_k⁻ᵀ (y_k − B_{k+1}ᵀ x_{k+1})
 //! ```
 //!
-//! carried out entry by entry (`factor`). K is assembled block pair by block pair, per shared
-//! body: for the body β that blocks P and Q share, with the W-weighted rows w_j = I⁻¹_β ang_j
-//! computed once per row and side (not once per pair),
+//! with Lin_kβ, Ang_kβ the block's rows' parts on body β (S × 3) and I⁻¹ Ang computed once per
+//! block and side. The rows past the last one with a linear part (a hinge's two angular rows,
+//! a fixed joint's three) skip the linear products. For a chain of 10 hinges (50 rows) that is
+//! about 10 · (55 + 200) multiply–adds of 3-vectors and scalars with no index arithmetic,
+//! where the scalar envelope below spends most of its time on bookkeeping per entry; the
+//! factor is kept, so a second right-hand side costs only the substitutions ([`again`]).
 //!
-//! ```text
-//! K_PQ += [lin_i·lin_j / m_β + ang_i·w_j]   i ∈ P, j ∈ Q   (j ≤ i when Q = P)
-//! ```
-//!
-//! and the blocks sharing a body are found by following, from each block, the previous block
-//! on each of its bodies (a list per body, threaded through the blocks: no search).
+//! Anything else (a single block — one joint, with its limit's and motor's rows —, a loop, a
+//! body with three joints, the contact passes' joint and contact rows) is solved in the
+//! envelope (skyline) storage of `physics::envelope`, row by row, as
+//! before: K summed body by body over the pairs of rows that share it.
 //!
 //! **Pivots.** K is symmetric positive definite when the rows are independent. A redundant row
 //! (a ball joint doubling a hinge's point rows, a closed loop) has a pivot L_pp² below 1e-12 of
 //! K's largest diagonal entry: 1/L_pp := 0, its multiplier is 0 and the others carry the load
 //! (as `physics::envelope`'s dropped policy does).
 //!
-//! The matrix is rebuilt and factored at every evaluation of f(Y) (rk4: four times a step);
-//! for a chain of 10 hinges, 50 rows whose envelope is at most 10 wide, that is about
-//! 10 · 170 ≈ 1700 multiply–adds for the factor and 550 block entries to assemble, not a dense
-//! 50³/6 ≈ 21000. The factor is not reused across rk4's stages: each stage's K is at its own
+//! The matrix is rebuilt and factored at every evaluation of f(Y) (rk4: four times a step).
+//! The factor is not reused across rk4's stages: each stage's K is at its own
 //! configuration, and an old factor would make λ, hence the method, inexact.
 
 use super::rows::Row;
+use crate::physics::envelope::{Envelope, Pivots};
 use nalgebra::{Matrix3, Vector3};
+
+/// A row touching a body: (row, linear part, I⁻¹ · angular part, angular part).
+type Touch = (usize, Vector3<f64>, Vector3<f64>, Vector3<f64>);
 
 /// No body (the world's side of a row) or no block.
 const NONE: usize = usize::MAX;
@@ -53,34 +58,24 @@ struct Block {
     size: usize,
     /// Its bodies A and B (NONE: the world).
     bodies: [usize; 2],
-    /// Per side, the previous block acting on the same body (NONE: none).
-    previous: [usize; 2],
-    /// The first column of its envelope.
-    column: usize,
 }
 
 /// Reused buffers of the solve (no allocation once sized).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Solver {
     blocks: Vec<Block>,
-    /// Per body: the last block acting on it so far, and the first row acting on it.
-    last_block: Vec<usize>,
+    /// Per body: the first row acting on it.
     first_row: Vec<usize>,
-    /// Per row: where its entries start in `factor`, and its first column `first(P)`.
-    start: Vec<usize>,
-    first: Vec<usize>,
-    /// Per row: I⁻¹_A ang_a and I⁻¹_B ang_b.
-    weighted: Vec<[Vector3<f64>; 2]>,
-    /// K's lower triangle inside the envelope, row by row, then its factor L.
-    factor: Vec<f64>,
-    /// 1/L_pp (0: a dropped row).
-    reciprocal: Vec<f64>,
-    /// The envelope's size.
-    stored: usize,
+    /// The envelope solve's K, then its factor, and per body the rows touching it (row,
+    /// linear part, I⁻¹ angular part, angular part).
+    system: Envelope,
+    touching: Vec<Vec<Touch>>,
     /// Whether every block's envelope starts at the previous block or at itself (a chain in
     /// order: K block-tridiagonal), and the most rows a block has.
     banded: bool,
     widest: usize,
+    /// The rows of the last factor.
+    solved: usize,
     /// The banded solve's buffers, per block.
     parts: Vec<[Parts; 2]>,
     diagonal: Vec<Square>,
@@ -102,6 +97,8 @@ type Column = [f64; WIDEST];
 /// (zero past the block's rows).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct Parts {
+    /// The rows past this one have no linear part (a hinge's or a fixed joint's angular rows).
+    linear: usize,
     lin: [[f64; 3]; WIDEST],
     scaled: [[f64; 3]; WIDEST],
     ang: [[f64; 3]; WIDEST],
@@ -114,27 +111,11 @@ fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Body β's share of K between rows i of `p` and rows j of `q`: lin_i·lin_j/m + ang_i·I⁻¹ang_j.
-#[inline(always)]
-fn share(p: &Parts, i: usize, q: &Parts, j: usize) -> f64 {
-    dot3(&p.lin[i], &q.scaled[j]) + dot3(&p.ang[i], &q.weighted[j])
-}
-
 /// The inverse mass and world inverse inertia of each body.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Inverse {
     pub mass: f64,
     pub inertia: Matrix3<f64>,
-}
-
-/// `Σ aₖ bₖ` in increasing k.
-#[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut sum = 0.0;
-    for (x, y) in a.iter().zip(b) {
-        sum += x * y;
-    }
-    sum
 }
 
 /// A row's linear and angular parts on one side (0: A, 1: B).
@@ -151,37 +132,94 @@ fn side(row: &Row, side: usize) -> (&Vector3<f64>, &Vector3<f64>) {
 pub fn multipliers(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
     let x = &mut rhs[..rows.len()];
     solver.group(rows, inverse);
-    if solver.banded {
+    solver.solved = 0;
+    if solver.banded && solver.widest <= WIDEST && solver.blocks.len() > 1 {
         match solver.widest {
-            1 => return solver.banded::<1>(rows, inverse, x),
-            2 => return solver.banded::<2>(rows, inverse, x),
-            3 => return solver.banded::<3>(rows, inverse, x),
-            4 => return solver.banded::<4>(rows, inverse, x),
-            5 => return solver.banded::<5>(rows, inverse, x),
-            6 => return solver.banded::<6>(rows, inverse, x),
-            _ => {}
+            1 => solver.banded::<1>(rows, inverse),
+            2 => solver.banded::<2>(rows, inverse),
+            3 => solver.banded::<3>(rows, inverse),
+            4 => solver.banded::<4>(rows, inverse),
+            5 => solver.banded::<5>(rows, inverse),
+            _ => solver.banded::<6>(rows, inverse),
+        }
+    } else {
+        envelope(rows, inverse, x, solver);
+        return;
+    }
+    solver.solved = rows.len();
+    again(x, solver);
+}
+
+/// The envelope solve (`physics::envelope`, dropped pivots) for what is not a chain in
+/// order: K summed body by body over the pairs of rows that share it, into the envelope of
+/// each row (its columns from the first row sharing one of its bodies).
+fn envelope(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
+    let n = rows.len();
+    // Per body, the rows that touch it (row, its linear part, W·its angular part, its
+    // angular part): K is summed body by body, over pairs of rows that share it.
+    solver.touching.resize_with(inverse.len(), Vec::new);
+    for list in &mut solver.touching {
+        list.clear();
+    }
+    for (i, r) in rows.iter().enumerate() {
+        let wa = inverse[r.a].inertia * r.ang_a;
+        solver.touching[r.a].push((i, r.lin_a, wa, r.ang_a));
+        if let Some(b) = r.b {
+            let wb = inverse[b].inertia * r.ang_b;
+            solver.touching[b].push((i, r.lin_b, wb, r.ang_b));
         }
     }
-    solver.weigh(rows, inverse);
-    solver.assemble(rows, inverse);
-    solver.factor(rows.len());
-    solver.substitute(x);
+    let system = &mut solver.system;
+    system.reset(n);
+    for (i, r) in rows.iter().enumerate() {
+        system.fill_row(i, [Some(r.a), r.b], |_| None);
+    }
+    for (body, list) in solver.touching.iter().enumerate() {
+        let inv_mass = inverse.get(body).map_or(0.0, |b| b.mass);
+        for (p, &(i, lin_i, w_i, _)) in list.iter().enumerate() {
+            let (first, row) = system.row_mut(i);
+            for &(j, lin_j, _, ang_j) in &list[..=p] {
+                // Rows are pushed in order: first(i) ≤ j ≤ i.
+                row[j - first] += lin_i.dot(&lin_j) * inv_mass + w_i.dot(&ang_j);
+            }
+        }
+    }
+    // The dropped policy always answers.
+    let solved = system.solve_into(Pivots::Dropped, rhs);
+    debug_assert!(solved);
+}
+
+/// Solves `K λ = rhs` again with the factor of the last [`multipliers`] call (the same number
+/// of rows; K as it was then), written over `rhs`, when that call was banded (false, `rhs`
+/// untouched: the envelope solve keeps no factor apart).
+pub fn again(rhs: &mut [f64], solver: &mut Solver) -> bool {
+    let x = &mut rhs[..solver.solved];
+    if solver.solved > 0 {
+        match solver.widest {
+            1 => solver.banded_substitute::<1>(x),
+            2 => solver.banded_substitute::<2>(x),
+            3 => solver.banded_substitute::<3>(x),
+            4 => solver.banded_substitute::<4>(x),
+            5 => solver.banded_substitute::<5>(x),
+            _ => solver.banded_substitute::<6>(x),
+        }
+        true
+    } else {
+        false
+    }
 }
 
 impl Solver {
-    /// The blocks, each row's envelope and storage, and the weighted rows.
+    /// The blocks (runs of rows on the same bodies), whether K is block-tridiagonal (each
+    /// block's envelope starts at the previous block or at itself: no body of block k is
+    /// touched by a block before k − 1), and the widest block.
     fn group(&mut self, rows: &[Row], inverse: &[Inverse]) {
         let n = rows.len();
         self.blocks.clear();
-        self.last_block.clear();
-        self.last_block.resize(inverse.len(), NONE);
         self.first_row.clear();
         self.first_row.resize(inverse.len(), NONE);
-        self.start.resize(n, 0);
-        self.first.resize(n, 0);
         self.banded = true;
         self.widest = 0;
-        let mut stored = 0;
         let mut p = 0;
         while p < n {
             let (a, b) = (rows[p].a, rows[p].b);
@@ -190,15 +228,9 @@ impl Solver {
                 size += 1;
             }
             let bodies = [a, b.unwrap_or(NONE)];
-            let index = self.blocks.len();
-            let mut previous = [NONE; 2];
+            // The envelope's first column: the first row acting on one of its bodies.
             let mut column = p;
-            for (side, &body) in bodies.iter().enumerate() {
-                if body == NONE {
-                    continue;
-                }
-                previous[side] = self.last_block[body];
-                self.last_block[body] = index;
+            for &body in bodies.iter().filter(|&&body| body != NONE) {
                 if self.first_row[body] == NONE {
                     self.first_row[body] = p;
                 }
@@ -212,30 +244,9 @@ impl Solver {
                 row: p,
                 size,
                 bodies,
-                previous,
-                column,
             });
-            for q in p..p + size {
-                self.first[q] = column;
-                self.start[q] = stored;
-                stored += q + 1 - column;
-            }
             p += size;
         }
-        self.stored = stored;
-    }
-
-    /// The weighted rows I⁻¹ ang on each side, and room for the envelope.
-    fn weigh(&mut self, rows: &[Row], inverse: &[Inverse]) {
-        self.weighted.clear();
-        self.weighted.extend(rows.iter().map(|r| {
-            let wb =
-                r.b.map_or(Vector3::zeros(), |b| inverse[b].inertia * r.ang_b);
-            [inverse[r.a].inertia * r.ang_a, wb]
-        }));
-        self.factor.clear();
-        self.factor.resize(self.stored, 0.0);
-        self.reciprocal.resize(rows.len(), 0.0);
     }
 
     /// The block-tridiagonal solve (module doc), every block padded to S rows: a padding row
@@ -247,7 +258,7 @@ impl Solver {
     /// L_k L_kᵀ = K_kk − B_k B_kᵀ
     /// y_k = L_k⁻¹ (b_k − B_k y_{k−1}),   x_k = L_k⁻ᵀ (y_k − B_{k+1}ᵀ x_{k+1})
     /// ```
-    fn banded<const S: usize>(&mut self, rows: &[Row], inverse: &[Inverse], x: &mut [f64]) {
+    fn banded<const S: usize>(&mut self, rows: &[Row], inverse: &[Inverse]) {
         let count = self.blocks.len();
         let Solver {
             blocks,
@@ -270,6 +281,7 @@ impl Solver {
                     continue;
                 }
                 let inv = &inverse[body];
+                part.linear = 0;
                 for i in 0..S {
                     if i < block.size {
                         let (lin, ang) = side(&rows[block.row + i], side_index);
@@ -278,6 +290,9 @@ impl Solver {
                         part.scaled[i] = [lin.x * inv.mass, lin.y * inv.mass, lin.z * inv.mass];
                         part.ang[i] = [ang.x, ang.y, ang.z];
                         part.weighted[i] = [w.x, w.y, w.z];
+                        if *lin != Vector3::zeros() {
+                            part.linear = i + 1;
+                        }
                     } else {
                         part.lin[i] = [0.0; 3];
                         part.scaled[i] = [0.0; 3];
@@ -304,7 +319,12 @@ impl Solver {
                 let p = &parts[k][side_index];
                 for i in 0..S {
                     for j in 0..=i {
-                        d[i][j] += share(p, i, p, j);
+                        d[i][j] += dot3(&p.ang[i], &p.weighted[j]);
+                    }
+                }
+                for i in 0..p.linear {
+                    for j in 0..=i {
+                        d[i][j] += dot3(&p.lin[i], &p.scaled[j]);
                     }
                 }
             }
@@ -325,7 +345,12 @@ impl Solver {
                     let (p, q) = (&parts[k][sp], &parts[k - 1][sq]);
                     for i in 0..S {
                         for j in 0..S {
-                            b[i][j] += share(p, i, q, j);
+                            b[i][j] += dot3(&p.ang[i], &q.weighted[j]);
+                        }
+                    }
+                    for i in 0..p.linear {
+                        for j in 0..q.linear {
+                            b[i][j] += dot3(&p.lin[i], &q.scaled[j]);
                         }
                     }
                 }
@@ -379,7 +404,19 @@ impl Solver {
                 };
             }
         }
-        // L y = b, block by block down; Lᵀ x = y, block by block up.
+    }
+
+    /// `L y = b`, block by block down, then `Lᵀ x = y`, block by block up, over x = b.
+    fn banded_substitute<const S: usize>(&mut self, x: &mut [f64]) {
+        let count = self.blocks.len();
+        let Solver {
+            blocks,
+            diagonal,
+            below,
+            pivots,
+            solution,
+            ..
+        } = self;
         for k in 0..count {
             let block = &blocks[k];
             let mut y = Column::default();
@@ -421,108 +458,6 @@ impl Solver {
             solution[k] = z;
             let block = &blocks[k];
             x[block.row..block.row + block.size].copy_from_slice(&z[..block.size]);
-        }
-    }
-
-    /// K inside the envelope, block pair by block pair and body by body (module doc).
-    fn assemble(&mut self, rows: &[Row], inverse: &[Inverse]) {
-        let Solver {
-            blocks,
-            start,
-            first,
-            weighted,
-            factor,
-            ..
-        } = self;
-        for (ip, block) in blocks.iter().enumerate() {
-            for (sp, &body) in block.bodies.iter().enumerate() {
-                if body == NONE {
-                    continue;
-                }
-                let mass = inverse[body].mass;
-                let (mut iq, mut sq) = (ip, sp);
-                loop {
-                    let other = &blocks[iq];
-                    for i in block.row..block.row + block.size {
-                        let (lin_i, _) = side(&rows[i], sp);
-                        let w_i = &weighted[i][sp];
-                        let end = if iq == ip {
-                            i + 1
-                        } else {
-                            other.row + other.size
-                        };
-                        let at = start[i] + other.row - first[i];
-                        let entries = &mut factor[at..at + end - other.row];
-                        for (entry, row_j) in entries.iter_mut().zip(&rows[other.row..end]) {
-                            let (lin_j, ang_j) = side(row_j, sq);
-                            *entry += lin_i.dot(lin_j) * mass + w_i.dot(ang_j);
-                        }
-                    }
-                    iq = other.previous[sq];
-                    if iq == NONE {
-                        break;
-                    }
-                    sq = usize::from(blocks[iq].bodies[0] != body);
-                }
-            }
-        }
-    }
-
-    /// `K = L Lᵀ` in place, row by row: `L_pq = (K_pq − Σ_k L_pk L_qk) / L_qq` over the
-    /// columns both rows reach, `L_pp² = K_pp − Σ_k L_pk²` (dropped below 1e-12 · max K_ii).
-    fn factor(&mut self, n: usize) {
-        let Solver {
-            start,
-            first,
-            factor,
-            reciprocal,
-            ..
-        } = self;
-        let (start, first, reciprocal) = (&start[..n], &first[..n], &mut reciprocal[..n]);
-        let largest = (0..n)
-            .map(|p| factor[start[p] + p - first[p]])
-            .fold(0.0, f64::max);
-        let tiny = 1e-12 * largest;
-        for p in 0..n {
-            let fp = first[p];
-            let (done, rest) = factor.split_at_mut(start[p]);
-            let row_p = &mut rest[..=p - fp];
-            for q in fp..p {
-                let fq = first[q];
-                let from = fp.max(fq);
-                let row_q = &done[start[q] + from - fq..start[q] + q - fq];
-                let (left, right) = row_p.split_at_mut(q - fp);
-                right[0] = (right[0] - dot(&left[from - fp..], row_q)) * reciprocal[q];
-            }
-            let (off_diagonal, diagonal) = row_p.split_at(p - fp);
-            let square = diagonal[0] - dot(off_diagonal, off_diagonal);
-            reciprocal[p] = if square > tiny {
-                1.0 / square.sqrt()
-            } else {
-                0.0
-            };
-        }
-    }
-
-    /// `L y = b`, then `Lᵀ x = y`, over x = b.
-    fn substitute(&self, x: &mut [f64]) {
-        let n = x.len();
-        let (start, first, reciprocal) = (&self.start[..n], &self.first[..n], &self.reciprocal);
-        let factor = &self.factor;
-        for p in 0..n {
-            let fp = first[p];
-            let y = x[p] - dot(&factor[start[p]..start[p] + p - fp], &x[fp..p]);
-            x[p] = y * reciprocal[p];
-        }
-        for p in (0..n).rev() {
-            x[p] *= reciprocal[p];
-            let (fp, xp) = (first[p], x[p]);
-            for (r, l) in x[fp..p]
-                .iter_mut()
-                .zip(&factor[start[p]..start[p] + p - fp])
-            {
-                *r -= l * xp;
-            }
         }
     }
 }
