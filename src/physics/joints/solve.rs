@@ -258,6 +258,8 @@ impl Solver {
     /// L_k L_kᵀ = K_kk − B_k B_kᵀ
     /// y_k = L_k⁻¹ (b_k − B_k y_{k−1}),   x_k = L_k⁻ᵀ (y_k − B_{k+1}ᵀ x_{k+1})
     /// ```
+    // Index loops of fixed length S, written as the formulas index the blocks.
+    #[allow(clippy::needless_range_loop)]
     fn banded<const S: usize>(&mut self, rows: &[Row], inverse: &[Inverse]) {
         let count = self.blocks.len();
         let Solver {
@@ -407,6 +409,7 @@ impl Solver {
     }
 
     /// `L y = b`, block by block down, then `Lᵀ x = y`, block by block up, over x = b.
+    #[allow(clippy::needless_range_loop)]
     fn banded_substitute<const S: usize>(&mut self, x: &mut [f64]) {
         let count = self.blocks.len();
         let Solver {
