@@ -5,6 +5,9 @@
 //! - `chain-10`: 10 links of 0.5 m (0.5 × 0.05 × 0.05 m, 0.1 kg), ball-jointed end to end and
 //!   to the world, released horizontal (30 rows: a skyline Cholesky of J W Jᵀ, 6 wide, in each
 //!   of rk4's four evaluations, then the projection's); issue 19's aim: ≤ 10 µs per step;
+//! - `chain-10-hinge`: the same links on hinges about z (50 rows: 5 per hinge), as
+//!   benches/mujoco/chain10.py's hinge chain (MuJoCo 11.5 µs/step under RK4); K is
+//!   block-tridiagonal, solved by `joints::solve`'s banded Cholesky in 5 × 5 blocks;
 //! - `chain-10-baumgarte`: the same with Baumgarte's correction (no projection);
 //! - `chain-10-landing`: 10 links of 0.3 m (0.3 × 0.05 × 0.05 m, 0.1 kg) ball-jointed end to
 //!   end (free), tilted 20°, the low end 0.3 m above the ground, `impulse` contacts (e = 0,
@@ -58,6 +61,11 @@ fn pendulum() -> World {
 
 /// `count` links of length `l` along x from the origin, ball-jointed end to end.
 pub fn chain(count: usize, correction: Correction) -> World {
+    chain_of(count, JointKind::Ball, correction)
+}
+
+/// `count` links of length `l` along x from the origin, `kind`-jointed end to end (axis z).
+fn chain_of(count: usize, kind: JointKind, correction: Correction) -> World {
     let l = 0.5;
     let bodies: Vec<NamedBody> = (0..count)
         .map(|i| NamedBody {
@@ -74,7 +82,7 @@ pub fn chain(count: usize, correction: Correction) -> World {
         .map(|i| {
             Joint::at_point(
                 format!("j{i}"),
-                JointKind::Ball,
+                kind,
                 i,
                 i.checked_sub(1),
                 Vector3::new(i as f64 * l, 0.0, 0.0),
@@ -152,6 +160,10 @@ fn joints(c: &mut Criterion) {
     let cases = [
         ("pendulum", pendulum()),
         ("chain-10", chain(10, Correction::Projection)),
+        (
+            "chain-10-hinge",
+            chain_of(10, JointKind::Hinge, Correction::Projection),
+        ),
         ("chain-10-baumgarte", chain(10, Correction::Baumgarte)),
         ("chain-10-landing", landing(10)),
     ];

@@ -76,7 +76,7 @@ pub mod solve;
 pub use contact::{hold, Buffers as ContactBuffers};
 pub use projection::{project, shake, Buffers as ProjectionBuffers};
 pub use rows::{coordinate, rows_of, Pose, Row};
-pub use solve::{multipliers, Solver};
+pub use solve::{again, multipliers, Solver};
 
 use super::state::State;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};

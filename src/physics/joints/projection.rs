@@ -12,7 +12,7 @@
 //! impulse / dt in `--joint`).
 
 use super::rows::{rows_of, Pose, Row};
-use super::solve::{multipliers, Inverse, Solver};
+use super::solve::{again, multipliers, Inverse, Solver};
 use super::{turn, Links};
 use crate::physics::body::Body;
 use crate::physics::derive::derive;
@@ -87,8 +87,8 @@ pub fn project(
     if links.joints.is_empty() {
         return;
     }
-    positions(links, bodies, states, b);
-    velocities(states, impulses, b);
+    let reuse = positions(links, bodies, states, b);
+    velocities(states, impulses, reuse, b);
 }
 
 /// `symplectic-euler`'s projection (SHAKE, then RATTLE's velocity half): the positions are put
@@ -144,18 +144,22 @@ pub fn shake(
     }
     b.directions = directions;
     b.start_inverse = start_inverse;
-    velocities(states, impulses, b);
+    velocities(states, impulses, false, b);
 }
 
-/// Positions onto C = 0 by Newton's method on the rows at the current positions.
-fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffers) {
+/// Positions onto C = 0 by Newton's method on the rows at the current positions. Returns
+/// whether the velocity pass may reuse the last pass's factor (in `b.solver`): a pass moved
+/// them, by less than [`REUSE_BELOW`].
+fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffers) -> bool {
     // The rows are built with velocities: the last build, on C = 0, serves the velocity pass.
+    let mut reuse = false;
     for pass in 0..=10 {
         build(links, bodies, states, b);
         let worst = b.rows.iter().map(|r| r.c.abs()).fold(0.0, f64::max);
         if worst < 1e-12 || pass == 10 {
             break;
         }
+        reuse = worst < REUSE_BELOW;
         b.rhs.clear();
         b.rhs.extend(b.rows.iter().map(|r| -r.c));
         multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
@@ -166,16 +170,28 @@ fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffe
             }
         }
     }
+    reuse
 }
 
+/// The velocity pass reuses the positions' last factor when that pass corrected less than
+/// this (m or rad): K then differs from the one at the corrected positions by ~1e-9 relative.
+const REUSE_BELOW: f64 = 1e-9;
+
 /// Velocities onto J u = 0 at the last build's rows (which must be at `states`' positions).
-fn velocities(states: &mut [State], impulses: &mut [Loads], b: &mut Buffers) {
+/// `reuse`: K is taken from the positions' last Newton pass, whose positions differ from
+/// these by that pass's correction |δ| < 1e-9 m: K changes by O(|δ|/ℓ) relative (ℓ the
+/// lever arms), so J u⁺ = (1 − K K_old⁻¹) J u⁻ ~ 1e-9 |J u⁻| instead of round-off of it —
+/// far below the 1e-12 tolerances after a normal step — and one assembly and factorisation
+/// of K per step is saved.
+fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut Buffers) {
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
         let pb = r.b.map_or(Pose::WORLD, |j| b.poses[j]);
         -r.rate(&b.poses[r.a], &pb)
     }));
-    multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+    if !(reuse && again(&mut b.rhs, &mut b.solver)) {
+        multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+    }
     for (row, &mu) in b.rows.iter().zip(&b.rhs) {
         states[row.a].linear_momentum += row.lin_a * mu;
         states[row.a].angular_momentum += row.ang_a * mu;
