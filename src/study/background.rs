@@ -13,7 +13,8 @@
 //!
 //! the steps counted as the study makes them ([`super::cancel::check`]) and planned from the
 //! scene ([`super::reference_steps`], [`super::run_steps`]): the cost per step measured so far,
-//! scaled by each remaining run's steps. A cloth case gives no estimate.
+//! scaled by each remaining run's steps; a cloth case's from its ladder
+//! ([`super::cloth::planned_steps`]).
 
 use super::measure::Row;
 use super::{cancel, study_case_streaming, Case, Config, Partial, SceneStudy};
@@ -86,8 +87,7 @@ struct Inner {
     control: cancel::Control,
     /// The study thread, until joined ([`Job::join`]).
     thread: Option<JoinHandle<()>>,
-    /// Steps of the reference, then of each run in the order they are made (none: a cloth
-    /// case, no estimate).
+    /// Steps of the reference, then of each run in the order they are made.
     plan: Option<(u64, Vec<u64>)>,
     /// The reference is made (the study said "0 runs done").
     reference_made: bool,
@@ -244,8 +244,7 @@ impl Job {
         }
     }
 
-    /// The estimated wall time left ([`estimate`], module doc), after the first second; none
-    /// for a cloth case.
+    /// The estimated wall time left ([`estimate`], module doc), after the first second.
     pub fn time_left(&self) -> Option<Duration> {
         self.with(|inner| {
             if inner.result.is_some() || inner.control.cancel.load(Ordering::Relaxed) {
@@ -433,6 +432,61 @@ mod tests {
         assert_eq!(rows.len(), 4);
         for pair in [(Integrator::Rk4, 1e-2), (Integrator::Splitting, 1e-1)] {
             assert!(rows.contains(&pair), "{pair:?} in {rows:?}");
+        }
+    }
+
+    #[test]
+    fn a_cloth_case_plans_the_steps_its_study_makes() {
+        // The 5 × 5 sheet over 0.2 s, untimed: the reference and every run that does not
+        // diverge make exactly their planned steps; a diverged run (explicit, past the limit)
+        // makes at most its planned steps.
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures/study/small-sheet.toml");
+        let lesson = crate::scene::load(&path).expect("fixture loads");
+        let case = Case {
+            name: "sheet".into(),
+            description: "a small sheet".into(),
+            scene: lesson.scene,
+            duration: 0.2,
+        };
+        let config = Config {
+            timing: Timing {
+                repeats: 0,
+                sample_interval: 0.1,
+            },
+            ..Config::default()
+        };
+        let reference = crate::study::reference_steps(&case, &config);
+        let runs = crate::study::run_steps(&case, &config).expect("a cloth case has a plan");
+        assert_eq!(runs.len(), crate::study::runs(&case, &config));
+        let control = cancel::Control::default();
+        let study = cancel::run(control.clone(), || {
+            crate::study::study_case(&case, &config, &mut |_, _| {})
+        })
+        .expect("not cancelled");
+        let made = control.steps.load(Ordering::Relaxed);
+        let rows = &study.cloth.expect("the cloth case").rows;
+        assert_eq!(rows.len(), runs.len());
+        let sure: u64 = rows
+            .iter()
+            .zip(&runs)
+            .filter(|(r, _)| r.ok())
+            .map(|(_, &n)| n)
+            .sum();
+        let all: u64 = runs.iter().sum();
+        assert!(
+            rows.iter().any(|r| !r.ok()),
+            "explicit runs past the limit diverge"
+        );
+        assert!(
+            (reference + sure..=reference + all).contains(&made),
+            "made {made}, planned {reference} + {sure} … {all}"
+        );
+        // The timed plan adds the warm-up and timed runs of the runs below the limit only.
+        let timed = crate::study::run_steps(&case, &Config::default()).expect("a plan");
+        for ((row, &untimed), &timed) in rows.iter().zip(&runs).zip(&timed) {
+            let below = !(row.integrator.is_explicit() && row.past_limit());
+            assert_eq!(below, timed > untimed, "{:?} at {}", row.integrator, row.dt);
         }
     }
 

@@ -347,6 +347,36 @@ pub fn study(
     }
 }
 
+/// The steps [`study`] makes on `scene` over `duration`: its reference's (symplectic-euler at
+/// h_r and h_r/2), then each run's in the order they are made — the accuracy run and, when
+/// timed, the warm-up and timed runs ([`super::measure::steps_made`]). An explicit run past
+/// the limit is counted without them: it diverges, and a diverged run is not timed (it stops
+/// at its divergence, so its count is an upper bound).
+pub fn planned_steps(scene: &Scene, duration: f64, config: &ClothConfig) -> (u64, Vec<u64>) {
+    let (limit, _, _) = explicit_limit(scene);
+    let ladder = config.dts.clone().unwrap_or_else(|| ladder(limit));
+    let steps = |dt: f64| (duration / dt).round().max(1.0) as u64;
+    let h = ladder.iter().copied().fold(f64::INFINITY, f64::min) / REFERENCE_DIVISOR;
+    let reference = steps(h) + steps(h / 2.0);
+    let runs = config
+        .integrators
+        .iter()
+        .flat_map(|&i| {
+            dts_for(i, &ladder, limit, config.past)
+                .into_iter()
+                .map(move |dt| (i, dt))
+        })
+        .map(|(i, dt)| {
+            if i.is_explicit() && dt > limit {
+                steps(dt)
+            } else {
+                super::measure::steps_made(steps(dt), &config.timing)
+            }
+        })
+        .collect();
+    (reference, runs)
+}
+
 /// How many runs [`study`] makes with `config` on `scene`.
 pub fn runs(scene: &Scene, config: &ClothConfig) -> usize {
     let (limit, _, _) = explicit_limit(scene);
@@ -500,7 +530,8 @@ fn measure(
     };
     let accuracy_ns = started.elapsed().as_nanos() as f64 / steps as f64;
     row.ns_per_step = if timing.repeats > 0 {
-        cost_per_step(|| scene.world_with(scene.integrator, dt), steps, &timing)
+        let world = || scene.world_with(scene.integrator, dt);
+        cost_per_step(world, steps, &timing, accuracy_ns)
     } else {
         accuracy_ns
     };

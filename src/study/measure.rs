@@ -180,7 +180,8 @@ pub fn measure(
         return row;
     }
     if timing.repeats > 0 {
-        row.ns_per_step = cost_per_step(|| world_for(scene, integrator, dt), steps, &timing);
+        let world = || world_for(scene, integrator, dt);
+        row.ns_per_step = cost_per_step(world, steps, &timing, accuracy_ns);
     } else {
         // Untimed studies (tests): the instrumented run's time, reference included.
         row.ns_per_step = accuracy_ns;
@@ -217,9 +218,16 @@ pub fn steps_made(steps: u64, timing: &Timing) -> u64 {
 /// warm-up of [`WARM_UP`] steps, ⌈[`TIMED_CHUNKS`] / chunks per run⌉ runs (at least one, at
 /// most `timing.repeats`), each timed as the median of its [`CHUNK`]-step chunks; the result is
 /// the minimum over the runs (the work–precision convention: the least the machine needed —
-/// other processes only ever add time).
-pub(super) fn cost_per_step(world: impl Fn() -> World, steps: u64, timing: &Timing) -> f64 {
-    time_chunks(world(), steps.min(WARM_UP), &mut Vec::new());
+/// other processes only ever add time). `hint_ns`, the accuracy run's time per step, shortens
+/// the chunks of a heavy scene to about [`MAX_CHUNK_NS`] ([`chunk_steps`]).
+pub(super) fn cost_per_step(
+    world: impl Fn() -> World,
+    steps: u64,
+    timing: &Timing,
+    hint_ns: f64,
+) -> f64 {
+    let chunk = chunk_steps(hint_ns);
+    time_chunks(world(), steps.min(WARM_UP), chunk, &mut Vec::new());
     let chunks_per_run = steps.div_ceil(CHUNK);
     let runs = TIMED_CHUNKS
         .div_ceil(chunks_per_run)
@@ -228,19 +236,35 @@ pub(super) fn cost_per_step(world: impl Fn() -> World, steps: u64, timing: &Timi
     let mut chunks = Vec::with_capacity(chunks_per_run as usize);
     for _ in 0..runs {
         chunks.clear();
-        time_chunks(world(), steps, &mut chunks);
+        time_chunks(world(), steps, chunk, &mut chunks);
         best = best.min(median(&mut chunks));
     }
     best
 }
 
-/// Steps `world` `steps` times, pushing the wall time per step of each chunk of [`CHUNK`]
-/// steps (ns) onto `chunks`; the world's last state goes through `black_box`, so no step is
+/// The longest a timed chunk should take, ns: a cancelled study stops at the end of its chunk
+/// (its check is per chunk, not per step, to keep the clock off the timed steps), so a heavy
+/// scene's chunks are shortened to this (a cloth's implicit step takes 0.5 ms: 1000 of them
+/// would hold a cancelled study for half a second).
+pub const MAX_CHUNK_NS: f64 = 2e6;
+
+/// Steps per timed chunk for a step that took about `hint_ns`: [`CHUNK`], or fewer (at least
+/// one) so that a chunk takes at most about [`MAX_CHUNK_NS`]. Steps up to 2 µs keep [`CHUNK`].
+pub fn chunk_steps(hint_ns: f64) -> u64 {
+    if hint_ns.is_finite() && hint_ns * CHUNK as f64 > MAX_CHUNK_NS {
+        ((MAX_CHUNK_NS / hint_ns) as u64).clamp(1, CHUNK)
+    } else {
+        CHUNK
+    }
+}
+
+/// Steps `world` `steps` times, pushing the wall time per step of each chunk of `chunk` steps
+/// (ns) onto `chunks`; the world's last state goes through `black_box`, so no step is
 /// optimised away.
-fn time_chunks(mut world: World, steps: u64, chunks: &mut Vec<f64>) {
+fn time_chunks(mut world: World, steps: u64, chunk: u64, chunks: &mut Vec<f64>) {
     let mut left = steps;
     while left > 0 {
-        let n = left.min(CHUNK);
+        let n = left.min(chunk);
         super::cancel::check(n);
         let started = Instant::now();
         for _ in 0..n {
@@ -408,5 +432,21 @@ fn accuracy_run(
             0.0
         };
         row.contact_error = row.end_pose_error + row.orthonormality + deepest + gained;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_heavy_step_gets_chunks_of_about_two_milliseconds() {
+        // A free body's 50 ns step and a 2 µs one keep 1000-step chunks; a cloth's implicit
+        // 0.5 ms step gets 4 steps a chunk (2 ms), a 10 ms step one.
+        assert_eq!(chunk_steps(50.0), CHUNK);
+        assert_eq!(chunk_steps(2000.0), CHUNK);
+        assert_eq!(chunk_steps(5e5), 4);
+        assert_eq!(chunk_steps(1e7), 1);
+        assert_eq!(chunk_steps(f64::NAN), CHUNK);
     }
 }

@@ -363,11 +363,11 @@ pub fn sweep(case: &Case, config: &Config) -> Vec<(usize, Integrator, f64)> {
 /// The steps each run of a study makes in all ([`measure::steps_made`]: accuracy run, warm-up,
 /// timed runs), in the order the runs are made ([`sweep`], then the contact solvers at the
 /// scene's dt, the first with the contact chart's reference): what a front end's estimate of
-/// the time left is scaled by. `None` for a cloth case (its ladder is not known before its
-/// explicit limit is).
+/// the time left is scaled by. A cloth case's are its ladder's ([`cloth::planned_steps`]).
 pub fn run_steps(case: &Case, config: &Config) -> Option<Vec<u64>> {
     if !case.scene.cloths.is_empty() {
-        return None;
+        let (_, runs) = cloth::planned_steps(&case.scene, case.duration, &cloth_config(config));
+        return Some(runs);
     }
     let made = |dt| measure::steps_made(measure::steps_for(case.duration, dt), &config.timing);
     let mut steps: Vec<u64> = sweep(case, config)
@@ -388,8 +388,12 @@ pub fn run_steps(case: &Case, config: &Config) -> Option<Vec<u64>> {
 
 /// The steps of the reference a (non-cloth) study makes before its first run
 /// ([`Reference::for_scene`]): none for a closed form, else rk4 at a tenth of the smallest dt
-/// and, without obstacles, again at half that step.
+/// and, without obstacles, again at half that step; a cloth case's, symplectic-euler at
+/// h_r and h_r/2 ([`cloth::planned_steps`]).
 pub fn reference_steps(case: &Case, config: &Config) -> u64 {
+    if !case.scene.cloths.is_empty() {
+        return cloth::planned_steps(&case.scene, case.duration, &cloth_config(config)).0;
+    }
     if reference::has_closed_form(&case.scene) {
         return 0;
     }

@@ -2,8 +2,11 @@
 //! integrator (its points in order of dt, each labelled with its dt); frontier runs are ringed.
 //! Beside each scene's cost panel, its error against dt (log–log, the same markers and colours,
 //! the fitted order p beside each line: the slope of that line), on the same row of the grid.
-//! A cloth case's panel has one line per particle integrator (error in m; runs past the
-//! explicit limit that diverged have no point).
+//! A cloth case's panels have one line per particle integrator (error in m; runs past the
+//! explicit limit that diverged have no point and are listed), the dt panel with the explicit
+//! limit 2/ω_max drawn and the floor band at 3 × the reference's spread. The contact solvers'
+//! panels: error against cost, and against the solver's own step h = dt / sub-steps
+//! (`impulse` at dt, `soft-step ×n` at dt/n, its fitted order beside its line).
 
 use super::analysis::format_dt;
 use super::cloth::ClothStudy;
@@ -36,10 +39,11 @@ const FLOOR: f64 = 1e-16;
 enum Panel<'s> {
     /// A scene's integrators: error against cost, or against dt.
     Bodies(&'s SceneStudy, Against),
-    /// A cloth case's particle integrators.
-    Cloth(&'s SceneStudy, &'s ClothStudy),
-    /// A contact scene's collision responses at its own integrator and dt.
-    Solvers(&'s SceneStudy, &'s ContactStudy),
+    /// A cloth case's particle integrators: error against cost, or against dt.
+    Cloth(&'s SceneStudy, &'s ClothStudy, Against),
+    /// A contact scene's collision responses at its own integrator and dt: error against
+    /// cost, or against the solver's step dt / sub-steps.
+    Solvers(&'s SceneStudy, &'s ContactStudy, Against),
     /// A blank slot, so that a scene's cost and dt panels share a row.
     Blank,
 }
@@ -132,20 +136,22 @@ fn title_lines(width: u32) -> Vec<&'static str> {
 
 /// Writes the plot; the error is a one-line message.
 pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
+    // Each chart's cost and dt panels side by side, on one row of the grid.
+    fn pair<'s>(panels: &mut Vec<Panel<'s>>, make: impl Fn(Against) -> Panel<'s>) {
+        if panels.len() % 2 == 1 {
+            panels.push(Panel::Blank);
+        }
+        panels.push(make(Against::Cost));
+        panels.push(make(Against::Dt));
+    }
     let mut panels = Vec::new();
     for study in studies {
         match &study.cloth {
-            Some(cloth) => panels.push(Panel::Cloth(study, cloth)),
-            None => {
-                if panels.len() % 2 == 1 {
-                    panels.push(Panel::Blank);
-                }
-                panels.push(Panel::Bodies(study, Against::Cost));
-                panels.push(Panel::Bodies(study, Against::Dt));
-            }
+            Some(cloth) => pair(&mut panels, |a| Panel::Cloth(study, cloth, a)),
+            None => pair(&mut panels, |a| Panel::Bodies(study, a)),
         }
         if let Some(chart) = &study.contact_solvers {
-            panels.push(Panel::Solvers(study, chart));
+            pair(&mut panels, |a| Panel::Solvers(study, chart, a));
         }
     }
     let count = panels.len().max(1);
@@ -164,8 +170,8 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
     for (panel, area) in panels.iter().zip(areas.iter()) {
         match panel {
             Panel::Bodies(study, against) => bodies_panel(study, *against, area),
-            Panel::Cloth(study, cloth) => cloth_panel(study, cloth, area),
-            Panel::Solvers(study, chart) => solvers_panel(study, chart, area),
+            Panel::Cloth(study, cloth, against) => cloth_panel(study, cloth, *against, area),
+            Panel::Solvers(study, chart, against) => solvers_panel(study, chart, *against, area),
             Panel::Blank => Ok(()),
         }
         .map_err(|e| fail(&e))?;
@@ -405,10 +411,61 @@ fn bodies_panel(
     Ok(())
 }
 
-/// The cloth case's panel: error (m) against cost, one line per particle integrator.
+/// Draws the floor band (errors below `top` are not resolved) across `chart`.
+fn floor_band(chart: &mut CostChart, top: f64) -> Result<(), Box<dyn std::error::Error>> {
+    let (x_range, y_range) = (
+        chart.plotting_area().get_x_range(),
+        chart.plotting_area().get_y_range(),
+    );
+    let top = top.max(FLOOR).min(y_range.end);
+    if top > y_range.start {
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(x_range.start, y_range.start), (x_range.end, top)],
+            RGBColor(200, 200, 200).mix(0.35).filled(),
+        )))?;
+    }
+    Ok(())
+}
+
+/// Writes `notes` in dark red at the panel's top left, one a line.
+fn draw_notes(area: &Area, notes: &[String]) -> Result<(), Box<dyn std::error::Error>> {
+    for (i, note) in notes.iter().enumerate() {
+        area.draw(&Text::new(
+            note.clone(),
+            (80, 40 + 14 * i as i32),
+            ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0)),
+        ))?;
+    }
+    Ok(())
+}
+
+/// "diverged: a, b, c, d" then "  e, f, …", four a line.
+fn diverged_notes(diverged: &[String]) -> Vec<String> {
+    diverged
+        .chunks(4)
+        .enumerate()
+        .map(|(k, chunk)| {
+            let lead = if k == 0 { "diverged: " } else { "  " };
+            format!("{lead}{}", chunk.join(", "))
+        })
+        .collect()
+}
+
+/// The fitted order's text beside a line's finest run.
+fn order_text(name: &str, slope: Option<f64>) -> String {
+    match slope {
+        Some(p) => format!("{name} p = {p:.2}"),
+        None => format!("{name} p: none"),
+    }
+}
+
+/// The cloth case's panel: error (m) against cost or against dt, one line per particle
+/// integrator; against dt, the explicit limit 2/ω_max as a dashed vertical line, the floor
+/// band at 3 × the reference's spread and the fitted order beside each line.
 fn cloth_panel(
     study: &SceneStudy,
     cloth: &ClothStudy,
+    against: Against,
     area: &Area,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let ok: Vec<_> = cloth
@@ -416,67 +473,168 @@ fn cloth_panel(
         .iter()
         .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
         .collect();
-    let caption = format!(
-        "{} ({} s, cloth case, 2/ω_max = {:.3e} s)",
-        study.name, study.duration, cloth.limit
+    let x = |r: &super::cloth::ClothRow| match against {
+        Against::Cost => r.us_per_simulated_second,
+        Against::Dt => r.dt,
+    };
+    let (caption, x_desc) = match against {
+        Against::Cost => (
+            format!(
+                "{} ({} s, cloth case, 2/ω_max = {:.3e} s)",
+                study.name, study.duration, cloth.limit
+            ),
+            PER_SECOND,
+        ),
+        Against::Dt => (
+            format!("{}: cloth error against dt (slope = p)", study.name),
+            TIME_STEP,
+        ),
+    };
+    // Against dt the frame holds the limit too.
+    let limit = (against == Against::Dt && cloth.limit.is_finite()).then_some(cloth.limit);
+    let points = ok.iter().map(|r| (x(r), r.error)).chain(
+        limit
+            .into_iter()
+            .flat_map(|l| ok.first().map(|r| (l, r.error))),
     );
-    let points = ok.iter().map(|r| (r.us_per_simulated_second, r.error));
-    let mut chart = cost_chart(area, &caption, PER_SECOND, "max particle error, m", points)?;
+    let mut chart = cost_chart(area, &caption, x_desc, "max particle error, m", points)?;
+    let band = 3.0 * cloth.reference_spread;
+    if against == Against::Dt {
+        floor_band(&mut chart, band)?;
+        if let Some(l) = limit {
+            let y = chart.plotting_area().get_y_range();
+            chart.draw_series(DashedLineSeries::new(
+                [(l, y.start), (l, y.end)],
+                6,
+                4,
+                BLACK.stroke_width(1),
+            ))?;
+            chart.draw_series(std::iter::once(
+                EmptyElement::at((l, y.end))
+                    + Text::new("2/ω_max", (4, 4), ("sans-serif", 11).into_font()),
+            ))?;
+        }
+    }
     for integrator in ClothIntegrator::ALL {
         let c = cloth_color(integrator);
-        let points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
-        let xy: Vec<(f64, f64)> = points
-            .iter()
-            .map(|r| (r.us_per_simulated_second, r.error.max(FLOOR)))
-            .collect();
+        let mut points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
+        points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+        let xy: Vec<(f64, f64)> = points.iter().map(|r| (x(r), r.error.max(FLOOR))).collect();
         chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
         chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
-        chart.draw_series(points.iter().map(|r| {
-            label!(
-                format_dt(r.dt),
+        match against {
+            Against::Cost => {
+                chart.draw_series(
+                    points
+                        .iter()
+                        .map(|r| label!(format_dt(r.dt), (x(r), r.error.max(FLOOR)), &c)),
+                )?;
+            }
+            Against::Dt => {
+                let order = cloth.orders.iter().find(|o| o.integrator == integrator);
+                if let (Some(last), Some(order)) = (xy.last(), order) {
+                    chart.draw_series(std::iter::once(
+                        EmptyElement::at(*last)
+                            + Text::new(
+                                order_text(integrator.name(), order.slope),
+                                (9, 2),
+                                ("sans-serif", 11).into_font().color(&c),
+                            ),
+                    ))?;
+                }
+            }
+        }
+    }
+    if against == Against::Cost {
+        chart.draw_series(ok.iter().filter(|r| r.frontier).map(|r| {
+            Circle::new(
                 (r.us_per_simulated_second, r.error.max(FLOOR)),
-                &c,
+                7,
+                BLACK.stroke_width(1),
             )
         }))?;
     }
-    chart.draw_series(ok.iter().filter(|r| r.frontier).map(|r| {
-        Circle::new(
-            (r.us_per_simulated_second, r.error.max(FLOOR)),
-            7,
-            BLACK.stroke_width(1),
-        )
-    }))?;
-    Ok(())
+    let diverged: Vec<String> = cloth
+        .rows
+        .iter()
+        .filter(|r| !r.ok())
+        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+        .collect();
+    let mut notes = Vec::new();
+    if ok.is_empty() {
+        notes.push("every run diverged: nothing to draw".to_string());
+    }
+    notes.extend(diverged_notes(&diverged));
+    if against == Against::Dt && band > FLOOR {
+        notes.push(format!(
+            "grey band: below 3 × the reference's spread, {band:.1e} m (not resolved)"
+        ));
+    }
+    draw_notes(area, &notes)
 }
 
-/// The contact solvers' panel: contact error against cost at the scene's integrator and dt,
-/// `impulse` one point, `soft-step` a line through its sub-step counts.
+/// The contact solvers' step axis.
+pub const SOLVER_STEP: &str = "solver step h = dt / sub-steps (s)";
+
+/// The least-squares slope of ln y against ln x (None under two points).
+fn slope(points: &[(f64, f64)]) -> Option<f64> {
+    let n = points.len() as f64;
+    if points.len() < 2 {
+        return None;
+    }
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+        (a + x.ln() / n, b + y.ln() / n)
+    });
+    let sxy: f64 = points
+        .iter()
+        .map(|&(x, y)| (x.ln() - mx) * (y.ln() - my))
+        .sum();
+    let sxx: f64 = points.iter().map(|&(x, _)| (x.ln() - mx).powi(2)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The contact solvers' panel: contact error against cost, or against the solver's own step
+/// h = dt / sub-steps (`impulse` at dt), at the scene's integrator and dt; `impulse` one point,
+/// `soft-step` a line through its sub-step counts (against h, its fitted order beside it, over
+/// its runs above the floor band).
 fn solvers_panel(
     study: &SceneStudy,
     chart: &ContactStudy,
+    against: Against,
     area: &Area,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let ok: Vec<_> = chart.rows.iter().filter(|r| drawable(&r.run)).collect();
-    let caption = format!(
-        "{}: contact solvers ({}, dt = {} s)",
-        study.name,
-        chart.integrator.name(),
-        format_dt(chart.dt)
-    );
+    let caption = match against {
+        Against::Cost => format!(
+            "{}: contact solvers ({}, dt = {} s)",
+            study.name,
+            chart.integrator.name(),
+            format_dt(chart.dt)
+        ),
+        Against::Dt => format!("{}: contact error against the solver's step", study.name),
+    };
     let at = |r: &super::SolverRow| {
-        (
-            r.run.us_per_simulated_second,
-            r.run.contact_error.max(FLOOR),
-        )
+        let x = match against {
+            Against::Cost => r.run.us_per_simulated_second,
+            Against::Dt => chart.dt / f64::from(r.substeps.max(1)),
+        };
+        (x, r.run.contact_error.max(FLOOR))
     };
     let mut plot = cost_chart(
         area,
         &caption,
-        PER_SECOND,
+        match against {
+            Against::Cost => PER_SECOND,
+            Against::Dt => SOLVER_STEP,
+        },
         "contact error (worst body: end pose, shape, penetration; gain)",
         ok.iter().map(|r| at(r)),
     )?;
-    let soft: Vec<_> = ok.iter().filter(|r| r.substeps > 0).collect();
+    if against == Against::Dt {
+        floor_band(&mut plot, study.floor)?;
+    }
+    let mut soft: Vec<_> = ok.iter().filter(|r| r.substeps > 0).collect();
+    soft.sort_by_key(|r| r.substeps);
     let (impulse, soft_step) = solver_colors();
     plot.draw_series(LineSeries::new(
         soft.iter().map(|r| at(r)),
@@ -492,10 +650,42 @@ fn solvers_panel(
         };
         plot.draw_series(std::iter::once(label!(text, at(r), &c)))?;
     }
-    plot.draw_series(
-        ok.iter()
-            .filter(|r| r.frontier)
-            .map(|r| Circle::new(at(r), 7, BLACK.stroke_width(1))),
-    )?;
-    Ok(())
+    match against {
+        Against::Cost => {
+            plot.draw_series(
+                ok.iter()
+                    .filter(|r| r.frontier)
+                    .map(|r| Circle::new(at(r), 7, BLACK.stroke_width(1))),
+            )?;
+        }
+        Against::Dt => {
+            let fitted: Vec<(f64, f64)> = soft
+                .iter()
+                .map(|r| at(r))
+                .filter(|&(_, e)| e > study.floor)
+                .collect();
+            if let Some(&last) = soft.last().map(|r| at(r)).as_ref() {
+                plot.draw_series(std::iter::once(
+                    EmptyElement::at(last)
+                        + Text::new(
+                            order_text("soft-step", slope(&fitted)),
+                            (9, 2),
+                            ("sans-serif", 11).into_font().color(&soft_step),
+                        ),
+                ))?;
+            }
+        }
+    }
+    let diverged: Vec<String> = chart
+        .rows
+        .iter()
+        .filter(|r| !r.run.ok())
+        .map(|r| r.solver.clone())
+        .collect();
+    let mut notes = Vec::new();
+    if ok.is_empty() {
+        notes.push("every run diverged: nothing to draw".to_string());
+    }
+    notes.extend(diverged_notes(&diverged));
+    draw_notes(area, &notes)
 }

@@ -34,7 +34,10 @@ fn the_contact_chart_shows_both_responses_against_a_converged_reference() {
         target_error: 1e-6,
     };
     let study = study::study_case(&case, &config, &mut |_, _| {});
-    let chart = study.contact_solvers.expect("dropped-box has contact");
+    let chart = study
+        .contact_solvers
+        .clone()
+        .expect("dropped-box has contact");
     let names: Vec<&str> = chart.rows.iter().map(|r| r.solver.as_str()).collect();
     assert_eq!(
         names,
@@ -104,6 +107,37 @@ fn the_contact_chart_shows_both_responses_against_a_converged_reference() {
     }
     assert!(chart.sentence.contains("soft-step×"), "{}", chart.sentence);
     assert_eq!(contact::solvers().len(), 5);
+
+    // The SVG: beside the solvers' error against cost, error against their own step
+    // h = dt / sub-steps, with soft-step's fitted order beside its line; one filled marker per
+    // solver run in each chart (the integrators' markers are rings, the frontier's black).
+    let svg = std::env::temp_dir().join(format!("tumble-contact-{}.svg", std::process::id()));
+    tumble::study::plot::svg(std::slice::from_ref(&study), &svg).unwrap();
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    std::fs::remove_file(&svg).ok();
+    assert_eq!(
+        picture.matches(tumble::study::plot::SOLVER_STEP).count(),
+        1,
+        "no solver-step chart"
+    );
+    assert_eq!(
+        picture
+            .lines()
+            .filter(|l| l.starts_with("soft-step p"))
+            .count(),
+        1,
+        "soft-step's order beside its line"
+    );
+    let filled = picture
+        .lines()
+        .filter(|l| l.contains("<circle") && !l.contains("fill=\"none\""))
+        .count();
+    let ok = chart.rows.iter().filter(|r| r.run.ok()).count();
+    assert_eq!(
+        (ok, filled),
+        (5, 2 * ok),
+        "one marker per solver run in each chart"
+    );
 }
 
 #[test]

@@ -67,12 +67,14 @@ fn true_error(
     worst
 }
 
-/// Every run with a true error above 1e-9 m: reported within a factor 3 of true.
+/// Every run with a true error above 1e-9 m: reported within a factor 3 of true; at least
+/// `at_least` runs checked.
 fn assert_reported_errors_are_true(
     study: &SceneStudy,
     scene: &Scene,
     duration: f64,
     truth: &dyn Fn(f64) -> Vec<[f64; 2]>,
+    at_least: usize,
 ) -> Vec<(Integrator, f64, f64, f64)> {
     let mut checked = Vec::new();
     for row in study.rows.iter().filter(|r| r.ok()) {
@@ -90,7 +92,10 @@ fn assert_reported_errors_are_true(
             checked.push((row.integrator, row.dt, row.position_error, truth));
         }
     }
-    assert!(checked.len() >= 4, "too few runs checked: {checked:?}");
+    assert!(
+        checked.len() >= at_least,
+        "too few runs checked: {checked:?}"
+    );
     checked
 }
 
@@ -195,7 +200,7 @@ fn a_pendulum_is_measured_against_itself_at_a_finer_step_not_a_projectile() {
         "{}",
         study.reference
     );
-    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth);
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth, 4);
     for (integrator, dt, reported, truth) in &checked {
         println!(
             "pendulum {} dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m, ratio {:.4}",
@@ -218,11 +223,25 @@ fn a_pendulum_is_measured_against_itself_at_a_finer_step_not_a_projectile() {
             integrator.name()
         );
     }
-    // exact-splitting-4 with a distance joint: order ≈ 3, not 4 (the joint's force is not
-    // composed to fourth order); measured and printed, asserted to be at least third.
+    // exact-splitting-4 kicks with rk4 over the momenta when the forces depend on them (the
+    // rod's pull does, v²/L): fourth order (with midpoint kicks it measured 3.000 here). Its
+    // errors are 3.7e-11 m at 1e-2 s and reach the projection's |C| < 1e-12 m by 2.5e-3 s,
+    // so its ladder is coarser: 1e-1 … 6.25e-3 s (steps that divide the 0.1 s samples).
+    let coarse = [1e-1, 5e-2, 2.5e-2, 1.25e-2, 6.25e-3];
+    let study = run_study(
+        &scene,
+        duration,
+        &untimed(&[Integrator::ExactSplitting4], &coarse),
+    );
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth, 2);
+    for (_, dt, reported, truth) in &checked {
+        println!(
+            "pendulum exact-splitting-4 dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m"
+        );
+    }
     let p = order(&study, Integrator::ExactSplitting4);
     println!("pendulum order exact-splitting-4: {p:.3}");
-    assert!(p > 2.5, "exact-splitting-4: order {p:.3}");
+    assert!((p - 4.0).abs() <= 0.5, "exact-splitting-4: order {p:.3}");
 }
 
 #[test]
@@ -279,7 +298,7 @@ rest_length = 0.5
     let dts = [1e-2, 5e-3, 2.5e-3, 1.25e-3, 6.25e-4, 3.125e-4, 1.5625e-4];
     let study = run_study(&scene, duration, &untimed(&integrators, &dts));
     assert_eq!(study.reference_kind, "converged", "{}", study.reference);
-    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth);
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth, 4);
     for (integrator, dt, reported, truth) in &checked {
         println!(
             "spring {} dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m, ratio {:.4}",
@@ -360,7 +379,7 @@ anchors = [[{x2:?}, {y2:?}, 0.0], [{x1:?}, {y1:?}, 0.0]]
     let dts = [1e-2, 5e-3, 2.5e-3, 1.25e-3];
     let study = run_study(&scene, duration, &untimed(&integrators, &dts));
     assert_eq!(study.reference_kind, "converged", "{}", study.reference);
-    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth);
+    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth, 4);
     for (integrator, dt, reported, truth) in &checked {
         println!(
             "double {} dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m, ratio {:.4}",

@@ -43,6 +43,7 @@ pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &m
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Midpoint,
+        order: 2,
     };
     compose(&plan, drift, system, states, start, dt, b);
 }
