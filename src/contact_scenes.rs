@@ -265,9 +265,10 @@ pub const BRICK_MASS: f64 = 2.0;
 /// brick) on the ground, dt = 5 ms; with `ball`, a 50 kg ball (r = 0.25 m) at 6 m/s along z
 /// towards its middle, 0.3 m from its face. Contact: μ = 0.5 and restitution `restitution`
 /// with the given impact law. Not a wall at rest: each shifted course's end brick has its
-/// barycenter right above the edge of the brick below and topples (an inverted pendulum
-/// about that edge, growing as e^(6.07 t)); [`bonded_wall`] closes the courses with half
-/// bricks.
+/// barycenter right above the edge of the brick below; the top course's end bricks, with
+/// nothing on them, topple (an inverted pendulum about that edge, growing as e^(6.07 t)),
+/// while the lower ones are held down by the course above; [`bonded_wall`] closes the
+/// courses with half bricks.
 pub fn wall(ball: bool, restitution: f64, impacts: Impacts, response: Response) -> World {
     brick_wall(BRICK, ball, restitution, impacts, response)
 }

@@ -216,7 +216,7 @@ pub fn steps_made(steps: u64, timing: &Timing) -> u64 {
 
 /// Wall time per step of `steps` plain steps of fresh worlds made by `world`, ns: after a
 /// warm-up of [`WARM_UP`] steps, ⌈[`TIMED_CHUNKS`] / chunks per run⌉ runs (at least one, at
-/// most `timing.repeats`), each timed as the median of its [`CHUNK`]-step chunks; the result is
+/// most `timing.repeats`), each timed as the median of its `CHUNK`-step chunks; the result is
 /// the minimum over the runs (the work–precision convention: the least the machine needed —
 /// other processes only ever add time). `hint_ns`, the accuracy run's time per step, shortens
 /// the chunks of a heavy scene to about [`MAX_CHUNK_NS`] ([`chunk_steps`]).
@@ -248,8 +248,8 @@ pub(super) fn cost_per_step(
 /// would hold a cancelled study for half a second).
 pub const MAX_CHUNK_NS: f64 = 2e6;
 
-/// Steps per timed chunk for a step that took about `hint_ns`: [`CHUNK`], or fewer (at least
-/// one) so that a chunk takes at most about [`MAX_CHUNK_NS`]. Steps up to 2 µs keep [`CHUNK`].
+/// Steps per timed chunk for a step that took about `hint_ns`: `CHUNK`, or fewer (at least
+/// one) so that a chunk takes at most about [`MAX_CHUNK_NS`]. Steps up to 2 µs keep `CHUNK`.
 pub fn chunk_steps(hint_ns: f64) -> u64 {
     if hint_ns.is_finite() && hint_ns * CHUNK as f64 > MAX_CHUNK_NS {
         ((MAX_CHUNK_NS / hint_ns) as u64).clamp(1, CHUNK)

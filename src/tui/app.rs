@@ -756,7 +756,7 @@ impl App {
     }
 
     /// The file `X` writes: `tumble-NAME-energy.csv`, or `tumble-NAME-Y.csv` /
-    /// `tumble-NAME-X-Y.csv` for a quantity graph, in [`App::write_dir`] (characters other
+    /// `tumble-NAME-X-Y.csv` for a quantity graph, in [`Preferences::write_dir`] (characters other
     /// than letters, digits, `.`, `-` and `_` left out of the quantities' names).
     pub fn csv_path(&self) -> Option<PathBuf> {
         let stem = self
@@ -934,7 +934,7 @@ impl App {
         }
     }
 
-    /// The file `W` writes: `NAME-edited.toml` in [`App::write_dir`].
+    /// The file `W` writes: `NAME-edited.toml` in [`Preferences::write_dir`].
     pub fn write_path(&self) -> PathBuf {
         let stem = self
             .session
@@ -1096,7 +1096,7 @@ impl App {
 
     /// Goes to time t (rounded to a step): forward from here, or replayed from t = 0 when t is
     /// earlier; paused there. A frame in progress is finished first. With
-    /// [`App::background_jobs`] the frames are run by [`App::work`], a slice at a time.
+    /// [`Session::background_jobs`](crate::session::Session::background_jobs) the frames are run by [`App::work`], a slice at a time.
     pub fn jump_to(&mut self, t: f64) {
         self.ui.running = false;
         while !self.at_frame_start() && self.session.divergence.is_none() {

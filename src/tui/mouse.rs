@@ -6,7 +6,7 @@
 //!
 //! A mouse event becomes a [`Message::Mouse`] ([`message`]) and goes through
 //! [`App::update`] like a key, so tests drive it without a terminal. Where things are is read
-//! from the screen as last drawn ([`App::screen_area`]): the same layout functions the
+//! from the screen as last drawn ([`Ui::screen_area`](super::app::Ui::screen_area)): the same layout functions the
 //! rendering uses, recomputed.
 
 use super::app::{App, Overlay, View};
