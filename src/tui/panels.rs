@@ -301,7 +301,7 @@ fn views(app: &App) -> Vec<Stacked> {
     }
     if let Some(bars) = &app.session.error_bars {
         let line = if app.prefs.frame == Frame::World {
-            bars.describe(&app.session.world, app.session.ns_per_step)
+            bars.describe(app.session.snapshot.integrator, app.session.ns_per_step)
         } else {
             "± shown in the world frame only (f)".to_string()
         };
