@@ -270,7 +270,7 @@ fn quantity_of(app: &App, hit: &RowHit) -> Option<Quantity> {
     let world_frame = app.prefs.frame == Frame::World;
     let i = hit.cell.min(2);
     let own = |measure| Some(Quantity::Body { body, measure });
-    let several = app.session.world.body_count() > 1;
+    let several = app.session.snapshot.bodies.len() > 1;
     match (hit.panel?, hit.label.as_str()) {
         (PagePanel::State, "x") => own(Measure::Position(i)),
         (PagePanel::AngularVelocity, "ω") => own(Measure::AngularVelocity(i)),
@@ -281,7 +281,12 @@ fn quantity_of(app: &App, hit: &RowHit) -> Option<Quantity> {
         (PagePanel::Energy, "K, V, E") if !several => own(energy_measure(i)),
         (PagePanel::Energy, "K, V, E") if i == 2 => Some(Quantity::SceneEnergy),
         (PagePanel::BodyEnergy, name) => Some(Quantity::Body {
-            body: app.session.world.body_index(name)?,
+            body: app
+                .session
+                .snapshot
+                .bodies
+                .iter()
+                .position(|b| b.name == name)?,
             measure: energy_measure(i),
         }),
         (PagePanel::System, "P total") => Some(Quantity::SceneMomentum(i)),
