@@ -273,8 +273,8 @@ impl Follow {
         self.errors = (self.steps == target).then(|| self.reference.errors(world, selected));
     }
 
-    /// One line: the reference and what both runs cost.
-    pub fn describe(&self, world: &World, shown_ns: Option<f64>) -> String {
+    /// One line: the reference and what both runs cost (`shown`: the integrator shown).
+    pub fn describe(&self, shown: Integrator, shown_ns: Option<f64>) -> String {
         let cost = |ns: Option<f64>| ns.map_or("—".to_string(), |n| format!("{n:.0} ns"));
         format!(
             "± vs {} at dt = {} s (and {} s), {} steps per shown step · cost per shown step: \
@@ -284,7 +284,7 @@ impl Follow {
             number_plain(self.dt / (2 * SUBSTEPS) as f64),
             3 * SUBSTEPS,
             cost(shown_ns),
-            world.integrator().name(),
+            shown.name(),
             if self.errors.is_none() {
                 "catching up…".to_string()
             } else {

@@ -7,10 +7,13 @@
 
 use super::cloth::ClothIntegrator;
 use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape};
-use super::collision::{Against, Contact, Obstacle};
+use super::collision::impulse::StepReport;
+use super::collision::{Against, Contact, ContactModel, Obstacle};
 use super::derive::{congruence, derive};
+use super::effects::Effects;
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
 use super::energy_ledger::EnergyBalance;
+use super::hand::{Hand, Pull};
 use super::integrators::Integrator;
 use super::joints::drive::Drive;
 use super::joints::{coordinate, JointKind, Motor, Pose as LinkPose};
@@ -88,6 +91,17 @@ pub struct Snapshot {
     pub springs: Vec<SpringView>,
     /// The energy the joints' correction changed since t = 0, J (numerical, in the drift).
     pub joint_correction_work: f64,
+    /// The declared effects (gravity, drag, …).
+    pub effects: Effects,
+    /// The contact parameters, if the scene declares contact.
+    pub contact_model: Option<ContactModel>,
+    /// What the `impulse` solver did in the last collide phase (work, unconverged residual).
+    pub contact_report: StepReport,
+    /// Every body's state, in order (the ruler and the protractor read their points from them).
+    pub states: Vec<State>,
+    /// The hand while a body is held (the mouse's drag spring), and its pull now.
+    pub hand: Option<Hand>,
+    pub hand_pull: Option<Pull>,
 }
 
 /// A joint as the panels, `walk` and `run --joint` show it.
@@ -517,6 +531,12 @@ impl Snapshot {
             joints: JointView::all(world),
             springs: SpringView::all(world),
             joint_correction_work: world.energy_ledger().joint_correction,
+            effects: world.effects().clone(),
+            contact_model: world.contact_model().copied(),
+            contact_report: world.contact_report(),
+            states: world.states().to_vec(),
+            hand: world.hand().copied(),
+            hand_pull: world.hand_pull(),
         }
     }
 }
@@ -566,6 +586,12 @@ impl Snapshot {
             joints: JointView::all(world),
             springs: SpringView::all(world),
             joint_correction_work: world.energy_ledger().joint_correction,
+            effects: world.effects().clone(),
+            contact_model: world.contact_model().copied(),
+            contact_report: world.contact_report(),
+            states: world.states().to_vec(),
+            hand: world.hand().copied(),
+            hand_pull: world.hand_pull(),
         }
     }
 }

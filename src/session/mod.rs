@@ -255,6 +255,23 @@ impl Session {
         matches!(self.world.last_phase(), None | Some(Phase::Collide))
     }
 
+    /// The hand on both worlds (the compare world is pulled the same way), from the next frame
+    /// on; the snapshots show it at once. Stepping back rebuilds frames from keyframes by
+    /// stepping them again, which cannot know where the pointer was: the next frame start is
+    /// kept whole (and while a body is held, every one), so no frame the hand pulled is ever
+    /// replayed, and none it did not is replayed with it.
+    pub fn set_hand(&mut self, hand: Option<crate::physics::hand::Hand>) {
+        self.history.break_segment();
+        self.world.set_hand(hand);
+        self.snapshot.hand = self.world.hand().copied();
+        self.snapshot.hand_pull = self.world.hand_pull();
+        if let Some(ghost) = &mut self.ghost {
+            ghost.world.set_hand(hand);
+            ghost.snapshot.hand = ghost.world.hand().copied();
+            ghost.snapshot.hand_pull = ghost.world.hand_pull();
+        }
+    }
+
     /// Keeps the snapshot now as the one before the next action.
     pub fn before_change(&mut self) {
         self.previous = Some(self.snapshot.clone());

@@ -6,7 +6,7 @@
 
 use super::app::App;
 use super::theme;
-use crate::physics::{Effect, Phase, Response, Snapshot, World};
+use crate::physics::{Effect, Phase, Response, Snapshot};
 use crate::tables::{contact_label, number_plain};
 use nalgebra::Vector3;
 use ratatui::buffer::Buffer;
@@ -44,7 +44,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
 pub fn lines(app: &App) -> Vec<Line<'static>> {
     let s = &app.session.snapshot;
     let mut lines = vec![phase_line(s)];
-    lines.extend(formulas(&app.session.world, s));
+    lines.extend(formulas(s));
     lines
 }
 
@@ -112,9 +112,9 @@ fn line(formula: impl Into<String>, numbers: impl Into<String>) -> Line<'static>
     ])
 }
 
-fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+fn formulas(s: &Snapshot) -> Vec<Line<'static>> {
     if s.bodies.is_empty() {
-        return cloth_formulas(world, s);
+        return cloth_formulas(s);
     }
     let mut lines = match s.phase {
         None => vec![
@@ -122,7 +122,7 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             line("integrate ", format!(
                 "one {} step of (x, orientation, P, L)   collide  {}",
                 s.integrator.name(),
-                world.contact_model().map_or("no contact declared", |m| m.response.descriptor().brief)
+                s.contact_model.as_ref().map_or("no contact declared", |m| m.response.descriptor().brief)
             )),
             line("Press n to run one phase, → a whole frame, space to run; ? lists every key.", ""),
         ],
@@ -145,26 +145,26 @@ fn formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
                 ),
             ),
         ],
-        Some(Phase::Forces) => forces(world, s),
+        Some(Phase::Forces) => forces(s),
         Some(Phase::Integrate) => integrate(s),
-        Some(Phase::Collide) => collide(world, s),
+        Some(Phase::Collide) => collide(s),
     };
     // The cloths' particle step (integrate: under the body's method, before its numbers, so
     // that a short strip shows both methods) and contacts (collide, after the body's).
     match s.phase {
         Some(Phase::Integrate) => {
             let at = lines.len().min(1);
-            lines.splice(at..at, cloth_steps(world, s));
+            lines.splice(at..at, cloth_steps(s));
         }
         // With no rigid contact the cloths' counts come first: a short strip (80 × 24) then
         // shows the particles under the cube resting on its sheet.
         Some(Phase::Collide) if s.contacts.is_empty() => {
-            let (formulas, counts) = cloth_contacts(world, s);
+            let (formulas, counts) = cloth_contacts(s);
             lines.splice(0..0, counts);
             lines.extend(formulas);
         }
         Some(Phase::Collide) => {
-            let (formulas, counts) = cloth_contacts(world, s);
+            let (formulas, counts) = cloth_contacts(s);
             lines.extend(formulas.into_iter().chain(counts));
         }
         _ => {}
@@ -179,7 +179,7 @@ fn body_mass(s: &Snapshot) -> f64 {
 
 /// A scene of cloths only: derive and forces have no body to work on; integrate is the
 /// particle step, collide the particles' contacts.
-fn cloth_formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+fn cloth_formulas(s: &Snapshot) -> Vec<Line<'static>> {
     match s.phase {
         None => vec![
             line(
@@ -196,17 +196,17 @@ fn cloth_formulas(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
             "no rigid body: nothing to do in this phase",
             "   (the springs', gravity's and drag's forces on the particles are found inside the particle step, in integrate)",
         )],
-        Some(Phase::Integrate) => cloth_steps(world, s),
+        Some(Phase::Integrate) => cloth_steps(s),
         // The counts first, as beside a body with no rigid contact (`formulas`).
         Some(Phase::Collide) => {
-            let (formulas, counts) = cloth_contacts(world, s);
+            let (formulas, counts) = cloth_contacts(s);
             counts.into_iter().chain(formulas).collect()
         }
     }
 }
 
 /// Integrate: each cloth's particle step, its formulas and what it produced.
-fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+fn cloth_steps(s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     for view in &s.cloths {
         lines.push(line(
@@ -221,7 +221,7 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         for formula in view.method.formula() {
             lines.push(line(format!("  {formula}"), ""));
         }
-        if !s.bodies.is_empty() && world.contact_model().is_some() {
+        if !s.bodies.is_empty() && s.contact_model.as_ref().is_some() {
             lines.push(line(
                 "  before x moves: a particle headed into a body gets +J, the body −J, so that \
                  vₚ·n ≥ −gap/h (it ends on the surface)",
@@ -250,12 +250,12 @@ fn cloth_steps(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
 
 /// Collide: each cloth's particles against obstacles (pushed out) and bodies (both ways):
 /// the formulas, and a line of counts per cloth.
-fn cloth_contacts(world: &World, s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
+fn cloth_contacts(s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
     let (mut lines, mut counts) = (Vec::new(), Vec::new());
     if s.cloths.is_empty() {
         return (lines, counts);
     }
-    if world.contact_model().is_none() {
+    if s.contact_model.as_ref().is_none() {
         let none = "cloths: no contact declared: nothing to detect, the phase costs nothing";
         return (vec![line(none, "")], counts);
     }
@@ -295,13 +295,13 @@ fn cloth_contacts(world: &World, s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<
     (lines, counts)
 }
 
-fn forces(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+fn forces(s: &Snapshot) -> Vec<Line<'static>> {
     let mut lines = Vec::new();
     let mass = body_mass(s);
-    if world.effects().list().is_empty() {
+    if s.effects.list().is_empty() {
         lines.push(line("no effects declared: F = 0, τ = 0", ""));
     }
-    for effect in world.effects().list() {
+    for effect in s.effects.list() {
         match *effect {
             Effect::Gravity(g) => lines.push(line(
                 "gravity  F = M·g",
@@ -364,7 +364,7 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
     ]
 }
 
-fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
+fn collide(s: &Snapshot) -> Vec<Line<'static>> {
     let obstacles = &s.obstacles;
     let bodies = s.bodies.len();
     if obstacles.is_empty() && bodies < 2 && s.cloths.is_empty() {
@@ -392,7 +392,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         )];
         return lines;
     }
-    let model = world.contact_model();
+    let model = s.contact_model.as_ref();
     let mut lines = Vec::new();
     let chosen = model.map_or(Response::Seed, |m| m.response);
     let response = chosen.descriptor();
@@ -449,7 +449,7 @@ fn collide(world: &World, s: &Snapshot) -> Vec<Line<'static>> {
         ));
     }
     // A step that met the solver's work budget unconverged says so, with its residual.
-    if let Some(residual) = world.contact_report().unconverged {
+    if let Some(residual) = s.contact_report.unconverged {
         lines.push(Line::from(vec![Span::styled(
             format!(
                 " unconverged: the solver met its work budget, residual {} m/s (converged: < 1e-10)",

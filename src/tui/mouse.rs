@@ -201,10 +201,9 @@ impl App {
     /// A move with the button down: the hand's target follows the pointer (in the plane
     /// through the grabbed point).
     fn drag(&mut self, view: &Viewport, col: u16, row: u16) {
-        let (Some(hand), Some(pull)) = (
-            self.session.world.hand().copied(),
-            self.session.world.hand_pull(),
-        ) else {
+        let (Some(hand), Some(pull)) =
+            (self.session.snapshot.hand, self.session.snapshot.hand_pull)
+        else {
             return;
         };
         let target = view.world_through(col, row, &pull.at);
@@ -212,7 +211,7 @@ impl App {
         self.ui.notice = Some(format!(
             "the hand pulls {} towards the pointer (its pull is drawn; its work is the energy \
              panel's hand row){}",
-            self.session.world.body_names()[hand.body],
+            self.session.snapshot.bodies[hand.body].name,
             if self.ui.running {
                 ""
             } else {
@@ -223,23 +222,16 @@ impl App {
 
     /// The button came up: the hand lets go (the ledger keeps its work).
     fn let_go(&mut self) {
-        if self.session.world.hand().is_some() {
+        if self.session.snapshot.hand.is_some() {
             self.hold(None);
             self.ui.notice = Some("the hand let go".into());
         }
     }
 
-    /// The hand on both worlds (the compare world is pulled the same way). Stepping back
-    /// rebuilds frames from keyframes by stepping them again, which cannot know where the
-    /// pointer was: the next frame start is kept whole (and while a body is held, every one:
-    /// `App::remember`), so no frame the hand pulled is ever replayed, and none it did not
-    /// is replayed with it.
+    /// The hand on both worlds: [`crate::session::Session::set_hand`] (and while a body is
+    /// held, every frame start is kept whole: `App::remember`).
     fn hold(&mut self, hand: Option<Hand>) {
-        self.session.history.break_segment();
-        self.session.world.set_hand(hand);
-        if let Some(ghost) = &mut self.session.ghost {
-            ghost.world.set_hand(hand);
-        }
+        self.session.set_hand(hand);
     }
 
     /// A click on a panel row: the graph of its quantity, as the quantity picker (`p`) would
@@ -278,7 +270,7 @@ fn quantity_of(app: &App, hit: &RowHit) -> Option<Quantity> {
     let world_frame = app.prefs.frame == Frame::World;
     let i = hit.cell.min(2);
     let own = |measure| Some(Quantity::Body { body, measure });
-    let several = app.session.world.body_count() > 1;
+    let several = app.session.snapshot.bodies.len() > 1;
     match (hit.panel?, hit.label.as_str()) {
         (PagePanel::State, "x") => own(Measure::Position(i)),
         (PagePanel::AngularVelocity, "ω") => own(Measure::AngularVelocity(i)),
@@ -289,7 +281,12 @@ fn quantity_of(app: &App, hit: &RowHit) -> Option<Quantity> {
         (PagePanel::Energy, "K, V, E") if !several => own(energy_measure(i)),
         (PagePanel::Energy, "K, V, E") if i == 2 => Some(Quantity::SceneEnergy),
         (PagePanel::BodyEnergy, name) => Some(Quantity::Body {
-            body: app.session.world.body_index(name)?,
+            body: app
+                .session
+                .snapshot
+                .bodies
+                .iter()
+                .position(|b| b.name == name)?,
             measure: energy_measure(i),
         }),
         (PagePanel::System, "P total") => Some(Quantity::SceneMomentum(i)),

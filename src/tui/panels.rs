@@ -301,7 +301,7 @@ fn views(app: &App) -> Vec<Stacked> {
     }
     if let Some(bars) = &app.session.error_bars {
         let line = if app.prefs.frame == Frame::World {
-            bars.describe(&app.session.world, app.session.ns_per_step)
+            bars.describe(app.session.snapshot.integrator, app.session.ns_per_step)
         } else {
             "± shown in the world frame only (f)".to_string()
         };
@@ -809,7 +809,9 @@ pub fn essentials_row_at(app: &App, area: Rect, col: u16, row: u16) -> Option<Ro
                     "L" => PagePanel::AngularMomentum,
                     "K, V, E" => PagePanel::Energy,
                     "P total" => PagePanel::System,
-                    name if app.session.world.body_index(name).is_some() => PagePanel::BodyEnergy,
+                    name if app.session.snapshot.bodies.iter().any(|b| b.name == name) => {
+                        PagePanel::BodyEnergy
+                    }
                     _ => return None,
                 };
                 return Some(RowHit {

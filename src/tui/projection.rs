@@ -181,7 +181,7 @@ fn legend(
         forces.push(Span::styled(" forces ", dim));
         items.push(forces);
     }
-    if app.session.world.hand().is_some() {
+    if app.session.snapshot.hand.is_some() {
         // First while a body is held: what the line from it to the pointer is.
         items.push(item("o~x", theme::HAND, "hand".into()));
     }
@@ -270,7 +270,10 @@ pub const FORCE_ARROW_COLUMNS: f64 = 8.0;
 /// its width in columns (None: no force to draw).
 fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64, usize)> {
     use crate::physics::force_arrows::{force_arrows, ForceKind};
-    let arrows = force_arrows(&app.session.snapshot, app.session.world.effects().gravity());
+    let arrows = force_arrows(
+        &app.session.snapshot,
+        app.session.snapshot.effects.gravity(),
+    );
     let largest = arrows.iter().map(|a| a.force.norm()).fold(0.0, f64::max);
     if largest <= 0.0 || !largest.is_finite() {
         return None;
@@ -308,7 +311,8 @@ fn add_forces(app: &App, mapping: &Mapping, scene: &mut Scene2d) -> Option<(f64,
 /// The hand (the mouse's drag spring, `physics::hand`), while a body is held: a line from the
 /// grabbed point to the pointer, a mark at each end, and the pull's size at the pointer.
 fn add_hand(app: &App, scene: &mut Scene2d) {
-    let (Some(hand), Some(pull)) = (app.session.world.hand(), app.session.world.hand_pull()) else {
+    let (Some(hand), Some(pull)) = (app.session.snapshot.hand, app.session.snapshot.hand_pull)
+    else {
         return;
     };
     let (from, to) = (

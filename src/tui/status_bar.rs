@@ -16,14 +16,10 @@ const DIM: Style = theme::DIM;
 /// The status fields, each a group of spans (the notice last, when `notice` and there is one).
 fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
     let s = &app.session.snapshot;
-    let effects = app.session.world.effects().names();
-    let response = app
-        .session
-        .world
-        .contact_model()
-        .map_or("—", |m| m.response.name());
+    let effects = s.effects.names();
+    let response = s.contact_model.map_or("—", |m| m.response.name());
     let mut fields: Vec<(&str, String)> = Vec::new();
-    let no_body = app.session.world.body_count() == 0;
+    let no_body = s.bodies.is_empty();
     if no_body {
         fields.push(("", super::panels::NO_BODY.to_string()));
     }
@@ -48,7 +44,7 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
     ]);
     // In compare mode, "A vs B" on the setting the ghost differs by, and only there. The
     // body settings only when there are bodies, the particle integrator only with cloths.
-    let bodies = app.session.world.body_count() > 0;
+    let bodies = !s.bodies.is_empty();
     fields.extend(
         [
             (

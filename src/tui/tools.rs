@@ -137,7 +137,7 @@ impl App {
     /// The protractor in effect: set by keys, else the page's, else the first body's y axis
     /// against the vertical (None: no body).
     pub fn protractor(&self) -> Option<Protractor> {
-        if self.session.world.body_count() == 0 {
+        if self.session.snapshot.bodies.is_empty() {
             return None;
         }
         Some(
@@ -301,7 +301,7 @@ impl App {
                     self.ui.notice = Some("no body in this scene: no axis to measure".into());
                     return;
                 };
-                let count = self.session.world.body_count();
+                let count = self.session.snapshot.bodies.len();
                 if key == ToolKey::ProtractorAxis {
                     if !self.ui.tools.protractor_shown {
                         self.ui.tools.protractor_shown = true;
@@ -382,7 +382,7 @@ impl App {
             .collect();
         let point = ruler::point_at(
             p,
-            self.session.world.states(),
+            &self.session.snapshot.states,
             &movable,
             Some(depth_of(self.prefs.axis)),
             reach,
@@ -391,7 +391,7 @@ impl App {
             Point::World(p) => ruler::world_name(&p),
             Point::Body { body, offset } => format!(
                 "{}+{}",
-                self.session.world.body_names()[body],
+                self.session.snapshot.bodies[body].name,
                 ruler::world_name(&offset.map(|c| (c * 1e4).round() / 1e4))
             ),
         };
@@ -405,10 +405,10 @@ impl App {
     fn body_axis_name(&self, a: &BodyAxis) -> String {
         let name = self
             .session
-            .world
-            .body_names()
+            .snapshot
+            .bodies
             .get(a.body)
-            .map_or("?", String::as_str);
+            .map_or("?", |b| b.name.as_str());
         format!("{name}.{}", axis_name(a.axis))
     }
 
@@ -500,7 +500,7 @@ impl App {
             PagePanel::Ruler => {
                 let r = self.ruler();
                 let title = format!("ruler {} → {}", r.from.name, r.to.name);
-                let rows = match r.read(self.session.world.states()) {
+                let rows = match r.read(&self.session.snapshot.states) {
                     Some(m) => vec![
                         row("distance", vec![number(m.distance)], "m"),
                         row("Δ", m.delta.iter().map(|&c| number(c)).collect(), "m"),
@@ -513,7 +513,7 @@ impl App {
                 Some(p) => Panel {
                     title: format!("protractor {}", self.protractor_title(&p)),
                     rows: p
-                        .degrees(self.session.world.states())
+                        .degrees(&self.session.snapshot.states)
                         .map(|d| row("angle", vec![number(d)], "°"))
                         .into_iter()
                         .collect(),
