@@ -23,11 +23,9 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
 use std::hint::black_box;
 use std::time::Duration;
+use tumble::joint_scenes::{chain, landing_chain};
 use tumble::physics::joints::{Correction, Joint, JointKind, Links};
-use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
-    Response, State, World,
-};
+use tumble::physics::{Body, Effect, Effects, Integrator, NamedBody, State, World};
 
 fn gravity() -> Effects {
     Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -9.81, 0.0))])
@@ -59,99 +57,6 @@ fn pendulum() -> World {
     })
 }
 
-/// `count` links of length `l` along x from the origin, ball-jointed end to end.
-pub fn chain(count: usize, correction: Correction) -> World {
-    chain_of(count, JointKind::Ball, correction)
-}
-
-/// `count` links of length `l` along x from the origin, `kind`-jointed end to end (axis z).
-fn chain_of(count: usize, kind: JointKind, correction: Correction) -> World {
-    let l = 0.5;
-    let bodies: Vec<NamedBody> = (0..count)
-        .map(|i| NamedBody {
-            name: format!("link{i}"),
-            body: Body::solid_box(Vector3::new(l, 0.05, 0.05), 0.1).expect("a box"),
-            initial: State {
-                position: Vector3::new((i as f64 + 0.5) * l, 0.0, 0.0),
-                ..State::at_rest()
-            },
-        })
-        .collect();
-    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let joints = (0..count)
-        .map(|i| {
-            Joint::at_point(
-                format!("j{i}"),
-                kind,
-                i,
-                i.checked_sub(1),
-                Vector3::new(i as f64 * l, 0.0, 0.0),
-                Vector3::z(),
-                &states,
-            )
-        })
-        .collect();
-    World::with_bodies(bodies, gravity(), Vec::new(), None, Integrator::Rk4, 1e-3).with_links(
-        Links {
-            joints,
-            springs: Vec::new(),
-            correction,
-        },
-    )
-}
-
-/// The landing chain of the module doc.
-fn landing(count: usize) -> World {
-    let (l, tilt) = (0.3, 20.0_f64.to_radians());
-    let along = Vector3::new(tilt.cos(), tilt.sin(), 0.0);
-    let start = Vector3::new(0.0, 0.3, 0.0);
-    let turn = nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), tilt);
-    let bodies: Vec<NamedBody> = (0..count)
-        .map(|i| NamedBody {
-            name: format!("link{i}"),
-            body: Body::solid_box(Vector3::new(l, 0.05, 0.05), 0.1).expect("a box"),
-            initial: State {
-                position: start + along * ((i as f64 + 0.5) * l),
-                orientation: Orientation::Quaternion(turn),
-                ..State::at_rest()
-            },
-        })
-        .collect();
-    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let joints = (1..count)
-        .map(|i| {
-            let at = start + along * (i as f64 * l);
-            Joint::at_point(
-                format!("j{i}"),
-                JointKind::Ball,
-                i,
-                Some(i - 1),
-                at,
-                Vector3::z(),
-                &states,
-            )
-        })
-        .collect();
-    let contact = ContactModel {
-        response: Response::Impulse,
-        restitution: 0.0,
-        friction: 0.5,
-        impacts: Impacts::default(),
-    };
-    World::with_bodies(
-        bodies,
-        gravity(),
-        vec![Obstacle::Ground { height: 0.0 }],
-        Some(contact),
-        Integrator::Rk4,
-        1e-3,
-    )
-    .with_links(Links {
-        joints,
-        ..Links::default()
-    })
-}
-
 fn joints(c: &mut Criterion) {
     let mut group = c.benchmark_group("joints");
     group
@@ -159,13 +64,22 @@ fn joints(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(2));
     let cases = [
         ("pendulum", pendulum()),
-        ("chain-10", chain(10, Correction::Projection)),
+        (
+            "chain-10",
+            chain(10, JointKind::Ball, Correction::Projection),
+        ),
         (
             "chain-10-hinge",
-            chain_of(10, JointKind::Hinge, Correction::Projection),
+            chain(10, JointKind::Hinge, Correction::Projection),
         ),
-        ("chain-10-baumgarte", chain(10, Correction::Baumgarte)),
-        ("chain-10-landing", landing(10)),
+        (
+            "chain-10-baumgarte",
+            chain(10, JointKind::Ball, Correction::Baumgarte),
+        ),
+        (
+            "chain-10-landing",
+            landing_chain(10, 0.3, 20.0_f64.to_radians(), 0.3),
+        ),
     ];
     for (name, mut world) in cases {
         let period = if name == "chain-10-landing" {

@@ -14,106 +14,10 @@
 //! N steps one line `t,x,y,z,qw,qx,qy,qz,Px,Py,Pz,Lx,Ly,Lz` per body is printed, full precision
 //! (`{:e}`), to compare runs. The last line gives the mean µs per step.
 
-use nalgebra::Vector3;
 use std::time::Instant;
-use tumble::physics::joints::{Correction, Joint, JointKind, Links};
-use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
-    Response, State, World,
-};
-
-fn gravity() -> Effects {
-    Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -9.81, 0.0))])
-}
-
-/// `count` links of 0.5 m along x from the origin, `kind`-jointed end to end (axis z).
-fn chain(count: usize, kind: JointKind) -> World {
-    let l = 0.5;
-    let bodies: Vec<NamedBody> = (0..count)
-        .map(|i| NamedBody {
-            name: format!("link{i}"),
-            body: Body::solid_box(Vector3::new(l, 0.05, 0.05), 0.1).expect("a box"),
-            initial: State {
-                position: Vector3::new((i as f64 + 0.5) * l, 0.0, 0.0),
-                ..State::at_rest()
-            },
-        })
-        .collect();
-    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let joints = (0..count)
-        .map(|i| {
-            let at = Vector3::new(i as f64 * l, 0.0, 0.0);
-            Joint::at_point(
-                format!("j{i}"),
-                kind,
-                i,
-                i.checked_sub(1),
-                at,
-                Vector3::z(),
-                &states,
-            )
-        })
-        .collect();
-    World::with_bodies(bodies, gravity(), Vec::new(), None, Integrator::Rk4, 1e-3).with_links(
-        Links {
-            joints,
-            springs: Vec::new(),
-            correction: Correction::Projection,
-        },
-    )
-}
-
-/// The landing chain of benches/joints.rs.
-fn landing(count: usize) -> World {
-    let (l, tilt) = (0.3, 20.0_f64.to_radians());
-    let along = Vector3::new(tilt.cos(), tilt.sin(), 0.0);
-    let start = Vector3::new(0.0, 0.3, 0.0);
-    let turn = nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), tilt);
-    let bodies: Vec<NamedBody> = (0..count)
-        .map(|i| NamedBody {
-            name: format!("link{i}"),
-            body: Body::solid_box(Vector3::new(l, 0.05, 0.05), 0.1).expect("a box"),
-            initial: State {
-                position: start + along * ((i as f64 + 0.5) * l),
-                orientation: Orientation::Quaternion(turn),
-                ..State::at_rest()
-            },
-        })
-        .collect();
-    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let joints = (1..count)
-        .map(|i| {
-            let at = start + along * (i as f64 * l);
-            Joint::at_point(
-                format!("j{i}"),
-                JointKind::Ball,
-                i,
-                Some(i - 1),
-                at,
-                Vector3::z(),
-                &states,
-            )
-        })
-        .collect();
-    let contact = ContactModel {
-        response: Response::Impulse,
-        restitution: 0.0,
-        friction: 0.5,
-        impacts: Impacts::default(),
-    };
-    World::with_bodies(
-        bodies,
-        gravity(),
-        vec![Obstacle::Ground { height: 0.0 }],
-        Some(contact),
-        Integrator::Rk4,
-        1e-3,
-    )
-    .with_links(Links {
-        joints,
-        ..Links::default()
-    })
-}
+use tumble::joint_scenes::{chain, landing_chain};
+use tumble::physics::joints::{Correction, JointKind};
+use tumble::physics::Integrator;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -127,9 +31,9 @@ fn main() {
             .expect("an integrator name")
     });
     let (mut world, period) = match name.as_str() {
-        "ball" => (chain(10, JointKind::Ball), 2000),
-        "hinge" => (chain(10, JointKind::Hinge), 2000),
-        "landing" => (landing(10), 3000),
+        "ball" => (chain(10, JointKind::Ball, Correction::Projection), 2000),
+        "hinge" => (chain(10, JointKind::Hinge, Correction::Projection), 2000),
+        "landing" => (landing_chain(10, 0.3, 20.0_f64.to_radians(), 0.3), 3000),
         _ => panic!("{usage}"),
     };
     world.set_integrator(integrator);

@@ -8,6 +8,7 @@ pub mod cli;
 pub mod contact_scenes;
 pub mod diff;
 pub mod error_bars;
+pub mod joint_scenes;
 pub mod lessons;
 pub mod limits;
 pub mod live;

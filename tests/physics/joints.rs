@@ -2,12 +2,10 @@
 //! minimal-coordinate ODE solved here by a high-order method.
 
 use nalgebra::{UnitQuaternion, Vector3};
+use tumble::joint_scenes::landing_chain;
 use tumble::physics::joints::{Correction, Joint, JointKind, Links, Spring, SpringLaw};
 use tumble::physics::Orientation;
-use tumble::physics::{
-    Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Response, State,
-    World,
-};
+use tumble::physics::{Body, Effect, Effects, Integrator, NamedBody, State, World};
 
 const G: f64 = 9.81;
 
@@ -487,59 +485,6 @@ anchor = [0.0, 0.0, 0.0]
         last = j[2];
     }
     assert!(last > 1e-3, "the anchors should have drifted apart: {last}");
-}
-
-/// `count` links of `l` × 0.05 × 0.05 m (0.1 kg) end to end, ball-jointed to each other (not
-/// to the world), along a line tilted `tilt` from the horizontal with its low end at `height`
-/// above the ground; impulse contacts (e = 0, μ = 0.5).
-fn landing_chain(count: usize, l: f64, tilt: f64, height: f64) -> World {
-    let along = Vector3::new(tilt.cos(), tilt.sin(), 0.0);
-    let start = Vector3::new(0.0, height, 0.0);
-    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), tilt);
-    let bodies: Vec<NamedBody> = (0..count)
-        .map(|i| NamedBody {
-            name: format!("link{i}"),
-            body: Body::solid_box(Vector3::new(l, 0.05, 0.05), 0.1).expect("a box"),
-            initial: State {
-                position: start + along * ((i as f64 + 0.5) * l),
-                orientation: Orientation::Quaternion(turn),
-                ..State::at_rest()
-            },
-        })
-        .collect();
-    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let joints = (1..count)
-        .map(|i| {
-            let at = start + along * (i as f64 * l);
-            Joint::at_point(
-                format!("j{i}"),
-                JointKind::Ball,
-                i,
-                Some(i - 1),
-                at,
-                Vector3::z(),
-                &states,
-            )
-        })
-        .collect();
-    let contact = ContactModel {
-        response: Response::Impulse,
-        restitution: 0.0,
-        friction: 0.5,
-        impacts: Impacts::default(),
-    };
-    World::with_bodies(
-        bodies,
-        gravity(),
-        vec![Obstacle::Ground { height: 0.0 }],
-        Some(contact),
-        Integrator::Rk4,
-        1e-3,
-    )
-    .with_links(Links {
-        joints,
-        ..Links::default()
-    })
 }
 
 /// The lowest corner of a box of half-extents `half` at `state`, m.
