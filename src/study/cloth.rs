@@ -298,15 +298,7 @@ pub fn study(
     let (limit, damped_limit, limiting_cloth) = explicit_limit(scene);
     let ladder = config.dts.clone().unwrap_or_else(|| ladder(limit));
     let times = sample_times(duration, config.timing.sample_interval);
-    let plan: Vec<(ClothIntegrator, f64)> = config
-        .integrators
-        .iter()
-        .flat_map(|&i| {
-            dts_for(i, &ladder, limit, config.past)
-                .into_iter()
-                .map(move |dt| (i, dt))
-        })
-        .collect();
+    let plan = plan(config, &ladder, limit);
     let smallest = ladder.iter().copied().fold(f64::INFINITY, f64::min);
     let reference = reference(scene, &times, smallest / REFERENCE_DIVISOR);
     let mut rows = Vec::with_capacity(plan.len());
@@ -358,14 +350,8 @@ pub fn planned_steps(scene: &Scene, duration: f64, config: &ClothConfig) -> (u64
     let steps = |dt: f64| (duration / dt).round().max(1.0) as u64;
     let h = ladder.iter().copied().fold(f64::INFINITY, f64::min) / REFERENCE_DIVISOR;
     let reference = steps(h) + steps(h / 2.0);
-    let runs = config
-        .integrators
-        .iter()
-        .flat_map(|&i| {
-            dts_for(i, &ladder, limit, config.past)
-                .into_iter()
-                .map(move |dt| (i, dt))
-        })
+    let runs = plan(config, &ladder, limit)
+        .into_iter()
         .map(|(i, dt)| {
             if i.is_explicit() && dt > limit {
                 steps(dt)
@@ -381,11 +367,20 @@ pub fn planned_steps(scene: &Scene, duration: f64, config: &ClothConfig) -> (u64
 pub fn runs(scene: &Scene, config: &ClothConfig) -> usize {
     let (limit, _, _) = explicit_limit(scene);
     let ladder = config.dts.clone().unwrap_or_else(|| ladder(limit));
+    plan(config, &ladder, limit).len()
+}
+
+/// The runs [`study`] makes, in order: each integrator's time steps on `ladder` ([`dts_for`]).
+fn plan(config: &ClothConfig, ladder: &[f64], limit: f64) -> Vec<(ClothIntegrator, f64)> {
     config
         .integrators
         .iter()
-        .map(|&i| dts_for(i, &ladder, limit, config.past).len())
-        .sum()
+        .flat_map(|&i| {
+            dts_for(i, ladder, limit, config.past)
+                .into_iter()
+                .map(move |dt| (i, dt))
+        })
+        .collect()
 }
 
 /// The steps of a run at `dt` at which each sample time falls (the last is the run's end).
