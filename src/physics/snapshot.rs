@@ -492,13 +492,8 @@ impl Snapshot {
                 }
             })
             .collect();
+        // The scene's fields are the scene-only snapshot's; the body's replace its zeros.
         Snapshot {
-            phase: world.last_phase(),
-            next_phase: world.next_phase(),
-            step: world.step_count(),
-            time: world.time(),
-            dt: world.dt(),
-            integrator: world.integrator(),
             position: state.position,
             rotation,
             quaternion: state.orientation.quaternion(),
@@ -517,7 +512,6 @@ impl Snapshot {
             contact_torque,
             energy: energy(body, world.effects(), state),
             initial_energy: energy(body, world.effects(), &world.initial_states()[index]),
-            energy_balance: world.energy_balance(),
             orthonormality_error: state.orientation.orthonormality_error(),
             vertices,
             contacts: world.contacts().to_vec(),
@@ -525,25 +519,16 @@ impl Snapshot {
             body_index: index,
             body_name: world.body_names()[index].clone(),
             bodies,
-            obstacles: world.obstacles().to_vec(),
-            system: SystemTotals::of(world),
-            cloths: ClothView::all(world),
-            joints: JointView::all(world),
-            springs: SpringView::all(world),
-            joint_correction_work: world.energy_ledger().joint_correction,
-            effects: world.effects().clone(),
-            contact_model: world.contact_model().copied(),
-            contact_report: world.contact_report(),
-            states: world.states().to_vec(),
-            hand: world.hand().copied(),
-            hand_pull: world.hand_pull(),
+            ..Snapshot::without_body(world)
         }
     }
 }
 
 impl Snapshot {
-    /// A world of cloths only: the body fields are zeros (a body at rest at the origin, no
-    /// mass), the scene's fields are the world's.
+    /// The scene's fields of a world (phase, clock, ledger, obstacles, totals, cloths, joints,
+    /// springs, effects, contact model and report, states, hand), the body fields zeros (a
+    /// body at rest at the origin, no mass): a world of cloths only, and the base
+    /// [`Snapshot::of_body`] puts a body's fields on.
     fn without_body(world: &World) -> Snapshot {
         let zero = Vector3::zeros();
         let state = world.state();
