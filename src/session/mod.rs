@@ -250,6 +250,53 @@ impl Session {
         self.study.as_ref().is_some_and(|job| !job.finished())
     }
 
+    /// The world's completed frames now: current inside a run of frames too, where the
+    /// snapshot is read again only at the run's end (see [`Session::refresh`]).
+    pub fn step_count(&self) -> u64 {
+        self.world.step_count()
+    }
+
+    /// Simulated time now, t = step·dt, s (current as [`Session::step_count`]).
+    pub fn time(&self) -> f64 {
+        self.world.time()
+    }
+
+    /// The measured error (±) under each number on or off: a reference run that follows the
+    /// world from here (see [`crate::error_bars`]). The snapshot is not re-read.
+    pub fn toggle_error_bars(&mut self) {
+        self.error_bars = match self.error_bars {
+            Some(_) => None,
+            None => Some(crate::error_bars::Follow::new(
+                &self.lesson.scene,
+                &self.world,
+            )),
+        };
+    }
+
+    /// Continuous values (g, drag, e, μ, a spring's k, a motor's speed) changed where the run
+    /// is ([`World::tune`]), in both worlds, between frames; the lesson's scene becomes `scene`
+    /// (a reset keeps them). Frames before the change could only be replayed with the new
+    /// values (a keyframe keeps the state, not g, k or a motor's speed): stepping back stops
+    /// here. The pages' live numbers are simulated again; the ± (its reference ran the old
+    /// values) is dropped: Ok(true) when it was shown. Err: the first value the world refused
+    /// (those before it are kept; nothing else changes). The snapshot is not re-read.
+    pub fn tune(
+        &mut self,
+        scene: crate::scene::Scene,
+        tunings: &[crate::physics::Tuning],
+    ) -> Result<bool, String> {
+        for &tuning in tunings {
+            self.world.tune(tuning)?;
+            if let Some(ghost) = &mut self.ghost {
+                ghost.world.tune(tuning).ok();
+            }
+        }
+        self.lesson.scene = scene;
+        self.history.clear();
+        self.start_live(self.lesson.scene.world());
+        Ok(self.error_bars.take().is_some())
+    }
+
     /// Whether the world sits between two frames.
     pub fn at_frame_start(&self) -> bool {
         matches!(self.world.last_phase(), None | Some(Phase::Collide))

@@ -18,18 +18,8 @@ use crossterm::event::KeyEvent;
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// The main area's content. A new view is a variant here, a render file, and a key.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum View {
-    /// Projection, numeric panels, loop strip and lesson page.
-    Loop,
-    /// The energy graph in place of the projection.
-    Energy,
-    /// The graph of a picked quantity (key `p`) in place of the projection.
-    Plot,
-    /// Error against cost of every integrator × dt (computed in the background).
-    Study,
-}
+/// The main area's content: a row of the view table (`views.rs`).
+pub use super::views::View;
 
 /// A window over the main screen.
 #[derive(Debug, Clone, PartialEq)]
@@ -218,7 +208,7 @@ impl App {
     /// The pause at the first step where their run (`--against`) parts from tumble's.
     fn against_parts_here(&self) -> Option<timeline::Stop> {
         let (step, column) = self.ui.against.as_ref()?.parting.as_ref()?;
-        (*step == self.session.world.step_count()).then(|| timeline::Stop {
+        (*step == self.session.step_count()).then(|| timeline::Stop {
             label: "they part".into(),
             notice: format!(
                 "their run parts from tumble's here (step {step}, column {column}): n steps \
@@ -400,8 +390,8 @@ impl App {
                 self.session.job = None;
                 self.ui.notice = Some(format!(
                     "jump cancelled at t = {} s (step {})",
-                    tidy(self.session.world.time()),
-                    self.session.world.step_count()
+                    tidy(self.session.time()),
+                    self.session.step_count()
                 ));
             }
             _ => self.ui.notice = Some(self.job_progress(&job)),
@@ -552,7 +542,7 @@ impl App {
             }
             Message::NextResponse => self.next_response(),
             Message::NextBody => {
-                let count = self.session.world.body_count();
+                let count = self.session.snapshot.bodies.len();
                 if count > 1 {
                     self.session.selected = (self.session.selected + 1) % count;
                     self.session.previous = None;
@@ -614,34 +604,15 @@ impl App {
             Message::ToggleFrame => self.prefs.frame = self.prefs.frame.toggle(),
             Message::ToggleTrail => self.prefs.trail = !self.prefs.trail,
             Message::ToggleErrors => {
-                self.session.error_bars = match self.session.error_bars {
-                    Some(_) => None,
-                    None => Some(crate::error_bars::Follow::new(
-                        &self.session.lesson.scene,
-                        &self.session.world,
-                    )),
-                };
+                self.session.toggle_error_bars();
                 self.refresh();
             }
-            Message::ToggleEnergy => {
-                self.ui.view = match self.ui.view {
-                    View::Energy => View::Loop,
-                    _ => View::Energy,
-                }
-            }
-            Message::ToggleStudy => {
-                if self.ui.view == View::Study {
+            Message::ToggleView(view) => {
+                if self.ui.view == view {
                     self.ui.view = View::Loop;
                 } else {
-                    if !self
-                        .session
-                        .study
-                        .as_ref()
-                        .is_some_and(|job| super::study_view::is_current(job, self))
-                    {
-                        self.session.study = Some(super::study_view::spawn(self));
-                    }
-                    self.ui.view = View::Study;
+                    (view.pane().open)(self);
+                    self.ui.view = view;
                 }
             }
             Message::ScrollUp => {
@@ -793,7 +764,7 @@ impl App {
     /// `X`: what the graph shown plots, as CSV (the energy graph, or the quantity graph).
     fn export_csv(&mut self) -> Option<Effect> {
         let text = match (self.ui.view, self.ui.plot) {
-            (View::Energy, _) => self.session.series.csv(self.session.world.dt()),
+            (View::Energy, _) => self.session.series.csv(self.session.snapshot.dt),
             (View::Plot, Some(choice)) => self
                 .session
                 .plot_series
@@ -850,8 +821,8 @@ impl App {
         let Some(predict) = &self.session.lesson.pages[index].predict else {
             return false;
         };
-        let ahead = self.session.world.step_count()
-            < crate::live::step_at(predict.at, self.session.world.dt());
+        let ahead =
+            self.session.step_count() < crate::live::step_at(predict.at, self.session.snapshot.dt);
         if self.ui.guesses[index] != Guess::Open || !ahead {
             return false;
         }
@@ -886,8 +857,8 @@ impl App {
     /// its time: `cube.y at t = 1 s: your guess 0.3 m · simulated 0.25 m · error 20 %`.
     pub fn prediction_result(&self, page: usize) -> Option<String> {
         let predict = self.session.lesson.pages.get(page)?.predict.as_ref()?;
-        let reached = self.session.world.step_count()
-            >= crate::live::step_at(predict.at, self.session.world.dt());
+        let reached =
+            self.session.step_count() >= crate::live::step_at(predict.at, self.session.snapshot.dt);
         if !reached {
             return None;
         }
@@ -923,11 +894,7 @@ impl App {
         if self.ui.overlay != Overlay::None {
             self.ui.overlay = Overlay::None;
         } else if self.ui.view != View::Loop {
-            if self.ui.view == View::Study && self.study_running() {
-                // Esc leaves the study and stops its work (`s` leaves it running).
-                self.cancel_study();
-                self.ui.notice = Some("study cancelled: s starts it again".into());
-            }
+            (self.ui.view.pane().leave)(self);
             self.ui.view = View::Loop;
         } else {
             self.ui.notice = Some("nothing to close: q quits".into());
@@ -998,7 +965,7 @@ impl App {
                 let selected = self.session.selected;
                 self.open(lesson);
                 // The body edited stays the one the panels show.
-                if selected < self.session.world.body_count() {
+                if selected < self.session.snapshot.bodies.len() {
                     self.session.selected = selected;
                     self.refresh();
                 }
@@ -1044,28 +1011,20 @@ impl App {
             self.step_phase();
         }
         self.before_change();
-        for &tuning in &tunings {
-            if let Err(e) = self.session.world.tune(tuning) {
+        // Stepping back stops at the change; the live numbers are simulated again; the ±
+        // (its reference ran the old values) is dropped.
+        let bars = match self.session.tune(scene, &tunings) {
+            Ok(bars) => bars,
+            Err(e) => {
                 self.ui.notice = Some(format!("settings: {e}"));
                 return;
             }
-            if let Some(ghost) = &mut self.session.ghost {
-                ghost.world.tune(tuning).ok();
-            }
-        }
-        self.session.lesson.scene = scene;
-        // Frames before the change could only be replayed with the new values (a keyframe
-        // keeps the state, not g, k or a motor's speed): stepping back stops at the change.
-        self.session.history.clear();
-        // The pages' live numbers are simulated again with the new values; the ± reference
-        // ran the old ones.
-        self.session.start_live(self.session.lesson.scene.world());
-        let bars = self.session.error_bars.take().is_some();
+        };
         self.refresh();
         self.ui.notice = Some(format!(
             "applied live ({changes}): the run goes on from t = {} s (, steps back to here, \
              not before){}",
-            tidy(self.session.world.time()),
+            tidy(self.session.time()),
             if bars { "; u shows the ± again" } else { "" }
         ));
     }
@@ -1075,17 +1034,17 @@ impl App {
     /// speed relative to real time, ASCII and timing. The run starts paused at t = 0.
     fn open(&mut self, lesson: Lesson) {
         let compare = self.session.ghost.as_ref().map(|g| g.comparison);
-        let real_time = self.frames_per_second() * self.session.world.dt();
+        let real_time = self.frames_per_second() * self.session.snapshot.dt;
         // The quantity graph's quantities are the old scene's: it does not carry over.
-        let view = if self.ui.view == View::Energy {
-            View::Energy
+        let view = if self.ui.view.pane().carried {
+            self.ui.view
         } else {
             View::Loop
         };
         let session = Session::new(lesson, self.session.in_background());
         *self = App::with(session, self.prefs.clone(), compare);
         self.ui.view = view;
-        let dt = self.session.world.dt();
+        let dt = self.session.snapshot.dt;
         self.ui.speed = (0..SPEEDS.len())
             .min_by(|&a, &b| {
                 let off = |i: usize| (SPEEDS[i] * dt / real_time).ln().abs();
@@ -1102,11 +1061,11 @@ impl App {
         while !self.at_frame_start() && self.session.divergence.is_none() {
             self.step_phase();
         }
-        let target = (t / self.session.world.dt()).round() as u64;
-        if target < self.session.world.step_count() {
+        let target = (t / self.session.snapshot.dt).round() as u64;
+        if target < self.session.step_count() {
             self.reset();
         }
-        let frames = target - self.session.world.step_count();
+        let frames = target - self.session.step_count();
         if frames > MAX_JUMP_FRAMES {
             self.ui.notice = Some(format!(
                 "jump: t = {} s is {frames} frames away, more than {MAX_JUMP_FRAMES}: \
@@ -1116,7 +1075,7 @@ impl App {
             return;
         }
         let job = JumpJob {
-            from: self.session.world.step_count(),
+            from: self.session.step_count(),
             target,
             t,
         };
@@ -1134,8 +1093,8 @@ impl App {
         if self.session.divergence.is_none() {
             self.ui.notice = Some(format!(
                 "jumped to t = {} s (step {})",
-                tidy(self.session.world.time()),
-                self.session.world.step_count()
+                tidy(self.session.time()),
+                self.session.step_count()
             ));
         }
     }
@@ -1143,13 +1102,13 @@ impl App {
     /// The status line of a job under way: `jumping to t = 50 s: 12 % (t = 6.03 s) · Esc
     /// cancels, q quits`.
     fn job_progress(&self, job: &JumpJob) -> String {
-        let done = self.session.world.step_count().saturating_sub(job.from);
+        let done = self.session.step_count().saturating_sub(job.from);
         let all = job.target.saturating_sub(job.from).max(1);
         format!(
             "jumping to t = {} s: {} % (t = {} s) · Esc cancels, q quits",
             tidy(job.t),
             100 * done / all,
-            tidy(self.session.world.time()),
+            tidy(self.session.time()),
         )
     }
 
@@ -1159,7 +1118,7 @@ impl App {
     pub fn work(&mut self, budget: std::time::Duration) -> bool {
         let start = Instant::now();
         while let Some(job) = self.session.job {
-            let left = job.target.saturating_sub(self.session.world.step_count());
+            let left = job.target.saturating_sub(self.session.step_count());
             if left == 0 || self.session.divergence.is_some() {
                 self.session.job = None;
                 self.jump_done();
@@ -1250,8 +1209,8 @@ impl App {
     /// Pauses the run if it has reached a page, their run's parting or a prediction's time
     /// (the notice says which); returns whether it did.
     fn pause_here(&mut self) -> bool {
-        let world = &self.session.world;
-        let stop = timeline::stop_at(&self.session.lesson, world.dt(), world.step_count());
+        let session = &self.session;
+        let stop = timeline::stop_at(&session.lesson, session.snapshot.dt, session.step_count());
         if let Some(stop) = stop.or_else(|| self.against_parts_here()) {
             self.ui.running = false;
             // A prediction due at a page's own time: its comparison comes first.
@@ -1280,8 +1239,8 @@ impl App {
 
     /// The result line of a guessed prediction whose time the run has just reached.
     fn prediction_reached(&self) -> Option<String> {
-        let step = self.session.world.step_count();
-        let dt = self.session.world.dt();
+        let step = self.session.step_count();
+        let dt = self.session.snapshot.dt;
         (0..self.session.lesson.pages.len())
             .filter(|&i| matches!(self.ui.guesses[i], Guess::Given(_)))
             .find(|&i| {
@@ -1338,6 +1297,8 @@ impl App {
         if let Some(notice) = self.session.next_response() {
             self.ui.notice = Some(notice);
         }
+        // The status bar and the study read the response from the snapshot.
+        self.refresh();
     }
 
     /// The settings the run uses that the lesson's pages were not written for (see

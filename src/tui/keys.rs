@@ -3,6 +3,7 @@
 //! really do.
 
 use super::tools::ToolKey;
+use super::views;
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 /// What a key asks the app to do.
@@ -23,10 +24,10 @@ pub enum Message {
     NextAxis,
     ToggleFrame,
     ToggleTrail,
-    ToggleEnergy,
+    /// A view's key (its row in `views.rs`): shows it, or (shown) the loop view.
+    ToggleView(super::views::View),
     /// `u`: the measured error (±) under each number of the panels.
     ToggleErrors,
-    ToggleStudy,
     OpenPicker,
     ScrollUp,
     ScrollDown,
@@ -226,8 +227,59 @@ const TIME_KEYS: &[KeyCode] = &[
 
 use KeyCode::{Backspace, Char, Down, Enter, Esc, Left, PageDown, PageUp, Right, Tab, Up};
 
-/// Every binding, in the order the status bar and the help overlay list them.
-pub const KEYS: &[Binding] = &[
+/// Every binding, in the order the status bar and the help overlay list them: the table
+/// below with each view's key (`views.rs`) after the row its [`ViewKey::after`] names.
+///
+/// [`ViewKey::after`]: super::views::ViewKey::after
+pub const KEYS: &[Binding] = &ALL;
+
+const ALL: [Binding; TABLE.len() + views::KEY_COUNT] = with_views();
+
+/// [`TABLE`] with the views' keys put in.
+const fn with_views<const N: usize>() -> [Binding; N] {
+    let mut all = [TABLE[0]; N];
+    let (mut i, mut n) = (0, 0);
+    while i < TABLE.len() {
+        all[n] = TABLE[i];
+        n += 1;
+        let mut v = 0;
+        while v < views::VIEWS.len() {
+            let pane = &views::VIEWS[v];
+            if let (Some(key), Some(binding)) = (pane.key, views::binding(pane)) {
+                if same(key.after, TABLE[i].label) && matches!(TABLE[i].context, Context::Main) {
+                    all[n] = binding;
+                    n += 1;
+                }
+            }
+            v += 1;
+        }
+        i += 1;
+    }
+    assert!(
+        n == N,
+        "a view's key is listed after a label the key table lacks"
+    );
+    all
+}
+
+/// Whether two strings are the same (in a constant).
+const fn same(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// The key table but the views' keys.
+const TABLE: &[Binding] = &[
     bind(
         &[Char('?')],
         "?",
@@ -362,25 +414,11 @@ pub const KEYS: &[Binding] = &[
         Message::ToggleTrail,
     ),
     bind(
-        &[Char('g')],
-        "g",
-        "g graph",
-        "energy graph: kinetic, potential, total, drift",
-        Message::ToggleEnergy,
-    ),
-    bind(
         &[Char('u')],
         "u",
         "",
         "± under each number: its error against a reference run (rk4 at dt/10), and its cost",
         Message::ToggleErrors,
-    ),
-    bind(
-        &[Char('s')],
-        "s",
-        "",
-        "study: error against cost of every integrator × dt on this scene (runs in the background)",
-        Message::ToggleStudy,
     ),
     bind(
         &[Char('l')],
@@ -756,6 +794,6 @@ mod tests {
             .filter(|b| b.context == Context::Main && b.keys.contains(&Char('s')))
             .collect();
         assert_eq!(study.len(), 1);
-        assert_eq!(study[0].message, Message::ToggleStudy);
+        assert_eq!(study[0].message, Message::ToggleView(views::View::Study));
     }
 }

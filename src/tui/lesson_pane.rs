@@ -44,7 +44,7 @@ fn page(app: &App) -> (String, String) {
             }
             // A guess of another page due at this page's time (lesson 32 asks on page 1 for
             // t = 0.643 s, page 3's time): its comparison shows here, where the run paused.
-            let dt = app.session.world.dt();
+            let dt = app.session.snapshot.dt;
             let here = crate::live::step_at(page.at, dt);
             for (j, other) in lesson.pages.iter().enumerate() {
                 let due_here = other

@@ -18,7 +18,8 @@
 //! | `export` | the screen as SVG (key `x`, `tumble shot`) and a run as asciicast (`tumble record`) |
 //! | `screen` | the whole screen, overlays, the "enlarge" message |
 //! | `header`, `status_bar` | top line; bottom lines |
-//! | `loop_view`, `energy_view` | the views (one file each; the second draws either graph) |
+//! | `views` | the view table: each view's key, render function, what showing and leaving it do |
+//! | `loop_view`, `energy_view`, `study_view` | the views (one file each; `energy_view` draws either graph) |
 //! | `projection`, `panels`, `cloth_panel`, `loop_strip`, `lesson_pane`, `energy_graph`, `plot_graph` | the panes |
 //! | `help`, `picker`, `plot_picker`, `divergence_dialog` | the overlays |
 //! | `settings_form`, `settings_view` | the settings form (`e`): its state; its overlay |
@@ -63,6 +64,7 @@ pub mod theme;
 pub mod timeline;
 pub mod tools;
 pub mod viewport;
+pub mod views;
 
 pub use crate::session::{history, plot, series};
 pub use against::Against;

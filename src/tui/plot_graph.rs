@@ -56,7 +56,7 @@ pub fn time_range(app: &App) -> Range {
         .scene
         .duration
         .filter(|d| *d > 0.0)
-        .unwrap_or(100.0 * app.session.world.dt());
+        .unwrap_or(100.0 * app.session.snapshot.dt);
     let now = app
         .session
         .plot_series

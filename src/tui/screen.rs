@@ -1,12 +1,12 @@
 //! The whole screen: header, the current view, status bar, and the overlays (help, lesson
 //! picker, divergence dialog) — or, in a terminal too small, a message asking to enlarge it.
 
-use super::app::{App, Overlay, View};
+use super::app::{App, Overlay};
 use super::layout::{self, Areas, ScreenLayout};
 use super::theme;
 use super::{
-    divergence_dialog, energy_view, header, help, jump_prompt, lesson_pane, loop_view, panels,
-    picker, plot_picker, settings_view, status_bar, study_view,
+    divergence_dialog, header, help, jump_prompt, lesson_pane, panels, picker, plot_picker,
+    settings_view, status_bar,
 };
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -43,11 +43,7 @@ impl Widget for &App {
             return;
         };
         header::render(self, top, buf);
-        match self.ui.view {
-            View::Loop => loop_view::render(self, main, buf),
-            View::Energy | View::Plot => energy_view::render(self, main, buf),
-            View::Study => study_view::render(self, main, buf),
-        }
+        (self.ui.view.pane().render)(self, main, buf);
         status_bar::render(self, status, buf);
         if let Some(d) = &self.session.divergence {
             divergence_dialog::render(d, area, buf);

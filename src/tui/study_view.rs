@@ -26,13 +26,13 @@ use ratatui::widgets::{Axis, Block, Chart, Dataset, Gauge, GraphType, Paragraph,
 /// collision response in use.
 pub fn spawn(app: &App) -> Job {
     let mut case = Case::from_lesson(&app.session.lesson);
-    case.scene.contact = app.session.world.contact_model().copied();
+    case.scene.contact = app.session.snapshot.contact_model;
     Job::spawn(case, Config::default())
 }
 
 /// The study was made with the collision response in use (else it must be made again).
 pub fn is_current(job: &Job, app: &App) -> bool {
-    job.response == app.session.world.contact_model().map(|m| m.response)
+    job.response == app.session.snapshot.contact_model.map(|m| m.response)
 }
 
 /// The colour of an integrator, as in the SVG plot.
@@ -50,8 +50,8 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     };
     let shown = Shown {
         ascii: app.prefs.ascii,
-        in_use: app.session.world.integrator(),
-        dt: app.session.world.dt(),
+        in_use: app.session.snapshot.integrator,
+        dt: app.session.snapshot.dt,
     };
     match (job.result(), job.partial()) {
         (Some(study), _) => match &study.cloth {

@@ -191,7 +191,7 @@ impl App {
     /// The stopwatch's reading now and whether it runs: the keys', or the page's schedule
     /// while no key worked it.
     pub fn stopwatch_reading(&self) -> (f64, bool) {
-        let t = self.session.world.time();
+        let t = self.session.snapshot.time;
         match self.page_tools().and_then(|p| p.stopwatch) {
             Some(s) if !self.ui.tools.stopwatch_used => (s.reading(t), s.running(t)),
             _ => (
@@ -203,7 +203,7 @@ impl App {
 
     /// A key of the tools (see the module's table).
     pub fn tool_key(&mut self, key: ToolKey) {
-        let t = self.session.world.time();
+        let t = self.session.snapshot.time;
         let tidy = super::settings_form::tidy;
         match key {
             ToolKey::StartStop => {
