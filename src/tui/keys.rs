@@ -235,23 +235,29 @@ pub const KEYS: &[Binding] = &ALL;
 
 const ALL: [Binding; TABLE.len() + views::KEY_COUNT] = with_views();
 
-/// [`TABLE`] with the views' keys put in.
+/// [`TABLE`] with the views' keys put in: each after the main-screen row (of the table, or
+/// another view's key) labelled its `after`.
 const fn with_views<const N: usize>() -> [Binding; N] {
     let mut all = [TABLE[0]; N];
     let (mut i, mut n) = (0, 0);
     while i < TABLE.len() {
         all[n] = TABLE[i];
         n += 1;
-        let mut v = 0;
-        while v < views::VIEWS.len() {
-            let pane = &views::VIEWS[v];
-            if let (Some(key), Some(binding)) = (pane.key, views::binding(pane)) {
-                if same(key.after, TABLE[i].label) && matches!(TABLE[i].context, Context::Main) {
-                    all[n] = binding;
-                    n += 1;
+        // The row just put in, then the views' keys put in after it, in turn.
+        let mut j = n - 1;
+        while j < n {
+            let mut v = 0;
+            while v < views::VIEWS.len() {
+                let pane = &views::VIEWS[v];
+                if let (Some(key), Some(binding)) = (pane.key, views::binding(pane)) {
+                    if same(key.after, all[j].label) && matches!(all[j].context, Context::Main) {
+                        all[n] = binding;
+                        n += 1;
+                    }
                 }
+                v += 1;
             }
-            v += 1;
+            j += 1;
         }
         i += 1;
     }

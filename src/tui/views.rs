@@ -43,7 +43,8 @@ pub struct ViewKey {
     /// The status bar's hint (empty: not in the bar).
     pub hint: &'static str,
     pub help: &'static str,
-    /// The label of the key-table row it is listed after (status bar and help).
+    /// The label of the main-screen row it is listed after in the status bar and the help (a
+    /// row of the key table, or another view's key); a label no row has does not compile.
     pub after: &'static str,
 }
 
