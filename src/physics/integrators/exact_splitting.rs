@@ -29,20 +29,26 @@ use super::super::effects::{Effect, Effects};
 use super::super::free_flow::free_flow;
 use super::super::state::{Orientation, State};
 use super::super::system::System;
-use super::system::{compose, Buffers, Composition, KickRule, Start};
+use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Vector3};
 
 /// One kick–flow–kick step over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
     let plan = Composition {
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Exact,
         order: 2,
     };
-    compose(&plan, drift, system, states, start, dt, b);
+    advance(
+        &Composed { plan, drift: drift },
+        system,
+        states,
+        start,
+        dt,
+        b,
+    );
 }
 
 /// The declared effects, summed: what the exact kick needs.

@@ -26,7 +26,7 @@
 use super::super::state::State;
 use super::super::system::System;
 use super::exact_splitting;
-use super::system::{compose, Buffers, Composition, KickRule, Start};
+use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 
 const XI: f64 = 0.178_617_895_844_809_1;
 const LAMBDA: f64 = -0.212_341_831_062_605_4;
@@ -44,14 +44,23 @@ const FLOWS: [f64; 4] = [
 
 /// One fourth-order step over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
     let plan = Composition {
         kicks: &KICKS,
         flows: &FLOWS,
         kick: KickRule::Exact,
         order: 4,
     };
-    compose(&plan, exact_splitting::drift, system, states, start, dt, b);
+    advance(
+        &Composed {
+            plan,
+            drift: exact_splitting::drift,
+        },
+        system,
+        states,
+        start,
+        dt,
+        b,
+    );
 }
 
 #[cfg(test)]

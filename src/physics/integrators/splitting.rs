@@ -32,20 +32,26 @@ use super::super::body::Body;
 use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
 use super::super::system::System;
-use super::system::{compose, Buffers, Composition, KickRule, Start};
+use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 
 /// One kick–drift–kick step with the split free rotation over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
     let plan = Composition {
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Midpoint,
         order: 2,
     };
-    compose(&plan, drift, system, states, start, dt, b);
+    advance(
+        &Composed { plan, drift: drift },
+        system,
+        states,
+        start,
+        dt,
+        b,
+    );
 }
 
 /// The free motion over `h` in place: x moves with P, the body turns by the split free
