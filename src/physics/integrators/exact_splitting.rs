@@ -32,6 +32,20 @@ use super::super::system::System;
 use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Vector3};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "exact-splitting",
+        order: 2,
+        summary: "kick–drift–kick whose drift is the exact torque-free rotation (Jacobi elliptic functions)",
+        keeps: "L and energy to round-off when torque-free, at any dt; exact under gravity",
+        rate: super::QUATERNION_RATE,
+        formula: "exact-splitting: kick P,L by dt/2; drift x and the exact free rotation (sn, cn, dn); kick dt/2",
+        colour: (0, 160, 170),
+        position_factor: 0.5,
+        exact_without_torque: true,
+};
 
 /// One kick–flow–kick step over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {

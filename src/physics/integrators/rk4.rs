@@ -15,6 +15,20 @@
 use super::super::state::State;
 use super::super::system::System;
 use super::system::{advance, Block, Buffers, Method, Start};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "rk4",
+        order: 4,
+        summary: "classical Runge–Kutta over the whole state",
+        keeps: "very small drift at moderate dt",
+        rate: super::QUATERNION_RATE,
+        formula: "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
+        colour: (30, 80, 210),
+        position_factor: 0.5,
+        exact_without_torque: false,
+};
 
 /// One RK4 step over the whole system, in place: each block of the system at once (linked,
 /// its world stages: every body at t + dt/2 together, so a spring or a joint between two

@@ -35,6 +35,20 @@ use super::super::system::System;
 use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "splitting",
+        order: 2,
+        summary: "kick–drift–kick with the free rotation split into exact rotations about the principal axes",
+        keeps: "L exactly, energy bounded (symplectic)",
+        rate: super::QUATERNION_RATE,
+        formula: "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
+        colour: (150, 40, 170),
+        position_factor: 0.5,
+        exact_without_torque: false,
+};
 
 /// One kick–drift–kick step with the split free rotation over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
