@@ -56,7 +56,7 @@ pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &m
         order: 2,
     };
     advance(
-        &Composed { plan, drift: drift },
+        &Composed { plan, drift },
         system,
         states,
         start,

@@ -1,15 +1,17 @@
 //! What every integrator steps: the whole system's state Y and its derivative f(Y)
 //! (`system::System`). A world without springs or joints is a system whose evaluation is per
 //! body; with them, f is the forces of all bodies at once. Each integrator is written once,
-//! against a [`Block`] of the system (a [`Method`], or a `step(system, states, start, dt,
-//! buffers)` over every moving body for the one-evaluation methods); [`advance`] runs it over
+//! against a `Block` of the system (a `Method`, or a `step(system, states, start, dt,
+//! buffers)` over every moving body for the one-evaluation methods); `advance` runs it over
 //! the blocks: the linked system as one block (`Linked`, in buffers), or each body of a system
 //! without links as a block of its own (`OneBody`, in registers: world stages through buffers
 //! cost +43 % instructions on a free body).
 //!
 //! ```text
-//! f(Y) at the start     the forces phase's kinematics and loads (`Start`)
-//! stage_rates(Y)        f at a stage Y (rk4): the coupled evaluation; body_rates, one body's
+//! start                 Y, and f(Y) from the forces phase's kinematics and loads (`Start`)
+//! rates(Y)              f at a stage Y (rk4): one body's effects (body_rates), or the linked
+//!                       system's evaluation (stage_rates)
+//! plus(Y, k, h)         Y + h k (one body: in registers; linked: in the buffers' slots)
 //! kick(h)               P, L += h (F, τ); per body the method's own kick (exact or midpoint),
 //!                       coupled at the kick's midpoint P + h/2 F: the joints' reactions depend
 //!                       on the velocities (the centripetal term), a kick at the start alone
@@ -439,7 +441,7 @@ pub(super) struct Slot(usize);
 
 impl Linked<'_, '_> {
     /// A new slot, its vector taken out of the buffers (empty, its capacity kept): fill it and
-    /// give it back with [`Linked::put`].
+    /// give it back with `Linked::put`.
     fn take(&mut self) -> (Slot, Vec<Flat>) {
         if self.used == self.b.slots.len() {
             self.b.slots.push(Vec::new());
