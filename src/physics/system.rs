@@ -13,8 +13,8 @@
 //! the whole world: a spring between two bodies, or a pendulum's rod, is then integrated to
 //! the method's full order. A world without springs or joints is a system too, whose
 //! evaluation is per body ([`System::coupled`] is false): each body's f is its effects alone,
-//! and the integrators use the per-body shortcuts there (the exact kick of `exact-splitting`,
-//! ω from L without I⁻¹_world at rk4's stages).
+//! and the integrators step each body as a block of its own (`integrators::system::Block`:
+//! the exact kick of `exact-splitting`, ω from L without I⁻¹_world at rk4's stages).
 
 use super::body::Body;
 use super::derive::{congruence, Kinematics};
@@ -47,6 +47,8 @@ pub struct Scratch {
     /// Per body: its free accelerations (v̇, ω̇) under the applied loads.
     free: Vec<(Vector3<f64>, Vector3<f64>)>,
     solver: Solver,
+    positions: Vec<Vector3<f64>>,
+    momenta: Vec<Vector3<f64>>,
     /// Result: the total force and torque on each body.
     pub loads: Vec<Loads>,
     /// Result: each joint's force and torque (about A's barycenter) on its body A.
@@ -213,6 +215,37 @@ impl System<'_> {
                 scratch.loads[b].torque += row.ang_b * lambda;
             }
         }
+    }
+
+    /// f(Y)'s forces at states whose kinematics the derive phase computed (the forces phase):
+    /// each body's total F and τ into `loads`, the joints' reactions and the damping power
+    /// into `scratch` as [`System::evaluate`]. Without links each body's f is its effects
+    /// alone, evaluated in place.
+    #[inline]
+    pub fn evaluate_at(
+        &self,
+        states: &[State],
+        kinematics: &[Kinematics],
+        loads: &mut [Loads],
+        scratch: &mut Scratch,
+    ) {
+        if !self.coupled() {
+            for ((l, b), k) in loads.iter_mut().zip(self.bodies).zip(kinematics) {
+                *l = self.integrator.loads(b, self.effects, k);
+            }
+            scratch.joint_loads.clear();
+            scratch.damping_power = 0.0;
+            return;
+        }
+        let mut positions = std::mem::take(&mut scratch.positions);
+        let mut momenta = std::mem::take(&mut scratch.momenta);
+        positions.clear();
+        positions.extend(states.iter().map(|s| s.position));
+        momenta.clear();
+        momenta.extend(states.iter().map(|s| s.angular_momentum));
+        self.evaluate(&positions, kinematics, &momenta, scratch);
+        (scratch.positions, scratch.momenta) = (positions, momenta);
+        loads.copy_from_slice(&scratch.loads);
     }
 
     /// f(Y)'s forces at states (orientations as stored: a drifted `euler-seed` matrix is used

@@ -368,7 +368,9 @@ impl World {
         (scratch.loads, scratch.joint_loads)
     }
 
-    /// The forces phase over the whole system: every body's F and τ with springs and joints.
+    /// The forces phase over the whole system: every body's F and τ (the declared effects, and
+    /// for `euler-seed` the report's per-vertex torque sum: see [`Integrator::loads`]), with
+    /// the springs and joints when there are any.
     fn system_loads(&mut self) {
         let system = System {
             bodies: &self.bodies,
@@ -378,18 +380,10 @@ impl World {
             dt: self.dt,
         };
         let now = &mut self.now;
-        let positions: Vec<Vector3<f64>> = now.states.iter().map(|s| s.position).collect();
-        let momenta: Vec<Vector3<f64>> = now.states.iter().map(|s| s.angular_momentum).collect();
-        system.evaluate(
-            &positions,
-            &now.kinematics,
-            &momenta,
-            &mut self.system_scratch,
-        );
-        now.loads.clone_from(&self.system_scratch.loads);
-        now.start_joint_loads
-            .clone_from(&self.system_scratch.joint_loads);
-        now.start_damping_power = self.system_scratch.damping_power;
+        let scratch = &mut self.system_scratch;
+        system.evaluate_at(&now.states, &now.kinematics, &mut now.loads, scratch);
+        now.start_joint_loads.clone_from(&scratch.joint_loads);
+        now.start_damping_power = scratch.damping_power;
     }
 
     /// The same world with these cloths at their initial states (particles under the declared
@@ -514,18 +508,11 @@ impl World {
         Some(hand.pull(self.bodies.get(hand.body)?, self.now.states.get(hand.body)?))
     }
 
-    /// *forces*: F and τ of the declared effects at the derived velocities (for `euler-seed`,
-    /// plus the report's per-vertex torque sum: see [`Integrator::loads`]).
+    /// *forces*: f(Y)'s forces at the derived velocities, the whole system's
+    /// (`System::evaluate`: per body without links).
     #[inline]
     fn forces_phase(&mut self) {
-        if !self.links.is_empty() {
-            self.system_loads();
-            return;
-        }
-        let now = &mut self.now;
-        for ((loads, body), k) in now.loads.iter_mut().zip(&self.bodies).zip(&now.kinematics) {
-            *loads = self.integrator.loads(body, &self.effects, k);
-        }
+        self.system_loads();
     }
 
     /// *integrate*: one integrator step of the whole system, then the cloths (the states
@@ -616,17 +603,6 @@ impl World {
             self.dt,
             &mut self.system_buffers,
         );
-        if !system.coupled() {
-            // Fixed bodies are the world: no potential energy booked.
-            let moving = self
-                .bodies
-                .iter()
-                .zip(&now.states)
-                .filter(|(b, _)| !b.fixed);
-            return moving.fold(0.0, |u, (b, s)| {
-                u + self.effects.potential_energy(b, &s.position)
-            });
-        }
         now.joint_loads.clone_from(&self.system_buffers.joint_loads);
         now.ledger.drag_work += self.system_buffers.damping_work;
         if self.links.correction == Correction::Projection && !self.links.joints.is_empty() {
@@ -660,12 +636,11 @@ impl World {
                 + self.links.potential(&now.states);
             now.ledger.joint_correction += after - before;
         }
-        let gravity: f64 = self
-            .bodies
-            .iter()
-            .zip(&now.states)
-            .map(|(b, s)| self.effects.potential_energy(b, &s.position))
-            .sum();
+        // Fixed bodies are the world: no potential energy booked.
+        let moving = (self.bodies.iter().zip(&now.states)).filter(|(b, _)| !b.fixed);
+        let gravity = moving.fold(0.0, |u, (b, s)| {
+            u + self.effects.potential_energy(b, &s.position)
+        });
         gravity + self.links.potential(&now.states)
     }
 
@@ -1243,11 +1218,8 @@ impl World {
             let state = &mut now.states[i];
             state.orientation = integrator.orientation_for(&state.orientation);
             now.kinematics[i] = derive(body, state);
-            now.loads[i] = integrator.loads(body, &self.effects, &now.kinematics[i]);
         }
-        if !self.links.is_empty() {
-            self.system_loads();
-        }
+        self.system_loads();
     }
 
     /// Changes one continuous parameter while the world runs (module `tuning`): it acts from
@@ -1315,13 +1287,8 @@ impl World {
         }
         for (i, body) in self.bodies.iter().enumerate() {
             now.kinematics[i] = derive(body, &now.states[i]);
-            now.loads[i] = self
-                .integrator
-                .loads(body, &self.effects, &now.kinematics[i]);
         }
-        if !self.links.is_empty() {
-            self.system_loads();
-        }
+        self.system_loads();
         let after = self.total_energy().total;
         self.now.ledger.initial += after - before;
         self.tuned = true;

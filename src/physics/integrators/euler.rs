@@ -18,6 +18,20 @@ use super::super::state::{Orientation, State};
 use super::super::system::System;
 use super::system::{each_moving, Buffers, Start};
 use super::{advance_quaternion, quaternion_of};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "euler",
+        order: 1,
+        summary: "explicit Euler with a unit quaternion",
+        keeps: "L when torque-free; energy grows",
+        rate: super::QUATERNION_RATE,
+        formula: "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
+        colour: (230, 140, 0),
+        position_factor: 0.0,
+        exact_without_torque: false,
+};
 
 /// One explicit Euler step over the whole system (F and τ from the start of the step).
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {

@@ -23,6 +23,20 @@ use super::super::state::{Orientation, State};
 use super::super::system::System;
 use super::system::{each_moving, Buffers, Start};
 use nalgebra::{Matrix3, Vector3};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "euler-seed",
+        order: 1,
+        summary: "the original report's loop: explicit Euler on x, the rotation *matrix* R, P and L",
+        keeps: "nothing: R drifts away from a rotation",
+        rate: "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
+        formula: "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
+        colour: (200, 30, 30),
+        position_factor: 0.0,
+        exact_without_torque: false,
+};
 
 /// One step of the original loop over the whole system (F and τ from the start of the step).
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {

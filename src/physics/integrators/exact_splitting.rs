@@ -29,20 +29,40 @@ use super::super::effects::{Effect, Effects};
 use super::super::free_flow::free_flow;
 use super::super::state::{Orientation, State};
 use super::super::system::System;
-use super::system::{compose, Buffers, Composition, KickRule, Start};
+use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Vector3};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "exact-splitting",
+        order: 2,
+        summary: "kick–drift–kick whose drift is the exact torque-free rotation (Jacobi elliptic functions)",
+        keeps: "L and energy to round-off when torque-free, at any dt; exact under gravity",
+        rate: super::QUATERNION_RATE,
+        formula: "exact-splitting: kick P,L by dt/2; drift x and the exact free rotation (sn, cn, dn); kick dt/2",
+        colour: (0, 160, 170),
+        position_factor: 0.5,
+        exact_without_torque: true,
+};
 
 /// One kick–flow–kick step over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
     let plan = Composition {
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Exact,
         order: 2,
     };
-    compose(&plan, drift, system, states, start, dt, b);
+    advance(
+        &Composed { plan, drift },
+        system,
+        states,
+        start,
+        dt,
+        b,
+    );
 }
 
 /// The declared effects, summed: what the exact kick needs.

@@ -26,7 +26,21 @@
 use super::super::state::State;
 use super::super::system::System;
 use super::exact_splitting;
-use super::system::{compose, Buffers, Composition, KickRule, Start};
+use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "exact-splitting-4",
+        order: 4,
+        summary: "exact-splitting composed fourth order: five kicks, four exact free rotations (Omelyan–Mryglod–Folk)",
+        keeps: "as exact-splitting; fourth order under drag",
+        rate: super::QUATERNION_RATE,
+        formula: "exact-splitting-4: kicks ξ,χ,1−2(ξ+χ),χ,ξ·dt around exact free rotations (1−2λ)/2,λ,λ,(1−2λ)/2·dt",
+        colour: (120, 90, 20),
+        position_factor: 0.5,
+        exact_without_torque: true,
+};
 
 const XI: f64 = 0.178_617_895_844_809_1;
 const LAMBDA: f64 = -0.212_341_831_062_605_4;
@@ -44,14 +58,23 @@ const FLOWS: [f64; 4] = [
 
 /// One fourth-order step over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
     let plan = Composition {
         kicks: &KICKS,
         flows: &FLOWS,
         kick: KickRule::Exact,
         order: 4,
     };
-    compose(&plan, exact_splitting::drift, system, states, start, dt, b);
+    advance(
+        &Composed {
+            plan,
+            drift: exact_splitting::drift,
+        },
+        system,
+        states,
+        start,
+        dt,
+        b,
+    );
 }
 
 #[cfg(test)]

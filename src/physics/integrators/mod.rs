@@ -7,13 +7,6 @@
 //! method; each module doc gives its update equations, its order and what it conserves or
 //! breaks.
 
-mod euler;
-mod euler_seed;
-mod exact_splitting;
-mod exact_splitting_4;
-mod rk4;
-mod splitting;
-mod symplectic_euler;
 pub mod system;
 
 pub use euler_seed::vertex_torque;
@@ -28,9 +21,10 @@ use system::{Buffers, Start};
 
 /// Everything the front ends say about an integrator, in one place: the scene-file name, the
 /// order, the formulas the loop strip shows, the README's row, the study's colour. Adding an
-/// integrator is its file (a `step` over the whole system, from `system`'s pieces), one
-/// variant in `integrators!`, one descriptor in [`Integrator::descriptor`] and one arm in
-/// [`Integrator::advance`] (a missing one does not compile).
+/// integrator is its file (its `DESCRIPTOR` and a `step` over the whole system: a
+/// `system::Method` run by `system::advance`, or a loop over the moving bodies) and one line
+/// `Variant => module` in `integrators!` (a missing `DESCRIPTOR` or `step` does not compile),
+/// plus its row in the README's table (a test checks it).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Descriptor {
     /// The name used in scene files and on the command line.
@@ -58,10 +52,14 @@ pub struct Descriptor {
     pub position_factor: f64,
 }
 
-/// Declares the enum and [`Integrator::ALL`] from one list, so that no variant can be left out
-/// of `ALL` (and so out of the `i` cycle, the study and the name lookup).
+/// Declares the integrators from one list, `Variant => module`: the modules, the enum,
+/// [`Integrator::ALL`] (so that none can be left out of the `i` cycle, the study and the name
+/// lookup), [`Integrator::descriptor`] (each module's `DESCRIPTOR`) and
+/// [`Integrator::advance`] (each module's `step`).
 macro_rules! integrators {
-    ($($(#[$doc:meta])* $variant:ident,)*) => {
+    ($($(#[$doc:meta])* $variant:ident => $module:ident,)*) => {
+        $(mod $module;)*
+
         /// The integrators `tumble` offers, selectable by name.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
         pub enum Integrator {
@@ -72,114 +70,54 @@ macro_rules! integrators {
             /// Every integrator, in teaching order.
             pub const ALL: [Integrator; [$(Integrator::$variant,)*].len()] =
                 [$(Integrator::$variant,)*];
+
+            /// Its descriptor.
+            pub fn descriptor(self) -> &'static Descriptor {
+                match self {
+                    $(Integrator::$variant => &$module::DESCRIPTOR,)*
+                }
+            }
+
+            /// One step of length `dt` of the whole system, in place: `states` become the
+            /// states one step later, from the forces phase's results at the start (`start`);
+            /// `buffers` says what the joints and springs did over the step.
+            pub fn advance(
+                self,
+                system: &System,
+                states: &mut [State],
+                start: &Start,
+                dt: f64,
+                buffers: &mut Buffers,
+            ) {
+                match self {
+                    $(Integrator::$variant => $module::step(system, states, start, dt, buffers),)*
+                }
+            }
         }
     };
 }
 
 integrators! {
     /// The original loop: explicit Euler on (x, R, P, L), R a plain matrix.
-    EulerSeed,
+    EulerSeed => euler_seed,
     /// Explicit Euler with a unit quaternion, renormalised each step.
-    Euler,
+    Euler => euler,
     /// Semi-implicit Euler: momenta first, then positions with the new velocities.
-    SymplecticEuler,
+    SymplecticEuler => symplectic_euler,
     /// Classical fourth-order Runge–Kutta over the whole state.
-    Rk4,
+    Rk4 => rk4,
     /// Kick–drift–kick with the free rotation split into exact rotations about the principal axes.
-    Splitting,
+    Splitting => splitting,
     /// Kick–drift–kick whose drift is the exact torque-free flow (Jacobi elliptic functions).
-    ExactSplitting,
+    ExactSplitting => exact_splitting,
     /// A fourth-order composition of `exact-splitting` (Omelyan, Mryglod & Folk 2002).
-    ExactSplitting4,
+    ExactSplitting4 => exact_splitting_4,
 }
 
 /// The quaternion integrators' orientation rate, as the loop strip shows it.
 const QUATERNION_RATE: &str = "q̇ = ½·ω⊗q   (how the orientation turns)";
 
 impl Integrator {
-    /// Its descriptor.
-    pub fn descriptor(self) -> &'static Descriptor {
-        match self {
-            Integrator::EulerSeed => &Descriptor {
-                name: "euler-seed",
-                order: 1,
-                summary: "the original report's loop: explicit Euler on x, the rotation *matrix* R, P and L",
-                keeps: "nothing: R drifts away from a rotation",
-                rate: "Ṙ = ω*·R   (ω* the cross-product matrix of ω: how R turns)",
-                formula: "euler-seed: x += dt·v,  R += dt·ω*·R,  P += dt·F,  L += dt·τ   (R not re-orthonormalised)",
-                colour: (200, 30, 30),
-                position_factor: 0.0,
-                exact_without_torque: false,
-            },
-            Integrator::Euler => &Descriptor {
-                name: "euler",
-                order: 1,
-                summary: "explicit Euler with a unit quaternion",
-                keeps: "L when torque-free; energy grows",
-                rate: QUATERNION_RATE,
-                formula: "euler: x += dt·v,  q += dt·½ω⊗q (renormalised),  P += dt·F,  L += dt·τ",
-                colour: (230, 140, 0),
-                position_factor: 0.0,
-                exact_without_torque: false,
-            },
-            Integrator::SymplecticEuler => &Descriptor {
-                name: "symplectic-euler",
-                order: 1,
-                summary: "momenta first, then positions with the new velocities",
-                keeps: "bounded energy error in translation",
-                rate: QUATERNION_RATE,
-                formula: "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
-                colour: (30, 150, 60),
-                position_factor: 1.0,
-                exact_without_torque: false,
-            },
-            Integrator::Rk4 => &Descriptor {
-                name: "rk4",
-                order: 4,
-                summary: "classical Runge–Kutta over the whole state",
-                keeps: "very small drift at moderate dt",
-                rate: QUATERNION_RATE,
-                formula: "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
-                colour: (30, 80, 210),
-                position_factor: 0.5,
-                exact_without_torque: false,
-            },
-            Integrator::Splitting => &Descriptor {
-                name: "splitting",
-                order: 2,
-                summary: "kick–drift–kick with the free rotation split into exact rotations about the principal axes",
-                keeps: "L exactly, energy bounded (symplectic)",
-                rate: QUATERNION_RATE,
-                formula: "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
-                colour: (150, 40, 170),
-                position_factor: 0.5,
-                exact_without_torque: false,
-            },
-            Integrator::ExactSplitting => &Descriptor {
-                name: "exact-splitting",
-                order: 2,
-                summary: "kick–drift–kick whose drift is the exact torque-free rotation (Jacobi elliptic functions)",
-                keeps: "L and energy to round-off when torque-free, at any dt; exact under gravity",
-                rate: QUATERNION_RATE,
-                formula: "exact-splitting: kick P,L by dt/2; drift x and the exact free rotation (sn, cn, dn); kick dt/2",
-                colour: (0, 160, 170),
-                position_factor: 0.5,
-                exact_without_torque: true,
-            },
-            Integrator::ExactSplitting4 => &Descriptor {
-                name: "exact-splitting-4",
-                order: 4,
-                summary: "exact-splitting composed fourth order: five kicks, four exact free rotations (Omelyan–Mryglod–Folk)",
-                keeps: "as exact-splitting; fourth order under drag",
-                rate: QUATERNION_RATE,
-                formula: "exact-splitting-4: kicks ξ,χ,1−2(ξ+χ),χ,ξ·dt around exact free rotations (1−2λ)/2,λ,λ,(1−2λ)/2·dt",
-                colour: (120, 90, 20),
-                position_factor: 0.5,
-                exact_without_torque: true,
-            },
-        }
-    }
-
     /// The name used in scene files and on the command line.
     pub fn name(self) -> &'static str {
         self.descriptor().name
@@ -229,29 +167,6 @@ impl Integrator {
             loads.torque += euler_seed::vertex_torque(body, &kinematics.rotation, &loads.force);
         }
         loads
-    }
-
-    /// One step of length `dt` of the whole system, in place: `states` become the states one
-    /// step later, from the forces phase's results at the start (`start`); `buffers` says
-    /// what the joints and springs did over the step.
-    pub fn advance(
-        self,
-        system: &System,
-        states: &mut [State],
-        start: &Start,
-        dt: f64,
-        buffers: &mut Buffers,
-    ) {
-        let (s, b) = (states, buffers);
-        match self {
-            Integrator::EulerSeed => euler_seed::step(system, s, start, dt, b),
-            Integrator::Euler => euler::step(system, s, start, dt, b),
-            Integrator::SymplecticEuler => symplectic_euler::step(system, s, start, dt, b),
-            Integrator::Rk4 => rk4::step(system, s, start, dt, b),
-            Integrator::Splitting => splitting::step(system, s, start, dt, b),
-            Integrator::ExactSplitting => exact_splitting::step(system, s, start, dt, b),
-            Integrator::ExactSplitting4 => exact_splitting_4::step(system, s, start, dt, b),
-        }
     }
 }
 

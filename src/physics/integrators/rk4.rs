@@ -14,65 +14,56 @@
 
 use super::super::state::State;
 use super::super::system::System;
-use super::system::{
-    body_rates, each_moving, rates_at, stage_rates, start_rates, write_back, Buffers, Flat, Start,
+use super::system::{advance, Block, Buffers, Method, Start};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "rk4",
+        order: 4,
+        summary: "classical Runge–Kutta over the whole state",
+        keeps: "very small drift at moderate dt",
+        rate: super::QUATERNION_RATE,
+        formula: "rk4: k₁…k₄ = f(X) at t, t+dt/2, t+dt/2, t+dt;  X += dt/6·(k₁ + 2k₂ + 2k₃ + k₄)",
+        colour: (30, 80, 210),
+        position_factor: 0.5,
+        exact_without_torque: false,
 };
 
-/// One RK4 step over the whole system, in place. Coupled: world stages (every body at
-/// t + dt/2 together), so a spring or a joint between two bodies is integrated to fourth
-/// order. Without links each body is a system of its own, stepped alone with the same
-/// formulas in registers (world stages through the buffers cost 40 % more instructions on a
-/// free body: `tumble run 10-tennis-racket`).
-///
-/// The sum `k₁ + 2k₂ + 2k₃ + k₄` is `k₁ + (k₂ + k₃)·2 + k₄` per body and
-/// `((k₁ + 2k₂) + 2k₃) + k₄` coupled: the same to round-off, each the order its numbers
-/// (the lessons', the joint benches') were made with.
+/// One RK4 step over the whole system, in place: each block of the system at once (linked,
+/// its world stages: every body at t + dt/2 together, so a spring or a joint between two
+/// bodies is integrated to fourth order; without links each body alone, in registers).
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
-    if system.coupled() {
-        world_stages(system, states, start, dt, b);
-        return;
-    }
-    each_moving(system, states, |i, body, state| {
-        let y = Flat::of(state);
-        let k1 = rates_at(&y, &start.kinematics[i], &start.loads[i]);
-        let f = |y: &Flat| body_rates(body, system.effects, y);
-        let k2 = f(&y.plus(&k1, dt / 2.0));
-        let k3 = f(&y.plus(&k2, dt / 2.0));
-        let k4 = f(&y.plus(&k3, dt));
-        let sum = Flat::sum(&Flat::sum(&k1, &Flat::sum(&k2, &k3).scaled(2.0)), &k4);
-        *state = y.plus(&sum, dt / 6.0).state();
-    });
+    advance(&Rk4, system, states, start, dt, b);
 }
 
-/// RK4's world stages over the coupled system, booking the joints' reactions and the
-/// springs' damping with rk4's weights.
-fn world_stages(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    let mut y = std::mem::take(&mut b.y);
-    let mut k = std::mem::take(&mut b.k);
-    let mut sum = std::mem::take(&mut b.sum);
-    let mut stage = std::mem::take(&mut b.stage);
-    y.clear();
-    y.extend(states.iter().map(Flat::of));
-    // k₁ from the forces phase.
-    start_rates(&y, start, &mut k);
-    sum.clone_from(&k);
-    b.book_reactions(start.joint_loads, 1.0 / 6.0);
-    let mut work = start.damping_power / 6.0;
-    for (h, w) in [(0.5, 2.0), (0.5, 2.0), (1.0, 1.0)] {
-        stage.clear();
-        stage.extend(y.iter().zip(&k).map(|(y, ki)| y.plus(ki, h * dt)));
-        stage_rates(system, &stage, b, &mut k);
-        b.book_evaluation_reactions(w / 6.0);
-        work += b.damping_power() * w / 6.0;
-        for (s, ki) in sum.iter_mut().zip(&k) {
-            *s = s.plus(ki, w);
-        }
+/// The method, for any block; the joints' reactions and the springs' damping are booked with
+/// rk4's weights `(1, 2, 2, 1) / 6`.
+struct Rk4;
+
+impl Method for Rk4 {
+    #[inline]
+    fn step<B: Block>(&self, block: &mut B, dt: f64) {
+        let (y, k1) = block.start(1.0, 6.0);
+        let y2 = block.plus(&y, &k1, dt / 2.0);
+        let k2 = block.rates(&y2, 2.0, 6.0);
+        let y3 = block.plus(&y, &k2, dt / 2.0);
+        let k3 = block.rates(&y3, 2.0, 6.0);
+        let y4 = block.plus(&y, &k3, dt);
+        let k4 = block.rates(&y4, 1.0, 6.0);
+        // k₁ + 2k₂ + 2k₃ + k₄, summed `k₁ + (k₂ + k₃)·2 + k₄` for one body and
+        // `((k₁ + 2k₂) + 2k₃) + k₄` linked: the same to round-off, each the order its numbers
+        // (the lessons', the joint benches') were made with.
+        let sum = if B::ONE_BODY {
+            let middle = block.plus(&k2, &k3, 1.0);
+            let first = block.plus(&k1, &middle, 2.0);
+            block.plus(&first, &k4, 1.0)
+        } else {
+            let first = block.plus(&k1, &k2, 2.0);
+            let second = block.plus(&first, &k3, 2.0);
+            block.plus(&second, &k4, 1.0)
+        };
+        let end = block.plus(&y, &sum, dt / 6.0);
+        block.finish(&end, dt);
     }
-    for (end, s) in y.iter_mut().zip(&sum) {
-        *end = end.plus(s, dt / 6.0);
-    }
-    write_back(system, states, &y);
-    b.damping_work = work * dt;
-    (b.y, b.k, b.sum, b.stage) = (y, k, sum, stage);
 }

@@ -32,20 +32,40 @@ use super::super::body::Body;
 use super::super::effects::{Effects, Loads};
 use super::super::state::{Orientation, State};
 use super::super::system::System;
-use super::system::{compose, Buffers, Composition, KickRule, Start};
+use super::system::{advance, Buffers, Composed, Composition, KickRule, Start};
 use super::{normalize, quaternion_of};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "splitting",
+        order: 2,
+        summary: "kick–drift–kick with the free rotation split into exact rotations about the principal axes",
+        keeps: "L exactly, energy bounded (symplectic)",
+        rate: super::QUATERNION_RATE,
+        formula: "splitting: kick P,L by dt/2; drift x; exact rotations about the principal axes; kick dt/2",
+        colour: (150, 40, 170),
+        position_factor: 0.5,
+        exact_without_torque: false,
+};
 
 /// One kick–drift–kick step with the split free rotation over the whole system, in place.
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
-    b.clear(start);
     let plan = Composition {
         kicks: &[0.5, 0.5],
         flows: &[1.0],
         kick: KickRule::Midpoint,
         order: 2,
     };
-    compose(&plan, drift, system, states, start, dt, b);
+    advance(
+        &Composed { plan, drift },
+        system,
+        states,
+        start,
+        dt,
+        b,
+    );
 }
 
 /// The free motion over `h` in place: x moves with P, the body turns by the split free

@@ -18,6 +18,20 @@ use super::super::state::{Orientation, State};
 use super::super::system::System;
 use super::system::{each_moving, Buffers, Start};
 use super::{advance_quaternion, quaternion_of};
+use super::Descriptor;
+
+/// Its descriptor (`super::Descriptor`).
+pub(super) const DESCRIPTOR: Descriptor = Descriptor {
+        name: "symplectic-euler",
+        order: 1,
+        summary: "momenta first, then positions with the new velocities",
+        keeps: "bounded energy error in translation",
+        rate: super::QUATERNION_RATE,
+        formula: "symplectic-euler: P += dt·F, L += dt·τ first; then x += dt·P/M, q += dt·½ω⊗q with the new ω",
+        colour: (30, 150, 60),
+        position_factor: 1.0,
+        exact_without_torque: false,
+};
 
 /// One semi-implicit Euler step over the whole system (F and τ from the start of the step).
 pub fn step(system: &System, states: &mut [State], start: &Start, dt: f64, b: &mut Buffers) {
