@@ -756,63 +756,8 @@ fn stages(
     let buffers_direct: &mut Direct = buffers_direct;
     let counters: &mut Counters = counters;
 
-    // Stage 1: inelastic normal impulses, λ ≥ 0. A large system first tries a few sweeps from
-    // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
-    // rows confirms it for far less than a factorisation); then the direct solve when it
-    // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
-    let large = rows.len() > SWEEPS_FIRST_ROWS
-        && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
-    let mut answered = false;
-    if large && buffers_direct.trial_skip > 0 {
-        buffers_direct.trial_skip -= 1;
-    } else if large {
-        buffers_direct.trial.clear();
-        buffers_direct.trial.extend_from_slice(motions);
-        normal::warm_start(rows, motions);
-        let (converged, sweeps, _) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
-        buffers_direct.work += sweeps * rows.len() as u64;
-        counters.normal_sweeps += sweeps;
-        if converged {
-            counters.warm += 1;
-            answered = true;
-            buffers_direct.trial_wait = 0;
-        } else {
-            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
-            buffers_direct.trial_wait = wait;
-            buffers_direct.trial_skip = wait;
-            motions.copy_from_slice(&buffers_direct.trial);
-            for row in rows.iter_mut() {
-                row.lambda = 0.0;
-            }
-        }
-    }
-    if !answered {
-        let direct = direct::inelastic(large, rows, motions, tolerance, buffers_direct);
-        if direct {
-            counters.direct += 1;
-        } else {
-            counters.declined += 1;
-            normal::warm_start(rows, motions);
-            if NEWTON_STAGES {
-                buffers_direct.newton(rows, &[], motions, tolerance, counters);
-            } else if large && ADMM_STAGES {
-                buffers_direct.work +=
-                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
-            }
-            let (converged, sweeps, residual) = if large {
-                subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
-            } else {
-                let cap = buffers_direct.sweeps_left(rows.len(), MAX_SWEEPS as u64);
-                let swept = normal::sweep(rows, motions, tolerance, cap);
-                buffers_direct.work += swept.1 * rows.len() as u64;
-                swept
-            };
-            if !converged {
-                buffers_direct.unconverged(residual);
-            }
-            counters.normal_sweeps += sweeps;
-        }
-    }
+    // Stage 1: inelastic normal impulses, λ ≥ 0.
+    let large = inelastic_stage(rows, motions, tolerance, buffers_direct, counters);
 
     for row in rows.iter_mut() {
         row.compression = row.lambda;
@@ -925,4 +870,73 @@ fn stages(
         change,
         bounced,
     );
+}
+
+/// Stage 1 (module doc): inelastic normal impulses, λ ≥ 0, on `rows`; returns whether the
+/// system is large and wide (stage 2 then tries its sweeps first too).
+fn inelastic_stage(
+    rows: &mut [Row],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    buffers_direct: &mut Direct,
+    counters: &mut Counters,
+) -> bool {
+    // A large system first tries a few sweeps from
+    // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
+    // rows confirms it for far less than a factorisation); then the direct solve when it
+    // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
+    let large = rows.len() > SWEEPS_FIRST_ROWS
+        && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
+    let mut answered = false;
+    if large && buffers_direct.trial_skip > 0 {
+        buffers_direct.trial_skip -= 1;
+    } else if large {
+        buffers_direct.trial.clear();
+        buffers_direct.trial.extend_from_slice(motions);
+        normal::warm_start(rows, motions);
+        let (converged, sweeps, _) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
+        buffers_direct.work += sweeps * rows.len() as u64;
+        counters.normal_sweeps += sweeps;
+        if converged {
+            counters.warm += 1;
+            answered = true;
+            buffers_direct.trial_wait = 0;
+        } else {
+            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
+            buffers_direct.trial_wait = wait;
+            buffers_direct.trial_skip = wait;
+            motions.copy_from_slice(&buffers_direct.trial);
+            for row in rows.iter_mut() {
+                row.lambda = 0.0;
+            }
+        }
+    }
+    if !answered {
+        let direct = direct::inelastic(large, rows, motions, tolerance, buffers_direct);
+        if direct {
+            counters.direct += 1;
+        } else {
+            counters.declined += 1;
+            normal::warm_start(rows, motions);
+            if NEWTON_STAGES {
+                buffers_direct.newton(rows, &[], motions, tolerance, counters);
+            } else if large && ADMM_STAGES {
+                buffers_direct.work +=
+                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
+            }
+            let (converged, sweeps, residual) = if large {
+                subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
+            } else {
+                let cap = buffers_direct.sweeps_left(rows.len(), MAX_SWEEPS as u64);
+                let swept = normal::sweep(rows, motions, tolerance, cap);
+                buffers_direct.work += swept.1 * rows.len() as u64;
+                swept
+            };
+            if !converged {
+                buffers_direct.unconverged(residual);
+            }
+            counters.normal_sweeps += sweeps;
+        }
+    }
+    large
 }
