@@ -442,21 +442,8 @@ pub fn respond(
         scratch.report = StepReport::default();
         return None;
     }
-    // Every body's velocities, with I⁻¹_world exactly as the derive phase (and the energy
-    // panel) computes it.
     let motions = &mut scratch.motions;
-    motions.clear();
-    motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
-        let k = derive(body, state);
-        SolverBody {
-            v: k.velocity,
-            omega: k.angular_velocity,
-            l: state.angular_momentum,
-            inv_mass: body.inv_mass,
-            inv_inertia: k.inv_inertia_world,
-            touched: false,
-        }
-    }));
+    solver_bodies(input, states, motions);
     if contacts.iter().any(|c| c.depth <= 0.0) {
         // A point approaching at bouncing speed is left to touch and bounce next step.
         contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
@@ -573,12 +560,43 @@ pub fn respond(
     }
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    let after = round_off_guard(before.kinetic, states, motions, total);
+    // Speculative contacts that were not needed are not contacts.
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    Some(EnergyChange { before, after })
+}
+
+/// Every body's velocities into `motions`, with I⁻¹_world exactly as the derive phase (and
+/// the energy panel) computes it.
+fn solver_bodies(input: &CollideInput, states: &[State], motions: &mut Vec<SolverBody>) {
+    motions.clear();
+    motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
+        let k = derive(body, state);
+        SolverBody {
+            v: k.velocity,
+            omega: k.angular_velocity,
+            l: state.angular_momentum,
+            inv_mass: body.inv_mass,
+            inv_inertia: k.inv_inertia_world,
+            touched: false,
+        }
+    }));
+}
+
+/// The round-off guard (module doc): K is quadratic in (P, L), so scaling the touched
+/// bodies' P and L by √(K₀/K) gives K₀; at most 4 times. Returns the energy after.
+fn round_off_guard(
+    kinetic_before: f64,
+    states: &mut [State],
+    motions: &[SolverBody],
+    total: impl Fn(&[State], &[SolverBody]) -> Energy,
+) -> Energy {
     let mut after = total(states, motions);
     for _ in 0..4 {
-        if after.kinetic <= before.kinetic {
+        if after.kinetic <= kinetic_before {
             break;
         }
-        let scale = (before.kinetic / after.kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
+        let scale = (kinetic_before / after.kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
         for (state, m) in states.iter_mut().zip(motions.iter()) {
             if m.touched {
                 state.linear_momentum *= scale;
@@ -587,9 +605,7 @@ pub fn respond(
         }
         after = total(states, motions);
     }
-    // Speculative contacts that were not needed are not contacts.
-    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
-    Some(EnergyChange { before, after })
+    after
 }
 
 /// The relative velocity of a contact point along its normal (A relative to B).
