@@ -76,11 +76,11 @@ pub const ADMM_BALANCE_EVERY: usize = 10;
 
 /// One row of J: the normal or a tangent of a contact, on its (one or two) moving bodies.
 #[derive(Debug, Clone, Copy, Default)]
-struct Constraint {
+pub(super) struct Constraint {
     /// The local body and the row's six entries (±d, r×(±d)) at each end; `ends` of them.
-    ends: [(usize, [f64; 6]); 2],
-    count: usize,
-    bias: f64,
+    pub(super) ends: [(usize, [f64; 6]); 2],
+    pub(super) count: usize,
+    pub(super) bias: f64,
     /// Scaled dual y (λ = −ρ y) and the projected velocity z.
     y: f64,
     z: f64,
@@ -119,7 +119,7 @@ pub(super) struct Outcome {
 }
 
 /// Adds `rho g_e g_fᵀ` to the block of bodies (e, f), stored once below the diagonal.
-fn add(
+pub(super) fn add(
     blocks: &mut [Vec<(usize, Matrix6<f64>)>],
     (i, gi): (usize, &[f64; 6]),
     (j, gj): (usize, &[f64; 6]),
@@ -150,7 +150,12 @@ fn add(
 
 /// The row of J of `axis` over the local bodies (module doc): (±d, r×(±d)) at each end that
 /// moves.
-fn constraint(axis: &Axis, bias: f64, local: &[usize], motions: &[SolverBody]) -> Constraint {
+pub(super) fn constraint(
+    axis: &Axis,
+    bias: f64,
+    local: &[usize],
+    motions: &[SolverBody],
+) -> Constraint {
     let mut c = Constraint {
         bias,
         ..Constraint::default()
@@ -171,7 +176,7 @@ fn constraint(axis: &Axis, bias: f64, local: &[usize], motions: &[SolverBody]) -
 
 /// `g · x` over a constraint's ends.
 #[inline]
-fn velocity(c: &Constraint, x: &[f64]) -> f64 {
+pub(super) fn velocity(c: &Constraint, x: &[f64]) -> f64 {
     let mut u = c.bias;
     for (i, g) in &c.ends[..c.count] {
         let xi = &x[6 * i..6 * i + 6];
@@ -181,7 +186,7 @@ fn velocity(c: &Constraint, x: &[f64]) -> f64 {
 }
 
 /// F = K + Σ λₙ gₙ/dt over the bodies and rows (the objective of stage 2).
-fn objective(rows: &[Row], motions: &[SolverBody]) -> f64 {
+pub(super) fn objective(rows: &[Row], motions: &[SolverBody]) -> f64 {
     motions.iter().map(SolverBody::kinetic).sum::<f64>()
         + rows.iter().map(|r| r.lambda * r.bias).sum::<f64>()
 }
@@ -340,8 +345,19 @@ fn factor(scratch: &mut Scratch, alpha: f64, outcome: &mut Outcome) -> bool {
         }
     }
     let system = &mut scratch.system;
-    system.reset(6 * nb);
-    for (i, list) in scratch.blocks[..nb].iter().enumerate() {
+    if !fill(&scratch.blocks[..nb], system) {
+        return false;
+    }
+    outcome.work += super::factorisation_work(system.stored(), 6 * nb);
+    system.factor_regularised()
+}
+
+/// The 6×6 blocks of the bodies (per local body i, its blocks (j ≤ i, H_ij)) into the
+/// envelope, body i's rows reaching back to its lowest neighbour's; false if it stores more
+/// than [`ENVELOPE_MAX`](super::ENVELOPE_MAX).
+pub(super) fn fill(blocks: &[Vec<(usize, Matrix6<f64>)>], system: &mut Envelope) -> bool {
+    system.reset(6 * blocks.len());
+    for (i, list) in blocks.iter().enumerate() {
         let lowest = list.iter().map(|(j, _)| *j).min().unwrap_or(i);
         for r in 0..6 {
             system.fill_row(6 * i + r, [Some(i), Some(lowest)], |q| {
@@ -355,8 +371,7 @@ fn factor(scratch: &mut Scratch, alpha: f64, outcome: &mut Outcome) -> bool {
             return false;
         }
     }
-    outcome.work += super::factorisation_work(system.stored(), 6 * nb);
-    system.factor_regularised()
+    true
 }
 
 /// ADMM iterations at penalty α (module doc) from `iteration` on; None when converged or out

@@ -18,6 +18,7 @@
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
 //! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |
+//! | semismooth Newton in body space (off: [`NEWTON_STAGES`]) | [`newton`] | `solve` (a start for the sweeps) |
 //! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
 //! # Many contacts (a face landing flat has 4), in three stages
@@ -85,6 +86,7 @@
 pub mod admm;
 pub mod direct;
 pub mod friction;
+pub mod newton;
 pub mod normal;
 pub mod propagate;
 pub mod subspace;
@@ -205,6 +207,29 @@ pub struct StepReport {
 /// and subspace steps still often spend the budget closing 1e-7 to 1e-10 m/s.
 pub const ADMM_STAGES: bool = false;
 
+/// Whether a stage whose direct solve declined starts its sweeps from a semismooth Newton
+/// solve in body space ([`newton`]), stage 1 and stage 2 (any size of system; it takes the
+/// place of ADMM). Off: measured on this machine under load (issue 35, 2026-12-06, CPU per
+/// step, one run each, on against off):
+///
+/// | scene | off | on |
+/// |---|---|---|
+/// | bonded-wall-ball, 100 steps | 44.5 ms, worst ×7.7 the median's work, 71 unconverged | 40.1 ms, ×4.0, 55 |
+/// | wall-ball, 200 steps | 43.6 ms, ×8.1, 150 unconverged | 51.0 ms, ×2.5, 166 |
+/// | dominoes16, 1500 steps | 1179 µs, ×167, 4 unconverged | 557 µs, ×48, 1 |
+///
+/// Newton takes stage 1 of the walls to 1e-11 m/s in 10–50 factorisations, but it is not
+/// the few it should be: with a stiff penalty each step's line search stops where the next
+/// separating contact closes (s of 1e-4 to 1e-1), a contact at a time again; a soft penalty
+/// (1–100, raised each outer iteration) needs more outer iterations. Stage 2 of the walls
+/// then often reaches [`newton::NEWTON_STEPS`] at 1e-5 m/s and the friction sweeps spend
+/// the budget as before. It halves the domino run's mean (its median step doubles: Newton
+/// factors where a few sweeps would do; running 8 sweeps first made it worse, 1363 µs) and
+/// bounds the walls' worst steps, but the walls are not faster: off until the subproblem
+/// takes its active set in a few steps (an interior-point or a projected active-set
+/// variant). Stage 1 and stage 2 then keep their sweeps' answers as before.
+pub const NEWTON_STAGES: bool = false;
+
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -262,6 +287,8 @@ struct Direct {
     subspace_rows: Vec<(f64, [f64; 2])>,
     /// The ADMM solve's buffers (stage 2 of a large system).
     admm: admm::Scratch,
+    /// The Newton solve's buffers ([`NEWTON_STAGES`]).
+    newton: newton::Scratch,
     /// This step's work so far and its budget, in row updates ([`WORK_BUDGET`]).
     work: u64,
     budget: u64,
@@ -290,6 +317,25 @@ impl Direct {
     fn sweeps_left(&self, rows: usize, cap: u64) -> u64 {
         let left = self.budget.saturating_sub(self.work) / rows.max(1) as u64;
         cap.min(left.max(BUDGET_FLOOR))
+    }
+
+    /// A Newton solve ([`newton`]) from the rows' impulses, within what is left of the
+    /// budget; its work is counted, and the solves it took and their steps.
+    fn newton(
+        &mut self,
+        rows: &mut [Row],
+        directions: &[[Axis; 2]],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        counters: &mut Counters,
+    ) {
+        let left = self.budget.saturating_sub(self.work);
+        let outcome = newton::solve(rows, directions, motions, tolerance, left, &mut self.newton);
+        self.work += outcome.work;
+        counters.newton_steps += outcome.steps as u64;
+        if outcome.taken {
+            counters.newton += 1;
+        }
     }
 
     /// Notes a stage that ended unconverged with `residual`.
@@ -327,6 +373,10 @@ pub struct Counters {
     /// Steps in which a stage stopped unconverged (its work budget spent, [`WORK_BUDGET`], or
     /// its sweeps' cap reached).
     pub unconverged: u64,
+    /// Newton solves ([`newton`]) whose answer the stage took, and their Newton steps
+    /// (factorisations in body space).
+    pub newton: u64,
+    pub newton_steps: u64,
 }
 
 /// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
@@ -392,21 +442,8 @@ pub fn respond(
         scratch.report = StepReport::default();
         return None;
     }
-    // Every body's velocities, with I⁻¹_world exactly as the derive phase (and the energy
-    // panel) computes it.
     let motions = &mut scratch.motions;
-    motions.clear();
-    motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
-        let k = derive(body, state);
-        SolverBody {
-            v: k.velocity,
-            omega: k.angular_velocity,
-            l: state.angular_momentum,
-            inv_mass: body.inv_mass,
-            inv_inertia: k.inv_inertia_world,
-            touched: false,
-        }
-    }));
+    solver_bodies(input, states, motions);
     if contacts.iter().any(|c| c.depth <= 0.0) {
         // A point approaching at bouncing speed is left to touch and bounce next step.
         contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
@@ -523,12 +560,43 @@ pub fn respond(
     }
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    let after = round_off_guard(before.kinetic, states, motions, total);
+    // Speculative contacts that were not needed are not contacts.
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    Some(EnergyChange { before, after })
+}
+
+/// Every body's velocities into `motions`, with I⁻¹_world exactly as the derive phase (and
+/// the energy panel) computes it.
+fn solver_bodies(input: &CollideInput, states: &[State], motions: &mut Vec<SolverBody>) {
+    motions.clear();
+    motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
+        let k = derive(body, state);
+        SolverBody {
+            v: k.velocity,
+            omega: k.angular_velocity,
+            l: state.angular_momentum,
+            inv_mass: body.inv_mass,
+            inv_inertia: k.inv_inertia_world,
+            touched: false,
+        }
+    }));
+}
+
+/// The round-off guard (module doc): K is quadratic in (P, L), so scaling the touched
+/// bodies' P and L by √(K₀/K) gives K₀; at most 4 times. Returns the energy after.
+fn round_off_guard(
+    kinetic_before: f64,
+    states: &mut [State],
+    motions: &[SolverBody],
+    total: impl Fn(&[State], &[SolverBody]) -> Energy,
+) -> Energy {
     let mut after = total(states, motions);
     for _ in 0..4 {
-        if after.kinetic <= before.kinetic {
+        if after.kinetic <= kinetic_before {
             break;
         }
-        let scale = (before.kinetic / after.kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
+        let scale = (kinetic_before / after.kinetic).sqrt() * (1.0 - 4.0 * f64::EPSILON);
         for (state, m) in states.iter_mut().zip(motions.iter()) {
             if m.touched {
                 state.linear_momentum *= scale;
@@ -537,9 +605,7 @@ pub fn respond(
         }
         after = total(states, motions);
     }
-    // Speculative contacts that were not needed are not contacts.
-    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
-    Some(EnergyChange { before, after })
+    after
 }
 
 /// The relative velocity of a contact point along its normal (A relative to B).
@@ -706,61 +772,8 @@ fn stages(
     let buffers_direct: &mut Direct = buffers_direct;
     let counters: &mut Counters = counters;
 
-    // Stage 1: inelastic normal impulses, λ ≥ 0. A large system first tries a few sweeps from
-    // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
-    // rows confirms it for far less than a factorisation); then the direct solve when it
-    // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
-    let large = rows.len() > SWEEPS_FIRST_ROWS
-        && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
-    let mut answered = false;
-    if large && buffers_direct.trial_skip > 0 {
-        buffers_direct.trial_skip -= 1;
-    } else if large {
-        buffers_direct.trial.clear();
-        buffers_direct.trial.extend_from_slice(motions);
-        normal::warm_start(rows, motions);
-        let (converged, sweeps, _) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
-        buffers_direct.work += sweeps * rows.len() as u64;
-        counters.normal_sweeps += sweeps;
-        if converged {
-            counters.warm += 1;
-            answered = true;
-            buffers_direct.trial_wait = 0;
-        } else {
-            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
-            buffers_direct.trial_wait = wait;
-            buffers_direct.trial_skip = wait;
-            motions.copy_from_slice(&buffers_direct.trial);
-            for row in rows.iter_mut() {
-                row.lambda = 0.0;
-            }
-        }
-    }
-    if !answered {
-        let direct = direct::inelastic(large, rows, motions, tolerance, buffers_direct);
-        if direct {
-            counters.direct += 1;
-        } else {
-            counters.declined += 1;
-            normal::warm_start(rows, motions);
-            if large && ADMM_STAGES {
-                buffers_direct.work +=
-                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
-            }
-            let (converged, sweeps, residual) = if large {
-                subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
-            } else {
-                let cap = buffers_direct.sweeps_left(rows.len(), MAX_SWEEPS as u64);
-                let swept = normal::sweep(rows, motions, tolerance, cap);
-                buffers_direct.work += swept.1 * rows.len() as u64;
-                swept
-            };
-            if !converged {
-                buffers_direct.unconverged(residual);
-            }
-            counters.normal_sweeps += sweeps;
-        }
-    }
+    // Stage 1: inelastic normal impulses, λ ≥ 0.
+    let large = inelastic_stage(rows, motions, tolerance, buffers_direct, counters);
 
     for row in rows.iter_mut() {
         row.compression = row.lambda;
@@ -834,7 +847,9 @@ fn stages(
         }
         if !solved {
             friction::warm_start(rows, tangent_directions, motions);
-            if large && ADMM_STAGES {
+            if NEWTON_STAGES {
+                buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
+            } else if large && ADMM_STAGES {
                 buffers_direct.work += admm::solve(
                     rows,
                     tangent_directions,
@@ -871,4 +886,73 @@ fn stages(
         change,
         bounced,
     );
+}
+
+/// Stage 1 (module doc): inelastic normal impulses, λ ≥ 0, on `rows`; returns whether the
+/// system is large and wide (stage 2 then tries its sweeps first too).
+fn inelastic_stage(
+    rows: &mut [Row],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    buffers_direct: &mut Direct,
+    counters: &mut Counters,
+) -> bool {
+    // A large system first tries a few sweeps from
+    // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
+    // rows confirms it for far less than a factorisation); then the direct solve when it
+    // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
+    let large = rows.len() > SWEEPS_FIRST_ROWS
+        && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
+    let mut answered = false;
+    if large && buffers_direct.trial_skip > 0 {
+        buffers_direct.trial_skip -= 1;
+    } else if large {
+        buffers_direct.trial.clear();
+        buffers_direct.trial.extend_from_slice(motions);
+        normal::warm_start(rows, motions);
+        let (converged, sweeps, _) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
+        buffers_direct.work += sweeps * rows.len() as u64;
+        counters.normal_sweeps += sweeps;
+        if converged {
+            counters.warm += 1;
+            answered = true;
+            buffers_direct.trial_wait = 0;
+        } else {
+            let wait = (2 * buffers_direct.trial_wait).clamp(1, TRIAL_WAIT_MAX);
+            buffers_direct.trial_wait = wait;
+            buffers_direct.trial_skip = wait;
+            motions.copy_from_slice(&buffers_direct.trial);
+            for row in rows.iter_mut() {
+                row.lambda = 0.0;
+            }
+        }
+    }
+    if !answered {
+        let direct = direct::inelastic(large, rows, motions, tolerance, buffers_direct);
+        if direct {
+            counters.direct += 1;
+        } else {
+            counters.declined += 1;
+            normal::warm_start(rows, motions);
+            if NEWTON_STAGES {
+                buffers_direct.newton(rows, &[], motions, tolerance, counters);
+            } else if large && ADMM_STAGES {
+                buffers_direct.work +=
+                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
+            }
+            let (converged, sweeps, residual) = if large {
+                subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
+            } else {
+                let cap = buffers_direct.sweeps_left(rows.len(), MAX_SWEEPS as u64);
+                let swept = normal::sweep(rows, motions, tolerance, cap);
+                buffers_direct.work += swept.1 * rows.len() as u64;
+                swept
+            };
+            if !converged {
+                buffers_direct.unconverged(residual);
+            }
+            counters.normal_sweeps += sweeps;
+        }
+    }
+    large
 }

@@ -1,0 +1,657 @@
+//! Semismooth Newton in body space: a method over a stage's rows (stage 1's normals, or stage
+//! 2's normals and friction disks), for a system whose direct solve declined. Projected
+//! Gauss–Seidel and the subspace steps ([`subspace`]) find the active set of many sliding
+//! contacts a contact at a time (a wall knocked down, its bricks sliding on each other:
+//! hundreds of rows, thousands of sweeps a step); Newton finds it for all contacts at once,
+//! in tens of factorisations. The sweeps then confirm its answer to the same tolerance as
+//! before ([`TOLERANCE`]), usually in one sweep.
+//!
+//! # The problem in body space
+//!
+//! A stage minimises, over the impulses Λ of its rows (λₙ ≥ 0, |λ_t| ≤ r with r = μ λₙ of
+//! stage 1, or no tangents in stage 1), `F(Λ) = K + Σ λₙ gₙ/dt`. With the bodies' velocities
+//! x = (v, ω) (6 unknowns a body), M their masses and inertias, J the rows and b their biases
+//! (gₙ/dt on a normal, 0 on a tangent), u = J x + b the rows' velocities, its optimality
+//! conditions are
+//!
+//! ```text
+//! M (x − x₀) = Jᵀ Λ,     Λ_c = P_c(Λ_c − ρ_c u_c)   for every contact c and any ρ_c > 0
+//! ```
+//!
+//! x₀ the velocities without any contact impulse, P_c the projection onto the contact's set
+//! (λₙ ≥ 0: Signorini; the disk |λ_t| ≤ r: cone feasibility, and the fixed point is maximal
+//! dissipation, λ_t opposite to the slip when it slides).
+//!
+//! # The method of multipliers, each subproblem by semismooth Newton
+//!
+//! The augmented Lagrangian (proximal point on Λ): from multipliers Λᵏ (each in its set),
+//! minimise over x the convex, once-differentiable
+//!
+//! ```text
+//! ψ(x) = ½ (x − x₀)ᵀ M (x − x₀) + Σ_c h_c(Λᵏ_c − ρ_c u_c(x)) / ρ_c,
+//! h(z) = ½|z|² − ½ dist²(z, set):   h = ½ max(z, 0)² (normal),
+//!                                    ½|z|² inside the disk, r|z| − ½r² outside (tangents)
+//! ∇ψ = M (x − x₀) − Jᵀ P(z),        z = Λᵏ − ρ u
+//! ∂²ψ = M + Jᵀ ρ D J,               D = ∂P(z): 1 on a pushing normal (z > 0), 0 on a
+//!                                    separating one; 𝟙 on a sticking disk (|z| ≤ r),
+//!                                    (r/|z|)(𝟙 − ẑẑᵀ) on a sliding one
+//! ```
+//!
+//! then `Λᵏ⁺¹ = P(Λᵏ − ρ u(x))`. The Hessian is M plus a positive semi-definite term: positive
+//! definite whatever the contacts (a brick on two bricks has eight rows for six motions,
+//! rank-deficient in contact space), 6 unknowns a body, factored by the envelope
+//! ([`Envelope`], regularised). Each Newton step `∂²ψ Δx = −∇ψ` is followed by an exact line
+//! search: ψ′ along Δx is monotone (ψ convex), so the step s ∈ (0, 1] where it changes sign is
+//! found by safeguarded regula falsi; s = 1 when ψ′(1) ≤ 0. The sets of pushing normals and
+//! sliding disks are D's: Newton changes them all at once, and from the rows' impulses (last
+//! step's, or stage 1's) it starts on last step's active set.
+//!
+//! The outer iterations contract the velocity error on every mode by `1/(1 + ρσ)` and the
+//! rows' velocities by at least 1/ρ (σ an eigenvalue of J M⁻¹ Jᵀ, however small): with
+//! ρ_c = [`NEWTON_PENALTY`]/kₙ (kₙ the contact's normal effective inverse mass) two or three
+//! suffice; the penalty grows ×10 when one does not gain a factor of 10.
+//!
+//! # Its promises
+//!
+//! Every Λᵏ is in its set (λₙ ≥ 0, |λ_t| ≤ r) whatever the iteration. It stops when the
+//! natural residual `kₙ |P(Λ − u/kₙ) − Λ|` (m/s: what a Gauss–Seidel update of the row would
+//! change its velocity by) is below half the sweeps' tolerance on every row, or at
+//! [`NEWTON_STEPS`] factorisations, or at its work budget. Its answer replaces the rows'
+//! impulses only if it lowers F (measured: K from the bodies, exactly as everywhere else), so
+//! K still only goes down. The sweeps that follow decide convergence to [`TOLERANCE`] as
+//! before: Newton changes where they start, never what they accept.
+//!
+//! [`subspace`]: super::subspace
+//! [`TOLERANCE`]: super::TOLERANCE
+
+use super::admm::{constraint, fill, objective, velocity, Constraint};
+use super::Row;
+use crate::physics::collision::solver_body::{Axis, SolverBody};
+use crate::physics::envelope::Envelope;
+use nalgebra::{Matrix2, Matrix3, Matrix6, Matrix6x3, Vector2, Vector6};
+
+/// The penalty ρ kₙ of every contact at the start (dimensionless). Measured on the bonded
+/// wall knocked down (2026-12-06): 1e3 needs more outer iterations (each outer iteration
+/// gains only 10–40×), 1e6 makes the subproblems stiff (more short line-search steps),
+/// 1e5 fewest steps; starting at 1–100 and raising it ×30–100 an iteration (continuation)
+/// took more steps in all.
+pub const NEWTON_PENALTY: f64 = 1e5;
+
+/// The largest penalty the outer iterations raise it to (×10 when one gains less than 10×).
+pub const NEWTON_PENALTY_MAX: f64 = 1e8;
+
+/// Most Newton steps (each a factorisation in body space) of one solve.
+pub const NEWTON_STEPS: usize = 60;
+
+/// Most bodies a Newton solve takes (6 unknowns each).
+pub const NEWTON_BODIES: usize = 512;
+
+/// The rows' velocities (m/s) a Newton step may still change when its subproblem counts as
+/// solved, as a fraction of the sweeps' tolerance.
+const INNER: f64 = 1e-3;
+
+/// One contact: its constraints (the normal, then two tangents when `tangents`), its
+/// multipliers Λᵏ (λₙ, λ_t), the disk's radius, kₙ and the penalty's base 1/kₙ.
+#[derive(Debug, Clone, Copy, Default)]
+struct Group {
+    first: usize,
+    tangents: bool,
+    lambda: [f64; 3],
+    bound: f64,
+    k: f64,
+}
+
+/// The buffers of a Newton solve (reused from step to step).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Scratch {
+    local: Vec<usize>,
+    bodies: Vec<usize>,
+    blocks: Vec<Vec<(usize, Matrix6<f64>)>>,
+    system: Envelope,
+    mass: Vec<Matrix6<f64>>,
+    constraints: Vec<Constraint>,
+    groups: Vec<Group>,
+    mx0: Vec<f64>,
+    x: Vec<f64>,
+    dx: Vec<f64>,
+    /// Per constraint: u(x) and J Δx.
+    u: Vec<f64>,
+    du: Vec<f64>,
+}
+
+/// What [`solve`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Outcome {
+    /// Whether its answer replaced the rows' impulses (it lowered F).
+    pub taken: bool,
+    /// Whether it met its residual (half the sweeps' tolerance on every row).
+    pub converged: bool,
+    /// Newton steps (factorisations), and the work in row updates (module `WORK_BUDGET`).
+    pub steps: usize,
+    pub work: u64,
+}
+
+/// The projection of z onto a contact's set (module doc) and its derivative D: normal
+/// (z[0]) onto λ ≥ 0, tangents (z[1], z[2]) onto the disk of radius `bound`.
+#[inline]
+fn project(z: [f64; 3], tangents: bool, bound: f64) -> ([f64; 3], f64, Matrix2<f64>) {
+    let (pn, dn) = if z[0] > 0.0 { (z[0], 1.0) } else { (0.0, 0.0) };
+    if !tangents {
+        return ([pn, 0.0, 0.0], dn, Matrix2::zeros());
+    }
+    let t = Vector2::new(z[1], z[2]);
+    let size = t.norm();
+    if size <= bound {
+        ([pn, z[1], z[2]], dn, Matrix2::identity())
+    } else {
+        let e = t / size;
+        let s = bound / size;
+        (
+            [pn, z[1] * s, z[2] * s],
+            dn,
+            (Matrix2::identity() - e * e.transpose()) * s,
+        )
+    }
+}
+
+/// Semismooth Newton on the stage's rows (module doc), from their impulses, within `budget`
+/// row updates; with no `directions` (stage 1) the rows are normals alone. Declines (changes
+/// nothing) when the bodies are too many or a factorisation fails.
+pub(super) fn solve(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    budget: u64,
+    scratch: &mut Scratch,
+) -> Outcome {
+    let mut outcome = Outcome {
+        taken: false,
+        converged: false,
+        steps: 0,
+        work: 0,
+    };
+    if !setup(rows, directions, motions, scratch) {
+        return outcome;
+    }
+    let stop = 0.5 * tolerance;
+    let pass = rows.len() as u64;
+    let mut alpha = NEWTON_PENALTY;
+    let mut last = f64::INFINITY;
+    'outer: loop {
+        // The subproblem at Λᵏ: Newton steps until the rows' velocities stop changing.
+        loop {
+            if outcome.steps >= NEWTON_STEPS || outcome.work >= budget {
+                break 'outer;
+            }
+            velocities(scratch);
+            if !newton_step(scratch, alpha, &mut outcome) {
+                return outcome;
+            }
+            outcome.steps += 1;
+            let change = line_search(scratch, alpha);
+            outcome.work += 4 * pass;
+            for (x, dx) in scratch.x.iter_mut().zip(scratch.dx.iter()) {
+                *x += change.0 * dx;
+            }
+            if change.1 <= INNER * tolerance {
+                break;
+            }
+        }
+        // Λᵏ⁺¹ = P(Λᵏ − ρ u(x)), and the natural residual at it.
+        velocities(scratch);
+        outcome.work += pass;
+        let mut residual: f64 = 0.0;
+        let Scratch { groups, u, .. } = &mut *scratch;
+        for g in groups.iter_mut() {
+            let rho = alpha / g.k;
+            let uc = &u[g.first..g.first + if g.tangents { 3 } else { 1 }];
+            let mut z = [g.lambda[0] - rho * uc[0], 0.0, 0.0];
+            if g.tangents {
+                z[1] = g.lambda[1] - rho * uc[1];
+                z[2] = g.lambda[2] - rho * uc[2];
+            }
+            g.lambda = project(z, g.tangents, g.bound).0;
+            let mut w = [g.lambda[0] - uc[0] / g.k, 0.0, 0.0];
+            if g.tangents {
+                w[1] = g.lambda[1] - uc[1] / g.k;
+                w[2] = g.lambda[2] - uc[2] / g.k;
+            }
+            let p = project(w, g.tangents, g.bound).0;
+            let gap = (p[0] - g.lambda[0])
+                .abs()
+                .max(Vector2::new(p[1] - g.lambda[1], p[2] - g.lambda[2]).norm());
+            residual = residual.max(gap * g.k);
+        }
+        if residual <= stop {
+            outcome.converged = true;
+            break;
+        }
+        if residual > 0.1 * last {
+            alpha = (alpha * 10.0).min(NEWTON_PENALTY_MAX);
+        }
+        last = residual;
+    }
+    take(rows, directions, motions, scratch, &mut outcome);
+    outcome
+}
+
+/// The moving bodies (local numbering), their M, x, M x₀ = M x − Jᵀ Λ, and the rows'
+/// constraints and multipliers; false if there is nothing to solve or too much.
+fn setup(
+    rows: &[Row],
+    directions: &[[Axis; 2]],
+    motions: &[SolverBody],
+    scratch: &mut Scratch,
+) -> bool {
+    scratch.local.clear();
+    scratch.local.resize(motions.len(), usize::MAX);
+    for row in rows.iter() {
+        for (end, _) in row.normal.ends() {
+            if !motions[end.body].fixed() {
+                scratch.local[end.body] = 0;
+            }
+        }
+    }
+    scratch.bodies.clear();
+    for (b, l) in scratch.local.iter_mut().enumerate() {
+        if *l == 0 {
+            *l = scratch.bodies.len();
+            scratch.bodies.push(b);
+        }
+    }
+    let nb = scratch.bodies.len();
+    if nb == 0 || nb > NEWTON_BODIES {
+        return false;
+    }
+    scratch.constraints.clear();
+    scratch.groups.clear();
+    for (p, row) in rows.iter().enumerate() {
+        let tangents = !directions.is_empty() && row.friction_bound > 0.0;
+        scratch.groups.push(Group {
+            first: scratch.constraints.len(),
+            tangents,
+            lambda: [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]],
+            bound: row.friction_bound,
+            k: row.normal.k,
+        });
+        if !tangents {
+            scratch.groups.last_mut().unwrap().lambda[1..].fill(0.0);
+        }
+        let local = &scratch.local;
+        scratch
+            .constraints
+            .push(constraint(&row.normal, row.bias, local, motions));
+        if tangents {
+            for t in &directions[p] {
+                scratch.constraints.push(constraint(t, 0.0, local, motions));
+            }
+        }
+        if row.normal.k.is_nan() || row.normal.k <= 0.0 {
+            return false;
+        }
+    }
+    scratch.mass.clear();
+    scratch.mx0.clear();
+    scratch.mx0.resize(6 * nb, 0.0);
+    scratch.x.clear();
+    scratch.x.resize(6 * nb, 0.0);
+    for (i, &b) in scratch.bodies.iter().enumerate() {
+        let s = &motions[b];
+        let mass = 1.0 / s.inv_mass;
+        let Some(inertia) = s.inv_inertia.try_inverse() else {
+            return false;
+        };
+        let mut block = Matrix6::zeros();
+        for k in 0..3 {
+            block[(k, k)] = mass;
+        }
+        block.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia);
+        scratch.mass.push(block);
+        for k in 0..3 {
+            scratch.mx0[6 * i + k] = s.v[k] * mass;
+            scratch.mx0[6 * i + 3 + k] = s.l[k];
+            scratch.x[6 * i + k] = s.v[k];
+            scratch.x[6 * i + 3 + k] = s.omega[k];
+        }
+    }
+    for g in &scratch.groups {
+        let count = if g.tangents { 3 } else { 1 };
+        for (c, lambda) in scratch.constraints[g.first..g.first + count]
+            .iter()
+            .zip(g.lambda)
+        {
+            for (i, gk) in &c.ends[..c.count] {
+                for (mx, gk) in scratch.mx0[6 * i..6 * i + 6].iter_mut().zip(gk.iter()) {
+                    *mx -= gk * lambda;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// u = J x + b for every constraint.
+fn velocities(scratch: &mut Scratch) {
+    scratch.u.clear();
+    let x = &scratch.x;
+    scratch
+        .u
+        .extend(scratch.constraints.iter().map(|c| velocity(c, x)));
+}
+
+/// `Jᵀ v` of a contact's constraints added (times `scale`) into the body vector `out`.
+fn add_transposed(cs: &[Constraint], v: &[f64], scale: f64, out: &mut [f64]) {
+    for (c, &vk) in cs.iter().zip(v) {
+        let s = scale * vk;
+        if s == 0.0 {
+            continue;
+        }
+        for (i, g) in &c.ends[..c.count] {
+            for (o, gk) in out[6 * i..6 * i + 6].iter_mut().zip(g.iter()) {
+                *o += gk * s;
+            }
+        }
+    }
+}
+
+/// The Newton direction Δx of ψ at x (module doc), into `dx`; false if the factorisation
+/// fails or is too wide.
+fn newton_step(scratch: &mut Scratch, alpha: f64, outcome: &mut Outcome) -> bool {
+    let nb = scratch.bodies.len();
+    let Scratch {
+        blocks,
+        system,
+        mass,
+        constraints,
+        groups,
+        mx0,
+        x,
+        dx,
+        u,
+        ..
+    } = scratch;
+    blocks.resize_with(nb.max(blocks.len()), Vec::new);
+    for (i, (list, m)) in blocks.iter_mut().zip(mass.iter()).enumerate() {
+        list.clear();
+        list.push((i, *m));
+    }
+    // −∇ψ = Jᵀ P(z) − M (x − x₀), and H = M + Jᵀ ρ D J.
+    dx.clear();
+    dx.resize(6 * nb, 0.0);
+    for (i, m) in mass.iter().enumerate() {
+        let xi = Vector6::from_column_slice(&x[6 * i..6 * i + 6]);
+        let mx = m * xi;
+        for k in 0..6 {
+            dx[6 * i + k] = mx0[6 * i + k] - mx[k];
+        }
+    }
+    for g in groups.iter() {
+        let rho = alpha / g.k;
+        let count = if g.tangents { 3 } else { 1 };
+        let cs = &constraints[g.first..g.first + count];
+        let uc = &u[g.first..g.first + count];
+        let mut z = [0.0; 3];
+        for k in 0..count {
+            z[k] = g.lambda[k] - rho * uc[k];
+        }
+        let (p, dn, dt) = project(z, g.tangents, g.bound);
+        add_transposed(cs, &p[..count], 1.0, dx);
+        // H += Σ over pairs of ends G_e (ρ D) G_fᵀ, G_e the contact's columns at end e.
+        if dn == 0.0 && !g.tangents {
+            continue;
+        }
+        let mut d = Matrix3::zeros();
+        d[(0, 0)] = rho * dn;
+        if g.tangents {
+            d.fixed_view_mut::<2, 2>(1, 1).copy_from(&(dt * rho));
+        }
+        let columns = |e: usize| {
+            let mut m = Matrix6x3::zeros();
+            for (k, c) in cs.iter().enumerate() {
+                m.set_column(k, &Vector6::from_column_slice(&c.ends[e].1));
+            }
+            (cs[0].ends[e].0, m)
+        };
+        for e in 0..cs[0].count {
+            let (i, ge) = columns(e);
+            let gd = ge * d;
+            for f in 0..=e {
+                let (j, gf) = columns(f);
+                let (i, j, block) = if i >= j {
+                    (i, j, gd * gf.transpose())
+                } else {
+                    (j, i, gf * d * ge.transpose())
+                };
+                let list = &mut blocks[i];
+                match list.iter_mut().find(|(k, _)| *k == j) {
+                    Some((_, b)) => *b += block,
+                    None => list.push((j, block)),
+                }
+            }
+        }
+    }
+    if !fill(&blocks[..nb], system) {
+        return false;
+    }
+    outcome.work += super::factorisation_work(system.stored(), 6 * nb);
+    if !system.factor_regularised() {
+        return false;
+    }
+    system.substitute_regularised(dx);
+    true
+}
+
+/// The exact line search along Δx (module doc): the step s ∈ (0, 1] where ψ′ changes sign;
+/// returns s and the largest change s·|J Δx| of a row's velocity.
+fn line_search(scratch: &mut Scratch, alpha: f64) -> (f64, f64) {
+    let Scratch {
+        constraints,
+        groups,
+        mass,
+        mx0,
+        x,
+        dx,
+        u,
+        du,
+        ..
+    } = scratch;
+    du.clear();
+    du.extend(constraints.iter().map(|c| velocity(c, dx) - c.bias));
+    let largest = du.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    // ψ′(s) = s ΔxᵀMΔx + Δxᵀ(M x − M x₀) − Σ P(z − sρ JΔx)·JΔx.
+    let (mut curvature, mut slope0) = (0.0, 0.0);
+    for (i, m) in mass.iter().enumerate() {
+        let d = Vector6::from_column_slice(&dx[6 * i..6 * i + 6]);
+        let xi = Vector6::from_column_slice(&x[6 * i..6 * i + 6]);
+        let md = m * d;
+        curvature += d.dot(&md);
+        slope0 += md.dot(&xi)
+            - d.iter()
+                .zip(&mx0[6 * i..6 * i + 6])
+                .map(|(a, b)| a * b)
+                .sum::<f64>();
+    }
+    let derivative = |s: f64| {
+        let mut sum = s * curvature + slope0;
+        for g in groups.iter() {
+            let rho = alpha / g.k;
+            let count = if g.tangents { 3 } else { 1 };
+            let mut z = [0.0; 3];
+            for k in 0..count {
+                z[k] = g.lambda[k] - rho * (u[g.first + k] + s * du[g.first + k]);
+            }
+            let p = project(z, g.tangents, g.bound).0;
+            for k in 0..count {
+                sum -= p[k] * du[g.first + k];
+            }
+        }
+        sum
+    };
+    let one = derivative(1.0);
+    if one <= 0.0 {
+        return (1.0, largest);
+    }
+    // Regula falsi (Illinois) on [0, 1]: ψ′(0) < 0 < ψ′(1).
+    let (mut a, mut fa, mut b, mut fb) = (0.0, derivative(0.0), 1.0, one);
+    if fa >= 0.0 {
+        return (0.0, 0.0);
+    }
+    let mut side = 0;
+    for _ in 0..60 {
+        let s = (a * fb - b * fa) / (fb - fa);
+        let fs = derivative(s);
+        if fs == 0.0 || (b - a) < 1e-12 {
+            a = s;
+            break;
+        }
+        if fs < 0.0 {
+            a = s;
+            fa = fs;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = s;
+            fb = fs;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+        if fs.abs() <= 1e-14 * (curvature.abs() + slope0.abs()) {
+            a = s;
+            break;
+        }
+    }
+    (a, a * largest)
+}
+
+/// Λ onto the rows and the bodies (each impulse in its bounds), kept only if it lowers F;
+/// else everything is put back.
+fn take(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    scratch: &Scratch,
+    outcome: &mut Outcome,
+) {
+    let before = objective(rows, motions);
+    let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.lambda, r.lambda_tangent)).collect();
+    let saved_motions = motions.to_vec();
+    for (p, (row, g)) in rows.iter_mut().zip(scratch.groups.iter()).enumerate() {
+        let lambda = g.lambda[0].max(0.0);
+        row.normal.apply(lambda - row.lambda, motions);
+        row.lambda = lambda;
+        if g.tangents {
+            let [t1, t2] = &directions[p];
+            let mut t = [g.lambda[1], g.lambda[2]];
+            let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
+            if size > row.friction_bound {
+                let scale = row.friction_bound / size;
+                t = [t[0] * scale, t[1] * scale];
+            }
+            t1.apply(t[0] - row.lambda_tangent[0], motions);
+            t2.apply(t[1] - row.lambda_tangent[1], motions);
+            row.lambda_tangent = t;
+        }
+    }
+    if objective(rows, motions) < before {
+        outcome.taken = true;
+    } else {
+        motions.copy_from_slice(&saved_motions);
+        for (row, &(lambda, tangent)) in rows.iter_mut().zip(saved.iter()) {
+            row.lambda = lambda;
+            row.lambda_tangent = tangent;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::collision::impulse::friction::tangents;
+    use nalgebra::{Matrix3, Vector3};
+
+    /// A cube (0.2 m, 2 kg) on the ground on its four bottom corners, moving at (vx, −0.05, 0)
+    /// m/s, μ = 0.5, each corner's stage-1 load m·0.05/4: its stage-2 rows and bodies.
+    fn sliding_cube(vx: f64) -> (Vec<Row>, Vec<[Axis; 2]>, Vec<SolverBody>) {
+        let (m, side) = (2.0, 0.2);
+        let inertia = m * side * side / 6.0;
+        let motions = vec![SolverBody::new(
+            Vector3::new(vx, -0.05, 0.0),
+            Vector3::zeros(),
+            1.0 / m,
+            Matrix3::identity() / inertia,
+        )];
+        let n = Vector3::y();
+        let (t1, t2) = tangents(&n);
+        let (mut rows, mut directions) = (Vec::new(), Vec::new());
+        for (x, z) in [(-0.1, -0.1), (-0.1, 0.1), (0.1, -0.1), (0.1, 0.1)] {
+            let lever = Vector3::new(x, -0.1, z);
+            let axis = |d| Axis::new(d, (0, &lever), None, &motions);
+            let mut normal = axis(n);
+            normal.with_inverse();
+            rows.push(Row {
+                normal,
+                lambda: 0.0,
+                lambda_tangent: [0.0; 2],
+                compression: 0.0,
+                friction_bound: 0.5 * m * 0.05 / 4.0,
+                lambda_restitution: 0.0,
+                approach: -0.05,
+                bias: 0.0,
+                warm: Vector3::zeros(),
+            });
+            directions.push([axis(t1), axis(t2)]);
+        }
+        (rows, directions, motions)
+    }
+
+    fn run(vx: f64) -> (Vec<Row>, Vec<SolverBody>, Outcome, f64) {
+        let (mut rows, directions, mut motions) = sliding_cube(vx);
+        let before = objective(&rows, &motions);
+        let outcome = solve(
+            &mut rows,
+            &directions,
+            &mut motions,
+            1e-10,
+            u64::MAX,
+            &mut Scratch::default(),
+        );
+        (rows, motions, outcome, before)
+    }
+
+    #[test]
+    fn a_sliding_cube_loses_mu_g_dt_of_its_speed_and_does_not_tip() {
+        // Coulomb: the floor stops the fall (0.1 N·s) and friction takes μ·0.1 N·s of the
+        // 2 kg's momentum: vx 1 → 1 − 0.025; the normals shift forward so that ω stays 0.
+        let (rows, motions, outcome, before) = run(1.0);
+        assert!(outcome.taken && outcome.converged, "{outcome:?}");
+        assert!(outcome.steps <= 20, "{outcome:?}");
+        let b = &motions[0];
+        assert!(
+            (b.v - Vector3::new(0.975, 0.0, 0.0)).norm() < 1e-9,
+            "{:?}",
+            b.v
+        );
+        assert!(b.omega.norm() < 1e-8, "{:?}", b.omega);
+        assert!(objective(&rows, &motions) < before);
+        for r in &rows {
+            let t = r.lambda_tangent;
+            assert!(r.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
+        }
+        let total: f64 = rows.iter().map(|r| r.lambda).sum();
+        assert!((total - 0.1).abs() < 1e-9, "{total}");
+    }
+
+    #[test]
+    fn a_slow_cube_sticks() {
+        // μ·0.1 N·s / 2 kg = 0.025 m/s > 0.01 m/s: friction stops it.
+        let (_, motions, outcome, _) = run(0.01);
+        assert!(outcome.taken && outcome.converged, "{outcome:?}");
+        assert!(motions[0].v.norm() < 1e-9, "{:?}", motions[0].v);
+        assert!(motions[0].omega.norm() < 1e-8);
+    }
+}
