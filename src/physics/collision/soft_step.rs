@@ -366,8 +366,62 @@ fn detect(
     })
 }
 
-/// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax.
+/// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax:
+/// compiled with AVX2 where the CPU has it (the same arithmetic, operation by operation).
 fn substeps(
+    rows: &mut Rows,
+    lanes: &Lanes,
+    bodies: &mut Bodies,
+    n: u32,
+    passes: usize,
+    friction: f64,
+    h: f64,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if avx2() {
+        // SAFETY: the CPU has AVX2.
+        unsafe { substeps_avx2(rows, lanes, bodies, n, passes, friction, h) };
+        return;
+    }
+    substeps_plain(rows, lanes, bodies, n, passes, friction, h);
+}
+
+/// [`substeps`] compiled with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn substeps_avx2(
+    rows: &mut Rows,
+    lanes: &Lanes,
+    bodies: &mut Bodies,
+    n: u32,
+    passes: usize,
+    friction: f64,
+    h: f64,
+) {
+    substeps_plain(rows, lanes, bodies, n, passes, friction, h);
+}
+
+/// Whether to run the AVX2 builds: true only when the CPU has AVX2; a test may switch them
+/// off on its thread ([`PLAIN`]) to compare the two builds' bits.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn avx2() -> bool {
+    #[cfg(test)]
+    if PLAIN.with(std::cell::Cell::get) {
+        return false;
+    }
+    std::arch::is_x86_feature_detected!("avx2")
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: run the plain builds on this thread even on a CPU with AVX2.
+    static PLAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// [`substeps`] for any CPU.
+#[inline(always)]
+fn substeps_plain(
     rows: &mut Rows,
     lanes: &Lanes,
     bodies: &mut Bodies,

@@ -165,6 +165,7 @@ impl Bodies {
     /// The start of a sub-step: the external change `Δv/n`, `ΔL/n`, then the warm start of a
     /// later sub-step, what the contacts did to the body over the last one (`kick` keeps the
     /// motion before it until the sub-step ends).
+    #[inline(always)]
     pub fn begin_substep(&mut self) {
         for ((m, l), (p, kick)) in self
             .motions
@@ -183,6 +184,7 @@ impl Bodies {
     }
 
     /// Every pose a sub-step of `h` further: `x += h v`, `q ← normalise(q + ½ h ω q)`.
+    #[inline(always)]
     pub fn advance(&mut self, h: f64) {
         for (s, p) in self.motions.iter().zip(self.places.iter_mut()) {
             p.position += s.v * h;
@@ -194,6 +196,7 @@ impl Bodies {
     }
 
     /// The end of a sub-step: each body's change by the contacts over it.
+    #[inline(always)]
     pub fn end_substep(&mut self) {
         for (m, kick) in self.motions.iter().zip(self.kicks.iter_mut()) {
             *kick = (m.v - kick.0, m.omega - kick.1);

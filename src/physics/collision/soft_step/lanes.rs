@@ -98,6 +98,7 @@ impl Lanes {
 
     /// One sweep over the rows in the scheduled order: the soft, biased solve (`biased`) or
     /// the rigid relax.
+    #[inline(always)]
     pub fn sweep(
         &self,
         rows: &mut Rows,

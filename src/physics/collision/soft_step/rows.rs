@@ -185,6 +185,7 @@ impl Rows {
 
     /// Every row's separation at the bodies' current poses,
     /// `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`.
+    #[inline(always)]
     pub fn refresh_gaps(&mut self, bodies: &Bodies) {
         let places = &bodies.places;
         for run in &self.runs {
@@ -210,6 +211,7 @@ impl Rows {
     }
 
     /// Adds each row's impulses of the sub-step to its totals Λ.
+    #[inline(always)]
     pub fn add_totals(&mut self) {
         for (row, t) in self.rows.iter().zip(self.totals.iter_mut()) {
             t.applied[0] += row.lambda;
