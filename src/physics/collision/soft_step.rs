@@ -292,8 +292,6 @@ pub fn respond(
         scratch.kept.ended_at(states);
         return None;
     }
-    let before = total_energy(input, states);
-
     // The bodies in contact taken back to the start of the step, and their rows.
     let Scratch {
         rows,
@@ -303,6 +301,7 @@ pub fn respond(
         ..
     } = scratch;
     let kinetic_free = bodies.gather(input.bodies, input.before, states, contacts, n);
+    let before = total_energy(input, states, &bodies.slot, &bodies.kinetic);
     let hertz = params.hertz_at(dt);
     let dynamic = Softness::new(hertz, params.damping_ratio, h);
     let fixed = Softness::new(2.0 * hertz, params.damping_ratio, h);
@@ -326,10 +325,17 @@ pub fn respond(
     // the free flight's.
     rows.add_angular_momentum(&mut bodies.l);
     bodies.write_back(input.bodies, states);
-    cap_kinetic(input, &bodies.members, states, kinetic_free);
+    let known = cap_kinetic(
+        input,
+        &bodies.members,
+        states,
+        kinetic_free,
+        &mut bodies.kinetic,
+    );
+    let slot: &[usize] = if known { &bodies.slot } else { &[] };
+    let after = total_energy(input, states, slot, &bodies.kinetic);
     store(contacts, rows, warm, bounce_speed);
     scratch.kept.ended_at(states);
-    let after = total_energy(input, states);
     Some(EnergyChange { before, after })
 }
 
@@ -448,17 +454,22 @@ fn substeps_plain(
     }
 }
 
-/// The energy of every body: kinetic, and potential in the declared gravity.
-fn total_energy(input: &CollideInput, states: &[State]) -> Energy {
+/// The energy of every body: kinetic, and potential in the declared gravity. A body with a
+/// solver slot (`slot`, indexed by body; shorter or `usize::MAX`: none) takes its kinetic
+/// energy from `known` (per slot, computed from the same state), the others compute theirs.
+fn total_energy(input: &CollideInput, states: &[State], slot: &[usize], known: &[f64]) -> Energy {
     let mut e = Energy::default();
     for (i, s) in states.iter().enumerate() {
         let body = &input.bodies[i];
-        let k = kinetic_energy_with(
-            body,
-            &derive(body, s).inv_inertia_world,
-            &s.linear_momentum,
-            &s.angular_momentum,
-        );
+        let k = match slot.get(i).and_then(|&j| known.get(j)) {
+            Some(&k) => k,
+            None => kinetic_energy_with(
+                body,
+                &derive(body, s).inv_inertia_world,
+                &s.linear_momentum,
+                &s.angular_momentum,
+            ),
+        };
         let v = input
             .gravity
             .map_or(0.0, |g| -body.mass * g.dot(&s.position));
@@ -473,21 +484,27 @@ fn total_energy(input: &CollideInput, states: &[State]) -> Energy {
 
 /// Caps the kinetic energy of the bodies in contact (`members`) at the free flight's,
 /// keeping the linear momentum: only the motion relative to the moving members' common
-/// barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy").
-fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], free: f64) {
-    let kinetic_of = |states: &[State]| -> f64 {
-        members
-            .iter()
-            .map(|&b| {
-                let s = &states[b];
-                kinetic_energy_with(
-                    &input.bodies[b],
-                    &derive(&input.bodies[b], s).inv_inertia_world,
-                    &s.linear_momentum,
-                    &s.angular_momentum,
-                )
-            })
-            .sum()
+/// barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy"). Whether
+/// `kinetic` (per member) holds each member's kinetic energy in the final states.
+fn cap_kinetic(
+    input: &CollideInput,
+    members: &[usize],
+    states: &mut [State],
+    free: f64,
+    kinetic: &mut Vec<f64>,
+) -> bool {
+    let mut kinetic_of = |states: &[State]| -> f64 {
+        kinetic.clear();
+        kinetic.extend(members.iter().map(|&b| {
+            let s = &states[b];
+            kinetic_energy_with(
+                &input.bodies[b],
+                &derive(&input.bodies[b], s).inv_inertia_world,
+                &s.linear_momentum,
+                &s.angular_momentum,
+            )
+        }));
+        kinetic.iter().sum()
     };
     let moving = |b: &&usize| input.bodies[**b].inv_mass > 0.0;
     let mass: f64 = members
@@ -498,7 +515,7 @@ fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], fr
     for _ in 0..4 {
         let kinetic = kinetic_of(states);
         if kinetic <= free || mass == 0.0 {
-            break;
+            return true;
         }
         let momentum: Vector3<f64> = members
             .iter()
@@ -520,6 +537,7 @@ fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], fr
             states[b].angular_momentum *= scale;
         }
     }
+    false
 }
 
 /// Stores the step's impulses on the contacts, and the last sub-step's for the next warm

@@ -71,12 +71,16 @@ pub(super) struct Bodies {
     pub flight: Vec<(Vector3<f64>, Vector3<f64>, Matrix3<f64>)>,
     /// Per solver body, what the contacts changed of its v and ω over the last sub-step.
     kicks: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Per solver body, its kinetic energy in the free flight (`gather`), then in the states
+    /// written back (`soft_step::cap_kinetic`): what the energy of the step reuses.
+    pub kinetic: Vec<f64>,
 }
 
 impl Bodies {
     /// Takes every body named by `contacts` (A, and B when a body) back to its start of step
     /// `before`, its free flight `states` giving the external change spread over `n` sub-steps.
-    /// Returns the kinetic energy of the free flight of those bodies.
+    /// Returns the kinetic energy of the free flight of those bodies (each body's in
+    /// `kinetic`).
     pub fn gather(
         &mut self,
         bodies: &[Body],
@@ -94,6 +98,7 @@ impl Bodies {
             inv_inertia,
             flight,
             kicks,
+            kinetic,
         } = self;
         slot.clear();
         slot.resize(states.len(), usize::MAX);
@@ -147,19 +152,22 @@ impl Bodies {
         }
         kicks.clear();
         kicks.resize(motions.len(), (Vector3::zeros(), Vector3::zeros()));
-        members
-            .iter()
-            .zip(flight.iter())
-            .map(|(&b, (_, _, inv_inertia))| {
-                let s = &states[b];
-                crate::physics::energy::kinetic_energy_with(
-                    &bodies[b],
-                    inv_inertia,
-                    &s.linear_momentum,
-                    &s.angular_momentum,
-                )
-            })
-            .sum()
+        kinetic.clear();
+        kinetic.extend(
+            members
+                .iter()
+                .zip(flight.iter())
+                .map(|(&b, (_, _, inv_inertia))| {
+                    let s = &states[b];
+                    crate::physics::energy::kinetic_energy_with(
+                        &bodies[b],
+                        inv_inertia,
+                        &s.linear_momentum,
+                        &s.angular_momentum,
+                    )
+                }),
+        );
+        kinetic.iter().sum()
     }
 
     /// The start of a sub-step: the external change `Δv/n`, `ΔL/n`, then the warm start of a
