@@ -81,6 +81,7 @@ impl Bodies {
     /// `before`, its free flight `states` giving the external change spread over `n` sub-steps.
     /// Returns the kinetic energy of the free flight of those bodies (each body's in
     /// `kinetic`).
+    #[inline(always)]
     pub fn gather(
         &mut self,
         bodies: &[Body],
@@ -212,6 +213,7 @@ impl Bodies {
     }
 
     /// The poses, v and L back into `states` (fixed bodies untouched).
+    #[inline(always)]
     pub fn write_back(&self, bodies: &[Body], states: &mut [State]) {
         for (((&b, m), p), l) in self
             .members

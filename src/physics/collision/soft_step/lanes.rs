@@ -45,6 +45,7 @@ pub(super) struct Lanes {
 
 impl Lanes {
     /// Puts the runs of `rows` (over `bodies` solver bodies) in levels and pairs them.
+    #[inline(always)]
     pub fn schedule(&mut self, rows: &Rows, bodies: usize) {
         let Lanes {
             steps,

@@ -93,6 +93,7 @@ impl Rows {
     /// The rows of `contacts` over `bodies` (gathered from the same contacts), warm-started
     /// from `warm` (last step's per-sub-step impulse at the same feature and point, its
     /// tangent part kept in the friction disk `μ λ`); each contact's denominator set to k.
+    #[inline(always)]
     pub fn build(
         &mut self,
         contacts: &mut [Contact],
@@ -170,6 +171,7 @@ impl Rows {
 
     /// Each row's approach, measured at the free flight's velocities (what the contact meets),
     /// and its separation at the start poses.
+    #[inline(always)]
     pub fn measure(&mut self, contacts: &[Contact], bodies: &Bodies) {
         for (t, c) in self.totals.iter_mut().zip(contacts.iter()) {
             let (v, omega, _) = &bodies.flight[bodies.slot[c.body]];
@@ -221,6 +223,7 @@ impl Rows {
     }
 
     /// Each row's share of its bodies' angular momentum, `Σ_axes (r×d) Λ`, added to `l`.
+    #[inline(always)]
     pub fn add_angular_momentum(&self, l: &mut [Vector3<f64>]) {
         for run in &self.runs {
             for (row, t) in self.rows[run.rows.clone()]

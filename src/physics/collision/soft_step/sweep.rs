@@ -207,6 +207,7 @@ pub(super) fn solve<const PAIR: bool>(
 
 /// Restitution, once, from the approach the contact met (Poisson: at most e·λ more along the
 /// normal): rows that met faster than `bounce_speed` and pushed.
+#[inline(always)]
 pub(super) fn restitution(rows: &mut Rows, motions: &mut [Motion], e: f64, bounce_speed: f64) {
     struct Bounce {
         e: f64,
