@@ -118,7 +118,10 @@
 //! no matrix work is left for the sweeps) and refreshes the separations; `sweep` holds the
 //! passes over one row (warm start, soft solve and relax, restitution); `lanes` schedules the
 //! runs of rows so that two runs sharing no body are solved side by side in SIMD lanes (`f2`), in
-//! an order that gives the sequential sweep's numbers bit for bit.
+//! an order that gives the sequential sweep's numbers bit for bit. Everything after detection
+//! is built twice, with AVX2 (taken at run time where the CPU has it) and for any CPU: both
+//! do the same operations in the same order (no fused multiply-add), so their numbers agree
+//! bit for bit (a test).
 
 mod bodies;
 mod f2;
@@ -279,21 +282,64 @@ pub fn respond(
     scratch: &mut Scratch,
 ) -> Option<EnergyChange> {
     let context = input.context();
-    let dt = context.dt;
-    let n = params.substeps.max(1);
-    let h = dt / n as f64;
-    let bounce_speed = context.bounce_speed;
     // Speculative rows: anything a body could reach within the step at the bounce speed,
     // and at least a millimetre (the rows' separations are tracked within the step).
-    let margin = (bounce_speed * dt).max(1e-3);
+    let margin = (context.bounce_speed * context.dt).max(1e-3);
     if !detect(input, states, margin, contacts, scratch) {
         contacts.clear();
         scratch.warm.clear();
         scratch.kept.ended_at(states);
         return None;
     }
-    let before = total_energy(input, states);
+    let change = solve(input, params, states, contacts, scratch);
+    scratch.kept.ended_at(states);
+    Some(change)
+}
 
+/// The response to the step's rows (module doc, "The step"): compiled with AVX2 where the
+/// CPU has it (the same arithmetic, operation by operation: no fused multiply-add).
+fn solve(
+    input: &CollideInput,
+    params: &SoftStep,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> EnergyChange {
+    #[cfg(target_arch = "x86_64")]
+    if avx2() {
+        // SAFETY: the CPU has AVX2.
+        return unsafe { solve_avx2(input, params, states, contacts, scratch) };
+    }
+    solve_plain(input, params, states, contacts, scratch)
+}
+
+/// [`solve`] compiled with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn solve_avx2(
+    input: &CollideInput,
+    params: &SoftStep,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> EnergyChange {
+    solve_plain(input, params, states, contacts, scratch)
+}
+
+/// [`solve`] for any CPU.
+#[inline(always)]
+fn solve_plain(
+    input: &CollideInput,
+    params: &SoftStep,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> EnergyChange {
+    let context = input.context();
+    let dt = context.dt;
+    let n = params.substeps.max(1);
+    let h = dt / n as f64;
+    let bounce_speed = context.bounce_speed;
     // The bodies in contact taken back to the start of the step, and their rows.
     let Scratch {
         rows,
@@ -303,6 +349,7 @@ pub fn respond(
         ..
     } = scratch;
     let kinetic_free = bodies.gather(input.bodies, input.before, states, contacts, n);
+    let before = total_energy(input, states, &bodies.slot, &bodies.kinetic);
     let hertz = params.hertz_at(dt);
     let dynamic = Softness::new(hertz, params.damping_ratio, h);
     let fixed = Softness::new(2.0 * hertz, params.damping_ratio, h);
@@ -326,11 +373,17 @@ pub fn respond(
     // the free flight's.
     rows.add_angular_momentum(&mut bodies.l);
     bodies.write_back(input.bodies, states);
-    cap_kinetic(input, &bodies.members, states, kinetic_free);
+    let known = cap_kinetic(
+        input,
+        &bodies.members,
+        states,
+        kinetic_free,
+        &mut bodies.kinetic,
+    );
+    let slot: &[usize] = if known { &bodies.slot } else { &[] };
+    let after = total_energy(input, states, slot, &bodies.kinetic);
     store(contacts, rows, warm, bounce_speed);
-    scratch.kept.ended_at(states);
-    let after = total_energy(input, states);
-    Some(EnergyChange { before, after })
+    EnergyChange { before, after }
 }
 
 /// The step's rows: last step's carried over while the bodies barely move (`kept`), else
@@ -366,7 +419,26 @@ fn detect(
     })
 }
 
+/// Whether to run the AVX2 builds: true only when the CPU has AVX2; a test may switch them
+/// off on its thread ([`PLAIN`]) to compare the two builds' bits.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn avx2() -> bool {
+    #[cfg(test)]
+    if PLAIN.with(std::cell::Cell::get) {
+        return false;
+    }
+    std::arch::is_x86_feature_detected!("avx2")
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: run the plain builds on this thread even on a CPU with AVX2.
+    static PLAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax.
+#[inline(always)]
 fn substeps(
     rows: &mut Rows,
     lanes: &Lanes,
@@ -394,17 +466,23 @@ fn substeps(
     }
 }
 
-/// The energy of every body: kinetic, and potential in the declared gravity.
-fn total_energy(input: &CollideInput, states: &[State]) -> Energy {
+/// The energy of every body: kinetic, and potential in the declared gravity. A body with a
+/// solver slot (`slot`, indexed by body; shorter or `usize::MAX`: none) takes its kinetic
+/// energy from `known` (per slot, computed from the same state), the others compute theirs.
+#[inline(always)]
+fn total_energy(input: &CollideInput, states: &[State], slot: &[usize], known: &[f64]) -> Energy {
     let mut e = Energy::default();
     for (i, s) in states.iter().enumerate() {
         let body = &input.bodies[i];
-        let k = kinetic_energy_with(
-            body,
-            &derive(body, s).inv_inertia_world,
-            &s.linear_momentum,
-            &s.angular_momentum,
-        );
+        let k = match slot.get(i).and_then(|&j| known.get(j)) {
+            Some(&k) => k,
+            None => kinetic_energy_with(
+                body,
+                &derive(body, s).inv_inertia_world,
+                &s.linear_momentum,
+                &s.angular_momentum,
+            ),
+        };
         let v = input
             .gravity
             .map_or(0.0, |g| -body.mass * g.dot(&s.position));
@@ -419,21 +497,28 @@ fn total_energy(input: &CollideInput, states: &[State]) -> Energy {
 
 /// Caps the kinetic energy of the bodies in contact (`members`) at the free flight's,
 /// keeping the linear momentum: only the motion relative to the moving members' common
-/// barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy").
-fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], free: f64) {
-    let kinetic_of = |states: &[State]| -> f64 {
-        members
-            .iter()
-            .map(|&b| {
-                let s = &states[b];
-                kinetic_energy_with(
-                    &input.bodies[b],
-                    &derive(&input.bodies[b], s).inv_inertia_world,
-                    &s.linear_momentum,
-                    &s.angular_momentum,
-                )
-            })
-            .sum()
+/// barycenter is scaled, K = K_cm + K_rel → K_cm + s² K_rel (module doc, "Energy"). Whether
+/// `kinetic` (per member) holds each member's kinetic energy in the final states.
+#[inline(always)]
+fn cap_kinetic(
+    input: &CollideInput,
+    members: &[usize],
+    states: &mut [State],
+    free: f64,
+    kinetic: &mut Vec<f64>,
+) -> bool {
+    let mut kinetic_of = |states: &[State]| -> f64 {
+        kinetic.clear();
+        kinetic.extend(members.iter().map(|&b| {
+            let s = &states[b];
+            kinetic_energy_with(
+                &input.bodies[b],
+                &derive(&input.bodies[b], s).inv_inertia_world,
+                &s.linear_momentum,
+                &s.angular_momentum,
+            )
+        }));
+        kinetic.iter().sum()
     };
     let moving = |b: &&usize| input.bodies[**b].inv_mass > 0.0;
     let mass: f64 = members
@@ -444,7 +529,7 @@ fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], fr
     for _ in 0..4 {
         let kinetic = kinetic_of(states);
         if kinetic <= free || mass == 0.0 {
-            break;
+            return true;
         }
         let momentum: Vector3<f64> = members
             .iter()
@@ -466,11 +551,13 @@ fn cap_kinetic(input: &CollideInput, members: &[usize], states: &mut [State], fr
             states[b].angular_momentum *= scale;
         }
     }
+    false
 }
 
 /// Stores the step's impulses on the contacts, and the last sub-step's for the next warm
 /// start (none after a bounce: it says nothing about the next step's load); drops the
 /// speculative rows that pushed nothing.
+#[inline(always)]
 fn store(contacts: &mut Vec<Contact>, rows: &Rows, warm: &mut WarmCache, bounce_speed: f64) {
     for ((c, row), t) in contacts.iter_mut().zip(&rows.rows).zip(&rows.totals) {
         c.normal_velocity = t.approach;
@@ -499,5 +586,49 @@ fn clamp_disk(t: &mut [f64; 2], bound: f64) {
     if size > bound {
         let scale = if size > 0.0 { bound / size } else { 0.0 };
         *t = [t[0] * scale, t[1] * scale];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The bits of a wall of bricks hit by a ball (resting rows, sliding rows, an impact)
+    /// after 150 steps of soft-step, with the AVX2 build or the plain one (`plain`), and how
+    /// far the bodies moved (m, the largest).
+    fn bits(plain: bool) -> (Vec<u64>, f64) {
+        use crate::contact_scenes::wall;
+        use crate::physics::{Impacts, Response};
+        super::PLAIN.with(|p| p.set(plain));
+        let soft = Response::SoftStep(super::SoftStep::DEFAULT);
+        let mut world = wall(true, 0.0, Impacts::Propagate, soft);
+        for _ in 0..150 {
+            world.step();
+        }
+        super::PLAIN.with(|p| p.set(false));
+        let moved = world
+            .states()
+            .iter()
+            .zip(world.initial_states())
+            .map(|(s, s0)| (s.position - s0.position).norm())
+            .fold(0.0, f64::max);
+        let bits = world
+            .states()
+            .iter()
+            .flat_map(|s| {
+                let q = s.orientation.quaternion();
+                let [x, p, l] = [s.position, s.linear_momentum, s.angular_momentum];
+                [
+                    x.x, x.y, x.z, p.x, p.y, p.z, l.x, l.y, l.z, q.i, q.j, q.k, q.w,
+                ]
+            })
+            .map(f64::to_bits)
+            .collect();
+        (bits, moved)
+    }
+
+    #[test]
+    fn the_avx2_build_gives_the_plain_builds_bits() {
+        let (plain, moved) = bits(true);
+        assert!(moved > 0.05, "the ball moved {moved} m");
+        assert_eq!(bits(false).0, plain);
     }
 }

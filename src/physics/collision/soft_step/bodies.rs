@@ -71,12 +71,17 @@ pub(super) struct Bodies {
     pub flight: Vec<(Vector3<f64>, Vector3<f64>, Matrix3<f64>)>,
     /// Per solver body, what the contacts changed of its v and ω over the last sub-step.
     kicks: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Per solver body, its kinetic energy in the free flight (`gather`), then in the states
+    /// written back (`soft_step::cap_kinetic`): what the energy of the step reuses.
+    pub kinetic: Vec<f64>,
 }
 
 impl Bodies {
     /// Takes every body named by `contacts` (A, and B when a body) back to its start of step
     /// `before`, its free flight `states` giving the external change spread over `n` sub-steps.
-    /// Returns the kinetic energy of the free flight of those bodies.
+    /// Returns the kinetic energy of the free flight of those bodies (each body's in
+    /// `kinetic`).
+    #[inline(always)]
     pub fn gather(
         &mut self,
         bodies: &[Body],
@@ -94,6 +99,7 @@ impl Bodies {
             inv_inertia,
             flight,
             kicks,
+            kinetic,
         } = self;
         slot.clear();
         slot.resize(states.len(), usize::MAX);
@@ -147,24 +153,28 @@ impl Bodies {
         }
         kicks.clear();
         kicks.resize(motions.len(), (Vector3::zeros(), Vector3::zeros()));
-        members
-            .iter()
-            .zip(flight.iter())
-            .map(|(&b, (_, _, inv_inertia))| {
-                let s = &states[b];
-                crate::physics::energy::kinetic_energy_with(
-                    &bodies[b],
-                    inv_inertia,
-                    &s.linear_momentum,
-                    &s.angular_momentum,
-                )
-            })
-            .sum()
+        kinetic.clear();
+        kinetic.extend(
+            members
+                .iter()
+                .zip(flight.iter())
+                .map(|(&b, (_, _, inv_inertia))| {
+                    let s = &states[b];
+                    crate::physics::energy::kinetic_energy_with(
+                        &bodies[b],
+                        inv_inertia,
+                        &s.linear_momentum,
+                        &s.angular_momentum,
+                    )
+                }),
+        );
+        kinetic.iter().sum()
     }
 
     /// The start of a sub-step: the external change `Δv/n`, `ΔL/n`, then the warm start of a
     /// later sub-step, what the contacts did to the body over the last one (`kick` keeps the
     /// motion before it until the sub-step ends).
+    #[inline(always)]
     pub fn begin_substep(&mut self) {
         for ((m, l), (p, kick)) in self
             .motions
@@ -183,6 +193,7 @@ impl Bodies {
     }
 
     /// Every pose a sub-step of `h` further: `x += h v`, `q ← normalise(q + ½ h ω q)`.
+    #[inline(always)]
     pub fn advance(&mut self, h: f64) {
         for (s, p) in self.motions.iter().zip(self.places.iter_mut()) {
             p.position += s.v * h;
@@ -194,6 +205,7 @@ impl Bodies {
     }
 
     /// The end of a sub-step: each body's change by the contacts over it.
+    #[inline(always)]
     pub fn end_substep(&mut self) {
         for (m, kick) in self.motions.iter().zip(self.kicks.iter_mut()) {
             *kick = (m.v - kick.0, m.omega - kick.1);
@@ -201,6 +213,7 @@ impl Bodies {
     }
 
     /// The poses, v and L back into `states` (fixed bodies untouched).
+    #[inline(always)]
     pub fn write_back(&self, bodies: &[Body], states: &mut [State]) {
         for (((&b, m), p), l) in self
             .members

@@ -45,6 +45,7 @@ pub(super) struct Lanes {
 
 impl Lanes {
     /// Puts the runs of `rows` (over `bodies` solver bodies) in levels and pairs them.
+    #[inline(always)]
     pub fn schedule(&mut self, rows: &Rows, bodies: usize) {
         let Lanes {
             steps,
@@ -98,6 +99,7 @@ impl Lanes {
 
     /// One sweep over the rows in the scheduled order: the soft, biased solve (`biased`) or
     /// the rigid relax.
+    #[inline(always)]
     pub fn sweep(
         &self,
         rows: &mut Rows,

@@ -93,6 +93,7 @@ impl Rows {
     /// The rows of `contacts` over `bodies` (gathered from the same contacts), warm-started
     /// from `warm` (last step's per-sub-step impulse at the same feature and point, its
     /// tangent part kept in the friction disk `μ λ`); each contact's denominator set to k.
+    #[inline(always)]
     pub fn build(
         &mut self,
         contacts: &mut [Contact],
@@ -170,6 +171,7 @@ impl Rows {
 
     /// Each row's approach, measured at the free flight's velocities (what the contact meets),
     /// and its separation at the start poses.
+    #[inline(always)]
     pub fn measure(&mut self, contacts: &[Contact], bodies: &Bodies) {
         for (t, c) in self.totals.iter_mut().zip(contacts.iter()) {
             let (v, omega, _) = &bodies.flight[bodies.slot[c.body]];
@@ -185,6 +187,7 @@ impl Rows {
 
     /// Every row's separation at the bodies' current poses,
     /// `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`.
+    #[inline(always)]
     pub fn refresh_gaps(&mut self, bodies: &Bodies) {
         let places = &bodies.places;
         for run in &self.runs {
@@ -210,6 +213,7 @@ impl Rows {
     }
 
     /// Adds each row's impulses of the sub-step to its totals Λ.
+    #[inline(always)]
     pub fn add_totals(&mut self) {
         for (row, t) in self.rows.iter().zip(self.totals.iter_mut()) {
             t.applied[0] += row.lambda;
@@ -219,6 +223,7 @@ impl Rows {
     }
 
     /// Each row's share of its bodies' angular momentum, `Σ_axes (r×d) Λ`, added to `l`.
+    #[inline(always)]
     pub fn add_angular_momentum(&self, l: &mut [Vector3<f64>]) {
         for run in &self.runs {
             for (row, t) in self.rows[run.rows.clone()]

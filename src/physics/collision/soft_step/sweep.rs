@@ -85,6 +85,7 @@ fn push(row: &Row, i: usize, j: f64, a: &mut Motion, b: &mut Motion, pair: bool)
 }
 
 /// The first sub-step's warm start: every row's impulse of last step applied again.
+#[inline(always)]
 pub(super) fn warm_start(rows: &mut Rows, motions: &mut [Motion]) {
     struct Warm;
     impl Pass for Warm {
@@ -107,6 +108,7 @@ pub(super) fn warm_start(rows: &mut Rows, motions: &mut [Motion]) {
 
 /// One run's rows, solved in order with its two motions (the scalar sweep, `lanes` takes
 /// the runs in its schedule): the soft, biased solve (`biased`) or the rigid relax.
+#[inline(always)]
 pub(super) fn solve_run(
     run: &Run,
     rows: &mut [Row],
@@ -205,6 +207,7 @@ pub(super) fn solve<const PAIR: bool>(
 
 /// Restitution, once, from the approach the contact met (Poisson: at most e·λ more along the
 /// normal): rows that met faster than `bounce_speed` and pushed.
+#[inline(always)]
 pub(super) fn restitution(rows: &mut Rows, motions: &mut [Motion], e: f64, bounce_speed: f64) {
     struct Bounce {
         e: f64,
