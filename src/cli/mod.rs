@@ -70,8 +70,9 @@ pub enum Command {
     /// angle(q_ref⁻¹q) + |x − x_ref|/radius (rad; x the barycenter). Its reference: a free
     /// body's closed form; with joints, springs, drag or several bodies the same model stepped
     /// by rk4 at a tenth of the finest step, checked by halving it (errors within 3× of what
-    /// halving moved it are below the floor: not ranked, not fitted; a reference that does
-    /// not converge is named so); with contact, the rest pose of every body (the worst body's
+    /// halving moved it, or with joints within 2 × 1e-12 m / radius — the projection's
+    /// tolerance — are below the floor: not ranked, not fitted; a reference that does not
+    /// converge is named so); with contact, the rest pose of every body (the worst body's
     /// vertex heights, shape and penetration, and the energy the scene gained at impacts)
     /// against rk4 at a tenth of the finest step.
     Study(study::StudyArgs),

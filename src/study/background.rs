@@ -16,6 +16,7 @@
 //! scaled by each remaining run's steps; a cloth case's from its ladder
 //! ([`super::cloth::planned_steps`]).
 
+use super::cloth::{ClothRow, ClothStudy};
 use super::measure::Row;
 use super::{cancel, study_case_streaming, Case, Config, Partial, SceneStudy};
 use std::sync::atomic::Ordering;
@@ -57,11 +58,19 @@ fn about(case: &Case) -> About {
 
 /// What has finished so far, to draw before the end ([`Job::partial`]).
 #[derive(Debug, Clone)]
-struct Finished {
-    floor: f64,
-    kind: &'static str,
-    description: String,
-    rows: Vec<Row>,
+enum Finished {
+    /// The bodies' integrators: the reference, then the runs so far.
+    Bodies {
+        floor: f64,
+        kind: &'static str,
+        description: String,
+        rows: Vec<Row>,
+    },
+    /// A cloth case: its frame (limit, ladder, reference; no run), then the runs so far.
+    Cloth {
+        frame: Box<ClothStudy>,
+        rows: Vec<ClothRow>,
+    },
 }
 
 /// A running (or finished) study of one scene.
@@ -98,7 +107,7 @@ struct Inner {
     /// integrators swept, for the partial chart.
     case: About,
     integrators: Vec<crate::physics::Integrator>,
-    /// The reference and the runs finished so far (none for a cloth case).
+    /// The reference and the runs finished so far.
     finished: Option<Finished>,
 }
 
@@ -187,38 +196,56 @@ impl Job {
     }
 
     /// The study so far, before it ends: the runs finished (the cheapest first), their
-    /// floor band, frontier and fitted orders ([`super::summarise`]), and a sentence saying
-    /// how many runs are still to come. `None` before the reference is made, for a cloth case
-    /// and once the study is done ([`Job::result`]).
+    /// floor band, frontier and fitted orders ([`super::summarise`]; a cloth case's
+    /// [`super::cloth::summarise`]), and a sentence saying how many runs are still to come.
+    /// `None` before the reference is made and once the study is done ([`Job::result`]).
     pub fn partial(&self) -> Option<SceneStudy> {
         self.with(|inner| {
             if inner.result.is_some() {
                 return None;
             }
-            let finished = inner.finished.as_ref()?;
-            let mut rows = finished.rows.clone();
-            let orders =
-                super::summarise(&inner.integrators, &mut rows, finished.kind, finished.floor);
             let (name, description, duration, response) = inner.case.clone();
-            Some(SceneStudy {
-                name,
-                description,
-                duration,
-                reference: finished.description.clone(),
-                reference_kind: finished.kind,
-                floor: finished.floor,
-                sentence: format!(
-                    "{} of {} runs finished (the cheapest first): the chart fills as the \
+            let left = |done: usize| {
+                format!(
+                    "{done} of {} runs finished (the cheapest first): the chart fills as the \
                      others finish; the orders are fitted on the runs so far.",
-                    rows.len(),
                     inner.total
-                ),
-                rows,
-                orders,
-                response,
-                cloth: None,
-                contact_solvers: None,
-            })
+                )
+            };
+            match inner.finished.as_ref()? {
+                Finished::Bodies {
+                    floor,
+                    kind,
+                    description: reference,
+                    rows,
+                } => {
+                    let mut rows = rows.clone();
+                    let orders = super::summarise(&inner.integrators, &mut rows, kind, *floor);
+                    Some(SceneStudy {
+                        name,
+                        description,
+                        duration,
+                        reference: reference.clone(),
+                        reference_kind: kind,
+                        floor: *floor,
+                        sentence: left(rows.len()),
+                        rows,
+                        orders,
+                        response,
+                        cloth: None,
+                        contact_solvers: None,
+                    })
+                }
+                Finished::Cloth { frame, rows } => {
+                    let mut cloth = super::cloth::summarise(
+                        frame.as_ref().clone(),
+                        rows.clone(),
+                        &super::ClothConfig::default().integrators,
+                    );
+                    cloth.sentence = left(rows.len());
+                    Some(super::cloth_scene_study(name, description, duration, cloth))
+                }
+            }
         })
     }
 
@@ -288,7 +315,7 @@ impl Job {
                     kind,
                     description,
                 })) => {
-                    inner.finished = Some(Finished {
+                    inner.finished = Some(Finished::Bodies {
                         floor,
                         kind,
                         description,
@@ -296,8 +323,19 @@ impl Job {
                     });
                 }
                 Ok(Message::Partial(Partial::Run(row))) => {
-                    if let Some(finished) = inner.finished.as_mut() {
-                        finished.rows.push(*row);
+                    if let Some(Finished::Bodies { rows, .. }) = inner.finished.as_mut() {
+                        rows.push(*row);
+                    }
+                }
+                Ok(Message::Partial(Partial::ClothReference(frame))) => {
+                    inner.finished = Some(Finished::Cloth {
+                        frame,
+                        rows: Vec::new(),
+                    });
+                }
+                Ok(Message::Partial(Partial::ClothRun(row))) => {
+                    if let Some(Finished::Cloth { rows, .. }) = inner.finished.as_mut() {
+                        rows.push(*row);
                     }
                 }
                 Ok(Message::Done(study)) => {
@@ -467,11 +505,24 @@ mod tests {
         let made = control.steps.load(Ordering::Relaxed);
         let rows = &study.cloth.expect("the cloth case").rows;
         assert_eq!(rows.len(), runs.len());
-        let sure: u64 = rows
+        // The runs in the order they are made: rows[index] is the k-th run made.
+        let made_order = crate::study::cloth::sweep(
+            &case.scene,
+            case.duration,
+            &crate::study::cloth_config(&config),
+        );
+        let costs: Vec<u64> = made_order
             .iter()
-            .zip(&runs)
-            .filter(|(r, _)| r.ok())
-            .map(|(_, &n)| n)
+            .map(|&(_, _, dt)| crate::study::measure::steps_for(case.duration, dt))
+            .collect();
+        assert!(costs.is_sorted(), "the cheapest runs first: {costs:?}");
+        let row = |k: usize| &rows[made_order[k].0];
+        for (k, &(_, integrator, dt)) in made_order.iter().enumerate() {
+            assert_eq!((row(k).integrator, row(k).dt), (integrator, dt));
+        }
+        let sure: u64 = (0..runs.len())
+            .filter(|&k| row(k).ok())
+            .map(|k| runs[k])
             .sum();
         let all: u64 = runs.iter().sum();
         assert!(
@@ -484,9 +535,10 @@ mod tests {
         );
         // The timed plan adds the warm-up and timed runs of the runs below the limit only.
         let timed = crate::study::run_steps(&case, &Config::default()).expect("a plan");
-        for ((row, &untimed), &timed) in rows.iter().zip(&runs).zip(&timed) {
-            let below = !(row.integrator.is_explicit() && row.past_limit());
-            assert_eq!(below, timed > untimed, "{:?} at {}", row.integrator, row.dt);
+        for (k, (&untimed, &timed)) in runs.iter().zip(&timed).enumerate() {
+            let r = row(k);
+            let below = !(r.integrator.is_explicit() && r.past_limit());
+            assert_eq!(below, timed > untimed, "{:?} at {}", r.integrator, r.dt);
         }
     }
 

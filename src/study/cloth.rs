@@ -183,7 +183,7 @@ pub struct Comparison {
 }
 
 /// The study of a scene's cloths.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ClothStudy {
     /// L = 2/ω_max, s: the smallest of the scene's cloths (symplectic-euler diverges above).
     pub limit: f64,
@@ -295,14 +295,48 @@ pub fn study(
     config: &ClothConfig,
     progress: &mut dyn FnMut(usize, usize),
 ) -> ClothStudy {
+    study_streaming(name, scene, duration, config, progress, &mut |_| {})
+}
+
+/// [`study`], telling `partial` of the study's frame once the reference is made (limit,
+/// ladder, reference: [`super::Partial::ClothReference`], a study with no run yet) and of each run as it finishes
+/// ([`super::Partial::ClothRun`]); the runs are made the cheapest first ([`sweep`]), so that a
+/// front end's chart fills early, and the rows come back in the plan's order (integrator by
+/// integrator, dt largest first), as if run in it.
+pub fn study_streaming(
+    name: &str,
+    scene: &Scene,
+    duration: f64,
+    config: &ClothConfig,
+    progress: &mut dyn FnMut(usize, usize),
+    partial: &mut dyn FnMut(super::Partial),
+) -> ClothStudy {
     let (limit, damped_limit, limiting_cloth) = explicit_limit(scene);
     let ladder = config.dts.clone().unwrap_or_else(|| ladder(limit));
     let times = sample_times(duration, config.timing.sample_interval);
-    let plan = plan(config, &ladder, limit);
     let smallest = ladder.iter().copied().fold(f64::INFINITY, f64::min);
     let reference = reference(scene, &times, smallest / REFERENCE_DIVISOR);
-    let mut rows = Vec::with_capacity(plan.len());
-    for &(integrator, dt) in &plan {
+    let runs = sweep(scene, duration, config);
+    let frame = summarise(
+        ClothStudy {
+            limit,
+            damped_limit,
+            limiting_cloth,
+            ladder,
+            reference: reference.description.clone(),
+            reference_spread: reference.spread,
+            rows: Vec::new(),
+            orders: Vec::new(),
+            comparison: compare(&[], limit),
+            sentence: String::new(),
+        },
+        Vec::new(),
+        &config.integrators,
+    );
+    partial(super::Partial::ClothReference(Box::new(frame.clone())));
+    progress(0, runs.len());
+    let mut measured: Vec<(usize, ClothRow)> = Vec::with_capacity(runs.len());
+    for &(index, integrator, dt) in &runs {
         let row = measure(
             name,
             &with_integrator(scene, integrator),
@@ -314,45 +348,87 @@ pub fn study(
             &times,
             config.timing,
         );
-        rows.push(row);
-        progress(rows.len(), plan.len());
+        partial(super::Partial::ClothRun(Box::new(row.clone())));
+        measured.push((index, row));
+        progress(measured.len(), runs.len());
     }
-    mark_frontier(&mut rows);
-    let orders = config
-        .integrators
-        .iter()
-        .map(|&i| fit_order(i, &rows, limit))
-        .collect();
-    let comparison = compare(&rows, limit);
-    let sentence = sentence(&rows, &comparison, limit, damped_limit, duration);
-    ClothStudy {
+    let rows = measured.into_iter().map(|(_, row)| row).collect();
+    let mut study = summarise(frame, rows, &config.integrators);
+    study.sentence = sentence(
+        &study.rows,
+        &study.comparison,
         limit,
         damped_limit,
-        limiting_cloth,
-        ladder,
-        reference: reference.description,
-        reference_spread: reference.spread,
+        duration,
+    );
+    study
+}
+
+/// `frame` (a study's limit, ladder and reference) with `rows` (finished runs, in any order):
+/// sorted in the plan's order (by `integrators`, then as on the ladder), frontier marked,
+/// orders fitted, the two integrators compared. What [`study`] and a front end's partial chart
+/// both do with finished runs; the sentence is left empty (the caller writes it: [`sentence`]
+/// once every run has finished).
+pub fn summarise(
+    frame: ClothStudy,
+    mut rows: Vec<ClothRow>,
+    integrators: &[ClothIntegrator],
+) -> ClothStudy {
+    let rank = |r: &ClothRow| {
+        (
+            integrators.iter().position(|&i| i == r.integrator),
+            frame.ladder.iter().position(|&dt| dt == r.dt),
+        )
+    };
+    rows.sort_by_key(rank);
+    mark_frontier(&mut rows);
+    let orders = integrators
+        .iter()
+        .map(|&i| fit_order(i, &rows, frame.limit))
+        .collect();
+    let comparison = compare(&rows, frame.limit);
+    ClothStudy {
         rows,
         orders,
         comparison,
-        sentence,
+        sentence: String::new(),
+        ..frame
     }
 }
 
+/// The runs [`study`] makes on `scene`, in the order it makes them: (index in the plan's order —
+/// integrator by integrator, dt largest first; integrator; dt), the fewest steps first, ties
+/// in the plan's order.
+pub fn sweep(
+    scene: &Scene,
+    duration: f64,
+    config: &ClothConfig,
+) -> Vec<(usize, ClothIntegrator, f64)> {
+    let (limit, _, _) = explicit_limit(scene);
+    let ladder = config.dts.clone().unwrap_or_else(|| ladder(limit));
+    let mut runs: Vec<(usize, ClothIntegrator, f64)> = plan(config, &ladder, limit)
+        .into_iter()
+        .enumerate()
+        .map(|(index, (integrator, dt))| (index, integrator, dt))
+        .collect();
+    runs.sort_by_key(|&(index, _, dt)| (super::measure::steps_for(duration, dt), index));
+    runs
+}
+
 /// The steps [`study`] makes on `scene` over `duration`: its reference's (symplectic-euler at
-/// h_r and h_r/2), then each run's in the order they are made — the accuracy run and, when
-/// timed, the warm-up and timed runs ([`super::measure::steps_made`]). An explicit run past
-/// the limit is counted without them: it diverges, and a diverged run is not timed (it stops
-/// at its divergence, so its count is an upper bound).
+/// h_r and h_r/2), then each run's in the order they are made ([`sweep`]) — the accuracy run
+/// and, when timed, the warm-up and timed runs ([`super::measure::steps_made`]). An explicit
+/// run past the limit is counted without them: it diverges, and a diverged run is not timed
+/// (it stops at its divergence, so its count is an upper bound).
 pub fn planned_steps(scene: &Scene, duration: f64, config: &ClothConfig) -> (u64, Vec<u64>) {
     let (limit, _, _) = explicit_limit(scene);
     let ladder = config.dts.clone().unwrap_or_else(|| ladder(limit));
     let steps = |dt: f64| (duration / dt).round().max(1.0) as u64;
     let h = ladder.iter().copied().fold(f64::INFINITY, f64::min) / REFERENCE_DIVISOR;
     let reference = steps(h) + steps(h / 2.0);
-    let runs = plan(config, &ladder, limit)
+    let runs = sweep(scene, duration, config)
         .into_iter()
-        .map(|(i, dt)| {
+        .map(|(_, i, dt)| {
             if i.is_explicit() && dt > limit {
                 steps(dt)
             } else {
@@ -370,7 +446,8 @@ pub fn runs(scene: &Scene, config: &ClothConfig) -> usize {
     plan(config, &ladder, limit).len()
 }
 
-/// The runs [`study`] makes, in order: each integrator's time steps on `ladder` ([`dts_for`]).
+/// The runs [`study`] makes, in the plan's order: each integrator's time steps on `ladder`
+/// ([`dts_for`]).
 fn plan(config: &ClothConfig, ladder: &[f64], limit: f64) -> Vec<(ClothIntegrator, f64)> {
     config
         .integrators

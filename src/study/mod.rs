@@ -159,6 +159,11 @@ pub enum Partial {
     },
     /// One run has finished (its accuracy and timing measured).
     Run(Box<Row>),
+    /// A cloth case's reference is made: its limit, ladder and reference (a cloth study with
+    /// no run yet).
+    ClothReference(Box<ClothStudy>),
+    /// One run of a cloth case has finished.
+    ClothRun(Box<ClothRow>),
 }
 
 /// Studies one scene. `progress(done, total)` is called after each run.
@@ -195,7 +200,8 @@ pub fn summarise(
 }
 
 /// [`study_case`], telling `partial` of the reference once it is made and of each run as it
-/// finishes (the cheapest first: a front end's chart fills early). A cloth case tells nothing.
+/// finishes (the cheapest first: a front end's chart fills early); a cloth case, of its frame
+/// and its runs ([`cloth::study_streaming`]).
 pub fn study_case_streaming(
     case: &Case,
     config: &Config,
@@ -203,7 +209,7 @@ pub fn study_case_streaming(
     partial: &mut dyn FnMut(Partial),
 ) -> SceneStudy {
     if !case.scene.cloths.is_empty() {
-        return study_cloth_case(case, config, progress);
+        return study_cloth_case(case, config, progress, partial);
     }
     let times = measure::sample_times(case.duration, config.timing.sample_interval);
     let smallest = config.dts.iter().copied().fold(f64::INFINITY, f64::min);
@@ -424,18 +430,36 @@ fn study_cloth_case(
     case: &Case,
     config: &Config,
     progress: &mut dyn FnMut(usize, usize),
+    partial: &mut dyn FnMut(Partial),
 ) -> SceneStudy {
-    let cloth = cloth::study(
+    let cloth = cloth::study_streaming(
         &case.name,
         &case.scene,
         case.duration,
         &cloth_config(config),
         progress,
+        partial,
     );
+    cloth_scene_study(
+        case.name.clone(),
+        case.description.clone(),
+        case.duration,
+        cloth,
+    )
+}
+
+/// The [`SceneStudy`] of a cloth case named `name`: its cloth study, the sentence the cloth
+/// study's.
+pub fn cloth_scene_study(
+    name: String,
+    description: String,
+    duration: f64,
+    cloth: ClothStudy,
+) -> SceneStudy {
     SceneStudy {
-        name: case.name.clone(),
-        description: case.description.clone(),
-        duration: case.duration,
+        name,
+        description,
+        duration,
         reference: cloth.reference.clone(),
         reference_kind: "numeric",
         floor: analysis::FLOOR,

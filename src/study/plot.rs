@@ -1,10 +1,11 @@
 //! `--svg PATH`: error against cost on log–log axes, one panel per scene, one line per
 //! integrator (its points in order of dt, each labelled with its dt); frontier runs are ringed.
-//! Beside each scene's cost panel, its error against dt (log–log, the same markers and colours,
-//! the fitted order p beside each line: the slope of that line), on the same row of the grid.
-//! A cloth case's panels have one line per particle integrator (error in m; runs past the
-//! explicit limit that diverged have no point and are listed), the dt panel with the explicit
-//! limit 2/ω_max drawn and the floor band at 3 × the reference's spread. The contact solvers'
+//! Beside each scene's cost panel, its error against dt (log–log, the same markers and colours),
+//! on the same row of the grid; in both the fitted order p beside each line (the slope of the
+//! dt panel's line). A cloth case's panels are drawn the same way ([`Sweep`]), one line per
+//! particle integrator (error in m; runs past the explicit limit that diverged have no point
+//! and are listed), the dt panel with the explicit limit 2/ω_max drawn and the floor band at
+//! 3 × the reference's spread. The contact solvers'
 //! panels: error against cost, and against the solver's own step h = dt / sub-steps
 //! (`impulse` at dt, `soft-step ×n` at dt/n, its fitted order beside its line).
 
@@ -169,8 +170,10 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
     let areas = body.split_evenly((rows, columns));
     for (panel, area) in panels.iter().zip(areas.iter()) {
         match panel {
-            Panel::Bodies(study, against) => bodies_panel(study, *against, area),
-            Panel::Cloth(study, cloth, against) => cloth_panel(study, cloth, *against, area),
+            Panel::Bodies(study, against) => sweep_panel(&bodies_sweep(study), *against, area),
+            Panel::Cloth(study, cloth, against) => {
+                sweep_panel(&cloth_sweep(study, cloth), *against, area)
+            }
             Panel::Solvers(study, chart, against) => solvers_panel(study, chart, *against, area),
             Panel::Blank => Ok(()),
         }
@@ -281,134 +284,274 @@ fn cost_chart<'a, 'b>(
     Ok(chart)
 }
 
-/// A scene's integrators' panel: error against cost (frontier ringed, points labelled with
-/// their dt) or against dt (slope = order); in both the floor band, the fitted order beside
-/// each line's finest run and the diverged runs listed.
-fn bodies_panel(
-    study: &SceneStudy,
-    against: Against,
-    area: &Area,
-) -> Result<(), Box<dyn std::error::Error>> {
+/// One run as a sweep panel draws it.
+struct Point {
+    dt: f64,
+    /// µs of wall time per simulated second.
+    cost: f64,
+    error: f64,
+    frontier: bool,
+}
+
+/// One integrator's line in a sweep panel: its runs that did not diverge, largest dt first.
+struct Line {
+    color: RGBColor,
+    points: Vec<Point>,
+    /// The text beside its finest run (the fitted order), if any.
+    order: Option<String>,
+}
+
+impl Line {
+    /// The line through `runs` (dt, cost, error, frontier), sorted largest dt first.
+    fn new(
+        color: RGBColor,
+        runs: impl Iterator<Item = (f64, f64, f64, bool)>,
+        order: Option<String>,
+    ) -> Line {
+        let mut points: Vec<Point> = runs
+            .map(|(dt, cost, error, frontier)| Point {
+                dt,
+                cost,
+                error,
+                frontier,
+            })
+            .collect();
+        points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+        Line {
+            color,
+            points,
+            order,
+        }
+    }
+}
+
+/// A panel over a sweep of integrators × dt — a scene's bodies or its cloths: what differs
+/// between the two, the drawing being the same ([`sweep_panel`]).
+struct Sweep {
+    /// Against cost, against dt.
+    captions: (String, String),
+    /// The error axis.
+    error: &'static str,
+    lines: Vec<Line>,
+    /// The floor band's top, its note, and whether the cost panel has it too.
+    band: Option<(f64, String, bool)>,
+    /// The explicit limit, marked on the dt panel.
+    limit: Option<f64>,
+    /// "integrator dt" of each diverged run.
+    diverged: Vec<String>,
+    /// Each line's points ringed with its own size, so that lines whose points coincide stay
+    /// apart (else filled dots).
+    rings: bool,
+}
+
+/// The bodies' sweep of a scene: error in rad + m/radius, the floor band on both panels.
+fn bodies_sweep(study: &SceneStudy) -> Sweep {
     let ok: Vec<_> = study.rows.iter().filter(|r| drawable(r)).collect();
-    let x = |r: &super::measure::Row| match against {
-        Against::Cost => r.us_per_simulated_second,
-        Against::Dt => r.dt,
-    };
-    let (caption, x_desc) = match against {
-        Against::Cost => (
+    let lines = Integrator::ALL
+        .into_iter()
+        .filter(|i| ok.iter().any(|r| r.integrator == *i))
+        .map(|integrator| {
+            let points = ok
+                .iter()
+                .filter(|r| r.integrator == integrator)
+                .map(|r| (r.dt, r.us_per_simulated_second, r.error, r.frontier));
+            let order = study
+                .orders
+                .iter()
+                .find(|o| o.integrator == integrator)
+                .map(|o| match o.slope {
+                    Some(p) => format!("{} p = {p:.2}", integrator.name()),
+                    None if o.exact => format!("{} exact", integrator.name()),
+                    None => format!("{} p: none", integrator.name()),
+                });
+            Line::new(color(integrator), points, order)
+        })
+        .collect();
+    Sweep {
+        captions: (
             format!(
                 "{} ({} s, {} reference)",
                 study.name, study.duration, study.reference_kind
             ),
-            PER_SECOND,
-        ),
-        Against::Dt => (
             format!("{}: error against dt (slope = p)", study.name),
-            TIME_STEP,
         ),
-    };
-    let points = ok.iter().map(|r| (x(r), r.error));
-    let mut chart = cost_chart(
-        area,
-        &caption,
-        x_desc,
-        "error = max angle + |x − x_ref|/radius",
-        points,
-    )?;
-    // The floor band: errors inside it are round-off or the reference's own, not ranked.
-    let (x_range, y_range) = (
-        chart.plotting_area().get_x_range(),
-        chart.plotting_area().get_y_range(),
-    );
-    let band_top = study.floor.max(FLOOR).min(y_range.end);
-    if band_top > y_range.start {
-        chart.draw_series(std::iter::once(Rectangle::new(
-            [(x_range.start, y_range.start), (x_range.end, band_top)],
-            RGBColor(200, 200, 200).mix(0.35).filled(),
-        )))?;
+        error: "error = max angle + |x − x_ref|/radius",
+        lines,
+        band: (study.floor > FLOOR).then(|| {
+            (
+                study.floor,
+                format!(
+                    "grey band: below the floor {:.1e} (round-off or the reference's own error)",
+                    study.floor
+                ),
+                true,
+            )
+        }),
+        limit: None,
+        diverged: study
+            .rows
+            .iter()
+            .filter(|r| !r.ok())
+            .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+            .collect(),
+        rings: true,
     }
-    let mut integrators: Vec<Integrator> = ok.iter().map(|r| r.integrator).collect();
-    integrators.sort_by_key(|i| Integrator::ALL.iter().position(|a| a == i));
-    integrators.dedup();
-    for (k, &integrator) in integrators.iter().enumerate() {
-        let c = color(integrator);
-        let mut points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
-        points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
-        let xy: Vec<(f64, f64)> = points.iter().map(|r| (x(r), r.error.max(FLOOR))).collect();
+}
+
+/// A cloth case's sweep: error in m, against dt the explicit limit 2/ω_max and the floor band
+/// at 3 × the reference's spread.
+fn cloth_sweep(study: &SceneStudy, cloth: &ClothStudy) -> Sweep {
+    let lines = ClothIntegrator::ALL
+        .into_iter()
+        .map(|integrator| {
+            let points = cloth
+                .rows
+                .iter()
+                .filter(|r| r.integrator == integrator)
+                .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
+                .map(|r| (r.dt, r.us_per_simulated_second, r.error, r.frontier));
+            let order = cloth
+                .orders
+                .iter()
+                .find(|o| o.integrator == integrator)
+                .map(|o| order_text(integrator.name(), o.slope));
+            Line::new(cloth_color(integrator), points, order)
+        })
+        .collect();
+    let band = 3.0 * cloth.reference_spread;
+    Sweep {
+        captions: (
+            format!(
+                "{} ({} s, cloth case, 2/ω_max = {:.3e} s)",
+                study.name, study.duration, cloth.limit
+            ),
+            format!("{}: cloth error against dt (slope = p)", study.name),
+        ),
+        error: "max particle error, m",
+        lines,
+        band: (band > FLOOR).then(|| {
+            (
+                band,
+                format!("grey band: below 3 × the reference's spread, {band:.1e} m (not resolved)"),
+                false,
+            )
+        }),
+        limit: cloth.limit.is_finite().then_some(cloth.limit),
+        diverged: cloth
+            .rows
+            .iter()
+            .filter(|r| !r.ok())
+            .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+            .collect(),
+        rings: false,
+    }
+}
+
+/// A sweep's panel: error against cost (frontier ringed, points labelled with their dt) or
+/// against dt (slope = order; the explicit limit dashed, if any); in both the fitted order
+/// beside each line's finest run, the floor band and the diverged runs listed (a note when
+/// nothing is drawn).
+fn sweep_panel(
+    sweep: &Sweep,
+    against: Against,
+    area: &Area,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let x = |p: &Point| match against {
+        Against::Cost => p.cost,
+        Against::Dt => p.dt,
+    };
+    let (caption, x_desc) = match against {
+        Against::Cost => (&sweep.captions.0, PER_SECOND),
+        Against::Dt => (&sweep.captions.1, TIME_STEP),
+    };
+    let all = || sweep.lines.iter().flat_map(|l| &l.points);
+    // Against dt the frame holds the limit too.
+    let limit = sweep.limit.filter(|_| against == Against::Dt);
+    let points = all().map(|p| (x(p), p.error)).chain(
+        limit
+            .into_iter()
+            .flat_map(|l| all().next().map(|p| (l, p.error))),
+    );
+    let mut chart = cost_chart(area, caption, x_desc, sweep.error, points)?;
+    let band = sweep
+        .band
+        .as_ref()
+        .filter(|(_, _, on_cost)| *on_cost || against == Against::Dt);
+    if let Some((top, _, _)) = band {
+        floor_band(&mut chart, *top)?;
+    }
+    if let Some(l) = limit {
+        let y = chart.plotting_area().get_y_range();
+        chart.draw_series(DashedLineSeries::new(
+            [(l, y.start), (l, y.end)],
+            6,
+            4,
+            BLACK.stroke_width(1),
+        ))?;
+        chart.draw_series(std::iter::once(
+            EmptyElement::at((l, y.end))
+                + Text::new("2/ω_max", (4, 4), ("sans-serif", 11).into_font()),
+        ))?;
+    }
+    for (k, line) in sweep.lines.iter().enumerate() {
+        let c = line.color;
+        let xy: Vec<(f64, f64)> = line
+            .points
+            .iter()
+            .map(|p| (x(p), p.error.max(FLOOR)))
+            .collect();
         chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
-        // Integrators whose points coincide stay apart: each has its own ring size.
-        let size = 3 + 2 * k as i32;
-        chart.draw_series(xy.iter().map(|&p| Circle::new(p, size, c.stroke_width(2))))?;
+        if sweep.rings {
+            // Lines whose points coincide stay apart: each has its own ring size.
+            let size = 3 + 2 * k as i32;
+            chart.draw_series(xy.iter().map(|&p| Circle::new(p, size, c.stroke_width(2))))?;
+        } else {
+            chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+        }
         if against == Against::Cost {
             chart.draw_series(
-                points
+                line.points
                     .iter()
-                    .map(|r| label!(format_dt(r.dt), (x(r), r.error.max(FLOOR)), &c)),
+                    .zip(&xy)
+                    .map(|(p, &at)| label!(format_dt(p.dt), at, &c)),
             )?;
         }
-        // The fitted order beside the integrator's finest run.
-        if let (Some(last), Some(order)) = (
-            xy.last(),
-            study.orders.iter().find(|o| o.integrator == integrator),
-        ) {
-            let text = match order.slope {
-                Some(p) => format!("{} p = {p:.2}", integrator.name()),
-                None if order.exact => format!("{} exact", integrator.name()),
-                None => format!("{} p: none", integrator.name()),
-            };
+        if let (Some(last), Some(order)) = (xy.last(), &line.order) {
             chart.draw_series(std::iter::once(
                 EmptyElement::at(*last)
-                    + Text::new(text, (9, 2), ("sans-serif", 11).into_font().color(&c)),
+                    + Text::new(
+                        order.clone(),
+                        (9, 2),
+                        ("sans-serif", 11).into_font().color(&c),
+                    ),
             ))?;
         }
     }
-    let frontier = ok.iter().filter(|r| r.frontier && against == Against::Cost);
-    chart.draw_series(frontier.map(|r| {
-        Circle::new(
-            (x(r), r.error.max(FLOOR)),
-            7 + 2 * integrators.len() as i32,
-            BLACK.stroke_width(1),
-        )
-    }))?;
-    // Diverged runs are listed on the chart; with none drawable, a note says why.
-    let diverged: Vec<String> = study
-        .rows
-        .iter()
-        .filter(|r| !r.ok())
-        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
-        .collect();
+    if against == Against::Cost {
+        let ring = 7 + if sweep.rings {
+            2 * sweep.lines.len() as i32
+        } else {
+            0
+        };
+        chart.draw_series(
+            all()
+                .filter(|p| p.frontier)
+                .map(|p| Circle::new((p.cost, p.error.max(FLOOR)), ring, BLACK.stroke_width(1))),
+        )?;
+    }
     let mut notes = Vec::new();
-    if ok.is_empty() {
-        notes.push(if diverged.is_empty() {
+    if all().next().is_none() {
+        notes.push(if sweep.diverged.is_empty() {
             "no run to draw".to_string()
         } else {
             "every run diverged: nothing to draw".to_string()
         });
     }
-    if !diverged.is_empty() {
-        for chunk in diverged.chunks(4) {
-            let lead = if notes.len() <= usize::from(ok.is_empty()) {
-                "diverged: "
-            } else {
-                "  "
-            };
-            notes.push(format!("{lead}{}", chunk.join(", ")));
-        }
+    notes.extend(diverged_notes(&sweep.diverged));
+    if let Some((_, note, _)) = band {
+        notes.push(note.clone());
     }
-    if study.floor > FLOOR {
-        notes.push(format!(
-            "grey band: below the floor {:.1e} (round-off or the reference's own error)",
-            study.floor
-        ));
-    }
-    for (i, note) in notes.iter().enumerate() {
-        area.draw(&Text::new(
-            note.clone(),
-            (80, 40 + 14 * i as i32),
-            ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0)),
-        ))?;
-    }
-    Ok(())
+    draw_notes(area, &notes)
 }
 
 /// Draws the floor band (errors below `top` are not resolved) across `chart`.
@@ -457,120 +600,6 @@ fn order_text(name: &str, slope: Option<f64>) -> String {
         Some(p) => format!("{name} p = {p:.2}"),
         None => format!("{name} p: none"),
     }
-}
-
-/// The cloth case's panel: error (m) against cost or against dt, one line per particle
-/// integrator; against dt, the explicit limit 2/ω_max as a dashed vertical line, the floor
-/// band at 3 × the reference's spread and the fitted order beside each line.
-fn cloth_panel(
-    study: &SceneStudy,
-    cloth: &ClothStudy,
-    against: Against,
-    area: &Area,
-) -> Result<(), Box<dyn std::error::Error>> {
-    let ok: Vec<_> = cloth
-        .rows
-        .iter()
-        .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
-        .collect();
-    let x = |r: &super::cloth::ClothRow| match against {
-        Against::Cost => r.us_per_simulated_second,
-        Against::Dt => r.dt,
-    };
-    let (caption, x_desc) = match against {
-        Against::Cost => (
-            format!(
-                "{} ({} s, cloth case, 2/ω_max = {:.3e} s)",
-                study.name, study.duration, cloth.limit
-            ),
-            PER_SECOND,
-        ),
-        Against::Dt => (
-            format!("{}: cloth error against dt (slope = p)", study.name),
-            TIME_STEP,
-        ),
-    };
-    // Against dt the frame holds the limit too.
-    let limit = (against == Against::Dt && cloth.limit.is_finite()).then_some(cloth.limit);
-    let points = ok.iter().map(|r| (x(r), r.error)).chain(
-        limit
-            .into_iter()
-            .flat_map(|l| ok.first().map(|r| (l, r.error))),
-    );
-    let mut chart = cost_chart(area, &caption, x_desc, "max particle error, m", points)?;
-    let band = 3.0 * cloth.reference_spread;
-    if against == Against::Dt {
-        floor_band(&mut chart, band)?;
-        if let Some(l) = limit {
-            let y = chart.plotting_area().get_y_range();
-            chart.draw_series(DashedLineSeries::new(
-                [(l, y.start), (l, y.end)],
-                6,
-                4,
-                BLACK.stroke_width(1),
-            ))?;
-            chart.draw_series(std::iter::once(
-                EmptyElement::at((l, y.end))
-                    + Text::new("2/ω_max", (4, 4), ("sans-serif", 11).into_font()),
-            ))?;
-        }
-    }
-    for integrator in ClothIntegrator::ALL {
-        let c = cloth_color(integrator);
-        let mut points: Vec<_> = ok.iter().filter(|r| r.integrator == integrator).collect();
-        points.sort_by(|a, b| b.dt.total_cmp(&a.dt));
-        let xy: Vec<(f64, f64)> = points.iter().map(|r| (x(r), r.error.max(FLOOR))).collect();
-        chart.draw_series(LineSeries::new(xy.clone(), c.stroke_width(2)))?;
-        chart.draw_series(xy.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
-        match against {
-            Against::Cost => {
-                chart.draw_series(
-                    points
-                        .iter()
-                        .map(|r| label!(format_dt(r.dt), (x(r), r.error.max(FLOOR)), &c)),
-                )?;
-            }
-            Against::Dt => {
-                let order = cloth.orders.iter().find(|o| o.integrator == integrator);
-                if let (Some(last), Some(order)) = (xy.last(), order) {
-                    chart.draw_series(std::iter::once(
-                        EmptyElement::at(*last)
-                            + Text::new(
-                                order_text(integrator.name(), order.slope),
-                                (9, 2),
-                                ("sans-serif", 11).into_font().color(&c),
-                            ),
-                    ))?;
-                }
-            }
-        }
-    }
-    if against == Against::Cost {
-        chart.draw_series(ok.iter().filter(|r| r.frontier).map(|r| {
-            Circle::new(
-                (r.us_per_simulated_second, r.error.max(FLOOR)),
-                7,
-                BLACK.stroke_width(1),
-            )
-        }))?;
-    }
-    let diverged: Vec<String> = cloth
-        .rows
-        .iter()
-        .filter(|r| !r.ok())
-        .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
-        .collect();
-    let mut notes = Vec::new();
-    if ok.is_empty() {
-        notes.push("every run diverged: nothing to draw".to_string());
-    }
-    notes.extend(diverged_notes(&diverged));
-    if against == Against::Dt && band > FLOOR {
-        notes.push(format!(
-            "grey band: below 3 × the reference's spread, {band:.1e} m (not resolved)"
-        ));
-    }
-    draw_notes(area, &notes)
 }
 
 /// The contact solvers' step axis.

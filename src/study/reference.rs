@@ -10,7 +10,11 @@
 //!   (`spread`, measured as the runs' error is) bounds its error. A run whose error is within
 //!   [`SPREAD_BAND`] × spread of it is not resolved by the reference; when no run is resolved,
 //!   or the spread is above [`UNCONVERGED`], the reference has not converged (a chaotic
-//!   motion's error grows until no reference holds) and the study says so.
+//!   motion's error grows until no reference holds) and the study says so. With joints
+//!   corrected by projection (the default), the projection leaves |C| up to
+//!   [`JOINT_TOLERANCE`] after every step, in the run and in the reference alike: an error
+//!   within [`projection_floor`] = 2 × tol / (the smallest jointed body's radius) is not
+//!   resolved either, however close the reference.
 //! - **Numeric** (contact): `rk4` at a tenth of the smallest swept step, once — an impact moved
 //!   by a step changes everything after it, so halving does not converge; contact scenes are
 //!   ranked by their rest pose ([`super::measure`]).
@@ -29,6 +33,34 @@ pub const SPREAD_BAND: f64 = 3.0;
 /// A reference whose halving moves it by more than this (the error measure: rad + m / radius)
 /// has not converged.
 pub const UNCONVERGED: f64 = 1e-3;
+
+/// The joint projection's tolerance, m: it stops when every constraint has |C| < this
+/// (`physics::joints::projection`, and the drive's position pass).
+pub const JOINT_TOLERANCE: f64 = 1e-12;
+
+/// The error (angle + |x − x_ref| / radius) below which the joint projection's tolerance hides
+/// a run's difference from the reference: `2 × JOINT_TOLERANCE / r_min`, r_min the smallest
+/// radius among the bodies a joint holds (the run and the reference are each left up to the
+/// tolerance off the constraint after every step). 0 without joints or with another
+/// correction (Baumgarte and none leave the drift in the motion, as the integrator makes it).
+///
+/// ```text
+/// pendulum, 0.1 m box (radius 0.0866 m):  2 × 1e-12 / 0.0866 = 2.31e-11
+/// ```
+pub fn projection_floor(scene: &Scene) -> f64 {
+    use crate::physics::joints::Correction;
+    if scene.links.correction != Correction::Projection {
+        return 0.0;
+    }
+    scene
+        .links
+        .joints
+        .iter()
+        .flat_map(|j| std::iter::once(j.a).chain(j.b))
+        .filter_map(|i| scene.bodies.get(i))
+        .map(|b| 2.0 * JOINT_TOLERANCE / b.body.radius.max(f64::MIN_POSITIVE))
+        .fold(0.0, f64::max)
+}
 
 /// One body's pose and angular velocity at one sample time.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,6 +130,8 @@ pub enum Reference {
         samples: Vec<Vec<Pose>>,
         /// The halving check (converged references; `None` with contact).
         spread: Option<Spread>,
+        /// [`projection_floor`] of the scene.
+        projection: f64,
     },
 }
 
@@ -151,12 +185,14 @@ impl Reference {
         let integrator = Integrator::Rk4;
         let coarse_dt = smallest_dt / 10.0;
         let coarse = sampled(scene, integrator, coarse_dt, times);
+        let projection = projection_floor(scene);
         if !scene.obstacles.is_empty() {
             return Reference::Numeric {
                 integrator,
                 dt: coarse_dt,
                 samples: coarse,
                 spread: None,
+                projection,
             };
         }
         let dt = coarse_dt / 2.0;
@@ -187,6 +223,7 @@ impl Reference {
             dt,
             samples,
             spread: Some(spread),
+            projection,
         }
     }
 
@@ -215,9 +252,16 @@ impl Reference {
         }
     }
 
-    /// The error below which a run is not resolved by the reference (0 for an exact one).
+    /// The error below which a run is not resolved by the reference (0 for an exact one):
+    /// [`SPREAD_BAND`] × its spread, or the joints' [`projection_floor`] if larger.
     pub fn floor(&self) -> f64 {
-        self.spread().map_or(0.0, |s| SPREAD_BAND * s.error)
+        let projection = match self {
+            Reference::Numeric { projection, .. } => *projection,
+            Reference::Exact { .. } => 0.0,
+        };
+        self.spread()
+            .map_or(0.0, |s| SPREAD_BAND * s.error)
+            .max(projection)
     }
 
     /// One line saying what the reference is.
@@ -265,8 +309,17 @@ impl Reference {
                 super::analysis::format_number(s.position),
                 if s.error <= UNCONVERGED {
                     format!(
-                        "errors below {} are not resolved by it",
-                        super::analysis::format_number(SPREAD_BAND * s.error)
+                        "errors below {} are not resolved by it{}",
+                        super::analysis::format_number(self.floor()),
+                        if self.floor() > SPREAD_BAND * s.error {
+                            format!(
+                                " (the joints' projection leaves |C| up to {JOINT_TOLERANCE:e} m \
+                                 after each step, in the run and the reference: 2 × \
+                                 {JOINT_TOLERANCE:e} m / the smallest jointed body's radius)"
+                            )
+                        } else {
+                            String::new()
+                        }
                     )
                 } else {
                     "NOT CONVERGED — no reference holds over this duration, the errors below \

@@ -54,10 +54,7 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         dt: app.session.snapshot.dt,
     };
     match (job.result(), job.partial()) {
-        (Some(study), _) => match &study.cloth {
-            Some(cloth) => render_cloth_study(app, &study, cloth, area, buf),
-            None => draw_study(&study, &shown, None, area, buf),
-        },
+        (Some(study), _) => draw_study(&study, &shown, None, area, buf),
         // The runs finished so far, the chart filling as the others finish.
         (None, Some(partial)) if job.refusal().is_none() && !job.failed() => {
             let (done, total) = job.progress();
@@ -70,6 +67,25 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
         }
         _ => render_progress(job, area, buf),
     }
+}
+
+/// With `progress`, the gauge on the first row of `area` ("k of N runs · about … left"); the
+/// rest of the area.
+fn gauge_row(progress: Option<Progress>, area: Rect, buf: &mut Buffer) -> Rect {
+    let Some(p) = progress else {
+        return area;
+    };
+    let [gauge, rest] = Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+    Gauge::default()
+        .gauge_style(theme::GAUGE)
+        .ratio(if p.total == 0 {
+            0.0
+        } else {
+            (p.done as f64 / p.total as f64).min(1.0)
+        })
+        .label(progress_label(p.done, p.total, p.left))
+        .render(gauge, buf);
+    rest
 }
 
 fn render_progress(job: &Job, area: Rect, buf: &mut Buffer) {
@@ -186,14 +202,17 @@ fn cloth_colour(integrator: ClothIntegrator) -> Color {
     Color::Rgb(r, g, b)
 }
 
-/// The cloth case: max particle error against cost, one line per particle integrator.
+/// The cloth case: max particle error against cost, one line per particle integrator; with
+/// `progress`, the runs finished so far under a gauge (the chart fills as the others finish).
 fn render_cloth_study(
-    app: &App,
     study: &SceneStudy,
     cloth: &ClothStudy,
+    ascii: bool,
+    progress: Option<Progress>,
     area: Rect,
     buf: &mut Buffer,
 ) {
+    let area = gauge_row(progress, area, buf);
     let text_height = (area.height / 3).clamp(4, 9);
     let [chart_area, text_area] =
         Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
@@ -212,11 +231,7 @@ fn render_cloth_study(
     };
     let all = points(None, false);
     let ((x0, x1), (y0, y1)) = bounds(&all);
-    let marker = if app.prefs.ascii {
-        Marker::Dot
-    } else {
-        Marker::Braille
-    };
+    let marker = if ascii { Marker::Dot } else { Marker::Braille };
     let lines: Vec<(ClothIntegrator, Vec<(f64, f64)>)> = ClothIntegrator::ALL
         .into_iter()
         .map(|i| (i, points(Some(i), false)))
@@ -536,7 +551,8 @@ fn drawn(study: &SceneStudy) -> (Vec<&crate::study::Row>, Vec<Integrator>) {
 /// The study view of a scene's integrators: error against cost and error against dt side by
 /// side (the same error axis), the floor band under both, the fitted order beside each
 /// integrator in the legend, the diverged runs listed; with `progress`, the runs finished so
-/// far under a gauge (the chart fills as the others finish).
+/// far under a gauge (the chart fills as the others finish). A cloth case's chart is its
+/// particle integrators' ([`render_cloth_study`]).
 pub fn draw_study(
     study: &SceneStudy,
     shown: &Shown,
@@ -544,21 +560,10 @@ pub fn draw_study(
     area: Rect,
     buf: &mut Buffer,
 ) {
-    let mut area = area;
-    if let Some(p) = progress {
-        let [gauge, rest] =
-            Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
-        Gauge::default()
-            .gauge_style(theme::GAUGE)
-            .ratio(if p.total == 0 {
-                0.0
-            } else {
-                (p.done as f64 / p.total as f64).min(1.0)
-            })
-            .label(progress_label(p.done, p.total, p.left))
-            .render(gauge, buf);
-        area = rest;
+    if let Some(cloth) = &study.cloth {
+        return render_cloth_study(study, cloth, shown.ascii, progress, area, buf);
     }
+    let area = gauge_row(progress, area, buf);
     let (drawable, integrators) = drawn(study);
     let dim = Style::new().add_modifier(Modifier::DIM);
     let order_of = |i: Integrator| {

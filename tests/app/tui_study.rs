@@ -503,3 +503,77 @@ fn the_chart_fills_as_runs_finish_cheapest_first() {
     );
     assert!(text.contains("error against dt"), "{text}");
 }
+
+#[test]
+fn a_cloth_study_streams_its_runs_cheapest_first_into_the_chart() {
+    // The 5 × 5 sheet over 0.2 s, untimed: its frame once the reference is made, then each
+    // run, the largest dt (fewest steps) first, each the study's own row; mid-study the view
+    // draws the runs so far under the gauge.
+    use tumble::study::{self, Case, Config, Partial, Timing};
+    let lesson = tumble::scene::load(Path::new("tests/fixtures/study/small-sheet.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let case = Case {
+        name: "sheet".into(),
+        description: "a small sheet".into(),
+        scene: lesson.scene,
+        duration: 0.2,
+    };
+    let config = Config {
+        timing: Timing {
+            repeats: 0,
+            sample_interval: 0.1,
+        },
+        ..Config::default()
+    };
+    let mut told = Vec::new();
+    let full = study::study_case_streaming(&case, &config, &mut |_, _| {}, &mut |p| told.push(p));
+    let cloth = full.cloth.as_ref().expect("a cloth case");
+    let Partial::ClothReference(frame) = &told[0] else {
+        panic!("{:?}", told[0])
+    };
+    assert_eq!((frame.limit, &frame.ladder), (cloth.limit, &cloth.ladder));
+    assert!(frame.rows.is_empty());
+    let runs: Vec<_> = told[1..]
+        .iter()
+        .map(|p| match p {
+            Partial::ClothRun(row) => row.as_ref().clone(),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(runs.len(), cloth.rows.len());
+    let dts: Vec<f64> = runs.iter().map(|r| r.dt).collect();
+    assert!(
+        dts.windows(2).all(|w| w[0] >= w[1]),
+        "the largest dt first: {dts:?}"
+    );
+    for row in &runs {
+        let same = cloth
+            .rows
+            .iter()
+            .find(|r| r.integrator == row.integrator && r.dt == row.dt)
+            .expect("the study's row");
+        assert_eq!(
+            (row.error.to_bits(), &row.status),
+            (same.error.to_bits(), &same.status),
+            "the streamed run is the study's"
+        );
+    }
+    // The first half of the runs, as the view draws them mid-study.
+    let half = runs.len() / 2;
+    let mut partial = full.clone();
+    let mut so_far = study::cloth::summarise(
+        (**frame).clone(),
+        runs[..half].to_vec(),
+        &tumble::physics::cloth::ClothIntegrator::ALL,
+    );
+    so_far.sentence = format!("{half} of {} runs finished", runs.len());
+    assert_eq!(so_far.rows.len(), half);
+    partial.cloth = Some(so_far);
+    let text = draw(&partial, 120, 40, Some(half));
+    assert!(
+        text.contains(&format!("{half} of 28 runs · about 1 min 15 s left")),
+        "{text}"
+    );
+    assert!(text.contains("cloth case"), "{text}");
+    assert!(text.contains("── symplectic-euler"), "{text}");
+}

@@ -208,12 +208,29 @@ fn a_pendulum_is_measured_against_itself_at_a_finer_step_not_a_projectile() {
             reported / truth
         );
     }
+    // exact-splitting-4 kicks with rk4 over the momenta when the forces depend on them (the
+    // rod's pull does, v²/L): fourth order (with midpoint kicks it measured 3.000 here). Its
+    // errors are 4.2e-10 at 1e-2 s and 2.7e-11 at 5e-3 s, then meet the projection's
+    // |C| < 1e-12 m (1.1e-11 at 2.5e-3 s): the floor (2 × 1e-12 m / 0.0866 m = 2.31e-11)
+    // keeps those out of the fit, which the same ladder as the others then fits at 4.
+    let floor = 2.0 * 1e-12 / (0.05f64 * 3f64.sqrt());
+    assert!(
+        (study.floor - floor).abs() < 1e-3 * floor,
+        "floor {:e}, the projection's {floor:e}",
+        study.floor
+    );
+    assert!(
+        study.reference.contains("projection"),
+        "{}",
+        study.reference
+    );
     for (integrator, nominal) in [
         (Integrator::Euler, 1.0),
         (Integrator::SymplecticEuler, 1.0),
         (Integrator::Rk4, 4.0),
         (Integrator::Splitting, 2.0),
         (Integrator::ExactSplitting, 2.0),
+        (Integrator::ExactSplitting4, 4.0),
     ] {
         let p = order(&study, integrator);
         println!("pendulum order {}: {p:.3}", integrator.name());
@@ -223,25 +240,28 @@ fn a_pendulum_is_measured_against_itself_at_a_finer_step_not_a_projectile() {
             integrator.name()
         );
     }
-    // exact-splitting-4 kicks with rk4 over the momenta when the forces depend on them (the
-    // rod's pull does, v²/L): fourth order (with midpoint kicks it measured 3.000 here). Its
-    // errors are 3.7e-11 m at 1e-2 s and reach the projection's |C| < 1e-12 m by 2.5e-3 s,
-    // so its ladder is coarser: 1e-1 … 6.25e-3 s (steps that divide the 0.1 s samples).
-    let coarse = [1e-1, 5e-2, 2.5e-2, 1.25e-2, 6.25e-3];
-    let study = run_study(
+    let mut inside: Vec<f64> = study
+        .rows
+        .iter()
+        .filter(|r| r.integrator == Integrator::ExactSplitting4 && r.below_floor)
+        .map(|r| r.dt)
+        .collect();
+    inside.sort_by(|a, b| b.total_cmp(a));
+    assert_eq!(inside, [2.5e-3, 1.25e-3], "inside the floor: not fitted");
+    // Its errors on that ladder are all under 1e-9 m: its reported errors are checked against
+    // the truth at coarser steps.
+    let coarse = run_study(
         &scene,
         duration,
-        &untimed(&[Integrator::ExactSplitting4], &coarse),
+        &untimed(&[Integrator::ExactSplitting4], &[1e-1, 5e-2]),
     );
-    let checked = assert_reported_errors_are_true(&study, &scene, duration, &truth, 2);
-    for (_, dt, reported, truth) in &checked {
+    for (_, dt, reported, truth) in
+        assert_reported_errors_are_true(&coarse, &scene, duration, &truth, 2)
+    {
         println!(
             "pendulum exact-splitting-4 dt {dt:e}: reported {reported:.3e} m, true {truth:.3e} m"
         );
     }
-    let p = order(&study, Integrator::ExactSplitting4);
-    println!("pendulum order exact-splitting-4: {p:.3}");
-    assert!((p - 4.0).abs() <= 0.5, "exact-splitting-4: order {p:.3}");
 }
 
 #[test]
