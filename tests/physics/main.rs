@@ -1,6 +1,7 @@
 //! Physics tests: mass properties, integrators, contacts, cloths, hard cases and properties (one test binary: each links the whole library once).
 
 mod bodies;
+mod body_order;
 mod cloth;
 mod cloth_attach;
 mod cloth_world;

@@ -47,6 +47,20 @@ pub fn find(
         out.extend_from_slice(rows);
         return out.iter().any(|c| c.depth > 0.0);
     }
+    against_obstacles(input, states, margin, out, points);
+    between_bodies(input, states, margin, out, points, broad);
+    out.iter().any(|c| c.depth > 0.0)
+}
+
+/// Each moving body against each obstacle (module doc: vertices, swept vertices, the contact
+/// geometry, round bodies), appended to `out`.
+fn against_obstacles(
+    input: &CollideInput,
+    states: &[State],
+    margin: f64,
+    out: &mut Vec<Contact>,
+    points: &mut Vec<ContactPoint>,
+) {
     for (index, (body, state)) in input.bodies.iter().zip(states).enumerate() {
         let rotation_now = state.orientation.matrix();
         if body.fixed {
@@ -134,6 +148,18 @@ pub fn find(
             }
         }
     }
+}
+
+/// Each pair of bodies that may touch (module doc: bounding spheres, fast pairs swept),
+/// appended to `out`.
+fn between_bodies(
+    input: &CollideInput,
+    states: &[State],
+    margin: f64,
+    out: &mut Vec<Contact>,
+    points: &mut Vec<ContactPoint>,
+    broad: &mut BroadPhase,
+) {
     // Body against body: pairs whose bounding spheres meet, and fast pairs (`sweep`) whose
     // paths over the step may meet. A pair is only swept when some body moved more than
     // `FAST` of the thinnest half-thickness: at rest nothing is swept.
@@ -224,7 +250,6 @@ pub fn find(
                 .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
         );
     }
-    out.iter().any(|c| c.depth > 0.0)
 }
 
 /// Where a body's shape is.

@@ -703,16 +703,13 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         && settings.restitution > 0.0
         && rows.iter().any(|r| r.approach + r.bias < -threshold)
     {
-        propagate::rounds(
-            settings,
-            contacts,
-            rows,
-            previous,
+        let bounds = propagate::Bounds {
             threshold,
             tolerance,
             kinetic_allowed,
-            &mut stage,
-            impacts,
+        };
+        propagate::rounds(
+            settings, contacts, rows, previous, bounds, &mut stage, impacts,
         );
         // Then resting contact: every row at once, from the velocities the rounds left.
         let tolerance = prepare(rows, stage.motions);

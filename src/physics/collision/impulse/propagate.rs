@@ -137,22 +137,35 @@ fn pair(c: &Contact) -> (usize, usize) {
     }
 }
 
+/// The speeds and energy the impact rounds work to.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Bounds {
+    /// A contact approaching faster than this (m/s, its bias counted) is an impact.
+    pub threshold: f64,
+    /// The sweeps' tolerance, m/s.
+    pub tolerance: f64,
+    /// K₀ less the push-out's lift, J: the first round may keep no more.
+    pub kinetic_allowed: f64,
+}
+
 /// The impact rounds (module doc) on `contacts`, whose rows `rows` were prepared at the
-/// start of the step; `kinetic_allowed` is K₀ less the push-out's lift. Fills in
-/// `scratch.records`; returns whether the rounds ended with nothing approaching faster than
-/// `threshold` (else [`IMPACT_ROUNDS`] ran).
-#[allow(clippy::too_many_arguments)]
+/// start of the step, within `bounds`. Fills in `scratch.records`; returns whether the
+/// rounds ended with nothing approaching faster than `bounds.threshold` (else
+/// [`IMPACT_ROUNDS`] ran).
 pub(super) fn rounds(
     settings: &Settings,
     contacts: &[Contact],
     rows: &[Row],
     previous: &WarmCache,
-    threshold: f64,
-    tolerance: f64,
-    kinetic_allowed: f64,
+    bounds: Bounds,
     stage: &mut Stage,
     scratch: &mut Scratch,
 ) -> bool {
+    let Bounds {
+        threshold,
+        tolerance,
+        kinetic_allowed,
+    } = bounds;
     let Scratch {
         records,
         pairs,
