@@ -120,11 +120,11 @@ pub struct Inverse {
 
 /// A row's linear and angular parts on one side (0: A, 1: B).
 #[inline(always)]
-fn side(row: &Row, side: usize) -> (&Vector3<f64>, &Vector3<f64>) {
+fn side(row: &Row, side: usize) -> (Vector3<f64>, Vector3<f64>) {
     if side == 0 {
-        (&row.lin_a, &row.ang_a)
+        (row.lin_a(), row.ang_a())
     } else {
-        (&row.lin_b, &row.ang_b)
+        (row.lin_b(), row.ang_b())
     }
 }
 
@@ -162,17 +162,17 @@ fn envelope(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &mut Sol
         list.clear();
     }
     for (i, r) in rows.iter().enumerate() {
-        let wa = inverse[r.a].inertia * r.ang_a;
-        solver.touching[r.a].push((i, r.lin_a, wa, r.ang_a));
-        if let Some(b) = r.b {
-            let wb = inverse[b].inertia * r.ang_b;
-            solver.touching[b].push((i, r.lin_b, wb, r.ang_b));
+        let wa = inverse[r.a()].inertia * r.ang_a();
+        solver.touching[r.a()].push((i, r.lin_a(), wa, r.ang_a()));
+        if let Some(b) = r.b() {
+            let wb = inverse[b].inertia * r.ang_b();
+            solver.touching[b].push((i, r.lin_b(), wb, r.ang_b()));
         }
     }
     let system = &mut solver.system;
     system.reset(n);
     for (i, r) in rows.iter().enumerate() {
-        system.fill_row(i, [Some(r.a), r.b], |_| None);
+        system.fill_row(i, [Some(r.a()), r.b()], |_| None);
     }
     for (body, list) in solver.touching.iter().enumerate() {
         let inv_mass = inverse.get(body).map_or(0.0, |b| b.mass);
@@ -222,9 +222,9 @@ impl Solver {
         self.widest = 0;
         let mut p = 0;
         while p < n {
-            let (a, b) = (rows[p].a, rows[p].b);
+            let (a, b) = (rows[p].a(), rows[p].b());
             let mut size = 1;
-            while p + size < n && rows[p + size].a == a && rows[p + size].b == b {
+            while p + size < n && rows[p + size].a() == a && rows[p + size].b() == b {
                 size += 1;
             }
             let bodies = [a, b.unwrap_or(NONE)];
@@ -292,7 +292,7 @@ impl Solver {
                         part.scaled[i] = [lin.x * inv.mass, lin.y * inv.mass, lin.z * inv.mass];
                         part.ang[i] = [ang.x, ang.y, ang.z];
                         part.weighted[i] = [w.x, w.y, w.z];
-                        if *lin != Vector3::zeros() {
+                        if lin != Vector3::zeros() {
                             part.linear = i + 1;
                         }
                     } else {
@@ -497,9 +497,9 @@ mod tests {
                     j[(i, 6 * body + 3 + k)] += ang[k];
                 }
             };
-            put(r.a, &r.lin_a, &r.ang_a);
-            if let Some(b) = r.b {
-                put(b, &r.lin_b, &r.ang_b);
+            put(r.a(), &r.lin_a(), &r.ang_a());
+            if let Some(b) = r.b() {
+                put(b, &r.lin_b(), &r.ang_b());
             }
         }
         let mut w = DMatrix::<f64>::zeros(6 * n, 6 * n);
