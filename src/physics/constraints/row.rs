@@ -444,6 +444,47 @@ mod tests {
     }
 
     #[test]
+    fn a_jacobian_axis_gives_j_dot_v_and_a_stop_or_motor_takes_its_bounds() {
+        // A hinge-like angular row (0, g | 0, −g) and a point row (e_x, r×e_x | −e_x, g_B):
+        // J·v by hand, term by term.
+        let (va, wa) = (Vector3::new(1.0, 2.0, 3.0), Vector3::new(-0.5, 0.25, 2.0));
+        let (vb, wb) = (Vector3::new(0.5, -1.0, 0.0), Vector3::new(0.0, 1.0, -1.0));
+        let g = Vector3::new(0.0, 0.6, 0.8);
+        let angular = Axis::jacobian(Vector3::zeros(), (0, g), Some((1, -g)));
+        // g·(ω_A − ω_B) = 0.6 × (−0.75) + 0.8 × 3 = 1.95.
+        assert!((angular.rate((&va, &wa), Some((&vb, &wb))) - 1.95).abs() < 1e-15);
+        let r = Vector3::new(0.0, 0.5, 0.0);
+        let point = Axis::jacobian(Vector3::x(), (0, r.cross(&Vector3::x())), None);
+        // r×e_x = (0, 0, −0.5): u = v_x − 0.5 ω_z; the world end takes nothing.
+        assert_eq!(point.rate((&va, &wa), Some((&vb, &wb))), 1.0 - 0.5 * 2.0);
+        assert!(point.b.is_none() && point.k == 0.0);
+        // A joint row is free both ways; a stop on the coordinate row is one-sided with J
+        // flipped for the upper stop; a motor aims at its speed within ±F dt.
+        let row = Row::equality(angular, 0.1, 0.0, 4);
+        assert_eq!(
+            (row.lo, row.hi, row.error, row.owner),
+            (f64::NEG_INFINITY, f64::INFINITY, 0.1, 4)
+        );
+        let upper = Row::stop(&row, -1.0, 0.02);
+        assert_eq!(
+            (upper.lo, upper.hi, upper.error),
+            (0.0, f64::INFINITY, 0.02)
+        );
+        let rates = |r: &Row| r.axis.rate((&va, &wa), Some((&vb, &wb)));
+        assert_eq!(rates(&upper), -rates(&row));
+        assert_eq!(
+            (upper.ang_a(), upper.ang_b(), upper.lin_b()),
+            (-g, g, Vector3::zeros())
+        );
+        let motor = Row::motor(&row, 3.0, 0.5);
+        assert_eq!((motor.lo, motor.hi, motor.target()), (-0.5, 0.5, 3.0));
+        // Axis::new's end and the jacobian's agree on J.
+        let bodies = vec![SolverBody::particle(Vector3::zeros(), 1.0); 2];
+        let new = Axis::new(Vector3::x(), (0, &r), None, &bodies);
+        assert_eq!((new.d, new.a.rd), (point.d, point.a.rd));
+    }
+
+    #[test]
     fn a_row_reaches_its_target_within_its_bounds() {
         // A 2 kg block (1/M = 0.5) falling at 1 m/s onto the world: a contact row aiming at
         // u = +0.3 m/s (a bounce) takes λ = (0.3 − (−1))/0.5 = 2.6 N·s and stops there.

@@ -139,7 +139,7 @@ pub fn hold(
     b.r.clear();
     for (i, row) in b.rows.iter().enumerate() {
         let pb = row.b().map_or(Pose::WORLD, |j| b.poses[j]);
-        let rate = rate(&row, &b.poses[row.a()], &pb);
+        let rate = rate(row, &b.poses[row.a()], &pb);
         b.r.push(if i < joint_rows {
             rate
         } else {

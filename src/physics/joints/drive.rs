@@ -177,7 +177,7 @@ pub fn drive(
     b.restitution.clear();
     for (row, kind) in b.rows.iter().zip(&b.kinds) {
         let pb = row.b().map_or(Pose::WORLD, |j| b.poses[j]);
-        let rate = rate(&row, &b.poses[row.a()], &pb);
+        let rate = rate(row, &b.poses[row.a()], &pb);
         b.before.push(rate);
         b.restitution.push(match *kind {
             Kind::Stop(sign) => {

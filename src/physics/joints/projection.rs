@@ -194,7 +194,7 @@ fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
         let pb = r.b().map_or(Pose::WORLD, |j| b.poses[j]);
-        -rate(&r, &b.poses[r.a()], &pb)
+        -rate(r, &b.poses[r.a()], &pb)
     }));
     if !(reuse && again(&mut b.rhs, &mut b.solver)) {
         multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
