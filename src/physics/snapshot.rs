@@ -16,7 +16,7 @@ use super::energy_ledger::EnergyBalance;
 use super::hand::{Hand, Pull};
 use super::integrators::Integrator;
 use super::joints::drive::Drive;
-use super::joints::{coordinate, JointKind, Motor, Pose as LinkPose};
+use super::joints::{coordinate, rate, JointKind, Motor, Pose as LinkPose};
 use super::state::State;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -210,7 +210,8 @@ impl JointView {
                     error: j.error(states),
                     force: load.force,
                     torque: load.torque,
-                    coordinate: coordinate(j, i, &pa, &pb).map(|(row, q)| (q, row.rate(&pa, &pb))),
+                    coordinate: coordinate(j, i, &pa, &pb)
+                        .map(|(row, q)| (q, rate(&row, &pa, &pb))),
                     limits: j.limits,
                     motor: j.motor,
                     drive: world.joint_drive(i),

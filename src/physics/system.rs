@@ -180,20 +180,20 @@ impl System<'_> {
         let rate = 1.0 / (10.0 * self.dt);
         scratch.rhs.clear();
         for row in &scratch.rows {
-            let (la, aa) = &scratch.free[row.a];
-            let mut j_a = row.lin_a.dot(la) + row.ang_a.dot(aa);
-            let b = match row.b {
+            let (la, aa) = &scratch.free[row.a()];
+            let mut j_a = row.lin_a().dot(la) + row.ang_a().dot(aa);
+            let b = match row.b() {
                 Some(b) => {
                     let (lb, ab) = &scratch.free[b];
-                    j_a += row.lin_b.dot(lb) + row.ang_b.dot(ab);
+                    j_a += row.lin_b().dot(lb) + row.ang_b().dot(ab);
                     &scratch.poses[b]
                 }
                 None => &Pose::WORLD,
             };
             let mut rhs = -(j_a + row.bias);
             if self.links.correction == Correction::Baumgarte {
-                let c_dot = row.rate(&scratch.poses[row.a], b);
-                rhs -= 2.0 * rate * c_dot + rate * rate * row.c;
+                let c_dot = super::joints::rate(row, &scratch.poses[row.a()], b);
+                rhs -= 2.0 * rate * c_dot + rate * rate * row.error;
             }
             scratch.rhs.push(rhs);
         }
@@ -204,15 +204,15 @@ impl System<'_> {
             &mut scratch.solver,
         );
         for (row, &lambda) in scratch.rows.iter().zip(&scratch.rhs) {
-            let (f, t) = (row.lin_a * lambda, row.ang_a * lambda);
-            scratch.loads[row.a].force += f;
-            scratch.loads[row.a].torque += t;
-            let reaction = &mut scratch.joint_loads[row.joint];
+            let (f, t) = (row.lin_a() * lambda, row.ang_a() * lambda);
+            scratch.loads[row.a()].force += f;
+            scratch.loads[row.a()].torque += t;
+            let reaction = &mut scratch.joint_loads[row.owner];
             reaction.force += f;
             reaction.torque += t;
-            if let Some(b) = row.b {
-                scratch.loads[b].force += row.lin_b * lambda;
-                scratch.loads[b].torque += row.ang_b * lambda;
+            if let Some(b) = row.b() {
+                scratch.loads[b].force += row.lin_b() * lambda;
+                scratch.loads[b].torque += row.ang_b() * lambda;
             }
         }
     }

@@ -712,8 +712,8 @@ impl HeldJoints {
         let mut matrix = DMatrix::zeros(rows.len(), 6 * bodies.len());
         for (k, row) in rows.iter().enumerate() {
             let sides = [
-                (Some(row.a), row.lin_a, row.ang_a),
-                (row.b, row.lin_b, row.ang_b),
+                (Some(row.a()), row.lin_a(), row.ang_a()),
+                (row.b(), row.lin_b(), row.ang_b()),
             ];
             for (body, lin, ang) in sides {
                 let Some(g) = body.and_then(column) else {
@@ -776,9 +776,9 @@ impl HeldJoints {
             return;
         };
         for (row, &m) in self.rows.iter().zip(mu.iter()) {
-            if let Some(load) = out.get_mut(row.joint) {
-                load.force += row.lin_a * m;
-                load.torque += row.ang_a * m;
+            if let Some(load) = out.get_mut(row.owner) {
+                load.force += row.lin_a() * m;
+                load.torque += row.ang_a() * m;
             }
         }
     }

@@ -16,13 +16,15 @@
 //! | file | idea |
 //! |---|---|
 //! | `solver_body` | solver bodies (v, ω, L, 1/M, I⁻¹): a body, a particle, a static thing |
-//! | `row` | axes between two ends (J, k, the rate J·v, an impulse along J) and rows (an axis with bounds [lo, hi] and bias b, the projected update) |
+//! | `row` | axes between two ends (J, k, the rate J·v, an impulse along J) and rows (an axis with bounds [lo, hi], bias b, position error C and owner, the projected update): contact normals [0, ∞), joint rows (−∞, ∞), limits' stops [0, ∞), motors ±F dt |
 //! | `particle_contact` | particles against a body (rows [0, ∞) along the normal, friction within the cone, swept) or a static thing (one exact update) |
 //!
 //! Users: the rigid contact solvers (`collision::impulse`, `collision::soft_step`, through
 //! the re-export `collision::solver_body`), and the particle contacts of a
 //! `symplectic-euler` cloth (`cloth::contact` against obstacles, `cloth_coupling::explicit`
-//! against bodies). The layer depends on nalgebra only, no other `physics` folder.
+//! against bodies), and the joints (`joints`: every equality, limit and motor row is a
+//! [`Row`], built by one file per joint kind under `joints::kinds`). The layer depends on
+//! nalgebra only, no other `physics` folder.
 
 pub mod particle_contact;
 pub mod row;

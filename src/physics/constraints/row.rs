@@ -44,7 +44,7 @@ use super::SolverBody;
 use nalgebra::Vector3;
 
 /// One end of an axis: a body, `r × d` (d signed for this end) and `I⁻¹(r × d)`.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct End {
     pub body: usize,
     pub rd: Vector3<f64>,
@@ -53,7 +53,7 @@ pub struct End {
 
 /// A direction d between two ends: +d on body A at lever r_A, −d on body B (if any, and not
 /// fixed) at r_B, and its effective inverse mass k (module doc).
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Axis {
     pub d: Vector3<f64>,
     pub a: End,
@@ -91,6 +91,62 @@ impl Axis {
             b,
             k,
             inv_k: f64::NAN,
+        }
+    }
+
+    /// The Jacobian alone, J = [dᵀ, g_Aᵀ, −dᵀ, g_Bᵀ] over (v_A, ω_A, v_B, ω_B): d on body
+    /// `a` with angular part g_A, −d on body `b` (if any: None is the world) with angular part
+    /// g_B. For the rows whose angular part is not a lever's `r × d` (a hinge's or a fixed
+    /// joint's angular rows: d = 0; a slider's rail rows, whose B lever moves with A), and for
+    /// the direct solves, which form K = J W Jᵀ themselves: the axis is **not weighed**, its
+    /// `w` and k are left 0 (an end's `rd` is its g).
+    #[inline]
+    pub fn jacobian(
+        d: Vector3<f64>,
+        (a, g_a): (usize, Vector3<f64>),
+        b: Option<(usize, Vector3<f64>)>,
+    ) -> Axis {
+        let end = |body, rd| End {
+            body,
+            rd,
+            w: Vector3::zeros(),
+        };
+        Axis {
+            d,
+            a: end(a, g_a),
+            b: b.map(|(b, g_b)| end(b, g_b)),
+            k: 0.0,
+            inv_k: f64::NAN,
+        }
+    }
+
+    /// The rate J·v at the velocities (v, ω) of A and of B (None: the world, at rest), summed
+    /// in the order `d·v_A + g_A·ω_A + (−d)·v_B + g_B·ω_B`.
+    #[inline]
+    pub fn rate(
+        &self,
+        (va, wa): (&Vector3<f64>, &Vector3<f64>),
+        b: Option<(&Vector3<f64>, &Vector3<f64>)>,
+    ) -> f64 {
+        let u = self.d.dot(va) + self.a.rd.dot(wa);
+        match (&self.b, b) {
+            (Some(end), Some((vb, wb))) => u + (-self.d).dot(vb) + end.rd.dot(wb),
+            _ => u,
+        }
+    }
+
+    /// The axis with J scaled by `sign` (−1: the same constraint, pushing the other way).
+    #[inline]
+    pub fn scaled(&self, sign: f64) -> Axis {
+        let end = |e: &End| End {
+            rd: e.rd * sign,
+            ..*e
+        };
+        Axis {
+            d: self.d * sign,
+            a: end(&self.a),
+            b: self.b.as_ref().map(end),
+            ..*self
         }
     }
 
@@ -178,20 +234,30 @@ impl Axis {
 }
 
 /// One row (module doc): an axis, the bounds [lo, hi] of its accumulated impulse λ, and its
-/// bias b (it aims at the rate J·v = −b).
-#[derive(Debug, Clone, Copy)]
+/// bias b (it aims at the rate J·v = −b), with its position error C and the constraint it
+/// belongs to.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Row {
     pub axis: Axis,
     /// Lower and upper bound of λ, N·s (or N·m·s on an angular axis).
     pub lo: f64,
     pub hi: f64,
-    /// b, m/s: the row aims at J·v = −b.
+    /// b, m/s: the row aims at J·v = −b. A joint's row held inside f(Y) aims at
+    /// J·v̇ = −b instead, b = J̇v (its velocity-product term, m/s²).
     pub bias: f64,
     /// The impulse accumulated so far, λ ∈ [lo, hi].
     pub lambda: f64,
+    /// C, the position error the row holds at 0 (≥ 0 for a limit's stop; 0 for a contact,
+    /// whose gap is in its bias), m or rad.
+    pub error: f64,
+    /// The constraint it belongs to (a joint's index), [`Row::NO_OWNER`] when none is kept.
+    pub owner: usize,
 }
 
 impl Row {
+    /// The owner of a row that keeps none.
+    pub const NO_OWNER: usize = usize::MAX;
+
     /// A row on `axis` with bounds `[lo, hi]` aiming at the rate J·v = −`bias`, λ = 0.
     pub fn new(axis: Axis, [lo, hi]: [f64; 2], bias: f64) -> Row {
         Row {
@@ -200,7 +266,76 @@ impl Row {
             hi,
             bias,
             lambda: 0.0,
+            error: 0.0,
+            owner: Row::NO_OWNER,
         }
+    }
+
+    /// A joint's equality row of constraint `owner`: λ ∈ (−∞, ∞), position error C =
+    /// `error`, velocity-product term J̇v = `bias`.
+    pub fn equality(axis: Axis, error: f64, bias: f64, owner: usize) -> Row {
+        Row {
+            error,
+            owner,
+            ..Row::new(axis, [f64::NEG_INFINITY, f64::INFINITY], bias)
+        }
+    }
+
+    /// A limit's stop on the coordinate row `row` (J u = q̇): one-sided, λ ∈ [0, ∞), J scaled
+    /// by `sign` (+1 the lower stop, pushing q up; −1 the upper one), C = `gap` ≥ 0 the
+    /// distance to the limit.
+    pub fn stop(row: &Row, sign: f64, gap: f64) -> Row {
+        Row {
+            axis: row.axis.scaled(sign),
+            lo: 0.0,
+            hi: f64::INFINITY,
+            error: gap,
+            ..*row
+        }
+    }
+
+    /// A motor on the coordinate row `row`: aims at J u = `speed`, its impulse bounded by
+    /// ±`bound` (the largest force or torque times the step).
+    pub fn motor(row: &Row, speed: f64, bound: f64) -> Row {
+        Row {
+            lo: -bound,
+            hi: bound,
+            bias: -speed,
+            ..*row
+        }
+    }
+
+    /// Its body A, and its body B (None: the world).
+    #[inline]
+    pub fn a(&self) -> usize {
+        self.axis.a.body
+    }
+
+    #[inline]
+    pub fn b(&self) -> Option<usize> {
+        self.axis.b.map(|e| e.body)
+    }
+
+    /// J's parts on A: linear d, angular g_A.
+    #[inline]
+    pub fn lin_a(&self) -> Vector3<f64> {
+        self.axis.d
+    }
+
+    #[inline]
+    pub fn ang_a(&self) -> Vector3<f64> {
+        self.axis.a.rd
+    }
+
+    /// J's parts on B: linear −d, angular g_B (0 on the world).
+    #[inline]
+    pub fn lin_b(&self) -> Vector3<f64> {
+        -self.axis.d
+    }
+
+    #[inline]
+    pub fn ang_b(&self) -> Vector3<f64> {
+        self.axis.b.map_or(Vector3::zeros(), |e| e.rd)
     }
 
     /// A contact's normal row: λ ∈ [0, ∞) (it pushes, never pulls), aiming at J·v = `target`.
@@ -306,6 +441,47 @@ mod tests {
         assert!(axis.velocity(&bodies).abs() < 1e-15);
         assert_eq!(bodies[1].v, Vector3::zeros());
         assert_eq!(bodies[1].kinetic(), 0.0);
+    }
+
+    #[test]
+    fn a_jacobian_axis_gives_j_dot_v_and_a_stop_or_motor_takes_its_bounds() {
+        // A hinge-like angular row (0, g | 0, −g) and a point row (e_x, r×e_x | −e_x, g_B):
+        // J·v by hand, term by term.
+        let (va, wa) = (Vector3::new(1.0, 2.0, 3.0), Vector3::new(-0.5, 0.25, 2.0));
+        let (vb, wb) = (Vector3::new(0.5, -1.0, 0.0), Vector3::new(0.0, 1.0, -1.0));
+        let g = Vector3::new(0.0, 0.6, 0.8);
+        let angular = Axis::jacobian(Vector3::zeros(), (0, g), Some((1, -g)));
+        // g·(ω_A − ω_B) = 0.6 × (−0.75) + 0.8 × 3 = 1.95.
+        assert!((angular.rate((&va, &wa), Some((&vb, &wb))) - 1.95).abs() < 1e-15);
+        let r = Vector3::new(0.0, 0.5, 0.0);
+        let point = Axis::jacobian(Vector3::x(), (0, r.cross(&Vector3::x())), None);
+        // r×e_x = (0, 0, −0.5): u = v_x − 0.5 ω_z; the world end takes nothing.
+        assert_eq!(point.rate((&va, &wa), Some((&vb, &wb))), 1.0 - 0.5 * 2.0);
+        assert!(point.b.is_none() && point.k == 0.0);
+        // A joint row is free both ways; a stop on the coordinate row is one-sided with J
+        // flipped for the upper stop; a motor aims at its speed within ±F dt.
+        let row = Row::equality(angular, 0.1, 0.0, 4);
+        assert_eq!(
+            (row.lo, row.hi, row.error, row.owner),
+            (f64::NEG_INFINITY, f64::INFINITY, 0.1, 4)
+        );
+        let upper = Row::stop(&row, -1.0, 0.02);
+        assert_eq!(
+            (upper.lo, upper.hi, upper.error),
+            (0.0, f64::INFINITY, 0.02)
+        );
+        let rates = |r: &Row| r.axis.rate((&va, &wa), Some((&vb, &wb)));
+        assert_eq!(rates(&upper), -rates(&row));
+        assert_eq!(
+            (upper.ang_a(), upper.ang_b(), upper.lin_b()),
+            (-g, g, Vector3::zeros())
+        );
+        let motor = Row::motor(&row, 3.0, 0.5);
+        assert_eq!((motor.lo, motor.hi, motor.target()), (-0.5, 0.5, 3.0));
+        // Axis::new's end and the jacobian's agree on J.
+        let bodies = vec![SolverBody::particle(Vector3::zeros(), 1.0); 2];
+        let new = Axis::new(Vector3::x(), (0, &r), None, &bodies);
+        assert_eq!((new.d, new.a.rd), (point.d, point.a.rd));
     }
 
     #[test]

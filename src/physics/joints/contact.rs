@@ -34,11 +34,12 @@
 //! less exactly than Coulomb's law per link says).
 
 use super::projection::{joint_rows, shift};
-use super::rows::{Pose, Row};
+use super::rows::{rate, Pose, Row};
 use super::solve::{multipliers, Inverse, Solver};
 use super::Links;
 use crate::physics::body::Body;
 use crate::physics::collision::Contact;
+use crate::physics::constraints::Axis;
 use crate::physics::effects::Loads;
 use crate::physics::state::State;
 use nalgebra::Vector3;
@@ -111,20 +112,20 @@ pub fn hold(
         build(links, bodies, states, contacts, b);
         let worst = b.rows[..joint_rows]
             .iter()
-            .map(|r| r.c.abs())
+            .map(|r| r.error.abs())
             .fold(0.0, f64::max);
         if worst < 1e-12 || pass == 10 {
             break;
         }
         b.r.clear();
-        b.r.extend(b.rows[..joint_rows].iter().map(|r| r.c));
+        b.r.extend(b.rows[..joint_rows].iter().map(|r| r.error));
         b.r.extend((0..contacts.len()).map(|i| b.gaps[i] + b.moved[i]));
         held.rounds += complementarity(joint_rows, POSITION_TOLERANCE, b);
         for (row, &mu) in b.rows.iter().zip(&b.mu) {
             if mu != 0.0 {
-                shift(states, &b.inverse, row.a, &row.lin_a, &row.ang_a, mu);
-                if let Some(j) = row.b {
-                    shift(states, &b.inverse, j, &row.lin_b, &row.ang_b, mu);
+                shift(states, &b.inverse, row.a(), &row.lin_a(), &row.ang_a(), mu);
+                if let Some(j) = row.b() {
+                    shift(states, &b.inverse, j, &row.lin_b(), &row.ang_b(), mu);
                 }
             }
         }
@@ -137,8 +138,8 @@ pub fn hold(
     // Velocities: the last build is at the projected positions.
     b.r.clear();
     for (i, row) in b.rows.iter().enumerate() {
-        let pb = row.b.map_or(Pose::WORLD, |j| b.poses[j]);
-        let rate = row.rate(&b.poses[row.a], &pb);
+        let pb = row.b().map_or(Pose::WORLD, |j| b.poses[j]);
+        let rate = rate(row, &b.poses[row.a()], &pb);
         b.r.push(if i < joint_rows {
             rate
         } else {
@@ -157,8 +158,8 @@ pub fn hold(
         apply(row, mu, states);
     }
     for (row, &mu) in b.rows[..joint_rows].iter().zip(&b.mu) {
-        impulses[row.joint].force += row.lin_a * mu;
-        impulses[row.joint].torque += row.ang_a * mu;
+        impulses[row.owner].force += row.lin_a() * mu;
+        impulses[row.owner].torque += row.ang_a() * mu;
     }
     held.changed = true;
     held
@@ -177,17 +178,9 @@ fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact],
         let ra = b.poses[c.body].r * la;
         let other = c.other_body();
         let rb = other.map_or(Vector3::zeros(), |o| b.poses[o].r * lb);
-        b.rows.push(Row {
-            joint: usize::MAX,
-            a: c.body,
-            b: other,
-            lin_a: n,
-            ang_a: ra.cross(&n),
-            lin_b: -n,
-            ang_b: -rb.cross(&n),
-            c: 0.0,
-            bias: 0.0,
-        });
+        // A contact normal: [0, ∞), it pushes only.
+        let axis = Axis::jacobian(n, (c.body, ra.cross(&n)), other.map(|o| (o, -rb.cross(&n))));
+        b.rows.push(Row::new(axis, [0.0, f64::INFINITY], 0.0));
     }
 }
 
@@ -196,21 +189,21 @@ pub(super) fn apply(row: &Row, mu: f64, states: &mut [State]) {
     if mu == 0.0 {
         return;
     }
-    states[row.a].linear_momentum += row.lin_a * mu;
-    states[row.a].angular_momentum += row.ang_a * mu;
-    if let Some(j) = row.b {
-        states[j].linear_momentum += row.lin_b * mu;
-        states[j].angular_momentum += row.ang_b * mu;
+    states[row.a()].linear_momentum += row.lin_a() * mu;
+    states[row.a()].angular_momentum += row.ang_a() * mu;
+    if let Some(j) = row.b() {
+        states[j].linear_momentum += row.lin_b() * mu;
+        states[j].angular_momentum += row.ang_b() * mu;
     }
 }
 
 /// `J δ` of one row for per-body changes δ = (linear, angular).
 pub(super) fn along(row: &Row, delta: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
-    let (la, aa) = &delta[row.a];
-    let mut s = row.lin_a.dot(la) + row.ang_a.dot(aa);
-    if let Some(j) = row.b {
+    let (la, aa) = &delta[row.a()];
+    let mut s = row.lin_a().dot(la) + row.ang_a().dot(aa);
+    if let Some(j) = row.b() {
         let (lb, ab) = &delta[j];
-        s += row.lin_b.dot(lb) + row.ang_b.dot(ab);
+        s += row.lin_b().dot(lb) + row.ang_b().dot(ab);
     }
     s
 }
@@ -252,9 +245,9 @@ fn complementarity(joint_rows: usize, tolerance: f64, b: &mut Buffers) -> usize 
                 b.delta[i].0 += lin * (mu * inv.mass);
                 b.delta[i].1 += inv.inertia * (ang * mu);
             };
-            add(row.a, &row.lin_a, &row.ang_a);
-            if let Some(j) = row.b {
-                add(j, &row.lin_b, &row.ang_b);
+            add(row.a(), &row.lin_a(), &row.ang_a());
+            if let Some(j) = row.b() {
+                add(j, &row.lin_b(), &row.ang_b());
             }
         }
         if rounds >= most {

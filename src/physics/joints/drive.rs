@@ -44,7 +44,7 @@
 
 use super::contact::{along, apply};
 use super::projection::{joint_rows, shift};
-use super::rows::{coordinate, Pose, Row};
+use super::rows::{coordinate, rate, Pose, Row};
 use super::solve::{multipliers, Inverse, Solver};
 use super::{Correction, Links};
 use crate::physics::body::Body;
@@ -68,15 +68,16 @@ const VELOCITY_TOLERANCE: f64 = 1e-12;
 /// give along the row.
 const BOUNCE_STEPS: f64 = 3.0;
 
-/// What a bounded row is.
+/// What a row is, for the booking (its bounds are the row's own: `Row::equality`,
+/// `Row::stop`, `Row::motor`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Kind {
-    /// A joint's equality row: λ free.
+    /// A joint's equality row: λ ∈ (−∞, ∞).
     Joint,
-    /// A stop: λ ≥ 0; +1 the lower stop (pushes q up), −1 the upper one.
+    /// A stop: λ ∈ [0, ∞); +1 the lower stop (pushes q up), −1 the upper one.
     Stop(f64),
-    /// A motor: |λ| ≤ the bound.
-    Motor(f64),
+    /// A motor: λ ∈ ±(its force × dt), aiming at J u = its speed (bias −speed).
+    Motor,
 }
 
 /// Where a row's multiplier is in the active set.
@@ -97,10 +98,9 @@ pub struct Buffers {
     /// Per joint: its coordinate's rate at the step's start (the bounce test).
     start_rates: Vec<f64>,
     r: Vec<f64>,
-    /// The velocity pass: per row J u⁻, its restitution and its bounds.
+    /// The velocity pass: per row J u⁻ and its restitution.
     before: Vec<f64>,
     restitution: Vec<f64>,
-    bounds: Vec<(f64, f64)>,
     mu: Vec<f64>,
     sides: Vec<Side>,
     subset: Vec<Row>,
@@ -164,7 +164,7 @@ pub fn drive(
     for (i, joint) in links.joints.iter().enumerate() {
         let pb = joint.b.map_or(Pose::WORLD, |j| b.poses[j]);
         let rate = match coordinate(joint, i, &b.poses[joint.a], &pb) {
-            Some((row, _)) if joint.limits.is_some() => row.rate(&b.poses[joint.a], &pb),
+            Some((row, _)) if joint.limits.is_some() => rate(&row, &b.poses[joint.a], &pb),
             _ => 0.0,
         };
         b.start_rates.push(rate);
@@ -176,12 +176,12 @@ pub fn drive(
     b.before.clear();
     b.restitution.clear();
     for (row, kind) in b.rows.iter().zip(&b.kinds) {
-        let pb = row.b.map_or(Pose::WORLD, |j| b.poses[j]);
-        let rate = row.rate(&b.poses[row.a], &pb);
+        let pb = row.b().map_or(Pose::WORLD, |j| b.poses[j]);
+        let rate = rate(row, &b.poses[row.a()], &pb);
         b.before.push(rate);
         b.restitution.push(match *kind {
             Kind::Stop(sign) => {
-                let from_loads = rate - sign * b.start_rates[row.joint];
+                let from_loads = rate - sign * b.start_rates[row.owner];
                 if -rate > BOUNCE_STEPS * from_loads.abs() {
                     scene.restitution
                 } else {
@@ -191,7 +191,7 @@ pub fn drive(
             _ => 0.0,
         });
     }
-    let mut shares = velocities(links, b);
+    let mut shares = velocities(b);
     // The energy clamp: a stop struck within the step was met before the step's end, and the
     // position pass put the body back on it without taking the work the loads did past it
     // (m g δh for a weight). If the stops would then give energy, their restitution is
@@ -213,7 +213,7 @@ pub fn drive(
                     b.restitution[i] = (e * e - 2.0 * excess / struck).max(0.0).sqrt();
                 }
             }
-            shares = velocities(links, b);
+            shares = velocities(b);
         }
     }
     let dt = scene.dt;
@@ -222,12 +222,12 @@ pub fn drive(
             continue;
         }
         apply(row, mu, states);
-        loads[row.joint].force += row.lin_a * (mu / dt);
-        loads[row.joint].torque += row.ang_a * (mu / dt);
+        loads[row.owner].force += row.lin_a() * (mu / dt);
+        loads[row.owner].torque += row.ang_a() * (mu / dt);
         match b.kinds[i] {
             Kind::Joint => {}
-            Kind::Stop(sign) => drives[row.joint].limit += sign * mu / dt,
-            Kind::Motor(_) => drives[row.joint].motor += mu / dt,
+            Kind::Stop(sign) => drives[row.owner].limit += sign * mu / dt,
+            Kind::Motor => drives[row.owner].motor += mu / dt,
         }
     }
     out.stops += shares.stops;
@@ -239,29 +239,17 @@ pub fn drive(
 /// The velocity pass's problem at the rows built (`b.before` = J u⁻, `b.restitution` per
 /// row): solves it for `b.mu` and returns each kind's share of ΔK, λ (J u⁻ + J u⁺)/2 with
 /// J u⁺ = J u⁻ + J δ (`stops`: the stops' rows only).
-fn velocities(links: &Links, b: &mut Buffers) -> Driven {
+fn velocities(b: &mut Buffers) -> Driven {
     b.r.clear();
-    b.bounds.clear();
-    for (i, kind) in b.kinds.iter().enumerate() {
+    for (i, (kind, row)) in b.kinds.iter().zip(&b.rows).enumerate() {
         let rate = b.before[i];
-        let (r, bounds) = match *kind {
-            Kind::Joint => (rate, (f64::NEG_INFINITY, f64::INFINITY)),
-            Kind::Stop(_) => (
-                rate + b.restitution[i] * rate.min(0.0),
-                (0.0, f64::INFINITY),
-            ),
-            Kind::Motor(bound) => {
-                let joint = b.rows[i].joint;
-                let speed = links.joints[joint].motor.map_or(0.0, |m| m.speed);
-                (rate - speed, (-bound, bound))
-            }
-        };
-        b.r.push(r);
-        b.bounds.push(bounds);
+        b.r.push(match *kind {
+            Kind::Joint => rate,
+            Kind::Stop(_) => rate + b.restitution[i] * rate.min(0.0),
+            Kind::Motor => rate + row.bias,
+        });
     }
-    let bounds = std::mem::take(&mut b.bounds);
-    bounded(&bounds, VELOCITY_TOLERANCE, b);
-    b.bounds = bounds;
+    bounded(VELOCITY_TOLERANCE, b);
     let mut out = Driven::default();
     for (i, (row, &mu)) in b.rows.iter().zip(&b.mu).enumerate() {
         if mu == 0.0 {
@@ -271,7 +259,7 @@ fn velocities(links: &Links, b: &mut Buffers) -> Driven {
         match b.kinds[i] {
             Kind::Joint => out.joints += share,
             Kind::Stop(_) => out.stops += share,
-            Kind::Motor(_) => out.motor_work += share,
+            Kind::Motor => out.motor_work += share,
         }
     }
     out
@@ -318,27 +306,16 @@ fn build(scene: &Scene, states: &[State], touching: f64, motors: bool, b: &mut B
         if let Some([lo, hi]) = joint.limits {
             for (sign, c) in [(1.0, q - lo), (-1.0, hi - q)] {
                 if c <= touching {
-                    b.rows.push(signed(&row, sign, c));
+                    b.rows.push(Row::stop(&row, sign, c));
                     b.kinds.push(Kind::Stop(sign));
                 }
             }
         }
         if let (Some(motor), true) = (joint.motor, motors) {
-            b.rows.push(row);
-            b.kinds.push(Kind::Motor(motor.max * scene.dt));
+            b.rows
+                .push(Row::motor(&row, motor.speed, motor.max * scene.dt));
+            b.kinds.push(Kind::Motor);
         }
-    }
-}
-
-/// `sign ×` a row, with C = `c`.
-fn signed(row: &Row, sign: f64, c: f64) -> Row {
-    Row {
-        lin_a: row.lin_a * sign,
-        ang_a: row.ang_a * sign,
-        lin_b: row.lin_b * sign,
-        ang_b: row.ang_b * sign,
-        c,
-        ..*row
     }
 }
 
@@ -351,33 +328,27 @@ fn positions(scene: &Scene, states: &mut [State], b: &mut Buffers) -> f64 {
         build(scene, states, 0.0, false, b);
         let stops = b.kinds.iter().any(|k| matches!(k, Kind::Stop(_)));
         let violated = b.rows.iter().zip(&b.kinds).any(|(row, kind)| match kind {
-            Kind::Stop(_) => row.c < -POSITION_TOLERANCE,
-            _ => project && row.c.abs() > POSITION_TOLERANCE,
+            Kind::Stop(_) => row.error < -POSITION_TOLERANCE,
+            _ => project && row.error.abs() > POSITION_TOLERANCE,
         });
         if !stops || !violated {
             break;
         }
         before.get_or_insert_with(|| total(scene, states));
         b.r.clear();
-        let mut bounds = Vec::with_capacity(b.rows.len());
         for (row, kind) in b.rows.iter().zip(&b.kinds) {
-            match kind {
-                Kind::Stop(_) => {
-                    b.r.push(row.c);
-                    bounds.push((0.0, f64::INFINITY));
-                }
-                _ => {
-                    b.r.push(if project { row.c } else { 0.0 });
-                    bounds.push((f64::NEG_INFINITY, f64::INFINITY));
-                }
-            }
+            b.r.push(match kind {
+                Kind::Stop(_) => row.error,
+                _ if project => row.error,
+                _ => 0.0,
+            });
         }
-        bounded(&bounds, POSITION_TOLERANCE, b);
+        bounded(POSITION_TOLERANCE, b);
         for (row, &mu) in b.rows.iter().zip(&b.mu) {
             if mu != 0.0 {
-                shift(states, &b.inverse, row.a, &row.lin_a, &row.ang_a, mu);
-                if let Some(j) = row.b {
-                    shift(states, &b.inverse, j, &row.lin_b, &row.ang_b, mu);
+                shift(states, &b.inverse, row.a(), &row.lin_a(), &row.ang_a(), mu);
+                if let Some(j) = row.b() {
+                    shift(states, &b.inverse, j, &row.lin_b(), &row.ang_b(), mu);
                 }
             }
         }
@@ -397,38 +368,32 @@ fn total(scene: &Scene, states: &[State]) -> f64 {
 }
 
 /// Solves the bounded mixed problem of the module doc for `b.mu` (rows `b.rows`, offsets
-/// `b.r`, `bounds` per row); leaves W Jᵀ μ per body in `b.delta`. Returns the rounds it took.
+/// `b.r`, bounds [lo, hi] each row's own); leaves W Jᵀ μ per body in `b.delta`. Returns the rounds it took.
 ///
 /// Active set: the free rows solve `K_FF λ_F = −(r_F + K_FB λ_B)` with the others held at a
 /// bound; the free row furthest past a bound is held at it, else the held row whose w has the
 /// wrong sign (the most) is freed; until neither happens (or 4·rows + 4 rounds).
-fn bounded(bounds: &[(f64, f64)], tolerance: f64, b: &mut Buffers) -> usize {
+fn bounded(tolerance: f64, b: &mut Buffers) -> usize {
     let n = b.rows.len();
     b.sides.clear();
-    b.sides
-        .extend(bounds.iter().zip(&b.r).map(|(&(lo, _), &r)| {
-            if lo == 0.0 && r >= -tolerance {
-                Side::Low
-            } else {
-                Side::Free
-            }
-        }));
+    b.sides.extend(b.rows.iter().zip(&b.r).map(|(row, &r)| {
+        if row.lo == 0.0 && r >= -tolerance {
+            Side::Low
+        } else {
+            Side::Free
+        }
+    }));
     let most = 4 * n + 4;
     let mut rounds = 0;
     loop {
         rounds += 1;
         // The held rows' multipliers and their change W Jᵀ λ_B.
         b.mu.clear();
-        b.mu.extend(
-            b.sides
-                .iter()
-                .zip(bounds)
-                .map(|(side, &(lo, hi))| match side {
-                    Side::Free => 0.0,
-                    Side::Low => lo,
-                    Side::High => hi,
-                }),
-        );
+        b.mu.extend(b.sides.iter().zip(&b.rows).map(|(side, row)| match side {
+            Side::Free => 0.0,
+            Side::Low => row.lo,
+            Side::High => row.hi,
+        }));
         spread(b);
         b.subset.clear();
         b.rhs.clear();
@@ -453,13 +418,13 @@ fn bounded(bounds: &[(f64, f64)], tolerance: f64, b: &mut Buffers) -> usize {
         let past = (0..n)
             .filter(|&i| b.sides[i] == Side::Free)
             .map(|i| {
-                let (lo, hi) = bounds[i];
-                (i, (lo - b.mu[i]).max(b.mu[i] - hi))
+                let row = &b.rows[i];
+                (i, (row.lo - b.mu[i]).max(b.mu[i] - row.hi))
             })
             .filter(|&(_, excess)| excess > 0.0)
             .max_by(|x, y| x.1.total_cmp(&y.1));
         if let Some((i, _)) = past {
-            b.sides[i] = if b.mu[i] < bounds[i].0 {
+            b.sides[i] = if b.mu[i] < b.rows[i].lo {
                 Side::Low
             } else {
                 Side::High
@@ -498,9 +463,9 @@ fn spread(b: &mut Buffers) {
             b.delta[i].0 += lin * (mu * inv.mass);
             b.delta[i].1 += inv.inertia * (ang * mu);
         };
-        add(row.a, &row.lin_a, &row.ang_a);
-        if let Some(j) = row.b {
-            add(j, &row.lin_b, &row.ang_b);
+        add(row.a(), &row.lin_a(), &row.ang_a());
+        if let Some(j) = row.b() {
+            add(j, &row.lin_b(), &row.ang_b());
         }
     }
 }

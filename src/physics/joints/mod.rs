@@ -24,7 +24,8 @@
 //! `J W Jᵀ` is the effective mass the contact impulse already uses (`1/m_A + 1/m_B +
 //! (r×n)·I⁻¹(r×n)` for one contact row): a contact solves it for an impulse that stops a
 //! velocity, a joint for a force that keeps an acceleration on the constraint. The rows
-//! (C, its gradient J, the bias J̇u) of each kind, with `r = R a`:
+//! (C, its gradient J, the bias J̇u: the constraint layer's `Row`, bounds (−∞, ∞)) of each
+//! kind, with `r = R a` (one file per kind under `kinds`, with the same verbs):
 //!
 //! ```text
 //! ball      C = x_A + r_A − x_B − r_B                    3 rows e_k: (e_k, r_A×e_k | −e_k, −r_B×e_k)
@@ -69,70 +70,19 @@
 
 pub mod contact;
 pub mod drive;
+mod kinds;
 mod projection;
 mod rows;
 pub mod solve;
 
 pub use contact::{hold, Buffers as ContactBuffers};
+pub use kinds::JointKind;
 pub use projection::{project, shake, Buffers as ProjectionBuffers};
-pub use rows::{coordinate, rows_of, Pose, Row};
+pub use rows::{coordinate, rate, rows_of, Pose, Row};
 pub use solve::{again, multipliers, Solver};
 
 use super::state::State;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
-
-/// What a joint holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum JointKind {
-    /// A common point: 3 rows.
-    Ball,
-    /// A common point and a common axis: 5 rows.
-    Hinge,
-    /// A common point and orientation: 6 rows.
-    Fixed,
-    /// A rod of fixed length between two points: 1 row.
-    Distance,
-    /// A common orientation and a rail: the anchor moves only along the axis, 5 rows.
-    Slider,
-}
-
-impl JointKind {
-    /// Every kind, as scene files name them.
-    pub const ALL: [JointKind; 5] = [
-        JointKind::Ball,
-        JointKind::Hinge,
-        JointKind::Fixed,
-        JointKind::Distance,
-        JointKind::Slider,
-    ];
-
-    /// The scene-file name.
-    pub fn name(self) -> &'static str {
-        match self {
-            JointKind::Ball => "ball",
-            JointKind::Hinge => "hinge",
-            JointKind::Fixed => "fixed",
-            JointKind::Distance => "distance",
-            JointKind::Slider => "slider",
-        }
-    }
-
-    /// The kind with this name.
-    pub fn from_name(name: &str) -> Option<JointKind> {
-        JointKind::ALL.into_iter().find(|k| k.name() == name)
-    }
-
-    /// How many constraint rows it adds.
-    pub fn rows(self) -> usize {
-        match self {
-            JointKind::Ball => 3,
-            JointKind::Hinge => 5,
-            JointKind::Fixed => 6,
-            JointKind::Distance => 1,
-            JointKind::Slider => 5,
-        }
-    }
-}
 
 /// How joint drift is removed (`[scene] joint_correction`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -307,20 +257,9 @@ impl Joint {
     /// A has turned away from its orientation relative to B, times 1 m (how far a point 1 m
     /// from the anchor has drifted, to first order).
     pub fn error(&self, states: &[State]) -> f64 {
-        let [pa, pb] = self.anchors(states);
-        let separation = (pa - pb).norm();
-        match self.kind {
-            JointKind::Distance => (separation - self.length).abs(),
-            JointKind::Slider => {
-                let (_, ra) = frame_of(states, Some(self.a));
-                let (_, rb) = frame_of(states, self.b);
-                let axis = rb * self.axis_b;
-                let d = pa - pb;
-                let lateral = (d - axis * axis.dot(&d)).norm();
-                lateral + rows::turned(&ra, &rb, &self.rest)
-            }
-            _ => separation,
-        }
+        let pa = Pose::of_state(&states[self.a]);
+        let pb = self.b.map_or(Pose::WORLD, |b| Pose::of_state(&states[b]));
+        kinds::error(self, &pa, &pb)
     }
 
     /// Hinge: the angle A has turned about the axis relative to B since t = 0, rad; slider: the

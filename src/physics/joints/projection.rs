@@ -11,7 +11,7 @@
 //! Returns the velocity impulse each joint applied to its body A (its share of the reaction,
 //! impulse / dt in `--joint`).
 
-use super::rows::{rows_of, Pose, Row};
+use super::rows::{rate, rows_of, Pose, Row};
 use super::solve::{again, multipliers, Inverse, Solver};
 use super::{turn, Links};
 use crate::physics::body::Body;
@@ -121,24 +121,31 @@ pub fn shake(
     start_inverse.clone_from(&b.inverse);
     for pass in 0..=20 {
         build(links, bodies, states, b);
-        let worst = b.rows.iter().map(|r| r.c.abs()).fold(0.0, f64::max);
+        let worst = b.rows.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
         if worst < 1e-12 || pass == 20 {
             break;
         }
         b.rhs.clear();
-        b.rhs.extend(b.rows.iter().map(|r| -r.c));
+        b.rhs.extend(b.rows.iter().map(|r| -r.error));
         multipliers(&directions, &start_inverse, &mut b.rhs, &mut b.solver);
         for (row, &mu) in directions.iter().zip(&b.rhs) {
-            shift(states, &start_inverse, row.a, &row.lin_a, &row.ang_a, mu);
+            shift(
+                states,
+                &start_inverse,
+                row.a(),
+                &row.lin_a(),
+                &row.ang_a(),
+                mu,
+            );
             let impulse = mu / dt;
-            states[row.a].linear_momentum += row.lin_a * impulse;
-            states[row.a].angular_momentum += row.ang_a * impulse;
-            impulses[row.joint].force += row.lin_a * impulse;
-            impulses[row.joint].torque += row.ang_a * impulse;
-            if let Some(j) = row.b {
-                shift(states, &start_inverse, j, &row.lin_b, &row.ang_b, mu);
-                states[j].linear_momentum += row.lin_b * impulse;
-                states[j].angular_momentum += row.ang_b * impulse;
+            states[row.a()].linear_momentum += row.lin_a() * impulse;
+            states[row.a()].angular_momentum += row.ang_a() * impulse;
+            impulses[row.owner].force += row.lin_a() * impulse;
+            impulses[row.owner].torque += row.ang_a() * impulse;
+            if let Some(j) = row.b() {
+                shift(states, &start_inverse, j, &row.lin_b(), &row.ang_b(), mu);
+                states[j].linear_momentum += row.lin_b() * impulse;
+                states[j].angular_momentum += row.ang_b() * impulse;
             }
         }
     }
@@ -155,18 +162,18 @@ fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffe
     let mut reuse = false;
     for pass in 0..=10 {
         build(links, bodies, states, b);
-        let worst = b.rows.iter().map(|r| r.c.abs()).fold(0.0, f64::max);
+        let worst = b.rows.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
         if worst < 1e-12 || pass == 10 {
             break;
         }
         reuse = worst < REUSE_BELOW;
         b.rhs.clear();
-        b.rhs.extend(b.rows.iter().map(|r| -r.c));
+        b.rhs.extend(b.rows.iter().map(|r| -r.error));
         multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
         for (row, &mu) in b.rows.iter().zip(&b.rhs) {
-            shift(states, &b.inverse, row.a, &row.lin_a, &row.ang_a, mu);
-            if let Some(j) = row.b {
-                shift(states, &b.inverse, j, &row.lin_b, &row.ang_b, mu);
+            shift(states, &b.inverse, row.a(), &row.lin_a(), &row.ang_a(), mu);
+            if let Some(j) = row.b() {
+                shift(states, &b.inverse, j, &row.lin_b(), &row.ang_b(), mu);
             }
         }
     }
@@ -186,20 +193,20 @@ const REUSE_BELOW: f64 = 1e-9;
 fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut Buffers) {
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
-        let pb = r.b.map_or(Pose::WORLD, |j| b.poses[j]);
-        -r.rate(&b.poses[r.a], &pb)
+        let pb = r.b().map_or(Pose::WORLD, |j| b.poses[j]);
+        -rate(r, &b.poses[r.a()], &pb)
     }));
     if !(reuse && again(&mut b.rhs, &mut b.solver)) {
         multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
     }
     for (row, &mu) in b.rows.iter().zip(&b.rhs) {
-        states[row.a].linear_momentum += row.lin_a * mu;
-        states[row.a].angular_momentum += row.ang_a * mu;
-        impulses[row.joint].force += row.lin_a * mu;
-        impulses[row.joint].torque += row.ang_a * mu;
-        if let Some(j) = row.b {
-            states[j].linear_momentum += row.lin_b * mu;
-            states[j].angular_momentum += row.ang_b * mu;
+        states[row.a()].linear_momentum += row.lin_a() * mu;
+        states[row.a()].angular_momentum += row.ang_a() * mu;
+        impulses[row.owner].force += row.lin_a() * mu;
+        impulses[row.owner].torque += row.ang_a() * mu;
+        if let Some(j) = row.b() {
+            states[j].linear_momentum += row.lin_b() * mu;
+            states[j].angular_momentum += row.ang_b() * mu;
         }
     }
 }

@@ -26,6 +26,13 @@
 //! where the scalar envelope below spends most of its time on bookkeeping per entry; the
 //! factor is kept, so a second right-hand side costs only the substitutions ([`again`]).
 //!
+//! **Point rows.** When every block starts with three point rows (ball, hinge, fixed: linear
+//! part ±e_k, angular part r × (±e_k), whose k-th component is exactly 0) and has no other
+//! linear part, the linear products are δ_ij/m (K_kk) and ±δ_ij/m (K_{k,k−1}, − when the
+//! shared body is A of one block and B of the other): added directly, no linear parts stored;
+//! and I⁻¹ (r × e_k) takes two of I⁻¹'s columns, the dot products with r × e_k two terms —
+//! the dropped terms are exact zeros, so K is the same number for number.
+//!
 //! Anything else (a single block — one joint, with its limit's and motor's rows —, a loop, a
 //! body with three joints, the contact passes' joint and contact rows) is solved in the
 //! envelope (skyline) storage of `physics::envelope`, row by row, as
@@ -58,6 +65,34 @@ struct Block {
     size: usize,
     /// Its bodies A and B (NONE: the world).
     bodies: [usize; 2],
+    /// Whether its rows with a linear part are exactly three point rows first (ball, hinge,
+    /// fixed: lin = ±e_k, ang = r × (±e_k) with a zero k-th component), the others angular
+    /// — and every block's are (else false for all).
+    points: bool,
+}
+
+/// Whether rows `rows` (a block) are three point rows — linear part e_0, e_1, e_2 — then rows
+/// with no linear part.
+fn point_rows(rows: &[Row]) -> bool {
+    rows.len() >= 3
+        && rows.iter().enumerate().all(|(i, r)| {
+            if i < 3 {
+                r.axis.d == Vector3::ith(i, 1.0)
+            } else {
+                r.axis.d == Vector3::zeros()
+            }
+        })
+}
+
+/// The two indices other than k (k < 3), in order.
+const OTHERS: [[usize; 2]; 3] = [[1, 2], [0, 2], [0, 1]];
+
+/// `a · b` of two 3-vectors where a's k-th component is ±0: the two other products, summed
+/// in the order `dot3` sums them (so the same number, a zero term dropped).
+#[inline(always)]
+fn dot_without(a: &[f64; 3], b: &[f64; 3], k: usize) -> f64 {
+    let [p, q] = OTHERS[k];
+    a[p] * b[p] + a[q] * b[q]
 }
 
 /// Reused buffers of the solve (no allocation once sized).
@@ -97,8 +132,11 @@ type Column = [f64; WIDEST];
 /// (zero past the block's rows).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct Parts {
-    /// The rows past this one have no linear part (a hinge's or a fixed joint's angular rows).
+    /// The rows past this one have no linear part (a hinge's or a fixed joint's angular rows);
+    /// 0 in a block of point rows, whose linear parts are not stored.
     linear: usize,
+    /// 1/m of its body.
+    inv_mass: f64,
     lin: [[f64; 3]; WIDEST],
     scaled: [[f64; 3]; WIDEST],
     ang: [[f64; 3]; WIDEST],
@@ -120,11 +158,11 @@ pub struct Inverse {
 
 /// A row's linear and angular parts on one side (0: A, 1: B).
 #[inline(always)]
-fn side(row: &Row, side: usize) -> (&Vector3<f64>, &Vector3<f64>) {
+fn side(row: &Row, side: usize) -> (Vector3<f64>, Vector3<f64>) {
     if side == 0 {
-        (&row.lin_a, &row.ang_a)
+        (row.lin_a(), row.ang_a())
     } else {
-        (&row.lin_b, &row.ang_b)
+        (row.lin_b(), row.ang_b())
     }
 }
 
@@ -162,17 +200,17 @@ fn envelope(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &mut Sol
         list.clear();
     }
     for (i, r) in rows.iter().enumerate() {
-        let wa = inverse[r.a].inertia * r.ang_a;
-        solver.touching[r.a].push((i, r.lin_a, wa, r.ang_a));
-        if let Some(b) = r.b {
-            let wb = inverse[b].inertia * r.ang_b;
-            solver.touching[b].push((i, r.lin_b, wb, r.ang_b));
+        let wa = inverse[r.a()].inertia * r.ang_a();
+        solver.touching[r.a()].push((i, r.lin_a(), wa, r.ang_a()));
+        if let Some(b) = r.b() {
+            let wb = inverse[b].inertia * r.ang_b();
+            solver.touching[b].push((i, r.lin_b(), wb, r.ang_b()));
         }
     }
     let system = &mut solver.system;
     system.reset(n);
     for (i, r) in rows.iter().enumerate() {
-        system.fill_row(i, [Some(r.a), r.b], |_| None);
+        system.fill_row(i, [Some(r.a()), r.b()], |_| None);
     }
     for (body, list) in solver.touching.iter().enumerate() {
         let inv_mass = inverse.get(body).map_or(0.0, |b| b.mass);
@@ -222,9 +260,9 @@ impl Solver {
         self.widest = 0;
         let mut p = 0;
         while p < n {
-            let (a, b) = (rows[p].a, rows[p].b);
+            let (a, b) = (rows[p].a(), rows[p].b());
             let mut size = 1;
-            while p + size < n && rows[p + size].a == a && rows[p + size].b == b {
+            while p + size < n && rows[p + size].a() == a && rows[p + size].b() == b {
                 size += 1;
             }
             let bodies = [a, b.unwrap_or(NONE)];
@@ -244,8 +282,15 @@ impl Solver {
                 row: p,
                 size,
                 bodies,
+                points: point_rows(&rows[p..p + size]),
             });
             p += size;
+        }
+        // The point rows' shortcut needs both blocks of every off-diagonal block on it.
+        if !self.blocks.iter().all(|b| b.points) {
+            for block in &mut self.blocks {
+                block.points = false;
+            }
         }
     }
 
@@ -284,15 +329,31 @@ impl Solver {
                 }
                 let inv = &inverse[body];
                 part.linear = 0;
+                part.inv_mass = inv.mass;
                 for i in 0..S {
-                    if i < block.size {
+                    if block.points && i < block.size {
+                        // Point rows 0..3: ang = r × (±e_i) has a zero i-th component, so
+                        // I⁻¹ ang is two of I⁻¹'s columns (the zero term of the product
+                        // dropped, the others summed in its order); their linear parts ±e_i
+                        // give K's entries ±δ_ij/m directly, no parts stored.
+                        let (_, ang) = side(&rows[block.row + i], side_index);
+                        part.ang[i] = [ang.x, ang.y, ang.z];
+                        part.weighted[i] = if i < 3 {
+                            let [p, q] = OTHERS[i];
+                            let w = inv.inertia.column(p) * ang[p] + inv.inertia.column(q) * ang[q];
+                            [w.x, w.y, w.z]
+                        } else {
+                            let w = inv.inertia * ang;
+                            [w.x, w.y, w.z]
+                        };
+                    } else if i < block.size {
                         let (lin, ang) = side(&rows[block.row + i], side_index);
                         let w = inv.inertia * ang;
                         part.lin[i] = [lin.x, lin.y, lin.z];
                         part.scaled[i] = [lin.x * inv.mass, lin.y * inv.mass, lin.z * inv.mass];
                         part.ang[i] = [ang.x, ang.y, ang.z];
                         part.weighted[i] = [w.x, w.y, w.z];
-                        if *lin != Vector3::zeros() {
+                        if lin != Vector3::zeros() {
                             part.linear = i + 1;
                         }
                     } else {
@@ -319,6 +380,22 @@ impl Solver {
                     continue;
                 }
                 let p = &parts[k][side_index];
+                if block.points {
+                    for i in 0..S {
+                        for j in 0..=i {
+                            d[i][j] += if i < 3 {
+                                dot_without(&p.ang[i], &p.weighted[j], i)
+                            } else {
+                                dot3(&p.ang[i], &p.weighted[j])
+                            };
+                        }
+                    }
+                    // (±e_i)·(±e_j)/m = δ_ij/m.
+                    for (i, row) in d.iter_mut().enumerate().take(3) {
+                        row[i] += p.inv_mass;
+                    }
+                    continue;
+                }
                 for i in 0..S {
                     for j in 0..=i {
                         d[i][j] += dot3(&p.ang[i], &p.weighted[j]);
@@ -345,6 +422,24 @@ impl Solver {
                         continue;
                     }
                     let (p, q) = (&parts[k][sp], &parts[k - 1][sq]);
+                    if block.points && before.points {
+                        for (i, row) in b.iter_mut().enumerate().take(S) {
+                            for (j, entry) in row.iter_mut().enumerate().take(S) {
+                                *entry += if i < 3 {
+                                    dot_without(&p.ang[i], &q.weighted[j], i)
+                                } else {
+                                    dot3(&p.ang[i], &q.weighted[j])
+                                };
+                            }
+                        }
+                        // (±e_i)·(±e_j)/m: +δ_ij/m when the body is on the same side of
+                        // both blocks, −δ_ij/m otherwise.
+                        let shared = if sp == sq { p.inv_mass } else { -p.inv_mass };
+                        for (i, row) in b.iter_mut().enumerate().take(3) {
+                            row[i] += shared;
+                        }
+                        continue;
+                    }
                     for i in 0..S {
                         for j in 0..S {
                             b[i][j] += dot3(&p.ang[i], &q.weighted[j]);
@@ -497,9 +592,9 @@ mod tests {
                     j[(i, 6 * body + 3 + k)] += ang[k];
                 }
             };
-            put(r.a, &r.lin_a, &r.ang_a);
-            if let Some(b) = r.b {
-                put(b, &r.lin_b, &r.ang_b);
+            put(r.a(), &r.lin_a(), &r.ang_a());
+            if let Some(b) = r.b() {
+                put(b, &r.lin_b(), &r.ang_b());
             }
         }
         let mut w = DMatrix::<f64>::zeros(6 * n, 6 * n);

@@ -1,0 +1,48 @@
+//! Hinge joint: a common point and a common axis, 5 rows; its coordinate is the angle.
+//!
+//! ```text
+//! ball's 3 point rows
+//! + u_A·t = 0 for t ∈ {t₁, t₂} = R_B n_B ⊥ the axis u_B:   (0, u_A×t | 0, −u_A×t)
+//!   J̇u = (ω_A − ω_B)·((ω_A×u_A)×t + u_A×(ω_B×t))
+//! θ = atan2(p·t₂, p·t₁)   p = R_A p_A (⊥ the axis, = t₁ at t = 0), wrapped to
+//!     (c − π, c + π], c the limits' middle
+//! θ̇ = u·(ω_A − ω_B):                     (0, u | 0, −u)
+//! ```
+//!
+//! Residual: the anchors' separation.
+
+use super::{coordinate_row, Anchors};
+use crate::physics::constraints::Row;
+use crate::physics::joints::{Joint, Pose};
+use nalgebra::Vector3;
+
+pub const ROWS: usize = 5;
+
+/// Its rows at the anchors `at`.
+#[inline]
+pub fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
+    at.point_rows(out);
+    let (a, b) = (at.a, at.b);
+    let u = a.r * joint.axis_a;
+    let du = a.w.cross(&u);
+    let relative = a.w - b.w;
+    for normal in &joint.normals_b {
+        let t = b.r * normal;
+        let g = u.cross(&t);
+        let dg = du.cross(&t) + u.cross(&b.w.cross(&t));
+        out.push(at.row(Vector3::zeros(), g, -g, u.dot(&t), relative.dot(&dg)));
+    }
+}
+
+/// The angle θ (rad) A has turned about the axis relative to B since t = 0, and its row.
+pub fn coordinate(joint: &Joint, index: usize, a: &Pose, b: &Pose) -> (Row, f64) {
+    let u = a.r * joint.axis_a;
+    let p = a.r * joint.reference_a;
+    let raw = p
+        .dot(&(b.r * joint.normals_b[1]))
+        .atan2(p.dot(&(b.r * joint.normals_b[0])));
+    let middle = joint.limits.map_or(0.0, |[lo, hi]| 0.5 * (lo + hi));
+    let turn = std::f64::consts::TAU;
+    let angle = middle + (raw - middle + 0.5 * turn).rem_euclid(turn) - 0.5 * turn;
+    coordinate_row(joint, index, (Vector3::zeros(), u, -u), angle)
+}
