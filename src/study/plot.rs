@@ -2,7 +2,7 @@
 //! integrator (its points in order of dt, each labelled with its dt); frontier runs are ringed.
 //! Beside each scene's cost panel, its error against dt (log–log, the same markers and colours),
 //! on the same row of the grid; in both the fitted order p beside each line (the slope of the
-//! dt panel's line). A cloth case's panels are drawn the same way ([`Sweep`]), one line per
+//! dt panel's line). A cloth case's panels are drawn the same way (`Sweep`), one line per
 //! particle integrator (error in m; runs past the explicit limit that diverged have no point
 //! and are listed), the dt panel with the explicit limit 2/ω_max drawn and the floor band at
 //! 3 × the reference's spread. The contact solvers'

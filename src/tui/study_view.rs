@@ -552,7 +552,7 @@ fn drawn(study: &SceneStudy) -> (Vec<&crate::study::Row>, Vec<Integrator>) {
 /// side (the same error axis), the floor band under both, the fitted order beside each
 /// integrator in the legend, the diverged runs listed; with `progress`, the runs finished so
 /// far under a gauge (the chart fills as the others finish). A cloth case's chart is its
-/// particle integrators' ([`render_cloth_study`]).
+/// particle integrators' (`render_cloth_study`).
 pub fn draw_study(
     study: &SceneStudy,
     shown: &Shown,
