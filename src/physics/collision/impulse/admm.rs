@@ -477,8 +477,7 @@ fn iterate(
     result
 }
 
-/// Λ = −ρ y onto the rows and the bodies (each impulse in its bounds), kept only if it lowers
-/// F; else everything is put back.
+/// Λ = −ρ y onto the rows and the bodies (see [`take_if_lower`]).
 fn take(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
@@ -487,22 +486,39 @@ fn take(
     alpha: f64,
     outcome: &mut Outcome,
 ) {
+    let c = &scratch.constraints;
+    let taken = take_if_lower(rows, directions, motions, |p| {
+        let (first, tangents) = scratch.first[p];
+        let rho = alpha * scratch.rho[p];
+        let tangent = || [-rho * c[first + 1].y, -rho * c[first + 2].y];
+        (-rho * c[first].y, tangents.then(tangent))
+    });
+    if taken {
+        outcome.taken = true;
+    }
+}
+
+/// Puts each row's impulses `impulse(p)` = (λₙ, the tangent pair where the row has friction)
+/// onto the rows and the bodies, each in its bounds (λₙ ≥ 0, |λ_t| ≤ the row's friction
+/// bound, scaled back along itself), and keeps them only if they lower the stage's
+/// [`objective`] F (returns whether it did); else everything is put back. Shared by the body-space solves ([`solve`]
+/// and `newton::solve`).
+pub(super) fn take_if_lower(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    impulse: impl Fn(usize) -> (f64, Option<[f64; 2]>),
+) -> bool {
     let before = objective(rows, motions);
     let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.lambda, r.lambda_tangent)).collect();
     let saved_motions = motions.to_vec();
-    for (p, (row, (&(first, tangents), &base))) in rows
-        .iter_mut()
-        .zip(scratch.first.iter().zip(scratch.rho.iter()))
-        .enumerate()
-    {
-        let rho = alpha * base;
-        let c = &scratch.constraints;
-        let lambda = (-rho * c[first].y).max(0.0);
+    for (p, row) in rows.iter_mut().enumerate() {
+        let (normal, tangent) = impulse(p);
+        let lambda = normal.max(0.0);
         row.normal.apply(lambda - row.lambda, motions);
         row.lambda = lambda;
-        if tangents {
+        if let Some(mut t) = tangent {
             let [t1, t2] = &directions[p];
-            let mut t = [-rho * c[first + 1].y, -rho * c[first + 2].y];
             let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
             if size > row.friction_bound {
                 let scale = row.friction_bound / size;
@@ -513,26 +529,26 @@ fn take(
             row.lambda_tangent = t;
         }
     }
-    if objective(rows, motions) < before {
-        outcome.taken = true;
-    } else {
+    let lower = objective(rows, motions) < before;
+    if !lower {
         motions.copy_from_slice(&saved_motions);
         for (row, &(lambda, tangent)) in rows.iter_mut().zip(saved.iter()) {
             row.lambda = lambda;
             row.lambda_tangent = tangent;
         }
     }
+    lower
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::physics::collision::impulse::friction::tangents;
     use nalgebra::{Matrix3, Vector3};
 
     /// A cube (0.2 m, 2 kg) on the ground on its four bottom corners, moving at (vx, −0.05, 0)
     /// m/s, μ = 0.5, each corner's stage-1 load m·0.05/4: its stage-2 rows and bodies.
-    fn sliding_cube(vx: f64) -> (Vec<Row>, Vec<[Axis; 2]>, Vec<SolverBody>) {
+    pub(in super::super) fn sliding_cube(vx: f64) -> (Vec<Row>, Vec<[Axis; 2]>, Vec<SolverBody>) {
         let (m, side) = (2.0, 0.2);
         let inertia = m * side * side / 6.0;
         let motions = vec![SolverBody::new(

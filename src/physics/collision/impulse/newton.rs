@@ -64,7 +64,7 @@
 //! [`subspace`]: super::subspace
 //! [`TOLERANCE`]: super::TOLERANCE
 
-use super::admm::{constraint, fill, objective, velocity, Constraint};
+use super::admm::{constraint, fill, take_if_lower, velocity, Constraint};
 use super::Row;
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::envelope::Envelope;
@@ -528,8 +528,7 @@ fn line_search(scratch: &mut Scratch, alpha: f64) -> (f64, f64) {
     (a, a * largest)
 }
 
-/// Λ onto the rows and the bodies (each impulse in its bounds), kept only if it lowers F;
-/// else everything is put back.
+/// Λ onto the rows and the bodies (see [`take_if_lower`]).
 fn take(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
@@ -537,77 +536,23 @@ fn take(
     scratch: &Scratch,
     outcome: &mut Outcome,
 ) {
-    let before = objective(rows, motions);
-    let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.lambda, r.lambda_tangent)).collect();
-    let saved_motions = motions.to_vec();
-    for (p, (row, g)) in rows.iter_mut().zip(scratch.groups.iter()).enumerate() {
-        let lambda = g.lambda[0].max(0.0);
-        row.normal.apply(lambda - row.lambda, motions);
-        row.lambda = lambda;
-        if g.tangents {
-            let [t1, t2] = &directions[p];
-            let mut t = [g.lambda[1], g.lambda[2]];
-            let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
-            if size > row.friction_bound {
-                let scale = row.friction_bound / size;
-                t = [t[0] * scale, t[1] * scale];
-            }
-            t1.apply(t[0] - row.lambda_tangent[0], motions);
-            t2.apply(t[1] - row.lambda_tangent[1], motions);
-            row.lambda_tangent = t;
-        }
-    }
-    if objective(rows, motions) < before {
+    let taken = take_if_lower(rows, directions, motions, |p| {
+        let g = &scratch.groups[p];
+        (
+            g.lambda[0],
+            g.tangents.then_some([g.lambda[1], g.lambda[2]]),
+        )
+    });
+    if taken {
         outcome.taken = true;
-    } else {
-        motions.copy_from_slice(&saved_motions);
-        for (row, &(lambda, tangent)) in rows.iter_mut().zip(saved.iter()) {
-            row.lambda = lambda;
-            row.lambda_tangent = tangent;
-        }
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::admm::{objective, tests::sliding_cube};
     use super::*;
-    use crate::physics::collision::impulse::friction::tangents;
-    use nalgebra::{Matrix3, Vector3};
-
-    /// A cube (0.2 m, 2 kg) on the ground on its four bottom corners, moving at (vx, −0.05, 0)
-    /// m/s, μ = 0.5, each corner's stage-1 load m·0.05/4: its stage-2 rows and bodies.
-    fn sliding_cube(vx: f64) -> (Vec<Row>, Vec<[Axis; 2]>, Vec<SolverBody>) {
-        let (m, side) = (2.0, 0.2);
-        let inertia = m * side * side / 6.0;
-        let motions = vec![SolverBody::new(
-            Vector3::new(vx, -0.05, 0.0),
-            Vector3::zeros(),
-            1.0 / m,
-            Matrix3::identity() / inertia,
-        )];
-        let n = Vector3::y();
-        let (t1, t2) = tangents(&n);
-        let (mut rows, mut directions) = (Vec::new(), Vec::new());
-        for (x, z) in [(-0.1, -0.1), (-0.1, 0.1), (0.1, -0.1), (0.1, 0.1)] {
-            let lever = Vector3::new(x, -0.1, z);
-            let axis = |d| Axis::new(d, (0, &lever), None, &motions);
-            let mut normal = axis(n);
-            normal.with_inverse();
-            rows.push(Row {
-                normal,
-                lambda: 0.0,
-                lambda_tangent: [0.0; 2],
-                compression: 0.0,
-                friction_bound: 0.5 * m * 0.05 / 4.0,
-                lambda_restitution: 0.0,
-                approach: -0.05,
-                bias: 0.0,
-                warm: Vector3::zeros(),
-            });
-            directions.push([axis(t1), axis(t2)]);
-        }
-        (rows, directions, motions)
-    }
+    use nalgebra::Vector3;
 
     fn run(vx: f64) -> (Vec<Row>, Vec<SolverBody>, Outcome, f64) {
         let (mut rows, directions, mut motions) = sliding_cube(vx);
