@@ -231,7 +231,7 @@ fn render_cloth_study(
                     .iter()
                     .map(|r| (r.dt, r.us_per_simulated_second, r.error))
                     .collect(),
-                label: Some(order_of(i)),
+                label: vec![format!("{} {}", i.name(), order_of(i)), order_of(i)],
             }
         })
         .collect();
@@ -252,6 +252,7 @@ fn render_cloth_study(
             .map(|r| (r.us_per_simulated_second.log10(), log_error(r.error)))
             .collect(),
         band: band.map(f64::log10),
+        show_band: true,
         limit,
         ladder: cloth.ladder.clone(),
         error_title: "max particle error, m",
@@ -414,8 +415,9 @@ struct SweepLine {
     color: Color,
     /// (dt s, µs per simulated s, error), largest dt first.
     runs: Vec<(f64, f64, f64)>,
-    /// Written beside the line's finest run on the dt chart (the fitted order), if any.
-    label: Option<String>,
+    /// Written beside the line's finest run on the dt chart (the fitted order), the first of
+    /// these that fits; none for no label.
+    label: Vec<String>,
 }
 
 /// What the two charts draw — a scene's bodies or its cloths, the drawing being the same.
@@ -425,6 +427,8 @@ struct Sweep {
     rings: Vec<(f64, f64)>,
     /// log₁₀ of the floor band's top.
     band: Option<f64>,
+    /// The error axis reaches down into the band (else it spans the runs only).
+    show_band: bool,
     /// The explicit limit, s, marked on the dt chart.
     limit: Option<f64>,
     /// The dts the dt chart spans even before a run is drawn, s.
@@ -477,8 +481,9 @@ struct LogChart<'a> {
     rings: Vec<(f64, f64)>,
     /// log₁₀ x of a vertical dashed mark (the explicit limit 2/ω_max).
     limit: Option<f64>,
-    /// Text beside a point (log₁₀ x, log₁₀ y) in a colour: each line's fitted order.
-    labels: Vec<((f64, f64), Color, String)>,
+    /// Text beside a point (log₁₀ x, log₁₀ y) in a colour, the first of the texts that fits:
+    /// each line's fitted order.
+    labels: Vec<((f64, f64), Color, Vec<String>)>,
     /// Said in the plot's middle (nothing to draw).
     note: Option<String>,
     ascii: bool,
@@ -587,23 +592,26 @@ impl Widget for LogChart<'_> {
             buf.set_stringn(x, plot.y, name, width as usize, LIMIT);
         }
         // Each label right of its point (left when it does not fit), over empty cells only.
-        for &((x, y), color, ref text) in &self.labels {
-            if !((x0..=x1).contains(&x) && (y0..=y1).contains(&y)) {
+        for ((x, y), color, texts) in &self.labels {
+            if !((x0..=x1).contains(x) && (y0..=y1).contains(y)) {
                 continue;
             }
-            let (c, r) = (col(x), row(y));
-            let width = text.chars().count() as u16;
-            let start = if c + 2 + width <= plot.right() {
-                c + 2
-            } else if c >= plot.x + width + 1 {
-                c - width - 1
-            } else {
-                continue;
-            };
-            let free =
-                (start..start + width).all(|k| matches!(buf[(k, r)].symbol(), " " | "·" | "."));
-            if free {
-                buf.set_string(start, r, text, Style::new().fg(color));
+            let (c, r) = (col(*x), row(*y));
+            for text in texts {
+                let width = text.chars().count() as u16;
+                let start = if c + 2 + width <= plot.right() {
+                    c + 2
+                } else if c >= plot.x + width + 1 {
+                    c - width - 1
+                } else {
+                    continue;
+                };
+                let free =
+                    (start..start + width).all(|k| matches!(buf[(k, r)].symbol(), " " | "·" | "."));
+                if free {
+                    buf.set_string(start, r, text, Style::new().fg(*color));
+                    break;
+                }
             }
         }
         // Axes and decade labels.
@@ -817,7 +825,7 @@ fn bodies_sweep(study: &SceneStudy) -> Sweep {
                     .iter()
                     .map(|r| (r.dt, r.us_per_simulated_second, r.measure()))
                     .collect(),
-                label: None,
+                label: Vec::new(),
             }
         })
         .collect();
@@ -838,6 +846,7 @@ fn bodies_sweep(study: &SceneStudy) -> Sweep {
             .map(|r| (r.us_per_simulated_second.log10(), log_error(r.measure())))
             .collect(),
         band: Some(study.floor.log10()),
+        show_band: false,
         limit: None,
         ladder: Vec::new(),
         error_title: if study.contact() {
@@ -867,6 +876,12 @@ fn draw_charts(sweep: &Sweep, ascii: bool, cost_area: Rect, dt_area: Rect, buf: 
     let step = |r: &(f64, f64, f64)| r.0.log10();
     let runs = || sweep.lines.iter().flat_map(|l| &l.runs);
     let all_cost: Vec<(f64, f64)> = runs().map(|r| (cost(r), log_error(r.2))).collect();
+    // The band's top a little above the axis' foot, so that its rows show.
+    let band_foot = sweep
+        .band
+        .filter(|_| sweep.show_band)
+        .and_then(|b| all_cost.first().map(|p| (p.0, b - 0.3)));
+    let framed: Vec<(f64, f64)> = all_cost.iter().copied().chain(band_foot).collect();
     let all_dt: Vec<(f64, f64)> = runs()
         .map(|r| (step(r), log_error(r.2)))
         .chain(
@@ -877,7 +892,7 @@ fn draw_charts(sweep: &Sweep, ascii: bool, cost_area: Rect, dt_area: Rect, buf: 
                 .map(|dt| (dt.log10(), all_cost.first().map_or(0.0, |p| p.1))),
         )
         .collect();
-    let ((cx0, cx1), (ey0, ey1)) = bounds(&all_cost);
+    let ((cx0, cx1), (ey0, ey1)) = bounds(&framed);
     let ((dx0, dx1), _) = bounds(&all_dt);
     LogChart {
         title: " error against cost, log–log ".to_string(),
@@ -909,11 +924,13 @@ fn draw_charts(sweep: &Sweep, ascii: bool, cost_area: Rect, dt_area: Rect, buf: 
             .iter()
             .filter_map(|l| {
                 let finest = l.runs.last()?;
-                Some((
-                    (step(finest), log_error(finest.2)),
-                    l.color,
-                    l.label.clone()?,
-                ))
+                (!l.label.is_empty()).then(|| {
+                    (
+                        (step(finest), log_error(finest.2)),
+                        l.color,
+                        l.label.clone(),
+                    )
+                })
             })
             .collect(),
         note: sweep.note.clone(),
