@@ -577,7 +577,7 @@ impl Widget for LogChart<'_> {
             let c = col(l);
             for r in plot.y..plot.bottom() {
                 let cell = &mut buf[(c, r)];
-                if (r - plot.y) % 2 == 0 && matches!(cell.symbol(), " " | "·" | ".") {
+                if (r - plot.y).is_multiple_of(2) && matches!(cell.symbol(), " " | "·" | ".") {
                     cell.set_symbol(if self.ascii { ":" } else { "┆" });
                     cell.set_fg(LIMIT.fg.unwrap_or(Color::Yellow));
                 }
@@ -591,24 +591,35 @@ impl Widget for LogChart<'_> {
             };
             buf.set_stringn(x, plot.y, name, width as usize, LIMIT);
         }
-        // Each label right of its point (left when it does not fit), over empty cells only.
+        // Each label beside its point over empty cells only: right of it, else left, on its
+        // row, else on a row above or below (two at most).
         for ((x, y), color, texts) in &self.labels {
             if !((x0..=x1).contains(x) && (y0..=y1).contains(y)) {
                 continue;
             }
             let (c, r) = (col(*x), row(*y));
+            let spot = |width: u16, buf: &Buffer| {
+                let rows = [
+                    Some(r),
+                    r.checked_sub(1),
+                    Some(r + 1),
+                    r.checked_sub(2),
+                    Some(r + 2),
+                ];
+                let starts = [Some(c + 2), c.checked_sub(width + 1)];
+                rows.into_iter().flatten().find_map(|r| {
+                    starts.into_iter().flatten().find_map(|start| {
+                        let fits = start >= plot.x
+                            && start + width <= plot.right()
+                            && (plot.y..plot.bottom()).contains(&r)
+                            && (start..start + width)
+                                .all(|k| matches!(buf[(k, r)].symbol(), " " | "·" | "."));
+                        fits.then_some((start, r))
+                    })
+                })
+            };
             for text in texts {
-                let width = text.chars().count() as u16;
-                let start = if c + 2 + width <= plot.right() {
-                    c + 2
-                } else if c >= plot.x + width + 1 {
-                    c - width - 1
-                } else {
-                    continue;
-                };
-                let free =
-                    (start..start + width).all(|k| matches!(buf[(k, r)].symbol(), " " | "·" | "."));
-                if free {
+                if let Some((start, r)) = spot(text.chars().count() as u16, buf) {
                     buf.set_string(start, r, text, Style::new().fg(*color));
                     break;
                 }
