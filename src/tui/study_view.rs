@@ -13,14 +13,14 @@ use crate::physics::cloth::ClothIntegrator;
 use crate::physics::Integrator;
 use crate::study::analysis::{format_dt, format_number};
 use crate::study::background::Job;
-use crate::study::cloth::ClothStudy;
+use crate::study::cloth::{ClothOrder, ClothStudy};
 use crate::study::{plot, Case, Config, SceneStudy};
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::Line;
-use ratatui::widgets::{Axis, Block, Chart, Dataset, Gauge, GraphType, Paragraph, Widget, Wrap};
+use ratatui::widgets::{Block, Gauge, Paragraph, Widget, Wrap};
 
 /// Starts the study of a lesson's scene (every integrator, dt = 1e-1 … 1e-4) with the
 /// collision response in use.
@@ -180,30 +180,17 @@ fn bounds(points: &[(f64, f64)]) -> ((f64, f64), (f64, f64)) {
     (decades(x0, x1), decades(y0, y1))
 }
 
-/// Axis labels at a few decades: "1e-3" …
-fn labels(lo: f64, hi: f64) -> Vec<String> {
-    let span = (hi - lo).round() as i32;
-    let stride = (span / 5 + 1).max(1);
-    let mut out = Vec::new();
-    let mut e = lo.round() as i32;
-    while e <= hi.round() as i32 {
-        out.push(format!("1e{e}"));
-        e += stride;
-    }
-    if out.len() == 1 {
-        out.push(format!("1e{}", hi.round() as i32));
-    }
-    out
-}
-
 /// The colour of a particle integrator, as in the SVG plot.
 fn cloth_colour(integrator: ClothIntegrator) -> Color {
     let plotters::style::RGBColor(r, g, b) = plot::cloth_color(integrator);
     Color::Rgb(r, g, b)
 }
 
-/// The cloth case: max particle error against cost, one line per particle integrator; with
-/// `progress`, the runs finished so far under a gauge (the chart fills as the others finish).
+/// The cloth case, drawn by the bodies' code ([`layout_study`], [`draw_charts`]): max particle
+/// error against cost and against dt, one line per particle integrator with its fitted order
+/// beside it, the explicit limit 2/ω_max marked on the dt chart, the floor band at 3 × the
+/// reference's spread (as in the SVG, [`crate::study::plot`]), the diverged runs listed; with
+/// `progress`, the runs finished so far under a gauge — before the first, a word saying so.
 fn render_cloth_study(
     study: &SceneStudy,
     cloth: &ClothStudy,
@@ -213,111 +200,242 @@ fn render_cloth_study(
     buf: &mut Buffer,
 ) {
     let area = gauge_row(progress, area, buf);
-    let text_height = (area.height / 3).clamp(4, 9);
-    let [chart_area, text_area] =
-        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
-    let points = |integrator: Option<ClothIntegrator>, frontier_only: bool| -> Vec<(f64, f64)> {
-        let mut rows: Vec<_> = cloth
-            .rows
-            .iter()
-            .filter(|r| r.ok() && r.error > 0.0 && r.us_per_simulated_second > 0.0)
-            .filter(|r| integrator.is_none_or(|i| r.integrator == i))
-            .filter(|r| !frontier_only || r.frontier)
-            .collect();
-        rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
-        rows.iter()
-            .map(|r| (r.us_per_simulated_second.log10(), r.error.log10()))
-            .collect()
-    };
-    let all = points(None, false);
-    let ((x0, x1), (y0, y1)) = bounds(&all);
-    let marker = if ascii { Marker::Dot } else { Marker::Braille };
-    let lines: Vec<(ClothIntegrator, Vec<(f64, f64)>)> = ClothIntegrator::ALL
-        .into_iter()
-        .map(|i| (i, points(Some(i), false)))
-        .filter(|(_, p)| !p.is_empty())
-        .collect();
-    let frontier = points(None, true);
-    let mut datasets: Vec<Dataset> = lines
+    let dim = Style::new().add_modifier(Modifier::DIM);
+    let drawable: Vec<_> = cloth
+        .rows
         .iter()
-        .map(|(i, p)| {
-            Dataset::default()
-                .name(i.name())
-                .marker(marker)
-                .graph_type(GraphType::Line)
-                .style(Style::new().fg(cloth_colour(*i)))
-                .data(p)
+        .filter(|r| r.ok() && r.error.is_finite() && r.us_per_simulated_second > 0.0)
+        .collect();
+    let integrators: Vec<ClothIntegrator> = ClothIntegrator::ALL
+        .into_iter()
+        .filter(|i| {
+            cloth.rows.iter().any(|r| r.integrator == *i)
+                || cloth.orders.iter().any(|o| o.integrator == *i)
         })
         .collect();
-    datasets.push(
-        Dataset::default()
-            .name("frontier")
-            .marker(Marker::Block)
-            .graph_type(GraphType::Scatter)
-            .style(theme::FRONTIER)
-            .data(&frontier),
-    );
-    let axis = |title: &'static str, lo: f64, hi: f64| {
-        Axis::default()
-            .title(title)
-            .style(theme::CHART_AXIS)
-            .bounds([lo, hi])
-            .labels(labels(lo, hi))
+    let order_of = |i: ClothIntegrator| match cloth.orders.iter().find(|o| o.integrator == i) {
+        Some(ClothOrder { slope: Some(s), .. }) => format!("p {s:.2}"),
+        _ => "p –".to_string(),
     };
-    Chart::new(datasets)
-        .block(Block::bordered().title(format!(
-            " study of {} ({} s, cloth case, 2/ω_max = {} s): particle error against cost, \
-             log–log ",
-            study.name,
-            study.duration,
-            format_number(cloth.limit)
-        )))
-        .x_axis(axis("µs per simulated s", x0, x1))
-        .y_axis(axis("error, m", y0, y1))
-        .legend_position(None)
-        .render(chart_area, buf);
-    let mut legend: Vec<ratatui::text::Span> = vec![ratatui::text::Span::raw(" ")];
-    for (i, _) in &lines {
-        legend.push(ratatui::text::Span::styled(
-            format!("── {}  ", i.name()),
-            Style::new().fg(cloth_colour(*i)),
+    let limit = cloth.limit.is_finite().then_some(cloth.limit);
+    let band = 3.0 * cloth.reference_spread;
+    let band = (band > 0.0 && band.is_finite()).then_some(band);
+    let lines = integrators
+        .iter()
+        .map(|&i| {
+            let mut runs: Vec<_> = drawable.iter().filter(|r| r.integrator == i).collect();
+            runs.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+            SweepLine {
+                color: cloth_colour(i),
+                runs: runs
+                    .iter()
+                    .map(|r| (r.dt, r.us_per_simulated_second, r.error))
+                    .collect(),
+                label: vec![format!("{} {}", i.name(), order_of(i)), order_of(i)],
+            }
+        })
+        .collect();
+    let note = drawable.is_empty().then(|| {
+        if cloth.rows.iter().any(|r| !r.ok()) && progress.is_none() {
+            "every run diverged: nothing to draw".to_string()
+        } else if cloth.rows.is_empty() {
+            "reference made: the first run is under way …".to_string()
+        } else {
+            "no run finished yet".to_string()
+        }
+    });
+    let sweep = Sweep {
+        lines,
+        rings: drawable
+            .iter()
+            .filter(|r| r.frontier)
+            .map(|r| (r.us_per_simulated_second.log10(), log_error(r.error)))
+            .collect(),
+        band: band.map(f64::log10),
+        show_band: true,
+        limit,
+        ladder: cloth.ladder.clone(),
+        error_title: "max particle error, m",
+        note,
+    };
+    let mut entries: Vec<ratatui::text::Span> = integrators
+        .iter()
+        .map(|&i| {
+            ratatui::text::Span::styled(
+                format!("── {} {}", i.name(), order_of(i)),
+                Style::new().fg(cloth_colour(i)),
+            )
+        })
+        .collect();
+    if limit.is_some() {
+        entries.push(ratatui::text::Span::styled(
+            format!("{} 2/ω_max", if ascii { ":" } else { "┆" }),
+            LIMIT,
         ));
     }
-    legend.push(ratatui::text::Span::raw("█ frontier"));
-    let orders: Vec<String> = cloth
-        .orders
-        .iter()
-        .map(|o| match o.slope {
-            Some(s) => format!("{} {:.1}", o.integrator.name(), s),
-            None => format!("{} –", o.integrator.name()),
-        })
-        .collect();
+    entries.push(frontier_entry(ascii));
+    let mut text = pack(entries, area);
     let diverged: Vec<String> = cloth
         .rows
         .iter()
         .filter(|r| !r.ok())
         .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
         .collect();
-    let text = vec![
-        Line::from(legend),
-        Line::from(cloth.sentence.clone()),
-        Line::styled(
+    text.push(diverged_line(&diverged));
+    if let Some(l) = limit {
+        text.push(Line::styled(
             format!(
-                "observed orders below 2/ω_max: {}; diverged (no point): {}",
-                orders.join(", "),
-                if diverged.is_empty() {
-                    "none".to_string()
-                } else {
-                    diverged.join(", ")
-                }
+                "{} explicit limit 2/ω_max = {} s ({}): symplectic-euler diverges at larger dt; \
+                 the orders are fitted on the runs below it",
+                if ascii { ":" } else { "┆" },
+                format_number(l),
+                cloth.limiting_cloth
             ),
-            Style::new().add_modifier(Modifier::DIM),
+            dim,
+        ));
+    }
+    if let Some(b) = band {
+        let inside = drawable.iter().filter(|r| r.error < b).count();
+        text.push(Line::styled(
+            format!(
+                "{} grey band: below 3 × the reference's spread, {} m (not resolved): the \
+                 {inside} run{} inside it are not ranked against each other",
+                if ascii { "..." } else { "···" },
+                format_number(b),
+                if inside == 1 { "" } else { "s" },
+            ),
+            dim,
+        ));
+    }
+    text.push(frontier_line(
+        cloth
+            .rows
+            .iter()
+            .filter(|r| r.frontier)
+            .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt))),
+    ));
+    text.push(Line::styled(format!("reference: {}", cloth.reference), dim));
+    text.push(Line::from(cloth.sentence.clone()));
+    let title = format!(
+        " study of {} ({} s, cloth case, 2/ω_max = {} s) ",
+        study.name,
+        study.duration,
+        format_number(cloth.limit)
+    );
+    layout_study(&sweep, text, title, ascii, area, buf);
+}
+
+/// The marker of the explicit limit on the dt chart.
+const LIMIT: Style = Style::new().fg(Color::Yellow);
+
+/// The legend's frontier entry.
+fn frontier_entry(ascii: bool) -> ratatui::text::Span<'static> {
+    ratatui::text::Span::raw(if ascii { "O frontier" } else { "◆ frontier" })
+}
+
+/// Legend entries packed on lines of the text box's width (each entry whole on a line).
+fn pack(entries: Vec<ratatui::text::Span<'static>>, area: Rect) -> Vec<Line<'static>> {
+    let width = area.width.saturating_sub(2).max(1) as usize;
+    let mut legend: Vec<Line> = vec![Line::default()];
+    for entry in entries {
+        let last = legend.last_mut().expect("one line at least");
+        let used = last.width();
+        if used > 0 && used + 2 + entry.width() > width {
+            legend.push(Line::from(entry));
+        } else {
+            if used > 0 {
+                last.push_span(ratatui::text::Span::raw("  "));
+            }
+            last.push_span(entry);
+        }
+    }
+    legend
+}
+
+/// "diverged (no point): rk4 1e-1, …" (red), or "… none" (dim).
+fn diverged_line(diverged: &[String]) -> Line<'static> {
+    Line::styled(
+        format!(
+            "diverged (no point): {}",
+            if diverged.is_empty() {
+                "none".to_string()
+            } else {
+                diverged.join(", ")
+            }
         ),
-    ];
+        if diverged.is_empty() {
+            Style::new().add_modifier(Modifier::DIM)
+        } else {
+            Style::new().fg(Color::LightRed)
+        },
+    )
+}
+
+/// "frontier (cheapest first): …" (dim).
+fn frontier_line(runs: impl Iterator<Item = String>) -> Line<'static> {
+    Line::styled(
+        format!(
+            "frontier (cheapest first): {}",
+            runs.collect::<Vec<_>>().join(", ")
+        ),
+        Style::new().add_modifier(Modifier::DIM),
+    )
+}
+
+/// The study's text under its two charts: as many rows as the wrapped `text` needs, up to half
+/// of `area`; the charts ([`draw_charts`]) keep the rest.
+fn layout_study(
+    sweep: &Sweep,
+    text: Vec<Line>,
+    title: String,
+    ascii: bool,
+    area: Rect,
+    buf: &mut Buffer,
+) {
+    let width = area.width.saturating_sub(2).max(1) as usize;
+    let needed: usize = text
+        .iter()
+        .map(|l| l.width().div_ceil(width).max(1))
+        .sum::<usize>()
+        + 2;
+    let text_height = (needed as u16).clamp(5, (area.height / 2).max(5));
+    let [charts, text_area] =
+        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
+    let [cost_area, dt_area] =
+        Layout::horizontal([Constraint::Percentage(58), Constraint::Min(0)]).areas(charts);
+    draw_charts(sweep, ascii, cost_area, dt_area, buf);
     Paragraph::new(text)
-        .block(Block::bordered().title(" reference: numeric (converged symplectic-euler) "))
+        .block(Block::bordered().title(title))
         .wrap(Wrap { trim: true })
         .render(text_area, buf);
+}
+
+/// One integrator's line in the two charts.
+struct SweepLine {
+    color: Color,
+    /// (dt s, µs per simulated s, error), largest dt first.
+    runs: Vec<(f64, f64, f64)>,
+    /// Written beside the line's finest run on the dt chart (the fitted order), the first of
+    /// these that fits; none for no label.
+    label: Vec<String>,
+}
+
+/// What the two charts draw — a scene's bodies or its cloths, the drawing being the same.
+struct Sweep {
+    lines: Vec<SweepLine>,
+    /// Frontier runs (log₁₀ cost, log₁₀ error), ringed on the cost chart.
+    rings: Vec<(f64, f64)>,
+    /// log₁₀ of the floor band's top.
+    band: Option<f64>,
+    /// The error axis reaches down into the band (else it spans the runs only).
+    show_band: bool,
+    /// The explicit limit, s, marked on the dt chart.
+    limit: Option<f64>,
+    /// The dts the dt chart spans even before a run is drawn, s.
+    ladder: Vec<f64>,
+    error_title: &'static str,
+    /// Said in the charts' middle (nothing drawn).
+    note: Option<String>,
 }
 
 /// What the view marks of the app's own run: the integrator and dt in use, and whether to
@@ -361,6 +479,11 @@ struct LogChart<'a> {
     series: Vec<Series>,
     /// Frontier runs, ringed.
     rings: Vec<(f64, f64)>,
+    /// log₁₀ x of a vertical dashed mark (the explicit limit 2/ω_max).
+    limit: Option<f64>,
+    /// Text beside a point (log₁₀ x, log₁₀ y) in a colour, the first of the texts that fits:
+    /// each line's fitted order.
+    labels: Vec<((f64, f64), Color, Vec<String>)>,
     /// Said in the plot's middle (nothing to draw).
     note: Option<String>,
     ascii: bool,
@@ -447,6 +570,59 @@ impl Widget for LogChart<'_> {
                 buf[(col(x), row(y))]
                     .set_symbol(rings)
                     .set_style(theme::FRONTIER);
+            }
+        }
+        // The explicit limit: a dashed column in the empty cells, named on the top row.
+        if let Some(l) = self.limit.filter(|l| (x0..=x1).contains(l)) {
+            let c = col(l);
+            for r in plot.y..plot.bottom() {
+                let cell = &mut buf[(c, r)];
+                if (r - plot.y).is_multiple_of(2) && matches!(cell.symbol(), " " | "·" | ".") {
+                    cell.set_symbol(if self.ascii { ":" } else { "┆" });
+                    cell.set_fg(LIMIT.fg.unwrap_or(Color::Yellow));
+                }
+            }
+            let name = "2/ω_max";
+            let width = name.chars().count() as u16;
+            let x = if c + 1 + width <= plot.right() {
+                c + 1
+            } else {
+                c.saturating_sub(width).max(plot.x)
+            };
+            buf.set_stringn(x, plot.y, name, width as usize, LIMIT);
+        }
+        // Each label beside its point over empty cells only: right of it, else left, on its
+        // row, else on a row above or below (two at most).
+        for ((x, y), color, texts) in &self.labels {
+            if !((x0..=x1).contains(x) && (y0..=y1).contains(y)) {
+                continue;
+            }
+            let (c, r) = (col(*x), row(*y));
+            let spot = |width: u16, buf: &Buffer| {
+                let rows = [
+                    Some(r),
+                    r.checked_sub(1),
+                    Some(r + 1),
+                    r.checked_sub(2),
+                    Some(r + 2),
+                ];
+                let starts = [Some(c + 2), c.checked_sub(width + 1)];
+                rows.into_iter().flatten().find_map(|r| {
+                    starts.into_iter().flatten().find_map(|start| {
+                        let fits = start >= plot.x
+                            && start + width <= plot.right()
+                            && (plot.y..plot.bottom()).contains(&r)
+                            && (start..start + width)
+                                .all(|k| matches!(buf[(k, r)].symbol(), " " | "·" | "."));
+                        fits.then_some((start, r))
+                    })
+                })
+            };
+            for text in texts {
+                if let Some((start, r)) = spot(text.chars().count() as u16, buf) {
+                    buf.set_string(start, r, text, Style::new().fg(*color));
+                    break;
+                }
             }
         }
         // Axes and decade labels.
@@ -578,7 +754,6 @@ pub fn draw_study(
             })
     };
     // The legend, each entry whole on a line (packed to the text's width).
-    let width = area.width.saturating_sub(2).max(1) as usize;
     let mut entries: Vec<ratatui::text::Span> = integrators
         .iter()
         .map(|&i| {
@@ -593,24 +768,8 @@ pub fn draw_study(
             )
         })
         .collect();
-    entries.push(ratatui::text::Span::raw(if shown.ascii {
-        "O frontier"
-    } else {
-        "◆ frontier"
-    }));
-    let mut legend: Vec<Line> = vec![Line::default()];
-    for entry in entries {
-        let last = legend.last_mut().expect("one line at least");
-        let used = last.width();
-        if used > 0 && used + 2 + entry.width() > width {
-            legend.push(Line::from(entry));
-        } else {
-            if used > 0 {
-                last.push_span(ratatui::text::Span::raw("  "));
-            }
-            last.push_span(entry);
-        }
-    }
+    entries.push(frontier_entry(shown.ascii));
+    let legend = pack(entries, area);
     let inside = drawable.iter().filter(|r| r.below_floor).count();
     let band_line = format!(
         "{} grey band: below the floor {} (round-off or the reference's own error): the {inside} \
@@ -629,21 +788,7 @@ pub fn draw_study(
     // diverged runs, the band; the sentence last (the longest, cut on a small screen).
     let mut text = legend;
     text.push(Line::from(in_use_line(study, shown)));
-    text.push(Line::styled(
-        format!(
-            "diverged (no point): {}",
-            if diverged.is_empty() {
-                "none".to_string()
-            } else {
-                diverged.join(", ")
-            }
-        ),
-        if diverged.is_empty() {
-            dim
-        } else {
-            Style::new().fg(Color::LightRed)
-        },
-    ));
+    text.push(diverged_line(&diverged));
     if study.contact() && study.rows.iter().all(|r| !r.ok()) && progress.is_none() {
         text.push(Line::styled(
             "press c for another collision response, then s twice to study it",
@@ -661,74 +806,40 @@ pub fn draw_study(
             dim,
         ));
     }
-    text.push(Line::styled(
-        format!(
-            "frontier (cheapest first): {}",
-            study
-                .rows
-                .iter()
-                .filter(|r| r.frontier)
-                .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-        dim,
+    text.push(frontier_line(
+        study
+            .rows
+            .iter()
+            .filter(|r| r.frontier)
+            .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt))),
     ));
     text.push(Line::from(study.sentence.clone()));
-    // As many rows as the wrapped text needs, up to half the view; the charts keep the rest.
-    let needed: usize = text
-        .iter()
-        .map(|l| l.width().div_ceil(width).max(1))
-        .sum::<usize>()
-        + 2;
-    let text_height = (needed as u16).clamp(5, (area.height / 2).max(5));
-    let [charts, text_area] =
-        Layout::vertical([Constraint::Min(8), Constraint::Length(text_height)]).areas(area);
-    let [cost_area, dt_area] =
-        Layout::horizontal([Constraint::Percentage(58), Constraint::Min(0)]).areas(charts);
-    draw_charts(study, shown, cost_area, dt_area, buf);
-    Paragraph::new(text)
-        .block(Block::bordered().title(format!(
-            " study of {} ({} s, {} reference) ",
-            study.name, study.duration, study.reference_kind
-        )))
-        .wrap(Wrap { trim: true })
-        .render(text_area, buf);
+    let title = format!(
+        " study of {} ({} s, {} reference) ",
+        study.name, study.duration, study.reference_kind
+    );
+    layout_study(&bodies_sweep(study), text, title, shown.ascii, area, buf);
 }
 
-/// The two charts of [`draw_study`]: error against cost (frontier ringed) and against dt,
-/// on the same error axis, the floor band under both.
-fn draw_charts(
-    study: &SceneStudy,
-    shown: &Shown,
-    cost_area: Rect,
-    dt_area: Rect,
-    buf: &mut Buffer,
-) {
+/// The bodies' two charts: error against cost (frontier ringed) and against dt, the floor band
+/// under both.
+fn bodies_sweep(study: &SceneStudy) -> Sweep {
     let (drawable, integrators) = drawn(study);
-    let line = |i: Integrator, x: &dyn Fn(&crate::study::Row) -> f64| -> Series {
-        let mut rows: Vec<_> = drawable.iter().filter(|r| r.integrator == i).collect();
-        rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
-        Series {
-            color: colour(i),
-            points: rows
-                .iter()
-                .map(|r| (x(r), log_error(r.measure())))
-                .collect(),
-        }
-    };
-    let cost = |r: &crate::study::Row| r.us_per_simulated_second.log10();
-    let step = |r: &crate::study::Row| r.dt.log10();
-    let all_cost: Vec<(f64, f64)> = drawable
+    let lines = integrators
         .iter()
-        .map(|r| (cost(r), log_error(r.measure())))
+        .map(|&i| {
+            let mut rows: Vec<_> = drawable.iter().filter(|r| r.integrator == i).collect();
+            rows.sort_by(|a, b| b.dt.total_cmp(&a.dt));
+            SweepLine {
+                color: colour(i),
+                runs: rows
+                    .iter()
+                    .map(|r| (r.dt, r.us_per_simulated_second, r.measure()))
+                    .collect(),
+                label: Vec::new(),
+            }
+        })
         .collect();
-    let all_dt: Vec<(f64, f64)> = drawable
-        .iter()
-        .map(|r| (step(r), log_error(r.measure())))
-        .collect();
-    let ((cx0, cx1), (ey0, ey1)) = bounds(&all_cost);
-    let ((dx0, dx1), _) = bounds(&all_dt);
     let note = if drawable.is_empty() {
         Some(if study.rows.iter().any(|r| !r.ok()) {
             "every run diverged: nothing to draw".to_string()
@@ -738,40 +849,103 @@ fn draw_charts(
     } else {
         None
     };
-    let band = Some(study.floor.log10());
-    let error_title = if study.contact() {
-        "contact error (worst body)"
-    } else {
-        "error, rad (worst body)"
-    };
-    LogChart {
-        title: " error against cost, log–log ".to_string(),
-        x_title: "µs per simulated s",
-        y_title: error_title,
-        x: (cx0, cx1),
-        y: (ey0, ey1),
-        band,
-        series: integrators.iter().map(|&i| line(i, &cost)).collect(),
+    Sweep {
+        lines,
         rings: drawable
             .iter()
             .filter(|r| r.frontier)
-            .map(|r| (cost(r), log_error(r.measure())))
+            .map(|r| (r.us_per_simulated_second.log10(), log_error(r.measure())))
             .collect(),
-        note: note.clone(),
-        ascii: shown.ascii,
+        band: Some(study.floor.log10()),
+        show_band: false,
+        limit: None,
+        ladder: Vec::new(),
+        error_title: if study.contact() {
+            "contact error (worst body)"
+        } else {
+            "error, rad (worst body)"
+        },
+        note,
+    }
+}
+
+/// The two charts of a study: error against cost (frontier ringed) and against dt (the
+/// explicit limit marked, each line's label beside its finest run), on the same error axis,
+/// the floor band under both.
+fn draw_charts(sweep: &Sweep, ascii: bool, cost_area: Rect, dt_area: Rect, buf: &mut Buffer) {
+    let series = |x: &dyn Fn(&(f64, f64, f64)) -> f64| -> Vec<Series> {
+        sweep
+            .lines
+            .iter()
+            .map(|l| Series {
+                color: l.color,
+                points: l.runs.iter().map(|r| (x(r), log_error(r.2))).collect(),
+            })
+            .collect()
+    };
+    let cost = |r: &(f64, f64, f64)| r.1.log10();
+    let step = |r: &(f64, f64, f64)| r.0.log10();
+    let runs = || sweep.lines.iter().flat_map(|l| &l.runs);
+    let all_cost: Vec<(f64, f64)> = runs().map(|r| (cost(r), log_error(r.2))).collect();
+    // The band's top a little above the axis' foot, so that its rows show.
+    let band_foot = sweep
+        .band
+        .filter(|_| sweep.show_band)
+        .and_then(|b| all_cost.first().map(|p| (p.0, b - 0.3)));
+    let framed: Vec<(f64, f64)> = all_cost.iter().copied().chain(band_foot).collect();
+    let all_dt: Vec<(f64, f64)> = runs()
+        .map(|r| (step(r), log_error(r.2)))
+        .chain(
+            sweep
+                .ladder
+                .iter()
+                .chain(&sweep.limit)
+                .map(|dt| (dt.log10(), all_cost.first().map_or(0.0, |p| p.1))),
+        )
+        .collect();
+    let ((cx0, cx1), (ey0, ey1)) = bounds(&framed);
+    let ((dx0, dx1), _) = bounds(&all_dt);
+    LogChart {
+        title: " error against cost, log–log ".to_string(),
+        x_title: "µs per simulated s",
+        y_title: sweep.error_title,
+        x: (cx0, cx1),
+        y: (ey0, ey1),
+        band: sweep.band,
+        series: series(&cost),
+        rings: sweep.rings.clone(),
+        limit: None,
+        labels: Vec::new(),
+        note: sweep.note.clone(),
+        ascii,
     }
     .render(cost_area, buf);
     LogChart {
         title: " error against dt: slope = p ".to_string(),
         x_title: "dt, s",
-        y_title: error_title,
+        y_title: sweep.error_title,
         x: (dx0, dx1),
         y: (ey0, ey1),
-        band,
-        series: integrators.iter().map(|&i| line(i, &step)).collect(),
+        band: sweep.band,
+        series: series(&step),
         rings: Vec::new(),
-        note,
-        ascii: shown.ascii,
+        limit: sweep.limit.map(f64::log10),
+        labels: sweep
+            .lines
+            .iter()
+            .filter_map(|l| {
+                let finest = l.runs.last()?;
+                (!l.label.is_empty()).then(|| {
+                    (
+                        (step(finest), log_error(finest.2)),
+                        l.color,
+                        l.label.clone(),
+                    )
+                })
+            })
+            .collect(),
+        note: sweep.note.clone(),
+        ascii,
     }
     .render(dt_area, buf);
 }

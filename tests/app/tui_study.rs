@@ -576,4 +576,87 @@ fn a_cloth_study_streams_its_runs_cheapest_first_into_the_chart() {
     );
     assert!(text.contains("cloth case"), "{text}");
     assert!(text.contains("── symplectic-euler"), "{text}");
+    cloth_charts_are_honest(&text, &partial);
+    // The whole study: the same drawing, every run in.
+    let text = draw(&full, 120, 40, None);
+    cloth_charts_are_honest(&text, &full);
+    // Before the first run: the frame only, a word on the chart instead of an empty grid.
+    let mut frame_only = full.clone();
+    let mut empty = (**frame).clone();
+    empty.sentence = format!("0 of {} runs finished", runs.len());
+    frame_only.cloth = Some(empty);
+    let text = draw(&frame_only, 120, 40, Some(0));
+    assert!(
+        text.contains("reference made: the first run is under way"),
+        "{text}"
+    );
+    assert!(text.contains("error against dt"), "{text}");
+    assert!(text.contains("2/ω_max"), "{text}");
+}
+
+/// The cloth case's view as the bodies': both charts, the explicit limit marked on the dt
+/// chart, the floor band at 3 × the reference's spread, each integrator's fitted order beside
+/// its line and in the legend, the diverged runs listed.
+fn cloth_charts_are_honest(text: &str, study: &tumble::study::SceneStudy) {
+    let cloth = study.cloth.as_ref().expect("a cloth case");
+    assert!(text.contains("error against cost"), "{text}");
+    assert!(text.contains("error against dt: slope = p"), "{text}");
+    // The limit: a dashed column on the dt chart (right of the cost chart), named on top.
+    let lines: Vec<&str> = text.lines().collect();
+    let dashes = lines.iter().filter(|l| l.contains('┆')).count();
+    assert!(dashes >= 3, "no dashed limit column:\n{text}");
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("┆2/ω_max") || l.contains("2/ω_max┆")),
+        "the limit is not named on its column:\n{text}"
+    );
+    // The band: its dots on the charts and its line under them, at 3 × the spread.
+    let band = 3.0 * cloth.reference_spread;
+    assert!(
+        text.contains(&format!(
+            "grey band: below 3 × the reference's spread, {} m",
+            tumble::study::analysis::format_number(band)
+        )),
+        "{text}"
+    );
+    assert!(text.contains("···"), "{text}");
+    // Each order in the legend and beside its line on the dt chart.
+    for order in &cloth.orders {
+        let label = match order.slope {
+            Some(s) => format!("p {s:.2}"),
+            None => "p –".to_string(),
+        };
+        assert!(
+            text.contains(&format!("── {} {label}", order.integrator.name())),
+            "{text}"
+        );
+        let drawn = cloth
+            .rows
+            .iter()
+            .any(|r| r.integrator == order.integrator && r.ok());
+        if drawn {
+            assert!(
+                lines
+                    .iter()
+                    .take_while(|l| !l.contains("study of"))
+                    .any(|l| l.contains(&label)),
+                "no `{label}` beside {}'s line:\n{text}",
+                order.integrator.name()
+            );
+        }
+    }
+    let diverged: Vec<_> = cloth.rows.iter().filter(|r| !r.ok()).collect();
+    if diverged.is_empty() {
+        assert!(text.contains("diverged (no point): none"), "{text}");
+    } else {
+        assert!(
+            text.contains(&format!(
+                "diverged (no point): {} {}",
+                diverged[0].integrator.name(),
+                tumble::study::analysis::format_dt(diverged[0].dt)
+            )),
+            "{text}"
+        );
+    }
 }
