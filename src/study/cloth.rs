@@ -117,6 +117,10 @@ impl ClothRow {
     }
 }
 
+/// The round-off floor band of a cloth study in reference spreads: errors below
+/// `FLOOR_SPREADS × reference_spread` are not told apart (drawn as a band, left out of the fit).
+pub const FLOOR_SPREADS: f64 = 3.0;
+
 /// The fitted order of one particle integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClothOrder {
@@ -384,7 +388,14 @@ pub fn summarise(
     mark_frontier(&mut rows);
     let orders = integrators
         .iter()
-        .map(|&i| fit_order(i, &rows, frame.limit))
+        .map(|&i| {
+            fit_order(
+                i,
+                &rows,
+                frame.limit,
+                FLOOR_SPREADS * frame.reference_spread,
+            )
+        })
         .collect();
     let comparison = compare(&rows, frame.limit);
     ClothStudy {
@@ -629,11 +640,19 @@ fn mark_frontier(rows: &mut [ClothRow]) {
 }
 
 /// The least-squares slope of ln error against ln dt over an integrator's runs below the limit
-/// that did not diverge and whose error is above round-off.
-pub fn fit_order(integrator: ClothIntegrator, rows: &[ClothRow], limit: f64) -> ClothOrder {
+/// that did not diverge and whose error is above the floor: round-off (1e-12 m) or `floor`,
+/// the band the charts draw (3 × the reference's spread), inside which the reference cannot
+/// tell runs apart, so a run there would flatten the slope.
+pub fn fit_order(
+    integrator: ClothIntegrator,
+    rows: &[ClothRow],
+    limit: f64,
+    floor: f64,
+) -> ClothOrder {
+    let floor = floor.max(1e-12);
     let points: Vec<(f64, f64)> = rows
         .iter()
-        .filter(|r| r.integrator == integrator && r.ok() && r.error > 1e-12 && r.dt < limit)
+        .filter(|r| r.integrator == integrator && r.ok() && r.error > floor && r.dt < limit)
         .map(|r| (r.dt.ln(), r.error.ln()))
         .collect();
     let n = points.len();

@@ -418,7 +418,7 @@ fn cloth_sweep(study: &SceneStudy, cloth: &ClothStudy) -> Sweep {
             Line::new(cloth_color(integrator), points, order)
         })
         .collect();
-    let band = 3.0 * cloth.reference_spread;
+    let band = crate::study::cloth::FLOOR_SPREADS * cloth.reference_spread;
     Sweep {
         captions: (
             format!(

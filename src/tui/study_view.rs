@@ -218,7 +218,7 @@ fn render_cloth_study(
         _ => "p –".to_string(),
     };
     let limit = cloth.limit.is_finite().then_some(cloth.limit);
-    let band = 3.0 * cloth.reference_spread;
+    let band = crate::study::cloth::FLOOR_SPREADS * cloth.reference_spread;
     let band = (band > 0.0 && band.is_finite()).then_some(band);
     let lines = integrators
         .iter()

@@ -157,7 +157,7 @@ fn cloth_table() {
     let comparison = cloth::compare(&rows, limit);
     let sentence = cloth::sentence(&rows, &comparison, limit, damped_limit, 1.0);
     let orders = ClothIntegrator::ALL
-        .map(|i| cloth::fit_order(i, &rows, limit))
+        .map(|i| cloth::fit_order(i, &rows, limit, 0.0))
         .to_vec();
     assert_eq!(
         orders[0],
@@ -184,4 +184,28 @@ fn cloth_table() {
         ..study(Vec::new(), None)
     };
     insta::assert_snapshot!("study_table_cloth", report::table(&[study]));
+}
+
+#[test]
+fn a_cloth_order_fit_leaves_out_the_runs_inside_the_floor_band() {
+    // A first-order method, error = 2 dt, measured against a reference whose spread is 1e-3 m:
+    // from dt = 1.25e-3 s on its errors reach 2.5e-3 m, inside the band 3 × 1e-3 m, and the
+    // finer runs' stop falling there. Fitted over every run the slope is flattened; over the
+    // three runs above the band it is the method's order, 1, exactly.
+    let integrator = ClothIntegrator::ImplicitEuler;
+    let mut rows: Vec<ClothRow> = [1e-2, 5e-3, 2.5e-3, 1.25e-3]
+        .iter()
+        .map(|&dt| cloth_row(integrator, dt, 2.0 * dt, Status::Ok))
+        .collect();
+    rows.extend(
+        [6.25e-4, 3.125e-4]
+            .iter()
+            .map(|&dt| cloth_row(integrator, dt, 2.5e-3, Status::Ok)),
+    );
+    let spread = 1e-3;
+    let everything = cloth::fit_order(integrator, &rows, 1.0, 0.0);
+    let above = cloth::fit_order(integrator, &rows, 1.0, cloth::FLOOR_SPREADS * spread);
+    assert_eq!((everything.points, above.points), (6, 3));
+    assert!(everything.slope.unwrap() < 0.8, "{everything:?}");
+    assert!((above.slope.unwrap() - 1.0).abs() < 1e-12, "{above:?}");
 }
