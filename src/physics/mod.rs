@@ -41,6 +41,7 @@ pub mod free_top;
 pub mod hand;
 pub mod integrators;
 pub mod joints;
+mod simd;
 pub mod snapshot;
 pub mod state;
 pub mod system;

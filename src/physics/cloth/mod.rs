@@ -52,24 +52,8 @@ pub use spring::{Spring, SpringKind};
 pub use stability::ExplicitLimit;
 pub use ties::{BodyJoints, Tie, TieKind, TiedBody};
 
-/// Whether to run the AVX2 builds (module doc): true only when the CPU has AVX2 (with the OS's
-/// support for its registers, as `is_x86_feature_detected` checks); a test may switch them off
-/// on its thread ([`PLAIN`]) to compare the two builds' bits.
 #[cfg(target_arch = "x86_64")]
-#[inline]
-fn avx2() -> bool {
-    #[cfg(test)]
-    if PLAIN.with(std::cell::Cell::get) {
-        return false;
-    }
-    std::arch::is_x86_feature_detected!("avx2")
-}
-
-#[cfg(test)]
-thread_local! {
-    /// Tests: run the plain builds on this thread even on a CPU with AVX2.
-    static PLAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
+use super::simd::avx2;
 
 /// How text names a cloth: "cloth sheet" for a cloth named `sheet`, but just "cloth" or
 /// "cloth1" for one whose name already says it (never "cloth cloth").
@@ -90,7 +74,7 @@ mod tests {
     /// solve), with the AVX2 builds or the plain ones (`plain`).
     fn bits(plain: bool) -> Vec<u64> {
         use nalgebra::Vector3;
-        super::PLAIN.with(|p| p.set(plain));
+        crate::physics::simd::set_plain(plain);
         let path = std::path::Path::new("lessons/16-trampoline.toml");
         let lesson = include_str!("../../../lessons/16-trampoline.toml");
         let mut world = crate::scene::parse(lesson, path).unwrap().scene.world();
@@ -113,7 +97,7 @@ mod tests {
         for _ in 0..50 {
             sheet.step(&loads, 5e-3);
         }
-        super::PLAIN.with(|p| p.set(false));
+        crate::physics::simd::set_plain(false);
         let (cloth, state) = (&world.cloths()[0], world.state());
         let vectors = (cloth.positions.iter().chain(&cloth.velocities))
             .chain(sheet.positions.iter().chain(&sheet.velocities))

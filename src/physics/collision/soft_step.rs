@@ -135,6 +135,8 @@ use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
+#[cfg(target_arch = "x86_64")]
+use crate::physics::simd::avx2;
 use crate::physics::state::State;
 use bodies::Bodies;
 use lanes::Lanes;
@@ -419,24 +421,6 @@ fn detect(
     })
 }
 
-/// Whether to run the AVX2 builds: true only when the CPU has AVX2; a test may switch them
-/// off on its thread ([`PLAIN`]) to compare the two builds' bits.
-#[cfg(target_arch = "x86_64")]
-#[inline]
-fn avx2() -> bool {
-    #[cfg(test)]
-    if PLAIN.with(std::cell::Cell::get) {
-        return false;
-    }
-    std::arch::is_x86_feature_detected!("avx2")
-}
-
-#[cfg(test)]
-thread_local! {
-    /// Tests: run the plain builds on this thread even on a CPU with AVX2.
-    static PLAIN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
 /// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax.
 #[inline(always)]
 fn substeps(
@@ -597,13 +581,13 @@ mod tests {
     fn bits(plain: bool) -> (Vec<u64>, f64) {
         use crate::contact_scenes::wall;
         use crate::physics::{Impacts, Response};
-        super::PLAIN.with(|p| p.set(plain));
+        crate::physics::simd::set_plain(plain);
         let soft = Response::SoftStep(super::SoftStep::DEFAULT);
         let mut world = wall(true, 0.0, Impacts::Propagate, soft);
         for _ in 0..150 {
             world.step();
         }
-        super::PLAIN.with(|p| p.set(false));
+        crate::physics::simd::set_plain(false);
         let moved = world
             .states()
             .iter()

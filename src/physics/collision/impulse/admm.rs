@@ -185,6 +185,33 @@ pub(super) fn velocity(c: &Constraint, x: &[f64]) -> f64 {
     u
 }
 
+/// Numbers the moving bodies the rows touch, in the scene's order: `local[b]` is body b's
+/// number (`usize::MAX` if no row moves it), `bodies` lists them; returns how many.
+pub(super) fn number_bodies(
+    rows: &[Row],
+    motions: &[SolverBody],
+    local: &mut Vec<usize>,
+    bodies: &mut Vec<usize>,
+) -> usize {
+    local.clear();
+    local.resize(motions.len(), usize::MAX);
+    for row in rows.iter() {
+        for (end, _) in row.normal.ends() {
+            if !motions[end.body].fixed() {
+                local[end.body] = 0;
+            }
+        }
+    }
+    bodies.clear();
+    for (b, l) in local.iter_mut().enumerate() {
+        if *l == 0 {
+            *l = bodies.len();
+            bodies.push(b);
+        }
+    }
+    bodies.len()
+}
+
 /// F = K + Σ λₙ gₙ/dt over the bodies and rows (the objective of stage 2).
 pub(super) fn objective(rows: &[Row], motions: &[SolverBody]) -> f64 {
     motions.iter().map(SolverBody::kinetic).sum::<f64>()
@@ -207,24 +234,7 @@ pub(super) fn solve(
         iterations: 0,
         work: 0,
     };
-    // The moving bodies, numbered in the scene's order.
-    scratch.local.clear();
-    scratch.local.resize(motions.len(), usize::MAX);
-    for row in rows.iter() {
-        for (end, _) in row.normal.ends() {
-            if !motions[end.body].fixed() {
-                scratch.local[end.body] = 0;
-            }
-        }
-    }
-    scratch.bodies.clear();
-    for (b, l) in scratch.local.iter_mut().enumerate() {
-        if *l == 0 {
-            *l = scratch.bodies.len();
-            scratch.bodies.push(b);
-        }
-    }
-    let nb = scratch.bodies.len();
+    let nb = number_bodies(rows, motions, &mut scratch.local, &mut scratch.bodies);
     if nb == 0 || nb > ADMM_BODIES {
         return outcome;
     }

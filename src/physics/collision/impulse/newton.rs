@@ -64,7 +64,7 @@
 //! [`subspace`]: super::subspace
 //! [`TOLERANCE`]: super::TOLERANCE
 
-use super::admm::{constraint, fill, take_if_lower, velocity, Constraint};
+use super::admm::{constraint, fill, number_bodies, take_if_lower, velocity, Constraint};
 use super::Row;
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::envelope::Envelope;
@@ -244,23 +244,7 @@ fn setup(
     motions: &[SolverBody],
     scratch: &mut Scratch,
 ) -> bool {
-    scratch.local.clear();
-    scratch.local.resize(motions.len(), usize::MAX);
-    for row in rows.iter() {
-        for (end, _) in row.normal.ends() {
-            if !motions[end.body].fixed() {
-                scratch.local[end.body] = 0;
-            }
-        }
-    }
-    scratch.bodies.clear();
-    for (b, l) in scratch.local.iter_mut().enumerate() {
-        if *l == 0 {
-            *l = scratch.bodies.len();
-            scratch.bodies.push(b);
-        }
-    }
-    let nb = scratch.bodies.len();
+    let nb = number_bodies(rows, motions, &mut scratch.local, &mut scratch.bodies);
     if nb == 0 || nb > NEWTON_BODIES {
         return false;
     }
