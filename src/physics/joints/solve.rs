@@ -303,204 +303,26 @@ impl Solver {
     /// L_k L_kᵀ = K_kk − B_k B_kᵀ
     /// y_k = L_k⁻¹ (b_k − B_k y_{k−1}),   x_k = L_k⁻ᵀ (y_k − B_{k+1}ᵀ x_{k+1})
     /// ```
-    // Index loops of fixed length S, written as the formulas index the blocks.
-    #[allow(clippy::needless_range_loop)]
     fn banded<const S: usize>(&mut self, rows: &[Row], inverse: &[Inverse]) {
         let count = self.blocks.len();
-        let Solver {
-            blocks,
-            parts,
-            diagonal,
-            below,
-            pivots,
-            solution,
-            ..
-        } = self;
-        parts.resize(count, Default::default());
-        diagonal.resize(count, Square::default());
-        below.resize(count, Square::default());
-        pivots.resize(count, Column::default());
-        solution.resize(count, Column::default());
-        // Each side's parts: lin, lin/m, ang, I⁻¹ ang.
-        for (block, sides) in blocks.iter().zip(parts.iter_mut()) {
-            for (side_index, (&body, part)) in block.bodies.iter().zip(sides).enumerate() {
-                if body == NONE {
-                    continue;
-                }
-                let inv = &inverse[body];
-                part.linear = 0;
-                part.inv_mass = inv.mass;
-                for i in 0..S {
-                    if block.points && i < block.size {
-                        // Point rows 0..3: ang = r × (±e_i) has a zero i-th component, so
-                        // I⁻¹ ang is two of I⁻¹'s columns (the zero term of the product
-                        // dropped, the others summed in its order); their linear parts ±e_i
-                        // give K's entries ±δ_ij/m directly, no parts stored.
-                        let (_, ang) = side(&rows[block.row + i], side_index);
-                        part.ang[i] = [ang.x, ang.y, ang.z];
-                        part.weighted[i] = if i < 3 {
-                            let [p, q] = OTHERS[i];
-                            let w = inv.inertia.column(p) * ang[p] + inv.inertia.column(q) * ang[q];
-                            [w.x, w.y, w.z]
-                        } else {
-                            let w = inv.inertia * ang;
-                            [w.x, w.y, w.z]
-                        };
-                    } else if i < block.size {
-                        let (lin, ang) = side(&rows[block.row + i], side_index);
-                        let w = inv.inertia * ang;
-                        part.lin[i] = [lin.x, lin.y, lin.z];
-                        part.scaled[i] = [lin.x * inv.mass, lin.y * inv.mass, lin.z * inv.mass];
-                        part.ang[i] = [ang.x, ang.y, ang.z];
-                        part.weighted[i] = [w.x, w.y, w.z];
-                        if lin != Vector3::zeros() {
-                            part.linear = i + 1;
-                        }
-                    } else {
-                        part.lin[i] = [0.0; 3];
-                        part.scaled[i] = [0.0; 3];
-                        part.ang[i] = [0.0; 3];
-                        part.weighted[i] = [0.0; 3];
-                    }
-                }
-            }
-        }
-        // K_kk and K_{k,k−1}, body by body; K's largest diagonal entry.
-        let mut largest = 0.0_f64;
-        for k in 0..count {
-            let block = &blocks[k];
-            let d = &mut diagonal[k];
-            for (i, row) in d.iter_mut().enumerate().take(S) {
-                for (j, entry) in row.iter_mut().enumerate().take(i + 1) {
-                    *entry = if i == j && i >= block.size { 1.0 } else { 0.0 };
-                }
-            }
-            for side_index in 0..2 {
-                if block.bodies[side_index] == NONE {
-                    continue;
-                }
-                let p = &parts[k][side_index];
-                if block.points {
-                    for i in 0..S {
-                        for j in 0..=i {
-                            d[i][j] += if i < 3 {
-                                dot_without(&p.ang[i], &p.weighted[j], i)
-                            } else {
-                                dot3(&p.ang[i], &p.weighted[j])
-                            };
-                        }
-                    }
-                    // (±e_i)·(±e_j)/m = δ_ij/m.
-                    for (i, row) in d.iter_mut().enumerate().take(3) {
-                        row[i] += p.inv_mass;
-                    }
-                    continue;
-                }
-                for i in 0..S {
-                    for j in 0..=i {
-                        d[i][j] += dot3(&p.ang[i], &p.weighted[j]);
-                    }
-                }
-                for i in 0..p.linear {
-                    for j in 0..=i {
-                        d[i][j] += dot3(&p.lin[i], &p.scaled[j]);
-                    }
-                }
-            }
-            for i in 0..block.size {
-                largest = largest.max(d[i][i]);
-            }
-            if k == 0 {
-                continue;
-            }
-            let b = &mut below[k];
-            *b = Square::default();
-            let before = &blocks[k - 1];
-            for (sp, &body) in block.bodies.iter().enumerate() {
-                for (sq, &other) in before.bodies.iter().enumerate() {
-                    if body == NONE || body != other {
-                        continue;
-                    }
-                    let (p, q) = (&parts[k][sp], &parts[k - 1][sq]);
-                    if block.points && before.points {
-                        for (i, row) in b.iter_mut().enumerate().take(S) {
-                            for (j, entry) in row.iter_mut().enumerate().take(S) {
-                                *entry += if i < 3 {
-                                    dot_without(&p.ang[i], &q.weighted[j], i)
-                                } else {
-                                    dot3(&p.ang[i], &q.weighted[j])
-                                };
-                            }
-                        }
-                        // (±e_i)·(±e_j)/m: +δ_ij/m when the body is on the same side of
-                        // both blocks, −δ_ij/m otherwise.
-                        let shared = if sp == sq { p.inv_mass } else { -p.inv_mass };
-                        for (i, row) in b.iter_mut().enumerate().take(3) {
-                            row[i] += shared;
-                        }
-                        continue;
-                    }
-                    for i in 0..S {
-                        for j in 0..S {
-                            b[i][j] += dot3(&p.ang[i], &q.weighted[j]);
-                        }
-                    }
-                    for i in 0..p.linear {
-                        for j in 0..q.linear {
-                            b[i][j] += dot3(&p.lin[i], &q.scaled[j]);
-                        }
-                    }
-                }
-            }
-        }
-        // The factor, block by block.
-        let tiny = 1e-12 * largest;
-        for k in 0..count {
-            if k > 0 {
-                let (done, rest) = diagonal.split_at_mut(k);
-                let (l, d) = (&done[k - 1], &mut rest[0]);
-                let r = &pivots[k - 1];
-                let b = &mut below[k];
-                for row in b.iter_mut().take(S) {
-                    for j in 0..S {
-                        let mut t = row[j];
-                        for c in 0..j {
-                            t -= row[c] * l[j][c];
-                        }
-                        row[j] = t * r[j];
-                    }
-                }
-                for i in 0..S {
-                    for j in 0..=i {
-                        let mut t = d[i][j];
-                        for c in 0..S {
-                            t -= b[i][c] * b[j][c];
-                        }
-                        d[i][j] = t;
-                    }
-                }
-            }
-            let d = &mut diagonal[k];
-            let r = &mut pivots[k];
-            for i in 0..S {
-                for j in 0..i {
-                    let mut t = d[i][j];
-                    for c in 0..j {
-                        t -= d[i][c] * d[j][c];
-                    }
-                    d[i][j] = t * r[j];
-                }
-                let mut square = d[i][i];
-                for c in 0..i {
-                    square -= d[i][c] * d[i][c];
-                }
-                r[i] = if square > tiny {
-                    1.0 / square.sqrt()
-                } else {
-                    0.0
-                };
-            }
-        }
+        self.parts.resize(count, Default::default());
+        self.diagonal.resize(count, Square::default());
+        self.below.resize(count, Square::default());
+        self.pivots.resize(count, Column::default());
+        self.solution.resize(count, Column::default());
+        fill::<S>(&self.blocks, &mut self.parts, rows, inverse);
+        let largest = assemble::<S>(
+            &self.blocks,
+            &self.parts,
+            &mut self.diagonal,
+            &mut self.below,
+        );
+        factor::<S>(
+            &mut self.diagonal,
+            &mut self.below,
+            &mut self.pivots,
+            1e-12 * largest,
+        );
     }
 
     /// `L y = b`, block by block down, then `Lᵀ x = y`, block by block up, over x = b.
@@ -556,6 +378,262 @@ impl Solver {
             solution[k] = z;
             let block = &blocks[k];
             x[block.row..block.row + block.size].copy_from_slice(&z[..block.size]);
+        }
+    }
+}
+
+/// Each side's parts of every block: lin, lin/m, ang, I⁻¹ ang (zero past the block's rows).
+fn fill<const S: usize>(
+    blocks: &[Block],
+    parts: &mut [[Parts; 2]],
+    rows: &[Row],
+    inverse: &[Inverse],
+) {
+    for (block, sides) in blocks.iter().zip(parts.iter_mut()) {
+        let rows = &rows[block.row..block.row + block.size];
+        for (side_index, (&body, part)) in block.bodies.iter().zip(sides).enumerate() {
+            if body == NONE {
+                continue;
+            }
+            let inv = &inverse[body];
+            part.linear = 0;
+            part.inv_mass = inv.mass;
+            match (block.points, side_index) {
+                (true, 0) => fill_points::<S>(rows, Row::ang_a, inv, part),
+                (true, _) => fill_points::<S>(rows, Row::ang_b, inv, part),
+                (false, _) => fill_rows::<S>(rows, side_index, inv, part),
+            }
+        }
+    }
+}
+
+/// `I⁻¹ ang` of point row k (k < 3), whose angular part `ang` = r × (±e_k) has a zero k-th
+/// component: two of I⁻¹'s columns (the zero term of the product dropped, the others summed
+/// in its order).
+#[inline(always)]
+fn point_weight(inertia: &Matrix3<f64>, ang: &Vector3<f64>, k: usize) -> [f64; 3] {
+    let [p, q] = OTHERS[k];
+    let w = inertia.column(p) * ang[p] + inertia.column(q) * ang[q];
+    [w.x, w.y, w.z]
+}
+
+/// One side of a block of point rows (three point rows, then angular rows): ang and I⁻¹ ang
+/// (`point_weight` for the point rows); their linear parts ±e_i give K's entries ±δ_ij/m
+/// directly, no parts stored. `ang` reads the side's angular part of a row.
+#[inline(always)]
+fn fill_points<const S: usize>(
+    rows: &[Row],
+    ang: impl Fn(&Row) -> Vector3<f64>,
+    inv: &Inverse,
+    part: &mut Parts,
+) {
+    let (points, angular) = rows.split_at(3);
+    for (k, row) in points.iter().enumerate() {
+        let a = ang(row);
+        part.ang[k] = [a.x, a.y, a.z];
+        part.weighted[k] = point_weight(&inv.inertia, &a, k);
+    }
+    for (i, row) in angular.iter().enumerate() {
+        let a = ang(row);
+        let w = inv.inertia * a;
+        part.ang[3 + i] = [a.x, a.y, a.z];
+        part.weighted[3 + i] = [w.x, w.y, w.z];
+    }
+    for i in rows.len()..S {
+        part.ang[i] = [0.0; 3];
+        part.weighted[i] = [0.0; 3];
+    }
+}
+
+/// One side of any other block: every part, and how many rows have a linear part.
+fn fill_rows<const S: usize>(rows: &[Row], side_index: usize, inv: &Inverse, part: &mut Parts) {
+    for i in 0..S {
+        if let Some(row) = rows.get(i) {
+            let (lin, ang) = side(row, side_index);
+            let w = inv.inertia * ang;
+            part.lin[i] = [lin.x, lin.y, lin.z];
+            part.scaled[i] = [lin.x * inv.mass, lin.y * inv.mass, lin.z * inv.mass];
+            part.ang[i] = [ang.x, ang.y, ang.z];
+            part.weighted[i] = [w.x, w.y, w.z];
+            if lin != Vector3::zeros() {
+                part.linear = i + 1;
+            }
+        } else {
+            part.lin[i] = [0.0; 3];
+            part.scaled[i] = [0.0; 3];
+            part.ang[i] = [0.0; 3];
+            part.weighted[i] = [0.0; 3];
+        }
+    }
+}
+
+/// K_kk and K_{k,k−1}, body by body, into `diagonal` and `below`; returns K's largest
+/// diagonal entry.
+// Index loops of fixed length S, written as the formulas index the blocks.
+#[allow(clippy::needless_range_loop)]
+fn assemble<const S: usize>(
+    blocks: &[Block],
+    parts: &[[Parts; 2]],
+    diagonal: &mut [Square],
+    below: &mut [Square],
+) -> f64 {
+    let mut largest = 0.0_f64;
+    for k in 0..blocks.len() {
+        let block = &blocks[k];
+        let d = &mut diagonal[k];
+        for (i, row) in d.iter_mut().enumerate().take(S) {
+            for (j, entry) in row.iter_mut().enumerate().take(i + 1) {
+                *entry = if i == j && i >= block.size { 1.0 } else { 0.0 };
+            }
+        }
+        for side_index in 0..2 {
+            if block.bodies[side_index] != NONE {
+                add_diagonal::<S>(d, &parts[k][side_index], block.points);
+            }
+        }
+        for i in 0..block.size {
+            largest = largest.max(d[i][i]);
+        }
+        if k == 0 {
+            continue;
+        }
+        let b = &mut below[k];
+        *b = Square::default();
+        let before = &blocks[k - 1];
+        for (sp, &body) in block.bodies.iter().enumerate() {
+            for (sq, &other) in before.bodies.iter().enumerate() {
+                if body == NONE || body != other {
+                    continue;
+                }
+                let (p, q) = (&parts[k][sp], &parts[k - 1][sq]);
+                // (±e_i)·(±e_j)/m of point rows: +δ_ij/m when the body is on the same side
+                // of both blocks, −δ_ij/m otherwise.
+                let shared = if sp == sq { p.inv_mass } else { -p.inv_mass };
+                add_below::<S>(b, p, q, block.points && before.points, shared);
+            }
+        }
+    }
+    largest
+}
+
+/// One side's share of K_kk (lower half): ang_i · I⁻¹ ang_j, and the linear parts' products
+/// (`points`: δ_ij/m on the three point rows).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn add_diagonal<const S: usize>(d: &mut Square, p: &Parts, points: bool) {
+    if points {
+        for i in 0..S {
+            for j in 0..=i {
+                d[i][j] += if i < 3 {
+                    dot_without(&p.ang[i], &p.weighted[j], i)
+                } else {
+                    dot3(&p.ang[i], &p.weighted[j])
+                };
+            }
+        }
+        // (±e_i)·(±e_j)/m = δ_ij/m.
+        for (i, row) in d.iter_mut().enumerate().take(3) {
+            row[i] += p.inv_mass;
+        }
+        return;
+    }
+    for i in 0..S {
+        for j in 0..=i {
+            d[i][j] += dot3(&p.ang[i], &p.weighted[j]);
+        }
+    }
+    for i in 0..p.linear {
+        for j in 0..=i {
+            d[i][j] += dot3(&p.lin[i], &p.scaled[j]);
+        }
+    }
+}
+
+/// One shared body's share of K_{k,k−1}: block k's side `p` against block k − 1's side `q`
+/// (`points`: both blocks of point rows, whose linear products are `shared` δ_ij).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn add_below<const S: usize>(b: &mut Square, p: &Parts, q: &Parts, points: bool, shared: f64) {
+    if points {
+        for (i, row) in b.iter_mut().enumerate().take(S) {
+            for (j, entry) in row.iter_mut().enumerate().take(S) {
+                *entry += if i < 3 {
+                    dot_without(&p.ang[i], &q.weighted[j], i)
+                } else {
+                    dot3(&p.ang[i], &q.weighted[j])
+                };
+            }
+        }
+        for (i, row) in b.iter_mut().enumerate().take(3) {
+            row[i] += shared;
+        }
+        return;
+    }
+    for i in 0..S {
+        for j in 0..S {
+            b[i][j] += dot3(&p.ang[i], &q.weighted[j]);
+        }
+    }
+    for i in 0..p.linear {
+        for j in 0..q.linear {
+            b[i][j] += dot3(&p.lin[i], &q.scaled[j]);
+        }
+    }
+}
+
+/// The factor, block by block, over K's blocks in place: B_k = K_{k,k−1} L_{k−1}⁻ᵀ into
+/// `below`, L_k (and 1/L_k's pivots, 0 for a pivot² at or below `tiny`) into `diagonal`.
+#[allow(clippy::needless_range_loop)]
+fn factor<const S: usize>(
+    diagonal: &mut [Square],
+    below: &mut [Square],
+    pivots: &mut [Column],
+    tiny: f64,
+) {
+    for k in 0..diagonal.len() {
+        if k > 0 {
+            let (done, rest) = diagonal.split_at_mut(k);
+            let (l, d) = (&done[k - 1], &mut rest[0]);
+            let r = &pivots[k - 1];
+            let b = &mut below[k];
+            for row in b.iter_mut().take(S) {
+                for j in 0..S {
+                    let mut t = row[j];
+                    for c in 0..j {
+                        t -= row[c] * l[j][c];
+                    }
+                    row[j] = t * r[j];
+                }
+            }
+            for i in 0..S {
+                for j in 0..=i {
+                    let mut t = d[i][j];
+                    for c in 0..S {
+                        t -= b[i][c] * b[j][c];
+                    }
+                    d[i][j] = t;
+                }
+            }
+        }
+        let d = &mut diagonal[k];
+        let r = &mut pivots[k];
+        for i in 0..S {
+            for j in 0..i {
+                let mut t = d[i][j];
+                for c in 0..j {
+                    t -= d[i][c] * d[j][c];
+                }
+                d[i][j] = t * r[j];
+            }
+            let mut square = d[i][i];
+            for c in 0..i {
+                square -= d[i][c] * d[i][c];
+            }
+            r[i] = if square > tiny {
+                1.0 / square.sqrt()
+            } else {
+                0.0
+            };
         }
     }
 }
