@@ -49,6 +49,8 @@
 
 use super::rows::Row;
 use crate::physics::envelope::{Envelope, Pivots};
+#[cfg(target_arch = "x86_64")]
+use crate::physics::simd::avx2;
 use nalgebra::{Matrix3, Vector3};
 
 /// A row touching a body: (row, linear part, I⁻¹ · angular part, angular part).
@@ -172,14 +174,15 @@ pub fn multipliers(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &
     solver.group(rows, inverse);
     solver.solved = 0;
     if solver.banded && solver.widest <= WIDEST && solver.blocks.len() > 1 {
-        match solver.widest {
-            1 => solver.banded::<1>(rows, inverse),
-            2 => solver.banded::<2>(rows, inverse),
-            3 => solver.banded::<3>(rows, inverse),
-            4 => solver.banded::<4>(rows, inverse),
-            5 => solver.banded::<5>(rows, inverse),
-            _ => solver.banded::<6>(rows, inverse),
+        #[cfg(target_arch = "x86_64")]
+        if avx2() {
+            // SAFETY: the CPU has AVX2.
+            unsafe { factor_avx2(solver, rows, inverse) };
+        } else {
+            factor_plain(solver, rows, inverse);
         }
+        #[cfg(not(target_arch = "x86_64"))]
+        factor_plain(solver, rows, inverse);
     } else {
         envelope(rows, inverse, x, solver);
         return;
@@ -233,18 +236,59 @@ fn envelope(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &mut Sol
 pub fn again(rhs: &mut [f64], solver: &mut Solver) -> bool {
     let x = &mut rhs[..solver.solved];
     if solver.solved > 0 {
-        match solver.widest {
-            1 => solver.banded_substitute::<1>(x),
-            2 => solver.banded_substitute::<2>(x),
-            3 => solver.banded_substitute::<3>(x),
-            4 => solver.banded_substitute::<4>(x),
-            5 => solver.banded_substitute::<5>(x),
-            _ => solver.banded_substitute::<6>(x),
+        #[cfg(target_arch = "x86_64")]
+        if avx2() {
+            // SAFETY: the CPU has AVX2.
+            unsafe { substitute_avx2(solver, x) };
+        } else {
+            substitute_plain(solver, x);
         }
+        #[cfg(not(target_arch = "x86_64"))]
+        substitute_plain(solver, x);
         true
     } else {
         false
     }
+}
+
+/// The banded factor at the widest block's width (`Solver::banded`), for any CPU.
+#[inline(always)]
+fn factor_plain(solver: &mut Solver, rows: &[Row], inverse: &[Inverse]) {
+    match solver.widest {
+        1 => solver.banded::<1>(rows, inverse),
+        2 => solver.banded::<2>(rows, inverse),
+        3 => solver.banded::<3>(rows, inverse),
+        4 => solver.banded::<4>(rows, inverse),
+        5 => solver.banded::<5>(rows, inverse),
+        _ => solver.banded::<6>(rows, inverse),
+    }
+}
+
+/// [`factor_plain`] compiled with AVX2 (no fused multiply–add: the same bits).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn factor_avx2(solver: &mut Solver, rows: &[Row], inverse: &[Inverse]) {
+    factor_plain(solver, rows, inverse);
+}
+
+/// The banded substitutions at the widest block's width, for any CPU.
+#[inline(always)]
+fn substitute_plain(solver: &mut Solver, x: &mut [f64]) {
+    match solver.widest {
+        1 => solver.banded_substitute::<1>(x),
+        2 => solver.banded_substitute::<2>(x),
+        3 => solver.banded_substitute::<3>(x),
+        4 => solver.banded_substitute::<4>(x),
+        5 => solver.banded_substitute::<5>(x),
+        _ => solver.banded_substitute::<6>(x),
+    }
+}
+
+/// [`substitute_plain`] compiled with AVX2 (the same bits).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn substitute_avx2(solver: &mut Solver, x: &mut [f64]) {
+    substitute_plain(solver, x);
 }
 
 impl Solver {
@@ -303,6 +347,7 @@ impl Solver {
     /// L_k L_kᵀ = K_kk − B_k B_kᵀ
     /// y_k = L_k⁻¹ (b_k − B_k y_{k−1}),   x_k = L_k⁻ᵀ (y_k − B_{k+1}ᵀ x_{k+1})
     /// ```
+    #[inline(always)]
     fn banded<const S: usize>(&mut self, rows: &[Row], inverse: &[Inverse]) {
         let count = self.blocks.len();
         self.parts.resize(count, Default::default());
@@ -327,6 +372,7 @@ impl Solver {
 
     /// `L y = b`, block by block down, then `Lᵀ x = y`, block by block up, over x = b.
     #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
     fn banded_substitute<const S: usize>(&mut self, x: &mut [f64]) {
         let count = self.blocks.len();
         let Solver {
@@ -383,6 +429,7 @@ impl Solver {
 }
 
 /// Each side's parts of every block: lin, lin/m, ang, I⁻¹ ang (zero past the block's rows).
+#[inline(always)]
 fn fill<const S: usize>(
     blocks: &[Block],
     parts: &mut [[Parts; 2]],
@@ -446,6 +493,7 @@ fn fill_points<const S: usize>(
 }
 
 /// One side of any other block: every part, and how many rows have a linear part.
+#[inline(always)]
 fn fill_rows<const S: usize>(rows: &[Row], side_index: usize, inv: &Inverse, part: &mut Parts) {
     for i in 0..S {
         if let Some(row) = rows.get(i) {
@@ -471,6 +519,7 @@ fn fill_rows<const S: usize>(rows: &[Row], side_index: usize, inv: &Inverse, par
 /// diagonal entry.
 // Index loops of fixed length S, written as the formulas index the blocks.
 #[allow(clippy::needless_range_loop)]
+#[inline(always)]
 fn assemble<const S: usize>(
     blocks: &[Block],
     parts: &[[Parts; 2]],
@@ -584,6 +633,7 @@ fn add_below<const S: usize>(b: &mut Square, p: &Parts, q: &Parts, points: bool,
 /// The factor, block by block, over K's blocks in place: B_k = K_{k,k−1} L_{k−1}⁻ᵀ into
 /// `below`, L_k (and 1/L_k's pivots, 0 for a pivot² at or below `tiny`) into `diagonal`.
 #[allow(clippy::needless_range_loop)]
+#[inline(always)]
 fn factor<const S: usize>(
     diagonal: &mut [Square],
     below: &mut [Square],
