@@ -145,8 +145,37 @@ impl System<'_> {
     }
 
     /// Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction; each row's J_iᵀ λ added to its
-    /// bodies' loads and to its joint's reaction on A.
+    /// bodies' loads and to its joint's reaction on A. Compiled twice, plain and with AVX2
+    /// (no fused multiply–add: the same bits; `physics::simd`).
     fn add_joint_reactions(
+        &self,
+        kinematics: &[Kinematics],
+        angular_momenta: &[Vector3<f64>],
+        scratch: &mut Scratch,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if super::simd::avx2() {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { self.joint_reactions_avx2(kinematics, angular_momenta, scratch) };
+        }
+        self.joint_reactions(kinematics, angular_momenta, scratch);
+    }
+
+    /// [`System::joint_reactions`] compiled with AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn joint_reactions_avx2(
+        &self,
+        kinematics: &[Kinematics],
+        angular_momenta: &[Vector3<f64>],
+        scratch: &mut Scratch,
+    ) {
+        self.joint_reactions(kinematics, angular_momenta, scratch);
+    }
+
+    /// [`System::add_joint_reactions`] for any CPU.
+    #[inline(always)]
+    fn joint_reactions(
         &self,
         kinematics: &[Kinematics],
         angular_momenta: &[Vector3<f64>],

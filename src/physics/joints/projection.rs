@@ -34,6 +34,7 @@ pub struct Buffers {
 }
 
 /// The rows at `states`, with their velocities.
+#[inline(always)]
 fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
     joint_rows(
         links,
@@ -45,6 +46,7 @@ fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
 
 /// Each body's pose and inverse mass at `states`, and the joints' rows there, with their
 /// velocities (the rows the projection and the contact pass both start from).
+#[inline(always)]
 pub(super) fn joint_rows(
     links: &Links,
     bodies: &[Body],
@@ -76,6 +78,36 @@ pub(super) fn joint_rows(
 /// Projects `states` onto the joints' constraints; `impulses` receives each joint's velocity
 /// impulse on its body A (force: N·s, torque: N·m·s).
 pub fn project(
+    links: &Links,
+    bodies: &[Body],
+    states: &mut [State],
+    impulses: &mut Vec<Loads>,
+    b: &mut Buffers,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::physics::simd::avx2() {
+        // SAFETY: the CPU has AVX2.
+        return unsafe { project_avx2(links, bodies, states, impulses, b) };
+    }
+    project_plain(links, bodies, states, impulses, b);
+}
+
+/// [`project`] compiled with AVX2 (no fused multiply–add: the same bits; `physics::simd`).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn project_avx2(
+    links: &Links,
+    bodies: &[Body],
+    states: &mut [State],
+    impulses: &mut Vec<Loads>,
+    b: &mut Buffers,
+) {
+    project_plain(links, bodies, states, impulses, b);
+}
+
+/// [`project`] for any CPU.
+#[inline(always)]
+fn project_plain(
     links: &Links,
     bodies: &[Body],
     states: &mut [State],
@@ -157,6 +189,7 @@ pub fn shake(
 /// Positions onto C = 0 by Newton's method on the rows at the current positions. Returns
 /// whether the velocity pass may reuse the last pass's factor (in `b.solver`): a pass moved
 /// them, by less than [`REUSE_BELOW`].
+#[inline(always)]
 fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffers) -> bool {
     // The rows are built with velocities: the last build, on C = 0, serves the velocity pass.
     let mut reuse = false;
@@ -190,6 +223,7 @@ const REUSE_BELOW: f64 = 1e-9;
 /// lever arms), so J u⁺ = (1 − K K_old⁻¹) J u⁻ ~ 1e-9 |J u⁻| instead of round-off of it —
 /// far below the 1e-12 tolerances after a normal step — and one assembly and factorisation
 /// of K per step is saved.
+#[inline(always)]
 fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut Buffers) {
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
@@ -213,6 +247,7 @@ fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut
 
 /// Body `i` moved by one row's position multiplier μ: `x += μ lin / m`,
 /// `q ← exp(I⁻¹_world ang μ) q`.
+#[inline(always)]
 pub(super) fn shift(
     states: &mut [State],
     inverse: &[Inverse],

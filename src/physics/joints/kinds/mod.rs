@@ -163,7 +163,7 @@ impl<'a> Anchors<'a> {
 
     /// The three point rows of ball, hinge and fixed: C = x_A + r_A − x_B − r_B,
     /// (e_k, r_A×e_k | −e_k, −r_B×e_k), J̇u = ω_A×(ω_A×r_A) − ω_B×(ω_B×r_B).
-    #[inline]
+    #[inline(always)]
     pub fn point_rows(&self, out: &mut Vec<Row>) {
         for k in 0..3 {
             let e = Vector3::ith(k, 1.0);
