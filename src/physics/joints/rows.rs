@@ -48,7 +48,7 @@ pub fn rate(row: &Row, a: &Pose, b: &Pose) -> f64 {
 
 /// Appends joint `index`'s rows at poses `a`, `b` (B the world's pose when the joint holds A
 /// to the world) to `out`.
-#[inline]
+#[inline(always)]
 pub fn rows_of(joint: &Joint, index: usize, a: &Pose, b: &Pose, out: &mut Vec<Row>) {
     let at = Anchors::of(joint, index, a, b);
     kinds::rows(joint, &at, out);

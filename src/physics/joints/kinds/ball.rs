@@ -13,7 +13,7 @@ use crate::physics::constraints::Row;
 pub const ROWS: usize = 3;
 
 /// Its rows at the anchors `at`.
-#[inline]
+#[inline(always)]
 pub fn rows(at: &Anchors, out: &mut Vec<Row>) {
     at.point_rows(out);
 }

@@ -19,7 +19,7 @@ use nalgebra::Vector3;
 pub const ROWS: usize = 5;
 
 /// Its rows at the anchors `at`.
-#[inline]
+#[inline(always)]
 pub fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
     at.point_rows(out);
     let (a, b) = (at.a, at.b);

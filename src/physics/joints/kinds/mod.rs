@@ -83,7 +83,7 @@ impl JointKind {
 }
 
 /// Appends the joint's equality rows at the anchors `at` to `out`.
-#[inline]
+#[inline(always)]
 pub(super) fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
     match joint.kind {
         JointKind::Ball => ball::rows(at, out),
@@ -128,7 +128,7 @@ pub(super) struct Anchors<'a> {
 }
 
 impl<'a> Anchors<'a> {
-    #[inline]
+    #[inline(always)]
     pub fn of(joint: &Joint, index: usize, a: &'a Pose, b: &'a Pose) -> Anchors<'a> {
         let ra = a.r * joint.anchor_a;
         let rb = b.r * joint.anchor_b;
@@ -147,7 +147,7 @@ impl<'a> Anchors<'a> {
     }
 
     /// The equality row (lin, g_A | −lin, g_B) with C = `c` and J̇u = `bias`.
-    #[inline]
+    #[inline(always)]
     pub fn row(
         &self,
         lin: Vector3<f64>,
