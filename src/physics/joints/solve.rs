@@ -738,9 +738,12 @@ mod tests {
 
     /// A chain of `kinds.len()` bodies in random poses and motion, joint i joining body i to
     /// body i − 1 (joint 0 to the world), and (`closed`) a ball joint between bodies 2 and 5
-    /// closing a loop; solves `K λ = rhs` for a random rhs both ways and returns which path the
-    /// block solve took (banded or the envelope).
-    fn check(kinds: &[JointKind], closed: bool, seed: &mut u64) -> bool {
+    /// closing a loop: its rows, inverse masses and a random rhs.
+    fn system(
+        kinds: &[JointKind],
+        closed: bool,
+        seed: &mut u64,
+    ) -> (Vec<Row>, Vec<Inverse>, Vec<f64>) {
         let seed = &mut *seed;
         let states: Vec<State> = (0..kinds.len())
             .map(|i| State {
@@ -808,6 +811,13 @@ mod tests {
         let want_rows: usize = joints.iter().map(|j| j.kind.rows()).sum();
         assert_eq!(rows.len(), want_rows);
         let rhs: Vec<f64> = (0..rows.len()).map(|_| next(seed)).collect();
+        (rows, inverse, rhs)
+    }
+
+    /// [`system`]'s `K λ = rhs` solved both ways (the block solve and a dense LU); returns
+    /// which path the block solve took (banded or the envelope).
+    fn check(kinds: &[JointKind], closed: bool, seed: &mut u64) -> bool {
+        let (rows, inverse, rhs) = system(kinds, closed, seed);
         let mut lambda = rhs.clone();
         let mut solver = Solver::default();
         multipliers(&rows, &inverse, &mut lambda, &mut solver);
@@ -843,5 +853,31 @@ mod tests {
         ));
         assert!(check(&[Hinge; 10], false, &mut seed));
         assert!(!check(&every, true, &mut seed));
+    }
+
+    /// The AVX2 build of the banded factor and substitutions gives the plain build's bits, on
+    /// a chain of every kind and on a hinge chain (a second right-hand side through `again`).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_avx2_build_gives_the_plain_builds_bits() {
+        use JointKind::{Ball, Distance, Fixed, Hinge, Slider};
+        let bits = |kinds: &[JointKind], plain: bool| {
+            crate::physics::simd::set_plain(plain);
+            let (rows, inverse, rhs) = system(kinds, false, &mut 11);
+            let mut lambda = rhs.clone();
+            let mut solver = Solver::default();
+            multipliers(&rows, &inverse, &mut lambda, &mut solver);
+            let mut second: Vec<f64> = rhs.iter().map(|x| 0.5 - x).collect();
+            assert!(again(&mut second, &mut solver));
+            crate::physics::simd::set_plain(false);
+            let all: Vec<u64> = lambda.iter().chain(&second).map(|x| x.to_bits()).collect();
+            all
+        };
+        for kinds in [
+            &[Hinge, Ball, Fixed, Slider, Distance, Hinge, Slider, Fixed][..],
+            &[Hinge; 10][..],
+        ] {
+            assert_eq!(bits(kinds, true), bits(kinds, false));
+        }
     }
 }
