@@ -57,8 +57,11 @@ fn record(name: &str, mut world: World, response: Response) -> Recorded {
         before: &before,
         loads: &loads,
         initial_positions: &initial,
-        gravity,
-        dt: world.dt(),
+        context: tumble::physics::collision::StepContext::new(
+            world.dt(),
+            gravity,
+            world.contact_model(),
+        ),
         joined: &[],
         recorded: None,
     };
@@ -114,8 +117,11 @@ fn solver(c: &mut Criterion) {
                 before: &r.before,
                 loads: &r.loads,
                 initial_positions: &initial,
-                gravity: r.world.effects().gravity(),
-                dt: r.world.dt(),
+                context: tumble::physics::collision::StepContext::new(
+                    r.world.dt(),
+                    r.world.effects().gravity(),
+                    r.world.contact_model(),
+                ),
                 joined: &[],
                 recorded: Some(&r.rows),
             };

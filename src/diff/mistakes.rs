@@ -500,8 +500,11 @@ impl<'a> Planted<'a> {
             before: std::slice::from_ref(before),
             loads: std::slice::from_ref(loads),
             initial_positions: std::slice::from_ref(&self.initial_position),
-            gravity: self.effects.gravity(),
-            dt: self.dt,
+            context: crate::physics::collision::StepContext::new(
+                self.dt,
+                self.effects.gravity(),
+                Some(model),
+            ),
             joined: &[],
             recorded: None,
         };

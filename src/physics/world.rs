@@ -441,15 +441,19 @@ impl World {
     ///
     /// From the start of a frame this is exactly `derive`, `forces`, `integrate`, `collide` as
     /// [`World::step_phase`] runs them, without dispatching on the phase in between.
+    ///
+    /// The step's contact constants are built here, once ([`StepContext`]), and handed down
+    /// as one value to every contact pass of the step.
     pub fn step(&mut self) {
         if self.next_phase() != Phase::Derive {
             while self.step_phase() != Phase::Collide {}
             return;
         }
+        let context = self.step_context();
         self.derive_phase();
         self.forces_phase();
-        self.integrate_phase();
-        self.collide_phase();
+        self.integrate_phase(&context);
+        self.collide_phase(&context);
         self.now.last = Some(Phase::Collide);
     }
 
@@ -459,8 +463,8 @@ impl World {
         match phase {
             Phase::Derive => self.derive_phase(),
             Phase::Forces => self.forces_phase(),
-            Phase::Integrate => self.integrate_phase(),
-            Phase::Collide => self.collide_phase(),
+            Phase::Integrate => self.integrate_phase(&self.step_context()),
+            Phase::Collide => self.collide_phase(&self.step_context()),
         }
         self.now.last = Some(phase);
         phase
@@ -518,7 +522,7 @@ impl World {
     /// *integrate*: one integrator step of the whole system, then the cloths (the states
     /// before it are kept for the collide phase).
     #[inline]
-    fn integrate_phase(&mut self) {
+    fn integrate_phase(&mut self, context: &StepContext) {
         // Energy ledger: the drag power at the start of the step (see `energy_ledger`).
         let drag = self.effects.depends_on_velocity();
         let drag_start = drag.then(|| self.drag_power());
@@ -530,7 +534,7 @@ impl World {
         let has_cloths = !now.cloths.0.is_empty();
         let mut potential = self.integrate_bodies();
         if has_cloths {
-            potential += self.integrate_cloths();
+            potential += self.integrate_cloths(context);
         }
         let now = &mut self.now;
         now.step += 1;
@@ -645,6 +649,7 @@ impl World {
     }
 
     /// The step's contact constants (bounce speed, margins, e, μ): `collision::step_context`.
+    /// Built once per step ([`World::step`]).
     fn step_context(&self) -> StepContext {
         StepContext::new(self.dt, self.effects.gravity(), self.contact.as_ref())
     }
@@ -653,13 +658,7 @@ impl World {
     /// velocity pass, position half. Books the damping and drag losses as drag work and the
     /// velocity pass's energy as contact energy; returns the cloths' spring and gravitational
     /// energy after the step (for the guard).
-    fn integrate_cloths(&mut self) -> f64 {
-        let context = self.step_context();
-        let StepContext {
-            restitution,
-            friction,
-            ..
-        } = context;
+    fn integrate_cloths(&mut self, context: &StepContext) -> f64 {
         let loads = &self.cloth_loads;
         let now = &mut self.now;
         let mut potential = 0.0;
@@ -677,12 +676,11 @@ impl World {
                 // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
                 let scene = TiedScene {
                     loads,
-                    dt: self.dt,
+                    context,
                     bodies: &self.bodies,
                     start: &now.before,
                     obstacles: &self.obstacles,
                     attachments: self.cloth_attachments.get(k).map_or(&[][..], |a| &a[..]),
-                    friction,
                     factor: self.integrator.position_factor(),
                     links: &self.links,
                     predicted: &now.collide_moves,
@@ -708,14 +706,8 @@ impl World {
             }
             cloth.velocity_step(loads, self.dt);
             if !self.obstacles.is_empty() {
-                let report = cloth.contact_velocities(
-                    &self.obstacles,
-                    restitution,
-                    friction,
-                    loads,
-                    self.dt,
-                    &mut self.particle_contacts,
-                );
+                let report =
+                    cloth.contact_velocities(&self.obstacles, context, &mut self.particle_contacts);
                 now.cloth_obstacle_contacts[k] = [report.contacts, 0];
                 let taken = report.energy_taken;
                 if taken != 0.0 {
@@ -724,7 +716,7 @@ impl World {
             }
             if self.contact.is_some() && !self.bodies.is_empty() {
                 let approach =
-                    approach_bodies(cloth, &self.bodies, &now.before, &mut now.states, &context);
+                    approach_bodies(cloth, &self.bodies, &now.before, &mut now.states, context);
                 // Counted with the collide phase's own (`cloth_body_contacts`).
                 now.cloth_body_contacts[k] = approach.contacts;
                 if approach.energy_taken != 0.0 {
@@ -764,10 +756,10 @@ impl World {
     /// The collide phase of the cloths: the obstacles' position pass, then the particles
     /// against the bodies (`cloth_coupling`). Books the measured energy change as contact
     /// energy.
-    fn collide_cloths(&mut self) {
-        let Some(model) = self.contact else {
+    fn collide_cloths(&mut self, context: &StepContext) {
+        if self.contact.is_none() {
             return;
-        };
+        }
         if self.obstacles.is_empty() && self.bodies.is_empty() {
             return;
         }
@@ -781,7 +773,6 @@ impl World {
             self.total_energy()
         };
         let mut touched = false;
-        let bounce_speed = self.step_context().bounce_speed;
         let now = &mut self.now;
         now.cloth_obstacle_contacts
             .resize(now.cloths.0.len(), [0, 0]);
@@ -790,23 +781,14 @@ impl World {
                 now.cloth_obstacle_contacts[k][1] = cloth
                     .collide_obstacles(
                         &self.obstacles,
-                        model.restitution,
-                        model.friction,
+                        context,
                         &self.cloth_loads,
-                        self.dt,
                         &mut self.particle_contacts,
                     )
                     .contacts;
                 touched |= !self.particle_contacts.is_empty();
             }
-            let touching = collide_bodies(
-                cloth,
-                &self.bodies,
-                &mut now.states,
-                model.restitution,
-                model.friction,
-                bounce_speed,
-            );
+            let touching = collide_bodies(cloth, &self.bodies, &mut now.states, context);
             now.cloth_body_contacts[k] += touching;
             touched |= touching > 0;
         }
@@ -838,9 +820,9 @@ impl World {
     /// *collide*: detection and response, only when something can touch (obstacles, or
     /// several bodies) and the scene gives a response.
     #[inline]
-    fn collide_phase(&mut self) {
+    fn collide_phase(&mut self, context: &StepContext) {
         if !self.now.cloths.0.is_empty() {
-            self.collide_cloths();
+            self.collide_cloths(context);
         }
         let (true, Some(model)) = (self.can_touch(), &self.contact) else {
             return;
@@ -853,8 +835,7 @@ impl World {
             before: &now.before,
             loads: &now.loads,
             initial_positions: &self.initial_positions,
-            gravity: self.effects.gravity(),
-            dt: self.dt,
+            context: *context,
             joined: &self.joined,
             recorded: None,
         };

@@ -398,8 +398,7 @@ proptest! {
             before: &before,
             loads: &[Loads::default(), Loads::default()],
             initial_positions: &[Vector3::zeros(), Vector3::zeros()],
-            gravity: None,
-            dt,
+            context: tumble::physics::collision::StepContext::new(dt, None, Some(&model)),
             joined: &[],
             recorded: None,
         };

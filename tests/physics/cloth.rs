@@ -6,6 +6,7 @@
 
 use nalgebra::{DMatrix, DVector, Vector3};
 use tumble::physics::cloth::{Cloth, ClothIntegrator, ClothLoads, ClothSpec, Pinning};
+use tumble::physics::collision::StepContext;
 use tumble::physics::Obstacle;
 
 const G: Vector3<f64> = Vector3::new(0.0, -9.81, 0.0);
@@ -507,9 +508,10 @@ fn a_cloth_dropped_on_a_sphere_drapes_with_no_particle_inside() {
         let mut contacts = Vec::new();
         let mut taken = 0.0;
         let steps = (2.0 / dt) as usize;
+        let context = StepContext::new(dt, loads.gravity, None).with_contact(0.0, 0.3);
         for _ in 0..steps {
             let (_, report) =
-                cloth.step_with_obstacles(&loads, dt, &obstacles, 0.0, 0.3, &mut contacts);
+                cloth.step_with_obstacles(&loads, &context, &obstacles, &mut contacts);
             taken += report.energy_taken;
             for o in &obstacles {
                 for x in &cloth.positions {

@@ -408,8 +408,7 @@ proptest! {
             before: std::slice::from_ref(&before),
             loads: std::slice::from_ref(&loads),
             initial_positions: &[Vector3::zeros()],
-            gravity: Some(Vector3::new(0.0, -G, 0.0)),
-            dt: 1e-2,
+            context: tumble::physics::collision::StepContext::new(1e-2, Some(Vector3::new(0.0, -G, 0.0)), Some(&model)),
             joined: &[],
             recorded: None,
         };

@@ -26,7 +26,8 @@
 //! v_t = v − (v·n) n,  |v_t| ≤ μ Δu_n ? v_t ← 0 : v_t ← v_t (1 − μ Δu_n/|v_t|)    (Coulomb)
 //! ```
 //!
-//! The bounce threshold is the bodies' (`collision::step_context::BOUNCE_STEPS`). A point mass has
+//! The bounce threshold is the bodies' (`collision::step_context`: both passes read the step's
+//! one context). A point mass has
 //! no lever arm, so this one-contact rule is exact and never adds kinetic energy (e ≤ 1,
 //! μ ≥ 0); the push-out lifts the particle by `depth n` against gravity, and that work
 //! `ΔV = −m g·(depth n)` is paid from the bounce (the restitution part is scaled down so that
@@ -66,12 +67,6 @@ pub struct ParticleContact {
     pub normal_velocity: f64,
 }
 
-/// The speed below which approaches do not bounce: `BOUNCE_STEPS·|g|·dt`, as for bodies
-/// (`collision::step_context`).
-fn bounce_speed(loads: &ClothLoads, dt: f64) -> f64 {
-    StepContext::new(dt, loads.gravity, None).bounce_speed
-}
-
 /// A start this close to a surface (m) counts as on it.
 const ON_SURFACE: f64 = 1e-9;
 
@@ -104,21 +99,20 @@ pub struct ContactReport {
 impl Cloth {
     /// One whole step among fixed obstacles: the velocity half, pass 1 (velocities), the
     /// position half, pass 2 (projection). Contacts of both passes are in `contacts`.
+    /// `context`: the step's dt, bounce speed, e and μ (its gravity should be `loads`').
     pub fn step_with_obstacles(
         &mut self,
         loads: &ClothLoads,
-        dt: f64,
+        context: &StepContext,
         obstacles: &[Obstacle],
-        restitution: f64,
-        friction: f64,
         contacts: &mut Vec<ParticleContact>,
     ) -> (StepReport, ContactReport) {
+        let dt = context.dt;
         let mut report = self.velocity_step(loads, dt);
-        let first = self.contact_velocities(obstacles, restitution, friction, loads, dt, contacts);
+        let first = self.contact_velocities(obstacles, context, contacts);
         report.dissipated = self.advance_positions(loads, dt);
         let mut second = Vec::new();
-        let after =
-            self.collide_obstacles(obstacles, restitution, friction, loads, dt, &mut second);
+        let after = self.collide_obstacles(obstacles, context, loads, &mut second);
         contacts.extend(second);
         (
             report,
@@ -141,14 +135,17 @@ impl Cloth {
     pub fn contact_velocities(
         &mut self,
         obstacles: &[Obstacle],
-        restitution: f64,
-        friction: f64,
-        loads: &ClothLoads,
-        dt: f64,
+        context: &StepContext,
         contacts: &mut Vec<ParticleContact>,
     ) -> ContactReport {
         contacts.clear();
-        let bounce_speed = bounce_speed(loads, dt);
+        let StepContext {
+            dt,
+            bounce_speed,
+            restitution,
+            friction,
+            ..
+        } = *context;
         let mut taken = 0.0;
         for i in 0..self.len() {
             if self.pinned[i] {
@@ -214,17 +211,20 @@ impl Cloth {
     pub fn collide_obstacles(
         &mut self,
         obstacles: &[Obstacle],
-        restitution: f64,
-        friction: f64,
+        context: &StepContext,
         loads: &ClothLoads,
-        dt: f64,
         contacts: &mut Vec<ParticleContact>,
     ) -> ContactReport {
         contacts.clear();
         if obstacles.is_empty() {
             return ContactReport::default();
         }
-        let bounce_speed = bounce_speed(loads, dt);
+        let StepContext {
+            bounce_speed,
+            restitution,
+            friction,
+            ..
+        } = *context;
         if self.scratch.start.len() != self.len() {
             self.scratch.start.clone_from(&self.positions);
         }

@@ -128,15 +128,19 @@ fn shape_at<'a>(body: &'a Body, state: &State) -> Option<(&'a Shape, Pose, Matri
 
 /// One particle–body contact pass over a cloth: returns the number of contacts.
 ///
-/// `bounce_speed`: approaches slower than this do not bounce.
+/// `context`: e, μ and the bounce speed (approaches slower than it do not bounce).
 pub fn collide_bodies(
     cloth: &mut Cloth,
     bodies: &[Body],
     states: &mut [State],
-    restitution: f64,
-    friction: f64,
-    bounce_speed: f64,
+    context: &StepContext,
 ) -> usize {
+    let StepContext {
+        restitution,
+        friction,
+        bounce_speed,
+        ..
+    } = *context;
     let mut count = 0;
     let mut sweeps = ParticleContacts::default();
     for (body, state) in bodies.iter().zip(states.iter_mut()) {

@@ -58,14 +58,13 @@ pub struct TiedReport {
 #[derive(Debug, Clone, Copy)]
 pub struct TiedScene<'a> {
     pub loads: &'a crate::physics::cloth::ClothLoads,
-    pub dt: f64,
+    /// The step's constants: dt and μ of the contacts (0: frictionless, normal ties only).
+    pub context: &'a crate::physics::collision::StepContext,
     pub bodies: &'a [Body],
     /// The bodies' states at the start of the step.
     pub start: &'a [State],
     pub obstacles: &'a [crate::physics::collision::Obstacle],
     pub attachments: &'a [Attachment],
-    /// μ of the contacts (0: frictionless, normal ties only).
-    pub friction: f64,
     /// The bodies' integrator's position factor (`Integrator::position_factor`).
     pub factor: f64,
     pub links: &'a Links,
@@ -136,7 +135,7 @@ pub fn tied_step(
     states: &mut [State],
     joint_impulses: &mut Vec<Loads>,
 ) -> TiedReport {
-    cloth.begin_tied_step(scene.loads, scene.dt);
+    cloth.begin_tied_step(scene.loads, scene.context.dt);
     let mut solver_bodies = scene.solver_bodies(states);
     // The joints on the bodies that move in the solve, held inside it (`cloth::ties`,
     // "Joints on the bodies").
@@ -230,7 +229,7 @@ impl TiedScene<'_> {
         states: &[State],
         solver_bodies: &[TiedBody],
     ) -> Vec<Candidate> {
-        let (bodies, dt) = (self.bodies, self.dt);
+        let (bodies, dt) = (self.bodies, self.context.dt);
         let gravity = self.loads.gravity.unwrap_or_else(Vector3::zeros);
         let mut candidates: Vec<Candidate> = Vec::new();
         // A broad phase: each body's reach at the fastest free particle's speed bounds every
@@ -350,10 +349,10 @@ impl TiedScene<'_> {
         // One already inside at the start of the step (gap₀ = gap + h n·drift < 0) is not
         // pushed out by a velocity (energy made): it moves with the surface, the collide
         // phase pushes it out. Against an obstacle (drift 0): stop there.
-        let dt = self.dt;
+        let dt = self.context.dt;
         let start_gap = c.gap + dt * c.normal.dot(&c.drift);
         let along = c.normal * ((-c.gap + start_gap.min(0.0)) / dt);
-        let kind = if self.friction > 0.0 {
+        let kind = if self.context.friction > 0.0 {
             TieKind::Full
         } else {
             TieKind::Normal
@@ -375,7 +374,7 @@ impl TiedScene<'_> {
     /// Where the particle ends along n relative to the surface, for a velocity v₁ (< 0:
     /// inside).
     fn end_gap(&self, c: &Candidate, v: &Vector3<f64>, sb: &[TiedBody]) -> f64 {
-        c.gap + self.dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
+        c.gap + self.context.dt * (v - correction_at(sb, c.body, &c.arm)).dot(&c.normal)
     }
 
     /// First guess of the contact set: touching, or carried inside by its start velocity and
@@ -386,7 +385,7 @@ impl TiedScene<'_> {
     /// particles that hold it by h·V every step). (Against a body only: an obstacle's
     /// contacts are found afresh each step.)
     fn first_guess(&self, cloth: &Cloth, contacts: &Contacts, sb: &[TiedBody]) -> Vec<bool> {
-        let dt = self.dt;
+        let dt = self.context.dt;
         let gravity = self.loads.gravity.unwrap_or_else(Vector3::zeros);
         let was_held = |c: &Candidate| {
             let start_gap = c.gap + dt * c.normal.dot(&c.drift);
@@ -414,7 +413,7 @@ impl TiedScene<'_> {
                 let arm = state.orientation.matrix() * a.offset_body;
                 self.predicted
                     .get(a.body)
-                    .map_or(Vector3::zeros(), |m| m.of_point(&arm) / self.dt)
+                    .map_or(Vector3::zeros(), |m| m.of_point(&arm) / self.context.dt)
             })
             .collect()
     }
@@ -440,7 +439,7 @@ impl TiedScene<'_> {
                 arm,
                 normal: Vector3::y(),
                 kind: TieKind::Full,
-                target: (target - cloth.positions[a.particle]) / self.dt + lead,
+                target: (target - cloth.positions[a.particle]) / self.context.dt + lead,
                 extra: Vector3::zeros(),
                 permanent: true,
                 impulse: Vector3::zeros(),
@@ -523,12 +522,12 @@ impl TiedScene<'_> {
                 changed = true;
                 continue;
             }
-            if self.friction > 0.0 {
+            if self.context.friction > 0.0 {
                 let tangential = match tie.kind {
                     TieKind::Full => tie.impulse - n * normal_impulse,
                     TieKind::Normal => tie.extra,
                 };
-                let limit = self.friction * normal_impulse;
+                let limit = self.context.friction * normal_impulse;
                 let size = tangential.norm();
                 if tie.kind == TieKind::Full && size > limit {
                     // Out of the cone: slide, with the bounded impulse.
@@ -557,7 +556,7 @@ impl TiedScene<'_> {
     ) {
         for tie in ties {
             let drift = tie.body.map_or(Vector3::zeros(), |b| {
-                self.displacement(states, b, &tie.arm) / self.dt
+                self.displacement(states, b, &tie.arm) / self.context.dt
             });
             let u = cloth.velocities[tie.particle]
                 - drift
@@ -603,7 +602,7 @@ impl TiedScene<'_> {
             }
             state.linear_momentum += dv * sb.mass;
             state.angular_momentum += sb.inertia * dw;
-            move_body(state, &dv, &dw, self.dt);
+            move_body(state, &dv, &dw, self.context.dt);
         }
     }
 
@@ -626,11 +625,18 @@ impl TiedScene<'_> {
             if sb.mass == 0.0 {
                 continue;
             }
-            let mut gap = turn_gap(&sb.correction[1], &tie.arm, self.dt);
+            let mut gap = turn_gap(&sb.correction[1], &tie.arm, self.context.dt);
             if tie.kind == TieKind::Normal {
                 gap = tie.normal * tie.normal.dot(&gap);
             }
-            let made_up = close_gap(cloth, tie.particle, &mut states[b], &tie.arm, &gap, self.dt);
+            let made_up = close_gap(
+                cloth,
+                tie.particle,
+                &mut states[b],
+                &tie.arm,
+                &gap,
+                self.context.dt,
+            );
             if tie.permanent {
                 let point = states[b].position + tie.arm;
                 report.attach_impulse[0] += made_up;

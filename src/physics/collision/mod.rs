@@ -243,21 +243,14 @@ pub struct CollideInput<'a> {
     pub loads: &'a [Loads],
     /// The barycenters at t = 0 (the `seed` response measures its lever arm from there).
     pub initial_positions: &'a [Vector3<f64>],
-    /// Declared gravity, if any (sets the speed below which contacts do not bounce).
-    pub gravity: Option<Vector3<f64>>,
-    pub dt: f64,
+    /// The step's constants (dt, gravity, bounce speed, margins, e, μ), built once per step
+    /// by the world (`step_context`).
+    pub context: StepContext,
     /// Pairs of bodies (low, high index) joined directly by a joint: they do not collide.
     pub joined: &'a [(usize, usize)],
     /// Recorded contact rows: when given, detection is skipped and these are the step's rows
     /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
     pub recorded: Option<&'a [Contact]>,
-}
-
-impl CollideInput<'_> {
-    /// The step's contact constants (`step_context`).
-    pub fn context(&self) -> StepContext {
-        StepContext::new(self.dt, self.gravity, Some(self.model))
-    }
 }
 
 /// The energy of the bodies before and after a response, measured as [`energy`] measures it

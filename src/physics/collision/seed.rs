@@ -129,8 +129,11 @@ mod tests {
             before: std::slice::from_ref(&before),
             loads: std::slice::from_ref(&loads),
             initial_positions: &[Vector3::new(0.0, 1.0, 0.0)],
-            gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
-            dt: 1e-3,
+            context: crate::physics::collision::StepContext::new(
+                1e-3,
+                Some(Vector3::new(0.0, -9.81, 0.0)),
+                Some(&model),
+            ),
             joined: &[],
             recorded: None,
         };

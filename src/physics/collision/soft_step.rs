@@ -283,7 +283,7 @@ pub fn respond(
     contacts: &mut Vec<Contact>,
     scratch: &mut Scratch,
 ) -> Option<EnergyChange> {
-    let context = input.context();
+    let context = input.context;
     // Speculative rows: anything a body could reach within the step at the bounce speed,
     // and at least a millimetre (the rows' separations are tracked within the step).
     let margin = (context.bounce_speed * context.dt).max(1e-3);
@@ -337,7 +337,7 @@ fn solve_plain(
     contacts: &mut Vec<Contact>,
     scratch: &mut Scratch,
 ) -> EnergyChange {
-    let context = input.context();
+    let context = input.context;
     let dt = context.dt;
     let n = params.substeps.max(1);
     let h = dt / n as f64;
@@ -468,6 +468,7 @@ fn total_energy(input: &CollideInput, states: &[State], slot: &[usize], known: &
             ),
         };
         let v = input
+            .context
             .gravity
             .map_or(0.0, |g| -body.mass * g.dot(&s.position));
         e = e + Energy {

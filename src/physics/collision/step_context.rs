@@ -11,6 +11,10 @@
 //! that far within each step and is stopped again) is always below the bounce speed and never
 //! jitters; a contact that does not bounce covers at most δ within a step. Without declared
 //! gravity both are 0: every approach bounces with the scene's restitution.
+//!
+//! The world builds it once per step (`World::step`) and hands it down as one value: to the
+//! collide phase in [`CollideInput`](super::CollideInput), to the cloths' obstacle passes, to
+//! the particle–body passes and to the implicit cloth's tied solve. No pass rebuilds it.
 
 use super::ContactModel;
 use nalgebra::Vector3;
@@ -49,6 +53,16 @@ impl StepContext {
             speculative_margin: bounce_speed * dt,
             restitution: model.map_or(0.0, |m| m.restitution),
             friction: model.map_or(0.0, |m| m.friction),
+        }
+    }
+
+    /// The same step with restitution e and friction μ (a pass run without a scene's
+    /// contact model: a cloth alone among obstacles).
+    pub fn with_contact(self, restitution: f64, friction: f64) -> Self {
+        StepContext {
+            restitution,
+            friction,
+            ..self
         }
     }
 }

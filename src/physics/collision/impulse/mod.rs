@@ -424,7 +424,7 @@ pub fn respond(
     contacts: &mut Vec<Contact>,
     scratch: &mut Scratch,
 ) -> Option<EnergyChange> {
-    let context = input.context();
+    let context = input.context;
     let bounce_speed = context.bounce_speed;
     // Points closer than this to a surface are speculative contacts (module doc).
     let margin = context.speculative_margin;
@@ -458,6 +458,7 @@ pub fn respond(
     };
     let potential = |i: usize, x: &Vector3<f64>| {
         input
+            .context
             .gravity
             .map_or(0.0, |g| -input.bodies[i].mass * g.dot(x))
     };
@@ -480,7 +481,7 @@ pub fn respond(
     let fix = Fix {
         bodies: input.bodies,
         before: input.before,
-        dt: input.dt,
+        dt: context.dt,
     };
     // Only a bounce pays it (stage 3): with e = 0, or no contact approaching near the bounce
     // speed, it is not needed, and it is a whole push-out (a pyramid at rest penetrates by
@@ -498,7 +499,7 @@ pub fn respond(
         restitution: input.model.restitution,
         friction: input.model.friction,
         bounce_speed,
-        dt: input.dt,
+        dt: context.dt,
         lift,
         impacts: input.model.impacts,
     };
