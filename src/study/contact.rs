@@ -28,15 +28,24 @@ use nalgebra::Vector3;
 /// The sub-step counts `soft-step` is charted at.
 pub const SUBSTEPS: [u32; 4] = [1, 2, 4, 8];
 
-/// The solvers charted, in order: `impulse`, then `soft-step` at each of [`SUBSTEPS`].
+/// The solvers charted, in the list's order ([`Response::ALL`]): every response whose
+/// descriptor says `charted` (`impulse`, then `soft-step` at each of [`SUBSTEPS`]).
 pub fn solvers() -> Vec<Response> {
-    std::iter::once(Response::Impulse)
-        .chain(SUBSTEPS.iter().map(|&substeps| {
-            Response::SoftStep(SoftStep {
-                substeps,
-                ..SoftStep::DEFAULT
-            })
-        }))
+    Response::ALL
+        .into_iter()
+        .filter(|r| r.descriptor().charted)
+        .flat_map(|response| match response {
+            Response::SoftStep(defaults) => SUBSTEPS
+                .iter()
+                .map(|&substeps| {
+                    Response::SoftStep(SoftStep {
+                        substeps,
+                        ..defaults
+                    })
+                })
+                .collect(),
+            other => vec![other],
+        })
         .collect()
 }
 

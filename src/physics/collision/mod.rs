@@ -8,7 +8,7 @@
 //! |---|---|
 //! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion |
 //! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
-//! | `response` | the responses a scene can choose, each described once (name, formulas, README row, colour) |
+//! | `response` | the responses a scene can choose: the `responses!` list (below: `Variant => module`) and the descriptor each module holds (name, formulas, README row, colour) |
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added; a file per constraint kind (`normal`, `friction`), per method (`direct`, `subspace`) and for the impact law (`propagate`) |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
@@ -19,23 +19,21 @@
 //! | `warm` | warm starts by contact feature: last step's impulses by pair, in a hash map |
 //! | `kept` | `soft-step`'s rows carried across steps while the bodies barely move (contact recycling) |
 //!
+#[macro_use]
+pub mod response;
 pub mod broad_phase;
 pub mod contacts;
 pub mod detect;
 pub mod geometry;
-pub mod impulse;
 pub mod kept;
 pub mod position;
-pub mod response;
-pub mod seed;
-pub mod soft_step;
 pub mod solver_body;
 pub mod step_context;
 pub mod sweep;
 pub mod warm;
 
 pub use impulse::propagate::Impacts;
-pub use response::{Descriptor as ResponseDescriptor, Response};
+pub use response::Descriptor as ResponseDescriptor;
 pub use soft_step::SoftStep;
 pub use step_context::StepContext;
 
@@ -44,6 +42,16 @@ use super::effects::Loads;
 use super::energy::Energy;
 use super::state::State;
 use nalgebra::{Matrix3, Vector3};
+
+// The collision responses, one file each (`response`): a new one is its file and one line here.
+responses! {
+    /// The original report's response, reproduced with its failures.
+    Seed => seed,
+    /// Sequential impulses with restitution and Coulomb friction.
+    Impulse => impulse,
+    /// Sub-stepped soft contacts with a relax pass (Box2D v3): fast, approximate, sags.
+    SoftStep(params: SoftStep = SoftStep::DEFAULT) => soft_step,
+}
 
 /// A fixed obstacle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -275,17 +283,10 @@ pub fn collide(
     contacts: &mut Vec<Contact>,
     scratch: &mut impulse::Scratch,
 ) -> Option<EnergyChange> {
-    match input.model.response {
-        Response::Seed => {
-            contacts.clear();
-            seed::respond(input, &mut states[0], contacts);
-            None
-        }
-        Response::Impulse => impulse::respond(input, states, contacts, scratch),
-        Response::SoftStep(params) => {
-            soft_step::respond(input, &params, states, contacts, &mut scratch.soft)
-        }
-    }
+    input
+        .model
+        .response
+        .collide(input, states, contacts, scratch)
 }
 
 /// Vertex positions `pᵢ = x + R r₀ᵢ` of a state, written into `out`.

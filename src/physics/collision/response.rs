@@ -1,10 +1,24 @@
 //! The collision responses a scene can choose (`contact = { response = "…" }`), each described
 //! once: the scene-file name, what it is and what it keeps (the README's table), the formula
-//! the loop strip shows in the collide phase, and its colour in the study's chart. Adding a
-//! response is its file, one variant and one descriptor in [`Response::descriptor`] (a missing
-//! one does not compile).
-
-use super::soft_step::SoftStep;
+//! the loop strip shows in the collide phase, and its colour in the study's chart.
+//!
+//! As with the integrators, one list builds everything: `responses!` (invoked once, in
+//! `collision/mod.rs`) takes `Variant => module` lines and declares the modules, the
+//! [`Response`] enum, [`Response::ALL`] (the name lookup, the error messages' list of names,
+//! the `r` cycle, the compare key, the study and the README's table all read it),
+//! [`Response::descriptor`] (each module's `DESCRIPTOR`) and [`Response::collide`] (each
+//! module's `collide`). Adding a response is **its file** (a `pub const DESCRIPTOR:
+//! Descriptor` and a `collide` with the signature below; a missing one does not compile) and
+//! **one line** in the list, plus its row in the README's table (a test checks it):
+//!
+//! ```text
+//! pub fn collide(input: &CollideInput, [params: &Params,] states: &mut [State],
+//!                contacts: &mut Vec<Contact>, scratch: &mut impulse::Scratch)
+//!                -> Option<EnergyChange>
+//! ```
+//!
+//! A response with scene-file keys carries them in its variant, written
+//! `Variant(params: Params = DEFAULT) => module` (the keys are read by the scene loader).
 
 /// Everything the front ends say about a collision response, in one place.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,69 +40,62 @@ pub struct Descriptor {
     pub impulses: bool,
     /// Its colour in the study's chart and SVG, (r, g, b).
     pub colour: (u8, u8, u8),
+    /// Whether the study's contact-solver chart runs it on every scene with contact (`seed`
+    /// does not: it knows one body, and reproduces a report's failures).
+    pub charted: bool,
 }
 
-/// Which collision response runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Response {
-    /// The original report's response, reproduced with its failures.
-    Seed,
-    /// Sequential impulses with restitution and Coulomb friction.
-    Impulse,
-    /// Sub-stepped soft contacts with a relax pass (Box2D v3): fast, approximate, sags.
-    SoftStep(SoftStep),
+/// Declares the collision responses from one list (module doc): the modules, the enum,
+/// [`Response::ALL`], [`Response::descriptor`] and [`Response::collide`].
+macro_rules! responses {
+    ($($(#[$doc:meta])* $variant:ident $(($params:ident: $kind:ty = $default:expr))? => $module:ident,)*) => {
+        $(pub mod $module;)*
+
+        /// Which collision response runs.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Response {
+            $($(#[$doc])* $variant $(($kind))?,)*
+        }
+
+        impl Response {
+            /// Every response, in teaching order (each with its documented defaults).
+            pub const ALL: [Response; [$(stringify!($variant),)*].len()] =
+                [$(Response::$variant $(($default))?,)*];
+
+            /// What the front ends say about this response (its module's `DESCRIPTOR`).
+            pub fn descriptor(self) -> &'static $crate::physics::collision::response::Descriptor {
+                match self {
+                    $(Response::$variant { .. } => &$module::DESCRIPTOR,)*
+                }
+            }
+
+            /// Runs detection and this response on `states` (its module's `collide`; see
+            /// [`collide`](super::collide)).
+            pub fn collide(
+                self,
+                input: &CollideInput,
+                states: &mut [$crate::physics::state::State],
+                contacts: &mut Vec<Contact>,
+                scratch: &mut impulse::Scratch,
+            ) -> Option<EnergyChange> {
+                match self {
+                    $(Response::$variant $(($params))? =>
+                        $module::collide(input, $(&$params,)? states, contacts, scratch),)*
+                }
+            }
+        }
+    };
 }
+
+use super::Response;
 
 impl Response {
-    /// Every response, in teaching order (`soft-step` with its documented defaults).
-    pub const ALL: [Response; 3] = [
-        Response::Seed,
-        Response::Impulse,
-        Response::SoftStep(SoftStep::DEFAULT),
-    ];
-
-    /// What the front ends say about this response.
-    pub fn descriptor(self) -> &'static Descriptor {
-        match self {
-            Response::Seed => &Descriptor {
-                name: "seed",
-                summary: "the original report's response: the whole momentum reversed and scaled by 0.4, a squared push-out, a force added to L (one body, obstacles only)",
-                keeps: "nothing promised: it reproduces the report's failures (a landing kicks the body into a spin)",
-                brief: "push vertices out of obstacles",
-                formula: "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
-                formula_bodies: "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
-                impulses: false,
-                colour: (200, 40, 40),
-            },
-            Response::Impulse => &Descriptor {
-                name: "impulse",
-                summary: "impulses at every contact together, converged: restitution e, Coulomb friction μ, penetration removed by moving the body, speculative contacts within a step's reach",
-                keeps: "never adds kinetic energy (a bounce pays for its lift); momentum between bodies; stacks stand to micrometres",
-                brief: "impulses at every contact",
-                formula: "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)",
-                formula_bodies: "uₙ = (v_A + ω_A×r_A − v_B − ω_B×r_B)·n,  k = Σ 1/M + (r×n)·I⁻¹(r×n),  j = −(1+e)·uₙ/k  on A, −j on B (all contacts together, + friction)",
-                impulses: true,
-                colour: (0, 0, 0),
-            },
-            Response::SoftStep(_) => &Descriptor {
-                name: "soft-step",
-                summary: "sub-stepped soft contacts with a relax pass (Box2D v3): each contact a damped spring of `hertz` and `damping_ratio`, one sweep per sub-step",
-                keeps: "momentum between bodies; energy at most the lift out of penetration; sags N(N−1)g/ω² at the top of a stack of N, which buckles above (1.96 ω² a/g)^(1/3) cubes of side 2a",
-                brief: "soft contacts over sub-steps",
-                formula: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ,  λ ≥ 0;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
-                formula_bodies: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ on A, −Δλ on B;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
-                impulses: true,
-                colour: (130, 130, 130),
-            },
-        }
-    }
-
     /// The name used in scene files and on the command line.
     pub fn name(self) -> &'static str {
         self.descriptor().name
     }
 
-    /// The response with this name (soft-step with its documented defaults).
+    /// The response with this name (with its documented defaults).
     pub fn from_name(name: &str) -> Option<Response> {
         Response::ALL.into_iter().find(|r| r.name() == name)
     }
@@ -98,7 +105,7 @@ impl Response {
         Response::ALL.map(Response::name).join(", ")
     }
 
-    /// The next response in [`Response::ALL`], wrapping around (soft-step with its defaults).
+    /// The next response in [`Response::ALL`], wrapping around (with its defaults).
     pub fn next(self) -> Response {
         let i = Response::ALL
             .iter()

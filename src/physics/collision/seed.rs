@@ -38,12 +38,39 @@
 //! Restitution and friction from the scene are ignored: the report's factor is always 0.4.
 
 use super::detect::inside;
-use super::{vertices_into, Against, CollideInput, Contact, Feature};
+use super::response::Descriptor;
+use super::{vertices_into, Against, CollideInput, Contact, EnergyChange, Feature};
 use crate::physics::derive::derive;
 use crate::physics::state::State;
 
 /// The report's momentum factor: `P ← −0.4 P`.
 pub const MOMENTUM_FACTOR: f64 = -0.4;
+
+/// What the front ends say about `seed` (`response`).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "seed",
+    summary: "the original report's response: the whole momentum reversed and scaled by 0.4, a squared push-out, a force added to L (one body, obstacles only)",
+    keeps: "nothing promised: it reproduces the report's failures (a landing kicks the body into a spin)",
+    brief: "push vertices out of obstacles",
+    formula: "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
+    formula_bodies: "seed (the report's): x += d²·n,  L += (pₖ − x₀)×(−F),  P ← −0.4·P",
+    impulses: false,
+    colour: (200, 40, 40),
+    charted: false,
+};
+
+/// The collide phase under `seed` (the entry point `responses!` calls): the last step's
+/// contacts are dropped and body 0 responds ([`respond`]); it measures no energy.
+pub fn collide(
+    input: &CollideInput,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    _scratch: &mut super::impulse::Scratch,
+) -> Option<EnergyChange> {
+    contacts.clear();
+    respond(input, &mut states[0], contacts);
+    None
+}
 
 /// Runs the report's response on `state`, one obstacle after the other.
 /// Body 0 is the body: `seed` knows one.

@@ -131,6 +131,7 @@ mod sweep;
 
 use super::contacts;
 use super::kept::Kept;
+use super::response::Descriptor;
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
 use crate::physics::derive::derive;
@@ -272,6 +273,31 @@ pub struct Scratch {
     warm: WarmCache,
     /// The last detection's rows, carried while the bodies barely move (`kept`).
     kept: Kept,
+}
+
+/// What the front ends say about `soft-step` (`response`).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "soft-step",
+    summary: "sub-stepped soft contacts with a relax pass (Box2D v3): each contact a damped spring of `hertz` and `damping_ratio`, one sweep per sub-step",
+    keeps: "momentum between bodies; energy at most the lift out of penetration; sags N(N−1)g/ω² at the top of a stack of N, which buckles above (1.96 ω² a/g)^(1/3) cubes of side 2a",
+    brief: "soft contacts over sub-steps",
+    formula: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ,  λ ≥ 0;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
+    formula_bodies: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ on A, −Δλ on B;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
+    impulses: true,
+    colour: (130, 130, 130),
+    charted: true,
+};
+
+/// The collide phase under `soft-step` with `params` (the entry point `responses!` calls):
+/// [`respond`] with the world's soft-step buffers.
+pub fn collide(
+    input: &CollideInput,
+    params: &SoftStep,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut super::impulse::Scratch,
+) -> Option<EnergyChange> {
+    respond(input, params, states, contacts, &mut scratch.soft)
 }
 
 /// Detects contacts and runs the sub-stepped soft response on `states` (module doc). Returns

@@ -93,6 +93,7 @@ pub mod subspace;
 
 use super::contacts;
 use super::position::{self, Fix};
+use super::response::Descriptor;
 use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
@@ -410,6 +411,29 @@ struct Row {
     bias: f64,
     /// The last step's impulse at the same contact, if any (warm start of the sweeps).
     warm: Vector3<f64>,
+}
+
+/// What the front ends say about `impulse` (`response`).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "impulse",
+    summary: "impulses at every contact together, converged: restitution e, Coulomb friction μ, penetration removed by moving the body, speculative contacts within a step's reach",
+    keeps: "never adds kinetic energy (a bounce pays for its lift); momentum between bodies; stacks stand to micrometres",
+    brief: "impulses at every contact",
+    formula: "uₙ = (v + ω×r)·n,  k = 1/M + n·((I⁻¹(r×n))×r),  j = −(1+e)·uₙ/k  (all contacts together, + friction)",
+    formula_bodies: "uₙ = (v_A + ω_A×r_A − v_B − ω_B×r_B)·n,  k = Σ 1/M + (r×n)·I⁻¹(r×n),  j = −(1+e)·uₙ/k  on A, −j on B (all contacts together, + friction)",
+    impulses: true,
+    colour: (0, 0, 0),
+    charted: true,
+};
+
+/// The collide phase under `impulse` (the entry point `responses!` calls): [`respond`].
+pub fn collide(
+    input: &CollideInput,
+    states: &mut [State],
+    contacts: &mut Vec<Contact>,
+    scratch: &mut Scratch,
+) -> Option<EnergyChange> {
+    respond(input, states, contacts, scratch)
 }
 
 /// Detects contacts (swept vertex tests, contact geometry, speculative rows) and runs the
