@@ -14,16 +14,18 @@
 //! | [`inside`](Obstacle::inside), [`near`](Obstacle::near), [`swept`](Obstacle::swept), [`depth`](Obstacle::depth) | vertices (`seed`, `impulse`), cloth particles | the report's point tests (`detect`) |
 //! | [`outline`](Obstacle::outline), [`bounds`](Obstacle::bounds) | front ends, through the snapshot | what to draw, the region to show |
 //!
-//! Every method has a shape-table answer (`point_shape`, `shape_shape`): a kind whose shape is
-//! in the table needs nothing more to be detected, touched by cloths and drawn as a wire. The
-//! kinds below answer the point tests and the contact with their own exact formulas
-//! (`detect`'s; the ground's and the aligned box's contact without a pose): those are what the
-//! lessons' numbers were computed with, and they keep a box's faces at its written `min` and
-//! `max` to the last bit (its pose, centre ± half, is off by round-off). A test checks the two
-//! answers agree to round-off.
+//! The shape table answers for any kind whose shape is in it: the contact falls through to
+//! `shape_shape`, and [`table_inside`](Obstacle::table_inside) and
+//! [`table_near`](Obstacle::table_near) answer the point tests from `point_shape` (a swept
+//! test can fall back to `inside` at the end point, as the half-spaces do). The kinds below
+//! answer the point tests and some contacts with their own exact formulas (`detect`'s; the
+//! ground's and the aligned box's contact without a pose): those are what the lessons'
+//! numbers were computed with, and they keep a box's faces at its written `min` and `max` to
+//! the last bit (its pose, centre ± half, is off by round-off), and the swept test's entry
+//! face. A test checks that the two answers agree to round-off.
 //!
-//! The scene file's words (`type`, `height`, `center`, …) are read by `scene`, which builds
-//! these.
+//! A new kind: its variant and an arm in each method here; `scene` reads its keys (the scene
+//! file's words `type`, `height`, `center`, … are read there, not here).
 
 use super::detect::{self, Penetration};
 use super::geometry::{
@@ -275,6 +277,21 @@ impl Obstacle {
         (-c.depth, c.normal)
     }
 
+    /// The shape table's static test: inside when the signed gap is negative.
+    pub fn table_inside(&self, p: &Vector3<f64>) -> Option<Penetration> {
+        let (gap, normal) = self.table_gap(p);
+        (gap < 0.0).then_some(Penetration {
+            depth: -gap,
+            normal,
+        })
+    }
+
+    /// The shape table's near test: outside, closer than `margin`.
+    pub fn table_near(&self, p: &Vector3<f64>, margin: f64) -> Option<(f64, Vector3<f64>)> {
+        let (gap, normal) = self.table_gap(p);
+        (gap >= 0.0 && gap < margin).then_some((gap, normal))
+    }
+
     /// What a front end draws (world coordinates; read through the snapshot).
     pub fn outline(&self) -> Outline {
         match *self {
@@ -364,23 +381,31 @@ mod tests {
         // The exact point tests against the shape table's closest point: inside (depth and
         // normal), near (gap and normal) and depth agree to round-off.
         for o in all() {
+            let (mut inside, mut outside) = (0, 0);
             for p in points() {
-                let (gap, normal) = o.table_gap(&p);
-                match o.inside(&p) {
-                    Some(hit) => {
-                        assert!((hit.depth + gap).abs() < 1e-12, "{o:?} {p:?}");
-                        assert!((hit.normal - normal).norm() < 1e-9, "{o:?} {p:?}");
+                match (o.inside(&p), o.table_inside(&p)) {
+                    (Some(hit), Some(table)) => {
+                        inside += 1;
+                        assert!((hit.depth - table.depth).abs() < 1e-12, "{o:?} {p:?}");
+                        assert!((hit.normal - table.normal).norm() < 1e-9, "{o:?} {p:?}");
                         assert!((o.depth(&p) - hit.depth).abs() < 1e-12);
                     }
-                    None => {
-                        assert!(gap > -1e-12, "{o:?} {p:?}: {gap}");
+                    (None, None) => {
+                        outside += 1;
                         assert_eq!(o.depth(&p), 0.0);
                         let (g, n) = o.near(&p, f64::INFINITY).expect("outside is near");
-                        assert!((g - gap).abs() < 1e-12, "{o:?} {p:?}");
-                        assert!((n - normal).norm() < 1e-9, "{o:?} {p:?}");
+                        let (tg, tn) = o.table_near(&p, f64::INFINITY).expect("and in the table");
+                        assert!((g - tg).abs() < 1e-12, "{o:?} {p:?}");
+                        assert!((n - tn).norm() < 1e-9, "{o:?} {p:?}");
                     }
+                    (mine, table) => panic!("{o:?} at {p:?}: {mine:?} against {table:?}"),
                 }
             }
+            // Both sides of every kind's surface were tried.
+            assert!(
+                inside > 10 && outside > 10,
+                "{o:?}: {inside} in, {outside} out"
+            );
         }
     }
 
