@@ -21,9 +21,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Rotation3, Vector3};
 use std::f64::consts::{FRAC_PI_4, SQRT_2};
 use std::hint::black_box;
-use tumble::physics::collision::geometry::{
-    shape_obstacle, shape_shape, ContactPoint, ConvexHull, Pose, Shape,
-};
+use tumble::physics::collision::geometry::{shape_shape, ContactPoint, ConvexHull, Pose, Shape};
 use tumble::physics::Obstacle;
 
 fn rotated(axis: Vector3<f64>, angle: f64, position: Vector3<f64>) -> Pose {
@@ -87,7 +85,7 @@ fn bench(c: &mut Criterion) {
         group.bench_function(name, |bench| {
             bench.iter(|| {
                 out.clear();
-                shape_obstacle(black_box(a), black_box(pa), black_box(o), 0.01, &mut out);
+                black_box(o).contact(black_box(a), black_box(pa), 0.01, &mut out);
                 black_box(out.len())
             })
         });

@@ -50,7 +50,7 @@ pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
 pub use collision::{
-    Against, Contact, ContactModel, Feature, Impacts, Obstacle, Response, SoftStep,
+    Against, Contact, ContactModel, Feature, Impacts, Obstacle, Outline, Response, SoftStep,
 };
 pub use divergence::Divergence;
 pub use effects::{Effect, Effects};

@@ -6,7 +6,7 @@
 //! are those of the current state, i.e. what the next *derive* will compute.
 
 use super::cloth::ClothIntegrator;
-use super::collision::geometry::{deepest, shape_obstacle, shape_shape, ContactPoint, Pose, Shape};
+use super::collision::geometry::{deepest, shape_shape, ContactPoint, Pose, Shape};
 use super::collision::impulse::StepReport;
 use super::collision::{Against, Contact, ContactModel, Obstacle};
 use super::derive::{congruence, derive};
@@ -630,7 +630,7 @@ pub fn geometric_penetration(world: &World, index: usize, vertices: &[Vector3<f6
     let mut depth: f64 = 0.0;
     for obstacle in world.obstacles() {
         points.clear();
-        shape_obstacle(shape, &pose, obstacle, 0.0, &mut points);
+        obstacle.contact(shape, &pose, 0.0, &mut points);
         depth = depth.max(deepest(&points));
     }
     for (other, (body, state)) in bodies.iter().zip(states).enumerate() {

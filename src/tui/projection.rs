@@ -17,11 +17,11 @@
 use super::app::App;
 use super::theme;
 use super::viewport::{Axis, Mapping, Viewport};
-use crate::physics::body::{box_corners, box_edges};
+use crate::physics::body::box_edges;
 use crate::physics::collision::geometry::Shape;
 use crate::physics::snapshot::BodyView;
 use crate::physics::ClothView;
-use crate::physics::{Obstacle, Snapshot};
+use crate::physics::{Outline, Snapshot};
 use nalgebra::{Matrix3, Vector3};
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -786,18 +786,18 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
     let axis = app.prefs.axis;
     let mut scene = Scene2d::default();
     for o in &app.session.snapshot.obstacles {
-        match *o {
-            Obstacle::Ground { height } => {
+        match o.outline() {
+            Outline::Level(height) => {
                 if axis.shows_ground_line() {
                     scene.ground = Some(height);
                 }
             }
-            Obstacle::Sphere { center, radius } => {
+            Outline::Ball { center, radius } => {
                 scene
                     .circles
                     .push((axis.project(&center), radius, theme::OBSTACLE))
             }
-            Obstacle::Box { min, max } => {
+            Outline::Aligned { min, max } => {
                 let (a0, b0) = axis.project(&min);
                 let (a1, b1) = axis.project(&max);
                 let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)];
@@ -811,16 +811,9 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
                     });
                 }
             }
-            Obstacle::RotatedBox {
-                center,
-                half,
-                rotation,
-            } => {
-                let corners: Vec<_> = box_corners(half * 2.0)
-                    .iter()
-                    .map(|c| axis.project(&(center + rotation * c)))
-                    .collect();
-                for (i, j) in box_edges() {
+            Outline::Wire { corners, edges } => {
+                let corners: Vec<_> = corners.iter().map(|c| axis.project(c)).collect();
+                for (i, j) in edges {
                     scene.segments.push(Segment {
                         from: corners[i],
                         to: corners[j],
@@ -830,7 +823,7 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
                     });
                 }
             }
-            Obstacle::Plane { point, normal } => {
+            Outline::Plane { point, normal } => {
                 add_plane(&mut scene, axis, &point, &normal, app.ui.region.max_extent);
             }
         }
@@ -1262,6 +1255,7 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::body::box_corners;
     use std::f64::consts::FRAC_PI_2;
 
     #[test]

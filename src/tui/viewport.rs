@@ -115,22 +115,9 @@ impl Region {
         }
         let centre = vertices.iter().sum::<Vector3<f64>>() / vertices.len().max(1) as f64;
         for o in obstacles {
-            match *o {
-                Obstacle::Ground { height } => add(Vector3::new(centre.x, height, centre.z)),
-                Obstacle::Sphere { center, radius } => {
-                    add(center - Vector3::repeat(radius));
-                    add(center + Vector3::repeat(radius));
-                }
-                Obstacle::Box { min, max } => {
-                    add(min);
-                    add(max);
-                }
-                Obstacle::Plane { point, .. } => add(point),
-                Obstacle::RotatedBox { center, half, .. } => {
-                    add(center - Vector3::repeat(half.norm()));
-                    add(center + Vector3::repeat(half.norm()));
-                }
-            }
+            let (low, high) = o.bounds(&centre);
+            add(low);
+            add(high);
         }
         let pad = if pad.is_finite() { pad.max(1e-3) } else { 1e-3 };
         let (min, max) = (min - Vector3::repeat(pad), max + Vector3::repeat(pad));

@@ -6,8 +6,7 @@ use nalgebra::{Rotation3, Vector3};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_4, SQRT_2};
 use tumble::physics::collision::geometry::{
-    deepest, point_shape, shape_obstacle, shape_shape, ContactPoint, ConvexHull, Feature, Pose,
-    Shape,
+    deepest, point_shape, shape_shape, ContactPoint, ConvexHull, Feature, Pose, Shape,
 };
 use tumble::physics::Obstacle;
 
@@ -49,7 +48,7 @@ fn pair(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64) -> Vec<ContactP
 
 fn obstacle(a: &Shape, pa: &Pose, o: &Obstacle, margin: f64) -> Vec<ContactPoint> {
     let mut out = Vec::new();
-    shape_obstacle(a, pa, o, margin, &mut out);
+    o.contact(a, pa, margin, &mut out);
     out
 }
 

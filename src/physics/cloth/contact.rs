@@ -79,10 +79,10 @@ fn penetration(
     a: &Vector3<f64>,
     b: &Vector3<f64>,
 ) -> Option<detect::Penetration> {
-    if obstacle.depth(a) > 0.0 || detect::near(obstacle, a, ON_SURFACE).is_some() {
-        detect::inside(obstacle, b)
+    if obstacle.depth(a) > 0.0 || obstacle.near(a, ON_SURFACE).is_some() {
+        obstacle.inside(b)
     } else {
-        detect::swept(obstacle, a, b)
+        obstacle.swept(a, b)
     }
 }
 
@@ -155,9 +155,9 @@ impl Cloth {
                 let x = self.positions[i];
                 let v = self.velocities[i];
                 let reach = v.norm() * dt;
-                let (gap, n) = match detect::inside(obstacle, &x) {
+                let (gap, n) = match obstacle.inside(&x) {
                     Some(p) => (0.0, p.normal),
-                    None => match detect::near(obstacle, &x, reach) {
+                    None => match obstacle.near(&x, reach) {
                         Some(near) => near,
                         None => continue,
                     },

@@ -317,11 +317,10 @@ impl TiedScene<'_> {
         margin: f64,
         best: &mut Option<Candidate>,
     ) {
-        use crate::physics::collision::detect;
         for obstacle in self.obstacles {
-            let (gap, normal) = match detect::inside(obstacle, x) {
+            let (gap, normal) = match obstacle.inside(x) {
                 Some(p) => (-p.depth, p.normal),
-                None => match detect::near(obstacle, x, margin) {
+                None => match obstacle.near(x, margin) {
                     Some(near) => near,
                     None => continue,
                 },

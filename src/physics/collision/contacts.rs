@@ -23,8 +23,7 @@
 //! the solver may keep them from closing their gap within the next step (see `impulse`).
 
 use super::broad_phase::BroadPhase;
-use super::detect::{inside, near, swept};
-use super::geometry::{shape_obstacle, shape_shape, ContactPoint, Pose};
+use super::geometry::{shape_shape, ContactPoint, Pose};
 use super::sweep;
 use super::{Against, CollideInput, Contact, Feature};
 use crate::physics::state::State;
@@ -103,7 +102,7 @@ fn against_obstacles(
                         }
                     }
                 }
-                shape_obstacle(shape, &pose, obstacle, margin, points);
+                obstacle.contact(shape, &pose, margin, points);
                 let against = Against::Obstacle(obstacle_index);
                 out.extend(points.iter().map(|p| row(index, state, against, p, None)));
                 continue;
@@ -112,13 +111,13 @@ fn against_obstacles(
                 let b = state.position + rotation_now * r0;
                 // Half-spaces need no sweep (see `detect`): skip the vertex's start point.
                 let hit = if obstacle.is_half_space() {
-                    inside(obstacle, &b)
+                    obstacle.inside(&b)
                 } else {
-                    swept(obstacle, &(before.position + rotation_before * r0), &b)
+                    obstacle.swept(&(before.position + rotation_before * r0), &b)
                 };
                 let (depth, normal) = match hit {
                     Some(hit) => (hit.depth, hit.normal),
-                    None => match near(obstacle, &b, margin) {
+                    None => match obstacle.near(&b, margin) {
                         Some((gap, normal)) => (-gap, normal),
                         None => continue,
                     },
@@ -139,7 +138,7 @@ fn against_obstacles(
             let touched = out[first..].iter().any(|c| c.depth > 0.0);
             if let (false, false, Some(shape)) = (touched, obstacle.is_half_space(), &body.shape) {
                 points.clear();
-                shape_obstacle(shape, &pose, obstacle, margin, points);
+                obstacle.contact(shape, &pose, margin, points);
                 if !points.is_empty() {
                     out.truncate(first);
                     let against = Against::Obstacle(obstacle_index);

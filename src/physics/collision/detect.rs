@@ -1,5 +1,6 @@
 //! Contact detection, one body vertex at a time (as in the report): is the vertex inside an
-//! obstacle, how deep, and which way is out?
+//! obstacle, how deep, and which way is out? The formulas per shape; `Obstacle::inside`,
+//! `Obstacle::swept` and `Obstacle::near` (`obstacle`) pick them per kind.
 //!
 //! ```text
 //! ground  y = h:        depth = h − p.y,              n = +y
@@ -41,11 +42,10 @@
 //! A vertex that was already inside at the start of the step (a resting contact, corrected to
 //! depth 0 up to round-off) has no entry this step: it gets the static test at `b`.
 //!
-//! [`near`] finds the vertices just *outside* an obstacle (the `impulse` response's speculative
+//! `Obstacle::near` finds the vertices just *outside* an obstacle (the `impulse` response's speculative
 //! contacts): the gap to the nearest surface point and the outward normal there.
 
-use super::Obstacle;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 /// Where a vertex is inside an obstacle: penetration depth > 0 (m) and unit outward normal.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,220 +54,187 @@ pub struct Penetration {
     pub normal: Vector3<f64>,
 }
 
-/// Static test: is `p` inside `obstacle`? Depth and normal as in the module doc.
+impl Penetration {
+    /// A penetration found in a turned shape's own frame, back in the world (`rotation`:
+    /// shape → world).
+    pub fn turned(self, rotation: &Matrix3<f64>) -> Penetration {
+        Penetration {
+            depth: self.depth,
+            normal: rotation * self.normal,
+        }
+    }
+}
+
+/// The ground y = h: depth h − p.y, normal +y.
 #[inline]
-pub fn inside(obstacle: &Obstacle, p: &Vector3<f64>) -> Option<Penetration> {
-    match *obstacle {
-        Obstacle::Ground { height } => {
-            let depth = height - p.y;
-            (depth > 0.0).then(|| Penetration {
-                depth,
-                normal: Vector3::y(),
-            })
-        }
-        Obstacle::Sphere { center, radius } => {
-            let offset = p - center;
-            let distance = offset.norm();
-            let depth = radius - distance;
-            if depth <= 0.0 {
-                return None;
-            }
-            // At the exact centre every direction is as good: take +y.
-            let normal = if distance > 0.0 {
-                offset / distance
-            } else {
-                Vector3::y()
-            };
-            Some(Penetration { depth, normal })
-        }
-        Obstacle::Box { min, max } => {
-            let mut best = Penetration {
-                depth: f64::INFINITY,
-                normal: Vector3::zeros(),
-            };
-            for axis in 0..3 {
-                let below = p[axis] - min[axis];
-                let above = max[axis] - p[axis];
-                if below <= 0.0 || above <= 0.0 {
-                    return None;
-                }
-                if above < best.depth {
-                    best = Penetration {
-                        depth: above,
-                        normal: unit(axis, 1.0),
-                    };
-                }
-                if below < best.depth {
-                    best = Penetration {
-                        depth: below,
-                        normal: unit(axis, -1.0),
-                    };
-                }
-            }
-            Some(best)
-        }
-        Obstacle::Plane { point, normal } => {
-            let depth = normal.dot(&(point - p));
-            (depth > 0.0).then_some(Penetration { depth, normal })
-        }
-        Obstacle::RotatedBox { .. } => {
-            let (local, rotation) = boxed(obstacle);
-            inside(&local, &rotation.tr_mul(&(p - center_of(obstacle))))
-                .map(|hit| turned(hit, &rotation))
-        }
-    }
+pub fn below_level(height: f64, p: &Vector3<f64>) -> Option<Penetration> {
+    let depth = height - p.y;
+    (depth > 0.0).then(|| Penetration {
+        depth,
+        normal: Vector3::y(),
+    })
 }
 
-/// A rotated box as the axis-aligned box of its own frame, and its rotation box → world.
-fn boxed(obstacle: &Obstacle) -> (Obstacle, nalgebra::Matrix3<f64>) {
-    match *obstacle {
-        Obstacle::RotatedBox { half, rotation, .. } => (
-            Obstacle::Box {
-                min: -half,
-                max: half,
-            },
-            rotation,
-        ),
-        _ => (*obstacle, nalgebra::Matrix3::identity()),
-    }
-}
-
-/// The centre of a rotated box (the origin of its own frame).
-fn center_of(obstacle: &Obstacle) -> Vector3<f64> {
-    match *obstacle {
-        Obstacle::RotatedBox { center, .. } => center,
-        _ => Vector3::zeros(),
-    }
-}
-
-/// A penetration found in a rotated box's frame, back in the world.
-fn turned(hit: Penetration, rotation: &nalgebra::Matrix3<f64>) -> Penetration {
-    Penetration {
-        depth: hit.depth,
-        normal: rotation * hit.normal,
-    }
-}
-
-/// Swept test: the vertex moved from `a` (start of the step) to `b` (now). Returns the contact
-/// through the entry face if the segment entered the obstacle during the step and `b` lies beyond
-/// the entry plane; the static test at `b` if the vertex was already inside at `a`.
-pub fn swept(obstacle: &Obstacle, a: &Vector3<f64>, b: &Vector3<f64>) -> Option<Penetration> {
-    match *obstacle {
-        Obstacle::Ground { .. } | Obstacle::Plane { .. } => inside(obstacle, b),
-        Obstacle::RotatedBox { .. } => {
-            let (local, rotation) = boxed(obstacle);
-            let c = center_of(obstacle);
-            swept(
-                &local,
-                &rotation.tr_mul(&(a - c)),
-                &rotation.tr_mul(&(b - c)),
-            )
-            .map(|hit| turned(hit, &rotation))
-        }
-        Obstacle::Sphere { center, radius } => {
-            if obstacle.depth(a) > 0.0 {
-                return inside(obstacle, b);
-            }
-            // |a − c + t d|² = ρ²:  (d·d) t² + 2 (f·d) t + (f·f − ρ²) = 0,  f = a − c.
-            let d = b - a;
-            let f = a - center;
-            let dd = d.norm_squared();
-            if dd == 0.0 {
-                return inside(obstacle, b);
-            }
-            let fd = f.dot(&d);
-            let discriminant = fd * fd - dd * (f.norm_squared() - radius * radius);
-            if discriminant <= 0.0 {
-                return None;
-            }
-            let root = discriminant.sqrt();
-            let (t_in, t_out) = ((-fd - root) / dd, (-fd + root) / dd);
-            // `a` is outside, so both roots have the same sign: a hit needs 0 ≤ t_in ≤ 1.
-            if t_in > 1.0 || t_out < 0.0 {
-                return None;
-            }
-            let entry = a + d * t_in;
-            let normal = (entry - center).normalize();
-            let depth = normal.dot(&(entry - b));
-            (depth > 0.0).then_some(Penetration { depth, normal })
-        }
-        Obstacle::Box { min, max } => {
-            if obstacle.depth(a) > 0.0 {
-                return inside(obstacle, b);
-            }
-            let d = b - a;
-            let mut t_in = f64::NEG_INFINITY;
-            let mut t_out = f64::INFINITY;
-            let mut normal = Vector3::zeros();
-            for axis in 0..3 {
-                if d[axis] == 0.0 {
-                    if a[axis] < min[axis] || a[axis] > max[axis] {
-                        return None;
-                    }
-                    continue;
-                }
-                let (near, far, sign) = if d[axis] > 0.0 {
-                    (min[axis], max[axis], -1.0)
-                } else {
-                    (max[axis], min[axis], 1.0)
-                };
-                let t_near = (near - a[axis]) / d[axis];
-                let t_far = (far - a[axis]) / d[axis];
-                if t_near > t_in {
-                    t_in = t_near;
-                    normal = unit(axis, sign);
-                }
-                t_out = t_out.min(t_far);
-            }
-            // `a` is outside (or on the surface), so an entry within the step has 0 ≤ t_in ≤ 1.
-            if t_in > t_out || !(0.0..=1.0).contains(&t_in) || normal == Vector3::zeros() {
-                return None;
-            }
-            let entry = a + d * t_in;
-            let depth = normal.dot(&(entry - b));
-            (depth > 0.0).then_some(Penetration { depth, normal })
-        }
-    }
-}
-
-/// A vertex just *outside* an obstacle, less than `margin` from its surface: the gap ≥ 0 (m)
-/// and the outward normal of the nearest surface point (a speculative contact, see `impulse`).
-///
-/// ```text
-/// ground:  gap = p.y − h,         n = +y
-/// sphere:  gap = |p − c| − ρ,     n = (p − c)/|p − c|
-/// box:     q = clamp(p, min, max) the nearest point of the box, gap = |p − q|, n = (p − q)/gap
-/// ```
-///
-/// Returns None for a vertex inside (that is [`inside`]'s case) or farther than `margin`.
+/// A plane through `point` with outward `normal`: depth n·(o − p).
 #[inline]
-pub fn near(obstacle: &Obstacle, p: &Vector3<f64>, margin: f64) -> Option<(f64, Vector3<f64>)> {
-    let (gap, normal) = match *obstacle {
-        Obstacle::Ground { height } => (p.y - height, Vector3::y()),
-        Obstacle::Sphere { center, radius } => {
-            let offset = p - center;
-            let distance = offset.norm();
-            if distance == 0.0 {
-                return None;
-            }
-            (distance - radius, offset / distance)
-        }
-        Obstacle::Box { min, max } => {
-            let offset = p - p.sup(&min).inf(&max);
-            let gap = offset.norm();
-            if gap == 0.0 {
-                return None;
-            }
-            (gap, offset / gap)
-        }
-        Obstacle::Plane { point, normal } => (normal.dot(&(p - point)), normal),
-        Obstacle::RotatedBox { .. } => {
-            let (local, rotation) = boxed(obstacle);
-            let l = rotation.tr_mul(&(p - center_of(obstacle)));
-            return near(&local, &l, margin).map(|(gap, n)| (gap, rotation * n));
-        }
+pub fn behind_plane(
+    point: &Vector3<f64>,
+    normal: &Vector3<f64>,
+    p: &Vector3<f64>,
+) -> Option<Penetration> {
+    let depth = normal.dot(&(point - p));
+    (depth > 0.0).then_some(Penetration {
+        depth,
+        normal: *normal,
+    })
+}
+
+/// A ball (c, ρ): depth ρ − |p − c|, normal (p − c)/|p − c| (+y at the exact centre).
+#[inline]
+pub fn inside_ball(center: &Vector3<f64>, radius: f64, p: &Vector3<f64>) -> Option<Penetration> {
+    let offset = p - center;
+    let distance = offset.norm();
+    let depth = radius - distance;
+    if depth <= 0.0 {
+        return None;
+    }
+    // At the exact centre every direction is as good: take +y.
+    let normal = if distance > 0.0 {
+        offset / distance
+    } else {
+        Vector3::y()
     };
-    (gap >= 0.0 && gap < margin).then_some((gap, normal))
+    Some(Penetration { depth, normal })
+}
+
+/// An axis-aligned box [min, max]: the face of least penetration.
+#[inline]
+pub fn inside_box(min: &Vector3<f64>, max: &Vector3<f64>, p: &Vector3<f64>) -> Option<Penetration> {
+    let mut best = Penetration {
+        depth: f64::INFINITY,
+        normal: Vector3::zeros(),
+    };
+    for axis in 0..3 {
+        let below = p[axis] - min[axis];
+        let above = max[axis] - p[axis];
+        if below <= 0.0 || above <= 0.0 {
+            return None;
+        }
+        if above < best.depth {
+            best = Penetration {
+                depth: above,
+                normal: unit(axis, 1.0),
+            };
+        }
+        if below < best.depth {
+            best = Penetration {
+                depth: below,
+                normal: unit(axis, -1.0),
+            };
+        }
+    }
+    Some(best)
+}
+
+/// The swept test against a ball, from `a` outside to `b` (a ≠ b): the entry point's radial
+/// normal (module doc).
+pub fn swept_ball(
+    center: &Vector3<f64>,
+    radius: f64,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+) -> Option<Penetration> {
+    // |a − c + t d|² = ρ²:  (d·d) t² + 2 (f·d) t + (f·f − ρ²) = 0,  f = a − c.
+    let d = b - a;
+    let f = a - center;
+    let dd = d.norm_squared();
+    let fd = f.dot(&d);
+    let discriminant = fd * fd - dd * (f.norm_squared() - radius * radius);
+    if discriminant <= 0.0 {
+        return None;
+    }
+    let root = discriminant.sqrt();
+    let (t_in, t_out) = ((-fd - root) / dd, (-fd + root) / dd);
+    // `a` is outside, so both roots have the same sign: a hit needs 0 ≤ t_in ≤ 1.
+    if t_in > 1.0 || t_out < 0.0 {
+        return None;
+    }
+    let entry = a + d * t_in;
+    let normal = (entry - center).normalize();
+    let depth = normal.dot(&(entry - b));
+    (depth > 0.0).then_some(Penetration { depth, normal })
+}
+
+/// The swept test against an axis-aligned box (slabs), from `a` outside to `b`: the entry
+/// face (module doc).
+pub fn swept_box(
+    min: &Vector3<f64>,
+    max: &Vector3<f64>,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+) -> Option<Penetration> {
+    let d = b - a;
+    let mut t_in = f64::NEG_INFINITY;
+    let mut t_out = f64::INFINITY;
+    let mut normal = Vector3::zeros();
+    for axis in 0..3 {
+        if d[axis] == 0.0 {
+            if a[axis] < min[axis] || a[axis] > max[axis] {
+                return None;
+            }
+            continue;
+        }
+        let (near, far, sign) = if d[axis] > 0.0 {
+            (min[axis], max[axis], -1.0)
+        } else {
+            (max[axis], min[axis], 1.0)
+        };
+        let t_near = (near - a[axis]) / d[axis];
+        let t_far = (far - a[axis]) / d[axis];
+        if t_near > t_in {
+            t_in = t_near;
+            normal = unit(axis, sign);
+        }
+        t_out = t_out.min(t_far);
+    }
+    // `a` is outside (or on the surface), so an entry within the step has 0 ≤ t_in ≤ 1.
+    if t_in > t_out || !(0.0..=1.0).contains(&t_in) || normal == Vector3::zeros() {
+        return None;
+    }
+    let entry = a + d * t_in;
+    let depth = normal.dot(&(entry - b));
+    (depth > 0.0).then_some(Penetration { depth, normal })
+}
+
+/// A point off a ball: its gap |p − c| − ρ and normal (None at the exact centre).
+#[inline]
+pub fn off_ball(
+    center: &Vector3<f64>,
+    radius: f64,
+    p: &Vector3<f64>,
+) -> Option<(f64, Vector3<f64>)> {
+    let offset = p - center;
+    let distance = offset.norm();
+    if distance == 0.0 {
+        return None;
+    }
+    Some((distance - radius, offset / distance))
+}
+
+/// A point off an axis-aligned box: q = clamp(p, min, max), gap |p − q|, normal (p − q)/gap
+/// (None inside).
+#[inline]
+pub fn off_box(
+    min: &Vector3<f64>,
+    max: &Vector3<f64>,
+    p: &Vector3<f64>,
+) -> Option<(f64, Vector3<f64>)> {
+    let offset = p - p.sup(min).inf(max);
+    let gap = offset.norm();
+    if gap == 0.0 {
+        return None;
+    }
+    Some((gap, offset / gap))
 }
 
 /// ±1 along one axis.
@@ -280,6 +247,7 @@ fn unit(axis: usize, sign: f64) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::collision::Obstacle;
 
     fn slab() -> Obstacle {
         Obstacle::Box {
@@ -293,8 +261,8 @@ mod tests {
         // From 0.3 m above the 1 cm slab to 0.2 m below it: never inside at either end.
         let a = Vector3::new(0.0, 0.3, 0.0);
         let b = Vector3::new(0.0, -0.2, 0.0);
-        assert!(inside(&slab(), &b).is_none());
-        let hit = swept(&slab(), &a, &b).expect("the segment crosses the slab");
+        assert!(slab().inside(&b).is_none());
+        let hit = slab().swept(&a, &b).expect("the segment crosses the slab");
         assert_eq!(hit.normal, Vector3::y());
         // b is 0.01 + 0.2 = 0.21 m below the top face.
         assert!((hit.depth - 0.21).abs() < 1e-12, "depth {}", hit.depth);
@@ -309,9 +277,9 @@ mod tests {
         let a = Vector3::new(0.0, 1.1, 0.0);
         let b = Vector3::new(0.0, 0.3, 0.0);
         // Statically the bottom face is nearer (0.3 < 0.7) ...
-        assert_eq!(inside(&obstacle, &b).unwrap().normal, -Vector3::y());
+        assert_eq!(obstacle.inside(&b).unwrap().normal, -Vector3::y());
         // ... but the vertex came in through the top: depth 1 − 0.3 = 0.7.
-        let hit = swept(&obstacle, &a, &b).unwrap();
+        let hit = obstacle.swept(&a, &b).unwrap();
         assert_eq!(hit.normal, Vector3::y());
         assert!((hit.depth - 0.7).abs() < 1e-12, "depth {}", hit.depth);
     }
@@ -324,7 +292,7 @@ mod tests {
         };
         let a = Vector3::new(0.0, 1.0, 0.0);
         let b = Vector3::new(0.0, -1.0, 0.0);
-        let hit = swept(&obstacle, &a, &b).unwrap();
+        let hit = obstacle.swept(&a, &b).unwrap();
         // Entry at (0, 0.5, 0): n = +y, b is 1.5 m below the tangent plane there.
         assert!((hit.normal - Vector3::y()).norm() < 1e-12);
         assert!((hit.depth - 1.5).abs() < 1e-12, "depth {}", hit.depth);
@@ -334,12 +302,12 @@ mod tests {
     fn a_vertex_passing_beside_an_obstacle_is_not_a_contact() {
         let a = Vector3::new(1.5, 0.3, 0.0);
         let b = Vector3::new(1.5, -0.2, 0.0);
-        assert!(swept(&slab(), &a, &b).is_none());
+        assert!(slab().swept(&a, &b).is_none());
         let sphere = Obstacle::Sphere {
             center: Vector3::zeros(),
             radius: 0.5,
         };
-        assert!(swept(&sphere, &a, &b).is_none());
+        assert!(sphere.swept(&a, &b).is_none());
     }
 
     #[test]
@@ -348,7 +316,7 @@ mod tests {
             min: Vector3::zeros(),
             max: Vector3::new(2.0, 1.0, 2.0),
         };
-        let hit = inside(&obstacle, &Vector3::new(0.05, 0.5, 1.0)).unwrap();
+        let hit = obstacle.inside(&Vector3::new(0.05, 0.5, 1.0)).unwrap();
         assert_eq!(hit.normal, -Vector3::x());
         assert!((hit.depth - 0.05).abs() < 1e-15);
     }
@@ -360,20 +328,24 @@ mod tests {
             max: Vector3::new(1.0, 1.0, 1.0),
         };
         // Beyond the edge x = 1, y = 1 by 3e-4 and 4e-4: gap 5e-4 along (3, 4, 0)/5.
-        let (gap, normal) = near(&obstacle, &Vector3::new(1.0003, 1.0004, 0.5), 1e-3).unwrap();
+        let (gap, normal) = obstacle
+            .near(&Vector3::new(1.0003, 1.0004, 0.5), 1e-3)
+            .unwrap();
         assert!((gap - 5e-4).abs() < 1e-12, "gap {gap}");
         assert!(
             (normal - Vector3::new(0.6, 0.8, 0.0)).norm() < 1e-9,
             "{normal:?}"
         );
         // Farther than the margin, or inside: not near.
-        assert!(near(&obstacle, &Vector3::new(1.0, 1.002, 0.5), 1e-3).is_none());
-        assert!(near(&obstacle, &Vector3::new(0.5, 0.5, 0.5), 1e-3).is_none());
+        assert!(obstacle
+            .near(&Vector3::new(1.0, 1.002, 0.5), 1e-3)
+            .is_none());
+        assert!(obstacle.near(&Vector3::new(0.5, 0.5, 0.5), 1e-3).is_none());
         let sphere = Obstacle::Sphere {
             center: Vector3::zeros(),
             radius: 0.5,
         };
-        let (gap, normal) = near(&sphere, &Vector3::new(0.0, 0.0, -0.5002), 1e-3).unwrap();
+        let (gap, normal) = sphere.near(&Vector3::new(0.0, 0.0, -0.5002), 1e-3).unwrap();
         assert!(
             (gap - 2e-4).abs() < 1e-12 && normal == -Vector3::z(),
             "{gap} {normal:?}"
@@ -383,12 +355,12 @@ mod tests {
     #[test]
     fn the_ground_catches_any_vertex_below_it_however_fast() {
         let ground = Obstacle::Ground { height: 0.0 };
-        let hit = swept(
-            &ground,
-            &Vector3::new(0.0, 10.0, 0.0),
-            &Vector3::new(0.0, -40.0, 0.0),
-        )
-        .unwrap();
+        let hit = ground
+            .swept(
+                &Vector3::new(0.0, 10.0, 0.0),
+                &Vector3::new(0.0, -40.0, 0.0),
+            )
+            .unwrap();
         assert_eq!((hit.depth, hit.normal), (40.0, Vector3::y()));
     }
 }

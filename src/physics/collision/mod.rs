@@ -6,7 +6,8 @@
 //!
 //! | file | idea |
 //! |---|---|
-//! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion |
+//! | `obstacle` | the scene's fixed things, each a static body of the shape table: every kind described in this one file (shape, point tests, contact, outline) |
+//! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion (the formulas per shape) |
 //! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
 //! | `response` | the responses a scene can choose: the `responses!` list (below: `Variant => module`) and the descriptor each module holds (name, formulas, README row, colour) |
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
@@ -26,6 +27,7 @@ pub mod contacts;
 pub mod detect;
 pub mod geometry;
 pub mod kept;
+pub mod obstacle;
 pub mod position;
 pub mod solver_body;
 pub mod step_context;
@@ -33,6 +35,7 @@ pub mod sweep;
 pub mod warm;
 
 pub use impulse::propagate::Impacts;
+pub use obstacle::{Obstacle, Outline};
 pub use response::Descriptor as ResponseDescriptor;
 pub use soft_step::SoftStep;
 pub use step_context::StepContext;
@@ -41,7 +44,7 @@ use super::body::Body;
 use super::effects::Loads;
 use super::energy::Energy;
 use super::state::State;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 
 // The collision responses, one file each (`response`): a new one is its file and one line here.
 responses! {
@@ -51,90 +54,6 @@ responses! {
     Impulse => impulse,
     /// Sub-stepped soft contacts with a relax pass (Box2D v3): fast, approximate, sags.
     SoftStep(params: SoftStep = SoftStep::DEFAULT) => soft_step,
-}
-
-/// A fixed obstacle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Obstacle {
-    /// The plane y = `height`; everything below is solid.
-    Ground { height: f64 },
-    /// A fixed sphere.
-    Sphere { center: Vector3<f64>, radius: f64 },
-    /// A fixed axis-aligned box.
-    Box {
-        min: Vector3<f64>,
-        max: Vector3<f64>,
-    },
-    /// An infinite fixed plane through `point` with unit outward `normal`; everything behind
-    /// it is solid (a ramp).
-    Plane {
-        point: Vector3<f64>,
-        normal: Vector3<f64>,
-    },
-    /// A fixed box turned about its centre: half-extents `half` along the columns of
-    /// `rotation` (box → world). A box obstacle written without `orientation` stays a [`Box`].
-    ///
-    /// [`Box`]: Obstacle::Box
-    RotatedBox {
-        center: Vector3<f64>,
-        half: Vector3<f64>,
-        rotation: Matrix3<f64>,
-    },
-}
-
-impl Obstacle {
-    /// The scene-file name of this obstacle's type.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            Obstacle::Ground { .. } => "ground",
-            Obstacle::Sphere { .. } => "sphere",
-            Obstacle::Box { .. } | Obstacle::RotatedBox { .. } => "box",
-            Obstacle::Plane { .. } => "plane",
-        }
-    }
-
-    /// Whether the obstacle is a half-space (ground, plane): a vertex below it is inside
-    /// however fast it came, so it needs no swept test.
-    pub fn is_half_space(&self) -> bool {
-        matches!(self, Obstacle::Ground { .. } | Obstacle::Plane { .. })
-    }
-
-    /// The obstacle as a contact-geometry shape and where it is: the ground and planes are
-    /// [`Shape::Plane`], the sphere a [`Shape::Ball`], boxes a [`Shape::Box`].
-    ///
-    /// [`Shape::Plane`]: geometry::Shape::Plane
-    /// [`Shape::Ball`]: geometry::Shape::Ball
-    /// [`Shape::Box`]: geometry::Shape::Box
-    pub fn shape(&self) -> (geometry::Shape, geometry::Pose) {
-        use geometry::{Pose, Shape};
-        match *self {
-            Obstacle::Ground { height } => (
-                Shape::Plane {
-                    normal: Vector3::y(),
-                },
-                Pose::at(Vector3::new(0.0, height, 0.0)),
-            ),
-            Obstacle::Plane { point, normal } => (Shape::Plane { normal }, Pose::at(point)),
-            Obstacle::Sphere { center, radius } => (Shape::Ball { radius }, Pose::at(center)),
-            Obstacle::Box { min, max } => (
-                Shape::Box {
-                    half: (max - min) / 2.0,
-                },
-                Pose::at((min + max) / 2.0),
-            ),
-            Obstacle::RotatedBox {
-                center,
-                half,
-                rotation,
-            } => (
-                Shape::Box { half },
-                Pose {
-                    position: center,
-                    rotation,
-                },
-            ),
-        }
-    }
 }
 
 /// The contact parameters of a scene (`contact = { ... }`).
@@ -294,27 +213,4 @@ pub(crate) fn vertices_into(body: &Body, state: &State, out: &mut Vec<Vector3<f6
     let r = state.orientation.matrix();
     out.clear();
     out.extend(body.points_body.iter().map(|r0| state.position + r * r0));
-}
-
-impl Obstacle {
-    /// How deep a point lies inside the obstacle (0 when outside), m.
-    pub fn depth(&self, p: &Vector3<f64>) -> f64 {
-        match *self {
-            Obstacle::Ground { height } => (height - p.y).max(0.0),
-            Obstacle::Sphere { center, radius } => (radius - (p - center).norm()).max(0.0),
-            Obstacle::Box { min, max } => {
-                let inside = (p - min).inf(&(max - p));
-                inside.min().max(0.0)
-            }
-            Obstacle::Plane { point, normal } => normal.dot(&(point - p)).max(0.0),
-            Obstacle::RotatedBox {
-                center,
-                half,
-                rotation,
-            } => {
-                let local = rotation.tr_mul(&(p - center));
-                (half - local.abs()).min().max(0.0)
-            }
-        }
-    }
 }

@@ -37,7 +37,6 @@
 //!
 //! Restitution and friction from the scene are ignored: the report's factor is always 0.4.
 
-use super::detect::inside;
 use super::response::Descriptor;
 use super::{vertices_into, Against, CollideInput, Contact, EnergyChange, Feature};
 use crate::physics::derive::derive;
@@ -82,7 +81,7 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
         // The deepest vertex (the first one on a tie).
         let mut deepest = None;
         for (vertex, p) in points.iter().enumerate() {
-            if let Some(hit) = inside(obstacle, p) {
+            if let Some(hit) = obstacle.inside(p) {
                 if deepest.is_none_or(|(_, best): (usize, super::detect::Penetration)| {
                     hit.depth > best.depth
                 }) {

@@ -3,8 +3,9 @@
 //!
 //! A shape (box, hull, ball, capsule, cylinder, plane) is placed in the world by a [`Pose`].
 //! Every query appends [`ContactPoint`]s with the normal pointing from B toward A (an obstacle
-//! is always B) and the point midway between the two surfaces. Obstacles are shapes too
-//! ([`Obstacle::shape`]): the ground and ramps are planes, the sphere obstacle a ball.
+//! is always B) and the point midway between the two surfaces. Obstacles are static bodies of
+//! this table ([`Obstacle::shape`], [`Obstacle::contact`]): the ground and ramps are planes,
+//! the sphere obstacle a ball, box obstacles boxes.
 //!
 //! One table of pair functions, in the manner of Box2D v3's shape-pair table: each pair is
 //! written once with the rounder shape as A (ball < capsule < cylinder < box, hull < plane);
@@ -24,6 +25,7 @@
 //! | a particle | [`point_shape`] | 1 |
 //!
 //! [`Obstacle::shape`]: super::Obstacle::shape
+//! [`Obstacle::contact`]: super::Obstacle::contact
 //!
 //! Points within `margin` of touching are returned too, with depth in [−margin, 0] (speculative
 //! contacts: the response may hold them back before they meet).
@@ -66,7 +68,6 @@ pub mod shape;
 pub use hull::{ConvexHull, HullError};
 pub use shape::{deepest, ContactPoint, Feature, Pose, Shape};
 
-use super::Obstacle;
 use closest::{
     closest_on_ball, closest_on_box, closest_on_capsule, closest_on_cylinder, closest_on_plane,
     closest_on_polyhedron, Closest,
@@ -254,44 +255,6 @@ fn ordered(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, margin: f64, out: &mut Ve
 fn core_segment(pose: &Pose, half_length: f64) -> (Vector3<f64>, Vector3<f64>) {
     let axis = pose.rotation * Vector3::y() * half_length;
     (pose.position - axis, pose.position + axis)
-}
-
-/// Appends the contact points between shape A at `pa` and a fixed obstacle (B) to `out`.
-pub fn shape_obstacle(
-    a: &Shape,
-    pa: &Pose,
-    obstacle: &Obstacle,
-    margin: f64,
-    out: &mut Vec<ContactPoint>,
-) {
-    match (*obstacle, a) {
-        (Obstacle::Ground { height }, Shape::Box { half }) => {
-            obstacles::against_ground(&BoxView::new(half, pa), height, margin, out)
-        }
-        (Obstacle::Ground { height }, Shape::Hull(hull)) => {
-            obstacles::against_ground(&HullView { hull, pose: pa }, height, margin, out)
-        }
-        (Obstacle::Sphere { center, radius }, Shape::Box { .. } | Shape::Hull(_)) => {
-            let closest = closest_point(a, pa, &center);
-            out.extend(obstacles::against_sphere(&closest, &center, radius, margin));
-        }
-        (Obstacle::Box { min, max }, Shape::Box { half }) => polyhedra::box_box(
-            &BoxView::new(half, pa),
-            &BoxView::aligned(&min, &max),
-            margin,
-            out,
-        ),
-        (Obstacle::Box { min, max }, Shape::Hull(hull)) => polyhedra::contact(
-            &HullView { hull, pose: pa },
-            &BoxView::aligned(&min, &max),
-            margin,
-            out,
-        ),
-        _ => {
-            let (shape, pose) = obstacle.shape();
-            shape_shape(a, pa, &shape, &pose, margin, out);
-        }
-    }
 }
 
 /// A particle at `p` against shape A: None when it is farther than `margin` outside. The normal
