@@ -27,6 +27,19 @@
 //! the integrator's position (re-advancing it with its rebound velocity would lift it by
 //! `2 |u| dt` at every bounce, energy from nothing).
 //!
+//! The rotation is the integrator's, from the ω before the contacts acted. Turning the body
+//! back by what the contacts changed was tried and measured (2026-12-06, branch
+//! `wt-posfix-turn`). Turned by `c dt Δω` (Δω = I⁻¹ ΔL, c = 1 or ½), lesson 41's wall with the
+//! ball first stops rocking (largest rise of E in a step 3.9e-5 → 2e-13 J), but what the
+//! impulses were solved for at the integrator's pose no longer holds at the new one: a
+//! spinning top's Jellett integral, kept to 1.5e-7 of itself by this order (kick at the pose
+//! of the drift), moves by 3.6e-5 (c = ½) to 7.3e-5 (c = 1), its precession goes 1.80202 →
+//! 1.80234–1.80262 rad/s (slow root 1.802051), and lesson 37's domino changes its first-order
+//! errors in kind (c = 1: the edge creeps back). Turned only over the part of the step the
+//! contacts stopped (`s dt Δω`, s = −Δω·ω/|ω|² in [0, 1]), those hold, but a turn made after
+//! detection can drive corners the contacts did not see into their supports: a run of the
+//! same wall in the lesson's order then raised E by 6.1e-4 J in a step.
+//!
 //! # Penetration removed by translation
 //!
 //! What penetration is left is removed by *moving* the bodies, never by biasing velocities (a
