@@ -528,8 +528,8 @@ fn advance(scratch: &mut Scratch, s: f64) {
         ..
     } = scratch;
     for (i, g) in base.groups.iter_mut().enumerate() {
-        for k in 0..3 {
-            g.lambda[k] += s * step[i][k];
+        for (l, d) in g.lambda.iter_mut().zip(step[i]) {
+            *l += s * d;
         }
         if !g.tangents {
             g.lambda[1] = 0.0;
