@@ -93,30 +93,30 @@ const INNER: f64 = 1e-3;
 /// One contact: its constraints (the normal, then two tangents when `tangents`), its
 /// multipliers Λᵏ (λₙ, λ_t), the disk's radius, kₙ and the penalty's base 1/kₙ.
 #[derive(Debug, Clone, Copy, Default)]
-struct Group {
-    first: usize,
-    tangents: bool,
-    lambda: [f64; 3],
-    bound: f64,
-    k: f64,
+pub(super) struct Group {
+    pub(super) first: usize,
+    pub(super) tangents: bool,
+    pub(super) lambda: [f64; 3],
+    pub(super) bound: f64,
+    pub(super) k: f64,
 }
 
 /// The buffers of a Newton solve (reused from step to step).
 #[derive(Debug, Clone, Default)]
 pub(super) struct Scratch {
-    local: Vec<usize>,
-    bodies: Vec<usize>,
-    blocks: Vec<Vec<(usize, Matrix6<f64>)>>,
-    system: Envelope,
-    mass: Vec<Matrix6<f64>>,
-    constraints: Vec<Constraint>,
-    groups: Vec<Group>,
-    mx0: Vec<f64>,
-    x: Vec<f64>,
-    dx: Vec<f64>,
+    pub(super) local: Vec<usize>,
+    pub(super) bodies: Vec<usize>,
+    pub(super) blocks: Vec<Vec<(usize, Matrix6<f64>)>>,
+    pub(super) system: Envelope,
+    pub(super) mass: Vec<Matrix6<f64>>,
+    pub(super) constraints: Vec<Constraint>,
+    pub(super) groups: Vec<Group>,
+    pub(super) mx0: Vec<f64>,
+    pub(super) x: Vec<f64>,
+    pub(super) dx: Vec<f64>,
     /// Per constraint: u(x) and J Δx.
-    u: Vec<f64>,
-    du: Vec<f64>,
+    pub(super) u: Vec<f64>,
+    pub(super) du: Vec<f64>,
 }
 
 /// What [`solve`] did.
@@ -238,7 +238,7 @@ pub(super) fn solve(
 
 /// The moving bodies (local numbering), their M, x, M x₀ = M x − Jᵀ Λ, and the rows'
 /// constraints and multipliers; false if there is nothing to solve or too much.
-fn setup(
+pub(super) fn setup(
     rows: &[Row],
     directions: &[[Axis; 2]],
     motions: &[SolverBody],
@@ -316,7 +316,7 @@ fn setup(
 }
 
 /// u = J x + b for every constraint.
-fn velocities(scratch: &mut Scratch) {
+pub(super) fn velocities(scratch: &mut Scratch) {
     scratch.u.clear();
     let x = &scratch.x;
     scratch
@@ -325,7 +325,7 @@ fn velocities(scratch: &mut Scratch) {
 }
 
 /// `Jᵀ v` of a contact's constraints added (times `scale`) into the body vector `out`.
-fn add_transposed(cs: &[Constraint], v: &[f64], scale: f64, out: &mut [f64]) {
+pub(super) fn add_transposed(cs: &[Constraint], v: &[f64], scale: f64, out: &mut [f64]) {
     for (c, &vk) in cs.iter().zip(v) {
         let s = scale * vk;
         if s == 0.0 {
@@ -390,30 +390,7 @@ fn newton_step(scratch: &mut Scratch, alpha: f64, outcome: &mut Outcome) -> bool
         if g.tangents {
             d.fixed_view_mut::<2, 2>(1, 1).copy_from(&(dt * rho));
         }
-        let columns = |e: usize| {
-            let mut m = Matrix6x3::zeros();
-            for (k, c) in cs.iter().enumerate() {
-                m.set_column(k, &Vector6::from_column_slice(&c.ends[e].1));
-            }
-            (cs[0].ends[e].0, m)
-        };
-        for e in 0..cs[0].count {
-            let (i, ge) = columns(e);
-            let gd = ge * d;
-            for f in 0..=e {
-                let (j, gf) = columns(f);
-                let (i, j, block) = if i >= j {
-                    (i, j, gd * gf.transpose())
-                } else {
-                    (j, i, gf * d * ge.transpose())
-                };
-                let list = &mut blocks[i];
-                match list.iter_mut().find(|(k, _)| *k == j) {
-                    Some((_, b)) => *b += block,
-                    None => list.push((j, block)),
-                }
-            }
-        }
+        add_blocks(blocks, cs, &d);
     }
     if !fill(&blocks[..nb], system) {
         return false;
@@ -424,6 +401,39 @@ fn newton_step(scratch: &mut Scratch, alpha: f64, outcome: &mut Outcome) -> bool
     }
     system.substitute_regularised(dx);
     true
+}
+
+/// H += Σ over pairs of ends G_e d G_fᵀ, G_e a contact's columns (its constraints `cs`, up
+/// to 3) at end e, stored once below the diagonal (module doc).
+pub(super) fn add_blocks(
+    blocks: &mut [Vec<(usize, Matrix6<f64>)>],
+    cs: &[Constraint],
+    d: &Matrix3<f64>,
+) {
+    let columns = |e: usize| {
+        let mut m = Matrix6x3::zeros();
+        for (k, c) in cs.iter().enumerate() {
+            m.set_column(k, &Vector6::from_column_slice(&c.ends[e].1));
+        }
+        (cs[0].ends[e].0, m)
+    };
+    for e in 0..cs[0].count {
+        let (i, ge) = columns(e);
+        let gd = ge * d;
+        for f in 0..=e {
+            let (j, gf) = columns(f);
+            let (i, j, block) = if i >= j {
+                (i, j, gd * gf.transpose())
+            } else {
+                (j, i, gf * d * ge.transpose())
+            };
+            let list = &mut blocks[i];
+            match list.iter_mut().find(|(k, _)| *k == j) {
+                Some((_, b)) => *b += block,
+                None => list.push((j, block)),
+            }
+        }
+    }
 }
 
 /// The exact line search along Δx (module doc): the step s ∈ (0, 1] where ψ′ changes sign;
@@ -513,7 +523,7 @@ fn line_search(scratch: &mut Scratch, alpha: f64) -> (f64, f64) {
 }
 
 /// Λ onto the rows and the bodies (see [`take_if_lower`]).
-fn take(
+pub(super) fn take(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
