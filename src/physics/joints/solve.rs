@@ -46,6 +46,14 @@
 //! The matrix is rebuilt and factored at every evaluation of f(Y) (rk4: four times a step).
 //! The factor is not reused across rk4's stages: each stage's K is at its own
 //! configuration, and an old factor would make λ, hence the method, inexact.
+//!
+//! **Two builds.** The banded factor (fill the blocks' parts, assemble K's blocks, factor)
+//! and its substitutions are compiled twice, plain and with AVX2, and `physics::simd::avx2`
+//! picks at run time (as the cloth and soft-step do): no fused multiply–add, so both give
+//! the same bits (tested). The system's joint reactions (`System::add_joint_reactions`) and
+//! the projection are built the same way. Callgrind, the 10-hinge chain (rk4, dt 1e-3,
+//! `examples/chain_steps`): 274.0k instructions per step before the split and the two
+//! builds, 213.5k after; MuJoCo 4.0.1's RK4 hinge chain counted the same way: 112.5k.
 
 use super::rows::Row;
 use crate::physics::envelope::{Envelope, Pivots};
