@@ -60,6 +60,7 @@ fn record(name: &str, mut world: World, response: Response) -> Recorded {
         gravity,
         dt: world.dt(),
         joined: &[],
+        joints: None,
         recorded: None,
     };
     let g = gravity.map_or(0.0, |g| g.norm());
@@ -117,6 +118,7 @@ fn solver(c: &mut Criterion) {
                 gravity: r.world.effects().gravity(),
                 dt: r.world.dt(),
                 joined: &[],
+                joints: None,
                 recorded: Some(&r.rows),
             };
             let mut states = r.after.clone();

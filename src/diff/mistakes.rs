@@ -503,6 +503,7 @@ impl<'a> Planted<'a> {
             gravity: self.effects.gravity(),
             dt: self.dt,
             joined: &[],
+            joints: None,
             recorded: None,
         };
         collide(

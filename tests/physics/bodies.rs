@@ -401,6 +401,7 @@ proptest! {
             gravity: None,
             dt,
             joined: &[],
+            joints: None,
             recorded: None,
         };
         let mut states = start;

@@ -411,6 +411,7 @@ proptest! {
             gravity: Some(Vector3::new(0.0, -G, 0.0)),
             dt: 1e-2,
             joined: &[],
+            joints: None,
             recorded: None,
         };
         let kinetic_before = kinetic_energy(&body, &now);

@@ -248,6 +248,9 @@ pub struct CollideInput<'a> {
     pub dt: f64,
     /// Pairs of bodies (low, high index) joined directly by a joint: they do not collide.
     pub joined: &'a [(usize, usize)],
+    /// The joints' equality rows at given states (`constraints::Row`, `Axis::jacobian`),
+    /// solved with the contacts (`impulse::joined`); None without joints.
+    pub joints: Option<&'a dyn Fn(&[State], &mut Vec<crate::physics::constraints::Row>)>,
     /// Recorded contact rows: when given, detection is skipped and these are the step's rows
     /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
     pub recorded: Option<&'a [Contact]>,

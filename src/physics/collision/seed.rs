@@ -132,6 +132,7 @@ mod tests {
             gravity: Some(Vector3::new(0.0, -9.81, 0.0)),
             dt: 1e-3,
             joined: &[],
+            joints: None,
             recorded: None,
         };
         let mut contacts = Vec::new();
