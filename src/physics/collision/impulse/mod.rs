@@ -451,18 +451,25 @@ pub fn respond(
     }
     let motions = &mut scratch.motions;
     solver_bodies(input, states, motions);
-    // The joints' rows at these states, solved with the contacts ([`joined`]).
-    let joint_rows = &mut scratch.joint_rows;
-    joint_rows.clear();
-    if let Some(rows_at) = input.joints {
-        rows_at(states, joint_rows);
-    }
-    let joints = joint_rows.iter().map(|r| r.owner + 1).max().unwrap_or(0);
-    scratch.joined.prepare(joint_rows, motions, joints);
     if contacts.iter().any(|c| c.depth <= 0.0) {
         // A point approaching at bouncing speed is left to touch and bounce next step.
         contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
     }
+    // The joints' rows at these states, solved with the contacts in an impact without
+    // friction ([`joined`]; built only then: a later impact round follows a first one).
+    let joint_rows = &mut scratch.joint_rows;
+    joint_rows.clear();
+    if let Some(rows_at) = input.joints {
+        if input.model.friction == 0.0
+            && contacts
+                .iter()
+                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
+        {
+            rows_at(states, joint_rows);
+        }
+    }
+    let joints = joint_rows.iter().map(|r| r.owner + 1).max().unwrap_or(0);
+    scratch.joined.prepare(joint_rows, motions, joints);
     let kinetic = |i: usize, s: &State, inv_inertia: &Matrix3<f64>| {
         kinetic_energy_with(
             &input.bodies[i],
