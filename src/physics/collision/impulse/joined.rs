@@ -263,18 +263,13 @@ mod tests {
     fn clusters_take_the_rows_of_the_touched_bodies_only() {
         // Bodies 0–1 joined, 2 alone on a rod to the world, 3 free.
         let motions = vec![ball(), ball(), ball(), ball()];
-        let row = |a: usize, b: Option<usize>, owner: usize| ConstraintRow {
-            owner,
-            ..ConstraintRow::equality(
-                Axis::jacobian(
-                    Vector3::x(),
-                    (a, Vector3::zeros()),
-                    b.map(|b| (b, Vector3::zeros())),
-                ),
-                0.0,
-                0.0,
-                owner,
-            )
+        let row = |a: usize, b: Option<usize>, owner: usize| {
+            let axis = Axis::jacobian(
+                Vector3::x(),
+                (a, Vector3::zeros()),
+                b.map(|b| (b, Vector3::zeros())),
+            );
+            ConstraintRow::equality(axis, 0.0, 0.0, owner)
         };
         let rows = [row(0, Some(1), 0), row(2, None, 1)];
         let mut joined = Joined::default();

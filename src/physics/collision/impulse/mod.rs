@@ -455,21 +455,8 @@ pub fn respond(
         // A point approaching at bouncing speed is left to touch and bounce next step.
         contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
     }
-    // The joints' rows at these states, solved with the contacts in an impact without
-    // friction ([`joined`]; built only then: a later impact round follows a first one).
-    let joint_rows = &mut scratch.joint_rows;
-    joint_rows.clear();
-    if let Some(rows_at) = input.joints {
-        if input.model.friction == 0.0
-            && contacts
-                .iter()
-                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
-        {
-            rows_at(states, joint_rows);
-        }
-    }
-    let joints = joint_rows.iter().map(|r| r.owner + 1).max().unwrap_or(0);
-    scratch.joined.prepare(joint_rows, motions, joints);
+    prepare_joints(input, states, contacts, bounce_speed, scratch);
+    let motions = &scratch.motions;
     let kinetic = |i: usize, s: &State, inv_inertia: &Matrix3<f64>| {
         kinetic_energy_with(
             &input.bodies[i],
@@ -605,6 +592,30 @@ pub fn respond(
     // Speculative contacts that were not needed are not contacts.
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
     Some(EnergyChange { before, after })
+}
+
+/// The joints' rows at `states`, solved with the contacts in an impact without friction
+/// ([`joined`]; built only then: a later impact round follows a first one).
+fn prepare_joints(
+    input: &CollideInput,
+    states: &[State],
+    contacts: &[Contact],
+    bounce_speed: f64,
+    scratch: &mut Scratch,
+) {
+    let (joint_rows, motions) = (&mut scratch.joint_rows, &scratch.motions);
+    joint_rows.clear();
+    if let Some(rows_at) = input.joints {
+        if input.model.friction == 0.0
+            && contacts
+                .iter()
+                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
+        {
+            rows_at(states, joint_rows);
+        }
+    }
+    let joints = joint_rows.iter().map(|r| r.owner + 1).max().unwrap_or(0);
+    scratch.joined.prepare(joint_rows, motions, joints);
 }
 
 /// Every body's velocities into `motions`, with I⁻¹_world exactly as the derive phase (and
@@ -936,7 +947,19 @@ fn stages(
         bounce_speed,
         kinetic_allowed,
     };
-    let joints = (!joined.axes.is_empty()).then_some(&mut **joined);
+    bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// Stage 3 ([`normal::restitution`]), the joints' reaction to it booked ([`joined`]).
+fn bounce_stage(
+    rows: &mut [Row],
+    motions: &mut [SolverBody],
+    bounce: normal::Bounce,
+    change: &mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    bounced: &mut [bool],
+    joined: &mut joined::Joined,
+) {
+    let joints = (!joined.axes.is_empty()).then_some(&mut *joined);
     if let Some(scale) = normal::restitution(rows, motions, bounce, change, bounced, joints) {
         let lambda = std::mem::take(&mut joined.lambda);
         joined.book(&lambda, scale);
