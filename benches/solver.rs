@@ -63,6 +63,7 @@ fn record(name: &str, mut world: World, response: Response) -> Recorded {
             world.contact_model(),
         ),
         joined: &[],
+        joints: None,
         recorded: None,
     };
     let g = gravity.map_or(0.0, |g| g.norm());
@@ -123,6 +124,7 @@ fn solver(c: &mut Criterion) {
                     r.world.contact_model(),
                 ),
                 joined: &[],
+                joints: None,
                 recorded: Some(&r.rows),
             };
             let mut states = r.after.clone();

@@ -506,6 +506,7 @@ impl<'a> Planted<'a> {
                 Some(model),
             ),
             joined: &[],
+            joints: None,
             recorded: None,
         };
         collide(

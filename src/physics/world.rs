@@ -35,8 +35,11 @@ use super::energy_ledger::{drag_power, DragPower, EnergyBalance, EnergyLedger};
 use super::hand::{Hand, Pull};
 use super::integrators::system::{Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
+use super::joints::contact::equality_rows;
 use super::joints::drive::{drive, Buffers as DriveBuffers, Drive, Scene as DriveScene};
-use super::joints::{hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers};
+use super::joints::{
+    hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers, Row as JointRow,
+};
 use super::snapshot::Snapshot;
 use super::state::State;
 use super::system::{Scratch as SystemScratch, System};
@@ -828,6 +831,11 @@ impl World {
             return;
         };
         let now = &mut self.now;
+        let (links, bodies) = (&self.links, &self.bodies);
+        // The joints' rows, solved with the contacts (`collision::impulse::joined`).
+        let joint_rows = |states: &[State], rows: &mut Vec<JointRow>| {
+            equality_rows(links, bodies, states, rows);
+        };
         let input = CollideInput {
             bodies: &self.bodies,
             obstacles: &self.obstacles,
@@ -837,6 +845,8 @@ impl World {
             initial_positions: &self.initial_positions,
             context: *context,
             joined: &self.joined,
+            joints: (!links.joints.is_empty())
+                .then_some(&joint_rows as &dyn Fn(&[State], &mut Vec<JointRow>)),
             recorded: None,
         };
         let states_before = if model.response == super::collision::Response::Seed {
@@ -850,12 +860,23 @@ impl World {
         if carrying {
             self.carry_start.clone_from(&now.states);
         }
+        self.scratch.joined.impulses.clear();
         let mut measured = collide(
             &input,
             &mut now.states,
             &mut now.contacts,
             &mut self.scratch,
         );
+        // The joints' impulses in the contacts' solve (`impulse::joined`), as forces over
+        // the step.
+        for (load, impulse) in now
+            .joint_loads
+            .iter_mut()
+            .zip(&self.scratch.joined.impulses)
+        {
+            load.force += impulse.0 / self.dt;
+            load.torque += impulse.1 / self.dt;
+        }
         if !self.links.joints.is_empty() && !now.contacts.is_empty() && states_before.is_none() {
             // The joints held with the contacts (`joints::contact`); booked with the response.
             let before = total_energy(&self.bodies, &self.effects, &now.states);

@@ -400,6 +400,7 @@ proptest! {
             initial_positions: &[Vector3::zeros(), Vector3::zeros()],
             context: tumble::physics::collision::StepContext::new(dt, None, Some(&model)),
             joined: &[],
+            joints: None,
             recorded: None,
         };
         let mut states = start;

@@ -410,6 +410,7 @@ proptest! {
             initial_positions: &[Vector3::zeros()],
             context: tumble::physics::collision::StepContext::new(1e-2, Some(Vector3::new(0.0, -G, 0.0)), Some(&model)),
             joined: &[],
+            joints: None,
             recorded: None,
         };
         let kinetic_before = kinetic_energy(&body, &now);

@@ -158,6 +158,9 @@ impl Contact {
     }
 }
 
+/// The joints' equality rows at given states, written into the buffer (`impulse::joined`).
+pub type JointRows<'a> = dyn Fn(&[State], &mut Vec<crate::physics::constraints::Row>) + 'a;
+
 /// Everything the collide phase reads besides the states it corrects.
 pub struct CollideInput<'a> {
     /// The world's bodies, in order (contact rows name them by index).
@@ -175,6 +178,9 @@ pub struct CollideInput<'a> {
     pub context: StepContext,
     /// Pairs of bodies (low, high index) joined directly by a joint: they do not collide.
     pub joined: &'a [(usize, usize)],
+    /// The joints' equality rows at given states (`constraints::Row`, `Axis::jacobian`),
+    /// solved with the contacts (`impulse::joined`); None without joints.
+    pub joints: Option<&'a JointRows<'a>>,
     /// Recorded contact rows: when given, detection is skipped and these are the step's rows
     /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
     pub recorded: Option<&'a [Contact]>,

@@ -161,6 +161,7 @@ mod tests {
                 Some(&model),
             ),
             joined: &[],
+            joints: None,
             recorded: None,
         };
         let mut contacts = Vec::new();

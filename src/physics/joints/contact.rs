@@ -165,6 +165,13 @@ pub fn hold(
     held
 }
 
+/// The joints' equality rows at `states` into `rows` (what the contact solve takes with its
+/// contact rows: `collision::impulse::joined`).
+pub fn equality_rows(links: &Links, bodies: &[Body], states: &[State], rows: &mut Vec<Row>) {
+    let (mut poses, mut inverse) = (Vec::new(), Vec::new());
+    joint_rows(links, bodies, states, (&mut poses, &mut inverse, rows));
+}
+
 /// The joint rows and the contact rows at `states`, with velocities.
 fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact], b: &mut Buffers) {
     joint_rows(

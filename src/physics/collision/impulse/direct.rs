@@ -30,7 +30,7 @@
 use super::GAP_ROUND_OFF;
 use super::{Direct, Row, ENVELOPE_MAX};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
-use crate::physics::envelope::Pivots;
+use crate::physics::envelope::{Envelope, Pivots};
 
 /// Most contacts in a step to try the direct inelastic solve for (a stack of 10 cubes has 40,
 /// a pyramid of 20 rows about 1600; the system is banded or nearly so there and only its
@@ -98,9 +98,15 @@ pub(super) fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
 /// rows that pushed last step too (their warm impulse along the normal is positive): its
 /// answer at rest, where starting from the approaching rows alone would climb the pyramid a
 /// row per pair per round. Returns false (and changes nothing) otherwise.
+///
+/// `joints` are joint rows (bounds (−∞, ∞), aiming at J_j u = 0: [`super::joined`]) solved
+/// in the same system, always active, merged with the contact rows by their lowest body
+/// (the envelope of a chain on the ground stays banded); their impulses go to
+/// `joint_lambda`. None: the contacts' system alone, as written above.
 pub(super) fn inelastic(
     wide: bool,
     rows: &mut [Row],
+    (joints, joint_lambda): (&[Axis], &mut Vec<f64>),
     motions: &mut [SolverBody],
     tolerance: f64,
     buffers: &mut Direct,
@@ -113,6 +119,7 @@ pub(super) fn inelastic(
         entering,
         work,
         budget,
+        merged,
         ..
     } = buffers;
     active.clear();
@@ -139,24 +146,18 @@ pub(super) fn inelastic(
         if *work >= *budget {
             return false; // the motions are the saved ones at the start of every round
         }
-        system.reset(m);
-        for p in 0..m {
-            let ni = &rows[active[p]].normal;
-            system.rhs[p] = -ni.velocity(motions) - rows[active[p]].bias;
-            system.fill_row(p, ni.bodies(), |q| {
-                let nj = &rows[active[q]].normal;
-                ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
-            });
-            if system.stored() > ENVELOPE_MAX {
-                return false;
-            }
-        }
-        *work += super::factorisation_work(system.stored(), m);
-        let Some(solution) = system.solve(Pivots::Regularised) else {
+        let system_work = (&mut *system, &mut *merged, &mut *work);
+        if !solve_active(
+            rows,
+            active,
+            (joints, &mut *joint_lambda),
+            motions,
+            saved,
+            system_work,
+            lambda,
+        ) {
             return false;
-        };
-        lambda.clear();
-        lambda.extend_from_slice(&solution[..m]);
+        }
         let last = round == PIVOT_ROUNDS;
         let (_, most_negative) = (0..m).fold((0.0, None), |(w, at), p| {
             if lambda[p] < w {
@@ -201,6 +202,9 @@ pub(super) fn inelastic(
             m = active.len();
             continue;
         }
+        for (axis, &mu) in joints.iter().zip(joint_lambda.iter()) {
+            axis.apply(mu, motions);
+        }
         for p in 0..m {
             rows[active[p]].normal.apply(lambda[p], motions);
         }
@@ -244,6 +248,99 @@ pub(super) fn inelastic(
         m = active.len();
     }
     false
+}
+
+/// One round of [`inelastic`]: the system of the joint rows and the active contact rows
+/// (`active`, into `rows`) at `motions` (= `saved`) assembled, factored (its work added to
+/// `work`) and solved into `lambda` (contacts) and `joint_lambda`; false when it gives no
+/// answer or its envelope is too large.
+fn solve_active(
+    rows: &[Row],
+    active: &[usize],
+    (joints, joint_lambda): (&[Axis], &mut Vec<f64>),
+    motions: &mut [SolverBody],
+    saved: &[SolverBody],
+    (system, merged, work): (&mut Envelope, &mut Vec<usize>, &mut u64),
+    lambda: &mut Vec<f64>,
+) -> bool {
+    let m = active.len();
+    let mj = joints.len();
+    // The system's rows: the joint rows and the active contact rows merged by their
+    // lowest body (a chain lying on the ground stays banded); without joints, the
+    // active contact rows in contact order.
+    merged.clear();
+    let low = |a: &Axis| a.b.map_or(a.a.body, |b| a.a.body.min(b.body));
+    let (mut i, mut p) = (0, 0);
+    while i < mj || p < m {
+        if p == m || (i < mj && low(&joints[i]) <= low(&rows[active[p]].normal)) {
+            merged.push(i);
+            i += 1;
+        } else {
+            merged.push(mj + p);
+            p += 1;
+        }
+    }
+    let axis = |s: usize| match s.checked_sub(mj) {
+        Some(p) => &rows[active[p]].normal,
+        None => &joints[s],
+    };
+    system.reset(mj + m);
+    for (p, &s) in merged.iter().enumerate() {
+        let ni = axis(s);
+        system.rhs[p] = match s.checked_sub(mj) {
+            Some(q) => -ni.velocity(motions) - rows[active[q]].bias,
+            None => -ni.velocity(motions),
+        };
+        system.fill_row(p, ni.bodies(), |q| {
+            let nj = axis(merged[q]);
+            ni.shares_a_body(nj).then(|| ni.coupling(nj, motions))
+        });
+        if system.stored() > ENVELOPE_MAX {
+            return false;
+        }
+    }
+    *work += super::factorisation_work(system.stored(), mj + m);
+    let Some(solution) = system.solve(Pivots::Regularised) else {
+        return false;
+    };
+    lambda.clear();
+    lambda.resize(m, 0.0);
+    joint_lambda.clear();
+    joint_lambda.resize(mj, 0.0);
+    for (&s, &x) in merged.iter().zip(solution) {
+        match s.checked_sub(mj) {
+            Some(p) => lambda[p] = x,
+            None => joint_lambda[s] = x,
+        }
+    }
+    if mj > 0 {
+        // One step of refinement: the ε that picks the minimum-norm answer leaves a
+        // residual ε·x, which the joints' coupling lifts above the tolerance (a bob on
+        // a rod against a tilted wall: 2e-10 m/s). The rates after x are A x − rhs.
+        let at = |s: usize, lambda: &[f64], joint_lambda: &[f64]| match s.checked_sub(mj) {
+            Some(p) => lambda[p],
+            None => joint_lambda[s],
+        };
+        for &s in merged.iter() {
+            axis(s).apply(at(s, lambda, joint_lambda), motions);
+        }
+        let mut w: Vec<f64> = (merged.iter())
+            .map(|&s| {
+                let bias = s.checked_sub(mj).map_or(0.0, |q| rows[active[q]].bias);
+                -(axis(s).velocity(motions) + bias)
+            })
+            .collect();
+        motions.copy_from_slice(saved);
+        system.substitute_regularised(&mut w);
+        for (&s, dx) in merged.iter().zip(&w) {
+            match s.checked_sub(mj) {
+                Some(p) => lambda[p] += dx,
+                None => joint_lambda[s] += dx,
+            }
+        }
+    }
+
+    true
 }
 
 /// Friction solved directly, when its answer is "every pushing contact sticks" (a body at rest

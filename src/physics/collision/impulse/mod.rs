@@ -88,6 +88,7 @@ pub mod admm;
 pub mod direct;
 pub mod friction;
 pub mod interior;
+pub mod joined;
 pub mod newton;
 pub mod normal;
 pub mod propagate;
@@ -283,6 +284,9 @@ pub struct Scratch {
     pub report: StepReport,
     /// The `soft-step` response's buffers (the world keeps one scratch for the collide phase).
     pub(super) soft: super::soft_step::Scratch,
+    /// The joint rows solved with the contacts ([`joined`]), and the impulses they gave.
+    pub joined: joined::Joined,
+    joint_rows: Vec<crate::physics::constraints::Row>,
 }
 
 /// The direct solves' buffers: the system, the motions saved to undo a rejected solve, the
@@ -310,6 +314,9 @@ struct Direct {
     pinned: Vec<usize>,
     /// The rows in the order the subspace step takes its unknowns.
     order: Vec<usize>,
+    /// The inelastic direct solve's rows in system order: joint rows (< their count), then
+    /// contact rows by their place in the active set (`direct::inelastic`).
+    merged: Vec<usize>,
     subspace_rows: Vec<(f64, [f64; 2])>,
     /// The ADMM solve's buffers (stage 2 of a large system).
     admm: admm::Scratch,
@@ -529,6 +536,8 @@ pub fn respond(
         // A point approaching at bouncing speed is left to touch and bounce next step.
         contacts.retain(|c| c.depth > 0.0 || relative_velocity(c, motions) >= -bounce_speed);
     }
+    prepare_joints(input, states, contacts, bounce_speed, scratch);
+    let motions = &scratch.motions;
     let kinetic = |i: usize, s: &State, inv_inertia: &Matrix3<f64>| {
         kinetic_energy_with(
             &input.bodies[i],
@@ -597,6 +606,7 @@ pub fn respond(
         counters,
         impacts,
         report,
+        joined,
         ..
     } = scratch;
     advanced.clear();
@@ -610,6 +620,7 @@ pub fn respond(
         bounced: advanced,
         counters: &mut *counters,
         impacts,
+        joined,
     };
     // A bounce says nothing about the next step's load: stored as no impulse.
     warm.store(previous.iter().map(|p| {
@@ -640,12 +651,53 @@ pub fn respond(
     for (advance, m) in advanced.iter_mut().zip(motions.iter()) {
         *advance = m.touched && !*advance;
     }
+    if scratch.joined.used {
+        // A body only the joints' reactions moved keeps the integrator's position, as a
+        // bounced one does (`joined`): it is not resting on anything.
+        let mut pushed = std::mem::take(&mut scratch.joined.marked);
+        pushed.clear();
+        pushed.resize(advanced.len(), false);
+        for c in contacts.iter().filter(|c| c.impulse != Vector3::zeros()) {
+            pushed[c.body] = true;
+            if let Some(o) = c.other_body() {
+                pushed[o] = true;
+            }
+        }
+        for (advance, pushed) in advanced.iter_mut().zip(&pushed) {
+            *advance &= *pushed;
+        }
+        scratch.joined.marked = pushed;
+    }
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
     let after = round_off_guard(before.kinetic, states, motions, total);
     // Speculative contacts that were not needed are not contacts.
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
     Some(EnergyChange { before, after })
+}
+
+/// The joints' rows at `states`, solved with the contacts in an impact without friction
+/// ([`joined`]; built only then: a later impact round follows a first one).
+fn prepare_joints(
+    input: &CollideInput,
+    states: &[State],
+    contacts: &[Contact],
+    bounce_speed: f64,
+    scratch: &mut Scratch,
+) {
+    let (joint_rows, motions) = (&mut scratch.joint_rows, &scratch.motions);
+    joint_rows.clear();
+    if let Some(rows_at) = input.joints {
+        if input.model.friction == 0.0
+            && contacts
+                .iter()
+                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
+        {
+            rows_at(states, joint_rows);
+        }
+    }
+    let joints = joint_rows.iter().map(|r| r.owner + 1).max().unwrap_or(0);
+    scratch.joined.prepare(joint_rows, motions, joints);
 }
 
 /// Every body's velocities into `motions`, with I⁻¹_world exactly as the derive phase (and
@@ -713,6 +765,7 @@ struct Buffers<'a> {
     bounced: &'a mut Vec<bool>,
     counters: &'a mut Counters,
     impacts: &'a mut propagate::Scratch,
+    joined: &'a mut joined::Joined,
 }
 
 /// What the stages work on besides the rows and contacts (the bodies and the buffers).
@@ -723,6 +776,8 @@ pub(super) struct Stage<'a> {
     change: &'a mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     bounced: &'a mut [bool],
     counters: &'a mut Counters,
+    /// The joint rows solved with the contacts ([`joined`]).
+    joined: &'a mut joined::Joined,
 }
 
 /// What the velocity stages need besides the bodies and the contacts.
@@ -754,6 +809,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         bounced,
         counters,
         impacts,
+        joined,
     } = buffers;
     // The energy the velocities may keep: K₀ less the push-out's work against gravity.
     let kinetic_allowed = motions.iter().map(SolverBody::kinetic).sum::<f64>() - settings.lift;
@@ -777,6 +833,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
         change,
         bounced,
         counters,
+        joined,
     };
     // Propagate: the impact rounds first, when something approaches faster than a resting
     // contact does (at e = 0 they are skipped: module doc of `propagate`).
@@ -846,13 +903,23 @@ fn stages(
         change,
         bounced,
         counters,
+        joined,
     } = stage;
     let motions: &mut [SolverBody] = motions;
     let buffers_direct: &mut Direct = buffers_direct;
     let counters: &mut Counters = counters;
 
+    // The joint rows of the clusters these rows touch, in an impact (none without joints,
+    // with friction, or at rest: [`joined`]).
+    if friction == 0.0 && rows.iter().any(|r| r.approach < -bounce_speed) {
+        joined.select(
+            rows.iter()
+                .flat_map(|r| r.normal.bodies().into_iter().flatten()),
+        );
+    }
+
     // Stage 1: inelastic normal impulses, λ ≥ 0.
-    let large = inelastic_stage(rows, motions, tolerance, buffers_direct, counters);
+    let large = inelastic_stage(rows, motions, tolerance, buffers_direct, counters, joined);
 
     for row in rows.iter_mut() {
         row.compression = row.lambda;
@@ -957,16 +1024,31 @@ fn stages(
         }
     }
 
-    // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀.
-    normal::restitution(
-        rows,
-        motions,
+    // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀
+    // (with the joints' reaction to it, when there are joint rows).
+    let bounce = normal::Bounce {
         restitution,
         bounce_speed,
         kinetic_allowed,
-        change,
-        bounced,
-    );
+    };
+    bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// Stage 3 ([`normal::restitution`]), the joints' reaction to it booked ([`joined`]).
+fn bounce_stage(
+    rows: &mut [Row],
+    motions: &mut [SolverBody],
+    bounce: normal::Bounce,
+    change: &mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    bounced: &mut [bool],
+    joined: &mut joined::Joined,
+) {
+    let joints = (!joined.axes.is_empty()).then_some(&mut *joined);
+    if let Some(scale) = normal::restitution(rows, motions, bounce, change, bounced, joints) {
+        let lambda = std::mem::take(&mut joined.lambda);
+        joined.book(&lambda, scale);
+        joined.lambda = lambda;
+    }
 }
 
 /// Stage 1 (module doc): inelastic normal impulses, λ ≥ 0, on `rows`; returns whether the
@@ -977,6 +1059,7 @@ fn inelastic_stage(
     tolerance: f64,
     buffers_direct: &mut Direct,
     counters: &mut Counters,
+    joined: &mut joined::Joined,
 ) -> bool {
     // A large system first tries a few sweeps from
     // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
@@ -985,9 +1068,11 @@ fn inelastic_stage(
     let large = rows.len() > SWEEPS_FIRST_ROWS
         && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
     let mut answered = false;
-    if large && buffers_direct.trial_skip > 0 {
+    // With joint rows the direct solve comes first (the sweeps know no joints).
+    let joints = !joined.axes.is_empty();
+    if large && !joints && buffers_direct.trial_skip > 0 {
         buffers_direct.trial_skip -= 1;
-    } else if large {
+    } else if large && !joints {
         buffers_direct.trial.clear();
         buffers_direct.trial.extend_from_slice(motions);
         normal::warm_start(rows, motions);
@@ -1009,7 +1094,19 @@ fn inelastic_stage(
         }
     }
     if !answered {
-        let direct = direct::inelastic(large, rows, motions, tolerance, buffers_direct);
+        let mut lambda = std::mem::take(&mut joined.lambda);
+        let direct = direct::inelastic(
+            large,
+            rows,
+            (&joined.axes, &mut lambda),
+            motions,
+            tolerance,
+            buffers_direct,
+        );
+        if direct && joints {
+            joined.book(&lambda, 1.0);
+        }
+        joined.lambda = lambda;
         if direct {
             counters.direct += 1;
         } else {

@@ -70,6 +70,7 @@
 //!
 //! [`BOUNCE_STEPS`]: super::BOUNCE_STEPS
 
+use super::joined::Joined;
 use super::{axis_at, Row};
 use crate::physics::collision::solver_body::SolverBody;
 use crate::physics::collision::warm::WarmCache;
@@ -175,21 +176,36 @@ fn bounces(row: &Row, bounce_speed: f64) -> bool {
     row.approach < -bounce_speed && row.compression > 0.0
 }
 
+/// What stage 3 works to: the coefficient e, the speed below which nothing bounces, and the
+/// kinetic energy the velocities may keep (K₀ less the push-out's work against gravity).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Bounce {
+    pub restitution: f64,
+    pub bounce_speed: f64,
+    pub kinetic_allowed: f64,
+}
+
 /// Stage 3: Poisson restitution e λ where the approach was fast, scaled so that the kinetic
-/// energy stays within `kinetic_allowed` (K₀ less the push-out's work against gravity).
-/// `change` is a buffer (the restitution impulses' changes to each body: Δv, ΔL, Δω);
-/// `bounced` is set for each body a restitution impulse acted on.
+/// energy stays within `kinetic_allowed`. `change` is a buffer (the restitution impulses'
+/// changes to each body: Δv, ΔL, Δω); `bounced` is set for each body a restitution impulse
+/// acted on. With `joints` ([`super::joined`]) the joints' reaction to the impulses joins
+/// the change before the clamp (their impulses left in `joints.lambda`, unscaled). Returns
+/// the clamp's scale when something bounced.
 pub(super) fn restitution(
     rows: &mut [Row],
     motions: &mut [SolverBody],
-    restitution: f64,
-    bounce_speed: f64,
-    kinetic_allowed: f64,
+    bounce: Bounce,
     change: &mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
     bounced: &mut [bool],
-) {
+    joints: Option<&mut Joined>,
+) -> Option<f64> {
+    let Bounce {
+        restitution,
+        bounce_speed,
+        kinetic_allowed,
+    } = bounce;
     if !(restitution > 0.0 && rows.iter().any(|r| bounces(r, bounce_speed))) {
-        return;
+        return None;
     }
     // The restitution impulses' changes to each body: Δv, ΔL, Δω.
     change.clear();
@@ -209,6 +225,9 @@ pub(super) fn restitution(
                 c.2 += end.w * j;
             }
         }
+    }
+    if let Some(joints) = joints {
+        joints.react(change, motions);
     }
     // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
     let (mut a, mut b) = (0.0, 0.0);
@@ -241,6 +260,7 @@ pub(super) fn restitution(
     for row in rows.iter_mut() {
         row.lambda_restitution *= scale;
     }
+    Some(scale)
 }
 
 /// Writes each row back into its contact: the normal velocity before the response, the
