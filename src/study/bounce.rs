@@ -111,7 +111,8 @@ impl Bounce {
         for _ in 0..1_000_000 {
             let gap = (y - self.touch).max(0.0);
             let flight = (v + (v * v + 2.0 * self.g * gap).sqrt()) / self.g;
-            if !(flight > 0.0) {
+            // No flight left (at the floor, not rising), or NaN: it rests.
+            if flight.is_nan() || flight <= 0.0 {
                 return self.touch;
             }
             if t <= start + flight {
