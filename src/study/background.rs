@@ -234,6 +234,7 @@ impl Job {
                         response,
                         cloth: None,
                         contact_solvers: None,
+                        methods: None,
                     })
                 }
                 Finished::Cloth { frame, rows } => {

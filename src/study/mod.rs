@@ -6,6 +6,9 @@
 //! frontier, fits the observed orders of convergence and writes one plain sentence per scene;
 //! on a scene with contact, [`contact`] charts the collision responses (`impulse`, `soft-step`
 //! at 1–8 sub-steps) at the scene's own integrator and dt;
+//! asked (`--response A,B`), [`methods`] charts contact methods as the integrators are
+//! charted: each over the dt sweep, error against cost (a straight bounce against its closed
+//! form, [`bounce`]);
 //! [`report`] prints the table, CSV or JSON and [`plot`] the log–log SVG of error against cost.
 //!
 //! The study only drives [`crate::physics::World`] and reads its [`crate::physics::Snapshot`]:
@@ -13,10 +16,12 @@
 
 pub mod analysis;
 pub mod background;
+pub mod bounce;
 pub mod cancel;
 pub mod cloth;
 pub mod contact;
 pub mod measure;
+pub mod methods;
 pub mod plot;
 pub mod reference;
 pub mod report;
@@ -26,6 +31,7 @@ pub use analysis::{fit_order, mark_frontier, Order};
 pub use cloth::{ClothConfig, ClothRow, ClothStudy};
 pub use contact::{ContactStudy, SolverRow};
 pub use measure::{Row, Status, Timing};
+pub use methods::MethodStudy;
 pub use reference::Reference;
 
 use crate::physics::{Integrator, Response};
@@ -138,6 +144,9 @@ pub struct SceneStudy {
     /// A scene with contact: its contact solvers charted at its own integrator and dt
     /// ([`contact`]).
     pub contact_solvers: Option<ContactStudy>,
+    /// The contact methods asked for (`--response A,B`), each over the dt sweep at the
+    /// scene's integrator ([`methods`]); None unless asked.
+    pub methods: Option<MethodStudy>,
 }
 
 impl SceneStudy {
@@ -304,6 +313,7 @@ pub fn study_case_streaming(
         response,
         cloth: None,
         contact_solvers,
+        methods: None,
     }
 }
 
@@ -469,6 +479,7 @@ pub fn cloth_scene_study(
         response: None,
         cloth: Some(cloth),
         contact_solvers: None,
+        methods: None,
     }
 }
 

@@ -12,6 +12,7 @@
 use super::analysis::format_dt;
 use super::cloth::ClothStudy;
 use super::contact::ContactStudy;
+use super::methods::MethodStudy;
 use super::SceneStudy;
 use crate::physics::cloth::ClothIntegrator;
 use crate::physics::{Integrator, Response, SoftStep};
@@ -45,6 +46,9 @@ enum Panel<'s> {
     /// A contact scene's collision responses at its own integrator and dt: error against
     /// cost, or against the solver's step dt / sub-steps.
     Solvers(&'s SceneStudy, &'s ContactStudy, Against),
+    /// The contact methods asked for (`--response A,B`): each over the dt sweep at the
+    /// scene's integrator, error against cost, or against dt.
+    Methods(&'s SceneStudy, &'s MethodStudy, Against),
     /// A blank slot, so that a scene's cost and dt panels share a row.
     Blank,
 }
@@ -63,6 +67,8 @@ struct Entries {
     integrators: Vec<Integrator>,
     implicit_euler: bool,
     solvers: bool,
+    /// The contact methods some chart draws, in the list's order.
+    methods: Vec<Response>,
 }
 
 impl Entries {
@@ -82,6 +88,16 @@ impl Entries {
                 })
             }),
             solvers: studies.iter().any(|s| s.contact_solvers.is_some()),
+            methods: Response::ALL
+                .into_iter()
+                .filter(|m| {
+                    studies.iter().any(|s| {
+                        s.methods
+                            .as_ref()
+                            .is_some_and(|c| c.rows.iter().any(|r| r.response.name() == m.name()))
+                    })
+                })
+                .collect(),
         }
     }
 
@@ -96,9 +112,17 @@ impl Entries {
             entries.push((i.name().to_string(), cloth_color(i)));
         }
         if self.solvers {
-            let (impulse, soft_step) = solver_colors();
-            entries.push(("impulse (contact)".to_string(), impulse));
-            entries.push(("soft-step ×n (contact)".to_string(), soft_step));
+            // Every charted response, as the contact chart runs them (`contact::solvers`).
+            for response in Response::ALL.into_iter().filter(|r| r.descriptor().charted) {
+                let name = match response {
+                    Response::SoftStep(_) => "soft-step ×n".to_string(),
+                    r => r.name().to_string(),
+                };
+                entries.push((format!("{name} (contact)"), response_color(response)));
+            }
+        }
+        for &m in &self.methods {
+            entries.push((format!("{} (method)", m.name()), response_color(m)));
         }
         entries
     }
@@ -108,14 +132,6 @@ impl Entries {
 fn response_color(response: Response) -> RGBColor {
     let (r, g, b) = response.descriptor().colour;
     RGBColor(r, g, b)
-}
-
-/// The contact solvers' panel's colours: `impulse` and `soft-step`.
-fn solver_colors() -> (RGBColor, RGBColor) {
-    (
-        response_color(Response::Impulse),
-        response_color(Response::SoftStep(SoftStep::DEFAULT)),
-    )
 }
 
 /// A body row the panels draw.
@@ -154,6 +170,9 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
         if let Some(chart) = &study.contact_solvers {
             pair(&mut panels, |a| Panel::Solvers(study, chart, a));
         }
+        if let Some(chart) = &study.methods {
+            pair(&mut panels, |a| Panel::Methods(study, chart, a));
+        }
     }
     let count = panels.len().max(1);
     let columns = if count > 1 { 2 } else { 1 };
@@ -175,6 +194,9 @@ pub fn svg(studies: &[SceneStudy], path: &Path) -> Result<(), String> {
                 sweep_panel(&cloth_sweep(study, cloth), *against, area)
             }
             Panel::Solvers(study, chart, against) => solvers_panel(study, chart, *against, area),
+            Panel::Methods(study, chart, against) => {
+                sweep_panel(&methods_sweep(study, chart), *against, area)
+            }
             Panel::Blank => Ok(()),
         }
         .map_err(|e| fail(&e))?;
@@ -393,6 +415,75 @@ fn bodies_sweep(study: &SceneStudy) -> Sweep {
             .iter()
             .filter(|r| !r.ok())
             .map(|r| format!("{} {}", r.integrator.name(), format_dt(r.dt)))
+            .collect(),
+        rings: true,
+    }
+}
+
+/// The contact methods' sweep of a scene: one line per method (its descriptor's colour), the
+/// error its chart's (against a bounce's closed form, or the contact error), the floor band on
+/// both panels.
+fn methods_sweep(study: &SceneStudy, chart: &MethodStudy) -> Sweep {
+    let mut methods: Vec<Response> = Vec::new();
+    for r in &chart.rows {
+        if !methods.contains(&r.response) {
+            methods.push(r.response);
+        }
+    }
+    let lines = methods
+        .iter()
+        .map(|&method| {
+            let points = chart
+                .rows
+                .iter()
+                .filter(|r| r.response == method && super::methods::usable(r))
+                .map(|r| {
+                    (
+                        r.run.dt,
+                        r.run.us_per_simulated_second,
+                        r.error,
+                        r.run.frontier,
+                    )
+                });
+            let order = chart
+                .orders
+                .iter()
+                .find(|o| o.response == method)
+                .map(|o| order_text(method.name(), o.slope));
+            Line::new(response_color(method), points, order)
+        })
+        .collect();
+    Sweep {
+        captions: (
+            format!(
+                "{}: contact methods ({}, {} reference)",
+                study.name,
+                chart.integrator.name(),
+                chart.reference_kind
+            ),
+            format!(
+                "{}: contact methods' error against dt (slope = p)",
+                study.name
+            ),
+        ),
+        error: match chart.measure {
+            "error" => "error against the closed form = max angle + |x − x_ref|/radius",
+            _ => "contact error (end pose, shape, penetration; gain)",
+        },
+        lines,
+        band: (chart.floor > FLOOR).then(|| {
+            (
+                chart.floor,
+                format!("grey band: below the floor {:.1e}", chart.floor),
+                true,
+            )
+        }),
+        limit: None,
+        diverged: chart
+            .rows
+            .iter()
+            .filter(|r| !r.run.ok())
+            .map(|r| format!("{} {}", r.response.name(), format_dt(r.run.dt)))
             .collect(),
         rings: true,
     }
@@ -664,18 +755,18 @@ fn solvers_panel(
     }
     let mut soft: Vec<_> = ok.iter().filter(|r| r.substeps > 0).collect();
     soft.sort_by_key(|r| r.substeps);
-    let (impulse, soft_step) = solver_colors();
+    let soft_step = response_color(Response::SoftStep(SoftStep::DEFAULT));
     plot.draw_series(LineSeries::new(
         soft.iter().map(|r| at(r)),
         soft_step.stroke_width(2),
     ))?;
     for r in &ok {
-        let c = if r.substeps > 0 { soft_step } else { impulse };
+        let c = response_color(r.response);
         plot.draw_series(std::iter::once(Circle::new(at(r), 3, c.filled())))?;
         let text = if r.substeps > 0 {
             format!("×{}", r.substeps)
         } else {
-            "impulse".to_string()
+            r.solver.clone()
         };
         plot.draw_series(std::iter::once(label!(text, at(r), &c)))?;
     }

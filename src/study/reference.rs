@@ -122,6 +122,9 @@ pub enum Reference {
         velocity: Vector3<f64>,
         gravity: Vector3<f64>,
     },
+    /// The closed-form straight bounce ([`super::bounce`]): the contact methods' chart of a
+    /// bounce scene.
+    Bounce(Box<super::bounce::Bounce>),
     /// A finer run of the same model, sampled at the study's sample times (every body).
     Numeric {
         integrator: Integrator,
@@ -240,6 +243,11 @@ impl Reference {
                 orientation: free.orientation(t),
                 omega_body: free.omega_body(t),
             }],
+            Reference::Bounce(bounce) => vec![Pose {
+                position: bounce.position(t),
+                orientation: bounce.orientation,
+                omega_body: Vector3::zeros(),
+            }],
             Reference::Numeric { samples, .. } => samples[index].clone(),
         }
     }
@@ -248,7 +256,7 @@ impl Reference {
     pub fn spread(&self) -> Option<Spread> {
         match self {
             Reference::Numeric { spread, .. } => *spread,
-            Reference::Exact { .. } => None,
+            Reference::Exact { .. } | Reference::Bounce(_) => None,
         }
     }
 
@@ -257,7 +265,7 @@ impl Reference {
     pub fn floor(&self) -> f64 {
         let projection = match self {
             Reference::Numeric { projection, .. } => *projection,
-            Reference::Exact { .. } => 0.0,
+            Reference::Exact { .. } | Reference::Bounce(_) => 0.0,
         };
         self.spread()
             .map_or(0.0, |s| SPREAD_BAND * s.error)
@@ -284,6 +292,7 @@ impl Reference {
                 };
                 format!("exact: {translation}; {rotation}")
             }
+            Reference::Bounce(bounce) => bounce.describe(),
             Reference::Numeric {
                 integrator,
                 dt,
@@ -333,7 +342,7 @@ impl Reference {
     /// "exact", "converged", "not-converged" or "numeric" (contact).
     pub fn kind(&self) -> &'static str {
         match self {
-            Reference::Exact { .. } => "exact",
+            Reference::Exact { .. } | Reference::Bounce(_) => "exact",
             Reference::Numeric { spread: None, .. } => "numeric",
             Reference::Numeric {
                 spread: Some(s), ..

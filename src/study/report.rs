@@ -13,12 +13,20 @@
 //! integrator and dt, the response in `solver` (`impulse`, `soft-step`), its sub-steps in
 //! `substeps` (0 for `impulse`) and the rest height below the reference (m) in `sink`; a body's
 //! and a cloth's rows have the scene's response (or nothing) in `solver`, NaN in the other two.
+//!
+//! The contact methods asked for with `--response A,B` ([`super::methods`]) print their own
+//! section too; in the CSV their rows have `case` = `contact-method`, the scene's integrator,
+//! each swept dt, the method in `solver` (`soft-step`'s sub-steps in `substeps`), `reference`
+//! `exact` when a straight bounce is measured against its closed form (the charted error is
+//! then `error`) and `numeric` otherwise (the charted error is `contact_error`).
 
 use super::analysis::{format_cost, format_dt, format_number};
 use super::cloth::{ClothRow, ClothStudy};
 use super::contact::ContactStudy;
 use super::measure::{Row, Status};
+use super::methods::MethodStudy;
 use super::SceneStudy;
+use crate::physics::Response;
 use std::fmt::Write;
 
 /// The CSV header.
@@ -160,6 +168,9 @@ pub fn table(studies: &[SceneStudy]) -> String {
         if let Some(chart) = &study.contact_solvers {
             solver_table(&mut out, chart);
         }
+        if let Some(chart) = &study.methods {
+            methods_table(&mut out, chart);
+        }
         let _ = writeln!(out);
     }
     out
@@ -201,6 +212,91 @@ fn solver_table(out: &mut String, chart: &ContactStudy) {
         let _ = writeln!(out, "{line}");
     }
     let _ = writeln!(out, "{}", chart.sentence);
+}
+
+/// What a contact-method chart's error is, in one line.
+fn methods_measure(chart: &MethodStudy) -> &'static str {
+    match chart.measure {
+        "error" => "error = max over samples of angle(q_ref⁻¹q) + |x − x_ref|/radius against the closed form",
+        _ => "error = the contact error (end pose + ‖RᵀR−I‖ + penetr./radius + gain/Σ(M·g·radius))",
+    }
+}
+
+/// The contact methods' section of a scene's table (`--response A,B`): each method over the
+/// dt sweep, as the integrators' rows.
+fn methods_table(out: &mut String, chart: &MethodStudy) {
+    let _ = writeln!(
+        out,
+        "contact methods ({}, every swept dt; reference: {}); {}; * = Pareto frontier of these \
+         runs; ~ = at or below the floor {}",
+        chart.integrator.name(),
+        chart.reference,
+        methods_measure(chart),
+        format_number(chart.floor)
+    );
+    let _ = writeln!(
+        out,
+        "  {:<15}{:>6}{:>9}{:>9}{:>11}{:>10}{:>10}{:>10}{:>12}",
+        "method",
+        "dt",
+        "steps",
+        "ns/step",
+        "µs/sim-s",
+        "error",
+        "pos m",
+        "penetr. m",
+        "contact err"
+    );
+    for row in &chart.rows {
+        let r = &row.run;
+        let mark = if r.frontier {
+            '*'
+        } else if r.below_floor {
+            '~'
+        } else {
+            ' '
+        };
+        let line = match &r.status {
+            Status::Ok => format!(
+                "{mark} {:<15}{:>6}{:>9}{:>9.0}{:>11}{:>10}{:>10}{:>10}{:>12}",
+                row.response.name(),
+                format_dt(r.dt),
+                r.steps,
+                r.ns_per_step,
+                format_cost(r.us_per_simulated_second),
+                sci(row.error),
+                sci(r.position_error),
+                sci(r.penetration),
+                sci(r.contact_error)
+            ),
+            Status::Diverged(message) => format!(
+                "{mark} {:<15}{:>6}  {}",
+                row.response.name(),
+                format_dt(r.dt),
+                short_divergence(message)
+            ),
+        };
+        let _ = writeln!(out, "{line}");
+    }
+    let orders: Vec<String> = chart
+        .orders
+        .iter()
+        .map(|o| match o.slope {
+            Some(p) => format!("{} {p:.2} ({} runs)", o.response.name(), o.points),
+            None => format!(
+                "{} none ({} runs above the floor)",
+                o.response.name(),
+                o.points
+            ),
+        })
+        .collect();
+    let _ = writeln!(out, "{}", chart.sentence);
+    let _ = writeln!(
+        out,
+        "observed order of each method (least-squares slope of log error vs log dt, runs not \
+         diverged with floor < error ≤ 1e-1): {}",
+        orders.join("; ")
+    );
 }
 
 /// The cloth case's section of the table.
@@ -438,6 +534,28 @@ pub fn csv(studies: &[SceneStudy]) -> String {
                 cell(row.sink)
             );
         }
+        for chart in study.methods.iter() {
+            for row in &chart.rows {
+                let r = &row.run;
+                let _ = writeln!(
+                    out,
+                    "{},{},{},{},{},{},{},contact-method,,,,,,{},{},,{}",
+                    run_columns(r),
+                    r.frontier,
+                    csv_status(&r.status),
+                    chart.reference_kind,
+                    cell(r.angle_error),
+                    cell(r.end_pose_error),
+                    cell(r.contact_error),
+                    row.response.name(),
+                    match row.response {
+                        Response::SoftStep(p) => p.substeps.to_string(),
+                        _ => String::new(),
+                    },
+                    r.below_floor
+                );
+            }
+        }
         for r in study.cloth.iter().flat_map(|c| &c.rows) {
             let status = csv_status(&r.status);
             let _ = writeln!(
@@ -545,6 +663,9 @@ pub fn json(studies: &[SceneStudy]) -> String {
             if let Some(chart) = &s.contact_solvers {
                 scene["contact_solvers"] = solvers_json(chart);
             }
+            if let Some(chart) = &s.methods {
+                scene["contact_methods"] = methods_json(chart);
+            }
             scene
         })
         .collect();
@@ -583,6 +704,59 @@ fn solvers_json(chart: &ContactStudy) -> serde_json::Value {
         "dt": chart.dt,
         "reference": chart.reference,
         "sentence": chart.sentence,
+        "runs": runs,
+    })
+}
+
+/// The contact methods' chart as JSON (NaN as null): each run's `error` is the charted one
+/// (`error_measure` says which).
+fn methods_json(chart: &MethodStudy) -> serde_json::Value {
+    let runs: Vec<serde_json::Value> = chart
+        .rows
+        .iter()
+        .map(|row| {
+            let r = &row.run;
+            serde_json::json!({
+                "response": row.response.name(),
+                "integrator": r.integrator.name(),
+                "dt": r.dt,
+                "steps": r.steps,
+                "ns_per_step": r.ns_per_step,
+                "us_per_simulated_second": r.us_per_simulated_second,
+                "error": row.error,
+                "trajectory_error": r.error,
+                "position_error": r.position_error,
+                "angle_error": r.angle_error,
+                "contact_error": r.contact_error,
+                "end_pose_error": r.end_pose_error,
+                "penetration": r.penetration,
+                "impact_energy": r.impact_energy,
+                "frontier": r.frontier,
+                "below_floor": r.below_floor,
+                "diverged": !r.ok(),
+                "divergence": divergence(&r.status),
+            })
+        })
+        .collect();
+    let orders: Vec<serde_json::Value> = chart
+        .orders
+        .iter()
+        .map(|o| {
+            serde_json::json!({
+                "response": o.response.name(),
+                "order": o.slope,
+                "points": o.points,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "integrator": chart.integrator.name(),
+        "reference": chart.reference,
+        "reference_kind": chart.reference_kind,
+        "error_measure": methods_measure(chart),
+        "floor": chart.floor,
+        "sentence": chart.sentence,
+        "orders": orders,
         "runs": runs,
     })
 }

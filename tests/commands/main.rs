@@ -19,6 +19,7 @@ mod shot_tools;
 mod study;
 mod study_cloth;
 mod study_contact;
+mod study_methods;
 mod study_models;
 mod study_table;
 mod walk;

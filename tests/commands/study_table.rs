@@ -47,6 +47,7 @@ fn study(rows: Vec<Row>, response: Option<Response>) -> SceneStudy {
         response,
         cloth: None,
         contact_solvers: None,
+        methods: None,
     }
 }
 
