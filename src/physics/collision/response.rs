@@ -70,7 +70,7 @@ macro_rules! responses {
             }
 
             /// Runs detection and this response on `states` (its module's `collide`; see
-            /// [`collide`](super::collide)).
+            /// [`collide`](crate::physics::collision::collide)).
             pub fn collide(
                 self,
                 input: &CollideInput,
