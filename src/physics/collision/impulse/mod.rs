@@ -943,39 +943,15 @@ fn stages(
         // sliding steadily they are the answer). Then the direct solve (everything sticks);
         // else the sweeps, warm-started from the last step's friction
         // impulses (kept in their disks).
-        let mut solved = false;
-        if large {
-            let Direct {
-                trial,
-                trial_rows,
-                work,
-                ..
-            } = &mut *buffers_direct;
-            trial.clear();
-            trial.extend_from_slice(motions);
-            trial_rows.clear();
-            trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
-            // From last step's normal impulses as well as its friction: stage 1's answer,
-            // when its direct solve gave it, shares the loads its own way (the minimum norm),
-            // and at rest last step's friction holds last step's shares, not those (a pyramid
-            // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
-            normal::warm_start_again(rows, motions);
-            friction::warm_start(rows, tangent_directions, motions);
-            let (converged, sweeps, _) =
-                friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
-            *work += sweeps * rows.len() as u64;
-            counters.friction_sweeps += sweeps;
-            if converged {
-                counters.friction_warm += 1;
-                solved = true;
-            } else {
-                motions.copy_from_slice(trial);
-                for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
-                    row.lambda = lambda;
-                    row.lambda_tangent = tangent;
-                }
-            }
-        }
+        let mut solved = large
+            && friction_trial(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                buffers_direct,
+                counters,
+            );
         for how in [direct::Sticking::Exact, direct::Sticking::Resting { dt }] {
             if !solved {
                 solved = direct::sticking(
@@ -1032,6 +1008,49 @@ fn stages(
         kinetic_allowed,
     };
     bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// Stage 2's trial on a large system: a few friction sweeps from the last step's normal and
+/// friction impulses (at rest or sliding steadily they are the answer). True when they
+/// converged; else the bodies and the rows are put back as they were.
+fn friction_trial(
+    rows: &mut [Row],
+    tangent_directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    buffers_direct: &mut Direct,
+    counters: &mut Counters,
+) -> bool {
+        let Direct {
+            trial,
+            trial_rows,
+            work,
+            ..
+        } = &mut *buffers_direct;
+        trial.clear();
+        trial.extend_from_slice(motions);
+        trial_rows.clear();
+        trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+        // From last step's normal impulses as well as its friction: stage 1's answer,
+        // when its direct solve gave it, shares the loads its own way (the minimum norm),
+        // and at rest last step's friction holds last step's shares, not those (a pyramid
+        // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
+        normal::warm_start_again(rows, motions);
+        friction::warm_start(rows, tangent_directions, motions);
+        let (converged, sweeps, _) =
+            friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
+        *work += sweeps * rows.len() as u64;
+        counters.friction_sweeps += sweeps;
+        if converged {
+            counters.friction_warm += 1;
+        } else {
+            motions.copy_from_slice(trial);
+            for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
+                row.lambda = lambda;
+                row.lambda_tangent = tangent;
+            }
+        }
+        converged
 }
 
 /// Stage 3 ([`normal::restitution`]), the joints' reaction to it booked ([`joined`]).
