@@ -640,21 +640,42 @@ pub fn respond(
     if direct.unconverged.is_some() {
         counters.unconverged += 1;
     }
+    store_momenta(states, motions);
+    mark_advanced(advanced, motions, contacts, &mut scratch.joined);
+    fix.apply(contacts, states, advanced, fs);
+    // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    let after = round_off_guard(before.kinetic, states, motions, total);
+    // Speculative contacts that were not needed are not contacts.
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    Some(EnergyChange { before, after })
+}
+
+/// The solved velocities back into the touched bodies' momenta: P = v / m⁻¹, L.
+fn store_momenta(states: &mut [State], motions: &[SolverBody]) {
     for (state, m) in states.iter_mut().zip(motions.iter()) {
         if m.touched {
             state.linear_momentum = m.v / m.inv_mass;
             state.angular_momentum = m.l;
         }
     }
-    // Advanced from the start of the step: touched and not bounced (`advanced` held the
-    // bounce flags).
+}
+
+/// The bodies advanced from the start of the step (the push-out moves only those): touched
+/// and not bounced (`advanced` holds the bounce flags on entry), and with joint rows in use
+/// only those a contact pushed.
+fn mark_advanced(
+    advanced: &mut [bool],
+    motions: &[SolverBody],
+    contacts: &[Contact],
+    joined: &mut joined::Joined,
+) {
     for (advance, m) in advanced.iter_mut().zip(motions.iter()) {
         *advance = m.touched && !*advance;
     }
-    if scratch.joined.used {
+    if joined.used {
         // A body only the joints' reactions moved keeps the integrator's position, as a
         // bounced one does (`joined`): it is not resting on anything.
-        let mut pushed = std::mem::take(&mut scratch.joined.marked);
+        let mut pushed = std::mem::take(&mut joined.marked);
         pushed.clear();
         pushed.resize(advanced.len(), false);
         for c in contacts.iter().filter(|c| c.impulse != Vector3::zeros()) {
@@ -666,14 +687,8 @@ pub fn respond(
         for (advance, pushed) in advanced.iter_mut().zip(&pushed) {
             *advance &= *pushed;
         }
-        scratch.joined.marked = pushed;
+        joined.marked = pushed;
     }
-    fix.apply(contacts, states, advanced, fs);
-    // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
-    let after = round_off_guard(before.kinetic, states, motions, total);
-    // Speculative contacts that were not needed are not contacts.
-    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
-    Some(EnergyChange { before, after })
 }
 
 /// The joints' rows at `states`, solved with the contacts in an impact without friction
