@@ -249,8 +249,8 @@ fn step(
 
 /// The unknowns of the subspace step, into `unknowns`: each row's normal while it pushes
 /// (λ > 0), and its tangent impulse — one edge unknown when its disk is on its edge and it
-/// slides against its impulse (u_t·λ_t ≤ 0) or is `pinned`, else two sticking unknowns. Rows taken in `order`: sorted by the
-/// last body they act on.
+/// slides against its impulse (u_t·λ_t ≤ 0) or is `pinned`, else two sticking unknowns.
+/// Rows taken in `order`: sorted by the last body they act on.
 fn gather_unknowns(
     rows: &[Row],
     directions: &[[Axis; 2]],
