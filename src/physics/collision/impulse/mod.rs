@@ -640,21 +640,42 @@ pub fn respond(
     if direct.unconverged.is_some() {
         counters.unconverged += 1;
     }
+    store_momenta(states, motions);
+    mark_advanced(advanced, motions, contacts, &mut scratch.joined);
+    fix.apply(contacts, states, advanced, fs);
+    // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
+    let after = round_off_guard(before.kinetic, states, motions, total);
+    // Speculative contacts that were not needed are not contacts.
+    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    Some(EnergyChange { before, after })
+}
+
+/// The solved velocities back into the touched bodies' momenta: P = v / m⁻¹, L.
+fn store_momenta(states: &mut [State], motions: &[SolverBody]) {
     for (state, m) in states.iter_mut().zip(motions.iter()) {
         if m.touched {
             state.linear_momentum = m.v / m.inv_mass;
             state.angular_momentum = m.l;
         }
     }
-    // Advanced from the start of the step: touched and not bounced (`advanced` held the
-    // bounce flags).
+}
+
+/// The bodies advanced from the start of the step (the push-out moves only those): touched
+/// and not bounced (`advanced` holds the bounce flags on entry), and with joint rows in use
+/// only those a contact pushed.
+fn mark_advanced(
+    advanced: &mut [bool],
+    motions: &[SolverBody],
+    contacts: &[Contact],
+    joined: &mut joined::Joined,
+) {
     for (advance, m) in advanced.iter_mut().zip(motions.iter()) {
         *advance = m.touched && !*advance;
     }
-    if scratch.joined.used {
+    if joined.used {
         // A body only the joints' reactions moved keeps the integrator's position, as a
         // bounced one does (`joined`): it is not resting on anything.
-        let mut pushed = std::mem::take(&mut scratch.joined.marked);
+        let mut pushed = std::mem::take(&mut joined.marked);
         pushed.clear();
         pushed.resize(advanced.len(), false);
         for c in contacts.iter().filter(|c| c.impulse != Vector3::zeros()) {
@@ -666,14 +687,8 @@ pub fn respond(
         for (advance, pushed) in advanced.iter_mut().zip(&pushed) {
             *advance &= *pushed;
         }
-        scratch.joined.marked = pushed;
+        joined.marked = pushed;
     }
-    fix.apply(contacts, states, advanced, fs);
-    // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
-    let after = round_off_guard(before.kinetic, states, motions, total);
-    // Speculative contacts that were not needed are not contacts.
-    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
-    Some(EnergyChange { before, after })
 }
 
 /// The joints' rows at `states`, solved with the contacts in an impact without friction
@@ -943,39 +958,15 @@ fn stages(
         // sliding steadily they are the answer). Then the direct solve (everything sticks);
         // else the sweeps, warm-started from the last step's friction
         // impulses (kept in their disks).
-        let mut solved = false;
-        if large {
-            let Direct {
-                trial,
-                trial_rows,
-                work,
-                ..
-            } = &mut *buffers_direct;
-            trial.clear();
-            trial.extend_from_slice(motions);
-            trial_rows.clear();
-            trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
-            // From last step's normal impulses as well as its friction: stage 1's answer,
-            // when its direct solve gave it, shares the loads its own way (the minimum norm),
-            // and at rest last step's friction holds last step's shares, not those (a pyramid
-            // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
-            normal::warm_start_again(rows, motions);
-            friction::warm_start(rows, tangent_directions, motions);
-            let (converged, sweeps, _) =
-                friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
-            *work += sweeps * rows.len() as u64;
-            counters.friction_sweeps += sweeps;
-            if converged {
-                counters.friction_warm += 1;
-                solved = true;
-            } else {
-                motions.copy_from_slice(trial);
-                for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
-                    row.lambda = lambda;
-                    row.lambda_tangent = tangent;
-                }
-            }
-        }
+        let mut solved = large
+            && friction_trial(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                buffers_direct,
+                counters,
+            );
         for how in [direct::Sticking::Exact, direct::Sticking::Resting { dt }] {
             if !solved {
                 solved = direct::sticking(
@@ -1032,6 +1023,49 @@ fn stages(
         kinetic_allowed,
     };
     bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// Stage 2's trial on a large system: a few friction sweeps from the last step's normal and
+/// friction impulses (at rest or sliding steadily they are the answer). True when they
+/// converged; else the bodies and the rows are put back as they were.
+fn friction_trial(
+    rows: &mut [Row],
+    tangent_directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    buffers_direct: &mut Direct,
+    counters: &mut Counters,
+) -> bool {
+        let Direct {
+            trial,
+            trial_rows,
+            work,
+            ..
+        } = &mut *buffers_direct;
+        trial.clear();
+        trial.extend_from_slice(motions);
+        trial_rows.clear();
+        trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+        // From last step's normal impulses as well as its friction: stage 1's answer,
+        // when its direct solve gave it, shares the loads its own way (the minimum norm),
+        // and at rest last step's friction holds last step's shares, not those (a pyramid
+        // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
+        normal::warm_start_again(rows, motions);
+        friction::warm_start(rows, tangent_directions, motions);
+        let (converged, sweeps, _) =
+            friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
+        *work += sweeps * rows.len() as u64;
+        counters.friction_sweeps += sweeps;
+        if converged {
+            counters.friction_warm += 1;
+        } else {
+            motions.copy_from_slice(trial);
+            for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
+                row.lambda = lambda;
+                row.lambda_tangent = tangent;
+            }
+        }
+        converged
 }
 
 /// Stage 3 ([`normal::restitution`]), the joints' reaction to it booked ([`joined`]).

@@ -16,7 +16,7 @@
 use super::WORK_BUDGET;
 use super::{friction, normal, Counters, Direct, Row, ENVELOPE_MAX, MAX_SWEEPS};
 use crate::physics::collision::solver_body::{Axis, End, SolverBody};
-use crate::physics::envelope::Pivots;
+use crate::physics::envelope::{Envelope, Pivots};
 
 /// The friction sweeps take a subspace step (`step`) after this many sweeps
 /// that did not converge.
@@ -186,6 +186,79 @@ fn step(
         work,
         ..
     } = buffers;
+    gather_unknowns(rows, directions, motions, order, unknowns, pinned);
+    let m = unknowns.len();
+    if m == 0 {
+        return Subspace::Declined;
+    }
+    // H_pq: the couplings of the unknowns' directions (a tangent unknown is c₁ t₁ + c₂ t₂,
+    // combined once: the coupling is bilinear).
+    if !assemble(system, unknowns, motions) {
+        return Subspace::TooWide;
+    }
+    *work += super::factorisation_work(system.stored(), m);
+    let Some(delta) = system.solve(Pivots::Regularised) else {
+        return Subspace::Declined;
+    };
+    // The ratio test: the largest α ≤ 1 keeping the free normals ≥ 0 and the sticking disks
+    // inside their bounds (an edge unknown stays on its circle whatever α).
+    let (mut alpha, mut blocking) = ratio_test(rows, unknowns, delta);
+    if alpha.is_nan() || alpha <= 0.0 {
+        return Subspace::Declined;
+    }
+    // Stage 1 (no friction unknowns) first tries the whole step projected onto λ ≥ 0, which
+    // changes many normals at once (a pyramid settling changes hundreds); the ratio-test step
+    // follows if that one does not lower F.
+    let ratio = (alpha, blocking);
+    let projected_first = directions.is_empty() && alpha < 1.0;
+    if projected_first {
+        (alpha, blocking) = (1.0, None);
+    }
+    saved.clear();
+    saved.extend_from_slice(motions);
+    subspace_rows.clear();
+    subspace_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+    // Backtracking: a step that did not lower F (a nearly singular H solved inaccurately) is
+    // undone and tried again 8 times shorter, a few times.
+    for attempt in 0..SUBSPACE_BACKTRACKS {
+        apply_step(rows, directions, motions, unknowns, delta, alpha, blocking);
+        // ΔF = ΔΛ·(∇F before + ∇F after)/2 over the rows that moved (exact: F is quadratic).
+        let change = objective_change(rows, directions, motions, unknowns, subspace_rows);
+        if change < 0.0 {
+            if let Some(p) = blocking.filter(|&p| unknowns[p].tangent.is_some()) {
+                pinned.push(unknowns[p].row);
+            }
+            return Subspace::Taken {
+                whole: alpha == 1.0 && attempt == 0 && !projected_first,
+            };
+        }
+        motions.copy_from_slice(saved);
+        for (row, &(lambda, tangent)) in rows.iter_mut().zip(subspace_rows.iter()) {
+            row.lambda = lambda;
+            row.lambda_tangent = tangent;
+        }
+        if projected_first && attempt == 0 {
+            (alpha, blocking) = ratio;
+        } else {
+            alpha /= 8.0;
+            blocking = None;
+        }
+    }
+    Subspace::Declined
+}
+
+/// The unknowns of the subspace step, into `unknowns`: each row's normal while it pushes
+/// (λ > 0), and its tangent impulse — one edge unknown when its disk is on its edge and it
+/// slides against its impulse (u_t·λ_t ≤ 0) or is `pinned`, else two sticking unknowns.
+/// Rows taken in `order`: sorted by the last body they act on.
+fn gather_unknowns(
+    rows: &[Row],
+    directions: &[[Axis; 2]],
+    motions: &[SolverBody],
+    order: &mut Vec<usize>,
+    unknowns: &mut Vec<Unknown>,
+    pinned: &[usize],
+) {
     // Rows ordered by the last body they act on (stable: a pair's rows stay together), so
     // a body's floor contacts sit beside its contacts with its neighbours: a chain of bodies
     // (a row of dominoes, a stack) gets a banded envelope, where contact order (every floor
@@ -237,12 +310,12 @@ fn step(
             }
         }
     }
+}
+
+/// H_pq into `system`, with the right-hand side −∇F along each unknown (`H Δ = −∇F`).
+/// False when the envelope grows over [`ENVELOPE_MAX`].
+fn assemble(system: &mut Envelope, unknowns: &[Unknown], motions: &[SolverBody]) -> bool {
     let m = unknowns.len();
-    if m == 0 {
-        return Subspace::Declined;
-    }
-    // H_pq: the couplings of the unknowns' directions (a tangent unknown is c₁ t₁ + c₂ t₂,
-    // combined once: the coupling is bilinear).
     system.reset(m);
     for p in 0..m {
         let up = &unknowns[p];
@@ -260,15 +333,17 @@ fn step(
             }
         });
         if system.stored() > ENVELOPE_MAX {
-            return Subspace::TooWide;
+            return false;
         }
     }
-    *work += super::factorisation_work(system.stored(), m);
-    let Some(delta) = system.solve(Pivots::Regularised) else {
-        return Subspace::Declined;
-    };
-    // The ratio test: the largest α ≤ 1 keeping the free normals ≥ 0 and the sticking disks
-    // inside their bounds (an edge unknown stays on its circle whatever α).
+    true
+}
+
+/// The ratio test on the step `delta`: the largest α ≤ 1 keeping the free normals ≥ 0 and
+/// the sticking disks inside their bounds, an edge unknown turning at most [`EDGE_TURN`]
+/// radians; with the unknown that blocks it (none for an edge's turn).
+fn ratio_test(rows: &[Row], unknowns: &[Unknown], delta: &[f64]) -> (f64, Option<usize>) {
+    let m = unknowns.len();
     let mut alpha: f64 = 1.0;
     let mut blocking = None;
     let mut p = 0;
@@ -310,117 +385,106 @@ fn step(
             }
         }
     }
-    if alpha.is_nan() || alpha <= 0.0 {
-        return Subspace::Declined;
-    }
-    // Stage 1 (no friction unknowns) first tries the whole step projected onto λ ≥ 0, which
-    // changes many normals at once (a pyramid settling changes hundreds); the ratio-test step
-    // follows if that one does not lower F.
-    let ratio = (alpha, blocking);
-    let projected_first = directions.is_empty() && alpha < 1.0;
-    if projected_first {
-        (alpha, blocking) = (1.0, None);
-    }
-    saved.clear();
-    saved.extend_from_slice(motions);
-    subspace_rows.clear();
-    subspace_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
-    // Backtracking: a step that did not lower F (a nearly singular H solved inaccurately) is
-    // undone and tried again 8 times shorter, a few times.
-    for attempt in 0..SUBSPACE_BACKTRACKS {
-        let mut p = 0;
-        while p < m {
-            let unknown = unknowns[p];
-            let row = &mut rows[unknown.row];
-            match unknown.tangent {
-                None => {
-                    // The normal that cut the step short leaves the active set at exactly 0.
-                    let new = if blocking == Some(p) {
-                        0.0
-                    } else {
-                        (row.lambda + alpha * delta[p]).max(0.0)
-                    };
-                    let step = new - row.lambda;
-                    row.lambda = new;
-                    row.normal.apply(step, motions);
-                    p += 1;
+    (alpha, blocking)
+}
+
+/// Moves the impulses by `alpha delta` and the bodies with them: a normal clamped at 0 (at
+/// exactly 0 when it is `blocking`), a sticking disk put back on its edge when it reached it,
+/// an edge unknown moved along its tangent and back onto its circle.
+fn apply_step(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    unknowns: &[Unknown],
+    delta: &[f64],
+    alpha: f64,
+    blocking: Option<usize>,
+) {
+    let m = unknowns.len();
+    let mut p = 0;
+    while p < m {
+        let unknown = unknowns[p];
+        let row = &mut rows[unknown.row];
+        match unknown.tangent {
+            None => {
+                // The normal that cut the step short leaves the active set at exactly 0.
+                let new = if blocking == Some(p) {
+                    0.0
+                } else {
+                    (row.lambda + alpha * delta[p]).max(0.0)
+                };
+                let step = new - row.lambda;
+                row.lambda = new;
+                row.normal.apply(step, motions);
+                p += 1;
+            }
+            Some((c, _)) => {
+                let pair = unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row);
+                let old = row.lambda_tangent;
+                let step = if pair {
+                    [alpha * delta[p], alpha * delta[p + 1]]
+                } else {
+                    [alpha * delta[p] * c[0], alpha * delta[p] * c[1]]
+                };
+                let mut new = [old[0] + step[0], old[1] + step[1]];
+                let size = (new[0] * new[0] + new[1] * new[1]).sqrt();
+                if size > row.friction_bound || !pair || blocking == Some(p) {
+                    // Back onto the edge: a sticking disk that reached it (round-off), or an
+                    // edge unknown moved along its tangent.
+                    let scale = row.friction_bound / size;
+                    new = [new[0] * scale, new[1] * scale];
                 }
-                Some((c, _)) => {
-                    let pair = unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row);
-                    let old = row.lambda_tangent;
-                    let step = if pair {
-                        [alpha * delta[p], alpha * delta[p + 1]]
-                    } else {
-                        [alpha * delta[p] * c[0], alpha * delta[p] * c[1]]
-                    };
-                    let mut new = [old[0] + step[0], old[1] + step[1]];
-                    let size = (new[0] * new[0] + new[1] * new[1]).sqrt();
-                    if size > row.friction_bound || !pair || blocking == Some(p) {
-                        // Back onto the edge: a sticking disk that reached it (round-off), or an
-                        // edge unknown moved along its tangent.
-                        let scale = row.friction_bound / size;
-                        new = [new[0] * scale, new[1] * scale];
-                    }
-                    row.lambda_tangent = new;
-                    let [t1, t2] = &directions[unknown.row];
-                    t1.apply(new[0] - old[0], motions);
-                    t2.apply(new[1] - old[1], motions);
-                    p += if pair { 2 } else { 1 };
-                }
+                row.lambda_tangent = new;
+                let [t1, t2] = &directions[unknown.row];
+                t1.apply(new[0] - old[0], motions);
+                t2.apply(new[1] - old[1], motions);
+                p += if pair { 2 } else { 1 };
             }
         }
-        // ΔF = ΔΛ·(∇F before + ∇F after)/2 over the rows that moved (exact: F is quadratic).
-        let mut change = 0.0;
-        let mut p = 0;
-        while p < m {
-            let unknown = &unknowns[p];
-            let row = &rows[unknown.row];
-            let (lambda, tangent) = subspace_rows[unknown.row];
-            match unknown.tangent {
-                None => {
-                    let after = row.normal.velocity(motions) + row.bias;
-                    change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
-                    p += 1;
-                }
-                Some(_) => {
-                    let [t1, t2] = &directions[unknown.row];
-                    let after = [t1.velocity(motions), t2.velocity(motions)];
-                    let moved = [
-                        row.lambda_tangent[0] - tangent[0],
-                        row.lambda_tangent[1] - tangent[1],
-                    ];
-                    change += 0.5
-                        * (moved[0] * (unknown.before[0] + after[0])
-                            + moved[1] * (unknown.before[1] + after[1]));
-                    p += if unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row) {
-                        2
-                    } else {
-                        1
-                    };
-                }
+    }
+}
+
+/// The change of F from the impulses in `saved` (each row's (λ, λ_t) before the step) to the
+/// rows' now: `ΔΛ·(∇F before + ∇F after)/2` over the unknowns' rows (exact: F is quadratic).
+fn objective_change(
+    rows: &[Row],
+    directions: &[[Axis; 2]],
+    motions: &[SolverBody],
+    unknowns: &[Unknown],
+    saved: &[(f64, [f64; 2])],
+) -> f64 {
+    let m = unknowns.len();
+    let mut change = 0.0;
+    let mut p = 0;
+    while p < m {
+        let unknown = &unknowns[p];
+        let row = &rows[unknown.row];
+        let (lambda, tangent) = saved[unknown.row];
+        match unknown.tangent {
+            None => {
+                let after = row.normal.velocity(motions) + row.bias;
+                change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
+                p += 1;
             }
-        }
-        if change < 0.0 {
-            if let Some(p) = blocking.filter(|&p| unknowns[p].tangent.is_some()) {
-                pinned.push(unknowns[p].row);
+            Some(_) => {
+                let [t1, t2] = &directions[unknown.row];
+                let after = [t1.velocity(motions), t2.velocity(motions)];
+                let moved = [
+                    row.lambda_tangent[0] - tangent[0],
+                    row.lambda_tangent[1] - tangent[1],
+                ];
+                change += 0.5
+                    * (moved[0] * (unknown.before[0] + after[0])
+                        + moved[1] * (unknown.before[1] + after[1]));
+                p += if unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row) {
+                    2
+                } else {
+                    1
+                };
             }
-            return Subspace::Taken {
-                whole: alpha == 1.0 && attempt == 0 && !projected_first,
-            };
-        }
-        motions.copy_from_slice(saved);
-        for (row, &(lambda, tangent)) in rows.iter_mut().zip(subspace_rows.iter()) {
-            row.lambda = lambda;
-            row.lambda_tangent = tangent;
-        }
-        if projected_first && attempt == 0 {
-            (alpha, blocking) = ratio;
-        } else {
-            alpha /= 8.0;
-            blocking = None;
         }
     }
-    Subspace::Declined
+    change
 }
 
 /// One unknown of the friction subspace step: row `row`'s normal impulse (`tangent` None), or
