@@ -61,6 +61,19 @@ impl Order {
     }
 }
 
+/// The least-squares slope of y against x over `points` (x, y): Σ(x − x̄)(y − ȳ) / Σ(x − x̄)²;
+/// `None` under two points. The orders are this slope over (ln dt, ln error).
+pub fn slope(points: &[(f64, f64)]) -> Option<f64> {
+    let n = points.len();
+    (n >= 2).then(|| {
+        let mx = points.iter().map(|p| p.0).sum::<f64>() / n as f64;
+        let my = points.iter().map(|p| p.1).sum::<f64>() / n as f64;
+        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+        sxy / sxx
+    })
+}
+
 /// Fits the observed order of `integrator` from the rows of one scene, over the runs with
 /// `floor < error ≤ CEILING` that did not diverge.
 pub fn fit_order(integrator: Integrator, rows: &[Row], floor: f64) -> Order {
@@ -71,13 +84,7 @@ pub fn fit_order(integrator: Integrator, rows: &[Row], floor: f64) -> Order {
         .map(|r| (r.dt.ln(), r.error.ln()))
         .collect();
     let n = points.len();
-    let slope = (n >= 2).then(|| {
-        let mx = points.iter().map(|p| p.0).sum::<f64>() / n as f64;
-        let my = points.iter().map(|p| p.1).sum::<f64>() / n as f64;
-        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-        sxy / sxx
-    });
+    let slope = slope(&points);
     Order {
         integrator,
         slope,

@@ -656,13 +656,7 @@ pub fn fit_order(
         .map(|r| (r.dt.ln(), r.error.ln()))
         .collect();
     let n = points.len();
-    let slope = (n >= 2).then(|| {
-        let mx = points.iter().map(|p| p.0).sum::<f64>() / n as f64;
-        let my = points.iter().map(|p| p.1).sum::<f64>() / n as f64;
-        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-        sxy / sxx
-    });
+    let slope = super::analysis::slope(&points);
     ClothOrder {
         integrator,
         slope,

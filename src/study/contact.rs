@@ -87,7 +87,7 @@ pub struct ContactStudy {
 }
 
 /// The scene with another response (its restitution and friction kept).
-fn with_response(scene: &Scene, response: Response) -> Scene {
+pub(super) fn with_response(scene: &Scene, response: Response) -> Scene {
     let mut scene = scene.clone();
     if let Some(model) = scene.contact.as_mut() {
         model.response = response;

@@ -16,11 +16,11 @@
 //! `*` marks the runs no other run beats on both cost and error; the order is the least-squares
 //! slope of log error against log dt over a method's runs with floor < error ≤ 1e-1.
 
+use super::contact::with_response;
 use super::measure::{self, Row, Timing};
 use super::reference::Reference;
 use super::{analysis, Case};
 use crate::physics::{Integrator, Response};
-use crate::scene::Scene;
 
 /// One method's run at one dt.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,15 +62,6 @@ pub struct MethodStudy {
     pub orders: Vec<MethodOrder>,
     /// One plain sentence: which method is cheapest for an error, and each one's order.
     pub sentence: String,
-}
-
-/// The scene with another response (its restitution and friction kept).
-fn with_response(scene: &Scene, response: Response) -> Scene {
-    let mut scene = scene.clone();
-    if let Some(model) = scene.contact.as_mut() {
-        model.response = response;
-    }
-    scene
 }
 
 /// The runs a chart of `methods` over `dts` makes.
@@ -177,13 +168,7 @@ pub fn fit_order(response: Response, rows: &[MethodRow], floor: f64) -> MethodOr
         .map(|r| (r.run.dt.ln(), r.error.ln()))
         .collect();
     let n = points.len();
-    let slope = (n >= 2).then(|| {
-        let mx = points.iter().map(|p| p.0).sum::<f64>() / n as f64;
-        let my = points.iter().map(|p| p.1).sum::<f64>() / n as f64;
-        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-        sxy / sxx
-    });
+    let slope = analysis::slope(&points);
     MethodOrder {
         response,
         slope,

@@ -591,6 +591,26 @@ pub(super) mod tests {
         (rows, directions, motions)
     }
 
+    /// The sliding cube at `vx` after `solve` (a body-space stage solve), with the stage
+    /// objective before it.
+    pub(in super::super) fn solved_cube<O>(
+        vx: f64,
+        solve: impl FnOnce(&mut [Row], &[[Axis; 2]], &mut [SolverBody]) -> O,
+    ) -> (Vec<Row>, Vec<SolverBody>, O, f64) {
+        let (mut rows, directions, mut motions) = sliding_cube(vx);
+        let before = objective(&rows, &motions);
+        let outcome = solve(&mut rows, &directions, &mut motions);
+        (rows, motions, outcome, before)
+    }
+
+    /// Every row's impulse in its bounds: λₙ ≥ 0 and |λ_t| ≤ μ λₙ (the row's friction bound).
+    pub(in super::super) fn assert_in_cone(rows: &[Row]) {
+        for r in rows {
+            let t = r.lambda_tangent;
+            assert!(r.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
+        }
+    }
+
     #[test]
     fn a_sliding_cube_loses_mu_g_dt_of_its_speed_and_does_not_tip() {
         // Coulomb: the floor stops the fall (0.1 N·s) and friction takes μ·0.1 N·s of the
@@ -613,10 +633,7 @@ pub(super) mod tests {
         );
         assert!(b.omega.norm() < 1e-5, "{:?}", b.omega);
         assert!(objective(&rows, &motions) < before);
-        for r in &rows {
-            let t = r.lambda_tangent;
-            assert!(r.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
-        }
+        assert_in_cone(&rows);
         let total: f64 = rows.iter().map(|r| r.lambda).sum();
         assert!((total - 0.1).abs() < 1e-6, "{total}");
     }

@@ -543,22 +543,15 @@ fn advance(scratch: &mut Scratch, s: f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::admm::{objective, tests::sliding_cube};
+    use super::super::admm::objective;
+    use super::super::admm::tests::{assert_in_cone, solved_cube};
     use super::*;
     use nalgebra::Vector3;
 
     fn run(vx: f64) -> (Vec<Row>, Vec<SolverBody>, Outcome, f64) {
-        let (mut rows, directions, mut motions) = sliding_cube(vx);
-        let before = objective(&rows, &motions);
-        let outcome = solve(
-            &mut rows,
-            &directions,
-            &mut motions,
-            1e-10,
-            u64::MAX,
-            &mut Scratch::default(),
-        );
-        (rows, motions, outcome, before)
+        solved_cube(vx, |rows, directions, motions| {
+            solve(rows, directions, motions, 1e-10, u64::MAX, &mut Scratch::default())
+        })
     }
 
     #[test]
@@ -579,10 +572,7 @@ mod tests {
         );
         assert!(b.omega.norm() < 1e-7, "{:?}", b.omega);
         assert!(objective(&rows, &motions) < before);
-        for r in &rows {
-            let t = r.lambda_tangent;
-            assert!(r.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
-        }
+        assert_in_cone(&rows);
     }
 
     #[test]

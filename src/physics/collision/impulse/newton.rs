@@ -544,22 +544,15 @@ pub(super) fn take(
 
 #[cfg(test)]
 mod tests {
-    use super::super::admm::{objective, tests::sliding_cube};
+    use super::super::admm::objective;
+    use super::super::admm::tests::{assert_in_cone, solved_cube};
     use super::*;
     use nalgebra::Vector3;
 
     fn run(vx: f64) -> (Vec<Row>, Vec<SolverBody>, Outcome, f64) {
-        let (mut rows, directions, mut motions) = sliding_cube(vx);
-        let before = objective(&rows, &motions);
-        let outcome = solve(
-            &mut rows,
-            &directions,
-            &mut motions,
-            1e-10,
-            u64::MAX,
-            &mut Scratch::default(),
-        );
-        (rows, motions, outcome, before)
+        solved_cube(vx, |rows, directions, motions| {
+            solve(rows, directions, motions, 1e-10, u64::MAX, &mut Scratch::default())
+        })
     }
 
     #[test]
@@ -577,10 +570,7 @@ mod tests {
         );
         assert!(b.omega.norm() < 1e-8, "{:?}", b.omega);
         assert!(objective(&rows, &motions) < before);
-        for r in &rows {
-            let t = r.lambda_tangent;
-            assert!(r.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
-        }
+        assert_in_cone(&rows);
         let total: f64 = rows.iter().map(|r| r.lambda).sum();
         assert!((total - 0.1).abs() < 1e-9, "{total}");
     }
