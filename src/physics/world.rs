@@ -675,7 +675,12 @@ impl World {
         now.cloth_attach_loads
             .resize(now.cloths.0.len(), [Vector3::zeros(); 2]);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
-            if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
+            // A response whose particle contacts cannot be ties (`collision::particle`)
+            // leaves the implicit cloth's velocity half untied: its contacts follow it below.
+            if cloth.integrator == ClothIntegrator::ImplicitEuler
+                && self.contact.is_some()
+                && context.response.particle().ties()
+            {
                 // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
                 let scene = TiedScene {
                     loads,

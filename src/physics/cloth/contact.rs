@@ -48,6 +48,7 @@
 use super::loads::ClothLoads;
 use super::sheet::{Cloth, StepReport};
 use crate::physics::collision::detect;
+use crate::physics::collision::particle::{Hit, Touch};
 use crate::physics::collision::Obstacle;
 use crate::physics::collision::StepContext;
 use crate::physics::constraints::particle_contact::{against_static, coulomb};
@@ -139,13 +140,8 @@ impl Cloth {
         contacts: &mut Vec<ParticleContact>,
     ) -> ContactReport {
         contacts.clear();
-        let StepContext {
-            dt,
-            bounce_speed,
-            restitution,
-            friction,
-            ..
-        } = *context;
+        let StepContext { dt, friction, .. } = *context;
+        let law = context.response.particle();
         let mut taken = 0.0;
         for i in 0..self.len() {
             if self.pinned[i] {
@@ -155,22 +151,30 @@ impl Cloth {
                 let x = self.positions[i];
                 let v = self.velocities[i];
                 let reach = v.norm() * dt;
-                let (gap, n) = match obstacle.inside(&x) {
-                    Some(p) => (0.0, p.normal),
+                let (gap, depth, n) = match obstacle.inside(&x) {
+                    Some(p) => (0.0, p.depth, p.normal),
                     None => match obstacle.near(&x, reach) {
-                        Some(near) => near,
+                        Some((gap, n)) => (gap, 0.0, n),
                         None => continue,
                     },
                 };
                 let un = v.dot(&n);
-                let target = -gap / dt;
+                // The response's target for v·n (`collision::particle`): `impulse` arrives on
+                // the surface, −gap/h, and leaves a fast approach to pass 2.
+                let touch = Touch {
+                    gap,
+                    depth,
+                    normal_velocity: un,
+                    approach: un.min(0.0),
+                    fixed: true,
+                };
+                let Some(target) = law.velocity_target_static(&touch, context) else {
+                    continue;
+                };
                 // The normal row against a static thing, per unit mass: λ = target − u_n.
                 let Some(stop) = against_static(&v, &n, target) else {
                     continue;
                 };
-                if restitution > 0.0 && -un > bounce_speed {
-                    continue;
-                }
                 let tangential = coulomb(&v, &n, friction, stop);
                 let after = tangential + n * target;
                 // Along n, only the approach the particle had at the start of the step is
@@ -219,12 +223,7 @@ impl Cloth {
         if obstacles.is_empty() {
             return ContactReport::default();
         }
-        let StepContext {
-            bounce_speed,
-            restitution,
-            friction,
-            ..
-        } = *context;
+        let law = context.response.particle();
         if self.scratch.start.len() != self.len() {
             self.scratch.start.clone_from(&self.positions);
         }
@@ -242,38 +241,29 @@ impl Cloth {
                     before.push((i, self.positions[i], self.velocities[i]));
                 }
                 let n = hit.normal;
-                let m = self.masses[i];
                 let v = self.velocities[i];
-                let un = v.dot(&n);
                 contacts.push(ParticleContact {
                     particle: i,
                     obstacle: k,
                     depth: hit.depth,
                     normal: n,
-                    normal_velocity: un,
+                    normal_velocity: v.dot(&n),
                 });
-                self.positions[i] += n * hit.depth;
-                // Inelastic part: the normal row aiming at u_n = 0 (λ = −u_n per unit mass),
-                // then friction within μ Δu_n.
-                let Some(stop) = against_static(&v, &n, 0.0) else {
-                    continue;
+                // The response's push-out and velocity (`collision::particle`): `impulse`
+                // projects onto the surface, then the normal row aiming at u_n = 0, friction
+                // within μ Δu_n and restitution paid for the push-out's work against gravity.
+                let moved = law.push_out(hit.depth);
+                self.positions[i] += n * moved;
+                let hit = Hit {
+                    velocity: v,
+                    normal: n,
+                    moved,
+                    mass: self.masses[i],
+                    gravity: loads.gravity,
                 };
-                let tangential = coulomb(&v, &n, friction, stop);
-                // Restitution, paid for the push-out's work against gravity.
-                let mut bounce = if -un > bounce_speed {
-                    restitution * stop
-                } else {
-                    0.0
-                };
-                if bounce > 0.0 {
-                    let lift = loads
-                        .gravity
-                        .map_or(0.0, |g| -m * g.dot(&(n * hit.depth)))
-                        .max(0.0);
-                    let budget = v.norm_squared() - 2.0 * lift / m - tangential.norm_squared();
-                    bounce = bounce.min(budget.max(0.0).sqrt());
+                if let Some(after) = law.bounce_static(&hit, context) {
+                    self.velocities[i] = after;
                 }
-                self.velocities[i] = tangential + n * bounce;
             }
         }
         self.scratch.start = start;

@@ -60,6 +60,7 @@ use super::SLOP;
 use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
 use crate::physics::collision::geometry::{point_shape, Pose, Shape};
+use crate::physics::collision::particle::{ParticleLaw, Touch};
 use crate::physics::collision::StepContext;
 use crate::physics::constraints::particle_contact::{body_of, ParticleContacts};
 use crate::physics::state::State;
@@ -101,8 +102,14 @@ fn touch(
 /// Runs the sweeps (`ParticleContacts::solve`), then the particles' velocities and the
 /// body's momenta take what they applied (the body −ΣJ, so particle + body keep their
 /// momentum to round-off).
-fn solve(sweeps: &mut ParticleContacts, cloth: &mut Cloth, state: &mut State, friction: f64) {
-    sweeps.solve(friction);
+fn solve(
+    law: &dyn ParticleLaw,
+    sweeps: &mut ParticleContacts,
+    cloth: &mut Cloth,
+    state: &mut State,
+    friction: f64,
+) {
+    law.solve_body(sweeps, friction);
     for (particle, velocity) in sweeps.particles() {
         cloth.velocities[particle] = velocity;
     }
@@ -135,12 +142,8 @@ pub fn collide_bodies(
     states: &mut [State],
     context: &StepContext,
 ) -> usize {
-    let StepContext {
-        restitution,
-        friction,
-        bounce_speed,
-        ..
-    } = *context;
+    let friction = context.friction;
+    let law = context.response.particle();
     let mut count = 0;
     let mut sweeps = ParticleContacts::default();
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
@@ -152,7 +155,9 @@ pub fn collide_bodies(
         start_body(&mut sweeps, body, state, &inv_inertia);
         // An implicit-euler cloth's ties end its particles on the surface: what is left
         // inside at round-off is not a contact.
-        let slop = if cloth.integrator == crate::physics::cloth::ClothIntegrator::ImplicitEuler {
+        let slop = if cloth.integrator == crate::physics::cloth::ClothIntegrator::ImplicitEuler
+            && law.ties()
+        {
             SLOP
         } else {
             0.0
@@ -173,14 +178,16 @@ pub fn collide_bodies(
                 continue;
             }
             let n = cp.normal;
-            cloth.displace(i, &(n * cp.depth));
+            // The response's push-out and target (`collision::particle`): `impulse` pushes
+            // the particle out by its depth and aims at −e u_n on a fast approach, else 0.
+            cloth.displace(i, &(n * law.push_out(cp.depth)));
             let arm = cp.point - state.position;
             let un = sweeps.approach(&cloth.particle_velocity(i), &arm).dot(&n);
-            let e = if -un > bounce_speed { restitution } else { 0.0 };
-            touch(&mut sweeps, cloth, i, &n, arm, ((-e * un).max(0.0), false));
+            let target = law.collide_target_body(un, context);
+            touch(&mut sweeps, cloth, i, &n, arm, (target, false));
         }
         count += sweeps.len();
-        solve(&mut sweeps, cloth, state, friction);
+        solve(&*law, &mut sweeps, cloth, state, friction);
     }
     count
 }
@@ -218,13 +225,8 @@ pub fn approach_bodies(
     states: &mut [State],
     context: &StepContext,
 ) -> Approach {
-    let StepContext {
-        restitution,
-        friction,
-        bounce_speed,
-        dt,
-        ..
-    } = *context;
+    let StepContext { friction, dt, .. } = *context;
+    let law = context.response.particle();
     let mut report = Approach::default();
     let mut sweeps = ParticleContacts::default();
     // Attached particles are held to their points (`hold_attachments`), not pushed out of
@@ -270,14 +272,19 @@ pub fn approach_bodies(
             // every step (0.3 m/s on a trampoline), and that is no impact.
             let u0 = cloth.start_velocity(i) - (start_velocity + start_omega.cross(&arm));
             let approach = u0.dot(&n).min(0.0);
-            // The body is already where it ends the step: the particle must end outside it,
-            // v_p·n ≥ −gap/h, and leave at e times a fast approach when it touches.
-            let bounce = if gap <= 0.0 && -approach > bounce_speed {
-                -restitution * approach
-            } else {
-                0.0
+            // The response's target for v_p·n (`collision::particle`): under `impulse` the
+            // particle must end outside the body, v_p·n ≥ −gap/h, and leave at e times a
+            // fast approach when it touches.
+            let touch_at = Touch {
+                gap,
+                depth: (-gap).max(0.0),
+                normal_velocity: cloth.velocities[i].dot(&n),
+                approach,
+                fixed: sweeps.body().fixed(),
             };
-            let target = -gap / dt + bounce;
+            let Some(target) = law.velocity_target_body(&touch_at, context) else {
+                continue;
+            };
             if cloth.velocities[i].dot(&n) >= target {
                 continue;
             }
@@ -299,7 +306,7 @@ pub fn approach_bodies(
             })
         };
         let before_sweeps = kinetic(cloth, state, &sweeps);
-        solve(&mut sweeps, cloth, state, friction);
+        solve(&*law, &mut sweeps, cloth, state, friction);
         let after_sweeps = kinetic(cloth, state, &sweeps);
         report.contacts += sweeps.len();
         report.energy_taken += before_sweeps - after_sweeps - within;

@@ -12,6 +12,7 @@
 //! | `response` | the responses a scene can choose: the `responses!` list (below: `Variant => module`) and the descriptor each module holds (name, formulas, README row, colour) |
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added; a file per constraint kind (`normal`, `friction`), per method (`direct`, `subspace`) and for the impact law (`propagate`) |
+//! | `particle` | how a contact method treats a particle: the verb each method file gives (`ParticleLaw`), dispatched by `responses!` to the cloths' contact passes |
 //! | `position` | the position fix: no creep at rest, penetration removed by translation |
 //! | `solver_body` | solver bodies and constraint axes, re-exported from the constraint layer (`physics::constraints`) |
 //! | `step_context` | the constants every contact pass of a step reads (bounce speed, margins, e, μ), computed once |
@@ -28,6 +29,7 @@ pub mod detect;
 pub mod geometry;
 pub mod kept;
 pub mod obstacle;
+pub mod particle;
 pub mod position;
 pub mod solver_body;
 pub mod step_context;

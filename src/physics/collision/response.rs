@@ -17,6 +17,10 @@
 //!                -> Option<EnergyChange>
 //! ```
 //!
+//! and a particle verb (`pub fn particle([params: &Params]) -> impl ParticleLaw`: how its
+//! contact treats a cloth particle, `collision::particle`; a missing one does not compile
+//! either).
+//!
 //! A response with scene-file keys carries them in its variant, written
 //! `Variant(params: Params = DEFAULT) => module` (the keys are read by the scene loader).
 
@@ -46,7 +50,8 @@ pub struct Descriptor {
 }
 
 /// Declares the collision responses from one list (module doc): the modules, the enum,
-/// [`Response::ALL`], [`Response::descriptor`] and [`Response::collide`].
+/// [`Response::ALL`], [`Response::descriptor`], [`Response::collide`] and
+/// [`Response::particle`].
 macro_rules! responses {
     ($($(#[$doc:meta])* $variant:ident $(($params:ident: $kind:ty = $default:expr))? => $module:ident,)*) => {
         $(pub mod $module;)*
@@ -81,6 +86,16 @@ macro_rules! responses {
                 match self {
                     $(Response::$variant $(($params))? =>
                         $module::collide(input, $(&$params,)? states, contacts, scratch),)*
+                }
+            }
+
+            /// How this response treats a particle (its module's `particle`; see
+            /// [`collision::particle`](crate::physics::collision::particle)): the cloths'
+            /// contact passes ask it.
+            pub fn particle(self) -> Box<dyn $crate::physics::collision::particle::ParticleLaw> {
+                match self {
+                    $(Response::$variant $(($params))? =>
+                        Box::new($module::particle($(&$params)?)),)*
                 }
             }
         }

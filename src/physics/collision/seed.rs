@@ -37,10 +37,14 @@
 //!
 //! Restitution and friction from the scene are ignored: the report's factor is always 0.4.
 
+use super::particle::{Hit, ParticleLaw, Touch};
 use super::response::Descriptor;
+use super::StepContext;
+use crate::physics::constraints::particle_contact::ParticleContacts;
 use super::{vertices_into, Against, CollideInput, Contact, EnergyChange, Feature};
 use crate::physics::derive::derive;
 use crate::physics::state::State;
+use nalgebra::Vector3;
 
 /// The report's momentum factor: `P ← −0.4 P`.
 pub const MOMENTUM_FACTOR: f64 = -0.4;
@@ -114,6 +118,53 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
                 hit.normal,
             )
         });
+    }
+}
+
+/// `seed`'s particle law (`collision::particle`): the report's response applied to a cloth
+/// particle. Nothing before the positions move (the report only looks for vertices inside);
+/// after they moved, a particle found inside is pushed out by d² (the report's distance²) and
+/// its whole velocity, relative to the thing it is in (a body's point: the body takes the
+/// opposite impulse there, so momentum is kept), is reversed and scaled by
+/// [`MOMENTUM_FACTOR`]: `u ← −0.4 u`, its tangential part too. A particle has no angular
+/// momentum, so the report's `L += (pₖ − x₀) × (−F)` has nothing to kick. Not a tie: an
+/// `implicit-euler` cloth under `seed` steps its velocity half without contact ties, and
+/// this acts after it, as for an explicit cloth.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Reversed;
+
+/// The particle verb `responses!` dispatches (`collision::particle`).
+pub fn particle() -> Reversed {
+    Reversed
+}
+
+impl ParticleLaw for Reversed {
+    fn velocity_target_static(&self, _: &Touch, _: &StepContext) -> Option<f64> {
+        None
+    }
+
+    fn velocity_target_body(&self, _: &Touch, _: &StepContext) -> Option<f64> {
+        None
+    }
+
+    fn push_out(&self, depth: f64) -> f64 {
+        depth * depth
+    }
+
+    fn bounce_static(&self, hit: &Hit, _: &StepContext) -> Option<Vector3<f64>> {
+        Some(hit.velocity * MOMENTUM_FACTOR)
+    }
+
+    fn collide_target_body(&self, _: f64, _: &StepContext) -> f64 {
+        0.0
+    }
+
+    fn solve_body(&self, rows: &mut ParticleContacts, _: f64) {
+        rows.scale_relative(MOMENTUM_FACTOR);
+    }
+
+    fn ties(&self) -> bool {
+        false
     }
 }
 

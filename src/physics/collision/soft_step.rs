@@ -126,6 +126,7 @@
 mod bodies;
 mod f2;
 mod lanes;
+pub mod particle;
 mod rows;
 mod sweep;
 
@@ -142,6 +143,7 @@ use crate::physics::state::State;
 use bodies::Bodies;
 use lanes::Lanes;
 use nalgebra::Vector3;
+pub use particle::particle;
 use rows::Rows;
 use std::hash::{Hash, Hasher};
 

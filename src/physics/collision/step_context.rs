@@ -14,9 +14,11 @@
 //!
 //! The world builds it once per step (`World::step`) and hands it down as one value: to the
 //! collide phase in [`CollideInput`](super::CollideInput), to the cloths' obstacle passes, to
-//! the particle–body passes and to the implicit cloth's tied solve. No pass rebuilds it.
+//! the particle–body passes and to the implicit cloth's tied solve. No pass rebuilds it. It also
+//! carries the scene's response, so that the particle passes touch as its method says
+//! (`collision::particle`).
 
-use super::ContactModel;
+use super::{ContactModel, Response};
 use nalgebra::Vector3;
 
 /// Contacts approaching slower than this many `|g| dt` do not bounce: one step of free fall
@@ -39,6 +41,9 @@ pub struct StepContext {
     /// Coefficient of restitution e and Coulomb friction μ (0 without a contact model).
     pub restitution: f64,
     pub friction: f64,
+    /// The scene's contact method (`impulse` without a contact model): the cloths' particle
+    /// passes ask it how a particle touches (`collision::particle`).
+    pub response: Response,
 }
 
 impl StepContext {
@@ -53,6 +58,7 @@ impl StepContext {
             speculative_margin: bounce_speed * dt,
             restitution: model.map_or(0.0, |m| m.restitution),
             friction: model.map_or(0.0, |m| m.friction),
+            response: model.map_or(Response::Impulse, |m| m.response),
         }
     }
 

@@ -183,6 +183,36 @@ impl ParticleContacts {
         total
     }
 
+    /// Scales each contact's whole relative velocity u = v_p − (v_b + ω × r) by `factor`
+    /// (`seed`'s law on a particle), one contact after the other: the impulse J on the
+    /// particle (−J on the body at r) solves
+    ///
+    /// ```text
+    /// K J = (factor − 1) u,   K = (1/m_p + 1/M) 𝟙 − [r]× I⁻¹ [r]×
+    /// ```
+    ///
+    /// (K the point's inverse mass matrix, symmetric positive definite for a particle of
+    /// finite mass), and is recorded as the contact's normal and tangential impulses.
+    pub fn scale_relative(&mut self, factor: f64) {
+        for k in 0..self.touches.len() {
+            let t = self.touches[k];
+            let u = self.relative_velocity(&t);
+            let body = &self.bodies[0];
+            let cross = t.arm.cross_matrix();
+            let w = Matrix3::identity() * (self.bodies[t.index].inv_mass + body.inv_mass)
+                - cross * body.inv_inertia * cross;
+            let Some(impulse) = w.cholesky().map(|c| c.solve(&(u * (factor - 1.0)))) else {
+                continue;
+            };
+            let n = t.normal.axis.d;
+            let along = impulse.dot(&n);
+            self.touches[k].normal.lambda += along;
+            self.touches[k].tangential_impulse += impulse - n * along;
+            self.bodies[t.index].apply_at(&impulse, &Vector3::zeros());
+            self.bodies[0].apply_at(&-impulse, &t.arm);
+        }
+    }
+
     /// [`SWEEPS`] projected Gauss–Seidel sweeps over the rows (module doc), forward then
     /// backward; friction with coefficient μ = `friction`.
     pub fn solve(&mut self, friction: f64) {

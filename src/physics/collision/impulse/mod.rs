@@ -91,6 +91,7 @@ pub mod interior;
 pub mod joined;
 pub mod newton;
 pub mod normal;
+pub mod particle;
 pub mod propagate;
 pub mod subspace;
 
@@ -110,6 +111,7 @@ pub use super::step_context::BOUNCE_STEPS;
 pub use direct::{DIRECT_MAX, PIVOT_ROUNDS, RESTING_GAP, STICKING_MAX};
 pub(super) use friction::tangents;
 pub use normal::GAP_ROUND_OFF;
+pub use particle::particle;
 pub use propagate::{Impacts, IMPACT_ROUNDS};
 pub use subspace::{
     EDGE_TURN, NORMAL_SUBSPACE_MAX, SUBSPACE_BACKTRACKS, SUBSPACE_EVERY, SUBSPACE_ROUNDS,

@@ -1,0 +1,66 @@
+//! `impulse` on a particle (`collision::particle`): the constraint layer's rigid particle
+//! rows, as every cloth has always touched.
+//!
+//! ```text
+//! pass 1, obstacle   v·n ← −g/h (arrive on the surface, no further); a fast approach
+//!                    (−v·n > u_b) with e > 0 is left to pass 2, to bounce
+//! pass 1, body       v_p·n ≥ −g/h + b,  b = −e u₀,n if it touches (g ≤ 0) after a fast
+//!                    approach u₀,n (at the start of the step), else 0
+//! pass 2             x ← x + depth n;  Δu_n = −u_n;  v_t within μ Δu_n (Coulomb);
+//!                    u_n' = e Δu_n on a fast approach (paid for the push-out's lift)
+//! implicit cloth     ties inside the linear solve (plastic: the sheet's springs rebound)
+//! ```
+
+use super::super::particle::{rigid_bounce, rigid_collide_target, Hit, ParticleLaw, Touch};
+use super::super::StepContext;
+use crate::physics::constraints::particle_contact::ParticleContacts;
+use nalgebra::Vector3;
+
+/// `impulse`'s particle law (module doc).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Rigid;
+
+/// The particle verb `responses!` dispatches (`collision::particle`).
+pub fn particle() -> Rigid {
+    Rigid
+}
+
+impl ParticleLaw for Rigid {
+    fn velocity_target_static(&self, touch: &Touch, context: &StepContext) -> Option<f64> {
+        if context.restitution > 0.0 && -touch.normal_velocity > context.bounce_speed {
+            return None;
+        }
+        Some(-touch.gap / context.dt)
+    }
+
+    fn velocity_target_body(&self, touch: &Touch, context: &StepContext) -> Option<f64> {
+        // The body is already where it ends the step: the particle must end outside it,
+        // and leave at e times a fast approach when it touches.
+        let bounce = if touch.gap <= 0.0 && -touch.approach > context.bounce_speed {
+            -context.restitution * touch.approach
+        } else {
+            0.0
+        };
+        Some(-touch.gap / context.dt + bounce)
+    }
+
+    fn push_out(&self, depth: f64) -> f64 {
+        depth
+    }
+
+    fn bounce_static(&self, hit: &Hit, context: &StepContext) -> Option<Vector3<f64>> {
+        rigid_bounce(hit, context)
+    }
+
+    fn collide_target_body(&self, normal_velocity: f64, context: &StepContext) -> f64 {
+        rigid_collide_target(normal_velocity, context)
+    }
+
+    fn solve_body(&self, rows: &mut ParticleContacts, friction: f64) {
+        rows.solve(friction);
+    }
+
+    fn ties(&self) -> bool {
+        true
+    }
+}
