@@ -16,6 +16,7 @@ mod hard_cases;
 mod impacts;
 mod joint_drives;
 mod joints;
+mod particle_laws;
 mod physics_core;
 mod properties;
 mod round_bodies;

@@ -11,7 +11,7 @@
 //! ```
 //!
 //! with f = `SoftStep::hertz_at(dt)`, doubled against an obstacle or a fixed body (the body
-//! law's static softness). Outside (s > 0) the row is rigid and speculative: u' = −s/h, it
+//! law's static softness). Touching (s = 0) is soft too; apart (s > 0) the row is rigid and speculative: u' = −s/h, it
 //! may close its gap within the step and no more (as the body law's). In pass 2 the
 //! particle is not projected: its approach is removed by the rigid, unbiased row (the body
 //! law's relax), with restitution e on a fast approach and Coulomb friction within μ Δu_n
@@ -58,7 +58,7 @@ impl Soft {
         if context.restitution > 0.0 && -touch.approach > context.bounce_speed {
             return None;
         }
-        if touch.depth <= 0.0 {
+        if touch.gap > 0.0 {
             return Some(-touch.gap / context.dt);
         }
         let h = context.dt;
