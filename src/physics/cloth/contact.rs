@@ -1,6 +1,12 @@
 //! Particles against fixed obstacles (ground, sphere, box), and the cloth's side of a contact
 //! with a body.
 //!
+//! What each pass does to a particle is the scene's response's particle law
+//! (`collision::particle`, read from the step context): the formulas below are `impulse`'s,
+//! the law of every bundled cloth lesson; `seed` does nothing in pass 1 and in pass 2 pushes
+//! out by d² and reverses the whole velocity ×0.4; `soft-step` gives pass 1 a soft row and
+//! does not project in pass 2.
+//!
 //! # Two passes per step, on velocities first
 //!
 //! A step that moves a resting particle into the obstacle and a contact that pushes it back

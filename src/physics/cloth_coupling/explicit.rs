@@ -1,5 +1,9 @@
-//! Contacts of a `symplectic-euler` cloth's particles with bodies: two passes, on velocities
-//! then on positions, with the sweeps on the constraint layer's rows and solver bodies.
+//! Contacts of a `symplectic-euler` cloth's particles with bodies (and of an `implicit-euler`
+//! one under a response whose contacts are not ties): two passes, on velocities then on
+//! positions, with the sweeps on the constraint layer's rows and solver bodies.
+//!
+//! Each pass's targets, push-out and solve are the scene's response's particle law
+//! (`collision::particle`); the formulas below are `impulse`'s (every bundled lesson's).
 //!
 //! # Two passes, on velocities first (as for obstacles, `cloth::contact`)
 //!

@@ -6,7 +6,10 @@
 //!   constraint filter with the body's velocity change as an unknown of the same solve),
 //!   each tied particle ending the step on the body's surface; the velocity pass below is
 //!   not used, and the collide phase's push-out only handles what is still more than
-//!   [`SLOP`] inside after the positions moved (nothing, on lesson 16).
+//!   [`SLOP`] inside after the positions moved (nothing, on lesson 16). This is the path
+//!   under a response whose particle law ties (`collision::particle`: `impulse`); under
+//!   the others (`seed`, `soft-step`) the cloth's velocity half is solved without ties and
+//!   its contacts and attachments take the explicit passes below.
 //! - `symplectic-euler`: two passes for contacts ([`explicit`]: on velocities, then what is
 //!   left inside after the positions moved), and [`hold_attachments`] for its attachments
 //!   (impulses after the velocity half, one small solve per body).

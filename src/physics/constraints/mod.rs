@@ -22,7 +22,7 @@
 //! Users: the rigid contact solvers (`collision::impulse`, `collision::soft_step`, through
 //! the re-export `collision::solver_body`), and the particle contacts of a
 //! `symplectic-euler` cloth (`cloth::contact` against obstacles, `cloth_coupling::explicit`
-//! against bodies), and the joints (`joints`: every equality, limit and motor row is a
+//! against bodies, through each response's particle law, `collision::particle`), and the joints (`joints`: every equality, limit and motor row is a
 //! [`Row`], built by one file per joint kind under `joints::kinds`). The layer depends on
 //! nalgebra only, no other `physics` folder.
 
