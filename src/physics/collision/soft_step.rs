@@ -105,7 +105,8 @@
 //! penetration against gravity. Two guards make that the only gain: the kinetic energy after
 //! the response is never above the free flight's (if it is, the motion of the bodies in
 //! contact relative to their common barycenter is scaled, `v ← v_cm + s (v − v_cm)`, `L ← s L`,
-//! with `K_cm + s² K_rel = K_free`: the total linear momentum is kept), and restitution is Poisson's `e·λ` at most, so a step gains at most
+//! with `K_cm + s² K_rel = K_free`: the total linear momentum is kept), and restitution asks
+//! a row for no more than e times the speed it met (`bounce`), so a step gains at most
 //! `Σ M |g|·Δy` where Δy is how much higher than its free flight the contacts left a body.
 //! Over a run the total energy stays below `E(0) + Σ M|g|·d_max`, d_max the deepest
 //! penetration reached (a test).
@@ -116,14 +117,16 @@
 //! start of the step and moves them through the sub-steps; `rows` prepares each contact once
 //! per step into what the sweeps read (normal, tangents, levers, `r×n`, `I₀⁻¹(r×d)`, `1/k`:
 //! no matrix work is left for the sweeps) and refreshes the separations; `sweep` holds the
-//! passes over one row (warm start, soft solve and relax, restitution); `lanes` schedules the
-//! runs of rows so that two runs sharing no body are solved side by side in SIMD lanes (`f2`), in
-//! an order that gives the sequential sweep's numbers bit for bit. Everything after detection
+//! passes over one row (warm start, soft solve and relax); `bounce` the restitution, each
+//! manifold's bouncing rows solved together; `lanes` schedules the runs of rows so that two
+//! runs sharing no body are solved side by side in SIMD lanes (`f2`), in an order that gives
+//! the sequential sweep's numbers bit for bit. Everything after detection
 //! is built twice, with AVX2 (taken at run time where the CPU has it) and for any CPU: both
 //! do the same operations in the same order (no fused multiply-add), so their numbers agree
 //! bit for bit (a test).
 
 mod bodies;
+mod bounce;
 mod f2;
 mod lanes;
 pub mod particle;
@@ -275,6 +278,8 @@ pub struct Scratch {
     warm: WarmCache,
     /// The last detection's rows, carried while the bodies barely move (`kept`).
     kept: Kept,
+    /// The restitution's manifold solve (`bounce`).
+    bounce: bounce::Block,
 }
 
 /// What the front ends say about `soft-step` (`response`).
@@ -376,6 +381,7 @@ fn solve_plain(
         bodies,
         warm,
         lanes,
+        bounce,
         ..
     } = scratch;
     let kinetic_free = bodies.gather(input.bodies, input.before, states, contacts, n);
@@ -394,10 +400,10 @@ fn solve_plain(
     let impact = rows.totals.iter().any(|t| t.approach < -bounce_speed);
     let passes = if impact { IMPACT_SWEEPS } else { 1 };
     substeps(rows, lanes, bodies, n, passes, friction, h);
-    // Restitution, once, from the approach the contact met (Poisson: e·λ at most).
+    // Restitution, once, from the approach the contact met, a manifold at a time (`bounce`).
     if context.restitution > 0.0 {
         let motions = &mut bodies.motions;
-        sweep::restitution(rows, motions, context.restitution, bounce_speed);
+        bounce::restitution(rows, motions, context.restitution, bounce_speed, bounce);
     }
     // L from each row's impulses, then back into the states, the kinetic energy capped at
     // the free flight's.

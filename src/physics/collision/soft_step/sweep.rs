@@ -1,7 +1,8 @@
 //! `soft-step`'s passes over the rows: the warm start, the soft biased solve and the rigid
-//! relax (one Gauss–Seidel sweep each), and restitution (module doc of `soft_step`, "One soft
-//! row"). Each pass goes run by run (the rows between the same two bodies), the two bodies'
-//! motions copied in once; a run without a B end takes a path that reads no B.
+//! relax, one Gauss–Seidel sweep each (module doc of `soft_step`, "One soft row"; the
+//! restitution is `bounce`'s). Each pass goes run by run (the rows between the same two
+//! bodies), the two bodies' motions copied in once; a run without a B end takes a path that
+//! reads no B.
 //!
 //! A row's normal rate and impulse, with the row's precomputed `r×n`, `I⁻¹(r×d)` and 1/k:
 //!
@@ -203,37 +204,4 @@ pub(super) fn solve<const PAIR: bool>(
             row.lambda_tangent = new;
         }
     }
-}
-
-/// Restitution, once, from the approach the contact met (Poisson: at most e·λ more along the
-/// normal): rows that met faster than `bounce_speed` and pushed.
-#[inline(always)]
-pub(super) fn restitution(rows: &mut Rows, motions: &mut [Motion], e: f64, bounce_speed: f64) {
-    struct Bounce {
-        e: f64,
-        bounce_speed: f64,
-    }
-    impl Pass for Bounce {
-        #[inline(always)]
-        fn row<const PAIR: bool>(
-            &mut self,
-            row: &mut Row,
-            t: &mut Totals,
-            _: &Softness,
-            a: &mut Motion,
-            b: &mut Motion,
-        ) {
-            if t.approach >= -self.bounce_speed || row.max_lambda == 0.0 {
-                return;
-            }
-            let u = normal_rate(row, a, b, PAIR);
-            let j = -row.inv_k[0] * (u + self.e * t.approach);
-            let new = (row.lambda + j).max(0.0);
-            let change = new - row.lambda;
-            row.lambda = new;
-            push(row, 0, change, a, b, PAIR);
-            t.applied[0] += change;
-        }
-    }
-    each_row(rows, motions, &mut Bounce { e, bounce_speed });
 }
