@@ -400,3 +400,88 @@ fn a_bob_on_a_rod_bounces_off_a_tilted_wall_with_e_times_its_speed() {
         assert!(w.links().joints[0].error(w.states()) < 1e-9);
     }
 }
+
+#[test]
+fn a_spinning_bob_on_a_rod_meets_a_tilted_wall_with_friction_in_one_solve() {
+    // The bob of `bob_and_tilted_wall` (m = 1 kg, R = 0.05 m, I = 0.4 m R²) spinning at ω₀
+    // about z, the wall's friction μ = 0.2 (`impulse::joined`: the rod's reaction inside the
+    // friction stage). The rod leaves the bob x and its spin: stopping the contact's normal
+    // (λ₁ = m s / cos 45°) stops v_x, and the contact point still slides at ω₀ R along the
+    // wall. With the rod held, K over (λₙ, λ_t) near the contact is
+    // G = [[c²/m, −cs/m], [−cs/m, s²/m + r²/I]] (c = s = cos 45°): sticking takes
+    // λ_t = −ω₀ I / r (ω⁺ = 0; r the contact's lever) if that is within μ λ₁, else
+    // λ_t = −μ λ₁ and ω⁺ = ω₀ − μ λ₁ r / I; the normal keeps v_x = 0, and the restitution e λ₁ then leaves
+    // v_x⁺ = −e s (friction has taken energy from the spin: the clamp does not bind).
+    let (m, mu, inertia) = (1.0, 0.2, 0.4 * R * R);
+    for (e, spin) in [(1.0, 50.0), (0.5, 50.0), (0.5, 10.0)] {
+        let scene = bob_and_tilted_wall(e)
+            .replace("friction = 0.0", &format!("friction = {mu}"))
+            .replacen(
+                "velocity = [0, 0, 0]",
+                &format!("velocity = [0, 0, 0]\nangular_velocity = [0.0, 0.0, {spin}]"),
+                1,
+            );
+        assert!(scene.contains("angular_velocity"), "{scene}");
+        let mut w = world(&scene);
+        let (before, after, w1, e0, e1) = (0..1000)
+            .find_map(|_| {
+                let (v0, e0) = (w.states()[0].linear_momentum, w.total_energy());
+                w.step();
+                let s1 = w.states()[0];
+                (s1.linear_momentum.x < 0.0).then(|| {
+                    let omega = s1.angular_momentum.z / inertia;
+                    (
+                        v0,
+                        s1.linear_momentum,
+                        omega,
+                        e0.total,
+                        w.total_energy().total,
+                    )
+                })
+            })
+            .expect("the bob meets the wall");
+        // The lever r of the contact point (the bob is found a little inside the wall, so r
+        // is a fraction of a millimetre short of R).
+        let c = w.contacts()[0];
+        let r = c.lever.norm();
+        let speed = before.norm() / m;
+        let lambda1 = m * speed * 2f64.sqrt();
+        let stick = spin * inertia / r;
+        let (want_omega, want_tangent) = if stick <= mu * lambda1 {
+            (0.0, stick)
+        } else {
+            (spin - mu * lambda1 * r / inertia, mu * lambda1)
+        };
+        let tangent = (spin - w1) * inertia / r;
+        println!(
+            "spinning bob, e = {e}, ω₀ = {spin}: v {before:?} -> {after:?}, ω⁺ = {w1} \
+             (closed form {want_omega}), λ_t = {tangent} (closed form {want_tangent}, \
+             μ λ₁ = {}), E {e0} -> {e1}",
+            mu * lambda1
+        );
+        // Coulomb at the contact: the tangential impulse within μ times the normal one.
+        let normal = c.impulse.dot(&c.normal);
+        let sliding = (c.impulse - c.normal * normal).norm();
+        assert!(
+            sliding <= mu * normal,
+            "|J_t| {sliding} > μ Jₙ = {}",
+            mu * normal
+        );
+        assert!(
+            (sliding - tangent).abs() < 1e-6,
+            "J_t {sliding}, from the spin {tangent}"
+        );
+        assert!(
+            (tangent - want_tangent).abs() < 5e-3 * want_tangent,
+            "λ_t {tangent}, closed form {want_tangent}"
+        );
+        assert!(
+            (after.x / m + e * speed).abs() < 5e-3 * speed,
+            "v_x⁺ {} against −e s = {}",
+            after.x / m,
+            -e * speed
+        );
+        assert!(e1 <= e0, "the energy rose: {e0} -> {e1}");
+        assert!(w.links().joints[0].error(w.states()) < 1e-9);
+    }
+}

@@ -124,11 +124,30 @@ pub(super) fn update(
     let [t1, t2] = directions;
     let u = [t1.velocity(motions), t2.velocity(motions)];
     let (k1, k2, c) = (t1.k, t2.k, t1.coupling(t2, motions));
+    let Some((new, step)) = disk_step(u, (k1, k2, c), row.lambda_tangent, bound) else {
+        return 0.0;
+    };
+    row.lambda_tangent = new;
+    t1.apply(step[0], motions);
+    t2.apply(step[1], motions);
+    (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
+}
+
+/// The disk update's arithmetic (module doc) for tangent velocities `u`, the tangent inverse
+/// mass `K_t = [[k₁, c], [c, k₂]]` and the impulses `old`: the new impulses and the step to
+/// them, or None when K_t is singular or no step lowers K. (The joints' friction stage,
+/// [`super::joined`], calls it with K_t taken with the joints' reaction.)
+#[inline]
+pub(super) fn disk_step(
+    u: [f64; 2],
+    (k1, k2, c): (f64, f64, f64),
+    old: [f64; 2],
+    bound: f64,
+) -> Option<([f64; 2], [f64; 2])> {
     let det = k1 * k2 - c * c;
     if det <= 0.0 {
-        return 0.0;
+        return None;
     }
-    let old = row.lambda_tangent;
     // x* = λ − K⁻¹ u
     let target = [
         old[0] - (k2 * u[0] - c * u[1]) / det,
@@ -151,16 +170,14 @@ pub(super) fn update(
         + step[1] * u[1]
         + 0.5 * (k1 * step[0] * step[0] + 2.0 * c * step[0] * step[1] + k2 * step[1] * step[1]);
     if gain >= 0.0 || gain.is_nan() {
-        return 0.0;
+        return None;
     }
-    row.lambda_tangent = new;
-    t1.apply(step[0], motions);
-    t2.apply(step[1], motions);
-    (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
+    Some((new, step))
 }
 
 /// The point `x(ν) = (K_t + ν𝟙)⁻¹ kx` (kx = K_t x*, |x(0)| > bound) with `|x(ν)| = bound`,
 /// ν ≥ 0 by safeguarded Newton on the secular equation (module doc).
+#[inline(always)]
 fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
     // (K_t + ν𝟙)⁻¹ y for a 2-vector y.
     let solve = |nu: f64, y: [f64; 2]| {

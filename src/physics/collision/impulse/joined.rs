@@ -11,6 +11,11 @@
 //!                   u⁺ = u + W (J_jᵀ μ_j + J_cᵀ λ_c)
 //!                   — one LDLᵀ of  A = [J_j; J_c] W [J_j; J_c]ᵀ  on the joint rows (always
 //!                   active, first in the envelope) and the active contact rows
+//! stage 2 (μ > 0)   Coulomb's disks |λ_t| ≤ μ λ₁ and the normals again, with the joints
+//!                   held: every contact impulse acts through its column Q Jᵀ,
+//!                   Q = W − W J_jᵀ S⁻¹ J_j W,  S = J_j W J_jᵀ  (its joints' reaction in it);
+//!                   an active-set start over G = J_c Q J_cᵀ, then block Gauss–Seidel
+//!                   ([`Joined::friction`])
 //! stage 3           Poisson's restitution e λ_c at the bouncing contacts, and the joints'
 //!                   reaction to it:  (J_j W J_jᵀ) μ_r = −J_j W J_cᵀ (e λ_c),
 //!                   the energy clamp on the sum (K never rises)
@@ -28,16 +33,20 @@
 //! rows of that pair's clusters only (a cradle's round: one contact and two rods).
 //!
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
-//! of `propagate`, a simultaneous solve that bounces) without friction (μ = 0: a cradle, a
-//! bob striking a wall). Elsewhere every stage is the contacts' alone, as before, and the
-//! joints' contact pass after the response (`joints::contact::hold`) holds the joints again,
-//! as it always did (it also holds, in every case, the positions the push-out moved along
-//! straight lines):
+//! of `propagate`, a simultaneous solve that bounces): without friction (μ = 0: a cradle, a
+//! bob striking a wall) whatever the clusters' size; with friction when they have at most
+//! [`JOINED_FRICTION_ROWS`] joint rows (a bob, a door, a pendulum pair: a spinning bob on a
+//! rod meets a tilted wall with its tangential impulse at μ λ₁ and the spin left by Coulomb's
+//! law, `tests/physics/impacts.rs`). Elsewhere every stage is the contacts' alone, as
+//! before, and the joints' contact pass after the response (`joints::contact::hold`) holds
+//! the joints again, as it always did (it also holds, in every case, the positions the
+//! push-out moved along straight lines, so it still runs after every response):
 //!
-//! - with μ > 0 the friction stage (stage 2) acts as if the links were free (its sticking
-//!   solve, sweeps and subspace steps know no joint rows); a stage 1 with the joints followed
-//!   by a stage 2 without them is neither one solution nor cheaper (the landing chain,
-//!   measured: 2.2× the instructions);
+//! - with friction on larger clusters (a chain landing) stage 2 acts as if the links were
+//!   free (its sticking solve, sweeps and subspace steps know no joint rows), and so does
+//!   stage 1 there: a stage 1 with the joints followed by a stage 2 without them is neither
+//!   one solution nor cheaper (the landing chain, measured: 2.2× the instructions), and the
+//!   joints' stage 2 is slow on a chain ([`JOINED_FRICTION_ROWS`]);
 //! - at rest (nothing bounces) the contacts' solve alone and the pass after it keep a
 //!   touching cradle's balls exactly touching while they swing together; with the joints in
 //!   the resting solve the speculative gaps between them grew to about 1 µm, and Poisson's
@@ -45,9 +54,20 @@
 //!   pulled, against 1e-6 kept);
 //! - the sweeps a declined direct solve falls back to.
 
+use super::Row;
 use crate::physics::constraints::{Axis, End, Row as ConstraintRow, SolverBody};
 use crate::physics::envelope::{Envelope, Pivots};
 use nalgebra::Vector3;
+
+/// Most joint rows an impact *with friction* takes into its solve (the clusters its contacts
+/// touch); more, and the stage is the contacts' alone with `joints::contact::hold` after it,
+/// as before. The friction stage with the joints is a projected Gauss–Seidel over columns
+/// that reach the whole cluster ([`Joined::friction`]): a bob, a door, a pendulum pair take
+/// a sweep or a few; a chain of 10 links landing (27 rows), measured, took hundreds of
+/// sweeps a step, 2000 on some (the joints couple every contact of the chain), and 2.2× the
+/// instructions of the whole run, with its active-set start settling in under 24 rounds on
+/// few of its steps (the sliding directions' fixed point converges slowly).
+pub const JOINED_FRICTION_ROWS: usize = 12;
 
 /// The joint rows of one response, weighed over the step's motions, and what they gave.
 #[derive(Debug, Clone, Default)]
@@ -69,7 +89,68 @@ pub struct Joined {
     pub impulses: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// Whether a stage of this response took joint rows.
     pub(super) used: bool,
+    /// Whether the current stage's inelastic solve held the joint rows (the direct solve
+    /// answered with them): then its friction stage takes them too ([`Joined::friction`]).
+    pub(super) held: bool,
     system: Envelope,
+    /// The friction stage's columns ([`Joined::friction`]): per unknown its span of
+    /// `entries` (body, Δv, ΔL, Δω), a dense per-body scratch and the bodies it touched.
+    entries: Vec<(usize, Change)>,
+    spans: Vec<(usize, usize)>,
+    sum: Sum,
+    /// Per contact: K over its (n, t₁, t₂) with the joints' reaction ([nn, n1, n2, 11, 12,
+    /// 22]), and its impulses before the stage.
+    blocks: Vec<[f64; 6]>,
+    start: Vec<[f64; 3]>,
+    rhs: Vec<f64>,
+    /// The active-set start of the friction stage ([`ActiveSet`]).
+    active: ActiveSet,
+}
+
+/// A body's change (Δv, ΔL, Δω).
+type Change = (Vector3<f64>, Vector3<f64>, Vector3<f64>);
+
+/// Per-body changes summed over impulses, and the bodies they touched (to clear them).
+#[derive(Debug, Clone, Default)]
+struct Sum {
+    dense: Vec<Change>,
+    marked: Vec<bool>,
+    touched: Vec<usize>,
+}
+
+impl Sum {
+    /// Sized for `bodies` bodies, all zero.
+    fn start(&mut self, bodies: usize) {
+        self.clear();
+        self.dense.resize(bodies, zero());
+        self.marked.resize(bodies, false);
+    }
+
+    /// Adds `W Jᵀ j` of a weighed axis.
+    fn add(&mut self, axis: &Axis, j: f64, motions: &[SolverBody]) {
+        if j == 0.0 {
+            return;
+        }
+        for (end, sign) in axis.ends() {
+            if !self.marked[end.body] {
+                self.marked[end.body] = true;
+                self.touched.push(end.body);
+            }
+            let c = &mut self.dense[end.body];
+            c.0 += axis.d * (sign * j * motions[end.body].inv_mass);
+            c.1 += end.rd * j;
+            c.2 += end.w * j;
+        }
+    }
+
+    /// Back to zero.
+    fn clear(&mut self) {
+        for &b in &self.touched {
+            self.dense[b] = zero();
+            self.marked[b] = false;
+        }
+        self.touched.clear();
+    }
 }
 
 impl Joined {
@@ -85,6 +166,7 @@ impl Joined {
         self.owners.clear();
         self.lambda.clear();
         self.used = false;
+        self.held = false;
         if rows.is_empty() {
             return;
         }
@@ -124,7 +206,10 @@ impl Joined {
 
     /// Selects the joint rows of every cluster one of `bodies` belongs to (a stage's contact
     /// rows' bodies) into [`Joined::axes`], in the scene's row order.
-    pub(super) fn select(&mut self, bodies: impl Iterator<Item = usize>) {
+    ///
+    /// More than `most` rows: none (the stage is the contacts' alone).
+    pub(super) fn select(&mut self, bodies: impl Iterator<Item = usize>, most: usize) {
+        self.held = false;
         self.axes.clear();
         self.owners.clear();
         self.lambda.clear();
@@ -148,6 +233,10 @@ impl Joined {
                 self.axes.push(*axis);
                 self.owners.push(*owner);
             }
+        }
+        if self.axes.len() > most {
+            self.axes.clear();
+            self.owners.clear();
         }
         self.used |= !self.axes.is_empty();
     }
@@ -208,6 +297,449 @@ impl Joined {
             }
         }
     }
+}
+
+impl Joined {
+    /// Stage 2 (friction) with the selected joint rows held (module doc): projected block
+    /// Gauss–Seidel over the contacts' (n, t₁, t₂), each unknown's impulse acting through its
+    /// *column* `c = Q Jᵀ`, `Q = W − W J_jᵀ S⁻¹ J_j W`, `S = J_j W J_jᵀ` (the joints' reaction
+    /// to a unit impulse along it, so that every change keeps J_j u), with the block of K
+    /// `G = J_c Q J_cᵀ` of each contact:
+    ///
+    /// ```text
+    /// normal   λₙ ← max(0, λₙ − (uₙ + b)/Gₙₙ)                 (b = gap/dt)
+    /// friction λ_t ← the minimum of K over |λ_t| ≤ μ λₙ¹ with K_t = G_tt  (friction::disk_step)
+    /// ```
+    ///
+    /// Each update is the exact minimum of K over its block with the joints held, so K only
+    /// goes down and the fixed point is the solution of stage 2 with the joints: what the
+    /// contacts' stage 2 solves for free bodies, over the motions that keep J_j u = 0. The
+    /// joints' impulses, `S μ = −J_j W J_cᵀ Δλ` over the stage's change Δλ, are booked.
+    /// At most `cap` sweeps; returns whether they converged, how many ran, the residual (the
+    /// largest change of a contact velocity the last sweep made) and the work (row updates);
+    /// None (nothing changed) when S gives no factor.
+    pub(super) fn friction(
+        &mut self,
+        rows: &mut [Row],
+        directions: &[[Axis; 2]],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        cap: u64,
+    ) -> Option<(bool, u64, f64, u64)> {
+        let mj = self.axes.len();
+        self.system.reset(mj);
+        for p in 0..mj {
+            let jp = &self.axes[p];
+            let axes = &self.axes;
+            self.system.fill_row(p, jp.bodies(), |q| {
+                jp.shares_a_body(&axes[q])
+                    .then(|| jp.coupling(&axes[q], motions))
+            });
+        }
+        if !self.system.factor_regularised() {
+            return None;
+        }
+        let mut work = super::factorisation_work(self.system.stored(), mj);
+        // The columns, three per contact.
+        self.sum.start(motions.len());
+        self.entries.clear();
+        self.spans.clear();
+        for (row, [t1, t2]) in rows.iter().zip(directions) {
+            for axis in [&row.normal, t1, t2] {
+                self.sum.add(axis, 1.0, motions);
+                self.react_dense(motions);
+                let from = self.entries.len();
+                let sum = &self.sum;
+                self.entries
+                    .extend(sum.touched.iter().map(|&b| (b, sum.dense[b])));
+                self.sum.clear();
+                self.spans.push((from, self.entries.len()));
+                work += mj as u64;
+            }
+        }
+        // Each contact's block of G = J_c Q J_cᵀ.
+        self.blocks.clear();
+        self.start.clear();
+        for (i, (row, [t1, t2])) in rows.iter().zip(directions).enumerate() {
+            let g = |a: &Axis, k: usize| {
+                let (from, to) = self.spans[3 * i + k];
+                rate_on(a, &self.entries[from..to])
+            };
+            self.blocks.push([
+                g(&row.normal, 0),
+                g(&row.normal, 1),
+                g(&row.normal, 2),
+                g(t1, 1),
+                g(t1, 2),
+                g(t2, 2),
+            ]);
+            self.start
+                .push([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+        }
+        // A start from the active set (exact when it settles: the sweeps then confirm it).
+        work += self.active.solve(rows, directions, motions, &self.entries, &self.spans, tolerance);
+        for (i, row) in rows.iter_mut().enumerate() {
+            let [n, t1, t2] = self.active.lambda[i];
+            let [n0, a0, b0] = [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
+            row.lambda = n;
+            row.lambda_tangent = [t1, t2];
+            self.apply_column(3 * i, n - n0, motions);
+            self.apply_column(3 * i + 1, t1 - a0, motions);
+            self.apply_column(3 * i + 2, t2 - b0, motions);
+        }
+        // The sweeps.
+        let (mut converged, mut sweeps, mut largest) = (false, 0, 0.0);
+        while sweeps < cap {
+            sweeps += 1;
+            largest = 0.0f64;
+            for (i, (row, [t1, t2])) in rows.iter_mut().zip(directions).enumerate() {
+                let [gnn, _, _, g11, g12, g22] = self.blocks[i];
+                if gnn > 1e-12 * row.normal.k {
+                    let u = row.normal.velocity(motions) + row.bias;
+                    let new = (row.lambda - u / gnn).max(0.0);
+                    let change = new - row.lambda;
+                    if change != 0.0 {
+                        row.lambda = new;
+                        self.apply_column(3 * i, change, motions);
+                        largest = largest.max(change.abs() * gnn);
+                    }
+                }
+                let bound = row.friction_bound;
+                if bound == 0.0 {
+                    continue;
+                }
+                let u = [t1.velocity(motions), t2.velocity(motions)];
+                let old = row.lambda_tangent;
+                if let Some((new, step)) =
+                    super::friction::disk_step(u, (g11, g22, g12), old, bound)
+                {
+                    row.lambda_tangent = new;
+                    self.apply_column(3 * i + 1, step[0], motions);
+                    self.apply_column(3 * i + 2, step[1], motions);
+                    largest = largest.max(
+                        (step[0].abs() * g11 + step[1].abs() * g12.abs())
+                            .max(step[1].abs() * g22 + step[0].abs() * g12.abs()),
+                    );
+                }
+            }
+            work += rows.len() as u64;
+            if largest <= tolerance {
+                converged = true;
+                break;
+            }
+        }
+        // The joints' impulses over the stage's change.
+        for (i, (row, [t1, t2])) in rows.iter().zip(directions).enumerate() {
+            let [n0, a0, b0] = self.start[i];
+            self.sum.add(&row.normal, row.lambda - n0, motions);
+            self.sum.add(t1, row.lambda_tangent[0] - a0, motions);
+            self.sum.add(t2, row.lambda_tangent[1] - b0, motions);
+        }
+        self.react_dense(motions);
+        self.sum.clear();
+        let lambda = std::mem::take(&mut self.rhs);
+        self.book(&lambda, 1.0);
+        self.rhs = lambda;
+        Some((converged, sweeps, largest, work))
+    }
+
+    /// The joints' reaction (S factored) to the changes summed in `sum`, added to it: y
+    /// with `S y = −J_j Δu`, then `W J_jᵀ y`; leaves y in `rhs`.
+    fn react_dense(&mut self, motions: &[SolverBody]) {
+        let mj = self.axes.len();
+        self.rhs.clear();
+        let dense = &self.sum.dense;
+        self.rhs.extend(self.axes.iter().map(|axis| {
+            let mut u = 0.0;
+            for (end, sign) in axis.ends() {
+                let (dv, _, dw) = &dense[end.body];
+                u += sign * axis.d.dot(dv) + end.rd.dot(dw);
+            }
+            -u
+        }));
+        if self.rhs.iter().all(|&r| r == 0.0) {
+            return;
+        }
+        self.system.substitute_regularised(&mut self.rhs[..mj]);
+        for (axis, &y) in self.axes.iter().zip(&self.rhs) {
+            self.sum.add(axis, y, motions);
+        }
+    }
+
+    /// Adds `j` times unknown `k`'s column to the motions.
+    fn apply_column(&self, k: usize, j: f64, motions: &mut [SolverBody]) {
+        let (from, to) = self.spans[k];
+        for (b, (dv, dl, dw)) in &self.entries[from..to] {
+            let m = &mut motions[*b];
+            m.v += dv * j;
+            m.l += dl * j;
+            m.omega += dw * j;
+            m.touched |= j != 0.0;
+        }
+    }
+}
+
+/// How a contact takes part in the friction stage's active set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Mode {
+    /// No impulse (it separates).
+    Off,
+    /// It pushes and sticks: u_n = −b, u_t = 0.
+    Stick,
+    /// It pushes and slides: λ_t = bound · d, d the unit direction opposite its slip.
+    Slide([f64; 2]),
+}
+
+/// Rounds of the active set before the sweeps take what it has.
+const ACTIVE_ROUNDS: usize = 24;
+
+/// The friction stage's start with the joints held: an active-set solve in contact space
+/// over the dense `G = J_c Q J_cᵀ` (3 unknowns a contact). Each round solves, for the
+/// contacts that push, `u_n = −b` and (sticking) `u_t = 0` with the sliding ones' tangent
+/// impulses fixed at `bound · d`; then a normal that pulls leaves, a separated contact that
+/// approaches joins, a sticking impulse outside its disk slides along its own direction,
+/// and a sliding one takes d = −u_t/|u_t| (or sticks when it stopped). When nothing
+/// changes, the answer is stage 2's solution (Coulomb's disk with the slip opposite the
+/// impulse, Signorini's normal): the sweeps confirm it in a sweep. Otherwise the last
+/// answer, put inside its bounds, is where they start.
+#[derive(Debug, Clone, Default)]
+struct ActiveSet {
+    /// G row-major (n × n), the velocities at the start u⁰ (bias in), the impulses at the
+    /// start λ⁰, and the answer λ (per contact [n, t₁, t₂]).
+    g: Vec<f64>,
+    u0: Vec<f64>,
+    lambda0: Vec<f64>,
+    lambda: Vec<[f64; 3]>,
+    modes: Vec<Mode>,
+    /// The unknowns of a round, its system and its right-hand side.
+    unknowns: Vec<usize>,
+    system: Vec<f64>,
+    rhs: Vec<f64>,
+    x: Vec<f64>,
+}
+
+impl ActiveSet {
+    /// Solves (module doc of the type) into `lambda`; returns its work in row updates.
+    fn solve(
+        &mut self,
+        rows: &[Row],
+        directions: &[[Axis; 2]],
+        motions: &[SolverBody],
+        entries: &[(usize, Change)],
+        spans: &[(usize, usize)],
+        tolerance: f64,
+    ) -> u64 {
+        let m = rows.len();
+        let n = 3 * m;
+        let axis = |k: usize| -> &Axis {
+            match k % 3 {
+                0 => &rows[k / 3].normal,
+                t => &directions[k / 3][t - 1],
+            }
+        };
+        self.g.clear();
+        for q in 0..n {
+            let aq = axis(q);
+            self.g.extend((0..n).map(|p| {
+                let (from, to) = spans[p];
+                rate_on(aq, &entries[from..to])
+            }));
+        }
+        self.u0.clear();
+        self.lambda0.clear();
+        for (row, _) in rows.iter().zip(directions) {
+            self.lambda0
+                .extend([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+        }
+        for k in 0..n {
+            let bias = if k % 3 == 0 { rows[k / 3].bias } else { 0.0 };
+            self.u0.push(axis(k).velocity(motions) + bias);
+        }
+        self.modes.clear();
+        self.modes.extend((0..m).map(|i| {
+            if rows[i].lambda > 0.0 || self.u0[3 * i] < -tolerance {
+                Mode::Stick
+            } else {
+                Mode::Off
+            }
+        }));
+        self.lambda.clear();
+        self.lambda
+            .extend((0..m).map(|i| [rows[i].lambda, rows[i].lambda_tangent[0], rows[i].lambda_tangent[1]]));
+        let mut work = (n * n / 4) as u64;
+        let mut x = vec![0.0; n];
+        for _ in 0..ACTIVE_ROUNDS {
+            // Fixed values and unknowns.
+            self.unknowns.clear();
+            for (i, mode) in self.modes.iter().enumerate() {
+                let bound = rows[i].friction_bound;
+                match *mode {
+                    Mode::Off => x[3 * i..3 * i + 3].fill(0.0),
+                    Mode::Stick => self.unknowns.extend([3 * i, 3 * i + 1, 3 * i + 2]),
+                    Mode::Slide(d) => {
+                        self.unknowns.push(3 * i);
+                        x[3 * i + 1] = bound * d[0];
+                        x[3 * i + 2] = bound * d[1];
+                    }
+                }
+                if bound == 0.0 && *mode == Mode::Stick {
+                    // No friction here: its tangents stay 0.
+                    self.unknowns.truncate(self.unknowns.len() - 2);
+                    x[3 * i + 1] = 0.0;
+                    x[3 * i + 2] = 0.0;
+                }
+            }
+            let a = self.unknowns.len();
+            let fixed = |k: usize, unknowns: &[usize]| unknowns.binary_search(&k).is_err();
+            self.system.clear();
+            self.rhs.clear();
+            for &k in &self.unknowns {
+                let row = &self.g[k * n..(k + 1) * n];
+                self.system.extend(self.unknowns.iter().map(|&j| row[j]));
+                let mut r = -self.u0[k];
+                for j in 0..n {
+                    r += row[j] * self.lambda0[j];
+                    if fixed(j, &self.unknowns) {
+                        r -= row[j] * x[j];
+                    }
+                }
+                self.rhs.push(r);
+            }
+            self.x.clear();
+            self.x.extend_from_slice(&self.rhs);
+            if a > 0 && !dense_solve(&mut self.system, a, &mut self.x) {
+                break;
+            }
+            work += (a * a * a / 600 + a * n / 4) as u64;
+            for (&k, &v) in self.unknowns.iter().zip(&self.x) {
+                x[k] = v;
+            }
+            // The velocities u = u⁰ + G (x − λ⁰), and the changes they ask for.
+            let u = |k: usize| {
+                let row = &self.g[k * n..(k + 1) * n];
+                self.u0[k]
+                    + row
+                        .iter()
+                        .zip(x.iter().zip(&self.lambda0))
+                        .map(|(g, (x, l))| g * (x - l))
+                        .sum::<f64>()
+            };
+            let mut changed = false;
+            let mut next = std::mem::take(&mut self.modes);
+            for (i, mode) in next.iter_mut().enumerate() {
+                let bound = rows[i].friction_bound;
+                let t = [x[3 * i + 1], x[3 * i + 2]];
+                let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
+                let new = match *mode {
+                    Mode::Off if u(3 * i) < -tolerance => Mode::Stick,
+                    Mode::Off => Mode::Off,
+                    _ if x[3 * i] < 0.0 => Mode::Off,
+                    Mode::Stick if size > bound * (1.0 + 1e-12) => {
+                        Mode::Slide([t[0] / size, t[1] / size])
+                    }
+                    Mode::Stick => Mode::Stick,
+                    Mode::Slide(d) => {
+                        let slip = [u(3 * i + 1), u(3 * i + 2)];
+                        let speed = (slip[0] * slip[0] + slip[1] * slip[1]).sqrt();
+                        if speed <= tolerance {
+                            Mode::Stick
+                        } else {
+                            let e = [-slip[0] / speed, -slip[1] / speed];
+                            if (e[0] - d[0]).abs().max((e[1] - d[1]).abs()) > 1e-12 {
+                                Mode::Slide(e)
+                            } else {
+                                Mode::Slide(d)
+                            }
+                        }
+                    }
+                };
+                changed |= new != *mode;
+                *mode = new;
+            }
+            self.modes = next;
+            for i in 0..m {
+                let bound = rows[i].friction_bound;
+                let (nl, t1, t2) = (x[3 * i].max(0.0), x[3 * i + 1], x[3 * i + 2]);
+                let size = (t1 * t1 + t2 * t2).sqrt();
+                let scale = if size > bound { bound / size } else { 1.0 };
+                self.lambda[i] = [nl, t1 * scale, t2 * scale];
+            }
+            if !changed {
+                break;
+            }
+        }
+        work
+    }
+}
+
+/// x of `(A + ε𝟙) x = b` (A: a × a, row-major, symmetric positive semi-definite; ε = 1e-10
+/// max Aᵢᵢ, the minimum-norm answer as the direct solves pick it) by LDLᵀ in place, then
+/// one step of refinement against A; false when a pivot is not positive.
+fn dense_solve(system: &mut [f64], a: usize, b: &mut [f64]) -> bool {
+    let original: Vec<f64> = system.to_vec();
+    let rhs: Vec<f64> = b.to_vec();
+    let epsilon = 1e-10 * (0..a).map(|i| system[i * a + i]).fold(0.0, f64::max);
+    for i in 0..a {
+        system[i * a + i] += epsilon;
+    }
+    // L D Lᵀ in the lower triangle (D on the diagonal).
+    for j in 0..a {
+        let mut d = system[j * a + j];
+        for k in 0..j {
+            d -= system[j * a + k] * system[j * a + k] * system[k * a + k];
+        }
+        if !(d > 0.0) {
+            return false;
+        }
+        system[j * a + j] = d;
+        for i in j + 1..a {
+            let mut s = system[i * a + j];
+            for k in 0..j {
+                s -= system[i * a + k] * system[j * a + k] * system[k * a + k];
+            }
+            system[i * a + j] = s / d;
+        }
+    }
+    let substitute = |system: &[f64], x: &mut [f64]| {
+        for i in 0..a {
+            for k in 0..i {
+                x[i] -= system[i * a + k] * x[k];
+            }
+        }
+        for i in 0..a {
+            x[i] /= system[i * a + i];
+        }
+        for i in (0..a).rev() {
+            for k in i + 1..a {
+                x[i] -= system[k * a + i] * x[k];
+            }
+        }
+    };
+    substitute(system, b);
+    // One step of refinement: the residual of A x = b (ε's share ε x is taken back).
+    let mut r: Vec<f64> = (0..a)
+        .map(|i| rhs[i] - (0..a).map(|j| original[i * a + j] * b[j]).sum::<f64>())
+        .collect();
+    substitute(system, &mut r);
+    for (x, dx) in b.iter_mut().zip(&r) {
+        *x += dx;
+    }
+    true
+}
+
+fn zero() -> Change {
+    (Vector3::zeros(), Vector3::zeros(), Vector3::zeros())
+}
+
+/// J·Δu of an axis over a column's entries (bodies it has no entry for do not move).
+fn rate_on(axis: &Axis, entries: &[(usize, Change)]) -> f64 {
+    let mut u = 0.0;
+    for (end, sign) in axis.ends() {
+        if let Some((_, (dv, _, dw))) = entries.iter().find(|(b, _)| *b == end.body) {
+            u += sign * axis.d.dot(dv) + end.rd.dot(dw);
+        }
+    }
+    u
 }
 
 /// A joint row's axis over `motions`: its ends on fixed bodies dropped (a row whose A is
@@ -274,16 +806,20 @@ mod tests {
         let rows = [row(0, Some(1), 0), row(2, None, 1)];
         let mut joined = Joined::default();
         joined.prepare(&rows, &motions, 2);
-        joined.select([1].into_iter());
+        joined.select([1].into_iter(), usize::MAX);
         assert_eq!(joined.axes.len(), 1);
         assert_eq!(joined.axes[0].a.body, 0);
-        joined.select([3].into_iter());
+        joined.select([3].into_iter(), usize::MAX);
         assert!(joined.axes.is_empty());
-        joined.select([3, 2].into_iter());
+        joined.select([3, 2].into_iter(), usize::MAX);
         assert_eq!(joined.axes.len(), 1);
         assert_eq!(joined.axes[0].a.body, 2);
         // Weighed: k = 1/m + 1/m for the pair, 1/m for the rod.
-        joined.select([0, 2].into_iter());
+        joined.select([0, 2].into_iter(), usize::MAX);
+        assert_eq!(joined.axes.len(), 2);
+        joined.select([0, 2].into_iter(), 1);
+        assert!(joined.axes.is_empty());
+        joined.select([0, 2].into_iter(), usize::MAX);
         assert_eq!(
             joined.axes.iter().map(|a| a.k).collect::<Vec<_>>(),
             [2.0, 1.0]
@@ -306,7 +842,7 @@ mod tests {
         )];
         let mut joined = Joined::default();
         joined.prepare(&rows, &motions, 1);
-        joined.select([0].into_iter());
+        joined.select([0].into_iter(), usize::MAX);
         let mut change = vec![
             (Vector3::x(), Vector3::zeros(), Vector3::zeros()),
             (Vector3::zeros(), Vector3::zeros(), Vector3::zeros()),

@@ -693,8 +693,8 @@ fn mark_advanced(
     }
 }
 
-/// The joints' rows at `states`, solved with the contacts in an impact without friction
-/// ([`joined`]; built only then: a later impact round follows a first one).
+/// The joints' rows at `states`, solved with the contacts in an impact ([`joined`]; built
+/// only then: a later impact round follows a first one).
 fn prepare_joints(
     input: &CollideInput,
     states: &[State],
@@ -705,10 +705,9 @@ fn prepare_joints(
     let (joint_rows, motions) = (&mut scratch.joint_rows, &scratch.motions);
     joint_rows.clear();
     if let Some(rows_at) = input.joints {
-        if input.model.friction == 0.0
-            && contacts
-                .iter()
-                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
+        if contacts
+            .iter()
+            .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
         {
             rows_at(states, joint_rows);
         }
@@ -927,12 +926,20 @@ fn stages(
     let counters: &mut Counters = counters;
 
     // The joint rows of the clusters these rows touch, in an impact (none without joints,
-    // with friction, or at rest: [`joined`]).
-    if friction == 0.0 && rows.iter().any(|r| r.approach < -bounce_speed) {
+    // or at rest; with friction, at most `JOINED_FRICTION_ROWS`: [`joined`]).
+    if rows.iter().any(|r| r.approach < -bounce_speed) {
+        let most = if friction == 0.0 {
+            usize::MAX
+        } else {
+            joined::JOINED_FRICTION_ROWS
+        };
         joined.select(
             rows.iter()
                 .flat_map(|r| r.normal.bodies().into_iter().flatten()),
+            most,
         );
+    } else if friction > 0.0 {
+        joined.select(std::iter::empty(), 0);
     }
 
     // Stage 1: inelastic normal impulses, λ ≥ 0.
@@ -960,8 +967,12 @@ fn stages(
         // sliding steadily they are the answer). Then the direct solve (everything sticks);
         // else the sweeps, warm-started from the last step's friction
         // impulses (kept in their disks).
-        let mut solved = large
-            && friction_trial(
+        // With the joint rows held in stage 1, the joints' friction stage ([`joined`]).
+        let mut solved = joined.held
+            && joined_friction(rows, tangent_directions, motions, tolerance, (&mut *buffers_direct, &mut *counters), joined);
+        solved = solved
+            || large
+                && friction_trial(
                 rows,
                 tangent_directions,
                 motions,
@@ -1025,6 +1036,30 @@ fn stages(
         kinetic_allowed,
     };
     bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// Stage 2 with the joint rows held ([`joined::Joined::friction`]), within the step's budget;
+/// false (nothing changed) when the joints' system gives no factor.
+fn joined_friction(
+    rows: &mut [Row],
+    tangent_directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    (buffers_direct, counters): (&mut Direct, &mut Counters),
+    joined: &mut joined::Joined,
+) -> bool {
+    let cap = buffers_direct.sweeps_left(rows.len(), MAX_SWEEPS as u64);
+    let Some((converged, sweeps, residual, work)) =
+        joined.friction(rows, tangent_directions, motions, tolerance, cap)
+    else {
+        return false;
+    };
+    buffers_direct.work += work;
+    counters.friction_sweeps += sweeps;
+    if !converged {
+        buffers_direct.unconverged(residual);
+    }
+    true
 }
 
 /// Stage 2's trial on a large system: a few friction sweeps from the last step's normal and
@@ -1141,6 +1176,7 @@ fn inelastic_stage(
         );
         if direct && joints {
             joined.book(&lambda, 1.0);
+            joined.held = true;
         }
         joined.lambda = lambda;
         if direct {
