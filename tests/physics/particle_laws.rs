@@ -255,3 +255,61 @@ fn switching_the_scene_response_changes_how_a_sheet_touches_the_ground() {
         assert!(seed < -1e-9 && seed > -1e-2, "{integrator}: seed {seed}");
     }
 }
+
+const ROPE_ON_A_FIXED_BOX: &str = r#"
+title = "A rope lying on a fixed box"
+[scene]
+dt = 0.001
+integrator = "rk4"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "RESPONSE", restitution = 0.0, friction = 0.6 }
+
+[body]
+shape = "box"
+size = [1.0, 0.2, 1.0]
+fixed = true
+position = [0.0, 0.0, 0.0]
+
+[[cloth]]
+name = "rope"
+size = [0.4, 0.4]
+count = [5, 1]
+position = [0.0, 0.105, 0.0]
+mass = 0.05
+stretch = 200.0
+damping = 0.05
+pinned = "none"
+integrator = "symplectic-euler"
+"#;
+
+#[test]
+fn particles_on_a_fixed_body_touch_by_the_scene_response() {
+    // The particle–body passes (`cloth_coupling::explicit`) under each response, a rope lying
+    // on a fixed box (top face at y = 0.1) for 1 s: `impulse` holds every particle on the
+    // face; `soft-step`'s row (static softness against a fixed body) lets it sag g/(4 ω_c²);
+    // `seed` leaves it inside by its squared push-out, within millimetres.
+    let omega = 2.0 * std::f64::consts::PI * 2.0 * SoftStep::DEFAULT.hertz_at(1e-3);
+    let sag = G / (omega * omega);
+    let lowest = |name: &str| {
+        let source = ROPE_ON_A_FIXED_BOX.replace("RESPONSE", name);
+        let mut w = tumble::scene::parse(&source, Path::new("test.toml"))
+            .unwrap_or_else(|e| panic!("{e}"))
+            .scene
+            .world();
+        for _ in 0..1000 {
+            w.step();
+        }
+        let c = &w.cloths()[0];
+        c.positions
+            .iter()
+            .map(|p| p.y - 0.1)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let impulse = lowest("impulse");
+    let soft = lowest("soft-step");
+    let seed = lowest("seed");
+    eprintln!("on a fixed box: impulse {impulse:e}, soft {soft:e}, seed {seed:e}");
+    assert!(impulse > -1e-9, "impulse {impulse}");
+    assert!((-soft - sag).abs() < 0.1 * sag, "soft {soft}, law {}", -sag);
+    assert!(seed < -1e-9 && seed > -1e-2, "seed {seed}");
+}

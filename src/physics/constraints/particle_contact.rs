@@ -317,6 +317,36 @@ mod tests {
     }
 
     #[test]
+    fn scaling_the_relative_velocity_reaches_the_factor_and_keeps_momentum() {
+        // `seed`'s law on a particle touching a moving, spinning cube: u' = −0.4 u at the
+        // contact point (all three components: K J = −1.4 u solved exactly), and P + p kept.
+        let inertia = 0.5 * 0.2 * 0.2 / 6.0;
+        let mut contacts = ParticleContacts::default();
+        let p_body = Vector3::new(0.2, 0.0, -0.1);
+        contacts.start(body_of(
+            &p_body,
+            Vector3::new(0.0, 0.003, 0.01),
+            2.0,
+            &(Matrix3::identity() / inertia),
+        ));
+        let arm = Vector3::new(0.1, 0.1, 0.05);
+        let v = Vector3::new(0.3, -2.0, 0.4);
+        let u = contacts.approach(&v, &arm);
+        contacts.touch((3, v, 100.0), &Vector3::y(), arm, (0.0, false));
+        contacts.scale_relative(-0.4);
+        let (_, vp) = contacts.particles().next().unwrap();
+        let after = contacts.approach(&vp, &arm);
+        assert!(
+            (after + 0.4 * u).norm() < 1e-12,
+            "{after} against {}",
+            -0.4 * u
+        );
+        let momentum = 0.01 * vp + contacts.body().v / 2.0;
+        assert!((momentum - (0.01 * v + p_body)).norm() < 1e-15);
+        assert!((contacts.total_impulse() - 0.01 * (vp - v)).norm() < 1e-15);
+    }
+
+    #[test]
     fn a_lone_particle_against_a_static_thing_lands_on_its_target() {
         let n = Vector3::y();
         let v = Vector3::new(1.0, -2.0, 0.0);
