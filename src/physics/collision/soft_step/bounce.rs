@@ -45,6 +45,7 @@
 
 use super::bodies::Motion;
 use super::rows::{Row, Rows};
+use super::sweep::{normal_rate, push};
 
 /// ε of the solve `A + εD` (module doc, "Redundant rows").
 pub(super) const REGULARISE: f64 = 1e-10;
@@ -70,27 +71,6 @@ pub(super) struct Block {
     /// The Cholesky factor of the held rows' block and its right-hand side.
     factor: Vec<f64>,
     rhs: Vec<f64>,
-}
-
-/// The rate along the normal, A relative to B.
-#[inline(always)]
-fn normal_rate(row: &Row, a: &Motion, b: &Motion, pair: bool) -> f64 {
-    let mut u = row.normal.dot(&a.v) + row.rn[0].dot(&a.omega);
-    if pair {
-        u += -row.normal.dot(&b.v) + row.rn[1].dot(&b.omega);
-    }
-    u
-}
-
-/// Applies the normal impulse j.
-#[inline(always)]
-fn push(row: &Row, j: f64, a: &mut Motion, b: &mut Motion, pair: bool) {
-    a.v += row.normal * (j * a.inv_mass);
-    a.omega += row.w_a[0] * j;
-    if pair {
-        b.v += row.normal * (-j * b.inv_mass);
-        b.omega += row.w_b[0] * j;
-    }
 }
 
 /// Restitution, once, from the approach the contact met: every manifold's rows that met
@@ -125,7 +105,7 @@ pub(super) fn restitution(
             let new = (row.lambda + j).max(0.0);
             let change = new - row.lambda;
             row.lambda = new;
-            push(row, change, &mut a, &mut b, pair);
+            push(row, 0, change, &mut a, &mut b, pair);
             t.applied[0] += change;
         } else {
             block.couple(rows, &a, &b, pair, |i| e * totals[i].approach);
@@ -134,7 +114,7 @@ pub(super) fn restitution(
                 let row = &mut rows[i];
                 let change = block.x[k] - row.lambda;
                 row.lambda = block.x[k];
-                push(row, change, &mut a, &mut b, pair);
+                push(row, 0, change, &mut a, &mut b, pair);
                 totals[i].applied[0] += change;
             }
         }

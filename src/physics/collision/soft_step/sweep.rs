@@ -61,7 +61,7 @@ fn each_row<P: Pass>(rows: &mut Rows, motions: &mut [Motion], pass: &mut P) {
 
 /// The rate along the normal, A relative to B.
 #[inline(always)]
-fn normal_rate(row: &Row, a: &Motion, b: &Motion, pair: bool) -> f64 {
+pub(super) fn normal_rate(row: &Row, a: &Motion, b: &Motion, pair: bool) -> f64 {
     let mut u = row.normal.dot(&a.v) + row.rn[0].dot(&a.omega);
     if pair {
         u += -row.normal.dot(&b.v) + row.rn[1].dot(&b.omega);
@@ -71,7 +71,7 @@ fn normal_rate(row: &Row, a: &Motion, b: &Motion, pair: bool) -> f64 {
 
 /// Applies the impulse j along axis `i` (0: n, 1: t₁, 2: t₂).
 #[inline(always)]
-fn push(row: &Row, i: usize, j: f64, a: &mut Motion, b: &mut Motion, pair: bool) {
+pub(super) fn push(row: &Row, i: usize, j: f64, a: &mut Motion, b: &mut Motion, pair: bool) {
     let d = if i == 0 {
         row.normal
     } else {
