@@ -35,7 +35,8 @@
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
 //! of `propagate`, a simultaneous solve that bounces): without friction (μ = 0: a cradle, a
 //! bob striking a wall) whatever the clusters' size; with friction when they have at most
-//! [`JOINED_FRICTION_ROWS`] joint rows (a bob, a door, a pendulum pair: a spinning bob on a
+//! [`JOINED_FRICTION_ROWS`] joint rows and the stage at most [`JOINED_FRICTION_CONTACTS`]
+//! contacts (a bob, a door, a pendulum pair: a spinning bob on a
 //! rod meets a tilted wall with its tangential impulse at μ λ₁ and the spin left by Coulomb's
 //! law, `tests/physics/impacts.rs`). Elsewhere every stage is the contacts' alone, as
 //! before, and the joints' contact pass after the response (`joints::contact::hold`) holds
@@ -68,6 +69,11 @@ use nalgebra::Vector3;
 /// instructions of the whole run, with its active-set start settling in under 24 rounds on
 /// few of its steps (the sliding directions' fixed point converges slowly).
 pub const JOINED_FRICTION_ROWS: usize = 12;
+
+/// Most contact rows a stage with friction may have to take the joint rows: the friction
+/// stage's active-set start works on a dense G of 3 rows a contact (its rounds cost (3m)³/6),
+/// so a small jointed body meeting a large pile in the same stage keeps today's path.
+pub const JOINED_FRICTION_CONTACTS: usize = 16;
 
 /// The joint rows of one response, weighed over the step's motions, and what they gave.
 #[derive(Debug, Clone, Default)]
@@ -376,16 +382,16 @@ impl Joined {
             self.start
                 .push([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
         }
-        // A start from the active set (exact when it settles: the sweeps then confirm it).
-        work += self.active.solve(rows, directions, motions, &self.entries, &self.spans, tolerance);
-        for (i, row) in rows.iter_mut().enumerate() {
-            let [n, t1, t2] = self.active.lambda[i];
-            let [n0, a0, b0] = [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
-            row.lambda = n;
-            row.lambda_tangent = [t1, t2];
-            self.apply_column(3 * i, n - n0, motions);
-            self.apply_column(3 * i + 1, t1 - a0, motions);
-            self.apply_column(3 * i + 2, t2 - b0, motions);
+        // A start from the active set (exact when it settles: the sweeps then confirm it),
+        // taken only if it lowers K (the sweeps then keep lowering it: K never rises).
+        work += self
+            .active
+            .solve(rows, directions, motions, &self.entries, &self.spans, tolerance);
+        let kinetic = |m: &[SolverBody]| m.iter().map(SolverBody::kinetic).sum::<f64>();
+        let before = kinetic(motions);
+        self.move_to(rows, motions, &self.active.lambda);
+        if kinetic(motions) > before {
+            self.move_to(rows, motions, &self.start);
         }
         // The sweeps.
         let (mut converged, mut sweeps, mut largest) = (false, 0, 0.0);
@@ -463,6 +469,20 @@ impl Joined {
         self.system.substitute_regularised(&mut self.rhs[..mj]);
         for (axis, &y) in self.axes.iter().zip(&self.rhs) {
             self.sum.add(axis, y, motions);
+        }
+    }
+
+    /// Sets the rows' impulses to `to` (per contact [n, t₁, t₂]), their change applied
+    /// through the columns.
+    fn move_to(&self, rows: &mut [Row], motions: &mut [SolverBody], to: &[[f64; 3]]) {
+        for (i, row) in rows.iter_mut().enumerate() {
+            let [n, t1, t2] = to[i];
+            let [n0, a0, b0] = [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
+            row.lambda = n;
+            row.lambda_tangent = [t1, t2];
+            self.apply_column(3 * i, n - n0, motions);
+            self.apply_column(3 * i + 1, t1 - a0, motions);
+            self.apply_column(3 * i + 2, t2 - b0, motions);
         }
     }
 
@@ -565,7 +585,7 @@ impl ActiveSet {
         }));
         self.lambda.clear();
         self.lambda
-            .extend((0..m).map(|i| [rows[i].lambda, rows[i].lambda_tangent[0], rows[i].lambda_tangent[1]]));
+            .extend(rows.iter().map(|r| [r.lambda, r.lambda_tangent[0], r.lambda_tangent[1]]));
         let mut work = (n * n / 4) as u64;
         let mut x = vec![0.0; n];
         for _ in 0..ACTIVE_ROUNDS {
@@ -688,7 +708,7 @@ fn dense_solve(system: &mut [f64], a: usize, b: &mut [f64]) -> bool {
         for k in 0..j {
             d -= system[j * a + k] * system[j * a + k] * system[k * a + k];
         }
-        if !(d > 0.0) {
+        if d.is_nan() || d <= 0.0 {
             return false;
         }
         system[j * a + j] = d;

@@ -926,10 +926,13 @@ fn stages(
     let counters: &mut Counters = counters;
 
     // The joint rows of the clusters these rows touch, in an impact (none without joints,
-    // or at rest; with friction, at most `JOINED_FRICTION_ROWS`: [`joined`]).
+    // or at rest; with friction, at most `JOINED_FRICTION_ROWS` and `JOINED_FRICTION_CONTACTS`:
+    // [`joined`]).
     if rows.iter().any(|r| r.approach < -bounce_speed) {
         let most = if friction == 0.0 {
             usize::MAX
+        } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
+            0
         } else {
             joined::JOINED_FRICTION_ROWS
         };
@@ -969,7 +972,14 @@ fn stages(
         // impulses (kept in their disks).
         // With the joint rows held in stage 1, the joints' friction stage ([`joined`]).
         let mut solved = joined.held
-            && joined_friction(rows, tangent_directions, motions, tolerance, (&mut *buffers_direct, &mut *counters), joined);
+            && joined_friction(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                (&mut *buffers_direct, &mut *counters),
+                joined,
+            );
         solved = solved
             || large
                 && friction_trial(
