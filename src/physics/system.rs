@@ -74,6 +74,14 @@ pub fn kinematics(
     }
 }
 
+impl Scratch {
+    /// The joints' solver, holding the factor of J W Jᵀ of the last evaluation (when banded:
+    /// `joints::again`).
+    pub fn solver_mut(&mut self) -> &mut Solver {
+        &mut self.solver
+    }
+}
+
 impl System<'_> {
     /// Whether springs or joints couple the bodies (otherwise each body's f is its own).
     #[inline]

@@ -627,12 +627,14 @@ impl World {
                     &mut self.projection_buffers,
                 );
             } else {
+                // The step's last evaluation's factor, a nearby K for the projection.
                 project(
                     &self.links,
                     &self.bodies,
                     &mut now.states,
                     &mut impulses,
                     &mut self.projection_buffers,
+                    self.system_buffers.last_factor(),
                 );
             }
             for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {

@@ -41,6 +41,7 @@
 use super::super::body::Body;
 use super::super::derive::{derive, Kinematics};
 use super::super::effects::{Effects, Loads};
+use super::super::joints::Solver;
 use super::super::state::{Orientation, State};
 use super::super::system::{kinematics, Scratch, System};
 use super::exact_splitting::Kick;
@@ -78,6 +79,9 @@ pub struct Buffers {
     pub joint_loads: Vec<Loads>,
     /// Result: the springs' damping work over the step, J (≤ 0).
     pub damping_work: f64,
+    /// Whether `eval` was evaluated during this step (its solver then holds the factor of K at
+    /// the step's last stage: [`Buffers::last_factor`]).
+    evaluated: bool,
 }
 
 impl Buffers {
@@ -87,6 +91,16 @@ impl Buffers {
         self.joint_loads
             .resize(start.joint_loads.len(), Loads::default());
         self.damping_work = 0.0;
+        self.evaluated = false;
+    }
+
+    /// The joints' solver of this step's last evaluation, which holds the factor of J W Jᵀ at
+    /// that stage's configuration (rk4: X + dt k₃, O(dt²) from the step's end; a kick–drift–kick
+    /// composition: the end's own positions); None when no evaluation ran during the step
+    /// (`euler`, `symplectic-euler`: only the forces phase's, at the step's start). The
+    /// projection takes it as a nearby factor (`joints::project`).
+    pub fn last_factor(&mut self) -> Option<&mut Solver> {
+        self.evaluated.then(|| self.eval.solver_mut())
     }
 
     /// Books `w ×` the last evaluation's reactions and damping power.
@@ -252,6 +266,7 @@ fn evaluate_flat(system: &System, y: &[Flat], b: &mut Buffers) {
         b.momenta.push(s.l);
     }
     system.evaluate(&b.positions, &b.kinematics, &b.momenta, &mut b.eval);
+    b.evaluated = true;
 }
 
 /// How a kick changes the momenta when the forces are the declared effects alone.

@@ -5,8 +5,18 @@
 //! ```text
 //! positions   repeat: (J W Jᵀ) μ = −C;  x += μ·J_lin / m;  q ← exp(I⁻¹_world J_angᵀ μ) q
 //!             until max |C| < 1e-12 (at most 10 Newton steps; one or two after a normal step)
-//! velocities  (J W Jᵀ) μ = −J u;  P += J_linᵀ μ;  L += J_angᵀ μ        (exact: J u is linear in u)
+//! velocities  repeat: (J W Jᵀ) μ = −J u;  P += J_linᵀ μ;  L += J_angᵀ μ
+//!             until max |J u| < 1e-12 (one solve with K here: J u is linear in u)
 //! ```
+//!
+//! **A nearby factor.** The step's last evaluation of f factored K̃ = J W Jᵀ at its own stage
+//! (rk4: X + dt k₃, O(dt²) from the step's end; a kick–drift–kick composition: at the end's
+//! positions). The first position pass and the velocity passes solve with it instead of
+//! factoring K here: a chord iteration, which converges by ‖1 − K K̃⁻¹‖ ~ |δx|/ℓ per pass
+//! (δx the distance between the two configurations, ℓ the lever arms: about 1e-5 for rk4 at
+//! dt = 1e-3), to the same tolerances, so the corrected state is the same to them. A pass
+//! that leaves |C| ≥ 1e-12 is followed by Newton passes with K here; velocities still off
+//! after three chord passes are solved with K here.
 //!
 //! Returns the velocity impulse each joint applied to its body A (its share of the reaction,
 //! impulse / dt in `--joint`).
@@ -31,6 +41,17 @@ pub struct Buffers {
     /// `shake`: the rows and inverse masses at the step's start.
     directions: Vec<Row>,
     start_inverse: Vec<Inverse>,
+}
+
+/// The factor the velocity pass solves with first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Held {
+    /// The nearby factor (the positions' chord pass used it, or no pass ran).
+    Nearby,
+    /// The positions' last Newton factor, whose pass corrected less than [`REUSE_BELOW`].
+    Own,
+    /// None: K is factored here.
+    Anew,
 }
 
 /// The rows at `states`, with their velocities.
@@ -76,20 +97,22 @@ pub(super) fn joint_rows(
 }
 
 /// Projects `states` onto the joints' constraints; `impulses` receives each joint's velocity
-/// impulse on its body A (force: N·s, torque: N·m·s).
+/// impulse on its body A (force: N·s, torque: N·m·s). `nearby`: the solver of the step's last
+/// evaluation of f (module doc), or None.
 pub fn project(
     links: &Links,
     bodies: &[Body],
     states: &mut [State],
     impulses: &mut Vec<Loads>,
     b: &mut Buffers,
+    nearby: Option<&mut Solver>,
 ) {
     #[cfg(target_arch = "x86_64")]
     if crate::physics::simd::avx2() {
         // SAFETY: the CPU has AVX2.
-        return unsafe { project_avx2(links, bodies, states, impulses, b) };
+        return unsafe { project_avx2(links, bodies, states, impulses, b, nearby) };
     }
-    project_plain(links, bodies, states, impulses, b);
+    project_plain(links, bodies, states, impulses, b, nearby);
 }
 
 /// [`project`] compiled with AVX2 (no fused multiply–add: the same bits; `physics::simd`).
@@ -101,8 +124,9 @@ fn project_avx2(
     states: &mut [State],
     impulses: &mut Vec<Loads>,
     b: &mut Buffers,
+    nearby: Option<&mut Solver>,
 ) {
-    project_plain(links, bodies, states, impulses, b);
+    project_plain(links, bodies, states, impulses, b, nearby);
 }
 
 /// [`project`] for any CPU.
@@ -113,14 +137,15 @@ fn project_plain(
     states: &mut [State],
     impulses: &mut Vec<Loads>,
     b: &mut Buffers,
+    mut nearby: Option<&mut Solver>,
 ) {
     impulses.clear();
     impulses.resize(links.joints.len(), Loads::default());
     if links.joints.is_empty() {
         return;
     }
-    let reuse = positions(links, bodies, states, b);
-    velocities(states, impulses, reuse, b);
+    let held = positions(links, bodies, states, b, nearby.as_deref_mut());
+    velocities(states, impulses, held, nearby, b);
 }
 
 /// `symplectic-euler`'s projection (SHAKE, then RATTLE's velocity half): the positions are put
@@ -183,26 +208,42 @@ pub fn shake(
     }
     b.directions = directions;
     b.start_inverse = start_inverse;
-    velocities(states, impulses, false, b);
+    velocities(states, impulses, Held::Anew, None, b);
 }
 
-/// Positions onto C = 0 by Newton's method on the rows at the current positions. Returns
-/// whether the velocity pass may reuse the last pass's factor (in `b.solver`): a pass moved
-/// them, by less than [`REUSE_BELOW`].
+/// Positions onto C = 0 by Newton's method on the rows at the current positions, its first
+/// pass a chord step with the `nearby` factor when there is one (module doc). Returns which
+/// factor the velocity pass starts from.
 #[inline(always)]
-fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffers) -> bool {
+fn positions(
+    links: &Links,
+    bodies: &[Body],
+    states: &mut [State],
+    b: &mut Buffers,
+    mut nearby: Option<&mut Solver>,
+) -> Held {
     // The rows are built with velocities: the last build, on C = 0, serves the velocity pass.
-    let mut reuse = false;
+    let mut held = Held::Nearby;
     for pass in 0..=10 {
         build(links, bodies, states, b);
         let worst = b.rows.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
         if worst < 1e-12 || pass == 10 {
             break;
         }
-        reuse = worst < REUSE_BELOW;
         b.rhs.clear();
         b.rhs.extend(b.rows.iter().map(|r| -r.error));
-        multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+        let chord = pass == 0
+            && nearby
+                .as_deref_mut()
+                .is_some_and(|s| s.holds(b.rows.len()) && again(&mut b.rhs, s));
+        if !chord {
+            multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+            held = if worst < REUSE_BELOW {
+                Held::Own
+            } else {
+                Held::Anew
+            };
+        }
         for (row, &mu) in b.rows.iter().zip(&b.rhs) {
             shift(states, &b.inverse, row.a(), &row.lin_a(), &row.ang_a(), mu);
             if let Some(j) = row.b() {
@@ -210,29 +251,74 @@ fn positions(links: &Links, bodies: &[Body], states: &mut [State], b: &mut Buffe
             }
         }
     }
-    reuse
+    held
 }
 
-/// The velocity pass reuses the positions' last factor when that pass corrected less than
-/// this (m or rad): K then differs from the one at the corrected positions by ~1e-9 relative.
+/// The velocity pass may start from the positions' last Newton factor when that pass
+/// corrected less than this (m or rad): K then differs from the one at the corrected
+/// positions by ~1e-9 relative.
 const REUSE_BELOW: f64 = 1e-9;
 
-/// Velocities onto J u = 0 at the last build's rows (which must be at `states`' positions).
-/// `reuse`: K is taken from the positions' last Newton pass, whose positions differ from
-/// these by that pass's correction |δ| < 1e-9 m: K changes by O(|δ|/ℓ) relative (ℓ the
-/// lever arms), so J u⁺ = (1 − K K_old⁻¹) J u⁻ ~ 1e-9 |J u⁻| instead of round-off of it —
-/// far below the 1e-12 tolerances after a normal step — and one assembly and factorisation
-/// of K per step is saved.
+/// The velocity passes with a held factor before K is factored here.
+const CHORD_PASSES: usize = 3;
+
+/// Velocities onto J u = 0 at the last build's rows (which must be at `states`' positions):
+/// with the `held` factor (the nearby one or the positions' last, module doc) pass by pass
+/// until max |J u| < 1e-12 — each pass leaves J u⁺ = (1 − K K̃⁻¹) J u⁻ —, and with K here
+/// when there is none or it has not converged in [`CHORD_PASSES`].
 #[inline(always)]
-fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut Buffers) {
+fn velocities(
+    states: &mut [State],
+    impulses: &mut [Loads],
+    held: Held,
+    nearby: Option<&mut Solver>,
+    b: &mut Buffers,
+) {
+    rates_into(b);
+    // The own factor is taken out of `b` while its passes run (and put back).
+    let mut own = match held {
+        Held::Own => std::mem::take(&mut b.solver),
+        _ => Solver::default(),
+    };
+    let factor = match held {
+        Held::Own => Some(&mut own),
+        Held::Nearby => nearby,
+        Held::Anew => None,
+    }
+    .filter(|s| s.holds(b.rows.len()));
+    let done = factor.is_some_and(|solver| {
+        (0..CHORD_PASSES).any(|_| {
+            again(&mut b.rhs, solver);
+            apply(states, impulses, b);
+            refresh(states, b);
+            rates_into(b);
+            b.rhs.iter().fold(0.0_f64, |m, r| m.max(r.abs())) < 1e-12
+        })
+    });
+    if held == Held::Own {
+        b.solver = own;
+    }
+    if done {
+        return;
+    }
+    multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+    apply(states, impulses, b);
+}
+
+/// `b.rhs` = −J u of every row at the poses' velocities.
+#[inline(always)]
+fn rates_into(b: &mut Buffers) {
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
         let pb = r.b().map_or(Pose::WORLD, |j| b.poses[j]);
         -rate(r, &b.poses[r.a()], &pb)
     }));
-    if !(reuse && again(&mut b.rhs, &mut b.solver)) {
-        multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
-    }
+}
+
+/// The velocity multipliers μ in `b.rhs` applied: P += J_linᵀ μ, L += J_angᵀ μ on each row's
+/// bodies, the joint's share on A into `impulses`.
+#[inline(always)]
+fn apply(states: &mut [State], impulses: &mut [Loads], b: &Buffers) {
     for (row, &mu) in b.rows.iter().zip(&b.rhs) {
         states[row.a()].linear_momentum += row.lin_a() * mu;
         states[row.a()].angular_momentum += row.ang_a() * mu;
@@ -242,6 +328,16 @@ fn velocities(states: &mut [State], impulses: &mut [Loads], reuse: bool, b: &mut
             states[j].linear_momentum += row.lin_b() * mu;
             states[j].angular_momentum += row.ang_b() * mu;
         }
+    }
+}
+
+/// The poses' velocities from the states' momenta (positions unchanged since the last build):
+/// v = P/m, ω = I⁻¹_world L.
+#[inline(always)]
+fn refresh(states: &[State], b: &mut Buffers) {
+    for ((pose, state), inv) in b.poses.iter_mut().zip(states).zip(&b.inverse) {
+        pose.v = state.linear_momentum * inv.mass;
+        pose.w = inv.inertia * state.angular_momentum;
     }
 }
 

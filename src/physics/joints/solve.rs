@@ -45,7 +45,9 @@
 //!
 //! The matrix is rebuilt and factored at every evaluation of f(Y) (rk4: four times a step).
 //! The factor is not reused across rk4's stages: each stage's K is at its own
-//! configuration, and an old factor would make λ, hence the method, inexact.
+//! configuration, and an old factor would make λ, hence the method, inexact. The step's last
+//! factor is lent to the projection after the step (`projection`'s nearby factor: a chord
+//! iteration run to the projection's own tolerances, so no method loses its order).
 //!
 //! **Two builds.** The banded factor (fill the blocks' parts, assemble K's blocks, factor)
 //! and its substitutions are compiled twice, plain and with AVX2, and `physics::simd::avx2`
@@ -53,7 +55,9 @@
 //! the same bits (tested). The system's joint reactions (`System::add_joint_reactions`) and
 //! the projection are built the same way. Callgrind, the 10-hinge chain (rk4, dt 1e-3,
 //! `examples/chain_steps`): 274.0k instructions per step before the split and the two
-//! builds, 213.5k after; MuJoCo 4.0.1's RK4 hinge chain counted the same way: 112.5k.
+//! builds, 213.5k after (212.6k re-measured), 196.7k with the projection on the last stage's
+//! factor and B_k stored by columns; MuJoCo 4.0.1's RK4 hinge chain counted the same way:
+//! 112.5k.
 
 use super::rows::Row;
 use crate::physics::envelope::{Envelope, Pivots};
@@ -124,6 +128,9 @@ pub struct Solver {
     /// The banded solve's buffers, per block.
     parts: Vec<[Parts; 2]>,
     diagonal: Vec<Square>,
+    /// K_{k,k−1}, then B_k, transposed: `below[k][j][i]` is row i, column j (a column of the
+    /// block contiguous, so the factor's and the forward substitution's products run down
+    /// columns, lane by lane).
     below: Vec<Square>,
     pivots: Vec<Column>,
     solution: Vec<Column>,
@@ -256,6 +263,14 @@ pub fn again(rhs: &mut [f64], solver: &mut Solver) -> bool {
         true
     } else {
         false
+    }
+}
+
+impl Solver {
+    /// Whether it holds a banded factor of `rows` rows (the last [`multipliers`] call's), which
+    /// [`again`] solves with.
+    pub fn holds(&self, rows: usize) -> bool {
+        rows > 0 && self.solved == rows
     }
 }
 
@@ -396,10 +411,10 @@ impl Solver {
             let mut y = Column::default();
             y[..block.size].copy_from_slice(&x[block.row..block.row + block.size]);
             if k > 0 {
-                let (b, previous) = (&below[k], &solution[k - 1]);
-                for i in 0..S {
-                    for c in 0..S {
-                        y[i] -= b[i][c] * previous[c];
+                let (bt, previous) = (&below[k], &solution[k - 1]);
+                for c in 0..S {
+                    for i in 0..S {
+                        y[i] -= bt[c][i] * previous[c];
                     }
                 }
             }
@@ -415,10 +430,10 @@ impl Solver {
         for k in (0..count).rev() {
             let mut z = solution[k];
             if k + 1 < count {
-                let (b, next) = (&below[k + 1], &solution[k + 1]);
-                for c in 0..S {
-                    for i in 0..S {
-                        z[i] -= b[c][i] * next[c];
+                let (bt, next) = (&below[k + 1], &solution[k + 1]);
+                for i in 0..S {
+                    for c in 0..S {
+                        z[i] -= bt[i][c] * next[c];
                     }
                 }
             }
@@ -606,15 +621,16 @@ fn add_diagonal<const S: usize>(d: &mut Square, p: &Parts, points: bool) {
     }
 }
 
-/// One shared body's share of K_{k,k−1}: block k's side `p` against block k − 1's side `q`
-/// (`points`: both blocks of point rows, whose linear products are `shared` δ_ij).
+/// One shared body's share of K_{k,k−1} (transposed: `b[j][i]`): block k's side `p` against
+/// block k − 1's side `q` (`points`: both blocks of point rows, whose linear products are
+/// `shared` δ_ij).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn add_below<const S: usize>(b: &mut Square, p: &Parts, q: &Parts, points: bool, shared: f64) {
     if points {
-        for (i, row) in b.iter_mut().enumerate().take(S) {
-            for (j, entry) in row.iter_mut().enumerate().take(S) {
-                *entry += if i < 3 {
+        for i in 0..S {
+            for j in 0..S {
+                b[j][i] += if i < 3 {
                     dot_without(&p.ang[i], &q.weighted[j], i)
                 } else {
                     dot3(&p.ang[i], &q.weighted[j])
@@ -628,18 +644,18 @@ fn add_below<const S: usize>(b: &mut Square, p: &Parts, q: &Parts, points: bool,
     }
     for i in 0..S {
         for j in 0..S {
-            b[i][j] += dot3(&p.ang[i], &q.weighted[j]);
+            b[j][i] += dot3(&p.ang[i], &q.weighted[j]);
         }
     }
     for i in 0..p.linear {
         for j in 0..q.linear {
-            b[i][j] += dot3(&p.lin[i], &q.scaled[j]);
+            b[j][i] += dot3(&p.lin[i], &q.scaled[j]);
         }
     }
 }
 
 /// The factor, block by block, over K's blocks in place: B_k = K_{k,k−1} L_{k−1}⁻ᵀ into
-/// `below`, L_k (and 1/L_k's pivots, 0 for a pivot² at or below `tiny`) into `diagonal`.
+/// `below` (transposed), L_k (and 1/L_k's pivots, 0 for a pivot² at or below `tiny`) into `diagonal`.
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn factor<const S: usize>(
@@ -653,24 +669,32 @@ fn factor<const S: usize>(
             let (done, rest) = diagonal.split_at_mut(k);
             let (l, d) = (&done[k - 1], &mut rest[0]);
             let r = &pivots[k - 1];
-            let b = &mut below[k];
-            for row in b.iter_mut().take(S) {
-                for j in 0..S {
-                    let mut t = row[j];
-                    for c in 0..j {
-                        t -= row[c] * l[j][c];
+            // Column by column (B transposed: `bt[j]` is B's column j), each product run
+            // over a column's S entries at once.
+            let bt = &mut below[k];
+            for j in 0..S {
+                let mut t = bt[j];
+                for c in 0..j {
+                    let (column, ljc) = (&bt[c], l[j][c]);
+                    for i in 0..S {
+                        t[i] -= column[i] * ljc;
                     }
-                    row[j] = t * r[j];
+                }
+                for i in 0..S {
+                    bt[j][i] = t[i] * r[j];
                 }
             }
+            // D −= B Bᵀ row by row, over a whole row of D at once (its upper part, never
+            // read, included).
             for i in 0..S {
-                for j in 0..=i {
-                    let mut t = d[i][j];
-                    for c in 0..S {
-                        t -= b[i][c] * b[j][c];
+                let mut t = d[i];
+                for column in bt.iter().take(S) {
+                    let bic = column[i];
+                    for j in 0..S {
+                        t[j] -= bic * column[j];
                     }
-                    d[i][j] = t;
                 }
+                d[i][..S].copy_from_slice(&t[..S]);
             }
         }
         let d = &mut diagonal[k];
