@@ -20,6 +20,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
 use std::hint::black_box;
 use std::time::Duration;
+use tumble::physics::collision::obstacle::{Ground, Plane};
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Response, State,
     World,
@@ -65,7 +66,7 @@ fn stack(count: usize, restitution: f64) -> World {
     World::with_bodies(
         bodies,
         Effects::new(vec![GRAVITY]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         model(restitution),
         Integrator::Rk4,
         1e-3,
@@ -125,10 +126,10 @@ fn rolling(body: Body, lying: bool) -> World {
     World::with_bodies(
         bodies,
         Effects::new(vec![GRAVITY]),
-        vec![Obstacle::Plane {
+        vec![Obstacle::Plane(Plane {
             point: Vector3::zeros(),
             normal,
-        }],
+        })],
         Some(ContactModel {
             response: Response::Impulse,
             restitution: 0.0,

@@ -22,6 +22,7 @@ use nalgebra::{Rotation3, Vector3};
 use std::f64::consts::{FRAC_PI_4, SQRT_2};
 use std::hint::black_box;
 use tumble::physics::collision::geometry::{shape_shape, ContactPoint, ConvexHull, Pose, Shape};
+use tumble::physics::collision::obstacle::{Ground, Plane, Sphere};
 use tumble::physics::Obstacle;
 
 fn rotated(axis: Vector3<f64>, angle: f64, position: Vector3<f64>) -> Pose {
@@ -71,15 +72,15 @@ fn bench(c: &mut Criterion) {
     pair("box-box/apart", &cube, &apart, &cube, &base);
     pair("hull-hull/face", &hull, &resting, &hull, &base);
 
-    let ground = Obstacle::Ground { height: 0.0 };
+    let ground = Obstacle::Ground(Ground { height: 0.0 });
     let on_ground = Pose::at(Vector3::new(0.0, 0.4999, 0.0));
     let plate = Shape::Box {
         half: Vector3::new(0.5, 0.05, 0.5),
     };
-    let sphere = Obstacle::Sphere {
+    let sphere = Obstacle::Sphere(Sphere {
         center: Vector3::zeros(),
         radius: 0.5,
-    };
+    });
     let on_sphere = Pose::at(Vector3::new(0.0, 0.54, 0.0));
     let mut obstacle = |name: &str, a: &Shape, pa: &Pose, o: &Obstacle| {
         group.bench_function(name, |bench| {
@@ -103,10 +104,10 @@ fn bench(c: &mut Criterion) {
         half_length: 0.2,
     };
     let theta = 20f64.to_radians();
-    let ramp = Obstacle::Plane {
+    let ramp = Obstacle::Plane(Plane {
         point: Vector3::zeros(),
         normal: Vector3::new(theta.sin(), theta.cos(), 0.0),
-    };
+    });
     let at = |y: f64| Pose::at(Vector3::new(0.0, y, 0.0));
     let lying = |y: f64| {
         rotated(

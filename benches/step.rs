@@ -24,6 +24,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use nalgebra::{UnitQuaternion, Vector3};
 use std::hint::black_box;
 use std::time::Duration;
+use tumble::physics::collision::obstacle::Ground;
 use tumble::physics::free_top::{rotation_angle_between, FreeBody};
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Response,
@@ -74,7 +75,7 @@ fn resting_cube(integrator: Integrator) -> World {
     World::new(
         body,
         Effects::new(vec![GRAVITY]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(ContactModel {
             response: Response::Impulse,
             restitution: 0.4,

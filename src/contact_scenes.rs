@@ -15,6 +15,7 @@
 //! bricks turned 90° about y, so that each upper brick rests on two bare edges), `cradle` (a
 //! touching Newton's cradle of five balls on rods, e = 1, μ = 0) and `domino_run(16, …)`.
 
+use crate::physics::collision::obstacle::Ground;
 use crate::physics::joints::{Joint, Links};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
@@ -55,7 +56,7 @@ fn world(bodies: Vec<NamedBody>, response: Response) -> World {
     World::with_bodies(
         bodies,
         Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(model(response)),
         Integrator::Rk4,
         DT,
@@ -178,7 +179,7 @@ fn brick_world(
     World::with_bodies(
         bodies,
         Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(ContactModel {
             restitution,
             impacts,

@@ -11,6 +11,7 @@
 //!
 //! Both: `rk4`, dt = 1e-3, gravity −9.81 m/s² along y.
 
+use crate::physics::collision::obstacle::Ground;
 use crate::physics::joints::{Correction, Joint, JointKind, Links};
 use crate::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
@@ -101,7 +102,7 @@ pub fn landing_chain(count: usize, l: f64, tilt: f64, height: f64) -> World {
     World::with_bodies(
         bodies,
         gravity(),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(contact),
         Integrator::Rk4,
         1e-3,

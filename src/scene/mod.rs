@@ -13,6 +13,7 @@ mod links;
 pub mod live;
 mod mesh;
 mod messages;
+mod obstacle;
 mod page_panels;
 mod page_tools;
 mod raw;
@@ -898,111 +899,6 @@ impl Validator<'_> {
             damping_ratio,
             substeps,
         })
-    }
-
-    fn obstacle(&self, raw: &Spanned<RawObstacle>) -> Result<Obstacle, LoadError> {
-        let o = raw.get_ref();
-        let span = raw.span();
-        let missing = |key: &str, kind: &str| {
-            self.error(span.clone(), format!("a {kind} obstacle needs `{key}`"))
-        };
-        let kind = o.kind.get_ref().as_str();
-        let allowed: &[&str] = match kind {
-            "ground" => &["height"],
-            "sphere" => &["center", "radius"],
-            "box" => &["min", "max", "orientation"],
-            "plane" => &["point", "normal"],
-            other => {
-                let hint = did_you_mean(other, ["ground", "sphere", "box", "plane"])
-                    .map(|s| format!(" (did you mean `{s}`?)"))
-                    .unwrap_or_default();
-                return Err(self.error(
-                    o.kind.span(),
-                    format!(
-                        "unknown obstacle type `{other}`{hint}; valid types: ground, sphere, box, plane"
-                    ),
-                ));
-            }
-        };
-        let present = [
-            ("height", o.height.as_ref().map(|v| v.span())),
-            ("center", o.center.as_ref().map(|v| v.span())),
-            ("radius", o.radius.as_ref().map(|v| v.span())),
-            ("min", o.min.as_ref().map(|v| v.span())),
-            ("max", o.max.as_ref().map(|v| v.span())),
-            ("point", o.point.as_ref().map(|v| v.span())),
-            ("normal", o.normal.as_ref().map(|v| v.span())),
-            ("orientation", o.orientation.as_ref().map(|v| v.span())),
-        ];
-        for (key, key_span) in present {
-            if let (Some(key_span), false) = (key_span, allowed.contains(&key)) {
-                return Err(self.error(
-                    key_span,
-                    format!(
-                        "`{key}` does not apply to a {kind} obstacle; valid keys: type, {}",
-                        allowed.join(", ")
-                    ),
-                ));
-            }
-        }
-        match kind {
-            "ground" => {
-                let height = o.height.as_ref().ok_or_else(|| missing("height", kind))?;
-                Ok(Obstacle::Ground {
-                    height: self.finite(height, "height")?,
-                })
-            }
-            "sphere" => {
-                let center = o.center.as_ref().ok_or_else(|| missing("center", kind))?;
-                let radius = o.radius.as_ref().ok_or_else(|| missing("radius", kind))?;
-                Ok(Obstacle::Sphere {
-                    center: self.vector(center, "center")?,
-                    radius: self.positive(radius, "radius")?,
-                })
-            }
-            "plane" => {
-                let point = o.point.as_ref().ok_or_else(|| missing("point", kind))?;
-                let normal_raw = o.normal.as_ref().ok_or_else(|| missing("normal", kind))?;
-                let normal = self.vector(normal_raw, "normal")?;
-                let unit = normal.try_normalize(1e-12).ok_or_else(|| {
-                    self.error(
-                        normal_raw.span(),
-                        "plane `normal` has zero length: give the outward direction, e.g. [0.0, 1.0, 0.0]",
-                    )
-                })?;
-                Ok(Obstacle::Plane {
-                    point: self.vector(point, "point")?,
-                    normal: unit,
-                })
-            }
-            _ => {
-                let min_raw = o.min.as_ref().ok_or_else(|| missing("min", kind))?;
-                let max_raw = o.max.as_ref().ok_or_else(|| missing("max", kind))?;
-                let min = self.vector(min_raw, "min")?;
-                let max = self.vector(max_raw, "max")?;
-                if !(0..3).all(|i| min[i] < max[i]) {
-                    return Err(self.error(
-                        max_raw.span(),
-                        format!(
-                            "box obstacle needs min < max on every axis, found min {:?} and max {:?}",
-                            min_raw.get_ref(),
-                            max_raw.get_ref()
-                        ),
-                    ));
-                }
-                match &o.orientation {
-                    None => Ok(Obstacle::Box { min, max }),
-                    Some(orientation) => Ok(Obstacle::RotatedBox {
-                        center: (min + max) / 2.0,
-                        half: (max - min) / 2.0,
-                        rotation: self
-                            .orientation(orientation)?
-                            .to_rotation_matrix()
-                            .into_inner(),
-                    }),
-                }
-            }
-        }
     }
 
     fn body(&self, raw: Spanned<RawBody>) -> Result<(Body, String, State), LoadError> {

@@ -141,26 +141,151 @@ pub struct RawOrientation {
     pub quaternion: Option<Spanned<[f64; 4]>>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// An `[[obstacle]]` table: its `type`, and its other keys as written. The keys are those the
+/// obstacle kinds declare (`physics::collision::obstacle::written`), each read as what its kind
+/// says it holds (a number, three numbers or an orientation table), so a kind with a new key
+/// needs nothing here. A key no kind declares is an error at the key, worded as a derived
+/// table's (`unknown field`, listing every key), and so is a missing `type`.
+#[derive(Debug)]
 pub struct RawObstacle {
-    #[serde(rename = "type")]
-    pub kind: Spanned<String>,
-    pub height: Option<Spanned<f64>>,
-    #[serde(default, deserialize_with = "exact::option")]
-    pub center: Option<Vec3>,
-    pub radius: Option<Spanned<f64>>,
-    #[serde(default, deserialize_with = "exact::option")]
-    pub min: Option<Vec3>,
-    #[serde(default, deserialize_with = "exact::option")]
-    pub max: Option<Vec3>,
-    /// plane: a point of it and its outward normal.
-    #[serde(default, deserialize_with = "exact::option")]
-    pub point: Option<Vec3>,
-    #[serde(default, deserialize_with = "exact::option")]
-    pub normal: Option<Vec3>,
-    /// box: turned about its centre.
-    pub orientation: Option<Spanned<RawOrientation>>,
+    /// `type`.
+    pub(super) kind: Spanned<String>,
+    /// Every other key (`scene/obstacle.rs` checks that each kind's keys are documented).
+    pub(super) keys: Vec<(&'static str, RawValue)>,
+}
+
+/// The value of an obstacle's key.
+#[derive(Debug)]
+pub enum RawValue {
+    Number(Spanned<f64>),
+    Vector(Vec3),
+    Rotation(Spanned<RawOrientation>),
+}
+
+impl RawValue {
+    pub fn span(&self) -> std::ops::Range<usize> {
+        match self {
+            RawValue::Number(v) => v.span(),
+            RawValue::Vector(v) => v.span(),
+            RawValue::Rotation(v) => v.span(),
+        }
+    }
+}
+
+impl RawObstacle {
+    /// The value of `key`, if written.
+    pub fn value(&self, key: &str) -> Option<&RawValue> {
+        self.keys.iter().find(|(k, _)| *k == key).map(|(_, v)| v)
+    }
+}
+
+mod obstacle_table {
+    use super::{exact, RawObstacle, RawOrientation, RawValue, Vec3};
+    use crate::physics::collision::obstacle::{written, Value};
+    use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
+    use std::fmt;
+    use std::sync::OnceLock;
+    use toml::Spanned;
+
+    /// `type`, then every kind's keys ([`written::all_keys`]).
+    fn fields() -> &'static [&'static str] {
+        static FIELDS: OnceLock<Vec<&'static str>> = OnceLock::new();
+        FIELDS.get_or_init(|| {
+            std::iter::once("type")
+                .chain(written::all_keys().iter().map(|k| k.name))
+                .collect()
+        })
+    }
+
+    /// What an obstacle's key holds (a key no kind declares is not read this far).
+    fn value_of(key: &str) -> Value {
+        written::all_keys()
+            .iter()
+            .find(|k| k.name == key)
+            .map_or(Value::Number, |k| k.value)
+    }
+
+    impl<'de> serde::Deserialize<'de> for RawObstacle {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            d.deserialize_struct("RawObstacle", fields(), Table)
+        }
+    }
+
+    struct Table;
+
+    impl<'de> Visitor<'de> for Table {
+        type Value = RawObstacle;
+
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("struct RawObstacle")
+        }
+
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawObstacle, A::Error> {
+            let mut kind = None;
+            let mut keys: Vec<(&'static str, RawValue)> = Vec::new();
+            while let Some(key) = map.next_key_seed(Key)? {
+                if key == "type" {
+                    if kind.is_some() {
+                        return Err(de::Error::duplicate_field("type"));
+                    }
+                    kind = Some(map.next_value::<Spanned<String>>()?);
+                    continue;
+                }
+                if keys.iter().any(|(k, _)| *k == key) {
+                    return Err(de::Error::duplicate_field(key));
+                }
+                let value = match value_of(key) {
+                    Value::Number => RawValue::Number(map.next_value()?),
+                    Value::Vector => RawValue::Vector(map.next_value_seed(Three)?),
+                    Value::Rotation => {
+                        RawValue::Rotation(map.next_value::<Spanned<RawOrientation>>()?)
+                    }
+                };
+                keys.push((key, value));
+            }
+            let kind = kind.ok_or_else(|| de::Error::missing_field("type"))?;
+            Ok(RawObstacle { kind, keys })
+        }
+    }
+
+    /// A key's name: one of [`fields`], or the derived tables' "unknown field" error.
+    struct Key;
+
+    impl<'de> DeserializeSeed<'de> for Key {
+        type Value = &'static str;
+
+        fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<&'static str, D::Error> {
+            d.deserialize_identifier(self)
+        }
+    }
+
+    impl<'de> Visitor<'de> for Key {
+        type Value = &'static str;
+
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("field identifier")
+        }
+
+        fn visit_str<E: de::Error>(self, v: &str) -> Result<&'static str, E> {
+            let fields = fields();
+            fields
+                .iter()
+                .find(|k| **k == v)
+                .copied()
+                .ok_or_else(|| E::unknown_field(v, fields))
+        }
+    }
+
+    /// Exactly three numbers, with their span ([`exact::required`]).
+    struct Three;
+
+    impl<'de> DeserializeSeed<'de> for Three {
+        type Value = Vec3;
+
+        fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Vec3, D::Error> {
+            exact::required::<D, f64, 3>(d)
+        }
+    }
 }
 
 #[derive(Debug, Deserialize)]

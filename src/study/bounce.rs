@@ -20,6 +20,7 @@
 //! after which the body rests; a solver stops bouncing sooner (`impulse`: approaches slower
 //! than 3 g dt do not bounce), which is part of its error.
 
+use crate::physics::collision::obstacle::Ground;
 use crate::physics::collision::Obstacle;
 use crate::physics::Effect;
 use crate::scene::Scene;
@@ -50,7 +51,7 @@ impl Bounce {
         if scene.bodies.len() != 1 || !scene.links.is_empty() || !scene.cloths.is_empty() {
             return None;
         }
-        let [Obstacle::Ground { height }] = scene.obstacles[..] else {
+        let [Obstacle::Ground(Ground { height })] = scene.obstacles[..] else {
             return None;
         };
         if !scene

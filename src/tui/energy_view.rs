@@ -36,4 +36,5 @@ pub fn render(app: &App, area: Rect, buf: &mut Buffer) {
     if let Some(strip) = areas.strip {
         loop_strip::render(app, strip, buf);
     }
+    super::panes::render_cut(app, &areas, buf);
 }

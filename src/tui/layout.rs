@@ -12,6 +12,7 @@
 //!
 //! Panels never get cut: a panel wider or taller than its room is left out whole (and named).
 
+use super::panes::CUT_COUNT;
 use ratatui::layout::{Constraint, Layout, Rect};
 
 /// The width lesson pages are written for (`docs/lesson-format.md`: lines under about 86
@@ -63,6 +64,8 @@ pub struct Areas {
     /// The numeric panels (all of them, or the essentials in the stage layout).
     pub panels: Option<Rect>,
     pub strip: Option<Rect>,
+    /// The boxes cut from the areas above (`panes::cut`), in the pane table's order.
+    pub cut: [Option<Rect>; CUT_COUNT],
 }
 
 /// Splits the main area. `panels_width` is the width the numeric panels ask for (their widest
@@ -98,6 +101,7 @@ pub fn areas(
                 lesson: Some(lesson),
                 panels: Some(right),
                 strip: Some(strip),
+                cut: [None; CUT_COUNT],
             }
         }
         ScreenLayout::Stage => {
@@ -125,6 +129,7 @@ pub fn areas(
                     lesson,
                     panels: Some(panels),
                     strip: (rest.height >= 4).then_some(rest),
+                    cut: [None; CUT_COUNT],
                 }
             } else if upper.height >= eh + MIN_DRAWING_HEIGHT {
                 let [drawing, panels] =
@@ -134,6 +139,7 @@ pub fn areas(
                     lesson,
                     panels: Some(panels),
                     strip: None,
+                    cut: [None; CUT_COUNT],
                 }
             } else {
                 // No room for the essentials under the drawing: the drawing and the page (the
@@ -143,6 +149,7 @@ pub fn areas(
                     lesson,
                     panels: None,
                     strip: None,
+                    cut: [None; CUT_COUNT],
                 }
             }
         }

@@ -19,6 +19,7 @@
 //! | `screen` | the whole screen, overlays, the "enlarge" message |
 //! | `header`, `status_bar` | top line; bottom lines |
 //! | `views` | the view table: each view's key, render function, what showing and leaving it do |
+//! | `panes` | the pane table: each box of the loop view, where it goes (the layout's area, or cut from one), what draws it |
 //! | `loop_view`, `energy_view`, `study_view` | the views (one file each; `energy_view` draws either graph) |
 //! | `projection`, `panels`, `cloth_panel`, `loop_strip`, `lesson_pane`, `energy_graph`, `plot_graph` | the panes |
 //! | `help`, `picker`, `plot_picker`, `divergence_dialog` | the overlays |
@@ -50,6 +51,7 @@ pub mod loop_strip;
 pub mod loop_view;
 pub mod mouse;
 pub mod panels;
+pub mod panes;
 pub mod period_timer;
 pub mod picker;
 pub mod plot_graph;

@@ -74,7 +74,8 @@ impl Widget for &App {
     }
 }
 
-/// The panes of the main area in the app's layout (see [`super::layout`]).
+/// The panes of the main area in the app's layout (see [`super::layout`]), with the boxes of
+/// the pane table cut from them (`panes.rs`).
 pub fn main_areas(app: &App, area: Rect) -> Areas {
     let essentials = match app.prefs.layout {
         ScreenLayout::Stage => panels::essentials_size(app),
@@ -92,14 +93,16 @@ pub fn main_areas(app: &App, area: Rect) -> Areas {
         ScreenLayout::Stage => lesson_pane::line_count(app, area.width.saturating_sub(2)),
         ScreenLayout::Numbers => 0,
     };
-    layout::areas(
+    let mut areas = layout::areas(
         area,
         app.prefs.layout,
         panels_width,
         quoted_width,
         essentials,
         page_lines,
-    )
+    );
+    super::panes::cut(app, &mut areas);
+    areas
 }
 
 /// A rectangle of at most `width × height` centred in `area`.

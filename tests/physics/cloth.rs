@@ -6,6 +6,7 @@
 
 use nalgebra::{DMatrix, DVector, Vector3};
 use tumble::physics::cloth::{Cloth, ClothIntegrator, ClothLoads, ClothSpec, Pinning};
+use tumble::physics::collision::obstacle::{Ground, Sphere};
 use tumble::physics::collision::StepContext;
 use tumble::physics::Obstacle;
 
@@ -494,11 +495,11 @@ fn a_cloth_dropped_on_a_sphere_drapes_with_no_particle_inside() {
         spec.integrator = integrator;
         let mut cloth = Cloth::new(&spec).unwrap();
         let obstacles = [
-            Obstacle::Ground { height: 0.0 },
-            Obstacle::Sphere {
+            Obstacle::Ground(Ground { height: 0.0 }),
+            Obstacle::Sphere(Sphere {
                 center: Vector3::new(0.0, 0.5, 0.0),
                 radius: 0.5,
-            },
+            }),
         ];
         let loads = gravity();
         let dt = match integrator {

@@ -4,6 +4,7 @@
 use nalgebra::{UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use tumble::physics::body::{box_corners, box_edges};
+use tumble::physics::collision::obstacle::{AlignedBox, Ground, Sphere};
 use tumble::physics::collision::{collide, Against, CollideInput};
 use tumble::physics::effects::Loads;
 use tumble::physics::snapshot::{deepest_penetration, kinetic_energy};
@@ -14,7 +15,7 @@ use tumble::physics::{
 
 const G: f64 = 9.81;
 const SIDE: f64 = 0.2;
-const GROUND: Obstacle = Obstacle::Ground { height: 0.0 };
+const GROUND: Obstacle = Obstacle::Ground(Ground { height: 0.0 });
 
 fn impulse(restitution: f64, friction: f64) -> ContactModel {
     ContactModel {
@@ -213,10 +214,10 @@ fn the_result_does_not_depend_on_the_order_of_the_vertices() {
 
 #[test]
 fn a_cube_dropped_off_centre_on_a_sphere_slides_off_and_rests_on_the_ground() {
-    let sphere = Obstacle::Sphere {
+    let sphere = Obstacle::Sphere(Sphere {
         center: Vector3::new(0.0, 0.5, 0.0),
         radius: 0.5,
-    };
+    });
     let mut w = world(
         cube(),
         state(Vector3::new(0.3, 2.0, 0.0), UnitQuaternion::identity()),
@@ -261,10 +262,10 @@ fn a_cube_dropped_off_centre_on_a_sphere_slides_off_and_rests_on_the_ground() {
 
 #[test]
 fn a_cube_landing_on_a_box_top_stays_on_it() {
-    let block = Obstacle::Box {
+    let block = Obstacle::AlignedBox(AlignedBox {
         min: Vector3::new(-0.5, 0.0, -0.5),
         max: Vector3::new(0.5, 0.5, 0.5),
-    };
+    });
     let mut w = world(
         cube(),
         state(Vector3::new(0.1, 1.5, -0.05), corner_down()),
@@ -304,10 +305,10 @@ fn fast_impact(obstacle: Obstacle, top: f64, dt: f64) -> (f64, f64) {
 
 #[test]
 fn a_50_m_per_s_impact_does_not_pass_through_the_ground_or_a_1_cm_box() {
-    let slab = Obstacle::Box {
+    let slab = Obstacle::AlignedBox(AlignedBox {
         min: Vector3::new(-1.0, 0.0, -1.0),
         max: Vector3::new(1.0, 0.01, 1.0),
-    };
+    });
     for dt in [1e-3, 1e-2] {
         // 50 m/s × dt = 5 cm or 50 cm per step: a static test would miss the slab entirely.
         for (name, obstacle, top) in [("ground", GROUND, 0.0), ("1 cm box", slab, 0.01)] {
@@ -327,10 +328,10 @@ fn a_50_m_per_s_impact_does_not_pass_through_the_ground_or_a_1_cm_box() {
 
 #[test]
 fn kinetic_energy_never_grows_at_an_impulse_collision_in_a_tumbling_run() {
-    let sphere = Obstacle::Sphere {
+    let sphere = Obstacle::Sphere(Sphere {
         center: Vector3::new(0.3, 0.3, 0.0),
         radius: 0.3,
-    };
+    });
     for (e, mu) in [(0.0, 0.0), (0.4, 0.5), (1.0, 0.0), (1.0, 1.0), (0.8, 3.0)] {
         let mut initial = state(Vector3::new(0.0, 1.0, 0.1), corner_down());
         initial.linear_momentum = Vector3::new(1.0, 0.0, -0.5);
@@ -362,14 +363,14 @@ fn kinetic_energy_never_grows_at_an_impulse_collision_in_a_tumbling_run() {
 fn obstacles_for_property() -> Vec<Obstacle> {
     vec![
         GROUND,
-        Obstacle::Sphere {
+        Obstacle::Sphere(Sphere {
             center: Vector3::new(0.15, 0.0, 0.0),
             radius: 0.12,
-        },
-        Obstacle::Box {
+        }),
+        Obstacle::AlignedBox(AlignedBox {
             min: Vector3::new(-0.3, -0.5, -0.08),
             max: Vector3::new(-0.05, 0.04, 0.3),
-        },
+        }),
     ]
 }
 

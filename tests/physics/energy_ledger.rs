@@ -2,6 +2,7 @@
 //! numerical drift. Physical losses must never be called drift.
 
 use nalgebra::{UnitQuaternion, Vector3};
+use tumble::physics::collision::obstacle::Ground;
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Phase,
     Response, State, World,
@@ -121,7 +122,7 @@ fn dropped(response: Response) -> World {
     World::new(
         cube(),
         Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(ContactModel {
             response,
             restitution: 0.5,

@@ -8,6 +8,7 @@ use std::f64::consts::{FRAC_PI_4, SQRT_2};
 use tumble::physics::collision::geometry::{
     deepest, point_shape, shape_shape, ContactPoint, ConvexHull, Feature, Pose, Shape,
 };
+use tumble::physics::collision::obstacle::{AlignedBox, Ground, Sphere};
 use tumble::physics::Obstacle;
 
 const TOL: f64 = 1e-12;
@@ -232,10 +233,10 @@ fn a_plate_on_a_pillar_touches_at_the_pillars_four_corners() {
     // is the contact that a vertex test misses.
     let plate = cuboid(1.0, 0.1, 1.0);
     let pose = Pose::at(Vector3::new(0.0, 1.0 + 0.05 - 0.01, 0.0));
-    let pillar = Obstacle::Box {
+    let pillar = Obstacle::AlignedBox(AlignedBox {
         min: Vector3::new(-0.1, 0.0, -0.1),
         max: Vector3::new(0.1, 1.0, 0.1),
-    };
+    });
     for shape in [plate.clone(), as_hull(&plate)] {
         let contacts = obstacle(&shape, &pose, &pillar, 0.0);
         assert_manifold(
@@ -255,10 +256,10 @@ fn a_plate_on_a_sphere_touches_at_one_point_of_its_face() {
     // sphere, point midway (0, 0.495, 0), normal +y.
     let plate = cuboid(1.0, 0.1, 1.0);
     let pose = Pose::at(Vector3::new(0.0, 0.54, 0.0));
-    let sphere = Obstacle::Sphere {
+    let sphere = Obstacle::Sphere(Sphere {
         center: Vector3::zeros(),
         radius: 0.5,
-    };
+    });
     for shape in [plate.clone(), as_hull(&plate)] {
         let contacts = obstacle(&shape, &pose, &sphere, 0.0);
         assert_manifold(
@@ -280,10 +281,10 @@ fn a_sphere_centre_inside_a_plate_pushes_it_out_through_the_nearest_face() {
     // c − ρ m = (0, 0.06, 0): (0, 0.005, 0).
     let plate = cuboid(1.0, 0.1, 1.0);
     let pose = Pose::at(Vector3::zeros());
-    let sphere = Obstacle::Sphere {
+    let sphere = Obstacle::Sphere(Sphere {
         center: Vector3::new(0.0, -0.04, 0.0),
         radius: 0.1,
-    };
+    });
     for shape in [plate.clone(), as_hull(&plate)] {
         let contacts = obstacle(&shape, &pose, &sphere, 0.0);
         assert_manifold(
@@ -301,10 +302,10 @@ fn a_cube_corner_near_a_sphere_is_a_near_point_with_the_gap_as_negative_depth() 
     // Unit cube at the origin, sphere of radius 0.1 centred on the diagonal at distance
     // 0.2 + √3/2 from the centre: its gap to the corner (0.5, 0.5, 0.5) is 0.1.
     let direction = Vector3::repeat(1.0).normalize();
-    let sphere = Obstacle::Sphere {
+    let sphere = Obstacle::Sphere(Sphere {
         center: direction * (3f64.sqrt() / 2.0 + 0.2),
         radius: 0.1,
-    };
+    });
     let pose = Pose::at(Vector3::zeros());
     assert!(obstacle(&cube(1.0), &pose, &sphere, 0.05).is_empty());
     let contacts = obstacle(&cube(1.0), &pose, &sphere, 0.2);
@@ -326,10 +327,10 @@ fn a_bar_across_a_thin_ridge_touches_where_its_edge_crosses_the_ridge_top() {
         FRAC_PI_4,
         Vector3::new(0.0, 0.5 + 0.05 * SQRT_2 - 0.005, 0.0),
     );
-    let ridge = Obstacle::Box {
+    let ridge = Obstacle::AlignedBox(AlignedBox {
         min: Vector3::new(-0.01, 0.0, -1.0),
         max: Vector3::new(0.01, 0.5, 1.0),
-    };
+    });
     let expected = [
         Vector3::new(-0.01, 0.4975, 0.0),
         Vector3::new(0.01, 0.4975, 0.0),
@@ -343,7 +344,7 @@ fn a_bar_across_a_thin_ridge_touches_where_its_edge_crosses_the_ridge_top() {
 
 #[test]
 fn the_ground_gives_four_corners_flat_two_edge_down_one_corner_down() {
-    let ground = Obstacle::Ground { height: 0.0 };
+    let ground = Obstacle::Ground(Ground { height: 0.0 });
     let flat = Pose::at(Vector3::new(0.0, 0.49, 0.0));
     let contacts = obstacle(&cube(1.0), &flat, &ground, 0.0);
     assert_manifold(
@@ -394,10 +395,10 @@ fn the_ground_gives_four_corners_flat_two_edge_down_one_corner_down() {
 fn a_box_obstacle_is_a_box_with_identity_rotation() {
     // Unit cube A at y = 0.99 on the obstacle [−0.5, 0.5]³: the face_to_face answer.
     let (a, pa, b, pb) = face_to_face();
-    let o = Obstacle::Box {
+    let o = Obstacle::AlignedBox(AlignedBox {
         min: Vector3::repeat(-0.5),
         max: Vector3::repeat(0.5),
-    };
+    });
     assert_eq!(obstacle(&a, &pa, &o, 0.0), pair(&a, &pa, &b, &pb, 0.0));
 }
 
@@ -532,7 +533,7 @@ fn a_tetrahedron_on_the_ground_touches_at_its_three_base_corners() {
     let contacts = obstacle(
         &corner_tetrahedron(),
         &pose,
-        &Obstacle::Ground { height: 0.0 },
+        &Obstacle::Ground(Ground { height: 0.0 }),
         0.0,
     );
     let expected = [
@@ -629,7 +630,7 @@ fn the_house_mesh_hull_is_a_pentagonal_prism_standing_on_its_floor() {
     let contacts = obstacle(
         &Shape::Hull(hull),
         &Pose::at(Vector3::new(0.0, -0.01, 0.0)),
-        &Obstacle::Ground { height: 0.0 },
+        &Obstacle::Ground(Ground { height: 0.0 }),
         0.0,
     );
     let expected: Vec<Vector3<f64>> = [(-0.2, -0.1), (-0.2, 0.1), (0.2, -0.1), (0.2, 0.1)]

@@ -647,6 +647,7 @@ fn a_thin_rod_with_inertia_ratio_2e4_and_a_flat_plate_follow_the_symmetric_top()
 
 mod contact {
     use nalgebra::{UnitQuaternion, Vector3};
+    use tumble::physics::collision::obstacle::{AlignedBox, Ground, Sphere};
     use tumble::physics::snapshot::deepest_penetration;
     use tumble::physics::Against;
     use tumble::physics::{
@@ -654,7 +655,7 @@ mod contact {
         State, World,
     };
 
-    const GROUND: Obstacle = Obstacle::Ground { height: 0.0 };
+    const GROUND: Obstacle = Obstacle::Ground(Ground { height: 0.0 });
 
     /// The box of lesson 1: 0.4 × 0.2 × 0.3 m, 1 kg.
     fn brick() -> Body {
@@ -794,10 +795,10 @@ mod contact {
     /// past its level, which this test then mistook for tunnelling.
     #[test]
     fn a_tumbling_50_m_per_s_impact_does_not_tunnel_into_a_1_cm_slab() {
-        let slab = Obstacle::Box {
+        let slab = Obstacle::AlignedBox(AlignedBox {
             min: Vector3::new(-50.0, 0.0, -50.0),
             max: Vector3::new(50.0, 0.01, 50.0),
-        };
+        });
         tumbling_impact(&[("1 cm slab", slab, 0.01)]);
     }
 
@@ -872,10 +873,10 @@ mod contact {
     }
 
     fn wedged(models: &[(f64, f64)]) {
-        let sphere = Obstacle::Sphere {
+        let sphere = Obstacle::Sphere(Sphere {
             center: Vector3::new(0.0, 0.3, 0.0),
             radius: 0.3,
-        };
+        });
         for integrator in [
             Integrator::Rk4,
             Integrator::Splitting,

@@ -7,6 +7,7 @@
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
+use tumble::physics::collision::obstacle::{Ground, Sphere};
 use tumble::physics::snapshot::kinetic_energy;
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, Obstacle, Orientation, Phase,
@@ -210,8 +211,8 @@ proptest! {
         let v = Vector3::new(v.x, -1.0 - v.y.abs(), v.z);
         let initial = state(&body, Vector3::new(0.0, height, 0.0), q, v, w);
         let obstacles = vec![
-            Obstacle::Ground { height: 0.0 },
-            Obstacle::Sphere { center: Vector3::new(0.4, 0.0, 0.0), radius: 0.3 },
+            Obstacle::Ground(Ground { height: 0.0 }),
+            Obstacle::Sphere(Sphere { center: Vector3::new(0.4, 0.0, 0.0), radius: 0.3 }),
         ];
         let model = ContactModel { response: Response::Impulse, restitution, friction, impacts: Impacts::default() };
         let mut world = World::new(

@@ -3,6 +3,7 @@
 
 use assert_cmd::Command;
 use tumble::contact_scenes::{stack, DT, G, SIDE};
+use tumble::physics::collision::obstacle::Ground;
 use tumble::physics::{Response, SoftStep, World};
 
 fn soft() -> Response {
@@ -225,7 +226,7 @@ fn energy_never_rises_above_the_documented_bound() {
                 },
             }],
             Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
-            vec![Obstacle::Ground { height: 0.0 }],
+            vec![Obstacle::Ground(Ground { height: 0.0 })],
             Some(ContactModel {
                 response: soft(),
                 restitution,

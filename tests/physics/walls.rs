@@ -14,6 +14,7 @@
 use nalgebra::{UnitQuaternion, Vector3};
 use tumble::contact_scenes::{bonded_wall, edge_wall};
 use tumble::physics::collision::impulse::{Counters, WORK_BUDGET};
+use tumble::physics::collision::obstacle::Ground;
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
     Response, State, World,
@@ -114,7 +115,7 @@ fn a_box_on_a_box_on_two_boxes_stands_without_creep() {
     let mut world = World::with_bodies(
         bodies,
         Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -9.81, 0.0))]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(ContactModel {
             response: Response::Impulse,
             restitution: 0.0,

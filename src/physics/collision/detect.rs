@@ -247,13 +247,14 @@ fn unit(axis: usize, sign: f64) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::collision::obstacle::{AlignedBox, Ground, Sphere};
     use crate::physics::collision::Obstacle;
 
     fn slab() -> Obstacle {
-        Obstacle::Box {
+        Obstacle::AlignedBox(AlignedBox {
             min: Vector3::new(-1.0, 0.0, -1.0),
             max: Vector3::new(1.0, 0.01, 1.0),
-        }
+        })
     }
 
     #[test]
@@ -270,10 +271,10 @@ mod tests {
 
     #[test]
     fn a_vertex_past_the_middle_of_a_box_is_pushed_back_out_the_face_it_entered() {
-        let obstacle = Obstacle::Box {
+        let obstacle = Obstacle::AlignedBox(AlignedBox {
             min: Vector3::new(-1.0, 0.0, -1.0),
             max: Vector3::new(1.0, 1.0, 1.0),
-        };
+        });
         let a = Vector3::new(0.0, 1.1, 0.0);
         let b = Vector3::new(0.0, 0.3, 0.0);
         // Statically the bottom face is nearer (0.3 < 0.7) ...
@@ -286,10 +287,10 @@ mod tests {
 
     #[test]
     fn a_vertex_that_crossed_a_sphere_gets_the_normal_at_its_entry_point() {
-        let obstacle = Obstacle::Sphere {
+        let obstacle = Obstacle::Sphere(Sphere {
             center: Vector3::zeros(),
             radius: 0.5,
-        };
+        });
         let a = Vector3::new(0.0, 1.0, 0.0);
         let b = Vector3::new(0.0, -1.0, 0.0);
         let hit = obstacle.swept(&a, &b).unwrap();
@@ -303,19 +304,19 @@ mod tests {
         let a = Vector3::new(1.5, 0.3, 0.0);
         let b = Vector3::new(1.5, -0.2, 0.0);
         assert!(slab().swept(&a, &b).is_none());
-        let sphere = Obstacle::Sphere {
+        let sphere = Obstacle::Sphere(Sphere {
             center: Vector3::zeros(),
             radius: 0.5,
-        };
+        });
         assert!(sphere.swept(&a, &b).is_none());
     }
 
     #[test]
     fn the_box_normal_is_the_face_of_least_penetration() {
-        let obstacle = Obstacle::Box {
+        let obstacle = Obstacle::AlignedBox(AlignedBox {
             min: Vector3::zeros(),
             max: Vector3::new(2.0, 1.0, 2.0),
-        };
+        });
         let hit = obstacle.inside(&Vector3::new(0.05, 0.5, 1.0)).unwrap();
         assert_eq!(hit.normal, -Vector3::x());
         assert!((hit.depth - 0.05).abs() < 1e-15);
@@ -323,10 +324,10 @@ mod tests {
 
     #[test]
     fn a_vertex_just_outside_gets_the_gap_and_normal_of_the_nearest_surface_point() {
-        let obstacle = Obstacle::Box {
+        let obstacle = Obstacle::AlignedBox(AlignedBox {
             min: Vector3::zeros(),
             max: Vector3::new(1.0, 1.0, 1.0),
-        };
+        });
         // Beyond the edge x = 1, y = 1 by 3e-4 and 4e-4: gap 5e-4 along (3, 4, 0)/5.
         let (gap, normal) = obstacle
             .near(&Vector3::new(1.0003, 1.0004, 0.5), 1e-3)
@@ -341,10 +342,10 @@ mod tests {
             .near(&Vector3::new(1.0, 1.002, 0.5), 1e-3)
             .is_none());
         assert!(obstacle.near(&Vector3::new(0.5, 0.5, 0.5), 1e-3).is_none());
-        let sphere = Obstacle::Sphere {
+        let sphere = Obstacle::Sphere(Sphere {
             center: Vector3::zeros(),
             radius: 0.5,
-        };
+        });
         let (gap, normal) = sphere.near(&Vector3::new(0.0, 0.0, -0.5002), 1e-3).unwrap();
         assert!(
             (gap - 2e-4).abs() < 1e-12 && normal == -Vector3::z(),
@@ -354,7 +355,7 @@ mod tests {
 
     #[test]
     fn the_ground_catches_any_vertex_below_it_however_fast() {
-        let ground = Obstacle::Ground { height: 0.0 };
+        let ground = Obstacle::Ground(Ground { height: 0.0 });
         let hit = ground
             .swept(
                 &Vector3::new(0.0, 10.0, 0.0),

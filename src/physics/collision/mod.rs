@@ -6,7 +6,7 @@
 //!
 //! | file | idea |
 //! |---|---|
-//! | `obstacle` | the scene's fixed things, each a static body of the shape table: every kind described in this one file (shape, point tests, contact, outline) |
+//! | `obstacle` | the scene's fixed things, each a static body of the shape table: one file per kind in `obstacle/kinds/` (shape, point tests, contact, outline, scene words), listed by `build.rs` |
 //! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion (the formulas per shape) |
 //! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
 //! | `response` | the responses a scene can choose: the `responses!` list (below: `Variant => module`) and the descriptor each module holds (name, formulas, README row, colour) |

@@ -170,6 +170,7 @@ impl ParticleLaw for Reversed {
 
 #[cfg(test)]
 mod tests {
+    use crate::physics::collision::obstacle::Ground;
     use super::*;
     use crate::physics::body::Body;
     use crate::physics::collision::{ContactModel, Impacts, Obstacle, Response};
@@ -198,7 +199,7 @@ mod tests {
             force: Vector3::new(0.0, -9.81, 0.0),
             torque: Vector3::zeros(),
         };
-        let obstacles = [Obstacle::Ground { height: 0.0 }];
+        let obstacles = [Obstacle::Ground(Ground { height: 0.0 })];
         let input = CollideInput {
             bodies: std::slice::from_ref(&body),
             obstacles: &obstacles,
