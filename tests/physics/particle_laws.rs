@@ -10,6 +10,7 @@
 use nalgebra::Vector3;
 use std::path::Path;
 use tumble::physics::cloth::{Cloth, ClothIntegrator, ClothLoads, ClothSpec};
+use tumble::physics::collision::obstacle::Ground;
 use tumble::physics::collision::particle::Hit;
 use tumble::physics::collision::{ContactModel, Impacts, Response, SoftStep, StepContext};
 use tumble::physics::Obstacle;
@@ -54,7 +55,7 @@ struct Impact {
 fn first_impact(response: Response, e: f64, mu: f64) -> Impact {
     let dt = 1e-3;
     let mut cloth = rope(0.5, Vector3::new(1.0, -2.0, 0.0));
-    let ground = [Obstacle::Ground { height: 0.0 }];
+    let ground = [Obstacle::Ground(Ground { height: 0.0 })];
     let context = context(response, e, mu, dt);
     let loads = gravity();
     let mut contacts = Vec::new();
@@ -123,7 +124,7 @@ fn soft_step_bounces_a_particle_by_e_without_projecting_it() {
 /// Particle 0's height after resting on the ground for 2 s at step dt.
 fn resting_height(response: Response, dt: f64) -> f64 {
     let mut cloth = rope(0.01, Vector3::zeros());
-    let ground = [Obstacle::Ground { height: 0.0 }];
+    let ground = [Obstacle::Ground(Ground { height: 0.0 })];
     let context = context(response, 0.0, 0.5, dt);
     let loads = gravity();
     let mut contacts = Vec::new();

@@ -93,7 +93,7 @@ fn flat_drop(e: f64, mu: f64) -> World {
             },
         }],
         Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(ContactModel {
             response: soft(),
             restitution: e,
@@ -175,7 +175,7 @@ fn a_cube_landing_flat_on_a_resting_cube_leaves_flat() {
     let mut world = World::with_bodies(
         vec![at("low", SIDE / 2.0), at("high", 0.8)],
         Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
-        vec![Obstacle::Ground { height: 0.0 }],
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
         Some(ContactModel {
             response: soft(),
             restitution: 0.5,
