@@ -19,7 +19,7 @@
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
 //! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |
 //! | semismooth Newton in body space (off: [`NEWTON_STAGES`]) | [`newton`] | `solve` (a start for the sweeps) |
-//! | primal–dual interior point in body space (on: [`INTERIOR_STAGES`]) | [`interior`] | `solve` (a start for the sweeps) |
+//! | primal–dual interior point in body space (off: [`INTERIOR_STAGES`], [`INTERIOR_NORMALS`]) | [`interior`] | `solve` (a start for the friction sweeps) |
 //! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
 //! # Many contacts (a face landing flat has 4), in three stages
@@ -236,28 +236,56 @@ pub const ADMM_STAGES: bool = false;
 /// variant). Stage 1 and stage 2 then keep their sweeps' answers as before.
 pub const NEWTON_STAGES: bool = false;
 
-/// Whether a stage whose direct solve declined starts its sweeps from a primal–dual
-/// interior-point solve in body space ([`interior`]), stage 1 and stage 2 (in the place of
-/// Newton and ADMM). It finds the active set of all contacts at once, where Newton's line
-/// search met them one at a time. Measured on this machine under load (issue 35,
-/// 2026-12-06, CPU per step, same binary, off → on):
+/// Whether stage 2 (friction), when its direct solves declined and the sweeps' first burst
+/// ([`SUBSPACE_EVERY`] sweeps, as `subspace::sweep` starts) did not converge, starts the
+/// sweeps that follow from a primal–dual interior-point solve in body space ([`interior`],
+/// in the place of Newton and ADMM). It finds the active set of all contacts at once, where
+/// Newton's line search met them one at a time. A step whose first burst converges is bit
+/// for bit as without it.
 ///
-/// | scene | off | on |
+/// Measured (issue 35, 2026-12-06, one binary, this machine under load; CPU µs per step,
+/// then the work per step in row updates, deterministic: median, worst ÷ median, and the
+/// steps that stopped unconverged at the work budget):
+///
+/// | scene, steps | off | on |
 /// |---|---|---|
-/// | bonded-wall-ball, 60 steps | median 104 ms, 37 unconverged | median 18 ms, 1 unconverged |
-/// | wall-ball, 200 steps | mean 35.4 ms, 150 unconverged | mean 11.0 ms, 27 unconverged |
-/// | dominoes16, 1500 steps | mean 1156 µs, worst work ×167 the median | 249 µs, ×68 |
-/// | dominoes, 1500 steps | mean 294 µs, worst work ×181 | 87 µs, ×20.5 |
+/// | dominoes, 3000 | 168 µs; 1027, ×181, 5 | 98 µs; 1027, ×83, 2 |
+/// | dominoes16, 3000 | 1113 µs; 2432, ×239, 10 | 338 µs; 2976, ×119, 0 |
+/// | wall, 600 | 2669 µs; 1776, ×841, 0 | 3343 µs; 1776, ×2775, 0 |
+/// | wall-ball, 600 | 20.6 ms; 476 263, ×10.2, 299 | 5.4 ms; 29 037, ×76, 59 |
+/// | bonded-wall-ball, 600 | 74.7 ms; 1 853 379, ×3.6, 568 | 17.1 ms; 76 220, ×39, 187 |
+/// | knife-wall, 600 | 107 ms; 2 562 799, ×1.0, 521 | 8.2 ms; 96 295, ×28, 23 |
 ///
-/// The stack and the pyramid never reach it (their direct solves answer): their md5s are
-/// unchanged. **Off** all the same: switched on, the sweeps converge from its answers to
-/// the same tolerance, but where the answer is not unique (redundant contacts) they end on
-/// another one, and the outcomes move: lesson 41's wall no longer stands (brick c0b1 still
-/// moving at 2.8 s), lesson 37's hit of d5 moves 0.671 → 0.672 s, the last of
-/// `tests/physics/dominoes.rs`' row lands 11.5 mm up instead of ≤ 10 mm, and lesson walk
-/// snapshots change. Why the wall stops standing is not yet understood (the next step: the
-/// minimum-norm choice among the answers, as the direct solves make it, before the sweeps).
+/// stack-40 and pyramid-20 never reach it (their direct solves answer): the same work, and
+/// the stack-10 and pyramid-10 md5s are unchanged. The walls' worst steps cost 2–2.5× less
+/// work (the `wall`'s one worst step 3.3× more); their ratios grow because the median
+/// falls 16–27×. Running it without the burst first (every declined stage 2) was a little
+/// faster on the dominoes (70 and 281 µs, ×78 and ×55) but left lesson 41's wall moving at
+/// 2.8 s (c2b1 pushed along by the ball), lesson 37's hit of d5 one step late and the row's
+/// last domino 11.5 mm up. **Off** all the same, until these are settled: switched on, every
+/// `tests/physics` test passes (the last domino lies flat), lesson 37's hits and lesson 41's
+/// claims hold (the wall lies still at 2.8 s), but
+///
+/// - lesson 37's "rises after the landing" reads 1.31e-3 J against 1.63e-3 ± 5e-5 (the
+///   position step lifts the leaning row less);
+/// - lesson 15's walk snapshot moves by round-off: the stack's tangential contact force
+///   8e-11 → 1.3e-8 N, its x 0 → 1e-14 m, and the corners' shares of each face's load (not
+///   unique on four coplanar corners) differ;
+/// - the sliding block of `tests/app`'s energy bars drifts 5.9e-12 m sideways and turns
+///   1.9e-11 rad (0 before: Coulomb's answer is straight);
+/// - the dominoes md5 changes.
+///
+/// The sweeps converge from its answers to the same tolerance; where the answer is not
+/// unique (redundant contacts) they end on another one, and a chaotic fall carries the
+/// difference.
 pub const INTERIOR_STAGES: bool = false;
+
+/// Whether stage 1 (the normals), when its direct solve declined, starts its sweeps from
+/// the interior-point solve too. Off: measured with it on stage 1 alone, wall-ball's median
+/// work per step doubles (476 263 → 1 025 380 row updates) and its unconverged steps rise
+/// (299 → 450 of 600); on both stages wall-ball's median is 163 782 against 29 037 on
+/// stage 2 alone. The dominoes' stage 1 rarely declines (4 steps in lesson 37).
+pub const INTERIOR_NORMALS: bool = false;
 
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
@@ -399,6 +427,30 @@ impl Direct {
         if outcome.taken {
             counters.interior += 1;
         }
+    }
+
+    /// Stage 2 after its direct solves declined: the sweeps' first burst
+    /// ([`SUBSPACE_EVERY`] sweeps, as `subspace::sweep` starts), and only if it did not
+    /// converge an interior-point solve ([`Direct::interior`]) as the start of the sweeps
+    /// that follow; true when the burst converged (the stage is solved).
+    fn interior_after_burst(
+        &mut self,
+        rows: &mut [Row],
+        directions: &[[Axis; 2]],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        counters: &mut Counters,
+    ) -> bool {
+        let burst = self.sweeps_left(rows.len(), SUBSPACE_EVERY);
+        let (converged, sweeps, residual) =
+            friction::sweep(rows, directions, motions, tolerance, burst);
+        self.work += sweeps * rows.len() as u64;
+        self.residual = residual;
+        counters.friction_sweeps += sweeps;
+        if !converged {
+            self.interior(rows, directions, motions, tolerance, counters);
+        }
+        converged
     }
 
     /// Notes a stage that ended unconverged with `residual`.
@@ -1008,7 +1060,13 @@ fn stages(
         if !solved {
             friction::warm_start(rows, tangent_directions, motions);
             if INTERIOR_STAGES {
-                buffers_direct.interior(rows, tangent_directions, motions, tolerance, counters);
+                solved = buffers_direct.interior_after_burst(
+                    rows,
+                    tangent_directions,
+                    motions,
+                    tolerance,
+                    counters,
+                );
             } else if NEWTON_STAGES {
                 buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
             } else if large && ADMM_STAGES {
@@ -1194,7 +1252,7 @@ fn inelastic_stage(
         } else {
             counters.declined += 1;
             normal::warm_start(rows, motions);
-            if INTERIOR_STAGES {
+            if INTERIOR_NORMALS {
                 buffers_direct.interior(rows, &[], motions, tolerance, counters);
             } else if NEWTON_STAGES {
                 buffers_direct.newton(rows, &[], motions, tolerance, counters);
