@@ -677,12 +677,7 @@ impl World {
         now.cloth_attach_loads
             .resize(now.cloths.0.len(), [Vector3::zeros(); 2]);
         for (k, cloth) in now.cloths.0.iter_mut().enumerate() {
-            // A response whose particle contacts cannot be ties (`collision::particle`)
-            // leaves the implicit cloth's velocity half untied: its contacts follow it below.
-            if cloth.integrator == ClothIntegrator::ImplicitEuler
-                && self.contact.is_some()
-                && context.response.particle().ties()
-            {
+            if cloth.integrator == ClothIntegrator::ImplicitEuler && self.contact.is_some() {
                 // Contacts (and attachments) inside backward Euler's solve (`cloth::ties`).
                 let scene = TiedScene {
                     loads,
@@ -707,6 +702,25 @@ impl World {
                 if tied.energy_taken != 0.0 {
                     now.ledger.book_contact(tied.energy_taken, 0.0);
                 }
+                if !context.response.particle().ties() {
+                    // A response whose particle contacts are not ties (`collision::particle`):
+                    // the solve held the attachments only, its contacts act after it, as an
+                    // explicit cloth's.
+                    let passes = VelocityPasses {
+                        obstacles: &self.obstacles,
+                        bodies: &self.bodies,
+                        start: &now.before,
+                        context,
+                    };
+                    let counts = passes.run(
+                        cloth,
+                        &mut now.states,
+                        &mut self.particle_contacts,
+                        &mut now.ledger,
+                    );
+                    now.cloth_obstacle_contacts[k] = [counts[0], 0];
+                    now.cloth_body_contacts[k] = counts[1];
+                }
                 let lost = cloth.advance_positions(loads, self.dt);
                 now.ledger.drag_work -= lost.damping + lost.drag;
                 let e = cloth_energy(cloth, loads);
@@ -715,23 +729,27 @@ impl World {
                 continue;
             }
             cloth.velocity_step(loads, self.dt);
+            let passes = VelocityPasses {
+                obstacles: &self.obstacles,
+                bodies: if self.contact.is_some() {
+                    &self.bodies
+                } else {
+                    &[]
+                },
+                start: &now.before,
+                context,
+            };
+            let counts = passes.run(
+                cloth,
+                &mut now.states,
+                &mut self.particle_contacts,
+                &mut now.ledger,
+            );
             if !self.obstacles.is_empty() {
-                let report =
-                    cloth.contact_velocities(&self.obstacles, context, &mut self.particle_contacts);
-                now.cloth_obstacle_contacts[k] = [report.contacts, 0];
-                let taken = report.energy_taken;
-                if taken != 0.0 {
-                    now.ledger.book_contact(taken, 0.0);
-                }
+                now.cloth_obstacle_contacts[k] = [counts[0], 0];
             }
             if self.contact.is_some() && !self.bodies.is_empty() {
-                let approach =
-                    approach_bodies(cloth, &self.bodies, &now.before, &mut now.states, context);
-                // Counted with the collide phase's own (`cloth_body_contacts`).
-                now.cloth_body_contacts[k] = approach.contacts;
-                if approach.energy_taken != 0.0 {
-                    now.ledger.book_contact(approach.energy_taken, 0.0);
-                }
+                now.cloth_body_contacts[k] = counts[1];
             }
             if let Some(list) = self.cloth_attachments.get(k).filter(|l| !l.is_empty()) {
                 // An explicit cloth's attachments: impulses after the velocity half.
@@ -1716,5 +1734,45 @@ fn fresh(
         joint_loads: Vec::new(),
         joint_drives: Vec::new(),
         collide_moves: Vec::new(),
+    }
+}
+
+/// A cloth's contact passes on velocities (`cloth::contact`, `cloth_coupling::explicit`),
+/// between its velocity half and its positions' update: against the obstacles, then the
+/// bodies (none: no pass). Books each pass's energy as contact energy.
+struct VelocityPasses<'a> {
+    obstacles: &'a [Obstacle],
+    bodies: &'a [Body],
+    /// The bodies' states at the start of the step.
+    start: &'a [State],
+    context: &'a StepContext,
+}
+
+impl VelocityPasses<'_> {
+    /// Runs the passes; returns the obstacle and body contacts (counted with the collide
+    /// phase's own).
+    fn run(
+        &self,
+        cloth: &mut Cloth,
+        states: &mut [State],
+        found: &mut Vec<ParticleContact>,
+        ledger: &mut EnergyLedger,
+    ) -> [usize; 2] {
+        let mut counts = [0, 0];
+        if !self.obstacles.is_empty() {
+            let report = cloth.contact_velocities(self.obstacles, self.context, found);
+            counts[0] = report.contacts;
+            if report.energy_taken != 0.0 {
+                ledger.book_contact(report.energy_taken, 0.0);
+            }
+        }
+        if !self.bodies.is_empty() {
+            let approach = approach_bodies(cloth, self.bodies, self.start, states, self.context);
+            counts[1] = approach.contacts;
+            if approach.energy_taken != 0.0 {
+                ledger.book_contact(approach.energy_taken, 0.0);
+            }
+        }
+        counts
     }
 }

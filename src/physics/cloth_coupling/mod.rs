@@ -8,8 +8,8 @@
 //!   not used, and the collide phase's push-out only handles what is still more than
 //!   [`SLOP`] inside after the positions moved (nothing, on lesson 16). This is the path
 //!   under a response whose particle law ties (`collision::particle`: `impulse`); under
-//!   the others (`seed`, `soft-step`) the cloth's velocity half is solved without ties and
-//!   its contacts and attachments take the explicit passes below.
+//!   the others (`seed`, `soft-step`) the solve holds the attachments only and the contacts
+//!   take the explicit passes below after it.
 //! - `symplectic-euler`: two passes for contacts ([`explicit`]: on velocities, then what is
 //!   left inside after the positions moved), and [`hold_attachments`] for its attachments
 //!   (impulses after the velocity half, one small solve per body).

@@ -232,6 +232,11 @@ impl TiedScene<'_> {
         let (bodies, dt) = (self.bodies, self.context.dt);
         let gravity = self.loads.gravity.unwrap_or_else(Vector3::zeros);
         let mut candidates: Vec<Candidate> = Vec::new();
+        // A response whose particle contacts are not ties (`collision::particle`): the solve
+        // holds the attachments only, the contacts act after it (`World`'s velocity passes).
+        if !self.context.response.particle().ties() {
+            return candidates;
+        }
         // A broad phase: each body's reach at the fastest free particle's speed bounds every
         // particle's reach below (sqrt, + and × by positive numbers round monotonically; a NaN
         // speed makes it NaN, which rejects nothing), so a particle farther than it from every

@@ -18,9 +18,8 @@
 //! [`ParticleLaw::ties`] (a contact there is a tie: the particle ends on the surface,
 //! released when it pulls, sliding out of its cone); a law that cannot be a tie (a momentum
 //! flip, a spring whose target depends on the velocity the solve finds) leaves the implicit
-//! cloth's velocity half without contact ties, and its contacts then act through the two
-//! passes above, as for an explicit cloth (its attachments by impulses after the velocity
-//! half, `cloth_coupling::hold_attachments`).
+//! solve holding the attachments only, and its contacts then act through the two passes
+//! above, after the solve, as for an explicit cloth.
 //!
 //! # The laws
 //!

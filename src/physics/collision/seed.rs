@@ -128,8 +128,8 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
 /// opposite impulse there, so momentum is kept), is reversed and scaled by
 /// [`MOMENTUM_FACTOR`]: `u ← −0.4 u`, its tangential part too. A particle has no angular
 /// momentum, so the report's `L += (pₖ − x₀) × (−F)` has nothing to kick. Not a tie: an
-/// `implicit-euler` cloth under `seed` steps its velocity half without contact ties, and
-/// this acts after it, as for an explicit cloth.
+/// `implicit-euler` cloth's solve under `seed` holds its attachments only, and this acts
+/// after it, as for an explicit cloth.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Reversed;
 

@@ -33,8 +33,8 @@
 //! # The implicit cloth
 //!
 //! Not a tie: the soft row's target depends on the velocity the linear solve is finding, so
-//! an `implicit-euler` cloth steps its velocity half without contact ties and these passes
-//! follow it, as for an explicit cloth.
+//! an `implicit-euler` cloth's solve holds its attachments only and these passes follow it,
+//! as for an explicit cloth.
 
 use super::super::particle::{rigid_bounce, rigid_collide_target, Hit, ParticleLaw, Touch};
 use super::super::StepContext;
