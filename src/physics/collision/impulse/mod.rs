@@ -976,25 +976,7 @@ fn stages(
     let buffers_direct: &mut Direct = buffers_direct;
     let counters: &mut Counters = counters;
 
-    // The joint rows of the clusters these rows touch, in an impact (none without joints,
-    // or at rest; with friction, at most `JOINED_FRICTION_ROWS` and `JOINED_FRICTION_CONTACTS`:
-    // [`joined`]).
-    if rows.iter().any(|r| r.approach < -bounce_speed) {
-        let most = if friction == 0.0 {
-            usize::MAX
-        } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
-            0
-        } else {
-            joined::JOINED_FRICTION_ROWS
-        };
-        joined.select(
-            rows.iter()
-                .flat_map(|r| r.normal.bodies().into_iter().flatten()),
-            most,
-        );
-    } else if friction > 0.0 {
-        joined.select(std::iter::empty(), 0);
-    }
+    select_joints(rows, friction, bounce_speed, joined);
 
     // Stage 1: inelastic normal impulses, λ ≥ 0.
     let large = inelastic_stage(rows, motions, tolerance, buffers_direct, counters, joined);
@@ -1103,6 +1085,28 @@ fn stages(
         kinetic_allowed,
     };
     bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// The joint rows of the clusters `rows` touch, in an impact (none without joints, or at
+/// rest; with friction, at most `JOINED_FRICTION_ROWS` and `JOINED_FRICTION_CONTACTS`:
+/// [`joined`]).
+fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut joined::Joined) {
+    if rows.iter().any(|r| r.approach < -bounce_speed) {
+        let most = if friction == 0.0 {
+            usize::MAX
+        } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
+            0
+        } else {
+            joined::JOINED_FRICTION_ROWS
+        };
+        joined.select(
+            rows.iter()
+                .flat_map(|r| r.normal.bodies().into_iter().flatten()),
+            most,
+        );
+    } else if friction > 0.0 {
+        joined.select(std::iter::empty(), 0);
+    }
 }
 
 /// Stage 2 with the joint rows held ([`joined::Joined::friction`]), within the step's budget;
