@@ -548,11 +548,9 @@ impl Session {
     /// skipped, or why there is none.
     pub fn next_response(&mut self) -> Option<String> {
         match self.world.contact_model().copied() {
-            Some(_) if self.world.body_count() == 0 => Some(
-                "no bodies in this scene: the collision response acts on bodies (particles \
-                 use the restitution and friction)"
-                    .into(),
-            ),
+            Some(_) if self.world.body_count() == 0 && self.world.cloths().is_empty() => {
+                Some("nothing in this scene can touch: no body, no particle".into())
+            }
             Some(mut model) => {
                 // The next response the scene's rules allow (the rules the file and `--response`
                 // pass); one they refuse is skipped, and the notice says why.

@@ -260,17 +260,18 @@ fn cloth_contacts(s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
         return (vec![line(none, "")], counts);
     }
     let (obstacles, bodies) = (!s.obstacles.is_empty(), !s.bodies.is_empty());
+    // The response's particle law says its formulas (`collision::particle`).
+    let [in_obstacle, in_body] = s
+        .contact_model
+        .as_ref()
+        .map_or(Response::Impulse, |m| m.response)
+        .particle()
+        .formulas();
     if obstacles {
-        lines.push(line(
-            "particle in an obstacle: x ← x + depth·n,  v·n ← −(1+e)·v·n if fast, else 0  (+ friction)",
-            "",
-        ));
+        lines.push(line(in_obstacle, ""));
     }
     if bodies {
-        lines.push(line(
-            "particle still in a body: u = v_p − (v_b + ω×r),  j = −(1+e)·uₙ/k,  +J on the particle, −J on the body",
-            "",
-        ));
+        lines.push(line(in_body, ""));
     }
     for view in &s.cloths {
         let [_, pushed] = view.obstacle_contacts;

@@ -43,30 +43,29 @@ fn fields(app: &App, notice: bool) -> Vec<Vec<Span<'static>>> {
         ("dt", format!("{} s", number_plain(s.dt))),
     ]);
     // In compare mode, "A vs B" on the setting the ghost differs by, and only there. The
-    // body settings only when there are bodies, the particle integrator only with cloths.
+    // body integrator only when there are bodies, the response when bodies or particles can
+    // touch (each response has a particle law), the particle integrator only with cloths.
     let bodies = !s.bodies.is_empty();
-    fields.extend(
-        [
-            (
-                "integrator",
-                match comparison {
-                    Some(Comparison::Integrator(i)) => {
-                        format!("{} vs {}{frozen}", s.integrator.name(), i.name())
-                    }
-                    _ => s.integrator.name().to_string(),
-                },
-            ),
-            (
-                "response",
-                match comparison {
-                    Some(Comparison::Response(r)) => format!("{response} vs {}{frozen}", r.name()),
-                    _ => response.to_string(),
-                },
-            ),
-        ]
-        .into_iter()
-        .filter(|_| bodies),
-    );
+    if bodies {
+        fields.push((
+            "integrator",
+            match comparison {
+                Some(Comparison::Integrator(i)) => {
+                    format!("{} vs {}{frozen}", s.integrator.name(), i.name())
+                }
+                _ => s.integrator.name().to_string(),
+            },
+        ));
+    }
+    if bodies || (!s.cloths.is_empty() && s.contact_model.is_some()) {
+        fields.push((
+            "response",
+            match comparison {
+                Some(Comparison::Response(r)) => format!("{response} vs {}{frozen}", r.name()),
+                _ => response.to_string(),
+            },
+        ));
+    }
     if let Some(own) = cloth_integrators(app) {
         fields.push((
             "cloth",

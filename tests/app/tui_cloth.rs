@@ -118,6 +118,30 @@ fn a_sheet_alone_at_120x40_and_80x24() {
     insta::assert_snapshot!("sheet_after_integrate_120x40", screen_text(&app, 120, 40));
 }
 
+/// `c` changes how particles touch too (each response has a particle law): in a scene of
+/// cloths only it cycles the response, the status bar names it and the collide strip shows
+/// that law's formula.
+#[test]
+fn in_a_cloth_scene_c_changes_the_particles_contact_law_and_the_strip_says_which() {
+    let mut app = sheet();
+    keys(&mut app, "nnnn");
+    let strip = |app: &App| screen_text(app, 120, 40);
+    let first = strip(&app);
+    assert!(first.contains("response impulse"), "{first}");
+    assert!(first.contains("x ← x + depth·n"), "{first}");
+    keys(&mut app, "c");
+    let soft = strip(&app);
+    assert!(soft.contains("response soft-step"), "{soft}");
+    assert!(soft.contains("soft row u'"), "{soft}");
+    assert!(!soft.contains("x ← x + depth·n"), "{soft}");
+    keys(&mut app, "c");
+    let seed = strip(&app);
+    assert!(seed.contains("response seed"), "{seed}");
+    assert!(seed.contains("v ← −0.4·v"), "{seed}");
+    keys(&mut app, "c");
+    assert!(strip(&app).contains("response impulse"));
+}
+
 #[test]
 fn a_cube_over_a_trampoline_at_120x40_and_80x24() {
     let mut app = trampoline();

@@ -99,6 +99,10 @@ pub trait ParticleLaw {
     /// Whether an `implicit-euler` cloth holds these contacts inside its linear solve (as
     /// ties); if not, they act through the two passes after its velocity half.
     fn ties(&self) -> bool;
+
+    /// The law in one line each, as the loop strip shows it: a particle in an obstacle, and
+    /// a particle in a body.
+    fn formulas(&self) -> [&'static str; 2];
 }
 
 /// The rigid pass 2 against an obstacle (`cloth::contact`): the normal row aiming at

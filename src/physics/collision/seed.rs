@@ -166,6 +166,13 @@ impl ParticleLaw for Reversed {
     fn ties(&self) -> bool {
         false
     }
+
+    fn formulas(&self) -> [&'static str; 2] {
+        [
+            "particle in an obstacle: x ← x + depth²·n,  v ← −0.4·v  (the whole velocity, as the report's bodies)",
+            "particle in a body: u = v_p − (v_b + ω×r),  u ← −0.4·u,  +J on the particle, −J on the body",
+        ]
+    }
 }
 
 #[cfg(test)]

@@ -63,4 +63,11 @@ impl ParticleLaw for Rigid {
     fn ties(&self) -> bool {
         true
     }
+
+    fn formulas(&self) -> [&'static str; 2] {
+        [
+            "particle in an obstacle: x ← x + depth·n,  v·n ← −(1+e)·v·n if fast, else 0  (+ friction)",
+            "particle still in a body: u = v_p − (v_b + ω×r),  j = −(1+e)·uₙ/k,  +J on the particle, −J on the body",
+        ]
+    }
 }

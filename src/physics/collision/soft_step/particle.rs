@@ -105,4 +105,11 @@ impl ParticleLaw for Soft {
     fn ties(&self) -> bool {
         false
     }
+
+    fn formulas(&self) -> [&'static str; 2] {
+        [
+            "particle in an obstacle: soft row u' = u + a₂a₃(ω·d/a₁ − u), not pushed out; v·n ← −e·v·n if fast, else 0 (+ friction)",
+            "particle in a body: the same soft row on u = v_p − (v_b + ω×r),  +J on the particle, −J on the body",
+        ]
+    }
 }
