@@ -171,7 +171,19 @@ fn main() {
         v.sort_by(f64::total_cmp);
         (v[v.len() / 2], v[v.len() - 1])
     };
+    // The worst step after the first (issue 35's aim excludes step 1) and where it is.
+    let (worst_step, worst_after_first) = works
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, &w)| (i + 1, w as f64))
+        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
     let (work_median, work_max) = median(&mut works.iter().map(|&w| w as f64).collect());
+    println!(
+        "work per step after step 1 (issue 35: ≤ 20× median): max {worst_after_first} (×{:.1} median) at step {worst_step}; first step {}",
+        worst_after_first / work_median.max(1.0),
+        works.first().copied().unwrap_or_default()
+    );
     let (time_median, time_max) = median(&mut times);
     println!(
         "work per step (row updates): median {work_median} max {work_max} (×{:.1}); time per step median {time_median:.1} µs max {time_max:.1} µs (×{:.1}); unconverged steps {}",
