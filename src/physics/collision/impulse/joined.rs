@@ -63,7 +63,7 @@ use nalgebra::Vector3;
 /// Most joint rows an impact *with friction* takes into its solve (the clusters its contacts
 /// touch); more, and the stage is the contacts' alone with `joints::contact::hold` after it,
 /// as before. The friction stage with the joints is a projected Gauss–Seidel over columns
-/// that reach the whole cluster ([`Joined::friction`]): a bob, a door, a pendulum pair take
+/// that reach the whole cluster (`Joined::friction`): a bob, a door, a pendulum pair take
 /// a sweep or a few; a chain of 10 links landing (27 rows), measured, took hundreds of
 /// sweeps a step, 2000 on some (the joints couple every contact of the chain), and 2.2× the
 /// instructions of the whole run, with its active-set start settling in under 24 rounds on
