@@ -1333,3 +1333,26 @@ fn inelastic_stage(
     }
     large
 }
+
+#[cfg(test)]
+mod converging_tests {
+    use super::{converging, INTERIOR_SKIP};
+
+    /// Linear convergence r_{k+n} = r_k ρⁿ: the sweeps still needed are ln(tol/r)/ln ρ.
+    #[test]
+    fn sweeps_about_to_converge_are_told_from_slow_and_stalled_ones() {
+        // With INTERIOR_SKIP = 8 sweeps:
+        assert!((INTERIOR_SKIP - 8.0).abs() < 1e-12);
+        // ρ = 0.1 a sweep (1e-4 → 1e-8 in 4): 2 more sweeps to 1e-10.
+        assert!(converging(1e-4, 1e-8, 4, 1e-10));
+        // ρ = 0.5 (×1/16 in 4): 1e-8 → 1e-8·0.5⁸ in 8 more, → 1e-8·0.5⁹ in 9.
+        assert!(converging(1.6e-7, 1e-8, 4, 1e-8 * 0.5f64.powi(8) * 1.001));
+        assert!(!converging(1.6e-7, 1e-8, 4, 1e-8 * 0.5f64.powi(9)));
+        // ρ = 0.9: about 44 more sweeps.
+        assert!(!converging(1e-8 / 0.9f64.powi(4), 1e-8, 4, 1e-10));
+        // Stalled, rising, or no sweeps: never.
+        assert!(!converging(1e-8, 1e-8, 4, 1e-10));
+        assert!(!converging(1e-9, 1e-8, 4, 1e-10));
+        assert!(!converging(1e-4, 1e-8, 0, 1e-10));
+    }
+}
