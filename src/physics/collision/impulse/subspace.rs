@@ -56,9 +56,24 @@ pub(super) fn sweep(
     buffers: &mut Direct,
     counters: &mut Counters,
 ) -> (bool, u64, f64) {
+    sweep_after(rows, directions, motions, tolerance, (buffers, counters), 0)
+}
+
+/// [`sweep`] after its first burst of `swept` sweeps already ran (and did not converge; 0:
+/// none ran): the subspace search first, then on as [`sweep`], bit for bit; the sweeps
+/// counted are those run here.
+pub(super) fn sweep_after(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    tolerance: f64,
+    (buffers, counters): (&mut Direct, &mut Counters),
+    swept: u64,
+) -> (bool, u64, f64) {
     let cap = MAX_SWEEPS as u64;
     let normals_only = directions.is_empty();
-    let mut total = 0;
+    let mut total = swept;
+    let mut skip_burst = swept > 0;
     let rows_count = rows.len();
     let mut subspace = true;
     let mut steps_left = if normals_only {
@@ -68,26 +83,28 @@ pub(super) fn sweep(
     };
     loop {
         subspace &= steps_left > 0 && !buffers.spent();
-        let burst = if subspace { SUBSPACE_EVERY } else { cap }.min(cap - total);
-        // The first burst always runs; later ones only within the budget.
-        let burst = if total == 0 {
-            buffers.sweeps_left(rows_count, burst)
-        } else {
-            burst.min(buffers.budget.saturating_sub(buffers.work) / rows_count.max(1) as u64)
-        };
-        if burst == 0 {
-            return (false, total, buffers.residual);
-        }
-        let (converged, sweeps, residual) = if normals_only {
-            normal::sweep(rows, motions, tolerance, burst)
-        } else {
-            friction::sweep(rows, directions, motions, tolerance, burst)
-        };
-        buffers.work += sweeps * rows_count as u64;
-        buffers.residual = residual;
-        total += sweeps;
-        if converged || total >= cap {
-            return (converged, total, residual);
+        if !std::mem::take(&mut skip_burst) {
+            let burst = if subspace { SUBSPACE_EVERY } else { cap }.min(cap - total);
+            // The first burst always runs; later ones only within the budget.
+            let burst = if total == 0 {
+                buffers.sweeps_left(rows_count, burst)
+            } else {
+                burst.min(buffers.budget.saturating_sub(buffers.work) / rows_count.max(1) as u64)
+            };
+            if burst == 0 {
+                return (false, total - swept, buffers.residual);
+            }
+            let (converged, sweeps, residual) = if normals_only {
+                normal::sweep(rows, motions, tolerance, burst)
+            } else {
+                friction::sweep(rows, directions, motions, tolerance, burst)
+            };
+            buffers.work += sweeps * rows_count as u64;
+            buffers.residual = residual;
+            total += sweeps;
+            if converged || total >= cap {
+                return (converged, total - swept, residual);
+            }
         }
         // An active-set search: a step cut short by a normal reaching 0 or a sticking disk
         // reaching its edge changes the active set; solve again on the new one.
