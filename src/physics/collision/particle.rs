@@ -85,16 +85,25 @@ pub trait ParticleLaw {
     /// Pass 2: how far a particle found `depth` inside is moved out along the normal, m.
     fn push_out(&self, depth: f64) -> f64;
 
-    /// Pass 2 against an obstacle: the particle's velocity after (None: unchanged).
-    fn bounce_static(&self, hit: &Hit, context: &StepContext) -> Option<Vector3<f64>>;
+    /// Pass 2 against an obstacle: the particle's velocity after (None: unchanged). By
+    /// default the rigid row ([`rigid_bounce`]).
+    fn bounce_static(&self, hit: &Hit, context: &StepContext) -> Option<Vector3<f64>> {
+        rigid_bounce(hit, context)
+    }
 
     /// Pass 2 against a body: the relative normal velocity the row aims at, for a particle
-    /// meeting it at u_n = `normal_velocity`.
-    fn collide_target_body(&self, normal_velocity: f64, context: &StepContext) -> f64;
+    /// meeting it at u_n = `normal_velocity`. By default the rigid row's
+    /// ([`rigid_collide_target`]).
+    fn collide_target_body(&self, normal_velocity: f64, context: &StepContext) -> f64 {
+        rigid_collide_target(normal_velocity, context)
+    }
 
     /// Both passes against a body: solves one body's particle rows (the body is solver body
-    /// 0), Coulomb friction μ = `friction` where the law has friction.
-    fn solve_body(&self, rows: &mut ParticleContacts, friction: f64);
+    /// 0), Coulomb friction μ = `friction` where the law has friction. By default the rows'
+    /// own solve (normal rows and Coulomb disks).
+    fn solve_body(&self, rows: &mut ParticleContacts, friction: f64) {
+        rows.solve(friction);
+    }
 
     /// Whether an `implicit-euler` cloth holds these contacts inside its linear solve (as
     /// ties); if not, they act through the two passes after its velocity half.

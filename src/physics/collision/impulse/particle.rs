@@ -11,10 +11,8 @@
 //! implicit cloth     ties inside the linear solve (plastic: the sheet's springs rebound)
 //! ```
 
-use super::super::particle::{rigid_bounce, rigid_collide_target, Hit, ParticleLaw, Touch};
+use super::super::particle::{ParticleLaw, Touch};
 use super::super::StepContext;
-use crate::physics::constraints::particle_contact::ParticleContacts;
-use nalgebra::Vector3;
 
 /// `impulse`'s particle law (module doc).
 #[derive(Debug, Clone, Copy, Default)]
@@ -46,18 +44,6 @@ impl ParticleLaw for Rigid {
 
     fn push_out(&self, depth: f64) -> f64 {
         depth
-    }
-
-    fn bounce_static(&self, hit: &Hit, context: &StepContext) -> Option<Vector3<f64>> {
-        rigid_bounce(hit, context)
-    }
-
-    fn collide_target_body(&self, normal_velocity: f64, context: &StepContext) -> f64 {
-        rigid_collide_target(normal_velocity, context)
-    }
-
-    fn solve_body(&self, rows: &mut ParticleContacts, friction: f64) {
-        rows.solve(friction);
     }
 
     fn ties(&self) -> bool {

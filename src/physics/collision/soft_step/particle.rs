@@ -36,11 +36,9 @@
 //! an `implicit-euler` cloth's solve holds its attachments only and these passes follow it,
 //! as for an explicit cloth.
 
-use super::super::particle::{rigid_bounce, rigid_collide_target, Hit, ParticleLaw, Touch};
+use super::super::particle::{ParticleLaw, Touch};
 use super::super::StepContext;
 use super::{Softness, SoftStep, MAX_PUSH};
-use crate::physics::constraints::particle_contact::ParticleContacts;
-use nalgebra::Vector3;
 
 /// `soft-step`'s particle law (module doc), with the scene's parameters.
 #[derive(Debug, Clone, Copy)]
@@ -88,18 +86,6 @@ impl ParticleLaw for Soft {
 
     fn push_out(&self, _depth: f64) -> f64 {
         0.0
-    }
-
-    fn bounce_static(&self, hit: &Hit, context: &StepContext) -> Option<Vector3<f64>> {
-        rigid_bounce(hit, context)
-    }
-
-    fn collide_target_body(&self, normal_velocity: f64, context: &StepContext) -> f64 {
-        rigid_collide_target(normal_velocity, context)
-    }
-
-    fn solve_body(&self, rows: &mut ParticleContacts, friction: f64) {
-        rows.solve(friction);
     }
 
     fn ties(&self) -> bool {
