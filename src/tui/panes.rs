@@ -15,7 +15,7 @@ use super::app::App;
 use super::layout::{Areas, ScreenLayout};
 use super::{lesson_pane, loop_strip, panels, projection};
 use ratatui::buffer::Buffer;
-use ratatui::layout::Rect;
+use ratatui::layout::{Constraint, Direction, Layout, Rect};
 
 /// One box of the loop view: a row of [`PANES`].
 #[derive(Debug, Clone, Copy)]
@@ -132,46 +132,28 @@ fn split(host: &mut Rect, side: Side, n: u16) -> Option<Rect> {
     if n == 0 || n >= extent {
         return None;
     }
-    let h = *host;
-    let (taken, kept) = match side {
+    let (direction, constraints) = match side {
         Side::Top => (
-            Rect { height: n, ..h },
-            Rect {
-                y: h.y + n,
-                height: h.height - n,
-                ..h
-            },
+            Direction::Vertical,
+            [Constraint::Length(n), Constraint::Fill(1)],
         ),
         Side::Bottom => (
-            Rect {
-                y: h.y + h.height - n,
-                height: n,
-                ..h
-            },
-            Rect {
-                height: h.height - n,
-                ..h
-            },
+            Direction::Vertical,
+            [Constraint::Fill(1), Constraint::Length(n)],
         ),
         Side::Left => (
-            Rect { width: n, ..h },
-            Rect {
-                x: h.x + n,
-                width: h.width - n,
-                ..h
-            },
+            Direction::Horizontal,
+            [Constraint::Length(n), Constraint::Fill(1)],
         ),
         Side::Right => (
-            Rect {
-                x: h.x + h.width - n,
-                width: n,
-                ..h
-            },
-            Rect {
-                width: h.width - n,
-                ..h
-            },
+            Direction::Horizontal,
+            [Constraint::Fill(1), Constraint::Length(n)],
         ),
+    };
+    let [first, second] = Layout::new(direction, constraints).areas(*host);
+    let (taken, kept) = match side {
+        Side::Top | Side::Left => (first, second),
+        Side::Bottom | Side::Right => (second, first),
     };
     *host = kept;
     Some(taken)
