@@ -80,6 +80,9 @@ fn against_obstacles(
         };
         for (obstacle_index, obstacle) in input.obstacles.iter().enumerate() {
             let first = out.len();
+            // B: the obstacle, and its static entry in the solver body table.
+            let against = Against::Obstacle(obstacle_index);
+            let b_end = (against, input.end(against));
             if let (true, Some(shape)) = (round, &body.shape) {
                 points.clear();
                 // A fast round body is swept against a thin obstacle (`sweep`).
@@ -96,15 +99,13 @@ fn against_obstacles(
                             path: sweep::Path::still(&at),
                         };
                         if sweep::swept_rows(&a, &b, margin, points) {
-                            let against = Against::Obstacle(obstacle_index);
-                            out.extend(points.iter().map(|p| row(index, state, against, p, None)));
+                            out.extend(points.iter().map(|p| row(index, state, b_end, p, None)));
                             continue;
                         }
                     }
                 }
                 obstacle.contact(shape, &pose, margin, points);
-                let against = Against::Obstacle(obstacle_index);
-                out.extend(points.iter().map(|p| row(index, state, against, p, None)));
+                out.extend(points.iter().map(|p| row(index, state, b_end, p, None)));
                 continue;
             }
             for (vertex, r0) in body.points_body.iter().enumerate() {
@@ -124,14 +125,8 @@ fn against_obstacles(
                 };
                 out.push(Contact {
                     lever: b - state.position,
-                    ..Contact::new(
-                        index,
-                        Against::Obstacle(obstacle_index),
-                        Feature::Vertex(vertex),
-                        b,
-                        depth,
-                        normal,
-                    )
+                    other: b_end.1,
+                    ..Contact::new(index, against, Feature::Vertex(vertex), b, depth, normal)
                 });
             }
             // No vertex inside: what do faces and edges see?
@@ -141,8 +136,7 @@ fn against_obstacles(
                 obstacle.contact(shape, &pose, margin, points);
                 if !points.is_empty() {
                     out.truncate(first);
-                    let against = Against::Obstacle(obstacle_index);
-                    out.extend(points.iter().map(|p| row(index, state, against, p, None)));
+                    out.extend(points.iter().map(|p| row(index, state, b_end, p, None)));
                 }
             }
         }
@@ -232,7 +226,7 @@ fn between_bodies(
                 out.extend(
                     points
                         .iter()
-                        .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
+                        .map(|p| row(a, sa, (Against::Body(b), b), p, Some(sb))),
                 );
                 continue;
             }
@@ -246,7 +240,7 @@ fn between_bodies(
         out.extend(
             points
                 .iter()
-                .map(|p| row(a, sa, Against::Body(b), p, Some(sb))),
+                .map(|p| row(a, sa, (Against::Body(b), b), p, Some(sb))),
         );
     }
 }
@@ -259,18 +253,19 @@ fn pose_of(state: &State) -> Pose {
     }
 }
 
-/// A row from a point of the contact geometry: A is body `a` (at `state`), B the other body's
-/// state if it is one.
+/// A row from a point of the contact geometry: A is body `a` (at `state`), B is `against`
+/// with its solver body `end` (`CollideInput::end`), `other` B's state if it is a body.
 fn row(
     a: usize,
     state: &State,
-    against: Against,
+    (against, end): (Against, usize),
     p: &ContactPoint,
     other: Option<&State>,
 ) -> Contact {
     Contact {
         lever: p.point - state.position,
         lever_other: other.map_or_else(nalgebra::Vector3::zeros, |s| p.point - s.position),
+        other: end,
         ..Contact::new(
             a,
             against,

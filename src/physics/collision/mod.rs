@@ -98,6 +98,11 @@ pub struct Contact {
     pub body: usize,
     /// B: an obstacle or another body.
     pub against: Against,
+    /// B's entry in the solver body table ([`CollideInput::end`]): another body's own index,
+    /// or for obstacle o the static entry `bodies + o` after the world's bodies (1/M = 0,
+    /// I⁻¹ = 0, at rest). The solvers reach B through it alone, so a row against an obstacle
+    /// and one against a fixed body take the same path.
+    pub other: usize,
     /// The features that meet.
     pub feature: Feature,
     /// Contact point (world), m.
@@ -127,7 +132,8 @@ pub struct Contact {
 
 impl Contact {
     /// A contact of body A against B at a point, before any response: no velocity, no
-    /// impulse yet.
+    /// impulse yet. B's solver body `other` is another body's index; for an obstacle it is
+    /// left unset (`usize::MAX`) and detection sets it ([`CollideInput::end`]).
     pub fn new(
         body: usize,
         against: Against,
@@ -139,6 +145,10 @@ impl Contact {
         Contact {
             body,
             against,
+            other: match against {
+                Against::Body(b) => b,
+                Against::Obstacle(_) => usize::MAX,
+            },
             feature,
             point,
             depth,
@@ -186,6 +196,22 @@ pub struct CollideInput<'a> {
     /// Recorded contact rows: when given, detection is skipped and these are the step's rows
     /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
     pub recorded: Option<&'a [Contact]>,
+}
+
+impl CollideInput<'_> {
+    /// B's entry in the solver body table: the world's bodies first, in order, then one static
+    /// solver body per obstacle (`SolverBody::fixed_thing`), in the scene's order.
+    ///
+    /// ```text
+    /// Body(j)      → j
+    /// Obstacle(o)  → bodies + o
+    /// ```
+    pub fn end(&self, against: Against) -> usize {
+        match against {
+            Against::Body(b) => b,
+            Against::Obstacle(o) => self.bodies.len() + o,
+        }
+    }
 }
 
 /// The energy of the bodies before and after a response, measured as [`energy`] measures it

@@ -109,6 +109,7 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
             lever,
             normal_velocity: point_velocity.dot(&hit.normal),
             impulse: state.linear_momentum - momentum_before,
+            other: input.end(Against::Obstacle(index)),
             ..Contact::new(
                 0,
                 Against::Obstacle(index),

@@ -65,12 +65,8 @@ pub(super) fn sliding(
     motions: &[SolverBody],
     tolerance: f64,
 ) -> bool {
-    let a = &motions[contact.body];
-    let mut u = a.v + a.omega.cross(&contact.lever);
-    if let Some(b) = contact.other_body() {
-        let m = &motions[b];
-        u -= m.v + m.omega.cross(&contact.lever_other);
-    }
+    let (a, b) = (&motions[contact.body], &motions[contact.other]);
+    let u = a.v + a.omega.cross(&contact.lever) - (b.v + b.omega.cross(&contact.lever_other));
     row.lambda > 0.0
         && (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
 }

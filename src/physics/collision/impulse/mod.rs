@@ -551,12 +551,13 @@ pub struct Counters {
     pub interior_steps: u64,
 }
 
-/// The axis d at a contact: +d on A at its lever, −d on B (if any, not fixed) at its own.
+/// The axis d at a contact: +d on A at its lever, −d on B at its own (B's solver body
+/// `other`; a static one, a fixed body or an obstacle, is no end: [`Axis::new`]).
 fn axis_at(d: Vector3<f64>, contact: &Contact, motions: &[SolverBody]) -> Axis {
     Axis::new(
         d,
         (contact.body, &contact.lever),
-        contact.other_body().map(|b| (b, &contact.lever_other)),
+        Some((contact.other, &contact.lever_other)),
         motions,
     )
 }
@@ -787,9 +788,7 @@ fn mark_advanced(
         pushed.resize(advanced.len(), false);
         for c in contacts.iter().filter(|c| c.impulse != Vector3::zeros()) {
             pushed[c.body] = true;
-            if let Some(o) = c.other_body() {
-                pushed[o] = true;
-            }
+            pushed[c.other] = true;
         }
         for (advance, pushed) in advanced.iter_mut().zip(&pushed) {
             *advance &= *pushed;
@@ -821,8 +820,9 @@ fn prepare_joints(
     scratch.joined.prepare(joint_rows, motions, joints);
 }
 
-/// Every body's velocities into `motions`, with I⁻¹_world exactly as the derive phase (and
-/// the energy panel) computes it.
+/// The solver body table (`CollideInput::end`): every body's velocities, with I⁻¹_world
+/// exactly as the derive phase (and the energy panel) computes it, then one static entry per
+/// obstacle (1/M = 0, I⁻¹ = 0, at rest), so that a row reaches B the same way whatever B is.
 fn solver_bodies(input: &CollideInput, states: &[State], motions: &mut Vec<SolverBody>) {
     motions.clear();
     motions.extend(input.bodies.iter().zip(states.iter()).map(|(body, state)| {
@@ -836,6 +836,7 @@ fn solver_bodies(input: &CollideInput, states: &[State], motions: &mut Vec<Solve
             touched: false,
         }
     }));
+    motions.extend(input.obstacles.iter().map(|_| SolverBody::fixed_thing()));
 }
 
 /// The round-off guard (module doc): K is quadratic in (P, L), so scaling the touched
@@ -863,14 +864,11 @@ fn round_off_guard(
     after
 }
 
-/// The relative velocity of a contact point along its normal (A relative to B).
+/// The relative velocity of a contact point along its normal (A relative to B; a static B,
+/// at rest, subtracts exact zeros).
 fn relative_velocity(c: &Contact, motions: &[SolverBody]) -> f64 {
-    let a = &motions[c.body];
-    let mut u = a.v + a.omega.cross(&c.lever);
-    if let Some(b) = c.other_body() {
-        let m = &motions[b];
-        u -= m.v + m.omega.cross(&c.lever_other);
-    }
+    let (a, b) = (&motions[c.body], &motions[c.other]);
+    let u = a.v + a.omega.cross(&c.lever) - (b.v + b.omega.cross(&c.lever_other));
     u.dot(&c.normal)
 }
 

@@ -69,7 +69,7 @@
 use super::{friction, normal, Row, Settings, Stage};
 use crate::physics::collision::solver_body::SolverBody;
 use crate::physics::collision::warm::WarmCache;
-use crate::physics::collision::{Against, Contact};
+use crate::physics::collision::Contact;
 use nalgebra::Vector3;
 use std::collections::HashSet;
 
@@ -129,12 +129,10 @@ pub(super) struct Scratch {
     contacts: Vec<Contact>,
 }
 
-/// A pair of bodies, or a body and an obstacle, whichever way round its rows name it.
+/// A pair of solver bodies (two bodies, or a body and an obstacle's static entry), whichever
+/// way round its rows name it.
 fn pair(c: &Contact) -> (usize, usize) {
-    match c.against {
-        Against::Body(b) => (c.body.min(b), c.body.max(b)),
-        Against::Obstacle(o) => (c.body, usize::MAX - o),
-    }
+    (c.body.min(c.other), c.body.max(c.other))
 }
 
 /// The speeds and energy the impact rounds work to.
