@@ -19,6 +19,7 @@
 //! ```
 
 use crate::physics::collision::impulse;
+use crate::physics::joints::written::Measure;
 use crate::physics::{
     Against, BodyView, ClothView, Contact, Feature, JointView, Obstacle, Snapshot, SpringView,
 };
@@ -557,14 +558,14 @@ pub fn joint_panel(j: &JointView) -> Panel {
     }
 }
 
-/// A slider's travel, and a hinge's angle when it has a limit or a motor, with its rate; the
-/// limits; what the stops and the motor applied over the last step (along the axis, on the
-/// first body).
+/// A slider's travel (any travel), and a hinge's angle (any angle) when it has a limit or a
+/// motor, with its rate; the limits; what the stops and the motor applied over the last step
+/// (along the axis, on the first body).
 fn drive_rows(j: &JointView) -> Vec<Row> {
     let Some((q, rate)) = j.coordinate else {
         return Vec::new();
     };
-    let slider = j.kind == "slider";
+    let slider = j.measure == Some(Measure::Travel);
     if !slider && j.limits.is_none() && j.motor.is_none() {
         return Vec::new();
     }

@@ -16,7 +16,8 @@ use super::energy_ledger::EnergyBalance;
 use super::hand::{Hand, Pull};
 use super::integrators::Integrator;
 use super::joints::drive::Drive;
-use super::joints::{coordinate, rate, JointKind, Motor, Pose as LinkPose};
+use super::joints::written::Measure;
+use super::joints::{coordinate, rate, Motor, Pose as LinkPose};
 use super::state::State;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -134,6 +135,8 @@ pub struct JointView {
     /// Hinge and slider: the coordinate q now and its rate q̇ (hinge: the angle from the
     /// t = 0 pose, rad, and rad/s; slider: the travel, m, and m/s).
     pub coordinate: Option<(f64, f64)>,
+    /// What the coordinate measures (an angle, rad, or a travel, m); None without one.
+    pub measure: Option<Measure>,
     /// Its limits [lo, hi] (rad or m).
     pub limits: Option<[f64; 2]>,
     /// Its motor.
@@ -193,11 +196,6 @@ impl JointView {
                     }
                 };
                 let (pa, pb) = (pose(j.a), j.b.map_or(LinkPose::WORLD, pose));
-                let axis = match j.kind {
-                    JointKind::Hinge => Some(j.axis(states)),
-                    JointKind::Slider => Some(pb.r * j.axis_b),
-                    _ => None,
-                };
                 JointView {
                     name: j.name.clone(),
                     kind: j.kind.name(),
@@ -205,13 +203,19 @@ impl JointView {
                     body_indices: (j.a, j.b),
                     anchors: j.anchors(states),
                     local_anchors: [j.anchor_a, j.anchor_b],
-                    axis,
-                    length: (j.kind == JointKind::Distance).then_some(j.length),
+                    axis: j.drawn_axis(&pa, &pb),
+                    length: j
+                        .kind
+                        .written()
+                        .keys
+                        .contains(&"length")
+                        .then_some(j.length),
                     error: j.error(states),
                     force: load.force,
                     torque: load.torque,
                     coordinate: coordinate(j, i, &pa, &pb)
                         .map(|(row, q)| (q, rate(&row, &pa, &pb))),
+                    measure: j.kind.measure(),
                     limits: j.limits,
                     motor: j.motor,
                     drive: world.joint_drive(i),

@@ -38,7 +38,7 @@ use crate::physics::cloth::ClothIntegrator;
 use crate::physics::collision::geometry::Shape;
 use crate::physics::derive::derive;
 use crate::physics::effects::{Effect, Effects};
-use crate::physics::joints::JointKind;
+use crate::physics::joints::written::Measure;
 use crate::physics::state::Orientation;
 use crate::physics::Body;
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
@@ -103,7 +103,8 @@ pub struct JointEdit {
     /// Its index among the scene's joints, and its name.
     pub index: usize,
     pub name: String,
-    /// A hinge (limits in degrees, motor in rad/s and N·m), else a slider (m, m/s and N).
+    /// A hinge, or any joint whose coordinate is an angle (limits in degrees, motor in rad/s and
+    /// N·m), else a slider's travel (m, m/s and N).
     pub hinge: bool,
     /// `[lo, hi]` from the t = 0 pose, as the file writes them (hinge: degrees), lo ≤ 0 ≤ hi.
     pub limits: Option<[f64; 2]>,
@@ -165,7 +166,7 @@ impl SceneEdits {
         let joints = (scene.links.joints.iter().enumerate())
             .filter(|(_, j)| j.limits.is_some() || j.motor.is_some())
             .map(|(index, j)| {
-                let hinge = j.kind == JointKind::Hinge;
+                let hinge = j.kind.measure() == Some(Measure::Angle);
                 let unit = |x: f64| if hinge { x.to_degrees() } else { x };
                 JointEdit {
                     index,

@@ -10,17 +10,17 @@
 //!     distance); valid keys of a ball joint: name, type, bodies, anchor
 //! ```
 //!
-//! A new kind or key is one line of a table below (and its field in `raw.rs`).
+//! A new shape or key is one line of a table below (and its field in `raw.rs`); the joint
+//! kinds declare their `type` word and keys in their own files (`physics::joints::written`,
+//! `JointKind::WRITTEN`).
 
 use super::error::did_you_mean;
+use crate::physics::joints::JointKind;
 use std::ops::Range;
 
-/// A kind of table (a shape, a joint type) and the keys it takes beside the common ones.
-#[derive(Debug)]
-pub struct Kind {
-    pub name: &'static str,
-    pub keys: &'static [&'static str],
-}
+/// A kind of table (a shape, a joint type) and the keys it takes beside the common ones: its
+/// word (`name`) and `keys`.
+pub use crate::physics::joints::written::Written as Kind;
 
 /// A family of kinds: the keys every kind takes, and each kind's own.
 #[derive(Debug)]
@@ -77,33 +77,12 @@ pub const SHAPES: Family = Family {
     ],
 };
 
-/// A joint's types.
+/// A joint's types, as each kind's file writes it (`JointKind::WRITTEN`).
 pub const JOINTS: Family = Family {
     table: "joint",
     selector: "type",
     common: &["name", "type", "bodies"],
-    kinds: &[
-        Kind {
-            name: "ball",
-            keys: &["anchor"],
-        },
-        Kind {
-            name: "hinge",
-            keys: &["anchor", "axis", "limits", "motor"],
-        },
-        Kind {
-            name: "fixed",
-            keys: &["anchor"],
-        },
-        Kind {
-            name: "distance",
-            keys: &["anchors", "length"],
-        },
-        Kind {
-            name: "slider",
-            keys: &["anchor", "axis", "limits", "motor"],
-        },
-    ],
+    kinds: &JointKind::WRITTEN,
 };
 
 impl Family {
@@ -204,7 +183,6 @@ mod tests {
 
     #[test]
     fn the_tables_name_every_joint_kind_and_no_other() {
-        use crate::physics::joints::JointKind;
         let mut table = JOINTS.names();
         let mut model: Vec<&str> = JointKind::ALL.iter().map(|k| k.name()).collect();
         table.sort_unstable();

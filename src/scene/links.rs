@@ -18,8 +18,9 @@
 //! | `joint_correction` | unknown joint_correction `projektion` (did you mean `projection`?); valid: projection, baumgarte, none |
 
 use super::error::did_you_mean;
-use super::raw::{RawJoint, RawMotor, RawScene, RawSpring};
+use super::raw::{RawJoint, RawMotor, RawScene, RawSpring, Vec3};
 use super::{LoadError, SceneBody, Validator};
+use crate::physics::joints::written::{Between, Keys, Measure};
 use crate::physics::joints::{Correction, Joint, JointKind, Links, Motor, Spring, SpringLaw};
 use crate::physics::State;
 use nalgebra::Vector3;
@@ -218,66 +219,43 @@ impl Validator<'_> {
         let Some(kind) = JointKind::from_name(keys.name) else {
             return Err(self.error(j.kind.span(), "a joint type without a model"));
         };
-        let kind_name = kind.name();
         let (a, b) = self.pair(&j.bodies, bodies, "joint")?;
-        let needs =
-            |key: &str| self.error(raw.span(), format!("a {kind_name} joint needs `{key}`"));
-        if kind == JointKind::Distance {
-            let anchors_raw = j.anchors.as_ref().ok_or_else(|| needs("anchors"))?;
-            let anchors = self.two_points(anchors_raw, "distance joint")?;
-            let length = j
-                .length
-                .as_ref()
-                .map(|l| self.positive(l, "distance joint `length`"))
-                .transpose()?;
-            if length.is_none() && (anchors[0] - anchors[1]).norm() < 1e-12 {
-                return Err(self.error(
-                    anchors_raw.span(),
-                    "distance joint anchors coincide at t = 0: give `length` > 0 or two \
-                     different points",
-                ));
-            }
-            return Ok(Joint::distance(name, a, b, anchors, length, states));
-        }
-        let anchor = self.vector(j.anchor.as_ref().ok_or_else(|| needs("anchor"))?, "anchor")?;
-        let axis = match (kind, &j.axis) {
-            (JointKind::Hinge | JointKind::Slider, None) => return Err(needs("axis")),
-            (JointKind::Hinge | JointKind::Slider, Some(axis)) => {
-                let v = self.vector(axis, &format!("{kind_name} axis"))?;
-                if v.norm() < 1e-12 {
-                    return Err(self.error(
-                        axis.span(),
-                        format!("{kind_name} `axis` has zero length: give a non-zero axis"),
-                    ));
-                }
-                v
-            }
-            _ => Vector3::z(),
-        };
-        let mut joint = Joint::at_point(name, kind, a, b, anchor, axis, states);
+        let on = Between { name, a, b, states };
+        let mut joint = kind.build(&JointKeys { v: self, raw, kind }, on)?;
+        let measure = kind.measure();
         if let Some(limits) = &j.limits {
-            joint.limits = Some(self.joint_limits(limits, kind)?);
+            joint.limits = Some(self.joint_limits(limits, kind.name(), measure)?);
         }
         if let Some(motor) = &j.motor {
-            joint.motor = Some(self.joint_motor(motor, kind)?);
+            joint.motor = Some(self.joint_motor(motor, kind.name(), measure)?);
         }
         Ok(joint)
     }
 
-    /// A hinge's or slider's `limits = [lo, hi]`: finite, lo ≤ 0 ≤ hi (the t = 0 pose is
-    /// inside); a hinge's in degrees, less than a full turn apart, returned in radians.
+    /// A coordinate without a [`Measure`] (a kind that lists `limits` or `motor` without one:
+    /// the kinds' test refuses it).
+    fn unmeasured(&self, span: Range<usize>, key: &str, kind_name: &str) -> LoadError {
+        self.error(
+            span,
+            format!("`{key}` does not apply to a {kind_name} joint: it has no coordinate"),
+        )
+    }
+
+    /// `limits = [lo, hi]` on a hinge's angle or a slider's travel: finite, lo ≤ 0 ≤ hi (the
+    /// t = 0 pose is inside); an angle's in degrees, less than a full turn apart, returned in
+    /// radians.
     fn joint_limits(
         &self,
         raw: &Spanned<Vec<f64>>,
-        kind: JointKind,
+        kind_name: &str,
+        measure: Option<Measure>,
     ) -> Result<[f64; 2], LoadError> {
-        let list = raw.get_ref();
-        let kind_name = kind.name();
-        let unit = if kind == JointKind::Hinge {
-            "degrees"
-        } else {
-            "m"
+        let Some(measure) = measure else {
+            return Err(self.unmeasured(raw.span(), "limits", kind_name));
         };
+        let list = raw.get_ref();
+        let angle = measure == Measure::Angle;
+        let unit = if angle { "degrees" } else { "m" };
         let &[lo, hi] = list.as_slice() else {
             return Err(self.error(
                 raw.span(),
@@ -303,13 +281,13 @@ impl Validator<'_> {
                 ),
             ));
         }
-        if kind == JointKind::Hinge {
+        if angle {
             if hi - lo >= 360.0 {
                 return Err(self.error(
                     raw.span(),
                     format!(
-                        "hinge `limits` must be less than a full turn apart (hi − lo < 360°), \
-                         found [{lo}, {hi}]"
+                        "{kind_name} `limits` must be less than a full turn apart (hi − lo < \
+                         360°), found [{lo}, {hi}]"
                     ),
                 ));
             }
@@ -318,44 +296,150 @@ impl Validator<'_> {
         Ok([lo, hi])
     }
 
-    /// A hinge's `motor = { speed, max_torque }` (rad/s, N·m) or a slider's
-    /// `{ speed, max_force }` (m/s, N).
-    fn joint_motor(&self, raw: &Spanned<RawMotor>, kind: JointKind) -> Result<Motor, LoadError> {
+    /// `motor = { speed, max_torque }` (rad/s, N·m) on an angle, `{ speed, max_force }` (m/s,
+    /// N) on a travel.
+    fn joint_motor(
+        &self,
+        raw: &Spanned<RawMotor>,
+        kind_name: &str,
+        measure: Option<Measure>,
+    ) -> Result<Motor, LoadError> {
+        let Some(measure) = measure else {
+            return Err(self.unmeasured(raw.span(), "motor", kind_name));
+        };
         let m = raw.get_ref();
-        let (key, other, unit) = if kind == JointKind::Hinge {
-            ("max_torque", &m.max_force, "N·m")
+        let angle = measure == Measure::Angle;
+        let (key, other, unit, wrong) = if angle {
+            ("max_torque", &m.max_force, "N·m", "max_force")
         } else {
-            ("max_force", &m.max_torque, "N")
+            ("max_force", &m.max_torque, "N", "max_torque")
         };
         if let Some(other) = other {
-            let wrong = if kind == JointKind::Hinge {
-                "max_force"
-            } else {
-                "max_torque"
-            };
             return Err(self.error(
                 other.span(),
-                format!(
-                    "a {}'s motor takes `{key}` ({unit}), not `{wrong}`",
-                    kind.name()
-                ),
+                format!("a {kind_name}'s motor takes `{key}` ({unit}), not `{wrong}`"),
             ));
         }
         let needs = |what: &str| {
             self.error(
                 raw.span(),
-                format!("a {} joint's `motor` needs `{what}`", kind.name()),
+                format!("a {kind_name} joint's `motor` needs `{what}`"),
             )
         };
         let speed = m.speed.as_ref().ok_or_else(|| needs("speed"))?;
         let speed = self.finite(speed, "motor `speed`")?;
-        let bound = if kind == JointKind::Hinge {
-            &m.max_torque
-        } else {
-            &m.max_force
-        };
+        let bound = if angle { &m.max_torque } else { &m.max_force };
         let bound = bound.as_ref().ok_or_else(|| needs(key))?;
         let max = self.positive(bound, &format!("motor `{key}`"))?;
         Ok(Motor { speed, max })
+    }
+}
+
+/// The keys of one `[[joint]]` table, as its kind reads them (`physics::joints::written`): each
+/// error pinned where the key was written, a missing key at the table.
+struct JointKeys<'a> {
+    v: &'a Validator<'a>,
+    raw: &'a Spanned<RawJoint>,
+    kind: JointKind,
+}
+
+impl JointKeys<'_> {
+    /// "a hinge joint needs `axis`", at the table.
+    fn missing(&self, key: &str) -> LoadError {
+        let kind = self.kind.name();
+        self.v
+            .error(self.raw.span(), format!("a {kind} joint needs `{key}`"))
+    }
+
+    /// The value of a key that holds three numbers.
+    fn three(&self, key: &str) -> Result<&Vec3, LoadError> {
+        let j = self.raw.get_ref();
+        match key {
+            "anchor" => j.anchor.as_ref(),
+            "axis" => j.axis.as_ref(),
+            _ => None,
+        }
+        .ok_or_else(|| self.missing(key))
+    }
+}
+
+impl Keys for JointKeys<'_> {
+    type Error = LoadError;
+
+    fn point(&self, key: &str) -> Result<Vector3<f64>, LoadError> {
+        self.v.vector(self.three(key)?, key)
+    }
+
+    fn direction(&self, key: &str) -> Result<Vector3<f64>, LoadError> {
+        let raw = self.three(key)?;
+        let kind = self.kind.name();
+        let v = self.v.vector(raw, &format!("{kind} {key}"))?;
+        if v.norm() < 1e-12 {
+            return Err(self.v.error(
+                raw.span(),
+                format!("{kind} `{key}` has zero length: give a non-zero {key}"),
+            ));
+        }
+        Ok(v)
+    }
+
+    fn two_points(&self, key: &str) -> Result<[Vector3<f64>; 2], LoadError> {
+        let j = self.raw.get_ref();
+        let raw = match key {
+            "anchors" => j.anchors.as_ref(),
+            _ => None,
+        }
+        .ok_or_else(|| self.missing(key))?;
+        self.v
+            .two_points(raw, &format!("{} joint", self.kind.name()))
+    }
+
+    fn optional_positive(&self, key: &str) -> Result<Option<f64>, LoadError> {
+        let j = self.raw.get_ref();
+        let raw = match key {
+            "length" => j.length.as_ref(),
+            _ => None,
+        };
+        let what = format!("{} joint `{key}`", self.kind.name());
+        raw.map(|l| self.v.positive(l, &what)).transpose()
+    }
+
+    fn wrong(&self, key: &str, message: &str) -> LoadError {
+        let j = self.raw.get_ref();
+        let span = match key {
+            "anchor" => j.anchor.as_ref().map(Spanned::span),
+            "axis" => j.axis.as_ref().map(Spanned::span),
+            "anchors" => j.anchors.as_ref().map(Spanned::span),
+            "length" => j.length.as_ref().map(Spanned::span),
+            _ => None,
+        };
+        self.v
+            .error(span.unwrap_or_else(|| self.raw.span()), message)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::physics::joints::JointKind;
+
+    /// Every key a joint kind declares is one a `[[joint]]` table holds (`RawJoint`), and
+    /// `limits` and `motor` are declared exactly by the kinds whose coordinate has a measure.
+    #[test]
+    fn every_joint_kind_declares_keys_the_reader_knows() {
+        let known = ["anchor", "axis", "anchors", "length", "limits", "motor"];
+        for kind in JointKind::ALL {
+            let written = kind.written();
+            for key in written.keys {
+                assert!(known.contains(key), "{}: `{key}`", written.name);
+            }
+            for key in ["limits", "motor"] {
+                assert_eq!(
+                    written.keys.contains(&key),
+                    kind.measure().is_some(),
+                    "{}: `{key}`",
+                    written.name
+                );
+            }
+        }
     }
 }

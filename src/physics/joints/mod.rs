@@ -74,6 +74,7 @@ mod kinds;
 mod projection;
 mod rows;
 pub mod solve;
+pub mod written;
 
 pub use contact::{hold, Buffers as ContactBuffers};
 pub use kinds::JointKind;
@@ -278,6 +279,12 @@ impl Joint {
     /// Hinge: its axis now, world frame (A's axis).
     pub fn axis(&self, states: &[State]) -> Vector3<f64> {
         states[self.a].orientation.matrix() * self.axis_a
+    }
+
+    /// The axis a front end draws at poses `a`, `b`, world frame (hinge: A's axis; slider: the
+    /// rail); None for a kind without one.
+    pub fn drawn_axis(&self, a: &Pose, b: &Pose) -> Option<Vector3<f64>> {
+        kinds::axis(self, a, b)
     }
 }
 

@@ -847,6 +847,33 @@ mod tests {
     }
 
     #[test]
+    fn a_resting_stage_after_an_impact_takes_no_joint_rows() {
+        // A ball on a rod (body 0) touching a free ball (body 1): an impact round takes the
+        // rod's row; the resting stage after it (nothing approaches) takes none, with or
+        // without friction (at μ = 0 the round's selection used to stay).
+        let motions = vec![ball(), ball()];
+        let rod = Axis::jacobian(Vector3::y(), (0, Vector3::zeros()), None);
+        let rows = [ConstraintRow::equality(rod, 0.0, 0.0, 0)];
+        let mut joined = Joined::default();
+        joined.prepare(&rows, &motions, 1);
+        let contact = |approach: f64| super::super::Row {
+            normal: Axis::jacobian(
+                Vector3::x(),
+                (0, Vector3::zeros()),
+                Some((1, Vector3::zeros())),
+            ),
+            approach,
+            ..Default::default()
+        };
+        for friction in [0.0, 0.3] {
+            super::super::select_joints(&[contact(-1.0)], friction, 0.1, &mut joined);
+            assert_eq!(joined.axes.len(), 1, "μ = {friction}: the impact");
+            super::super::select_joints(&[contact(0.0)], friction, 0.1, &mut joined);
+            assert!(joined.axes.is_empty(), "μ = {friction}: at rest");
+        }
+    }
+
+    #[test]
     fn the_reaction_keeps_the_joint_rate() {
         // Two balls joined along x; the first kicked along x by 1 m/s: the joint shares it.
         let motions = vec![ball(), ball()];

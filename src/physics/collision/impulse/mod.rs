@@ -1156,7 +1156,9 @@ fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut jo
                 .flat_map(|r| r.normal.bodies().into_iter().flatten()),
             most,
         );
-    } else if friction > 0.0 {
+    } else {
+        // At rest: the contacts' rows alone (also after `propagate`'s impact rounds, whose
+        // last round's selection would otherwise stay).
         joined.select(std::iter::empty(), 0);
     }
 }

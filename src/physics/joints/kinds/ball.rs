@@ -7,10 +7,34 @@
 //!
 //! Residual: the anchors' separation. No coordinate (no limit, no motor).
 
-use super::Anchors;
+use super::{Anchors, JointKind, Kind};
 use crate::physics::constraints::Row;
+use crate::physics::joints::written::{Between, Keys, Written};
+use crate::physics::joints::Joint;
+use nalgebra::Vector3;
 
 pub const ROWS: usize = 3;
+
+/// `type = "ball"`, `anchor` (world, t = 0).
+pub struct Ball;
+
+impl Kind for Ball {
+    const WRITTEN: Written = Written {
+        name: "ball",
+        keys: &["anchor"],
+    };
+    const ROWS: usize = ROWS;
+
+    fn build<K: Keys>(keys: &K, on: Between) -> Result<Joint, K::Error> {
+        let anchor = keys.point("anchor")?;
+        Ok(on.at_point(JointKind::Ball, anchor, Vector3::z()))
+    }
+
+    #[inline(always)]
+    fn rows(_joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
+        rows(at, out);
+    }
+}
 
 /// Its rows at the anchors `at`.
 #[inline(always)]

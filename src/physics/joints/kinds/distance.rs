@@ -7,12 +7,49 @@
 //!
 //! Residual: | |d| − ℓ |. No coordinate.
 
-use super::{anchor_points, Anchors};
+use super::{anchor_points, Anchors, Kind};
 use crate::physics::constraints::Row;
+use crate::physics::joints::written::{Between, Keys, Written};
 use crate::physics::joints::{Joint, Pose};
 use nalgebra::Vector3;
 
 pub const ROWS: usize = 1;
+
+/// `type = "distance"`, `anchors` (one point on each side, world, t = 0) and `length` (default:
+/// their distance at t = 0).
+pub struct Distance;
+
+impl Kind for Distance {
+    const WRITTEN: Written = Written {
+        name: "distance",
+        keys: &["anchors", "length"],
+    };
+    const ROWS: usize = ROWS;
+
+    fn build<K: Keys>(keys: &K, on: Between) -> Result<Joint, K::Error> {
+        let anchors = keys.two_points("anchors")?;
+        let length = keys.optional_positive("length")?;
+        if length.is_none() && (anchors[0] - anchors[1]).norm() < 1e-12 {
+            return Err(keys.wrong(
+                "anchors",
+                "distance joint anchors coincide at t = 0: give `length` > 0 or two \
+                 different points",
+            ));
+        }
+        Ok(Joint::distance(
+            on.name, on.a, on.b, anchors, length, on.states,
+        ))
+    }
+
+    #[inline]
+    fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
+        rows(joint, at, out);
+    }
+
+    fn error(joint: &Joint, a: &Pose, b: &Pose) -> f64 {
+        error(joint, a, b)
+    }
+}
 
 /// Its row at the anchors `at`.
 #[inline]

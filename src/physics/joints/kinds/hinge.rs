@@ -11,12 +11,46 @@
 //!
 //! Residual: the anchors' separation.
 
-use super::{coordinate_row, Anchors};
+use super::{coordinate_row, Anchors, JointKind, Kind};
 use crate::physics::constraints::Row;
+use crate::physics::joints::written::{Between, Keys, Measure, Written};
 use crate::physics::joints::{Joint, Pose};
 use nalgebra::Vector3;
 
 pub const ROWS: usize = 5;
+
+/// `type = "hinge"`, `anchor` and `axis` (world, t = 0); `limits` in degrees, `motor` with
+/// `max_torque`.
+pub struct Hinge;
+
+impl Kind for Hinge {
+    const WRITTEN: Written = Written {
+        name: "hinge",
+        keys: &["anchor", "axis", "limits", "motor"],
+    };
+    const ROWS: usize = ROWS;
+    const MEASURE: Option<Measure> = Some(Measure::Angle);
+
+    fn build<K: Keys>(keys: &K, on: Between) -> Result<Joint, K::Error> {
+        let anchor = keys.point("anchor")?;
+        let axis = keys.direction("axis")?;
+        Ok(on.at_point(JointKind::Hinge, anchor, axis))
+    }
+
+    #[inline(always)]
+    fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
+        rows(joint, at, out);
+    }
+
+    fn coordinate(joint: &Joint, index: usize, a: &Pose, b: &Pose) -> Option<(Row, f64)> {
+        Some(coordinate(joint, index, a, b))
+    }
+
+    /// A's axis.
+    fn axis(joint: &Joint, a: &Pose, _b: &Pose) -> Option<Vector3<f64>> {
+        Some(a.r * joint.axis_a)
+    }
+}
 
 /// Its rows at the anchors `at`.
 #[inline(always)]

@@ -10,6 +10,12 @@
 //! A limit or a motor is a row on the coordinate with bounds (`Row::stop`, `Row::motor`,
 //! solved by `drive`): a kind that has a `coordinate` takes both.
 //!
+//! Each file also says how the scene file writes its kind ([`Kind::WRITTEN`]: the `type` word
+//! and keys), what its coordinate measures ([`Kind::MEASURE`]) and how it builds itself from its
+//! keys ([`Kind::build`], through the format-neutral `written::Keys`), so the scene reader knows
+//! no kind. A new kind is its file and one line of `joint_kinds!` below; a limit or a motor on a
+//! kind is its `coordinate`, `MEASURE` and the two keys, in its file.
+//!
 //! | kind | file | rows |
 //! |---|---|---|
 //! | ball | `ball` | 3: a common point |
@@ -18,98 +24,157 @@
 //! | distance | `distance` | 1: a rod of fixed length |
 //! | slider | `slider` | 5: a common orientation and a rail |
 
-mod ball;
-mod distance;
-mod fixed;
-mod hinge;
-mod slider;
-
 use super::rows::{Pose, Row};
+use super::written::{Between, Keys, Measure, Written};
 use super::Joint;
 use crate::physics::constraints::Axis;
 use nalgebra::{Matrix3, Vector3};
 
-/// What a joint holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum JointKind {
-    /// A common point: 3 rows.
-    Ball,
-    /// A common point and a common axis: 5 rows.
-    Hinge,
-    /// A common point and orientation: 6 rows.
-    Fixed,
-    /// A rod of fixed length between two points: 1 row.
-    Distance,
-    /// A common orientation and a rail: the anchor moves only along the axis, 5 rows.
-    Slider,
+/// What every joint kind answers: one file per kind implements it, and [`JointKind`] asks the
+/// kind a joint holds.
+pub(super) trait Kind {
+    /// How the scene file writes it: its `type` word and keys.
+    const WRITTEN: Written;
+    /// How many equality rows it adds.
+    const ROWS: usize;
+    /// What its coordinate measures; None for a kind without one (no limits, no motor).
+    const MEASURE: Option<Measure> = None;
+
+    /// The joint from its keys (the reader adds `limits` and `motor`).
+    fn build<K: Keys>(keys: &K, on: Between) -> Result<Joint, K::Error>;
+
+    /// Appends its equality rows at the anchors `at` to `out`.
+    fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>);
+
+    /// Its position residual at poses `a`, `b` (velocities unused), m: by default the anchors'
+    /// separation.
+    fn error(joint: &Joint, a: &Pose, b: &Pose) -> f64 {
+        separation(joint, a, b)
+    }
+
+    /// The coordinate its limits and motor act on, and the row of its rate (owner `index`);
+    /// None for a kind without one.
+    fn coordinate(joint: &Joint, index: usize, a: &Pose, b: &Pose) -> Option<(Row, f64)> {
+        let _ = (joint, index, a, b);
+        None
+    }
+
+    /// The axis a front end draws, world frame, at poses `a`, `b`; None for a kind without one.
+    fn axis(joint: &Joint, a: &Pose, b: &Pose) -> Option<Vector3<f64>> {
+        let _ = (joint, a, b);
+        None
+    }
 }
 
-impl JointKind {
-    /// Every kind, as scene files name them.
-    pub const ALL: [JointKind; 5] = [
-        JointKind::Ball,
-        JointKind::Hinge,
-        JointKind::Fixed,
-        JointKind::Distance,
-        JointKind::Slider,
-    ];
+/// The kinds: `module::Struct` (the struct implements [`Kind`]), in the order scene-file
+/// messages list them. Builds [`JointKind`] and the functions that ask a joint's kind.
+macro_rules! joint_kinds {
+    ($($(#[$doc:meta])* $module:ident::$kind:ident),* $(,)?) => {
+        $(mod $module;)*
 
+        /// What a joint holds.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum JointKind {
+            $($(#[$doc])* $kind,)*
+        }
+
+        impl JointKind {
+            /// Every kind, as scene files name them.
+            pub const ALL: [JointKind; [$(stringify!($kind)),*].len()] =
+                [$(JointKind::$kind),*];
+
+            /// How the scene file writes each kind, in the order of [`JointKind::ALL`].
+            pub const WRITTEN: [Written; [$(stringify!($kind)),*].len()] =
+                [$(<$module::$kind as Kind>::WRITTEN),*];
+
+            /// How the scene file writes it.
+            pub fn written(self) -> Written {
+                match self {
+                    $(JointKind::$kind => <$module::$kind as Kind>::WRITTEN,)*
+                }
+            }
+
+            /// What its coordinate measures; None for a kind without one.
+            pub fn measure(self) -> Option<Measure> {
+                match self {
+                    $(JointKind::$kind => <$module::$kind as Kind>::MEASURE,)*
+                }
+            }
+
+            /// How many constraint rows it adds.
+            pub fn rows(self) -> usize {
+                match self {
+                    $(JointKind::$kind => <$module::$kind as Kind>::ROWS,)*
+                }
+            }
+
+            /// The joint of this kind from its keys (the reader adds `limits` and `motor`).
+            pub fn build<K: Keys>(self, keys: &K, on: Between) -> Result<Joint, K::Error> {
+                match self {
+                    $(JointKind::$kind => <$module::$kind as Kind>::build(keys, on),)*
+                }
+            }
+        }
+
+        /// Appends the joint's equality rows at the anchors `at` to `out`.
+        #[inline(always)]
+        pub(super) fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
+            match joint.kind {
+                $(JointKind::$kind => <$module::$kind as Kind>::rows(joint, at, out),)*
+            }
+        }
+
+        /// The joint's position residual at poses `a`, `b` (velocities unused), m.
+        pub(super) fn error(joint: &Joint, a: &Pose, b: &Pose) -> f64 {
+            match joint.kind {
+                $(JointKind::$kind => <$module::$kind as Kind>::error(joint, a, b),)*
+            }
+        }
+
+        /// The coordinate its limits and motor act on and the row of its rate (owner `index`);
+        /// None for a kind without one.
+        pub(super) fn coordinate(
+            joint: &Joint,
+            index: usize,
+            a: &Pose,
+            b: &Pose,
+        ) -> Option<(Row, f64)> {
+            match joint.kind {
+                $(JointKind::$kind => <$module::$kind as Kind>::coordinate(joint, index, a, b),)*
+            }
+        }
+
+        /// The axis a front end draws (hinge: A's axis; slider: the rail), world frame.
+        pub(super) fn axis(joint: &Joint, a: &Pose, b: &Pose) -> Option<Vector3<f64>> {
+            match joint.kind {
+                $(JointKind::$kind => <$module::$kind as Kind>::axis(joint, a, b),)*
+            }
+        }
+    };
+}
+
+joint_kinds!(
+    /// A common point: 3 rows.
+    ball::Ball,
+    /// A common point and a common axis: 5 rows.
+    hinge::Hinge,
+    /// A common point and orientation: 6 rows.
+    fixed::Fixed,
+    /// A rod of fixed length between two points: 1 row.
+    distance::Distance,
+    /// A common orientation and a rail: the anchor moves only along the axis, 5 rows.
+    slider::Slider,
+);
+
+impl JointKind {
     /// The scene-file name.
     pub fn name(self) -> &'static str {
-        match self {
-            JointKind::Ball => "ball",
-            JointKind::Hinge => "hinge",
-            JointKind::Fixed => "fixed",
-            JointKind::Distance => "distance",
-            JointKind::Slider => "slider",
-        }
+        self.written().name
     }
 
     /// The kind with this name.
     pub fn from_name(name: &str) -> Option<JointKind> {
         JointKind::ALL.into_iter().find(|k| k.name() == name)
-    }
-
-    /// How many constraint rows it adds.
-    pub fn rows(self) -> usize {
-        match self {
-            JointKind::Ball => ball::ROWS,
-            JointKind::Hinge => hinge::ROWS,
-            JointKind::Fixed => fixed::ROWS,
-            JointKind::Distance => distance::ROWS,
-            JointKind::Slider => slider::ROWS,
-        }
-    }
-}
-
-/// Appends the joint's equality rows at the anchors `at` to `out`.
-#[inline(always)]
-pub(super) fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
-    match joint.kind {
-        JointKind::Ball => ball::rows(at, out),
-        JointKind::Hinge => hinge::rows(joint, at, out),
-        JointKind::Fixed => fixed::rows(joint, at, out),
-        JointKind::Distance => distance::rows(joint, at, out),
-        JointKind::Slider => slider::rows(joint, at, out),
-    }
-}
-
-/// The joint's position residual at poses `a`, `b` (velocities unused), m.
-pub(super) fn error(joint: &Joint, a: &Pose, b: &Pose) -> f64 {
-    match joint.kind {
-        JointKind::Distance => distance::error(joint, a, b),
-        JointKind::Slider => slider::error(joint, a, b),
-        JointKind::Ball | JointKind::Hinge | JointKind::Fixed => separation(joint, a, b),
-    }
-}
-
-/// The coordinate its limits and motor act on and the row of its rate (owner `index`); None
-/// for a kind without one.
-pub(super) fn coordinate(joint: &Joint, index: usize, a: &Pose, b: &Pose) -> Option<(Row, f64)> {
-    match joint.kind {
-        JointKind::Hinge => Some(hinge::coordinate(joint, index, a, b)),
-        JointKind::Slider => Some(slider::coordinate(joint, index, a, b)),
-        JointKind::Ball | JointKind::Fixed | JointKind::Distance => None,
     }
 }
 

@@ -12,11 +12,50 @@
 //! Residual: the anchor's distance from the rail + the relative turn (rad) × 1 m (how far a
 //! point 1 m from the anchor has drifted, to first order).
 
-use super::{anchor_points, coordinate_row, turned, Anchors};
+use super::{anchor_points, coordinate_row, turned, Anchors, JointKind, Kind};
 use crate::physics::constraints::Row;
+use crate::physics::joints::written::{Between, Keys, Measure, Written};
 use crate::physics::joints::{Joint, Pose};
+use nalgebra::Vector3;
 
 pub const ROWS: usize = 5;
+
+/// `type = "slider"`, `anchor` and the rail's `axis` (world, t = 0); `limits` in m, `motor`
+/// with `max_force`.
+pub struct Slider;
+
+impl Kind for Slider {
+    const WRITTEN: Written = Written {
+        name: "slider",
+        keys: &["anchor", "axis", "limits", "motor"],
+    };
+    const ROWS: usize = ROWS;
+    const MEASURE: Option<Measure> = Some(Measure::Travel);
+
+    fn build<K: Keys>(keys: &K, on: Between) -> Result<Joint, K::Error> {
+        let anchor = keys.point("anchor")?;
+        let axis = keys.direction("axis")?;
+        Ok(on.at_point(JointKind::Slider, anchor, axis))
+    }
+
+    #[inline]
+    fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
+        rows(joint, at, out);
+    }
+
+    fn error(joint: &Joint, a: &Pose, b: &Pose) -> f64 {
+        error(joint, a, b)
+    }
+
+    fn coordinate(joint: &Joint, index: usize, a: &Pose, b: &Pose) -> Option<(Row, f64)> {
+        Some(coordinate(joint, index, a, b))
+    }
+
+    /// The rail (B's axis).
+    fn axis(joint: &Joint, _a: &Pose, b: &Pose) -> Option<Vector3<f64>> {
+        Some(b.r * joint.axis_b)
+    }
+}
 
 /// Its rows at the anchors `at`.
 #[inline]
