@@ -1013,13 +1013,8 @@ impl World {
             }
         }
         let bodies = &self.bodies;
-        let holds = |c: &Contact, b: usize| {
-            c.body == b
-                && match c.against {
-                    super::collision::Against::Obstacle(_) => true,
-                    super::collision::Against::Body(o) => bodies[o].fixed,
-                }
-        };
+        let holds =
+            |c: &Contact, b: usize| c.body == b && !super::collision::moves(bodies, c.other);
         for (b, carry) in carried.iter().enumerate() {
             if carry.impulse == Vector3::zeros() && carry.moment == Vector3::zeros() {
                 continue;

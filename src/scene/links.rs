@@ -1,6 +1,12 @@
 //! `[[joint]]` and `[[spring]]` tables and `[scene] joint_correction`, validated into
 //! [`Links`]: each broken rule a one-line error at the key at fault.
 //!
+//! A `[[joint]]` is read without knowing any kind (as `obstacle.rs` reads an `[[obstacle]]`):
+//! the `type` word and the keys each kind takes come from the kinds' files
+//! (`JointKind::WRITTEN`), the kind reads its own keys through [`JointKeys`] (the
+//! format-neutral `physics::joints::written::Keys`), and `limits` and `motor` are read here in
+//! the units of the kind's `Measure` (an angle: degrees, `max_torque`; a travel: m, `max_force`).
+//!
 //! | rule | error |
 //! |---|---|
 //! | `type` a joint kind | unknown joint type `hing` (did you mean `hinge`?); valid types: ball, hinge, fixed, distance, slider |
@@ -8,10 +14,10 @@
 //! | | unknown body `bbo` in joint `bodies` (did you mean `bob`?); bodies: bob, arm |
 //! | two different bodies | a joint's two bodies must differ, found `bob` twice |
 //! | ball, hinge, fixed, slider: `anchor`; distance, spring: `anchors` (two points) | a hinge joint needs `anchor` |
-//! | keys of other kinds refused (`keys::JOINTS`; `limits`, `motor`: hinge and slider only) | `axis` does not apply to a ball joint (it is a key of hinge, slider); valid keys of a ball joint: … |
+//! | keys of other kinds refused (`keys::JOINTS`, from each kind's file; `limits`, `motor`: the kinds with a coordinate, hinge and slider) | `axis` does not apply to a ball joint (it is a key of hinge, slider); valid keys of a ball joint: … |
 //! | hinge, slider `axis` non-zero | hinge `axis` has zero length: give a non-zero axis |
 //! | `limits` two finite numbers, lo ≤ 0 ≤ hi (hinge: hi − lo < 360°) | hinge `limits` must hold 0 (the t = 0 pose): lo ≤ 0 ≤ hi, found [10, 90] |
-//! | `motor` has `speed` and its bound: `max_torque` (hinge), `max_force` (slider), > 0 | a slider's motor takes `max_force` (N), not `max_torque` |
+//! | `motor` has `speed` and its bound: `max_torque` (an angle: hinge), `max_force` (a travel: slider), > 0 | a slider's motor takes `max_force` (N), not `max_torque` |
 //! | distance `length` > 0, or the anchors apart at t = 0 | distance joint anchors coincide at t = 0: give `length` > 0 or two different points |
 //! | spring `stiffness` > 0, `damping`, `rest_length` ≥ 0 | stiffness must be > 0, found 0 |
 //! | names unique | duplicate joint name `pivot`: joint names must be unique in the file |
@@ -441,5 +447,24 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Every joint type and key a kind declares (in its own file) appears in
+    /// `docs/lesson-format.md` as `` `word` ``.
+    #[test]
+    fn every_joint_type_and_key_is_documented() {
+        let docs = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/lesson-format.md"),
+        )
+        .unwrap();
+        let missing: Vec<&str> = JointKind::WRITTEN
+            .iter()
+            .flat_map(|w| std::iter::once(w.name).chain(w.keys.iter().copied()))
+            .filter(|w| !docs.contains(&format!("`{w}`")))
+            .collect();
+        assert!(
+            missing.is_empty(),
+            "docs/lesson-format.md does not mention {missing:?}"
+        );
     }
 }

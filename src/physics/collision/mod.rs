@@ -214,6 +214,13 @@ impl CollideInput<'_> {
     }
 }
 
+/// Whether solver body `end` ([`CollideInput::end`]) moves: a body that is not fixed. A fixed
+/// body and an obstacle's static entry (`end ≥ bodies.len()`) are the world, one kind of
+/// static thing: no impulse moves them, and a row has no end on them.
+pub fn moves(bodies: &[Body], end: usize) -> bool {
+    bodies.get(end).is_some_and(|b| !b.fixed)
+}
+
 /// The energy of the bodies before and after a response, measured as [`energy`] measures it
 /// (same arithmetic, to the last bit), by a response that had the numbers at hand.
 ///

@@ -77,7 +77,8 @@ pub(super) struct Bodies {
 }
 
 impl Bodies {
-    /// Takes every body named by `contacts` (A, and B when a body) back to its start of step
+    /// Takes every moving body named by `contacts` (A, and B when it moves: a fixed body or an
+    /// obstacle is static, gathered as neither, `collision::moves`) back to its start of step
     /// `before`, its free flight `states` giving the external change spread over `n` sub-steps.
     /// Returns the kinetic energy of the free flight of those bodies (each body's in
     /// `kinetic`).
@@ -111,7 +112,8 @@ impl Bodies {
         flight.clear();
         let inv = n as f64;
         for c in contacts {
-            for b in std::iter::once(c.body).chain(c.other_body()) {
+            let b_moves = super::super::moves(bodies, c.other);
+            for b in std::iter::once(c.body).chain(b_moves.then_some(c.other)) {
                 if slot[b] != usize::MAX {
                     continue;
                 }
@@ -212,7 +214,14 @@ impl Bodies {
         }
     }
 
-    /// The poses, v and L back into `states` (fixed bodies untouched).
+    /// B's slot, if B moves: a static B (a fixed body, an obstacle) is never gathered.
+    #[inline(always)]
+    pub fn moving(&self, other: usize) -> Option<usize> {
+        self.slot.get(other).copied().filter(|&s| s != usize::MAX)
+    }
+
+    /// The poses, v and L back into `states` (every member moves: static things are never
+    /// gathered).
     #[inline(always)]
     pub fn write_back(&self, bodies: &[Body], states: &mut [State]) {
         for (((&b, m), p), l) in self
@@ -222,9 +231,6 @@ impl Bodies {
             .zip(self.places.iter())
             .zip(self.l.iter())
         {
-            if m.inv_mass == 0.0 {
-                continue; // a fixed body does not move
-            }
             let state = &mut states[b];
             state.position = p.position;
             state.orientation = match state.orientation {

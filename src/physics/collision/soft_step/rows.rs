@@ -108,10 +108,7 @@ impl Rows {
         runs.clear();
         for c in contacts.iter_mut() {
             let a = bodies.slot[c.body];
-            let b = c
-                .other_body()
-                .map(|b| bodies.slot[b])
-                .filter(|&b| bodies.motions[b].inv_mass != 0.0);
+            let b = bodies.moving(c.other);
             let (t1, t2) = tangents(&c.normal);
             let (ia, ma) = (&bodies.inv_inertia[a], bodies.motions[a].inv_mass);
             let (rn_a, wn_a, kn) = end(ma, ia, &c.lever, c.normal);
@@ -176,8 +173,8 @@ impl Rows {
         for (t, c) in self.totals.iter_mut().zip(contacts.iter()) {
             let (v, omega, _) = &bodies.flight[bodies.slot[c.body]];
             let mut u = v + omega.cross(&c.lever);
-            if let Some(b) = c.other_body() {
-                let (v, omega, _) = &bodies.flight[bodies.slot[b]];
+            if let Some(b) = bodies.moving(c.other) {
+                let (v, omega, _) = &bodies.flight[b];
                 u -= v + omega.cross(&c.lever_other);
             }
             t.approach = u.dot(&c.normal);
