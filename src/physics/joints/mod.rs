@@ -68,6 +68,7 @@
 //! correction changes is numerical, booked apart (`EnergyLedger::joint_correction`) and still
 //! counted in the drift.
 
+mod chain;
 pub mod contact;
 pub mod drive;
 mod kinds;
@@ -75,6 +76,7 @@ mod projection;
 mod rows;
 pub mod solve;
 
+pub use chain::Chain;
 pub use contact::{hold, Buffers as ContactBuffers};
 pub use kinds::JointKind;
 pub use projection::{project, shake, Buffers as ProjectionBuffers};

@@ -94,6 +94,12 @@ pub(super) fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
     }
 }
 
+/// A hinge's two axis rows at poses `a`, `b`: (g on A, C, J̇u) each (`hinge::axes`).
+#[inline(always)]
+pub(super) fn hinge_axes(joint: &Joint, a: &Pose, b: &Pose) -> [(Vector3<f64>, f64, f64); 2] {
+    hinge::axes(joint, a, b)
+}
+
 /// The joint's position residual at poses `a`, `b` (velocities unused), m.
 pub(super) fn error(joint: &Joint, a: &Pose, b: &Pose) -> f64 {
     match joint.kind {
