@@ -21,7 +21,7 @@ use super::derive::{congruence, Kinematics};
 use super::effects::{Effects, Loads};
 use super::integrators::Integrator;
 use super::joints::solve::Inverse;
-use super::joints::{multipliers, rows_of, Correction, Links, Pose, Row, Solver};
+use super::joints::{multipliers, rows_of, Chain, Correction, Links, Pose, Row, Solver};
 use super::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -47,6 +47,8 @@ pub struct Scratch {
     /// Per body: its free accelerations (v̇, ω̇) under the applied loads.
     free: Vec<(Vector3<f64>, Vector3<f64>)>,
     solver: Solver,
+    /// A chain's compact rows (`joints::Chain`: no rows built).
+    chain: Chain,
     positions: Vec<Vector3<f64>>,
     momenta: Vec<Vector3<f64>>,
     /// Result: the total force and torque on each body.
@@ -190,11 +192,15 @@ impl System<'_> {
         scratch: &mut Scratch,
     ) {
         let n = self.bodies.len();
+        let chain = self.links.correction != Correction::Baumgarte
+            && scratch.chain.build(&self.links.joints, &scratch.poses);
         scratch.rows.clear();
-        for (index, joint) in self.links.joints.iter().enumerate() {
-            let a = &scratch.poses[joint.a];
-            let b = joint.b.map_or(&Pose::WORLD, |b| &scratch.poses[b]);
-            rows_of(joint, index, a, b, &mut scratch.rows);
+        if !chain {
+            for (index, joint) in self.links.joints.iter().enumerate() {
+                let a = &scratch.poses[joint.a];
+                let b = joint.b.map_or(&Pose::WORLD, |b| &scratch.poses[b]);
+                rows_of(joint, index, a, b, &mut scratch.rows);
+            }
         }
         scratch.inverse.clear();
         scratch
@@ -214,6 +220,17 @@ impl System<'_> {
                     * (loads.torque - k.angular_velocity.cross(&angular_momenta[i])),
             )
         }));
+        if chain {
+            // The same numbers as the rows' path below, from the compact rows.
+            scratch.chain.rhs(&scratch.free, &mut scratch.rhs);
+            let solver = &mut scratch.solver;
+            scratch
+                .chain
+                .solve(&scratch.inverse, &mut scratch.rhs, solver);
+            let (loads, reactions) = (&mut scratch.loads, &mut scratch.joint_loads);
+            scratch.chain.apply(&scratch.rhs, loads, reactions);
+            return;
+        }
         let rate = 1.0 / (10.0 * self.dt);
         scratch.rhs.clear();
         for row in &scratch.rows {

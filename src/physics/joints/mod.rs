@@ -68,6 +68,7 @@
 //! correction changes is numerical, booked apart (`EnergyLedger::joint_correction`) and still
 //! counted in the drift.
 
+mod chain;
 pub mod contact;
 pub mod drive;
 mod kinds;
@@ -76,6 +77,7 @@ mod rows;
 pub mod solve;
 pub mod written;
 
+pub use chain::Chain;
 pub use contact::{hold, Buffers as ContactBuffers};
 pub use kinds::JointKind;
 pub use projection::{project, shake, Buffers as ProjectionBuffers};

@@ -59,6 +59,7 @@
 //! factor and B_k stored by columns; MuJoCo 4.0.1's RK4 hinge chain counted the same way:
 //! 112.5k.
 
+use super::chain::Link;
 use super::rows::Row;
 use crate::physics::envelope::{Envelope, Pivots};
 #[cfg(target_arch = "x86_64")]
@@ -183,27 +184,68 @@ fn side(row: &Row, side: usize) -> (Vector3<f64>, Vector3<f64>) {
     }
 }
 
+/// Where the banded factor reads the blocks' rows from: rows, or a chain's compact rows
+/// (`chain`: one link per block, the same numbers).
+#[derive(Clone, Copy)]
+enum Source<'a> {
+    Rows(&'a [Row]),
+    Links(&'a [Link]),
+}
+
 /// Solves `(J W Jᵀ) λ = rhs` for λ, written over `rhs`.
 pub fn multipliers(rows: &[Row], inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
     let x = &mut rhs[..rows.len()];
     solver.group(rows, inverse);
     solver.solved = 0;
     if solver.banded && solver.widest <= WIDEST && solver.blocks.len() > 1 {
-        #[cfg(target_arch = "x86_64")]
-        if avx2() {
-            // SAFETY: the CPU has AVX2.
-            unsafe { factor_avx2(solver, rows, inverse) };
-        } else {
-            factor_plain(solver, rows, inverse);
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        factor_plain(solver, rows, inverse);
+        banded_factor(solver, Source::Rows(rows), inverse);
     } else {
         envelope(rows, inverse, x, solver);
         return;
     }
     solver.solved = rows.len();
     again(x, solver);
+}
+
+/// [`multipliers`] for a chain's compact rows (`chain::Chain`, two or more links in chain
+/// order): one block per link, of its rows, every block of point rows; the same factor, kept
+/// for [`again`] as the rows' would be.
+pub(super) fn chain_multipliers(
+    links: &[Link],
+    inverse: &[Inverse],
+    rhs: &mut [f64],
+    solver: &mut Solver,
+) {
+    solver.blocks.clear();
+    solver.banded = true;
+    solver.widest = 0;
+    let mut row = 0;
+    for link in links {
+        let size = link.rows();
+        solver.widest = solver.widest.max(size);
+        solver.blocks.push(Block {
+            row,
+            size,
+            bodies: [link.a, link.b.unwrap_or(NONE)],
+            points: true,
+        });
+        row += size;
+    }
+    banded_factor(solver, Source::Links(links), inverse);
+    solver.solved = row;
+    again(&mut rhs[..row], solver);
+}
+
+/// The banded factor of the grouped blocks, with AVX2 when the CPU has it.
+#[inline(always)]
+fn banded_factor(solver: &mut Solver, source: Source, inverse: &[Inverse]) {
+    #[cfg(target_arch = "x86_64")]
+    if avx2() {
+        // SAFETY: the CPU has AVX2.
+        unsafe { factor_avx2(solver, source, inverse) };
+        return;
+    }
+    factor_plain(solver, source, inverse);
 }
 
 /// The envelope solve (`physics::envelope`, dropped pivots) for what is not a chain in
@@ -276,22 +318,22 @@ impl Solver {
 
 /// The banded factor at the widest block's width (`Solver::banded`), for any CPU.
 #[inline(always)]
-fn factor_plain(solver: &mut Solver, rows: &[Row], inverse: &[Inverse]) {
+fn factor_plain(solver: &mut Solver, source: Source, inverse: &[Inverse]) {
     match solver.widest {
-        1 => solver.banded::<1>(rows, inverse),
-        2 => solver.banded::<2>(rows, inverse),
-        3 => solver.banded::<3>(rows, inverse),
-        4 => solver.banded::<4>(rows, inverse),
-        5 => solver.banded::<5>(rows, inverse),
-        _ => solver.banded::<6>(rows, inverse),
+        1 => solver.banded::<1>(source, inverse),
+        2 => solver.banded::<2>(source, inverse),
+        3 => solver.banded::<3>(source, inverse),
+        4 => solver.banded::<4>(source, inverse),
+        5 => solver.banded::<5>(source, inverse),
+        _ => solver.banded::<6>(source, inverse),
     }
 }
 
 /// [`factor_plain`] compiled with AVX2 (no fused multiply–add: the same bits).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn factor_avx2(solver: &mut Solver, rows: &[Row], inverse: &[Inverse]) {
-    factor_plain(solver, rows, inverse);
+fn factor_avx2(solver: &mut Solver, source: Source, inverse: &[Inverse]) {
+    factor_plain(solver, source, inverse);
 }
 
 /// The banded substitutions at the widest block's width, for any CPU.
@@ -371,14 +413,14 @@ impl Solver {
     /// y_k = L_k⁻¹ (b_k − B_k y_{k−1}),   x_k = L_k⁻ᵀ (y_k − B_{k+1}ᵀ x_{k+1})
     /// ```
     #[inline(always)]
-    fn banded<const S: usize>(&mut self, rows: &[Row], inverse: &[Inverse]) {
+    fn banded<const S: usize>(&mut self, source: Source, inverse: &[Inverse]) {
         let count = self.blocks.len();
         self.parts.resize(count, Default::default());
         self.diagonal.resize(count, Square::default());
         self.below.resize(count, Square::default());
         self.pivots.resize(count, Column::default());
         self.solution.resize(count, Column::default());
-        fill::<S>(&self.blocks, &mut self.parts, rows, inverse);
+        fill::<S>(&self.blocks, &mut self.parts, source, inverse);
         let largest = assemble::<S>(
             &self.blocks,
             &self.parts,
@@ -456,11 +498,10 @@ impl Solver {
 fn fill<const S: usize>(
     blocks: &[Block],
     parts: &mut [[Parts; 2]],
-    rows: &[Row],
+    source: Source,
     inverse: &[Inverse],
 ) {
-    for (block, sides) in blocks.iter().zip(parts.iter_mut()) {
-        let rows = &rows[block.row..block.row + block.size];
+    for (k, (block, sides)) in blocks.iter().zip(parts.iter_mut()).enumerate() {
         for (side_index, (&body, part)) in block.bodies.iter().zip(sides).enumerate() {
             if body == NONE {
                 continue;
@@ -468,10 +509,24 @@ fn fill<const S: usize>(
             let inv = &inverse[body];
             part.linear = 0;
             part.inv_mass = inv.mass;
-            match (block.points, side_index) {
-                (true, 0) => fill_points::<S>(rows, Row::ang_a, inv, part),
-                (true, _) => fill_points::<S>(rows, Row::ang_b, inv, part),
-                (false, _) => fill_rows::<S>(rows, side_index, inv, part),
+            let size = block.size;
+            match source {
+                Source::Links(links) => {
+                    let link = &links[k];
+                    if side_index == 0 {
+                        fill_points::<S>(size, |i| link.row(i).1, inv, part);
+                    } else {
+                        fill_points::<S>(size, |i| link.row(i).2, inv, part);
+                    }
+                }
+                Source::Rows(rows) => {
+                    let rows = &rows[block.row..block.row + size];
+                    match (block.points, side_index) {
+                        (true, 0) => fill_points::<S>(size, |i| rows[i].ang_a(), inv, part),
+                        (true, _) => fill_points::<S>(size, |i| rows[i].ang_b(), inv, part),
+                        (false, _) => fill_rows::<S>(rows, side_index, inv, part),
+                    }
+                }
             }
         }
     }
@@ -487,29 +542,28 @@ fn point_weight(inertia: &Matrix3<f64>, ang: &Vector3<f64>, k: usize) -> [f64; 3
     [w.x, w.y, w.z]
 }
 
-/// One side of a block of point rows (three point rows, then angular rows): ang and I⁻¹ ang
-/// (`point_weight` for the point rows); their linear parts ±e_i give K's entries ±δ_ij/m
-/// directly, no parts stored. `ang` reads the side's angular part of a row.
+/// One side of a block of `size` point rows (three point rows, then angular rows): ang and
+/// I⁻¹ ang (`point_weight` for the point rows); their linear parts ±e_i give K's entries
+/// ±δ_ij/m directly, no parts stored. `ang(i)` is the side's angular part of row i.
 #[inline(always)]
 fn fill_points<const S: usize>(
-    rows: &[Row],
-    ang: impl Fn(&Row) -> Vector3<f64>,
+    size: usize,
+    ang: impl Fn(usize) -> Vector3<f64>,
     inv: &Inverse,
     part: &mut Parts,
 ) {
-    let (points, angular) = rows.split_at(3);
-    for (k, row) in points.iter().enumerate() {
-        let a = ang(row);
+    for k in 0..3 {
+        let a = ang(k);
         part.ang[k] = [a.x, a.y, a.z];
         part.weighted[k] = point_weight(&inv.inertia, &a, k);
     }
-    for (i, row) in angular.iter().enumerate() {
-        let a = ang(row);
+    for i in 3..size {
+        let a = ang(i);
         let w = inv.inertia * a;
-        part.ang[3 + i] = [a.x, a.y, a.z];
-        part.weighted[3 + i] = [w.x, w.y, w.z];
+        part.ang[i] = [a.x, a.y, a.z];
+        part.weighted[i] = [w.x, w.y, w.z];
     }
-    for i in rows.len()..S {
+    for i in size..S {
         part.ang[i] = [0.0; 3];
         part.weighted[i] = [0.0; 3];
     }

@@ -56,16 +56,24 @@ impl Kind for Hinge {
 #[inline(always)]
 pub fn rows(joint: &Joint, at: &Anchors, out: &mut Vec<Row>) {
     at.point_rows(out);
-    let (a, b) = (at.a, at.b);
+    for (g, c, bias) in axes(joint, at.a, at.b) {
+        out.push(at.row(Vector3::zeros(), g, -g, c, bias));
+    }
+}
+
+/// The two axis rows at poses `a`, `b`: each one's angular part g = u_A × t on A (−g on B),
+/// C = u_A·t and J̇u.
+#[inline(always)]
+pub fn axes(joint: &Joint, a: &Pose, b: &Pose) -> [(Vector3<f64>, f64, f64); 2] {
     let u = a.r * joint.axis_a;
     let du = a.w.cross(&u);
     let relative = a.w - b.w;
-    for normal in &joint.normals_b {
+    joint.normals_b.map(|normal| {
         let t = b.r * normal;
         let g = u.cross(&t);
         let dg = du.cross(&t) + u.cross(&b.w.cross(&t));
-        out.push(at.row(Vector3::zeros(), g, -g, u.dot(&t), relative.dot(&dg)));
-    }
+        (g, u.dot(&t), relative.dot(&dg))
+    })
 }
 
 /// The angle θ (rad) A has turned about the axis relative to B since t = 0, and its row.

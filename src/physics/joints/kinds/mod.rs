@@ -178,6 +178,12 @@ impl JointKind {
     }
 }
 
+/// A hinge's two axis rows at poses `a`, `b`: (g on A, C, J̇u) each (`hinge::axes`).
+#[inline(always)]
+pub(super) fn hinge_axes(joint: &Joint, a: &Pose, b: &Pose) -> [(Vector3<f64>, f64, f64); 2] {
+    hinge::axes(joint, a, b)
+}
+
 /// What every kind's rows start from, at poses A and B: the levers r = R a, the anchors'
 /// separation d = p_A − p_B and ω×(ω×r) on each side (the centripetal part of the anchors'
 /// accelerations), and the row builder.

@@ -1,0 +1,196 @@
+//! A chain of ball and hinge joints held inside f(Y) without building rows: each joint's rows
+//! kept compact (its levers, the hinge's two angular parts and the J̇u terms), the banded
+//! factor filled from them, and the right-hand side and the reactions summed from them.
+//!
+//! ```text
+//! point row k (k < 3):  (e_k, r_A×e_k | −e_k, −r_B×e_k)       J̇u = ω_A×(ω_A×r_A) − ω_B×(ω_B×r_B)
+//! hinge row (2):        (0, g | 0, −g),  g = u_A × t           J̇u = (ω_A − ω_B)·dg  (`kinds::hinge`)
+//! rhs_i = −(J_i a_free + J̇u_i),   K λ = rhs (`solve`),   F += J_linᵀ λ,   τ += J_angᵀ λ
+//! ```
+//!
+//! Each row's parts are the numbers `rows_of` would store (the same expressions), so K and
+//! its factor are the row path's to the last bit; the right-hand side and the reactions are
+//! summed a joint at a time (a point row's angular part r × e_k has the exact zero the row
+//! path multiplies by), so they differ from the row path's by round-off. What is saved is
+//! writing and reading the rows (208 bytes each), grouping them into blocks (a joint is a
+//! block) and the zero terms.
+//!
+//! It applies when the joints are a chain in order (each joint shares bodies only with the
+//! joint just before it, as `solve`'s banded factor needs, and no two consecutive joints join
+//! the same two bodies, which the row path would merge into one block), of two or more ball
+//! and hinge joints, with no Baumgarte term (which needs C and Ċ per row): anything else takes
+//! the row path.
+
+use super::kinds::{self, Anchors, JointKind};
+use super::rows::Pose;
+use super::solve::{chain_multipliers, Inverse, Solver};
+use super::Joint;
+use crate::physics::effects::Loads;
+use nalgebra::Vector3;
+
+/// One joint's rows, compact: three point rows (levers r_A, r_B), then `angular` rows with
+/// angular part g on A and −g on B.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Link {
+    pub a: usize,
+    pub b: Option<usize>,
+    pub ra: Vector3<f64>,
+    pub rb: Vector3<f64>,
+    /// The point rows' J̇u.
+    pub centripetal: Vector3<f64>,
+    /// 0 (ball) or 2 (hinge).
+    pub angular: usize,
+    pub g: [Vector3<f64>; 2],
+    /// The angular rows' J̇u.
+    pub bias: [f64; 2],
+}
+
+impl Link {
+    /// How many rows it has.
+    #[inline(always)]
+    pub fn rows(&self) -> usize {
+        3 + self.angular
+    }
+
+    /// Row i's linear part on A (−it on B) and its angular parts on A and on B, as
+    /// `Anchors::point_rows` and `hinge::rows` build them.
+    #[inline(always)]
+    pub fn row(&self, i: usize) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        if i < 3 {
+            let e = Vector3::ith(i, 1.0);
+            (e, self.ra.cross(&e), -self.rb.cross(&e))
+        } else {
+            let g = self.g[i - 3];
+            (Vector3::zeros(), g, -g)
+        }
+    }
+}
+
+/// The compact rows of the last [`Chain::build`], and per body the first joint on it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Chain {
+    pub(super) links: Vec<Link>,
+    first: Vec<usize>,
+}
+
+impl Chain {
+    /// The joints' compact rows at `poses`, when they are a chain of ball and hinge joints in
+    /// order (module doc); false (nothing built) otherwise.
+    #[inline(always)]
+    pub fn build(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
+        if !self.is_chain(joints, poses.len()) {
+            return false;
+        }
+        self.links.clear();
+        for (index, joint) in joints.iter().enumerate() {
+            let a = &poses[joint.a];
+            let b = joint.b.map_or(&Pose::WORLD, |b| &poses[b]);
+            let at = Anchors::of(joint, index, a, b);
+            let mut link = Link {
+                a: joint.a,
+                b: joint.b,
+                ra: at.ra,
+                rb: at.rb,
+                centripetal: at.centripetal,
+                angular: 0,
+                g: [Vector3::zeros(); 2],
+                bias: [0.0; 2],
+            };
+            if joint.kind == JointKind::Hinge {
+                let axes = kinds::hinge_axes(joint, a, b);
+                link.angular = 2;
+                for (i, (g, _, bias)) in axes.into_iter().enumerate() {
+                    link.g[i] = g;
+                    link.bias[i] = bias;
+                }
+            }
+            self.links.push(link);
+        }
+        true
+    }
+
+    /// Whether `joints` (on `bodies` bodies) are two or more ball and hinge joints in chain
+    /// order: every joint's bodies first touched by it or the joint before, and no two
+    /// consecutive joints on the same bodies.
+    fn is_chain(&mut self, joints: &[Joint], bodies: usize) -> bool {
+        const NONE: usize = usize::MAX;
+        if joints.len() < 2
+            || joints
+                .iter()
+                .any(|j| !matches!(j.kind, JointKind::Ball | JointKind::Hinge))
+        {
+            return false;
+        }
+        self.first.clear();
+        self.first.resize(bodies, NONE);
+        for (k, joint) in joints.iter().enumerate() {
+            if k > 0 && joint.a == joints[k - 1].a && joint.b == joints[k - 1].b {
+                return false;
+            }
+            for body in std::iter::once(joint.a).chain(joint.b) {
+                if self.first[body] == NONE {
+                    self.first[body] = k;
+                }
+                if self.first[body] + 1 < k {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// K λ = `rhs` for the built rows, λ over `rhs` (`solve::chain_multipliers`: the factor
+    /// kept in `solver` for `solve::again`, as the rows' would be).
+    #[inline(always)]
+    pub fn solve(&self, inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
+        chain_multipliers(&self.links, inverse, rhs, solver);
+    }
+
+    /// `rhs` = −(J a_free + J̇u) of every row, `free` each body's free accelerations (v̇, ω̇),
+    /// a joint's three point rows at once: (r × e_k)·ω̇ = e_k·(ω̇ × r), so
+    /// `J_point a = v̇_A + ω̇_A × r_A − v̇_B − ω̇_B × r_B`, and a hinge row `g·(ω̇_A − ω̇_B)`.
+    #[inline(always)]
+    pub fn rhs(&self, free: &[(Vector3<f64>, Vector3<f64>)], rhs: &mut Vec<f64>) {
+        rhs.clear();
+        for link in &self.links {
+            let (la, aa) = &free[link.a];
+            let mut point = la + aa.cross(&link.ra);
+            let mut turn = *aa;
+            if let Some(b) = link.b {
+                let (lb, ab) = &free[b];
+                point -= lb + ab.cross(&link.rb);
+                turn -= ab;
+            }
+            point += link.centripetal;
+            rhs.extend([-point.x, -point.y, -point.z]);
+            for i in 0..link.angular {
+                rhs.push(-(link.g[i].dot(&turn) + link.bias[i]));
+            }
+        }
+    }
+
+    /// Each joint's `J_kᵀ λ_k` added to its bodies' loads and to its reaction on A: the point
+    /// rows' multipliers are a force f at the anchor, `(f, r_A × f + Σ g_i λ_i)` on A and the
+    /// opposite `(−f, −r_B × f − Σ g_i λ_i)` on B.
+    #[inline(always)]
+    pub fn apply(&self, lambda: &[f64], loads: &mut [Loads], reactions: &mut [Loads]) {
+        let mut p = 0;
+        for (link, reaction) in self.links.iter().zip(reactions) {
+            let f = Vector3::new(lambda[p], lambda[p + 1], lambda[p + 2]);
+            let mut turn = Vector3::zeros();
+            for i in 0..link.angular {
+                turn += link.g[i] * lambda[p + 3 + i];
+            }
+            p += link.rows();
+            let t = link.ra.cross(&f) + turn;
+            loads[link.a].force += f;
+            loads[link.a].torque += t;
+            reaction.force += f;
+            reaction.torque += t;
+            if let Some(b) = link.b {
+                loads[b].force -= f;
+                loads[b].torque -= link.rb.cross(&f) + turn;
+            }
+        }
+    }
+}
