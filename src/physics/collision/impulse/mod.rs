@@ -1243,9 +1243,7 @@ fn bounce_stage(
 ) {
     let joints = (!joined.axes.is_empty()).then_some(&mut *joined);
     if let Some(scale) = normal::restitution(rows, motions, bounce, change, bounced, joints) {
-        let lambda = std::mem::take(&mut joined.lambda);
-        joined.book(&lambda, scale);
-        joined.lambda = lambda;
+        joined.book_stage(scale);
     }
 }
 
@@ -1292,20 +1290,12 @@ fn inelastic_stage(
         }
     }
     if !answered {
-        let mut lambda = std::mem::take(&mut joined.lambda);
-        let direct = direct::inelastic(
-            large,
-            rows,
-            (&joined.axes, &mut lambda),
-            motions,
-            tolerance,
-            buffers_direct,
-        );
+        // With the joint rows (and their stops: `joined`).
+        let direct = joined.inelastic(large, rows, motions, tolerance, buffers_direct);
         if direct && joints {
-            joined.book(&lambda, 1.0);
+            joined.book_stage(1.0);
             joined.held = true;
         }
-        joined.lambda = lambda;
         if direct {
             counters.direct += 1;
         } else {
