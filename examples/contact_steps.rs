@@ -20,13 +20,18 @@
 //! of a body from its start (a stack's lean), the solver's path counters and µs/step; the
 //! last lines the mean CPU time per step (the thread's run time, Linux, beside
 //! benches/rapier's) and the work per step (median, max, unconverged steps);
-//! `CONTACT_STEPS_STATES` prints the final states.
+//! `CONTACT_STEPS_BUDGET` (`off`, `friction`, `whole`) sets where the work budget of 20
+//! medians of the scene's steps applies (`impulse::MEDIAN_BUDGET` otherwise);
+//! `CONTACT_STEPS_STATES` prints the final states; `CONTACT_STEPS_WORK=FILE` writes each
+//! step's work, rows, unconverged residual (0: converged) and work budget to FILE, one step
+//! a line.
 
 use std::time::Instant;
 use tumble::contact_scenes::{
     bonded_wall, cradle, domino_run, dominoes, dominoes_tipped, edge_wall, knife_edge_wall,
     pyramid, stack, wall,
 };
+use tumble::physics::collision::impulse::budget::Applies;
 use tumble::physics::{Impacts, Response};
 
 fn main() {
@@ -106,6 +111,16 @@ fn main() {
     } else {
         panic!("{usage}")
     };
+    // CONTACT_STEPS_BUDGET: where the budget of 20 medians applies (impulse::MEDIAN_BUDGET
+    // otherwise): off, friction or whole.
+    if let Ok(name) = std::env::var("CONTACT_STEPS_BUDGET") {
+        world.set_median_budget(match name.as_str() {
+            "off" => Applies::Off,
+            "friction" => Applies::Friction,
+            "whole" => Applies::Whole,
+            _ => panic!("CONTACT_STEPS_BUDGET: off, friction or whole"),
+        });
+    }
     let every: u64 = std::env::var("CONTACT_STEPS_EVERY")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -115,13 +130,27 @@ fn main() {
     // Per step: the solver's work (row updates, deterministic) and the wall-clock time.
     let mut works = Vec::new();
     let mut times = Vec::new();
+    let mut per_step = String::new();
     let mut last = world.contact_counters();
     let mut last_time = start;
     for step in 1..=steps {
         let t0 = Instant::now();
         world.step();
         times.push(t0.elapsed().as_secs_f64() * 1e6);
-        works.push(world.contact_report().work);
+        let report = world.contact_report();
+        let c = world.contact_counters();
+        works.push(report.work);
+        per_step.push_str(&format!(
+            "{step} {} {} {:e} {} {} {} {} {}\n",
+            report.work,
+            report.rows,
+            report.unconverged.unwrap_or(0.0),
+            report.budget,
+            c.interior,
+            c.interior_steps,
+            c.friction_sweeps,
+            c.friction_subspace
+        ));
         if step % every == 0 || step == steps {
             let now = world.contact_counters();
             let t = Instant::now();
@@ -191,6 +220,9 @@ fn main() {
         time_max / time_median.max(1e-9),
         world.contact_counters().unconverged
     );
+    if let Some(path) = std::env::var_os("CONTACT_STEPS_WORK") {
+        std::fs::write(path, per_step).expect("CONTACT_STEPS_WORK: a writable file");
+    }
     if std::env::var_os("CONTACT_STEPS_STATES").is_some() {
         for s in world.states() {
             println!(

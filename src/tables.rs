@@ -652,6 +652,13 @@ pub fn contact_panel(s: &Snapshot, obstacles: &[Obstacle]) -> Panel {
             unit: "",
         });
     }
+    if let Some(text) = unconverged_text(&s.contact_report) {
+        rows.push(Row {
+            label: text,
+            cells: Vec::new(),
+            unit: "",
+        });
+    }
     for c in s.contacts.iter().filter(|c| involves(c, s.body_index)) {
         rows.push(Row {
             label: contact_label(c, obstacles, &s.bodies, false),
@@ -666,6 +673,25 @@ pub fn contact_panel(s: &Snapshot, obstacles: &[Obstacle]) -> Panel {
         title: "contacts (last collide)".to_string(),
         rows,
     }
+}
+
+/// What a step that stopped unconverged says (None when it converged): why it stopped (its
+/// work budget, 20 medians of the scene's steps so far, or its sweeps' cap) and the residual
+/// it stopped at, against the tolerance.
+pub fn unconverged_text(report: &impulse::StepReport) -> Option<String> {
+    let residual = report.unconverged?;
+    let why = if report.work >= report.budget {
+        format!(
+            "met its work budget ({} of {} row updates)",
+            report.work, report.budget
+        )
+    } else {
+        "reached its sweeps' cap".to_string()
+    };
+    Some(format!(
+        "unconverged: the solver {why}, residual {} m/s (converged: < 1e-10)",
+        number_plain(residual)
+    ))
 }
 
 /// A panel as aligned plain-text lines (title first).
@@ -746,5 +772,37 @@ mod tests {
         assert_eq!(number(-999.9999994), " -999.999999");
         assert_eq!(number(-18941.203691), "   -1.8941e4");
         assert_eq!(number(-1.2345e-99), " -1.2345e-99");
+    }
+
+    #[test]
+    fn an_unconverged_step_says_why_it_stopped_and_its_residual() {
+        use crate::physics::collision::impulse::StepReport;
+        let converged = StepReport {
+            work: 100,
+            rows: 10,
+            budget: 200,
+            unconverged: None,
+        };
+        assert_eq!(super::unconverged_text(&converged), None);
+        let at_budget = StepReport {
+            work: 3544,
+            rows: 30,
+            budget: 3520,
+            unconverged: Some(3.3e-9),
+        };
+        assert_eq!(
+            super::unconverged_text(&at_budget).unwrap(),
+            format!(
+                "unconverged: the solver met its work budget (3544 of 3520 row updates), residual {} m/s (converged: < 1e-10)",
+                super::number_plain(3.3e-9)
+            )
+        );
+        let capped = StepReport {
+            budget: 600_000,
+            ..at_budget
+        };
+        assert!(super::unconverged_text(&capped)
+            .unwrap()
+            .starts_with("unconverged: the solver reached its sweeps' cap, residual"));
     }
 }

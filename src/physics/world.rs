@@ -36,7 +36,9 @@ use super::hand::{Hand, Pull};
 use super::integrators::system::{Buffers as SystemBuffers, Start};
 use super::integrators::Integrator;
 use super::joints::contact::equality_rows;
-use super::joints::drive::{drive, Buffers as DriveBuffers, Drive, Scene as DriveScene};
+use super::joints::drive::{
+    book_stops, drive, Buffers as DriveBuffers, Drive, Scene as DriveScene,
+};
 use super::joints::{
     hold, project, shake, ContactBuffers, Correction, Links, ProjectionBuffers, Row as JointRow,
 };
@@ -886,6 +888,7 @@ impl World {
             self.carry_start.clone_from(&now.states);
         }
         self.scratch.joined.impulses.clear();
+        self.scratch.joined.stops.clear();
         let mut measured = collide(
             &input,
             &mut now.states,
@@ -902,6 +905,9 @@ impl World {
             load.force += impulse.0 / self.dt;
             load.torque += impulse.1 / self.dt;
         }
+        // Its stops' share (`joints::drive::touching_stops`), on the joints panel.
+        let stops = &self.scratch.joined.stops;
+        book_stops(links, &now.states, stops, &mut now.joint_drives, self.dt);
         if !self.links.joints.is_empty() && !now.contacts.is_empty() && states_before.is_none() {
             // The joints held with the contacts (`joints::contact`); booked with the response.
             let before = total_energy(&self.bodies, &self.effects, &now.states);
@@ -920,6 +926,8 @@ impl World {
                     load.force += impulse.force / self.dt;
                     load.torque += impulse.torque / self.dt;
                 }
+                let stops = self.contact_joint_buffers.stops();
+                book_stops(links, &now.states, stops, &mut now.joint_drives, self.dt);
                 let after = total_energy(&self.bodies, &self.effects, &now.states);
                 measured = Some(match measured {
                     Some(change) => EnergyChange { after, ..change },
@@ -1225,6 +1233,12 @@ impl World {
     /// at its work budget unconverged, the residual (the loop strip shows it).
     pub fn contact_report(&self) -> super::collision::impulse::StepReport {
         self.scratch.report
+    }
+
+    /// Where the `impulse` solver's budget of 20 medians of the scene's steps applies from
+    /// the next step on (`impulse::MEDIAN_BUDGET` until set: for measurements and tests).
+    pub fn set_median_budget(&mut self, applies: super::collision::impulse::budget::Applies) {
+        self.scratch.set_median_budget(applies);
     }
 
     /// Switches integrator, keeping t and the state (the orientation changes representation;

@@ -450,12 +450,9 @@ fn collide(s: &Snapshot) -> Vec<Line<'static>> {
         ));
     }
     // A step that met the solver's work budget unconverged says so, with its residual.
-    if let Some(residual) = s.contact_report.unconverged {
+    if let Some(text) = crate::tables::unconverged_text(&s.contact_report) {
         lines.push(Line::from(vec![Span::styled(
-            format!(
-                " unconverged: the solver met its work budget, residual {} m/s (converged: < 1e-10)",
-                number_plain(residual)
-            ),
+            format!(" {text}"),
             theme::NOTICE,
         )]));
     }

@@ -326,3 +326,112 @@ fn a_motor_too_weak_for_the_load_gives_its_whole_bound_and_slides_back() {
         "ṡ = {rate}, expected {expected}"
     );
 }
+
+#[test]
+fn a_box_landing_on_a_flap_at_its_stop_is_stopped_by_the_stop_in_the_same_solve() {
+    // A 2 kg flap (1 m × 5 cm × 0.5 m) on a hinge along z at its edge, resting on its lower
+    // stop (limits [0°, 90°]: gravity turns it towards θ < 0); a 1 kg cube (10 cm) lands flat
+    // on it at v = 2 m/s, its centre d = 0.75 m from the hinge, e = 0, μ = 0. With the stop
+    // in the contacts' solve the blow is one problem: the cube stops, the flap does not move,
+    // and the stop's angular impulse is the cube's angular momentum about the hinge, m v d
+    // (the hinge's point rows take m v). The stop as a separate pass (the joints' rows alone
+    // in the contacts' solve) lets the flap and cube turn on together at
+    // ω = m v d / (I_h + m d²) = 1.22 rad/s, the cube at 0.92 m/s.
+    let (m, d, v0) = (1.0, 0.75, 2.0);
+    let flap = block(
+        "flap",
+        [1.0, 0.05, 0.5],
+        2.0,
+        State {
+            position: Vector3::new(0.5, 0.0, 0.0),
+            ..State::at_rest()
+        },
+    );
+    let cube = block(
+        "cube",
+        [0.1, 0.1, 0.1],
+        m,
+        State {
+            position: Vector3::new(d, 0.025 + 0.05 + 0.0015, 0.0),
+            linear_momentum: Vector3::new(0.0, -v0 * m, 0.0),
+            ..State::at_rest()
+        },
+    );
+    let mut world = world_of(
+        vec![flap, cube],
+        gravity(),
+        Some(0.0),
+        Correction::Projection,
+        |s| {
+            let mut j = Joint::at_point(
+                "hinge".into(),
+                JointKind::Hinge,
+                0,
+                None,
+                Vector3::zeros(),
+                Vector3::z(),
+                s,
+            );
+            j.limits = Some([0.0, 90f64.to_radians()]);
+            j
+        },
+    );
+    let dt = 1e-3;
+    let mut landed = None;
+    for step in 0..50 {
+        let before = world.states()[1].linear_momentum.y / m;
+        world.step();
+        let after = world.states()[1].linear_momentum.y / m;
+        if after > 0.5 * before {
+            landed = Some((step, before - G * dt));
+            break;
+        }
+    }
+    let (step, arrival) = landed.expect("the cube never landed");
+    let snapshot = world.snapshot();
+    let joint = &snapshot.joints[0];
+    let (angle, rate) = joint.coordinate.expect("an angle");
+    let cube = world.states()[1].linear_momentum.y / m;
+    println!(
+        "step {step}: arrival {arrival} m/s, cube {cube} m/s, flap θ {angle} θ̇ {rate}, stop {} N·m",
+        joint.drive.limit
+    );
+    assert!(cube.abs() < 1e-6 * v0, "the cube keeps {cube} m/s");
+    assert!(rate.abs() < 1e-6, "the flap turns at {rate} rad/s");
+    assert!(angle > -1e-6, "the flap went past its stop: θ = {angle}");
+    // The stop's impulse over the step: the cube's m |v| d and, from the joints' own pass,
+    // the flap's weight's torque m_f g (a/2) dt.
+    let expected = m * arrival.abs() * d + 2.0 * G * 0.5 * dt;
+    let impulse = joint.drive.limit * dt;
+    assert!(
+        (impulse - expected).abs() < 1e-3 * expected,
+        "stop impulse {impulse} N·m·s against {expected}"
+    );
+    // Then at rest. The step of the blow re-advances the cube from where it started the step
+    // with its new velocity (0): it stops 1.5 mm above the flap, falls again and lands at
+    // √(2 g 1.5 mm) = 0.17 m/s after 17 ms. Throughout, the flap never turns past its stop
+    // (the joints' contact pass holds the stop with the contact); from 0.2 s on the cube
+    // lies still and the stop carries both weights' torques about the hinge,
+    // m_f g a/2 + m g d = 17.1675 N·m.
+    let resting = 2.0 * G * 0.5 + m * G * d;
+    let (mut fastest, mut worst) = (0.0f64, 0.0f64);
+    for step in 0..500 {
+        world.step();
+        let snapshot = world.snapshot();
+        let joint = &snapshot.joints[0];
+        let (angle, rate) = joint.coordinate.expect("an angle");
+        assert!(angle > -1e-9, "step {step}: past the stop, θ = {angle}");
+        assert!(rate.abs() < 1e-9, "step {step}: the flap turns at {rate}");
+        if step >= 200 {
+            let cube = world.states()[1].linear_momentum.y / m;
+            fastest = fastest.max(cube.abs());
+            worst = worst.max((joint.drive.limit - resting).abs());
+        }
+    }
+    println!("at rest: cube |v| ≤ {fastest} m/s, stop torque off by ≤ {worst} N·m");
+    assert!(fastest < 1e-5, "the cube moves at {fastest} m/s");
+    assert!(
+        worst < 1e-3 * resting,
+        "the stop's torque is off by {worst} N·m"
+    );
+}

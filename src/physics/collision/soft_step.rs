@@ -608,13 +608,14 @@ const INSIDE: f64 = 1.0 - 1.0 / (1u64 << 50) as f64;
 /// The root `|t| = √(t₁² + t₂²)` is taken only near or outside the rim: when the rounded
 /// square `q` is at most `fl(fl(b·b)·INSIDE)`, which is below b² exactly (b² normal), then
 /// √q < b and the correctly rounded root is at most b, so `|t| > b` is false and nothing
-/// would change. The result is the plain formula's to the bit; a resting contact well inside
-/// its cone (most of them) skips the root's 15–20 cycles.
+/// would change; nor when q = 0 (a row that pushes nothing and holds nothing: √0 = 0 is not
+/// above b ≥ 0). The result is the plain formula's to the bit; a resting contact well inside
+/// its cone, or an idle speculative row, skips the root's 15–20 cycles.
 #[inline(always)]
 fn clamp_disk(t: &mut [f64; 2], bound: f64) {
     let square = t[0] * t[0] + t[1] * t[1];
     let inner = bound * bound * INSIDE;
-    if bound >= 0.0 && inner >= f64::MIN_POSITIVE && square <= inner {
+    if bound >= 0.0 && (square == 0.0 || (inner >= f64::MIN_POSITIVE && square <= inner)) {
         return;
     }
     let size = square.sqrt();
@@ -684,7 +685,9 @@ mod tests {
             let scale = [1.0, 1e-3, 1e-150, 1e150, 1e-160][i % 5];
             let bound = [next() * scale, 0.0, -0.0][usize::from(i % 97 == 0) + usize::from(i % 89 == 0)];
             // Within a few ulps of the rim, or anywhere inside and outside it.
-            let r = if i % 2 == 0 {
+            let r = if bound == 0.0 {
+                next() * [0.0, 1e-200, 1.0][i % 3]
+            } else if i % 2 == 0 {
                 bound * (1.0 + (next() - 0.5) * 1e-15)
             } else {
                 bound * next() * 2.0

@@ -43,6 +43,9 @@ pub(super) struct Link {
     pub g: [Vector3<f64>; 2],
     /// The angular rows' J̇u.
     pub bias: [f64; 2],
+    /// C: the point rows' (the anchors' separation) and the angular rows'.
+    pub separation: Vector3<f64>,
+    pub c: [f64; 2],
 }
 
 impl Link {
@@ -95,12 +98,15 @@ impl Chain {
                 angular: 0,
                 g: [Vector3::zeros(); 2],
                 bias: [0.0; 2],
+                separation: at.separation,
+                c: [0.0; 2],
             };
             if joint.kind == JointKind::Hinge {
                 let axes = kinds::hinge_axes(joint, a, b);
                 link.angular = 2;
-                for (i, (g, _, bias)) in axes.into_iter().enumerate() {
+                for (i, (g, c, bias)) in axes.into_iter().enumerate() {
                     link.g[i] = g;
+                    link.c[i] = c;
                     link.bias[i] = bias;
                 }
             }
@@ -144,6 +150,47 @@ impl Chain {
     #[inline(always)]
     pub fn solve(&self, inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
         chain_multipliers(&self.links, inverse, rhs, solver);
+    }
+
+    /// How many rows the built joints have.
+    pub fn rows(&self) -> usize {
+        self.links.iter().map(Link::rows).sum()
+    }
+
+    /// `rhs` = −C of every row; returns max |C|.
+    #[inline(always)]
+    pub fn errors(&self, rhs: &mut Vec<f64>) -> f64 {
+        rhs.clear();
+        let mut worst = 0.0_f64;
+        for link in &self.links {
+            let s = &link.separation;
+            for c in [s.x, s.y, s.z].iter().chain(&link.c[..link.angular]) {
+                worst = worst.max(c.abs());
+                rhs.push(-c);
+            }
+        }
+        worst
+    }
+
+    /// `rhs` = −J u of every row at the poses' velocities, a joint at a time (as [`Chain::rhs`]):
+    /// `v_A + ω_A × r_A − v_B − ω_B × r_B` for the point rows, `g·(ω_A − ω_B)` for a hinge's.
+    #[inline(always)]
+    pub fn rates(&self, poses: &[Pose], rhs: &mut Vec<f64>) {
+        rhs.clear();
+        for link in &self.links {
+            let a = &poses[link.a];
+            let mut point = a.v + a.w.cross(&link.ra);
+            let mut turn = a.w;
+            if let Some(b) = link.b {
+                let b = &poses[b];
+                point -= b.v + b.w.cross(&link.rb);
+                turn -= b.w;
+            }
+            rhs.extend([-point.x, -point.y, -point.z]);
+            for g in &link.g[..link.angular] {
+                rhs.push(-g.dot(&turn));
+            }
+        }
     }
 
     /// `rhs` = −(J a_free + J̇u) of every row, `free` each body's free accelerations (v̇, ω̇),

@@ -9,14 +9,19 @@
 //! are solved together here, in the metric of the masses (W = diag(1/m, I⁻¹_world)):
 //!
 //! ```text
-//! rows       J = (joint rows J_j ; contact rows J_c), J_c = (n, r_A×n | −n, −r_B×n)
+//! rows       J = (joint rows J_j ; contact rows J_c ; stops J_s), J_c = (n, r_A×n | −n, −r_B×n),
+//!            J_s a limit's stop within 1e-9 of its limit (`drive::touching_stops`)
 //! K = J W Jᵀ (the effective mass the contact impulse uses for one row)
-//! find μ:    w = K μ + r,   w_j = 0,   w_c ≥ 0,  μ_c ≥ 0,  μ_c w_c = 0
-//! positions  r_j = C_j, r_c = g_c + s_c     (δ = W Jᵀ μ; g_c ≥ 0 the speculative gap, s_c
-//!            the contact point's normal motion so far: a pass never pushes a contact point
-//!            deeper than the response left it); repeated (Newton) until |C| < 1e-12
-//! velocities r_j = J_j u, r_c = J_c u + g_c/dt;   ΔP = J_linᵀ μ, ΔL = J_angᵀ μ
+//! find μ:    w = K μ + r,   w_j = 0,   w_c ≥ 0,  μ_c ≥ 0,  μ_c w_c = 0  (the stops as c)
+//! positions  r_j = C_j, r_c = g_c + s_c, r_s = C_s  (δ = W Jᵀ μ; g_c ≥ 0 the speculative
+//!            gap, s_c the contact point's normal motion so far: a pass never pushes a contact
+//!            point deeper than the response left it); repeated (Newton) until |C_j| < 1e-12
+//!            and no stop is past its limit by 1e-12
+//! velocities r_j = J_j u, r_c = J_c u + g_c/dt, r_s = J_s u;   ΔP = J_linᵀ μ, ΔL = J_angᵀ μ
 //! ```
+//!
+//! With the stops in it, a body resting on another that lies on its stop (a box on a flap)
+//! does not turn the flap past its limit: the stop carries the box's weight with the flap's.
 //!
 //! The complementarity problem is solved exactly by an active set: solve `K_SS μ_S = −r_S`
 //! (`solve::multipliers`, the same envelope Cholesky as the joints' forces) with S the joint
@@ -68,6 +73,16 @@ pub struct Buffers {
     rhs: Vec<f64>,
     delta: Vec<(Vector3<f64>, Vector3<f64>)>,
     solver: Solver,
+    /// Per joint: the velocity impulse its stops gave in the last pass (≥ 0).
+    stops: Vec<f64>,
+}
+
+impl Buffers {
+    /// Per joint: the velocity impulse its limit's stops gave in the last [`hold`] (≥ 0, N·s
+    /// or N·m·s along the stop's row; `drive::book_stops`).
+    pub fn stops(&self) -> &[f64] {
+        &self.stops
+    }
 }
 
 /// What the pass did.
@@ -92,9 +107,11 @@ pub fn hold(
     b: &mut Buffers,
 ) -> Held {
     let mut held = Held::default();
+    b.stops.clear();
     if links.joints.is_empty() {
         return held;
     }
+    b.stops.resize(links.joints.len(), 0.0);
     b.levers.clear();
     b.gaps.clear();
     for c in contacts {
@@ -108,11 +125,13 @@ pub fn hold(
     b.moved.clear();
     b.moved.resize(contacts.len(), 0.0);
     let joint_rows = links.row_count();
+    let stops_from = joint_rows + contacts.len();
     for pass in 0..=10 {
         build(links, bodies, states, contacts, b);
         let worst = b.rows[..joint_rows]
             .iter()
             .map(|r| r.error.abs())
+            .chain(b.rows[stops_from..].iter().map(|r| -r.error))
             .fold(0.0, f64::max);
         if worst < 1e-12 || pass == 10 {
             break;
@@ -120,6 +139,7 @@ pub fn hold(
         b.r.clear();
         b.r.extend(b.rows[..joint_rows].iter().map(|r| r.error));
         b.r.extend((0..contacts.len()).map(|i| b.gaps[i] + b.moved[i]));
+        b.r.extend(b.rows[stops_from..].iter().map(|r| r.error));
         held.rounds += complementarity(joint_rows, POSITION_TOLERANCE, b);
         for (row, &mu) in b.rows.iter().zip(&b.mu) {
             if mu != 0.0 {
@@ -130,7 +150,7 @@ pub fn hold(
             }
         }
         // The contact points' normal motion: J_c δ.
-        for (i, row) in b.rows[joint_rows..].iter().enumerate() {
+        for (i, row) in b.rows[joint_rows..stops_from].iter().enumerate() {
             b.moved[i] += along(row, &b.delta);
         }
         held.changed = true;
@@ -140,7 +160,7 @@ pub fn hold(
     for (i, row) in b.rows.iter().enumerate() {
         let pb = row.b().map_or(Pose::WORLD, |j| b.poses[j]);
         let rate = rate(row, &b.poses[row.a()], &pb);
-        b.r.push(if i < joint_rows {
+        b.r.push(if i < joint_rows || i >= stops_from {
             rate
         } else {
             rate + b.gaps[i - joint_rows] / dt
@@ -157,19 +177,27 @@ pub fn hold(
     for (row, &mu) in b.rows.iter().zip(&b.mu) {
         apply(row, mu, states);
     }
-    for (row, &mu) in b.rows[..joint_rows].iter().zip(&b.mu) {
+    let held_rows = b.rows.iter().zip(&b.mu).enumerate();
+    for (i, (row, &mu)) in held_rows.filter(|(i, _)| *i < joint_rows || *i >= stops_from) {
         impulses[row.owner].force += row.lin_a() * mu;
         impulses[row.owner].torque += row.ang_a() * mu;
+        if i >= stops_from {
+            b.stops[row.owner] += mu;
+        }
     }
     held.changed = true;
     held
 }
 
 /// The joints' equality rows at `states` into `rows` (what the contact solve takes with its
-/// contact rows: `collision::impulse::joined`).
+/// contact rows: `collision::impulse::joined`), then every limit's stop within
+/// `drive::TOUCHING` of its limit (one-sided, λ ∈ [0, ∞): `drive::touching_stops`), so that
+/// a contact's impulse on a body resting on its stop is answered by the stop in the same
+/// solve.
 pub fn equality_rows(links: &Links, bodies: &[Body], states: &[State], rows: &mut Vec<Row>) {
     let (mut poses, mut inverse) = (Vec::new(), Vec::new());
     joint_rows(links, bodies, states, (&mut poses, &mut inverse, rows));
+    super::drive::touching_stops(links, &poses, rows);
 }
 
 /// The joint rows and the contact rows at `states`, with velocities.
@@ -189,6 +217,8 @@ fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact],
         let axis = Axis::jacobian(n, (c.body, ra.cross(&n)), other.map(|o| (o, -rb.cross(&n))));
         b.rows.push(Row::new(axis, [0.0, f64::INFINITY], 0.0));
     }
+    // The limits' stops within touching of their limits, one-sided like the contacts.
+    super::drive::touching_stops(links, &b.poses, &mut b.rows);
 }
 
 /// Applies the impulse μ of one row to its bodies: `ΔP = J_linᵀ μ`, `ΔL = J_angᵀ μ` on each end.

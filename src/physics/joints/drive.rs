@@ -26,6 +26,11 @@
 //!             ΔP = J_linᵀ λ, ΔL = J_angᵀ λ
 //! ```
 //!
+//! The stops within [`TOUCHING`] of their limits are also one-sided rows of the contacts'
+//! exact solve (`collision::impulse::joined`, in an impact) and of the contact pass after it
+//! (`contact::hold`): what a contact does to a body on its stop is answered by the stop there
+//! ([`touching_stops`], [`book_stops`]).
+//!
 //! e is the scene's contact restitution (0 without a contact model), and 0 for a slow approach,
 //! |J u⁻| < 3 |J u⁻ − J u₀| (u₀ the step's start: the approach is less than three steps of
 //! what the loads give, a body resting on its stop) — as contacts do below their bounce speed.
@@ -316,6 +321,42 @@ fn build(scene: &Scene, states: &[State], touching: f64, motors: bool, b: &mut B
                 .push(Row::motor(&row, motor.speed, motor.max * scene.dt));
             b.kinds.push(Kind::Motor);
         }
+    }
+}
+
+/// Appends each limit's stop within [`TOUCHING`] of its limit at `poses` (the bodies' poses,
+/// `projection::joint_rows`) to `rows`: the one-sided rows (λ ∈ [0, ∞)) the contacts' exact
+/// solve takes with the joints' equality rows (`collision::impulse::joined`).
+pub(super) fn touching_stops(links: &Links, poses: &[Pose], rows: &mut Vec<Row>) {
+    for (i, joint) in links.joints.iter().enumerate() {
+        let Some([lo, hi]) = joint.limits else {
+            continue;
+        };
+        let pb = joint.b.map_or(Pose::WORLD, |j| poses[j]);
+        let Some((row, q)) = coordinate(joint, i, &poses[joint.a], &pb) else {
+            continue;
+        };
+        for (sign, c) in [(1.0, q - lo), (-1.0, hi - q)] {
+            if c <= TOUCHING {
+                rows.push(Row::stop(&row, sign, c));
+            }
+        }
+    }
+}
+
+/// Adds the stops' impulses the contacts' exact solve gave (`stops[j]` ≥ 0 per joint,
+/// `collision::impulse::joined`) to `drives` as forces over the step, signed as
+/// [`Drive::limit`] is (+: the lower stop, nearer its limit at `states`).
+pub fn book_stops(links: &Links, states: &[State], stops: &[f64], drives: &mut [Drive], dt: f64) {
+    for ((joint, &impulse), drive) in links.joints.iter().zip(stops).zip(drives) {
+        if impulse == 0.0 {
+            continue;
+        }
+        let (Some([lo, hi]), Some(q)) = (joint.limits, joint.coordinate(states)) else {
+            continue;
+        };
+        let sign = if q - lo <= hi - q { 1.0 } else { -1.0 };
+        drive.limit += sign * impulse / dt;
     }
 }
 

@@ -43,7 +43,9 @@
 //! ```
 //!
 //! A hinge's or slider's limits and motor are rows with bounds, solved as impulses at the end
-//! of the step with these rows held (`drive`).
+//! of the step with these rows held (`drive`); a stop within 1e-9 of its limit is also a
+//! one-sided row of the contacts' exact solve (`collision::impulse::joined`) and of the
+//! contact pass (`contact`), so a contact cannot turn a joint past its stop.
 //!
 //! Holding C̈ = 0 keeps C and Ċ where they started only up to the integrator's error: they
 //! drift. `joint_correction` chooses what is done about it:

@@ -21,6 +21,7 @@
 //! Returns the velocity impulse each joint applied to its body A (its share of the reaction,
 //! impulse / dt in `--joint`).
 
+use super::chain::Chain;
 use super::rows::{rate, rows_of, Pose, Row};
 use super::solve::{again, multipliers, Inverse, Solver};
 use super::{turn, Links};
@@ -38,8 +39,14 @@ pub struct Buffers {
     inverse: Vec<Inverse>,
     rhs: Vec<f64>,
     solver: Solver,
-    /// Per body, Σ μ lin and Σ μ ang of a position pass.
+    /// Per body, Σ μ lin and Σ μ ang of a pass.
     moves: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// A chain of ball and hinge joints: its compact rows (`chain`), used instead of `rows`
+    /// when `chained`; per body and per joint, Σ μ Jᵀ of a pass.
+    chain: Chain,
+    chained: bool,
+    moved: Vec<Loads>,
+    reactions: Vec<Loads>,
     /// `shake`: the rows and inverse masses at the step's start.
     directions: Vec<Row>,
     start_inverse: Vec<Inverse>,
@@ -58,13 +65,63 @@ enum Held {
 
 /// The rows at `states`, with their velocities.
 #[inline(always)]
-fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
+fn build_rows(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
     joint_rows(
         links,
         bodies,
         states,
         (&mut b.poses, &mut b.inverse, &mut b.rows),
     );
+    b.chained = false;
+}
+
+/// The rows at `states`, with their velocities: a chain's compact rows when the joints are a
+/// chain of ball and hinge joints (`chain`), else rows.
+#[inline(always)]
+fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
+    poses_of(bodies, states, (&mut b.poses, &mut b.inverse));
+    b.chained = b.chain.build(&links.joints, &b.poses);
+    b.rows.clear();
+    if !b.chained {
+        rows_into(links, &b.poses, &mut b.rows);
+    }
+}
+
+/// How many rows the last build has.
+#[inline(always)]
+fn count(b: &Buffers) -> usize {
+    if b.chained {
+        b.chain.rows()
+    } else {
+        b.rows.len()
+    }
+}
+
+/// (J W Jᵀ) μ = `b.rhs` at the last build, μ over `b.rhs`, the factor kept in `b.solver`.
+#[inline(always)]
+fn solve(b: &mut Buffers) {
+    if b.chained {
+        b.chain.solve(&b.inverse, &mut b.rhs, &mut b.solver);
+    } else {
+        multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+    }
+}
+
+/// The chain's Σ μ Jᵀ per body into `b.moved` (force: Σ μ lin, torque: Σ μ ang) and per
+/// joint (its share on A) added to `reactions`.
+#[inline(always)]
+fn chain_moves(b: &mut Buffers, reactions: Option<&mut [Loads]>) {
+    b.moved.clear();
+    b.moved.resize(b.poses.len(), Loads::default());
+    let reactions: &mut [Loads] = match reactions {
+        Some(r) => r,
+        None => {
+            b.reactions.clear();
+            b.reactions.resize(b.chain.links.len(), Loads::default());
+            &mut b.reactions
+        }
+    };
+    b.chain.apply(&b.rhs, &mut b.moved, reactions);
 }
 
 /// Each body's pose and inverse mass at `states`, and the joints' rows there, with their
@@ -75,6 +132,18 @@ pub(super) fn joint_rows(
     bodies: &[Body],
     states: &[State],
     (poses, inverse, rows): (&mut Vec<Pose>, &mut Vec<Inverse>, &mut Vec<Row>),
+) {
+    poses_of(bodies, states, (poses, inverse));
+    rows.clear();
+    rows_into(links, poses, rows);
+}
+
+/// Each body's pose and inverse mass at `states`.
+#[inline(always)]
+fn poses_of(
+    bodies: &[Body],
+    states: &[State],
+    (poses, inverse): (&mut Vec<Pose>, &mut Vec<Inverse>),
 ) {
     poses.clear();
     inverse.clear();
@@ -91,10 +160,14 @@ pub(super) fn joint_rows(
             inertia: k.inv_inertia_world,
         });
     }
-    rows.clear();
+}
+
+/// The joints' rows at `poses`, appended to `rows`.
+#[inline(always)]
+fn rows_into(links: &Links, poses: &[Pose], rows: &mut Vec<Row>) {
     for (index, joint) in links.joints.iter().enumerate() {
-        let pb = joint.b.map_or(Pose::WORLD, |j| poses[j]);
-        rows_of(joint, index, &poses[joint.a], &pb, rows);
+        let pb = joint.b.map_or(&Pose::WORLD, |j| &poses[j]);
+        rows_of(joint, index, &poses[joint.a], pb, rows);
     }
 }
 
@@ -173,13 +246,13 @@ pub fn shake(
     if links.joints.is_empty() {
         return;
     }
-    build(links, bodies, start, b);
+    build_rows(links, bodies, start, b);
     let mut directions = std::mem::take(&mut b.directions);
     directions.clone_from(&b.rows);
     let mut start_inverse = std::mem::take(&mut b.start_inverse);
     start_inverse.clone_from(&b.inverse);
     for pass in 0..=20 {
-        build(links, bodies, states, b);
+        build_rows(links, bodies, states, b);
         let worst = b.rows.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
         if worst < 1e-12 || pass == 20 {
             break;
@@ -228,18 +301,23 @@ fn positions(
     let mut held = Held::Nearby;
     for pass in 0..=10 {
         build(links, bodies, states, b);
-        let worst = b.rows.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
+        let worst = if b.chained {
+            b.chain.errors(&mut b.rhs)
+        } else {
+            let worst = b.rows.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
+            b.rhs.clear();
+            b.rhs.extend(b.rows.iter().map(|r| -r.error));
+            worst
+        };
         if worst < 1e-12 || pass == 10 {
             break;
         }
-        b.rhs.clear();
-        b.rhs.extend(b.rows.iter().map(|r| -r.error));
         let chord = pass == 0
             && nearby
                 .as_deref_mut()
-                .is_some_and(|s| s.holds(b.rows.len()) && again(&mut b.rhs, s));
+                .is_some_and(|s| s.holds(count(b)) && again(&mut b.rhs, s));
         if !chord {
-            multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+            solve(b);
             held = if worst < REUSE_BELOW {
                 Held::Own
             } else {
@@ -257,6 +335,13 @@ fn positions(
 /// once |C| < 1e-8).
 #[inline(always)]
 fn shift_bodies(states: &mut [State], b: &mut Buffers) {
+    if b.chained {
+        chain_moves(b, None);
+        for (i, m) in b.moved.iter().enumerate() {
+            shift(states, &b.inverse, i, &m.force, &m.torque, 1.0);
+        }
+        return;
+    }
     b.moves.clear();
     b.moves
         .resize(states.len(), (Vector3::zeros(), Vector3::zeros()));
@@ -306,7 +391,7 @@ fn velocities(
         Held::Nearby => nearby,
         Held::Anew => None,
     }
-    .filter(|s| s.holds(b.rows.len()));
+    .filter(|s| s.holds(count(b)));
     let done = factor.is_some_and(|solver| {
         (0..CHORD_PASSES).any(|_| {
             again(&mut b.rhs, solver);
@@ -322,24 +407,36 @@ fn velocities(
     if done {
         return;
     }
-    multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+    solve(b);
     apply(states, impulses, b);
 }
 
 /// `b.rhs` = −J u of every row at the poses' velocities.
 #[inline(always)]
 fn rates_into(b: &mut Buffers) {
+    if b.chained {
+        b.chain.rates(&b.poses, &mut b.rhs);
+        return;
+    }
     b.rhs.clear();
     b.rhs.extend(b.rows.iter().map(|r| {
-        let pb = r.b().map_or(Pose::WORLD, |j| b.poses[j]);
-        -rate(r, &b.poses[r.a()], &pb)
+        let pb = r.b().map_or(&Pose::WORLD, |j| &b.poses[j]);
+        -rate(r, &b.poses[r.a()], pb)
     }));
 }
 
 /// The velocity multipliers μ in `b.rhs` applied: P += J_linᵀ μ, L += J_angᵀ μ on each row's
 /// bodies, the joint's share on A into `impulses`.
 #[inline(always)]
-fn apply(states: &mut [State], impulses: &mut [Loads], b: &Buffers) {
+fn apply(states: &mut [State], impulses: &mut [Loads], b: &mut Buffers) {
+    if b.chained {
+        chain_moves(b, Some(impulses));
+        for (state, m) in states.iter_mut().zip(&b.moved) {
+            state.linear_momentum += m.force;
+            state.angular_momentum += m.torque;
+        }
+        return;
+    }
     for (row, &mu) in b.rows.iter().zip(&b.rhs) {
         states[row.a()].linear_momentum += row.lin_a() * mu;
         states[row.a()].angular_momentum += row.ang_a() * mu;

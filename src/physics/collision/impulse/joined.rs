@@ -30,7 +30,28 @@
 //!
 //! Which joint rows: those of every *cluster* (bodies linked through joint rows) that one of
 //! the stage's contact rows touches; an impact round of `propagate` on one pair takes the
-//! rows of that pair's clusters only (a cradle's round: one contact and two rods).
+//! rows of that pair's clusters only (a cradle's round: one contact and two rods); a
+//! resting stage (nothing approaches faster than the bounce speed) takes none.
+//!
+//! **Limits' stops** within 1e-9 of their limits come with the equality rows
+//! (`joints::drive::touching_stops`: one-sided, λ ∈ [0, ∞), J the coordinate's rate
+//! J u = q̇, signed so that it pushes away from the limit). Stage 1 takes them by an active
+//! set around the direct solve ([`Joined::inelastic`]):
+//!
+//! ```text
+//! find (μ_j, μ_s ≥ 0, λ_c ≥ 0):  J_j u⁺ = 0,  J_s u⁺ ≥ 0,  μ_s J_s u⁺ = 0,  (contacts as above)
+//! ```
+//!
+//! a stop that pulls leaves, a stop left out that the answer turns past its limit joins, and
+//! the stops that push are equality rows for stages 2 and 3. So a box landing on a flap
+//! that lies on its stop is one problem: the box stops, the flap does not turn, and the
+//! stop's angular impulse is the box's angular momentum about the hinge (`m v d`,
+//! `tests/physics/joint_drives.rs`); the joints' drive pass alone would have let flap and box
+//! turn on together. The stops' impulses go to [`Joined::stops`] (the joints panel's limit
+//! force). A stop's own bounce (its restitution when it is struck) and the motors stay in the
+//! joints' drive pass at the end of the integrate phase (`joints::drive`), before the
+//! contacts: under `propagate` a door striking its stop with a box on it bounces first, and
+//! the box's blow on the door then meets the stop here.
 //!
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
 //! of `propagate`, a simultaneous solve that bounces): without friction (μ = 0: a cradle, a
@@ -55,7 +76,7 @@
 //!   pulled, against 1e-6 kept);
 //! - the sweeps a declined direct solve falls back to.
 
-use super::Row;
+use super::{direct, Direct, Row};
 use crate::physics::constraints::{Axis, End, Row as ConstraintRow, SolverBody};
 use crate::physics::envelope::{Envelope, Pivots};
 use nalgebra::Vector3;
@@ -79,8 +100,9 @@ pub const JOINED_FRICTION_CONTACTS: usize = 16;
 #[derive(Debug, Clone, Default)]
 pub struct Joined {
     /// Every joint row of the scene (its axis weighed: w = I⁻¹ g, k = J W Jᵀ; ends on fixed
-    /// bodies dropped), with the joint it belongs to.
-    all: Vec<(Axis, usize)>,
+    /// bodies dropped), with the joint it belongs to and whether it is one-sided (a limit's
+    /// stop, λ ∈ [0, ∞); else an equality row, λ free).
+    all: Vec<(Axis, usize, bool)>,
     /// Per body: its cluster's root (bodies linked through joint rows), `usize::MAX` for a
     /// body no joint row moves.
     cluster: Vec<usize>,
@@ -89,10 +111,17 @@ pub struct Joined {
     /// The rows of the current stage (from `all`), their owners, and their impulses.
     pub(super) axes: Vec<Axis>,
     owners: Vec<usize>,
+    /// Per row of the stage: whether it is a stop (one-sided).
+    sides: Vec<bool>,
     pub(super) lambda: Vec<f64>,
     /// Per joint: the impulse its rows gave its body A in this response (linear N·s,
     /// angular N·m·s).
     pub impulses: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Per joint: the impulse its limit's stops gave in this response (≥ 0, N·s or N·m·s
+    /// along the stop's row; part of `impulses`).
+    pub stops: Vec<f64>,
+    /// The stage's selection while its stops' active set is searched ([`Joined::inelastic`]).
+    selection: Vec<(Axis, usize, bool)>,
     /// Whether a stage of this response took joint rows.
     pub(super) used: bool,
     /// Whether the current stage's inelastic solve held the joint rows (the direct solve
@@ -167,9 +196,12 @@ impl Joined {
         self.impulses.clear();
         self.impulses
             .resize(joints, (Vector3::zeros(), Vector3::zeros()));
+        self.stops.clear();
+        self.stops.resize(joints, 0.0);
         self.cluster.clear();
         self.axes.clear();
         self.owners.clear();
+        self.sides.clear();
         self.lambda.clear();
         self.used = false;
         self.held = false;
@@ -178,7 +210,7 @@ impl Joined {
         }
         self.all.extend(
             rows.iter()
-                .filter_map(|r| weigh(&r.axis, motions).map(|a| (a, r.owner))),
+                .filter_map(|r| weigh(&r.axis, motions).map(|a| (a, r.owner, r.lo == 0.0))),
         );
         // Clusters by union–find over the rows' two ends.
         self.cluster.resize(motions.len(), usize::MAX);
@@ -189,7 +221,7 @@ impl Joined {
             }
             i
         }
-        for (axis, _) in &self.all {
+        for (axis, _, _) in &self.all {
             for b in axis.bodies().into_iter().flatten() {
                 if self.cluster[b] == usize::MAX {
                     self.cluster[b] = b;
@@ -218,6 +250,7 @@ impl Joined {
         self.held = false;
         self.axes.clear();
         self.owners.clear();
+        self.sides.clear();
         self.lambda.clear();
         if self.all.is_empty() {
             return;
@@ -234,27 +267,141 @@ impl Joined {
         if !any {
             return;
         }
-        for (axis, owner) in &self.all {
+        for &(axis, owner, one_sided) in &self.all {
             if self.marked[self.cluster[axis.a.body]] {
-                self.axes.push(*axis);
-                self.owners.push(*owner);
+                self.axes.push(axis);
+                self.owners.push(owner);
+                self.sides.push(one_sided);
             }
         }
         if self.axes.len() > most {
             self.axes.clear();
             self.owners.clear();
+            self.sides.clear();
         }
         self.used |= !self.axes.is_empty();
     }
 
     /// Books the selected rows' impulses `lambda` (scaled by `scale`) to their joints.
     pub(super) fn book(&mut self, lambda: &[f64], scale: f64) {
-        for ((axis, &owner), &mu) in self.axes.iter().zip(&self.owners).zip(lambda) {
+        for (((axis, &owner), &mu), &stop) in
+            self.axes.iter().zip(&self.owners).zip(lambda).zip(&self.sides)
+        {
             let j = mu * scale;
             let (force, torque) = &mut self.impulses[owner];
             *force += axis.d * j;
             *torque += axis.a.rd * j;
+            if stop {
+                self.stops[owner] += j;
+            }
         }
+    }
+
+    /// Books the stage's own impulses ([`Joined::lambda`]) to their joints.
+    pub(super) fn book_stage(&mut self, scale: f64) {
+        let lambda = std::mem::take(&mut self.lambda);
+        self.book(&lambda, scale);
+        self.lambda = lambda;
+    }
+
+    /// Stage 1 with the selected rows ([`direct::inelastic`], the equality rows always
+    /// active): the stops (one-sided rows) by an active set around it. A stop takes part
+    /// while it pushes (λ ≥ 0) and joins when the answer without it turns its coordinate
+    /// past the limit (J u < −tolerance; the joints' drive pass left every touching stop at
+    /// J u ≥ 0); each change solves again from the stage's start, at most 2 s + 2 times for
+    /// s stops. The answer is then the minimum of K over {J_j u = 0, J_stop u ≥ 0,
+    /// J_c u ≥ −b} (the complementarity conditions of every row checked), and the stops that
+    /// push stay in [`Joined::axes`] as equality rows for stages 2 and 3. Without stops:
+    /// `direct::inelastic` alone. False (the motions as they were) when it declines.
+    pub(super) fn inelastic(
+        &mut self,
+        large: bool,
+        rows: &mut [Row],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        buffers: &mut Direct,
+    ) -> bool {
+        let mut lambda = std::mem::take(&mut self.lambda);
+        if !self.sides.contains(&true) {
+            let answered = direct::inelastic(
+                large,
+                rows,
+                (&self.axes, &mut lambda),
+                motions,
+                tolerance,
+                buffers,
+            );
+            self.lambda = lambda;
+            return answered;
+        }
+        let mut selection = std::mem::take(&mut self.selection);
+        selection.clear();
+        selection.extend(
+            (self.axes.iter().zip(&self.owners).zip(&self.sides)).map(|((a, &o), &s)| (*a, o, s)),
+        );
+        let saved: Vec<SolverBody> = motions.to_vec();
+        let saved_rows: Vec<f64> = rows.iter().map(|r| r.lambda).collect();
+        // Active: every equality row, and the stops that approach at the start.
+        let mut active: Vec<bool> = (selection.iter())
+            .map(|(axis, _, stop)| !stop || axis.velocity(motions) < -tolerance)
+            .collect();
+        let stops = selection.iter().filter(|s| s.2).count();
+        let mut answered = false;
+        for _ in 0..2 * stops + 3 {
+            self.axes.clear();
+            self.owners.clear();
+            self.sides.clear();
+            for (&(axis, owner, stop), _) in selection.iter().zip(&active).filter(|(_, &a)| a) {
+                self.axes.push(axis);
+                self.owners.push(owner);
+                self.sides.push(stop);
+            }
+            if !direct::inelastic(
+                large,
+                rows,
+                (&self.axes, &mut lambda),
+                motions,
+                tolerance,
+                buffers,
+            ) {
+                break;
+            }
+            // A stop that pulls leaves (the most negative); else a stop left out that the
+            // answer turns past its limit joins (the most violated).
+            let at: Vec<usize> = (0..selection.len()).filter(|&i| active[i]).collect();
+            let pulling = (at.iter().zip(&lambda))
+                .filter(|(&i, &mu)| selection[i].2 && mu < 0.0)
+                .min_by(|x, y| x.1.total_cmp(y.1))
+                .map(|(&i, _)| i);
+            let past = (0..selection.len())
+                .filter(|&i| !active[i])
+                .map(|i| (i, selection[i].0.velocity(motions)))
+                .filter(|&(_, u)| u < -tolerance)
+                .min_by(|x, y| x.1.total_cmp(&y.1))
+                .map(|(i, _)| i);
+            match pulling.or(past) {
+                Some(i) => {
+                    active[i] = !active[i];
+                    motions.copy_from_slice(&saved);
+                    for (row, &l) in rows.iter_mut().zip(&saved_rows) {
+                        row.lambda = l;
+                    }
+                }
+                None => {
+                    answered = true;
+                    break;
+                }
+            }
+        }
+        if !answered {
+            motions.copy_from_slice(&saved);
+            for (row, &l) in rows.iter_mut().zip(&saved_rows) {
+                row.lambda = l;
+            }
+        }
+        self.selection = selection;
+        self.lambda = lambda;
+        answered
     }
 
     /// The joints' reaction to a change of the bodies' motions (`change`: Δv, ΔL, Δω per

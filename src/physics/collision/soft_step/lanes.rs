@@ -24,11 +24,12 @@ use super::rows::{Row, Rows, Run};
 use super::sweep::{coefficients, solve_run};
 use super::{clamp_disk, Softness};
 
-/// One step of a scheduled sweep: a run alone, or two runs that share no body side by side.
+/// One step of a scheduled sweep: a run alone, or two runs that share no body side by side
+/// (with where their rows' packed constants start in [`Lanes::packed`]).
 #[derive(Debug, Clone, Copy)]
 enum Step {
     One(usize),
-    Two(usize, usize),
+    Two(usize, usize, usize),
 }
 
 /// The schedule of the step's runs (module doc).
@@ -41,6 +42,9 @@ pub(super) struct Lanes {
     level: Vec<u32>,
     start: Vec<usize>,
     order: Vec<usize>,
+    /// The constants of each `Two` step's common rows, two rows side by side (built once per
+    /// step: the sweeps load them as they are, with no lane shuffles).
+    packed: Vec<Packed>,
 }
 
 impl Lanes {
@@ -53,6 +57,7 @@ impl Lanes {
             level,
             start,
             order,
+            packed,
         } = self;
         last.clear();
         last.resize(bodies, 0);
@@ -89,11 +94,20 @@ impl Lanes {
             for &r in &order[start[l]..start[l + 1]] {
                 let kind = usize::from(rows.runs[r].b.is_some());
                 match pending[kind].take() {
-                    Some(p) => steps.push(Step::Two(p, r)),
+                    Some(p) => steps.push(Step::Two(p, r, 0)),
                     None => pending[kind] = Some(r),
                 }
             }
             steps.extend(pending.into_iter().flatten().map(Step::One));
+        }
+        packed.clear();
+        for step in steps.iter_mut() {
+            if let Step::Two(x, y, at) = step {
+                *at = packed.len();
+                let (x, y) = (&rows.runs[*x].rows, &rows.runs[*y].rows);
+                let pairs = rows.rows[x.clone()].iter().zip(&rows.rows[y.clone()]);
+                packed.extend(pairs.map(|(x, y)| Packed::of(x, y)));
+            }
         }
     }
 
@@ -117,11 +131,12 @@ impl Lanes {
         for step in &self.steps {
             match *step {
                 Step::One(r) => solve_run(&runs[r], rows, motions, friction, h, biased),
-                Step::Two(x, y) => {
+                Step::Two(x, y, at) => {
+                    let packed = &self.packed[at..];
                     if runs[x].b.is_some() {
-                        sweep.two::<true>(&runs[x], &runs[y], rows, motions);
+                        sweep.two::<true>(&runs[x], &runs[y], packed, rows, motions);
                     } else {
-                        sweep.two::<false>(&runs[x], &runs[y], rows, motions);
+                        sweep.two::<false>(&runs[x], &runs[y], packed, rows, motions);
                     }
                 }
             }
@@ -203,6 +218,43 @@ fn pick(live: [bool; 2], new: V2, old: V2) -> V2 {
     ]
 }
 
+/// Two rows' constants side by side: what `Sweep::rows` reads of them besides the gap and
+/// the impulses (the same numbers as the rows', in lanes 0 and 1).
+#[derive(Debug, Clone, Copy)]
+struct Packed {
+    normal: V2,
+    rn: [V2; 2],
+    w_a: [V2; 3],
+    w_b: [V2; 3],
+    lever: V2,
+    lever_other: V2,
+    tangents: [V2; 2],
+    inv_k: [F2; 3],
+}
+
+impl Packed {
+    #[inline(always)]
+    fn of(x: &Row, y: &Row) -> Packed {
+        let both = |i: usize| F2::new(x.inv_k[i], y.inv_k[i]);
+        let three = |a: &[nalgebra::Vector3<f64>; 3], b: &[nalgebra::Vector3<f64>; 3]| {
+            [lanes(&a[0], &b[0]), lanes(&a[1], &b[1]), lanes(&a[2], &b[2])]
+        };
+        Packed {
+            normal: lanes(&x.normal, &y.normal),
+            rn: [lanes(&x.rn[0], &y.rn[0]), lanes(&x.rn[1], &y.rn[1])],
+            w_a: three(&x.w_a, &y.w_a),
+            w_b: three(&x.w_b, &y.w_b),
+            lever: lanes(&x.lever, &y.lever),
+            lever_other: lanes(&x.lever_other, &y.lever_other),
+            tangents: [
+                lanes(&x.tangents[0], &y.tangents[0]),
+                lanes(&x.tangents[1], &y.tangents[1]),
+            ],
+            inv_k: [both(0), both(1), both(2)],
+        }
+    }
+}
+
 /// Two motions side by side.
 #[derive(Debug, Clone, Copy)]
 struct Wide {
@@ -243,13 +295,20 @@ impl Sweep {
     /// Runs x and y (sharing no body, both with a B end or neither: `PAIR`) side by side
     /// over their common length, then each one's remaining rows alone.
     #[inline(always)]
-    fn two<const PAIR: bool>(&self, x: &Run, y: &Run, rows: &mut [Row], motions: &mut [Motion]) {
+    fn two<const PAIR: bool>(
+        &self,
+        x: &Run,
+        y: &Run,
+        packed: &[Packed],
+        rows: &mut [Row],
+        motions: &mut [Motion],
+    ) {
         let still = Motion::default();
         let body = |b: Option<usize>| b.map_or(still, |b| motions[b]);
         let mut a = Wide::of(&motions[x.a], &motions[y.a]);
         let mut b = Wide::of(&body(x.b), &body(y.b));
         let common = x.rows.len().min(y.rows.len());
-        for k in 0..common {
+        for (k, p) in packed[..common].iter().enumerate() {
             let (i, j) = (x.rows.start + k, y.rows.start + k);
             let (row_x, row_y) = if i < j {
                 let (low, high) = rows.split_at_mut(j);
@@ -258,7 +317,7 @@ impl Sweep {
                 let (low, high) = rows.split_at_mut(i);
                 (&mut high[0], &mut low[j])
             };
-            self.rows::<PAIR>([row_x, row_y], [&x.soft, &y.soft], &mut a, &mut b);
+            self.rows::<PAIR>([row_x, row_y], p, [&x.soft, &y.soft], &mut a, &mut b);
         }
         for (lane, run) in [x, y].into_iter().enumerate() {
             let (mut ma, mut mb) = (a.lane(lane), b.lane(lane));
@@ -285,6 +344,7 @@ impl Sweep {
     fn rows<const PAIR: bool>(
         &self,
         [x, y]: [&mut Row; 2],
+        p: &Packed,
         [sx, sy]: [&Softness; 2],
         a: &mut Wide,
         b: &mut Wide,
@@ -296,14 +356,13 @@ impl Sweep {
             F2::new(cx.1, cy.1),
             F2::new(cx.2, cy.2),
         );
-        let n = lanes(&x.normal, &y.normal);
-        let mut u = add(dot(&n, &a.v), dot(&lanes(&x.rn[0], &y.rn[0]), &a.omega));
+        let n = p.normal;
+        let mut u = add(dot(&n, &a.v), dot(&p.rn[0], &a.omega));
         if PAIR {
-            let rb = lanes(&x.rn[1], &y.rn[1]);
-            u = add(u, add(neg(dot(&n, &b.v)), dot(&rb, &b.omega)));
+            u = add(u, add(neg(dot(&n, &b.v)), dot(&p.rn[1], &b.omega)));
         }
         let lambda = F2::new(x.lambda, y.lambda);
-        let inv_k = F2::new(x.inv_k[0], y.inv_k[0]);
+        let inv_k = p.inv_k[0];
         let j = sub(
             mul(mul(neg(inv_k), mass_scale), add(u, bias)),
             mul(impulse_scale, lambda),
@@ -318,36 +377,40 @@ impl Sweep {
         y.max_lambda = y.max_lambda.max(new[1]);
         let live = [change.lane(0) != 0.0, change.lane(1) != 0.0];
         if live[0] || live[1] {
-            let wa = lanes(&x.w_a[0], &y.w_a[0]);
+            let wa = p.w_a[0];
             a.v = pick(live, add3(a.v, scale(n, mul(change, a.inv_mass))), a.v);
             a.omega = pick(live, add3(a.omega, scale(wa, change)), a.omega);
             if PAIR {
-                let wb = lanes(&x.w_b[0], &y.w_b[0]);
+                let wb = p.w_b[0];
                 b.v = pick(live, add3(b.v, scale(n, mul(neg(change), b.inv_mass))), b.v);
                 b.omega = pick(live, add3(b.omega, scale(wb, change)), b.omega);
             }
         }
         if self.friction > 0.0 {
-            self.friction::<PAIR>([x, y], a, b);
+            self.friction::<PAIR>([x, y], p, a, b);
         }
     }
 
     /// The friction of two rows side by side (after their normal updates).
     #[inline(always)]
-    fn friction<const PAIR: bool>(&self, [x, y]: [&mut Row; 2], a: &mut Wide, b: &mut Wide) {
+    fn friction<const PAIR: bool>(
+        &self,
+        [x, y]: [&mut Row; 2],
+        p: &Packed,
+        a: &mut Wide,
+        b: &mut Wide,
+    ) {
         let bound = [self.friction * x.lambda, self.friction * y.lambda];
         let old = [x.lambda_tangent, y.lambda_tangent];
-        let mut slip = add3(a.v, cross(&a.omega, &lanes(&x.lever, &y.lever)));
+        let mut slip = add3(a.v, cross(&a.omega, &p.lever));
         if PAIR {
-            let other = lanes(&x.lever_other, &y.lever_other);
-            slip = sub3(sub3(slip, b.v), cross(&b.omega, &other));
+            slip = sub3(sub3(slip, b.v), cross(&b.omega, &p.lever_other));
         }
-        let t1 = lanes(&x.tangents[0], &y.tangents[0]);
-        let t2 = lanes(&x.tangents[1], &y.tangents[1]);
+        let [t1, t2] = p.tangents;
         let old1 = F2::new(old[0][0], old[1][0]);
         let old2 = F2::new(old[0][1], old[1][1]);
-        let n1 = sub(old1, mul(F2::new(x.inv_k[1], y.inv_k[1]), dot(&t1, &slip)));
-        let n2 = sub(old2, mul(F2::new(x.inv_k[2], y.inv_k[2]), dot(&t2, &slip)));
+        let n1 = sub(old1, mul(p.inv_k[1], dot(&t1, &slip)));
+        let n2 = sub(old2, mul(p.inv_k[2], dot(&t2, &slip)));
         let mut new = [[n1.lane(0), n2.lane(0)], [n1.lane(1), n2.lane(1)]];
         clamp_disk(&mut new[0], bound[0]);
         clamp_disk(&mut new[1], bound[1]);
@@ -358,17 +421,17 @@ impl Sweep {
             return;
         }
         let (s1, s2) = (F2::new(sx[0], sy[0]), F2::new(sx[1], sy[1]));
-        let p = add3(scale(t1, s1), scale(t2, s2));
-        let (wa1, wa2) = (lanes(&x.w_a[1], &y.w_a[1]), lanes(&x.w_a[2], &y.w_a[2]));
-        a.v = pick(live, add3(a.v, scale(p, a.inv_mass)), a.v);
+        let impulse = add3(scale(t1, s1), scale(t2, s2));
+        let (wa1, wa2) = (p.w_a[1], p.w_a[2]);
+        a.v = pick(live, add3(a.v, scale(impulse, a.inv_mass)), a.v);
         a.omega = pick(
             live,
             add3(a.omega, add3(scale(wa1, s1), scale(wa2, s2))),
             a.omega,
         );
         if PAIR {
-            let (wb1, wb2) = (lanes(&x.w_b[1], &y.w_b[1]), lanes(&x.w_b[2], &y.w_b[2]));
-            b.v = pick(live, sub3(b.v, scale(p, b.inv_mass)), b.v);
+            let (wb1, wb2) = (p.w_b[1], p.w_b[2]);
+            b.v = pick(live, sub3(b.v, scale(impulse, b.inv_mass)), b.v);
             b.omega = pick(
                 live,
                 add3(b.omega, add3(scale(wb1, s1), scale(wb2, s2))),

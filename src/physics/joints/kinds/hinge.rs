@@ -68,12 +68,14 @@ pub fn axes(joint: &Joint, a: &Pose, b: &Pose) -> [(Vector3<f64>, f64, f64); 2] 
     let u = a.r * joint.axis_a;
     let du = a.w.cross(&u);
     let relative = a.w - b.w;
-    joint.normals_b.map(|normal| {
+    let mut axes = [(Vector3::zeros(), 0.0, 0.0); 2];
+    for (axis, normal) in axes.iter_mut().zip(&joint.normals_b) {
         let t = b.r * normal;
         let g = u.cross(&t);
         let dg = du.cross(&t) + u.cross(&b.w.cross(&t));
-        (g, u.dot(&t), relative.dot(&dg))
-    })
+        *axis = (g, u.dot(&t), relative.dot(&dg));
+    }
+    axes
 }
 
 /// The angle θ (rad) A has turned about the axis relative to B since t = 0, and its row.
