@@ -491,8 +491,9 @@ fn rows_against_an_obstacle_and_against_a_fixed_body_give_the_same_impulses() {
         Some(Vector3::new(0.0, -G, 0.0)),
         Some(&model),
     );
-    // The lowest corner 0.1 mm below y = 0, moving down and sideways, turning.
-    let q = corner_down();
+    // Tilted 0.5 rad about x: its lowest edge (two corners) 0.1 mm below y = 0, moving down
+    // and sideways, turning.
+    let q = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 0.5);
     let lowest = (box_corners(Vector3::repeat(SIDE)).iter())
         .map(|r| (q * r).y)
         .fold(f64::INFINITY, f64::min);
@@ -524,7 +525,8 @@ fn rows_against_an_obstacle_and_against_a_fixed_body_give_the_same_impulses() {
         &mut Vec::new(),
         &mut Default::default(),
     );
-    assert!(rows.len() >= 2 && rows.iter().all(|c| c.other == 1));
+    assert_eq!(rows.len(), 2);
+    assert!(rows.iter().all(|c| c.other == 1));
     // The same rows against a fixed 4 m slab whose top face is y = 0: body 1.
     let slab = Body::solid_box(Vector3::new(4.0, 1.0, 4.0), 1.0)
         .unwrap()
@@ -578,5 +580,5 @@ fn rows_against_an_obstacle_and_against_a_fixed_body_give_the_same_impulses() {
     assert_eq!(b[1], slab_state);
     // The push-out: the obstacle's rows are swept, the fixed body's solved directly (a
     // special case left, issue 36): the same place to round-off.
-    assert!((a[0].position - b[0].position).norm() < 1e-12);
+    assert!((a[0].position - b[0].position).norm() < 1e-10);
 }

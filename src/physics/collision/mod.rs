@@ -4,6 +4,14 @@
 //! lever arms — and a response turns rows into impulses and position fixes. The phase runs
 //! only when something can touch: obstacles, or several bodies.
 //!
+//! A row reaches B through the **solver body table** ([`CollideInput::end`]): the world's
+//! bodies, then one static entry per obstacle (1/M = 0, I⁻¹ = 0, at rest). A fixed body and
+//! an obstacle are the same kind of static thing there ([`moves`]): no end of a row, exact
+//! zeros in a relative velocity, so the responses (`impulse`, `soft_step`) have no
+//! body-against-obstacle branch. Detection keeps each obstacle kind's closed-form tests
+//! (`obstacle/kinds/`: a plane stays a plane), and the row label [`Against`] still says what
+//! B is for the front ends.
+//!
 //! | file | idea |
 //! |---|---|
 //! | `obstacle` | the scene's fixed things, each a static body of the shape table: one file per kind in `obstacle/kinds/` (shape, point tests, contact, outline, scene words), listed by `build.rs` |

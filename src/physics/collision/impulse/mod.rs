@@ -160,8 +160,9 @@ pub const TRIAL_WAIT_MAX: u32 = 32;
 /// and pivot rounds of all stages together may do at most `WORK_BUDGET · rows` row updates
 /// (one sweep over the rows costs `rows`, a factorisation its estimate `factorisation_work`;
 /// each checks the budget before it starts, so a step overshoots by one at most). Within it,
-/// a step's budget is [`BUDGET_MEDIANS`] (20) times the median work of the scene's steps so
-/// far, but at least [`BUDGET_FLOOR_SWEEPS`] sweeps over its rows ([`budget`]). A step
+/// where [`MEDIAN_BUDGET`] applies (off: measured there), a step's budget is
+/// [`BUDGET_MEDIANS`] (20) times the median work of the scene's steps so far, but at least
+/// [`BUDGET_FLOOR_SWEEPS`] sweeps over its rows ([`budget`]). A step
 /// that spends it, or whose sweeps reach their cap ([`MAX_SWEEPS`]), stops where it is —
 /// every impulse still in its bounds (λ ≥ 0, |λ_t| ≤ μ λ), so K still only went down — and
 /// says so: its [`StepReport`] carries the residual, the loop strip and `tumble walk`'s
@@ -177,8 +178,8 @@ pub const TRIAL_WAIT_MAX: u32 = 32;
 /// worse for the next). So the budget is set where no bundled lesson nor scaling scene meets
 /// it: it bounds the worst step rather than making a tumbling wall cheap (that needs a better
 /// friction method: issue 35, item 3). Since the interior point ([`INTERIOR_STAGES`]) the
-/// dominoes' median step is 993 row updates and its dearest 265 689: the budget of 20
-/// medians ([`budget`]) is what now bounds it (measured: [`budget`]'s module doc).
+/// dominoes' median step is 993 row updates and its dearest 265 689; a budget of 20
+/// medians cuts it, and does harm ([`MEDIAN_BUDGET`]).
 pub const WORK_BUDGET: u64 = 20_000;
 
 /// The sweeps a stage runs even when the budget is spent (the last stage of a step always
