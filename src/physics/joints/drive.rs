@@ -26,10 +26,10 @@
 //!             ΔP = J_linᵀ λ, ΔL = J_angᵀ λ
 //! ```
 //!
-//! The stops within [`TOUCHING`] of their limits are also one-sided rows of the contacts'
+//! The stops within `TOUCHING` of their limits are also one-sided rows of the contacts'
 //! exact solve (`collision::impulse::joined`, in an impact) and of the contact pass after it
 //! (`contact::hold`): what a contact does to a body on its stop is answered by the stop there
-//! ([`touching_stops`], [`book_stops`]).
+//! (`touching_stops`, [`book_stops`]).
 //!
 //! e is the scene's contact restitution (0 without a contact model), and 0 for a slow approach,
 //! |J u⁻| < 3 |J u⁻ − J u₀| (u₀ the step's start: the approach is less than three steps of

@@ -58,7 +58,7 @@
 //! builds, 213.5k after (212.6k re-measured), 196.7k with the projection on the last stage's
 //! factor and B_k stored by columns; MuJoCo 4.0.1's RK4 hinge chain counted the same way:
 //! 112.5k (114.2k re-counted). A chain of ball and hinge joints skips the rows: `chain` keeps
-//! each joint's rows compact and fills the blocks' parts from them ([`chain_multipliers`],
+//! each joint's rows compact and fills the blocks' parts from them (`chain_multipliers`,
 //! the same K bit for bit), its rhs, rates and reactions summed a joint at a time: 196.5k →
 //! 142.4k per step, the projection included.
 

@@ -36,7 +36,7 @@
 //! **Limits' stops** within 1e-9 of their limits come with the equality rows
 //! (`joints::drive::touching_stops`: one-sided, λ ∈ [0, ∞), J the coordinate's rate
 //! J u = q̇, signed so that it pushes away from the limit). Stage 1 takes them by an active
-//! set around the direct solve ([`Joined::inelastic`]):
+//! set around the direct solve (`Joined::inelastic`):
 //!
 //! ```text
 //! find (μ_j, μ_s ≥ 0, λ_c ≥ 0):  J_j u⁺ = 0,  J_s u⁺ ≥ 0,  μ_s J_s u⁺ = 0,  (contacts as above)
