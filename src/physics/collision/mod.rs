@@ -142,6 +142,7 @@ impl Contact {
     /// A contact of body A against B at a point, before any response: no velocity, no
     /// impulse yet. B's solver body `other` is another body's index; for an obstacle it is
     /// left unset (`usize::MAX`) and detection sets it ([`CollideInput::end`]).
+    #[inline]
     pub fn new(
         body: usize,
         against: Against,

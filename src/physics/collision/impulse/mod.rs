@@ -437,8 +437,9 @@ struct Direct {
     /// The largest budget ([`WORK_BUDGET`] · rows) and 20 medians ([`budget::budget`]).
     cap: u64,
     median_budget: u64,
-    /// The median work of the scene's steps so far (the budget's measure of a typical step),
-    /// and where its budget applies ([`MEDIAN_BUDGET`] unless set).
+    /// The median work of the scene's steps so far, counted from when the rule was switched on
+    /// (the budget's measure of a typical step), and where its budget applies
+    /// ([`MEDIAN_BUDGET`] unless set).
     median: budget::WorkMedian,
     applies: budget::Applies,
     /// The last sweeps' residual (m/s), and this step's largest residual of a stage that
@@ -455,7 +456,10 @@ impl Direct {
         self.residual = 0.0;
         self.unconverged = None;
         self.cap = WORK_BUDGET * rows as u64;
-        self.median_budget = budget::budget(self.median.median(), rows, self.cap);
+        self.median_budget = match self.applies {
+            budget::Applies::Off => self.cap,
+            _ => budget::budget(self.median.median(), rows, self.cap),
+        };
         self.budget = match self.applies {
             budget::Applies::Whole => self.median_budget,
             _ => self.cap,
@@ -478,9 +482,12 @@ impl Direct {
         }
     }
 
-    /// The step is over: its work joins the scene's median.
+    /// The step is over: its work joins the scene's median (kept only while the rule applies:
+    /// off, it would cost a resting cube's step 5 %).
     fn finish(&mut self) {
-        self.median.add(self.work);
+        if self.applies != budget::Applies::Off {
+            self.median.add(self.work);
+        }
     }
 
     /// Whether this step's work budget is spent.
