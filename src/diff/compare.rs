@@ -11,8 +11,7 @@
 //! ```
 
 use super::theirs::{Column, Quantity, Theirs};
-use crate::physics::derive::derive;
-use crate::physics::{Phase, Snapshot, World};
+use crate::physics::{BodyView, Phase, Snapshot, World};
 use nalgebra::{Matrix3, Vector3};
 
 /// Every number a row of `run` holds, and what `run` does not print (R, P).
@@ -151,14 +150,13 @@ pub fn run_ours(mut world: World, index: usize, theirs: &Theirs) -> Result<Ours,
 
 /// The norms of body `index`'s state now.
 fn observe(world: &World, index: usize, scales: &mut Scales) {
-    let state = &world.states()[index];
-    let k = derive(&world.bodies()[index], state);
+    let body = BodyView::of(world, index);
     scales.observe(Quantity::Time, world.time());
-    scales.observe(Quantity::Position, state.position.norm());
-    scales.observe(Quantity::Velocity, k.velocity.norm());
-    scales.observe(Quantity::AngularVelocity, k.angular_velocity.norm());
-    scales.observe(Quantity::Momentum, state.linear_momentum.norm());
-    scales.observe(Quantity::AngularMomentum, state.angular_momentum.norm());
+    scales.observe(Quantity::Position, body.position.norm());
+    scales.observe(Quantity::Velocity, body.velocity.norm());
+    scales.observe(Quantity::AngularVelocity, body.angular_velocity.norm());
+    scales.observe(Quantity::Momentum, body.linear_momentum.norm());
+    scales.observe(Quantity::AngularMomentum, body.angular_momentum.norm());
     scales.observe(Quantity::Energy, world.total_energy().total.abs());
 }
 

@@ -184,10 +184,12 @@ fn reproduces(
     };
     match knobs {
         Some(knobs) => {
+            // The obstacles as the snapshot carries them (the scene's, unchanged by a run).
+            let obstacles = world.snapshot().obstacles;
             let mut planted = Planted::new(
                 world.body(),
                 world.effects(),
-                world.obstacles(),
+                &obstacles,
                 world.contact_model(),
                 world.integrator(),
                 dt,
@@ -277,7 +279,7 @@ fn report(
         crate::limits::short(world.dt()),
         world
             .contact_model()
-            .filter(|_| !world.obstacles().is_empty())
+            .filter(|_| !world.snapshot().obstacles.is_empty())
             .map(|m| format!(", response {}", m.response.name()))
             .unwrap_or_default()
     );
@@ -492,10 +494,11 @@ mod tests {
             let lesson = crate::lessons::load(std::path::Path::new(lesson)).unwrap();
             let mut world = lesson.scene.world_with(integrator, lesson.scene.dt);
             let scene = world.clone();
+            let obstacles = scene.snapshot().obstacles;
             let mut planted = Planted::new(
                 scene.body(),
                 scene.effects(),
-                scene.obstacles(),
+                &obstacles,
                 scene.contact_model(),
                 integrator,
                 scene.dt(),

@@ -466,34 +466,10 @@ impl Snapshot {
         let penetration = geometric_penetration(world, index, &vertices);
         let bodies = (0..world.body_count())
             .map(|i| {
-                let k = if i == index {
-                    kinematics
-                } else if between_frames {
-                    derive(&world.bodies()[i], &world.states()[i])
+                if i == index {
+                    BodyView::with(world, i, kinematics, vertices.clone())
                 } else {
-                    *world.kinematics_of(i)
-                };
-                BodyView {
-                    name: world.body_names()[i].clone(),
-                    position: world.states()[i].position,
-                    velocity: k.velocity,
-                    angular_velocity: k.angular_velocity,
-                    linear_momentum: world.states()[i].linear_momentum,
-                    angular_momentum: world.states()[i].angular_momentum,
-                    radius: world.bodies()[i].radius,
-                    points_body: world.bodies()[i].points_body.clone(),
-                    edges: world.bodies()[i].edges.clone(),
-                    vertices: if i == index {
-                        vertices.clone()
-                    } else {
-                        world.vertices_of(i)
-                    },
-                    rotation: world.states()[i].orientation.matrix(),
-                    shape: world.bodies()[i].shape.clone(),
-                    fixed: world.bodies()[i].fixed,
-                    energy: world.body_energy(i),
-                    potential_scale: potential_scale(world, i),
-                    mass: world.bodies()[i].mass,
+                    BodyView::of(world, i)
                 }
             })
             .collect();
@@ -670,4 +646,105 @@ pub fn deepest_penetration(obstacles: &[Obstacle], vertices: &[Vector3<f64>]) ->
         }
     }
     deepest
+}
+
+// ---------------------------------------------------------------------------------------------
+// The front ends' own reads (issue #36, item 4). Beside a whole `Snapshot`, the session, `diff`
+// and `study` measure a few things per step or per sample; each is a small typed view built
+// here, so that no front end reads the world's bodies, cloths, obstacles or links itself
+// (`tests/commands/read_path.rs` scans for it). Every number is the one the snapshot shows.
+// ---------------------------------------------------------------------------------------------
+
+/// The methods a world runs with: what compare mode offers and swaps, what the page's
+/// settings note names, and what the live numbers were simulated with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Methods {
+    /// The bodies' integrator.
+    pub integrator: Integrator,
+    /// The collision response (None without contact).
+    pub response: Option<super::collision::Response>,
+    /// Every cloth's particle integrator, in order (empty without cloths).
+    pub cloths: Vec<ClothIntegrator>,
+}
+
+impl Methods {
+    /// The methods of a world now.
+    pub fn of(world: &World) -> Methods {
+        Methods {
+            integrator: world.integrator(),
+            response: world.contact_model().map(|m| m.response),
+            cloths: world.cloths().iter().map(|c| c.integrator).collect(),
+        }
+    }
+}
+
+impl BodyView {
+    /// Body `index` of a world now, as [`Snapshot::of_body`] shows it: between frames its
+    /// kinematics derived from the current state, mid-frame the loop's own.
+    pub fn of(world: &World, index: usize) -> BodyView {
+        let between_frames = matches!(world.last_phase(), None | Some(Phase::Collide));
+        let kinematics = if between_frames {
+            derive(&world.bodies()[index], &world.states()[index])
+        } else {
+            *world.kinematics_of(index)
+        };
+        BodyView::with(world, index, kinematics, world.vertices_of(index))
+    }
+
+    /// Every body of a world now (see [`BodyView::of`]).
+    pub fn all(world: &World) -> Vec<BodyView> {
+        (0..world.body_count())
+            .map(|i| BodyView::of(world, i))
+            .collect()
+    }
+
+    /// Body `index` with the given kinematics (ω, v) and vertices.
+    fn with(
+        world: &World,
+        i: usize,
+        k: super::derive::Kinematics,
+        vertices: Vec<Vector3<f64>>,
+    ) -> BodyView {
+        let body = &world.bodies()[i];
+        let state = &world.states()[i];
+        BodyView {
+            name: world.body_names()[i].clone(),
+            position: state.position,
+            velocity: k.velocity,
+            angular_velocity: k.angular_velocity,
+            linear_momentum: state.linear_momentum,
+            angular_momentum: state.angular_momentum,
+            radius: body.radius,
+            points_body: body.points_body.clone(),
+            edges: body.edges.clone(),
+            vertices,
+            rotation: state.orientation.matrix(),
+            shape: body.shape.clone(),
+            fixed: body.fixed,
+            energy: world.body_energy(i),
+            potential_scale: potential_scale(world, i),
+            mass: body.mass,
+        }
+    }
+
+    /// ω in the body frame, Rᵀ ω, rad/s.
+    pub fn angular_velocity_body(&self) -> Vector3<f64> {
+        self.rotation.transpose() * self.angular_velocity
+    }
+}
+
+/// The deepest depth of any vertex of body `index` inside any obstacle now, ≥ 0, m: the
+/// per-vertex measure of [`deepest_penetration`] (what `seed` sees), without the body's other
+/// numbers.
+pub fn vertex_penetration(world: &World, index: usize) -> f64 {
+    deepest_penetration(world.obstacles(), &world.vertices_of(index))
+}
+
+/// Every particle of every cloth now, cloth after cloth, m.
+pub fn particle_positions(world: &World) -> Vec<Vector3<f64>> {
+    world
+        .cloths()
+        .iter()
+        .flat_map(|c| c.positions.iter().copied())
+        .collect()
 }

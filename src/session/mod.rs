@@ -9,6 +9,7 @@ pub mod series;
 
 use crate::live::LiveValues;
 use crate::physics::cloth::ClothIntegrator;
+use crate::physics::snapshot::Methods;
 use crate::physics::{Divergence, Integrator, Phase, Response, Snapshot, World};
 use crate::scene::Lesson;
 use history::{History, DEFAULT_CAPACITY};
@@ -66,22 +67,7 @@ pub struct JumpJob {
 /// The settings live numbers were simulated with: they are simulated again when these change
 /// (the integrator `i`, the response `c`, a cloth's integrator), so a page never narrates
 /// another method's numbers.
-#[derive(Debug, Clone, PartialEq)]
-struct LiveSettings {
-    integrator: Integrator,
-    response: Option<Response>,
-    cloths: Vec<ClothIntegrator>,
-}
-
-impl LiveSettings {
-    fn of(world: &World) -> LiveSettings {
-        LiveSettings {
-            integrator: world.integrator(),
-            response: world.contact_model().map(|m| m.response),
-            cloths: world.cloths().iter().map(|c| c.integrator).collect(),
-        }
-    }
-}
+type LiveSettings = Methods;
 
 /// Live numbers being simulated on a thread.
 #[derive(Debug)]
@@ -406,7 +392,7 @@ impl Session {
             Comparison::Integrator(_) => Comparison::Integrator(self.world.integrator()),
             Comparison::Response(_) => Comparison::Response(self.world.contact_model()?.response),
             Comparison::ClothIntegrator(_) => {
-                Comparison::ClothIntegrator(self.world.cloths().first()?.integrator)
+                Comparison::ClothIntegrator(*Methods::of(&self.world).cloths.first()?)
             }
         };
         let running = ghost.comparison;
@@ -548,7 +534,9 @@ impl Session {
     /// skipped, or why there is none.
     pub fn next_response(&mut self) -> Option<String> {
         match self.world.contact_model().copied() {
-            Some(_) if self.world.body_count() == 0 && self.world.cloths().is_empty() => {
+            Some(_)
+                if self.world.body_count() == 0 && Methods::of(&self.world).cloths.is_empty() =>
+            {
                 Some("nothing in this scene can touch: no body, no particle".into())
             }
             Some(mut model) => {
@@ -591,10 +579,10 @@ impl Session {
                 now.push(b.response.name());
             }
         }
-        for (a, b) in scene.cloths.iter().zip(self.world.cloths()) {
-            if a.integrator != b.integrator {
+        for (a, b) in scene.cloths.iter().zip(Methods::of(&self.world).cloths) {
+            if a.integrator != b {
                 own.push(a.integrator.name());
-                now.push(b.integrator.name());
+                now.push(b.name());
                 break;
             }
         }
@@ -660,7 +648,9 @@ impl Session {
             Comparison::Integrator(_) | Comparison::Response(_) if self.world.body_count() == 0 => {
                 Some("bodies")
             }
-            Comparison::ClothIntegrator(_) if self.world.cloths().is_empty() => Some("cloths"),
+            Comparison::ClothIntegrator(_) if Methods::of(&self.world).cloths.is_empty() => {
+                Some("cloths")
+            }
             _ => None,
         };
         if let Some(missing) = missing {
@@ -728,11 +718,10 @@ impl Session {
     pub fn next_integrator(&mut self) {
         self.before_change();
         if self.world.body_count() == 0 {
-            let next = self
-                .world
-                .cloths()
+            let next = Methods::of(&self.world)
+                .cloths
                 .first()
-                .map_or(ClothIntegrator::SymplecticEuler, |c| c.integrator.next());
+                .map_or(ClothIntegrator::SymplecticEuler, |c| c.next());
             apply(&mut self.world, Comparison::ClothIntegrator(next));
             // Replay from an earlier keyframe would step the old integrator.
             self.history.break_segment();
@@ -766,7 +755,7 @@ impl Session {
 
 /// Whether every cloth of the world runs `integrator` already (true without cloths).
 fn same_cloth_integrator(world: &World, integrator: ClothIntegrator) -> bool {
-    world.cloths().iter().all(|c| c.integrator == integrator)
+    Methods::of(world).cloths.iter().all(|&c| c == integrator)
 }
 
 /// Applies a comparison to a world.
@@ -774,7 +763,7 @@ pub fn apply(world: &mut World, comparison: Comparison) {
     match comparison {
         Comparison::Integrator(i) => world.set_integrator(i),
         Comparison::ClothIntegrator(c) => {
-            for i in 0..world.cloths().len() {
+            for i in 0..Methods::of(world).cloths.len() {
                 world.set_cloth_integrator(i, c);
             }
         }

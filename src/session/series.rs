@@ -3,12 +3,13 @@
 //! thinned by halves when long, with axes that only ever grow (by doubling) so the graph does
 //! not jump while it runs.
 
+use crate::physics::snapshot::Methods;
 use crate::physics::{Energy, Snapshot, World};
 
 /// The energy the graph follows in a world now: the first body's, or with cloths the whole
 /// scene's (bodies, particles and springs — a sheet's energy is what its lessons are about).
 pub fn graphed_energy(world: &World) -> Energy {
-    if world.cloths().is_empty() {
+    if Methods::of(world).cloths.is_empty() {
         world.energy_of(world.state())
     } else {
         world.total_energy()

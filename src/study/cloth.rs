@@ -36,7 +36,8 @@
 use super::analysis::{format_dt, format_number};
 use super::measure::{cost_per_step, sample_times, Status, Timing};
 use crate::physics::cloth::ClothIntegrator;
-use crate::physics::World;
+use crate::physics::snapshot::particle_positions;
+use crate::physics::{ClothView, World};
 use crate::scene::Scene;
 use nalgebra::Vector3;
 
@@ -227,12 +228,9 @@ pub fn with_integrator(scene: &Scene, integrator: ClothIntegrator) -> Scene {
 
 /// Every particle of every cloth, then every body's barycenter.
 fn points(world: &World) -> Vec<Vector3<f64>> {
-    world
-        .cloths()
-        .iter()
-        .flat_map(|c| c.positions.iter().copied())
-        .chain(world.states().iter().map(|s| s.position))
-        .collect()
+    let mut points = particle_positions(world);
+    points.extend(world.states().iter().map(|s| s.position));
+    points
 }
 
 /// The largest distance between corresponding points, m.
@@ -246,16 +244,9 @@ fn distance(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
 /// The explicit limit L = 2/ω_max of the scene's stiffest cloth, its damped limit h*, and
 /// its name.
 pub fn explicit_limit(scene: &Scene) -> (f64, f64, String) {
-    let world = scene.world();
-    (0..world.cloths().len())
-        .map(|k| {
-            let limit = world.cloth_limit(k);
-            (
-                limit.stiffness_limit(),
-                limit.dt(),
-                world.cloths()[k].name.clone(),
-            )
-        })
+    ClothView::all(&scene.world())
+        .into_iter()
+        .map(|c| (c.stiffness_limit, c.explicit_limit, c.name))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .unwrap_or((f64::INFINITY, f64::INFINITY, String::new()))
 }

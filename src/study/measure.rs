@@ -42,7 +42,7 @@
 //! contact scenes by ([`Row::measure`]).
 
 use super::reference::Reference;
-use crate::physics::snapshot::deepest_penetration;
+use crate::physics::snapshot::vertex_penetration;
 use crate::physics::{Integrator, Phase, World};
 use crate::scene::Scene;
 use nalgebra::Vector3;
@@ -315,8 +315,7 @@ fn accuracy_run(
                     Phase::Integrate => {
                         before = world.total_energy().total;
                         for (index, body) in scene.bodies.iter().enumerate() {
-                            let depth =
-                                deepest_penetration(world.obstacles(), &world.vertices_of(index));
+                            let depth = vertex_penetration(&world, index);
                             let radius = body.body.radius.max(f64::MIN_POSITIVE);
                             row.penetration = row.penetration.max(depth);
                             deepest = deepest.max(depth / radius);

@@ -19,9 +19,8 @@
 //!   by a step changes everything after it, so halving does not converge; contact scenes are
 //!   ranked by their rest pose ([`super::measure`]).
 
-use crate::physics::derive::derive;
 use crate::physics::free_top::{rotation_angle_between, FreeBody};
-use crate::physics::{Effect, Integrator, World};
+use crate::physics::{BodyView, Effect, Integrator, World};
 use crate::scene::Scene;
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -76,14 +75,11 @@ pub fn poses(world: &World) -> Vec<Pose> {
     world
         .states()
         .iter()
-        .zip(world.bodies())
-        .map(|(state, body)| {
-            let k = derive(body, state);
-            Pose {
-                position: state.position,
-                orientation: state.orientation.quaternion(),
-                omega_body: k.rotation.transpose() * k.angular_velocity,
-            }
+        .zip(BodyView::all(world))
+        .map(|(state, body)| Pose {
+            position: state.position,
+            orientation: state.orientation.quaternion(),
+            omega_body: body.angular_velocity_body(),
         })
         .collect()
 }

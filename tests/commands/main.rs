@@ -14,6 +14,7 @@ mod lessons;
 mod live_numbers;
 mod ode;
 mod page_tools;
+mod read_path;
 mod shot_forces;
 mod shot_tools;
 mod study;

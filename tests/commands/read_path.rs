@@ -1,0 +1,110 @@
+//! The snapshot is the only read path (issue #36, item 4): no front end (the session, `diff`,
+//! `study`, the terminal app, the text commands) reads the world's bodies, cloths, obstacles
+//! or links itself; what they show, compare or measure comes from `physics::snapshot` (the
+//! `Snapshot`, its views, and the small typed reads beside it). A source scan, so that the
+//! rule cannot regress silently: a new call fails here, naming its file and line.
+
+use std::path::{Path, PathBuf};
+
+/// The front ends' source folders.
+const FRONT_ENDS: [&str; 5] = ["src/session", "src/diff", "src/study", "src/tui", "src/cli"];
+
+/// The world's accessors a front end may not call.
+const ACCESSORS: [&str; 4] = ["cloths", "obstacles", "bodies", "links"];
+
+/// The control uses left (the session editing its world, not a read for display): file, the
+/// line's text, and why.
+const CONTROL: [(&str, &str, &str); 1] = [(
+    "src/session/mod.rs",
+    "let body = &self.world.bodies()[index];",
+    "grab: the hand (the mouse's drag spring) is built on the body it holds and set into \
+     the world",
+)];
+
+/// Every `.name(` or `::name(` call of an accessor in `text`, as (line number, line), comment
+/// lines skipped.
+fn calls(text: &str) -> Vec<(usize, String)> {
+    let mut found = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let code = line.split("//").next().unwrap_or("");
+        let hit = ACCESSORS.iter().any(|name| {
+            [".", "::"].iter().any(|sep| {
+                let call = format!("{sep}{name}");
+                code.match_indices(&call)
+                    .any(|(at, _)| code[at + call.len()..].trim_start().starts_with('('))
+            })
+        });
+        if hit {
+            found.push((n + 1, line.trim().to_string()));
+        }
+    }
+    found
+}
+
+/// Every `.rs` file under `dir`.
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            sources(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn the_scan_finds_a_world_read() {
+    let text = "let n = world.cloths().len();\n// world.bodies() in a comment\nlet o = self\n    .world\n    .obstacles ()\n    .first();\nlet c = scene.cloths.len();\nWorld::links(&w);";
+    let lines: Vec<usize> = calls(text).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(lines, vec![1, 5, 8]);
+}
+
+#[test]
+fn front_ends_read_the_world_only_through_the_snapshot() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in FRONT_ENDS {
+        sources(&root.join(dir), &mut files);
+    }
+    files.sort();
+    assert!(
+        files.len() > 20,
+        "the front ends' sources were not found under {}",
+        root.display()
+    );
+    let mut unexpected = Vec::new();
+    let mut control_seen = [0usize; CONTROL.len()];
+    for path in &files {
+        let relative = path
+            .strip_prefix(root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        let text = std::fs::read_to_string(path).unwrap();
+        for (line, code) in calls(&text) {
+            match CONTROL
+                .iter()
+                .position(|(file, allowed, _)| relative == *file && code == *allowed)
+            {
+                Some(k) => control_seen[k] += 1,
+                None => unexpected.push(format!("{relative}:{line}: {code}")),
+            }
+        }
+    }
+    assert!(
+        unexpected.is_empty(),
+        "front ends read the world's bodies, cloths, obstacles or links beside the snapshot \
+         (read through physics::snapshot instead, or list a control use in CONTROL):\n{}",
+        unexpected.join("\n")
+    );
+    for ((file, allowed, why), seen) in CONTROL.iter().zip(control_seen) {
+        assert_eq!(
+            seen, 1,
+            "the control use `{allowed}` ({why}) is expected once in {file}: update CONTROL"
+        );
+    }
+}
