@@ -108,3 +108,55 @@ fn front_ends_read_the_world_only_through_the_snapshot() {
         );
     }
 }
+
+/// The typed reads beside the snapshot give the snapshot's own numbers, bit for bit, between
+/// frames and mid-frame: a trampoline on the floor (two bodies, a cloth, the ground).
+#[test]
+fn the_typed_reads_are_the_snapshots_numbers() {
+    use tumble::physics::snapshot::{
+        deepest_penetration, particle_positions, vertex_penetration, Methods,
+    };
+    use tumble::physics::BodyView;
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/35-a-trampoline-on-the-floor.toml");
+    let mut world = tumble::scene::load(&path).unwrap().scene.world();
+    for step in 0..=120 {
+        if step > 0 {
+            world.step();
+        }
+        // Between frames after whole steps, and at every phase of some of them.
+        let phases = if step % 40 == 1 { 4 } else { 1 };
+        for phase in 0..phases {
+            if phase > 0 {
+                world.step_phase();
+            }
+            let s = world.snapshot();
+            assert_eq!(BodyView::all(&world), s.bodies, "step {step} phase {phase}");
+            for (i, b) in s.bodies.iter().enumerate() {
+                assert_eq!(BodyView::of(&world, i), *b);
+                assert_eq!(
+                    b.angular_velocity_body(),
+                    world.snapshot_of(i).angular_velocity_body
+                );
+                assert_eq!(
+                    vertex_penetration(&world, i).to_bits(),
+                    deepest_penetration(&s.obstacles, &b.vertices).to_bits()
+                );
+            }
+            let methods = Methods::of(&world);
+            assert_eq!(methods.integrator, s.integrator);
+            assert_eq!(methods.response, s.contact_model.map(|m| m.response));
+            let cloths: Vec<_> = s.cloths.iter().map(|c| c.method).collect();
+            assert_eq!(methods.cloths, cloths);
+            let particles: Vec<_> = s.cloths.iter().flat_map(|c| c.positions.clone()).collect();
+            assert_eq!(particle_positions(&world), particles);
+        }
+    }
+    // The scene is what the test says it is: the cloth has been hit and is moving.
+    let s = world.snapshot();
+    assert_eq!(
+        (s.bodies.len(), s.cloths.len(), s.obstacles.len()),
+        (2, 1, 1)
+    );
+    assert!(s.cloths[0].max_speed > 0.0);
+}
