@@ -317,40 +317,49 @@ fn hold_on_joints(
         d.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia(g));
         d
     });
-    let arms: Vec<Vector3<f64>> = (list.iter())
-        .map(|(a, g)| rotations[*g] * a.offset_body)
+    // The layer's solver bodies: the held bodies (column g), then each attachment's particle
+    // (n + a); each attachment three equality rows between them (`constraints::attachment`),
+    // whose body ends are −G_a in its body's columns.
+    let (k, n) = (list.len(), group.len());
+    let mut ends: Vec<SolverBody> = (group.iter())
+        .map(|&b| solver_body(&bodies[b], &states[b]))
+        .collect();
+    ends.extend((list.iter()).map(|(a, _)| {
+        SolverBody::particle(cloth.velocities[a.particle], cloth.inv_mass(a.particle))
+    }));
+    let holds: Vec<Hold> = (list.iter().enumerate())
+        .map(|(a, (att, g))| Hold {
+            particle: n + a,
+            body: *g,
+            arm: rotations[*g] * att.offset_body,
+        })
         .collect();
     // G: 3k × 6n, row block a = [I, −[r_a]×] in its body's columns.
-    let (k, n) = (list.len(), group.len());
     let mut g_matrix = DMatrix::<f64>::zeros(3 * k, 6 * n);
     let mut rhs = DVector::<f64>::zeros(3 * k);
-    for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
+    for (a, ((att, _), hold)) in list.iter().zip(&holds).enumerate() {
         g_matrix
-            .fixed_view_mut::<3, 3>(3 * a, 6 * g)
-            .copy_from(&Matrix3::identity());
-        g_matrix
-            .fixed_view_mut::<3, 3>(3 * a, 6 * g + 3)
-            .copy_from(&(-ra.cross_matrix()));
-        let p = att.particle;
-        let point = states[group[*g]].position + ra;
-        let u = (point - cloth.positions[p]) / dt - cloth.velocities[p];
+            .fixed_view_mut::<3, 6>(3 * a, 6 * hold.body)
+            .copy_from(&hold.point_jacobian());
+        let point = states[group[hold.body]].position + hold.arm;
+        let u = (point - cloth.positions[att.particle]) / dt - ends[hold.particle].v;
         rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
     }
     let mut matrix = &g_matrix * &q * g_matrix.transpose() * factor;
-    for (a, (att, _)) in list.iter().enumerate() {
+    for (a, hold) in holds.iter().enumerate() {
         for c in 0..3 {
-            matrix[(3 * a + c, 3 * a + c)] += cloth.inv_mass(att.particle);
+            matrix[(3 * a + c, 3 * a + c)] += ends[hold.particle].inv_mass;
         }
     }
     let Some(cholesky) = matrix.cholesky() else {
         return;
     };
     let impulses = cholesky.solve(&rhs);
-    for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
+    for (a, ((att, _), hold)) in list.iter().zip(&holds).enumerate() {
         let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
         cloth.apply_impulse(att.particle, &j);
         report.impulse[0] += j;
-        report.impulse[1] += (states[group[*g]].position + ra).cross(&j);
+        report.impulse[1] += (states[group[hold.body]].position + hold.arm).cross(&j);
     }
     // The particles' pull on the bodies, Gᵀ J; the bodies' filtered response Y = −Q Gᵀ J.
     let pull = g_matrix.transpose() * &impulses;
@@ -370,8 +379,9 @@ fn hold_on_joints(
         if factor > 0.0 {
             let (y_v, y_w) = (y_v * factor, y_w * factor);
             move_body(state, &y_v, &y_w, dt);
-            for ((att, ga), ra) in list.iter().zip(&arms).filter(|((_, ga), _)| *ga == g) {
-                debug_assert_eq!(*ga, g);
+            for ((att, _), Hold { arm: ra, .. }) in
+                list.iter().zip(&holds).filter(|(_, h)| h.body == g)
+            {
                 let gap = turn_gap(&y_w, ra, dt);
                 let j = close_gap(cloth, att.particle, state, ra, &gap, dt);
                 report.impulse[0] += j;

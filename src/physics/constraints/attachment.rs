@@ -31,7 +31,7 @@
 //! keeps the bits it always had.
 
 use super::{Axis, Row, SolverBody};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix3x6, Vector3};
 
 /// A particle held at a body's point: solver body `particle` (a particle) at lever 0, solver
 /// body `body` at lever `arm`, both indices into one table of solver bodies (module doc).
@@ -62,6 +62,19 @@ impl Attachment {
     /// The rates of its rows, u = v_p − (V_b + ω_b × r) (module doc).
     pub fn rate(&self, bodies: &[SolverBody]) -> Vector3<f64> {
         bodies[self.particle].v - bodies[self.body].point_velocity(&self.arm)
+    }
+
+    /// G = [I, −[r]×] (3 × 6): the body point's velocity from the body's (V; ω),
+    /// `V + ω × r = G (V; ω)`. The rows' Jacobian is I on the particle end and −G on the body
+    /// end (a solve whose body unknowns are not a solver body's, as a joint-filtered one, forms
+    /// its K from G).
+    pub fn point_jacobian(&self) -> Matrix3x6<f64> {
+        let mut g = Matrix3x6::zeros();
+        g.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&Matrix3::identity());
+        g.fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(-self.arm.cross_matrix()));
+        g
     }
 
     /// The 3 × 3 block K_ac of this attachment's rows against `other`'s, the body's share
@@ -132,6 +145,18 @@ mod tests {
             assert!((row.axis.velocity(&bodies) - u[k]).abs() < 1e-15);
             assert!((u[k] - expected[k]).abs() < 1e-15);
             assert_eq!((row.lo, row.hi), (f64::NEG_INFINITY, f64::INFINITY));
+        }
+        // G (V; ω) is the point's velocity; the rows' body ends are −G, row by row.
+        let g = c.point_jacobian();
+        let (v, w) = (bodies[0].v, bodies[0].omega);
+        let point = g * nalgebra::Vector6::new(v.x, v.y, v.z, w.x, w.y, w.z);
+        assert!((point - bodies[0].point_velocity(&c.arm)).norm() < 1e-15);
+        for (k, row) in c.rows(&bodies, 0).iter().enumerate() {
+            let end = row.axis.b.unwrap();
+            let d = -row.axis.d;
+            let body_end: Vec<f64> = d.iter().chain(end.rd.iter()).copied().collect();
+            let minus_g: Vec<f64> = g.row(k).iter().map(|x| -x).collect();
+            assert_eq!(body_end, minus_g);
         }
         // Weighed by f = ½ the body's share halves; a fixed body end adds nothing.
         let half = a.block(&c, &bodies, 0.5);
