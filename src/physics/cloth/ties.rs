@@ -142,6 +142,7 @@
 #![allow(clippy::needless_range_loop)] // parallel per-particle arrays, indexed together
 
 use super::conjugate_gradient::{Symmetric3, Workspace};
+use crate::physics::constraints::SolverBody;
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 /// Which components of a particle's velocity a tie prescribes.
@@ -153,18 +154,19 @@ pub enum TieKind {
     Full,
 }
 
-/// A rigid body as the tied solve sees it: its velocities are unknowns of the same linear
-/// solve as the particles', so it carries M and I (the solve's mass matrix), not their
-/// inverses as a contact solver body does (`collision::solver_body::SolverBody`).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A rigid body as the tied solve sees it: its solver body (the constraint layer's
+/// [`SolverBody`]: V and ω after the body's own step, 1/M and I⁻¹), and, since its velocity
+/// change is an unknown of the same linear solve as the particles', the solve's mass matrix
+/// M_b = diag(M I, I_world) (not the inverses a contact solver applies impulses with) and the
+/// solution, its correction.
+#[derive(Debug, Clone, Copy)]
 pub struct TiedBody {
-    /// M, kg; 0 for a body that cannot move (then it has no unknowns).
+    /// The body's solver body: V, ω, L after its own step, before the ties; 1/M, I⁻¹.
+    pub body: SolverBody,
+    /// M in the solve, kg; 0 for a body that cannot move (then it has no unknowns).
     pub mass: f64,
-    /// World inertia tensor about the barycenter, kg·m².
+    /// World inertia tensor about the barycenter in the solve, kg·m².
     pub inertia: Matrix3<f64>,
-    /// V and ω after the body's own step, before the ties.
-    pub velocity: Vector3<f64>,
-    pub angular_velocity: Vector3<f64>,
     /// Out: the change the ties made, ΔV (m/s) and Δω (rad/s).
     pub correction: [Vector3<f64>; 2],
 }

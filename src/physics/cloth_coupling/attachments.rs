@@ -3,9 +3,10 @@
 //! collide phase moved them ([`carry_attachments`]).
 
 use super::tied::HeldJoints;
-use super::{close_gap, move_body, turn_gap, Attachment};
+use super::{close_gap, move_body, solver_body, turn_gap, Attachment};
 use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
+use crate::physics::constraints::{Attachment as Hold, SolverBody};
 use crate::physics::effects::Loads;
 use crate::physics::joints::Links;
 use crate::physics::state::State;
@@ -115,12 +116,9 @@ pub fn carry_attachments(
         if !moved.get(a.body).copied().unwrap_or(false) {
             continue;
         }
-        let (body, state) = (&bodies[a.body], &states[a.body]);
-        let rotation = state.orientation.matrix();
-        let arm = rotation * a.offset_body;
-        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
-        let omega = inv_inertia * state.angular_momentum;
-        let velocity = state.linear_momentum * body.inv_mass + omega.cross(&arm);
+        let state = &states[a.body];
+        let arm = state.orientation.matrix() * a.offset_body;
+        let velocity = solver_body(&bodies[a.body], state).point_velocity(&arm);
         let p = a.particle;
         let (m, position) = (cloth.masses[p], state.position + arm);
         let momentum = (velocity - cloth.velocities[p]) * m;
@@ -163,10 +161,14 @@ pub struct Holding<'a> {
 /// ```
 ///
 /// one symmetric positive-definite 3k × 3k system per body with k attachments, solved
-/// directly (Cholesky). The body's turn is then applied exactly and the particle moved by
-/// what the linearisation missed, `(R(h Δω') − I) r − h Δω' × r` (Δω' = factor Δω),
-/// with the opposite momentum to the body: the error left is round-off, and body +
-/// particles keep their momentum. A fixed body takes nothing (K = I/m_p); a body whose
+/// directly (Cholesky). It is built on the constraint layer: the body and the particles are
+/// solver bodies (`constraints::SolverBody`: the body first, then each attachment's particle),
+/// each attachment three equality rows between a particle end and the body end
+/// (`constraints::Attachment`), and K_ac their 3 × 3 block (`Attachment::block`, f = factor,
+/// formed as matrices so that the solve keeps its bits). The body's turn is then applied
+/// exactly and the particle moved by what the linearisation missed,
+/// `(R(h Δω') − I) r − h Δω' × r` (Δω' = factor Δω), with the opposite momentum to the body:
+/// the error left is round-off, and body + particles keep their momentum. A fixed body takes nothing (K = I/m_p); a body whose
 /// integrator ignores the correction in its position (factor 0) takes the impulses in its
 /// momenta only.
 ///
@@ -216,28 +218,34 @@ pub fn hold_attachments(
             continue;
         }
         let rotation = state.orientation.matrix();
-        let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
         let moves = !body.fixed && body.inv_mass > 0.0;
         let scale = if moves { factor } else { 0.0 };
-        let arms: Vec<Vector3<f64>> = list.iter().map(|a| rotation * a.offset_body).collect();
+        // The solve's solver bodies: the body (0), then each attachment's particle (a + 1);
+        // each attachment three equality rows between them (`constraints::attachment`).
+        let mut ends = Vec::with_capacity(list.len() + 1);
+        ends.push(solver_body(body, state));
+        ends.extend((list.iter()).map(|a| {
+            SolverBody::particle(cloth.velocities[a.particle], cloth.inv_mass(a.particle))
+        }));
+        let holds: Vec<Hold> = (list.iter().enumerate())
+            .map(|(a, att)| Hold {
+                particle: a + 1,
+                body: 0,
+                arm: rotation * att.offset_body,
+            })
+            .collect();
         let k = list.len();
         let mut matrix = DMatrix::<f64>::zeros(3 * k, 3 * k);
         let mut rhs = DVector::<f64>::zeros(3 * k);
-        for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
-            let p = att.particle;
-            let point = state.position + ra;
-            let u = (point - cloth.positions[p]) / dt - cloth.velocities[p];
+        for (a, (att, hold)) in list.iter().zip(&holds).enumerate() {
+            // Where the particle must end: on the point, P_a − x_p over h, less its velocity.
+            let point = state.position + hold.arm;
+            let u = (point - cloth.positions[att.particle]) / dt - ends[hold.particle].v;
             rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
-            for (c, rc) in arms.iter().enumerate() {
-                let mut block = -ra.cross_matrix() * inv_inertia * rc.cross_matrix()
-                    + Matrix3::identity() * body.inv_mass;
-                block *= scale;
-                if a == c {
-                    block += Matrix3::identity() * cloth.inv_mass(p);
-                }
+            for (c, other) in holds.iter().enumerate() {
                 matrix
                     .fixed_view_mut::<3, 3>(3 * a, 3 * c)
-                    .copy_from(&block);
+                    .copy_from(&hold.block(other, &ends, scale));
             }
         }
         let Some(cholesky) = matrix.cholesky() else {
@@ -245,7 +253,7 @@ pub fn hold_attachments(
         };
         let impulses = cholesky.solve(&rhs);
         let (mut total, mut torque) = (Vector3::zeros(), Vector3::zeros());
-        for (a, (att, ra)) in list.iter().zip(&arms).enumerate() {
+        for (a, (att, Hold { arm: ra, .. })) in list.iter().zip(&holds).enumerate() {
             let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
             cloth.apply_impulse(att.particle, &j);
             total += j;
@@ -258,9 +266,9 @@ pub fn hold_attachments(
             state.angular_momentum -= torque;
             if scale > 0.0 {
                 let y_v = -total * (body.inv_mass * scale);
-                let y_w = -(inv_inertia * torque) * scale;
+                let y_w = -(ends[0].inv_inertia * torque) * scale;
                 move_body(state, &y_v, &y_w, dt);
-                for (att, ra) in list.iter().zip(&arms) {
+                for (att, Hold { arm: ra, .. }) in list.iter().zip(&holds) {
                     let gap = turn_gap(&y_w, ra, dt);
                     let j = close_gap(cloth, att.particle, state, ra, &gap, dt);
                     report.impulse[0] += j;
@@ -309,40 +317,49 @@ fn hold_on_joints(
         d.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia(g));
         d
     });
-    let arms: Vec<Vector3<f64>> = (list.iter())
-        .map(|(a, g)| rotations[*g] * a.offset_body)
+    // The layer's solver bodies: the held bodies (column g), then each attachment's particle
+    // (n + a); each attachment three equality rows between them (`constraints::attachment`),
+    // whose body ends are −G_a in its body's columns.
+    let (k, n) = (list.len(), group.len());
+    let mut ends: Vec<SolverBody> = (group.iter())
+        .map(|&b| solver_body(&bodies[b], &states[b]))
+        .collect();
+    ends.extend((list.iter()).map(|(a, _)| {
+        SolverBody::particle(cloth.velocities[a.particle], cloth.inv_mass(a.particle))
+    }));
+    let holds: Vec<Hold> = (list.iter().enumerate())
+        .map(|(a, (att, g))| Hold {
+            particle: n + a,
+            body: *g,
+            arm: rotations[*g] * att.offset_body,
+        })
         .collect();
     // G: 3k × 6n, row block a = [I, −[r_a]×] in its body's columns.
-    let (k, n) = (list.len(), group.len());
     let mut g_matrix = DMatrix::<f64>::zeros(3 * k, 6 * n);
     let mut rhs = DVector::<f64>::zeros(3 * k);
-    for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
+    for (a, ((att, _), hold)) in list.iter().zip(&holds).enumerate() {
         g_matrix
-            .fixed_view_mut::<3, 3>(3 * a, 6 * g)
-            .copy_from(&Matrix3::identity());
-        g_matrix
-            .fixed_view_mut::<3, 3>(3 * a, 6 * g + 3)
-            .copy_from(&(-ra.cross_matrix()));
-        let p = att.particle;
-        let point = states[group[*g]].position + ra;
-        let u = (point - cloth.positions[p]) / dt - cloth.velocities[p];
+            .fixed_view_mut::<3, 6>(3 * a, 6 * hold.body)
+            .copy_from(&hold.point_jacobian());
+        let point = states[group[hold.body]].position + hold.arm;
+        let u = (point - cloth.positions[att.particle]) / dt - ends[hold.particle].v;
         rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
     }
     let mut matrix = &g_matrix * &q * g_matrix.transpose() * factor;
-    for (a, (att, _)) in list.iter().enumerate() {
+    for (a, hold) in holds.iter().enumerate() {
         for c in 0..3 {
-            matrix[(3 * a + c, 3 * a + c)] += cloth.inv_mass(att.particle);
+            matrix[(3 * a + c, 3 * a + c)] += ends[hold.particle].inv_mass;
         }
     }
     let Some(cholesky) = matrix.cholesky() else {
         return;
     };
     let impulses = cholesky.solve(&rhs);
-    for (a, ((att, g), ra)) in list.iter().zip(&arms).enumerate() {
+    for (a, ((att, _), hold)) in list.iter().zip(&holds).enumerate() {
         let j: Vector3<f64> = impulses.fixed_rows::<3>(3 * a).into_owned();
         cloth.apply_impulse(att.particle, &j);
         report.impulse[0] += j;
-        report.impulse[1] += (states[group[*g]].position + ra).cross(&j);
+        report.impulse[1] += (states[group[hold.body]].position + hold.arm).cross(&j);
     }
     // The particles' pull on the bodies, Gᵀ J; the bodies' filtered response Y = −Q Gᵀ J.
     let pull = g_matrix.transpose() * &impulses;
@@ -362,8 +379,9 @@ fn hold_on_joints(
         if factor > 0.0 {
             let (y_v, y_w) = (y_v * factor, y_w * factor);
             move_body(state, &y_v, &y_w, dt);
-            for ((att, ga), ra) in list.iter().zip(&arms).filter(|((_, ga), _)| *ga == g) {
-                debug_assert_eq!(*ga, g);
+            for ((att, _), Hold { arm: ra, .. }) in
+                list.iter().zip(&holds).filter(|(_, h)| h.body == g)
+            {
                 let gap = turn_gap(&y_w, ra, dt);
                 let j = close_gap(cloth, att.particle, state, ra, &gap, dt);
                 report.impulse[0] += j;

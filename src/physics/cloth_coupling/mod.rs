@@ -12,7 +12,8 @@
 //!   take the explicit passes below after it.
 //! - `symplectic-euler`: two passes for contacts ([`explicit`]: on velocities, then what is
 //!   left inside after the positions moved), and [`hold_attachments`] for its attachments
-//!   (impulses after the velocity half, one small solve per body).
+//!   (impulses after the velocity half, one small direct solve per body over the constraint
+//!   layer's attachment rows, `constraints::attachment`).
 //!
 //! Attached bodies stay consistent within the step: the joints on a body that moves in the
 //! implicit solve are held inside it ([`tied_step`], "Joints"), and particles attached to a
@@ -33,7 +34,9 @@ pub use attachments::{
 pub use explicit::{approach_bodies, collide_bodies, Approach, SWEEPS};
 pub use tied::{tied_step, TiedReport, TiedScene, TIE_ROUNDS};
 
+use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
+use crate::physics::constraints::SolverBody;
 use crate::physics::state::State;
 use nalgebra::Vector3;
 
@@ -51,6 +54,19 @@ pub struct Attachment {
     pub body: usize,
     /// The particle's position in the body's frame (relative to the barycenter), m.
     pub offset_body: Vector3<f64>,
+}
+
+/// A body's solver body at `state` (the constraint layer's, `constraints::SolverBody`):
+/// V = P/M, L, 1/M and ω = I⁻¹ L with I⁻¹ = R I⁻¹_body Rᵀ at its orientation. What every
+/// path here reads a body's velocities and inverse mass properties from (a fixed body: all 0).
+fn solver_body(body: &Body, state: &State) -> SolverBody {
+    let rotation = state.orientation.matrix();
+    SolverBody::new(
+        state.linear_momentum * body.inv_mass,
+        state.angular_momentum,
+        body.inv_mass,
+        rotation * body.inv_inertia_body * rotation.transpose(),
+    )
 }
 
 /// Moves a body by the position part of a correction (Y_V, Y_ω) over a step of length h:

@@ -2,7 +2,7 @@
 //! (`cloth::ties`): [`tied_step`].
 
 use super::attachments::BodyMove;
-use super::{close_gap, move_body, turn_gap, Attachment};
+use super::{close_gap, move_body, solver_body, turn_gap, Attachment};
 use crate::physics::body::Body;
 use crate::physics::cloth::{BodyJoints, Cloth, Held, Tie, TieKind, TiedBody};
 use crate::physics::collision::geometry::{point_shape, Pose};
@@ -188,8 +188,9 @@ fn correction_at(sb: &[TiedBody], body: Option<usize>, arm: &Vector3<f64>) -> Ve
 }
 
 impl TiedScene<'_> {
-    /// The bodies as the solve sees them: a body that moves in the solve has mass M/factor
-    /// and inertia I/factor (module doc of [`tied_step`]); V and ω after its own step.
+    /// The bodies as the solve sees them: each its solver body (the constraint layer's: V and
+    /// ω after its own step, 1/M, I⁻¹), and a body that moves in the solve mass M/factor and
+    /// inertia I/factor (module doc of [`tied_step`]), its correction an unknown of the solve.
     fn solver_bodies(&self, states: &[State]) -> Vec<TiedBody> {
         let factor = self.factor;
         self.bodies
@@ -203,12 +204,10 @@ impl TiedScene<'_> {
                 } else {
                     Matrix3::zeros()
                 };
-                let inv_inertia = rotation * body.inv_inertia_body * rotation.transpose();
                 TiedBody {
+                    body: solver_body(body, state),
                     mass: if moves { body.mass / factor } else { 0.0 },
                     inertia,
-                    velocity: state.linear_momentum * body.inv_mass,
-                    angular_velocity: inv_inertia * state.angular_momentum,
                     correction: [Vector3::zeros(); 2],
                 }
             })
@@ -246,9 +245,8 @@ impl TiedScene<'_> {
             .map(|i| cloth.start_velocity(i).norm_squared())
             .fold(0.0, |m: f64, v| if v > m || v.is_nan() { v } else { m })
             .sqrt();
-        let body_speed = |body: &Body, sb: &TiedBody| {
-            sb.velocity.norm() + sb.angular_velocity.norm() * body.radius
-        };
+        let body_speed =
+            |body: &Body, sb: &TiedBody| sb.body.v.norm() + sb.body.omega.norm() * body.radius;
         let widest: Vec<f64> = (bodies.iter().zip(solver_bodies))
             .map(|(body, sb)| {
                 let margin = (fastest + body_speed(body, sb) + gravity.norm() * dt) * dt + TOUCHING;
