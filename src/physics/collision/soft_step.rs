@@ -120,10 +120,11 @@
 //! passes over one row (warm start, soft solve and relax); `bounce` the restitution, each
 //! manifold's bouncing rows solved together; `lanes` schedules the runs of rows so that two
 //! runs sharing no body are solved side by side in SIMD lanes (`f2`), in an order that gives
-//! the sequential sweep's numbers bit for bit. Everything after detection
-//! is built twice, with AVX2 (taken at run time where the CPU has it) and for any CPU: both
-//! do the same operations in the same order (no fused multiply-add), so their numbers agree
-//! bit for bit (a test).
+//! the sequential sweep's numbers bit for bit (for a chain such as a stack, a whole sub-step
+//! at once: the relax of the lower runs beside the solve of the upper ones). Everything after
+//! detection is built twice, with AVX2 (taken at run time where the CPU has it) and for any
+//! CPU: both do the same operations in the same order (no fused multiply-add), so their
+//! numbers agree bit for bit (a test).
 
 mod bodies;
 mod bounce;

@@ -35,7 +35,7 @@
 //! body and row again sees the sequential sub-step's operations in its order, so the numbers
 //! are the same bit for bit; a stack's solve of run k and relax of run k − 2 share a level and
 //! go side by side. Taken only where one sweep would solve most of its rows alone (at least
-//! [`MIN_PIPED_RUNS`] runs): a pair costs about the instructions of its two rows alone (the
+//! `MIN_PIPED_RUNS` runs): a pair costs about the instructions of its two rows alone (the
 //! lanes' 12 velocity registers spill), so it gains only where it fills otherwise idle
 //! levels; on a pyramid, already paired, piping measured 7 % more instructions.
 
