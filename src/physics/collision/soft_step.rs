@@ -727,7 +727,7 @@ mod tests {
     }
 
     /// The piped sub-steps (`Lanes::substep`) give the bits of the sweeps, the move and the
-    /// relax one after the other, on a stack of 12 (piped in every step) as it sags onto its
+    /// relax one after the other, on a stack of 20 (piped in every step) as it sags onto its
     /// soft contacts and settles.
     #[test]
     fn the_piped_substeps_give_the_sequential_bits() {
@@ -736,12 +736,12 @@ mod tests {
         let run = |unpiped: bool| {
             super::UNPIPED.with(|u| u.set(unpiped));
             super::PIPED_STEPS.with(|c| c.set(0));
-            let mut world = stack(12, Response::SoftStep(super::SoftStep::DEFAULT));
+            let mut world = stack(20, Response::SoftStep(super::SoftStep::DEFAULT));
             for _ in 0..200 {
                 world.step();
             }
             super::UNPIPED.with(|u| u.set(false));
-            let top = world.states()[11].position.y - world.initial_states()[11].position.y;
+            let top = world.states()[19].position.y - world.initial_states()[19].position.y;
             assert!(top < -1e-3, "the top sagged {top} m");
             let bits: Vec<u64> = world
                 .states()
