@@ -120,10 +120,11 @@
 //! passes over one row (warm start, soft solve and relax); `bounce` the restitution, each
 //! manifold's bouncing rows solved together; `lanes` schedules the runs of rows so that two
 //! runs sharing no body are solved side by side in SIMD lanes (`f2`), in an order that gives
-//! the sequential sweep's numbers bit for bit. Everything after detection
-//! is built twice, with AVX2 (taken at run time where the CPU has it) and for any CPU: both
-//! do the same operations in the same order (no fused multiply-add), so their numbers agree
-//! bit for bit (a test).
+//! the sequential sweep's numbers bit for bit (for a chain such as a stack, a whole sub-step
+//! at once: the relax of the lower runs beside the solve of the upper ones). Everything after
+//! detection is built twice, with AVX2 (taken at run time where the CPU has it) and for any
+//! CPU: both do the same operations in the same order (no fused multiply-add), so their
+//! numbers agree bit for bit (a test).
 
 mod bodies;
 mod bounce;
@@ -392,13 +393,15 @@ fn solve_plain(
     let friction = context.friction;
     rows.build(contacts, bodies, warm, friction, (dynamic, fixed));
     rows.measure(contacts, bodies);
-    lanes.schedule(rows, bodies.members.len());
 
     // An impact (a row meeting faster than the bounce speed) gets IMPACT_SWEEPS sweeps per
     // sub-step: one Gauss–Seidel sweep over a face's 4 coupled rows leaves part of a fast
     // approach, which then goes deep (or, for a thin body, through).
     let impact = rows.totals.iter().any(|t| t.approach < -bounce_speed);
     let passes = if impact { IMPACT_SWEEPS } else { 1 };
+    lanes.schedule(rows, bodies.members.len(), passes == 1 && piped());
+    #[cfg(test)]
+    PIPED_STEPS.with(|c| c.set(c.get() + usize::from(lanes.piped())));
     substeps(rows, lanes, bodies, n, passes, friction, h);
     // Restitution, once, from the approach the contact met, a manifold at a time (`bounce`).
     if context.restitution > 0.0 {
@@ -471,17 +474,40 @@ fn substeps(
         if substep == 0 {
             sweep::warm_start(rows, &mut bodies.motions);
         }
-        for _ in 0..passes {
-            lanes.sweep(rows, &mut bodies.motions, friction, h, true);
-        }
-        bodies.advance(h);
-        rows.refresh_gaps(bodies);
-        for _ in 0..passes {
-            lanes.sweep(rows, &mut bodies.motions, friction, h, false);
+        if lanes.piped() {
+            lanes.substep(rows, bodies, friction, h);
+        } else {
+            for _ in 0..passes {
+                lanes.sweep(rows, &mut bodies.motions, friction, h, true);
+            }
+            bodies.advance(h);
+            rows.refresh_gaps(bodies);
+            for _ in 0..passes {
+                lanes.sweep(rows, &mut bodies.motions, friction, h, false);
+            }
         }
         bodies.end_substep();
         rows.add_totals();
     }
+}
+
+/// Whether a sub-step of one sweep each runs piped (`Lanes::substep`: the same bits as the
+/// sweeps one after the other); a test switches it off on its thread to compare.
+#[inline(always)]
+fn piped() -> bool {
+    #[cfg(test)]
+    if UNPIPED.with(std::cell::Cell::get) {
+        return false;
+    }
+    true
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: the sweeps one after the other on this thread.
+    static UNPIPED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Tests: the steps on this thread whose sub-steps ran piped.
+    static PIPED_STEPS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
 
 /// The energy of every body: kinetic, and potential in the declared gravity. A body with a
@@ -698,6 +724,42 @@ mod tests {
             plain(&mut slow, bound);
             assert_eq!(fast.map(f64::to_bits), slow.map(f64::to_bits), "{t:?} in {bound}");
         }
+    }
+
+    /// The piped sub-steps (`Lanes::substep`) give the bits of the sweeps, the move and the
+    /// relax one after the other, on a stack of 20 (piped in every step) as it sags onto its
+    /// soft contacts and settles.
+    #[test]
+    fn the_piped_substeps_give_the_sequential_bits() {
+        use crate::contact_scenes::stack;
+        use crate::physics::Response;
+        let run = |unpiped: bool| {
+            super::UNPIPED.with(|u| u.set(unpiped));
+            super::PIPED_STEPS.with(|c| c.set(0));
+            let mut world = stack(20, Response::SoftStep(super::SoftStep::DEFAULT));
+            for _ in 0..200 {
+                world.step();
+            }
+            super::UNPIPED.with(|u| u.set(false));
+            let top = world.states()[19].position.y - world.initial_states()[19].position.y;
+            assert!(top < -1e-3, "the top sagged {top} m");
+            let bits: Vec<u64> = world
+                .states()
+                .iter()
+                .flat_map(|s| {
+                    let q = s.orientation.quaternion();
+                    let [x, p, l] = [s.position, s.linear_momentum, s.angular_momentum];
+                    [x.x, x.y, x.z, p.x, p.y, p.z, l.x, l.y, l.z, q.i, q.j, q.k, q.w]
+                })
+                .map(f64::to_bits)
+                .collect();
+            (bits, super::PIPED_STEPS.with(std::cell::Cell::get))
+        };
+        let (apart, none) = run(true);
+        let (piped, count) = run(false);
+        assert_eq!(none, 0);
+        assert!(count >= 150, "{count} of 200 steps piped");
+        assert_eq!(piped, apart);
     }
 
     #[test]

@@ -197,13 +197,20 @@ impl Bodies {
     /// Every pose a sub-step of `h` further: `x += h v`, `q ← normalise(q + ½ h ω q)`.
     #[inline(always)]
     pub fn advance(&mut self, h: f64) {
-        for (s, p) in self.motions.iter().zip(self.places.iter_mut()) {
-            p.position += s.v * h;
-            let w = s.omega * (0.5 * h);
-            let dq = Quaternion::new(0.0, w.x, w.y, w.z) * p.q.into_inner();
-            p.q = UnitQuaternion::new_normalize(p.q.into_inner() + dq);
-            p.measure();
+        for i in 0..self.motions.len() {
+            self.advance_one(i, h);
         }
+    }
+
+    /// Solver body i's pose a sub-step of `h` further (`advance`).
+    #[inline(always)]
+    pub fn advance_one(&mut self, i: usize, h: f64) {
+        let (s, p) = (&self.motions[i], &mut self.places[i]);
+        p.position += s.v * h;
+        let w = s.omega * (0.5 * h);
+        let dq = Quaternion::new(0.0, w.x, w.y, w.z) * p.q.into_inner();
+        p.q = UnitQuaternion::new_normalize(p.q.into_inner() + dq);
+        p.measure();
     }
 
     /// The end of a sub-step: each body's change by the contacts over it.

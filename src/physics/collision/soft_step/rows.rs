@@ -13,7 +13,7 @@
 //! B end) takes a path that reads no B. What the sweeps do not read (the approach, the totals
 //! Λ) is kept beside, in [`Totals`].
 
-use super::bodies::Bodies;
+use super::bodies::{Bodies, Placement};
 use super::{clamp_disk, Softness};
 use crate::physics::collision::impulse::tangents;
 use crate::physics::collision::warm::WarmCache;
@@ -182,30 +182,11 @@ impl Rows {
         self.refresh_gaps(bodies);
     }
 
-    /// Every row's separation at the bodies' current poses,
-    /// `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`.
+    /// Every row's separation at the bodies' current poses (`refresh_run`, run by run).
     #[inline(always)]
     pub fn refresh_gaps(&mut self, bodies: &Bodies) {
-        let places = &bodies.places;
         for run in &self.runs {
-            let a = &places[run.a];
-            let rows = &mut self.rows[run.rows.clone()];
-            match run.b {
-                Some(b) => {
-                    let b = &places[b];
-                    for row in rows {
-                        let mut d = a.shift + a.turned * row.lever;
-                        d -= b.shift + b.turned * row.lever_other;
-                        row.gap = row.separation + row.normal.dot(&d);
-                    }
-                }
-                None => {
-                    for row in rows {
-                        let d = a.shift + a.turned * row.lever;
-                        row.gap = row.separation + row.normal.dot(&d);
-                    }
-                }
-            }
+            refresh_run(run, &mut self.rows, &bodies.places);
         }
     }
 
@@ -235,6 +216,30 @@ impl Rows {
                         l[b] += rd_b[i] * t.applied[i];
                     }
                 }
+            }
+        }
+    }
+}
+
+/// The separation of each of `run`'s rows at its bodies' current poses (`places`),
+/// `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`.
+#[inline(always)]
+pub(super) fn refresh_run(run: &Run, rows: &mut [Row], places: &[Placement]) {
+    let a = &places[run.a];
+    let rows = &mut rows[run.rows.clone()];
+    match run.b {
+        Some(b) => {
+            let b = &places[b];
+            for row in rows {
+                let mut d = a.shift + a.turned * row.lever;
+                d -= b.shift + b.turned * row.lever_other;
+                row.gap = row.separation + row.normal.dot(&d);
+            }
+        }
+        None => {
+            for row in rows {
+                let d = a.shift + a.turned * row.lever;
+                row.gap = row.separation + row.normal.dot(&d);
             }
         }
     }
