@@ -54,25 +54,30 @@
 //! the box's blow on the door then meets the stop here.
 //!
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
-//! of `propagate`, a simultaneous solve that bounces), whatever the clusters' size. With
-//! friction, stage 2 first tries the direct sticking solve with the joint rows in the same
+//! of `propagate`, a simultaneous solve that bounces); without friction whatever the
+//! clusters' size. With friction, stage 2 first tries the direct sticking solve with the joint rows in the same
 //! system (`direct::sticking` with `direct::HeldJoints`: every pushing contact sticks, one
 //! factorisation, accepted when every normal pushes, every tangential impulse is inside its
-//! disk, every stop pushes and nothing approaches: a chain landing flat). When it declines:
+//! disk, every stop pushes and nothing approaches: a pair of links landing flat; with modes,
+//! a contact outside its disk slides at μ λ₁ against its slip, one that would pull separates,
+//! a few rounds of the banded solve). When it declines:
 //!
 //! - on small clusters (at most [`JOINED_FRICTION_ROWS`] joint rows, the stage at most
 //!   [`JOINED_FRICTION_CONTACTS`] contacts: a bob, a door, a pendulum pair) the joints'
 //!   friction stage ([`Joined::friction`]: a spinning bob on a rod meets a tilted wall with its
 //!   tangential impulse at μ λ₁ and the spin left by Coulomb's law,
 //!   `tests/physics/impacts.rs`);
-//! - on larger ones (a chain of 10 links landing: 27 rows) stages 1 and 2 run again from their
-//!   start as the contacts' alone (`Joined::save`, `Joined::restore`), and the joints'
-//!   contact pass after the response (`joints::contact::hold`) holds the joints again, as it
-//!   always did: the joints' friction sweeps crawl on a chain (every contact coupled to every
-//!   other through the links; measured, without the direct solve, 61 of 66 calls of the
-//!   landing chain cycled at the active set's 24-round cap with nothing sliding, hundreds of
+//! - larger clusters (a chain of 10 links landing: 27 rows) take no joint rows in an impact
+//!   with friction (the cluster gate), and the joints' contact pass after the response
+//!   (`joints::contact::hold`) holds the joints again, as it always did: the joints' friction
+//!   sweeps crawl on a chain (every contact coupled to every other through the links; 61 of
+//!   66 calls of the landing chain cycled at the active set's 24-round cap, hundreds of
 //!   sweeps a step, 2.2× the instructions of the whole run), and a stage 1 with the joints
-//!   followed by a stage 2 without them is neither one solution nor cheaper.
+//!   followed by a stage 2 without them is neither one solution nor cheaper. With
+//!   [`JOINED_DIRECT_LARGE`] (off) they take them, keeping them only if the direct solves
+//!   answer, else stages 1 and 2 run again from their start as the contacts' alone
+//!   (`Joined::save`, `Joined::restore`); on the landing chain the direct solve with sliding
+//!   modes answered 9 of 73 stages, at +50 % of the run's instructions.
 //!
 //! Elsewhere every stage is the contacts' alone, as before, and the pass after the response
 //! holds the joints (it also holds, in every case, the positions the push-out moved along
