@@ -456,7 +456,7 @@ pub(super) fn sticking(
         _ => row.bias,
     };
     let target = |s: usize| {
-        if s < 3 * m && s % 3 == 0 {
+        if s < 3 * m && s.is_multiple_of(3) {
             bias(&rows[active[s / 3]])
         } else {
             0.0
