@@ -485,3 +485,90 @@ fn a_spinning_bob_on_a_rod_meets_a_tilted_wall_with_friction_in_one_solve() {
         assert!(w.links().joints[0].error(w.states()) < 1e-9);
     }
 }
+
+#[test]
+fn a_jointed_pair_landing_flat_with_friction_sticks_in_the_solve_that_holds_its_joint() {
+    // Two links (0.3 × 0.05 × 0.05 m, 0.1 kg) on a ball joint, lying flat 0.5 mm above the
+    // ground and moving at v = (0.5, −2, 0) m/s, e = 0, μ = 0.5: sticking needs the tangential
+    // impulse m v_x = 0.1 N·s against μ m |v_y| ≈ 0.2 N·s, so the landing step stops both links
+    // dead (the momentum theorem: the contacts' impulses are −P⁻ less gravity's m g dt),
+    // solved by the direct sticking solve with the joint's rows in the same system
+    // (`impulse::joined`), and nothing slides afterwards.
+    let (m, mu, v) = (0.1, 0.5, Vector3::new(0.5, -2.0, 0.0));
+    let mut s = String::from("title = \"t\"\n[scene]\ndt = 0.001\nintegrator = \"rk4\"\n");
+    s += "gravity = [0.0, -9.81, 0.0]\n";
+    writeln!(
+        s,
+        "contact = {{ response = \"impulse\", restitution = 0.0, friction = {mu} }}"
+    )
+    .unwrap();
+    for (name, x) in [("a", -0.15), ("b", 0.15)] {
+        writeln!(
+            s,
+            "[[body]]\nname = \"{name}\"\nshape = \"box\"\nsize = [0.3, 0.05, 0.05]\nmass = {m}\n\
+             position = [{x}, 0.0255, 0.0]\nvelocity = [{}, {}, {}]",
+            v.x, v.y, v.z
+        )
+        .unwrap();
+    }
+    s += "[[joint]]\ntype = \"ball\"\nbodies = [\"b\", \"a\"]\nanchor = [0.0, 0.0255, 0.0]\n";
+    s += "[[obstacle]]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n";
+    let mut w = world(&s);
+    let p0: Vector3<f64> = w.states().iter().map(|s| s.linear_momentum).sum();
+    let mut landed = None;
+    for step in 0..10 {
+        w.step();
+        if !w.contacts().is_empty() {
+            landed = Some(step);
+            break;
+        }
+    }
+    assert!(landed.is_some(), "the pair never touched");
+    let counters = w.contact_counters();
+    let impulse: Vector3<f64> = w.contacts().iter().map(|c| c.impulse).sum();
+    let normal = impulse.y;
+    let tangential = Vector3::new(impulse.x, 0.0, impulse.z).norm();
+    let speed = w
+        .states()
+        .iter()
+        .map(|s| s.linear_momentum.norm() / m)
+        .fold(0.0, f64::max);
+    let spin = w
+        .states()
+        .iter()
+        .map(|s| s.angular_momentum.norm())
+        .fold(0.0, f64::max);
+    println!(
+        "jointed pair landing: {counters:?}, impulse {impulse:?} (P⁻ {p0:?}), speed after \
+         {speed:e} m/s, |L| {spin:e}"
+    );
+    assert!(counters.joined_sticking >= 1, "{counters:?}");
+    // Stopped in the landing step.
+    assert!(speed < 1e-8, "a link still moves at {speed:e} m/s");
+    assert!(spin < 1e-10, "a link still turns: |L| = {spin:e}");
+    // The momentum theorem: the contacts took −P⁻ (gravity's m g dt per step on top of the
+    // normal one) — the tangential part exactly, within μ times the normal one.
+    assert!(
+        (tangential - 2.0 * m * v.x).abs() < 1e-9,
+        "J_t = {tangential}"
+    );
+    assert!(
+        tangential <= mu * normal,
+        "|J_t| {tangential} > μ Jₙ {normal}"
+    );
+    assert!(
+        (normal + p0.y).abs() < 2.0 * m * 9.81 * 2e-3,
+        "Jₙ = {normal} against −P⁻_y = {}",
+        -p0.y
+    );
+    // Nothing slides after it, and the joint holds.
+    let x0: Vec<Vector3<f64>> = w.states().iter().map(|s| s.position).collect();
+    for _ in 0..500 {
+        w.step();
+    }
+    for (s, x) in w.states().iter().zip(&x0) {
+        let slid = Vector3::new(s.position.x - x.x, 0.0, s.position.z - x.z).norm();
+        assert!(slid < 1e-9, "slid {slid:e} m in 0.5 s");
+    }
+    assert!(w.links().joints[0].error(w.states()) < 1e-9);
+}

@@ -374,14 +374,22 @@ fn solve_active(
 /// (as [`GAP_ROUND_OFF`] does for every solve at 1 nm): the contact may push across up to
 /// 1 µm, where the exact problem would let the body close that gap first. Velocities are the
 /// same either way once no gap is held (the weights move only how the impulses are shared).
+///
+/// `joints` are joint rows held in the same system ([`super::joined`]: equality rows, and
+/// limits' stops that push), targets `J_j Δu = −J_j u` (their rate kept at 0), a joint row
+/// scaled by the largest load in the second try; each stop's total impulse must stay ≥ 0.
+/// One factorisation then answers "everything sticks" for a chain lying on the ground, where
+/// the joints' projected Gauss–Seidel (`Joined::friction`) crawls (every contact coupled to
+/// every other through the links). Their impulses' change goes to `Direct::joint_delta`.
 pub(super) fn sticking(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
+    joints: HeldJoints,
     motions: &mut [SolverBody],
     tolerance: f64,
     how: Sticking,
     buffers: &mut Direct,
-) -> bool {
+) -> Answer {
     let Direct {
         system,
         saved,
@@ -389,89 +397,336 @@ pub(super) fn sticking(
         lambda: delta,
         work,
         budget,
+        merged,
+        joint_delta,
+        slides,
         ..
     } = buffers;
+    let HeldJoints {
+        axes: joints,
+        floor,
+        modes,
+    } = joints;
+    // The pushing contacts (with modes, every contact: those that do not push start as
+    // separated, `Hold::Off`, and join when they approach).
     active.clear();
-    active.extend((0..rows.len()).filter(|&i| rows[i].lambda > 0.0));
+    active.extend((0..rows.len()).filter(|&i| modes || rows[i].lambda > 0.0));
     let m = active.len();
+    let mj = joints.len();
     if m == 0 || m > STICKING_MAX || *work >= *budget {
-        return false;
+        return Answer::Declined;
     }
     // Ordered by the last body each acts on (stable), as the subspace step's unknowns: a chain
     // of bodies (a row of dominoes, a stack) gets a banded envelope.
-    active.sort_by_key(|&i| {
-        let n = &rows[i].normal;
-        n.b.map_or(n.a.body, |b| b.body.max(n.a.body))
-    });
-    // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact.
-    let direction = |k: usize| -> &Axis {
-        let i = active[k / 3];
-        match k % 3 {
+    let last = |a: &Axis| a.b.map_or(a.a.body, |b| b.body.max(a.a.body));
+    active.sort_by_key(|&i| last(&rows[i].normal));
+    // A sliding contact's tangent impulse (`modes`: bound · d, fixed this round).
+    let mode = |k: usize| if modes { slides[active[k]] } else { Hold::Stick };
+    // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact (its
+    // normal alone when it slides), then 3m + j for joint row j; with joint rows the system
+    // takes them in `merged` order (each joint row before the contacts with the same last
+    // body: a chain on the ground stays banded), without them in this order.
+    if mj > 0 {
+        let key = |k: usize| last(&rows[active[k]].normal);
+        order_with_joints(m, key, mode, (joints, last), merged);
+    }
+    let n = if mj == 0 { 3 * m } else { merged.len() };
+    let slot = |p: usize| if mj == 0 { p } else { merged[p] };
+    let direction = |s: usize| -> &Axis {
+        if s >= 3 * m {
+            return &joints[s - 3 * m];
+        }
+        let i = active[s / 3];
+        match s % 3 {
             0 => &rows[i].normal,
             t => &directions[i][t - 1],
         }
     };
-    // The scale of each unknown (1, or its contact's stage-1 load: the weighted minimum norm),
-    // and the normal velocity each pushing contact is held to, −g/dt or 0.
+    // The scale of each unknown (1, or its contact's stage-1 load: the weighted minimum norm;
+    // a joint row's: the largest load), and the normal velocity each pushing contact is held
+    // to, −g/dt or 0.
     let largest = active.iter().map(|&i| rows[i].lambda).fold(0.0, f64::max);
-    let scale = |p: usize| match how {
+    let scale = |s: usize| match how {
         Sticking::Exact => 1.0,
-        Sticking::Resting { .. } => rows[active[p / 3]].lambda.max(1e-6 * largest),
+        Sticking::Resting { .. } if s >= 3 * m => largest,
+        Sticking::Resting { .. } => rows[active[s / 3]].lambda.max(1e-6 * largest),
     };
     let bias = |row: &Row| match how {
         Sticking::Resting { dt } if row.bias * dt < RESTING_GAP => 0.0,
         _ => row.bias,
     };
-    system.reset(3 * m);
-    for p in 0..3 * m {
-        let dp = direction(p);
-        let sp = scale(p);
-        let target = if p % 3 == 0 {
-            bias(&rows[active[p / 3]])
+    let target = |s: usize| {
+        if s < 3 * m && s.is_multiple_of(3) {
+            bias(&rows[active[s / 3]])
         } else {
             0.0
-        };
-        system.rhs[p] = -sp * (dp.velocity(motions) + target);
+        }
+    };
+    // The sliding and separating contacts' fixed impulses, applied before the system is
+    // assembled.
+    let apply_slides = |motions: &mut [SolverBody]| {
+        for k in (0..m).filter(|_| modes) {
+            let i = active[k];
+            match mode(k) {
+                Hold::Stick => {}
+                Hold::Slide(d) => {
+                    let bound = rows[i].friction_bound;
+                    directions[i][0].apply(bound * d[0], motions);
+                    directions[i][1].apply(bound * d[1], motions);
+                }
+                Hold::Off => rows[i].normal.apply(-rows[i].lambda, motions),
+            }
+        }
+    };
+    if mj > 0 {
+        saved.clear();
+        saved.extend_from_slice(motions);
+        apply_slides(motions);
+    }
+    system.reset(n);
+    for p in 0..n {
+        let sp_slot = slot(p);
+        let dp = direction(sp_slot);
+        let sp = scale(sp_slot);
+        system.rhs[p] = -sp * (dp.velocity(motions) + target(sp_slot));
         system.fill_row(p, dp.bodies(), |q| {
-            let dq = direction(q);
+            let sq = slot(q);
+            let dq = direction(sq);
             dp.shares_a_body(dq)
-                .then(|| sp * scale(q) * dp.coupling(dq, motions))
+                .then(|| sp * scale(sq) * dp.coupling(dq, motions))
         });
         if system.stored() > ENVELOPE_MAX {
-            return false;
+            if mj > 0 {
+                motions.copy_from_slice(saved);
+            }
+            return Answer::Declined;
         }
     }
-    *work += super::factorisation_work(system.stored(), 3 * m);
+    *work += super::factorisation_work(system.stored(), n);
     let Some(solution) = system.solve(Pivots::Regularised) else {
-        return false;
+        if mj > 0 {
+            motions.copy_from_slice(saved);
+        }
+        return Answer::Declined;
     };
     delta.clear();
-    delta.extend(solution.iter().enumerate().map(|(p, y)| scale(p) * y));
+    delta.resize(3 * m + mj, 0.0);
+    for (p, y) in solution.iter().enumerate() {
+        let s = slot(p);
+        delta[s] = scale(s) * y;
+    }
+    if mj > 0 {
+        // One step of refinement, as the inelastic solve's with joints: the ε that picks the
+        // minimum-norm answer leaves a residual ε·x that the joints' coupling lifts above the
+        // tolerance. The rates after Δλ are measured, then put back.
+        for p in 0..n {
+            let s = slot(p);
+            direction(s).apply(delta[s], motions);
+        }
+        let mut w: Vec<f64> = (0..n)
+            .map(|p| {
+                let s = slot(p);
+                -scale(s) * (direction(s).velocity(motions) + target(s))
+            })
+            .collect();
+        motions.copy_from_slice(saved);
+        system.substitute_regularised(&mut w);
+        for (p, y) in w.iter().enumerate() {
+            let s = slot(p);
+            delta[s] += scale(s) * y;
+        }
+        for k in 0..m {
+            let row = &rows[active[k]];
+            match mode(k) {
+                Hold::Stick => {}
+                Hold::Slide(d) => {
+                    delta[3 * k + 1] = row.friction_bound * d[0];
+                    delta[3 * k + 2] = row.friction_bound * d[1];
+                }
+                Hold::Off => delta[3 * k] = -row.lambda,
+            }
+        }
+    }
+    // The modes that change (row, new mode), written into `slides` before Changed returns.
+    let mut changes: Vec<(usize, Hold)> = Vec::new();
     for k in 0..m {
         let row = &rows[active[k]];
         let (dn, t1, t2) = (delta[3 * k], delta[3 * k + 1], delta[3 * k + 2]);
-        if row.lambda + dn < 0.0 || (t1 * t1 + t2 * t2).sqrt() > row.friction_bound {
-            return false;
+        if row.lambda + dn < 0.0 {
+            if !modes {
+                return Answer::Declined;
+            }
+            // It would pull: it separates.
+            changes.push((active[k], Hold::Off));
+            continue;
         }
+        let size = (t1 * t1 + t2 * t2).sqrt();
+        if mode(k) == Hold::Stick && size > row.friction_bound {
+            if !modes {
+                return Answer::Declined;
+            }
+            // It slides, along its own impulse for a start.
+            changes.push((active[k], Hold::Slide([t1 / size, t2 / size])));
+        }
+    }
+    // A stop (one-sided joint row) may not come to pull.
+    if (delta[3 * m..].iter().zip(floor)).any(|(d, f)| d < f) {
+        return Answer::Declined;
+    }
+    if !changes.is_empty() {
+        for &(i, mode) in &changes {
+            slides[i] = mode;
+        }
+        return Answer::Changed;
     }
     saved.clear();
     saved.extend_from_slice(motions);
-    for (p, d) in delta[..3 * m].iter().enumerate() {
-        direction(p).apply(*d, motions);
+    for (s, d) in delta.iter().enumerate() {
+        direction(s).apply(*d, motions);
+    }
+    // A sliding contact slips against its impulse (d = −u_t/|u_t|, to [`SLIDE_TURN`]), a
+    // separated one does not approach, or they change.
+    for k in (0..m).filter(|_| modes) {
+        let i = active[k];
+        match mode(k) {
+            Hold::Stick => {}
+            Hold::Off => {
+                if rows[i].normal.velocity(motions) + bias(&rows[i]) < -tolerance {
+                    changes.push((i, Hold::Stick));
+                }
+            }
+            // No disk (it did not push in stage 1): no friction to turn.
+            Hold::Slide(_) if rows[i].friction_bound == 0.0 => {}
+            Hold::Slide(d) => {
+                let u = [
+                    directions[i][0].velocity(motions),
+                    directions[i][1].velocity(motions),
+                ];
+                let speed = (u[0] * u[0] + u[1] * u[1]).sqrt();
+                if speed <= tolerance {
+                    changes.push((i, Hold::Stick));
+                } else {
+                    let e = [-u[0] / speed, -u[1] / speed];
+                    if (e[0] - d[0]).abs().max((e[1] - d[1]).abs()) > SLIDE_TURN {
+                        changes.push((i, Hold::Slide(e)));
+                    }
+                }
+            }
+        }
+    }
+    if !changes.is_empty() {
+        for &(i, mode) in &changes {
+            slides[i] = mode;
+        }
+        motions.copy_from_slice(saved);
+        return Answer::Changed;
     }
     if rows
         .iter()
         .any(|r| r.normal.velocity(motions) + bias(r) < -tolerance)
     {
         motions.copy_from_slice(saved);
-        return false;
+        return Answer::Declined;
     }
     for k in 0..m {
         let row = &mut rows[active[k]];
         row.lambda += delta[3 * k];
         row.lambda_tangent = [delta[3 * k + 1], delta[3 * k + 2]];
     }
-    true
+    joint_delta.clear();
+    joint_delta.extend_from_slice(&delta[3 * m..]);
+    Answer::Accepted
+}
+
+/// How far (in each component of the unit direction) a sliding contact's impulse direction
+/// may be from against its slip for [`sticking`] with modes to accept it: its friction is then
+/// Coulomb's to within this angle (rad). Tighter, the fixed point on the directions does not
+/// settle: a face's four corners sliding together (a chain's link landing) turn the others'
+/// directions by about −3 times their own error each round, so a start 1e-7 rad off from
+/// round-off grows instead of shrinking.
+pub const SLIDE_TURN: f64 = 1e-6;
+
+/// How a pushing contact takes part in [`sticking`] with modes (`Direct::slides`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) enum Hold {
+    /// Its normal and tangent impulses are unknowns: u_n = −b, u_t = 0.
+    #[default]
+    Stick,
+    /// Its tangent impulse is bound · d (d a unit direction), its normal an unknown.
+    Slide([f64; 2]),
+    /// It separates: no impulse (its stage-1 impulse taken back).
+    Off,
+}
+
+/// What [`sticking`] answered.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Answer {
+    /// Solved: the impulses are in the rows (and `Direct::joint_delta`), the motions moved.
+    Accepted,
+    /// Not the solution, nothing changed.
+    Declined,
+    /// With modes: some contact's mode changed (`Direct::slides`); nothing else changed, solve
+    /// again.
+    Changed,
+}
+
+/// The joint rows a direct sticking solve holds with the contacts ([`super::joined`]): their
+/// weighed axes, and the least change of each one's impulse (−∞ for an equality row, −μ₁ for
+/// a limit's stop that pushed with μ₁ in stage 1: it may not come to pull). The change of
+/// their impulses is left in `Direct::joint_delta`.
+///
+/// With `modes` (joint rows only) a contact whose sticking impulse leaves its disk slides
+/// instead of declining the solve (`Direct::slides[i]`, [`Hold`]: its tangent impulse fixed
+/// at bound · d, its normal the unknown), one whose normal would pull separates (no impulse),
+/// and the solve says [`Answer::Changed`] until every sliding contact slips against its
+/// impulse (to [`SLIDE_TURN`]), every sticking one is inside its disk and no separated one
+/// approaches (the caller repeats it a few rounds: the active set of `Joined::friction`'s
+/// start, on the banded system with the joint rows).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct HeldJoints<'a> {
+    pub axes: &'a [Axis],
+    pub floor: &'a [f64],
+    pub modes: bool,
+}
+
+impl HeldJoints<'_> {
+    /// No joint rows: the contacts' sticking solve alone.
+    pub const NONE: HeldJoints<'static> = HeldJoints {
+        axes: &[],
+        floor: &[],
+        modes: false,
+    };
+}
+
+/// The sticking solve's system order with joint rows (`merged`: slots 3p..3p + 3 for the p-th
+/// of the m active contacts, only 3p when it slides and none when it separates (`modes`),
+/// 3m + j for joint row j), every unit by
+/// the last body it acts on (`key` for a contact, `last` for a joint row), a joint row before
+/// contacts of the same key.
+fn order_with_joints(
+    m: usize,
+    key: impl Fn(usize) -> usize,
+    modes: impl Fn(usize) -> Hold,
+    (joints, last): (&[Axis], impl Fn(&Axis) -> usize),
+    merged: &mut Vec<usize>,
+) {
+    let mut by_key: Vec<(usize, usize)> = joints.iter().map(&last).zip(0..).collect();
+    by_key.sort_by_key(|&(k, _)| k);
+    merged.clear();
+    let (mut j, mut p) = (0, 0);
+    while j < by_key.len() || p < m {
+        if p == m || (j < by_key.len() && by_key[j].0 <= key(p)) {
+            merged.push(3 * m + by_key[j].1);
+            j += 1;
+        } else {
+            match modes(p) {
+                Hold::Stick => merged.extend([3 * p, 3 * p + 1, 3 * p + 2]),
+                Hold::Slide(_) => merged.push(3 * p),
+                Hold::Off => {}
+            }
+            p += 1;
+        }
+    }
 }
 
 /// The two tries of [`sticking`].

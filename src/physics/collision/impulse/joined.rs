@@ -54,21 +54,35 @@
 //! the box's blow on the door then meets the stop here.
 //!
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
-//! of `propagate`, a simultaneous solve that bounces): without friction (μ = 0: a cradle, a
-//! bob striking a wall) whatever the clusters' size; with friction when they have at most
-//! [`JOINED_FRICTION_ROWS`] joint rows and the stage at most [`JOINED_FRICTION_CONTACTS`]
-//! contacts (a bob, a door, a pendulum pair: a spinning bob on a
-//! rod meets a tilted wall with its tangential impulse at μ λ₁ and the spin left by Coulomb's
-//! law, `tests/physics/impacts.rs`). Elsewhere every stage is the contacts' alone, as
-//! before, and the joints' contact pass after the response (`joints::contact::hold`) holds
-//! the joints again, as it always did (it also holds, in every case, the positions the
-//! push-out moved along straight lines, so it still runs after every response):
+//! of `propagate`, a simultaneous solve that bounces); without friction whatever the
+//! clusters' size. With friction, stage 2 first tries the direct sticking solve with the joint rows in the same
+//! system (`direct::sticking` with `direct::HeldJoints`: every pushing contact sticks, one
+//! factorisation, accepted when every normal pushes, every tangential impulse is inside its
+//! disk, every stop pushes and nothing approaches: a pair of links landing flat; with modes,
+//! a contact outside its disk slides at μ λ₁ against its slip, one that would pull separates,
+//! a few rounds of the banded solve). When it declines:
 //!
-//! - with friction on larger clusters (a chain landing) stage 2 acts as if the links were
-//!   free (its sticking solve, sweeps and subspace steps know no joint rows), and so does
-//!   stage 1 there: a stage 1 with the joints followed by a stage 2 without them is neither
-//!   one solution nor cheaper (the landing chain, measured: 2.2× the instructions), and the
-//!   joints' stage 2 is slow on a chain ([`JOINED_FRICTION_ROWS`]);
+//! - on small clusters (at most [`JOINED_FRICTION_ROWS`] joint rows, the stage at most
+//!   [`JOINED_FRICTION_CONTACTS`] contacts: a bob, a door, a pendulum pair) the joints'
+//!   friction stage ([`Joined::friction`]: a spinning bob on a rod meets a tilted wall with its
+//!   tangential impulse at μ λ₁ and the spin left by Coulomb's law,
+//!   `tests/physics/impacts.rs`);
+//! - larger clusters (a chain of 10 links landing: 27 rows) take no joint rows in an impact
+//!   with friction (the cluster gate), and the joints' contact pass after the response
+//!   (`joints::contact::hold`) holds the joints again, as it always did: the joints' friction
+//!   sweeps crawl on a chain (every contact coupled to every other through the links; 61 of
+//!   66 calls of the landing chain cycled at the active set's 24-round cap, hundreds of
+//!   sweeps a step, 2.2× the instructions of the whole run), and a stage 1 with the joints
+//!   followed by a stage 2 without them is neither one solution nor cheaper. With
+//!   [`JOINED_DIRECT_LARGE`] (off) they take them, keeping them only if the direct solves
+//!   answer, else stages 1 and 2 run again from their start as the contacts' alone
+//!   (`Joined::save`, `Joined::restore`); on the landing chain the direct solve with sliding
+//!   modes answered 9 of 73 stages, at +50 % of the run's instructions.
+//!
+//! Elsewhere every stage is the contacts' alone, as before, and the pass after the response
+//! holds the joints (it also holds, in every case, the positions the push-out moved along
+//! straight lines, so it still runs after every response):
+//!
 //! - at rest (nothing bounces) the contacts' solve alone and the pass after it keep a
 //!   touching cradle's balls exactly touching while they swing together; with the joints in
 //!   the resting solve the speculative gaps between them grew to about 1 µm, and Poisson's
@@ -96,6 +110,20 @@ pub const JOINED_FRICTION_ROWS: usize = 12;
 /// so a small jointed body meeting a large pile in the same stage keeps today's path.
 pub const JOINED_FRICTION_CONTACTS: usize = 16;
 
+/// Whether an impact with friction takes the joint rows of clusters larger than the joints'
+/// friction sweeps do ([`JOINED_FRICTION_ROWS`], [`JOINED_FRICTION_CONTACTS`]), its stages 1
+/// and 2 then the direct solves with them or, when either declines, the contacts' alone run
+/// again from the start. Off: measured on the landing chain (`chain_steps landing 1000`,
+/// callgrind), on it cost 743.9M instructions against 494.5M (+50 %): the direct solve with
+/// the joints and sliding modes answered 9 of its 73 stages, and each declined one paid its
+/// rounds (up to [`SLIDE_ROUNDS`] factorisations a try, two tries) and then the contacts'
+/// stages again.
+pub const JOINED_DIRECT_LARGE: bool = false;
+
+/// Rounds of the direct solve with joints and sliding contacts (`Joined::sticking`) before
+/// it declines.
+pub const SLIDE_ROUNDS: usize = 8;
+
 /// The joint rows of one response, weighed over the step's motions, and what they gave.
 #[derive(Debug, Clone, Default)]
 pub struct Joined {
@@ -122,8 +150,10 @@ pub struct Joined {
     pub stops: Vec<f64>,
     /// The stage's selection while its stops' active set is searched ([`Joined::inelastic`]).
     selection: Vec<(Axis, usize, bool)>,
-    /// Whether a stage of this response took joint rows.
+    /// Whether a stage of this response took joint rows, and whether one had before the
+    /// last [`Joined::select`].
     pub(super) used: bool,
+    used_before: bool,
     /// Whether the current stage's inelastic solve held the joint rows (the direct solve
     /// answered with them): then its friction stage takes them too ([`Joined::friction`]).
     pub(super) held: bool,
@@ -140,6 +170,22 @@ pub struct Joined {
     rhs: Vec<f64>,
     /// The active-set start of the friction stage ([`ActiveSet`]).
     active: ActiveSet,
+    /// Per selected row, the least change of its impulse in the direct sticking solve
+    /// ([`Joined::sticking`]).
+    floor: Vec<f64>,
+    /// Where a stage started ([`Joined::save`]), to go back to the contacts' solve alone.
+    undo: Undo,
+}
+
+/// A stage's start: the bodies' motions, the rows, the joints' impulses so far and whether a
+/// stage had taken joint rows.
+#[derive(Debug, Clone, Default)]
+struct Undo {
+    motions: Vec<SolverBody>,
+    rows: Vec<Row>,
+    impulses: Vec<(Vector3<f64>, Vector3<f64>)>,
+    stops: Vec<f64>,
+    used: bool,
 }
 
 /// A body's change (Δv, ΔL, Δω).
@@ -204,6 +250,7 @@ impl Joined {
         self.sides.clear();
         self.lambda.clear();
         self.used = false;
+        self.used_before = false;
         self.held = false;
         if rows.is_empty() {
             return;
@@ -248,6 +295,7 @@ impl Joined {
     /// More than `most` rows: none (the stage is the contacts' alone).
     pub(super) fn select(&mut self, bodies: impl Iterator<Item = usize>, most: usize) {
         self.held = false;
+        self.used_before = self.used;
         self.axes.clear();
         self.owners.clear();
         self.sides.clear();
@@ -280,6 +328,87 @@ impl Joined {
             self.sides.clear();
         }
         self.used |= !self.axes.is_empty();
+    }
+
+    /// Keeps where a stage starts (`rows`, `motions`, what was booked), for
+    /// [`Joined::restore`]; call after [`Joined::select`].
+    pub(super) fn save(&mut self, rows: &[Row], motions: &[SolverBody]) {
+        let undo = &mut self.undo;
+        undo.motions.clear();
+        undo.motions.extend_from_slice(motions);
+        undo.rows.clear();
+        undo.rows.extend_from_slice(rows);
+        undo.impulses.clear();
+        undo.impulses.extend_from_slice(&self.impulses);
+        undo.stops.clear();
+        undo.stops.extend_from_slice(&self.stops);
+        // `select` has set `used` for this stage; what it was before: whether an earlier
+        // stage took rows (an impact round's).
+        undo.used = self.used_before;
+    }
+
+    /// Back to where [`Joined::save`] was called, with no joint rows selected: the stage
+    /// is the contacts' alone, as if none had been.
+    pub(super) fn restore(&mut self, rows: &mut [Row], motions: &mut [SolverBody]) {
+        let undo = &self.undo;
+        motions.copy_from_slice(&undo.motions);
+        rows.copy_from_slice(&undo.rows);
+        self.impulses.clear();
+        self.impulses.extend_from_slice(&undo.impulses);
+        self.stops.clear();
+        self.stops.extend_from_slice(&undo.stops);
+        let used = undo.used;
+        self.select(std::iter::empty(), 0);
+        self.used = used;
+    }
+
+    /// Stage 2 solved directly with the selected rows held (`direct::sticking`: every
+    /// pushing contact sticks, the equality rows and the pushing stops in the same system,
+    /// a stop's impulse kept ≥ 0); their change booked. False (nothing changed) when it
+    /// declines.
+    pub(super) fn sticking(
+        &mut self,
+        rows: &mut [Row],
+        directions: &[[Axis; 2]],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        how: direct::Sticking,
+        buffers: &mut Direct,
+    ) -> bool {
+        self.floor.clear();
+        self.floor.extend(self.sides.iter().zip(&self.lambda).map(|(&stop, &mu)| {
+            if stop {
+                -mu
+            } else {
+                f64::NEG_INFINITY
+            }
+        }));
+        let joints = direct::HeldJoints {
+            axes: &self.axes,
+            floor: &self.floor,
+            modes: true,
+        };
+        buffers.slides.clear();
+        buffers.slides.extend(rows.iter().map(|r| {
+            if r.lambda > 0.0 {
+                direct::Hold::Stick
+            } else {
+                direct::Hold::Off
+            }
+        }));
+        for _ in 0..SLIDE_ROUNDS {
+            match direct::sticking(rows, directions, joints, motions, tolerance, how, buffers) {
+                direct::Answer::Accepted => {
+                    let delta = std::mem::take(&mut buffers.joint_delta);
+                    self.book(&delta, 1.0);
+                    buffers.joint_delta = delta;
+                    return true;
+                }
+                direct::Answer::Declined => return false,
+                direct::Answer::Changed => {}
+            }
+        }
+        false
     }
 
     /// Books the selected rows' impulses `lambda` (scaled by `scale`) to their joints.

@@ -424,6 +424,12 @@ struct Direct {
     /// The inelastic direct solve's rows in system order: joint rows (< their count), then
     /// contact rows by their place in the active set (`direct::inelastic`).
     merged: Vec<usize>,
+    /// The change of the joint rows' impulses a direct sticking solve with joints gave
+    /// (`direct::sticking`).
+    joint_delta: Vec<f64>,
+    /// Per row, a sliding contact's direction in the direct sticking solve with joints
+    /// (`direct::HeldJoints`).
+    slides: Vec<direct::Hold>,
     subspace_rows: Vec<(f64, [f64; 2])>,
     /// The ADMM solve's buffers (stage 2 of a large system).
     admm: admm::Scratch,
@@ -656,6 +662,11 @@ pub struct Counters {
     /// iterations (factorisations in body space).
     pub interior: u64,
     pub interior_steps: u64,
+    /// Stages 2 with joint rows that the direct sticking solve with them answered
+    /// ([`joined`]), and stages with more joint rows than the joints' friction sweeps take
+    /// whose direct solves declined (solved again as the contacts' alone).
+    pub joined_sticking: u64,
+    pub joined_declined: u64,
 }
 
 /// The axis d at a contact: +d on A at its lever, −d on B at its own (B's solver body
@@ -1109,6 +1120,11 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
 
 /// Stages 1 to 3 (module doc) on `rows` (prepared from `contacts`, the same order), with
 /// the sweeps' `tolerance` and the kinetic energy the velocities may keep.
+///
+/// With joint rows too many for the joints' friction sweeps ([`select_joints`]: a chain
+/// landing), stages 1 and 2 are the direct solves with the joints or nothing: when either
+/// declines, both run again from where they started, the contacts' alone
+/// (`Joined::save`), and `joints::contact::hold` holds the joints after the response.
 fn stages(
     settings: &Settings,
     rows: &mut [Row],
@@ -1117,58 +1133,121 @@ fn stages(
     kinetic_allowed: f64,
     stage: &mut Stage,
 ) {
-    let Settings {
-        restitution,
-        friction,
-        bounce_speed,
-        dt,
+    let direct_only = select_joints(rows, settings.friction, settings.bounce_speed, stage.joined);
+    if direct_only {
+        stage.joined.save(rows, stage.motions);
+    }
+    // Stage 1: inelastic normal impulses, λ ≥ 0.
+    let mut solved = inelastic(rows, tolerance, stage);
+    // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
+    // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
+    solved.0 &= !direct_only || stage.joined.held;
+    if solved.0 {
+        solved.0 = friction_stage(settings, rows, contacts, tolerance, solved.1, stage, direct_only);
+    }
+    if !solved.0 {
+        // Back to the contacts' solve alone, from the start.
+        stage.joined.restore(rows, stage.motions);
+        stage.counters.joined_declined += 1;
+        let (_, large) = inelastic(rows, tolerance, stage);
+        friction_stage(settings, rows, contacts, tolerance, large, stage, false);
+    }
+
+    // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀
+    // (with the joints' reaction to it, when there are joint rows).
+    let bounce = normal::Bounce {
+        restitution: settings.restitution,
+        bounce_speed: settings.bounce_speed,
+        kinetic_allowed,
+    };
+    let Stage {
+        motions,
+        change,
+        bounced,
+        joined,
         ..
-    } = *settings;
+    } = stage;
+    bounce_stage(rows, motions, bounce, change, bounced, joined);
+}
+
+/// Stage 1 ([`inelastic_stage`] within its budget), each row's compression kept; returns
+/// (true, whether the system is large and wide).
+fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> (bool, bool) {
+    stage.direct.normal_budget();
+    let large = inelastic_stage(
+        rows,
+        stage.motions,
+        tolerance,
+        stage.direct,
+        stage.counters,
+        stage.joined,
+    );
+    for row in rows.iter_mut() {
+        row.compression = row.lambda;
+    }
+    (true, large)
+}
+
+/// Stage 2 (module doc) when μ > 0 and some pushing contact slides: with the joint rows held
+/// in stage 1, the direct sticking solve with them, then (`direct_only` false) the joints'
+/// friction sweeps ([`joined`]); else a large wide system's trial sweeps, the direct sticking
+/// solve, the sweeps. False (nothing changed) only when `direct_only` and the direct solve
+/// with the joints declined.
+fn friction_stage(
+    settings: &Settings,
+    rows: &mut [Row],
+    contacts: &[Contact],
+    tolerance: f64,
+    large: bool,
+    stage: &mut Stage,
+    direct_only: bool,
+) -> bool {
     let Stage {
         tangents: tangent_directions,
         motions,
         direct: buffers_direct,
-        change,
-        bounced,
         counters,
         joined,
+        ..
     } = stage;
     let motions: &mut [SolverBody] = motions;
     let buffers_direct: &mut Direct = buffers_direct;
     let counters: &mut Counters = counters;
-
-    select_joints(rows, friction, bounce_speed, joined);
-
-    // Stage 1: inelastic normal impulses, λ ≥ 0.
-    buffers_direct.normal_budget();
-    let large = inelastic_stage(rows, motions, tolerance, buffers_direct, counters, joined);
-
-    for row in rows.iter_mut() {
-        row.compression = row.lambda;
-    }
-
-    // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
-    // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
+    let (friction, dt) = (settings.friction, settings.dt);
     buffers_direct.friction_budget();
     tangent_directions.clear();
-    if friction > 0.0
-        && rows
+    if friction == 0.0
+        || !rows
             .iter()
             .zip(contacts.iter())
             .any(|(r, c)| friction::sliding(r, c, motions, tolerance))
     {
-        tangent_directions.extend(
-            rows.iter_mut()
-                .zip(contacts.iter())
-                .map(|(row, contact)| friction::prepare(row, contact, friction, motions)),
-        );
-        // A large system: a few sweeps from the last step's impulses first (at rest or
-        // sliding steadily they are the answer). Then the direct solve (everything sticks);
-        // else the sweeps, warm-started from the last step's friction
-        // impulses (kept in their disks).
-        // With the joint rows held in stage 1, the joints' friction stage ([`joined`]).
-        let mut solved = joined.held
-            && joined_friction(
+        return true;
+    }
+    tangent_directions.extend(
+        rows.iter_mut()
+            .zip(contacts.iter())
+            .map(|(row, contact)| friction::prepare(row, contact, friction, motions)),
+    );
+    // With the joint rows held in stage 1: everything sticking, solved directly with them;
+    // else the joints' friction stage ([`joined`]).
+    let mut solved = false;
+    if joined.held {
+        for how in [direct::Sticking::Exact, direct::Sticking::Resting { dt }] {
+            if !solved {
+                solved =
+                    joined.sticking(rows, tangent_directions, motions, tolerance, how, buffers_direct);
+                if solved {
+                    counters.friction_direct += 1;
+                    counters.joined_sticking += 1;
+                }
+            }
+        }
+        if !solved && direct_only {
+            return false;
+        }
+        solved = solved
+            || joined_friction(
                 rows,
                 tangent_directions,
                 motions,
@@ -1176,9 +1255,14 @@ fn stages(
                 (&mut *buffers_direct, &mut *counters),
                 joined,
             );
-        solved = solved
-            || large
-                && friction_trial(
+    }
+    // A large system: a few sweeps from the last step's impulses first (at rest or
+    // sliding steadily they are the answer). Then the direct solve (everything sticks);
+    // else the sweeps, warm-started from the last step's friction impulses (kept in their
+    // disks).
+    solved = solved
+        || large
+            && friction_trial(
                 rows,
                 tangent_directions,
                 motions,
@@ -1186,76 +1270,75 @@ fn stages(
                 buffers_direct,
                 counters,
             );
-        for how in [direct::Sticking::Exact, direct::Sticking::Resting { dt }] {
-            if !solved {
-                solved = direct::sticking(
-                    rows,
-                    tangent_directions,
-                    motions,
-                    tolerance,
-                    how,
-                    buffers_direct,
-                );
-                if solved {
-                    counters.friction_direct += 1;
-                }
-            }
-        }
+    for how in [direct::Sticking::Exact, direct::Sticking::Resting { dt }] {
         if !solved {
-            friction::warm_start(rows, tangent_directions, motions);
-            if INTERIOR_STAGES {
-                solved = buffers_direct.interior_after_burst(
-                    rows,
-                    tangent_directions,
-                    motions,
-                    tolerance,
-                    counters,
-                );
-            } else if NEWTON_STAGES {
-                buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
-            } else if large && ADMM_STAGES {
-                buffers_direct.work += admm::solve(
-                    rows,
-                    tangent_directions,
-                    motions,
-                    tolerance,
-                    &mut buffers_direct.admm,
-                )
-                .work;
-            }
-        }
-        if !solved {
-            let (converged, sweeps, residual) = subspace::sweep(
+            solved = direct::sticking(
                 rows,
                 tangent_directions,
+                direct::HeldJoints::NONE,
                 motions,
                 tolerance,
+                how,
                 buffers_direct,
-                counters,
-            );
-            if !converged {
-                buffers_direct.unconverged(residual);
+            ) == direct::Answer::Accepted;
+            if solved {
+                counters.friction_direct += 1;
             }
-            counters.friction_sweeps += sweeps;
         }
     }
-
-    // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀
-    // (with the joints' reaction to it, when there are joint rows).
-    let bounce = normal::Bounce {
-        restitution,
-        bounce_speed,
-        kinetic_allowed,
-    };
-    bounce_stage(rows, motions, bounce, change, bounced, joined);
+    if !solved {
+        friction::warm_start(rows, tangent_directions, motions);
+        if INTERIOR_STAGES {
+            solved = buffers_direct.interior_after_burst(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                counters,
+            );
+        } else if NEWTON_STAGES {
+            buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
+        } else if large && ADMM_STAGES {
+            buffers_direct.work += admm::solve(
+                rows,
+                tangent_directions,
+                motions,
+                tolerance,
+                &mut buffers_direct.admm,
+            )
+            .work;
+        }
+    }
+    if !solved {
+        let (converged, sweeps, residual) = subspace::sweep(
+            rows,
+            tangent_directions,
+            motions,
+            tolerance,
+            buffers_direct,
+            counters,
+        );
+        if !converged {
+            buffers_direct.unconverged(residual);
+        }
+        counters.friction_sweeps += sweeps;
+    }
+    true
 }
 
 /// The joint rows of the clusters `rows` touch, in an impact (none without joints, or at
-/// rest; with friction, at most `JOINED_FRICTION_ROWS` and `JOINED_FRICTION_CONTACTS`:
-/// [`joined`]).
-fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut joined::Joined) {
+/// rest). With friction, more than the joints' friction sweeps take (more than
+/// [`joined::JOINED_FRICTION_ROWS`] rows or [`joined::JOINED_FRICTION_CONTACTS`] contacts):
+/// none, unless [`joined::JOINED_DIRECT_LARGE`]; then they are taken and this returns true:
+/// the stage keeps them only if its direct solves answer ([`stages`]).
+fn select_joints(
+    rows: &[Row],
+    friction: f64,
+    bounce_speed: f64,
+    joined: &mut joined::Joined,
+) -> bool {
     if rows.iter().any(|r| r.approach < -bounce_speed) {
-        let most = if friction == 0.0 {
+        let most = if friction == 0.0 || joined::JOINED_DIRECT_LARGE {
             usize::MAX
         } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
             0
@@ -1267,10 +1350,15 @@ fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut jo
                 .flat_map(|r| r.normal.bodies().into_iter().flatten()),
             most,
         );
+        friction > 0.0
+            && !joined.axes.is_empty()
+            && (rows.len() > joined::JOINED_FRICTION_CONTACTS
+                || joined.axes.len() > joined::JOINED_FRICTION_ROWS)
     } else {
         // At rest: the contacts' rows alone (also after `propagate`'s impact rounds, whose
         // last round's selection would otherwise stay).
         joined.select(std::iter::empty(), 0);
+        false
     }
 }
 
