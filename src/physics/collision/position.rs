@@ -57,7 +57,11 @@
 //! or a fixed body: 1/M = 0, it never moves) is no end, so its terms drop and a body against
 //! the ground obstacle and against a fixed slab take the same path, bit for bit. Rows with
 //! two moving ends are solved directly (below); rows against static things only by the
-//! sweeps.
+//! sweeps. (Measured when a fixed B stopped being an end, 2026-12-06: a body touching fixed
+//! bodies only, which took the direct solve before, moves by round-off: over 1000–2000 steps
+//! of a box at 50 m/s onto a fixed plate, a cube on a fixed ball, on a fixed table, and into
+//! a table–wall corner, |Δx| ≤ 1.5e-10 m, |Δq| ≤ 5.5e-10, |Δv| ≤ 6.9e-9 m/s, |ΔE| ≤ 1.2e-9 J;
+//! no lesson has such a contact.)
 //!
 //! The answer is unique, so it does not depend on the contact order (projecting onto one
 //! half-space after the other would: two radial normals on a sphere would push the body
