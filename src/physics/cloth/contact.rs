@@ -40,9 +40,11 @@
 //! T_after ≤ T_before − max(0, ΔV)), as for bodies.
 //!
 //! Each contact is the constraint layer's particle contact against a static thing
-//! (`constraints::particle_contact::against_static`): a normal row with bounds [0, ∞) on a
-//! solver body without rotational inertia, solved exactly by its one update, per unit mass
-//! (Δu_n above is its λ), and Coulomb friction within μ λ.
+//! (`constraints::particle_contact::against_static`): a normal row with bounds [0, ∞) from a
+//! solver body without rotational inertia (the particle) to the obstacle as a static solver
+//! body (`SolverBody::fixed_thing`, no end, as in the rigid solvers' body table), solved
+//! exactly by its one update, per unit mass (Δu_n above is its λ), and Coulomb friction
+//! within μ λ. The same rows with a body's solver body as B are `cloth_coupling`'s.
 //!
 //! The energy the contacts took is measured, not assumed: T + U + V before minus after, over
 //! the touched particles and the springs attached to them.

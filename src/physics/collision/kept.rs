@@ -3,8 +3,9 @@
 //! contact recycling of Box2D v3 and Rapier, with a far tighter bound.
 //!
 //! A row found at poses (x_A, R_A), (x_B, R_B) at point p with normal n and depth d₀ is kept
-//! as the point on each body, `a = R_Aᵀ(p − x_A)`, `b = R_Bᵀ(p − x_B)` (world p for an
-//! obstacle), and the normal in B's frame. At new poses the two points are
+//! as the point on each body, `a = R_Aᵀ(p − x_A)`, `b = R_Bᵀ(p − x_B)`, and the normal in B's
+//! frame. B is found by its solver body entry (`Contact::other`): a body's own pose, or, for
+//! an obstacle's static entry after the bodies, the world frame (x_B = 0, R_B = 𝟙: b = p). At new poses the two points are
 //! `p_A = x_A' + R_A' a`, `p_B = x_B' + R_B' b`, the normal `n' = R_B' n_B`, and
 //!
 //! ```text
@@ -24,7 +25,7 @@
 //! (the bound is the world's, not the pair's). The rows are carried only when the step starts
 //! where the last one ended (not after a restore or an outside change of the states).
 
-use super::{Against, Contact};
+use super::Contact;
 use crate::physics::body::Body;
 use crate::physics::state::State;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -94,11 +95,13 @@ impl Kept {
         self.rows.clear();
         self.rows.extend(contacts.iter().map(|c| {
             let on_a = rotations[c.body].tr_mul(&(c.point - states[c.body].position));
-            let (on_b, normal_b) = match c.against {
-                Against::Obstacle(_) => (c.point, c.normal),
-                Against::Body(b) => (
-                    rotations[b].tr_mul(&(c.point - states[b].position)),
-                    rotations[b].tr_mul(&c.normal),
+            // B by its solver body entry: a body's own frame, or the world frame of an
+            // obstacle's static entry (past the bodies).
+            let (on_b, normal_b) = match states.get(c.other) {
+                None => (c.point, c.normal),
+                Some(b) => (
+                    rotations[c.other].tr_mul(&(c.point - b.position)),
+                    rotations[c.other].tr_mul(&c.normal),
                 ),
             };
             KeptRow {
@@ -157,16 +160,13 @@ impl Kept {
             let a = &states[c.body];
             let lever = rotations[c.body] * k.on_a;
             let on_a = a.position + lever;
-            let (on_b, normal, lever_other) = match c.against {
-                Against::Obstacle(_) => (k.on_b, k.normal_b, Vector3::zeros()),
-                Against::Body(b) => {
-                    let s = &states[b];
-                    (
-                        s.position + rotations[b] * k.on_b,
-                        rotations[b] * k.normal_b,
-                        on_a - s.position,
-                    )
-                }
+            let (on_b, normal, lever_other) = match states.get(c.other) {
+                None => (k.on_b, k.normal_b, Vector3::zeros()),
+                Some(s) => (
+                    s.position + rotations[c.other] * k.on_b,
+                    rotations[c.other] * k.normal_b,
+                    on_a - s.position,
+                ),
             };
             Contact {
                 point: on_a,
@@ -184,7 +184,7 @@ impl Kept {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::collision::Feature;
+    use crate::physics::collision::{Against, Feature};
     use crate::physics::state::Orientation;
 
     fn cube_at(position: Vector3<f64>, q: UnitQuaternion<f64>) -> State {
@@ -208,6 +208,8 @@ mod tests {
         let corner = Vector3::new(0.1, -0.1, 0.1);
         let found = Contact {
             lever: corner,
+            // The ground's static entry, after the one body.
+            other: 1,
             ..Contact::new(
                 0,
                 Against::Obstacle(0),

@@ -27,8 +27,9 @@
 //!
 //! # Against a static thing: [`against_static`]
 //!
-//! A static thing (an obstacle) has no end, so a lone particle's row is solved exactly by its
-//! one update. Per unit mass (the row scaled by m_p: k = 1, λ a velocity change, the cone
+//! A static thing (an obstacle, a fixed body: `SolverBody::fixed_thing`) is the row's B end
+//! as in every other row, and [`Axis::new`] gives it none, so a lone particle's row is solved
+//! exactly by its one update. Per unit mass (the row scaled by m_p: k = 1, λ a velocity change, the cone
 //! μ λ_n scales with it), aiming at v·n = target:
 //!
 //! ```text
@@ -51,13 +52,13 @@ pub const SWEEPS: usize = 4;
 /// (v·n ≥ target: the contact would pull).
 #[inline]
 pub fn against_static(v: &Vector3<f64>, n: &Vector3<f64>, target: f64) -> Option<f64> {
-    let unit = Axis {
-        d: *n,
-        k: 1.0,
-        inv_k: 1.0,
-        ..Axis::default()
-    };
-    let stop = Row::contact(unit, target).update(v.dot(n), 1.0);
+    // The solver bodies of the row: the particle per unit mass (0) and the static thing (1),
+    // which `Axis::new` gives no end, as it gives none to a fixed body or an obstacle in the
+    // rigid solvers. The particle's lever is 0 (no rotational inertia), so k = 1/m = 1.
+    let ends = [SolverBody::particle(*v, 1.0), SolverBody::fixed_thing()];
+    let zero = Vector3::zeros();
+    let axis = Axis::new(*n, (0, &zero), Some((1, &zero)), &ends);
+    let stop = Row::contact(axis, target).update(axis.velocity(&ends), axis.k);
     (stop > 0.0).then_some(stop)
 }
 
@@ -356,5 +357,28 @@ mod tests {
         assert_eq!(coulomb(&v, &n, 0.25, stop), Vector3::new(0.5, 0.0, 0.0));
         // Moving away already: the bound holds, no contact.
         assert_eq!(against_static(&Vector3::new(0.0, 0.1, 0.0), &n, 0.0), None);
+    }
+
+    /// The exact update per unit mass is the body rows' answer with a static body 0: a
+    /// 0.01 kg particle under a fixed thing's rows, swept, takes λ_n = m (target − v·n), and
+    /// friction the same share of the slip.
+    #[test]
+    fn the_static_update_is_the_body_rows_against_a_fixed_thing() {
+        let n = Vector3::new(0.6, 0.8, 0.0);
+        let v = Vector3::new(1.0, -2.0, 0.5);
+        let target = 0.05;
+        let (m, friction) = (0.01, 0.3);
+        let stop = against_static(&v, &n, target).unwrap();
+        let after = coulomb(&v, &n, friction, stop) + n * target;
+        let mut rows = ParticleContacts::default();
+        rows.start(SolverBody::fixed_thing());
+        let arm = Vector3::new(0.3, -0.2, 0.1);
+        rows.touch((0, v, 1.0 / m), &n, arm, (target, false));
+        assert_eq!(rows.last_k(), 1.0 / m);
+        rows.solve(friction);
+        let (_, swept) = rows.particles().next().unwrap();
+        assert!((swept - after).norm() < 1e-14, "{swept} against {after}");
+        assert!((rows.total_impulse().dot(&n) - m * stop).abs() < 1e-15);
+        assert_eq!(rows.body().v, Vector3::zeros());
     }
 }

@@ -116,8 +116,10 @@ pub fn hold(
     b.gaps.clear();
     for c in contacts {
         let ra = states[c.body].orientation.matrix().tr_mul(&c.lever);
-        let rb = c.other_body().map_or(Vector3::zeros(), |o| {
-            states[o].orientation.matrix().tr_mul(&c.lever_other)
+        // B by its solver body entry: a body (fixed or not), or an obstacle's static entry
+        // after the bodies, which has no end here (the world).
+        let rb = states.get(c.other).map_or(Vector3::zeros(), |o| {
+            o.orientation.matrix().tr_mul(&c.lever_other)
         });
         b.levers.push((ra, rb));
         b.gaps.push((-c.depth).max(0.0));
@@ -211,7 +213,9 @@ fn build(links: &Links, bodies: &[Body], states: &[State], contacts: &[Contact],
     for (c, (la, lb)) in contacts.iter().zip(&b.levers) {
         let n = c.normal;
         let ra = b.poses[c.body].r * la;
-        let other = c.other_body();
+        // B's end: its entry when it is one of the bodies (the pass's table); an obstacle's
+        // static entry lies past them and gives no end.
+        let other = (c.other < states.len()).then_some(c.other);
         let rb = other.map_or(Vector3::zeros(), |o| b.poses[o].r * lb);
         // A contact normal: [0, ∞), it pushes only.
         let axis = Axis::jacobian(n, (c.body, ra.cross(&n)), other.map(|o| (o, -rb.cross(&n))));
