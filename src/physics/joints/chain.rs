@@ -19,7 +19,9 @@
 //! joint just before it, as `solve`'s banded factor needs, and no two consecutive joints join
 //! the same two bodies, which the row path would merge into one block), of two or more ball
 //! and hinge joints, with no Baumgarte term (which needs C and Ċ per row): anything else takes
-//! the row path.
+//! the row path. A chain of hinges only, the first on the world, is solved through its joint
+//! coordinates instead of K's banded factor (`reduced`: [`Chain::react`] for f(Y), the
+//! reduced factor kept for the projection's chord passes, [`Nearby`]).
 
 use super::kinds::{self, Anchors, JointKind};
 use super::reduced::Reduced;
@@ -78,6 +80,11 @@ pub struct Chain {
     first: Vec<usize>,
     /// Whether every built joint is a hinge (the reduced solve's first condition).
     hinges: bool,
+    /// The joints (A, B, kind) and body count `is_chain` last answered for, and its answer:
+    /// the same topology is not walked again (an edited joint changes the key).
+    checked: Vec<(usize, Option<usize>, JointKind)>,
+    checked_bodies: usize,
+    answer: bool,
     pub(super) reduced: Reduced,
 }
 
@@ -113,7 +120,7 @@ impl Chain {
     /// order (module doc); false (nothing built, no reduced factor held) otherwise.
     #[inline(always)]
     pub fn build(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
-        if !self.is_chain(joints, poses.len()) {
+        if !self.is_chain_cached(joints, poses.len()) {
             self.reduced.drop_factor();
             return false;
         }
@@ -148,6 +155,24 @@ impl Chain {
             self.links.push(link);
         }
         true
+    }
+
+    /// [`Chain::is_chain`], asked again only when the joints' bodies or kinds or the body
+    /// count changed since the last answer.
+    #[inline(always)]
+    fn is_chain_cached(&mut self, joints: &[Joint], bodies: usize) -> bool {
+        let same = self.checked_bodies == bodies
+            && self.checked.len() == joints.len()
+            && (self.checked.iter().zip(joints))
+                .all(|(&(a, b, kind), j)| a == j.a && b == j.b && kind == j.kind);
+        if !same {
+            self.answer = self.is_chain(joints, bodies);
+            self.checked.clear();
+            self.checked
+                .extend(joints.iter().map(|j| (j.a, j.b, j.kind)));
+            self.checked_bodies = bodies;
+        }
+        self.answer
     }
 
     /// Whether `joints` (on `bodies` bodies) are two or more ball and hinge joints in chain
