@@ -21,7 +21,7 @@ use super::derive::{congruence, Kinematics};
 use super::effects::{Effects, Loads};
 use super::integrators::Integrator;
 use super::joints::solve::Inverse;
-use super::joints::{multipliers, rows_of, Chain, Correction, Links, Pose, Row, Solver};
+use super::joints::{multipliers, rows_of, Chain, Correction, Links, Nearby, Pose, Row, Solver};
 use super::state::State;
 use nalgebra::{Matrix3, Vector3};
 
@@ -81,6 +81,12 @@ impl Scratch {
     /// `joints::again`).
     pub fn solver_mut(&mut self) -> &mut Solver {
         &mut self.solver
+    }
+
+    /// The factor of J W Jᵀ of the last evaluation, banded (`joints::again`) or a hinge
+    /// chain's reduced one (`joints::Chain::solve`), for the projection's chord passes.
+    pub fn nearby(&mut self) -> Nearby<'_> {
+        self.chain.nearby(&mut self.solver)
     }
 }
 
@@ -209,6 +215,15 @@ impl System<'_> {
                 mass: b.inv_mass,
                 inertia: k.inv_inertia_world,
             }));
+        if chain {
+            // A hinge tree rooted in the world: through its joint coordinates.
+            let gyroscopic = |i: usize| kinematics[i].angular_velocity.cross(&angular_momenta[i]);
+            let (loads, reactions) = (&mut scratch.loads, &mut scratch.joint_loads);
+            let solver = &mut scratch.solver;
+            if (scratch.chain).react(&scratch.inverse, solver, gyroscopic, loads, reactions) {
+                return;
+            }
+        }
         // Free accelerations (v̇, ω̇) = (F/m, I⁻¹(τ − ω × L)), once per body.
         scratch.free.clear();
         scratch.free.extend((0..n).map(|i| {

@@ -41,7 +41,7 @@
 use super::super::body::Body;
 use super::super::derive::{derive, Kinematics};
 use super::super::effects::{Effects, Loads};
-use super::super::joints::Solver;
+use super::super::joints::Nearby;
 use super::super::state::{Orientation, State};
 use super::super::system::{kinematics, Scratch, System};
 use super::exact_splitting::Kick;
@@ -99,8 +99,8 @@ impl Buffers {
     /// composition: the end's own positions); None when no evaluation ran during the step
     /// (`euler`, `symplectic-euler`: only the forces phase's, at the step's start). The
     /// projection takes it as a nearby factor (`joints::project`).
-    pub fn last_factor(&mut self) -> Option<&mut Solver> {
-        self.evaluated.then(|| self.eval.solver_mut())
+    pub fn last_factor(&mut self) -> Option<Nearby<'_>> {
+        self.evaluated.then(|| self.eval.nearby())
     }
 
     /// Books `w ×` the last evaluation's reactions and damping power.

@@ -19,11 +19,14 @@
 //! joint just before it, as `solve`'s banded factor needs, and no two consecutive joints join
 //! the same two bodies, which the row path would merge into one block), of two or more ball
 //! and hinge joints, with no Baumgarte term (which needs C and Ċ per row): anything else takes
-//! the row path.
+//! the row path. A chain of hinges only, the first on the world, is solved through its joint
+//! coordinates instead of K's banded factor (`reduced`: [`Chain::react`] for f(Y), the
+//! reduced factor kept for the projection's chord passes, [`Nearby`]).
 
 use super::kinds::{self, Anchors, JointKind};
+use super::reduced::Reduced;
 use super::rows::Pose;
-use super::solve::{chain_multipliers, Inverse, Solver};
+use super::solve::{again, chain_multipliers, Inverse, Solver};
 use super::Joint;
 use crate::physics::effects::Loads;
 use nalgebra::Vector3;
@@ -69,22 +72,60 @@ impl Link {
     }
 }
 
-/// The compact rows of the last [`Chain::build`], and per body the first joint on it.
+/// The compact rows of the last [`Chain::build`], per body the first joint on it, and the
+/// reduced factor of the last [`Chain::solve`] when it was a hinge tree (`reduced`).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Chain {
     pub(super) links: Vec<Link>,
     first: Vec<usize>,
+    /// Whether every built joint is a hinge (the reduced solve's first condition).
+    hinges: bool,
+    /// The joints (A, B, kind) and body count `is_chain` last answered for, and its answer:
+    /// the same topology is not walked again (an edited joint changes the key).
+    checked: Vec<(usize, Option<usize>, JointKind)>,
+    checked_bodies: usize,
+    answer: bool,
+    pub(super) reduced: Reduced,
+}
+
+/// A factor of K held from an earlier solve, to solve with again (the projection's chord
+/// passes): a chain's reduced one, or a banded one in a [`Solver`] (`solve::again`).
+pub struct Nearby<'a> {
+    pub(super) solver: &'a mut Solver,
+    pub(super) reduced: &'a mut Reduced,
+}
+
+impl Nearby<'_> {
+    /// Whether it holds a factor of `rows` rows.
+    #[inline(always)]
+    pub(super) fn holds(&self, rows: usize) -> bool {
+        self.reduced.holds(rows) || self.solver.holds(rows)
+    }
+
+    /// K λ = `rhs` with the held factor (K of its own configuration), λ over `rhs`; false
+    /// (`rhs` untouched) when it holds none of `rows` rows.
+    #[inline(always)]
+    pub(super) fn again(&mut self, rows: usize, rhs: &mut [f64]) -> bool {
+        if self.reduced.holds(rows) {
+            self.reduced.solve(rhs);
+            true
+        } else {
+            self.solver.holds(rows) && again(rhs, self.solver)
+        }
+    }
 }
 
 impl Chain {
     /// The joints' compact rows at `poses`, when they are a chain of ball and hinge joints in
-    /// order (module doc); false (nothing built) otherwise.
+    /// order (module doc); false (nothing built, no reduced factor held) otherwise.
     #[inline(always)]
     pub fn build(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
-        if !self.is_chain(joints, poses.len()) {
+        if !self.is_chain_cached(joints, poses.len()) {
+            self.reduced.drop_factor();
             return false;
         }
         self.links.clear();
+        self.hinges = true;
         for (index, joint) in joints.iter().enumerate() {
             let a = &poses[joint.a];
             let b = joint.b.map_or(&Pose::WORLD, |b| &poses[b]);
@@ -101,6 +142,7 @@ impl Chain {
                 separation: at.separation,
                 c: [0.0; 2],
             };
+            self.hinges &= joint.kind == JointKind::Hinge;
             if joint.kind == JointKind::Hinge {
                 let axes = kinds::hinge_axes(joint, a, b);
                 link.angular = 2;
@@ -113,6 +155,24 @@ impl Chain {
             self.links.push(link);
         }
         true
+    }
+
+    /// [`Chain::is_chain`], asked again only when the joints' bodies or kinds or the body
+    /// count changed since the last answer.
+    #[inline(always)]
+    fn is_chain_cached(&mut self, joints: &[Joint], bodies: usize) -> bool {
+        let same = self.checked_bodies == bodies
+            && self.checked.len() == joints.len()
+            && (self.checked.iter().zip(joints))
+                .all(|(&(a, b, kind), j)| a == j.a && b == j.b && kind == j.kind);
+        if !same {
+            self.answer = self.is_chain(joints, bodies);
+            self.checked.clear();
+            self.checked
+                .extend(joints.iter().map(|j| (j.a, j.b, j.kind)));
+            self.checked_bodies = bodies;
+        }
+        self.answer
     }
 
     /// Whether `joints` (on `bodies` bodies) are two or more ball and hinge joints in chain
@@ -145,11 +205,54 @@ impl Chain {
         true
     }
 
-    /// K λ = `rhs` for the built rows, λ over `rhs` (`solve::chain_multipliers`: the factor
-    /// kept in `solver` for `solve::again`, as the rows' would be).
+    /// K λ = `rhs` for the built rows, λ over `rhs`: a hinge tree rooted in the world through
+    /// its joint coordinates (`reduced`: its factor kept here), anything else by
+    /// `solve::chain_multipliers` (the factor kept in `solver` for `solve::again`, as the
+    /// rows' would be). Only one of the two holds a factor of these rows afterwards.
     #[inline(always)]
-    pub fn solve(&self, inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
+    pub fn solve(&mut self, inverse: &[Inverse], rhs: &mut [f64], solver: &mut Solver) {
+        if self.hinges && self.reduced.factor(&self.links, inverse) {
+            if solver.holds(self.rows()) {
+                *solver = Solver::default();
+            }
+            self.reduced.solve(rhs);
+            return;
+        }
         chain_multipliers(&self.links, inverse, rhs, solver);
+    }
+
+    /// The joints' loads on a hinge tree rooted in the world, through its joint coordinates
+    /// (`reduced::Reduced::accelerate`: the numbers of [`Chain::rhs`], [`Chain::solve`] and
+    /// [`Chain::apply`] to round-off, the factor kept here): each of its bodies' `loads`
+    /// (F, τ of the applied loads in, the totals out) and each joint's reaction on A added to
+    /// `reactions`; `gyroscopic(b)` is ω × L of body b. False (nothing done) for any other
+    /// chain.
+    #[inline(always)]
+    pub fn react(
+        &mut self,
+        inverse: &[Inverse],
+        solver: &mut Solver,
+        gyroscopic: impl Fn(usize) -> Vector3<f64>,
+        loads: &mut [Loads],
+        reactions: &mut [Loads],
+    ) -> bool {
+        if !self.hinges || !self.reduced.factor(&self.links, inverse) {
+            return false;
+        }
+        if solver.holds(self.rows()) {
+            *solver = Solver::default();
+        }
+        let Chain { links, reduced, .. } = self;
+        reduced.accelerate(links, gyroscopic, loads, reactions);
+        true
+    }
+
+    /// This chain's held reduced factor with `solver`'s banded one, as a [`Nearby`] factor.
+    pub fn nearby<'a>(&'a mut self, solver: &'a mut Solver) -> Nearby<'a> {
+        Nearby {
+            solver,
+            reduced: &mut self.reduced,
+        }
     }
 
     /// How many rows the built joints have.

@@ -75,11 +75,12 @@ pub mod contact;
 pub mod drive;
 mod kinds;
 mod projection;
+mod reduced;
 mod rows;
 pub mod solve;
 pub mod written;
 
-pub use chain::Chain;
+pub use chain::{Chain, Nearby};
 pub use contact::{hold, Buffers as ContactBuffers};
 pub use kinds::JointKind;
 pub use projection::{project, shake, Buffers as ProjectionBuffers};

@@ -21,9 +21,9 @@
 //! Returns the velocity impulse each joint applied to its body A (its share of the reaction,
 //! impulse / dt in `--joint`).
 
-use super::chain::Chain;
+use super::chain::{Chain, Nearby};
 use super::rows::{rate, rows_of, Pose, Row};
-use super::solve::{again, multipliers, Inverse, Solver};
+use super::solve::{multipliers, Inverse, Solver};
 use super::{turn, Links};
 use crate::physics::body::Body;
 use crate::physics::derive::derive;
@@ -180,7 +180,7 @@ pub fn project(
     states: &mut [State],
     impulses: &mut Vec<Loads>,
     b: &mut Buffers,
-    nearby: Option<&mut Solver>,
+    nearby: Option<Nearby>,
 ) {
     #[cfg(target_arch = "x86_64")]
     if crate::physics::simd::avx2() {
@@ -199,7 +199,7 @@ fn project_avx2(
     states: &mut [State],
     impulses: &mut Vec<Loads>,
     b: &mut Buffers,
-    nearby: Option<&mut Solver>,
+    nearby: Option<Nearby>,
 ) {
     project_plain(links, bodies, states, impulses, b, nearby);
 }
@@ -212,14 +212,14 @@ fn project_plain(
     states: &mut [State],
     impulses: &mut Vec<Loads>,
     b: &mut Buffers,
-    mut nearby: Option<&mut Solver>,
+    mut nearby: Option<Nearby>,
 ) {
     impulses.clear();
     impulses.resize(links.joints.len(), Loads::default());
     if links.joints.is_empty() {
         return;
     }
-    let held = positions(links, bodies, states, b, nearby.as_deref_mut());
+    let held = positions(links, bodies, states, b, nearby.as_mut());
     velocities(states, impulses, held, nearby, b);
 }
 
@@ -295,7 +295,7 @@ fn positions(
     bodies: &[Body],
     states: &mut [State],
     b: &mut Buffers,
-    mut nearby: Option<&mut Solver>,
+    mut nearby: Option<&mut Nearby>,
 ) -> Held {
     // The rows are built with velocities: the last build, on C = 0, serves the velocity pass.
     let mut held = Held::Nearby;
@@ -312,10 +312,11 @@ fn positions(
         if worst < 1e-12 || pass == 10 {
             break;
         }
+        let rows = count(b);
         let chord = pass == 0
             && nearby
                 .as_deref_mut()
-                .is_some_and(|s| s.holds(count(b)) && again(&mut b.rhs, s));
+                .is_some_and(|s| s.again(rows, &mut b.rhs));
         if !chord {
             solve(b);
             held = if worst < REUSE_BELOW {
@@ -377,24 +378,31 @@ fn velocities(
     states: &mut [State],
     impulses: &mut [Loads],
     held: Held,
-    nearby: Option<&mut Solver>,
+    nearby: Option<Nearby>,
     b: &mut Buffers,
 ) {
     rates_into(b);
     // The own factor is taken out of `b` while its passes run (and put back).
-    let mut own = match held {
-        Held::Own => std::mem::take(&mut b.solver),
-        _ => Solver::default(),
+    let (mut own, mut own_reduced) = match held {
+        Held::Own => (
+            std::mem::take(&mut b.solver),
+            std::mem::take(&mut b.chain.reduced),
+        ),
+        _ => Default::default(),
     };
+    let rows = count(b);
     let factor = match held {
-        Held::Own => Some(&mut own),
+        Held::Own => Some(Nearby {
+            solver: &mut own,
+            reduced: &mut own_reduced,
+        }),
         Held::Nearby => nearby,
         Held::Anew => None,
     }
-    .filter(|s| s.holds(count(b)));
-    let done = factor.is_some_and(|solver| {
+    .filter(|s| s.holds(rows));
+    let done = factor.is_some_and(|mut solver| {
         (0..CHORD_PASSES).any(|_| {
-            again(&mut b.rhs, solver);
+            solver.again(rows, &mut b.rhs);
             apply(states, impulses, b);
             refresh(states, b);
             rates_into(b);
@@ -403,6 +411,7 @@ fn velocities(
     });
     if held == Held::Own {
         b.solver = own;
+        b.chain.reduced = own_reduced;
     }
     if done {
         return;
