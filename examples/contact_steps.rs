@@ -22,12 +22,12 @@
 //! benches/rapier's) and the work per step (median, max, unconverged steps);
 //! `CONTACT_STEPS_BUDGET` (`off`, `friction`, `whole`) sets where the work budget of 20
 //! medians of the scene's steps applies (`impulse::MEDIAN_BUDGET` otherwise);
-//! `CONTACT_STEPS_STALL` sets the friction sweeps' stall band (`impulse::friction::STALL_BAND`
+//! `CONTACT_STEPS_STALL` sets the sweeps' stall band (`impulse::stall::STALL_BAND`
 //! otherwise; 0: off), and `CONTACT_STEPS_SHADOW=BAND` has a copy of the world take each step
 //! from the same state with that band and compares the work (the scenes are chaotic, so two
-//! runs soon solve different problems); `CONTACT_STEPS_STATES` prints the final states; `CONTACT_STEPS_WORK=FILE` writes each
-//! step's work, rows, unconverged residual (0: converged) and work budget to FILE, one step
-//! a line.
+//! runs soon solve different problems); `CONTACT_STEPS_STATES` prints the final states;
+//! `CONTACT_STEPS_WORK=FILE` writes each step's work, rows, unconverged residual (0:
+//! converged) and work budget to FILE, one step a line.
 
 use std::time::Instant;
 use tumble::contact_scenes::{
@@ -124,7 +124,7 @@ fn main() {
             _ => panic!("CONTACT_STEPS_BUDGET: off, friction or whole"),
         });
     }
-    // CONTACT_STEPS_STALL: the friction sweeps' stall band (impulse::friction::STALL_BAND
+    // CONTACT_STEPS_STALL: the sweeps' stall band (impulse::stall::STALL_BAND
     // otherwise; 0: off). CONTACT_STEPS_SHADOW: each step is also taken by a copy of the
     // world with this band, from the same state, and its work compared (the scenes are
     // chaotic: two runs soon solve different problems).

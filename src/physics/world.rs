@@ -1241,8 +1241,8 @@ impl World {
         self.scratch.set_median_budget(applies);
     }
 
-    /// The `impulse` friction sweeps' stall band from the next step on
-    /// (`impulse::friction::STALL_BAND` until set; 0: off. For measurements and tests).
+    /// The `impulse` sweeps' stall band from the next step on
+    /// (`impulse::stall::STALL_BAND` until set; 0: off. For measurements and tests).
     pub fn set_stall_band(&mut self, band: f64) {
         self.scratch.set_stall_band(band);
     }

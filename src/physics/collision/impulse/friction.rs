@@ -44,7 +44,8 @@
 //!
 //! [`subspace`]: super::subspace
 
-use super::{axis_at, normal, Row, SWEEPS_FIRST_ROWS};
+use super::stall::{self, Stall};
+use super::{axis_at, normal, Row};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::collision::Contact;
 use nalgebra::Vector3;
@@ -52,38 +53,6 @@ use nalgebra::Vector3;
 /// The friction disk update's Newton iteration stops when |x(ν)| is within this fraction of
 /// the disk's radius (a few ulps: round-off).
 const DISK_TOLERANCE: f64 = 16.0 * f64::EPSILON;
-
-/// A large stage's sweeps ([`SWEEPS_FIRST_ROWS`] rows or more) also stop when a sweep's row
-/// updates changed the rows' velocities by at most this many tolerances while the whole sweep
-/// moved the bodies by less than one: every row's velocity, from the bodies at the sweep's
-/// start to those at its end, changed by at most the tolerance (`net_change`). The row updates
-/// then cancel in body space: the impulses move along a flat direction of a redundant
-/// contact set (four coplanar corners of a brick on a brick, a brick on two bricks), where F
-/// falls only by the set's inconsistency, and creep towards a disk's rim for hundreds of
-/// sweeps while no body's velocity changes. Such a stop meets `|Δu| ≤ STALL_BAND · tolerance`
-/// at each row update (1e-9 m/s), the bodies' velocities to the tolerance (1e-10 m/s); every
-/// impulse is in its bounds as always (λ ≥ 0, |λ_t| ≤ μ λ: Signorini and cone feasibility
-/// hold exactly, K only went down).
-///
-/// Measured (issue 35, wall-ball 600 steps, this rule off): of the sweeps whose row changes
-/// were 1e-10 to 1e-7 m/s, 80 % moved the bodies by less than 1e-10 m/s, most by 1e-12 to
-/// 1e-16. Work in row updates (deterministic), off → on, each step taken twice from the same
-/// state (`contact_steps` with `CONTACT_STEPS_SHADOW`: the scenes are chaotic, two free runs
-/// soon solve different problems), no step dearer in any scene:
-///
-/// | scene, steps | off | on | steps cheaper | unconverged steps |
-/// |---|---|---|---|---|
-/// | wall-ball, 600 | 70.1M | 46.2M (−34 %) | 299 | 67 → 42 |
-/// | knife-wall, 600 | 60.5M | 40.7M (−33 %) | 93 | 15 → 7 |
-/// | knife-wall-ball, 600 | 121.1M | 86.8M (−28 %) | 244 | 49 → 39 |
-/// | bonded-wall-ball, 600 | 145.9M | 111.6M (−24 %) | 152 | 104 → 90 |
-/// | edge-wall-ball, 600 | 26.9M | 23.2M (−14 %) | 51 | 36 → 35 |
-/// | wall, 600 | 34.6M | 19.2M (−45 %) | 89 | 0 |
-/// | dominoes16, 1500 | 9.98M | 9.28M (−7 %) | 169 | 0 |
-///
-/// Stack-40, pyramid-20, bonded-wall and edge-wall at rest never stall: bit-identical. Smaller
-/// systems (every contact md5 baseline, the dominoes of lesson 37) keep the old test.
-pub const STALL_BAND: f64 = 10.0;
 
 /// At most this many Newton (or bisection) steps for one disk update; Newton needs 2 to 5,
 /// and 60 bisections would narrow the bracket by 2⁻⁶⁰.
@@ -252,9 +221,9 @@ fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
 
 /// Block coordinate descent on the normal and friction impulses, at most `cap` sweeps;
 /// returns whether they converged, how many ran, and the residual (the largest change of a
-/// contact velocity the last sweep made, m/s). A large stage also stops on a stall: a sweep
-/// whose row changes are within `band` tolerances and whose bodies moved by less than one
-/// ([`STALL_BAND`]; 0: never).
+/// contact velocity the last sweep made, m/s). A large stage also stops on a stall when
+/// `band` > 0: a sweep whose row changes are within `band` tolerances and whose bodies moved
+/// by less than one ([`stall::STALL_BAND`], off).
 pub(super) fn sweep(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
@@ -263,16 +232,9 @@ pub(super) fn sweep(
     cap: u64,
 ) -> (bool, u64, f64) {
     let mut largest: f64 = 0.0;
-    // The bodies at the start of a sweep, kept once a sweep's changes fall within the stall
-    // band (`STALL_BAND`): then the next sweep may end a stall.
-    let watchable = band > 1.0 && rows.len() >= SWEEPS_FIRST_ROWS;
-    let mut before: Vec<SolverBody> = Vec::new();
-    let mut watch = false;
+    let mut stall = Stall::new(band, rows.len());
     for sweep in 1..=cap {
-        if watch {
-            before.clear();
-            before.extend_from_slice(motions);
-        }
+        stall.start(motions);
         largest = 0.0;
         for (row, directions) in rows.iter_mut().zip(directions.iter()) {
             let bound = row.friction_bound;
@@ -283,34 +245,23 @@ pub(super) fn sweep(
             let change = update(row, directions, bound, motions);
             largest = largest.max(change);
         }
-        if largest <= tolerance {
+        if largest <= tolerance
+            || stall.stalled(largest, tolerance, |before| {
+                stall::net_change(
+                    rows.iter()
+                        .zip(directions.iter())
+                        .flat_map(|(row, [t1, t2])| [&row.normal, t1, t2]),
+                    before,
+                    motions,
+                )
+            })
+        {
             return (true, sweep, largest);
         }
-        let in_band = watchable && largest <= band * tolerance;
-        if watch && in_band && net_change(rows, directions, &before, motions) <= tolerance {
-            return (true, sweep, largest);
-        }
-        watch = in_band;
     }
     (false, cap, largest)
 }
 
-/// The largest change of a row's velocity (normal or tangent) from the bodies `before` to
-/// the bodies `after` (m/s).
-fn net_change(
-    rows: &[Row],
-    directions: &[[Axis; 2]],
-    before: &[SolverBody],
-    after: &[SolverBody],
-) -> f64 {
-    let mut net: f64 = 0.0;
-    for (row, [t1, t2]) in rows.iter().zip(directions.iter()) {
-        for axis in [&row.normal, t1, t2] {
-            net = net.max((axis.velocity(after) - axis.velocity(before)).abs());
-        }
-    }
-    net
-}
 
 /// Adds each row's tangent impulses to its contact's impulse (after the normal row's
 /// `store`); nothing when stage 2 did not run (no `directions`).
@@ -330,33 +281,4 @@ pub(in crate::physics::collision) fn tangents(n: &Vector3<f64>) -> (Vector3<f64>
     };
     let t1 = n.cross(&helper).normalize();
     (t1, n.cross(&t1))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::net_change;
-    use crate::physics::collision::impulse::admm::tests::sliding_cube;
-
-    #[test]
-    fn impulses_along_a_flat_direction_of_four_corners_move_no_body() {
-        // The cube (2 kg, 0.2 m: I = m s²/6, 1/I = 75) on its four bottom corners, n = y.
-        // One corner's impulse j changes its own normal velocity the most, by k j with
-        // k = 1/m + |r×n|²/I = 0.5 + 0.02 · 75 = 2 (the others by 0.5 j, −1.0 j, and
-        // tangentially by at most 0.75·√2 j).
-        let (rows, directions, motions) = sliding_cube(0.0);
-        let j = 1e-3;
-        let mut after = motions.clone();
-        rows[0].normal.apply(j, &mut after);
-        let net = net_change(&rows, &directions, &motions, &after);
-        assert!((net - 2.0 * j).abs() < 1e-15, "{net}");
-        // +j at two diagonal corners, −j at the other two: Σ ±n = 0 and Σ ±r×n = 0, a flat
-        // direction of the redundant set. Each of these row updates changes its own row's
-        // velocity by 2j; together they move no body (round-off).
-        let mut after = motions.clone();
-        for (i, sign) in [(0, 1.0), (3, 1.0), (1, -1.0), (2, -1.0)] {
-            rows[i].normal.apply(sign * j, &mut after);
-        }
-        let net = net_change(&rows, &directions, &motions, &after);
-        assert!(net < 1e-17, "{net}");
-    }
 }

@@ -94,6 +94,7 @@ pub mod newton;
 pub mod normal;
 pub mod particle;
 pub mod propagate;
+pub mod stall;
 pub mod subspace;
 
 use super::contacts;
@@ -120,8 +121,8 @@ pub use subspace::{
 };
 
 /// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
-/// same fraction of the fastest approach speed; a large friction stage also when its row
-/// updates cancel in body space within [`friction::STALL_BAND`] times this.
+/// same fraction of the fastest approach speed; with a stall band ([`stall::STALL_BAND`], off),
+/// a large friction stage also when its row updates cancel in body space within the band.
 pub const TOLERANCE: f64 = 1e-10;
 
 /// At most this many Gauss–Seidel sweeps per stage. A stack of 10 cubes needs about 800 the
@@ -396,7 +397,7 @@ impl Scratch {
         self.direct.applies = applies;
     }
 
-    /// The friction sweeps' stall band from the next step on ([`friction::STALL_BAND`] until
+    /// The sweeps' stall band from the next step on ([`stall::STALL_BAND`] until
     /// set; 0 switches the stall stop off: for measurements and tests).
     pub fn set_stall_band(&mut self, band: f64) {
         self.direct.stall_band = Some(band);
@@ -453,14 +454,14 @@ struct Direct {
     /// stopped unconverged.
     residual: f64,
     unconverged: Option<f64>,
-    /// The friction sweeps' stall band ([`friction::STALL_BAND`] unless set).
+    /// The sweeps' stall band ([`stall::STALL_BAND`] unless set).
     stall_band: Option<f64>,
 }
 
 impl Direct {
-    /// The friction sweeps' stall band ([`friction::STALL_BAND`] unless set).
+    /// The sweeps' stall band ([`stall::STALL_BAND`] unless set).
     fn stall_band(&self) -> f64 {
-        self.stall_band.unwrap_or(friction::STALL_BAND)
+        self.stall_band.unwrap_or(stall::STALL_BAND)
     }
 
     /// A new step's budget over `rows` rows ([`budget::budget`]: 20 medians of the steps so
