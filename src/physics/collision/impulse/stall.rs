@@ -131,12 +131,12 @@ mod tests {
         assert!((net - 2.0 * j).abs() < 1e-15, "{net}");
         // +j at two diagonal corners, −j at the other two: Σ ±n = 0 and Σ ±r×n = 0, a flat
         // direction of the redundant set. Each of these row updates changes its own row's
-        // velocity by 2j; together they move no body (round-off).
+        // velocity by 2j; together they move no body (round-off on velocities of 0.05 m/s).
         let mut after = motions.clone();
         for (i, sign) in [(0, 1.0), (3, 1.0), (1, -1.0), (2, -1.0)] {
             rows[i].normal.apply(sign * j, &mut after);
         }
         let net = net_change(axes(&rows, &directions), &motions, &after);
-        assert!(net < 1e-17, "{net}");
+        assert!(net < 1e-15, "{net}");
     }
 }
