@@ -1241,6 +1241,12 @@ impl World {
         self.scratch.set_median_budget(applies);
     }
 
+    /// The `impulse` sweeps' stall band from the next step on
+    /// (`impulse::stall::STALL_BAND` until set; 0: off. For measurements and tests).
+    pub fn set_stall_band(&mut self, band: f64) {
+        self.scratch.set_stall_band(band);
+    }
+
     /// Switches integrator, keeping t and the state (the orientation changes representation;
     /// a drifted `euler-seed` matrix becomes the nearest rotation). The current frame restarts
     /// at its derive phase.

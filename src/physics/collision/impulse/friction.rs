@@ -44,6 +44,7 @@
 //!
 //! [`subspace`]: super::subspace
 
+use super::stall::{self, Stall};
 use super::{axis_at, normal, Row};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::collision::Contact;
@@ -220,16 +221,20 @@ fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
 
 /// Block coordinate descent on the normal and friction impulses, at most `cap` sweeps;
 /// returns whether they converged, how many ran, and the residual (the largest change of a
-/// contact velocity the last sweep made, m/s).
+/// contact velocity the last sweep made, m/s). A large stage also stops on a stall when
+/// `band` > 0: a sweep whose row changes are within `band` tolerances and whose bodies moved
+/// by less than one ([`stall::STALL_BAND`], off).
 pub(super) fn sweep(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
-    tolerance: f64,
+    (tolerance, band): (f64, f64),
     cap: u64,
 ) -> (bool, u64, f64) {
     let mut largest: f64 = 0.0;
+    let mut stall = Stall::new(band, rows.len());
     for sweep in 1..=cap {
+        stall.start(motions);
         largest = 0.0;
         for (row, directions) in rows.iter_mut().zip(directions.iter()) {
             let bound = row.friction_bound;
@@ -240,12 +245,23 @@ pub(super) fn sweep(
             let change = update(row, directions, bound, motions);
             largest = largest.max(change);
         }
-        if largest <= tolerance {
+        if largest <= tolerance
+            || stall.stalled(largest, tolerance, |before| {
+                stall::net_change(
+                    rows.iter()
+                        .zip(directions.iter())
+                        .flat_map(|(row, [t1, t2])| [&row.normal, t1, t2]),
+                    before,
+                    motions,
+                )
+            })
+        {
             return (true, sweep, largest);
         }
     }
     (false, cap, largest)
 }
+
 
 /// Adds each row's tangent impulses to its contact's impulse (after the normal row's
 /// `store`); nothing when stage 2 did not run (no `directions`).

@@ -94,6 +94,7 @@ pub mod newton;
 pub mod normal;
 pub mod particle;
 pub mod propagate;
+pub mod stall;
 pub mod subspace;
 
 use super::contacts;
@@ -120,7 +121,8 @@ pub use subspace::{
 };
 
 /// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
-/// same fraction of the fastest approach speed.
+/// same fraction of the fastest approach speed; with a stall band ([`stall::STALL_BAND`], off),
+/// a large friction stage also when its row updates cancel in body space within the band.
 pub const TOLERANCE: f64 = 1e-10;
 
 /// At most this many Gauss–Seidel sweeps per stage. A stack of 10 cubes needs about 800 the
@@ -394,6 +396,12 @@ impl Scratch {
     pub fn set_median_budget(&mut self, applies: budget::Applies) {
         self.direct.applies = applies;
     }
+
+    /// The sweeps' stall band from the next step on ([`stall::STALL_BAND`] until
+    /// set; 0 switches the stall stop off: for measurements and tests).
+    pub fn set_stall_band(&mut self, band: f64) {
+        self.direct.stall_band = Some(band);
+    }
 }
 
 /// The direct solves' buffers: the system, the motions saved to undo a rejected solve, the
@@ -452,9 +460,16 @@ struct Direct {
     /// stopped unconverged.
     residual: f64,
     unconverged: Option<f64>,
+    /// The sweeps' stall band ([`stall::STALL_BAND`] unless set).
+    stall_band: Option<f64>,
 }
 
 impl Direct {
+    /// The sweeps' stall band ([`stall::STALL_BAND`] unless set).
+    fn stall_band(&self) -> f64 {
+        self.stall_band.unwrap_or(stall::STALL_BAND)
+    }
+
     /// A new step's budget over `rows` rows ([`budget::budget`]: 20 medians of the steps so
     /// far, between a floor and [`WORK_BUDGET`]).
     fn start(&mut self, rows: usize) {
@@ -571,13 +586,14 @@ impl Direct {
         // is the sweeps' rate of convergence.
         let burst = self.sweeps_left(rows.len(), SUBSPACE_EVERY);
         let half = burst / 2;
+        let band = self.stall_band();
         let (mut converged, mut sweeps, first) =
-            friction::sweep(rows, directions, motions, tolerance, half);
+            friction::sweep(rows, directions, motions, (tolerance, band), half);
         let mut residual = first;
         if !converged {
             let more;
             (converged, more, residual) =
-                friction::sweep(rows, directions, motions, tolerance, burst - half);
+                friction::sweep(rows, directions, motions, (tolerance, band), burst - half);
             sweeps += more;
         }
         self.work += sweeps * rows.len() as u64;
@@ -1397,6 +1413,7 @@ fn friction_trial(
     buffers_direct: &mut Direct,
     counters: &mut Counters,
 ) -> bool {
+        let band = buffers_direct.stall_band();
         let Direct {
             trial,
             trial_rows,
@@ -1413,8 +1430,13 @@ fn friction_trial(
         // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
         normal::warm_start_again(rows, motions);
         friction::warm_start(rows, tangent_directions, motions);
-        let (converged, sweeps, _) =
-            friction::sweep(rows, tangent_directions, motions, tolerance, TRIAL_SWEEPS);
+        let (converged, sweeps, _) = friction::sweep(
+            rows,
+            tangent_directions,
+            motions,
+            (tolerance, band),
+            TRIAL_SWEEPS,
+        );
         *work += sweeps * rows.len() as u64;
         counters.friction_sweeps += sweeps;
         if converged {
