@@ -9,7 +9,7 @@ use nalgebra::{Matrix3, Vector3};
 pub type Wire = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
 
 /// Points per circle of a round body's wire.
-const WIRE_STEPS: usize = 24;
+pub const WIRE_STEPS: usize = 24;
 
 /// The wire of a round body, world frame: points and the segments between them. A ball: its
 /// equator (body x–z plane) and a meridian (body x–y plane), which turn with it, so a rolling

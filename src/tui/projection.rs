@@ -1202,6 +1202,7 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
 mod tests {
     use super::*;
     use crate::physics::body::box_corners;
+    use crate::physics::wire::WIRE_STEPS;
     use std::f64::consts::FRAC_PI_2;
 
     #[test]
