@@ -181,7 +181,11 @@ fn write_header(lesson: &Lesson, world: &World, out: &mut impl Write) -> std::io
         effects.join(", ")
     };
     let snapshot = world.snapshot();
-    let obstacles: Vec<&str> = snapshot.obstacles.iter().map(|o| o.kind()).collect();
+    // The obstacles by type (the fixed bodies are listed with the bodies).
+    let obstacles: Vec<&str> = (snapshot.fixed.iter())
+        .filter(|f| f.body.is_none())
+        .map(|f| f.kind)
+        .collect();
     let obstacles = if obstacles.is_empty() {
         "none".to_string()
     } else {

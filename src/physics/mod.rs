@@ -46,6 +46,7 @@ pub mod snapshot;
 pub mod state;
 pub mod system;
 pub mod tuning;
+pub mod wire;
 pub mod world;
 
 pub use body::{Body, BodyError, InertiaModel};
@@ -57,7 +58,7 @@ pub use effects::{Effect, Effects};
 pub use energy::Energy;
 pub use energy_ledger::{EnergyBalance, EnergyLedger};
 pub use integrators::Integrator;
-pub use snapshot::{BodyView, ClothView, JointView, Snapshot, SpringView, SystemTotals};
+pub use snapshot::{BodyView, ClothView, FixedView, JointView, Snapshot, SpringView, SystemTotals};
 pub use state::{Orientation, State};
 pub use tuning::Tuning;
 pub use world::{Checkpoint, NamedBody, Phase, Stepping, World};

@@ -8,7 +8,7 @@
 use super::cloth::ClothIntegrator;
 use super::collision::geometry::{deepest, shape_shape, ContactPoint, Pose, Shape};
 use super::collision::impulse::StepReport;
-use super::collision::{Against, Contact, ContactModel, Obstacle};
+use super::collision::{Against, Contact, ContactModel, Obstacle, Outline};
 use super::derive::{congruence, derive};
 use super::effects::Effects;
 pub use super::energy::{energy, kinetic_energy, kinetic_energy_with, Energy};
@@ -19,6 +19,7 @@ use super::joints::drive::Drive;
 use super::joints::written::Measure;
 use super::joints::{coordinate, rate, Motor, Pose as LinkPose};
 use super::state::State;
+use super::wire::wire;
 use super::world::{Phase, World};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
@@ -82,6 +83,9 @@ pub struct Snapshot {
     /// Every obstacle: the scene's fixed things that are not bodies, each with its shape
     /// (ground, ramp, sphere, box), as the collide phase meets them.
     pub obstacles: Vec<Obstacle>,
+    /// Every fixed thing the front ends draw and frame: the obstacles, then the fixed bodies
+    /// in body order (see [`FixedView`]).
+    pub fixed: Vec<FixedView>,
     /// The whole scene: total momenta and energy.
     pub system: SystemTotals,
     /// Every cloth's numbers (empty without cloths).
@@ -386,6 +390,82 @@ pub struct BodyView {
     pub mass: f64,
 }
 
+/// One fixed thing, as the front ends draw it and frame the view around it: an obstacle
+/// (`body` None) or a fixed body (`body` its index in [`Snapshot::bodies`]), each by its
+/// [`Outline`] in world coordinates. A fixed body's outline is [`Outline::Body`]: the wire
+/// of its shape at its pose, its vertices and edges for a polyhedron.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixedView {
+    /// The obstacle's scene-file type (`ground`, `box`, …), or `body`.
+    pub kind: &'static str,
+    /// The fixed body's index in the snapshot's bodies (None for an obstacle).
+    pub body: Option<usize>,
+    pub outline: Outline,
+    /// The corners (low, high) of a box the view must hold to show it (the ground's, an
+    /// unbounded level, at the origin: see [`FixedView::bounds`]).
+    extent: (Vector3<f64>, Vector3<f64>),
+}
+
+impl FixedView {
+    /// The obstacles in the scene's order, then the fixed bodies in body order.
+    pub fn all(obstacles: &[Obstacle], bodies: &[BodyView]) -> Vec<FixedView> {
+        let origin = Vector3::zeros();
+        let mut fixed: Vec<FixedView> = (obstacles.iter())
+            .map(|o| FixedView {
+                kind: o.kind(),
+                body: None,
+                outline: o.outline(),
+                extent: o.bounds(&origin),
+            })
+            .collect();
+        for (i, view) in bodies.iter().enumerate().filter(|(_, v)| v.fixed) {
+            let wire = (view.shape.as_ref()).and_then(|s| wire(s, &view.position, &view.rotation));
+            let (corners, edges) =
+                wire.unwrap_or_else(|| (view.vertices.clone(), view.edges.clone()));
+            let silhouette = match view.shape {
+                Some(Shape::Ball { radius }) => Some(radius),
+                _ => None,
+            };
+            // The box of its vertices, or of a round body's extreme points along the axes.
+            let none = (
+                Vector3::repeat(f64::INFINITY),
+                Vector3::repeat(f64::NEG_INFINITY),
+            );
+            let extent = if view.points_body.is_empty() && view.shape.is_some() {
+                let r = Vector3::repeat(view.radius);
+                (view.position - r, view.position + r)
+            } else {
+                (view.vertices.iter()).fold(none, |(lo, hi), p| (lo.inf(p), hi.sup(p)))
+            };
+            fixed.push(FixedView {
+                kind: "body",
+                body: Some(i),
+                outline: Outline::Body {
+                    corners,
+                    edges,
+                    center: view.position,
+                    radius: view.radius,
+                    silhouette,
+                },
+                extent,
+            });
+        }
+        fixed
+    }
+
+    /// The corners (low, high) of a box the view must hold to show this thing; `centre` is
+    /// where the bodies are (the ground, unbounded, is held at its level there).
+    pub fn bounds(&self, centre: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        match self.outline {
+            Outline::Level(height) => {
+                let p = Vector3::new(centre.x, height, centre.z);
+                (p, p)
+            }
+            _ => self.extent,
+        }
+    }
+}
+
 /// The scene as a whole.
 ///
 /// ```text
@@ -464,7 +544,7 @@ impl Snapshot {
         let (contact_force, contact_torque) = contact_loads(world.contacts(), index, world.dt());
         let vertices = world.vertices_of(index);
         let penetration = geometric_penetration(world, index, &vertices);
-        let bodies = (0..world.body_count())
+        let bodies: Vec<BodyView> = (0..world.body_count())
             .map(|i| {
                 if i == index {
                     BodyView::with(world, i, kinematics, vertices.clone())
@@ -499,6 +579,7 @@ impl Snapshot {
             penetration,
             body_index: index,
             body_name: world.body_names()[index].clone(),
+            fixed: FixedView::all(world.obstacles(), &bodies),
             bodies,
             ..Snapshot::without_body(world)
         }
@@ -547,6 +628,7 @@ impl Snapshot {
             body_name: String::new(),
             bodies: Vec::new(),
             obstacles: world.obstacles().to_vec(),
+            fixed: FixedView::all(world.obstacles(), &[]),
             system: SystemTotals::of(world),
             cloths: ClothView::all(world),
             joints: JointView::all(world),

@@ -20,6 +20,7 @@ use super::viewport::{Axis, Mapping, Viewport};
 use crate::physics::body::box_edges;
 use crate::physics::collision::geometry::Shape;
 use crate::physics::snapshot::BodyView;
+pub use crate::physics::wire::{wire, Wire};
 use crate::physics::ClothView;
 use crate::physics::{Outline, Snapshot};
 use nalgebra::{Matrix3, Vector3};
@@ -785,48 +786,11 @@ pub fn add_links(scene: &mut Scene2d, axis: Axis, s: &Snapshot, scale: f64) {
 fn scene_2d(app: &App, scale: f64) -> Scene2d {
     let axis = app.prefs.axis;
     let mut scene = Scene2d::default();
-    for o in &app.session.snapshot.obstacles {
-        match o.outline() {
-            Outline::Level(height) => {
-                if axis.shows_ground_line() {
-                    scene.ground = Some(height);
-                }
-            }
-            Outline::Ball { center, radius } => {
-                scene
-                    .circles
-                    .push((axis.project(&center), radius, theme::OBSTACLE))
-            }
-            Outline::Aligned { min, max } => {
-                let (a0, b0) = axis.project(&min);
-                let (a1, b1) = axis.project(&max);
-                let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)];
-                for i in 0..4 {
-                    scene.segments.push(Segment {
-                        from: corners[i],
-                        to: corners[(i + 1) % 4],
-                        colour: theme::OBSTACLE,
-                        ascii: Some('#'),
-                        dashed: false,
-                    });
-                }
-            }
-            Outline::Wire { corners, edges } => {
-                let corners: Vec<_> = corners.iter().map(|c| axis.project(c)).collect();
-                for (i, j) in edges {
-                    scene.segments.push(Segment {
-                        from: corners[i],
-                        to: corners[j],
-                        colour: theme::OBSTACLE,
-                        ascii: Some('#'),
-                        dashed: false,
-                    });
-                }
-            }
-            Outline::Plane { point, normal } => {
-                add_plane(&mut scene, axis, &point, &normal, app.ui.region.max_extent);
-            }
-        }
+    // The obstacles under everything; the fixed bodies in their place among the bodies.
+    let snapshot = &app.session.snapshot;
+    let extent = app.ui.region.max_extent;
+    for f in snapshot.fixed.iter().filter(|f| f.body.is_none()) {
+        add_fixed(&mut scene, axis, &f.outline, extent);
     }
     if app.prefs.trail && !app.session.snapshot.bodies.is_empty() {
         for p in app.session.history.trail(TRAIL_LENGTH) {
@@ -845,9 +809,15 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
     // The joints and springs under the bodies they hold.
     add_links(&mut scene, axis, &app.session.snapshot, scale);
     // Every other body, in its own colour (the panels show the selected one); a fixed body
-    // in the obstacles' colour.
+    // as the fixed thing it is.
     for (i, view) in app.session.snapshot.bodies.iter().enumerate() {
         if i == app.session.selected {
+            continue;
+        }
+        if view.fixed {
+            for f in snapshot.fixed.iter().filter(|f| f.body == Some(i)) {
+                add_fixed(&mut scene, axis, &f.outline, extent);
+            }
             continue;
         }
         let other = view;
@@ -865,12 +835,8 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
             position: view.position,
             rotation: view.rotation,
             radius: other.radius,
-            colour: if view.fixed {
-                theme::OBSTACLE
-            } else {
-                theme::OTHER_BODY
-            },
-            ascii: view.fixed.then_some('#'),
+            colour: theme::OTHER_BODY,
+            ascii: None,
             arrows: None,
         };
         add_outline(&mut scene, axis, view);
@@ -942,95 +908,75 @@ fn scene_2d(app: &App, scale: f64) -> Scene2d {
     scene
 }
 
-/// A wire drawing: world points and the segments between them (indices).
-pub type Wire = (Vec<Vector3<f64>>, Vec<(usize, usize)>);
-
-/// Points per circle of a round body's wire.
-const WIRE_STEPS: usize = 24;
-
-/// The wire of a round body, world frame: points and the segments between them. A ball: its
-/// equator (body x–z plane) and a meridian (body x–y plane), which turn with it, so a rolling
-/// ball is seen to roll. A cylinder: its two rims and four generators. A capsule: the rims of
-/// its cylindrical part, four generators and the two meridian half-circles of each cap. None
-/// for a polyhedron (drawn by its own vertices and edges).
-pub fn wire(shape: &Shape, position: &Vector3<f64>, rotation: &Matrix3<f64>) -> Option<Wire> {
-    let mut points: Vec<Vector3<f64>> = Vec::new();
-    let mut edges = Vec::new();
-    let to_world = |p: Vector3<f64>| position + rotation * p;
-    // A closed (or open, for an arc) polyline through body-frame points.
-    let mut polyline = |pts: Vec<Vector3<f64>>, closed: bool| {
-        let first = points.len();
-        let n = pts.len();
-        points.extend(pts.into_iter().map(to_world));
-        for k in 0..n {
-            if k + 1 < n {
-                edges.push((first + k, first + k + 1));
-            } else if closed {
-                edges.push((first + k, first));
+/// One fixed thing (`Snapshot::fixed`) in the obstacles' colour: the ground's level, a
+/// plane's trace, a sphere's circle, a box's rectangle or wire, and a fixed body's wire with
+/// its hidden edges dashed and its barycenter marked (a fixed ball also its silhouette).
+fn add_fixed(scene: &mut Scene2d, axis: Axis, outline: &Outline, extent: f64) {
+    match outline {
+        Outline::Level(height) => {
+            if axis.shows_ground_line() {
+                scene.ground = Some(*height);
             }
         }
-    };
-    let circle = |r: f64, y: f64, plane_xy: bool| -> Vec<Vector3<f64>> {
-        (0..WIRE_STEPS)
-            .map(|k| {
-                let a = k as f64 / WIRE_STEPS as f64 * std::f64::consts::TAU;
-                if plane_xy {
-                    Vector3::new(r * a.cos(), y + r * a.sin(), 0.0)
-                } else {
-                    Vector3::new(r * a.cos(), y, r * a.sin())
-                }
-            })
-            .collect()
-    };
-    match *shape {
-        Shape::Ball { radius } => {
-            polyline(circle(radius, 0.0, false), true);
-            polyline(circle(radius, 0.0, true), true);
+        Outline::Ball { center, radius } => {
+            scene
+                .circles
+                .push((axis.project(center), *radius, theme::OBSTACLE))
         }
-        Shape::Cylinder {
-            radius,
-            half_length,
+        Outline::Aligned { min, max } => {
+            let (a0, b0) = axis.project(min);
+            let (a1, b1) = axis.project(max);
+            let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)];
+            for i in 0..4 {
+                scene.segments.push(Segment {
+                    from: corners[i],
+                    to: corners[(i + 1) % 4],
+                    colour: theme::OBSTACLE,
+                    ascii: Some('#'),
+                    dashed: false,
+                });
+            }
         }
-        | Shape::Capsule {
+        Outline::Wire { corners, edges } => {
+            let corners: Vec<_> = corners.iter().map(|c| axis.project(c)).collect();
+            for &(i, j) in edges {
+                scene.segments.push(Segment {
+                    from: corners[i],
+                    to: corners[j],
+                    colour: theme::OBSTACLE,
+                    ascii: Some('#'),
+                    dashed: false,
+                });
+            }
+        }
+        Outline::Plane { point, normal } => {
+            add_plane(scene, axis, point, normal, extent);
+        }
+        Outline::Body {
+            corners,
+            edges,
+            center,
             radius,
-            half_length,
+            silhouette,
         } => {
-            for y in [-half_length, half_length] {
-                polyline(circle(radius, y, false), true);
+            if let Some(r) = silhouette {
+                scene
+                    .circles
+                    .push((axis.project(center), *r, theme::OBSTACLE));
             }
-            for (x, z) in [(radius, 0.0), (-radius, 0.0), (0.0, radius), (0.0, -radius)] {
-                polyline(
-                    vec![
-                        Vector3::new(x, -half_length, z),
-                        Vector3::new(x, half_length, z),
-                    ],
-                    false,
-                );
-            }
-            if matches!(shape, Shape::Capsule { .. }) {
-                // Half-circles over each end, in the body x–y and z–y planes.
-                for sign in [-1.0, 1.0] {
-                    for in_x in [true, false] {
-                        let arc = (0..=WIRE_STEPS / 2)
-                            .map(|k| {
-                                let a = k as f64 / WIRE_STEPS as f64 * std::f64::consts::TAU;
-                                let (across, up) = (radius * a.cos(), sign * radius * a.sin());
-                                let y = sign * half_length + up;
-                                if in_x {
-                                    Vector3::new(across, y, 0.0)
-                                } else {
-                                    Vector3::new(0.0, y, across)
-                                }
-                            })
-                            .collect();
-                        polyline(arc, false);
-                    }
-                }
-            }
+            let picture = BodyPicture {
+                vertices: corners,
+                edges,
+                position: *center,
+                rotation: Matrix3::identity(),
+                radius: *radius,
+                colour: theme::OBSTACLE,
+                ascii: Some('#'),
+                arrows: None,
+            };
+            add_body(scene, axis, &picture);
         }
-        Shape::Box { .. } | Shape::Hull(_) | Shape::Plane { .. } => return None,
     }
-    Some((points, edges))
 }
 
 /// A ball's silhouette: the circle of its radius about its centre, seen from any side.
@@ -1256,6 +1202,7 @@ fn draw_braille(scene: &Scene2d, mapping: &Mapping, area: Rect, buf: &mut Buffer
 mod tests {
     use super::*;
     use crate::physics::body::box_corners;
+    use crate::physics::wire::WIRE_STEPS;
     use std::f64::consts::FRAC_PI_2;
 
     #[test]

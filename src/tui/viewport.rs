@@ -5,7 +5,7 @@
 //! as wide); the user's zoom (mouse wheel, keys `z` `Z`) on top of it; and the way back from a
 //! terminal cell to the world ([`Viewport::world_at`]: what the mouse points at).
 
-use crate::physics::{Body, Obstacle, Snapshot};
+use crate::physics::{Body, FixedView, Obstacle, Snapshot};
 use nalgebra::Vector3;
 use ratatui::layout::Rect;
 
@@ -99,11 +99,12 @@ impl Region {
     /// The initial region: the body where it starts, the obstacles, the ground height, padded by
     /// the body's size.
     pub fn initial(body: &Body, vertices: &[Vector3<f64>], obstacles: &[Obstacle]) -> Region {
-        Region::padded(body.radius, vertices, obstacles)
+        Region::padded(body.radius, vertices, &FixedView::all(obstacles, &[]))
     }
 
-    /// The region around `vertices` and the obstacles, padded by `pad` (at least 1 mm).
-    fn padded(pad: f64, vertices: &[Vector3<f64>], obstacles: &[Obstacle]) -> Region {
+    /// The region around `vertices` and the fixed things (obstacles, fixed bodies), padded by
+    /// `pad` (at least 1 mm).
+    fn padded(pad: f64, vertices: &[Vector3<f64>], fixed: &[FixedView]) -> Region {
         let mut min = Vector3::repeat(f64::INFINITY);
         let mut max = Vector3::repeat(f64::NEG_INFINITY);
         let mut add = |p: Vector3<f64>| {
@@ -114,8 +115,8 @@ impl Region {
             add(*v);
         }
         let centre = vertices.iter().sum::<Vector3<f64>>() / vertices.len().max(1) as f64;
-        for o in obstacles {
-            let (low, high) = o.bounds(&centre);
+        for f in fixed {
+            let (low, high) = f.bounds(&centre);
             add(low);
             add(high);
         }
@@ -145,7 +146,7 @@ impl Region {
             );
             0.1 * (hi - lo).max()
         };
-        Region::padded(pad, &points, &snapshot.obstacles)
+        Region::padded(pad, &points, &snapshot.fixed)
     }
 
     /// Moves until every point is inside, smoothly: a side a point has crossed moves out to

@@ -160,3 +160,83 @@ fn the_typed_reads_are_the_snapshots_numbers() {
     );
     assert!(s.cloths[0].max_speed > 0.0);
 }
+
+/// The snapshot's fixed things (`Snapshot::fixed`): the obstacles first, each with its own
+/// outline and type, then each fixed body with its index, its vertices and edges as its
+/// outline about its barycenter, and a box the view holds that holds every vertex; a moving
+/// body is not among them.
+#[test]
+fn the_fixed_things_are_the_obstacles_then_the_fixed_bodies() {
+    use tumble::physics::Outline;
+    let source = r#"
+title = "fixed"
+summary = "fixed"
+[scene]
+dt = 0.01
+duration = 1.0
+integrator = "symplectic-euler"
+gravity = [0.0, -9.81, 0.0]
+contact = { response = "impulse", restitution = 0.0, friction = 0.5 }
+[[body]]
+name = "cube"
+shape = "box"
+size = [0.2, 0.2, 0.2]
+mass = 1.0
+position = [0.0, 1.0, 0.0]
+[[body]]
+name = "slab"
+shape = "box"
+size = [2.0, 0.1, 1.0]
+fixed = true
+position = [0.0, 0.5, 0.0]
+orientation = { axis = [0.0, 0.0, 1.0], degrees = 10.0 }
+[[obstacle]]
+type = "ground"
+height = 0.0
+[[obstacle]]
+type = "sphere"
+center = [2.0, 0.5, 0.0]
+radius = 0.5
+"#;
+    let lesson = tumble::scene::parse(source, Path::new("fixed.toml")).unwrap();
+    let mut world = lesson.scene.world();
+    world.step();
+    let s = world.snapshot();
+    let kinds: Vec<_> = s.fixed.iter().map(|f| (f.kind, f.body)).collect();
+    assert_eq!(
+        kinds,
+        [("ground", None), ("sphere", None), ("body", Some(1))]
+    );
+    for (f, o) in s.fixed.iter().zip(&s.obstacles) {
+        assert_eq!(f.outline, o.outline());
+    }
+    assert_eq!(s.fixed[0].outline, Outline::Level(0.0));
+    let slab = &s.bodies[1];
+    let Outline::Body {
+        corners,
+        edges,
+        center,
+        radius,
+        silhouette,
+    } = &s.fixed[2].outline
+    else {
+        panic!("a fixed body's outline is Outline::Body");
+    };
+    assert_eq!((corners, edges), (&slab.vertices, &slab.edges));
+    assert_eq!((corners.len(), edges.len()), (8, 12));
+    assert_eq!(
+        (*center, *radius, *silhouette),
+        (slab.position, slab.radius, None)
+    );
+    let (low, high) = s.fixed[2].bounds(&s.position);
+    for c in corners {
+        assert!((c - center).norm() <= radius * (1.0 + 1e-12));
+        assert!((0..3).all(|k| low[k] <= c[k] && c[k] <= high[k]));
+    }
+    // The sphere's box is its centre ± its radius; the ground's is its level where the bodies are.
+    let (low, high) = s.fixed[1].bounds(&s.position);
+    assert_eq!((low.x, high.y), (1.5, 1.0));
+    let (low, high) = s.fixed[0].bounds(&s.position);
+    let level = nalgebra::Vector3::new(s.position.x, 0.0, s.position.z);
+    assert_eq!((low, high), (level, level));
+}

@@ -211,6 +211,17 @@ pub enum Outline {
         corners: Vec<Vector3<f64>>,
         edges: Vec<(usize, usize)>,
     },
+    /// A fixed body (no obstacle kind's outline; see `snapshot::FixedView`): its wire, the
+    /// vertices of a polyhedron or the circles of a round body (`physics::wire`), and the
+    /// edges between them; its barycenter `center` and the radius of its bounding sphere
+    /// (which edges are hidden behind it depends on them); a ball's `silhouette` radius.
+    Body {
+        corners: Vec<Vector3<f64>>,
+        edges: Vec<(usize, usize)>,
+        center: Vector3<f64>,
+        radius: f64,
+        silhouette: Option<f64>,
+    },
 }
 
 impl Obstacle {
