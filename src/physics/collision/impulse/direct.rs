@@ -749,7 +749,7 @@ impl<'a> Unknowns<'a> {
 }
 
 /// How far (in each component of the unit direction) a sliding contact's impulse direction
-/// may be from against its slip for [`sticking`] with modes to accept it: its friction is then
+/// may be from against its slip for `sticking` with modes to accept it: its friction is then
 /// Coulomb's to within this angle (rad). Tighter, the fixed point on the directions does not
 /// settle: a face's four corners sliding together (a chain's link landing) turn the others'
 /// directions by about −3 times their own error each round, so a start 1e-7 rad off from
