@@ -420,89 +420,42 @@ pub(super) fn sticking(
     // of bodies (a row of dominoes, a stack) gets a banded envelope.
     let last = |a: &Axis| a.b.map_or(a.a.body, |b| b.body.max(a.a.body));
     active.sort_by_key(|&i| last(&rows[i].normal));
-    // A sliding contact's tangent impulse (`modes`: bound · d, fixed this round).
-    let mode = |k: usize| if modes { slides[active[k]] } else { Hold::Stick };
     // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact (its
     // normal alone when it slides), then 3m + j for joint row j; with joint rows the system
     // takes them in `merged` order (each joint row before the contacts with the same last
     // body: a chain on the ground stays banded), without them in this order.
     if mj > 0 {
+        // A sliding contact's tangent impulse (`modes`: bound · d, fixed this round).
+        let mode = |k: usize| if modes { slides[active[k]] } else { Hold::Stick };
         let key = |k: usize| last(&rows[active[k]].normal);
         order_with_joints(m, key, mode, (joints, last), merged);
     }
-    let n = if mj == 0 { 3 * m } else { merged.len() };
-    let slot = |p: usize| if mj == 0 { p } else { merged[p] };
-    let direction = |s: usize| -> &Axis {
-        if s >= 3 * m {
-            return &joints[s - 3 * m];
-        }
-        let i = active[s / 3];
-        match s % 3 {
-            0 => &rows[i].normal,
-            t => &directions[i][t - 1],
-        }
-    };
-    // The scale of each unknown (1, or its contact's stage-1 load: the weighted minimum norm;
-    // a joint row's: the largest load), and the normal velocity each pushing contact is held
-    // to, −g/dt or 0.
-    let largest = active.iter().map(|&i| rows[i].lambda).fold(0.0, f64::max);
-    let scale = |s: usize| match how {
-        Sticking::Exact => 1.0,
-        Sticking::Resting { .. } if s >= 3 * m => largest,
-        Sticking::Resting { .. } => rows[active[s / 3]].lambda.max(1e-6 * largest),
-    };
-    let bias = |row: &Row| match how {
-        Sticking::Resting { dt } if row.bias * dt < RESTING_GAP => 0.0,
-        _ => row.bias,
-    };
-    let target = |s: usize| {
-        if s < 3 * m && s.is_multiple_of(3) {
-            bias(&rows[active[s / 3]])
-        } else {
-            0.0
-        }
-    };
-    // The sliding and separating contacts' fixed impulses, applied before the system is
-    // assembled.
-    let apply_slides = |motions: &mut [SolverBody]| {
-        for k in (0..m).filter(|_| modes) {
-            let i = active[k];
-            match mode(k) {
-                Hold::Stick => {}
-                Hold::Slide(d) => {
-                    let bound = rows[i].friction_bound;
-                    directions[i][0].apply(bound * d[0], motions);
-                    directions[i][1].apply(bound * d[1], motions);
-                }
-                Hold::Off => rows[i].normal.apply(-rows[i].lambda, motions),
-            }
-        }
+    let u = Unknowns {
+        rows,
+        directions,
+        joints,
+        active: &active[..],
+        merged: &merged[..],
+        slides: &slides[..],
+        m,
+        mj,
+        n: if mj == 0 { 3 * m } else { merged.len() },
+        how,
+        largest: active.iter().map(|&i| rows[i].lambda).fold(0.0, f64::max),
+        modes,
     };
     if mj > 0 {
         saved.clear();
         saved.extend_from_slice(motions);
-        apply_slides(motions);
+        u.apply_fixed(motions);
     }
-    system.reset(n);
-    for p in 0..n {
-        let sp_slot = slot(p);
-        let dp = direction(sp_slot);
-        let sp = scale(sp_slot);
-        system.rhs[p] = -sp * (dp.velocity(motions) + target(sp_slot));
-        system.fill_row(p, dp.bodies(), |q| {
-            let sq = slot(q);
-            let dq = direction(sq);
-            dp.shares_a_body(dq)
-                .then(|| sp * scale(sq) * dp.coupling(dq, motions))
-        });
-        if system.stored() > ENVELOPE_MAX {
-            if mj > 0 {
-                motions.copy_from_slice(saved);
-            }
-            return Answer::Declined;
+    if !u.assemble(system, motions) {
+        if mj > 0 {
+            motions.copy_from_slice(saved);
         }
+        return Answer::Declined;
     }
-    *work += super::factorisation_work(system.stored(), n);
+    *work += super::factorisation_work(system.stored(), u.n);
     let Some(solution) = system.solve(Pivots::Regularised) else {
         if mj > 0 {
             motions.copy_from_slice(saved);
@@ -512,63 +465,16 @@ pub(super) fn sticking(
     delta.clear();
     delta.resize(3 * m + mj, 0.0);
     for (p, y) in solution.iter().enumerate() {
-        let s = slot(p);
-        delta[s] = scale(s) * y;
+        let s = u.slot(p);
+        delta[s] = u.scale(s) * y;
     }
     if mj > 0 {
-        // One step of refinement, as the inelastic solve's with joints: the ε that picks the
-        // minimum-norm answer leaves a residual ε·x that the joints' coupling lifts above the
-        // tolerance. The rates after Δλ are measured, then put back.
-        for p in 0..n {
-            let s = slot(p);
-            direction(s).apply(delta[s], motions);
-        }
-        let mut w: Vec<f64> = (0..n)
-            .map(|p| {
-                let s = slot(p);
-                -scale(s) * (direction(s).velocity(motions) + target(s))
-            })
-            .collect();
-        motions.copy_from_slice(saved);
-        system.substitute_regularised(&mut w);
-        for (p, y) in w.iter().enumerate() {
-            let s = slot(p);
-            delta[s] += scale(s) * y;
-        }
-        for k in 0..m {
-            let row = &rows[active[k]];
-            match mode(k) {
-                Hold::Stick => {}
-                Hold::Slide(d) => {
-                    delta[3 * k + 1] = row.friction_bound * d[0];
-                    delta[3 * k + 2] = row.friction_bound * d[1];
-                }
-                Hold::Off => delta[3 * k] = -row.lambda,
-            }
-        }
+        u.refine(system, delta, motions, saved);
     }
     // The modes that change (row, new mode), written into `slides` before Changed returns.
-    let mut changes: Vec<(usize, Hold)> = Vec::new();
-    for k in 0..m {
-        let row = &rows[active[k]];
-        let (dn, t1, t2) = (delta[3 * k], delta[3 * k + 1], delta[3 * k + 2]);
-        if row.lambda + dn < 0.0 {
-            if !modes {
-                return Answer::Declined;
-            }
-            // It would pull: it separates.
-            changes.push((active[k], Hold::Off));
-            continue;
-        }
-        let size = (t1 * t1 + t2 * t2).sqrt();
-        if mode(k) == Hold::Stick && size > row.friction_bound {
-            if !modes {
-                return Answer::Declined;
-            }
-            // It slides, along its own impulse for a start.
-            changes.push((active[k], Hold::Slide([t1 / size, t2 / size])));
-        }
-    }
+    let Some(changes) = u.changes_before(delta) else {
+        return Answer::Declined;
+    };
     // A stop (one-sided joint row) may not come to pull.
     if (delta[3 * m..].iter().zip(floor)).any(|(d, f)| d < f) {
         return Answer::Declined;
@@ -582,38 +488,9 @@ pub(super) fn sticking(
     saved.clear();
     saved.extend_from_slice(motions);
     for (s, d) in delta.iter().enumerate() {
-        direction(s).apply(*d, motions);
+        u.direction(s).apply(*d, motions);
     }
-    // A sliding contact slips against its impulse (d = −u_t/|u_t|, to [`SLIDE_TURN`]), a
-    // separated one does not approach, or they change.
-    for k in (0..m).filter(|_| modes) {
-        let i = active[k];
-        match mode(k) {
-            Hold::Stick => {}
-            Hold::Off => {
-                if rows[i].normal.velocity(motions) + bias(&rows[i]) < -tolerance {
-                    changes.push((i, Hold::Stick));
-                }
-            }
-            // No disk (it did not push in stage 1): no friction to turn.
-            Hold::Slide(_) if rows[i].friction_bound == 0.0 => {}
-            Hold::Slide(d) => {
-                let u = [
-                    directions[i][0].velocity(motions),
-                    directions[i][1].velocity(motions),
-                ];
-                let speed = (u[0] * u[0] + u[1] * u[1]).sqrt();
-                if speed <= tolerance {
-                    changes.push((i, Hold::Stick));
-                } else {
-                    let e = [-u[0] / speed, -u[1] / speed];
-                    if (e[0] - d[0]).abs().max((e[1] - d[1]).abs()) > SLIDE_TURN {
-                        changes.push((i, Hold::Slide(e)));
-                    }
-                }
-            }
-        }
-    }
+    let changes = u.changes_after(motions, tolerance);
     if !changes.is_empty() {
         for &(i, mode) in &changes {
             slides[i] = mode;
@@ -623,7 +500,7 @@ pub(super) fn sticking(
     }
     if rows
         .iter()
-        .any(|r| r.normal.velocity(motions) + bias(r) < -tolerance)
+        .any(|r| r.normal.velocity(motions) + u.bias(r) < -tolerance)
     {
         motions.copy_from_slice(saved);
         return Answer::Declined;
@@ -638,8 +515,241 @@ pub(super) fn sticking(
     Answer::Accepted
 }
 
+/// The unknowns of one `sticking` solve and how each enters its system: `active` the pushing
+/// contacts (the p-th owns unknowns 3p, 3p + 1, 3p + 2: its normal, then its two tangents
+/// `directions`), then 3m + j for joint row j of `joints`; `merged` their system order with
+/// joint rows (without them, the system takes the `n` = 3m unknowns in this order).
+struct Unknowns<'a> {
+    rows: &'a [Row],
+    directions: &'a [[Axis; 2]],
+    joints: &'a [Axis],
+    active: &'a [usize],
+    merged: &'a [usize],
+    /// Each row's mode (`Direct::slides`), read only with `modes`.
+    slides: &'a [Hold],
+    /// How many pushing contacts, and joint rows.
+    m: usize,
+    mj: usize,
+    /// How many unknowns the system has.
+    n: usize,
+    how: Sticking,
+    /// The largest stage-1 load of the pushing contacts (a joint row's scale when resting).
+    largest: f64,
+    modes: bool,
+}
+
+impl<'a> Unknowns<'a> {
+    /// The unknown at place `p` of the system.
+    fn slot(&self, p: usize) -> usize {
+        if self.mj == 0 {
+            p
+        } else {
+            self.merged[p]
+        }
+    }
+
+    /// The axis of unknown `s`: a contact's normal or tangent, or a joint row.
+    fn direction(&self, s: usize) -> &'a Axis {
+        let m = self.m;
+        if s >= 3 * m {
+            return &self.joints[s - 3 * m];
+        }
+        let i = self.active[s / 3];
+        match s % 3 {
+            0 => &self.rows[i].normal,
+            t => &self.directions[i][t - 1],
+        }
+    }
+
+    /// The scale of unknown `s`: 1, or its contact's stage-1 load (the weighted minimum
+    /// norm); a joint row's: the largest load.
+    fn scale(&self, s: usize) -> f64 {
+        match self.how {
+            Sticking::Exact => 1.0,
+            Sticking::Resting { .. } if s >= 3 * self.m => self.largest,
+            Sticking::Resting { .. } => {
+                self.rows[self.active[s / 3]].lambda.max(1e-6 * self.largest)
+            }
+        }
+    }
+
+    /// The bias a pushing contact's normal velocity is held to (`uₙ = −bias`): −g/dt, or 0
+    /// for a gap below [`RESTING_GAP`] in the second try.
+    fn bias(&self, row: &Row) -> f64 {
+        match self.how {
+            Sticking::Resting { dt } if row.bias * dt < RESTING_GAP => 0.0,
+            _ => row.bias,
+        }
+    }
+
+    /// The velocity bias of unknown `s`: its contact's bias for a normal, 0 otherwise.
+    fn target(&self, s: usize) -> f64 {
+        if s < 3 * self.m && s.is_multiple_of(3) {
+            self.bias(&self.rows[self.active[s / 3]])
+        } else {
+            0.0
+        }
+    }
+
+    /// The mode of the k-th pushing contact (sticking without `modes`).
+    fn mode(&self, k: usize) -> Hold {
+        if self.modes {
+            self.slides[self.active[k]]
+        } else {
+            Hold::Stick
+        }
+    }
+
+    /// The sliding and separating contacts' fixed impulses, applied before the system is
+    /// assembled.
+    fn apply_fixed(&self, motions: &mut [SolverBody]) {
+        let rows = self.rows;
+        for k in (0..self.m).filter(|_| self.modes) {
+            let i = self.active[k];
+            match self.mode(k) {
+                Hold::Stick => {}
+                Hold::Slide(d) => {
+                    let bound = rows[i].friction_bound;
+                    self.directions[i][0].apply(bound * d[0], motions);
+                    self.directions[i][1].apply(bound * d[1], motions);
+                }
+                Hold::Off => rows[i].normal.apply(-rows[i].lambda, motions),
+            }
+        }
+    }
+
+    /// The scaled system `(S A S + ε𝟙) y = −S (u + target)` at `motions` into `system`;
+    /// false when its envelope grows above `ENVELOPE_MAX`.
+    fn assemble(&self, system: &mut Envelope, motions: &[SolverBody]) -> bool {
+        system.reset(self.n);
+        for p in 0..self.n {
+            let sp_slot = self.slot(p);
+            let dp = self.direction(sp_slot);
+            let sp = self.scale(sp_slot);
+            system.rhs[p] = -sp * (dp.velocity(motions) + self.target(sp_slot));
+            system.fill_row(p, dp.bodies(), |q| {
+                let sq = self.slot(q);
+                let dq = self.direction(sq);
+                dp.shares_a_body(dq)
+                    .then(|| sp * self.scale(sq) * dp.coupling(dq, motions))
+            });
+            if system.stored() > ENVELOPE_MAX {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// With joint rows: one step of refinement of `delta` on the factored `system`, then the
+    /// sliding and separating contacts' fixed impulses written into it. `motions` (the
+    /// fixed impulses applied) are back at `saved` after.
+    fn refine(
+        &self,
+        system: &mut Envelope,
+        delta: &mut [f64],
+        motions: &mut [SolverBody],
+        saved: &[SolverBody],
+    ) {
+        // One step of refinement, as the inelastic solve's with joints: the ε that picks the
+        // minimum-norm answer leaves a residual ε·x that the joints' coupling lifts above the
+        // tolerance. The rates after Δλ are measured, then put back.
+        for p in 0..self.n {
+            let s = self.slot(p);
+            self.direction(s).apply(delta[s], motions);
+        }
+        let mut w: Vec<f64> = (0..self.n)
+            .map(|p| {
+                let s = self.slot(p);
+                -self.scale(s) * (self.direction(s).velocity(motions) + self.target(s))
+            })
+            .collect();
+        motions.copy_from_slice(saved);
+        system.substitute_regularised(&mut w);
+        for (p, y) in w.iter().enumerate() {
+            let s = self.slot(p);
+            delta[s] += self.scale(s) * y;
+        }
+        for k in 0..self.m {
+            let row = &self.rows[self.active[k]];
+            match self.mode(k) {
+                Hold::Stick => {}
+                Hold::Slide(d) => {
+                    delta[3 * k + 1] = row.friction_bound * d[0];
+                    delta[3 * k + 2] = row.friction_bound * d[1];
+                }
+                Hold::Off => delta[3 * k] = -row.lambda,
+            }
+        }
+    }
+
+    /// The modes that change before `delta` is applied (row, new mode): a contact whose
+    /// normal would pull separates, a sticking one outside its disk slides along its own
+    /// impulse. None (decline) when one would change without `modes`.
+    fn changes_before(&self, delta: &[f64]) -> Option<Vec<(usize, Hold)>> {
+        let mut changes: Vec<(usize, Hold)> = Vec::new();
+        for k in 0..self.m {
+            let row = &self.rows[self.active[k]];
+            let (dn, t1, t2) = (delta[3 * k], delta[3 * k + 1], delta[3 * k + 2]);
+            if row.lambda + dn < 0.0 {
+                if !self.modes {
+                    return None;
+                }
+                // It would pull: it separates.
+                changes.push((self.active[k], Hold::Off));
+                continue;
+            }
+            let size = (t1 * t1 + t2 * t2).sqrt();
+            if self.mode(k) == Hold::Stick && size > row.friction_bound {
+                if !self.modes {
+                    return None;
+                }
+                // It slides, along its own impulse for a start.
+                changes.push((self.active[k], Hold::Slide([t1 / size, t2 / size])));
+            }
+        }
+        Some(changes)
+    }
+
+    /// The modes that change once `delta` is applied to `motions` (row, new mode): a sliding
+    /// contact slips against its impulse (d = −u_t/|u_t|, to [`SLIDE_TURN`]), a separated
+    /// one does not approach, or they change.
+    fn changes_after(&self, motions: &[SolverBody], tolerance: f64) -> Vec<(usize, Hold)> {
+        let rows = self.rows;
+        let mut changes: Vec<(usize, Hold)> = Vec::new();
+        for k in (0..self.m).filter(|_| self.modes) {
+            let i = self.active[k];
+            match self.mode(k) {
+                Hold::Stick => {}
+                Hold::Off => {
+                    if rows[i].normal.velocity(motions) + self.bias(&rows[i]) < -tolerance {
+                        changes.push((i, Hold::Stick));
+                    }
+                }
+                // No disk (it did not push in stage 1): no friction to turn.
+                Hold::Slide(_) if rows[i].friction_bound == 0.0 => {}
+                Hold::Slide(d) => {
+                    let u = [
+                        self.directions[i][0].velocity(motions),
+                        self.directions[i][1].velocity(motions),
+                    ];
+                    let speed = (u[0] * u[0] + u[1] * u[1]).sqrt();
+                    if speed <= tolerance {
+                        changes.push((i, Hold::Stick));
+                    } else {
+                        let e = [-u[0] / speed, -u[1] / speed];
+                        if (e[0] - d[0]).abs().max((e[1] - d[1]).abs()) > SLIDE_TURN {
+                            changes.push((i, Hold::Slide(e)));
+                        }
+                    }
+                }
+            }
+        }
+        changes
+    }
+}
+
 /// How far (in each component of the unit direction) a sliding contact's impulse direction
-/// may be from against its slip for [`sticking`] with modes to accept it: its friction is then
+/// may be from against its slip for `sticking` with modes to accept it: its friction is then
 /// Coulomb's to within this angle (rad). Tighter, the fixed point on the directions does not
 /// settle: a face's four corners sliding together (a chain's link landing) turn the others'
 /// directions by about −3 times their own error each round, so a start 1e-7 rad off from
