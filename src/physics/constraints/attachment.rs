@@ -64,7 +64,7 @@ impl Attachment {
         bodies[self.particle].v - bodies[self.body].point_velocity(&self.arm)
     }
 
-    /// G = [I, −[r]×] (3 × 6): the body point's velocity from the body's (V; ω),
+    /// G = `[I, −[r]×]` (3 × 6): the body point's velocity from the body's (V; ω),
     /// `V + ω × r = G (V; ω)`. The rows' Jacobian is I on the particle end and −G on the body
     /// end (a solve whose body unknowns are not a solver body's, as a joint-filtered one, forms
     /// its K from G).

@@ -64,7 +64,7 @@
 //!
 //! - on small clusters (at most [`JOINED_FRICTION_ROWS`] joint rows, the stage at most
 //!   [`JOINED_FRICTION_CONTACTS`] contacts: a bob, a door, a pendulum pair) the joints'
-//!   friction stage ([`Joined::friction`]: a spinning bob on a rod meets a tilted wall with its
+//!   friction stage (`Joined::friction`: a spinning bob on a rod meets a tilted wall with its
 //!   tangential impulse at μ λ₁ and the spin left by Coulomb's law,
 //!   `tests/physics/impacts.rs`);
 //! - larger clusters (a chain of 10 links landing: 27 rows) take no joint rows in an impact

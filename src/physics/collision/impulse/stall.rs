@@ -1,5 +1,5 @@
 //! The sweeps' stall stop (switched off: [`STALL_BAND`] = 0): a method over the rows, not a
-//! constraint kind. A large friction stage's sweeps ([`super::friction::sweep`]) also stop
+//! constraint kind. A large friction stage's sweeps (`friction::sweep`) also stop
 //! when a sweep's row updates changed the rows' velocities by at most [`STALL_BAND`]
 //! tolerances while the whole sweep moved the bodies by less than one tolerance: every row's
 //! velocity, from the bodies at the sweep's start to those at its end, changed by at most
