@@ -369,12 +369,7 @@ impl Reduced {
         }
         substitute(lower, pivots, z);
         // Δu = u_p + N z, root to leaves.
-        for (k, hinge) in hinges.iter().enumerate() {
-            let (point, turn) = particular[k];
-            let (vp, wp) = motion[hinge.up];
-            let w = wp + turn + hinge.axis * z[k];
-            motion[k] = (point + vp + wp.cross(&hinge.rp) - w.cross(&hinge.rc), w);
-        }
+        along_hinges(hinges, particular, z, motion);
         // Jᵀ λ = M Δu: each joint's share on its child, leaves to root.
         momenta(mass, motion, force);
         for (k, r) in rhs.chunks_exact_mut(5).enumerate().rev() {
@@ -461,12 +456,7 @@ impl Reduced {
         }
         substitute(lower, pivots, z);
         // a = a_p + N z, root to leaves.
-        for (k, hinge) in hinges.iter().enumerate() {
-            let (point, turn) = particular[k];
-            let (vp, wp) = motion[hinge.up];
-            let w = wp + turn + hinge.axis * z[k];
-            motion[k] = (point + vp + wp.cross(&hinge.rp) - w.cross(&hinge.rc), w);
-        }
+        along_hinges(hinges, particular, z, motion);
         // Jᵀ λ = M a − F̃: each joint's share on its child, leaves to root.
         force[n] = REST;
         for k in (0..n).rev() {
@@ -521,6 +511,25 @@ fn substitute(lower: &[f64], pivots: &[f64], z: &mut [f64]) {
     for (i, column) in lower.chunks_exact(n).enumerate().rev() {
         let s = (z[i + 1..].iter().zip(&column[i + 1..])).fold(z[i], |s, (x, l)| s - l * x);
         z[i] = s * pivots[i];
+    }
+}
+
+/// The bodies' motions from a particular motion and the hinges' coordinates z, root to
+/// leaves: body k moves as its parent (v_p + ω_p × r_p at the joint), plus its own particular
+/// part and its turn about the hinge axis z_k a,
+///
+/// ```text
+/// ω_k = ω_p + turn_k + z_k a_k,    v_k = point_k + v_p + ω_p × r_p − ω_k × r_c
+/// ```
+///
+/// (u = u_p + N z for velocities, a = a_p + N z for accelerations: the same map).
+#[inline(always)]
+fn along_hinges(hinges: &[Hinge], particular: &[Pair], z: &[f64], motion: &mut [Pair]) {
+    for (k, hinge) in hinges.iter().enumerate() {
+        let (point, turn) = particular[k];
+        let (vp, wp) = motion[hinge.up];
+        let w = wp + turn + hinge.axis * z[k];
+        motion[k] = (point + vp + wp.cross(&hinge.rp) - w.cross(&hinge.rc), w);
     }
 }
 
