@@ -262,7 +262,6 @@ pub(super) fn sweep(
     (false, cap, largest)
 }
 
-
 /// Adds each row's tangent impulses to its contact's impulse (after the normal row's
 /// `store`); nothing when stage 2 did not run (no `directions`).
 pub(super) fn store(contacts: &mut [Contact], rows: &[Row], directions: &[[Axis; 2]]) {
