@@ -537,23 +537,12 @@ fn along_hinges(hinges: &[Hinge], particular: &[Pair], z: &[f64], motion: &mut [
 mod tests {
     use super::super::chain::Chain;
     use super::super::rows::{rows_of, Pose, Row};
+    use super::super::solve::tests::{next, vector};
     use super::super::solve::{multipliers, Solver};
     use super::super::{Joint, JointKind};
     use super::*;
     use crate::physics::state::{Orientation, State};
     use nalgebra::{DMatrix, DVector, UnitQuaternion};
-
-    /// A deterministic number in [−1, 1) (a linear congruential sequence).
-    fn next(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-
-    fn vector(seed: &mut u64) -> Vector3<f64> {
-        Vector3::new(next(seed), next(seed), next(seed))
-    }
 
     /// A chain of `n` hinges in random poses moved off the joints (|C| ~ 1e-2), joint 0 on
     /// the world, joint k joining body k to body k − 1 (A the new body, or B when `swapped`

@@ -778,7 +778,7 @@ fn factor<const S: usize>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::rows::{rows_of, Pose};
     use super::super::{Joint, JointKind};
     use super::*;
@@ -786,14 +786,14 @@ mod tests {
     use nalgebra::{DMatrix, DVector, UnitQuaternion};
 
     /// A deterministic number in [−1, 1) (a linear congruential sequence).
-    fn next(seed: &mut u64) -> f64 {
+    pub(in crate::physics::joints) fn next(seed: &mut u64) -> f64 {
         *seed = seed
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
         (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 
-    fn vector(seed: &mut u64) -> Vector3<f64> {
+    pub(in crate::physics::joints) fn vector(seed: &mut u64) -> Vector3<f64> {
         Vector3::new(next(seed), next(seed), next(seed))
     }
 
