@@ -247,7 +247,7 @@ pub(super) fn solve(
         let base = 1.0 / row.normal.axis.k;
         scratch.rho.push(base);
         let rho = alpha * base;
-        let tangents = !directions.is_empty() && row.friction_bound > 0.0;
+        let tangents = !directions.is_empty() && row.friction.bound > 0.0;
         scratch.first.push((scratch.constraints.len(), tangents));
         let mut c = constraint(&row.normal.axis, row.normal.bias, &scratch.local, motions);
         c.y = -row.normal.lambda / rho;
@@ -255,7 +255,7 @@ pub(super) fn solve(
         if tangents {
             for (k, t) in directions[p].iter().enumerate() {
                 let mut c = constraint(t, 0.0, &scratch.local, motions);
-                c.y = -row.lambda_tangent[k] / rho;
+                c.y = -row.friction.lambda[k] / rho;
                 scratch.constraints.push(c);
             }
         }
@@ -420,7 +420,7 @@ fn iterate(
             cn.z = z;
             cn.y = w - z;
             if tangents {
-                let bound = row.friction_bound / (alpha * base);
+                let bound = row.friction.bound / (alpha * base);
                 let u = [
                     velocity(&constraints[first + 1], x),
                     velocity(&constraints[first + 2], x),
@@ -520,7 +520,7 @@ pub(super) fn take_if_lower(
     impulse: impl Fn(usize) -> (f64, Option<[f64; 2]>),
 ) -> bool {
     let before = objective(rows, motions);
-    let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.normal.lambda, r.lambda_tangent)).collect();
+    let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.normal.lambda, r.friction.lambda)).collect();
     let saved_motions = motions.to_vec();
     for (p, row) in rows.iter_mut().enumerate() {
         let (normal, tangent) = impulse(p);
@@ -530,13 +530,13 @@ pub(super) fn take_if_lower(
         if let Some(mut t) = tangent {
             let [t1, t2] = &directions[p];
             let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
-            if size > row.friction_bound {
-                let scale = row.friction_bound / size;
+            if size > row.friction.bound {
+                let scale = row.friction.bound / size;
                 t = [t[0] * scale, t[1] * scale];
             }
-            t1.apply(t[0] - row.lambda_tangent[0], motions);
-            t2.apply(t[1] - row.lambda_tangent[1], motions);
-            row.lambda_tangent = t;
+            t1.apply(t[0] - row.friction.lambda[0], motions);
+            t2.apply(t[1] - row.friction.lambda[1], motions);
+            row.friction.lambda = t;
         }
     }
     let lower = objective(rows, motions) < before;
@@ -544,7 +544,7 @@ pub(super) fn take_if_lower(
         motions.copy_from_slice(&saved_motions);
         for (row, &(lambda, tangent)) in rows.iter_mut().zip(saved.iter()) {
             row.normal.lambda = lambda;
-            row.lambda_tangent = tangent;
+            row.friction.lambda = tangent;
         }
     }
     lower
@@ -577,7 +577,10 @@ pub(super) mod tests {
             normal.with_inverse();
             rows.push(Row {
                 normal: crate::physics::constraints::Row::contact(normal, 0.0),
-                friction_bound: 0.5 * m * 0.05 / 4.0,
+                friction: crate::physics::constraints::Friction {
+                    lambda: [0.0; 2],
+                    bound: 0.5 * m * 0.05 / 4.0,
+                },
                 approach: -0.05,
                 ..Row::default()
             });
@@ -601,8 +604,8 @@ pub(super) mod tests {
     /// Every row's impulse in its bounds: λₙ ≥ 0 and |λ_t| ≤ μ λₙ (the row's friction bound).
     pub(in super::super) fn assert_in_cone(rows: &[Row]) {
         for r in rows {
-            let t = r.lambda_tangent;
-            assert!(r.normal.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
+            let t = r.friction.lambda;
+            assert!(r.normal.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction.bound);
         }
     }
 

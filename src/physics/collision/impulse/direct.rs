@@ -508,7 +508,7 @@ pub(super) fn sticking(
     for k in 0..m {
         let row = &mut rows[active[k]];
         row.normal.lambda += delta[3 * k];
-        row.lambda_tangent = [delta[3 * k + 1], delta[3 * k + 2]];
+        row.friction.lambda = [delta[3 * k + 1], delta[3 * k + 2]];
     }
     joint_delta.clear();
     joint_delta.extend_from_slice(&delta[3 * m..]);
@@ -609,7 +609,7 @@ impl<'a> Unknowns<'a> {
             match self.mode(k) {
                 Hold::Stick => {}
                 Hold::Slide(d) => {
-                    let bound = rows[i].friction_bound;
+                    let bound = rows[i].friction.bound;
                     self.directions[i][0].apply(bound * d[0], motions);
                     self.directions[i][1].apply(bound * d[1], motions);
                 }
@@ -674,8 +674,8 @@ impl<'a> Unknowns<'a> {
             match self.mode(k) {
                 Hold::Stick => {}
                 Hold::Slide(d) => {
-                    delta[3 * k + 1] = row.friction_bound * d[0];
-                    delta[3 * k + 2] = row.friction_bound * d[1];
+                    delta[3 * k + 1] = row.friction.bound * d[0];
+                    delta[3 * k + 2] = row.friction.bound * d[1];
                 }
                 Hold::Off => delta[3 * k] = -row.normal.lambda,
             }
@@ -699,7 +699,7 @@ impl<'a> Unknowns<'a> {
                 continue;
             }
             let size = (t1 * t1 + t2 * t2).sqrt();
-            if self.mode(k) == Hold::Stick && size > row.friction_bound {
+            if self.mode(k) == Hold::Stick && size > row.friction.bound {
                 if !self.modes {
                     return None;
                 }
@@ -726,7 +726,7 @@ impl<'a> Unknowns<'a> {
                     }
                 }
                 // No disk (it did not push in stage 1): no friction to turn.
-                Hold::Slide(_) if rows[i].friction_bound == 0.0 => {}
+                Hold::Slide(_) if rows[i].friction.bound == 0.0 => {}
                 Hold::Slide(d) => {
                     let u = [
                         self.directions[i][0].velocity(motions),

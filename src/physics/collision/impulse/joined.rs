@@ -656,7 +656,7 @@ impl Joined {
                 g(t2, 2),
             ]);
             self.start
-                .push([row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+                .push([row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]]);
         }
         // A start from the active set (exact when it settles: the sweeps then confirm it),
         // taken only if it lowers K (the sweeps then keep lowering it: K never rises).
@@ -686,16 +686,16 @@ impl Joined {
                         largest = largest.max(change.abs() * gnn);
                     }
                 }
-                let bound = row.friction_bound;
+                let bound = row.friction.bound;
                 if bound == 0.0 {
                     continue;
                 }
                 let u = [t1.velocity(motions), t2.velocity(motions)];
-                let old = row.lambda_tangent;
+                let old = row.friction.lambda;
                 if let Some((new, step)) =
                     super::friction::disk_step(u, (g11, g22, g12), old, bound)
                 {
-                    row.lambda_tangent = new;
+                    row.friction.lambda = new;
                     self.apply_column(3 * i + 1, step[0], motions);
                     self.apply_column(3 * i + 2, step[1], motions);
                     largest = largest.max(
@@ -714,8 +714,8 @@ impl Joined {
         for (i, (row, [t1, t2])) in rows.iter().zip(directions).enumerate() {
             let [n0, a0, b0] = self.start[i];
             self.sum.add(&row.normal.axis, row.normal.lambda - n0, motions);
-            self.sum.add(t1, row.lambda_tangent[0] - a0, motions);
-            self.sum.add(t2, row.lambda_tangent[1] - b0, motions);
+            self.sum.add(t1, row.friction.lambda[0] - a0, motions);
+            self.sum.add(t2, row.friction.lambda[1] - b0, motions);
         }
         self.react_dense(motions);
         self.sum.clear();
@@ -753,9 +753,9 @@ impl Joined {
     fn move_to(&self, rows: &mut [Row], motions: &mut [SolverBody], to: &[[f64; 3]]) {
         for (i, row) in rows.iter_mut().enumerate() {
             let [n, t1, t2] = to[i];
-            let [n0, a0, b0] = [row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
+            let [n0, a0, b0] = [row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]];
             row.normal.lambda = n;
-            row.lambda_tangent = [t1, t2];
+            row.friction.lambda = [t1, t2];
             self.apply_column(3 * i, n - n0, motions);
             self.apply_column(3 * i + 1, t1 - a0, motions);
             self.apply_column(3 * i + 2, t2 - b0, motions);
@@ -845,7 +845,7 @@ impl ActiveSet {
         self.lambda0.clear();
         for (row, _) in rows.iter().zip(directions) {
             self.lambda0
-                .extend([row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+                .extend([row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]]);
         }
         for k in 0..n {
             let bias = if k % 3 == 0 { rows[k / 3].normal.bias } else { 0.0 };
@@ -861,14 +861,14 @@ impl ActiveSet {
         }));
         self.lambda.clear();
         self.lambda
-            .extend(rows.iter().map(|r| [r.normal.lambda, r.lambda_tangent[0], r.lambda_tangent[1]]));
+            .extend(rows.iter().map(|r| [r.normal.lambda, r.friction.lambda[0], r.friction.lambda[1]]));
         let mut work = (n * n / 4) as u64;
         let mut x = vec![0.0; n];
         for _ in 0..ACTIVE_ROUNDS {
             // Fixed values and unknowns.
             self.unknowns.clear();
             for (i, mode) in self.modes.iter().enumerate() {
-                let bound = rows[i].friction_bound;
+                let bound = rows[i].friction.bound;
                 match *mode {
                     Mode::Off => x[3 * i..3 * i + 3].fill(0.0),
                     Mode::Stick => self.unknowns.extend([3 * i, 3 * i + 1, 3 * i + 2]),
@@ -923,7 +923,7 @@ impl ActiveSet {
             let mut changed = false;
             let mut next = std::mem::take(&mut self.modes);
             for (i, mode) in next.iter_mut().enumerate() {
-                let bound = rows[i].friction_bound;
+                let bound = rows[i].friction.bound;
                 let t = [x[3 * i + 1], x[3 * i + 2]];
                 let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
                 let new = match *mode {
@@ -954,7 +954,7 @@ impl ActiveSet {
             }
             self.modes = next;
             for i in 0..m {
-                let bound = rows[i].friction_bound;
+                let bound = rows[i].friction.bound;
                 let (nl, t1, t2) = (x[3 * i].max(0.0), x[3 * i + 1], x[3 * i + 2]);
                 let size = (t1 * t1 + t2 * t2).sqrt();
                 let scale = if size > bound { bound / size } else { 1.0 };

@@ -698,10 +698,11 @@ fn axis_at(d: Vector3<f64>, contact: &Contact, motions: &[SolverBody]) -> Axis {
 }
 
 /// One contact as the solver sees it: its normal row on the constraint layer's [`Row`]
-/// (λ ∈ [0, ∞), the bias gap/dt), the friction row's impulses and disk, and what the stages
-/// keep about it.
+/// (λ ∈ [0, ∞), the bias gap/dt), its friction pair (the layer's [`Friction`]: two tangent
+/// impulses bounded by the disk), and what the stages keep about it.
 ///
 /// [`Row`]: constraints::Row
+/// [`Friction`]: constraints::Friction
 #[derive(Debug, Clone, Copy)]
 struct Row {
     /// The normal row (`constraints::Row::contact`): unit normal n with its ends and k, the
@@ -709,12 +710,12 @@ struct Row {
     /// normal velocity the contact may keep is −b, so b ≥ 0 lets a speculative contact close
     /// its gap within the next step, no more (0 for a touching one), m/s.
     normal: constraints::Row,
-    /// Accumulated tangent impulses, N·s.
-    lambda_tangent: [f64; 2],
+    /// The friction pair (`constraints::Friction`): the accumulated tangent impulses along
+    /// the two tangent axes (kept in stage 2's `tangents`), N·s, within the disk of radius
+    /// μ λ from stage 1.
+    friction: constraints::Friction,
     /// λ at the end of stage 1 (the frictionless compression impulse).
     compression: f64,
-    /// μ λ from stage 1: the radius of the friction disk.
-    friction_bound: f64,
     /// Restitution impulse e λ (scaled by the energy clamp).
     lambda_restitution: f64,
     /// Normal velocity before the response, m/s.
@@ -728,9 +729,8 @@ impl Default for Row {
     fn default() -> Row {
         Row {
             normal: constraints::Row::contact(Axis::default(), 0.0),
-            lambda_tangent: [0.0; 2],
+            friction: constraints::Friction::default(),
             compression: 0.0,
-            friction_bound: 0.0,
             lambda_restitution: 0.0,
             approach: 0.0,
             warm: Vector3::zeros(),
@@ -1442,7 +1442,7 @@ fn friction_trial(
         trial.clear();
         trial.extend_from_slice(motions);
         trial_rows.clear();
-        trial_rows.extend(rows.iter().map(|r| (r.normal.lambda, r.lambda_tangent)));
+        trial_rows.extend(rows.iter().map(|r| (r.normal.lambda, r.friction.lambda)));
         // From last step's normal impulses as well as its friction: stage 1's answer,
         // when its direct solve gave it, shares the loads its own way (the minimum norm),
         // and at rest last step's friction holds last step's shares, not those (a pyramid
@@ -1464,7 +1464,7 @@ fn friction_trial(
             motions.copy_from_slice(trial);
             for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
                 row.normal.lambda = lambda;
-                row.lambda_tangent = tangent;
+                row.friction.lambda = tangent;
             }
         }
         converged

@@ -251,12 +251,12 @@ pub(super) fn setup(
     scratch.constraints.clear();
     scratch.groups.clear();
     for (p, row) in rows.iter().enumerate() {
-        let tangents = !directions.is_empty() && row.friction_bound > 0.0;
+        let tangents = !directions.is_empty() && row.friction.bound > 0.0;
         scratch.groups.push(Group {
             first: scratch.constraints.len(),
             tangents,
-            lambda: [row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]],
-            bound: row.friction_bound,
+            lambda: [row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]],
+            bound: row.friction.bound,
             k: row.normal.axis.k,
         });
         if !tangents {

@@ -103,9 +103,8 @@ pub(super) fn prepare(c: &Contact, previous: &WarmCache, dt: f64, motions: &[Sol
     let gap = (-c.depth - GAP_ROUND_OFF).max(0.0);
     Row {
         normal: constraints::Row::contact(normal, -(gap / dt)),
-        lambda_tangent: [0.0; 2],
+        friction: constraints::Friction::default(),
         compression: 0.0,
-        friction_bound: 0.0,
         lambda_restitution: 0.0,
         approach: normal.velocity(motions),
         warm: warm.unwrap_or_else(Vector3::zeros),
