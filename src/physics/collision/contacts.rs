@@ -92,6 +92,7 @@ struct Moving<'a> {
 }
 
 impl<'a> Moving<'a> {
+    #[inline]
     fn new(input: &'a CollideInput, index: usize, state: &'a State) -> Moving<'a> {
         let body = &input.bodies[index];
         Moving {
