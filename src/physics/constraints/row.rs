@@ -350,13 +350,18 @@ impl Row {
     }
 
     /// The projected update for the rate `rate` = J·v measured with effective inverse mass `k`:
-    /// `clamp(λ − (J·v + b)/k, lo, hi)` (module doc), computed as `max(lo)` then `min(hi)`
-    /// (a NaN update gives lo, as `f64::max` does). λ itself is left as it was.
+    /// `clamp(λ − (J·v + b)/k, lo, hi)` (module doc, [`Row::clamp`]). λ itself is left as it
+    /// was.
     #[inline]
     pub fn update(&self, rate: f64, k: f64) -> f64 {
-        (self.lambda - (rate + self.bias) / k)
-            .max(self.lo)
-            .min(self.hi)
+        self.clamp(self.lambda - (rate + self.bias) / k)
+    }
+
+    /// An impulse `lambda` brought within the bounds [lo, hi], computed as `max(lo)` then
+    /// `min(hi)` (a NaN gives lo, as `f64::max` does).
+    #[inline]
+    pub fn clamp(&self, lambda: f64) -> f64 {
+        lambda.max(self.lo).min(self.hi)
     }
 
     /// One projected Gauss–Seidel update over `bodies` (module doc): the rate from the axis,

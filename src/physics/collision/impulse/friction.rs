@@ -68,7 +68,7 @@ pub(super) fn sliding(
 ) -> bool {
     let (a, b) = (&motions[contact.body], &motions[contact.other]);
     let u = a.v + a.omega.cross(&contact.lever) - (b.v + b.omega.cross(&contact.lever_other));
-    row.lambda > 0.0
+    row.normal.lambda > 0.0
         && (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
 }
 
@@ -81,7 +81,7 @@ pub(super) fn prepare(
     friction: f64,
     motions: &[SolverBody],
 ) -> [Axis; 2] {
-    row.friction_bound = friction * row.lambda;
+    row.friction_bound = friction * row.normal.lambda;
     let (t1, t2) = tangents(&contact.normal);
     [axis_at(t1, contact, motions), axis_at(t2, contact, motions)]
 }
@@ -89,7 +89,7 @@ pub(super) fn prepare(
 /// Starts the friction sweeps from the last step's friction impulses, kept in their disks.
 pub(super) fn warm_start(rows: &mut [Row], directions: &[[Axis; 2]], motions: &mut [SolverBody]) {
     for (row, directions) in rows.iter_mut().zip(directions.iter()) {
-        row.normal.with_inverse();
+        row.normal.axis.with_inverse();
         let [t1, t2] = directions;
         let mut warm = [row.warm.dot(&t1.d), row.warm.dot(&t2.d)];
         let size = (warm[0] * warm[0] + warm[1] * warm[1]).sqrt();
@@ -250,7 +250,7 @@ pub(super) fn sweep(
                 stall::net_change(
                     rows.iter()
                         .zip(directions.iter())
-                        .flat_map(|(row, [t1, t2])| [&row.normal, t1, t2]),
+                        .flat_map(|(row, [t1, t2])| [&row.normal.axis, t1, t2]),
                     before,
                     motions,
                 )

@@ -390,7 +390,7 @@ impl Joined {
         };
         buffers.slides.clear();
         buffers.slides.extend(rows.iter().map(|r| {
-            if r.lambda > 0.0 {
+            if r.normal.lambda > 0.0 {
                 direct::Hold::Stick
             } else {
                 direct::Hold::Off
@@ -469,7 +469,7 @@ impl Joined {
             (self.axes.iter().zip(&self.owners).zip(&self.sides)).map(|((a, &o), &s)| (*a, o, s)),
         );
         let saved: Vec<SolverBody> = motions.to_vec();
-        let saved_rows: Vec<f64> = rows.iter().map(|r| r.lambda).collect();
+        let saved_rows: Vec<f64> = rows.iter().map(|r| r.normal.lambda).collect();
         // Active: every equality row, and the stops that approach at the start.
         let mut active: Vec<bool> = (selection.iter())
             .map(|(axis, _, stop)| !stop || axis.velocity(motions) < -tolerance)
@@ -513,7 +513,7 @@ impl Joined {
                     active[i] = !active[i];
                     motions.copy_from_slice(&saved);
                     for (row, &l) in rows.iter_mut().zip(&saved_rows) {
-                        row.lambda = l;
+                        row.normal.lambda = l;
                     }
                 }
                 None => {
@@ -525,7 +525,7 @@ impl Joined {
         if !answered {
             motions.copy_from_slice(&saved);
             for (row, &l) in rows.iter_mut().zip(&saved_rows) {
-                row.lambda = l;
+                row.normal.lambda = l;
             }
         }
         self.selection = selection;
@@ -627,7 +627,7 @@ impl Joined {
         self.entries.clear();
         self.spans.clear();
         for (row, [t1, t2]) in rows.iter().zip(directions) {
-            for axis in [&row.normal, t1, t2] {
+            for axis in [&row.normal.axis, t1, t2] {
                 self.sum.add(axis, 1.0, motions);
                 self.react_dense(motions);
                 let from = self.entries.len();
@@ -648,15 +648,15 @@ impl Joined {
                 rate_on(a, &self.entries[from..to])
             };
             self.blocks.push([
-                g(&row.normal, 0),
-                g(&row.normal, 1),
-                g(&row.normal, 2),
+                g(&row.normal.axis, 0),
+                g(&row.normal.axis, 1),
+                g(&row.normal.axis, 2),
                 g(t1, 1),
                 g(t1, 2),
                 g(t2, 2),
             ]);
             self.start
-                .push([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+                .push([row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
         }
         // A start from the active set (exact when it settles: the sweeps then confirm it),
         // taken only if it lowers K (the sweeps then keep lowering it: K never rises).
@@ -676,12 +676,12 @@ impl Joined {
             largest = 0.0f64;
             for (i, (row, [t1, t2])) in rows.iter_mut().zip(directions).enumerate() {
                 let [gnn, _, _, g11, g12, g22] = self.blocks[i];
-                if gnn > 1e-12 * row.normal.k {
-                    let u = row.normal.velocity(motions) + row.bias;
-                    let new = (row.lambda - u / gnn).max(0.0);
-                    let change = new - row.lambda;
+                if gnn > 1e-12 * row.normal.axis.k {
+                    let u = row.normal.axis.velocity(motions) + row.normal.bias;
+                    let new = (row.normal.lambda - u / gnn).max(0.0);
+                    let change = new - row.normal.lambda;
                     if change != 0.0 {
-                        row.lambda = new;
+                        row.normal.lambda = new;
                         self.apply_column(3 * i, change, motions);
                         largest = largest.max(change.abs() * gnn);
                     }
@@ -713,7 +713,7 @@ impl Joined {
         // The joints' impulses over the stage's change.
         for (i, (row, [t1, t2])) in rows.iter().zip(directions).enumerate() {
             let [n0, a0, b0] = self.start[i];
-            self.sum.add(&row.normal, row.lambda - n0, motions);
+            self.sum.add(&row.normal.axis, row.normal.lambda - n0, motions);
             self.sum.add(t1, row.lambda_tangent[0] - a0, motions);
             self.sum.add(t2, row.lambda_tangent[1] - b0, motions);
         }
@@ -753,8 +753,8 @@ impl Joined {
     fn move_to(&self, rows: &mut [Row], motions: &mut [SolverBody], to: &[[f64; 3]]) {
         for (i, row) in rows.iter_mut().enumerate() {
             let [n, t1, t2] = to[i];
-            let [n0, a0, b0] = [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
-            row.lambda = n;
+            let [n0, a0, b0] = [row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
+            row.normal.lambda = n;
             row.lambda_tangent = [t1, t2];
             self.apply_column(3 * i, n - n0, motions);
             self.apply_column(3 * i + 1, t1 - a0, motions);
@@ -829,7 +829,7 @@ impl ActiveSet {
         let n = 3 * m;
         let axis = |k: usize| -> &Axis {
             match k % 3 {
-                0 => &rows[k / 3].normal,
+                0 => &rows[k / 3].normal.axis,
                 t => &directions[k / 3][t - 1],
             }
         };
@@ -845,15 +845,15 @@ impl ActiveSet {
         self.lambda0.clear();
         for (row, _) in rows.iter().zip(directions) {
             self.lambda0
-                .extend([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+                .extend([row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
         }
         for k in 0..n {
-            let bias = if k % 3 == 0 { rows[k / 3].bias } else { 0.0 };
+            let bias = if k % 3 == 0 { rows[k / 3].normal.bias } else { 0.0 };
             self.u0.push(axis(k).velocity(motions) + bias);
         }
         self.modes.clear();
         self.modes.extend((0..m).map(|i| {
-            if rows[i].lambda > 0.0 || self.u0[3 * i] < -tolerance {
+            if rows[i].normal.lambda > 0.0 || self.u0[3 * i] < -tolerance {
                 Mode::Stick
             } else {
                 Mode::Off
@@ -861,7 +861,7 @@ impl ActiveSet {
         }));
         self.lambda.clear();
         self.lambda
-            .extend(rows.iter().map(|r| [r.lambda, r.lambda_tangent[0], r.lambda_tangent[1]]));
+            .extend(rows.iter().map(|r| [r.normal.lambda, r.lambda_tangent[0], r.lambda_tangent[1]]));
         let mut work = (n * n / 4) as u64;
         let mut x = vec![0.0; n];
         for _ in 0..ACTIVE_ROUNDS {
@@ -1133,10 +1133,9 @@ mod tests {
         let mut joined = Joined::default();
         joined.prepare(&rows, &motions, 1);
         let contact = |approach: f64| super::super::Row {
-            normal: Axis::jacobian(
-                Vector3::x(),
-                (0, Vector3::zeros()),
-                Some((1, Vector3::zeros())),
+            normal: ConstraintRow::contact(
+                Axis::jacobian(Vector3::x(), (0, Vector3::zeros()), Some((1, Vector3::zeros()))),
+                0.0,
             ),
             approach,
             ..Default::default()

@@ -255,9 +255,9 @@ pub(super) fn setup(
         scratch.groups.push(Group {
             first: scratch.constraints.len(),
             tangents,
-            lambda: [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]],
+            lambda: [row.normal.lambda, row.lambda_tangent[0], row.lambda_tangent[1]],
             bound: row.friction_bound,
-            k: row.normal.k,
+            k: row.normal.axis.k,
         });
         if !tangents {
             scratch.groups.last_mut().unwrap().lambda[1..].fill(0.0);
@@ -265,13 +265,13 @@ pub(super) fn setup(
         let local = &scratch.local;
         scratch
             .constraints
-            .push(constraint(&row.normal, row.bias, local, motions));
+            .push(constraint(&row.normal.axis, row.normal.bias, local, motions));
         if tangents {
             for t in &directions[p] {
                 scratch.constraints.push(constraint(t, 0.0, local, motions));
             }
         }
-        if row.normal.k.is_nan() || row.normal.k <= 0.0 {
+        if row.normal.axis.k.is_nan() || row.normal.axis.k <= 0.0 {
             return false;
         }
     }
@@ -571,7 +571,7 @@ mod tests {
         assert!(b.omega.norm() < 1e-8, "{:?}", b.omega);
         assert!(objective(&rows, &motions) < before);
         assert_in_cone(&rows);
-        let total: f64 = rows.iter().map(|r| r.lambda).sum();
+        let total: f64 = rows.iter().map(|r| r.normal.lambda).sum();
         assert!((total - 0.1).abs() < 1e-9, "{total}");
     }
 

@@ -308,7 +308,7 @@ fn step(
     saved.clear();
     saved.extend_from_slice(motions);
     subspace_rows.clear();
-    subspace_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+    subspace_rows.extend(rows.iter().map(|r| (r.normal.lambda, r.lambda_tangent)));
     // Backtracking: a step that did not lower F (a nearly singular H solved inaccurately) is
     // undone and tried again 8 times shorter, a few times.
     for attempt in 0..SUBSPACE_BACKTRACKS {
@@ -325,7 +325,7 @@ fn step(
         }
         motions.copy_from_slice(saved);
         for (row, &(lambda, tangent)) in rows.iter_mut().zip(subspace_rows.iter()) {
-            row.lambda = lambda;
+            row.normal.lambda = lambda;
             row.lambda_tangent = tangent;
         }
         if projected_first && attempt == 0 {
@@ -357,19 +357,19 @@ fn gather_unknowns(
     order.clear();
     order.extend(0..rows.len());
     order.sort_by_key(|&i| {
-        let n = &rows[i].normal;
+        let n = &rows[i].normal.axis;
         n.b.map_or(n.a.body, |b| b.body.max(n.a.body))
     });
     unknowns.clear();
     for &i in order.iter() {
         let row = &rows[i];
-        if row.lambda > 0.0 {
-            let gradient = row.normal.velocity(motions) + row.bias;
+        if row.normal.lambda > 0.0 {
+            let gradient = row.normal.axis.velocity(motions) + row.normal.bias;
             unknowns.push(Unknown {
                 row: i,
                 tangent: None,
                 before: [gradient, 0.0],
-                direction: row.normal,
+                direction: row.normal.axis,
             });
         }
         let bound = row.friction_bound;
@@ -443,8 +443,8 @@ fn ratio_test(rows: &[Row], unknowns: &[Unknown], delta: &[f64]) -> (f64, Option
         let row = &rows[unknown.row];
         match unknown.tangent {
             None => {
-                if row.lambda + delta[p] < 0.0 && row.lambda / -delta[p] < alpha {
-                    alpha = row.lambda / -delta[p];
+                if row.normal.lambda + delta[p] < 0.0 && row.normal.lambda / -delta[p] < alpha {
+                    alpha = row.normal.lambda / -delta[p];
                     blocking = Some(p);
                 }
                 p += 1;
@@ -502,11 +502,11 @@ fn apply_step(
                 let new = if blocking == Some(p) {
                     0.0
                 } else {
-                    (row.lambda + alpha * delta[p]).max(0.0)
+                    (row.normal.lambda + alpha * delta[p]).max(0.0)
                 };
-                let step = new - row.lambda;
-                row.lambda = new;
-                row.normal.apply(step, motions);
+                let step = new - row.normal.lambda;
+                row.normal.lambda = new;
+                row.normal.axis.apply(step, motions);
                 p += 1;
             }
             Some((c, _)) => {
@@ -553,8 +553,8 @@ fn objective_change(
         let (lambda, tangent) = saved[unknown.row];
         match unknown.tangent {
             None => {
-                let after = row.normal.velocity(motions) + row.bias;
-                change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
+                let after = row.normal.axis.velocity(motions) + row.normal.bias;
+                change += (row.normal.lambda - lambda) * 0.5 * (unknown.before[0] + after);
                 p += 1;
             }
             Some(_) => {
