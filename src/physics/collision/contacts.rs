@@ -1,5 +1,5 @@
 //! Every contact row of a world for the `impulse` response: each moving body against each
-//! fixed thing (`fixed`: an obstacle or a fixed body, through one function, [`against_fixed`]),
+//! fixed thing (`fixed`: an obstacle or a fixed body, through one function, `against_fixed`),
 //! and each pair of moving bodies.
 //!
 //! ```text
@@ -92,6 +92,7 @@ struct Moving<'a> {
 }
 
 impl<'a> Moving<'a> {
+    #[inline]
     fn new(input: &'a CollideInput, index: usize, state: &'a State) -> Moving<'a> {
         let body = &input.bodies[index];
         Moving {

@@ -403,7 +403,7 @@ mod tests {
             at(Vector3::new(0.0, 0.3, 0.0)),
             at(Vector3::new(0.0, -0.3, 0.0)),
         );
-        let on_obstacle = rows(&[ball.clone()], &[obstacle], &[from], &[to]);
+        let on_obstacle = rows(std::slice::from_ref(&ball), &[obstacle], &[from], &[to]);
         let on_body = rows(&[ball, slab], &[], &[from, slab_state], &[to, slab_state]);
         for found in [&on_obstacle, &on_body] {
             assert!(!found.is_empty());

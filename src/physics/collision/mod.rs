@@ -8,9 +8,10 @@
 //! bodies, then one static entry per obstacle (1/M = 0, I⁻¹ = 0, at rest). A fixed body and
 //! an obstacle are the same kind of static thing there ([`moves`]): no end of a row, exact
 //! zeros in a relative velocity, so the responses (`impulse`, `soft_step`) have no
-//! body-against-obstacle branch. Detection keeps each obstacle kind's closed-form tests
-//! (`obstacle/kinds/`: a plane stays a plane), and the row label [`Against`] still says what
-//! B is for the front ends.
+//! body-against-obstacle branch. Detection and `seed` reach a fixed body and an obstacle the
+//! same way too, as a fixed thing (`fixed`), which keeps each obstacle kind's closed-form tests
+//! (`obstacle/kinds/`: a plane stays a plane); the row label [`Against`] still says what B is
+//! for the front ends.
 //!
 //! | file | idea |
 //! |---|---|
