@@ -118,10 +118,39 @@ pub const JOINED_FRICTION_CONTACTS: usize = 16;
 /// the joints and sliding modes answered 9 of its 73 stages, and each declined one paid its
 /// rounds (up to [`SLIDE_ROUNDS`] factorisations a try, two tries) and then the contacts'
 /// stages again.
+///
+/// Why the stages decline (measured at 49f6e0c with the gate lifted, every try of
+/// `Joined::sticking` traced): none is refused outright (no normal pulling at the end, no
+/// stop pulling, no approach); all 123 declined tries end at the [`SLIDE_ROUNDS`] cap with
+/// modes still changing, in three patterns:
+///
+/// - the slide directions' fixed point diverges: the largest turn grows about 2.7× a round
+///   (6.5e-5, 1.8e-4, 4.7e-4 … 2.5e-2 rad), the four corners of a landing face turning each
+///   other's directions (each by about −3 times its own error: [`direct::SLIDE_TURN`]);
+/// - it converges, too slowly for 8 rounds (ratio about 0.5: 4.4e-2 … 6.7e-4 rad);
+/// - the modes cycle: a corner whose sticking normal pulls separates, approaches without
+///   its impulse and joins again (Off ↔ Stick or Slide, period 2–6 rounds, often with the
+///   slide direction reversed).
+///
+/// Tried, not kept (callgrind, `chain_steps landing 1000`; today's path, the gate in place:
+/// 497.1M): a secant scale of each round's turn, α = α' / (1 − ρ) with ρ the ratio of this
+/// round's turns to the last's (clamped to 0.1 … 4), and a separated contact that approaches
+/// rejoining as a slider against its slip: 8 rounds answer 25 of 71 stages, 16 rounds 46 of
+/// 75, 32 rounds 54 of 79, at 836M for 32. Also one try (Exact only), the step's work budget given back on
+/// restore and no stage-1 sweeps after a declined joined direct solve (their result is thrown
+/// away by the restore): 667M with 8 of 74 answered; with the secant turns and 16 rounds 699M
+/// (+41 %), 35 of 73. A fixed under-relaxation α = 1/4 answers fewer (10: it slows the
+/// converging cases), and a sliding contact whose direction reverses sticking made it worse
+/// (1007M). The cost is every round refactoring the whole banded system (27 joint rows and
+/// the contacts): `Envelope::solve` 30.6M → 86.8M, `direct::sticking` 10.8M → 36.4M. What
+/// would change that: an anti-cycling rule for the modes, an update of the factor for the
+/// few unknowns a round changes instead of a new one, or one wrench row set per face (the
+/// corners' redundancy is what couples their directions).
 pub const JOINED_DIRECT_LARGE: bool = false;
 
 /// Rounds of the direct solve with joints and sliding contacts (`Joined::sticking`) before
-/// it declines.
+/// it declines (more answer more stages of a chain landing, at a round's factorisation each:
+/// [`JOINED_DIRECT_LARGE`]).
 pub const SLIDE_ROUNDS: usize = 8;
 
 /// The joint rows of one response, weighed over the step's motions, and what they gave.
