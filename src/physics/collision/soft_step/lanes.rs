@@ -18,6 +18,13 @@
 //! operation). A stack is one chain of runs (one per level, no pairs); a pyramid or a wall is
 //! as wide as its courses.
 //!
+//! Two runs between two bodies each take four lanes, `[A of x, A of y, B of x, B of y]`
+//! (`f4`): the four bodies' v and ω in six registers, a row's A and B ends in the same
+//! instructions. A row waits on the one before it (its bodies' velocities), so a sweep is
+//! bound by that chain's latency more than by its instructions: two such pairs on one level
+//! are taken together, row by row in turn (a `Four` step), two chains that do not wait on
+//! each other.
+//!
 //! # Piped
 //!
 //! A chain gives one sweep nothing to pair, but a sub-step has two sweeps, and the relax of
@@ -35,9 +42,8 @@
 //! body and row again sees the sequential sub-step's operations in its order, so the numbers
 //! are the same bit for bit; a stack's solve of run k and relax of run k − 2 share a level and
 //! go side by side. Taken only where one sweep would solve most of its rows alone (at least
-//! `MIN_PIPED_RUNS` runs): a pair costs about the instructions of its two rows alone (the
-//! lanes' 12 velocity registers spill), so it gains only where it fills otherwise idle
-//! levels; on a pyramid, already paired, piping measured 7 % more instructions.
+//! `MIN_PIPED_RUNS` runs): it gains only where it fills otherwise idle levels; on a pyramid,
+//! already paired, piping measured 7 % more instructions.
 
 use super::bodies::{Bodies, Motion};
 use super::f2::F2;
@@ -47,14 +53,26 @@ use super::sweep::{coefficients, solve_run};
 use super::{clamp_disk, Softness};
 
 /// One step of a scheduled sweep: a run alone, or two runs that share no body side by side
-/// (with where their rows' packed constants start in [`Lanes::packed`]), each in the biased
-/// solve (`true`) or the relax; or, in a piped sub-step, moving the bodies
-/// `Lanes::moved[range]` a sub-step on.
+/// (a [`Pair`]), or two such pairs of runs between two bodies each, their rows taken in turn
+/// (two chains of rows that do not wait on each other); or, in a piped sub-step, moving the
+/// bodies `Lanes::moved[range]` a sub-step on.
 #[derive(Debug, Clone, Copy)]
 enum Step {
     One(usize, bool),
-    Two(usize, usize, usize, [bool; 2]),
+    Two(Pair),
+    Four(Pair, Pair),
     Advance(usize, usize),
+}
+
+/// Two runs x and y that share no body, side by side, with where their rows' packed
+/// constants start (`at`, in [`Lanes::quads`] for runs with a B end, else
+/// [`Lanes::packed`]), each in the biased solve (`true`) or the relax.
+#[derive(Debug, Clone, Copy)]
+struct Pair {
+    x: usize,
+    y: usize,
+    at: usize,
+    biased: [bool; 2],
 }
 
 /// The schedule of the step's runs (module doc).
@@ -85,6 +103,8 @@ pub(super) struct Lanes {
 /// The fewest runs a piped schedule is made for. A pair of rows costs about the instructions
 /// of the two alone, so piping pays only on long chains: measured (CPU time, soft-step) a
 /// stack of 10 (10 runs) breaks even at 13 % more instructions, stacks of 20 and 40 gain 4–5 %.
+/// With the pairs in four lanes (`f4`) a piped stack of 10 still costs 4 % more instructions
+/// (callgrind, 300 steps: 53.9M → 56.1M) for a time within this machine's noise.
 const MIN_PIPED_RUNS: usize = 16;
 
 /// A counting sort of `0..keys.len()` by key (stable): `order` the indices, `start[k]` where
@@ -126,17 +146,25 @@ impl Lanes {
         } = self;
         packed.clear();
         quads.clear();
+        let mut pack = |p: &mut Pair| {
+            let pair = rows.runs[p.x].b.is_some();
+            p.at = if pair { quads.len() } else { packed.len() };
+            let (x, y) = (&rows.runs[p.x].rows, &rows.runs[p.y].rows);
+            let pairs = rows.rows[x.clone()].iter().zip(&rows.rows[y.clone()]);
+            if pair {
+                quads.extend(pairs.map(|(x, y)| Quads::of(x, y)));
+            } else {
+                packed.extend(pairs.map(|(x, y)| Packed::of(x, y)));
+            }
+        };
         for step in steps.iter_mut() {
-            if let Step::Two(x, y, at, _) = step {
-                let pair = rows.runs[*x].b.is_some();
-                *at = if pair { quads.len() } else { packed.len() };
-                let (x, y) = (&rows.runs[*x].rows, &rows.runs[*y].rows);
-                let pairs = rows.rows[x.clone()].iter().zip(&rows.rows[y.clone()]);
-                if pair {
-                    quads.extend(pairs.map(|(x, y)| Quads::of(x, y)));
-                } else {
-                    packed.extend(pairs.map(|(x, y)| Packed::of(x, y)));
+            match step {
+                Step::Two(p) => pack(p),
+                Step::Four(p, q) => {
+                    pack(p);
+                    pack(q);
                 }
+                _ => {}
             }
         }
     }
@@ -201,17 +229,32 @@ impl Lanes {
         let mut alone = 0;
         for l in 1..=top {
             let mut pending: [Option<usize>; 2] = [None, None];
+            // A pair of runs with B ends waiting for a second on this level (a `Four`).
+            let mut held: Option<Pair> = None;
             for &e in &order[start[l]..start[l + 1]] {
                 let (r, biased) = (e % count, e < count);
                 let kind = usize::from(runs[r].b.is_some());
                 match pending[kind].take() {
                     Some(p) => {
                         let (q, solve) = (p % count, p < count);
-                        steps.push(Step::Two(q, r, 0, [solve, biased]));
+                        let pair = Pair {
+                            x: q,
+                            y: r,
+                            at: 0,
+                            biased: [solve, biased],
+                        };
+                        if kind == 0 {
+                            steps.push(Step::Two(pair));
+                        } else if let Some(first) = held.take() {
+                            steps.push(Step::Four(first, pair));
+                        } else {
+                            held = Some(pair);
+                        }
                     }
                     None => pending[kind] = Some(e),
                 }
             }
+            steps.extend(held.map(Step::Two));
             for e in pending.into_iter().flatten() {
                 alone += runs[e % count].rows.len();
                 steps.push(Step::One(e % count, e < count));
@@ -238,9 +281,13 @@ impl Lanes {
         for step in &self.steps {
             match *step {
                 Step::One(r, _) => solve_run(&runs[r], rows, motions, friction, h, biased),
-                Step::Two(x, y, at, _) => {
-                    let (x, y) = (&runs[x], &runs[y]);
-                    sweep.both::<Q>(self, (x, y, at), [biased; 2], rows, motions);
+                Step::Two(p) => {
+                    let (x, y) = (&runs[p.x], &runs[p.y]);
+                    sweep.both::<Q>(self, (x, y, p.at), [biased; 2], rows, motions);
+                }
+                Step::Four(p, q) => {
+                    let biased = [[biased; 2]; 2];
+                    sweep.four::<Q>(self, [&p, &q], biased, runs, rows, motions);
                 }
                 Step::Advance(..) => {}
             }
@@ -265,15 +312,17 @@ impl Lanes {
                     }
                     solve_run(&runs[r], rows, &mut bodies.motions, friction, h, biased);
                 }
-                Step::Two(x, y, at, biased) => {
-                    for (r, biased) in [(x, biased[0]), (y, biased[1])] {
-                        if !biased {
-                            refresh_run(&runs[r], rows, &bodies.places);
-                        }
-                    }
+                Step::Two(p) => {
+                    refresh_relaxed(&p, runs, rows, bodies);
                     let motions = &mut bodies.motions;
-                    let (x, y) = (&runs[x], &runs[y]);
-                    sweep.both::<Q>(self, (x, y, at), biased, rows, motions);
+                    let (x, y) = (&runs[p.x], &runs[p.y]);
+                    sweep.both::<Q>(self, (x, y, p.at), p.biased, rows, motions);
+                }
+                Step::Four(p, q) => {
+                    refresh_relaxed(&p, runs, rows, bodies);
+                    refresh_relaxed(&q, runs, rows, bodies);
+                    let (motions, biased) = (&mut bodies.motions, [p.biased, q.biased]);
+                    sweep.four::<Q>(self, [&p, &q], biased, runs, rows, motions);
                 }
                 Step::Advance(from, to) => {
                     for &b in &self.moved[from..to] {
@@ -281,6 +330,16 @@ impl Lanes {
                     }
                 }
             }
+        }
+    }
+}
+
+/// The gaps of the runs of `p` that are relaxed (piped: refreshed just before).
+#[inline(always)]
+fn refresh_relaxed(p: &Pair, runs: &[Run], rows: &mut [Row], bodies: &Bodies) {
+    for (r, biased) in [(p.x, p.biased[0]), (p.y, p.biased[1])] {
+        if !biased {
+            refresh_run(&runs[r], rows, &bodies.places);
         }
     }
 }
@@ -496,10 +555,61 @@ impl Sweep {
         rows: &mut [Row],
         motions: &mut [Motion],
     ) {
+        let ends = Ends::<Q>::of(x, y, motions);
+        self.finish_pairs((x, y), biased, (quads, 0), ends, rows, motions);
+    }
+
+    /// Two pairs of runs between two bodies each (`p`, `q`, sharing no body), each pair side
+    /// by side in four lanes, their rows taken in turn over their common length (two chains
+    /// that do not wait on each other: the second's row runs while the first's waits), then
+    /// each pair finished alone (`finish_pairs`).
+    #[inline(always)]
+    fn four<Q: Quad>(
+        &self,
+        lanes: &Lanes,
+        [p, q]: [&Pair; 2],
+        biased: [[bool; 2]; 2],
+        runs: &[Run],
+        rows: &mut [Row],
+        motions: &mut [Motion],
+    ) {
+        let (x1, y1, x2, y2) = (&runs[p.x], &runs[p.y], &runs[q.x], &runs[q.y]);
+        let (mut e1, mut e2) = (Ends::<Q>::of(x1, y1, motions), Ends::<Q>::of(x2, y2, motions));
+        let (q1, q2) = (&lanes.quads[p.at..], &lanes.quads[q.at..]);
+        let common = |x: &Run, y: &Run| x.rows.len().min(y.rows.len());
+        let both = common(x1, y1).min(common(x2, y2));
+        let soft = [[&x1.soft, &y1.soft], [&x2.soft, &y2.soft]];
+        for k in 0..both {
+            let at = [x1, y1, x2, y2].map(|r| r.rows.start + k);
+            let [a, b, c, d] = rows.get_disjoint_mut(at).expect("the runs' rows are apart");
+            let ([a, b], [c, d]) = ([a, b], [c, d]);
+            self.pair_normal::<Q>([a, b], &q1[k], soft[0], biased[0], &mut e1);
+            self.pair_normal::<Q>([c, d], &q2[k], soft[1], biased[1], &mut e2);
+            if self.friction > 0.0 {
+                self.pair_friction::<Q>([a, b], &q1[k], &mut e1);
+                self.pair_friction::<Q>([c, d], &q2[k], &mut e2);
+            }
+        }
+        self.finish_pairs((x1, y1), biased[0], (q1, both), e1, rows, motions);
+        self.finish_pairs((x2, y2), biased[1], (q2, both), e2, rows, motions);
+    }
+
+    /// Runs x and y (both with a B end) in four lanes (`ends`) from their `from`-th rows
+    /// over their common length, then each one's remaining rows alone; the motions written
+    /// back.
+    #[inline(always)]
+    fn finish_pairs<Q: Quad>(
+        &self,
+        (x, y): (&Run, &Run),
+        biased: [bool; 2],
+        (quads, from): (&[Quads], usize),
+        mut ends: Ends<Q>,
+        rows: &mut [Row],
+        motions: &mut [Motion],
+    ) {
         let (xb, yb) = (x.b.unwrap_or(x.a), y.b.unwrap_or(y.a));
-        let mut ends = Ends::<Q>::of([&motions[x.a], &motions[y.a], &motions[xb], &motions[yb]]);
         let common = x.rows.len().min(y.rows.len());
-        for (k, p) in quads[..common].iter().enumerate() {
+        for (k, p) in quads[..common].iter().enumerate().skip(from) {
             let (row_x, row_y) = two_rows(rows, x.rows.start + k, y.rows.start + k);
             let soft = [&x.soft, &y.soft];
             self.pair_rows::<Q>([row_x, row_y], p, soft, biased, &mut ends);
@@ -636,6 +746,22 @@ impl Sweep {
         biased: [bool; 2],
         e: &mut Ends<Q>,
     ) {
+        self.pair_normal::<Q>([x, y], p, soft, biased, e);
+        if self.friction > 0.0 {
+            self.pair_friction::<Q>([x, y], p, e);
+        }
+    }
+
+    /// The normal updates of two rows between two bodies each, in four lanes.
+    #[inline(always)]
+    fn pair_normal<Q: Quad>(
+        &self,
+        [x, y]: [&mut Row; 2],
+        p: &Quads,
+        soft: [&Softness; 2],
+        biased: [bool; 2],
+        e: &mut Ends<Q>,
+    ) {
         let n = p.normal.each_ref().map(Q::load);
         // Lanes [n·v_A, −n·v_B] + [(r_A×n)·ω_A, (r_B×(−n))·ω_B], then the halves added: the
         // scalar `u = (n·v_A + (r_A×n)·ω_A) + (−n·v_B + (r_B×(−n))·ω_B)`.
@@ -652,9 +778,6 @@ impl Sweep {
                 e.v[k] = pick4(live, e.v[k].add(n[k].mul(dv)), e.v[k]);
                 e.omega[k] = pick4(live, e.omega[k].add(w.mul(c)), e.omega[k]);
             }
-        }
-        if self.friction > 0.0 {
-            self.pair_friction::<Q>([x, y], p, e);
         }
     }
 
@@ -740,10 +863,17 @@ struct Ends<Q> {
 }
 
 impl<Q: Quad> Ends<Q> {
+    /// The motions of runs x and y's ends in lanes.
+    #[inline(always)]
+    fn of(x: &Run, y: &Run, motions: &[Motion]) -> Ends<Q> {
+        let (xb, yb) = (x.b.unwrap_or(x.a), y.b.unwrap_or(y.a));
+        Ends::of_four([&motions[x.a], &motions[y.a], &motions[xb], &motions[yb]])
+    }
+
     /// The four motions `[A of x, A of y, B of x, B of y]` in lanes (built from halves in
     /// registers, not stored and loaded back).
     #[inline(always)]
-    fn of([ax, ay, bx, by]: [&Motion; 4]) -> Ends<Q> {
+    fn of_four([ax, ay, bx, by]: [&Motion; 4]) -> Ends<Q> {
         let four = |x: &nalgebra::Vector3<f64>, y, z, w| -> V4<Q> {
             let half = |a: &nalgebra::Vector3<f64>, b: &nalgebra::Vector3<f64>, k: usize| {
                 F2::new(a[k], b[k])
@@ -847,8 +977,9 @@ mod tests {
     }
 
     /// Random runs over a few bodies (some against obstacles, some of unequal lengths, some
-    /// rows speculative, some pushing, some sliding): the scheduled sweep in lanes leaves the
-    /// motions and the rows' impulses bit for bit where the sequential sweep does.
+    /// rows speculative, some pushing, some sliding): the scheduled sweep in lanes (two and
+    /// four, in both builds of the four) leaves the motions and the rows' impulses bit for bit
+    /// where the sequential sweep does.
     #[test]
     fn the_lanes_give_the_sequential_sweep_bit_for_bit() {
         let mut g = Lcg(7);
@@ -907,10 +1038,17 @@ mod tests {
         let mut lanes = Lanes::default();
         lanes.schedule(&rows, bodies, false);
         let pairs = |pair: bool| {
-            let two = |s: &&Step| matches!(s, Step::Two(x, ..) if rows.runs[*x].b.is_some() == pair);
-            lanes.steps.iter().filter(two).count()
+            let of = |p: &Pair| usize::from(rows.runs[p.x].b.is_some() == pair);
+            let count = |s: &Step| match s {
+                Step::Two(p) => of(p),
+                Step::Four(p, q) => of(p) + of(q),
+                _ => 0,
+            };
+            lanes.steps.iter().map(count).sum::<usize>()
         };
         assert!(pairs(true) > 0 && pairs(false) > 0);
+        let four = |s: &Step| matches!(s, Step::Four(..));
+        assert!(lanes.steps.iter().any(four), "no two pairs of runs taken together");
         let (mut one_rows, mut one) = (rows.clone(), motions.clone());
         for biased in [true, false, true] {
             for run in one_rows.runs.clone() {
