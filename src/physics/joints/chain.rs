@@ -101,21 +101,90 @@ impl Nearby<'_> {
     pub(super) fn holds(&self, rows: usize) -> bool {
         self.reduced.holds(rows) || self.solver.holds(rows)
     }
+}
 
-    /// K λ = `rhs` with the held factor (K of its own configuration), λ over `rhs`; false
-    /// (`rhs` untouched) when it holds none of `rows` rows.
+/// What the projection asks of a solve K μ = rhs with a hinge chain's reduced factor, μ never
+/// formed (`reduced::Reduced::displace`, `impulses`).
+pub(super) enum Wanted<'a> {
+    /// Each body's W Jᵀ μ = (Δx, θ) (a position pass), at its index (at rest off the chain).
+    Moves(&'a mut Vec<(Vector3<f64>, Vector3<f64>)>),
+    /// Each body's Jᵀ μ (a velocity pass), at its index (at rest off the chain), and each
+    /// joint's share on its body A added to the reactions.
+    Impulses(&'a mut Vec<Loads>, &'a mut [Loads]),
+}
+
+/// What a solve for the projection left.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Solved {
+    /// Nothing: no factor of these rows was held.
+    Not,
+    /// μ over the right-hand side (a banded factor).
+    Multipliers,
+    /// What was [`Wanted`] (a reduced factor).
+    Answered,
+}
+
+impl Reduced {
+    /// What is `wanted` for K μ = `rhs` with the held factor, one entry per body of the
+    /// factor's.
     #[inline(always)]
-    pub(super) fn again(&mut self, rows: usize, rhs: &mut [f64]) -> bool {
+    fn answer(&mut self, rhs: &[f64], wanted: Wanted) {
+        let bodies = self.bodies();
+        match wanted {
+            Wanted::Moves(moves) => {
+                moves.clear();
+                moves.resize(bodies, (Vector3::zeros(), Vector3::zeros()));
+                self.displace(rhs, moves);
+            }
+            Wanted::Impulses(moved, reactions) => {
+                moved.clear();
+                moved.resize(bodies, Loads::default());
+                self.impulses(rhs, moved, reactions);
+            }
+        }
+    }
+}
+
+impl Nearby<'_> {
+    /// K μ = `rhs` with the held factor (K of its own configuration): what is `wanted` with
+    /// a reduced one, μ over `rhs` with a banded one, nothing (`rhs` untouched) when it holds
+    /// none of `rows` rows.
+    #[inline(always)]
+    pub(super) fn again_for(&mut self, rows: usize, rhs: &mut [f64], wanted: Wanted) -> Solved {
         if self.reduced.holds(rows) {
-            self.reduced.solve(rhs);
-            true
+            self.reduced.answer(rhs, wanted);
+            Solved::Answered
+        } else if self.solver.holds(rows) && again(rhs, self.solver) {
+            Solved::Multipliers
         } else {
-            self.solver.holds(rows) && again(rhs, self.solver)
+            Solved::Not
         }
     }
 }
 
 impl Chain {
+    /// K μ = `rhs` for the built rows as [`Chain::solve`], but through a hinge tree's
+    /// reduced factor what is `wanted` instead of μ ([`Solved::Answered`]); μ over `rhs`
+    /// otherwise ([`Solved::Multipliers`]).
+    #[inline(always)]
+    pub(super) fn solve_for(
+        &mut self,
+        inverse: &[Inverse],
+        rhs: &mut [f64],
+        solver: &mut Solver,
+        wanted: Wanted,
+    ) -> Solved {
+        if self.hinges && self.reduced.factor(&self.links, inverse) {
+            if solver.holds(self.rows()) {
+                *solver = Solver::default();
+            }
+            self.reduced.answer(rhs, wanted);
+            return Solved::Answered;
+        }
+        chain_multipliers(&self.links, inverse, rhs, solver);
+        Solved::Multipliers
+    }
+
     /// The joints' compact rows at `poses`, when they are a chain of ball and hinge joints in
     /// order (module doc); false (nothing built, no reduced factor held) otherwise.
     #[inline(always)]
@@ -267,10 +336,11 @@ impl Chain {
         let mut worst = 0.0_f64;
         for link in &self.links {
             let s = &link.separation;
-            for c in [s.x, s.y, s.z].iter().chain(&link.c[..link.angular]) {
-                worst = worst.max(c.abs());
-                rhs.push(-c);
-            }
+            let [c0, c1] = link.c;
+            let all = [-s.x, -s.y, -s.z, -c0, -c1];
+            let c = &all[..link.rows()];
+            worst = c.iter().fold(worst, |w, c| w.max(c.abs()));
+            rhs.extend_from_slice(c);
         }
         worst
     }
@@ -289,10 +359,9 @@ impl Chain {
                 point -= b.v + b.w.cross(&link.rb);
                 turn -= b.w;
             }
-            rhs.extend([-point.x, -point.y, -point.z]);
-            for g in &link.g[..link.angular] {
-                rhs.push(-g.dot(&turn));
-            }
+            let [g0, g1] = &link.g;
+            let all = [-point.x, -point.y, -point.z, -g0.dot(&turn), -g1.dot(&turn)];
+            rhs.extend_from_slice(&all[..link.rows()]);
         }
     }
 

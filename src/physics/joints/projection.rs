@@ -21,7 +21,7 @@
 //! Returns the velocity impulse each joint applied to its body A (its share of the reaction,
 //! impulse / dt in `--joint`).
 
-use super::chain::{Chain, Nearby};
+use super::chain::{Chain, Nearby, Solved, Wanted};
 use super::rows::{rate, rows_of, Pose, Row};
 use super::solve::{multipliers, Inverse, Solver};
 use super::{turn, Links};
@@ -29,7 +29,7 @@ use crate::physics::body::Body;
 use crate::physics::derive::derive;
 use crate::physics::effects::Loads;
 use crate::physics::state::{Orientation, State};
-use nalgebra::Vector3;
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Reused buffers.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -39,7 +39,8 @@ pub struct Buffers {
     inverse: Vec<Inverse>,
     rhs: Vec<f64>,
     solver: Solver,
-    /// Per body, Σ μ lin and Σ μ ang of a pass.
+    /// Per body, Σ μ lin and Σ μ ang of a pass; a hinge chain's reduced solve: its move
+    /// (Δx, θ).
     moves: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// A chain of ball and hinge joints: its compact rows (`chain`), used instead of `rows`
     /// when `chained`; per body and per joint, Σ μ Jᵀ of a pass.
@@ -94,16 +95,6 @@ fn count(b: &Buffers) -> usize {
         b.chain.rows()
     } else {
         b.rows.len()
-    }
-}
-
-/// (J W Jᵀ) μ = `b.rhs` at the last build, μ over `b.rhs`, the factor kept in `b.solver`.
-#[inline(always)]
-fn solve(b: &mut Buffers) {
-    if b.chained {
-        b.chain.solve(&b.inverse, &mut b.rhs, &mut b.solver);
-    } else {
-        multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
     }
 }
 
@@ -313,21 +304,74 @@ fn positions(
             break;
         }
         let rows = count(b);
-        let chord = pass == 0
-            && nearby
-                .as_deref_mut()
-                .is_some_and(|s| s.again(rows, &mut b.rhs));
-        if !chord {
-            solve(b);
+        let mut solved = match nearby.as_deref_mut() {
+            Some(s) if pass == 0 => s.again_for(rows, &mut b.rhs, Wanted::Moves(&mut b.moves)),
+            _ => Solved::Not,
+        };
+        if solved == Solved::Not {
+            solved = solve_for(b, None);
             held = if worst < REUSE_BELOW {
                 Held::Own
             } else {
                 Held::Anew
             };
         }
-        shift_bodies(states, b);
+        if solved == Solved::Answered {
+            move_bodies(states, &b.moves);
+        } else {
+            shift_bodies(states, b);
+        }
     }
     held
+}
+
+/// (J W Jᵀ) μ = `b.rhs` at the last build, μ over `b.rhs`, the factor kept in `b.solver`
+/// (or in the chain's reduced factor: then, instead of μ, each body's move into `b.moves`,
+/// or with `impulses` each body's Jᵀ μ into `b.moved` and the joints' shares into
+/// `impulses`: `chain::Chain::solve_for`).
+#[inline(always)]
+fn solve_for(b: &mut Buffers, impulses: Option<&mut [Loads]>) -> Solved {
+    if b.chained {
+        let wanted = match impulses {
+            None => Wanted::Moves(&mut b.moves),
+            Some(impulses) => Wanted::Impulses(&mut b.moved, impulses),
+        };
+        b.chain
+            .solve_for(&b.inverse, &mut b.rhs, &mut b.solver, wanted)
+    } else {
+        multipliers(&b.rows, &b.inverse, &mut b.rhs, &mut b.solver);
+        Solved::Multipliers
+    }
+}
+
+/// Every body moved by its (Δx, θ) of a hinge chain's reduced solve: `x += Δx`,
+/// `q ← exp(θ) q`.
+#[inline(always)]
+fn move_bodies(states: &mut [State], moves: &[(Vector3<f64>, Vector3<f64>)]) {
+    for (s, (dx, theta)) in states.iter_mut().zip(moves) {
+        s.position += dx;
+        s.orientation = match s.orientation {
+            Orientation::Quaternion(q) => Orientation::Quaternion(small_turn(&q, theta)),
+            Orientation::Matrix(m) => {
+                Orientation::Matrix(nalgebra::Rotation3::from_scaled_axis(*theta).into_inner() * m)
+            }
+        };
+    }
+}
+
+/// `exp(θ) q` as [`turn`], with exp(θ) = (cos a, sin a θ/|θ|), a = |θ|/2, by its Taylor
+/// series when a < 1e-3 (cos a = 1 − a²/2 + a⁴/24, sin a / a = 1 − a²/6 + a⁴/120: the first
+/// terms left out are below a⁶/720 < 2e-21), without the trigonometric calls.
+#[inline(always)]
+fn small_turn(q: &UnitQuaternion<f64>, theta: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let a2 = 0.25 * theta.norm_squared();
+    if a2 >= 1e-6 {
+        return turn(q, theta);
+    }
+    let c = 1.0 - a2 * (0.5 - a2 / 24.0);
+    let s = 0.5 * (1.0 - a2 * (1.0 / 6.0 - a2 / 120.0));
+    let e = Quaternion::new(c, theta.x * s, theta.y * s, theta.z * s);
+    UnitQuaternion::new_unchecked(e * q.quaternion())
 }
 
 /// Every body moved by the position multipliers μ in `b.rhs` at once:
@@ -402,8 +446,9 @@ fn velocities(
     .filter(|s| s.holds(rows));
     let done = factor.is_some_and(|mut solver| {
         (0..CHORD_PASSES).any(|_| {
-            solver.again(rows, &mut b.rhs);
-            apply(states, impulses, b);
+            let wanted = Wanted::Impulses(&mut b.moved, impulses);
+            let solved = solver.again_for(rows, &mut b.rhs, wanted);
+            commit(states, impulses, b, solved);
             refresh(states, b);
             rates_into(b);
             b.rhs.iter().fold(0.0_f64, |m, r| m.max(r.abs())) < 1e-12
@@ -416,8 +461,23 @@ fn velocities(
     if done {
         return;
     }
-    solve(b);
-    apply(states, impulses, b);
+    let solved = solve_for(b, Some(impulses));
+    commit(states, impulses, b, solved);
+}
+
+/// A velocity pass's solve applied: P += J_linᵀ μ, L += J_angᵀ μ, from μ in `b.rhs`
+/// ([`apply`]) or, when a reduced solve [`Solved::Answered`], from each body's Jᵀ μ in
+/// `b.moved` (its reactions already in `impulses`).
+#[inline(always)]
+fn commit(states: &mut [State], impulses: &mut [Loads], b: &mut Buffers, solved: Solved) {
+    if solved != Solved::Answered {
+        apply(states, impulses, b);
+        return;
+    }
+    for (state, m) in states.iter_mut().zip(&b.moved) {
+        state.linear_momentum += m.force;
+        state.angular_momentum += m.torque;
+    }
 }
 
 /// `b.rhs` = −J u of every row at the poses' velocities.

@@ -129,7 +129,7 @@ fn symmetric_inverse(m: &Matrix3<f64>) -> Option<Matrix3<f64>> {
     let c01 = c * e - b * f;
     let c02 = b * e - c * d;
     let det = a * c00 + b * c01 + c * c02;
-    if det.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !det.is_finite() {
+    if !(det > 0.0) || !det.is_finite() {
         return None;
     }
     let r = 1.0 / det;
@@ -152,6 +152,12 @@ impl Reduced {
     #[inline(always)]
     pub fn holds(&self, rows: usize) -> bool {
         rows > 0 && self.held == rows
+    }
+
+    /// How many bodies the held factor's world has.
+    #[inline(always)]
+    pub fn bodies(&self) -> usize {
+        self.joint_of.len()
     }
 
     /// Forgets the held factor.
@@ -200,7 +206,7 @@ impl Reduced {
                 },
             };
             let inv = &inverse[child];
-            if inv.mass.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            if !(inv.mass > 0.0) {
                 return false;
             }
             let Some(inertia) = symmetric_inverse(&inv.inertia) else {
@@ -211,7 +217,7 @@ impl Reduced {
             let [g1, g2] = link.g;
             let (aa, ab, bb) = (g1.dot(&g1), g1.dot(&g2), g2.dot(&g2));
             let det = aa * bb - ab * ab;
-            if det.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            if !(det > 0.0) {
                 return false;
             }
             let r = 1.0 / det;
@@ -272,12 +278,12 @@ impl Reduced {
             let (v, w, _) = &columns[k];
             let p = v * c.mass + w.cross(&c.moment);
             let l = c.moment.cross(v) + c.inertia * w;
-            // H_jk at L's place (column j, row k: `lower[j n + k]`).
+            // H_kj at L's place (row k, column j ≤ k: `lower[k n + j]`).
             lower[k * n + k] = v.dot(&p) + w.dot(&l);
             let mut j = hinges[k].up;
             while j < n {
                 let (vj, wj, _) = &columns[j];
-                lower[j * n + k] = vj.dot(&p) + wj.dot(&l);
+                lower[k * n + j] = vj.dot(&p) + wj.dot(&l);
                 j = hinges[j].up;
             }
             if let Some(parent) = composite.get_mut(hinges[k].up) {
@@ -288,37 +294,39 @@ impl Reduced {
         }
     }
 
-    /// H = L Lᵀ in place (lower half, by columns: L_ij at `lower[j n + i]`), column by
-    /// column, each one's update of the columns right of it a run down contiguous columns;
-    /// 1/L_jj into `pivots`. False when H is not positive definite to 1e-12 of its largest
-    /// diagonal entry.
+    /// H = L Lᵀ in place (lower half, by rows: L_ij at `lower[i n + j]`), column by column,
+    /// each entry its own sum in the order of the columns left of it,
+    /// `L_ic = (H_ic − Σ_{j<c} L_ij L_cj) / L_cc` (a dot product along two rows: the same
+    /// operations, in the same order, as subtracting each column's update from the columns
+    /// right of it); 1/L_jj into `pivots`. False when H is not positive definite to 1e-12 of
+    /// its largest diagonal entry.
     #[inline(always)]
     fn cholesky(&mut self) -> bool {
         let n = self.hinges.len();
         let h = &mut self.lower;
-        let largest = (0..n).map(|k| h[k * n + k]).fold(0.0_f64, f64::max);
+        let mut largest = 0.0_f64;
+        for k in 0..n {
+            largest = largest.max(h[k * n + k]);
+        }
         let pivots = &mut self.pivots;
         pivots.clear();
         pivots.resize(n, 0.0);
-        for j in 0..n {
-            let (left, right) = h.split_at_mut((j + 1) * n);
-            let column = &mut left[j * n..];
-            let d = column[j];
-            if d.partial_cmp(&(1e-12 * largest)) != Some(std::cmp::Ordering::Greater) {
+        for (c, pivot_c) in pivots.iter_mut().enumerate() {
+            let (done, rest) = h.split_at_mut((c + 1) * n);
+            let (left, diagonal) = done[c * n..].split_at_mut(c);
+            let d = left.iter().fold(diagonal[0], |s, l| s - l * l);
+            if !(d > 1e-12 * largest) {
                 return false;
             }
             let root = d.sqrt();
             let pivot = 1.0 / root;
-            column[j] = root;
-            pivots[j] = pivot;
-            for x in &mut column[j + 1..] {
-                *x *= pivot;
-            }
-            for (c, other) in (j + 1..n).zip(right.chunks_exact_mut(n)) {
-                let l = column[c];
-                for (x, y) in other[c..].iter_mut().zip(&column[c..]) {
-                    *x -= y * l;
-                }
+            diagonal[0] = root;
+            *pivot_c = pivot;
+            let left = &*left;
+            for row in rest.chunks_exact_mut(n) {
+                let (row_left, x) = row.split_at_mut(c);
+                let s = (row_left.iter().zip(left)).fold(x[0], |s, (y, l)| s - y * l);
+                x[0] = s * pivot;
             }
         }
         true
@@ -326,10 +334,77 @@ impl Reduced {
 
     /// K λ = `rhs` with the held factor (the configuration of the last [`Reduced::factor`]),
     /// λ written over `rhs`'s first rows.
+    #[inline(always)]
+    pub fn solve(&mut self, rhs: &mut [f64]) {
+        let n = self.hinges.len();
+        self.motions(rhs);
+        let Reduced {
+            hinges,
+            mass,
+            motion,
+            force,
+            ..
+        } = self;
+        // Jᵀ λ = M Δu: each joint's share on its child, leaves to root.
+        momenta(mass, motion, force);
+        for (k, r) in rhs[..5 * n].chunks_exact_mut(5).enumerate().rev() {
+            let hinge = &hinges[k];
+            let (lin, ang) = force[k];
+            let f = lin * hinge.sign;
+            let t = ang * hinge.sign - hinge.rc.cross(&f);
+            r.copy_from_slice(&[f.x, f.y, f.z, hinge.dual[0].dot(&t), hinge.dual[1].dot(&t)]);
+            let parent = &mut force[hinge.up];
+            parent.0 += f * hinge.sign;
+            parent.1 += (hinge.rp.cross(&f) + t) * hinge.sign;
+        }
+    }
+
+    /// Δu = M⁻¹ Jᵀ λ for K λ = `rhs` with the held factor, λ never formed: each hinge's
+    /// child's (Δv, Δω) written into `out` at its body's index (other bodies untouched). A
+    /// position pass moves each body by it (`x += Δv`, turned by Δω).
+    #[inline(always)]
+    pub fn displace(&mut self, rhs: &[f64], out: &mut [Pair]) {
+        self.motions(rhs);
+        for (hinge, m) in self.hinges.iter().zip(&self.motion) {
+            out[hinge.child] = *m;
+        }
+    }
+
+    /// Jᵀ λ for K λ = `rhs` with the held factor, λ never formed: each hinge's child's
+    /// M Δu = (m Δv, I Δω) written into `moved` at its body's index (other bodies untouched),
+    /// and each joint's share on its body A added to `reactions` (as `Chain::apply` of λ).
     // Loops over the hinges that index several per-hinge lists, as the formulas do.
     #[allow(clippy::needless_range_loop)]
     #[inline(always)]
-    pub fn solve(&mut self, rhs: &mut [f64]) {
+    pub fn impulses(&mut self, rhs: &[f64], moved: &mut [Loads], reactions: &mut [Loads]) {
+        let n = self.hinges.len();
+        self.motions(rhs);
+        let Reduced {
+            hinges,
+            mass,
+            motion,
+            force,
+            ..
+        } = self;
+        for k in 0..n {
+            let ((m, inertia), (v, w)) = (&mass[k], &motion[k]);
+            let p = (v * *m, inertia * w);
+            moved[hinges[k].child] = Loads {
+                force: p.0,
+                torque: p.1,
+            };
+            force[k] = p;
+        }
+        force[n] = REST;
+        shares(hinges, force, reactions);
+    }
+
+    /// Δu = u_p + N z for J Δu = `rhs` with the held factor (`motion`'s first n: each
+    /// hinge's child's), the first part of [`Reduced::solve`].
+    // Loops over the hinges that index several per-hinge lists, as the formulas do.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    fn motions(&mut self, rhs: &[f64]) {
         let n = self.hinges.len();
         let Reduced {
             hinges,
@@ -342,7 +417,7 @@ impl Reduced {
             z,
             ..
         } = self;
-        let rhs = &mut rhs[..5 * n];
+        let rhs = &rhs[..5 * n];
         motion.resize(n + 1, REST);
         motion[n] = REST;
         force.resize(n + 1, REST);
@@ -370,18 +445,6 @@ impl Reduced {
         substitute(lower, pivots, z);
         // Δu = u_p + N z, root to leaves.
         along_hinges(hinges, particular, z, motion);
-        // Jᵀ λ = M Δu: each joint's share on its child, leaves to root.
-        momenta(mass, motion, force);
-        for (k, r) in rhs.chunks_exact_mut(5).enumerate().rev() {
-            let hinge = &hinges[k];
-            let (lin, ang) = force[k];
-            let f = lin * hinge.sign;
-            let t = ang * hinge.sign - hinge.rc.cross(&f);
-            r.copy_from_slice(&[f.x, f.y, f.z, hinge.dual[0].dot(&t), hinge.dual[1].dot(&t)]);
-            let parent = &mut force[hinge.up];
-            parent.0 += f * hinge.sign;
-            parent.1 += (hinge.rp.cross(&f) + t) * hinge.sign;
-        }
     }
 }
 
@@ -488,6 +551,32 @@ impl Reduced {
     }
 }
 
+/// Each joint's load on its child and its share on its body A (added to `reactions`), leaves
+/// to root, from `force`: each child's own total constraint load (Jᵀλ on it; the world's
+/// slot n at rest). Joint k's load on its child is the child's own plus what the joints
+/// below put on it, (w, τ_w); with f = σ w, t = σ τ_w − r_c × f its load on A is (w, τ_w)
+/// when the child is A, else q = (f, r_p × f + t), and the parent takes σ q.
+#[inline(always)]
+fn shares(hinges: &[Hinge], force: &mut [Pair], reactions: &mut [Loads]) {
+    for (k, hinge) in hinges.iter().enumerate().rev() {
+        let (w_lin, w_ang) = force[k];
+        let f = w_lin * hinge.sign;
+        let t = w_ang * hinge.sign - hinge.rc.cross(&f);
+        let q = (f, hinge.rp.cross(&f) + t);
+        let parent = &mut force[hinge.up];
+        parent.0 += q.0 * hinge.sign;
+        parent.1 += q.1 * hinge.sign;
+        let reaction = &mut reactions[k];
+        if hinge.sign > 0.0 {
+            reaction.force += w_lin;
+            reaction.torque += w_ang;
+        } else {
+            reaction.force += q.0;
+            reaction.torque += q.1;
+        }
+    }
+}
+
 /// `force` = M `motion` of every child, (m v, I ω); the world's slot at rest.
 #[inline(always)]
 fn momenta(mass: &[(f64, Matrix3<f64>)], motion: &[Pair], force: &mut [Pair]) {
@@ -497,20 +586,23 @@ fn momenta(mass: &[(f64, Matrix3<f64>)], motion: &[Pair], force: &mut [Pair]) {
     force[mass.len()] = REST;
 }
 
-/// z ← H⁻¹ z with H = L Lᵀ (L by columns): L y = z column by column, then Lᵀ x = y.
+/// z ← H⁻¹ z with H = L Lᵀ (L by rows): L y = z row by row, then Lᵀ x = y from the last row
+/// up, each entry's sum in the order of the columns (rows) before (after) it.
 #[inline(always)]
 fn substitute(lower: &[f64], pivots: &[f64], z: &mut [f64]) {
     let n = z.len();
-    for (j, column) in lower.chunks_exact(n).enumerate() {
-        let y = z[j] * pivots[j];
-        z[j] = y;
-        for (x, l) in z[j + 1..].iter_mut().zip(&column[j + 1..]) {
-            *x -= l * y;
-        }
+    for (i, (row, pivot)) in lower.chunks_exact(n).zip(pivots).enumerate() {
+        let (before, rest) = z.split_at_mut(i);
+        let s = (row[..i].iter().zip(&*before)).fold(rest[0], |s, (l, y)| s - l * y);
+        rest[0] = s * pivot;
     }
-    for (i, column) in lower.chunks_exact(n).enumerate().rev() {
-        let s = (z[i + 1..].iter().zip(&column[i + 1..])).fold(z[i], |s, (x, l)| s - l * x);
-        z[i] = s * pivots[i];
+    for i in (0..n).rev() {
+        let (head, after) = z.split_at_mut(i + 1);
+        // L_ki for k > i: column i below the diagonal.
+        let below = lower.get((i + 1) * n + i..).unwrap_or_default();
+        let below = below.iter().step_by(n);
+        let s = (after.iter().zip(below)).fold(head[i], |s, (x, l)| s - l * x);
+        head[i] = s * pivots[i];
     }
 }
 
