@@ -13,8 +13,8 @@
 //!
 //! | kind / method | file | verbs |
 //! |---|---|---|
-//! | normal row: no penetration, λ ≥ 0, a speculative gap's bias | [`normal`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `restitution`, `store` |
-//! | friction row: the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
+//! | normal row (the layer's `constraints::Row`): no penetration, λ ∈ [0, ∞), a speculative gap's bias | [`normal`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `restitution`, `store` |
+//! | friction rows (the layer's `constraints::Friction` pair): the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
 //! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |

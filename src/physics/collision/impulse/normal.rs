@@ -276,3 +276,48 @@ pub(super) fn store(contacts: &mut [Contact], rows: &[Row]) {
         contact.impulse = row.normal.axis.d * (row.normal.lambda + row.lambda_restitution);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::collision::{Against, Feature};
+    use nalgebra::Matrix3;
+
+    /// A contact's normal row is the layer's row: λ ∈ [0, ∞), b = gap/dt. A 2 kg block (1/M =
+    /// 0.5, no rotation) 4 mm above the ground (a speculative contact), dt = 10 ms: falling at
+    /// 1 m/s, the sweep lets it close its gap within the step and no more, u = −b ≈ −0.4 m/s,
+    /// λ = (u − u₀)/k ≈ 1.2 N·s; rising at 1 m/s it takes nothing (λ stays at lo = 0).
+    #[test]
+    fn a_speculative_contact_is_a_layer_row_that_closes_its_gap_and_no_more() {
+        let (dt, gap) = (0.01, 0.004);
+        let mut contact = Contact::new(
+            0,
+            Against::Obstacle(0),
+            Feature::Vertex(0),
+            Vector3::zeros(),
+            -gap,
+            Vector3::y(),
+        );
+        contact.other = 1;
+        let run = |vy: f64| {
+            let mut motions = vec![
+                SolverBody::new(Vector3::new(0.0, vy, 0.0), Vector3::zeros(), 0.5, Matrix3::zeros()),
+                SolverBody::fixed_thing(),
+            ];
+            let mut rows = [prepare(&contact, &WarmCache::default(), dt, &motions)];
+            warm_start(&mut rows, &mut motions);
+            assert!(sweep(&mut rows, &mut motions, 1e-12, 10).0);
+            (rows[0], motions[0].v.y)
+        };
+        let (row, v) = run(-1.0);
+        let bias = (gap - GAP_ROUND_OFF) / dt;
+        assert_eq!(
+            (row.normal.lo, row.normal.hi, row.normal.bias, row.approach),
+            (0.0, f64::INFINITY, bias, -1.0)
+        );
+        assert!((v + bias).abs() < 1e-12, "{v}");
+        assert!((row.normal.lambda - (1.0 - bias) / 0.5).abs() < 1e-12);
+        let (row, v) = run(1.0);
+        assert_eq!((row.normal.lambda, v), (0.0, 1.0));
+    }
+}

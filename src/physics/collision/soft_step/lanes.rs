@@ -754,6 +754,7 @@ impl Sweep {
 
     /// The normal updates of two rows between two bodies each, in four lanes.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // k indexes four arrays of three lanes
     fn pair_normal<Q: Quad>(
         &self,
         [x, y]: [&mut Row; 2],
@@ -783,6 +784,7 @@ impl Sweep {
 
     /// The friction of two rows between two bodies each, side by side in four lanes.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // k indexes four arrays of three lanes
     fn pair_friction<Q: Quad>(&self, [x, y]: [&mut Row; 2], p: &Quads, e: &mut Ends<Q>) {
         // Lanes [ω_A×r_A, ω_B×r_B]; the slip `((v_A + ω_A×r_A) − v_B) − ω_B×r_B`.
         let turn = cross4(&e.omega, &p.lever);
