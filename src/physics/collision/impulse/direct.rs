@@ -250,6 +250,38 @@ pub(super) fn inelastic(
     false
 }
 
+/// [`solve_active`] without joint rows: the active contact rows in contact order, the same
+/// operations in the same order as its merged path with no joints, without the merge's
+/// indirection (a resting body's step, every step: issue 35's resting-cube aim).
+fn solve_contacts(
+    rows: &[Row],
+    active: &[usize],
+    motions: &[SolverBody],
+    (system, work): (&mut Envelope, &mut u64),
+    lambda: &mut Vec<f64>,
+) -> bool {
+    let m = active.len();
+    system.reset(m);
+    for p in 0..m {
+        let ni = &rows[active[p]].normal;
+        system.rhs[p] = -ni.axis.velocity(motions) - ni.bias;
+        system.fill_row(p, ni.axis.bodies(), |q| {
+            let nj = &rows[active[q]].normal.axis;
+            ni.axis.shares_a_body(nj).then(|| ni.axis.coupling(nj, motions))
+        });
+        if system.stored() > ENVELOPE_MAX {
+            return false;
+        }
+    }
+    *work += super::factorisation_work(system.stored(), m);
+    let Some(solution) = system.solve(Pivots::Regularised) else {
+        return false;
+    };
+    lambda.clear();
+    lambda.extend_from_slice(&solution[..m]);
+    true
+}
+
 /// One round of [`inelastic`]: the system of the joint rows and the active contact rows
 /// (`active`, into `rows`) at `motions` (= `saved`) assembled, factored (its work added to
 /// `work`) and solved into `lambda` (contacts) and `joint_lambda`; false when it gives no
@@ -265,6 +297,9 @@ fn solve_active(
 ) -> bool {
     let m = active.len();
     let mj = joints.len();
+    if mj == 0 {
+        return solve_contacts(rows, active, motions, (system, work), lambda);
+    }
     // The system's rows: the joint rows and the active contact rows merged by their
     // lowest body (a chain lying on the ground stays banded); without joints, the
     // active contact rows in contact order.
