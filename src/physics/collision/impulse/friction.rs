@@ -66,10 +66,18 @@ pub(super) fn sliding(
     motions: &[SolverBody],
     tolerance: f64,
 ) -> bool {
+    let pushes = row.normal.lambda > 0.0;
+    if !pushes {
+        return false;
+    }
     let (a, b) = (&motions[contact.body], &motions[contact.other]);
-    let u = a.v + a.omega.cross(&contact.lever) - (b.v + b.omega.cross(&contact.lever_other));
-    row.normal.lambda > 0.0
-        && (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
+    let mut u = a.v + a.omega.cross(&contact.lever);
+    // A static B (1/M = 0: its v and ω are 0, up to the sign of a zero, which the squared
+    // norm below does not see) adds nothing: the resting body's every step skips it.
+    if !b.fixed() {
+        u -= b.v + b.omega.cross(&contact.lever_other);
+    }
+    (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
 }
 
 /// A contact's friction row: the disk's bound μ λ (λ from stage 1) into `row`, and the two
