@@ -45,7 +45,7 @@
 //!
 //! [`newton`]: super::newton
 
-use super::admm::velocity;
+use super::body_space::velocity;
 use super::newton::{self, add_blocks, add_transposed, velocities, Outcome};
 use super::Row;
 use crate::physics::collision::solver_body::{Axis, SolverBody};
@@ -393,7 +393,7 @@ fn factor(scratch: &mut Scratch, outcome: &mut Outcome) -> bool {
             }
         }
     }
-    if !super::admm::fill(&blocks[..nb], system) {
+    if !super::body_space::fill(&blocks[..nb], system) {
         return false;
     }
     outcome.work += super::factorisation_work(system.stored(), 6 * nb);
@@ -543,8 +543,8 @@ fn advance(scratch: &mut Scratch, s: f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::admm::objective;
-    use super::super::admm::tests::{assert_in_cone, solved_cube};
+    use super::super::body_space::objective;
+    use super::super::body_space::tests::{assert_in_cone, solved_cube};
     use super::*;
     use nalgebra::Vector3;
 

@@ -17,8 +17,8 @@
 //! | friction rows (the layer's `constraints::Friction` pair): the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
-//! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |
 //! | semismooth Newton in body space (off: [`NEWTON_STAGES`]) | [`newton`] | `solve` (a start for the sweeps) |
+//! | a stage's rows in body space (what the body-space solves share) | [`body_space`] | `constraint`, `velocity`, `fill`, `take_if_lower` |
 //! | primal–dual interior point in body space (on for stage 2: [`INTERIOR_STAGES`]; off for stage 1: [`INTERIOR_NORMALS`]) | [`interior`] | `solve` (a start for the friction sweeps) |
 //! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
@@ -65,6 +65,24 @@
 //! A last check measures K exactly as the energy panel does and, if round-off alone left it
 //! above K₀, scales P and L by `√(K₀/K)` (K is quadratic in (P, L)).
 //!
+//! # Tried and removed
+//!
+//! Paths that were built, measured and switched off, then deleted so that the solver carries
+//! only what runs; their code is in git history at the commit named.
+//!
+//! - **ADMM in body space** as the start of the sweeps of a large, wide system whose direct
+//!   solve declined (stages 1 and 2; scaled ADMM on `z = J x + b` with `H = M + Jᵀ ρ J`
+//!   factored once a penalty, ρ = 1/kₙ per contact, residual balancing). Measured on the
+//!   knocked walls (issue 35, 2026-12-06, under load): it took stage 1 of the bonded wall
+//!   from its cap (2000 sweeps and 32 subspace steps in half the steps) to 9–17 sweeps and
+//!   halved the unconverged steps (71 → 31 of 100; wall-ball 150 → 96 of 200), but the CPU
+//!   per step did not fall (bonded-wall-ball 42.5 → 45 ms, wall-ball 32 → 51 ms): it needs
+//!   300 to 3000 iterations (about 25 µs each) to reach 1e-7 m/s, and the friction sweeps and
+//!   subspace steps then still spent the budget closing 1e-7 to 1e-10 m/s. The interior point
+//!   ([`INTERIOR_STAGES`]) does that job. Removed with `admm.rs` (654 lines) in the commit
+//!   "impulse: delete the switched-off ADMM start"; the code is at bd48987
+//!   (`src/physics/collision/impulse/admm.rs`).
+//!
 //! # Speculative contacts
 //!
 //! A resting body falls only ½|g|dt² per step under `rk4` and `splitting` (free fall from
@@ -84,7 +102,7 @@
 //! where it was at the start of the step with its *corrected* velocity (no creep at rest, on a
 //! slope or on a sphere), and what penetration is left is removed by translation (see there).
 
-pub mod admm;
+pub mod body_space;
 pub mod budget;
 pub mod direct;
 pub mod friction;
@@ -215,16 +233,6 @@ pub struct StepReport {
     /// plus the same fraction of the fastest approach).
     pub unconverged: Option<f64>,
 }
-
-/// Whether a large, wide system whose direct solve declined starts its sweeps from an ADMM
-/// solve in body space ([`admm`]), stage 1 and stage 2. Off: measured on the knocked walls
-/// (issue 35, 2026-12-06, this machine under load), it takes stage 1 of the bonded wall from
-/// its cap (2000 sweeps and 32 subspace steps in half the steps) to 9–17 sweeps and halves
-/// the unconverged steps (71 → 31 of 100; wall-ball 150 → 96 of 200), but the CPU per step
-/// does not fall (bonded-wall-ball 42.5 → 45 ms, wall-ball 32 → 51 ms): ADMM needs 300 to
-/// 3000 iterations (about 25 µs each) to reach 1e-7 m/s, and from there the friction sweeps
-/// and subspace steps still often spend the budget closing 1e-7 to 1e-10 m/s.
-pub const ADMM_STAGES: bool = false;
 
 /// Whether a stage whose direct solve declined starts its sweeps from a semismooth Newton
 /// solve in body space ([`newton`]), stage 1 and stage 2 (any size of system; it takes the
@@ -440,8 +448,6 @@ struct Direct {
     /// (`direct::HeldJoints`).
     slides: Vec<direct::Hold>,
     subspace_rows: Vec<(f64, [f64; 2])>,
-    /// The ADMM solve's buffers (stage 2 of a large system).
-    admm: admm::Scratch,
     /// The Newton solve's buffers ([`NEWTON_STAGES`]).
     newton: newton::Scratch,
     /// The interior-point solve's buffers ([`INTERIOR_STAGES`]).
@@ -1333,15 +1339,6 @@ fn friction_stage(
             );
         } else if NEWTON_STAGES {
             buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
-        } else if large && ADMM_STAGES {
-            buffers_direct.work += admm::solve(
-                rows,
-                tangent_directions,
-                motions,
-                tolerance,
-                &mut buffers_direct.admm,
-            )
-            .work;
         }
     }
     if !solved {
@@ -1543,9 +1540,6 @@ fn inelastic_stage(
                 buffers_direct.interior(rows, &[], motions, tolerance, counters);
             } else if NEWTON_STAGES {
                 buffers_direct.newton(rows, &[], motions, tolerance, counters);
-            } else if large && ADMM_STAGES {
-                buffers_direct.work +=
-                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
             }
             let (converged, sweeps, residual) = if large {
                 subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)

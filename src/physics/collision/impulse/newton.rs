@@ -64,7 +64,7 @@
 //! [`subspace`]: super::subspace
 //! [`TOLERANCE`]: super::TOLERANCE
 
-use super::admm::{constraint, fill, number_bodies, take_if_lower, velocity, Constraint};
+use super::body_space::{constraint, fill, number_bodies, take_if_lower, velocity, Constraint};
 use super::Row;
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::envelope::Envelope;
@@ -544,8 +544,8 @@ pub(super) fn take(
 
 #[cfg(test)]
 mod tests {
-    use super::super::admm::objective;
-    use super::super::admm::tests::{assert_in_cone, solved_cube};
+    use super::super::body_space::objective;
+    use super::super::body_space::tests::{assert_in_cone, solved_cube};
     use super::*;
     use nalgebra::Vector3;
 

@@ -106,7 +106,7 @@ pub(super) fn net_change<'a>(
 #[cfg(test)]
 mod tests {
     use super::net_change;
-    use crate::physics::collision::impulse::admm::tests::sliding_cube;
+    use crate::physics::collision::impulse::body_space::tests::sliding_cube;
     use crate::physics::collision::impulse::Row;
     use crate::physics::collision::solver_body::Axis;
 
