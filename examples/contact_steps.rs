@@ -196,7 +196,7 @@ fn main() {
                 .map(|(s, s0)| (s.position - s0.position).xz().norm())
                 .fold(0.0, f64::max);
             println!(
-                "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5} newton {:5}/{:6}  {:9.1} µs/step",
+                "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5} interior {:5}/{:6}  {:9.1} µs/step",
                 world.time(),
                 sideways,
                 now.direct - last.direct,
@@ -208,8 +208,8 @@ fn main() {
                 now.friction_sweeps - last.friction_sweeps,
                 now.friction_subspace - last.friction_subspace,
                 now.normal_subspace - last.normal_subspace,
-                now.newton - last.newton,
-                now.newton_steps - last.newton_steps,
+                now.interior - last.interior,
+                now.interior_steps - last.interior_steps,
                 (t - last_time).as_secs_f64() * 1e6 / every as f64,
             );
             last = now;

@@ -1,6 +1,6 @@
-//! A stage's rows in body space: what the body-space solves ([`interior`], and [`newton`])
-//! share. Their unknowns are the bodies' velocities x = (v, ω), 6 a body, where the sweeps'
-//! are the rows' impulses.
+//! A stage's rows in body space: what the interior-point solve ([`interior`]) works on. Its
+//! unknowns are the bodies' velocities x = (v, ω), 6 a body, where the sweeps' are the rows'
+//! impulses.
 //!
 //! A stage minimises, over the impulses Λ of its rows (λₙ ≥ 0, and in stage 2 |λ_t| ≤ r =
 //! μ λₙ of stage 1), `F(Λ) = K + Σ λₙ gₙ/dt` ([`objective`]). With M the bodies' masses and
@@ -15,13 +15,17 @@
 //! ([`take_if_lower`]: measured, K from the bodies exactly as everywhere else), so K still
 //! only goes down; the sweeps that follow judge convergence to the same tolerance.
 //!
+//! The unknowns' start ([`setup`]): the moving bodies the rows touch, numbered in the
+//! scene's order ([`number_bodies`], at most [`BODY_SPACE_BODIES`]), M, x, `M x₀ = M x −
+//! Jᵀ Λ` (x₀ the velocities without any contact impulse), and per contact a [`Group`]: its
+//! constraints (the normal, then two tangents in stage 2) and its impulses Λ.
+//!
 //! [`interior`]: super::interior
-//! [`newton`]: super::newton
 
 use super::Row;
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::envelope::Envelope;
-use nalgebra::Matrix6;
+use nalgebra::{Matrix3, Matrix6, Matrix6x3, Vector6};
 
 /// One row of J: the normal or a tangent of a contact, on its (one or two) moving bodies.
 #[derive(Debug, Clone, Copy, Default)]
@@ -127,8 +131,7 @@ pub(super) fn fill(blocks: &[Vec<(usize, Matrix6<f64>)>], system: &mut Envelope)
 /// Puts each row's impulses `impulse(p)` = (λₙ, the tangent pair where the row has friction)
 /// onto the rows and the bodies, each in its bounds (λₙ ≥ 0, |λ_t| ≤ the row's friction
 /// bound, scaled back along itself), and keeps them only if they lower the stage's
-/// [`objective`] F (returns whether it did); else everything is put back. Shared by the
-/// body-space solves (`interior::solve`, `newton::solve`).
+/// [`objective`] F (returns whether it did); else everything is put back.
 pub(super) fn take_if_lower(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
@@ -165,6 +168,208 @@ pub(super) fn take_if_lower(
     }
     lower
 }
+
+/// Most bodies a body-space solve takes (6 unknowns each).
+pub const BODY_SPACE_BODIES: usize = 512;
+
+/// One contact: its constraints (the normal, then two tangents when `tangents`), its
+/// impulses Λ (λₙ, λ_t), the disk's radius and kₙ (its normal's effective inverse mass).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Group {
+    pub(super) first: usize,
+    pub(super) tangents: bool,
+    pub(super) lambda: [f64; 3],
+    pub(super) bound: f64,
+    pub(super) k: f64,
+}
+
+/// The buffers of a body-space solve (reused from step to step).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Scratch {
+    pub(super) local: Vec<usize>,
+    pub(super) bodies: Vec<usize>,
+    pub(super) blocks: Vec<Vec<(usize, Matrix6<f64>)>>,
+    pub(super) system: Envelope,
+    pub(super) mass: Vec<Matrix6<f64>>,
+    pub(super) constraints: Vec<Constraint>,
+    pub(super) groups: Vec<Group>,
+    pub(super) mx0: Vec<f64>,
+    pub(super) x: Vec<f64>,
+    /// Per constraint: u(x).
+    pub(super) u: Vec<f64>,
+}
+
+/// What a body-space solve did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Outcome {
+    /// Whether its answer replaced the rows' impulses (it lowered F).
+    pub taken: bool,
+    /// Whether it met its residual (half the sweeps' tolerance on every row).
+    pub converged: bool,
+    /// Its steps (factorisations), and the work in row updates (module `WORK_BUDGET`).
+    pub steps: usize,
+    pub work: u64,
+}
+
+
+/// The moving bodies (local numbering), their M, x, M x₀ = M x − Jᵀ Λ, and the rows'
+/// constraints and multipliers; false if there is nothing to solve or too much.
+pub(super) fn setup(
+    rows: &[Row],
+    directions: &[[Axis; 2]],
+    motions: &[SolverBody],
+    scratch: &mut Scratch,
+) -> bool {
+    let nb = number_bodies(rows, motions, &mut scratch.local, &mut scratch.bodies);
+    if nb == 0 || nb > BODY_SPACE_BODIES {
+        return false;
+    }
+    scratch.constraints.clear();
+    scratch.groups.clear();
+    for (p, row) in rows.iter().enumerate() {
+        let tangents = !directions.is_empty() && row.friction.bound > 0.0;
+        scratch.groups.push(Group {
+            first: scratch.constraints.len(),
+            tangents,
+            lambda: [row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]],
+            bound: row.friction.bound,
+            k: row.normal.axis.k,
+        });
+        if !tangents {
+            scratch.groups.last_mut().unwrap().lambda[1..].fill(0.0);
+        }
+        let local = &scratch.local;
+        scratch
+            .constraints
+            .push(constraint(&row.normal.axis, row.normal.bias, local, motions));
+        if tangents {
+            for t in &directions[p] {
+                scratch.constraints.push(constraint(t, 0.0, local, motions));
+            }
+        }
+        if row.normal.axis.k.is_nan() || row.normal.axis.k <= 0.0 {
+            return false;
+        }
+    }
+    scratch.mass.clear();
+    scratch.mx0.clear();
+    scratch.mx0.resize(6 * nb, 0.0);
+    scratch.x.clear();
+    scratch.x.resize(6 * nb, 0.0);
+    for (i, &b) in scratch.bodies.iter().enumerate() {
+        let s = &motions[b];
+        let mass = 1.0 / s.inv_mass;
+        let Some(inertia) = s.inv_inertia.try_inverse() else {
+            return false;
+        };
+        let mut block = Matrix6::zeros();
+        for k in 0..3 {
+            block[(k, k)] = mass;
+        }
+        block.fixed_view_mut::<3, 3>(3, 3).copy_from(&inertia);
+        scratch.mass.push(block);
+        for k in 0..3 {
+            scratch.mx0[6 * i + k] = s.v[k] * mass;
+            scratch.mx0[6 * i + 3 + k] = s.l[k];
+            scratch.x[6 * i + k] = s.v[k];
+            scratch.x[6 * i + 3 + k] = s.omega[k];
+        }
+    }
+    for g in &scratch.groups {
+        let count = if g.tangents { 3 } else { 1 };
+        for (c, lambda) in scratch.constraints[g.first..g.first + count]
+            .iter()
+            .zip(g.lambda)
+        {
+            for (i, gk) in &c.ends[..c.count] {
+                for (mx, gk) in scratch.mx0[6 * i..6 * i + 6].iter_mut().zip(gk.iter()) {
+                    *mx -= gk * lambda;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// u = J x + b for every constraint.
+pub(super) fn velocities(scratch: &mut Scratch) {
+    scratch.u.clear();
+    let x = &scratch.x;
+    scratch
+        .u
+        .extend(scratch.constraints.iter().map(|c| velocity(c, x)));
+}
+
+/// `Jᵀ v` of a contact's constraints added (times `scale`) into the body vector `out`.
+pub(super) fn add_transposed(cs: &[Constraint], v: &[f64], scale: f64, out: &mut [f64]) {
+    for (c, &vk) in cs.iter().zip(v) {
+        let s = scale * vk;
+        if s == 0.0 {
+            continue;
+        }
+        for (i, g) in &c.ends[..c.count] {
+            for (o, gk) in out[6 * i..6 * i + 6].iter_mut().zip(g.iter()) {
+                *o += gk * s;
+            }
+        }
+    }
+}
+
+
+/// H += Σ over pairs of ends G_e d G_fᵀ, G_e a contact's columns (its constraints `cs`, up
+/// to 3) at end e, stored once below the diagonal (H = M + Jᵀ D J, module doc).
+pub(super) fn add_blocks(
+    blocks: &mut [Vec<(usize, Matrix6<f64>)>],
+    cs: &[Constraint],
+    d: &Matrix3<f64>,
+) {
+    let columns = |e: usize| {
+        let mut m = Matrix6x3::zeros();
+        for (k, c) in cs.iter().enumerate() {
+            m.set_column(k, &Vector6::from_column_slice(&c.ends[e].1));
+        }
+        (cs[0].ends[e].0, m)
+    };
+    for e in 0..cs[0].count {
+        let (i, ge) = columns(e);
+        let gd = ge * d;
+        for f in 0..=e {
+            let (j, gf) = columns(f);
+            let (i, j, block) = if i >= j {
+                (i, j, gd * gf.transpose())
+            } else {
+                (j, i, gf * d * ge.transpose())
+            };
+            let list = &mut blocks[i];
+            match list.iter_mut().find(|(k, _)| *k == j) {
+                Some((_, b)) => *b += block,
+                None => list.push((j, block)),
+            }
+        }
+    }
+}
+
+
+/// Λ onto the rows and the bodies (see [`take_if_lower`]).
+pub(super) fn take(
+    rows: &mut [Row],
+    directions: &[[Axis; 2]],
+    motions: &mut [SolverBody],
+    scratch: &Scratch,
+    outcome: &mut Outcome,
+) {
+    let taken = take_if_lower(rows, directions, motions, |p| {
+        let g = &scratch.groups[p];
+        (
+            g.lambda[0],
+            g.tangents.then_some([g.lambda[1], g.lambda[2]]),
+        )
+    });
+    if taken {
+        outcome.taken = true;
+    }
+}
+
 
 #[cfg(test)]
 pub(super) mod tests {

@@ -17,8 +17,7 @@
 //! | friction rows (the layer's `constraints::Friction` pair): the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
-//! | semismooth Newton in body space (off: [`NEWTON_STAGES`]) | [`newton`] | `solve` (a start for the sweeps) |
-//! | a stage's rows in body space (what the body-space solves share) | [`body_space`] | `constraint`, `velocity`, `fill`, `take_if_lower` |
+//! | a stage's rows in body space (what the interior point works on) | [`body_space`] | `setup`, `velocities`, `fill`, `take` |
 //! | primal–dual interior point in body space (on for stage 2: [`INTERIOR_STAGES`]; off for stage 1: [`INTERIOR_NORMALS`]) | [`interior`] | `solve` (a start for the friction sweeps) |
 //! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
@@ -82,6 +81,23 @@
 //!   ([`INTERIOR_STAGES`]) does that job. Removed with `admm.rs` (654 lines) in the commit
 //!   "impulse: delete the switched-off ADMM start"; the code is at bd48987
 //!   (`src/physics/collision/impulse/admm.rs`).
+//! - **Semismooth Newton in body space** as the start of the sweeps of any stage whose
+//!   direct solve declined (the method of multipliers, each subproblem by semismooth Newton on
+//!   `ψ(x)` with Hessian `M + Jᵀ ρ D J`, an exact line search, ρ = 1e5/kₙ). Measured (issue
+//!   35, 2026-12-06, CPU per step under load, off → on): bonded-wall-ball 100 steps 44.5 →
+//!   40.1 ms (worst step ×7.7 → ×4.0 the median's work, unconverged 71 → 55), wall-ball 200
+//!   steps 43.6 → 51.0 ms (×8.1 → ×2.5, 150 → 166), dominoes16 1500 steps 1179 → 557 µs
+//!   (×167 → ×48, 4 → 1). It took stage 1 of the walls to 1e-11 m/s in 10–50
+//!   factorisations, not the few it should: with a stiff penalty each line search stopped
+//!   where the next separating contact closed (s of 1e-4 to 1e-1), a contact at a time again,
+//!   and a soft one (1–100, raised each outer iteration) needed more outer iterations; stage
+//!   2 of the walls often reached its 60 steps at 1e-5 m/s. It halved the domino run's mean
+//!   but doubled its median step (it factors where a few sweeps would do) and did not make
+//!   the walls faster. The interior point ([`INTERIOR_STAGES`]), which takes the active set
+//!   of all contacts at once, replaced it on stage 2; what they share is [`body_space`].
+//!   Removed with `newton.rs` (586 lines) in the commit "impulse: delete the switched-off
+//!   semismooth Newton start"; the code is at bd48987
+//!   (`src/physics/collision/impulse/newton.rs`).
 //!
 //! # Speculative contacts
 //!
@@ -108,7 +124,6 @@ pub mod direct;
 pub mod friction;
 pub mod interior;
 pub mod joined;
-pub mod newton;
 pub mod normal;
 pub mod particle;
 pub mod propagate;
@@ -234,34 +249,12 @@ pub struct StepReport {
     pub unconverged: Option<f64>,
 }
 
-/// Whether a stage whose direct solve declined starts its sweeps from a semismooth Newton
-/// solve in body space ([`newton`]), stage 1 and stage 2 (any size of system; it takes the
-/// place of ADMM). Off: measured on this machine under load (issue 35, 2026-12-06, CPU per
-/// step, one run each, on against off):
-///
-/// | scene | off | on |
-/// |---|---|---|
-/// | bonded-wall-ball, 100 steps | 44.5 ms, worst ×7.7 the median's work, 71 unconverged | 40.1 ms, ×4.0, 55 |
-/// | wall-ball, 200 steps | 43.6 ms, ×8.1, 150 unconverged | 51.0 ms, ×2.5, 166 |
-/// | dominoes16, 1500 steps | 1179 µs, ×167, 4 unconverged | 557 µs, ×48, 1 |
-///
-/// Newton takes stage 1 of the walls to 1e-11 m/s in 10–50 factorisations, but it is not
-/// the few it should be: with a stiff penalty each step's line search stops where the next
-/// separating contact closes (s of 1e-4 to 1e-1), a contact at a time again; a soft penalty
-/// (1–100, raised each outer iteration) needs more outer iterations. Stage 2 of the walls
-/// then often reaches [`newton::NEWTON_STEPS`] at 1e-5 m/s and the friction sweeps spend
-/// the budget as before. It halves the domino run's mean (its median step doubles: Newton
-/// factors where a few sweeps would do; running 8 sweeps first made it worse, 1363 µs) and
-/// bounds the walls' worst steps, but the walls are not faster: off until the subproblem
-/// takes its active set in a few steps (an interior-point or a projected active-set
-/// variant). Stage 1 and stage 2 then keep their sweeps' answers as before.
-pub const NEWTON_STAGES: bool = false;
-
 /// Whether stage 2 (friction), when its direct solves declined and the sweeps' first burst
 /// ([`SUBSPACE_EVERY`] sweeps, as `subspace::sweep` starts) did not converge, starts the
 /// sweeps that follow from a primal–dual interior-point solve in body space ([`interior`],
-/// in the place of Newton and ADMM). It finds the active set of all contacts at once, where
-/// Newton's line search met them one at a time. A step whose first burst converges is bit
+/// where ADMM and semismooth Newton were tried: module doc, *Tried and removed*). It finds
+/// the active set of all contacts at once, where Newton's line search met them one at a
+/// time. A step whose first burst converges is bit
 /// for bit as without it.
 ///
 /// Measured (issue 35, 2026-12-06, one binary, this machine under load; CPU µs per step,
@@ -448,8 +441,6 @@ struct Direct {
     /// (`direct::HeldJoints`).
     slides: Vec<direct::Hold>,
     subspace_rows: Vec<(f64, [f64; 2])>,
-    /// The Newton solve's buffers ([`NEWTON_STAGES`]).
-    newton: newton::Scratch,
     /// The interior-point solve's buffers ([`INTERIOR_STAGES`]).
     interior: interior::Scratch,
     /// This step's work so far and its budget, in row updates ([`budget`]).
@@ -528,25 +519,6 @@ impl Direct {
     fn sweeps_left(&self, rows: usize, cap: u64) -> u64 {
         let left = self.budget.saturating_sub(self.work) / rows.max(1) as u64;
         cap.min(left.max(BUDGET_FLOOR))
-    }
-
-    /// A Newton solve ([`newton`]) from the rows' impulses, within what is left of the
-    /// budget; its work is counted, and the solves it took and their steps.
-    fn newton(
-        &mut self,
-        rows: &mut [Row],
-        directions: &[[Axis; 2]],
-        motions: &mut [SolverBody],
-        tolerance: f64,
-        counters: &mut Counters,
-    ) {
-        let left = self.budget.saturating_sub(self.work);
-        let outcome = newton::solve(rows, directions, motions, tolerance, left, &mut self.newton);
-        self.work += outcome.work;
-        counters.newton_steps += outcome.steps as u64;
-        if outcome.taken {
-            counters.newton += 1;
-        }
     }
 
     /// An interior-point solve ([`interior`]) from the rows' impulses, within what is left
@@ -677,10 +649,6 @@ pub struct Counters {
     /// Steps in which a stage stopped unconverged (its work budget spent, [`WORK_BUDGET`], or
     /// its sweeps' cap reached).
     pub unconverged: u64,
-    /// Newton solves ([`newton`]) whose answer the stage took, and their Newton steps
-    /// (factorisations in body space).
-    pub newton: u64,
-    pub newton_steps: u64,
     /// Interior-point solves ([`interior`]) whose answer the stage took, and their
     /// iterations (factorisations in body space).
     pub interior: u64,
@@ -1337,8 +1305,6 @@ fn friction_stage(
                 tolerance,
                 counters,
             );
-        } else if NEWTON_STAGES {
-            buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
         }
     }
     if !solved {
@@ -1538,8 +1504,6 @@ fn inelastic_stage(
             normal::warm_start(rows, motions);
             if INTERIOR_NORMALS {
                 buffers_direct.interior(rows, &[], motions, tolerance, counters);
-            } else if NEWTON_STAGES {
-                buffers_direct.newton(rows, &[], motions, tolerance, counters);
             }
             let (converged, sweeps, residual) = if large {
                 subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
