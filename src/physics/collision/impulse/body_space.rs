@@ -3,21 +3,21 @@
 //! impulses.
 //!
 //! A stage minimises, over the impulses Λ of its rows (λₙ ≥ 0, and in stage 2 |λ_t| ≤ r =
-//! μ λₙ of stage 1), `F(Λ) = K + Σ λₙ gₙ/dt` ([`objective`]). With M the bodies' masses and
-//! inertias, J the rows (a row of J is a [`Constraint`]: (±d, r×(±d)) at each end that
+//! μ λₙ of stage 1), `F(Λ) = K + Σ λₙ gₙ/dt` (`objective`). With M the bodies' masses and
+//! inertias, J the rows (a row of J is a `Constraint`: (±d, r×(±d)) at each end that
 //! moves) and b their biases (gₙ/dt on a normal, 0 on a tangent), the rows' velocities are
-//! `u = J x + b` ([`velocity`]). The contact-space matrix J M⁻¹ Jᵀ is rank-deficient when
+//! `u = J x + b` (`velocity`). The contact-space matrix J M⁻¹ Jᵀ is rank-deficient when
 //! contacts are redundant (a brick on two bricks has eight rows for six motions); a body-space
 //! matrix `M + Jᵀ D J` (D ≥ 0 per contact) is positive definite whatever the contacts, 6×6
-//! blocks per pair of bodies, factored by the envelope ([`fill`]).
+//! blocks per pair of bodies, factored by the envelope (`fill`).
 //!
 //! A body-space solve's answer replaces the rows' impulses only if it lowers F
-//! ([`take_if_lower`]: measured, K from the bodies exactly as everywhere else), so K still
+//! (`take_if_lower`: measured, K from the bodies exactly as everywhere else), so K still
 //! only goes down; the sweeps that follow judge convergence to the same tolerance.
 //!
-//! The unknowns' start ([`setup`]): the moving bodies the rows touch, numbered in the
-//! scene's order ([`number_bodies`], at most [`BODY_SPACE_BODIES`]), M, x, `M x₀ = M x −
-//! Jᵀ Λ` (x₀ the velocities without any contact impulse), and per contact a [`Group`]: its
+//! The unknowns' start (`setup`): the moving bodies the rows touch, numbered in the
+//! scene's order (`number_bodies`, at most `BODY_SPACE_BODIES`), M, x, `M x₀ = M x −
+//! Jᵀ Λ` (x₀ the velocities without any contact impulse), and per contact a `Group`: its
 //! constraints (the normal, then two tangents in stage 2) and its impulses Λ.
 //!
 //! [`interior`]: super::interior

@@ -1,5 +1,6 @@
-//! A primal–dual interior-point method in body space: a start for a stage's sweeps (stage 1's
-//! normals, or stage 2's normals and friction disks) when its direct solve declined, on the
+//! A primal–dual interior-point method in body space: a start for stage 2's sweeps (its
+//! normals and friction disks; with no friction directions it takes normals alone, as a
+//! stage 1 would, which was tried and removed) when its direct solves declined, on the
 //! stage's rows in body space ([`body_space`]). It finds the active set of all contacts at
 //! once: it never walks along an active set's edge, so a contact closing or opening costs it
 //! nothing extra (semismooth Newton's line search met them one at a time: module doc of
