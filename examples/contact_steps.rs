@@ -20,12 +20,7 @@
 //! of a body from its start (a stack's lean), the solver's path counters and µs/step; the
 //! last lines the mean CPU time per step (the thread's run time, Linux, beside
 //! benches/rapier's) and the work per step (median, max, unconverged steps);
-//! `CONTACT_STEPS_BUDGET` (`off`, `friction`, `whole`) sets where the work budget of 20
-//! medians of the scene's steps applies (`impulse::MEDIAN_BUDGET` otherwise);
-//! `CONTACT_STEPS_STALL` sets the sweeps' stall band (`impulse::stall::STALL_BAND`
-//! otherwise; 0: off), and `CONTACT_STEPS_SHADOW=BAND` has a copy of the world take each step
-//! from the same state with that band and compares the work (the scenes are chaotic, so two
-//! runs soon solve different problems); `CONTACT_STEPS_STATES` prints the final states;
+//! `CONTACT_STEPS_STATES` prints the final states;
 //! `CONTACT_STEPS_WORK=FILE` writes each step's work, rows, unconverged residual (0:
 //! converged) and work budget to FILE, one step a line.
 
@@ -34,7 +29,6 @@ use tumble::contact_scenes::{
     bonded_wall, cradle, domino_run, dominoes, dominoes_tipped, edge_wall, knife_edge_wall,
     pyramid, stack, wall,
 };
-use tumble::physics::collision::impulse::budget::Applies;
 use tumble::physics::{Impacts, Response};
 
 fn main() {
@@ -114,31 +108,6 @@ fn main() {
     } else {
         panic!("{usage}")
     };
-    // CONTACT_STEPS_BUDGET: where the budget of 20 medians applies (impulse::MEDIAN_BUDGET
-    // otherwise): off, friction or whole.
-    if let Ok(name) = std::env::var("CONTACT_STEPS_BUDGET") {
-        world.set_median_budget(match name.as_str() {
-            "off" => Applies::Off,
-            "friction" => Applies::Friction,
-            "whole" => Applies::Whole,
-            _ => panic!("CONTACT_STEPS_BUDGET: off, friction or whole"),
-        });
-    }
-    // CONTACT_STEPS_STALL: the sweeps' stall band (impulse::stall::STALL_BAND
-    // otherwise; 0: off). CONTACT_STEPS_SHADOW: each step is also taken by a copy of the
-    // world with this band, from the same state, and its work compared (the scenes are
-    // chaotic: two runs soon solve different problems).
-    let band = |name: &str| {
-        std::env::var(name)
-            .ok()
-            .map(|s| s.parse::<f64>().expect("a stall band: a number"))
-    };
-    if let Some(b) = band("CONTACT_STEPS_STALL") {
-        world.set_stall_band(b);
-    }
-    let shadow = band("CONTACT_STEPS_SHADOW");
-    let (mut shadow_work, mut shadow_base, mut shadow_steps) = (0u64, 0u64, [0u64; 3]);
-    let mut shadow_unconverged = [0u64; 2];
     let every: u64 = std::env::var("CONTACT_STEPS_EVERY")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -154,23 +123,10 @@ fn main() {
     let mut last = world.contact_counters();
     let mut last_time = start;
     for step in 1..=steps {
-        let shadow_report = shadow.map(|b| {
-            let mut copy = world.clone();
-            copy.set_stall_band(b);
-            copy.step();
-            copy.contact_report()
-        });
         let t0 = Instant::now();
         world.step();
         times.push(t0.elapsed().as_secs_f64() * 1e6);
         let report = world.contact_report();
-        if let Some(r) = shadow_report {
-            shadow_work += r.work;
-            shadow_base += report.work;
-            shadow_steps[(r.work.cmp(&report.work) as i8 + 1) as usize] += 1;
-            shadow_unconverged[0] += r.unconverged.is_some() as u64;
-            shadow_unconverged[1] += report.unconverged.is_some() as u64;
-        }
         let c = world.contact_counters();
         works.push(report.work);
         if work_file.is_some() {
@@ -196,7 +152,7 @@ fn main() {
                 .map(|(s, s0)| (s.position - s0.position).xz().norm())
                 .fold(0.0, f64::max);
             println!(
-                "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5} newton {:5}/{:6}  {:9.1} µs/step",
+                "t {:6.3} s  sideways {:9.3e} m  direct {:5} declined {:5} warm {:5} normal sweeps {:7} friction warm {:5} direct {:5} sweeps {:7} subspace {:6}+{:5} interior {:5}/{:6}  {:9.1} µs/step",
                 world.time(),
                 sideways,
                 now.direct - last.direct,
@@ -208,8 +164,8 @@ fn main() {
                 now.friction_sweeps - last.friction_sweeps,
                 now.friction_subspace - last.friction_subspace,
                 now.normal_subspace - last.normal_subspace,
-                now.newton - last.newton,
-                now.newton_steps - last.newton_steps,
+                now.interior - last.interior,
+                now.interior_steps - last.interior_steps,
                 (t - last_time).as_secs_f64() * 1e6 / every as f64,
             );
             last = now;
@@ -255,17 +211,6 @@ fn main() {
         time_max / time_median.max(1e-9),
         world.contact_counters().unconverged
     );
-    if let Some(b) = shadow {
-        println!(
-            "shadow (stall band {b}, same states): work {shadow_work} against {shadow_base} ({:+.1} %); steps cheaper {} same {} dearer {}; unconverged {} against {}",
-            100.0 * (shadow_work as f64 / shadow_base.max(1) as f64 - 1.0),
-            shadow_steps[0],
-            shadow_steps[1],
-            shadow_steps[2],
-            shadow_unconverged[0],
-            shadow_unconverged[1]
-        );
-    }
     if let Some(path) = work_file {
         std::fs::write(path, per_step).expect("CONTACT_STEPS_WORK: a writable file");
     }

@@ -674,8 +674,8 @@ pub fn contact_panel(s: &Snapshot) -> Panel {
 }
 
 /// What a step that stopped unconverged says (None when it converged): why it stopped (its
-/// work budget, 20 medians of the scene's steps so far, or its sweeps' cap) and the residual
-/// it stopped at, against the tolerance.
+/// work budget, `impulse::WORK_BUDGET` sweeps over its rows, or its sweeps' cap) and the
+/// residual it stopped at, against the tolerance.
 pub fn unconverged_text(report: &impulse::StepReport) -> Option<String> {
     let residual = report.unconverged?;
     let why = if report.work >= report.budget {

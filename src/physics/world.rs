@@ -1235,18 +1235,6 @@ impl World {
         self.scratch.report
     }
 
-    /// Where the `impulse` solver's budget of 20 medians of the scene's steps applies from
-    /// the next step on (`impulse::MEDIAN_BUDGET` until set: for measurements and tests).
-    pub fn set_median_budget(&mut self, applies: super::collision::impulse::budget::Applies) {
-        self.scratch.set_median_budget(applies);
-    }
-
-    /// The `impulse` sweeps' stall band from the next step on
-    /// (`impulse::stall::STALL_BAND` until set; 0: off. For measurements and tests).
-    pub fn set_stall_band(&mut self, band: f64) {
-        self.scratch.set_stall_band(band);
-    }
-
     /// Switches integrator, keeping t and the state (the orientation changes representation;
     /// a drifted `euler-seed` matrix becomes the nearest rotation). The current frame restarts
     /// at its derive phase.

@@ -13,10 +13,7 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 use tumble::contact_scenes::{bonded_wall, edge_wall};
-use tumble::physics::collision::impulse::budget::Applies;
-use tumble::physics::collision::impulse::{
-    Counters, BUDGET_FLOOR_SWEEPS, BUDGET_MEDIANS, WORK_BUDGET,
-};
+use tumble::physics::collision::impulse::{Counters, WORK_BUDGET};
 use tumble::physics::collision::obstacle::Ground;
 use tumble::physics::{
     Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, Orientation,
@@ -173,54 +170,13 @@ fn a_wall_knocked_down_keeps_to_its_work_budget_and_says_when_it_stops_unconverg
 }
 
 #[test]
-fn the_budget_of_twenty_medians_bounds_every_step_and_a_cut_step_says_so() {
-    // Off by default (`impulse::MEDIAN_BUDGET`): every step has the largest budget.
+fn every_step_has_the_largest_budget() {
+    // The budget of a step is WORK_BUDGET sweeps over its rows (a budget of 20 medians of the
+    // scene's steps was tried and removed: `impulse`'s module doc).
     let mut world = tumble::contact_scenes::dominoes(Response::Impulse);
     for _ in 0..20 {
         world.step();
         let report = world.contact_report();
         assert_eq!(report.budget, WORK_BUDGET * report.rows as u64);
     }
-    // On for the whole step: each step's budget is 20 times the median work of the steps
-    // before it (the histogram's median is at most 1/17 below the exact one), but at least
-    // 20 sweeps over its rows and at most the largest; a step stays within it (a last sweep
-    // or factorisation may overshoot: twice allowed, measured 1.07), and one that stops
-    // unconverged reports its residual and is counted. (Energy: the contacts' ledger gain over
-    // these 1200 steps is 1.0e-3 J, the position step lifting the leaning row that lesson 37
-    // quotes, 1.1e-3 J, not the cuts: not asserted here.)
-    let mut world = tumble::contact_scenes::dominoes(Response::Impulse);
-    world.set_median_budget(Applies::Whole);
-    let start = world.contact_counters().unconverged;
-    let (mut works, mut cut, mut unconverged) = (Vec::<u64>::new(), 0, 0);
-    for step in 1..=1200 {
-        world.step();
-        let r = world.contact_report();
-        if r.rows == 0 {
-            continue;
-        }
-        let cap = WORK_BUDGET * r.rows as u64;
-        let mut sorted = works.clone();
-        sorted.sort_unstable();
-        if let Some(&median) = sorted.get(sorted.len() / 2) {
-            let floor = BUDGET_FLOOR_SWEEPS * r.rows as u64;
-            let high = (BUDGET_MEDIANS * median).max(floor).min(cap);
-            let low = (BUDGET_MEDIANS * median * 16 / 17).max(floor).min(cap);
-            assert!(
-                (low..=high).contains(&r.budget),
-                "step {step}: budget {} outside {low}..={high}",
-                r.budget
-            );
-        } else {
-            assert_eq!(r.budget, cap, "the first step has the largest budget");
-        }
-        assert!(r.work <= 2 * r.budget, "step {step}: {r:?}");
-        if let Some(residual) = r.unconverged {
-            assert!(residual.is_finite() && residual > 0.0, "{r:?}");
-            unconverged += 1;
-            cut += u64::from(r.work >= r.budget);
-        }
-        works.push(r.work);
-    }
-    assert_eq!(world.contact_counters().unconverged - start, unconverged);
-    assert!(cut > 0, "no step met its budget: the test tests nothing");
 }

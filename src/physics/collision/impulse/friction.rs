@@ -44,7 +44,6 @@
 //!
 //! [`subspace`]: super::subspace
 
-use super::stall::{self, Stall};
 use super::{axis_at, normal, Row};
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use crate::physics::collision::Contact;
@@ -60,6 +59,7 @@ const MAX_DISK_ITERATIONS: usize = 60;
 
 /// Whether a contact pushes (after stage 1) and slides faster than `tolerance`: stage 2 runs
 /// only if one does.
+#[inline]
 pub(super) fn sliding(
     row: &Row,
     contact: &Contact,
@@ -229,20 +229,16 @@ fn disk_edge(k1: f64, k2: f64, c: f64, kx: [f64; 2], bound: f64) -> [f64; 2] {
 
 /// Block coordinate descent on the normal and friction impulses, at most `cap` sweeps;
 /// returns whether they converged, how many ran, and the residual (the largest change of a
-/// contact velocity the last sweep made, m/s). A large stage also stops on a stall when
-/// `band` > 0: a sweep whose row changes are within `band` tolerances and whose bodies moved
-/// by less than one ([`stall::STALL_BAND`], off).
+/// contact velocity the last sweep made, m/s).
 pub(super) fn sweep(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
-    (tolerance, band): (f64, f64),
+    tolerance: f64,
     cap: u64,
 ) -> (bool, u64, f64) {
     let mut largest: f64 = 0.0;
-    let mut stall = Stall::new(band, rows.len());
     for sweep in 1..=cap {
-        stall.start(motions);
         largest = 0.0;
         for (row, directions) in rows.iter_mut().zip(directions.iter()) {
             let bound = row.friction.bound;
@@ -253,17 +249,7 @@ pub(super) fn sweep(
             let change = update(row, directions, bound, motions);
             largest = largest.max(change);
         }
-        if largest <= tolerance
-            || stall.stalled(largest, tolerance, |before| {
-                stall::net_change(
-                    rows.iter()
-                        .zip(directions.iter())
-                        .flat_map(|(row, [t1, t2])| [&row.normal.axis, t1, t2]),
-                    before,
-                    motions,
-                )
-            })
-        {
+        if largest <= tolerance {
             return (true, sweep, largest);
         }
     }

@@ -1,7 +1,10 @@
-//! A primal–dual interior-point method in body space: a start for a stage's sweeps (stage 1's
-//! normals, or stage 2's normals and friction disks) when its direct solve declined, as
-//! [`newton`]'s, but it finds the active set of all contacts at once: it never walks along an
-//! active set's edge, so a contact closing or opening costs it nothing extra.
+//! A primal–dual interior-point method in body space: a start for stage 2's sweeps (its
+//! normals and friction disks; with no friction directions it takes normals alone, as a
+//! stage 1 would, which was tried and removed) when its direct solves declined, on the
+//! stage's rows in body space ([`body_space`]). It finds the active set of all contacts at
+//! once: it never walks along an active set's edge, so a contact closing or opening costs it
+//! nothing extra (semismooth Newton's line search met them one at a time: module doc of
+//! [`super`], *Tried and removed*).
 //!
 //! # The problem
 //!
@@ -35,18 +38,15 @@
 //! # Its promises
 //!
 //! It stops when the natural residual (the change a Gauss–Seidel update of a row would make
-//! to its velocity, as [`newton`]'s) is below half the sweeps' tolerance on every row; or
+//! to its velocity, `kₙ |P(Λ − u/kₙ) − Λ|`) is below half the sweeps' tolerance on every row; or
 //! hands over to the sweeps once it is below [`INTERIOR_HANDOFF`] times that tolerance, or
 //! when it stops gaining, or at [`INTERIOR_STEPS`] iterations, or at its work budget (then
 //! with its best iterate). Each iterate is strictly inside its set, so whatever it hands
 //! over is feasible. Its answer replaces the rows'
 //! impulses only if it lowers F, so K still only goes down, and the sweeps that follow judge
 //! convergence to the same tolerance as before.
-//!
-//! [`newton`]: super::newton
 
-use super::admm::velocity;
-use super::newton::{self, add_blocks, add_transposed, velocities, Outcome};
+use super::body_space::{self, add_blocks, add_transposed, velocities, velocity, Outcome};
 use super::Row;
 use crate::physics::collision::solver_body::{Axis, SolverBody};
 use nalgebra::{Matrix2, Matrix3, Matrix6, Vector2, Vector6};
@@ -69,7 +69,7 @@ const CENTRE: f64 = 0.1;
 /// The buffers of an interior-point solve (reused from step to step).
 #[derive(Debug, Clone, Default)]
 pub(super) struct Scratch {
-    base: newton::Scratch,
+    base: body_space::Scratch,
     /// Per local body: M⁻¹.
     inverse: Vec<Matrix6<f64>>,
     /// Per contact: the normal's dual w and the disk's multiplier γ.
@@ -123,7 +123,7 @@ pub(super) fn solve(
         steps: 0,
         work: 0,
     };
-    if !newton::setup(rows, directions, motions, &mut scratch.base) || !start(motions, scratch) {
+    if !body_space::setup(rows, directions, motions, &mut scratch.base) || !start(motions, scratch) {
         return outcome;
     }
     let stop = 0.5 * tolerance;
@@ -177,17 +177,17 @@ pub(super) fn solve(
         advance(scratch, reach);
     }
     restore(&mut scratch.base, &scratch.best);
-    newton::take(rows, directions, motions, &scratch.base, &mut outcome);
+    body_space::take(rows, directions, motions, &scratch.base, &mut outcome);
     outcome
 }
 
 /// The best iterate's impulses and duals, kept.
-fn keep(base: &newton::Scratch, best: &mut Vec<[f64; 3]>) {
+fn keep(base: &body_space::Scratch, best: &mut Vec<[f64; 3]>) {
     best.clear();
     best.extend(base.groups.iter().map(|g| g.lambda));
 }
 
-fn restore(base: &mut newton::Scratch, best: &[[f64; 3]]) {
+fn restore(base: &mut body_space::Scratch, best: &[[f64; 3]]) {
     if best.len() == base.groups.len() {
         for (g, l) in base.groups.iter_mut().zip(best) {
             g.lambda = *l;
@@ -263,7 +263,7 @@ fn start(motions: &[SolverBody], scratch: &mut Scratch) -> bool {
 }
 
 /// x = M⁻¹ (M x₀ + Jᵀ Λ).
-fn body_velocities(base: &mut newton::Scratch, inverse: &[Matrix6<f64>]) {
+fn body_velocities(base: &mut body_space::Scratch, inverse: &[Matrix6<f64>]) {
     let mut y = base.mx0.clone();
     for g in &base.groups {
         let count = if g.tangents { 3 } else { 1 };
@@ -281,7 +281,7 @@ fn body_velocities(base: &mut newton::Scratch, inverse: &[Matrix6<f64>]) {
 }
 
 /// The largest natural residual `kₙ |P(Λ − u/kₙ) − Λ|` of a contact (m/s).
-fn natural_residual(base: &newton::Scratch) -> f64 {
+fn natural_residual(base: &body_space::Scratch) -> f64 {
     let mut residual: f64 = 0.0;
     for g in &base.groups {
         let u = &base.u[g.first..];
@@ -340,7 +340,7 @@ fn factor(scratch: &mut Scratch, outcome: &mut Outcome) -> bool {
         ..
     } = scratch;
     let nb = base.bodies.len();
-    let newton::Scratch {
+    let body_space::Scratch {
         blocks,
         system,
         mass,
@@ -393,7 +393,7 @@ fn factor(scratch: &mut Scratch, outcome: &mut Outcome) -> bool {
             }
         }
     }
-    if !super::admm::fill(&blocks[..nb], system) {
+    if !body_space::fill(&blocks[..nb], system) {
         return false;
     }
     outcome.work += super::factorisation_work(system.stored(), 6 * nb);
@@ -543,8 +543,8 @@ fn advance(scratch: &mut Scratch, s: f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::admm::objective;
-    use super::super::admm::tests::{assert_in_cone, solved_cube};
+    use super::super::body_space::objective;
+    use super::super::body_space::tests::{assert_in_cone, solved_cube};
     use super::*;
     use nalgebra::Vector3;
 

@@ -73,11 +73,8 @@
 //!   sweeps crawl on a chain (every contact coupled to every other through the links; 61 of
 //!   66 calls of the landing chain cycled at the active set's 24-round cap, hundreds of
 //!   sweeps a step, 2.2× the instructions of the whole run), and a stage 1 with the joints
-//!   followed by a stage 2 without them is neither one solution nor cheaper. With
-//!   [`JOINED_DIRECT_LARGE`] (off) they take them, keeping them only if the direct solves
-//!   answer, else stages 1 and 2 run again from their start as the contacts' alone
-//!   (`Joined::save`, `Joined::restore`); on the landing chain the direct solve with sliding
-//!   modes answered 9 of 73 stages, at +50 % of the run's instructions.
+//!   followed by a stage 2 without them is neither one solution nor cheaper (taking them
+//!   into the direct solves alone was tried: *Tried and removed* below).
 //!
 //! Elsewhere every stage is the contacts' alone, as before, and the pass after the response
 //! holds the joints (it also holds, in every case, the positions the push-out moved along
@@ -89,6 +86,33 @@
 //!   restitution across such a gap at impact loses 2 λ·gap/dt (6.6e-4 of K with three balls
 //!   pulled, against 1e-6 kept);
 //! - the sweeps a declined direct solve falls back to.
+//!
+//! # Tried and removed
+//!
+//! **Large clusters in the direct solves alone** (`JOINED_DIRECT_LARGE`, off): an impact with
+//! friction took the joint rows of clusters larger than the joints' friction sweeps take, its
+//! stages 1 and 2 kept them only if the direct solves answered, else both ran again from
+//! their start as the contacts' alone (`Joined::save`, `Joined::restore`). Measured on the
+//! landing chain (`chain_steps landing 1000`, callgrind): 743.9M instructions against 494.5M
+//! (+50 %); the direct solve with the joints and sliding modes answered 9 of its 73 stages,
+//! and each declined one paid its rounds (up to [`SLIDE_ROUNDS`] factorisations a try, two
+//! tries) and then the contacts' stages again. Every one of the 123 declined tries (traced at
+//! 49f6e0c) ended at the [`SLIDE_ROUNDS`] cap with modes still changing: the slide
+//! directions' fixed point diverging (the largest turn growing about 2.7× a round, the four
+//! corners of a landing face turning each other's directions, each by about −3 times its own
+//! error: [`direct::SLIDE_TURN`]), converging too slowly (ratio about 0.5), or the modes
+//! cycling (a corner whose sticking normal pulls separates, approaches and joins again,
+//! period 2–6 rounds). Also tried (today's path 497.1M): a secant scale of each round's turn
+//! with a separated contact rejoining as a slider (8 rounds answer 25 of 71 stages, 32 rounds
+//! 54 of 79, at 836M), one try with the budget given back on restore (667M, 8 of 74
+//! answered; with the secant turns and 16 rounds 699M, 35 of 73), α = 1/4 (10 answered), a
+//! reversing slider sticking (1007M). The cost is every round refactoring the whole banded
+//! system (27 joint rows and the contacts). What would change that: an anti-cycling rule for
+//! the modes, an update of the factor for the few unknowns a round changes, or one wrench row
+//! set per face. Removed in the commit "impulse: delete the remaining switched-off paths";
+//! the code is at bd48987 (`JOINED_DIRECT_LARGE`, `Joined::save`, `Joined::restore` in
+//! `src/physics/collision/impulse/joined.rs`, the `direct_only` path of `stages` in
+//! `impulse/mod.rs`).
 
 use super::{direct, Direct, Row};
 use crate::physics::constraints::{Axis, End, Row as ConstraintRow, SolverBody};
@@ -110,47 +134,9 @@ pub const JOINED_FRICTION_ROWS: usize = 12;
 /// so a small jointed body meeting a large pile in the same stage keeps today's path.
 pub const JOINED_FRICTION_CONTACTS: usize = 16;
 
-/// Whether an impact with friction takes the joint rows of clusters larger than the joints'
-/// friction sweeps do ([`JOINED_FRICTION_ROWS`], [`JOINED_FRICTION_CONTACTS`]), its stages 1
-/// and 2 then the direct solves with them or, when either declines, the contacts' alone run
-/// again from the start. Off: measured on the landing chain (`chain_steps landing 1000`,
-/// callgrind), on it cost 743.9M instructions against 494.5M (+50 %): the direct solve with
-/// the joints and sliding modes answered 9 of its 73 stages, and each declined one paid its
-/// rounds (up to [`SLIDE_ROUNDS`] factorisations a try, two tries) and then the contacts'
-/// stages again.
-///
-/// Why the stages decline (measured at 49f6e0c with the gate lifted, every try of
-/// `Joined::sticking` traced): none is refused outright (no normal pulling at the end, no
-/// stop pulling, no approach); all 123 declined tries end at the [`SLIDE_ROUNDS`] cap with
-/// modes still changing, in three patterns:
-///
-/// - the slide directions' fixed point diverges: the largest turn grows about 2.7× a round
-///   (6.5e-5, 1.8e-4, 4.7e-4 … 2.5e-2 rad), the four corners of a landing face turning each
-///   other's directions (each by about −3 times its own error: [`direct::SLIDE_TURN`]);
-/// - it converges, too slowly for 8 rounds (ratio about 0.5: 4.4e-2 … 6.7e-4 rad);
-/// - the modes cycle: a corner whose sticking normal pulls separates, approaches without
-///   its impulse and joins again (Off ↔ Stick or Slide, period 2–6 rounds, often with the
-///   slide direction reversed).
-///
-/// Tried, not kept (callgrind, `chain_steps landing 1000`; today's path, the gate in place:
-/// 497.1M): a secant scale of each round's turn, α = α' / (1 − ρ) with ρ the ratio of this
-/// round's turns to the last's (clamped to 0.1 … 4), and a separated contact that approaches
-/// rejoining as a slider against its slip: 8 rounds answer 25 of 71 stages, 16 rounds 46 of
-/// 75, 32 rounds 54 of 79, at 836M for 32. Also one try (Exact only), the step's work budget given back on
-/// restore and no stage-1 sweeps after a declined joined direct solve (their result is thrown
-/// away by the restore): 667M with 8 of 74 answered; with the secant turns and 16 rounds 699M
-/// (+41 %), 35 of 73. A fixed under-relaxation α = 1/4 answers fewer (10: it slows the
-/// converging cases), and a sliding contact whose direction reverses sticking made it worse
-/// (1007M). The cost is every round refactoring the whole banded system (27 joint rows and
-/// the contacts): `Envelope::solve` 30.6M → 86.8M, `direct::sticking` 10.8M → 36.4M. What
-/// would change that: an anti-cycling rule for the modes, an update of the factor for the
-/// few unknowns a round changes instead of a new one, or one wrench row set per face (the
-/// corners' redundancy is what couples their directions).
-pub const JOINED_DIRECT_LARGE: bool = false;
-
 /// Rounds of the direct solve with joints and sliding contacts (`Joined::sticking`) before
 /// it declines (more answer more stages of a chain landing, at a round's factorisation each:
-/// [`JOINED_DIRECT_LARGE`]).
+/// module doc, *Tried and removed*).
 pub const SLIDE_ROUNDS: usize = 8;
 
 /// The joint rows of one response, weighed over the step's motions, and what they gave.
@@ -179,10 +165,8 @@ pub struct Joined {
     pub stops: Vec<f64>,
     /// The stage's selection while its stops' active set is searched ([`Joined::inelastic`]).
     selection: Vec<(Axis, usize, bool)>,
-    /// Whether a stage of this response took joint rows, and whether one had before the
-    /// last [`Joined::select`].
+    /// Whether a stage of this response took joint rows.
     pub(super) used: bool,
-    used_before: bool,
     /// Whether the current stage's inelastic solve held the joint rows (the direct solve
     /// answered with them): then its friction stage takes them too ([`Joined::friction`]).
     pub(super) held: bool,
@@ -202,19 +186,6 @@ pub struct Joined {
     /// Per selected row, the least change of its impulse in the direct sticking solve
     /// ([`Joined::sticking`]).
     floor: Vec<f64>,
-    /// Where a stage started ([`Joined::save`]), to go back to the contacts' solve alone.
-    undo: Undo,
-}
-
-/// A stage's start: the bodies' motions, the rows, the joints' impulses so far and whether a
-/// stage had taken joint rows.
-#[derive(Debug, Clone, Default)]
-struct Undo {
-    motions: Vec<SolverBody>,
-    rows: Vec<Row>,
-    impulses: Vec<(Vector3<f64>, Vector3<f64>)>,
-    stops: Vec<f64>,
-    used: bool,
 }
 
 /// A body's change (Δv, ΔL, Δω).
@@ -279,7 +250,6 @@ impl Joined {
         self.sides.clear();
         self.lambda.clear();
         self.used = false;
-        self.used_before = false;
         self.held = false;
         if rows.is_empty() {
             return;
@@ -324,7 +294,6 @@ impl Joined {
     /// More than `most` rows: none (the stage is the contacts' alone).
     pub(super) fn select(&mut self, bodies: impl Iterator<Item = usize>, most: usize) {
         self.held = false;
-        self.used_before = self.used;
         self.axes.clear();
         self.owners.clear();
         self.sides.clear();
@@ -357,38 +326,6 @@ impl Joined {
             self.sides.clear();
         }
         self.used |= !self.axes.is_empty();
-    }
-
-    /// Keeps where a stage starts (`rows`, `motions`, what was booked), for
-    /// [`Joined::restore`]; call after [`Joined::select`].
-    pub(super) fn save(&mut self, rows: &[Row], motions: &[SolverBody]) {
-        let undo = &mut self.undo;
-        undo.motions.clear();
-        undo.motions.extend_from_slice(motions);
-        undo.rows.clear();
-        undo.rows.extend_from_slice(rows);
-        undo.impulses.clear();
-        undo.impulses.extend_from_slice(&self.impulses);
-        undo.stops.clear();
-        undo.stops.extend_from_slice(&self.stops);
-        // `select` has set `used` for this stage; what it was before: whether an earlier
-        // stage took rows (an impact round's).
-        undo.used = self.used_before;
-    }
-
-    /// Back to where [`Joined::save`] was called, with no joint rows selected: the stage
-    /// is the contacts' alone, as if none had been.
-    pub(super) fn restore(&mut self, rows: &mut [Row], motions: &mut [SolverBody]) {
-        let undo = &self.undo;
-        motions.copy_from_slice(&undo.motions);
-        rows.copy_from_slice(&undo.rows);
-        self.impulses.clear();
-        self.impulses.extend_from_slice(&undo.impulses);
-        self.stops.clear();
-        self.stops.extend_from_slice(&undo.stops);
-        let used = undo.used;
-        self.select(std::iter::empty(), 0);
-        self.used = used;
     }
 
     /// Stage 2 solved directly with the selected rows held (`direct::sticking`: every

@@ -17,9 +17,8 @@
 //! | friction rows (the layer's `constraints::Friction` pair): the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
-//! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |
-//! | semismooth Newton in body space (off: [`NEWTON_STAGES`]) | [`newton`] | `solve` (a start for the sweeps) |
-//! | primal–dual interior point in body space (on for stage 2: [`INTERIOR_STAGES`]; off for stage 1: [`INTERIOR_NORMALS`]) | [`interior`] | `solve` (a start for the friction sweeps) |
+//! | a stage's rows in body space (what the interior point works on) | [`body_space`] | `setup`, `velocities`, `fill`, `take` |
+//! | primal–dual interior point in body space (stage 2: [`INTERIOR_STAGES`]) | [`interior`] | `solve` (a start for the friction sweeps) |
 //! | impacts among touching bodies: `propagate` (the default) or `simultaneous` | [`propagate`] | `rounds` (before the stages), `add` |
 //!
 //! # Many contacts (a face landing flat has 4), in three stages
@@ -65,6 +64,78 @@
 //! A last check measures K exactly as the energy panel does and, if round-off alone left it
 //! above K₀, scales P and L by `√(K₀/K)` (K is quadratic in (P, L)).
 //!
+//! # Tried and removed
+//!
+//! Paths that were built, measured and switched off, then deleted so that the solver carries
+//! only what runs; their code is in git history at the commit named.
+//!
+//! - **ADMM in body space** as the start of the sweeps of a large, wide system whose direct
+//!   solve declined (stages 1 and 2; scaled ADMM on `z = J x + b` with `H = M + Jᵀ ρ J`
+//!   factored once a penalty, ρ = 1/kₙ per contact, residual balancing). Measured on the
+//!   knocked walls (issue 35, 2026-12-06, under load): it took stage 1 of the bonded wall
+//!   from its cap (2000 sweeps and 32 subspace steps in half the steps) to 9–17 sweeps and
+//!   halved the unconverged steps (71 → 31 of 100; wall-ball 150 → 96 of 200), but the CPU
+//!   per step did not fall (bonded-wall-ball 42.5 → 45 ms, wall-ball 32 → 51 ms): it needs
+//!   300 to 3000 iterations (about 25 µs each) to reach 1e-7 m/s, and the friction sweeps and
+//!   subspace steps then still spent the budget closing 1e-7 to 1e-10 m/s. The interior point
+//!   ([`INTERIOR_STAGES`]) does that job. Removed with `admm.rs` (654 lines) in 6776c0e;
+//!   the code is at bd48987 (`src/physics/collision/impulse/admm.rs`).
+//! - **Semismooth Newton in body space** as the start of the sweeps of any stage whose
+//!   direct solve declined (the method of multipliers, each subproblem by semismooth Newton on
+//!   `ψ(x)` with Hessian `M + Jᵀ ρ D J`, an exact line search, ρ = 1e5/kₙ). Measured (issue
+//!   35, 2026-12-06, CPU per step under load, off → on): bonded-wall-ball 100 steps 44.5 →
+//!   40.1 ms (worst step ×7.7 → ×4.0 the median's work, unconverged 71 → 55), wall-ball 200
+//!   steps 43.6 → 51.0 ms (×8.1 → ×2.5, 150 → 166), dominoes16 1500 steps 1179 → 557 µs
+//!   (×167 → ×48, 4 → 1). It took stage 1 of the walls to 1e-11 m/s in 10–50
+//!   factorisations, not the few it should: with a stiff penalty each line search stopped
+//!   where the next separating contact closed (s of 1e-4 to 1e-1), a contact at a time again,
+//!   and a soft one (1–100, raised each outer iteration) needed more outer iterations; stage
+//!   2 of the walls often reached its 60 steps at 1e-5 m/s. It halved the domino run's mean
+//!   but doubled its median step (it factors where a few sweeps would do) and did not make
+//!   the walls faster. The interior point ([`INTERIOR_STAGES`]), which takes the active set
+//!   of all contacts at once, replaced it on stage 2; what they share is [`body_space`].
+//!   Removed with `newton.rs` (586 lines) in 58c043b; the code is at bd48987
+//!   (`src/physics/collision/impulse/newton.rs`).
+//! - **The interior point on stage 1** too (`INTERIOR_NORMALS`, off): the normals' sweeps
+//!   after a declined direct solve started from it. Measured with it on stage 1 alone,
+//!   wall-ball's median work per step doubled (476 263 → 1 025 380 row updates) and its
+//!   unconverged steps rose (299 → 450 of 600); on both stages wall-ball's median was 163 782
+//!   against 29 037 on stage 2 alone. The dominoes' stage 1 rarely declines (4 steps in lesson
+//!   37).
+//! - **A budget of 20 medians** (`MEDIAN_BUDGET`, `budget.rs`, off): a step's budget 20 times
+//!   the median work of the scene's steps so far (a histogram), at least 20 sweeps over its
+//!   rows, at most [`WORK_BUDGET`], on the whole step or on stage 2 alone. Measured
+//!   (2026-12-06, `contact_steps`, work in row updates; off → whole step: median, worst step
+//!   after the first ÷ the run's median, unconverged steps): dominoes 3000 steps 993, ×268, 2
+//!   → 615, ×89, 200 (largest residual **1.0e-2 m/s**); wall-ball 600 29 037, ×76, 59 → 36
+//!   740, ×32, 67 (**0.28 m/s**); bonded-wall-ball 600 76 220, ×39, 187 → 72 840, ×43, 141
+//!   (**7.3e-2 m/s**); uncut, no step of these scenes ended above 4.1e-4 m/s. A cut costs the
+//!   next steps (the dominoes' steps 600–1000 5.4M against 1.8M uncut, and the row left its
+//!   plane: a domino 1.05e-5 m sideways against 5e-10 m), a cut impact is a wrong answer
+//!   (the ball's first steps against the wall stopped at 0.28, 0.073, 0.13 m/s), and a causal
+//!   median still misses the ratio (a wall hit early has a dear median so far, the dominoes a
+//!   cheap one); stage 2 alone did the same on the dominoes and worse on wall-ball. Bounding
+//!   the dear steps needs them cheaper, not cut. What is kept: the budget of [`WORK_BUDGET`]
+//!   sweeps over the rows, and a step that meets it unconverged says so ([`StepReport`]).
+//! - **The friction sweeps' stall stop** (`STALL_BAND` = 0, `stall.rs`): a large stage's
+//!   sweeps (≥ [`SWEEPS_FIRST_ROWS`] rows) also stopped when a sweep's row updates changed the
+//!   rows' velocities by at most 10 tolerances while the whole sweep moved the bodies by less
+//!   than one (the updates cancelling along a flat direction of a redundant contact set).
+//!   Measured on the same states (each step taken twice), work −7 % to −45 % and no step
+//!   dearer: wall-ball 600 steps 70.1M → 46.2M row updates, knife-wall 60.5M → 40.7M,
+//!   bonded-wall-ball 145.9M → 111.6M, wall 34.6M → 19.2M, dominoes16 1500 9.98M → 9.28M.
+//!   Switched off because it stops at rest too, where a brick may keep a velocity of the
+//!   band's order (1e-9 m/s): lesson 41's claim that every brick lies still at 2.8 s failed
+//!   and its walk snapshot moved. Next, if tried again: apply it only in steps where something
+//!   moves, or end a stall by moving the impulses along the flat direction to their bound.
+//!
+//! The three above were removed in the commit "impulse: delete the remaining switched-off
+//! paths"; the code is at bd48987 (`INTERIOR_NORMALS`, `MEDIAN_BUDGET` in
+//! `src/physics/collision/impulse/mod.rs`, `budget.rs`, `stall.rs`; `World::set_median_budget`,
+//! `World::set_stall_band`; `contact_steps`' `CONTACT_STEPS_BUDGET`, `CONTACT_STEPS_STALL`
+//! and `CONTACT_STEPS_SHADOW`). The joints' large clusters in the direct solves alone:
+//! [`joined`]'s module doc.
+//!
 //! # Speculative contacts
 //!
 //! A resting body falls only ½|g|dt² per step under `rk4` and `splitting` (free fall from
@@ -84,17 +155,14 @@
 //! where it was at the start of the step with its *corrected* velocity (no creep at rest, on a
 //! slope or on a sphere), and what penetration is left is removed by translation (see there).
 
-pub mod admm;
-pub mod budget;
+pub mod body_space;
 pub mod direct;
 pub mod friction;
 pub mod interior;
 pub mod joined;
-pub mod newton;
 pub mod normal;
 pub mod particle;
 pub mod propagate;
-pub mod stall;
 pub mod subspace;
 
 use super::contacts;
@@ -111,7 +179,6 @@ use crate::physics::state::State;
 use nalgebra::{Matrix3, Vector3};
 
 pub use super::step_context::BOUNCE_STEPS;
-pub use budget::{BUDGET_FLOOR_SWEEPS, BUDGET_MEDIANS};
 pub use direct::{DIRECT_MAX, PIVOT_ROUNDS, RESTING_GAP, STICKING_MAX};
 pub(super) use friction::tangents;
 pub use normal::GAP_ROUND_OFF;
@@ -122,8 +189,7 @@ pub use subspace::{
 };
 
 /// The sweeps stop when no impulse changed a contact velocity by more than this (m/s), plus the
-/// same fraction of the fastest approach speed; with a stall band ([`stall::STALL_BAND`], off),
-/// a large friction stage also when its row updates cancel in body space within the band.
+/// same fraction of the fastest approach speed.
 pub const TOLERANCE: f64 = 1e-10;
 
 /// At most this many Gauss–Seidel sweeps per stage. A stack of 10 cubes needs about 800 the
@@ -162,10 +228,7 @@ pub const TRIAL_WAIT_MAX: u32 = 32;
 /// The largest work budget of one step, in sweeps over its rows: the sweeps, subspace steps
 /// and pivot rounds of all stages together may do at most `WORK_BUDGET · rows` row updates
 /// (one sweep over the rows costs `rows`, a factorisation its estimate `factorisation_work`;
-/// each checks the budget before it starts, so a step overshoots by one at most). Within it,
-/// where [`MEDIAN_BUDGET`] applies (off: measured there), a step's budget is
-/// [`BUDGET_MEDIANS`] (20) times the median work of the scene's steps so far, but at least
-/// [`BUDGET_FLOOR_SWEEPS`] sweeps over its rows ([`budget`]). A step
+/// each checks the budget before it starts, so a step overshoots by one at most). A step
 /// that spends it, or whose sweeps reach their cap ([`MAX_SWEEPS`]), stops where it is —
 /// every impulse still in its bounds (λ ≥ 0, |λ_t| ≤ μ λ), so K still only went down — and
 /// says so: its [`StepReport`] carries the residual, the loop strip and `tumble walk`'s
@@ -182,7 +245,7 @@ pub const TRIAL_WAIT_MAX: u32 = 32;
 /// it: it bounds the worst step rather than making a tumbling wall cheap (that needs a better
 /// friction method: issue 35, item 3). Since the interior point ([`INTERIOR_STAGES`]) the
 /// dominoes' median step is 993 row updates and its dearest 265 689; a budget of 20
-/// medians cuts it, and does harm ([`MEDIAN_BUDGET`]).
+/// medians cuts it, and does harm (module doc, *Tried and removed*).
 pub const WORK_BUDGET: u64 = 20_000;
 
 /// The sweeps a stage runs even when the budget is spent (the last stage of a step always
@@ -207,8 +270,7 @@ pub struct StepReport {
     pub work: u64,
     /// The rows (contacts) solved.
     pub rows: usize,
-    /// The step's work budget, in row updates ([`budget`]: 20 medians of the scene's steps
-    /// so far, between a floor and [`WORK_BUDGET`]).
+    /// The step's work budget, in row updates ([`WORK_BUDGET`] · rows).
     pub budget: u64,
     /// `Some(residual)` when a stage stopped unconverged: the largest change of a contact
     /// velocity its last sweep made, m/s (converged means below [`TOLERANCE`], 1e-10 m/s,
@@ -216,44 +278,12 @@ pub struct StepReport {
     pub unconverged: Option<f64>,
 }
 
-/// Whether a large, wide system whose direct solve declined starts its sweeps from an ADMM
-/// solve in body space ([`admm`]), stage 1 and stage 2. Off: measured on the knocked walls
-/// (issue 35, 2026-12-06, this machine under load), it takes stage 1 of the bonded wall from
-/// its cap (2000 sweeps and 32 subspace steps in half the steps) to 9–17 sweeps and halves
-/// the unconverged steps (71 → 31 of 100; wall-ball 150 → 96 of 200), but the CPU per step
-/// does not fall (bonded-wall-ball 42.5 → 45 ms, wall-ball 32 → 51 ms): ADMM needs 300 to
-/// 3000 iterations (about 25 µs each) to reach 1e-7 m/s, and from there the friction sweeps
-/// and subspace steps still often spend the budget closing 1e-7 to 1e-10 m/s.
-pub const ADMM_STAGES: bool = false;
-
-/// Whether a stage whose direct solve declined starts its sweeps from a semismooth Newton
-/// solve in body space ([`newton`]), stage 1 and stage 2 (any size of system; it takes the
-/// place of ADMM). Off: measured on this machine under load (issue 35, 2026-12-06, CPU per
-/// step, one run each, on against off):
-///
-/// | scene | off | on |
-/// |---|---|---|
-/// | bonded-wall-ball, 100 steps | 44.5 ms, worst ×7.7 the median's work, 71 unconverged | 40.1 ms, ×4.0, 55 |
-/// | wall-ball, 200 steps | 43.6 ms, ×8.1, 150 unconverged | 51.0 ms, ×2.5, 166 |
-/// | dominoes16, 1500 steps | 1179 µs, ×167, 4 unconverged | 557 µs, ×48, 1 |
-///
-/// Newton takes stage 1 of the walls to 1e-11 m/s in 10–50 factorisations, but it is not
-/// the few it should be: with a stiff penalty each step's line search stops where the next
-/// separating contact closes (s of 1e-4 to 1e-1), a contact at a time again; a soft penalty
-/// (1–100, raised each outer iteration) needs more outer iterations. Stage 2 of the walls
-/// then often reaches [`newton::NEWTON_STEPS`] at 1e-5 m/s and the friction sweeps spend
-/// the budget as before. It halves the domino run's mean (its median step doubles: Newton
-/// factors where a few sweeps would do; running 8 sweeps first made it worse, 1363 µs) and
-/// bounds the walls' worst steps, but the walls are not faster: off until the subproblem
-/// takes its active set in a few steps (an interior-point or a projected active-set
-/// variant). Stage 1 and stage 2 then keep their sweeps' answers as before.
-pub const NEWTON_STAGES: bool = false;
-
 /// Whether stage 2 (friction), when its direct solves declined and the sweeps' first burst
 /// ([`SUBSPACE_EVERY`] sweeps, as `subspace::sweep` starts) did not converge, starts the
 /// sweeps that follow from a primal–dual interior-point solve in body space ([`interior`],
-/// in the place of Newton and ADMM). It finds the active set of all contacts at once, where
-/// Newton's line search met them one at a time. A step whose first burst converges is bit
+/// where ADMM and semismooth Newton were tried: module doc, *Tried and removed*). It finds
+/// the active set of all contacts at once, where Newton's line search met them one at a
+/// time. A step whose first burst converges is bit
 /// for bit as without it.
 ///
 /// Measured (issue 35, 2026-12-06, one binary, this machine under load; CPU µs per step,
@@ -306,59 +336,6 @@ pub const INTERIOR_STAGES: bool = true;
 pub const INTERIOR_SKIP: f64 = 8.0;
 
 
-/// Whether stage 1 (the normals), when its direct solve declined, starts its sweeps from
-/// the interior-point solve too. Off: measured with it on stage 1 alone, wall-ball's median
-/// work per step doubles (476 263 → 1 025 380 row updates) and its unconverged steps rise
-/// (299 → 450 of 600); on both stages wall-ball's median is 163 782 against 29 037 on
-/// stage 2 alone. The dominoes' stage 1 rarely declines (4 steps in lesson 37).
-pub const INTERIOR_NORMALS: bool = false;
-
-/// Where a step's budget is 20 times the median work of the scene's steps so far
-/// ([`budget`]); elsewhere it is the largest, [`WORK_BUDGET`]. **Off**: as a cut it keeps
-/// issue 35's ratio on few scenes and gives wrong answers on others. Measured (2026-12-06,
-/// `contact_steps`, work in row updates, deterministic; the ratio is the worst step after the
-/// first over the whole run's median; unconverged steps, how many of them stopped at the
-/// budget, and their residual (the last sweep's largest change of a contact velocity, m/s),
-/// median / largest):
-///
-/// | scene, steps | off (as before) | whole step |
-/// |---|---|---|
-/// | dominoes, 3000 | 993, ×268, 2 unconverged (0 at budget), 1.4e-7 | 615, ×89, 200 (197), 1.5e-9 / **1.0e-2** |
-/// | dominoes16, 3000 | 2976, ×90, 1 (0), 2.1e-9 | 2986, ×39, 103 (97), 1.4e-9 / 5.0e-6 |
-/// | wall, 600 | 1776, ×841, 0 | 1776, ×42, 258 (258), 3.5e-8 / 3.1e-5 |
-/// | wall-ball, 600 | 29 037, ×76, 59 (0), 4.1e-9 / 8.4e-5 | 36 740, ×32, 67 (13), 3.6e-9 / **0.28** |
-/// | bonded-wall-ball, 600 | 76 220, ×39, 187 (0), 1.1e-6 / 4.1e-4 | 72 840, ×43, 141 (40), 2.9e-8 / **7.3e-2** |
-/// | knife-wall, 600 | 96 295, ×28, 23 (0), 1.9e-9 / 1.8e-4 | 100 554, ×21, 31 (26), 4.8e-9 / 1.8e-4 |
-/// | knife-wall-ball, 600 | 48 478, ×56, 40 (0), 1.5e-8 / 2.8e-4 | 40 933, ×34, 48 (26), 8.0e-9 / 2.8e-4 |
-///
-/// The stacks (1, 10, 40 cubes), the pyramids (10 and 20 rows), the cradle and the bonded
-/// wall at rest never meet it (the same numbers; their steps over 20 medians are the loading
-/// steps 2–5, whose median so far is the first steps'). Why it is off:
-///
-/// - **A cut costs the next steps.** The dominoes' first 465 steps (standing, tipping) cost
-///   176 each, so their sliding steps get 3520 (20 × 176) and stop at 1e-9 m/s; the next
-///   step starts from that answer and is dearer: steps 600–1000 cost 5.4M in all against
-///   1.8M uncut (median step 5107 against 2003), and the row leaves its plane (after
-///   3000 steps a domino 1.05e-5 m sideways and turned 5.2e-4 rad out of the plane,
-///   against 5e-10 m and 1.1e-8 rad uncut).
-/// - **A cut impact is a wrong answer.** The ball reaches the wall at step 11, after ten
-///   resting steps of about 900 row updates: its first five steps get 17 280–29 440 and stop
-///   at 0.28, 0.073, 0.13, 1.1e-3 and 0.071 m/s (bonded-wall-ball's steps 13–15: 1.6e-3 to
-///   0.073 m/s). The dominoes' steps 1104 and 1116 stop at 1.0e-2 and 6.7e-3 m/s after
-///   1909 normal sweeps (their stage 1 declined its direct solve). Uncut, the largest
-///   residual of any of these scenes' steps was 4.1e-4 m/s.
-/// - **The ratio is still missed**, by a causal rule: the whole run's median is not known
-///   while it runs (a wall hit early has a dear median so far, the dominoes a cheap one).
-/// - Stage 2 alone ([`budget::Applies::Friction`], stage 1 never cut) measured the same on
-///   the dominoes (×92, 200 unconverged) and worse on wall-ball (×53, 94 unconverged; the
-///   impact's friction stopped at 0.20 m/s) and `wall` (×422).
-///
-/// So bounding the dear steps needs them cheaper (the friction sweeps after the
-/// interior-point start: a dear domino step is 3–4 interior iterations, then 250–2000 sweeps
-/// and 100–1100 subspace steps), not cut. `contact_steps` measures either with
-/// `CONTACT_STEPS_BUDGET` = `friction` or `whole`; [`crate::physics::World::set_median_budget`].
-pub const MEDIAN_BUDGET: budget::Applies = budget::Applies::Off;
-
 /// Buffers reused from step to step (nothing in them outlives a collide phase).
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
@@ -389,20 +366,6 @@ pub struct Scratch {
     /// The joint rows solved with the contacts ([`joined`]), and the impulses they gave.
     pub joined: joined::Joined,
     joint_rows: Vec<crate::physics::constraints::Row>,
-}
-
-impl Scratch {
-    /// Where the budget of 20 medians of the scene's steps applies from the next step on
-    /// ([`MEDIAN_BUDGET`] until set; for measurements and tests).
-    pub fn set_median_budget(&mut self, applies: budget::Applies) {
-        self.direct.applies = applies;
-    }
-
-    /// The sweeps' stall band from the next step on ([`stall::STALL_BAND`] until
-    /// set; 0 switches the stall stop off: for measurements and tests).
-    pub fn set_stall_band(&mut self, band: f64) {
-        self.direct.stall_band = Some(band);
-    }
 }
 
 /// The direct solves' buffers: the system, the motions saved to undo a rejected solve, the
@@ -440,76 +403,24 @@ struct Direct {
     /// (`direct::HeldJoints`).
     slides: Vec<direct::Hold>,
     subspace_rows: Vec<(f64, [f64; 2])>,
-    /// The ADMM solve's buffers (stage 2 of a large system).
-    admm: admm::Scratch,
-    /// The Newton solve's buffers ([`NEWTON_STAGES`]).
-    newton: newton::Scratch,
     /// The interior-point solve's buffers ([`INTERIOR_STAGES`]).
     interior: interior::Scratch,
     /// This step's work so far and its budget, in row updates ([`budget`]).
     work: u64,
     budget: u64,
-    /// The largest budget ([`WORK_BUDGET`] · rows) and 20 medians ([`budget::budget`]).
-    cap: u64,
-    median_budget: u64,
-    /// The median work of the scene's steps so far, counted from when the rule was switched on
-    /// (the budget's measure of a typical step), and where its budget applies
-    /// ([`MEDIAN_BUDGET`] unless set).
-    median: budget::WorkMedian,
-    applies: budget::Applies,
     /// The last sweeps' residual (m/s), and this step's largest residual of a stage that
     /// stopped unconverged.
     residual: f64,
     unconverged: Option<f64>,
-    /// The sweeps' stall band ([`stall::STALL_BAND`] unless set).
-    stall_band: Option<f64>,
 }
 
 impl Direct {
-    /// The sweeps' stall band ([`stall::STALL_BAND`] unless set).
-    fn stall_band(&self) -> f64 {
-        self.stall_band.unwrap_or(stall::STALL_BAND)
-    }
-
-    /// A new step's budget over `rows` rows ([`budget::budget`]: 20 medians of the steps so
-    /// far, between a floor and [`WORK_BUDGET`]).
+    /// A new step's budget over `rows` rows: [`WORK_BUDGET`] sweeps over them.
     fn start(&mut self, rows: usize) {
         self.work = 0;
         self.residual = 0.0;
         self.unconverged = None;
-        self.cap = WORK_BUDGET * rows as u64;
-        self.median_budget = match self.applies {
-            budget::Applies::Off => self.cap,
-            _ => budget::budget(self.median.median(), rows, self.cap),
-        };
-        self.budget = match self.applies {
-            budget::Applies::Whole => self.median_budget,
-            _ => self.cap,
-        };
-    }
-
-    /// Stage 2 (friction) is next: under [`budget::Applies::Friction`] the step's budget
-    /// becomes 20 medians (stage 1 kept the largest, [`WORK_BUDGET`]).
-    fn friction_budget(&mut self) {
-        if self.applies == budget::Applies::Friction {
-            self.budget = self.median_budget;
-        }
-    }
-
-    /// A stage 1 is next (an impact round, or the resting solve after them): the budget that
-    /// applies to it.
-    fn normal_budget(&mut self) {
-        if self.applies == budget::Applies::Friction {
-            self.budget = self.cap;
-        }
-    }
-
-    /// The step is over: its work joins the scene's median (kept only while the rule applies:
-    /// off, it would cost a resting cube's step 5 %).
-    fn finish(&mut self) {
-        if self.applies != budget::Applies::Off {
-            self.median.add(self.work);
-        }
+        self.budget = WORK_BUDGET * rows as u64;
     }
 
     /// Whether this step's work budget is spent.
@@ -522,25 +433,6 @@ impl Direct {
     fn sweeps_left(&self, rows: usize, cap: u64) -> u64 {
         let left = self.budget.saturating_sub(self.work) / rows.max(1) as u64;
         cap.min(left.max(BUDGET_FLOOR))
-    }
-
-    /// A Newton solve ([`newton`]) from the rows' impulses, within what is left of the
-    /// budget; its work is counted, and the solves it took and their steps.
-    fn newton(
-        &mut self,
-        rows: &mut [Row],
-        directions: &[[Axis; 2]],
-        motions: &mut [SolverBody],
-        tolerance: f64,
-        counters: &mut Counters,
-    ) {
-        let left = self.budget.saturating_sub(self.work);
-        let outcome = newton::solve(rows, directions, motions, tolerance, left, &mut self.newton);
-        self.work += outcome.work;
-        counters.newton_steps += outcome.steps as u64;
-        if outcome.taken {
-            counters.newton += 1;
-        }
     }
 
     /// An interior-point solve ([`interior`]) from the rows' impulses, within what is left
@@ -587,14 +479,13 @@ impl Direct {
         // is the sweeps' rate of convergence.
         let burst = self.sweeps_left(rows.len(), SUBSPACE_EVERY);
         let half = burst / 2;
-        let band = self.stall_band();
         let (mut converged, mut sweeps, first) =
-            friction::sweep(rows, directions, motions, (tolerance, band), half);
+            friction::sweep(rows, directions, motions, tolerance, half);
         let mut residual = first;
         if !converged {
             let more;
             (converged, more, residual) =
-                friction::sweep(rows, directions, motions, (tolerance, band), burst - half);
+                friction::sweep(rows, directions, motions, tolerance, burst - half);
             sweeps += more;
         }
         self.work += sweeps * rows.len() as u64;
@@ -671,19 +562,13 @@ pub struct Counters {
     /// Steps in which a stage stopped unconverged (its work budget spent, [`WORK_BUDGET`], or
     /// its sweeps' cap reached).
     pub unconverged: u64,
-    /// Newton solves ([`newton`]) whose answer the stage took, and their Newton steps
-    /// (factorisations in body space).
-    pub newton: u64,
-    pub newton_steps: u64,
     /// Interior-point solves ([`interior`]) whose answer the stage took, and their
     /// iterations (factorisations in body space).
     pub interior: u64,
     pub interior_steps: u64,
     /// Stages 2 with joint rows that the direct sticking solve with them answered
-    /// ([`joined`]), and stages with more joint rows than the joints' friction sweeps take
-    /// whose direct solves declined (solved again as the contacts' alone).
+    /// ([`joined`]).
     pub joined_sticking: u64,
-    pub joined_declined: u64,
 }
 
 /// The axis d at a contact: +d on A at its lever, −d on B at its own (B's solver body
@@ -893,7 +778,6 @@ pub fn respond(
         (p, j)
     }));
     resolve(&settings, contacts, warm, buffers);
-    direct.finish();
     *report = StepReport {
         work: direct.work,
         rows: contacts.len(),
@@ -1154,12 +1038,8 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
 }
 
 /// Stages 1 to 3 (module doc) on `rows` (prepared from `contacts`, the same order), with
-/// the sweeps' `tolerance` and the kinetic energy the velocities may keep.
-///
-/// With joint rows too many for the joints' friction sweeps ([`select_joints`]: a chain
-/// landing), stages 1 and 2 are the direct solves with the joints or nothing: when either
-/// declines, both run again from where they started, the contacts' alone
-/// (`Joined::save`), and `joints::contact::hold` holds the joints after the response.
+/// the sweeps' `tolerance` and the kinetic energy the velocities may keep; the joint rows
+/// of the clusters the contacts touch in an impact ([`select_joints`]) solved with them.
 fn stages(
     settings: &Settings,
     rows: &mut [Row],
@@ -1168,25 +1048,12 @@ fn stages(
     kinetic_allowed: f64,
     stage: &mut Stage,
 ) {
-    let direct_only = select_joints(rows, settings.friction, settings.bounce_speed, stage.joined);
-    if direct_only {
-        stage.joined.save(rows, stage.motions);
-    }
+    select_joints(rows, settings.friction, settings.bounce_speed, stage.joined);
     // Stage 1: inelastic normal impulses, λ ≥ 0.
-    let mut solved = inelastic(rows, tolerance, stage);
+    let large = inelastic(rows, tolerance, stage);
     // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
     // Skipped when no pushing contact slides (a body at rest): there is nothing to do.
-    solved.0 &= !direct_only || stage.joined.held;
-    if solved.0 {
-        solved.0 = friction_stage(settings, rows, contacts, tolerance, solved.1, stage, direct_only);
-    }
-    if !solved.0 {
-        // Back to the contacts' solve alone, from the start.
-        stage.joined.restore(rows, stage.motions);
-        stage.counters.joined_declined += 1;
-        let (_, large) = inelastic(rows, tolerance, stage);
-        friction_stage(settings, rows, contacts, tolerance, large, stage, false);
-    }
+    friction_stage(settings, rows, contacts, tolerance, large, stage);
 
     // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀
     // (with the joints' reaction to it, when there are joint rows).
@@ -1206,9 +1073,8 @@ fn stages(
 }
 
 /// Stage 1 ([`inelastic_stage`] within its budget), each row's compression kept; returns
-/// (true, whether the system is large and wide).
-fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> (bool, bool) {
-    stage.direct.normal_budget();
+/// whether the system is large and wide.
+fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> bool {
     let large = inelastic_stage(
         rows,
         stage.motions,
@@ -1220,14 +1086,13 @@ fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> (bool, bool
     for row in rows.iter_mut() {
         row.compression = row.normal.lambda;
     }
-    (true, large)
+    large
 }
 
 /// Stage 2 (module doc) when μ > 0 and some pushing contact slides: with the joint rows held
-/// in stage 1, the direct sticking solve with them, then (`direct_only` false) the joints'
-/// friction sweeps ([`joined`]); else a large wide system's trial sweeps, the direct sticking
-/// solve, the sweeps. False (nothing changed) only when `direct_only` and the direct solve
-/// with the joints declined.
+/// in stage 1, the direct sticking solve with them, then the joints' friction sweeps
+/// ([`joined`]); else a large wide system's trial sweeps, the direct sticking solve, the
+/// sweeps.
 fn friction_stage(
     settings: &Settings,
     rows: &mut [Row],
@@ -1235,8 +1100,7 @@ fn friction_stage(
     tolerance: f64,
     large: bool,
     stage: &mut Stage,
-    direct_only: bool,
-) -> bool {
+) {
     let Stage {
         tangents: tangent_directions,
         motions,
@@ -1249,7 +1113,6 @@ fn friction_stage(
     let buffers_direct: &mut Direct = buffers_direct;
     let counters: &mut Counters = counters;
     let (friction, dt) = (settings.friction, settings.dt);
-    buffers_direct.friction_budget();
     tangent_directions.clear();
     if friction == 0.0
         || !rows
@@ -1257,7 +1120,7 @@ fn friction_stage(
             .zip(contacts.iter())
             .any(|(r, c)| friction::sliding(r, c, motions, tolerance))
     {
-        return true;
+        return;
     }
     tangent_directions.extend(
         rows.iter_mut()
@@ -1277,9 +1140,6 @@ fn friction_stage(
                     counters.joined_sticking += 1;
                 }
             }
-        }
-        if !solved && direct_only {
-            return false;
         }
         solved = solved
             || joined_friction(
@@ -1331,17 +1191,6 @@ fn friction_stage(
                 tolerance,
                 counters,
             );
-        } else if NEWTON_STAGES {
-            buffers_direct.newton(rows, tangent_directions, motions, tolerance, counters);
-        } else if large && ADMM_STAGES {
-            buffers_direct.work += admm::solve(
-                rows,
-                tangent_directions,
-                motions,
-                tolerance,
-                &mut buffers_direct.admm,
-            )
-            .work;
         }
     }
     if !solved {
@@ -1358,22 +1207,15 @@ fn friction_stage(
         }
         counters.friction_sweeps += sweeps;
     }
-    true
 }
 
 /// The joint rows of the clusters `rows` touch, in an impact (none without joints, or at
 /// rest). With friction, more than the joints' friction sweeps take (more than
 /// [`joined::JOINED_FRICTION_ROWS`] rows or [`joined::JOINED_FRICTION_CONTACTS`] contacts):
-/// none, unless [`joined::JOINED_DIRECT_LARGE`]; then they are taken and this returns true:
-/// the stage keeps them only if its direct solves answer ([`stages`]).
-fn select_joints(
-    rows: &[Row],
-    friction: f64,
-    bounce_speed: f64,
-    joined: &mut joined::Joined,
-) -> bool {
+/// none; `joints::contact::hold` then holds the joints after the response.
+fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut joined::Joined) {
     if rows.iter().any(|r| r.approach < -bounce_speed) {
-        let most = if friction == 0.0 || joined::JOINED_DIRECT_LARGE {
+        let most = if friction == 0.0 {
             usize::MAX
         } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
             0
@@ -1385,15 +1227,10 @@ fn select_joints(
                 .flat_map(|r| r.normal.axis.bodies().into_iter().flatten()),
             most,
         );
-        friction > 0.0
-            && !joined.axes.is_empty()
-            && (rows.len() > joined::JOINED_FRICTION_CONTACTS
-                || joined.axes.len() > joined::JOINED_FRICTION_ROWS)
     } else {
         // At rest: the contacts' rows alone (also after `propagate`'s impact rounds, whose
         // last round's selection would otherwise stay).
         joined.select(std::iter::empty(), 0);
-        false
     }
 }
 
@@ -1432,7 +1269,6 @@ fn friction_trial(
     buffers_direct: &mut Direct,
     counters: &mut Counters,
 ) -> bool {
-        let band = buffers_direct.stall_band();
         let Direct {
             trial,
             trial_rows,
@@ -1453,7 +1289,7 @@ fn friction_trial(
             rows,
             tangent_directions,
             motions,
-            (tolerance, band),
+            tolerance,
             TRIAL_SWEEPS,
         );
         *work += sweeps * rows.len() as u64;
@@ -1539,14 +1375,6 @@ fn inelastic_stage(
         } else {
             counters.declined += 1;
             normal::warm_start(rows, motions);
-            if INTERIOR_NORMALS {
-                buffers_direct.interior(rows, &[], motions, tolerance, counters);
-            } else if NEWTON_STAGES {
-                buffers_direct.newton(rows, &[], motions, tolerance, counters);
-            } else if large && ADMM_STAGES {
-                buffers_direct.work +=
-                    admm::solve(rows, &[], motions, tolerance, &mut buffers_direct.admm).work;
-            }
             let (converged, sweeps, residual) = if large {
                 subspace::sweep(rows, &[], motions, tolerance, buffers_direct, counters)
             } else {

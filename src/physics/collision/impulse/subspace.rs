@@ -107,8 +107,7 @@ pub(super) fn sweep_after(
                 let (converged, sweeps, residual) = normal::sweep(rows, motions, tolerance, burst);
                 (converged, sweeps, residual, None)
             } else {
-                let band = buffers.stall_band();
-                friction_burst(rows, directions, motions, (tolerance, band), burst)
+                friction_burst(rows, directions, motions, tolerance, burst)
             };
             buffers.work += sweeps * rows_count as u64;
             buffers.residual = residual;
@@ -168,7 +167,7 @@ fn friction_burst(
     rows: &mut [Row],
     directions: &[[Axis; 2]],
     motions: &mut [SolverBody],
-    tolerance: (f64, f64),
+    tolerance: f64,
     burst: u64,
 ) -> (bool, u64, f64, Option<(f64, u64)>) {
     let half = burst / 2;
