@@ -1207,6 +1207,7 @@ fn stages(
 
 /// Stage 1 ([`inelastic_stage`] within its budget), each row's compression kept; returns
 /// (true, whether the system is large and wide).
+#[inline(always)]
 fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> (bool, bool) {
     stage.direct.normal_budget();
     let large = inelastic_stage(
