@@ -237,6 +237,7 @@ impl Sum {
 impl Joined {
     /// Takes the scene's joint rows (`rows`, unweighed: `Axis::jacobian`) for a response over
     /// `motions`, with `joints` joints; no rows: every stage is the contacts' alone.
+    #[inline(always)]
     pub fn prepare(&mut self, rows: &[ConstraintRow], motions: &[SolverBody], joints: usize) {
         self.all.clear();
         self.impulses.clear();
@@ -251,9 +252,15 @@ impl Joined {
         self.lambda.clear();
         self.used = false;
         self.held = false;
-        if rows.is_empty() {
-            return;
+        if !rows.is_empty() {
+            self.take_rows(rows, motions);
         }
+    }
+
+    /// [`Joined::prepare`]'s rows and clusters, when the scene has joint rows (outlined: a
+    /// world without joints pays only the clearing, every step).
+    #[inline(never)]
+    fn take_rows(&mut self, rows: &[ConstraintRow], motions: &[SolverBody]) {
         self.all.extend(
             rows.iter()
                 .filter_map(|r| weigh(&r.axis, motions).map(|a| (a, r.owner, r.lo == 0.0))),
@@ -408,6 +415,7 @@ impl Joined {
     /// J_c u ≥ −b} (the complementarity conditions of every row checked), and the stops that
     /// push stay in [`Joined::axes`] as equality rows for stages 2 and 3. Without stops:
     /// `direct::inelastic` alone. False (the motions as they were) when it declines.
+    #[inline(always)]
     pub(super) fn inelastic(
         &mut self,
         large: bool,
@@ -416,8 +424,8 @@ impl Joined {
         tolerance: f64,
         buffers: &mut Direct,
     ) -> bool {
-        let mut lambda = std::mem::take(&mut self.lambda);
         if !self.sides.contains(&true) {
+            let mut lambda = std::mem::take(&mut self.lambda);
             let answered = direct::inelastic(
                 large,
                 rows,
@@ -429,6 +437,21 @@ impl Joined {
             self.lambda = lambda;
             return answered;
         }
+        self.inelastic_with_stops(large, rows, motions, tolerance, buffers)
+    }
+
+    /// [`Joined::inelastic`] when some selected row is a stop: the active set over the stops
+    /// around the direct solve.
+    #[inline(never)]
+    fn inelastic_with_stops(
+        &mut self,
+        large: bool,
+        rows: &mut [Row],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        buffers: &mut Direct,
+    ) -> bool {
+        let mut lambda = std::mem::take(&mut self.lambda);
         let mut selection = std::mem::take(&mut self.selection);
         selection.clear();
         selection.extend(

@@ -1074,6 +1074,7 @@ fn stages(
 
 /// Stage 1 ([`inelastic_stage`] within its budget), each row's compression kept; returns
 /// whether the system is large and wide.
+#[inline(always)]
 fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> bool {
     let large = inelastic_stage(
         rows,
