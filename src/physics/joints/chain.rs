@@ -128,7 +128,7 @@ impl Reduced {
     /// What is `wanted` for K μ = `rhs` with the held factor, one entry per body of the
     /// factor's.
     #[inline(always)]
-    fn answer(&mut self, rhs: &[f64], wanted: Wanted) {
+    pub(super) fn answer(&mut self, rhs: &[f64], wanted: Wanted) {
         let bodies = self.bodies();
         match wanted {
             Wanted::Moves(moves) => {
