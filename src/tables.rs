@@ -20,9 +20,7 @@
 
 use crate::physics::collision::impulse;
 use crate::physics::joints::written::Measure;
-use crate::physics::{
-    Against, BodyView, ClothView, Contact, Feature, JointView, Obstacle, Snapshot, SpringView,
-};
+use crate::physics::{Against, ClothView, Contact, Feature, JointView, Snapshot, SpringView};
 use nalgebra::{Matrix3, Vector3};
 
 /// Relative round-off of a panel's quantity: 64 ε ≈ 1.4e-14 of its scale.
@@ -642,8 +640,8 @@ pub fn spring_panel(sp: &SpringView) -> Panel {
 
 /// The contacts the last *collide* phase handled, and the deepest penetration now: one
 /// block of rows per contact (depth, normal velocity before the response, impulse applied).
-/// `obstacles` names each contact's obstacle by its type.
-pub fn contact_panel(s: &Snapshot, obstacles: &[Obstacle]) -> Panel {
+/// Each contact's obstacle is named by its type (the snapshot's fixed things).
+pub fn contact_panel(s: &Snapshot) -> Panel {
     let mut rows = vec![scalar_row("penetration", s.penetration, "m")];
     if s.contacts.is_empty() {
         rows.push(Row {
@@ -661,7 +659,7 @@ pub fn contact_panel(s: &Snapshot, obstacles: &[Obstacle]) -> Panel {
     }
     for c in s.contacts.iter().filter(|c| involves(c, s.body_index)) {
         rows.push(Row {
-            label: contact_label(c, obstacles, &s.bodies, false),
+            label: contact_label(c, s, false),
             cells: Vec::new(),
             unit: "",
         });
@@ -723,16 +721,11 @@ pub fn involves(c: &Contact, index: usize) -> bool {
 
 /// What touches what at a contact: `vertex 3 in ground 0` (the report's vertex test), or
 /// `face-face: box1 on box 0`; `short` gives `v3 in ground` and `face-face box1/box2`.
-pub fn contact_label(
-    c: &Contact,
-    obstacles: &[Obstacle],
-    bodies: &[BodyView],
-    short: bool,
-) -> String {
-    let name = |i: usize| bodies.get(i).map_or("?", |b| b.name.as_str());
+pub fn contact_label(c: &Contact, s: &Snapshot, short: bool) -> String {
+    let name = |i: usize| s.bodies.get(i).map_or("?", |b| b.name.as_str());
     let against = match c.against {
         Against::Obstacle(i) => {
-            let kind = obstacles.get(i).map_or("obstacle", |o| o.kind());
+            let kind = s.obstacles_fixed().nth(i).map_or("obstacle", |o| o.kind);
             if short {
                 kind.to_string()
             } else {

@@ -252,7 +252,7 @@ fn write_block(
     out: &mut impl Write,
 ) -> std::io::Result<()> {
     let snapshot = &world.snapshot_of(bodies.first().copied().unwrap_or(0));
-    let obstacles = &snapshot.obstacles;
+    let obstacles = snapshot.obstacles_fixed().next().is_some();
     writeln!(out)?;
     let when = format!("t = {} s", number_plain(snapshot.time));
     let line = match snapshot.phase {
@@ -331,8 +331,8 @@ fn write_block(
             crate::error_bars::annotate(&mut all, &errors);
             crate::error_bars::annotate(&mut scene_panels, &errors);
         }
-        if !obstacles.is_empty() || several {
-            all.push(contact_panel(&snapshot, obstacles));
+        if obstacles || several {
+            all.push(contact_panel(&snapshot));
         }
         for panel in &all {
             write(panel)?;

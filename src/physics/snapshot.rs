@@ -516,6 +516,12 @@ fn potential_scale(world: &World, index: usize) -> f64 {
 }
 
 impl Snapshot {
+    /// The obstacles among the fixed things, in the scene's order (obstacle i of a contact's
+    /// `Against::Obstacle(i)` is the i-th).
+    pub fn obstacles_fixed(&self) -> impl Iterator<Item = &FixedView> {
+        self.fixed.iter().filter(|f| f.body.is_none())
+    }
+
     /// The snapshot of a world after its last phase, the panels showing the first body.
     pub fn of(world: &World) -> Snapshot {
         Snapshot::of_body(world, 0)

@@ -229,7 +229,7 @@ fn cloth_steps(s: &Snapshot) -> Vec<Line<'static>> {
             ));
         }
         let [stopped, _] = view.obstacle_contacts;
-        let obstacles = if s.obstacles.is_empty() {
+        let obstacles = if s.obstacles_fixed().next().is_none() {
             String::new()
         } else {
             format!(", {stopped} stopped at an obstacle's surface")
@@ -259,7 +259,7 @@ fn cloth_contacts(s: &Snapshot) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
         let none = "cloths: no contact declared: nothing to detect, the phase costs nothing";
         return (vec![line(none, "")], counts);
     }
-    let (obstacles, bodies) = (!s.obstacles.is_empty(), !s.bodies.is_empty());
+    let (obstacles, bodies) = (s.obstacles_fixed().next().is_some(), !s.bodies.is_empty());
     // The response's particle law says its formulas (`collision::particle`).
     let [in_obstacle, in_body] = s
         .contact_model
@@ -366,16 +366,16 @@ fn integrate(s: &Snapshot) -> Vec<Line<'static>> {
 }
 
 fn collide(s: &Snapshot) -> Vec<Line<'static>> {
-    let obstacles = &s.obstacles;
+    let obstacles = s.obstacles_fixed().count();
     let bodies = s.bodies.len();
-    if obstacles.is_empty() && bodies < 2 && s.cloths.is_empty() {
+    if obstacles == 0 && bodies < 2 && s.cloths.is_empty() {
         return vec![line(
             "no obstacles declared: nothing to detect, the phase costs nothing",
             "",
         )];
     }
     if s.contacts.is_empty() {
-        let mut what = match (obstacles.len(), bodies) {
+        let mut what = match (obstacles, bodies) {
             // The deepest penetration beside it is measured on the shape; the solver may stop
             // a body short of, or slightly inside, a surface without a contact in this phase.
             (0, 1) => "no obstacle and one body: no rigid contact".to_string(),
@@ -419,7 +419,7 @@ fn collide(s: &Snapshot) -> Vec<Line<'static>> {
         ));
         for c in s.contacts.iter().take(2) {
             lines.push(line(
-                format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
+                format!("{}:", contact_label(c, s, true)),
                 format!(
                     " n = {}, uₙ = {}, k = {}, J = {} N·s",
                     vector(&c.normal),
@@ -433,7 +433,7 @@ fn collide(s: &Snapshot) -> Vec<Line<'static>> {
         lines.push(line(response.formula, ""));
         for c in s.contacts.iter().take(2) {
             lines.push(line(
-                format!("{}:", contact_label(c, obstacles, &s.bodies, true)),
+                format!("{}:", contact_label(c, s, true)),
                 format!(
                     " d = {} m, n = {}, ΔP = −1.4·P = {} N·s",
                     number_plain(c.depth),

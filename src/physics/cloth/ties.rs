@@ -142,8 +142,8 @@
 #![allow(clippy::needless_range_loop)] // parallel per-particle arrays, indexed together
 
 use super::conjugate_gradient::{Symmetric3, Workspace};
-use crate::physics::constraints::SolverBody;
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use crate::physics::constraints::{attachment::point_jacobian, SolverBody};
+use nalgebra::{Matrix3, Matrix3x6, Matrix6, Vector3, Vector6};
 
 /// Which components of a particle's velocity a tie prescribes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -268,6 +268,26 @@ impl Tie {
     #[inline(always)]
     fn free(&self, u: &Vector3<f64>) -> Vector3<f64> {
         u - self.tied(u)
+    }
+
+    /// I − S, the projector on its tied directions, Σ d dᵀ over its rows' directions d: n nᵀ
+    /// (Normal: one row along n), I (Full: three rows along e_x, e_y, e_z, as an attachment's,
+    /// `constraints::Attachment::rows`).
+    #[inline(always)]
+    fn projector(&self) -> Matrix3<f64> {
+        match self.kind {
+            TieKind::Normal => self.normal * self.normal.transpose(),
+            TieKind::Full => Matrix3::identity(),
+        }
+    }
+
+    /// G_i = (I − S_i) `[I, −[r]×]` (module doc): the tied components of the body's point
+    /// velocity, G Y = (I − S)(Y_V + Y_ω × r), from the layer's point Jacobian
+    /// ([`point_jacobian`]: the body end of its rows is −G, row by row). The products of the
+    /// solve's loops apply it as `tied(point(Y, r))` and its transpose as `wrench(tied(u), r)`.
+    #[inline(always)]
+    fn jacobian(&self) -> Matrix3x6<f64> {
+        self.projector() * point_jacobian(&self.arm)
     }
 }
 
@@ -409,14 +429,15 @@ pub const WARM_GATE: f64 = 0.01;
 /// CONTRACTION, besides reaching ε of the right-hand side (module doc, "Warm starts").
 pub const CONTRACTION: f64 = 0.1;
 
-/// [ΔV; Δω] ↦ ΔV + Δω × r.
+/// [ΔV; Δω] ↦ ΔV + Δω × r: G y with G = `[I, −[r]×]` ([`point_jacobian`]), summed as the
+/// vectors, not as G's row products.
 #[inline(always)]
 fn point(y: &Vector6<f64>, r: &Vector3<f64>) -> Vector3<f64> {
     let (v, w) = (y.fixed_rows::<3>(0), y.fixed_rows::<3>(3));
     Vector3::new(v[0], v[1], v[2]) + Vector3::new(w[0], w[1], w[2]).cross(r)
 }
 
-/// u ↦ [u; r × u] (the transpose of `point`).
+/// u ↦ [u; r × u]: Gᵀ u (the transpose of `point`).
 #[inline(always)]
 fn wrench(u: &Vector3<f64>, r: &Vector3<f64>) -> Vector6<f64> {
     let t = r.cross(u);
@@ -687,11 +708,7 @@ impl Workspace {
             let p = &self.preconditioner[i];
             let [a, e, f, b, c, d] = p.0;
             let full = Matrix3::new(a, b, c, b, e, d, c, d, f);
-            let projector = match tie.kind {
-                TieKind::Normal => tie.normal * tie.normal.transpose(),
-                TieKind::Full => Matrix3::identity(),
-            };
-            let free = Matrix3::identity() - projector;
+            let free = Matrix3::identity() - tie.projector();
             t.filtered.push((i, t.inverse[i]));
             let inv = t.inverse[i].0;
             let inv_full = Matrix3::new(
@@ -707,13 +724,7 @@ impl Workspace {
                 filtered[(1, 2)],
             ]);
             if over.moves(tie) {
-                // G = (I − S) [I, −[r]×]
-                let r = tie.arm;
-                let cross = Matrix3::new(0.0, -r.z, r.y, r.z, 0.0, -r.x, -r.y, r.x, 0.0);
-                let mut g = nalgebra::Matrix3x6::zeros();
-                g.fixed_view_mut::<3, 3>(0, 0).copy_from(&projector);
-                g.fixed_view_mut::<3, 3>(0, 3)
-                    .copy_from(&(-(projector * cross)));
+                let g = tie.jacobian();
                 body.terms
                     .push((tie.body.unwrap(), g.transpose() * full * g));
             }
@@ -1286,6 +1297,46 @@ mod tests {
                 )
             })
             .collect()
+    }
+
+    #[test]
+    fn a_ties_jacobian_is_its_projector_on_the_layers_point_jacobian() {
+        // A body at (V, ω) and a particle at rest tied at arm r: a Full tie's G is the layer's
+        // point Jacobian (G y = V + ω × r); a Normal tie's takes its n part, and that is n times
+        // the rate of the layer's row along n (particle at lever 0, body at r), negated.
+        use crate::physics::constraints::Axis;
+        let (v, w) = (Vector3::new(0.3, -1.0, 0.2), Vector3::new(0.5, 2.0, -1.5));
+        let r = Vector3::new(0.2, -0.175, 0.1);
+        let n = Vector3::new(0.3, 0.9, -0.2).normalize();
+        let y = Vector6::new(v.x, v.y, v.z, w.x, w.y, w.z);
+        let mut tie = Tie {
+            particle: 0,
+            body: Some(1),
+            arm: r,
+            normal: n,
+            kind: TieKind::Full,
+            target: Vector3::zeros(),
+            extra: Vector3::zeros(),
+            permanent: true,
+            impulse: Vector3::zeros(),
+        };
+        assert_eq!(tie.jacobian(), point_jacobian(&r));
+        assert!((tie.jacobian() * y - (v + w.cross(&r))).norm() < 1e-15);
+        assert_eq!(tie.tied(&point(&y, &r)), v + w.cross(&r));
+        tie.kind = TieKind::Normal;
+        let mut body = [
+            SolverBody::particle(Vector3::zeros(), 100.0),
+            SolverBody::new(v, Vector3::zeros(), 0.5, Matrix3::zeros()),
+        ];
+        body[1].omega = w;
+        let rate = Axis::new(n, (0, &Vector3::zeros()), Some((1, &r)), &body).velocity(&body);
+        let g = tie.jacobian() * y;
+        assert!((g + n * rate).norm() < 1e-15, "{g} {rate}");
+        assert!((g - tie.tied(&point(&y, &r))).norm() < 1e-15);
+        // Its transpose is the wrench the tie's tied impulse puts on the body.
+        let u = Vector3::new(1.0, -2.0, 0.5);
+        let back = tie.jacobian().transpose() * u;
+        assert!((back - wrench(&tie.tied(&u), &r)).norm() < 1e-15);
     }
 
     #[test]

@@ -6,7 +6,7 @@ use super::tied::HeldJoints;
 use super::{close_gap, move_body, solver_body, turn_gap, Attachment};
 use crate::physics::body::Body;
 use crate::physics::cloth::Cloth;
-use crate::physics::constraints::{Attachment as Hold, SolverBody};
+use crate::physics::constraints::{attachment, Attachment as Hold, SolverBody};
 use crate::physics::effects::Loads;
 use crate::physics::joints::Links;
 use crate::physics::state::State;
@@ -161,16 +161,17 @@ pub struct Holding<'a> {
 /// ```
 ///
 /// one symmetric positive-definite 3k × 3k system per body with k attachments, solved
-/// directly (Cholesky). It is built on the constraint layer: the body and the particles are
-/// solver bodies (`constraints::SolverBody`: the body first, then each attachment's particle),
-/// each attachment three equality rows between a particle end and the body end
-/// (`constraints::Attachment`), and K_ac their 3 × 3 block (`Attachment::block`, f = factor,
-/// formed as matrices so that the solve keeps its bits). The body's turn is then applied
-/// exactly and the particle moved by what the linearisation missed,
-/// `(R(h Δω') − I) r − h Δω' × r` (Δω' = factor Δω), with the opposite momentum to the body:
-/// the error left is round-off, and body + particles keep their momentum. A fixed body takes nothing (K = I/m_p); a body whose
-/// integrator ignores the correction in its position (factor 0) takes the impulses in its
-/// momenta only.
+/// directly (Cholesky). It is solved as rows of the constraint layer: the body and the
+/// particles are solver bodies (`constraints::SolverBody`: the body first, its share weighed
+/// by f = factor, `attachment::weighed`, then each attachment's particle), each attachment
+/// three equality rows between a particle end and the body end (`constraints::Attachment`),
+/// and K the rows' couplings (`attachment::system`: `Axis::coupling`, the particle's term
+/// then the body's). The body's turn is then applied exactly and the particle moved by what
+/// the linearisation missed, `(R(h Δω') − I) r − h Δω' × r` (Δω' = factor Δω), with the
+/// opposite momentum to the body: the error left is round-off, and body + particles keep
+/// their momentum. A fixed body takes nothing (K = I/m_p); a body whose integrator ignores
+/// the correction in its position (factor 0: weighed by 0, its rows have no body end) takes
+/// the impulses in its momenta only.
 ///
 /// **Bodies held by joints** (a pole on a hinge): their corrections must keep the joints'
 /// velocity rows, `J Y = 0` (`tied`'s `HeldJoints`, the rows at the bodies' poses after their
@@ -220,10 +221,12 @@ pub fn hold_attachments(
         let rotation = state.orientation.matrix();
         let moves = !body.fixed && body.inv_mass > 0.0;
         let scale = if moves { factor } else { 0.0 };
-        // The solve's solver bodies: the body (0), then each attachment's particle (a + 1);
-        // each attachment three equality rows between them (`constraints::attachment`).
+        // The solve's solver bodies: the body (0), its share weighed by the position factor
+        // (`constraints::attachment::weighed`), then each attachment's particle (a + 1); each
+        // attachment three equality rows between them (`constraints::attachment`).
+        let own = solver_body(body, state);
         let mut ends = Vec::with_capacity(list.len() + 1);
-        ends.push(solver_body(body, state));
+        ends.push(attachment::weighed(&own, scale));
         ends.extend((list.iter()).map(|a| {
             SolverBody::particle(cloth.velocities[a.particle], cloth.inv_mass(a.particle))
         }));
@@ -234,19 +237,14 @@ pub fn hold_attachments(
                 arm: rotation * att.offset_body,
             })
             .collect();
-        let k = list.len();
-        let mut matrix = DMatrix::<f64>::zeros(3 * k, 3 * k);
-        let mut rhs = DVector::<f64>::zeros(3 * k);
+        // K: the rows' couplings (`attachment::system`).
+        let matrix = attachment::system(&holds, &ends);
+        let mut rhs = DVector::<f64>::zeros(3 * list.len());
         for (a, (att, hold)) in list.iter().zip(&holds).enumerate() {
             // Where the particle must end: on the point, P_a − x_p over h, less its velocity.
             let point = state.position + hold.arm;
             let u = (point - cloth.positions[att.particle]) / dt - ends[hold.particle].v;
             rhs.fixed_rows_mut::<3>(3 * a).copy_from(&u);
-            for (c, other) in holds.iter().enumerate() {
-                matrix
-                    .fixed_view_mut::<3, 3>(3 * a, 3 * c)
-                    .copy_from(&hold.block(other, &ends, scale));
-            }
         }
         let Some(cholesky) = matrix.cholesky() else {
             continue;
@@ -266,7 +264,7 @@ pub fn hold_attachments(
             state.angular_momentum -= torque;
             if scale > 0.0 {
                 let y_v = -total * (body.inv_mass * scale);
-                let y_w = -(ends[0].inv_inertia * torque) * scale;
+                let y_w = -(own.inv_inertia * torque) * scale;
                 move_body(state, &y_v, &y_w, dt);
                 for (att, Hold { arm: ra, .. }) in list.iter().zip(&holds) {
                     let gap = turn_gap(&y_w, ra, dt);

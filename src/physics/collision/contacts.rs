@@ -1,5 +1,6 @@
-//! Every contact row of a world for the `impulse` response: each body against each obstacle,
-//! and each pair of bodies.
+//! Every contact row of a world for the `impulse` response: each moving body against each
+//! fixed thing (`fixed`: an obstacle or a fixed body, through one function, `against_fixed`),
+//! and each pair of moving bodies.
 //!
 //! ```text
 //! body vs ground     the body's vertices below the plane (exact for a convex body: a face
@@ -16,18 +17,26 @@
 //! fast pairs         two bodies moving fast relative to each other: swept to their time of
 //!                    impact (`sweep`), the rows carried to the end of the step
 //! plane (ramp)       as the ground: the vertices behind it
-//! fixed body         never against an obstacle; against a moving body it is B (the world)
+//! fixed body         never against an obstacle; against a moving body it is B (the world),
+//!                    a fixed thing as an obstacle is: the contact geometry (it has no exact
+//!                    vertex test), swept when the body is fast
 //! ```
+//!
+//! The rows come in this order (the solvers' sweeps follow it, so it fixes the numbers): each
+//! moving body against each obstacle, then the pairs of the broad phase, a fixed body's pair
+//! in its place among them.
 //!
 //! Points closer than `margin` to a surface, outside it, are *speculative* rows (depth ≤ 0):
 //! the solver may keep them from closing their gap within the next step (see `impulse`).
 
 use super::broad_phase::BroadPhase;
+use super::fixed::{pose_of, Fixed};
 use super::geometry::{shape_shape, ContactPoint, Pose};
 use super::sweep;
-use super::{Against, CollideInput, Contact, Feature};
+use super::{Against, CollideInput, Contact, Feature, Obstacle};
+use crate::physics::body::Body;
 use crate::physics::state::State;
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Vector3};
 
 /// Finds the rows for `states` (after the integrate phase) into `out`; returns whether any
 /// row touches (depth > 0). Levers are filled in from the current barycenters; `points` is a
@@ -51,8 +60,7 @@ pub fn find(
     out.iter().any(|c| c.depth > 0.0)
 }
 
-/// Each moving body against each obstacle (module doc: vertices, swept vertices, the contact
-/// geometry, round bodies), appended to `out`.
+/// Each moving body against each obstacle ([`against_fixed`]), appended to `out`.
 fn against_obstacles(
     input: &CollideInput,
     states: &[State],
@@ -61,85 +69,127 @@ fn against_obstacles(
     points: &mut Vec<ContactPoint>,
 ) {
     for (index, (body, state)) in input.bodies.iter().zip(states).enumerate() {
-        let rotation_now = state.orientation.matrix();
         if body.fixed {
             continue;
         }
-        let round = body.shape.as_ref().is_some_and(|s| s.is_round());
-        // The start of the step, for the swept tests (the ground needs none).
-        let swept_tests = !round && input.obstacles.iter().any(|o| !o.is_half_space());
-        let before = &input.before[index];
-        let rotation_before = if swept_tests {
-            before.orientation.matrix()
-        } else {
-            Matrix3::identity()
-        };
-        let pose = Pose {
-            position: state.position,
-            rotation: rotation_now,
-        };
-        for (obstacle_index, obstacle) in input.obstacles.iter().enumerate() {
-            let first = out.len();
-            // B: the obstacle, and its static entry in the solver body table.
-            let against = Against::Obstacle(obstacle_index);
-            let b_end = (against, input.end(against));
-            if let (true, Some(shape)) = (round, &body.shape) {
-                points.clear();
-                // A fast round body is swept against a thin obstacle (`sweep`).
-                if !obstacle.is_half_space() {
-                    let (other, at) = obstacle.shape();
-                    let thin = sweep::half_thickness(shape).min(sweep::half_thickness(&other));
-                    if sweep::may_exceed(before, state, shape, sweep::FAST * thin) {
-                        let a = sweep::Side {
-                            shape,
-                            path: sweep::Path::new(before, state, shape.bounding_radius()),
-                        };
-                        let b = sweep::Side {
-                            shape: &other,
-                            path: sweep::Path::still(&at),
-                        };
-                        if sweep::swept_rows(&a, &b, margin, points) {
-                            out.extend(points.iter().map(|p| row(index, state, b_end, p, None)));
-                            continue;
-                        }
-                    }
-                }
-                obstacle.contact(shape, &pose, margin, points);
-                out.extend(points.iter().map(|p| row(index, state, b_end, p, None)));
-                continue;
-            }
-            for (vertex, r0) in body.points_body.iter().enumerate() {
-                let b = state.position + rotation_now * r0;
-                // Half-spaces need no sweep (see `detect`): skip the vertex's start point.
-                let hit = if obstacle.is_half_space() {
-                    obstacle.inside(&b)
-                } else {
-                    obstacle.swept(&(before.position + rotation_before * r0), &b)
-                };
-                let (depth, normal) = match hit {
-                    Some(hit) => (hit.depth, hit.normal),
-                    None => match obstacle.near(&b, margin) {
-                        Some((gap, normal)) => (-gap, normal),
-                        None => continue,
-                    },
-                };
-                out.push(Contact {
-                    lever: b - state.position,
-                    other: b_end.1,
-                    ..Contact::new(index, against, Feature::Vertex(vertex), b, depth, normal)
-                });
-            }
-            // No vertex inside: what do faces and edges see?
-            let touched = out[first..].iter().any(|c| c.depth > 0.0);
-            if let (false, false, Some(shape)) = (touched, obstacle.is_half_space(), &body.shape) {
-                points.clear();
-                obstacle.contact(shape, &pose, margin, points);
-                if !points.is_empty() {
-                    out.truncate(first);
-                    out.extend(points.iter().map(|p| row(index, state, b_end, p, None)));
-                }
+        let a = Moving::new(input, index, state);
+        for o in 0..input.obstacles.len() {
+            against_fixed(&a, &input.obstacle(o), margin, out, points);
+        }
+    }
+}
+
+/// Body A as detection sees it: which body, where it is now and where it was at the start of
+/// the step.
+struct Moving<'a> {
+    index: usize,
+    body: &'a Body,
+    state: &'a State,
+    before: &'a State,
+    pose: Pose,
+    /// A round shape (no vertices: the contact geometry alone).
+    round: bool,
+}
+
+impl<'a> Moving<'a> {
+    #[inline]
+    fn new(input: &'a CollideInput, index: usize, state: &'a State) -> Moving<'a> {
+        let body = &input.bodies[index];
+        Moving {
+            index,
+            body,
+            state,
+            before: &input.before[index],
+            pose: pose_of(state),
+            round: body.shape.as_ref().is_some_and(|s| s.is_round()),
+        }
+    }
+}
+
+/// A moving body A against a fixed thing B, obstacle or fixed body (`fixed`), appended to
+/// `out` (module doc):
+///
+/// ```text
+/// B has an exact vertex test, A has vertices   each vertex: static (half-space) or swept
+///                                              test, else near; none inside and B no
+///                                              half-space: the contact geometry instead
+/// otherwise                                    swept if A is fast (`sweep`), else the
+///                                              contact geometry, if the bounding spheres meet
+/// ```
+fn against_fixed(
+    a: &Moving,
+    b: &Fixed,
+    margin: f64,
+    out: &mut Vec<Contact>,
+    points: &mut Vec<ContactPoint>,
+) {
+    let to = (b.against, b.end);
+    let row = |p: &ContactPoint| row(a.index, a.state, to, p, b.lever(&p.point));
+    if let (Some(exact), false) = (b.exact(), a.round) {
+        let first = out.len();
+        vertices(a, exact, to, margin, out);
+        // No vertex inside: what do faces and edges see?
+        let touched = out[first..].iter().any(|c| c.depth > 0.0);
+        if let (false, false, Some(shape)) = (touched, exact.is_half_space(), &a.body.shape) {
+            points.clear();
+            b.contact(shape, &a.pose, margin, points);
+            if !points.is_empty() {
+                out.truncate(first);
+                out.extend(points.iter().map(row));
             }
         }
+        return;
+    }
+    let Some(shape) = &a.body.shape else {
+        return;
+    };
+    if !b.sweep(shape, a.before, a.state, margin, points) {
+        if b.beyond(&a.state.position, shape.bounding_radius(), margin) {
+            return;
+        }
+        points.clear();
+        b.contact(shape, &a.pose, margin, points);
+    }
+    out.extend(points.iter().map(row));
+}
+
+/// The report's vertex test of A's vertices against an obstacle's kind (`detect`): static at a
+/// half-space, swept along the vertex's motion otherwise; a vertex outside within `margin` is
+/// a speculative row.
+fn vertices(
+    a: &Moving,
+    exact: &Obstacle,
+    (against, other): (Against, usize),
+    margin: f64,
+    out: &mut Vec<Contact>,
+) {
+    // Half-spaces need no sweep (see `detect`): no start of the step.
+    let half_space = exact.is_half_space();
+    let rotation_before = if half_space {
+        Matrix3::identity()
+    } else {
+        a.before.orientation.matrix()
+    };
+    let (x, rotation_now) = (a.state.position, a.pose.rotation);
+    for (vertex, r0) in a.body.points_body.iter().enumerate() {
+        let b = x + rotation_now * r0;
+        let hit = if half_space {
+            exact.inside(&b)
+        } else {
+            exact.swept(&(a.before.position + rotation_before * r0), &b)
+        };
+        let (depth, normal) = match hit {
+            Some(hit) => (hit.depth, hit.normal),
+            None => match exact.near(&b, margin) {
+                Some((gap, normal)) => (-gap, normal),
+                None => continue,
+            },
+        };
+        out.push(Contact {
+            lever: b - x,
+            other,
+            ..Contact::new(a.index, against, Feature::Vertex(vertex), b, depth, normal)
+        });
     }
 }
 
@@ -206,12 +256,19 @@ fn between_bodies(
         if input.joined.binary_search(&(a, b)).is_ok() {
             continue;
         }
-        // A fixed body is B, the world's side: it takes no impulse.
-        let (a, b, shape_a, shape_b) = match (input.bodies[a].fixed, input.bodies[b].fixed) {
+        // A fixed body is B, a fixed thing as an obstacle is (`fixed`): it takes no impulse.
+        match (input.bodies[a].fixed, input.bodies[b].fixed) {
             (true, true) => continue,
-            (true, false) => (b, a, shape_b, shape_a),
-            _ => (a, b, shape_a, shape_b),
-        };
+            (false, false) => {}
+            (fixed_a, _) => {
+                let (a, b) = if fixed_a { (b, a) } else { (a, b) };
+                if let Some(fixed) = input.fixed_body(b, states) {
+                    let a = Moving::new(input, a, &states[a]);
+                    against_fixed(&a, &fixed, margin, out, points);
+                }
+                continue;
+            }
+        }
         let (sa, sb) = (&states[a], &states[b]);
         if sweeping && moved(a) + moved(b) > sweep::FAST * thin(a).min(thin(b)) {
             let side_a = sweep::Side {
@@ -223,11 +280,7 @@ fn between_bodies(
                 path: sweep::Path::new(&input.before[b], sb, shape_b.bounding_radius()),
             };
             if sweep::swept_rows(&side_a, &side_b, margin, points) {
-                out.extend(
-                    points
-                        .iter()
-                        .map(|p| row(a, sa, (Against::Body(b), b), p, Some(sb))),
-                );
+                out.extend(points.iter().map(|p| body_row(a, sa, b, sb, p)));
                 continue;
             }
         }
@@ -237,34 +290,27 @@ fn between_bodies(
         }
         points.clear();
         shape_shape(shape_a, &pose_of(sa), shape_b, &pose_of(sb), margin, points);
-        out.extend(
-            points
-                .iter()
-                .map(|p| row(a, sa, (Against::Body(b), b), p, Some(sb))),
-        );
+        out.extend(points.iter().map(|p| body_row(a, sa, b, sb, p)));
     }
 }
 
-/// Where a body's shape is.
-fn pose_of(state: &State) -> Pose {
-    Pose {
-        position: state.position,
-        rotation: state.orientation.matrix(),
-    }
+/// A row of body `a` (at `sa`) against body `b` (at `sb`) from a point of the contact geometry.
+fn body_row(a: usize, sa: &State, b: usize, sb: &State, p: &ContactPoint) -> Contact {
+    row(a, sa, (Against::Body(b), b), p, p.point - sb.position)
 }
 
 /// A row from a point of the contact geometry: A is body `a` (at `state`), B is `against`
-/// with its solver body `end` (`CollideInput::end`), `other` B's state if it is a body.
+/// with its solver body `end` (`CollideInput::end`) and lever arm `lever_other` (r_B).
 fn row(
     a: usize,
     state: &State,
     (against, end): (Against, usize),
     p: &ContactPoint,
-    other: Option<&State>,
+    lever_other: Vector3<f64>,
 ) -> Contact {
     Contact {
         lever: p.point - state.position,
-        lever_other: other.map_or_else(nalgebra::Vector3::zeros, |s| p.point - s.position),
+        lever_other,
         other: end,
         ..Contact::new(
             a,

@@ -8,15 +8,17 @@
 //! bodies, then one static entry per obstacle (1/M = 0, I⁻¹ = 0, at rest). A fixed body and
 //! an obstacle are the same kind of static thing there ([`moves`]): no end of a row, exact
 //! zeros in a relative velocity, so the responses (`impulse`, `soft_step`) have no
-//! body-against-obstacle branch. Detection keeps each obstacle kind's closed-form tests
-//! (`obstacle/kinds/`: a plane stays a plane), and the row label [`Against`] still says what
-//! B is for the front ends.
+//! body-against-obstacle branch. Detection and `seed` reach a fixed body and an obstacle the
+//! same way too, as a fixed thing (`fixed`), which keeps each obstacle kind's closed-form tests
+//! (`obstacle/kinds/`: a plane stays a plane); the row label [`Against`] still says what B is
+//! for the front ends.
 //!
 //! | file | idea |
 //! |---|---|
 //! | `obstacle` | the scene's fixed things, each a static body of the shape table: one file per kind in `obstacle/kinds/` (shape, point tests, contact, outline, scene words), listed by `build.rs` |
 //! | `detect` | the report's test: is a vertex inside an obstacle; the swept test along its motion (the formulas per shape) |
-//! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against bodies |
+//! | `fixed` | a fixed thing, obstacle or fixed body: B that never moves, as one static entry of the shape table (its label, solver body entry, pair, sweep, point test) for detection and `seed` |
+//! | `contacts` | every contact row of a world: vertices, faces and edges, bodies against fixed things and against bodies |
 //! | `response` | the responses a scene can choose: the `responses!` list (below: `Variant => module`) and the descriptor each module holds (name, formulas, README row, colour) |
 //! | `seed` | the report's response, reproduced with its failures (one body, its own detection) |
 //! | `impulse` | one impulse solver for every row: restitution, Coulomb friction, no energy added; a file per constraint kind (`normal`, `friction`), per method (`direct`, `subspace`) and for the impact law (`propagate`) |
@@ -34,6 +36,7 @@ pub mod response;
 pub mod broad_phase;
 pub mod contacts;
 pub mod detect;
+pub mod fixed;
 pub mod geometry;
 pub mod kept;
 pub mod obstacle;
@@ -205,22 +208,6 @@ pub struct CollideInput<'a> {
     /// Recorded contact rows: when given, detection is skipped and these are the step's rows
     /// (a bench of the response alone, `benches/solver.rs`); None in every simulation.
     pub recorded: Option<&'a [Contact]>,
-}
-
-impl CollideInput<'_> {
-    /// B's entry in the solver body table: the world's bodies first, in order, then one static
-    /// solver body per obstacle (`SolverBody::fixed_thing`), in the scene's order.
-    ///
-    /// ```text
-    /// Body(j)      → j
-    /// Obstacle(o)  → bodies + o
-    /// ```
-    pub fn end(&self, against: Against) -> usize {
-        match against {
-            Against::Body(b) => b,
-            Against::Obstacle(o) => self.bodies.len() + o,
-        }
-    }
 }
 
 /// Whether solver body `end` ([`CollideInput::end`]) moves: a body that is not fixed. A fixed

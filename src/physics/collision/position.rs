@@ -242,20 +242,32 @@ impl Fix<'_> {
         let tolerance = 1e-12 * (1.0 + deepest);
         // Rows between two moving bodies are solved directly; rows against the world only
         // (static ends: obstacles, fixed bodies) by the sweeps, which finish them in one or two.
-        scratch.others.clear();
-        scratch
-            .others
-            .extend(contacts.iter().map(|c| self.other(c)));
-        if scratch.others.iter().any(Option::is_some)
-            && self.push_out_directly(contacts, scratch, tolerance)
-        {
-            return;
+        // A step whose Bs are all static (a body on the ground) needs no list of B's ends.
+        if !contacts.iter().any(|c| self.other(c).is_some()) {
+            return self.sweep_out(contacts, scratch, tolerance, |_| None);
         }
+        let mut others = std::mem::take(&mut scratch.others);
+        others.clear();
+        others.extend(contacts.iter().map(|c| self.other(c)));
+        if !self.push_out_directly(contacts, &others, scratch, tolerance) {
+            self.sweep_out(contacts, scratch, tolerance, |i| others[i]);
+        }
+        scratch.others = others;
+    }
+
+    /// Hildreth's sweeps (module doc) for `scratch.depths`, into `scratch.shifts`; `other(i)`
+    /// is contact i's B end when it moves ([`Fix::other`]).
+    fn sweep_out(
+        &self,
+        contacts: &[Contact],
+        scratch: &mut Scratch,
+        tolerance: f64,
+        other: impl Fn(usize) -> Option<usize>,
+    ) {
         let Scratch {
             multipliers,
             shifts,
             depths,
-            others,
             ..
         } = scratch;
         shifts.fill(Vector3::zeros());
@@ -264,12 +276,13 @@ impl Fix<'_> {
         let inv_mass = |b: usize| self.bodies[b].inv_mass;
         for _ in 0..MAX_SWEEPS {
             let mut largest: f64 = 0.0;
-            for (((c, mu), depth), &other) in contacts
+            for (i, ((c, mu), depth)) in contacts
                 .iter()
                 .zip(multipliers.iter_mut())
                 .zip(depths.iter())
-                .zip(others.iter())
+                .enumerate()
             {
+                let other = other(i);
                 let mut separation = shifts[c.body];
                 let mut k = inv_mass(c.body);
                 if let Some(other) = other {
@@ -298,13 +311,13 @@ impl Fix<'_> {
     fn push_out_directly(
         &self,
         contacts: &[Contact],
+        others: &[Option<usize>],
         scratch: &mut Scratch,
         tolerance: f64,
     ) -> bool {
         let Scratch {
             shifts,
             depths,
-            others,
             merged,
             merged_at,
             active,

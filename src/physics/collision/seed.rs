@@ -41,7 +41,7 @@ use super::particle::{Hit, ParticleLaw, Touch};
 use super::response::Descriptor;
 use super::StepContext;
 use crate::physics::constraints::particle_contact::ParticleContacts;
-use super::{vertices_into, Against, CollideInput, Contact, EnergyChange, Feature};
+use super::{vertices_into, CollideInput, Contact, EnergyChange, Feature};
 use crate::physics::derive::derive;
 use crate::physics::state::State;
 use nalgebra::Vector3;
@@ -75,17 +75,21 @@ pub fn collide(
     None
 }
 
-/// Runs the report's response on `state`, one obstacle after the other.
-/// Body 0 is the body: `seed` knows one.
+/// Runs the report's response on `state`, one fixed thing after the other (`fixed`: the
+/// obstacles; the scene's rules allow `seed` no other body). Body 0 is the body: `seed` knows
+/// one. A fixed thing answers the report's static test by its `inside` (an obstacle's kind's
+/// exact formula); a fixed body is read at the start of the step, where it stays.
 pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Contact>) {
     let body = &input.bodies[0];
     let mut points = Vec::with_capacity(body.points_body.len());
     vertices_into(body, state, &mut points);
-    for (index, obstacle) in input.obstacles.iter().enumerate() {
+    // Not body 0 itself, were it fixed (it responds, as it always has).
+    let others = input.fixed_things(input.before).filter(|f| f.end != 0);
+    for fixed in others {
         // The deepest vertex (the first one on a tie).
         let mut deepest = None;
         for (vertex, p) in points.iter().enumerate() {
-            if let Some(hit) = obstacle.inside(p) {
+            if let Some(hit) = fixed.inside(p) {
                 if deepest.is_none_or(|(_, best): (usize, super::detect::Penetration)| {
                     hit.depth > best.depth
                 }) {
@@ -109,10 +113,10 @@ pub fn respond(input: &CollideInput, state: &mut State, contacts: &mut Vec<Conta
             lever,
             normal_velocity: point_velocity.dot(&hit.normal),
             impulse: state.linear_momentum - momentum_before,
-            other: input.end(Against::Obstacle(index)),
+            other: fixed.end,
             ..Contact::new(
                 0,
-                Against::Obstacle(index),
+                fixed.against,
                 Feature::Vertex(vertex),
                 point,
                 hit.depth,

@@ -129,6 +129,7 @@
 mod bodies;
 mod bounce;
 mod f2;
+mod f4;
 mod lanes;
 pub mod particle;
 mod rows;
@@ -346,7 +347,7 @@ fn solve(
         // SAFETY: the CPU has AVX2.
         return unsafe { solve_avx2(input, params, states, contacts, scratch) };
     }
-    solve_plain(input, params, states, contacts, scratch)
+    solve_plain::<f4::Plain>(input, params, states, contacts, scratch)
 }
 
 /// [`solve`] compiled with AVX2.
@@ -359,12 +360,12 @@ fn solve_avx2(
     contacts: &mut Vec<Contact>,
     scratch: &mut Scratch,
 ) -> EnergyChange {
-    solve_plain(input, params, states, contacts, scratch)
+    solve_plain::<f4::Avx>(input, params, states, contacts, scratch)
 }
 
-/// [`solve`] for any CPU.
+/// [`solve`] for any CPU, with `Q` the four lanes of the sweeps' pairs of runs (`f4`).
 #[inline(always)]
-fn solve_plain(
+fn solve_plain<Q: f4::Quad>(
     input: &CollideInput,
     params: &SoftStep,
     states: &mut [State],
@@ -402,7 +403,7 @@ fn solve_plain(
     lanes.schedule(rows, bodies.members.len(), passes == 1 && piped());
     #[cfg(test)]
     PIPED_STEPS.with(|c| c.set(c.get() + usize::from(lanes.piped())));
-    substeps(rows, lanes, bodies, n, passes, friction, h);
+    substeps::<Q>(rows, lanes, bodies, n, passes, friction, h);
     // Restitution, once, from the approach the contact met, a manifold at a time (`bounce`).
     if context.restitution > 0.0 {
         let motions = &mut bodies.motions;
@@ -460,7 +461,7 @@ fn detect(
 
 /// The `n` sub-steps (module doc, "The step"), `passes` sweeps each of the solve and relax.
 #[inline(always)]
-fn substeps(
+fn substeps<Q: f4::Quad>(
     rows: &mut Rows,
     lanes: &Lanes,
     bodies: &mut Bodies,
@@ -475,15 +476,15 @@ fn substeps(
             sweep::warm_start(rows, &mut bodies.motions);
         }
         if lanes.piped() {
-            lanes.substep(rows, bodies, friction, h);
+            lanes.substep::<Q>(rows, bodies, friction, h);
         } else {
             for _ in 0..passes {
-                lanes.sweep(rows, &mut bodies.motions, friction, h, true);
+                lanes.sweep::<Q>(rows, &mut bodies.motions, friction, h, true);
             }
             bodies.advance(h);
             rows.refresh_gaps(bodies);
             for _ in 0..passes {
-                lanes.sweep(rows, &mut bodies.motions, friction, h, false);
+                lanes.sweep::<Q>(rows, &mut bodies.motions, friction, h, false);
             }
         }
         bodies.end_substep();

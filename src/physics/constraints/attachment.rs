@@ -22,16 +22,18 @@
 //! position takes over the step (the bodies' integrator's position factor: 1 for symplectic
 //! Euler, ½ for rk4 and the splittings, 0 for explicit Euler), so a hold aiming at where the
 //! particle *ends* sees the body's point move by f h (ΔV + Δω × r); f = 1 is the velocity
-//! rows' own K. A static body end (a fixed body, [`SolverBody::fixed_thing`]) adds nothing:
-//! K_aa = I/m_p.
+//! rows' own K. It enters as the body's solver body weighed by f ([`weighed`]: 1/M and I⁻¹
+//! times f), so K is the rows' own J W Jᵀ over the weighed table. A static body end (a fixed
+//! body, [`SolverBody::fixed_thing`], or a body weighed by f = 0) adds nothing: K_aa = I/m_p.
 //!
-//! The block is formed as 3 × 3 matrices, `(−[r_a]× I⁻¹) [r_c]× + I/M`, not row by row: the
-//! nine couplings give the same numbers to round-off (test) but sum each entry's products in
-//! another order, and the explicit cloth's per-body direct solve (`cloth_coupling::attachments`)
-//! keeps the bits it always had.
+//! Every entry of K is a coupling of two rows ([`Axis::coupling`]), over the ends the two rows
+//! share: the particle's term first, then the body's, `(r_a × e_i)·(f I⁻¹ (r_c × e_j))` — the
+//! same numbers as the matrix form above to round-off, each entry's products grouped
+//! `a·(I⁻¹ c)`. [`system`] is K of a set of attachments, the explicit cloth's per-body direct
+//! solve (`cloth_coupling::attachments`).
 
 use super::{Axis, Row, SolverBody};
-use nalgebra::{Matrix3, Matrix3x6, Vector3};
+use nalgebra::{DMatrix, Matrix3, Matrix3x6, Vector3};
 
 /// A particle held at a body's point: solver body `particle` (a particle) at lever 0, solver
 /// body `body` at lever `arm`, both indices into one table of solver bodies (module doc).
@@ -64,36 +66,63 @@ impl Attachment {
         bodies[self.particle].v - bodies[self.body].point_velocity(&self.arm)
     }
 
-    /// G = `[I, −[r]×]` (3 × 6): the body point's velocity from the body's (V; ω),
-    /// `V + ω × r = G (V; ω)`. The rows' Jacobian is I on the particle end and −G on the body
-    /// end (a solve whose body unknowns are not a solver body's, as a joint-filtered one, forms
-    /// its K from G).
+    /// G = `[I, −[r]×]` (3 × 6) at its arm ([`point_jacobian`]).
     pub fn point_jacobian(&self) -> Matrix3x6<f64> {
-        let mut g = Matrix3x6::zeros();
-        g.fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&Matrix3::identity());
-        g.fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(-self.arm.cross_matrix()));
-        g
+        point_jacobian(&self.arm)
     }
 
-    /// The 3 × 3 block K_ac of this attachment's rows against `other`'s, the body's share
-    /// weighed by `factor` (module doc): the body's part first, `(−[r_a]× I⁻¹ [r_c]× + I/M) f`
-    /// on a shared body (±0 on a static one: 1/M = 0, I⁻¹ = 0), then `I/m_p` added on a
-    /// shared particle.
-    pub fn block(&self, other: &Attachment, bodies: &[SolverBody], factor: f64) -> Matrix3<f64> {
-        let mut block = Matrix3::zeros();
-        let body = &bodies[self.body];
-        if self.body == other.body {
-            block = -self.arm.cross_matrix() * body.inv_inertia * other.arm.cross_matrix()
-                + Matrix3::identity() * body.inv_mass;
-            block *= factor;
-        }
-        if self.particle == other.particle {
-            block += Matrix3::identity() * bodies[self.particle].inv_mass;
-        }
-        block
+    /// The 3 × 3 block K_ac of this attachment's rows against `other`'s (module doc): entry
+    /// (i, j) the coupling of this one's row i with `other`'s row j over `bodies` (the body's
+    /// share weighed as the table holds it, [`weighed`]).
+    pub fn block(&self, other: &Attachment, bodies: &[SolverBody]) -> Matrix3<f64> {
+        let (rows, others) = (self.rows(bodies, 0), other.rows(bodies, 0));
+        Matrix3::from_fn(|i, j| rows[i].axis.coupling(&others[j].axis, bodies))
     }
+}
+
+/// G = `[I, −[r]×]` (3 × 6): the velocity of a body's point at lever r from the body's
+/// (V; ω), `V + ω × r = G (V; ω)`. An attachment's rows have the Jacobian I on the particle end
+/// and −G on the body end; a solve whose body unknowns are not a solver body's (a
+/// joint-filtered one, the implicit cloth's tied solve) forms its terms from G.
+pub fn point_jacobian(arm: &Vector3<f64>) -> Matrix3x6<f64> {
+    let mut g = Matrix3x6::zeros();
+    g.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&Matrix3::identity());
+    g.fixed_view_mut::<3, 3>(0, 3)
+        .copy_from(&(-arm.cross_matrix()));
+    g
+}
+
+/// A body's share weighed by `factor` (module doc): its solver body with 1/M and I⁻¹ times
+/// f. Weighed by 0 it is static, and its attachments' rows have no body end.
+pub fn weighed(body: &SolverBody, factor: f64) -> SolverBody {
+    SolverBody {
+        inv_mass: body.inv_mass * factor,
+        inv_inertia: body.inv_inertia * factor,
+        ..*body
+    }
+}
+
+/// K = J W Jᵀ of the rows of `holds` over `bodies`, 3k × 3k (module doc): block (a, c) is
+/// [`Attachment::block`]. The lower blocks are the rows' couplings, the upper ones their
+/// transposes (K exactly symmetric).
+pub fn system(holds: &[Attachment], bodies: &[SolverBody]) -> DMatrix<f64> {
+    let rows: Vec<[Row; 3]> = (holds.iter().enumerate())
+        .map(|(a, hold)| hold.rows(bodies, a))
+        .collect();
+    let mut k = DMatrix::zeros(3 * holds.len(), 3 * holds.len());
+    for (a, ra) in rows.iter().enumerate() {
+        for (c, rc) in rows.iter().enumerate().take(a + 1) {
+            for (i, row) in ra.iter().enumerate() {
+                for (j, other) in rc.iter().enumerate() {
+                    let coupling = row.axis.coupling(&other.axis, bodies);
+                    k[(3 * a + i, 3 * c + j)] = coupling;
+                    k[(3 * c + j, 3 * a + i)] = coupling;
+                }
+            }
+        }
+    }
+    k
 }
 
 #[cfg(test)]
@@ -101,7 +130,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_block_is_the_rows_couplings_and_the_rates_are_the_relative_velocity() {
+    fn the_rows_couplings_are_the_closed_form_block_and_the_rates_the_relative_velocity() {
         // A 2 kg box, tilted, spinning, with two particles (50 g and 30 g) held at two points.
         let rotation = nalgebra::Rotation3::from_euler_angles(0.3, -0.7, 1.1).into_inner();
         let inertia_body = Matrix3::from_diagonal(&Vector3::new(0.02, 0.05, 0.04));
@@ -127,15 +156,34 @@ mod tests {
             body: 0,
             arm: Vector3::new(-0.1, 0.25, 0.05),
         };
-        // Each entry of K_ac is the coupling of a's row i with c's row j (f = 1).
+        // K_ac from the rows' couplings against its closed form, δ_pp I/m_p + f (I/M −
+        // [r_a]× I⁻¹ [r_c]×) on the shared body, for f = 1 and f = ½ (the weighed table).
+        let closed = |x: &Attachment, y: &Attachment, f: f64| {
+            let shared = Matrix3::identity() * 0.5
+                - x.arm.cross_matrix() * inv_inertia * y.arm.cross_matrix();
+            let particle = if x.particle == y.particle {
+                Matrix3::identity() * bodies[x.particle].inv_mass
+            } else {
+                Matrix3::zeros()
+            };
+            particle + shared * f
+        };
+        let mut half = bodies.clone();
+        half[0] = weighed(&bodies[0], 0.5);
+        assert_eq!(half[0].inv_mass, 0.25);
         for (x, y) in [(a, a), (a, c), (c, a), (c, c)] {
-            let (rx, ry) = (x.rows(&bodies, 0), y.rows(&bodies, 1));
-            let block = x.block(&y, &bodies, 1.0);
-            for i in 0..3 {
-                for j in 0..3 {
-                    let coupling = rx[i].axis.coupling(&ry[j].axis, &bodies);
-                    assert!((block[(i, j)] - coupling).abs() < 1e-13, "{i} {j}");
-                }
+            for (table, f) in [(&bodies, 1.0), (&half, 0.5)] {
+                let block = x.block(&y, table);
+                assert!((block - closed(&x, &y, f)).norm() < 1e-13, "{block} f {f}");
+            }
+        }
+        // The system is the blocks, exactly symmetric.
+        let k = system(&[a, c], &half);
+        assert_eq!(k, k.transpose());
+        for (p, x) in [a, c].iter().enumerate() {
+            for (q, y) in [a, c].iter().enumerate() {
+                let block = k.fixed_view::<3, 3>(3 * p, 3 * q).into_owned();
+                assert!((block - closed(x, y, 0.5)).norm() < 1e-13);
             }
         }
         // The rows' rates: u = v_p − (V + ω × r), component by component.
@@ -158,18 +206,17 @@ mod tests {
             let minus_g: Vec<f64> = g.row(k).iter().map(|x| -x).collect();
             assert_eq!(body_end, minus_g);
         }
-        // Weighed by f = ½ the body's share halves; a fixed body end adds nothing.
-        let half = a.block(&c, &bodies, 0.5);
-        assert_eq!(half, a.block(&c, &bodies, 1.0) * 0.5);
+        // A fixed body end adds nothing, and neither does a body weighed by 0.
         let fixed = Attachment { body: 3, ..a };
-        assert_eq!(
-            fixed.block(&fixed, &bodies, 1.0),
-            Matrix3::identity() * 20.0
-        );
+        assert_eq!(fixed.block(&fixed, &bodies), Matrix3::identity() * 20.0);
         assert!(fixed.rows(&bodies, 0).iter().all(|r| r.axis.b.is_none()));
+        let mut still = bodies.clone();
+        still[0] = weighed(&bodies[0], 0.0);
+        assert_eq!(a.block(&a, &still), Matrix3::identity() * 20.0);
+        assert_eq!(a.block(&c, &still), Matrix3::zeros());
         // Solving K J = −u for one attachment stops the particle on the point (f = 1).
         let mut after = bodies.clone();
-        let j = a.block(&a, &bodies, 1.0).try_inverse().unwrap() * (-u);
+        let j = a.block(&a, &bodies).try_inverse().unwrap() * (-u);
         after[1].apply_at(&j, &Vector3::zeros());
         after[0].apply_at(&-j, &a.arm);
         assert!(a.rate(&after).norm() < 1e-14);

@@ -25,7 +25,7 @@
 //! | constraint | [lo, hi] | b |
 //! |---|---|---|
 //! | contact normal | [0, ∞): it pushes, never pulls | −(target rate): −e·u₀ to bounce, −gap/h to arrive |
-//! | friction | within the cone, \|λ_t\| ≤ μ λ_n ([`within_disc`]) | 0 |
+//! | friction (a pair, [`Friction`]) | within the cone, \|λ_t\| ≤ μ λ_n: the disk ([`within_disc`]) | 0 |
 //! | joint | (−∞, ∞) | Baumgarte or position error over h |
 //! | limit | one-sided, [0, ∞) or (−∞, 0] | as a contact |
 //! | motor | [−F_max h, F_max h] | −(target speed) |
@@ -350,13 +350,18 @@ impl Row {
     }
 
     /// The projected update for the rate `rate` = J·v measured with effective inverse mass `k`:
-    /// `clamp(λ − (J·v + b)/k, lo, hi)` (module doc), computed as `max(lo)` then `min(hi)`
-    /// (a NaN update gives lo, as `f64::max` does). λ itself is left as it was.
+    /// `clamp(λ − (J·v + b)/k, lo, hi)` (module doc, [`Row::clamp`]). λ itself is left as it
+    /// was.
     #[inline]
     pub fn update(&self, rate: f64, k: f64) -> f64 {
-        (self.lambda - (rate + self.bias) / k)
-            .max(self.lo)
-            .min(self.hi)
+        self.clamp(self.lambda - (rate + self.bias) / k)
+    }
+
+    /// An impulse `lambda` brought within the bounds [lo, hi], computed as `max(lo)` then
+    /// `min(hi)` (a NaN gives lo, as `f64::max` does).
+    #[inline]
+    pub fn clamp(&self, lambda: f64) -> f64 {
+        lambda.max(self.lo).min(self.hi)
     }
 
     /// One projected Gauss–Seidel update over `bodies` (module doc): the rate from the axis,
@@ -369,6 +374,20 @@ impl Row {
         self.axis.apply(change, bodies);
         change
     }
+}
+
+/// A contact's friction (module doc's table): two tangent rows t₁ ⟂ t₂ at the contact whose
+/// accumulated impulses λ_t = (λ₁, λ₂) share one bound, the disk |λ_t| ≤ r = μ λ_n (Coulomb's
+/// cone cut at the normal row's impulse λ_n). The pair's bounds are that disk, not an
+/// interval per row, so a solver updates the two together ([`within_disc`] projects onto
+/// it); the two axes are kept beside the pair by the solver, which builds them only when
+/// something slides.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Friction {
+    /// λ₁ and λ₂, the accumulated impulses along t₁ and t₂, N·s.
+    pub lambda: [f64; 2],
+    /// The disk's radius r = μ λ_n, N·s (0: no friction).
+    pub bound: f64,
 }
 
 /// Friction's bound (module doc): the accumulated tangential impulse `j_t` scaled back onto

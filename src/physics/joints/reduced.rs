@@ -122,6 +122,8 @@ pub(super) struct Reduced {
 /// The inverse of a symmetric 3 × 3 matrix (its upper half read) by cofactors; None unless
 /// it is positive definite enough to invert (det > 0).
 #[inline(always)]
+// `!(x > 0.0)` on purpose here and below: a NaN must fail the test too.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn symmetric_inverse(m: &Matrix3<f64>) -> Option<Matrix3<f64>> {
     let (a, b, c) = (m[(0, 0)], m[(0, 1)], m[(0, 2)]);
     let (d, e, f) = (m[(1, 1)], m[(1, 2)], m[(2, 2)]);
@@ -185,6 +187,7 @@ impl Reduced {
     /// The hinges from the links, and each child's m and I_world; false when they are not a
     /// hinge tree rooted in the world of moving bodies.
     #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // a NaN must fail the tests
     fn read(&mut self, links: &[Link], inverse: &[Inverse]) -> bool {
         let n = links.len();
         self.joint_of.clear();
@@ -301,6 +304,7 @@ impl Reduced {
     /// right of it); 1/L_jj into `pivots`. False when H is not positive definite to 1e-12 of
     /// its largest diagonal entry.
     #[inline(always)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // a NaN must fail the tests
     fn cholesky(&mut self) -> bool {
         let n = self.hinges.len();
         let h = &mut self.lower;

@@ -196,7 +196,7 @@ pub(super) fn number_bodies(
     local.clear();
     local.resize(motions.len(), usize::MAX);
     for row in rows.iter() {
-        for (end, _) in row.normal.ends() {
+        for (end, _) in row.normal.axis.ends() {
             if !motions[end.body].fixed() {
                 local[end.body] = 0;
             }
@@ -215,7 +215,7 @@ pub(super) fn number_bodies(
 /// F = K + Σ λₙ gₙ/dt over the bodies and rows (the objective of stage 2).
 pub(super) fn objective(rows: &[Row], motions: &[SolverBody]) -> f64 {
     motions.iter().map(SolverBody::kinetic).sum::<f64>()
-        + rows.iter().map(|r| r.lambda * r.bias).sum::<f64>()
+        + rows.iter().map(|r| r.normal.lambda * r.normal.bias).sum::<f64>()
 }
 
 /// ADMM on the stage's rows (module doc), from their impulses; returns what it did. With no
@@ -244,18 +244,18 @@ pub(super) fn solve(
     scratch.first.clear();
     scratch.rho.clear();
     for (p, row) in rows.iter().enumerate() {
-        let base = 1.0 / row.normal.k;
+        let base = 1.0 / row.normal.axis.k;
         scratch.rho.push(base);
         let rho = alpha * base;
-        let tangents = !directions.is_empty() && row.friction_bound > 0.0;
+        let tangents = !directions.is_empty() && row.friction.bound > 0.0;
         scratch.first.push((scratch.constraints.len(), tangents));
-        let mut c = constraint(&row.normal, row.bias, &scratch.local, motions);
-        c.y = -row.lambda / rho;
+        let mut c = constraint(&row.normal.axis, row.normal.bias, &scratch.local, motions);
+        c.y = -row.normal.lambda / rho;
         scratch.constraints.push(c);
         if tangents {
             for (k, t) in directions[p].iter().enumerate() {
                 let mut c = constraint(t, 0.0, &scratch.local, motions);
-                c.y = -row.lambda_tangent[k] / rho;
+                c.y = -row.friction.lambda[k] / rho;
                 scratch.constraints.push(c);
             }
         }
@@ -420,7 +420,7 @@ fn iterate(
             cn.z = z;
             cn.y = w - z;
             if tangents {
-                let bound = row.friction_bound / (alpha * base);
+                let bound = row.friction.bound / (alpha * base);
                 let u = [
                     velocity(&constraints[first + 1], x),
                     velocity(&constraints[first + 2], x),
@@ -520,31 +520,31 @@ pub(super) fn take_if_lower(
     impulse: impl Fn(usize) -> (f64, Option<[f64; 2]>),
 ) -> bool {
     let before = objective(rows, motions);
-    let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.lambda, r.lambda_tangent)).collect();
+    let saved: Vec<(f64, [f64; 2])> = rows.iter().map(|r| (r.normal.lambda, r.friction.lambda)).collect();
     let saved_motions = motions.to_vec();
     for (p, row) in rows.iter_mut().enumerate() {
         let (normal, tangent) = impulse(p);
         let lambda = normal.max(0.0);
-        row.normal.apply(lambda - row.lambda, motions);
-        row.lambda = lambda;
+        row.normal.axis.apply(lambda - row.normal.lambda, motions);
+        row.normal.lambda = lambda;
         if let Some(mut t) = tangent {
             let [t1, t2] = &directions[p];
             let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
-            if size > row.friction_bound {
-                let scale = row.friction_bound / size;
+            if size > row.friction.bound {
+                let scale = row.friction.bound / size;
                 t = [t[0] * scale, t[1] * scale];
             }
-            t1.apply(t[0] - row.lambda_tangent[0], motions);
-            t2.apply(t[1] - row.lambda_tangent[1], motions);
-            row.lambda_tangent = t;
+            t1.apply(t[0] - row.friction.lambda[0], motions);
+            t2.apply(t[1] - row.friction.lambda[1], motions);
+            row.friction.lambda = t;
         }
     }
     let lower = objective(rows, motions) < before;
     if !lower {
         motions.copy_from_slice(&saved_motions);
         for (row, &(lambda, tangent)) in rows.iter_mut().zip(saved.iter()) {
-            row.lambda = lambda;
-            row.lambda_tangent = tangent;
+            row.normal.lambda = lambda;
+            row.friction.lambda = tangent;
         }
     }
     lower
@@ -576,15 +576,13 @@ pub(super) mod tests {
             let mut normal = axis(n);
             normal.with_inverse();
             rows.push(Row {
-                normal,
-                lambda: 0.0,
-                lambda_tangent: [0.0; 2],
-                compression: 0.0,
-                friction_bound: 0.5 * m * 0.05 / 4.0,
-                lambda_restitution: 0.0,
+                normal: crate::physics::constraints::Row::contact(normal, 0.0),
+                friction: crate::physics::constraints::Friction {
+                    lambda: [0.0; 2],
+                    bound: 0.5 * m * 0.05 / 4.0,
+                },
                 approach: -0.05,
-                bias: 0.0,
-                warm: Vector3::zeros(),
+                ..Row::default()
             });
             directions.push([axis(t1), axis(t2)]);
         }
@@ -606,8 +604,8 @@ pub(super) mod tests {
     /// Every row's impulse in its bounds: λₙ ≥ 0 and |λ_t| ≤ μ λₙ (the row's friction bound).
     pub(in super::super) fn assert_in_cone(rows: &[Row]) {
         for r in rows {
-            let t = r.lambda_tangent;
-            assert!(r.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction_bound);
+            let t = r.friction.lambda;
+            assert!(r.normal.lambda >= 0.0 && (t[0] * t[0] + t[1] * t[1]).sqrt() <= r.friction.bound);
         }
     }
 
@@ -634,7 +632,7 @@ pub(super) mod tests {
         assert!(b.omega.norm() < 1e-5, "{:?}", b.omega);
         assert!(objective(&rows, &motions) < before);
         assert_in_cone(&rows);
-        let total: f64 = rows.iter().map(|r| r.lambda).sum();
+        let total: f64 = rows.iter().map(|r| r.normal.lambda).sum();
         assert!((total - 0.1).abs() < 1e-6, "{total}");
     }
 

@@ -64,7 +64,7 @@ pub(super) fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
     let mut sum = 0usize;
     for (p, row) in rows.iter().enumerate() {
         let mut first = p;
-        for b in row.normal.bodies().into_iter().flatten() {
+        for b in row.normal.axis.bodies().into_iter().flatten() {
             if b >= body_first.len() {
                 body_first.resize(b + 1, usize::MAX);
             }
@@ -123,11 +123,11 @@ pub(super) fn inelastic(
         ..
     } = buffers;
     active.clear();
-    let approaching = |r: &Row| r.approach + r.bias < 0.0;
+    let approaching = |r: &Row| r.approach + r.normal.bias < 0.0;
     if !rows.iter().any(approaching) {
         return true;
     }
-    let start = |r: &Row| approaching(r) || (wide && r.warm.dot(&r.normal.d) > 0.0);
+    let start = |r: &Row| approaching(r) || (wide && r.warm.dot(&r.normal.axis.d) > 0.0);
     active.extend((0..rows.len()).filter(|&i| start(&rows[i])));
     let mut m = active.len();
     if m > DIRECT_MAX {
@@ -174,7 +174,7 @@ pub(super) fn inelastic(
             // corner whose minimum-norm share came out negative; the same row as "the most
             // negative" when one pair has them). The rows stay in contact order.
             let pair = |p: usize| {
-                let n = &rows[active[p]].normal;
+                let n = &rows[active[p]].normal.axis;
                 (n.a.body, n.b.map(|b| b.body))
             };
             let mut out = Vec::new();
@@ -206,11 +206,11 @@ pub(super) fn inelastic(
             axis.apply(mu, motions);
         }
         for p in 0..m {
-            rows[active[p]].normal.apply(lambda[p], motions);
+            rows[active[p]].normal.axis.apply(lambda[p], motions);
         }
         // The most approaching row of each pair of bodies that has one, in contact order
         // (the same row as "the most approaching" when one pair has them).
-        let pair = |r: &Row| (r.normal.a.body, r.normal.b.map(|b| b.body));
+        let pair = |r: &Row| (r.normal.axis.a.body, r.normal.axis.b.map(|b| b.body));
         let mut worst: Option<(usize, f64)> = None;
         let mut group: Option<(usize, f64)> = None;
         entering.clear();
@@ -218,7 +218,7 @@ pub(super) fn inelastic(
             if i > 0 && pair(r) != pair(&rows[i - 1]) {
                 entering.extend(group.take().map(|(j, _)| j));
             }
-            let u = r.normal.velocity(motions) + r.bias;
+            let u = r.normal.axis.velocity(motions) + r.normal.bias;
             if u < -tolerance {
                 if group.is_none_or(|(_, w)| u < w) {
                     group = Some((i, u));
@@ -231,7 +231,7 @@ pub(super) fn inelastic(
         entering.extend(group.map(|(j, _)| j));
         let Some((i, _)) = worst else {
             for p in 0..m {
-                rows[active[p]].lambda = lambda[p];
+                rows[active[p]].normal.lambda = lambda[p];
             }
             return true;
         };
@@ -272,7 +272,7 @@ fn solve_active(
     let low = |a: &Axis| a.b.map_or(a.a.body, |b| a.a.body.min(b.body));
     let (mut i, mut p) = (0, 0);
     while i < mj || p < m {
-        if p == m || (i < mj && low(&joints[i]) <= low(&rows[active[p]].normal)) {
+        if p == m || (i < mj && low(&joints[i]) <= low(&rows[active[p]].normal.axis)) {
             merged.push(i);
             i += 1;
         } else {
@@ -281,14 +281,14 @@ fn solve_active(
         }
     }
     let axis = |s: usize| match s.checked_sub(mj) {
-        Some(p) => &rows[active[p]].normal,
+        Some(p) => &rows[active[p]].normal.axis,
         None => &joints[s],
     };
     system.reset(mj + m);
     for (p, &s) in merged.iter().enumerate() {
         let ni = axis(s);
         system.rhs[p] = match s.checked_sub(mj) {
-            Some(q) => -ni.velocity(motions) - rows[active[q]].bias,
+            Some(q) => -ni.velocity(motions) - rows[active[q]].normal.bias,
             None => -ni.velocity(motions),
         };
         system.fill_row(p, ni.bodies(), |q| {
@@ -326,7 +326,7 @@ fn solve_active(
         }
         let mut w: Vec<f64> = (merged.iter())
             .map(|&s| {
-                let bias = s.checked_sub(mj).map_or(0.0, |q| rows[active[q]].bias);
+                let bias = s.checked_sub(mj).map_or(0.0, |q| rows[active[q]].normal.bias);
                 -(axis(s).velocity(motions) + bias)
             })
             .collect();
@@ -410,7 +410,7 @@ pub(super) fn sticking(
     // The pushing contacts (with modes, every contact: those that do not push start as
     // separated, `Hold::Off`, and join when they approach).
     active.clear();
-    active.extend((0..rows.len()).filter(|&i| modes || rows[i].lambda > 0.0));
+    active.extend((0..rows.len()).filter(|&i| modes || rows[i].normal.lambda > 0.0));
     let m = active.len();
     let mj = joints.len();
     if m == 0 || m > STICKING_MAX || *work >= *budget {
@@ -419,7 +419,7 @@ pub(super) fn sticking(
     // Ordered by the last body each acts on (stable), as the subspace step's unknowns: a chain
     // of bodies (a row of dominoes, a stack) gets a banded envelope.
     let last = |a: &Axis| a.b.map_or(a.a.body, |b| b.body.max(a.a.body));
-    active.sort_by_key(|&i| last(&rows[i].normal));
+    active.sort_by_key(|&i| last(&rows[i].normal.axis));
     // Unknowns 3p (normal), 3p + 1, 3p + 2 (tangents) for the p-th pushing contact (its
     // normal alone when it slides), then 3m + j for joint row j; with joint rows the system
     // takes them in `merged` order (each joint row before the contacts with the same last
@@ -427,7 +427,7 @@ pub(super) fn sticking(
     if mj > 0 {
         // A sliding contact's tangent impulse (`modes`: bound · d, fixed this round).
         let mode = |k: usize| if modes { slides[active[k]] } else { Hold::Stick };
-        let key = |k: usize| last(&rows[active[k]].normal);
+        let key = |k: usize| last(&rows[active[k]].normal.axis);
         order_with_joints(m, key, mode, (joints, last), merged);
     }
     let u = Unknowns {
@@ -441,7 +441,7 @@ pub(super) fn sticking(
         mj,
         n: if mj == 0 { 3 * m } else { merged.len() },
         how,
-        largest: active.iter().map(|&i| rows[i].lambda).fold(0.0, f64::max),
+        largest: active.iter().map(|&i| rows[i].normal.lambda).fold(0.0, f64::max),
         modes,
     };
     if mj > 0 {
@@ -500,15 +500,15 @@ pub(super) fn sticking(
     }
     if rows
         .iter()
-        .any(|r| r.normal.velocity(motions) + u.bias(r) < -tolerance)
+        .any(|r| r.normal.axis.velocity(motions) + u.bias(r) < -tolerance)
     {
         motions.copy_from_slice(saved);
         return Answer::Declined;
     }
     for k in 0..m {
         let row = &mut rows[active[k]];
-        row.lambda += delta[3 * k];
-        row.lambda_tangent = [delta[3 * k + 1], delta[3 * k + 2]];
+        row.normal.lambda += delta[3 * k];
+        row.friction.lambda = [delta[3 * k + 1], delta[3 * k + 2]];
     }
     joint_delta.clear();
     joint_delta.extend_from_slice(&delta[3 * m..]);
@@ -556,7 +556,7 @@ impl<'a> Unknowns<'a> {
         }
         let i = self.active[s / 3];
         match s % 3 {
-            0 => &self.rows[i].normal,
+            0 => &self.rows[i].normal.axis,
             t => &self.directions[i][t - 1],
         }
     }
@@ -568,7 +568,7 @@ impl<'a> Unknowns<'a> {
             Sticking::Exact => 1.0,
             Sticking::Resting { .. } if s >= 3 * self.m => self.largest,
             Sticking::Resting { .. } => {
-                self.rows[self.active[s / 3]].lambda.max(1e-6 * self.largest)
+                self.rows[self.active[s / 3]].normal.lambda.max(1e-6 * self.largest)
             }
         }
     }
@@ -577,8 +577,8 @@ impl<'a> Unknowns<'a> {
     /// for a gap below [`RESTING_GAP`] in the second try.
     fn bias(&self, row: &Row) -> f64 {
         match self.how {
-            Sticking::Resting { dt } if row.bias * dt < RESTING_GAP => 0.0,
-            _ => row.bias,
+            Sticking::Resting { dt } if row.normal.bias * dt < RESTING_GAP => 0.0,
+            _ => row.normal.bias,
         }
     }
 
@@ -609,11 +609,11 @@ impl<'a> Unknowns<'a> {
             match self.mode(k) {
                 Hold::Stick => {}
                 Hold::Slide(d) => {
-                    let bound = rows[i].friction_bound;
+                    let bound = rows[i].friction.bound;
                     self.directions[i][0].apply(bound * d[0], motions);
                     self.directions[i][1].apply(bound * d[1], motions);
                 }
-                Hold::Off => rows[i].normal.apply(-rows[i].lambda, motions),
+                Hold::Off => rows[i].normal.axis.apply(-rows[i].normal.lambda, motions),
             }
         }
     }
@@ -674,10 +674,10 @@ impl<'a> Unknowns<'a> {
             match self.mode(k) {
                 Hold::Stick => {}
                 Hold::Slide(d) => {
-                    delta[3 * k + 1] = row.friction_bound * d[0];
-                    delta[3 * k + 2] = row.friction_bound * d[1];
+                    delta[3 * k + 1] = row.friction.bound * d[0];
+                    delta[3 * k + 2] = row.friction.bound * d[1];
                 }
-                Hold::Off => delta[3 * k] = -row.lambda,
+                Hold::Off => delta[3 * k] = -row.normal.lambda,
             }
         }
     }
@@ -690,7 +690,7 @@ impl<'a> Unknowns<'a> {
         for k in 0..self.m {
             let row = &self.rows[self.active[k]];
             let (dn, t1, t2) = (delta[3 * k], delta[3 * k + 1], delta[3 * k + 2]);
-            if row.lambda + dn < 0.0 {
+            if row.normal.lambda + dn < 0.0 {
                 if !self.modes {
                     return None;
                 }
@@ -699,7 +699,7 @@ impl<'a> Unknowns<'a> {
                 continue;
             }
             let size = (t1 * t1 + t2 * t2).sqrt();
-            if self.mode(k) == Hold::Stick && size > row.friction_bound {
+            if self.mode(k) == Hold::Stick && size > row.friction.bound {
                 if !self.modes {
                     return None;
                 }
@@ -721,12 +721,12 @@ impl<'a> Unknowns<'a> {
             match self.mode(k) {
                 Hold::Stick => {}
                 Hold::Off => {
-                    if rows[i].normal.velocity(motions) + self.bias(&rows[i]) < -tolerance {
+                    if rows[i].normal.axis.velocity(motions) + self.bias(&rows[i]) < -tolerance {
                         changes.push((i, Hold::Stick));
                     }
                 }
                 // No disk (it did not push in stage 1): no friction to turn.
-                Hold::Slide(_) if rows[i].friction_bound == 0.0 => {}
+                Hold::Slide(_) if rows[i].friction.bound == 0.0 => {}
                 Hold::Slide(d) => {
                     let u = [
                         self.directions[i][0].velocity(motions),

@@ -68,7 +68,7 @@ pub(super) fn sliding(
 ) -> bool {
     let (a, b) = (&motions[contact.body], &motions[contact.other]);
     let u = a.v + a.omega.cross(&contact.lever) - (b.v + b.omega.cross(&contact.lever_other));
-    row.lambda > 0.0
+    row.normal.lambda > 0.0
         && (u - contact.normal * u.dot(&contact.normal)).norm_squared() > tolerance * tolerance
 }
 
@@ -81,7 +81,7 @@ pub(super) fn prepare(
     friction: f64,
     motions: &[SolverBody],
 ) -> [Axis; 2] {
-    row.friction_bound = friction * row.lambda;
+    row.friction.bound = friction * row.normal.lambda;
     let (t1, t2) = tangents(&contact.normal);
     [axis_at(t1, contact, motions), axis_at(t2, contact, motions)]
 }
@@ -89,20 +89,20 @@ pub(super) fn prepare(
 /// Starts the friction sweeps from the last step's friction impulses, kept in their disks.
 pub(super) fn warm_start(rows: &mut [Row], directions: &[[Axis; 2]], motions: &mut [SolverBody]) {
     for (row, directions) in rows.iter_mut().zip(directions.iter()) {
-        row.normal.with_inverse();
+        row.normal.axis.with_inverse();
         let [t1, t2] = directions;
         let mut warm = [row.warm.dot(&t1.d), row.warm.dot(&t2.d)];
         let size = (warm[0] * warm[0] + warm[1] * warm[1]).sqrt();
-        if size > row.friction_bound {
-            let scale = row.friction_bound / size;
+        if size > row.friction.bound {
+            let scale = row.friction.bound / size;
             warm = [warm[0] * scale, warm[1] * scale];
         }
         let step = [
-            warm[0] - row.lambda_tangent[0],
-            warm[1] - row.lambda_tangent[1],
+            warm[0] - row.friction.lambda[0],
+            warm[1] - row.friction.lambda[1],
         ];
         if step != [0.0; 2] {
-            row.lambda_tangent = warm;
+            row.friction.lambda = warm;
             t1.apply(step[0], motions);
             t2.apply(step[1], motions);
         }
@@ -121,10 +121,10 @@ pub(super) fn update(
     let [t1, t2] = directions;
     let u = [t1.velocity(motions), t2.velocity(motions)];
     let (k1, k2, c) = (t1.k, t2.k, t1.coupling(t2, motions));
-    let Some((new, step)) = disk_step(u, (k1, k2, c), row.lambda_tangent, bound) else {
+    let Some((new, step)) = disk_step(u, (k1, k2, c), row.friction.lambda, bound) else {
         return 0.0;
     };
-    row.lambda_tangent = new;
+    row.friction.lambda = new;
     t1.apply(step[0], motions);
     t2.apply(step[1], motions);
     (step[0].abs() * k1 + step[1].abs() * c.abs()).max(step[1].abs() * k2 + step[0].abs() * c.abs())
@@ -237,7 +237,7 @@ pub(super) fn sweep(
         stall.start(motions);
         largest = 0.0;
         for (row, directions) in rows.iter_mut().zip(directions.iter()) {
-            let bound = row.friction_bound;
+            let bound = row.friction.bound;
             largest = largest.max(normal::update(row, motions));
             if bound == 0.0 {
                 continue;
@@ -250,7 +250,7 @@ pub(super) fn sweep(
                 stall::net_change(
                     rows.iter()
                         .zip(directions.iter())
-                        .flat_map(|(row, [t1, t2])| [&row.normal, t1, t2]),
+                        .flat_map(|(row, [t1, t2])| [&row.normal.axis, t1, t2]),
                     before,
                     motions,
                 )
@@ -266,7 +266,7 @@ pub(super) fn sweep(
 /// `store`); nothing when stage 2 did not run (no `directions`).
 pub(super) fn store(contacts: &mut [Contact], rows: &[Row], directions: &[[Axis; 2]]) {
     for ((contact, row), [t1, t2]) in contacts.iter_mut().zip(rows.iter()).zip(directions.iter()) {
-        contact.impulse += t1.d * row.lambda_tangent[0] + t2.d * row.lambda_tangent[1];
+        contact.impulse += t1.d * row.friction.lambda[0] + t2.d * row.friction.lambda[1];
     }
 }
 

@@ -118,10 +118,39 @@ pub const JOINED_FRICTION_CONTACTS: usize = 16;
 /// the joints and sliding modes answered 9 of its 73 stages, and each declined one paid its
 /// rounds (up to [`SLIDE_ROUNDS`] factorisations a try, two tries) and then the contacts'
 /// stages again.
+///
+/// Why the stages decline (measured at 49f6e0c with the gate lifted, every try of
+/// `Joined::sticking` traced): none is refused outright (no normal pulling at the end, no
+/// stop pulling, no approach); all 123 declined tries end at the [`SLIDE_ROUNDS`] cap with
+/// modes still changing, in three patterns:
+///
+/// - the slide directions' fixed point diverges: the largest turn grows about 2.7× a round
+///   (6.5e-5, 1.8e-4, 4.7e-4 … 2.5e-2 rad), the four corners of a landing face turning each
+///   other's directions (each by about −3 times its own error: [`direct::SLIDE_TURN`]);
+/// - it converges, too slowly for 8 rounds (ratio about 0.5: 4.4e-2 … 6.7e-4 rad);
+/// - the modes cycle: a corner whose sticking normal pulls separates, approaches without
+///   its impulse and joins again (Off ↔ Stick or Slide, period 2–6 rounds, often with the
+///   slide direction reversed).
+///
+/// Tried, not kept (callgrind, `chain_steps landing 1000`; today's path, the gate in place:
+/// 497.1M): a secant scale of each round's turn, α = α' / (1 − ρ) with ρ the ratio of this
+/// round's turns to the last's (clamped to 0.1 … 4), and a separated contact that approaches
+/// rejoining as a slider against its slip: 8 rounds answer 25 of 71 stages, 16 rounds 46 of
+/// 75, 32 rounds 54 of 79, at 836M for 32. Also one try (Exact only), the step's work budget given back on
+/// restore and no stage-1 sweeps after a declined joined direct solve (their result is thrown
+/// away by the restore): 667M with 8 of 74 answered; with the secant turns and 16 rounds 699M
+/// (+41 %), 35 of 73. A fixed under-relaxation α = 1/4 answers fewer (10: it slows the
+/// converging cases), and a sliding contact whose direction reverses sticking made it worse
+/// (1007M). The cost is every round refactoring the whole banded system (27 joint rows and
+/// the contacts): `Envelope::solve` 30.6M → 86.8M, `direct::sticking` 10.8M → 36.4M. What
+/// would change that: an anti-cycling rule for the modes, an update of the factor for the
+/// few unknowns a round changes instead of a new one, or one wrench row set per face (the
+/// corners' redundancy is what couples their directions).
 pub const JOINED_DIRECT_LARGE: bool = false;
 
 /// Rounds of the direct solve with joints and sliding contacts (`Joined::sticking`) before
-/// it declines.
+/// it declines (more answer more stages of a chain landing, at a round's factorisation each:
+/// [`JOINED_DIRECT_LARGE`]).
 pub const SLIDE_ROUNDS: usize = 8;
 
 /// The joint rows of one response, weighed over the step's motions, and what they gave.
@@ -390,7 +419,7 @@ impl Joined {
         };
         buffers.slides.clear();
         buffers.slides.extend(rows.iter().map(|r| {
-            if r.lambda > 0.0 {
+            if r.normal.lambda > 0.0 {
                 direct::Hold::Stick
             } else {
                 direct::Hold::Off
@@ -469,7 +498,7 @@ impl Joined {
             (self.axes.iter().zip(&self.owners).zip(&self.sides)).map(|((a, &o), &s)| (*a, o, s)),
         );
         let saved: Vec<SolverBody> = motions.to_vec();
-        let saved_rows: Vec<f64> = rows.iter().map(|r| r.lambda).collect();
+        let saved_rows: Vec<f64> = rows.iter().map(|r| r.normal.lambda).collect();
         // Active: every equality row, and the stops that approach at the start.
         let mut active: Vec<bool> = (selection.iter())
             .map(|(axis, _, stop)| !stop || axis.velocity(motions) < -tolerance)
@@ -513,7 +542,7 @@ impl Joined {
                     active[i] = !active[i];
                     motions.copy_from_slice(&saved);
                     for (row, &l) in rows.iter_mut().zip(&saved_rows) {
-                        row.lambda = l;
+                        row.normal.lambda = l;
                     }
                 }
                 None => {
@@ -525,7 +554,7 @@ impl Joined {
         if !answered {
             motions.copy_from_slice(&saved);
             for (row, &l) in rows.iter_mut().zip(&saved_rows) {
-                row.lambda = l;
+                row.normal.lambda = l;
             }
         }
         self.selection = selection;
@@ -627,7 +656,7 @@ impl Joined {
         self.entries.clear();
         self.spans.clear();
         for (row, [t1, t2]) in rows.iter().zip(directions) {
-            for axis in [&row.normal, t1, t2] {
+            for axis in [&row.normal.axis, t1, t2] {
                 self.sum.add(axis, 1.0, motions);
                 self.react_dense(motions);
                 let from = self.entries.len();
@@ -648,15 +677,15 @@ impl Joined {
                 rate_on(a, &self.entries[from..to])
             };
             self.blocks.push([
-                g(&row.normal, 0),
-                g(&row.normal, 1),
-                g(&row.normal, 2),
+                g(&row.normal.axis, 0),
+                g(&row.normal.axis, 1),
+                g(&row.normal.axis, 2),
                 g(t1, 1),
                 g(t1, 2),
                 g(t2, 2),
             ]);
             self.start
-                .push([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+                .push([row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]]);
         }
         // A start from the active set (exact when it settles: the sweeps then confirm it),
         // taken only if it lowers K (the sweeps then keep lowering it: K never rises).
@@ -676,26 +705,26 @@ impl Joined {
             largest = 0.0f64;
             for (i, (row, [t1, t2])) in rows.iter_mut().zip(directions).enumerate() {
                 let [gnn, _, _, g11, g12, g22] = self.blocks[i];
-                if gnn > 1e-12 * row.normal.k {
-                    let u = row.normal.velocity(motions) + row.bias;
-                    let new = (row.lambda - u / gnn).max(0.0);
-                    let change = new - row.lambda;
+                if gnn > 1e-12 * row.normal.axis.k {
+                    let u = row.normal.axis.velocity(motions) + row.normal.bias;
+                    let new = (row.normal.lambda - u / gnn).max(0.0);
+                    let change = new - row.normal.lambda;
                     if change != 0.0 {
-                        row.lambda = new;
+                        row.normal.lambda = new;
                         self.apply_column(3 * i, change, motions);
                         largest = largest.max(change.abs() * gnn);
                     }
                 }
-                let bound = row.friction_bound;
+                let bound = row.friction.bound;
                 if bound == 0.0 {
                     continue;
                 }
                 let u = [t1.velocity(motions), t2.velocity(motions)];
-                let old = row.lambda_tangent;
+                let old = row.friction.lambda;
                 if let Some((new, step)) =
                     super::friction::disk_step(u, (g11, g22, g12), old, bound)
                 {
-                    row.lambda_tangent = new;
+                    row.friction.lambda = new;
                     self.apply_column(3 * i + 1, step[0], motions);
                     self.apply_column(3 * i + 2, step[1], motions);
                     largest = largest.max(
@@ -713,9 +742,9 @@ impl Joined {
         // The joints' impulses over the stage's change.
         for (i, (row, [t1, t2])) in rows.iter().zip(directions).enumerate() {
             let [n0, a0, b0] = self.start[i];
-            self.sum.add(&row.normal, row.lambda - n0, motions);
-            self.sum.add(t1, row.lambda_tangent[0] - a0, motions);
-            self.sum.add(t2, row.lambda_tangent[1] - b0, motions);
+            self.sum.add(&row.normal.axis, row.normal.lambda - n0, motions);
+            self.sum.add(t1, row.friction.lambda[0] - a0, motions);
+            self.sum.add(t2, row.friction.lambda[1] - b0, motions);
         }
         self.react_dense(motions);
         self.sum.clear();
@@ -753,9 +782,9 @@ impl Joined {
     fn move_to(&self, rows: &mut [Row], motions: &mut [SolverBody], to: &[[f64; 3]]) {
         for (i, row) in rows.iter_mut().enumerate() {
             let [n, t1, t2] = to[i];
-            let [n0, a0, b0] = [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]];
-            row.lambda = n;
-            row.lambda_tangent = [t1, t2];
+            let [n0, a0, b0] = [row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]];
+            row.normal.lambda = n;
+            row.friction.lambda = [t1, t2];
             self.apply_column(3 * i, n - n0, motions);
             self.apply_column(3 * i + 1, t1 - a0, motions);
             self.apply_column(3 * i + 2, t2 - b0, motions);
@@ -829,7 +858,7 @@ impl ActiveSet {
         let n = 3 * m;
         let axis = |k: usize| -> &Axis {
             match k % 3 {
-                0 => &rows[k / 3].normal,
+                0 => &rows[k / 3].normal.axis,
                 t => &directions[k / 3][t - 1],
             }
         };
@@ -845,15 +874,15 @@ impl ActiveSet {
         self.lambda0.clear();
         for (row, _) in rows.iter().zip(directions) {
             self.lambda0
-                .extend([row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]]);
+                .extend([row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]]);
         }
         for k in 0..n {
-            let bias = if k % 3 == 0 { rows[k / 3].bias } else { 0.0 };
+            let bias = if k % 3 == 0 { rows[k / 3].normal.bias } else { 0.0 };
             self.u0.push(axis(k).velocity(motions) + bias);
         }
         self.modes.clear();
         self.modes.extend((0..m).map(|i| {
-            if rows[i].lambda > 0.0 || self.u0[3 * i] < -tolerance {
+            if rows[i].normal.lambda > 0.0 || self.u0[3 * i] < -tolerance {
                 Mode::Stick
             } else {
                 Mode::Off
@@ -861,14 +890,14 @@ impl ActiveSet {
         }));
         self.lambda.clear();
         self.lambda
-            .extend(rows.iter().map(|r| [r.lambda, r.lambda_tangent[0], r.lambda_tangent[1]]));
+            .extend(rows.iter().map(|r| [r.normal.lambda, r.friction.lambda[0], r.friction.lambda[1]]));
         let mut work = (n * n / 4) as u64;
         let mut x = vec![0.0; n];
         for _ in 0..ACTIVE_ROUNDS {
             // Fixed values and unknowns.
             self.unknowns.clear();
             for (i, mode) in self.modes.iter().enumerate() {
-                let bound = rows[i].friction_bound;
+                let bound = rows[i].friction.bound;
                 match *mode {
                     Mode::Off => x[3 * i..3 * i + 3].fill(0.0),
                     Mode::Stick => self.unknowns.extend([3 * i, 3 * i + 1, 3 * i + 2]),
@@ -923,7 +952,7 @@ impl ActiveSet {
             let mut changed = false;
             let mut next = std::mem::take(&mut self.modes);
             for (i, mode) in next.iter_mut().enumerate() {
-                let bound = rows[i].friction_bound;
+                let bound = rows[i].friction.bound;
                 let t = [x[3 * i + 1], x[3 * i + 2]];
                 let size = (t[0] * t[0] + t[1] * t[1]).sqrt();
                 let new = match *mode {
@@ -954,7 +983,7 @@ impl ActiveSet {
             }
             self.modes = next;
             for i in 0..m {
-                let bound = rows[i].friction_bound;
+                let bound = rows[i].friction.bound;
                 let (nl, t1, t2) = (x[3 * i].max(0.0), x[3 * i + 1], x[3 * i + 2]);
                 let size = (t1 * t1 + t2 * t2).sqrt();
                 let scale = if size > bound { bound / size } else { 1.0 };
@@ -1133,10 +1162,9 @@ mod tests {
         let mut joined = Joined::default();
         joined.prepare(&rows, &motions, 1);
         let contact = |approach: f64| super::super::Row {
-            normal: Axis::jacobian(
-                Vector3::x(),
-                (0, Vector3::zeros()),
-                Some((1, Vector3::zeros())),
+            normal: ConstraintRow::contact(
+                Axis::jacobian(Vector3::x(), (0, Vector3::zeros()), Some((1, Vector3::zeros()))),
+                0.0,
             ),
             approach,
             ..Default::default()

@@ -13,8 +13,8 @@
 //!
 //! | kind / method | file | verbs |
 //! |---|---|---|
-//! | normal row: no penetration, λ ≥ 0, a speculative gap's bias | [`normal`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `restitution`, `store` |
-//! | friction row: the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
+//! | normal row (the layer's `constraints::Row`): no penetration, λ ∈ [0, ∞), a speculative gap's bias | [`normal`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `restitution`, `store` |
+//! | friction rows (the layer's `constraints::Friction` pair): the Coulomb disk \|λ_t\| ≤ μ λₙ | [`friction`] | `prepare`, `warm_start`, `update` and `sweep` (solve), `store` (no restitution) |
 //! | direct solves: LDLᵀ on an active set of rows | [`direct`] | `inelastic` (stage 1), `sticking` (stage 2), `mean_envelope` |
 //! | subspace steps: Newton on the sweeps' active set | [`subspace`] | `sweep` (sweeps with steps), `step` |
 //! | ADMM in body space (off: [`ADMM_STAGES`]) | [`admm`] | `solve` (a start for the sweeps) |
@@ -103,6 +103,7 @@ use super::response::Descriptor;
 use super::solver_body::{Axis, SolverBody};
 use super::warm::WarmCache;
 use super::{CollideInput, Contact, EnergyChange};
+use crate::physics::constraints;
 use crate::physics::derive::derive;
 use crate::physics::energy::{kinetic_energy_with, Energy};
 use crate::physics::envelope::Envelope;
@@ -696,27 +697,45 @@ fn axis_at(d: Vector3<f64>, contact: &Contact, motions: &[SolverBody]) -> Axis {
     )
 }
 
-/// One contact as the solver sees it.
-#[derive(Debug, Clone, Copy, Default)]
+/// One contact as the solver sees it: its normal row on the constraint layer's [`Row`]
+/// (λ ∈ [0, ∞), the bias gap/dt), its friction pair (the layer's [`Friction`]: two tangent
+/// impulses bounded by the disk), and what the stages keep about it.
+///
+/// [`Row`]: constraints::Row
+/// [`Friction`]: constraints::Friction
+#[derive(Debug, Clone, Copy)]
 struct Row {
-    /// Unit normal n with its ends and k.
-    normal: Axis,
-    /// Accumulated normal impulse λ ≥ 0 and tangent impulses, N·s.
-    lambda: f64,
-    lambda_tangent: [f64; 2],
+    /// The normal row (`constraints::Row::contact`): unit normal n with its ends and k, the
+    /// accumulated normal impulse λ ∈ [lo, hi] = [0, ∞) (N·s), and its bias b = gap/dt: the
+    /// normal velocity the contact may keep is −b, so b ≥ 0 lets a speculative contact close
+    /// its gap within the next step, no more (0 for a touching one), m/s.
+    normal: constraints::Row,
+    /// The friction pair (`constraints::Friction`): the accumulated tangent impulses along
+    /// the two tangent axes (kept in stage 2's `tangents`), N·s, within the disk of radius
+    /// μ λ from stage 1.
+    friction: constraints::Friction,
     /// λ at the end of stage 1 (the frictionless compression impulse).
     compression: f64,
-    /// μ λ from stage 1: the radius of the friction disk.
-    friction_bound: f64,
     /// Restitution impulse e λ (scaled by the energy clamp).
     lambda_restitution: f64,
     /// Normal velocity before the response, m/s.
     approach: f64,
-    /// The normal velocity the contact may keep: gap/dt for a speculative contact (it may
-    /// close its gap within the next step, no more), 0 for a touching one, m/s.
-    bias: f64,
     /// The last step's impulse at the same contact, if any (warm start of the sweeps).
     warm: Vector3<f64>,
+}
+
+impl Default for Row {
+    /// A contact on the zero axis: touching (b = 0), no impulse.
+    fn default() -> Row {
+        Row {
+            normal: constraints::Row::contact(Axis::default(), 0.0),
+            friction: constraints::Friction::default(),
+            compression: 0.0,
+            lambda_restitution: 0.0,
+            approach: 0.0,
+            warm: Vector3::zeros(),
+        }
+    }
 }
 
 /// What the front ends say about `impulse` (`response`).
@@ -1095,7 +1114,7 @@ fn resolve(settings: &Settings, contacts: &mut [Contact], previous: &WarmCache, 
     let threshold = settings.bounce_speed.max(tolerance);
     if settings.impacts == Impacts::Propagate
         && settings.restitution > 0.0
-        && rows.iter().any(|r| r.approach + r.bias < -threshold)
+        && rows.iter().any(|r| r.approach + r.normal.bias < -threshold)
     {
         let bounds = propagate::Bounds {
             threshold,
@@ -1199,7 +1218,7 @@ fn inelastic(rows: &mut [Row], tolerance: f64, stage: &mut Stage) -> (bool, bool
         stage.joined,
     );
     for row in rows.iter_mut() {
-        row.compression = row.lambda;
+        row.compression = row.normal.lambda;
     }
     (true, large)
 }
@@ -1363,7 +1382,7 @@ fn select_joints(
         };
         joined.select(
             rows.iter()
-                .flat_map(|r| r.normal.bodies().into_iter().flatten()),
+                .flat_map(|r| r.normal.axis.bodies().into_iter().flatten()),
             most,
         );
         friction > 0.0
@@ -1423,7 +1442,7 @@ fn friction_trial(
         trial.clear();
         trial.extend_from_slice(motions);
         trial_rows.clear();
-        trial_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+        trial_rows.extend(rows.iter().map(|r| (r.normal.lambda, r.friction.lambda)));
         // From last step's normal impulses as well as its friction: stage 1's answer,
         // when its direct solve gave it, shares the loads its own way (the minimum norm),
         // and at rest last step's friction holds last step's shares, not those (a pyramid
@@ -1444,8 +1463,8 @@ fn friction_trial(
         } else {
             motions.copy_from_slice(trial);
             for (row, &(lambda, tangent)) in rows.iter_mut().zip(trial_rows.iter()) {
-                row.lambda = lambda;
-                row.lambda_tangent = tangent;
+                row.normal.lambda = lambda;
+                row.friction.lambda = tangent;
             }
         }
         converged
@@ -1504,7 +1523,7 @@ fn inelastic_stage(
             buffers_direct.trial_skip = wait;
             motions.copy_from_slice(&buffers_direct.trial);
             for row in rows.iter_mut() {
-                row.lambda = 0.0;
+                row.normal.lambda = 0.0;
             }
         }
     }

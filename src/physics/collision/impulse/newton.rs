@@ -251,13 +251,13 @@ pub(super) fn setup(
     scratch.constraints.clear();
     scratch.groups.clear();
     for (p, row) in rows.iter().enumerate() {
-        let tangents = !directions.is_empty() && row.friction_bound > 0.0;
+        let tangents = !directions.is_empty() && row.friction.bound > 0.0;
         scratch.groups.push(Group {
             first: scratch.constraints.len(),
             tangents,
-            lambda: [row.lambda, row.lambda_tangent[0], row.lambda_tangent[1]],
-            bound: row.friction_bound,
-            k: row.normal.k,
+            lambda: [row.normal.lambda, row.friction.lambda[0], row.friction.lambda[1]],
+            bound: row.friction.bound,
+            k: row.normal.axis.k,
         });
         if !tangents {
             scratch.groups.last_mut().unwrap().lambda[1..].fill(0.0);
@@ -265,13 +265,13 @@ pub(super) fn setup(
         let local = &scratch.local;
         scratch
             .constraints
-            .push(constraint(&row.normal, row.bias, local, motions));
+            .push(constraint(&row.normal.axis, row.normal.bias, local, motions));
         if tangents {
             for t in &directions[p] {
                 scratch.constraints.push(constraint(t, 0.0, local, motions));
             }
         }
-        if row.normal.k.is_nan() || row.normal.k <= 0.0 {
+        if row.normal.axis.k.is_nan() || row.normal.axis.k <= 0.0 {
             return false;
         }
     }
@@ -571,7 +571,7 @@ mod tests {
         assert!(b.omega.norm() < 1e-8, "{:?}", b.omega);
         assert!(objective(&rows, &motions) < before);
         assert_in_cone(&rows);
-        let total: f64 = rows.iter().map(|r| r.lambda).sum();
+        let total: f64 = rows.iter().map(|r| r.normal.lambda).sum();
         assert!((total - 0.1).abs() < 1e-9, "{total}");
     }
 

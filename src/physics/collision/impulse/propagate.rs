@@ -183,7 +183,7 @@ pub(super) fn rounds(
     for round in 0..IMPACT_ROUNDS {
         pairs.clear();
         for (c, r) in contacts.iter().zip(rows.iter()) {
-            if r.normal.velocity(stage.motions) + r.bias < -threshold {
+            if r.normal.axis.velocity(stage.motions) + r.normal.bias < -threshold {
                 pairs.insert(pair(c));
             }
         }

@@ -114,7 +114,7 @@ mod tests {
     fn axes<'a>(rows: &'a [Row], directions: &'a [[Axis; 2]]) -> impl Iterator<Item = &'a Axis> {
         rows.iter()
             .zip(directions)
-            .flat_map(|(row, [t1, t2])| [&row.normal, t1, t2])
+            .flat_map(|(row, [t1, t2])| [&row.normal.axis, t1, t2])
     }
 
     #[test]
@@ -126,7 +126,7 @@ mod tests {
         let (rows, directions, motions) = sliding_cube(0.0);
         let j = 1e-3;
         let mut after = motions.clone();
-        rows[0].normal.apply(j, &mut after);
+        rows[0].normal.axis.apply(j, &mut after);
         let net = net_change(axes(&rows, &directions), &motions, &after);
         assert!((net - 2.0 * j).abs() < 1e-15, "{net}");
         // +j at two diagonal corners, −j at the other two: Σ ±n = 0 and Σ ±r×n = 0, a flat
@@ -134,7 +134,7 @@ mod tests {
         // velocity by 2j; together they move no body (round-off on velocities of 0.05 m/s).
         let mut after = motions.clone();
         for (i, sign) in [(0, 1.0), (3, 1.0), (1, -1.0), (2, -1.0)] {
-            rows[i].normal.apply(sign * j, &mut after);
+            rows[i].normal.axis.apply(sign * j, &mut after);
         }
         let net = net_change(axes(&rows, &directions), &motions, &after);
         assert!(net < 1e-15, "{net}");

@@ -308,7 +308,7 @@ fn step(
     saved.clear();
     saved.extend_from_slice(motions);
     subspace_rows.clear();
-    subspace_rows.extend(rows.iter().map(|r| (r.lambda, r.lambda_tangent)));
+    subspace_rows.extend(rows.iter().map(|r| (r.normal.lambda, r.friction.lambda)));
     // Backtracking: a step that did not lower F (a nearly singular H solved inaccurately) is
     // undone and tried again 8 times shorter, a few times.
     for attempt in 0..SUBSPACE_BACKTRACKS {
@@ -325,8 +325,8 @@ fn step(
         }
         motions.copy_from_slice(saved);
         for (row, &(lambda, tangent)) in rows.iter_mut().zip(subspace_rows.iter()) {
-            row.lambda = lambda;
-            row.lambda_tangent = tangent;
+            row.normal.lambda = lambda;
+            row.friction.lambda = tangent;
         }
         if projected_first && attempt == 0 {
             (alpha, blocking) = ratio;
@@ -357,28 +357,28 @@ fn gather_unknowns(
     order.clear();
     order.extend(0..rows.len());
     order.sort_by_key(|&i| {
-        let n = &rows[i].normal;
+        let n = &rows[i].normal.axis;
         n.b.map_or(n.a.body, |b| b.body.max(n.a.body))
     });
     unknowns.clear();
     for &i in order.iter() {
         let row = &rows[i];
-        if row.lambda > 0.0 {
-            let gradient = row.normal.velocity(motions) + row.bias;
+        if row.normal.lambda > 0.0 {
+            let gradient = row.normal.axis.velocity(motions) + row.normal.bias;
             unknowns.push(Unknown {
                 row: i,
                 tangent: None,
                 before: [gradient, 0.0],
-                direction: row.normal,
+                direction: row.normal.axis,
             });
         }
-        let bound = row.friction_bound;
+        let bound = row.friction.bound;
         if bound == 0.0 {
             continue;
         }
         let [t1, t2] = &directions[i];
         let u = [t1.velocity(motions), t2.velocity(motions)];
-        let l = row.lambda_tangent;
+        let l = row.friction.lambda;
         let size = (l[0] * l[0] + l[1] * l[1]).sqrt();
         let slip_along = (u[0] * l[0] + u[1] * l[1]) / size;
         if size >= bound * (1.0 - SLIDING_EDGE) && (slip_along <= 0.0 || pinned.contains(&i)) {
@@ -443,8 +443,8 @@ fn ratio_test(rows: &[Row], unknowns: &[Unknown], delta: &[f64]) -> (f64, Option
         let row = &rows[unknown.row];
         match unknown.tangent {
             None => {
-                if row.lambda + delta[p] < 0.0 && row.lambda / -delta[p] < alpha {
-                    alpha = row.lambda / -delta[p];
+                if row.normal.lambda + delta[p] < 0.0 && row.normal.lambda / -delta[p] < alpha {
+                    alpha = row.normal.lambda / -delta[p];
                     blocking = Some(p);
                 }
                 p += 1;
@@ -452,7 +452,7 @@ fn ratio_test(rows: &[Row], unknowns: &[Unknown], delta: &[f64]) -> (f64, Option
             Some(_) if unknowns.get(p + 1).is_none_or(|u| u.row != unknown.row) => {
                 // An edge unknown: the model is quadratic in the arc, the edge is a circle;
                 // turn by at most EDGE_TURN radians, where they agree to second order.
-                let reach = EDGE_TURN * row.friction_bound / delta[p].abs();
+                let reach = EDGE_TURN * row.friction.bound / delta[p].abs();
                 if reach < alpha {
                     alpha = reach;
                     blocking = None;
@@ -461,10 +461,10 @@ fn ratio_test(rows: &[Row], unknowns: &[Unknown], delta: &[f64]) -> (f64, Option
             }
             Some(_) => {
                 // |t + α d|² = bound²: α = (−t·d + √((t·d)² + |d|²(bound² − |t|²))) / |d|².
-                let (t, d) = (row.lambda_tangent, [delta[p], delta[p + 1]]);
+                let (t, d) = (row.friction.lambda, [delta[p], delta[p + 1]]);
                 let dd = d[0] * d[0] + d[1] * d[1];
                 let td = t[0] * d[0] + t[1] * d[1];
-                let inside = row.friction_bound.powi(2) - (t[0] * t[0] + t[1] * t[1]);
+                let inside = row.friction.bound.powi(2) - (t[0] * t[0] + t[1] * t[1]);
                 if dd > 0.0 {
                     let reach = (-td + (td * td + dd * inside.max(0.0)).sqrt()) / dd;
                     if reach < alpha {
@@ -502,16 +502,16 @@ fn apply_step(
                 let new = if blocking == Some(p) {
                     0.0
                 } else {
-                    (row.lambda + alpha * delta[p]).max(0.0)
+                    (row.normal.lambda + alpha * delta[p]).max(0.0)
                 };
-                let step = new - row.lambda;
-                row.lambda = new;
-                row.normal.apply(step, motions);
+                let step = new - row.normal.lambda;
+                row.normal.lambda = new;
+                row.normal.axis.apply(step, motions);
                 p += 1;
             }
             Some((c, _)) => {
                 let pair = unknowns.get(p + 1).is_some_and(|u| u.row == unknown.row);
-                let old = row.lambda_tangent;
+                let old = row.friction.lambda;
                 let step = if pair {
                     [alpha * delta[p], alpha * delta[p + 1]]
                 } else {
@@ -519,13 +519,13 @@ fn apply_step(
                 };
                 let mut new = [old[0] + step[0], old[1] + step[1]];
                 let size = (new[0] * new[0] + new[1] * new[1]).sqrt();
-                if size > row.friction_bound || !pair || blocking == Some(p) {
+                if size > row.friction.bound || !pair || blocking == Some(p) {
                     // Back onto the edge: a sticking disk that reached it (round-off), or an
                     // edge unknown moved along its tangent.
-                    let scale = row.friction_bound / size;
+                    let scale = row.friction.bound / size;
                     new = [new[0] * scale, new[1] * scale];
                 }
-                row.lambda_tangent = new;
+                row.friction.lambda = new;
                 let [t1, t2] = &directions[unknown.row];
                 t1.apply(new[0] - old[0], motions);
                 t2.apply(new[1] - old[1], motions);
@@ -553,16 +553,16 @@ fn objective_change(
         let (lambda, tangent) = saved[unknown.row];
         match unknown.tangent {
             None => {
-                let after = row.normal.velocity(motions) + row.bias;
-                change += (row.lambda - lambda) * 0.5 * (unknown.before[0] + after);
+                let after = row.normal.axis.velocity(motions) + row.normal.bias;
+                change += (row.normal.lambda - lambda) * 0.5 * (unknown.before[0] + after);
                 p += 1;
             }
             Some(_) => {
                 let [t1, t2] = &directions[unknown.row];
                 let after = [t1.velocity(motions), t2.velocity(motions)];
                 let moved = [
-                    row.lambda_tangent[0] - tangent[0],
-                    row.lambda_tangent[1] - tangent[1],
+                    row.friction.lambda[0] - tangent[0],
+                    row.friction.lambda[1] - tangent[1],
                 ];
                 change += 0.5
                     * (moved[0] * (unknown.before[0] + after[0])

@@ -3,15 +3,16 @@
 //!
 //! An obstacle is a shape of the contact geometry's table at a fixed pose ([`Obstacle::shape`]):
 //! it never moves, takes no impulse, and enters the solvers as a static solver body
-//! (`constraints::solver_body`: inverse mass and inertia zero). Everything the engine asks of an
+//! (`constraints::solver_body`: inverse mass and inertia zero). Detection and `seed` reach it
+//! as a fixed thing (`collision::fixed`), the same entry a fixed body has. Everything the engine asks of an
 //! obstacle goes through the methods below, which ask the kind it holds ([`Kind`]):
 //!
 //! | method | who asks | what |
 //! |---|---|---|
 //! | [`kind`](Obstacle::kind) | panels, labels | the scene-file name |
-//! | [`shape`](Obstacle::shape) | the contact geometry, sweeps | its shape and pose in the shape table |
-//! | [`contact`](Obstacle::contact) | bodies' detection, measured penetration | contact points of a body's shape against it |
-//! | [`inside`](Obstacle::inside), [`near`](Obstacle::near), [`swept`](Obstacle::swept), [`depth`](Obstacle::depth) | vertices (`seed`, `impulse`), cloth particles | the report's point tests (`detect`) |
+//! | [`shape`](Obstacle::shape) | the contact geometry, sweeps (`fixed`) | its shape and pose in the shape table |
+//! | [`contact`](Obstacle::contact) | bodies' detection (`fixed`), measured penetration | contact points of a body's shape against it |
+//! | [`inside`](Obstacle::inside), [`near`](Obstacle::near), [`swept`](Obstacle::swept), [`depth`](Obstacle::depth) | vertices (`seed` and detection, through `fixed`), cloth particles | the report's point tests (`detect`) |
 //! | [`outline`](Obstacle::outline), [`bounds`](Obstacle::bounds) | front ends, through the snapshot | what to draw, the region to show |
 //! | [`written::build`] | the scene reader (`scene`) | the obstacle from its `type` and keys |
 //!

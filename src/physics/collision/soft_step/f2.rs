@@ -17,6 +17,16 @@ mod imp {
             // SAFETY: SSE2 is part of the x86-64 baseline.
             unsafe { F2(_mm_set_pd(y, x)) }
         }
+        /// The SSE2 register.
+        #[inline(always)]
+        pub fn raw(self) -> __m128d {
+            self.0
+        }
+        /// Of an SSE2 register.
+        #[inline(always)]
+        pub fn of_raw(x: __m128d) -> F2 {
+            F2(x)
+        }
         #[inline(always)]
         pub fn lane(self, i: usize) -> f64 {
             if i == 0 {

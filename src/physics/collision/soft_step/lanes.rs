@@ -18,6 +18,13 @@
 //! operation). A stack is one chain of runs (one per level, no pairs); a pyramid or a wall is
 //! as wide as its courses.
 //!
+//! Two runs between two bodies each take four lanes, `[A of x, A of y, B of x, B of y]`
+//! (`f4`): the four bodies' v and ω in six registers, a row's A and B ends in the same
+//! instructions. A row waits on the one before it (its bodies' velocities), so a sweep is
+//! bound by that chain's latency more than by its instructions: two such pairs on one level
+//! are taken together, row by row in turn (a `Four` step), two chains that do not wait on
+//! each other.
+//!
 //! # Piped
 //!
 //! A chain gives one sweep nothing to pair, but a sub-step has two sweeps, and the relax of
@@ -35,25 +42,37 @@
 //! body and row again sees the sequential sub-step's operations in its order, so the numbers
 //! are the same bit for bit; a stack's solve of run k and relax of run k − 2 share a level and
 //! go side by side. Taken only where one sweep would solve most of its rows alone (at least
-//! `MIN_PIPED_RUNS` runs): a pair costs about the instructions of its two rows alone (the
-//! lanes' 12 velocity registers spill), so it gains only where it fills otherwise idle
-//! levels; on a pyramid, already paired, piping measured 7 % more instructions.
+//! `MIN_PIPED_RUNS` runs): it gains only where it fills otherwise idle levels; on a pyramid,
+//! already paired, piping measured 7 % more instructions.
 
 use super::bodies::{Bodies, Motion};
 use super::f2::F2;
+use super::f4::Quad;
 use super::rows::{refresh_run, Row, Rows, Run};
 use super::sweep::{coefficients, solve_run};
 use super::{clamp_disk, Softness};
 
 /// One step of a scheduled sweep: a run alone, or two runs that share no body side by side
-/// (with where their rows' packed constants start in [`Lanes::packed`]), each in the biased
-/// solve (`true`) or the relax; or, in a piped sub-step, moving the bodies
-/// `Lanes::moved[range]` a sub-step on.
+/// (a [`Pair`]), or two such pairs of runs between two bodies each, their rows taken in turn
+/// (two chains of rows that do not wait on each other); or, in a piped sub-step, moving the
+/// bodies `Lanes::moved[range]` a sub-step on.
 #[derive(Debug, Clone, Copy)]
 enum Step {
     One(usize, bool),
-    Two(usize, usize, usize, [bool; 2]),
+    Two(Pair),
+    Four(Pair, Pair),
     Advance(usize, usize),
+}
+
+/// Two runs x and y that share no body, side by side, with where their rows' packed
+/// constants start (`at`, in [`Lanes::quads`] for runs with a B end, else
+/// [`Lanes::packed`]), each in the biased solve (`true`) or the relax.
+#[derive(Debug, Clone, Copy)]
+struct Pair {
+    x: usize,
+    y: usize,
+    at: usize,
+    biased: [bool; 2],
 }
 
 /// The schedule of the step's runs (module doc).
@@ -75,13 +94,17 @@ pub(super) struct Lanes {
     moved: Vec<usize>,
     moved_start: Vec<usize>,
     /// The constants of each `Two` step's common rows, two rows side by side (built once per
-    /// step: the sweeps load them as they are, with no lane shuffles).
+    /// step: the sweeps load them as they are, with no lane shuffles): runs against an
+    /// obstacle or a fixed body in `packed`, runs between two bodies in `quads`.
     packed: Vec<Packed>,
+    quads: Vec<Quads>,
 }
 
 /// The fewest runs a piped schedule is made for. A pair of rows costs about the instructions
 /// of the two alone, so piping pays only on long chains: measured (CPU time, soft-step) a
 /// stack of 10 (10 runs) breaks even at 13 % more instructions, stacks of 20 and 40 gain 4–5 %.
+/// With the pairs in four lanes (`f4`) a piped stack of 10 still costs 4 % more instructions
+/// (callgrind, 300 steps: 53.9M → 56.1M) for a time within this machine's noise.
 const MIN_PIPED_RUNS: usize = 16;
 
 /// A counting sort of `0..keys.len()` by key (stable): `order` the indices, `start[k]` where
@@ -115,14 +138,33 @@ impl Lanes {
         if may_pipe && 2 * alone > rows.rows.len() && rows.runs.len() >= MIN_PIPED_RUNS {
             self.plan(rows, bodies, true);
         }
-        let Lanes { steps, packed, .. } = self;
+        let Lanes {
+            steps,
+            packed,
+            quads,
+            ..
+        } = self;
         packed.clear();
-        for step in steps.iter_mut() {
-            if let Step::Two(x, y, at, _) = step {
-                *at = packed.len();
-                let (x, y) = (&rows.runs[*x].rows, &rows.runs[*y].rows);
-                let pairs = rows.rows[x.clone()].iter().zip(&rows.rows[y.clone()]);
+        quads.clear();
+        let mut pack = |p: &mut Pair| {
+            let pair = rows.runs[p.x].b.is_some();
+            p.at = if pair { quads.len() } else { packed.len() };
+            let (x, y) = (&rows.runs[p.x].rows, &rows.runs[p.y].rows);
+            let pairs = rows.rows[x.clone()].iter().zip(&rows.rows[y.clone()]);
+            if pair {
+                quads.extend(pairs.map(|(x, y)| Quads::of(x, y)));
+            } else {
                 packed.extend(pairs.map(|(x, y)| Packed::of(x, y)));
+            }
+        };
+        for step in steps.iter_mut() {
+            match step {
+                Step::Two(p) => pack(p),
+                Step::Four(p, q) => {
+                    pack(p);
+                    pack(q);
+                }
+                _ => {}
             }
         }
     }
@@ -187,17 +229,32 @@ impl Lanes {
         let mut alone = 0;
         for l in 1..=top {
             let mut pending: [Option<usize>; 2] = [None, None];
+            // A pair of runs with B ends waiting for a second on this level (a `Four`).
+            let mut held: Option<Pair> = None;
             for &e in &order[start[l]..start[l + 1]] {
                 let (r, biased) = (e % count, e < count);
                 let kind = usize::from(runs[r].b.is_some());
                 match pending[kind].take() {
                     Some(p) => {
                         let (q, solve) = (p % count, p < count);
-                        steps.push(Step::Two(q, r, 0, [solve, biased]));
+                        let pair = Pair {
+                            x: q,
+                            y: r,
+                            at: 0,
+                            biased: [solve, biased],
+                        };
+                        if kind == 0 {
+                            steps.push(Step::Two(pair));
+                        } else if let Some(first) = held.take() {
+                            steps.push(Step::Four(first, pair));
+                        } else {
+                            held = Some(pair);
+                        }
                     }
                     None => pending[kind] = Some(e),
                 }
             }
+            steps.extend(held.map(Step::Two));
             for e in pending.into_iter().flatten() {
                 alone += runs[e % count].rows.len();
                 steps.push(Step::One(e % count, e < count));
@@ -210,7 +267,7 @@ impl Lanes {
     /// One sweep over the rows in the scheduled order (not piped): the soft, biased solve
     /// (`biased`) or the rigid relax.
     #[inline(always)]
-    pub fn sweep(
+    pub fn sweep<Q: Quad>(
         &self,
         rows: &mut Rows,
         motions: &mut [Motion],
@@ -224,9 +281,13 @@ impl Lanes {
         for step in &self.steps {
             match *step {
                 Step::One(r, _) => solve_run(&runs[r], rows, motions, friction, h, biased),
-                Step::Two(x, y, at, _) => {
-                    let packed = &self.packed[at..];
-                    sweep.both(&runs[x], &runs[y], [biased; 2], packed, rows, motions);
+                Step::Two(p) => {
+                    let (x, y) = (&runs[p.x], &runs[p.y]);
+                    sweep.both::<Q>(self, (x, y, p.at), [biased; 2], rows, motions);
+                }
+                Step::Four(p, q) => {
+                    let biased = [[biased; 2]; 2];
+                    sweep.four::<Q>(self, [&p, &q], biased, runs, rows, motions);
                 }
                 Step::Advance(..) => {}
             }
@@ -239,7 +300,7 @@ impl Lanes {
     /// the same order as the solve sweep, `Bodies::advance`, `Rows::refresh_gaps` and the
     /// relax sweep one after the other (module doc, "Piped").
     #[inline(always)]
-    pub fn substep(&self, rows: &mut Rows, bodies: &mut Bodies, friction: f64, h: f64) {
+    pub fn substep<Q: Quad>(&self, rows: &mut Rows, bodies: &mut Bodies, friction: f64, h: f64) {
         debug_assert!(self.piped);
         let Rows { rows, runs, .. } = rows;
         let sweep = Sweep { friction, h };
@@ -251,15 +312,17 @@ impl Lanes {
                     }
                     solve_run(&runs[r], rows, &mut bodies.motions, friction, h, biased);
                 }
-                Step::Two(x, y, at, biased) => {
-                    for (r, biased) in [(x, biased[0]), (y, biased[1])] {
-                        if !biased {
-                            refresh_run(&runs[r], rows, &bodies.places);
-                        }
-                    }
-                    let packed = &self.packed[at..];
+                Step::Two(p) => {
+                    refresh_relaxed(&p, runs, rows, bodies);
                     let motions = &mut bodies.motions;
-                    sweep.both(&runs[x], &runs[y], biased, packed, rows, motions);
+                    let (x, y) = (&runs[p.x], &runs[p.y]);
+                    sweep.both::<Q>(self, (x, y, p.at), p.biased, rows, motions);
+                }
+                Step::Four(p, q) => {
+                    refresh_relaxed(&p, runs, rows, bodies);
+                    refresh_relaxed(&q, runs, rows, bodies);
+                    let (motions, biased) = (&mut bodies.motions, [p.biased, q.biased]);
+                    sweep.four::<Q>(self, [&p, &q], biased, runs, rows, motions);
                 }
                 Step::Advance(from, to) => {
                     for &b in &self.moved[from..to] {
@@ -267,6 +330,16 @@ impl Lanes {
                     }
                 }
             }
+        }
+    }
+}
+
+/// The gaps of the runs of `p` that are relaxed (piped: refreshed just before).
+#[inline(always)]
+fn refresh_relaxed(p: &Pair, runs: &[Run], rows: &mut [Row], bodies: &Bodies) {
+    for (r, biased) in [(p.x, p.biased[0]), (p.y, p.biased[1])] {
+        if !biased {
+            refresh_run(&runs[r], rows, &bodies.places);
         }
     }
 }
@@ -297,11 +370,6 @@ fn neg(a: F2) -> F2 {
 #[inline(always)]
 fn add3(a: V2, b: V2) -> V2 {
     [add(a[0], b[0]), add(a[1], b[1]), add(a[2], b[2])]
-}
-
-#[inline(always)]
-fn sub3(a: V2, b: V2) -> V2 {
-    [sub(a[0], b[0]), sub(a[1], b[1]), sub(a[2], b[2])]
 }
 
 /// `v s`, component by component.
@@ -345,16 +413,15 @@ fn pick(live: [bool; 2], new: V2, old: V2) -> V2 {
     ]
 }
 
-/// Two rows' constants side by side: what `Sweep::rows` reads of them besides the gap and
-/// the impulses (the same numbers as the rows', in lanes 0 and 1).
+/// Two rows against an obstacle or a fixed body, their constants side by side: what
+/// `Sweep::rows` reads of them besides the gap and the impulses (the same numbers as the
+/// rows', in lanes 0 and 1).
 #[derive(Debug, Clone, Copy)]
 struct Packed {
     normal: V2,
-    rn: [V2; 2],
+    rn: V2,
     w_a: [V2; 3],
-    w_b: [V2; 3],
     lever: V2,
-    lever_other: V2,
     tangents: [V2; 2],
     inv_k: [F2; 3],
 }
@@ -368,11 +435,9 @@ impl Packed {
         };
         Packed {
             normal: lanes(&x.normal, &y.normal),
-            rn: [lanes(&x.rn[0], &y.rn[0]), lanes(&x.rn[1], &y.rn[1])],
+            rn: lanes(&x.rn[0], &y.rn[0]),
             w_a: three(&x.w_a, &y.w_a),
-            w_b: three(&x.w_b, &y.w_b),
             lever: lanes(&x.lever, &y.lever),
-            lever_other: lanes(&x.lever_other, &y.lever_other),
             tangents: [
                 lanes(&x.tangents[0], &y.tangents[0]),
                 lanes(&x.tangents[1], &y.tangents[1]),
@@ -418,28 +483,28 @@ struct Sweep {
 }
 
 impl Sweep {
-    /// Runs x and y side by side (`two`), each in the solve (`biased`) or the relax.
+    /// Runs x and y side by side (`at`: where their packed rows start), each in the solve
+    /// (`biased`) or the relax: in four lanes when both have a B end, else in two.
     #[inline(always)]
-    fn both(
+    fn both<Q: Quad>(
         &self,
-        x: &Run,
-        y: &Run,
+        lanes: &Lanes,
+        (x, y, at): (&Run, &Run, usize),
         biased: [bool; 2],
-        packed: &[Packed],
         rows: &mut [Row],
         motions: &mut [Motion],
     ) {
         if x.b.is_some() {
-            self.two::<true>(x, y, biased, packed, rows, motions);
+            self.two_pairs::<Q>(x, y, biased, &lanes.quads[at..], rows, motions);
         } else {
-            self.two::<false>(x, y, biased, packed, rows, motions);
+            self.two(x, y, biased, &lanes.packed[at..], rows, motions);
         }
     }
 
-    /// Runs x and y (sharing no body, both with a B end or neither: `PAIR`) side by side
-    /// over their common length, then each one's remaining rows alone.
+    /// Runs x and y (sharing no body, neither with a B end) side by side over their common
+    /// length, then each one's remaining rows alone.
     #[inline(always)]
-    fn two<const PAIR: bool>(
+    fn two(
         &self,
         x: &Run,
         y: &Run,
@@ -448,54 +513,152 @@ impl Sweep {
         rows: &mut [Row],
         motions: &mut [Motion],
     ) {
-        let still = Motion::default();
-        let body = |b: Option<usize>| b.map_or(still, |b| motions[b]);
         let mut a = Wide::of(&motions[x.a], &motions[y.a]);
-        let mut b = Wide::of(&body(x.b), &body(y.b));
         let common = x.rows.len().min(y.rows.len());
         for (k, p) in packed[..common].iter().enumerate() {
-            let (i, j) = (x.rows.start + k, y.rows.start + k);
-            let (row_x, row_y) = if i < j {
-                let (low, high) = rows.split_at_mut(j);
-                (&mut low[i], &mut high[0])
-            } else {
-                let (low, high) = rows.split_at_mut(i);
-                (&mut high[0], &mut low[j])
-            };
+            let (row_x, row_y) = two_rows(rows, x.rows.start + k, y.rows.start + k);
             let soft = [&x.soft, &y.soft];
-            self.rows::<PAIR>([row_x, row_y], p, soft, biased, &mut a, &mut b);
+            self.rows([row_x, row_y], p, soft, biased, &mut a);
         }
         for (lane, run) in [x, y].into_iter().enumerate() {
-            let (mut ma, mut mb) = (a.lane(lane), b.lane(lane));
-            for row in &mut rows[run.rows.start + common..run.rows.end] {
-                super::sweep::solve::<PAIR>(
-                    row,
-                    &run.soft,
-                    &mut ma,
-                    &mut mb,
-                    self.friction,
-                    self.h,
-                    biased[lane],
-                );
-            }
+            let (mut ma, mut still) = (a.lane(lane), Motion::default());
+            self.rest::<false>(run, common, biased[lane], rows, (&mut ma, &mut still));
             motions[run.a] = ma;
-            if let Some(i) = run.b {
-                motions[i] = mb;
-            }
         }
     }
 
-    /// Two rows side by side: the scalar `sweep::solve`, lane by lane, operation by operation.
+    /// The rows of `run` after its first `common`, alone (the scalar `sweep::solve`).
     #[inline(always)]
-    fn rows<const PAIR: bool>(
+    fn rest<const PAIR: bool>(
+        &self,
+        run: &Run,
+        common: usize,
+        biased: bool,
+        rows: &mut [Row],
+        (a, b): (&mut Motion, &mut Motion),
+    ) {
+        for row in &mut rows[run.rows.start + common..run.rows.end] {
+            let (friction, h) = (self.friction, self.h);
+            super::sweep::solve::<PAIR>(row, &run.soft, a, b, friction, h, biased);
+        }
+    }
+
+    /// Runs x and y (sharing no body, both with a B end) side by side over their common
+    /// length in four lanes (`Ends`), then each one's remaining rows alone.
+    #[inline(always)]
+    fn two_pairs<Q: Quad>(
+        &self,
+        x: &Run,
+        y: &Run,
+        biased: [bool; 2],
+        quads: &[Quads],
+        rows: &mut [Row],
+        motions: &mut [Motion],
+    ) {
+        let ends = Ends::<Q>::of(x, y, motions);
+        self.finish_pairs((x, y), biased, (quads, 0), ends, rows, motions);
+    }
+
+    /// Two pairs of runs between two bodies each (`p`, `q`, sharing no body), each pair side
+    /// by side in four lanes, their rows taken in turn over their common length (two chains
+    /// that do not wait on each other: the second's row runs while the first's waits), then
+    /// each pair finished alone (`finish_pairs`).
+    #[inline(always)]
+    fn four<Q: Quad>(
+        &self,
+        lanes: &Lanes,
+        [p, q]: [&Pair; 2],
+        biased: [[bool; 2]; 2],
+        runs: &[Run],
+        rows: &mut [Row],
+        motions: &mut [Motion],
+    ) {
+        let (x1, y1, x2, y2) = (&runs[p.x], &runs[p.y], &runs[q.x], &runs[q.y]);
+        let (mut e1, mut e2) = (Ends::<Q>::of(x1, y1, motions), Ends::<Q>::of(x2, y2, motions));
+        let (q1, q2) = (&lanes.quads[p.at..], &lanes.quads[q.at..]);
+        let common = |x: &Run, y: &Run| x.rows.len().min(y.rows.len());
+        let both = common(x1, y1).min(common(x2, y2));
+        let soft = [[&x1.soft, &y1.soft], [&x2.soft, &y2.soft]];
+        for k in 0..both {
+            let at = [x1, y1, x2, y2].map(|r| r.rows.start + k);
+            let [a, b, c, d] = rows.get_disjoint_mut(at).expect("the runs' rows are apart");
+            let ([a, b], [c, d]) = ([a, b], [c, d]);
+            self.pair_normal::<Q>([a, b], &q1[k], soft[0], biased[0], &mut e1);
+            self.pair_normal::<Q>([c, d], &q2[k], soft[1], biased[1], &mut e2);
+            if self.friction > 0.0 {
+                self.pair_friction::<Q>([a, b], &q1[k], &mut e1);
+                self.pair_friction::<Q>([c, d], &q2[k], &mut e2);
+            }
+        }
+        self.finish_pairs((x1, y1), biased[0], (q1, both), e1, rows, motions);
+        self.finish_pairs((x2, y2), biased[1], (q2, both), e2, rows, motions);
+    }
+
+    /// Runs x and y (both with a B end) in four lanes (`ends`) from their `from`-th rows
+    /// over their common length, then each one's remaining rows alone; the motions written
+    /// back.
+    #[inline(always)]
+    fn finish_pairs<Q: Quad>(
+        &self,
+        (x, y): (&Run, &Run),
+        biased: [bool; 2],
+        (quads, from): (&[Quads], usize),
+        mut ends: Ends<Q>,
+        rows: &mut [Row],
+        motions: &mut [Motion],
+    ) {
+        let (xb, yb) = (x.b.unwrap_or(x.a), y.b.unwrap_or(y.a));
+        let common = x.rows.len().min(y.rows.len());
+        for (k, p) in quads[..common].iter().enumerate().skip(from) {
+            let (row_x, row_y) = two_rows(rows, x.rows.start + k, y.rows.start + k);
+            let soft = [&x.soft, &y.soft];
+            self.pair_rows::<Q>([row_x, row_y], p, soft, biased, &mut ends);
+        }
+        for (lane, (run, b)) in [(x, xb), (y, yb)].into_iter().enumerate() {
+            let mut ma = ends.lane(lane, motions[run.a].inv_mass);
+            let mut mb = ends.lane(lane + 2, motions[b].inv_mass);
+            self.rest::<true>(run, common, biased[lane], rows, (&mut ma, &mut mb));
+            motions[run.a] = ma;
+            motions[b] = mb;
+        }
+    }
+
+    /// Two rows against an obstacle or a fixed body side by side: the scalar `sweep::solve`,
+    /// lane by lane, operation by operation.
+    #[inline(always)]
+    fn rows(
         &self,
         [x, y]: [&mut Row; 2],
         p: &Packed,
+        soft: [&Softness; 2],
+        biased: [bool; 2],
+        a: &mut Wide,
+    ) {
+        let n = p.normal;
+        let u = add(dot(&n, &a.v), dot(&p.rn, &a.omega));
+        let change = self.normal([x, y], p.inv_k[0], soft, biased, u);
+        let live = [change.lane(0) != 0.0, change.lane(1) != 0.0];
+        if live[0] || live[1] {
+            let wa = p.w_a[0];
+            a.v = pick(live, add3(a.v, scale(n, mul(change, a.inv_mass))), a.v);
+            a.omega = pick(live, add3(a.omega, scale(wa, change)), a.omega);
+        }
+        if self.friction > 0.0 {
+            self.friction([x, y], p, a);
+        }
+    }
+
+    /// Two rows' normal updates from their normal rates `u` (`sweep::solve`): each row's λ
+    /// and largest λ set; the change of λ.
+    #[inline(always)]
+    fn normal(
+        &self,
+        [x, y]: [&mut Row; 2],
+        inv_k: F2,
         [sx, sy]: [&Softness; 2],
         [bx, by]: [bool; 2],
-        a: &mut Wide,
-        b: &mut Wide,
-    ) {
+        u: F2,
+    ) -> F2 {
         let cx = coefficients(x.gap, sx, self.h, bx);
         let cy = coefficients(y.gap, sy, self.h, by);
         let (bias, mass_scale, impulse_scale) = (
@@ -503,13 +666,7 @@ impl Sweep {
             F2::new(cx.1, cy.1),
             F2::new(cx.2, cy.2),
         );
-        let n = p.normal;
-        let mut u = add(dot(&n, &a.v), dot(&p.rn[0], &a.omega));
-        if PAIR {
-            u = add(u, add(neg(dot(&n, &b.v)), dot(&p.rn[1], &b.omega)));
-        }
         let lambda = F2::new(x.lambda, y.lambda);
-        let inv_k = p.inv_k[0];
         let j = sub(
             mul(mul(neg(inv_k), mass_scale), add(u, bias)),
             mul(impulse_scale, lambda),
@@ -522,52 +679,52 @@ impl Sweep {
         (x.lambda, y.lambda) = (new[0], new[1]);
         x.max_lambda = x.max_lambda.max(new[0]);
         y.max_lambda = y.max_lambda.max(new[1]);
-        let live = [change.lane(0) != 0.0, change.lane(1) != 0.0];
-        if live[0] || live[1] {
-            let wa = p.w_a[0];
-            a.v = pick(live, add3(a.v, scale(n, mul(change, a.inv_mass))), a.v);
-            a.omega = pick(live, add3(a.omega, scale(wa, change)), a.omega);
-            if PAIR {
-                let wb = p.w_b[0];
-                b.v = pick(live, add3(b.v, scale(n, mul(neg(change), b.inv_mass))), b.v);
-                b.omega = pick(live, add3(b.omega, scale(wb, change)), b.omega);
-            }
-        }
-        if self.friction > 0.0 {
-            self.friction::<PAIR>([x, y], p, a, b);
-        }
+        change
     }
 
-    /// The friction of two rows side by side (after their normal updates).
+    /// Two rows' tangent impulses from the points' slips (`sweep::solve`): each row's new
+    /// tangent impulse (kept in its disk) and the step from the old, `[t₁, t₂]` by lane;
+    /// which lanes changed.
     #[inline(always)]
-    fn friction<const PAIR: bool>(
+    fn tangent(
         &self,
         [x, y]: [&mut Row; 2],
-        p: &Packed,
-        a: &mut Wide,
-        b: &mut Wide,
-    ) {
+        tangents: &[V2; 2],
+        inv_k: &[F2; 3],
+        slip: &V2,
+    ) -> (F2, F2, [bool; 2]) {
         let bound = [self.friction * x.lambda, self.friction * y.lambda];
         let old = [x.lambda_tangent, y.lambda_tangent];
-        let mut slip = add3(a.v, cross(&a.omega, &p.lever));
-        if PAIR {
-            slip = sub3(sub3(slip, b.v), cross(&b.omega, &p.lever_other));
-        }
-        let [t1, t2] = p.tangents;
+        let [t1, t2] = tangents;
         let old1 = F2::new(old[0][0], old[1][0]);
         let old2 = F2::new(old[0][1], old[1][1]);
-        let n1 = sub(old1, mul(p.inv_k[1], dot(&t1, &slip)));
-        let n2 = sub(old2, mul(p.inv_k[2], dot(&t2, &slip)));
+        let n1 = sub(old1, mul(inv_k[1], dot(t1, slip)));
+        let n2 = sub(old2, mul(inv_k[2], dot(t2, slip)));
         let mut new = [[n1.lane(0), n2.lane(0)], [n1.lane(1), n2.lane(1)]];
         clamp_disk(&mut new[0], bound[0]);
         clamp_disk(&mut new[1], bound[1]);
         let step = |i: usize| [new[i][0] - old[i][0], new[i][1] - old[i][1]];
         let (sx, sy) = (step(0), step(1));
         let live = [sx != [0.0; 2], sy != [0.0; 2]];
+        if live[0] {
+            x.lambda_tangent = new[0];
+        }
+        if live[1] {
+            y.lambda_tangent = new[1];
+        }
+        (F2::new(sx[0], sy[0]), F2::new(sx[1], sy[1]), live)
+    }
+
+    /// The friction of two rows against an obstacle or a fixed body side by side (after
+    /// their normal updates).
+    #[inline(always)]
+    fn friction(&self, [x, y]: [&mut Row; 2], p: &Packed, a: &mut Wide) {
+        let slip = add3(a.v, cross(&a.omega, &p.lever));
+        let (s1, s2, live) = self.tangent([x, y], &p.tangents, &p.inv_k, &slip);
         if !(live[0] || live[1]) {
             return;
         }
-        let (s1, s2) = (F2::new(sx[0], sy[0]), F2::new(sx[1], sy[1]));
+        let [t1, t2] = p.tangents;
         let impulse = add3(scale(t1, s1), scale(t2, s2));
         let (wa1, wa2) = (p.w_a[1], p.w_a[2]);
         a.v = pick(live, add3(a.v, scale(impulse, a.inv_mass)), a.v);
@@ -576,26 +733,229 @@ impl Sweep {
             add3(a.omega, add3(scale(wa1, s1), scale(wa2, s2))),
             a.omega,
         );
-        if PAIR {
-            let (wb1, wb2) = (p.w_b[1], p.w_b[2]);
-            b.v = pick(live, sub3(b.v, scale(impulse, b.inv_mass)), b.v);
-            b.omega = pick(
-                live,
-                add3(b.omega, add3(scale(wb1, s1), scale(wb2, s2))),
-                b.omega,
-            );
+    }
+
+    /// Two rows between two bodies each, side by side in four lanes: the scalar
+    /// `sweep::solve`, lane by lane, operation by operation (`Ends`).
+    #[inline(always)]
+    fn pair_rows<Q: Quad>(
+        &self,
+        [x, y]: [&mut Row; 2],
+        p: &Quads,
+        soft: [&Softness; 2],
+        biased: [bool; 2],
+        e: &mut Ends<Q>,
+    ) {
+        self.pair_normal::<Q>([x, y], p, soft, biased, e);
+        if self.friction > 0.0 {
+            self.pair_friction::<Q>([x, y], p, e);
         }
-        if live[0] {
-            x.lambda_tangent = new[0];
+    }
+
+    /// The normal updates of two rows between two bodies each, in four lanes.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // k indexes four arrays of three lanes
+    fn pair_normal<Q: Quad>(
+        &self,
+        [x, y]: [&mut Row; 2],
+        p: &Quads,
+        soft: [&Softness; 2],
+        biased: [bool; 2],
+        e: &mut Ends<Q>,
+    ) {
+        let n = p.normal.each_ref().map(Q::load);
+        // Lanes [n·v_A, −n·v_B] + [(r_A×n)·ω_A, (r_B×(−n))·ω_B], then the halves added: the
+        // scalar `u = (n·v_A + (r_A×n)·ω_A) + (−n·v_B + (r_B×(−n))·ω_B)`.
+        let ends = dot4(&p.normal, &e.v).neg_hi().add(dot4(&p.rn, &e.omega));
+        let u = add(ends.lo(), ends.hi());
+        let change = self.normal([x, y], p.inv_k[0], soft, biased, u);
+        let live = [change.lane(0) != 0.0, change.lane(1) != 0.0];
+        if live[0] || live[1] {
+            // B: n (j·(−1/M_B)) = n ((−j)/M_B) and I_B⁻¹(r_B×(−n)) j, bit for bit.
+            let c = Q::join(change, change);
+            let dv = c.mul(e.mass);
+            for k in 0..3 {
+                let w = Q::load(&p.w[0][k]);
+                e.v[k] = pick4(live, e.v[k].add(n[k].mul(dv)), e.v[k]);
+                e.omega[k] = pick4(live, e.omega[k].add(w.mul(c)), e.omega[k]);
+            }
         }
-        if live[1] {
-            y.lambda_tangent = new[1];
+    }
+
+    /// The friction of two rows between two bodies each, side by side in four lanes.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // k indexes four arrays of three lanes
+    fn pair_friction<Q: Quad>(&self, [x, y]: [&mut Row; 2], p: &Quads, e: &mut Ends<Q>) {
+        // Lanes [ω_A×r_A, ω_B×r_B]; the slip `((v_A + ω_A×r_A) − v_B) − ω_B×r_B`.
+        let turn = cross4(&e.omega, &p.lever);
+        let slip: V2 = std::array::from_fn(|k| {
+            sub(
+                sub(add(e.v[k].lo(), turn[k].lo()), e.v[k].hi()),
+                turn[k].hi(),
+            )
+        });
+        let (s1, s2, live) = self.tangent([x, y], &p.tangents, &p.inv_k, &slip);
+        if !(live[0] || live[1]) {
+            return;
+        }
+        let [t1, t2] = p.tangents;
+        let impulse = add3(scale(t1, s1), scale(t2, s2));
+        let (s1, s2) = (Q::join(s1, s1), Q::join(s2, s2));
+        for k in 0..3 {
+            // B: v_B − P/M_B = v_B + P (−1/M_B), bit for bit.
+            let dv = Q::join(impulse[k], impulse[k]).mul(e.mass);
+            e.v[k] = pick4(live, e.v[k].add(dv), e.v[k]);
+            let (w1, w2) = (Q::load(&p.w[1][k]), Q::load(&p.w[2][k]));
+            let dw = w1.mul(s1).add(w2.mul(s2));
+            e.omega[k] = pick4(live, e.omega[k].add(dw), e.omega[k]);
+        }
+    }
+}
+
+/// Rows i and j (i ≠ j) of `rows`, both mutable.
+#[inline(always)]
+fn two_rows(rows: &mut [Row], i: usize, j: usize) -> (&mut Row, &mut Row) {
+    if i < j {
+        let (low, high) = rows.split_at_mut(j);
+        (&mut low[i], &mut high[0])
+    } else {
+        let (low, high) = rows.split_at_mut(i);
+        (&mut high[0], &mut low[j])
+    }
+}
+
+/// Four lanes of 3-vectors, by component.
+type V4<Q> = [Q; 3];
+
+/// `a·b` lane by lane as nalgebra sums it: `(a₀b₀ + a₁b₁) + a₂b₂` (a loaded as it goes).
+#[inline(always)]
+fn dot4<Q: Quad>(a: &[[f64; 4]; 3], b: &V4<Q>) -> Q {
+    let p = |k: usize| Q::load(&a[k]).mul(b[k]);
+    p(0).add(p(1)).add(p(2))
+}
+
+/// `a×b` lane by lane as nalgebra computes it (b loaded as it goes).
+#[inline(always)]
+fn cross4<Q: Quad>(a: &V4<Q>, b: &[[f64; 4]; 3]) -> V4<Q> {
+    let b = b.each_ref().map(Q::load);
+    [
+        a[1].mul(b[2]).sub(a[2].mul(b[1])),
+        a[2].mul(b[0]).sub(a[0].mul(b[2])),
+        a[0].mul(b[1]).sub(a[1].mul(b[0])),
+    ]
+}
+
+/// Keeps lanes 0 and 2 of `new` where `live[0]`, 1 and 3 where `live[1]`, else of `old`.
+#[inline(always)]
+fn pick4<Q: Quad>(live: [bool; 2], new: Q, old: Q) -> Q {
+    if live[0] && live[1] {
+        return new;
+    }
+    Q::pick(live, new, old)
+}
+
+/// The four bodies of two runs between two bodies each, in lanes
+/// `[A of x, A of y, B of x, B of y]`: v and ω by component, and `[1/M_A, 1/M_A, −1/M_B,
+/// −1/M_B]` (an impulse j on A is −j on B).
+#[derive(Debug, Clone, Copy)]
+struct Ends<Q> {
+    v: V4<Q>,
+    omega: V4<Q>,
+    mass: Q,
+}
+
+impl<Q: Quad> Ends<Q> {
+    /// The motions of runs x and y's ends in lanes.
+    #[inline(always)]
+    fn of(x: &Run, y: &Run, motions: &[Motion]) -> Ends<Q> {
+        let (xb, yb) = (x.b.unwrap_or(x.a), y.b.unwrap_or(y.a));
+        Ends::of_four([&motions[x.a], &motions[y.a], &motions[xb], &motions[yb]])
+    }
+
+    /// The four motions `[A of x, A of y, B of x, B of y]` in lanes (built from halves in
+    /// registers, not stored and loaded back).
+    #[inline(always)]
+    fn of_four([ax, ay, bx, by]: [&Motion; 4]) -> Ends<Q> {
+        let four = |x: &nalgebra::Vector3<f64>, y, z, w| -> V4<Q> {
+            let half = |a: &nalgebra::Vector3<f64>, b: &nalgebra::Vector3<f64>, k: usize| {
+                F2::new(a[k], b[k])
+            };
+            std::array::from_fn(|k| Q::join(half(x, y, k), half(z, w, k)))
+        };
+        Ends {
+            v: four(&ax.v, &ay.v, &bx.v, &by.v),
+            omega: four(&ax.omega, &ay.omega, &bx.omega, &by.omega),
+            mass: Q::join(
+                F2::new(ax.inv_mass, ay.inv_mass),
+                F2::new(-bx.inv_mass, -by.inv_mass),
+            ),
+        }
+    }
+
+    /// Lane `lane`'s motion (0, 1: A of x, y; 2, 3: B of x, y), its 1/M `inv_mass`.
+    #[inline(always)]
+    fn lane(&self, lane: usize, inv_mass: f64) -> Motion {
+        let half = |q: Q| if lane < 2 { q.lo() } else { q.hi() };
+        let get = |q: &V4<Q>| {
+            nalgebra::Vector3::new(
+                half(q[0]).lane(lane % 2),
+                half(q[1]).lane(lane % 2),
+                half(q[2]).lane(lane % 2),
+            )
+        };
+        Motion {
+            v: get(&self.v),
+            omega: get(&self.omega),
+            inv_mass,
+        }
+    }
+}
+
+/// Two rows between two bodies each side by side in four lanes `[A of x, A of y, B of x,
+/// B of y]` (`Ends`): the same numbers as the rows', by component.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(32))]
+struct Quads {
+    /// n in all four lanes.
+    normal: [[f64; 4]; 3],
+    /// `r_A×n` and `r_B×(−n)`.
+    rn: [[f64; 4]; 3],
+    /// Per axis d = n, t₁, t₂: `I_A⁻¹(r_A×d)` and `I_B⁻¹(r_B×(−d))`.
+    w: [[[f64; 4]; 3]; 3],
+    /// r_A and r_B.
+    lever: [[f64; 4]; 3],
+    /// The tangents and 1/k of rows x and y.
+    tangents: [V2; 2],
+    inv_k: [F2; 3],
+}
+
+impl Quads {
+    #[inline(always)]
+    fn of(x: &Row, y: &Row) -> Quads {
+        let four = |a: &nalgebra::Vector3<f64>,
+                    b: &nalgebra::Vector3<f64>,
+                    c: &nalgebra::Vector3<f64>,
+                    d: &nalgebra::Vector3<f64>| {
+            std::array::from_fn(|k| [a[k], b[k], c[k], d[k]])
+        };
+        let both = |i: usize| F2::new(x.inv_k[i], y.inv_k[i]);
+        Quads {
+            normal: four(&x.normal, &y.normal, &x.normal, &y.normal),
+            rn: four(&x.rn[0], &y.rn[0], &x.rn[1], &y.rn[1]),
+            w: std::array::from_fn(|i| four(&x.w_a[i], &y.w_a[i], &x.w_b[i], &y.w_b[i])),
+            lever: four(&x.lever, &y.lever, &x.lever_other, &y.lever_other),
+            tangents: [
+                lanes(&x.tangents[0], &y.tangents[0]),
+                lanes(&x.tangents[1], &y.tangents[1]),
+            ],
+            inv_k: [both(0), both(1), both(2)],
         }
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::f4::Plain;
     use super::*;
     use nalgebra::Vector3;
 
@@ -619,8 +979,9 @@ mod tests {
     }
 
     /// Random runs over a few bodies (some against obstacles, some of unequal lengths, some
-    /// rows speculative, some pushing, some sliding): the scheduled sweep in lanes leaves the
-    /// motions and the rows' impulses bit for bit where the sequential sweep does.
+    /// rows speculative, some pushing, some sliding): the scheduled sweep in lanes (two and
+    /// four, in both builds of the four) leaves the motions and the rows' impulses bit for bit
+    /// where the sequential sweep does.
     #[test]
     fn the_lanes_give_the_sequential_sweep_bit_for_bit() {
         let mut g = Lcg(7);
@@ -678,26 +1039,50 @@ mod tests {
             .collect();
         let mut lanes = Lanes::default();
         lanes.schedule(&rows, bodies, false);
-        assert!(lanes.steps.iter().any(|s| matches!(s, Step::Two(..))));
-        let (mut wide_rows, mut wide) = (rows.clone(), motions.clone());
-        let (mut one_rows, mut one) = (rows, motions);
+        let pairs = |pair: bool| {
+            let of = |p: &Pair| usize::from(rows.runs[p.x].b.is_some() == pair);
+            let count = |s: &Step| match s {
+                Step::Two(p) => of(p),
+                Step::Four(p, q) => of(p) + of(q),
+                _ => 0,
+            };
+            lanes.steps.iter().map(count).sum::<usize>()
+        };
+        assert!(pairs(true) > 0 && pairs(false) > 0);
+        let four = |s: &Step| matches!(s, Step::Four(..));
+        assert!(lanes.steps.iter().any(four), "no two pairs of runs taken together");
+        let (mut one_rows, mut one) = (rows.clone(), motions.clone());
         for biased in [true, false, true] {
-            lanes.sweep(&mut wide_rows, &mut wide, 0.5, 2.5e-4, biased);
             for run in one_rows.runs.clone() {
                 solve_run(&run, &mut one_rows.rows, &mut one, 0.5, 2.5e-4, biased);
             }
         }
-        let bits = |v: &Vector3<f64>| v.map(f64::to_bits);
-        for (w, o) in wide.iter().zip(&one) {
-            assert_eq!((bits(&w.v), bits(&w.omega)), (bits(&o.v), bits(&o.omega)));
+        let check = |wide_rows: &Rows, wide: &[Motion]| {
+            let bits = |v: &Vector3<f64>| v.map(f64::to_bits);
+            for (w, o) in wide.iter().zip(&one) {
+                assert_eq!((bits(&w.v), bits(&w.omega)), (bits(&o.v), bits(&o.omega)));
+            }
+            for (w, o) in wide_rows.rows.iter().zip(&one_rows.rows) {
+                assert_eq!(w.lambda.to_bits(), o.lambda.to_bits());
+                assert_eq!(
+                    w.lambda_tangent.map(f64::to_bits),
+                    o.lambda_tangent.map(f64::to_bits)
+                );
+                assert_eq!(w.max_lambda.to_bits(), o.max_lambda.to_bits());
+            }
+        };
+        let (mut wide_rows, mut wide) = (rows.clone(), motions.clone());
+        for biased in [true, false, true] {
+            lanes.sweep::<Plain>(&mut wide_rows, &mut wide, 0.5, 2.5e-4, biased);
         }
-        for (w, o) in wide_rows.rows.iter().zip(&one_rows.rows) {
-            assert_eq!(w.lambda.to_bits(), o.lambda.to_bits());
-            assert_eq!(
-                w.lambda_tangent.map(f64::to_bits),
-                o.lambda_tangent.map(f64::to_bits)
-            );
-            assert_eq!(w.max_lambda.to_bits(), o.max_lambda.to_bits());
+        check(&wide_rows, &wide);
+        #[cfg(target_arch = "x86_64")]
+        if crate::physics::simd::avx2() {
+            let (mut wide_rows, mut wide) = (rows, motions);
+            for biased in [true, false, true] {
+                lanes.sweep::<super::super::f4::Avx>(&mut wide_rows, &mut wide, 0.5, 2.5e-4, biased);
+            }
+            check(&wide_rows, &wide);
         }
     }
 }
