@@ -199,7 +199,9 @@ impl System<'_> {
     ) {
         let n = self.bodies.len();
         let chain = self.links.correction != Correction::Baumgarte
-            && scratch.chain.build(&self.links.joints, &scratch.poses);
+            && scratch
+                .chain
+                .build_for_forces(&self.links.joints, &scratch.poses);
         scratch.rows.clear();
         if !chain {
             for (index, joint) in self.links.joints.iter().enumerate() {

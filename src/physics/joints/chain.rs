@@ -128,7 +128,7 @@ impl Reduced {
     /// What is `wanted` for K μ = `rhs` with the held factor, one entry per body of the
     /// factor's.
     #[inline(always)]
-    fn answer(&mut self, rhs: &[f64], wanted: Wanted) {
+    pub(super) fn answer(&mut self, rhs: &[f64], wanted: Wanted) {
         let bodies = self.bodies();
         match wanted {
             Wanted::Moves(moves) => {
@@ -189,6 +189,20 @@ impl Chain {
     /// order (module doc); false (nothing built, no reduced factor held) otherwise.
     #[inline(always)]
     pub fn build(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
+        self.build_with::<true>(joints, poses)
+    }
+
+    /// [`Chain::build`] without the rows' C (each link's `separation` and `c` left at zero):
+    /// the rows f(Y) solves with, which read J and J̇u only (the separation and the hinges'
+    /// u·t are not computed).
+    #[inline(always)]
+    pub fn build_for_forces(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
+        self.build_with::<false>(joints, poses)
+    }
+
+    /// [`Chain::build`], C computed when `ERRORS`.
+    #[inline(always)]
+    fn build_with<const ERRORS: bool>(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
         if !self.is_chain_cached(joints, poses.len()) {
             self.reduced.drop_factor();
             return false;
@@ -208,7 +222,11 @@ impl Chain {
                 angular: 0,
                 g: [Vector3::zeros(); 2],
                 bias: [0.0; 2],
-                separation: at.separation,
+                separation: if ERRORS {
+                    at.separation
+                } else {
+                    Vector3::zeros()
+                },
                 c: [0.0; 2],
             };
             self.hinges &= joint.kind == JointKind::Hinge;
@@ -217,7 +235,7 @@ impl Chain {
                 link.angular = 2;
                 for (i, (g, c, bias)) in axes.into_iter().enumerate() {
                     link.g[i] = g;
-                    link.c[i] = c;
+                    link.c[i] = if ERRORS { c } else { 0.0 };
                     link.bias[i] = bias;
                 }
             }

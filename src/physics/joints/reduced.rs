@@ -43,6 +43,13 @@
 //! hinges (H is dense). Otherwise `solve`'s banded factor. Callgrind, the 10-hinge chain (rk4,
 //! `examples/chain_steps`, (1200 − 200 steps) / 1000): 142.3k instructions per step with the
 //! banded factor, see the commit that brought this for after.
+//!
+//! **Tried and dropped** (same count, hinge chain per step, all three bit-identical): each
+//! hinge's compact rows made as `read` reads them, with the composite inertias placed there
+//! and no links stored, 125.19k -> 130.99k; Lᵀ kept by rows for the back substitution (each
+//! L_ic copied in `cholesky`), 125.19k -> 126.86k; the back substitution's column read row by
+//! row instead of `step_by`, 124.61k -> 125.16k. The counts follow how the one inlined f(Y)
+//! function is laid out more than the work removed.
 
 use super::chain::Link;
 use super::solve::Inverse;
@@ -631,7 +638,7 @@ fn along_hinges(hinges: &[Hinge], particular: &[Pair], z: &[f64], motion: &mut [
 
 #[cfg(test)]
 mod tests {
-    use super::super::chain::Chain;
+    use super::super::chain::{Chain, Wanted};
     use super::super::rows::{rows_of, Pose, Row};
     use super::super::solve::tests::{next, vector};
     use super::super::solve::{multipliers, Solver};
@@ -694,6 +701,21 @@ mod tests {
             })
             .collect();
         (joints, poses, inverse)
+    }
+
+    /// Every force and torque of `got` within 1e-12 of `want`'s largest (or of 1).
+    fn assert_close(got: &[Loads], want: &[Loads]) {
+        let flat = |l: &[Loads]| -> Vec<f64> {
+            l.iter()
+                .flat_map(|l| [l.force.as_slice(), l.torque.as_slice()].concat())
+                .collect()
+        };
+        let (got, want) = (flat(got), flat(want));
+        assert_eq!(got.len(), want.len());
+        let scale = want.iter().fold(1.0_f64, |m, w| m.max(w.abs()));
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= 1e-12 * scale, "{g} against {w}");
+        }
     }
 
     /// K = J W Jᵀ dense, from the rows.
@@ -780,7 +802,6 @@ mod tests {
     /// off the constraint manifold, with bodies at speed.
     #[test]
     fn reacting_equals_the_multipliers_path() {
-        use crate::physics::effects::Loads;
         let seed = &mut 9;
         let (joints, poses, inverse) = chain(7, &[false, true], seed);
         let mut rows = Vec::new();
@@ -808,18 +829,41 @@ mod tests {
         let (mut got, mut got_reactions) = (applied.clone(), vec![Loads::default(); 7]);
         let solver = &mut Solver::default();
         assert!(chain.react(&inverse, solver, |i| gyro[i], &mut got, &mut got_reactions));
-        let flat = |l: &[Loads]| -> Vec<f64> {
-            l.iter()
-                .flat_map(|l| [l.force.as_slice(), l.torque.as_slice()].concat())
-                .collect()
-        };
-        for (got, want) in [(&got, &want), (&got_reactions, &want_reactions)] {
-            let (got, want) = (flat(got), flat(want));
-            let scale = want.iter().fold(1.0_f64, |m, w| m.max(w.abs()));
-            for (g, w) in got.iter().zip(&want) {
-                assert!((g - w).abs() <= 1e-12 * scale, "{g} against {w}");
-            }
-        }
+        assert_close(&got, &want);
+        assert_close(&got_reactions, &want_reactions);
+    }
+
+    /// The projection's answers without λ, with the held factor: `Wanted::Impulses` gives
+    /// `Chain::apply` of the solve's λ (Jᵀ λ on each body, each joint's share on A), and
+    /// `Wanted::Moves` gives W Jᵀ λ, to 1e-12 (relative), off the constraint manifold.
+    #[test]
+    fn moves_and_impulses_are_the_multipliers_applied() {
+        let seed = &mut 5;
+        let (joints, poses, inverse) = chain(7, &[false, true, true], seed);
+        let mut chain = Chain::default();
+        assert!(chain.build(&joints, &poses));
+        let rhs: Vec<f64> = (0..chain.rows()).map(|_| next(seed)).collect();
+        let mut lambda = rhs.clone();
+        chain.solve(&inverse, &mut lambda, &mut Solver::default());
+        let rest = vec![Loads::default(); 7];
+        let (mut want, mut want_reactions) = (rest.clone(), rest.clone());
+        chain.apply(&lambda, &mut want, &mut want_reactions);
+        let (mut got, mut got_reactions) = (Vec::new(), rest.clone());
+        (chain.reduced).answer(&rhs, Wanted::Impulses(&mut got, &mut got_reactions));
+        let mut moves = Vec::new();
+        chain.reduced.answer(&rhs, Wanted::Moves(&mut moves));
+        let moved: Vec<Loads> = (want.iter().zip(&inverse))
+            .map(|(l, inv)| Loads {
+                force: l.force * inv.mass,
+                torque: inv.inertia * l.torque,
+            })
+            .collect();
+        let as_loads: Vec<Loads> = (moves.iter())
+            .map(|&(force, torque)| Loads { force, torque })
+            .collect();
+        assert_close(&got, &want);
+        assert_close(&got_reactions, &want_reactions);
+        assert_close(&as_loads, &moved);
     }
 
     /// The 10-hinge chain of `chain_steps` (hinges about z, moving in the xy plane, where a
