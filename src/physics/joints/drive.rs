@@ -344,6 +344,35 @@ pub(super) fn touching_stops(links: &Links, poses: &[Pose], rows: &mut Vec<Row>)
     }
 }
 
+/// Appends each motor's row at `poses` to `rows`: J_q u = speed with its impulse bounded by
+/// [−max·dt − given, max·dt − given] (`given[j]`: the impulse the drive pass gave joint j's
+/// motor this step), so that what the drive pass gave and what the contacts' exact solve
+/// adds (`collision::impulse::joined`) stay within ±max·dt together.
+pub(super) fn motor_rows(
+    links: &Links,
+    poses: &[Pose],
+    (given, dt): (&[f64], f64),
+    rows: &mut Vec<Row>,
+) {
+    for (i, joint) in links.joints.iter().enumerate() {
+        let Some(motor) = joint.motor else {
+            continue;
+        };
+        let pb = joint.b.map_or(Pose::WORLD, |j| poses[j]);
+        let Some((row, _)) = coordinate(joint, i, &poses[joint.a], &pb) else {
+            continue;
+        };
+        // Finite, so that the row stays a motor's (`joined::Kind`).
+        let bound = (motor.max * dt).min(f64::MAX);
+        let given = given.get(i).copied().unwrap_or(0.0);
+        rows.push(Row {
+            lo: -bound - given,
+            hi: bound - given,
+            ..Row::motor(&row, motor.speed, bound)
+        });
+    }
+}
+
 /// Adds the stops' impulses the contacts' exact solve gave (`stops[j]` ≥ 0 per joint,
 /// `collision::impulse::joined`) to `drives` as forces over the step, signed as
 /// [`Drive::limit`] is (+: the lower stop, nearer its limit at `states`).

@@ -903,11 +903,20 @@ pub fn respond(
     if direct.unconverged.is_some() {
         counters.unconverged += 1;
     }
+    // The motors' work in the response (`joined`), from its start and end velocities.
+    scratch.joined.finish(motions);
     store_momenta(states, motions);
     mark_advanced(advanced, motions, contacts, &mut scratch.joined);
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
-    let after = round_off_guard(before.kinetic, states, motions, total);
+    // (K₀ with the motors' work in it: they push, the contacts never give.)
+    let motors = scratch.joined.motor_work;
+    let allowed = if motors > 0.0 {
+        before.kinetic + motors
+    } else {
+        before.kinetic
+    };
+    let after = round_off_guard(allowed, states, motions, total);
     // Speculative contacts that were not needed are not contacts.
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
     Some(EnergyChange { before, after })
@@ -953,7 +962,7 @@ fn mark_advanced(
 }
 
 /// The joints' rows at `states`, solved with the contacts in an impact ([`joined`]; built
-/// only then: a later impact round follows a first one).
+/// only then, or in a scene with motors: a later impact round follows a first one).
 fn prepare_joints(
     input: &CollideInput,
     states: &[State],
@@ -964,9 +973,11 @@ fn prepare_joints(
     let (joint_rows, motions) = (&mut scratch.joint_rows, &scratch.motions);
     joint_rows.clear();
     if let Some(rows_at) = input.joints {
-        if contacts
-            .iter()
-            .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
+        // In a scene with motors, at rest too (a motor pushing what it touches).
+        if scratch.joined.scene_motored
+            || contacts
+                .iter()
+                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
         {
             rows_at(states, joint_rows);
         }
@@ -1169,6 +1180,7 @@ fn stages(
     stage: &mut Stage,
 ) {
     let direct_only = select_joints(rows, settings.friction, settings.bounce_speed, stage.joined);
+    stage.joined.mark_stage(stage.motions);
     if direct_only {
         stage.joined.save(rows, stage.motions);
     }
@@ -1189,11 +1201,17 @@ fn stages(
     }
 
     // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀
-    // (with the joints' reaction to it, when there are joint rows).
+    // (with the joints' reaction to it, when there are joint rows), K₀ with what the motors
+    // gave in this stage.
+    let motors = stage.joined.stage_work(stage.motions);
     let bounce = normal::Bounce {
         restitution: settings.restitution,
         bounce_speed: settings.bounce_speed,
-        kinetic_allowed,
+        kinetic_allowed: if motors > 0.0 {
+            kinetic_allowed + motors
+        } else {
+            kinetic_allowed
+        },
     };
     let Stage {
         motions,
@@ -1361,8 +1379,9 @@ fn friction_stage(
     true
 }
 
-/// The joint rows of the clusters `rows` touch, in an impact (none without joints, or at
-/// rest). With friction, more than the joints' friction sweeps take (more than
+/// The joint rows of the clusters `rows` touch, in an impact (none without joints); at rest
+/// only those of the clusters with a motor (the motor solved with the contacts it pushes:
+/// [`joined`]), none in a scene without motors. With friction, more than the joints' friction sweeps take (more than
 /// [`joined::JOINED_FRICTION_ROWS`] rows or [`joined::JOINED_FRICTION_CONTACTS`] contacts):
 /// none, unless [`joined::JOINED_DIRECT_LARGE`]; then they are taken and this returns true:
 /// the stage keeps them only if its direct solves answer ([`stages`]).
@@ -1372,7 +1391,8 @@ fn select_joints(
     bounce_speed: f64,
     joined: &mut joined::Joined,
 ) -> bool {
-    if rows.iter().any(|r| r.approach < -bounce_speed) {
+    let impact = rows.iter().any(|r| r.approach < -bounce_speed);
+    if impact || joined.scene_motored {
         let most = if friction == 0.0 || joined::JOINED_DIRECT_LARGE {
             usize::MAX
         } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
@@ -1384,6 +1404,7 @@ fn select_joints(
             rows.iter()
                 .flat_map(|r| r.normal.axis.bodies().into_iter().flatten()),
             most,
+            !impact,
         );
         friction > 0.0
             && !joined.axes.is_empty()
@@ -1392,7 +1413,7 @@ fn select_joints(
     } else {
         // At rest: the contacts' rows alone (also after `propagate`'s impact rounds, whose
         // last round's selection would otherwise stay).
-        joined.select(std::iter::empty(), 0);
+        joined.select(std::iter::empty(), 0, false);
         false
     }
 }
