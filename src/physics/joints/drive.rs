@@ -31,6 +31,11 @@
 //! (`contact::hold`): what a contact does to a body on its stop is answered by the stop there
 //! (`touching_stops`, [`book_stops`]).
 //!
+//! The motors are rows of the contacts' exact solve too, with what this pass left of their
+//! bounds (`motor_rows`): where a contact touches a motored body's cluster, the motor's
+//! push and the contact's blow are one problem (`collision::impulse::joined`); its force
+//! there is added to [`Drive::motor`] and its work to the ledger's motor row by the world.
+//!
 //! e is the scene's contact restitution (0 without a contact model), and 0 for a slow approach,
 //! |J u⁻| < 3 |J u⁻ − J u₀| (u₀ the step's start: the approach is less than three steps of
 //! what the loads give, a body resting on its stop) — as contacts do below their bounce speed.

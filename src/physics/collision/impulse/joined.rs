@@ -48,10 +48,37 @@
 //! stop's angular impulse is the box's angular momentum about the hinge (`m v d`,
 //! `tests/physics/joint_drives.rs`); the joints' drive pass alone would have let flap and box
 //! turn on together. The stops' impulses go to [`Joined::stops`] (the joints panel's limit
-//! force). A stop's own bounce (its restitution when it is struck) and the motors stay in the
-//! joints' drive pass at the end of the integrate phase (`joints::drive`), before the
-//! contacts: under `propagate` a door striking its stop with a box on it bounces first, and
-//! the box's blow on the door then meets the stop here.
+//! force). A stop's own bounce (its restitution when it is struck) stays in the joints'
+//! drive pass at the end of the integrate phase (`joints::drive`), before the contacts:
+//! under `propagate` a door striking its stop with a box on it bounces first, and the box's
+//! blow on the door then meets the stop here.
+//!
+//! **Motors** come with them too (`joints::drive::motor_rows`): a row J_q u = speed whose
+//! impulse is bounded by what the drive pass left of ±max·dt this step,
+//! [−max·dt − λ_drive, max·dt − λ_drive], so that the drive pass's impulse and this one sum
+//! to the answer of the combined problem (u⁺ = u⁻ + W Jᵀ (λ_drive + λ) meets every row's
+//! conditions with the motor's total in ±max·dt). `Joined::inelastic`'s active set takes a
+//! motor inside its bounds as an equality row aiming at its speed (`direct::inelastic`'s
+//! joint biases), one past a bound as a known impulse held there (applied before the
+//! solve), freed when J u lands on the wrong side of its speed:
+//!
+//! ```text
+//! motor   lo < λ < hi: J u⁺ = speed;   λ = lo: J u⁺ ≥ speed;   λ = hi: J u⁺ ≤ speed
+//! ```
+//!
+//! A free motor is an equality row of stages 2 and 3 (its rate kept at its speed; the direct
+//! sticking solve keeps its impulse within its bounds, `HeldJoints::ceiling`; the joints'
+//! friction sweeps and stage 3's reaction do not check them, as they do not a stop's); a held
+//! one keeps its bound's impulse. A motor pushing a free cube ahead of its cart is one
+//! problem: the plastic blow with the motor at its bound leaves the pair at
+//! V = (m v + F dt)/(m + m') (`tests/physics/joint_drives.rs`). Its rows are taken whenever
+//! a stage's contacts touch a motored cluster, at rest too (a scene with motors builds its
+//! joint rows at every response); the motors' impulses go to [`Joined::motors`] (the joints
+//! panel's motor force) and their work λ J (u⁻ + u⁺)/2 over the response, λ its total and
+//! u⁻, u⁺ the response's start and end (exact: ΔK splits by row over the totals), to
+//! [`Joined::motor_work`] (the ledger's motor row; the contacts' row books the rest). The
+//! round-off guard and a bounce's energy clamp let K rise by that work. Elsewhere, and under
+//! `soft-step`, the motor is the drive pass's alone, as before.
 //!
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
 //! of `propagate`, a simultaneous solve that bounces); without friction whatever the
@@ -83,7 +110,8 @@
 //! holds the joints (it also holds, in every case, the positions the push-out moved along
 //! straight lines, so it still runs after every response):
 //!
-//! - at rest (nothing bounces) the contacts' solve alone and the pass after it keep a
+//! - at rest (nothing bounces; but a motored cluster, above) the contacts' solve alone and
+//!   the pass after it keep a
 //!   touching cradle's balls exactly touching while they swing together; with the joints in
 //!   the resting solve the speculative gaps between them grew to about 1 µm, and Poisson's
 //!   restitution across such a gap at impact loses 2 λ·gap/dt (6.6e-4 of K with three balls
@@ -191,7 +219,7 @@ pub struct Joined {
     /// coordinate's row; part of `impulses`).
     pub motors: Vec<f64>,
     /// The motors' work in this response, Σ λ (J u⁻ + J u⁺)/2 over their rows with λ the
-    /// response's total and u⁻, u⁺ its start and end ([`Joined::finish`]), J.
+    /// response's total and u⁻, u⁺ its start and end (`Joined::finish`), J.
     pub motor_work: f64,
     /// Whether the scene has a motor (set by the world before each response): then a
     /// resting stage takes the rows of a motored cluster its contacts touch.

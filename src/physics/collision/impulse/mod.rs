@@ -903,19 +903,12 @@ pub fn respond(
     if direct.unconverged.is_some() {
         counters.unconverged += 1;
     }
-    // The motors' work in the response (`joined`), from its start and end velocities.
-    scratch.joined.finish(motions);
+    scratch.joined.finish(motions); // the motors' work in it (`joined`)
     store_momenta(states, motions);
     mark_advanced(advanced, motions, contacts, &mut scratch.joined);
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
-    // (K₀ with the motors' work in it: they push, the contacts never give.)
-    let motors = scratch.joined.motor_work;
-    let allowed = if motors > 0.0 {
-        before.kinetic + motors
-    } else {
-        before.kinetic
-    };
+    let allowed = (before.kinetic, scratch.joined.motor_work);
     let after = round_off_guard(allowed, states, motions, total);
     // Speculative contacts that were not needed are not contacts.
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
@@ -1006,13 +999,20 @@ fn solver_bodies(input: &CollideInput, states: &[State], motions: &mut Vec<Solve
 }
 
 /// The round-off guard (module doc): K is quadratic in (P, L), so scaling the touched
-/// bodies' P and L by √(K₀/K) gives K₀; at most 4 times. Returns the energy after.
+/// bodies' P and L by √(K₀/K) gives K₀ (K₀ with the motors' work in the response added,
+/// when positive: `joined`); at most 4 times. Returns the energy after.
 fn round_off_guard(
-    kinetic_before: f64,
+    (kinetic_before, motor_work): (f64, f64),
     states: &mut [State],
     motions: &[SolverBody],
     total: impl Fn(&[State], &[SolverBody]) -> Energy,
 ) -> Energy {
+    // K₀ with the motors' work in the response (they push; the contacts never give).
+    let kinetic_before = if motor_work > 0.0 {
+        kinetic_before + motor_work
+    } else {
+        kinetic_before
+    };
     let mut after = total(states, motions);
     for _ in 0..4 {
         if after.kinetic <= kinetic_before {
