@@ -1456,6 +1456,60 @@ mod tests {
     }
 
     #[test]
+    fn a_motor_in_the_blow_gives_its_speed_or_its_bound_and_no_more() {
+        // A 1 kg ball (body 0) driven along x by a motor at 1 m/s runs at 1 m/s into a free
+        // 1 kg ball (body 1) at rest, e = 0. One problem: the contact makes their speeds
+        // equal, V = (m v + λ_m)/(m + m'). A motor of bound 2 N·s (free) brings the pair to
+        // its speed, V = 1, λ_m = 1 N·s, the contact's impulse 1 N·s; one of bound 0.3 N·s is
+        // held there, V = (1 + 0.3)/2 = 0.65 m/s.
+        for (bound, speed, motor) in [(2.0, 1.0, 1.0), (0.3, 0.65, 0.3)] {
+            let mut motions = vec![
+                SolverBody::new(Vector3::x(), Vector3::zeros(), 1.0, Matrix3::identity() * 1000.0),
+                ball(),
+            ];
+            let drive = Axis::jacobian(Vector3::x(), (0, Vector3::zeros()), None);
+            let rows = [ConstraintRow {
+                lo: -bound,
+                hi: bound,
+                bias: -1.0,
+                ..ConstraintRow::equality(drive, 0.0, 0.0, 0)
+            }];
+            let mut joined = Joined::default();
+            joined.prepare(&rows, &motions, 1);
+            // The contact: n = x from the ball ahead (A) to the driven one (B), approaching.
+            let n = Axis::jacobian(Vector3::x(), (1, Vector3::zeros()), Some((0, Vector3::zeros())));
+            let mut contacts = [super::super::Row {
+                normal: ConstraintRow::contact(n, 0.0),
+                approach: -1.0,
+                ..Default::default()
+            }];
+            joined.select([0, 1].into_iter(), usize::MAX, false);
+            let mut direct = Direct {
+                applies: super::super::budget::Applies::Off,
+                ..Default::default()
+            };
+            direct.start(1);
+            // The solver's tolerance for an approach of 1 m/s (`TOLERANCE` (1 + 1)); the
+            // direct solve's ε = 1e-10 max Aᵢᵢ leaves its answer that close (no refinement
+            // once the motor is held: no joint row is left), so 1e-9 below.
+            let tolerance = super::super::TOLERANCE * 2.0;
+            let answered =
+                joined.inelastic(false, &mut contacts, &mut motions, tolerance, &mut direct);
+            assert!(answered, "bound {bound}: declined, {:?}", (direct.work, direct.budget));
+            joined.book_stage(1.0);
+            for m in &motions {
+                assert!((m.v.x - speed).abs() < 1e-9, "bound {bound}: v = {}", m.v.x);
+            }
+            assert!((joined.motors[0] - motor).abs() < 1e-9, "bound {bound}: {:?}", joined.motors);
+            assert!((contacts[0].normal.lambda - speed).abs() < 1e-9);
+            joined.finish(&motions);
+            // Its work λ (J u⁻ + J u⁺)/2 = λ (1 + V)/2.
+            let work = motor * (1.0 + speed) / 2.0;
+            assert!((joined.motor_work - work).abs() < 1e-9, "{}", joined.motor_work);
+        }
+    }
+
+    #[test]
     fn the_reaction_keeps_the_joint_rate() {
         // Two balls joined along x; the first kicked along x by 1 m/s: the joint shares it.
         let motions = vec![ball(), ball()];
