@@ -858,10 +858,19 @@ impl World {
             return;
         };
         let now = &mut self.now;
-        let (links, bodies) = (&self.links, &self.bodies);
+        let (links, bodies, dt) = (&self.links, &self.bodies, self.dt);
+        // The motors' impulses the drive pass gave this step (what is left of their bounds
+        // goes to the contacts' solve); none without motors.
+        let motored = links.joints.iter().any(|j| j.motor.is_some());
+        let given: Vec<f64> = if motored {
+            now.joint_drives.iter().map(|d| d.motor * dt).collect()
+        } else {
+            Vec::new()
+        };
+        self.scratch.joined.scene_motored = motored;
         // The joints' rows, solved with the contacts (`collision::impulse::joined`).
         let joint_rows = |states: &[State], rows: &mut Vec<JointRow>| {
-            equality_rows(links, bodies, states, rows);
+            equality_rows(links, bodies, states, (&given, dt), rows);
         };
         let input = CollideInput {
             bodies: &self.bodies,
@@ -889,6 +898,8 @@ impl World {
         }
         self.scratch.joined.impulses.clear();
         self.scratch.joined.stops.clear();
+        self.scratch.joined.motors.clear();
+        self.scratch.joined.motor_work = 0.0;
         let mut measured = collide(
             &input,
             &mut now.states,
@@ -908,6 +919,12 @@ impl World {
         // Its stops' share (`joints::drive::touching_stops`), on the joints panel.
         let stops = &self.scratch.joined.stops;
         book_stops(links, &now.states, stops, &mut now.joint_drives, self.dt);
+        // Its motors' share: their force on the panel, their work in the ledger (taken out of
+        // the response's change, which the contacts' row books).
+        for (drive, &impulse) in now.joint_drives.iter_mut().zip(&self.scratch.joined.motors) {
+            drive.motor += impulse / self.dt;
+        }
+        let motor_work = self.scratch.joined.motor_work;
         if !self.links.joints.is_empty() && !now.contacts.is_empty() && states_before.is_none() {
             // The joints held with the contacts (`joints::contact`); booked with the response.
             let before = total_energy(&self.bodies, &self.effects, &now.states);
@@ -947,8 +964,9 @@ impl World {
         if let Some(change) = change {
             // Energy ledger: what the response took or gave.
             let now = &mut self.now;
+            now.ledger.motor_work += motor_work;
             now.ledger
-                .book_contact(change.before.total, change.after.total);
+                .book_contact(change.before.total, change.after.total - motor_work);
             now.guard.after_collision(&change.after);
         }
         if carrying {

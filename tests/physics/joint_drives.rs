@@ -338,9 +338,17 @@ fn a_motor_pushing_a_free_cube_gives_the_pair_its_speed_within_its_bound_and_boo
     // E − E₀ = ½ (2) 0.5² − ½ (1) 0.5² = 0.125 J = W_motor + W_contacts, and the contacts
     // take at least the plastic blow's ½ (m m'/(m + m')) 0.5² = 0.0625 J. True of any split
     // of motor and contacts: a guard for moving the motor into the contacts' solve (issue
-    // 36). Today's split (the drive pass, then the contacts) takes 0.0733 J: each step of
-    // the speed-up the motor pushes the cart alone and the contacts share it with the cube
-    // in a small plastic blow; the motor inside their solve would push the pair together.
+    // 36).
+    //
+    // With the motor in the contacts' solve (`impulse::joined`), the blow is one problem:
+    // the motor, at its bound p = F dt = 0.02 N·s, pushes during the blow, so the pair
+    // leaves at V = (m v + p)/(m + m') = 0.26 m/s (the drive pass then the contacts gave
+    // 0.25), the contacts' work in that step is −m' V v/2 = −½ m m'/(m + m') v² (1 + p/(m v))
+    // = −0.065 J and the motor's p (v + V)/2 = 0.0076 J. After it the pair is not touching
+    // (the speculative contact stopped it 0.5 mm short, and contacts are found only when the
+    // swept test sees a touch within the step), so the motor speeds the cart alone until the
+    // next find, and a few smaller blows follow (0.40 against 0.26 m/s, …): the contacts take
+    // 0.0755 J in all (0.0733 J with the drive pass alone, its blow 0.0625 J).
     let dt = 1e-3;
     let cart = State {
         linear_momentum: Vector3::new(0.5, 0.0, 0.0),
@@ -373,8 +381,20 @@ fn a_motor_pushing_a_free_cube_gives_the_pair_its_speed_within_its_bound_and_boo
     });
     let mut impulse = 0.0;
     let mut slowest: f64 = 0.5;
+    // The first step the contacts act: their work and the motor's in it.
+    let mut blow: Option<(f64, f64)> = None;
+    let mut before = (0.0, 0.0);
     for _ in 0..400 {
         world.step();
+        let balance = world.energy_balance();
+        let now = (
+            balance.contacts.unwrap_or(0.0),
+            balance.motor.unwrap_or(0.0),
+        );
+        if blow.is_none() && now.0 != before.0 {
+            blow = Some((now.0 - before.0, now.1 - before.1));
+        }
+        before = now;
         let j = &world.snapshot().joints[0];
         assert!(
             j.drive.motor.abs() <= 20.0 * (1.0 + 1e-12),
@@ -389,8 +409,25 @@ fn a_motor_pushing_a_free_cube_gives_the_pair_its_speed_within_its_bound_and_boo
         "cart {} m/s, cube {} m/s, slowest {slowest}, motor impulse {impulse} N·s",
         cart.linear_momentum.x, cube.linear_momentum.x
     );
-    // The blow took the cart well below its speed (0.25 m/s for a plastic blow alone).
-    assert!(slowest < 0.4, "the cart never slowed: {slowest} m/s");
+    // The blow, with the motor at its bound in it: V = (m v + F dt)/(m + m').
+    let (m, v, p) = (1.0, 0.5, 20.0 * dt);
+    let speed = (m * v + p) / (m + 1.0);
+    assert!(
+        (slowest - speed).abs() < 1e-12,
+        "the blow left {slowest} m/s, not {speed}"
+    );
+    let (blow_contacts, blow_motor) = blow.expect("a blow");
+    let contacts_closed = -speed * v / 2.0;
+    let motor_closed = p * (v + speed) / 2.0;
+    eprintln!("blow: contacts {blow_contacts} J ({contacts_closed}), motor {blow_motor} J ({motor_closed})");
+    assert!(
+        (blow_contacts - contacts_closed).abs() < 1e-12,
+        "blow: contacts {blow_contacts} J"
+    );
+    assert!(
+        (blow_motor - motor_closed).abs() < 1e-12,
+        "blow: motor {blow_motor} J"
+    );
     assert!((cart.linear_momentum.x - 0.5).abs() < 1e-9, "cart {cart:?}");
     assert!((cube.linear_momentum.x - 0.5).abs() < 1e-9, "cube {cube:?}");
     assert!((impulse - 0.5).abs() < 1e-9, "motor impulse {impulse} N·s");

@@ -195,11 +195,22 @@ pub fn hold(
 /// contact rows: `collision::impulse::joined`), then every limit's stop within
 /// `drive::TOUCHING` of its limit (one-sided, λ ∈ [0, ∞): `drive::touching_stops`), so that
 /// a contact's impulse on a body resting on its stop is answered by the stop in the same
-/// solve.
-pub fn equality_rows(links: &Links, bodies: &[Body], states: &[State], rows: &mut Vec<Row>) {
+/// solve, then every motor's row with what is left of its bounds after the drive pass's
+/// impulse `given[j]` (`drive::motor_rows`; `given` empty: no motor rows), so that a motor
+/// pushing what it touches is solved with the contacts.
+pub fn equality_rows(
+    links: &Links,
+    bodies: &[Body],
+    states: &[State],
+    (given, dt): (&[f64], f64),
+    rows: &mut Vec<Row>,
+) {
     let (mut poses, mut inverse) = (Vec::new(), Vec::new());
     joint_rows(links, bodies, states, (&mut poses, &mut inverse, rows));
     super::drive::touching_stops(links, &poses, rows);
+    if !given.is_empty() {
+        super::drive::motor_rows(links, &poses, (given, dt), rows);
+    }
 }
 
 /// The joint rows and the contact rows at `states`, with velocities.

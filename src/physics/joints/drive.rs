@@ -31,6 +31,11 @@
 //! (`contact::hold`): what a contact does to a body on its stop is answered by the stop there
 //! (`touching_stops`, [`book_stops`]).
 //!
+//! The motors are rows of the contacts' exact solve too, with what this pass left of their
+//! bounds (`motor_rows`): where a contact touches a motored body's cluster, the motor's
+//! push and the contact's blow are one problem (`collision::impulse::joined`); its force
+//! there is added to [`Drive::motor`] and its work to the ledger's motor row by the world.
+//!
 //! e is the scene's contact restitution (0 without a contact model), and 0 for a slow approach,
 //! |J u⁻| < 3 |J u⁻ − J u₀| (u₀ the step's start: the approach is less than three steps of
 //! what the loads give, a body resting on its stop) — as contacts do below their bounce speed.
@@ -341,6 +346,35 @@ pub(super) fn touching_stops(links: &Links, poses: &[Pose], rows: &mut Vec<Row>)
                 rows.push(Row::stop(&row, sign, c));
             }
         }
+    }
+}
+
+/// Appends each motor's row at `poses` to `rows`: J_q u = speed with its impulse bounded by
+/// [−max·dt − given, max·dt − given] (`given[j]`: the impulse the drive pass gave joint j's
+/// motor this step), so that what the drive pass gave and what the contacts' exact solve
+/// adds (`collision::impulse::joined`) stay within ±max·dt together.
+pub(super) fn motor_rows(
+    links: &Links,
+    poses: &[Pose],
+    (given, dt): (&[f64], f64),
+    rows: &mut Vec<Row>,
+) {
+    for (i, joint) in links.joints.iter().enumerate() {
+        let Some(motor) = joint.motor else {
+            continue;
+        };
+        let pb = joint.b.map_or(Pose::WORLD, |j| poses[j]);
+        let Some((row, _)) = coordinate(joint, i, &poses[joint.a], &pb) else {
+            continue;
+        };
+        // Finite, so that the row stays a motor's (`joined::Kind`).
+        let bound = (motor.max * dt).min(f64::MAX);
+        let given = given.get(i).copied().unwrap_or(0.0);
+        rows.push(Row {
+            lo: -bound - given,
+            hi: bound - given,
+            ..Row::motor(&row, motor.speed, bound)
+        });
     }
 }
 

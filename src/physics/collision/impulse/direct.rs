@@ -99,14 +99,15 @@ pub(super) fn mean_envelope(rows: &[Row], body_first: &mut Vec<usize>) -> f64 {
 /// answer at rest, where starting from the approaching rows alone would climb the pyramid a
 /// row per pair per round. Returns false (and changes nothing) otherwise.
 ///
-/// `joints` are joint rows (bounds (−∞, ∞), aiming at J_j u = 0: [`super::joined`]) solved
-/// in the same system, always active, merged with the contact rows by their lowest body
-/// (the envelope of a chain on the ground stays banded); their impulses go to
+/// `joints` are joint rows (bounds (−∞, ∞), aiming at J_j u = −b_j with their biases
+/// `joint_bias`, 0 but for a free motor's −speed, none given: all 0: [`super::joined`])
+/// solved in the same system, always active, merged with the contact rows by their lowest
+/// body (the envelope of a chain on the ground stays banded); their impulses go to
 /// `joint_lambda`. None: the contacts' system alone, as written above.
 pub(super) fn inelastic(
     wide: bool,
     rows: &mut [Row],
-    (joints, joint_lambda): (&[Axis], &mut Vec<f64>),
+    (joints, joint_bias, joint_lambda): (&[Axis], &[f64], &mut Vec<f64>),
     motions: &mut [SolverBody],
     tolerance: f64,
     buffers: &mut Direct,
@@ -150,7 +151,7 @@ pub(super) fn inelastic(
         if !solve_active(
             rows,
             active,
-            (joints, &mut *joint_lambda),
+            (joints, joint_bias, &mut *joint_lambda),
             motions,
             saved,
             system_work,
@@ -289,7 +290,7 @@ fn solve_contacts(
 fn solve_active(
     rows: &[Row],
     active: &[usize],
-    (joints, joint_lambda): (&[Axis], &mut Vec<f64>),
+    (joints, joint_bias, joint_lambda): (&[Axis], &[f64], &mut Vec<f64>),
     motions: &mut [SolverBody],
     saved: &[SolverBody],
     (system, merged, work): (&mut Envelope, &mut Vec<usize>, &mut u64),
@@ -324,7 +325,7 @@ fn solve_active(
         let ni = axis(s);
         system.rhs[p] = match s.checked_sub(mj) {
             Some(q) => -ni.velocity(motions) - rows[active[q]].normal.bias,
-            None => -ni.velocity(motions),
+            None => -aimed(ni.velocity(motions), joint_bias, s),
         };
         system.fill_row(p, ni.bodies(), |q| {
             let nj = axis(merged[q]);
@@ -361,7 +362,10 @@ fn solve_active(
         }
         let mut w: Vec<f64> = (merged.iter())
             .map(|&s| {
-                let bias = s.checked_sub(mj).map_or(0.0, |q| rows[active[q]].normal.bias);
+                let bias = s.checked_sub(mj).map_or_else(
+                    || joint_bias.get(s).copied().unwrap_or(0.0),
+                    |q| rows[active[q]].normal.bias,
+                );
                 -(axis(s).velocity(motions) + bias)
             })
             .collect();
@@ -376,6 +380,16 @@ fn solve_active(
     }
 
     true
+}
+
+/// A joint row's rate `u` less its aim: u + b with b = `biases[s]` (none given, or 0: u
+/// itself, not u + 0, so that rows without a bias keep their bits).
+#[inline]
+fn aimed(u: f64, biases: &[f64], s: usize) -> f64 {
+    match biases.get(s) {
+        Some(&b) if b != 0.0 => u + b,
+        _ => u,
+    }
 }
 
 /// Friction solved directly, when its answer is "every pushing contact sticks" (a body at rest
@@ -440,6 +454,8 @@ pub(super) fn sticking(
     let HeldJoints {
         axes: joints,
         floor,
+        ceiling,
+        bias: joint_bias,
         modes,
     } = joints;
     // The pushing contacts (with modes, every contact: those that do not push start as
@@ -469,6 +485,7 @@ pub(super) fn sticking(
         rows,
         directions,
         joints,
+        joint_bias,
         active: &active[..],
         merged: &merged[..],
         slides: &slides[..],
@@ -510,8 +527,10 @@ pub(super) fn sticking(
     let Some(changes) = u.changes_before(delta) else {
         return Answer::Declined;
     };
-    // A stop (one-sided joint row) may not come to pull.
-    if (delta[3 * m..].iter().zip(floor)).any(|(d, f)| d < f) {
+    // A stop (one-sided joint row) may not come to pull, nor a motor pass its bound.
+    if (delta[3 * m..].iter().zip(floor)).any(|(d, f)| d < f)
+        || (delta[3 * m..].iter().zip(ceiling)).any(|(d, c)| d > c)
+    {
         return Answer::Declined;
     }
     if !changes.is_empty() {
@@ -558,6 +577,8 @@ struct Unknowns<'a> {
     rows: &'a [Row],
     directions: &'a [[Axis; 2]],
     joints: &'a [Axis],
+    /// The joint rows' biases (`HeldJoints::bias`).
+    joint_bias: &'a [f64],
     active: &'a [usize],
     merged: &'a [usize],
     /// Each row's mode (`Direct::slides`), read only with `modes`.
@@ -617,10 +638,13 @@ impl<'a> Unknowns<'a> {
         }
     }
 
-    /// The velocity bias of unknown `s`: its contact's bias for a normal, 0 otherwise.
+    /// The velocity bias of unknown `s`: its contact's bias for a normal, a joint row's own
+    /// (a free motor's −speed), 0 otherwise.
     fn target(&self, s: usize) -> f64 {
         if s < 3 * self.m && s.is_multiple_of(3) {
             self.bias(&self.rows[self.active[s / 3]])
+        } else if s >= 3 * self.m {
+            self.joint_bias.get(s - 3 * self.m).copied().unwrap_or(0.0)
         } else {
             0.0
         }
@@ -831,6 +855,11 @@ pub(super) enum Answer {
 pub(super) struct HeldJoints<'a> {
     pub axes: &'a [Axis],
     pub floor: &'a [f64],
+    /// The largest change of each one's impulse (a free motor's room to its bound; none
+    /// given: ∞).
+    pub ceiling: &'a [f64],
+    /// Each one's bias b (held at J u = −b: a free motor's −speed; none given: 0).
+    pub bias: &'a [f64],
     pub modes: bool,
 }
 
@@ -839,6 +868,8 @@ impl HeldJoints<'_> {
     pub const NONE: HeldJoints<'static> = HeldJoints {
         axes: &[],
         floor: &[],
+        ceiling: &[],
+        bias: &[],
         modes: false,
     };
 }

@@ -48,10 +48,37 @@
 //! stop's angular impulse is the box's angular momentum about the hinge (`m v d`,
 //! `tests/physics/joint_drives.rs`); the joints' drive pass alone would have let flap and box
 //! turn on together. The stops' impulses go to [`Joined::stops`] (the joints panel's limit
-//! force). A stop's own bounce (its restitution when it is struck) and the motors stay in the
-//! joints' drive pass at the end of the integrate phase (`joints::drive`), before the
-//! contacts: under `propagate` a door striking its stop with a box on it bounces first, and
-//! the box's blow on the door then meets the stop here.
+//! force). A stop's own bounce (its restitution when it is struck) stays in the joints'
+//! drive pass at the end of the integrate phase (`joints::drive`), before the contacts:
+//! under `propagate` a door striking its stop with a box on it bounces first, and the box's
+//! blow on the door then meets the stop here.
+//!
+//! **Motors** come with them too (`joints::drive::motor_rows`): a row J_q u = speed whose
+//! impulse is bounded by what the drive pass left of ±max·dt this step,
+//! [−max·dt − λ_drive, max·dt − λ_drive], so that the drive pass's impulse and this one sum
+//! to the answer of the combined problem (u⁺ = u⁻ + W Jᵀ (λ_drive + λ) meets every row's
+//! conditions with the motor's total in ±max·dt). `Joined::inelastic`'s active set takes a
+//! motor inside its bounds as an equality row aiming at its speed (`direct::inelastic`'s
+//! joint biases), one past a bound as a known impulse held there (applied before the
+//! solve), freed when J u lands on the wrong side of its speed:
+//!
+//! ```text
+//! motor   lo < λ < hi: J u⁺ = speed;   λ = lo: J u⁺ ≥ speed;   λ = hi: J u⁺ ≤ speed
+//! ```
+//!
+//! A free motor is an equality row of stages 2 and 3 (its rate kept at its speed; the direct
+//! sticking solve keeps its impulse within its bounds, `HeldJoints::ceiling`; the joints'
+//! friction sweeps and stage 3's reaction do not check them, as they do not a stop's); a held
+//! one keeps its bound's impulse. A motor pushing a free cube ahead of its cart is one
+//! problem: the plastic blow with the motor at its bound leaves the pair at
+//! V = (m v + F dt)/(m + m') (`tests/physics/joint_drives.rs`). Its rows are taken whenever
+//! a stage's contacts touch a motored cluster, at rest too (a scene with motors builds its
+//! joint rows at every response); the motors' impulses go to [`Joined::motors`] (the joints
+//! panel's motor force) and their work λ J (u⁻ + u⁺)/2 over the response, λ its total and
+//! u⁻, u⁺ the response's start and end (exact: ΔK splits by row over the totals), to
+//! [`Joined::motor_work`] (the ledger's motor row; the contacts' row books the rest). The
+//! round-off guard and a bounce's energy clamp let K rise by that work. Elsewhere, and under
+//! `soft-step`, the motor is the drive pass's alone, as before.
 //!
 //! Where: in an *impact* (a row approaching faster than the bounce speed: every impact round
 //! of `propagate`, a simultaneous solve that bounces); without friction whatever the
@@ -80,7 +107,8 @@
 //! holds the joints (it also holds, in every case, the positions the push-out moved along
 //! straight lines, so it still runs after every response):
 //!
-//! - at rest (nothing bounces) the contacts' solve alone and the pass after it keep a
+//! - at rest (nothing bounces; but a motored cluster, above) the contacts' solve alone and
+//!   the pass after it keep a
 //!   touching cradle's balls exactly touching while they swing together; with the joints in
 //!   the resting solve the speculative gaps between them grew to about 1 µm, and Poisson's
 //!   restitution across such a gap at impact loses 2 λ·gap/dt (6.6e-4 of K with three balls
@@ -145,7 +173,15 @@ pub struct Joined {
     /// Every joint row of the scene (its axis weighed: w = I⁻¹ g, k = J W Jᵀ; ends on fixed
     /// bodies dropped), with the joint it belongs to and whether it is one-sided (a limit's
     /// stop, λ ∈ [0, ∞); else an equality row, λ free).
-    all: Vec<(Axis, usize, bool)>,
+    all: Vec<(Axis, usize, Kind)>,
+    /// Per cluster root: whether a motor row is in it (a resting stage takes such a
+    /// cluster's rows when a contact touches it).
+    motored: Vec<bool>,
+    /// Per motor row of `all` (its owner), J u at the response's start (the motor's work).
+    motor_start: Vec<(usize, Axis, f64)>,
+    /// Per motor row of `all`: its joint's motor impulse and J u when the current stage
+    /// started ([`Joined::mark_stage`]).
+    motor_stage: Vec<(f64, f64)>,
     /// Per body: its cluster's root (bodies linked through joint rows), `usize::MAX` for a
     /// body no joint row moves.
     cluster: Vec<usize>,
@@ -154,8 +190,10 @@ pub struct Joined {
     /// The rows of the current stage (from `all`), their owners, and their impulses.
     pub(super) axes: Vec<Axis>,
     owners: Vec<usize>,
-    /// Per row of the stage: whether it is a stop (one-sided).
-    sides: Vec<bool>,
+    /// Per row of the stage: what it is (an equality row, a stop, a motor).
+    sides: Vec<Kind>,
+    /// Per row of the stage: its bias b (it aims at J u = −b: −speed for a free motor, else 0).
+    pub(super) biases: Vec<f64>,
     pub(super) lambda: Vec<f64>,
     /// Per joint: the impulse its rows gave its body A in this response (linear N·s,
     /// angular N·m·s).
@@ -163,8 +201,17 @@ pub struct Joined {
     /// Per joint: the impulse its limit's stops gave in this response (≥ 0, N·s or N·m·s
     /// along the stop's row; part of `impulses`).
     pub stops: Vec<f64>,
+    /// Per joint: the impulse its motor gave in this response (N·s or N·m·s along its
+    /// coordinate's row; part of `impulses`).
+    pub motors: Vec<f64>,
+    /// The motors' work in this response, Σ λ (J u⁻ + J u⁺)/2 over their rows with λ the
+    /// response's total and u⁻, u⁺ its start and end (`Joined::finish`), J.
+    pub motor_work: f64,
+    /// Whether the scene has a motor (set by the world before each response): then a
+    /// resting stage takes the rows of a motored cluster its contacts touch.
+    pub scene_motored: bool,
     /// The stage's selection while its stops' active set is searched ([`Joined::inelastic`]).
-    selection: Vec<(Axis, usize, bool)>,
+    selection: Vec<(Axis, usize, Kind)>,
     /// Whether a stage of this response took joint rows.
     pub(super) used: bool,
     /// Whether the current stage's inelastic solve held the joint rows (the direct solve
@@ -183,9 +230,53 @@ pub struct Joined {
     rhs: Vec<f64>,
     /// The active-set start of the friction stage ([`ActiveSet`]).
     active: ActiveSet,
-    /// Per selected row, the least change of its impulse in the direct sticking solve
-    /// ([`Joined::sticking`]).
+    /// Per selected row, the least and the largest change of its impulse in the direct
+    /// sticking solve ([`Joined::sticking`]).
     floor: Vec<f64>,
+    ceiling: Vec<f64>,
+}
+
+/// What a joint row of the contacts' solve is (its bounds and aim).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Kind {
+    /// A joint's equality row: λ ∈ (−∞, ∞), J u = 0.
+    Equality,
+    /// A limit's stop: λ ∈ [0, ∞), J u ≥ 0.
+    Stop,
+    /// A motor: λ ∈ [lo, hi] (its bound ± max·dt less what the joints' drive pass gave it
+    /// this step), J u = speed inside them (`joints::drive`).
+    Motor { lo: f64, hi: f64, speed: f64 },
+}
+
+impl Kind {
+    /// The kind of a joint row by its bounds: (−∞, ∞) an equality row, [0, ∞) a stop, any
+    /// other a motor aiming at J u = −bias.
+    fn of(row: &ConstraintRow) -> Kind {
+        if row.lo == 0.0 && row.hi == f64::INFINITY {
+            Kind::Stop
+        } else if row.lo == f64::NEG_INFINITY && row.hi == f64::INFINITY {
+            Kind::Equality
+        } else {
+            Kind::Motor {
+                lo: row.lo,
+                hi: row.hi,
+                speed: -row.bias,
+            }
+        }
+    }
+}
+
+/// Where a stop's or a motor's multiplier is in [`Joined::inelastic`]'s active set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Held {
+    /// An unknown of the solve (a stop that pushes, a motor inside its bounds, an equality
+    /// row).
+    Active,
+    /// Out of the solve: a stop that does not push, or a motor held at its bound (its
+    /// impulse known, applied before the solve).
+    Out,
+    Low,
+    High,
 }
 
 /// A body's change (Δv, ΔL, Δω).
@@ -245,10 +336,16 @@ impl Joined {
             .resize(joints, (Vector3::zeros(), Vector3::zeros()));
         self.stops.clear();
         self.stops.resize(joints, 0.0);
+        self.motors.clear();
+        self.motors.resize(joints, 0.0);
+        self.motor_work = 0.0;
+        self.motor_start.clear();
+        self.motored.clear();
         self.cluster.clear();
         self.axes.clear();
         self.owners.clear();
         self.sides.clear();
+        self.biases.clear();
         self.lambda.clear();
         self.used = false;
         self.held = false;
@@ -263,7 +360,7 @@ impl Joined {
     fn take_rows(&mut self, rows: &[ConstraintRow], motions: &[SolverBody]) {
         self.all.extend(
             rows.iter()
-                .filter_map(|r| weigh(&r.axis, motions).map(|a| (a, r.owner, r.lo == 0.0))),
+                .filter_map(|r| weigh(&r.axis, motions).map(|a| (a, r.owner, Kind::of(r)))),
         );
         // Clusters by union–find over the rows' two ends.
         self.cluster.resize(motions.len(), usize::MAX);
@@ -293,17 +390,70 @@ impl Joined {
                 self.cluster[i] = root(&mut self.cluster, i);
             }
         }
+        // The motors: their clusters, and their rates at the start (their work).
+        for (axis, owner, kind) in &self.all {
+            if let Kind::Motor { .. } = kind {
+                self.motored.resize(self.cluster.len(), false);
+                self.motored[self.cluster[axis.a.body]] = true;
+                self.motor_start
+                    .push((*owner, *axis, axis.velocity(motions)));
+            }
+        }
+    }
+
+    /// Keeps each motor's impulse and rate at the start of a stage ([`Joined::stage_work`]).
+    pub(super) fn mark_stage(&mut self, motions: &[SolverBody]) {
+        self.motor_stage.clear();
+        for (owner, axis, _) in &self.motor_start {
+            self.motor_stage
+                .push((self.motors[*owner], axis.velocity(motions)));
+        }
+    }
+
+    /// The motors' work in the stage so far (`motions` now): Σ Δλ (J u_stage + J u)/2 over
+    /// the impulses Δλ the stage gave them. What a bounce's energy clamp lets the kinetic
+    /// energy gain over its start (the motors push; the contacts never give).
+    pub(super) fn stage_work(&self, motions: &[SolverBody]) -> f64 {
+        let mut work = 0.0;
+        for ((owner, axis, _), (impulse, rate)) in self.motor_start.iter().zip(&self.motor_stage)
+        {
+            let lambda = self.motors[*owner] - impulse;
+            if lambda != 0.0 {
+                work += lambda * 0.5 * (rate + axis.velocity(motions));
+            }
+        }
+        work
+    }
+
+    /// The motors' work over the response (`motions` at its end): Σ λ (J u⁻ + J u⁺)/2 per
+    /// motor row, λ its impulse in the response (exact: u⁺ − u⁻ = W Σ Jᵀ λ over every row,
+    /// so ΔK = Σ λ J (u⁻ + u⁺)/2 splits by row), into [`Joined::motor_work`].
+    pub(super) fn finish(&mut self, motions: &[SolverBody]) {
+        self.motor_work = 0.0;
+        for (owner, axis, start) in &self.motor_start {
+            let lambda = self.motors[*owner];
+            if lambda != 0.0 {
+                self.motor_work += lambda * 0.5 * (start + axis.velocity(motions));
+            }
+        }
     }
 
     /// Selects the joint rows of every cluster one of `bodies` belongs to (a stage's contact
     /// rows' bodies) into [`Joined::axes`], in the scene's row order.
     ///
-    /// More than `most` rows: none (the stage is the contacts' alone).
-    pub(super) fn select(&mut self, bodies: impl Iterator<Item = usize>, most: usize) {
+    /// More than `most` rows: none (the stage is the contacts' alone). With `motored_only`,
+    /// only the clusters with a motor row (a resting stage).
+    pub(super) fn select(
+        &mut self,
+        bodies: impl Iterator<Item = usize>,
+        most: usize,
+        motored_only: bool,
+    ) {
         self.held = false;
         self.axes.clear();
         self.owners.clear();
         self.sides.clear();
+        self.biases.clear();
         self.lambda.clear();
         if self.all.is_empty() {
             return;
@@ -313,32 +463,36 @@ impl Joined {
         let mut any = false;
         for b in bodies {
             if let Some(&c) = self.cluster.get(b).filter(|&&c| c != usize::MAX) {
-                self.marked[c] = true;
-                any = true;
+                if !motored_only || self.motored.get(c).copied().unwrap_or(false) {
+                    self.marked[c] = true;
+                    any = true;
+                }
             }
         }
         if !any {
             return;
         }
-        for &(axis, owner, one_sided) in &self.all {
+        for &(axis, owner, kind) in &self.all {
             if self.marked[self.cluster[axis.a.body]] {
                 self.axes.push(axis);
                 self.owners.push(owner);
-                self.sides.push(one_sided);
+                self.sides.push(kind);
+                self.biases.push(0.0);
             }
         }
         if self.axes.len() > most {
             self.axes.clear();
             self.owners.clear();
             self.sides.clear();
+            self.biases.clear();
         }
         self.used |= !self.axes.is_empty();
     }
 
     /// Stage 2 solved directly with the selected rows held (`direct::sticking`: every
-    /// pushing contact sticks, the equality rows and the pushing stops in the same system,
-    /// a stop's impulse kept ≥ 0); their change booked. False (nothing changed) when it
-    /// declines.
+    /// pushing contact sticks, the equality rows, the pushing stops and the free motors in
+    /// the same system, a stop's impulse kept ≥ 0 and a motor's within its bounds); their
+    /// change booked. False (nothing changed) when it declines.
     pub(super) fn sticking(
         &mut self,
         rows: &mut [Row],
@@ -349,16 +503,22 @@ impl Joined {
         buffers: &mut Direct,
     ) -> bool {
         self.floor.clear();
-        self.floor.extend(self.sides.iter().zip(&self.lambda).map(|(&stop, &mu)| {
-            if stop {
-                -mu
-            } else {
-                f64::NEG_INFINITY
-            }
-        }));
+        self.ceiling.clear();
+        for ((&kind, &mu), &owner) in self.sides.iter().zip(&self.lambda).zip(&self.owners) {
+            let (floor, ceiling) = match kind {
+                Kind::Stop => (-mu, f64::INFINITY),
+                Kind::Equality => (f64::NEG_INFINITY, f64::INFINITY),
+                // Its room: the bounds less what this response gave it so far.
+                Kind::Motor { lo, hi, .. } => (lo - self.motors[owner], hi - self.motors[owner]),
+            };
+            self.floor.push(floor);
+            self.ceiling.push(ceiling);
+        }
         let joints = direct::HeldJoints {
             axes: &self.axes,
             floor: &self.floor,
+            ceiling: &self.ceiling,
+            bias: &self.biases,
             modes: true,
         };
         buffers.slides.clear();
@@ -386,16 +546,21 @@ impl Joined {
 
     /// Books the selected rows' impulses `lambda` (scaled by `scale`) to their joints.
     pub(super) fn book(&mut self, lambda: &[f64], scale: f64) {
-        for (((axis, &owner), &mu), &stop) in
-            self.axes.iter().zip(&self.owners).zip(lambda).zip(&self.sides)
-        {
-            let j = mu * scale;
-            let (force, torque) = &mut self.impulses[owner];
-            *force += axis.d * j;
-            *torque += axis.a.rd * j;
-            if stop {
-                self.stops[owner] += j;
-            }
+        for (i, &mu) in lambda.iter().enumerate().take(self.axes.len()) {
+            let (axis, owner, kind) = (self.axes[i], self.owners[i], self.sides[i]);
+            self.book_row(&axis, owner, kind, mu * scale);
+        }
+    }
+
+    /// Books the impulse `j` of one row (`axis`, joint `owner`, `kind`) to its joint.
+    fn book_row(&mut self, axis: &Axis, owner: usize, kind: Kind, j: f64) {
+        let (force, torque) = &mut self.impulses[owner];
+        *force += axis.d * j;
+        *torque += axis.a.rd * j;
+        match kind {
+            Kind::Stop => self.stops[owner] += j,
+            Kind::Motor { .. } => self.motors[owner] += j,
+            Kind::Equality => {}
         }
     }
 
@@ -407,13 +572,19 @@ impl Joined {
     }
 
     /// Stage 1 with the selected rows ([`direct::inelastic`], the equality rows always
-    /// active): the stops (one-sided rows) by an active set around it. A stop takes part
-    /// while it pushes (λ ≥ 0) and joins when the answer without it turns its coordinate
-    /// past the limit (J u < −tolerance; the joints' drive pass left every touching stop at
-    /// J u ≥ 0); each change solves again from the stage's start, at most 2 s + 2 times for
-    /// s stops. The answer is then the minimum of K over {J_j u = 0, J_stop u ≥ 0,
-    /// J_c u ≥ −b} (the complementarity conditions of every row checked), and the stops that
-    /// push stay in [`Joined::axes`] as equality rows for stages 2 and 3. Without stops:
+    /// active): the stops (one-sided rows) and the motors (bounded rows) by an active set
+    /// around it. A stop takes part while it pushes (λ ≥ 0) and joins when the answer
+    /// without it turns its coordinate past the limit (J u < −tolerance; the joints' drive
+    /// pass left every touching stop at J u ≥ 0). A motor takes part as an equality row
+    /// aiming at J u = speed while its impulse is inside its bounds [lo, hi] (less what this
+    /// response gave it before); past one it is held there, its impulse known and applied
+    /// before the solve, and it is freed when the answer leaves J u on the wrong side of its
+    /// speed (below it at lo, above it at hi). Each change solves again from the stage's
+    /// start, at most 2 r + 3 times for r stops and motors. The answer is then the minimum
+    /// of K over {J_j u = 0, J_stop u ≥ 0, J_c u ≥ −b} with the motors' bounded rows (the
+    /// complementarity conditions of every row checked), and the stops that push and the
+    /// free motors stay in [`Joined::axes`] as equality rows for stages 2 and 3 (a held
+    /// motor keeps its bound's impulse there). Without stops or motors:
     /// `direct::inelastic` alone. False (the motions as they were) when it declines.
     #[inline(always)]
     pub(super) fn inelastic(
@@ -424,12 +595,12 @@ impl Joined {
         tolerance: f64,
         buffers: &mut Direct,
     ) -> bool {
-        if !self.sides.contains(&true) {
+        if self.sides.iter().all(|&k| k == Kind::Equality) {
             let mut lambda = std::mem::take(&mut self.lambda);
             let answered = direct::inelastic(
                 large,
                 rows,
-                (&self.axes, &mut lambda),
+                (&self.axes, &[], &mut lambda),
                 motions,
                 tolerance,
                 buffers,
@@ -459,47 +630,37 @@ impl Joined {
         );
         let saved: Vec<SolverBody> = motions.to_vec();
         let saved_rows: Vec<f64> = rows.iter().map(|r| r.normal.lambda).collect();
-        // Active: every equality row, and the stops that approach at the start.
-        let mut active: Vec<bool> = (selection.iter())
-            .map(|(axis, _, stop)| !stop || axis.velocity(motions) < -tolerance)
+        // Active: every equality row and motor, and the stops that approach at the start.
+        let mut held: Vec<Held> = (selection.iter())
+            .map(|(axis, _, kind)| match kind {
+                Kind::Stop if axis.velocity(motions) >= -tolerance => Held::Out,
+                _ => Held::Active,
+            })
             .collect();
-        let stops = selection.iter().filter(|s| s.2).count();
+        let changing = selection.iter().filter(|s| s.2 != Kind::Equality).count();
         let mut answered = false;
-        for _ in 0..2 * stops + 3 {
-            self.axes.clear();
-            self.owners.clear();
-            self.sides.clear();
-            for (&(axis, owner, stop), _) in selection.iter().zip(&active).filter(|(_, &a)| a) {
-                self.axes.push(axis);
-                self.owners.push(owner);
-                self.sides.push(stop);
-            }
+        for _ in 0..2 * changing + 3 {
+            let known = self.stage_rows(&selection, &held, motions);
             if !direct::inelastic(
                 large,
                 rows,
-                (&self.axes, &mut lambda),
+                (&self.axes, &self.biases, &mut lambda),
                 motions,
                 tolerance,
                 buffers,
             ) {
                 break;
             }
-            // A stop that pulls leaves (the most negative); else a stop left out that the
-            // answer turns past its limit joins (the most violated).
-            let at: Vec<usize> = (0..selection.len()).filter(|&i| active[i]).collect();
-            let pulling = (at.iter().zip(&lambda))
-                .filter(|(&i, &mu)| selection[i].2 && mu < 0.0)
-                .min_by(|x, y| x.1.total_cmp(y.1))
-                .map(|(&i, _)| i);
-            let past = (0..selection.len())
-                .filter(|&i| !active[i])
-                .map(|i| (i, selection[i].0.velocity(motions)))
-                .filter(|&(_, u)| u < -tolerance)
-                .min_by(|x, y| x.1.total_cmp(&y.1))
-                .map(|(i, _)| i);
-            match pulling.or(past) {
-                Some(i) => {
-                    active[i] = !active[i];
+            if lambda.len() != self.axes.len() {
+                // Nothing approached: no solve and no impulse (a held motor's would need one).
+                if known {
+                    break;
+                }
+                lambda.clear();
+            }
+            match self.next_change(&selection, &held, &lambda, motions, tolerance) {
+                Some((i, to)) => {
+                    held[i] = to;
                     motions.copy_from_slice(&saved);
                     for (row, &l) in rows.iter_mut().zip(&saved_rows) {
                         row.normal.lambda = l;
@@ -511,7 +672,14 @@ impl Joined {
                 }
             }
         }
-        if !answered {
+        if answered {
+            // The held motors' impulses (the free rows' are booked with the stage's).
+            for (&(axis, owner, kind), &h) in selection.iter().zip(&held) {
+                if let Some(j) = self.held_impulse(owner, kind, h) {
+                    self.book_row(&axis, owner, kind, j);
+                }
+            }
+        } else {
             motions.copy_from_slice(&saved);
             for (row, &l) in rows.iter_mut().zip(&saved_rows) {
                 row.normal.lambda = l;
@@ -520,6 +688,111 @@ impl Joined {
         self.selection = selection;
         self.lambda = lambda;
         answered
+    }
+
+    /// The rows of one round of [`Joined::inelastic`] into [`Joined::axes`] (the active
+    /// ones, a free motor with its bias −speed), and the held motors' impulses applied to
+    /// `motions`; returns whether there were any.
+    fn stage_rows(
+        &mut self,
+        selection: &[(Axis, usize, Kind)],
+        held: &[Held],
+        motions: &mut [SolverBody],
+    ) -> bool {
+        self.axes.clear();
+        self.owners.clear();
+        self.sides.clear();
+        self.biases.clear();
+        let mut known = false;
+        for (&(axis, owner, kind), &h) in selection.iter().zip(held) {
+            if h == Held::Active {
+                self.axes.push(axis);
+                self.owners.push(owner);
+                self.sides.push(kind);
+                self.biases.push(match kind {
+                    Kind::Motor { speed, .. } => -speed,
+                    _ => 0.0,
+                });
+            } else if let Some(j) = self.held_impulse(owner, kind, h) {
+                axis.apply(j, motions);
+                known = true;
+            }
+        }
+        known
+    }
+
+    /// A motor's bounds less what this response gave it so far.
+    fn room(&self, owner: usize, kind: Kind) -> (f64, f64) {
+        match kind {
+            Kind::Motor { lo, hi, .. } => (lo - self.motors[owner], hi - self.motors[owner]),
+            _ => (f64::NEG_INFINITY, f64::INFINITY),
+        }
+    }
+
+    /// The impulse of a motor held at a bound (None for any other row).
+    fn held_impulse(&self, owner: usize, kind: Kind, h: Held) -> Option<f64> {
+        let (lo, hi) = self.room(owner, kind);
+        match h {
+            Held::Low => Some(lo),
+            Held::High => Some(hi),
+            _ => None,
+        }
+    }
+
+    /// The change of [`Joined::inelastic`]'s active set after a round (`lambda` the active
+    /// rows' impulses, `motions` after them): a stop that pulls leaves or a motor past a
+    /// bound is held there (the largest first); else a stop left out that the answer turns
+    /// past its limit joins, or a held motor whose rate is on the wrong side of its speed is
+    /// freed (the most violated first). None: the answer.
+    fn next_change(
+        &self,
+        selection: &[(Axis, usize, Kind)],
+        held: &[Held],
+        lambda: &[f64],
+        motions: &[SolverBody],
+        tolerance: f64,
+    ) -> Option<(usize, Held)> {
+        // The first of the largest (ties go to the earlier row).
+        let mut leave: Option<(usize, Held, f64)> = None;
+        let keep = |slot: &mut Option<(usize, Held, f64)>, i: usize, to: Held, size: f64| {
+            if slot.is_none_or(|(_, _, s)| size > s) {
+                *slot = Some((i, to, size));
+            }
+        };
+        let active = (0..selection.len()).filter(|&i| held[i] == Held::Active);
+        for (i, &mu) in active.zip(lambda) {
+            let (_, owner, kind) = selection[i];
+            match kind {
+                Kind::Stop if mu < 0.0 => keep(&mut leave, i, Held::Out, -mu),
+                Kind::Motor { .. } => {
+                    let (lo, hi) = self.room(owner, kind);
+                    if mu < lo {
+                        keep(&mut leave, i, Held::Low, lo - mu);
+                    } else if mu > hi {
+                        keep(&mut leave, i, Held::High, mu - hi);
+                    }
+                }
+                _ => {}
+            }
+        }
+        if leave.is_some() {
+            return leave.map(|(i, to, _)| (i, to));
+        }
+        let mut join: Option<(usize, Held, f64)> = None;
+        for (i, &(axis, _, kind)) in selection.iter().enumerate() {
+            let u = axis.velocity(motions);
+            match (held[i], kind) {
+                (Held::Out, _) if u < -tolerance => keep(&mut join, i, Held::Active, -u),
+                (Held::Low, Kind::Motor { speed, .. }) if u < speed - tolerance => {
+                    keep(&mut join, i, Held::Active, speed - u);
+                }
+                (Held::High, Kind::Motor { speed, .. }) if u > speed + tolerance => {
+                    keep(&mut join, i, Held::Active, u - speed);
+                }
+                _ => {}
+            }
+        }
+        join.map(|(i, to, _)| (i, to))
     }
 
     /// The joints' reaction to a change of the bodies' motions (`change`: Δv, ΔL, Δω per
@@ -1091,20 +1364,20 @@ mod tests {
         let rows = [row(0, Some(1), 0), row(2, None, 1)];
         let mut joined = Joined::default();
         joined.prepare(&rows, &motions, 2);
-        joined.select([1].into_iter(), usize::MAX);
+        joined.select([1].into_iter(), usize::MAX, false);
         assert_eq!(joined.axes.len(), 1);
         assert_eq!(joined.axes[0].a.body, 0);
-        joined.select([3].into_iter(), usize::MAX);
+        joined.select([3].into_iter(), usize::MAX, false);
         assert!(joined.axes.is_empty());
-        joined.select([3, 2].into_iter(), usize::MAX);
+        joined.select([3, 2].into_iter(), usize::MAX, false);
         assert_eq!(joined.axes.len(), 1);
         assert_eq!(joined.axes[0].a.body, 2);
         // Weighed: k = 1/m + 1/m for the pair, 1/m for the rod.
-        joined.select([0, 2].into_iter(), usize::MAX);
+        joined.select([0, 2].into_iter(), usize::MAX, false);
         assert_eq!(joined.axes.len(), 2);
-        joined.select([0, 2].into_iter(), 1);
+        joined.select([0, 2].into_iter(), 1, false);
         assert!(joined.axes.is_empty());
-        joined.select([0, 2].into_iter(), usize::MAX);
+        joined.select([0, 2].into_iter(), usize::MAX, false);
         assert_eq!(
             joined.axes.iter().map(|a| a.k).collect::<Vec<_>>(),
             [2.0, 1.0]
@@ -1138,6 +1411,57 @@ mod tests {
     }
 
     #[test]
+    fn a_motor_in_the_blow_gives_its_speed_or_its_bound_and_no_more() {
+        // A 1 kg ball (body 0) driven along x by a motor at 1 m/s runs at 1 m/s into a free
+        // 1 kg ball (body 1) at rest, e = 0. One problem: the contact makes their speeds
+        // equal, V = (m v + λ_m)/(m + m'). A motor of bound 2 N·s (free) brings the pair to
+        // its speed, V = 1, λ_m = 1 N·s, the contact's impulse 1 N·s; one of bound 0.3 N·s is
+        // held there, V = (1 + 0.3)/2 = 0.65 m/s.
+        for (bound, speed, motor) in [(2.0, 1.0, 1.0), (0.3, 0.65, 0.3)] {
+            let mut motions = vec![
+                SolverBody::new(Vector3::x(), Vector3::zeros(), 1.0, Matrix3::identity() * 1000.0),
+                ball(),
+            ];
+            let drive = Axis::jacobian(Vector3::x(), (0, Vector3::zeros()), None);
+            let rows = [ConstraintRow {
+                lo: -bound,
+                hi: bound,
+                bias: -1.0,
+                ..ConstraintRow::equality(drive, 0.0, 0.0, 0)
+            }];
+            let mut joined = Joined::default();
+            joined.prepare(&rows, &motions, 1);
+            // The contact: n = x from the ball ahead (A) to the driven one (B), approaching.
+            let n = Axis::jacobian(Vector3::x(), (1, Vector3::zeros()), Some((0, Vector3::zeros())));
+            let mut contacts = [super::super::Row {
+                normal: ConstraintRow::contact(n, 0.0),
+                approach: -1.0,
+                ..Default::default()
+            }];
+            joined.select([0, 1].into_iter(), usize::MAX, false);
+            let mut direct = Direct::default();
+            direct.start(1);
+            // The solver's tolerance for an approach of 1 m/s (`TOLERANCE` (1 + 1)); the
+            // direct solve's ε = 1e-10 max Aᵢᵢ leaves its answer that close (no refinement
+            // once the motor is held: no joint row is left), so 1e-9 below.
+            let tolerance = super::super::TOLERANCE * 2.0;
+            let answered =
+                joined.inelastic(false, &mut contacts, &mut motions, tolerance, &mut direct);
+            assert!(answered, "bound {bound}: declined, {:?}", (direct.work, direct.budget));
+            joined.book_stage(1.0);
+            for m in &motions {
+                assert!((m.v.x - speed).abs() < 1e-9, "bound {bound}: v = {}", m.v.x);
+            }
+            assert!((joined.motors[0] - motor).abs() < 1e-9, "bound {bound}: {:?}", joined.motors);
+            assert!((contacts[0].normal.lambda - speed).abs() < 1e-9);
+            joined.finish(&motions);
+            // Its work λ (J u⁻ + J u⁺)/2 = λ (1 + V)/2.
+            let work = motor * (1.0 + speed) / 2.0;
+            assert!((joined.motor_work - work).abs() < 1e-9, "{}", joined.motor_work);
+        }
+    }
+
+    #[test]
     fn the_reaction_keeps_the_joint_rate() {
         // Two balls joined along x; the first kicked along x by 1 m/s: the joint shares it.
         let motions = vec![ball(), ball()];
@@ -1153,7 +1477,7 @@ mod tests {
         )];
         let mut joined = Joined::default();
         joined.prepare(&rows, &motions, 1);
-        joined.select([0].into_iter(), usize::MAX);
+        joined.select([0].into_iter(), usize::MAX, false);
         let mut change = vec![
             (Vector3::x(), Vector3::zeros(), Vector3::zeros()),
             (Vector3::zeros(), Vector3::zeros(), Vector3::zeros()),

@@ -787,11 +787,13 @@ pub fn respond(
     if direct.unconverged.is_some() {
         counters.unconverged += 1;
     }
+    scratch.joined.finish(motions); // the motors' work in it (`joined`)
     store_momenta(states, motions);
     mark_advanced(advanced, motions, contacts, &mut scratch.joined);
     fix.apply(contacts, states, advanced, fs);
     // Round-off guard: K is quadratic in (P, L), so scaling both by √(K₀/K) gives K₀.
-    let after = round_off_guard(before.kinetic, states, motions, total);
+    let allowed = (before.kinetic, scratch.joined.motor_work);
+    let after = round_off_guard(allowed, states, motions, total);
     // Speculative contacts that were not needed are not contacts.
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
     Some(EnergyChange { before, after })
@@ -837,7 +839,7 @@ fn mark_advanced(
 }
 
 /// The joints' rows at `states`, solved with the contacts in an impact ([`joined`]; built
-/// only then: a later impact round follows a first one).
+/// only then, or in a scene with motors: a later impact round follows a first one).
 fn prepare_joints(
     input: &CollideInput,
     states: &[State],
@@ -848,9 +850,11 @@ fn prepare_joints(
     let (joint_rows, motions) = (&mut scratch.joint_rows, &scratch.motions);
     joint_rows.clear();
     if let Some(rows_at) = input.joints {
-        if contacts
-            .iter()
-            .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
+        // In a scene with motors, at rest too (a motor pushing what it touches).
+        if scratch.joined.scene_motored
+            || contacts
+                .iter()
+                .any(|c| relative_velocity(c, motions) < -0.5 * bounce_speed)
         {
             rows_at(states, joint_rows);
         }
@@ -879,13 +883,20 @@ fn solver_bodies(input: &CollideInput, states: &[State], motions: &mut Vec<Solve
 }
 
 /// The round-off guard (module doc): K is quadratic in (P, L), so scaling the touched
-/// bodies' P and L by √(K₀/K) gives K₀; at most 4 times. Returns the energy after.
+/// bodies' P and L by √(K₀/K) gives K₀ (K₀ with the motors' work in the response added,
+/// when positive: `joined`); at most 4 times. Returns the energy after.
 fn round_off_guard(
-    kinetic_before: f64,
+    (kinetic_before, motor_work): (f64, f64),
     states: &mut [State],
     motions: &[SolverBody],
     total: impl Fn(&[State], &[SolverBody]) -> Energy,
 ) -> Energy {
+    // K₀ with the motors' work in the response (they push; the contacts never give).
+    let kinetic_before = if motor_work > 0.0 {
+        kinetic_before + motor_work
+    } else {
+        kinetic_before
+    };
     let mut after = total(states, motions);
     for _ in 0..4 {
         if after.kinetic <= kinetic_before {
@@ -1049,6 +1060,7 @@ fn stages(
     stage: &mut Stage,
 ) {
     select_joints(rows, settings.friction, settings.bounce_speed, stage.joined);
+    stage.joined.mark_stage(stage.motions);
     // Stage 1: inelastic normal impulses, λ ≥ 0.
     let large = inelastic(rows, tolerance, stage);
     // Stage 2: friction in the fixed disks |λ_t| ≤ μ λ, normal impulses still kept ≥ 0.
@@ -1056,11 +1068,17 @@ fn stages(
     friction_stage(settings, rows, contacts, tolerance, large, stage);
 
     // Stage 3: Poisson restitution e λ where the approach was fast, scaled so that K ≤ K₀
-    // (with the joints' reaction to it, when there are joint rows).
+    // (with the joints' reaction to it, when there are joint rows), K₀ with what the motors
+    // gave in this stage.
+    let motors = stage.joined.stage_work(stage.motions);
     let bounce = normal::Bounce {
         restitution: settings.restitution,
         bounce_speed: settings.bounce_speed,
-        kinetic_allowed,
+        kinetic_allowed: if motors > 0.0 {
+            kinetic_allowed + motors
+        } else {
+            kinetic_allowed
+        },
     };
     let Stage {
         motions,
@@ -1210,12 +1228,14 @@ fn friction_stage(
     }
 }
 
-/// The joint rows of the clusters `rows` touch, in an impact (none without joints, or at
-/// rest). With friction, more than the joints' friction sweeps take (more than
+/// The joint rows of the clusters `rows` touch, in an impact (none without joints); at rest
+/// only those of the clusters with a motor (the motor solved with the contacts it pushes:
+/// [`joined`]), none in a scene without motors. With friction, more than the joints' friction sweeps take (more than
 /// [`joined::JOINED_FRICTION_ROWS`] rows or [`joined::JOINED_FRICTION_CONTACTS`] contacts):
 /// none; `joints::contact::hold` then holds the joints after the response.
 fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut joined::Joined) {
-    if rows.iter().any(|r| r.approach < -bounce_speed) {
+    let impact = rows.iter().any(|r| r.approach < -bounce_speed);
+    if impact || joined.scene_motored {
         let most = if friction == 0.0 {
             usize::MAX
         } else if rows.len() > joined::JOINED_FRICTION_CONTACTS {
@@ -1227,11 +1247,12 @@ fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut jo
             rows.iter()
                 .flat_map(|r| r.normal.axis.bodies().into_iter().flatten()),
             most,
+            !impact,
         );
     } else {
         // At rest: the contacts' rows alone (also after `propagate`'s impact rounds, whose
         // last round's selection would otherwise stay).
-        joined.select(std::iter::empty(), 0);
+        joined.select(std::iter::empty(), 0, false);
     }
 }
 
