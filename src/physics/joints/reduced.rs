@@ -543,21 +543,8 @@ impl Reduced {
             total.force = lin;
             total.torque = ang + (total.torque - f_ang);
             let (c_lin, c_ang) = force[k];
-            let (w_lin, w_ang) = (lin - f_lin + c_lin, ang - f_ang + c_ang);
-            let f = w_lin * hinge.sign;
-            let t = w_ang * hinge.sign - hinge.rc.cross(&f);
-            let q = (f, hinge.rp.cross(&f) + t);
-            let parent = &mut force[hinge.up];
-            parent.0 += q.0 * hinge.sign;
-            parent.1 += q.1 * hinge.sign;
-            let reaction = &mut reactions[k];
-            if hinge.sign > 0.0 {
-                reaction.force += w_lin;
-                reaction.torque += w_ang;
-            } else {
-                reaction.force += q.0;
-                reaction.torque += q.1;
-            }
+            let load = (lin - f_lin + c_lin, ang - f_ang + c_ang);
+            share(hinge, load, force, &mut reactions[k]);
         }
     }
 }
@@ -570,21 +557,26 @@ impl Reduced {
 #[inline(always)]
 fn shares(hinges: &[Hinge], force: &mut [Pair], reactions: &mut [Loads]) {
     for (k, hinge) in hinges.iter().enumerate().rev() {
-        let (w_lin, w_ang) = force[k];
-        let f = w_lin * hinge.sign;
-        let t = w_ang * hinge.sign - hinge.rc.cross(&f);
-        let q = (f, hinge.rp.cross(&f) + t);
-        let parent = &mut force[hinge.up];
-        parent.0 += q.0 * hinge.sign;
-        parent.1 += q.1 * hinge.sign;
-        let reaction = &mut reactions[k];
-        if hinge.sign > 0.0 {
-            reaction.force += w_lin;
-            reaction.torque += w_ang;
-        } else {
-            reaction.force += q.0;
-            reaction.torque += q.1;
-        }
+        share(hinge, force[k], force, &mut reactions[k]);
+    }
+}
+
+/// One joint's step of [`shares`]: its load on its child (w, τ_w) into `reaction` (on A)
+/// and σ q onto its parent's slot of `force`.
+#[inline(always)]
+fn share(hinge: &Hinge, (w_lin, w_ang): Pair, force: &mut [Pair], reaction: &mut Loads) {
+    let f = w_lin * hinge.sign;
+    let t = w_ang * hinge.sign - hinge.rc.cross(&f);
+    let q = (f, hinge.rp.cross(&f) + t);
+    let parent = &mut force[hinge.up];
+    parent.0 += q.0 * hinge.sign;
+    parent.1 += q.1 * hinge.sign;
+    if hinge.sign > 0.0 {
+        reaction.force += w_lin;
+        reaction.torque += w_ang;
+    } else {
+        reaction.force += q.0;
+        reaction.torque += q.1;
     }
 }
 
