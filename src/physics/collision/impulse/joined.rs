@@ -402,6 +402,7 @@ impl Joined {
     }
 
     /// Keeps each motor's impulse and rate at the start of a stage ([`Joined::stage_work`]).
+    #[inline] // a scene without motors: a length test, every step
     pub(super) fn mark_stage(&mut self, motions: &[SolverBody]) {
         self.motor_stage.clear();
         for (owner, axis, _) in &self.motor_start {
@@ -413,6 +414,7 @@ impl Joined {
     /// The motors' work in the stage so far (`motions` now): Σ Δλ (J u_stage + J u)/2 over
     /// the impulses Δλ the stage gave them. What a bounce's energy clamp lets the kinetic
     /// energy gain over its start (the motors push; the contacts never give).
+    #[inline] // a scene without motors: a length test, every step
     pub(super) fn stage_work(&self, motions: &[SolverBody]) -> f64 {
         let mut work = 0.0;
         for ((owner, axis, _), (impulse, rate)) in self.motor_start.iter().zip(&self.motor_stage)
@@ -428,6 +430,7 @@ impl Joined {
     /// The motors' work over the response (`motions` at its end): Σ λ (J u⁻ + J u⁺)/2 per
     /// motor row, λ its impulse in the response (exact: u⁺ − u⁻ = W Σ Jᵀ λ over every row,
     /// so ΔK = Σ λ J (u⁻ + u⁺)/2 splits by row), into [`Joined::motor_work`].
+    #[inline] // a scene without motors: a length test, every step
     pub(super) fn finish(&mut self, motions: &[SolverBody]) {
         self.motor_work = 0.0;
         for (owner, axis, start) in &self.motor_start {
