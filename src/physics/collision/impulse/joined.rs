@@ -614,8 +614,8 @@ impl Joined {
         self.inelastic_with_stops(large, rows, motions, tolerance, buffers)
     }
 
-    /// [`Joined::inelastic`] when some selected row is a stop: the active set over the stops
-    /// around the direct solve.
+    /// [`Joined::inelastic`] when some selected row is a stop or a motor: the active set over
+    /// them around the direct solve.
     #[inline(never)]
     fn inelastic_with_stops(
         &mut self,
