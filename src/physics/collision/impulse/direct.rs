@@ -299,6 +299,9 @@ fn solve_active(
     let m = active.len();
     let mj = joints.len();
     if mj == 0 {
+        // No joint multipliers, as the merged path leaves them (an empty `joint_lambda` after
+        // a solve tells `Joined::inelastic` that a solve ran).
+        joint_lambda.clear();
         return solve_contacts(rows, active, motions, (system, work), lambda);
     }
     // The system's rows: the joint rows and the active contact rows merged by their
