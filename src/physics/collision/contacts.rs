@@ -203,6 +203,11 @@ fn between_bodies(
     points: &mut Vec<ContactPoint>,
     broad: &mut BroadPhase,
 ) {
+    if states.len() < 2 {
+        // One body: no pair (a resting cube's every step skips the broad phase).
+        broad.pairs.clear();
+        return;
+    }
     // Body against body: pairs whose bounding spheres meet, and fast pairs (`sweep`) whose
     // paths over the step may meet. A pair is only swept when some body moved more than
     // `FAST` of the thinnest half-thickness: at rest nothing is swept.
