@@ -129,7 +129,11 @@ pub(super) fn inelastic(
         return true;
     }
     let start = |r: &Row| approaching(r) || (wide && r.warm.dot(&r.normal.axis.d) > 0.0);
-    active.extend((0..rows.len()).filter(|&i| start(&rows[i])));
+    for (i, row) in rows.iter().enumerate() {
+        if start(row) {
+            active.push(i);
+        }
+    }
     let mut m = active.len();
     if m > DIRECT_MAX {
         return false;

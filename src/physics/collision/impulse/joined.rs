@@ -401,6 +401,12 @@ impl Joined {
         }
     }
 
+    /// Whether this response has joint rows ([`Joined::prepare`]).
+    #[inline]
+    pub(super) fn has_rows(&self) -> bool {
+        !self.all.is_empty()
+    }
+
     /// Keeps each motor's impulse and rate at the start of a stage ([`Joined::stage_work`]).
     #[inline] // a scene without motors: a length test, every step
     pub(super) fn mark_stage(&mut self, motions: &[SolverBody]) {

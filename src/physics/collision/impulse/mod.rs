@@ -795,7 +795,10 @@ pub fn respond(
     let allowed = (before.kinetic, scratch.joined.motor_work);
     let after = round_off_guard(allowed, states, motions, total);
     // Speculative contacts that were not needed are not contacts.
-    contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
+    let needed = |c: &Contact| c.depth > 0.0 || c.impulse != Vector3::zeros();
+    if !contacts.iter().all(needed) {
+        contacts.retain(needed);
+    }
     Some(EnergyChange { before, after })
 }
 
@@ -1234,7 +1237,8 @@ fn friction_stage(
 /// [`joined::JOINED_FRICTION_ROWS`] rows or [`joined::JOINED_FRICTION_CONTACTS`] contacts):
 /// none; `joints::contact::hold` then holds the joints after the response.
 fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut joined::Joined) {
-    let impact = rows.iter().any(|r| r.approach < -bounce_speed);
+    // A scene without joint rows selects none (no scan of the rows).
+    let impact = joined.has_rows() && rows.iter().any(|r| r.approach < -bounce_speed);
     if impact || joined.scene_motored {
         let most = if friction == 0.0 {
             usize::MAX
