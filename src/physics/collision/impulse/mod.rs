@@ -1237,7 +1237,7 @@ fn friction_stage(
 /// [`joined::JOINED_FRICTION_ROWS`] rows or [`joined::JOINED_FRICTION_CONTACTS`] contacts):
 /// none; `joints::contact::hold` then holds the joints after the response.
 fn select_joints(rows: &[Row], friction: f64, bounce_speed: f64, joined: &mut joined::Joined) {
-    // A scene without joint rows selects none (no scan of the rows).
+    // A response without joint rows selects none (no scan of the rows).
     let impact = joined.has_rows() && rows.iter().any(|r| r.approach < -bounce_speed);
     if impact || joined.scene_motored {
         let most = if friction == 0.0 {
