@@ -181,3 +181,180 @@ fn a_ball_bouncing_off_a_motored_cart_takes_the_motor_to_its_bound_and_no_furthe
         "{b:?}"
     );
 }
+
+/// The paddle: 1 kg, 50 × 2 × 10 cm, on a hinge along z at its end (the origin), turning at
+/// `omega` about it with its motor at that speed and at most `max` N·m; a 0.2 kg ball of
+/// radius 5 cm at rest just above its top face, 0.4 m from the hinge; no gravity, e, μ = 0.
+fn paddle_and_ball(omega: f64, max: f64, e: f64) -> World {
+    let paddle = State {
+        position: Vector3::new(0.25, 0.0, 0.0),
+        linear_momentum: Vector3::new(0.0, 0.25 * omega, 0.0),
+        angular_momentum: Vector3::new(0.0, 0.0, PADDLE_INERTIA * omega),
+        ..State::at_rest()
+    };
+    let ball = State {
+        position: Vector3::new(0.4, 0.01 + 0.05 + 2e-4, 0.0),
+        ..State::at_rest()
+    };
+    let bodies = vec![
+        NamedBody {
+            name: "paddle".into(),
+            body: Body::solid_box(Vector3::new(0.5, 0.02, 0.1), 1.0).expect("a box"),
+            initial: paddle,
+        },
+        NamedBody {
+            name: "ball".into(),
+            body: Body::sphere(0.05, BALL, false).expect("a ball"),
+            initial: ball,
+        },
+    ];
+    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
+    let mut hinge = Joint::at_point(
+        "hinge".into(),
+        JointKind::Hinge,
+        0,
+        None,
+        Vector3::zeros(),
+        Vector3::z(),
+        &states,
+    );
+    hinge.motor = Some(Motor { speed: omega, max });
+    let contact = ContactModel {
+        response: Response::Impulse,
+        restitution: e,
+        friction: 0.0,
+        impacts: tumble::physics::Impacts::default(),
+    };
+    World::with_bodies(
+        bodies,
+        Effects::new(Vec::new()),
+        Vec::new(),
+        Some(contact),
+        Integrator::Rk4,
+        DT,
+    )
+    .with_links(Links {
+        joints: vec![hinge],
+        springs: Vec::new(),
+        correction: Correction::Projection,
+    })
+}
+
+/// The paddle's moment of inertia about its centre (z): M (a² + b²)/12.
+const PADDLE_INERTIA: f64 = (0.25 + 0.0004) / 12.0;
+/// About the hinge: plus M (a/2)².
+const HINGE_INERTIA: f64 = PADDLE_INERTIA + 0.0625;
+/// The ball's mass, kg.
+const BALL: f64 = 0.2;
+
+/// The paddle strikes the ball: the paddle's rate after the blow, the ball's speed and its
+/// lever about the hinge ℓ = (c × v̂)_z (its centre's coordinate along the paddle: the ball
+/// leaves along the face's normal, so moving it along its velocity keeps ℓ), the motor's
+/// torque in that step, and the angular momentum about the hinge axis of both bodies.
+fn strike(world: &mut World) -> Strike {
+    for _ in 0..50 {
+        world.step();
+        let (paddle, ball) = (world.states()[0], world.states()[1]);
+        let v = ball.linear_momentum / BALL;
+        if v.norm() > 1e-9 {
+            let snapshot = world.snapshot();
+            let joint = &snapshot.joints[0];
+            let (_, rate) = joint.coordinate.expect("an angle");
+            let about_hinge = paddle.angular_momentum.z
+                + paddle.position.cross(&paddle.linear_momentum).z
+                + ball.position.cross(&ball.linear_momentum).z;
+            let strike = Strike {
+                rate,
+                speed: v.norm(),
+                lever: ball.position.cross(&v.normalize()).z,
+                torque: joint.drive.motor,
+                about_hinge,
+            };
+            eprintln!("{strike:?}");
+            assert!((strike.lever - 0.4).abs() < 1e-3, "ℓ = {}", strike.lever);
+            return strike;
+        }
+    }
+    panic!("no blow");
+}
+
+/// What [`strike`] measures.
+#[derive(Debug)]
+struct Strike {
+    rate: f64,
+    speed: f64,
+    lever: f64,
+    torque: f64,
+    about_hinge: f64,
+}
+
+#[test]
+fn a_motored_paddle_strikes_a_ball_at_its_speed_or_with_its_torque_bound_and_no_more() {
+    // The paddle turns at ω = 2 rad/s and strikes the ball (m = 0.2 kg) at rest at ℓ ≈ 0.4 m
+    // from the hinge, e = 0. Free motor (1000 N·m, room 1 N·m·s): the paddle keeps ω, the
+    // ball leaves at ω ℓ, and the motor's angular impulse is the ball's angular momentum
+    // about the hinge, m ω ℓ² = 0.064 N·m·s. Motor at its bound (30 N·m, 0.03 N·m·s < 0.064):
+    // its impulse is τ dt exactly, so the angular momentum about the hinge goes from I_h ω to
+    // I_h ω + τ dt = (I_h + m ℓ²) ω', the ball at ω' ℓ.
+    //
+    // Measured: the free case and both motor impulses within 1e-9 (τ = 30.000000000 N·m);
+    // the angular momentum about the hinge within 2.6e-9 N·m·s of I_h ω + τ dt; but the
+    // paddle's ω' = 1.7050021 against 1.7050046 (−1.5e-6 relative) and the ball 2.6e-6 m/s
+    // faster than the face under it (ω' ℓ), so those to 1e-5 relative. The same with
+    // joint_correction = none; the motor held in stage 3 instead (the bounce below) is
+    // within 3.4e-8. Not traced: stage 1's direct solve once the motor is held is the
+    // suspect (its ε = 1e-10 max Aᵢᵢ, `joined`'s unit test of a held motor).
+    let omega = 2.0;
+    let free = strike(&mut paddle_and_ball(omega, 1000.0, 0.0));
+    assert!((free.rate - omega).abs() < 1e-9, "{free:?}");
+    assert!((free.speed - omega * free.lever).abs() < 1e-9, "{free:?}");
+    let impulse = BALL * omega * free.lever * free.lever;
+    assert!((free.torque * DT - impulse).abs() < 1e-9, "{free:?}");
+    let before = HINGE_INERTIA * omega;
+    assert!(
+        (free.about_hinge - before - impulse).abs() < 1e-8,
+        "{free:?}"
+    );
+
+    let tau = 30.0;
+    let held = strike(&mut paddle_and_ball(omega, tau, 0.0));
+    assert!((held.torque - tau).abs() < 1e-9, "{held:?}");
+    assert!(
+        (held.about_hinge - before - tau * DT).abs() < 1e-8,
+        "{held:?}"
+    );
+    let l = held.lever;
+    let after = (before + tau * DT) / (HINGE_INERTIA + BALL * l * l);
+    assert!(
+        (held.rate - after).abs() < 1e-5 * after,
+        "ω' {after}: {held:?}"
+    );
+    assert!(
+        (held.speed - after * l).abs() < 1e-5 * after * l,
+        "{held:?}"
+    );
+}
+
+#[test]
+fn a_motored_paddle_bouncing_a_ball_holds_its_speed_until_its_torque_bound() {
+    // As above with e = 0.5 and τ_max dt = 0.08 N·m·s: compression needs m ω ℓ² = 0.064
+    // (free: the paddle keeps ω, λ_c = m ω ℓ), the restitution e λ_c would need 0.032 more;
+    // the motor gives 0.016 and no more, so the ball leaves at (1 + e) ω ℓ and
+    // I_h ω' = I_h ω + τ dt − m (1 + e) ω ℓ² (K after 0.280 J within K₀ + the motor's
+    // work 0.295 J: no clamp). Measured: τ and the ball's speed within 1e-9, the angular
+    // momentum about the hinge within 5.1e-9 N·m·s, ω' within 3.4e-8 relative. Before the
+    // active set in the bounce's reaction the motor, an equality row there, gave
+    // 90.6 N·m and the paddle kept ω (the energy clamp cut the ball to 1.13 m/s).
+    let (omega, tau, e) = (2.0, 80.0, 0.5);
+    let b = strike(&mut paddle_and_ball(omega, tau, e));
+    assert!((b.torque - tau).abs() < 1e-9, "{b:?}");
+    assert!(
+        (b.speed - (1.0 + e) * omega * b.lever).abs() < 1e-9,
+        "{b:?}"
+    );
+    let before = HINGE_INERTIA * omega;
+    assert!((b.about_hinge - before - tau * DT).abs() < 1e-8, "{b:?}");
+    let l = b.lever;
+    let after = omega + (tau * DT - BALL * (1.0 + e) * omega * l * l) / HINGE_INERTIA;
+    assert!((b.rate - after).abs() < 1e-7 * after, "ω' {after}: {b:?}");
+}
