@@ -22,7 +22,10 @@
 //! benches/rapier's) and the work per step (median, max, unconverged steps);
 //! `CONTACT_STEPS_STATES` prints the final states;
 //! `CONTACT_STEPS_WORK=FILE` writes each step's work, rows, unconverged residual (0:
-//! converged) and work budget to FILE, one step a line.
+//! converged) and work budget to FILE, one step a line, then the solver's path counters so
+//! far (summed over steps: interior solves and their steps, friction sweeps and subspace
+//! steps, stage-1 direct answers and declines, warm trials answered, normal sweeps and
+//! subspace steps, friction warm trials and direct answers).
 
 use std::time::Instant;
 use tumble::contact_scenes::{
@@ -131,7 +134,7 @@ fn main() {
         works.push(report.work);
         if work_file.is_some() {
             per_step.push_str(&format!(
-                "{step} {} {} {:e} {} {} {} {} {}\n",
+                "{step} {} {} {:e} {} {} {} {} {} {} {} {} {} {} {} {}\n",
                 report.work,
                 report.rows,
                 report.unconverged.unwrap_or(0.0),
@@ -139,7 +142,14 @@ fn main() {
                 c.interior,
                 c.interior_steps,
                 c.friction_sweeps,
-                c.friction_subspace
+                c.friction_subspace,
+                c.direct,
+                c.declined,
+                c.warm,
+                c.normal_sweeps,
+                c.normal_subspace,
+                c.friction_warm,
+                c.friction_direct
             ));
         }
         if step % every == 0 || step == steps {

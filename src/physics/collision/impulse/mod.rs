@@ -34,9 +34,12 @@
 //!    A large system whose rows are *wide* in contact order (a pyramid: each cube touches the
 //!    row below and its neighbours; [`WIDE_ENVELOPE`]) first tries [`TRIAL_SWEEPS`] sweeps from
 //!    the last step's impulses: at rest they are already the answer, one sweep over the rows
-//!    confirms it to the same tolerance, where a factorisation costs rows · width². Only when
-//!    they do not converge does the direct solve run (and a failed trial waits a few steps
-//!    before the next, so a scene whose warm start is poor stops paying for it). Such a
+//!    confirms it to the same tolerance, where a factorisation costs rows · width². They go on
+//!    while their rate of convergence reaches the tolerance within what the direct solve
+//!    would cost (`trial_sweeps`). Only when they do not converge does the direct solve run
+//!    (and a failed trial waits a few steps before the next, so a scene whose warm start is
+//!    poor stops paying for it; a first touch, with no warm start at all, skips the trial and
+//!    starts no wait). Such a
 //!    system's direct solve starts its active set from the rows that pushed last step as well
 //!    as the approaching ones (a settling pyramid of 20 rows otherwise adds a row per pair of
 //!    bodies a round, needs about three rounds per row of cubes, and runs out of rounds), and
@@ -219,7 +222,8 @@ pub const SWEEPS_FIRST_ROWS: usize = 64;
 pub const WIDE_ENVELOPE: f64 = 16.0;
 
 /// The sweeps a large system's warm start may take to converge before the direct solve is
-/// tried instead (a scene at rest needs 1 or 2).
+/// tried instead (a scene at rest needs 1 or 2), unless their rate of convergence says they
+/// reach the tolerance for less than the direct solve would cost (`trial_sweeps`).
 pub const TRIAL_SWEEPS: u64 = 8;
 
 /// The longest wait, in steps, between stage-1 trials that keep failing.
@@ -385,6 +389,9 @@ struct Direct {
     /// whose warm start does not converge in a few sweeps stops paying for them.
     trial_skip: u32,
     trial_wait: u32,
+    /// This step's mean envelope of the rows in contact order (`direct::mean_envelope`; 0
+    /// at or below [`SWEEPS_FIRST_ROWS`] rows).
+    width: f64,
     /// The first row acting on each body (the envelope's estimate).
     body_first: Vec<usize>,
     /// The friction subspace step's unknowns, and the impulses before it (to undo it).
@@ -1295,6 +1302,7 @@ fn friction_trial(
     buffers_direct: &mut Direct,
     counters: &mut Counters,
 ) -> bool {
+        let width = buffers_direct.width;
         let Direct {
             trial,
             trial_rows,
@@ -1311,13 +1319,10 @@ fn friction_trial(
         // of 20 rows standing past 3.25 s: its sweeps then hit their cap on every step).
         normal::warm_start_again(rows, motions);
         friction::warm_start(rows, tangent_directions, motions);
-        let (converged, sweeps, _) = friction::sweep(
-            rows,
-            tangent_directions,
-            motions,
-            tolerance,
-            TRIAL_SWEEPS,
-        );
+        let cap = trial_cap(rows.len(), width, 3);
+        let (converged, sweeps) = trial_sweeps(cap, tolerance, |n| {
+            friction::sweep(rows, tangent_directions, motions, tolerance, n)
+        });
         *work += sweeps * rows.len() as u64;
         counters.friction_sweeps += sweeps;
         if converged {
@@ -1330,6 +1335,63 @@ fn friction_trial(
             }
         }
         converged
+}
+
+/// The most sweeps a large system's trial may run: [`TRIAL_SWEEPS`], or more when one
+/// factorisation of the direct solve that follows a failed trial costs more. Its system has
+/// `unknowns` unknowns per row (1 in stage 1, 3 in the sticking solve) and a mean envelope of
+/// `width` rows (`direct::mean_envelope`), so it stores about `unknowns² · width · rows`
+/// entries and costs `factorisation_work` of that; the cap is that work over one sweep's
+/// `rows` row updates. A direct solve takes one factorisation per round of its active-set
+/// search (the resting wall's 5 to 9), so sweeps within the cap never cost more than it.
+fn trial_cap(rows: usize, width: f64, unknowns: usize) -> u64 {
+    let stored = (width * (unknowns * unknowns * rows) as f64) as usize;
+    let factorisation = factorisation_work(stored, unknowns * rows);
+    (factorisation / rows.max(1) as u64).max(TRIAL_SWEEPS)
+}
+
+/// The sweeps still needed to bring a residual from `last` to `tolerance` at the rate at
+/// which the last `sweeps` sweeps brought it from `first` to `last` (linear convergence,
+/// r_{k+n} = r_k ρⁿ: n = ln(tolerance / last) / ln ρ, ρ = (last/first)^{1/sweeps});
+/// infinite when the residual did not fall.
+fn sweeps_needed(first: f64, last: f64, sweeps: u64, tolerance: f64) -> f64 {
+    if sweeps == 0 || last >= first || last <= 0.0 {
+        return f64::INFINITY;
+    }
+    let rate_log = (last / first).ln() / sweeps as f64;
+    ((tolerance / last).ln() / rate_log).max(0.0)
+}
+
+/// A large system's trial sweeps (`sweep(n)` runs at most n sweeps: converged, sweeps run,
+/// residual), in bursts of half [`TRIAL_SWEEPS`]; after the first [`TRIAL_SWEEPS`] they go
+/// on only while the last burst's rate of convergence ([`sweeps_needed`]) reaches the
+/// tolerance within `cap` sweeps in all ([`trial_cap`]). With `cap` = [`TRIAL_SWEEPS`] they
+/// are the fixed trial of [`TRIAL_SWEEPS`] sweeps, bit for bit (a sweep keeps nothing
+/// between calls). The wall at rest whose top end bricks start to topple (`contact_steps
+/// wall`, steps 343 to 385) needs 9 to 21 in stage 1 (its residual falls ×0.55 a sweep
+/// from 4e-9 m/s), where each failed trial of 8 was followed by a direct solve of 6 to 9
+/// factorisations (about 35 000 row updates, 60 times the scene's median step). Returns
+/// whether they converged, and the sweeps run.
+fn trial_sweeps(
+    cap: u64,
+    tolerance: f64,
+    mut sweep: impl FnMut(u64) -> (bool, u64, f64),
+) -> (bool, u64) {
+    let burst = TRIAL_SWEEPS / 2;
+    let (mut converged, mut sweeps, mut residual) = sweep(burst);
+    while !converged && sweeps < cap {
+        let first = residual;
+        let more;
+        (converged, more, residual) = sweep(burst.min(cap - sweeps));
+        sweeps += more;
+        if !converged
+            && sweeps >= TRIAL_SWEEPS
+            && sweeps as f64 + sweeps_needed(first, residual, more, tolerance) > cap as f64
+        {
+            break;
+        }
+    }
+    (converged, sweeps)
 }
 
 /// Stage 3 ([`normal::restitution`]), the joints' reaction to it booked ([`joined`]).
@@ -1362,18 +1424,32 @@ fn inelastic_stage(
     // the last step's impulses (a scene at rest: they are the answer, and one sweep over the
     // rows confirms it for far less than a factorisation); then the direct solve when it
     // applies; else projected Gauss–Seidel, warm-started from the last step's impulses.
-    let large = rows.len() > SWEEPS_FIRST_ROWS
-        && direct::mean_envelope(rows, &mut buffers_direct.body_first) > WIDE_ENVELOPE;
+    let width = if rows.len() > SWEEPS_FIRST_ROWS {
+        direct::mean_envelope(rows, &mut buffers_direct.body_first)
+    } else {
+        0.0
+    };
+    let large = width > WIDE_ENVELOPE;
+    buffers_direct.width = width;
     let mut answered = false;
     // With joint rows the direct solve comes first (the sweeps know no joints).
     let joints = !joined.axes.is_empty();
+    // A first touch (no row has a last-step impulse) has nothing to try from: the trial
+    // would be plain sweeps from zero, and its failure would make the next step, the first
+    // with a warm start, skip its trial.
+    let first_touch = || rows.iter().all(|r| r.warm == Vector3::zeros());
     if large && !joints && buffers_direct.trial_skip > 0 {
         buffers_direct.trial_skip -= 1;
+    } else if large && !joints && first_touch() {
+        // Straight to the direct solve, no wait counted.
     } else if large && !joints {
         buffers_direct.trial.clear();
         buffers_direct.trial.extend_from_slice(motions);
+        let cap = trial_cap(rows.len(), width, 1);
         normal::warm_start(rows, motions);
-        let (converged, sweeps, _) = normal::sweep(rows, motions, tolerance, TRIAL_SWEEPS);
+        let (converged, sweeps) = trial_sweeps(cap, tolerance, |n| {
+            normal::sweep(rows, motions, tolerance, n)
+        });
         buffers_direct.work += sweeps * rows.len() as u64;
         counters.normal_sweeps += sweeps;
         if converged {
