@@ -27,6 +27,11 @@
 //! the rounds solve `(J_a W J_aᵀ) μ = −J_a (Δu_c + W J_hᵀ λ_h)` over the active rows a, the
 //! held rows h at their bounds, and its energy clamp scales the whole change (each bound's
 //! interval holds 0, so a scaled impulse stays inside it).
+//!
+//! Not covered: the direct sticking solve of stage 2 (`Joined::sticking`) declines when a
+//! free row passes a bound (the sweeps here then answer) but does not free a row stage 1
+//! held; a stop's own bounce stays in the joints' drive pass (`joints::drive`, Newton's
+//! restitution before the contacts are found).
 
 use super::{Change, Held, Joined, Kind, Row};
 use crate::physics::constraints::{Axis, SolverBody};
