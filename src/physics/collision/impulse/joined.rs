@@ -43,7 +43,8 @@
 //! ```
 //!
 //! a stop that pulls leaves, a stop left out that the answer turns past its limit joins, and
-//! the stops that push are equality rows for stages 2 and 3. So a box landing on a flap
+//! the stops that push are rows of stages 2 and 3, which keep their stage's total ≥ 0 by the
+//! same rule (`bounds`). So a box landing on a flap
 //! that lies on its stop is one problem: the box stops, the flap does not turn, and the
 //! stop's angular impulse is the box's angular momentum about the hinge (`m v d`,
 //! `tests/physics/joint_drives.rs`); the joints' drive pass alone would have let flap and box
@@ -66,10 +67,11 @@
 //! motor   lo < λ < hi: J u⁺ = speed;   λ = lo: J u⁺ ≥ speed;   λ = hi: J u⁺ ≤ speed
 //! ```
 //!
-//! A free motor is an equality row of stages 2 and 3 (its rate kept at its speed; the direct
-//! sticking solve keeps its impulse within its bounds, `HeldJoints::ceiling`; the joints'
-//! friction sweeps and stage 3's reaction do not check them, as they do not a stop's); a held
-//! one keeps its bound's impulse. A motor pushing a free cube ahead of its cart is one
+//! A free motor is an equality row of stages 2 and 3 (its rate kept at its speed), a held
+//! one keeps its bound's impulse, and both stages keep every stop's and motor's bounds by
+//! the same active set (`bounds`: a row past a bound is held there, a held row on the wrong
+//! side of its aim freed; the direct sticking solve declines past a bound,
+//! `HeldJoints::ceiling`, and does not free a held row). A motor pushing a free cube ahead of its cart is one
 //! problem: the plastic blow with the motor at its bound leaves the pair at
 //! V = (m v + F dt)/(m + m') (`tests/physics/joint_drives.rs`). Its rows are taken whenever
 //! a stage's contacts touch a motored cluster, at rest too (a scene with motors builds its
