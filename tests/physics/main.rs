@@ -14,6 +14,7 @@ mod exact_splitting;
 mod geometry;
 mod hard_cases;
 mod impacts;
+mod joint_bounds;
 mod joint_drives;
 mod joints;
 mod particle_laws;

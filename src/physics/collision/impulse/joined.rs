@@ -147,6 +147,8 @@ use crate::physics::constraints::{Axis, End, Row as ConstraintRow, SolverBody};
 use crate::physics::envelope::{Envelope, Pivots};
 use nalgebra::Vector3;
 
+mod bounds;
+
 /// Most joint rows an impact *with friction* takes into its solve (the clusters its contacts
 /// touch); more, and the stage is the contacts' alone with `joints::contact::hold` after it,
 /// as before. The friction stage with the joints is a projected Gauss–Seidel over columns
@@ -212,6 +214,17 @@ pub struct Joined {
     pub scene_motored: bool,
     /// The stage's selection while its stops' active set is searched ([`Joined::inelastic`]).
     selection: Vec<(Axis, usize, Kind)>,
+    /// Per row of `selection`, after a stage 1 that took stops or motors and answered: where
+    /// it is in the active set and its impulse in the stage so far; stages 2 and 3 keep the
+    /// bounds from there ([`Joined::friction`], [`Joined::react_bounded`]). Empty otherwise.
+    bounded: Vec<(Held, f64)>,
+    /// The held rows of the last active-set round (selection index, impulse): applied before
+    /// the solve, booked with its answer.
+    known: Vec<(usize, f64)>,
+    /// Stage 1's tolerance (stage 3's active set measures rates with it).
+    tolerance: f64,
+    /// The selected rows' reaction to the held rows' impulses in a friction round.
+    reaction: Vec<f64>,
     /// Whether a stage of this response took joint rows.
     pub(super) used: bool,
     /// Whether the current stage's inelastic solve held the joint rows (the direct solve
@@ -349,6 +362,8 @@ impl Joined {
         self.lambda.clear();
         self.used = false;
         self.held = false;
+        self.bounded.clear();
+        self.known.clear();
         if !rows.is_empty() {
             self.take_rows(rows, motions);
         }
@@ -467,6 +482,8 @@ impl Joined {
         if self.all.is_empty() {
             return;
         }
+        self.bounded.clear();
+        self.known.clear();
         self.marked.clear();
         self.marked.resize(self.cluster.len(), false);
         let mut any = false;
@@ -543,6 +560,7 @@ impl Joined {
                 direct::Answer::Accepted => {
                     let delta = std::mem::take(&mut buffers.joint_delta);
                     self.book(&delta, 1.0);
+                    self.sticking_answered(&delta);
                     buffers.joint_delta = delta;
                     return true;
                 }
@@ -667,7 +685,7 @@ impl Joined {
                 }
                 lambda.clear();
             }
-            match self.next_change(&selection, &held, &lambda, motions, tolerance) {
+            match self.next_change(&selection, &held, &lambda, |a| a.velocity(motions), tolerance) {
                 Some((i, to)) => {
                     held[i] = to;
                     motions.copy_from_slice(&saved);
@@ -682,6 +700,17 @@ impl Joined {
             }
         }
         if answered {
+            // Where each row is, and its impulse, for stages 2 and 3 (their bounds).
+            let mut free = lambda.iter();
+            self.bounded.clear();
+            for (&(_, owner, kind), &h) in selection.iter().zip(&held) {
+                let j = match h {
+                    Held::Active => free.next().copied().unwrap_or(0.0),
+                    _ => self.held_impulse(owner, kind, h).unwrap_or(0.0),
+                };
+                self.bounded.push((h, j));
+            }
+            self.tolerance = tolerance;
             // The held motors' impulses (the free rows' are booked with the stage's).
             for (&(axis, owner, kind), &h) in selection.iter().zip(&held) {
                 if let Some(j) = self.held_impulse(owner, kind, h) {
@@ -694,6 +723,7 @@ impl Joined {
                 row.normal.lambda = l;
             }
         }
+        self.known.clear();
         self.selection = selection;
         self.lambda = lambda;
         answered
@@ -708,12 +738,22 @@ impl Joined {
         held: &[Held],
         motions: &mut [SolverBody],
     ) -> bool {
+        self.take_active(selection, held);
+        for &(i, j) in &self.known {
+            selection[i].0.apply(j, motions);
+        }
+        !self.known.is_empty()
+    }
+
+    /// The active rows of `held` into [`Joined::axes`] (a free motor with its bias −speed),
+    /// and the held rows' impulses into [`Joined::known`].
+    fn take_active(&mut self, selection: &[(Axis, usize, Kind)], held: &[Held]) {
         self.axes.clear();
         self.owners.clear();
         self.sides.clear();
         self.biases.clear();
-        let mut known = false;
-        for (&(axis, owner, kind), &h) in selection.iter().zip(held) {
+        self.known.clear();
+        for (i, (&(axis, owner, kind), &h)) in selection.iter().zip(held).enumerate() {
             if h == Held::Active {
                 self.axes.push(axis);
                 self.owners.push(owner);
@@ -722,25 +762,40 @@ impl Joined {
                     Kind::Motor { speed, .. } => -speed,
                     _ => 0.0,
                 });
-            } else if let Some(j) = self.held_impulse(owner, kind, h) {
-                axis.apply(j, motions);
-                known = true;
+            } else if let Some(j) = self.held_impulse_at(i, owner, kind, h) {
+                self.known.push((i, j));
             }
         }
-        known
     }
 
-    /// A motor's bounds less what this response gave it so far.
-    fn room(&self, owner: usize, kind: Kind) -> (f64, f64) {
+    /// A row's bounds on its impulse from here and the rate it aims at: a motor's [lo, hi]
+    /// less what this response gave it so far, at its speed; a stop's [−p, ∞) at rate 0,
+    /// p its impulse earlier in this stage (stage 1: 0; stages 2 and 3: [`Joined::bounded`],
+    /// so that the stage's total stays ≥ 0); an equality row's (−∞, ∞).
+    fn limits(&self, i: usize, owner: usize, kind: Kind) -> (f64, f64, f64) {
         match kind {
-            Kind::Motor { lo, hi, .. } => (lo - self.motors[owner], hi - self.motors[owner]),
-            _ => (f64::NEG_INFINITY, f64::INFINITY),
+            Kind::Motor { lo, hi, speed } => {
+                (lo - self.motors[owner], hi - self.motors[owner], speed)
+            }
+            Kind::Stop => {
+                let p = self.bounded.get(i).map_or(0.0, |b| b.1);
+                (-p, f64::INFINITY, 0.0)
+            }
+            Kind::Equality => (f64::NEG_INFINITY, f64::INFINITY, 0.0),
         }
     }
 
-    /// The impulse of a motor held at a bound (None for any other row).
+    /// The impulse of a motor held at a bound in stage 1 (None for any other row).
     fn held_impulse(&self, owner: usize, kind: Kind, h: Held) -> Option<f64> {
-        let (lo, hi) = self.room(owner, kind);
+        match kind {
+            Kind::Motor { .. } => self.held_impulse_at(usize::MAX, owner, kind, h),
+            _ => None,
+        }
+    }
+
+    /// The impulse of row `i` (of the selection) held at a bound (None when it is not).
+    fn held_impulse_at(&self, i: usize, owner: usize, kind: Kind, h: Held) -> Option<f64> {
+        let (lo, hi, _) = self.limits(i, owner, kind);
         match h {
             Held::Low => Some(lo),
             Held::High => Some(hi),
@@ -748,17 +803,18 @@ impl Joined {
         }
     }
 
-    /// The change of [`Joined::inelastic`]'s active set after a round (`lambda` the active
-    /// rows' impulses, `motions` after them): a stop that pulls leaves or a motor past a
-    /// bound is held there (the largest first); else a stop left out that the answer turns
-    /// past its limit joins, or a held motor whose rate is on the wrong side of its speed is
-    /// freed (the most violated first). None: the answer.
+    /// The change of the active set after a round (`lambda` the active rows' impulses,
+    /// `rate` each row's J u after them): a stop that pulls past its bound leaves (stage 1:
+    /// [`Held::Out`], no impulse; stages 2 and 3: held at its bound) or a motor past a bound
+    /// is held there (the largest first); else a stop left out that the answer turns past
+    /// its limit joins, or a held motor whose rate is on the wrong side of its speed is freed
+    /// (the most violated first). None: the answer.
     fn next_change(
         &self,
         selection: &[(Axis, usize, Kind)],
         held: &[Held],
         lambda: &[f64],
-        motions: &[SolverBody],
+        rate: impl Fn(&Axis) -> f64,
         tolerance: f64,
     ) -> Option<(usize, Held)> {
         // The first of the largest (ties go to the earlier row).
@@ -768,13 +824,17 @@ impl Joined {
                 *slot = Some((i, to, size));
             }
         };
+        let later = !self.bounded.is_empty();
         let active = (0..selection.len()).filter(|&i| held[i] == Held::Active);
         for (i, &mu) in active.zip(lambda) {
             let (_, owner, kind) = selection[i];
+            let (lo, hi, _) = self.limits(i, owner, kind);
             match kind {
-                Kind::Stop if mu < 0.0 => keep(&mut leave, i, Held::Out, -mu),
+                Kind::Stop if mu < lo => {
+                    let to = if later { Held::Low } else { Held::Out };
+                    keep(&mut leave, i, to, lo - mu);
+                }
                 Kind::Motor { .. } => {
-                    let (lo, hi) = self.room(owner, kind);
                     if mu < lo {
                         keep(&mut leave, i, Held::Low, lo - mu);
                     } else if mu > hi {
@@ -788,14 +848,17 @@ impl Joined {
             return leave.map(|(i, to, _)| (i, to));
         }
         let mut join: Option<(usize, Held, f64)> = None;
-        for (i, &(axis, _, kind)) in selection.iter().enumerate() {
-            let u = axis.velocity(motions);
-            match (held[i], kind) {
-                (Held::Out, _) if u < -tolerance => keep(&mut join, i, Held::Active, -u),
-                (Held::Low, Kind::Motor { speed, .. }) if u < speed - tolerance => {
+        for (i, &(axis, owner, kind)) in selection.iter().enumerate() {
+            if held[i] == Held::Active || kind == Kind::Equality {
+                continue;
+            }
+            let u = rate(&axis);
+            let (_, _, speed) = self.limits(i, owner, kind);
+            match held[i] {
+                Held::Out | Held::Low if u < speed - tolerance => {
                     keep(&mut join, i, Held::Active, speed - u);
                 }
-                (Held::High, Kind::Motor { speed, .. }) if u > speed + tolerance => {
+                Held::High if u > speed + tolerance => {
                     keep(&mut join, i, Held::Active, u - speed);
                 }
                 _ => {}
@@ -871,7 +934,31 @@ impl Joined {
     /// At most `cap` sweeps; returns whether they converged, how many ran, the residual (the
     /// largest change of a contact velocity the last sweep made) and the work (row updates);
     /// None (nothing changed) when S gives no factor.
+    ///
+    /// With stops or motors among the rows (stage 1 took them: [`Joined::bounded`]), an
+    /// active set around the sweeps keeps their bounds ([`Joined::friction_bounded`]).
     pub(super) fn friction(
+        &mut self,
+        rows: &mut [Row],
+        directions: &[[Axis; 2]],
+        motions: &mut [SolverBody],
+        tolerance: f64,
+        cap: u64,
+    ) -> Option<(bool, u64, f64, u64)> {
+        if !self.bounded.is_empty() {
+            return self.friction_bounded(rows, directions, motions, tolerance, cap);
+        }
+        let answer = self.friction_round(rows, directions, motions, tolerance, cap)?;
+        let lambda = std::mem::take(&mut self.rhs);
+        self.book(&lambda, 1.0);
+        self.rhs = lambda;
+        Some(answer)
+    }
+
+    /// [`Joined::friction`]'s sweeps over the selected rows, with the held rows' impulses
+    /// ([`Joined::known`]) applied first through their columns (the selected rows' reaction
+    /// in them); leaves the selected rows' impulses in `rhs` (not booked).
+    fn friction_round(
         &mut self,
         rows: &mut [Row],
         directions: &[[Axis; 2]],
@@ -893,8 +980,27 @@ impl Joined {
             return None;
         }
         let mut work = super::factorisation_work(self.system.stored(), mj);
-        // The columns, three per contact.
         self.sum.start(motions.len());
+        // The held rows' impulses, and the selected rows' reaction to them.
+        let mut reaction = std::mem::take(&mut self.reaction);
+        reaction.clear();
+        if !self.known.is_empty() {
+            for &(i, j) in &self.known {
+                self.sum.add(&self.selection[i].0, j, motions);
+            }
+            self.react_dense(motions);
+            reaction.extend_from_slice(&self.rhs);
+            for &b in &self.sum.touched {
+                let (dv, dl, dw) = self.sum.dense[b];
+                let m = &mut motions[b];
+                m.v += dv;
+                m.l += dl;
+                m.omega += dw;
+                m.touched = true;
+            }
+            self.sum.clear();
+        }
+        // The columns, three per contact.
         self.entries.clear();
         self.spans.clear();
         for (row, [t1, t2]) in rows.iter().zip(directions) {
@@ -990,9 +1096,10 @@ impl Joined {
         }
         self.react_dense(motions);
         self.sum.clear();
-        let lambda = std::mem::take(&mut self.rhs);
-        self.book(&lambda, 1.0);
-        self.rhs = lambda;
+        for (y, r) in self.rhs.iter_mut().zip(&reaction) {
+            *y += r;
+        }
+        self.reaction = reaction;
         Some((converged, sweeps, largest, work))
     }
 

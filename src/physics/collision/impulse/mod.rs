@@ -1341,9 +1341,10 @@ fn bounce_stage(
     bounced: &mut [bool],
     joined: &mut joined::Joined,
 ) {
-    let joints = (!joined.axes.is_empty()).then_some(&mut *joined);
+    // With stops or motors taken in stage 1, their bounds kept (`joined::bounds`).
+    let joints = (!joined.axes.is_empty() || joined.bounded()).then_some(&mut *joined);
     if let Some(scale) = normal::restitution(rows, motions, bounce, change, bounced, joints) {
-        joined.book_stage(scale);
+        joined.book_bounce(scale);
     }
 }
 

@@ -245,7 +245,7 @@ fn bounce_rows(
         }
     }
     if let Some(joints) = joints {
-        joints.react(change, motions);
+        joints.react_bounded(change, motions);
     }
     // K(s) = a s² + b s + c along Λ_inelastic + s Λ_restitution.
     let (mut a, mut b) = (0.0, 0.0);

@@ -200,23 +200,38 @@ impl Rows {
         }
     }
 
-    /// Each row's share of its bodies' angular momentum, `Σ_axes (r×d) Λ`, added to `l`.
+    /// Each row's share of its bodies' angular momentum, `Σ_axes (r×d) Λ`, added to `l`: a
+    /// run's two bodies (never the same) held in hand over its rows, the terms added in the
+    /// rows' and axes' order.
     #[inline(always)]
     pub fn add_angular_momentum(&self, l: &mut [Vector3<f64>]) {
         for run in &self.runs {
-            for (row, t) in self.rows[run.rows.clone()]
-                .iter()
-                .zip(&self.totals[run.rows.clone()])
-            {
-                let rd_a = [row.rn[0], t.rt[0][0], t.rt[0][1]];
-                let rd_b = [row.rn[1], t.rt[1][0], t.rt[1][1]];
-                for i in 0..3 {
-                    l[run.a] += rd_a[i] * t.applied[i];
-                    if let Some(b) = run.b {
-                        l[b] += rd_b[i] * t.applied[i];
+            let range = run.rows.clone();
+            let rows = self.rows[range.clone()].iter().zip(&self.totals[range]);
+            let mut la = l[run.a];
+            match run.b {
+                Some(b) => {
+                    let mut lb = l[b];
+                    for (row, t) in rows {
+                        let rd_a = [row.rn[0], t.rt[0][0], t.rt[0][1]];
+                        let rd_b = [row.rn[1], t.rt[1][0], t.rt[1][1]];
+                        for i in 0..3 {
+                            la += rd_a[i] * t.applied[i];
+                            lb += rd_b[i] * t.applied[i];
+                        }
+                    }
+                    l[b] = lb;
+                }
+                None => {
+                    for (row, t) in rows {
+                        let rd_a = [row.rn[0], t.rt[0][0], t.rt[0][1]];
+                        for (rd, applied) in rd_a.iter().zip(&t.applied) {
+                            la += rd * *applied;
+                        }
                     }
                 }
             }
+            l[run.a] = la;
         }
     }
 }
