@@ -77,6 +77,35 @@ pub fn kinematics(
 }
 
 impl Scratch {
+    /// Forgets the bodies of the last evaluation (before [`Scratch::push_body`]).
+    #[inline]
+    pub fn clear_bodies(&mut self) {
+        self.poses.clear();
+        self.inverse.clear();
+    }
+
+    /// The next body's pose (x, R, v, ω) and inverse mass (1/m, I⁻¹_world) for an evaluation
+    /// ([`System::evaluate_bodies`]), from its position and kinematics.
+    #[inline(always)]
+    pub fn push_body(&mut self, body: &Body, x: &Vector3<f64>, k: &Kinematics) {
+        self.poses.push(Pose {
+            x: *x,
+            r: k.rotation,
+            v: k.velocity,
+            w: k.angular_velocity,
+        });
+        self.inverse.push(Inverse {
+            mass: body.inv_mass,
+            inertia: k.inv_inertia_world,
+        });
+    }
+
+    /// Each body's pose at the last evaluation (its v and ω: the rates' velocities).
+    #[inline]
+    pub fn poses(&self) -> &[Pose] {
+        &self.poses
+    }
+
     /// The joints' solver, holding the factor of J W Jᵀ of the last evaluation (when banded:
     /// `joints::again`).
     pub fn solver_mut(&mut self) -> &mut Solver {
@@ -106,40 +135,38 @@ impl System<'_> {
         angular_momenta: &[Vector3<f64>],
         scratch: &mut Scratch,
     ) {
-        self.effect_loads(positions, kinematics, scratch);
+        scratch.clear_bodies();
+        for ((body, x), k) in self.bodies.iter().zip(positions).zip(kinematics) {
+            scratch.push_body(body, x, k);
+        }
+        self.evaluate_bodies(angular_momenta, scratch);
+    }
+
+    /// [`System::evaluate`] at the bodies' poses and inverse masses already in `scratch`
+    /// ([`Scratch::push_body`], every body in order): a stage's evaluation builds them from
+    /// its kinematics as it makes them, with no list of kinematics copied.
+    pub fn evaluate_bodies(&self, angular_momenta: &[Vector3<f64>], scratch: &mut Scratch) {
+        self.effect_loads(scratch);
         self.add_springs(scratch);
         scratch.joint_loads.clear();
         scratch
             .joint_loads
             .resize(self.links.joints.len(), Loads::default());
         if !self.links.joints.is_empty() {
-            self.add_joint_reactions(kinematics, angular_momenta, scratch);
+            self.add_joint_reactions(angular_momenta, scratch);
         }
     }
 
-    /// Each body's pose, and its F and τ of the declared effects (and the integrator's
-    /// forces phase: `euler-seed`'s vertex torque).
-    fn effect_loads(
-        &self,
-        positions: &[Vector3<f64>],
-        kinematics: &[Kinematics],
-        scratch: &mut Scratch,
-    ) {
-        let n = self.bodies.len();
-        scratch.poses.clear();
-        scratch.poses.extend((0..n).map(|i| Pose {
-            x: positions[i],
-            r: kinematics[i].rotation,
-            v: kinematics[i].velocity,
-            w: kinematics[i].angular_velocity,
-        }));
+    /// Each body's F and τ of the declared effects (and the integrator's forces phase:
+    /// `euler-seed`'s vertex torque), at its pose.
+    fn effect_loads(&self, scratch: &mut Scratch) {
         scratch.loads.clear();
-        scratch.loads.extend(
-            self.bodies
-                .iter()
-                .zip(kinematics)
-                .map(|(b, k)| self.integrator.loads(b, self.effects, k)),
-        );
+        scratch
+            .loads
+            .extend(self.bodies.iter().zip(&scratch.poses).map(|(b, p)| {
+                self.integrator
+                    .loads_moving(b, self.effects, &p.r, &p.v, &p.w)
+            }));
     }
 
     /// Springs: equal and opposite forces at the two ends; their damping power.
@@ -163,40 +190,25 @@ impl System<'_> {
     /// Joints: (J W Jᵀ) λ = −(J a_free + J̇ u) − correction; each row's J_iᵀ λ added to its
     /// bodies' loads and to its joint's reaction on A. Compiled twice, plain and with AVX2
     /// (no fused multiply–add: the same bits; `physics::simd`).
-    fn add_joint_reactions(
-        &self,
-        kinematics: &[Kinematics],
-        angular_momenta: &[Vector3<f64>],
-        scratch: &mut Scratch,
-    ) {
+    fn add_joint_reactions(&self, angular_momenta: &[Vector3<f64>], scratch: &mut Scratch) {
         #[cfg(target_arch = "x86_64")]
         if super::simd::avx2() {
             // SAFETY: the CPU has AVX2.
-            return unsafe { self.joint_reactions_avx2(kinematics, angular_momenta, scratch) };
+            return unsafe { self.joint_reactions_avx2(angular_momenta, scratch) };
         }
-        self.joint_reactions(kinematics, angular_momenta, scratch);
+        self.joint_reactions(angular_momenta, scratch);
     }
 
     /// [`System::joint_reactions`] compiled with AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn joint_reactions_avx2(
-        &self,
-        kinematics: &[Kinematics],
-        angular_momenta: &[Vector3<f64>],
-        scratch: &mut Scratch,
-    ) {
-        self.joint_reactions(kinematics, angular_momenta, scratch);
+    fn joint_reactions_avx2(&self, angular_momenta: &[Vector3<f64>], scratch: &mut Scratch) {
+        self.joint_reactions(angular_momenta, scratch);
     }
 
     /// [`System::add_joint_reactions`] for any CPU.
     #[inline(always)]
-    fn joint_reactions(
-        &self,
-        kinematics: &[Kinematics],
-        angular_momenta: &[Vector3<f64>],
-        scratch: &mut Scratch,
-    ) {
+    fn joint_reactions(&self, angular_momenta: &[Vector3<f64>], scratch: &mut Scratch) {
         let n = self.bodies.len();
         let chain = self.links.correction != Correction::Baumgarte
             && scratch
@@ -210,16 +222,10 @@ impl System<'_> {
                 rows_of(joint, index, a, b, &mut scratch.rows);
             }
         }
-        scratch.inverse.clear();
-        scratch
-            .inverse
-            .extend(self.bodies.iter().zip(kinematics).map(|(b, k)| Inverse {
-                mass: b.inv_mass,
-                inertia: k.inv_inertia_world,
-            }));
         if chain {
             // A hinge tree rooted in the world: through its joint coordinates.
-            let gyroscopic = |i: usize| kinematics[i].angular_velocity.cross(&angular_momenta[i]);
+            let poses = &scratch.poses;
+            let gyroscopic = |i: usize| poses[i].w.cross(&angular_momenta[i]);
             let (loads, reactions) = (&mut scratch.loads, &mut scratch.joint_loads);
             let solver = &mut scratch.solver;
             if (scratch.chain).react(&scratch.inverse, solver, gyroscopic, loads, reactions) {
@@ -229,12 +235,11 @@ impl System<'_> {
         // Free accelerations (v̇, ω̇) = (F/m, I⁻¹(τ − ω × L)), once per body.
         scratch.free.clear();
         scratch.free.extend((0..n).map(|i| {
-            let k = &kinematics[i];
             let loads = &scratch.loads[i];
             (
                 loads.force * self.bodies[i].inv_mass,
-                k.inv_inertia_world
-                    * (loads.torque - k.angular_velocity.cross(&angular_momenta[i])),
+                scratch.inverse[i].inertia
+                    * (loads.torque - scratch.poses[i].w.cross(&angular_momenta[i])),
             )
         }));
         if chain {

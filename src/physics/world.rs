@@ -239,6 +239,10 @@ pub struct World {
     system_scratch: SystemScratch,
     system_buffers: SystemBuffers,
     projection_buffers: ProjectionBuffers,
+    /// The projection's impulse on each joint's body A, and each body's potential energy
+    /// before it (the energy ledger's correction), reused step to step.
+    projection_impulses: Vec<Loads>,
+    projection_potential: Vec<f64>,
     /// The joints held while the contacts act (`joints::contact`).
     contact_joint_buffers: ContactBuffers,
     /// `symplectic-euler` with projection, or a joint with a limit or a motor: the states at
@@ -319,6 +323,8 @@ impl World {
             system_scratch: SystemScratch::default(),
             system_buffers: SystemBuffers::default(),
             projection_buffers: ProjectionBuffers::default(),
+            projection_impulses: Vec::new(),
+            projection_potential: Vec::new(),
             contact_joint_buffers: ContactBuffers::default(),
             step_start: Vec::new(),
             drive_buffers: DriveBuffers::default(),
@@ -615,36 +621,55 @@ impl World {
         now.joint_loads.clone_from(&self.system_buffers.joint_loads);
         now.ledger.drag_work += self.system_buffers.damping_work;
         if self.links.correction == Correction::Projection && !self.links.joints.is_empty() {
-            let before = total_energy(&self.bodies, &self.effects, &now.states).total
-                + self.links.potential(&now.states);
-            let mut impulses = Vec::new();
-            if shaken {
+            let (bodies, effects) = (&self.bodies, &self.effects);
+            let impulses = &mut self.projection_impulses;
+            let (before, after) = if shaken {
+                let before = total_energy(bodies, effects, &now.states).total
+                    + self.links.potential(&now.states);
                 shake(
                     &self.links,
-                    &self.bodies,
+                    bodies,
                     &mut now.states,
                     &self.step_start,
                     self.dt,
-                    &mut impulses,
+                    impulses,
                     &mut self.projection_buffers,
                 );
+                let after = total_energy(bodies, effects, &now.states).total
+                    + self.links.potential(&now.states);
+                (before, after)
             } else {
+                // The potential energies before; the kinetic ones from the projection's own
+                // I⁻¹_world before and after: the same sums as `total_energy`'s, bit for bit.
+                let potential = &mut self.projection_potential;
+                potential.clear();
+                potential.extend(
+                    (bodies.iter().zip(&now.states))
+                        .map(|(b, s)| effects.potential_energy(b, &s.position)),
+                );
+                let links_before = self.links.potential(&now.states);
                 // The step's last evaluation's factor, a nearby K for the projection.
                 project(
                     &self.links,
-                    &self.bodies,
+                    bodies,
                     &mut now.states,
-                    &mut impulses,
+                    impulses,
                     &mut self.projection_buffers,
                     self.system_buffers.last_factor(),
                 );
-            }
-            for (load, impulse) in now.joint_loads.iter_mut().zip(&impulses) {
+                let projected = &self.projection_buffers;
+                let kinetic = projected.kinetic_before().iter().copied();
+                let before = energy_sum(kinetic, potential.iter().copied()) + links_before;
+                let kinetic = projected.kinetic_after(bodies, &now.states);
+                let potential = (bodies.iter().zip(&now.states))
+                    .map(|(b, s)| effects.potential_energy(b, &s.position));
+                let after = energy_sum(kinetic, potential) + self.links.potential(&now.states);
+                (before, after)
+            };
+            for (load, impulse) in now.joint_loads.iter_mut().zip(impulses.iter()) {
                 load.force += impulse.force / self.dt;
                 load.torque += impulse.torque / self.dt;
             }
-            let after = total_energy(&self.bodies, &self.effects, &now.states).total
-                + self.links.potential(&now.states);
             now.ledger.joint_correction += after - before;
         }
         // Fixed bodies are the world: no potential energy booked.
@@ -1693,6 +1718,12 @@ static REST: State = State {
     linear_momentum: Vector3::new(0.0, 0.0, 0.0),
     angular_momentum: Vector3::new(0.0, 0.0, 0.0),
 };
+
+/// Σ over bodies of K + V from each body's kinetic and potential energy: the same sum as
+/// [`total_energy`]'s total, bit for bit.
+fn energy_sum(kinetic: impl Iterator<Item = f64>, potential: impl Iterator<Item = f64>) -> f64 {
+    kinetic.zip(potential).fold(0.0, |e, (k, v)| e + (k + v))
+}
 
 /// Σ over bodies of their energies.
 fn total_energy(bodies: &[Body], effects: &Effects, states: &[State]) -> Energy {

@@ -16,7 +16,7 @@ use super::derive::Kinematics;
 use super::effects::{Effects, Loads};
 use super::state::{Orientation, State};
 use super::system::System;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use system::{Buffers, Start};
 
 /// Everything the front ends say about an integrator, in one place: the scene-file name, the
@@ -161,10 +161,25 @@ impl Integrator {
     /// The *forces* phase as this integrator's loop computes it: F and τ of the declared effects
     /// and, for `euler-seed`, the report's per-vertex torque sum `Σᵢ (R r₀ᵢ) × F` added to τ
     /// (the report computed it in its forces phase, `CalculDeriveeStateX`).
+    #[inline]
     pub fn loads(self, body: &Body, effects: &Effects, kinematics: &Kinematics) -> Loads {
-        let mut loads = effects.loads(body, kinematics);
+        let k = kinematics;
+        self.loads_moving(body, effects, &k.rotation, &k.velocity, &k.angular_velocity)
+    }
+
+    /// [`Integrator::loads`] of a body turned by R moving at v and ω.
+    #[inline]
+    pub fn loads_moving(
+        self,
+        body: &Body,
+        effects: &Effects,
+        rotation: &Matrix3<f64>,
+        velocity: &Vector3<f64>,
+        angular_velocity: &Vector3<f64>,
+    ) -> Loads {
+        let mut loads = effects.loads_at(body, velocity, angular_velocity);
         if self == Integrator::EulerSeed {
-            loads.torque += euler_seed::vertex_torque(body, &kinematics.rotation, &loads.force);
+            loads.torque += euler_seed::vertex_torque(body, rotation, &loads.force);
         }
         loads
     }

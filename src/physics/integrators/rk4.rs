@@ -54,16 +54,14 @@ impl Method for Rk4 {
         // k₁ + 2k₂ + 2k₃ + k₄, summed `k₁ + (k₂ + k₃)·2 + k₄` for one body and
         // `((k₁ + 2k₂) + 2k₃) + k₄` linked: the same to round-off, each the order its numbers
         // (the lessons', the joint benches') were made with.
-        let sum = if B::ONE_BODY {
+        let end = if B::ONE_BODY {
             let middle = block.plus(&k2, &k3, 1.0);
             let first = block.plus(&k1, &middle, 2.0);
-            block.plus(&first, &k4, 1.0)
+            let sum = block.plus(&first, &k4, 1.0);
+            block.plus(&y, &sum, dt / 6.0)
         } else {
-            let first = block.plus(&k1, &k2, 2.0);
-            let second = block.plus(&first, &k3, 2.0);
-            block.plus(&second, &k4, 1.0)
+            block.plus_sum(&y, [&k1, &k2, &k3, &k4], dt / 6.0)
         };
-        let end = block.plus(&y, &sum, dt / 6.0);
         block.finish(&end, dt);
     }
 }

@@ -64,8 +64,6 @@ pub struct Start<'a> {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Buffers {
     eval: Scratch,
-    kinematics: Vec<Kinematics>,
-    positions: Vec<Vector3<f64>>,
     momenta: Vec<Vector3<f64>>,
     y: Vec<Flat>,
     stage: Vec<Flat>,
@@ -234,7 +232,17 @@ fn rates_at(y: &Flat, k: &Kinematics, f: &Loads) -> Flat {
 /// whole system's evaluation, whose reactions [`Buffers::book_evaluation`] books.
 fn stage_rates(system: &System, y: &[Flat], b: &mut Buffers, out: &mut Vec<Flat>) {
     evaluate_flat(system, y, b);
-    rates(y, &b.kinematics, &b.eval.loads, out);
+    out.clear();
+    out.extend(
+        (y.iter().zip(b.eval.poses()))
+            .zip(&b.eval.loads)
+            .map(|((s, pose), f)| Flat {
+                x: pose.v,
+                q: quaternion_rate(&pose.w, &s.q),
+                p: f.force,
+                l: f.torque,
+            }),
+    );
 }
 
 /// f of one body alone at a flat state `y` (q not normalised: R is that of q/|q|): the
@@ -256,16 +264,14 @@ fn body_rates(body: &Body, effects: &Effects, y: &Flat) -> Flat {
 
 /// Evaluates the coupled system's forces at flat states (q normalised on the way).
 fn evaluate_flat(system: &System, y: &[Flat], b: &mut Buffers) {
-    b.kinematics.clear();
-    b.positions.clear();
+    b.eval.clear_bodies();
     b.momenta.clear();
     for (body, s) in system.bodies.iter().zip(y) {
-        b.kinematics
-            .push(kinematics(body, rotation_of(&s.q), &s.p, &s.l));
-        b.positions.push(s.x);
+        let k = kinematics(body, rotation_of(&s.q), &s.p, &s.l);
+        b.eval.push_body(body, &s.x, &k);
         b.momenta.push(s.l);
     }
-    system.evaluate(&b.positions, &b.kinematics, &b.momenta, &mut b.eval);
+    system.evaluate_bodies(&b.momenta, &mut b.eval);
     b.evaluated = true;
 }
 
@@ -323,6 +329,14 @@ pub(super) trait Block {
     fn rates(&mut self, y: &Self::Y, w: f64, d: f64) -> Self::Y;
     /// `y + h k`.
     fn plus(&mut self, y: &Self::Y, k: &Self::Y, h: f64) -> Self::Y;
+    /// `y + h (((k₁ + 2k₂) + 2k₃) + k₄)`: rk4's end in the linked order, each sum as
+    /// [`Block::plus`] makes it (one pass over the block where it can: the same bits).
+    fn plus_sum(&mut self, y: &Self::Y, [k1, k2, k3, k4]: [&Self::Y; 4], h: f64) -> Self::Y {
+        let first = self.plus(k1, k2, 2.0);
+        let second = self.plus(&first, k3, 2.0);
+        let sum = self.plus(&second, k4, 1.0);
+        self.plus(y, &sum, h)
+    }
     /// Writes the end of the step `y` back (q normalised); the booked work becomes the step's.
     fn finish(&mut self, y: &Self::Y, dt: f64);
     /// The kick `(P, L) ← K(h)` of a composition (x and R held); `first`: at the start of the
@@ -508,6 +522,16 @@ impl Block for Linked<'_, '_> {
                 .zip(&slots[k.0])
                 .map(|(y, k)| y.plus(k, h)),
         );
+        self.put(out, v)
+    }
+
+    fn plus_sum(&mut self, y: &Slot, [k1, k2, k3, k4]: [&Slot; 4], h: f64) -> Slot {
+        let (out, mut v) = self.take();
+        let s = &self.b.slots;
+        let ks = (s[k1.0].iter().zip(&s[k2.0])).zip(s[k3.0].iter().zip(&s[k4.0]));
+        v.extend(s[y.0].iter().zip(ks).map(|(y, ((k1, k2), (k3, k4)))| {
+            y.plus(&k1.plus(k2, 2.0).plus(k3, 2.0).plus(k4, 1.0), h)
+        }));
         self.put(out, v)
     }
 

@@ -28,6 +28,7 @@ use super::{turn, Links};
 use crate::physics::body::Body;
 use crate::physics::derive::derive;
 use crate::physics::effects::Loads;
+use crate::physics::energy::kinetic_energy_with;
 use crate::physics::state::{Orientation, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
@@ -51,6 +52,45 @@ pub struct Buffers {
     /// `shake`: the rows and inverse masses at the step's start.
     directions: Vec<Row>,
     start_inverse: Vec<Inverse>,
+    /// Each body's kinetic energy at the states [`project`] started from
+    /// ([`Buffers::kinetic_before`]).
+    kinetic: Vec<f64>,
+}
+
+impl Buffers {
+    /// Each body's kinetic energy `½ M v·v + ½ ω·L` at the states the last [`project`] started
+    /// from, with its first build's I⁻¹_world: `energy::kinetic_energy`'s arithmetic on the
+    /// same I⁻¹_world (both `derive`'s), so the same bits, without deriving each body again.
+    pub fn kinetic_before(&self) -> &[f64] {
+        &self.kinetic
+    }
+
+    /// Each body's kinetic energy at `states`, which must be the states the last [`project`]
+    /// left: its last build was at their positions (the velocity passes change only the
+    /// momenta), so its I⁻¹_world is theirs; the same bits as `energy::kinetic_energy`.
+    pub fn kinetic_after<'a>(
+        &'a self,
+        bodies: &'a [Body],
+        states: &'a [State],
+    ) -> impl Iterator<Item = f64> + 'a {
+        kinetic(bodies, states, &self.inverse)
+    }
+}
+
+/// Each body's kinetic energy at `states` from its I⁻¹_world in `inverse`.
+#[inline(always)]
+fn kinetic<'a>(
+    bodies: &'a [Body],
+    states: &'a [State],
+    inverse: &'a [Inverse],
+) -> impl Iterator<Item = f64> + 'a {
+    bodies
+        .iter()
+        .zip(states)
+        .zip(inverse)
+        .map(|((body, s), inv)| {
+            kinetic_energy_with(body, &inv.inertia, &s.linear_momentum, &s.angular_momentum)
+        })
 }
 
 /// The factor the velocity pass solves with first.
@@ -164,7 +204,8 @@ fn rows_into(links: &Links, poses: &[Pose], rows: &mut Vec<Row>) {
 
 /// Projects `states` onto the joints' constraints; `impulses` receives each joint's velocity
 /// impulse on its body A (force: N·s, torque: N·m·s). `nearby`: the solver of the step's last
-/// evaluation of f (module doc), or None.
+/// evaluation of f (module doc), or None. Keeps each body's kinetic energy before and after
+/// for the energy ledger ([`Buffers::kinetic_before`], [`Buffers::kinetic_after`]).
 pub fn project(
     links: &Links,
     bodies: &[Body],
@@ -292,6 +333,10 @@ fn positions(
     let mut held = Held::Nearby;
     for pass in 0..=10 {
         build(links, bodies, states, b);
+        if pass == 0 {
+            b.kinetic.clear();
+            b.kinetic.extend(kinetic(bodies, states, &b.inverse));
+        }
         let worst = if b.chained {
             b.chain.errors(&mut b.rhs)
         } else {

@@ -193,8 +193,26 @@ pub(super) struct Bounce {
 /// changes to each body: Δv, ΔL, Δω); `bounced` is set for each body a restitution impulse
 /// acted on. With `joints` ([`super::joined`]) the joints' reaction to the impulses joins
 /// the change before the clamp (their impulses left in `joints.lambda`, unscaled). Returns
-/// the clamp's scale when something bounced.
+/// the clamp's scale when something bounced. Inlined: most steps (a body at rest) bounce
+/// nothing and return at the test.
+#[inline]
 pub(super) fn restitution(
+    rows: &mut [Row],
+    motions: &mut [SolverBody],
+    bounce: Bounce,
+    change: &mut Vec<(Vector3<f64>, Vector3<f64>, Vector3<f64>)>,
+    bounced: &mut [bool],
+    joints: Option<&mut Joined>,
+) -> Option<f64> {
+    let (e, speed) = (bounce.restitution, bounce.bounce_speed);
+    if !(e > 0.0 && rows.iter().any(|r| bounces(r, speed))) {
+        return None;
+    }
+    bounce_rows(rows, motions, bounce, change, bounced, joints)
+}
+
+/// [`restitution`] once some row bounces.
+fn bounce_rows(
     rows: &mut [Row],
     motions: &mut [SolverBody],
     bounce: Bounce,
@@ -207,9 +225,6 @@ pub(super) fn restitution(
         bounce_speed,
         kinetic_allowed,
     } = bounce;
-    if !(restitution > 0.0 && rows.iter().any(|r| bounces(r, bounce_speed))) {
-        return None;
-    }
     // The restitution impulses' changes to each body: Δv, ΔL, Δω.
     change.clear();
     change.resize(
