@@ -25,17 +25,29 @@ fn cart_and_ball(max: f64, ball: State, e: f64, mu: f64) -> World {
             initial: ball,
         },
     ];
+    let rail = (JointKind::Slider, Vector3::x(), Motor { speed: 0.0, max });
+    motored_world(bodies, rail, e, mu)
+}
+
+/// Two bodies, the first on a joint of `kind` at the origin along `axis` (to the world) with
+/// `motor`; no gravity, restitution `e`, friction `mu`, `rk4` at [`DT`], joints projected.
+fn motored_world(
+    bodies: Vec<NamedBody>,
+    (kind, axis, motor): (JointKind, Vector3<f64>, Motor),
+    e: f64,
+    mu: f64,
+) -> World {
     let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let mut rail = Joint::at_point(
-        "rail".into(),
-        JointKind::Slider,
+    let mut joint = Joint::at_point(
+        kind.name().into(),
+        kind,
         0,
         None,
         Vector3::zeros(),
-        Vector3::x(),
+        axis,
         &states,
     );
-    rail.motor = Some(Motor { speed: 0.0, max });
+    joint.motor = Some(motor);
     let contact = ContactModel {
         response: Response::Impulse,
         restitution: e,
@@ -51,7 +63,7 @@ fn cart_and_ball(max: f64, ball: State, e: f64, mu: f64) -> World {
         DT,
     )
     .with_links(Links {
-        joints: vec![rail],
+        joints: vec![joint],
         springs: Vec::new(),
         correction: Correction::Projection,
     })
@@ -208,36 +220,8 @@ fn paddle_and_ball(omega: f64, max: f64, e: f64) -> World {
             initial: ball,
         },
     ];
-    let states: Vec<State> = bodies.iter().map(|b| b.initial).collect();
-    let mut hinge = Joint::at_point(
-        "hinge".into(),
-        JointKind::Hinge,
-        0,
-        None,
-        Vector3::zeros(),
-        Vector3::z(),
-        &states,
-    );
-    hinge.motor = Some(Motor { speed: omega, max });
-    let contact = ContactModel {
-        response: Response::Impulse,
-        restitution: e,
-        friction: 0.0,
-        impacts: tumble::physics::Impacts::default(),
-    };
-    World::with_bodies(
-        bodies,
-        Effects::new(Vec::new()),
-        Vec::new(),
-        Some(contact),
-        Integrator::Rk4,
-        DT,
-    )
-    .with_links(Links {
-        joints: vec![hinge],
-        springs: Vec::new(),
-        correction: Correction::Projection,
-    })
+    let hinge = (JointKind::Hinge, Vector3::z(), Motor { speed: omega, max });
+    motored_world(bodies, hinge, e, 0.0)
 }
 
 /// The paddle's moment of inertia about its centre (z): M (a² + b²)/12.
