@@ -189,7 +189,16 @@ impl Chain {
     /// order (module doc); false (nothing built, no reduced factor held) otherwise.
     #[inline(always)]
     pub fn build(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
-        self.build_with::<true>(joints, poses)
+        self.build_with::<true, true>(joints, poses)
+    }
+
+    /// [`Chain::build`] without the rows' J̇u (each link's `centripetal` and `bias` left at
+    /// zero): the rows the projection solves with, which read J and C only (the anchors'
+    /// ω × (ω × r) and the hinges' (ω_A − ω_B)·ġ are not computed). Its J and C are
+    /// [`Chain::build`]'s to the last bit (the same expressions).
+    #[inline(always)]
+    pub fn build_for_projection(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
+        self.build_with::<true, false>(joints, poses)
     }
 
     /// [`Chain::build`] without the rows' C (each link's `separation` and `c` left at zero):
@@ -197,12 +206,17 @@ impl Chain {
     /// u·t are not computed).
     #[inline(always)]
     pub fn build_for_forces(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
-        self.build_with::<false>(joints, poses)
+        self.build_with::<false, true>(joints, poses)
     }
 
-    /// [`Chain::build`], C computed when `ERRORS`.
+    /// [`Chain::build`], C computed when `ERRORS`, J̇u when `RATES` (what is not computed is
+    /// left at zero, and the optimiser drops its arithmetic).
     #[inline(always)]
-    fn build_with<const ERRORS: bool>(&mut self, joints: &[Joint], poses: &[Pose]) -> bool {
+    fn build_with<const ERRORS: bool, const RATES: bool>(
+        &mut self,
+        joints: &[Joint],
+        poses: &[Pose],
+    ) -> bool {
         if !self.is_chain_cached(joints, poses.len()) {
             self.reduced.drop_factor();
             return false;
@@ -218,7 +232,11 @@ impl Chain {
                 b: joint.b,
                 ra: at.ra,
                 rb: at.rb,
-                centripetal: at.centripetal,
+                centripetal: if RATES {
+                    at.centripetal
+                } else {
+                    Vector3::zeros()
+                },
                 angular: 0,
                 g: [Vector3::zeros(); 2],
                 bias: [0.0; 2],
@@ -236,7 +254,7 @@ impl Chain {
                 for (i, (g, c, bias)) in axes.into_iter().enumerate() {
                     link.g[i] = g;
                     link.c[i] = if ERRORS { c } else { 0.0 };
-                    link.bias[i] = bias;
+                    link.bias[i] = if RATES { bias } else { 0.0 };
                 }
             }
             self.links.push(link);

@@ -121,7 +121,7 @@ fn build_rows(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers)
 #[inline(always)]
 fn build(links: &Links, bodies: &[Body], states: &[State], b: &mut Buffers) {
     poses_of(bodies, states, (&mut b.poses, &mut b.inverse));
-    b.chained = b.chain.build(&links.joints, &b.poses);
+    b.chained = b.chain.build_for_projection(&links.joints, &b.poses);
     b.rows.clear();
     if !b.chained {
         rows_into(links, &b.poses, &mut b.rows);
