@@ -277,10 +277,18 @@ impl Reduced {
             let axis = hinge.axis;
             columns.push((hinge.motion - axis.cross(&y), axis, y));
             let my = y * m;
+            // I + m (|y|² 1 − y yᵀ), as (I + |y|² 1) − (m y) yᵀ: the diagonal's additions only
+            // (the off-diagonal's I_ij + 0 are I_ij).
+            let mut about_o = inertia;
+            let square = my.dot(&y);
+            for i in 0..3 {
+                about_o[(i, i)] += square;
+            }
+            about_o -= my * y.transpose();
             composite.push(Composite {
                 mass: m,
                 moment: my,
-                inertia: inertia + Matrix3::from_diagonal_element(my.dot(&y)) - my * y.transpose(),
+                inertia: about_o,
             });
         }
         for k in (0..n).rev() {
@@ -565,16 +573,20 @@ fn shares(hinges: &[Hinge], force: &mut [Pair], reactions: &mut [Loads]) {
 /// and σ q onto its parent's slot of `force`.
 #[inline(always)]
 fn share(hinge: &Hinge, (w_lin, w_ang): Pair, force: &mut [Pair], reaction: &mut Loads) {
-    let f = w_lin * hinge.sign;
-    let t = w_ang * hinge.sign - hinge.rc.cross(&f);
-    let q = (f, hinge.rp.cross(&f) + t);
+    // σ = ±1: σ x is x or −x, and a + σ x is a + x or a − x, exactly.
     let parent = &mut force[hinge.up];
-    parent.0 += q.0 * hinge.sign;
-    parent.1 += q.1 * hinge.sign;
     if hinge.sign > 0.0 {
+        let t = w_ang - hinge.rc.cross(&w_lin);
+        parent.0 += w_lin;
+        parent.1 += hinge.rp.cross(&w_lin) + t;
         reaction.force += w_lin;
         reaction.torque += w_ang;
     } else {
+        let f = -w_lin;
+        let t = -w_ang - hinge.rc.cross(&f);
+        let q = (f, hinge.rp.cross(&f) + t);
+        parent.0 -= q.0;
+        parent.1 -= q.1;
         reaction.force += q.0;
         reaction.torque += q.1;
     }
