@@ -68,5 +68,17 @@ pub fn kinetic_energy_with(
 ) -> f64 {
     let velocity = linear_momentum * body.inv_mass;
     let angular_velocity = inv_inertia_world * angular_momentum;
+    kinetic_energy_at(body, &velocity, &angular_velocity, angular_momentum)
+}
+
+/// `½ M v·v + ½ ω·L` from v and ω already known (`v = P/M`, `ω = I⁻¹_world L`, computed as
+/// [`kinetic_energy_with`] computes them: then the same bits).
+#[inline]
+pub fn kinetic_energy_at(
+    body: &Body,
+    velocity: &Vector3<f64>,
+    angular_velocity: &Vector3<f64>,
+    angular_momentum: &Vector3<f64>,
+) -> f64 {
     0.5 * body.mass * velocity.norm_squared() + 0.5 * angular_velocity.dot(angular_momentum)
 }

@@ -28,7 +28,7 @@ use super::{turn, Links};
 use crate::physics::body::Body;
 use crate::physics::derive::derive;
 use crate::physics::effects::Loads;
-use crate::physics::energy::kinetic_energy_with;
+use crate::physics::energy::{kinetic_energy_at, kinetic_energy_with};
 use crate::physics::state::{Orientation, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
@@ -335,7 +335,12 @@ fn positions(
         build(links, bodies, states, b);
         if pass == 0 {
             b.kinetic.clear();
-            b.kinetic.extend(kinetic(bodies, states, &b.inverse));
+            // The build's poses hold v = P/m and ω = I⁻¹_world L at `states`, as
+            // `kinetic_energy_with` would compute them.
+            let at = bodies.iter().zip(states.iter()).zip(&b.poses);
+            b.kinetic.extend(
+                at.map(|((body, s), p)| kinetic_energy_at(body, &p.v, &p.w, &s.angular_momentum)),
+            );
         }
         let worst = if b.chained {
             b.chain.errors(&mut b.rhs)
