@@ -37,6 +37,18 @@ pub fn derive(body: &Body, state: &State) -> Kinematics {
 #[inline(always)]
 pub fn derive_with_rotation(body: &Body, state: &State, rotation: Matrix3<f64>) -> Kinematics {
     let inv_inertia_world = congruence(&rotation, &body.inv_inertia_body);
+    derive_with_inverse(body, state, rotation, inv_inertia_world)
+}
+
+/// The derive phase when R and I⁻¹_world = R I⁻¹_body Rᵀ are already known (an earlier
+/// derive's at the same orientation: then the same numbers, to the bit).
+#[inline(always)]
+pub fn derive_with_inverse(
+    body: &Body,
+    state: &State,
+    rotation: Matrix3<f64>,
+    inv_inertia_world: Matrix3<f64>,
+) -> Kinematics {
     Kinematics {
         rotation,
         inv_inertia_world,

@@ -27,7 +27,7 @@ use super::cloth_coupling::{
 use super::collision::impulse::Scratch;
 use super::collision::StepContext;
 use super::collision::{collide, CollideInput, Contact, ContactModel, EnergyChange, Obstacle};
-use super::derive::{derive, Kinematics};
+use super::derive::{derive, derive_with_inverse, Kinematics};
 use super::divergence::{not_finite, Divergence, EnergyGuard};
 use super::effects::{Effect, Effects, Loads};
 use super::energy::{energy, Energy};
@@ -489,8 +489,14 @@ impl World {
             self.kick_hand(&hand);
         }
         let now = &mut self.now;
-        for ((k, body), state) in now.kinematics.iter_mut().zip(&self.bodies).zip(&now.states) {
-            *k = derive(body, state);
+        let kept = &self.projection_buffers;
+        let each = now.kinematics.iter_mut().zip(&self.bodies).zip(&now.states);
+        for (i, ((k, body), state)) in each.enumerate() {
+            // After a projection, R and I⁻¹_world as its last build derived them.
+            *k = match kept.derived(i, &state.orientation) {
+                Some((r, inverse)) => derive_with_inverse(body, state, *r, *inverse),
+                None => derive(body, state),
+            };
         }
     }
 

@@ -30,7 +30,7 @@ use crate::physics::derive::derive;
 use crate::physics::effects::Loads;
 use crate::physics::energy::{kinetic_energy_at, kinetic_energy_with};
 use crate::physics::state::{Orientation, State};
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 
 /// Reused buffers.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -55,9 +55,38 @@ pub struct Buffers {
     /// Each body's kinetic energy at the states [`project`] started from
     /// ([`Buffers::kinetic_before`]).
     kinetic: Vec<f64>,
+    /// Each body's orientation at the last build of the last [`project`] (empty until one
+    /// has finished): `poses`' R and `inverse`'s I⁻¹_world are derive's at them
+    /// ([`Buffers::derived`]).
+    orientations: Vec<Orientation>,
 }
 
 impl Buffers {
+    /// Body `i`'s R and I⁻¹_world from the last projection's last build, if its orientation
+    /// is still `orientation` to the bit: derive's R and I⁻¹_world are functions of the
+    /// orientation alone (and of the body, which a world keeps), so they are the numbers
+    /// `derive` would compute, and the next step's derive phase takes them
+    /// (`World::derive_phase`: a step after a projection derives no rotation again).
+    #[inline(always)]
+    pub fn derived(
+        &self,
+        i: usize,
+        orientation: &Orientation,
+    ) -> Option<(&Matrix3<f64>, &Matrix3<f64>)> {
+        let kept = self.orientations.get(i)?;
+        let same = match (kept, orientation) {
+            (Orientation::Quaternion(a), Orientation::Quaternion(b)) => {
+                let (a, b) = (a.coords, b.coords);
+                (0..4).all(|k| a[k].to_bits() == b[k].to_bits())
+            }
+            (Orientation::Matrix(a), Orientation::Matrix(b)) => {
+                (0..9).all(|k| a[k].to_bits() == b[k].to_bits())
+            }
+            _ => false,
+        };
+        same.then(|| (&self.poses[i].r, &self.inverse[i].inertia))
+    }
+
     /// Each body's kinetic energy `½ M v·v + ½ ω·L` at the states the last [`project`] started
     /// from, with its first build's I⁻¹_world: `energy::kinetic_energy`'s arithmetic on the
     /// same I⁻¹_world (both `derive`'s), so the same bits, without deriving each body again.
@@ -248,10 +277,13 @@ fn project_plain(
 ) {
     impulses.clear();
     impulses.resize(links.joints.len(), Loads::default());
+    b.orientations.clear();
     if links.joints.is_empty() {
         return;
     }
     let held = positions(links, bodies, states, b, nearby.as_mut());
+    // The velocity passes leave the positions as the last build found them.
+    b.orientations.extend(states.iter().map(|s| s.orientation));
     velocities(states, impulses, held, nearby, b);
 }
 
@@ -275,6 +307,7 @@ pub fn shake(
 ) {
     impulses.clear();
     impulses.resize(links.joints.len(), Loads::default());
+    b.orientations.clear();
     if links.joints.is_empty() {
         return;
     }
