@@ -112,8 +112,16 @@ pub(super) struct Reduced {
     pivots: Vec<f64>,
     /// The rows of the held factor (0: none).
     held: usize,
-    /// Per body: the hinge that brought it in (NONE: none).
+    /// Per body: the hinge that brought it in (NONE: none), while [`Reduced::find_tree`]
+    /// runs.
     joint_of: Vec<usize>,
+    /// The links' bodies (A, B) and the body count the tree below was found for, the tree
+    /// (per hinge: its child, its parent's hinge, whether the child is the joint's A), and
+    /// whether they were a tree at all: a step's several solves do not walk it again.
+    shape: Vec<(usize, Option<usize>)>,
+    shape_bodies: usize,
+    tree: Vec<(usize, usize, bool)>,
+    is_tree: bool,
     composite: Vec<Composite>,
     /// Per hinge: its column S_k about O, and its child's point y (`joint_space_inertia`).
     columns: Vec<Column>,
@@ -166,7 +174,7 @@ impl Reduced {
     /// How many bodies the held factor's world has.
     #[inline(always)]
     pub fn bodies(&self) -> usize {
-        self.joint_of.len()
+        self.shape_bodies
     }
 
     /// Forgets the held factor.
@@ -196,24 +204,19 @@ impl Reduced {
     #[inline(always)]
     #[allow(clippy::neg_cmp_op_on_partial_ord)] // a NaN must fail the tests
     fn read(&mut self, links: &[Link], inverse: &[Inverse]) -> bool {
-        let n = links.len();
-        self.joint_of.clear();
-        self.joint_of.resize(inverse.len(), NONE);
+        if !self.tree_of(links, inverse.len()) {
+            return false;
+        }
         self.hinges.clear();
         self.mass.clear();
-        for (k, link) in links.iter().enumerate() {
+        for (link, &(child, up, child_is_a)) in links.iter().zip(&self.tree) {
             if link.angular != 2 {
                 return false;
             }
-            let a = link.a;
-            let (child, up, sign, rc, rp) = match link.b {
-                None if k == 0 => (a, n, 1.0, link.ra, link.rb),
-                None => return false,
-                Some(b) => match (self.joint_of[a], self.joint_of[b]) {
-                    (NONE, up) if up != NONE => (a, up, 1.0, link.ra, link.rb),
-                    (up, NONE) if up != NONE => (b, up, -1.0, link.rb, link.ra),
-                    _ => return false,
-                },
+            let (sign, rc, rp) = if child_is_a {
+                (1.0, link.ra, link.rb)
+            } else {
+                (-1.0, link.rb, link.ra)
             };
             let inv = &inverse[child];
             if !(inv.mass > 0.0) {
@@ -223,7 +226,6 @@ impl Reduced {
                 return false;
             };
             self.mass.push((1.0 / inv.mass, inertia));
-            self.joint_of[child] = k;
             let [g1, g2] = link.g;
             let (aa, ab, bb) = (g1.dot(&g1), g1.dot(&g2), g2.dot(&g2));
             let det = aa * bb - ab * ab;
@@ -243,6 +245,48 @@ impl Reduced {
                 motion: rc.cross(&axis),
                 dual: [(g1 * bb - g2 * ab) * r, (g2 * aa - g1 * ab) * r],
             });
+        }
+        true
+    }
+
+    /// Whether the links (on `bodies` bodies) are a tree rooted in the world, each joint
+    /// bringing in one new body ([`Reduced::find_tree`]), asked again only when their bodies
+    /// or the body count changed since the last answer.
+    #[inline(always)]
+    fn tree_of(&mut self, links: &[Link], bodies: usize) -> bool {
+        let same = self.shape_bodies == bodies
+            && self.shape.len() == links.len()
+            && (self.shape.iter().zip(links)).all(|(&(a, b), l)| a == l.a && b == l.b);
+        if !same {
+            self.shape.clear();
+            self.shape.extend(links.iter().map(|l| (l.a, l.b)));
+            self.shape_bodies = bodies;
+            self.is_tree = self.find_tree(links, bodies);
+        }
+        self.is_tree
+    }
+
+    /// The tree of the links (per hinge its child, its parent's hinge, n for the world, and
+    /// whether the child is its A) into `tree`: the first joint on the world, each later one
+    /// joining a new body to one an earlier joint brought in. False otherwise.
+    fn find_tree(&mut self, links: &[Link], bodies: usize) -> bool {
+        let n = links.len();
+        self.joint_of.clear();
+        self.joint_of.resize(bodies, NONE);
+        self.tree.clear();
+        for (k, link) in links.iter().enumerate() {
+            let a = link.a;
+            let (child, up, child_is_a) = match link.b {
+                None if k == 0 => (a, n, true),
+                None => return false,
+                Some(b) => match (self.joint_of[a], self.joint_of[b]) {
+                    (NONE, up) if up != NONE => (a, up, true),
+                    (up, NONE) if up != NONE => (b, up, false),
+                    _ => return false,
+                },
+            };
+            self.joint_of[child] = k;
+            self.tree.push((child, up, child_is_a));
         }
         true
     }
