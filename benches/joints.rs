@@ -6,8 +6,9 @@
 //!   to the world, released horizontal (30 rows: a skyline Cholesky of J W Jᵀ, 6 wide, in each
 //!   of rk4's four evaluations, then the projection's); issue 19's aim: ≤ 10 µs per step;
 //! - `chain-10-hinge`: the same links on hinges about z (50 rows: 5 per hinge), as
-//!   benches/mujoco/chain10.py's hinge chain (MuJoCo 11.5 µs/step under RK4); K is
-//!   block-tridiagonal, solved by `joints::solve`'s banded Cholesky in 5 × 5 blocks;
+//!   benches/mujoco/chain10.py's hinge chain (MuJoCo 11.5 µs/step under RK4); solved
+//!   through its joint coordinates (`joints::reduced`: one coordinate per hinge, H = Nᵀ M N
+//!   10 × 10); callgrind 114.5k instructions per step against MuJoCo 4.0.1's 115.1k;
 //! - `chain-10-baumgarte`: the same with Baumgarte's correction (no projection);
 //! - `chain-10-landing`: 10 links of 0.3 m (0.3 × 0.05 × 0.05 m, 0.1 kg) ball-jointed end to
 //!   end (free), tilted 20°, the low end 0.3 m above the ground, `impulse` contacts (e = 0,

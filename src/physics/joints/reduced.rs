@@ -49,7 +49,18 @@
 //! and no links stored, 125.19k -> 130.99k; Lᵀ kept by rows for the back substitution (each
 //! L_ic copied in `cholesky`), 125.19k -> 126.86k; the back substitution's column read row by
 //! row instead of `step_by`, 124.61k -> 125.16k. The counts follow how the one inlined f(Y)
-//! function is laid out more than the work removed.
+//! function is laid out more than the work removed. Also tried (2026-12-07, bit-identical,
+//! not kept): both substitutions' sums as plain loops over rows (no `step_by`), 120.27k ->
+//! 120.28k; the solve's buffers sized once per tree instead of a `resize` at each solve,
+//! 114.53k -> 115.02k.
+//!
+//! **Kept** (same count, each bit-identical): the projection's rows without J̇u
+//! (`Chain::build_for_projection`), the composite inertias' diagonal-only additions and the
+//! shares without multiplications by σ, the projection's kinetic energy from its build's v
+//! and ω, the derive phase's R and I⁻¹_world from the projection's last build, the tree's
+//! shape found once (`Reduced::tree_of`): 120.27k -> 114.53k per step, against MuJoCo
+//! 4.0.1's RK4 hinge chain (`benches/mujoco/chain10.py` under callgrind, `mj_step`
+//! collected): 115.06k, 0.995×. Build-to-build noise on this count is about ±1 %.
 
 use super::chain::Link;
 use super::solve::Inverse;
