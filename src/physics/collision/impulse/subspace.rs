@@ -205,8 +205,11 @@ fn friction_burst(
 /// unconverged at the budget), one factorisation → the whole search: wall-ball 200 steps
 /// 90.6M → 46.8M, median 278 079 → 72 998, 91 → 45 unconverged (CPU 34.4 → 19.3 ms a
 /// step, one run each under load); knife-wall 200 32.9M → 29.1M, 11 → 8;
-/// knife-wall-ball 100 6.93M → 7.47M (+8 %), 23 → 24; wall 600, dominoes16 and dominoes
-/// the same work (dominoes' 30 and dominoes16's 62 rows are below [`SWEEPS_FIRST_ROWS`]).
+/// knife-wall-ball 100 6.93M → 7.47M (+8 %), 23 → 24; bonded-wall-ball 100 37.6M → 44.6M
+/// (+19 %), 49 → 55; dominoes16 1500 10.19M → 10.48M (+3 %; its steps of 64 rows or more),
+/// 0 → 0; wall 600 and dominoes 3000 bit for bit the same (dominoes' 30 rows are below
+/// [`SWEEPS_FIRST_ROWS`]). Callgrind over `World::step`: wall-ball 200 50.7G → 26.3G
+/// instructions (−48 %), dominoes16 1500 8.41G → 8.64G (+2.7 %).
 fn sweeps_cheaper(
     (middle, last, sweeps): (f64, f64, u64),
     tolerance: f64,
