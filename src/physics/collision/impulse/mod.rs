@@ -139,6 +139,36 @@
 //! and `CONTACT_STEPS_SHADOW`). The joints' large clusters in the direct solves alone:
 //! [`joined`]'s module doc.
 //!
+//! Tried on 2026-12-07 and not committed (issue 35, item 3; each measured on
+//! `contact_steps`, work in row updates, deterministic; the first on top of the search's
+//! cost counted whole, `subspace::sweeps_cheaper`, the others against 8ec18cf's solver):
+//!
+//! - **No search again after one that raised the residual** (`RAISED_SWEEPS` = 64): once a
+//!   subspace search left the sweeps after it above where they stood before it, the stage
+//!   searched again only when the sweeps, at their rate, needed more than 64 sweeps to the
+//!   tolerance. The trace it came from: dominoes16's dearest step (535, 62 rows, 952
+//!   sweeps, 620 factorisations) ran 119 bursts ending at 1–3e-9 m/s (halving every 4
+//!   sweeps), each followed by a search of 2 to 8 rounds, lowering F but leaving the sweeps
+//!   at 3–10e-9 m/s; later in the same step the sweeps stall at 2.4e-10 m/s (the tolerance
+//!   is 1e-10) and every search throws them back to 1e-8. Measured (total; worst ÷ median;
+//!   unconverged): dominoes 3000 5.59M ×268 2 → 5.33M ×112 3; dominoes16 1500 10.48M ×70.9
+//!   0 → 10.64M ×58.8 1; wall-ball 200 46.8M ×28.2 45 → 42.7M ×15.5 45; knife-wall 200
+//!   29.1M 8 → 28.4M 9; knife-wall-ball 100 7.47M 24 → 7.03M 20; bonded-wall-ball 100 44.6M
+//!   55 → 41.8M 60; wall 600 the same. Not kept: it moved lesson 37's claim "rises after the
+//!   landing" to 1.306e-3 (claimed 1.145e-3 ± 5e-5) and added unconverged steps; limited
+//!   to stages of [`SWEEPS_FIRST_ROWS`] rows or more it would leave the lessons alone (not
+//!   measured).
+//! - **The whole projected step first in the friction search** (as stage 1 does): dominoes16
+//!   10.19M, 0 unconverged → 14.59M, 33. **Searches every 4 or 16 sweeps** instead of
+//!   [`SUBSPACE_EVERY`] = 8: dominoes16 9.0M and 11.8M, but wall-ball 200 245M at 4.
+//!   **[`SUBSPACE_ROUNDS`] 2 or 32**: dominoes16 10.6M (4 unconverged) and 10.8M (worst ×185).
+//!   **[`EDGE_TURN`] 1 or 0.1**: 11.3M and 9.8M. **A search from the warm start before any
+//!   sweep** (the warm active set): every search needed its 8 rounds, one disk pinned per
+//!   round, and the median step rose 3808 → 6292. **Pinning every disk and normal the ratio
+//!   test would stop within 1e-3 or 1e-2 of the step** (several active-set changes a round):
+//!   dominoes16 10.75M and 14.6M. The dominoes are chaotic, so a single run's total moves by
+//!   ±5 % with any change of path; none of these is the different method item 3 asks for.
+//!
 //! # Speculative contacts
 //!
 //! A resting body falls only ½|g|dt² per step under `rk4` and `splitting` (free fall from

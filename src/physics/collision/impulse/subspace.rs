@@ -8,7 +8,8 @@
 //!
 //! A large friction stage ([`SWEEPS_FIRST_ROWS`] rows or more) skips a search when its sweeps
 //! are about to converge anyway: at the rate of the last burst's second half they reach the
-//! tolerance for less work than the last factorisation cost (`sweeps_cheaper`).
+//! tolerance for less work than the last search cost, all its rounds' factorisations
+//! (`sweeps_cheaper`).
 //!
 //! Stage 2 (friction) takes them whenever its direct solve declined. Stage 1 takes them only
 //! in a large, *wide* system whose direct solve declined: the same step on the pushing normals
@@ -88,8 +89,9 @@ pub(super) fn sweep_after(
     } else {
         usize::MAX
     };
-    // The work of this stage's last factorisation (none yet: the first search runs).
-    let mut last_factor = None;
+    // The work of this stage's last search, its rounds' factorisations together (none yet:
+    // the first search runs).
+    let mut last_search = None;
     loop {
         subspace &= steps_left > 0 && !buffers.spent();
         if !std::mem::take(&mut skip_burst) {
@@ -117,8 +119,8 @@ pub(super) fn sweep_after(
             }
             let large = rows_count >= SWEEPS_FIRST_ROWS;
             if large
-                && middle.zip(last_factor).is_some_and(|((middle, sweeps), factor)| {
-                    sweeps_cheaper((middle, residual, sweeps), tolerance, rows_count, factor)
+                && middle.zip(last_search).is_some_and(|((middle, sweeps), search)| {
+                    sweeps_cheaper((middle, residual, sweeps), tolerance, rows_count, search)
                 })
             {
                 continue;
@@ -127,16 +129,15 @@ pub(super) fn sweep_after(
         // An active-set search: a step cut short by a normal reaching 0 or a sticking disk
         // reaching its edge changes the active set; solve again on the new one.
         buffers.pinned.clear();
+        let mut search = 0;
         for _ in 0..SUBSPACE_ROUNDS {
             if buffers.spent() {
                 break;
             }
             let outcome = step(rows, directions, motions, buffers);
             if !buffers.unknowns.is_empty() && outcome != Subspace::TooWide {
-                last_factor = Some(factorisation_work(
-                    buffers.system.stored(),
-                    buffers.unknowns.len(),
-                ));
+                search += factorisation_work(buffers.system.stored(), buffers.unknowns.len());
+                last_search = Some(search);
             }
             match outcome {
                 Subspace::Taken { whole } => {
@@ -187,13 +188,28 @@ fn friction_burst(
 
 /// Whether sweeps whose residual fell from `middle` to `last` over their last `sweeps`
 /// sweeps reach `tolerance`, at that rate (linear convergence, `r_{k+n} = r_k ρⁿ`), for
-/// less work than `factor` row updates (a factorisation's estimate), `rows` a sweep: then the
-/// subspace search is skipped (module doc). Stalled or rising sweeps never skip it.
+/// less work than `factor` row updates (the last search's cost: the estimates of all the
+/// factorisations its rounds took), `rows` a sweep: then the subspace search is skipped
+/// (module doc). Stalled or rising sweeps never skip it.
 ///
 /// Measured (issue 35): the running-bond wall whose end bricks topple, its worst step (2.0 s)
 /// took 24 factorisations of 700 unknowns (75 000 stored entries, about 58 000 row updates
 /// each) while its sweeps sat at 1.6–2.9e-10 m/s against a tolerance of 1.05e-10, falling
 /// about 3 % a sweep: some 36 sweeps of 296 rows (11 000 row updates) to go.
+///
+/// A search is compared by all its rounds, not its last factorisation alone, since
+/// 2026-12-07: a search on the knocked wall (`contact_steps wall-ball`) takes several rounds
+/// (one factorisation each) and is then followed by sweeps that restart from a residual it
+/// raised, so a sweep rate that reaches the tolerance within one factorisation's work was
+/// often searched again. Measured (work in row updates, deterministic; total, median, steps
+/// unconverged at the budget), one factorisation → the whole search: wall-ball 200 steps
+/// 90.6M → 46.8M, median 278 079 → 72 998, 91 → 45 unconverged (CPU 34.4 → 19.3 ms a
+/// step, one run each under load); knife-wall 200 32.9M → 29.1M, 11 → 8;
+/// knife-wall-ball 100 6.93M → 7.47M (+8 %), 23 → 24; bonded-wall-ball 100 37.6M → 44.6M
+/// (+19 %), 49 → 55; dominoes16 1500 10.19M → 10.48M (+3 %; its steps of 64 rows or more),
+/// 0 → 0; wall 600 and dominoes 3000 bit for bit the same (dominoes' 30 rows are below
+/// [`SWEEPS_FIRST_ROWS`]). Callgrind over `World::step`: wall-ball 200 50.7G → 26.3G
+/// instructions (−48 %), dominoes16 1500 8.41G → 8.64G (+2.7 %).
 fn sweeps_cheaper(
     (middle, last, sweeps): (f64, f64, u64),
     tolerance: f64,
