@@ -774,3 +774,37 @@ fn symplectic_euler_with_its_shake_projection_keeps_the_pendulum_energy_bounded(
         "euler: {euler_first:.4e} then {euler_second:.4e}"
     );
 }
+
+/// The derive phase after a projection takes each body's R and I⁻¹_world from the
+/// projection's last build (`projection::Buffers::derived`): they must be `derive`'s own, to
+/// the bit, after a plain step and after going back to an earlier frame (whose orientations
+/// the projection never saw).
+#[test]
+fn the_derive_phase_after_a_projection_is_derive_itself() {
+    use tumble::joint_scenes::chain;
+    use tumble::physics::derive::derive;
+    use tumble::physics::Phase;
+    let bits = |m: &nalgebra::Matrix3<f64>| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let check = |world: &mut World| {
+        assert_eq!(world.step_phase(), Phase::Derive);
+        for (i, (body, state)) in world.bodies().iter().zip(world.states()).enumerate() {
+            let (got, want) = (world.kinematics_of(i), derive(body, state));
+            assert_eq!(bits(&got.rotation), bits(&want.rotation), "R of body {i}");
+            assert_eq!(
+                bits(&got.inv_inertia_world),
+                bits(&want.inv_inertia_world),
+                "I⁻¹_world of body {i}"
+            );
+            assert_eq!(got.angular_velocity, want.angular_velocity, "ω of body {i}");
+        }
+        while world.step_phase() != Phase::Collide {}
+    };
+    let mut world = chain(10, JointKind::Hinge, Correction::Projection);
+    let early = world.checkpoint();
+    for _ in 0..50 {
+        world.step();
+    }
+    check(&mut world);
+    world.restore(&early);
+    check(&mut world);
+}
