@@ -151,6 +151,7 @@ mod f2;
 mod f4;
 mod lanes;
 pub mod particle;
+mod patch;
 mod rows;
 mod sweep;
 
@@ -624,23 +625,25 @@ fn cap_kinetic(
 /// speculative rows that pushed nothing.
 #[inline(always)]
 fn store(contacts: &mut Vec<Contact>, rows: &Rows, warm: &mut WarmCache, bounce_speed: f64) {
-    for ((c, row), t) in contacts.iter_mut().zip(&rows.rows).zip(&rows.totals) {
-        c.normal_velocity = t.approach;
-        let [t1, t2] = &row.tangents;
-        c.impulse = row.normal * t.applied[0] + t1 * t.applied[1] + t2 * t.applied[2];
+    for (p, t) in rows.patches.iter().zip(&rows.patch_totals) {
+        for i in p.rows.clone() {
+            let row = &rows.rows[i];
+            let c = &mut contacts[i];
+            c.normal_velocity = rows.totals[i].approach;
+            let friction = p.share(&rows.rows, &row.lever, t.applied);
+            c.impulse = row.normal * rows.totals[i].applied + friction;
+        }
     }
+    let impulse = |p: &patch::Patch, i: usize| {
+        let row = &rows.rows[i];
+        row.normal * row.lambda + p.share(&rows.rows, &row.lever, p.lambda)
+    };
     warm.store(
-        contacts
+        rows.patches
             .iter()
-            .zip(rows.rows.iter().zip(&rows.totals))
-            .filter(|(_, (_, t))| t.approach >= -bounce_speed)
-            .map(|(c, (row, _))| {
-                let [t1, t2] = &row.tangents;
-                let j = row.normal * row.lambda
-                    + t1 * row.lambda_tangent[0]
-                    + t2 * row.lambda_tangent[1];
-                (c, j)
-            }),
+            .flat_map(|p| p.rows.clone().map(move |i| (p, i)))
+            .filter(|&(_, i)| rows.totals[i].approach >= -bounce_speed)
+            .map(|(p, i)| (&contacts[i], impulse(p, i))),
     );
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
 }
