@@ -903,6 +903,7 @@ mod tests {
     #[test]
     fn the_lanes_give_the_sequential_sweep_bit_for_bit() {
         let mut g = Lcg(7);
+        let mut f = Lcg(13);
         let bodies = 9;
         let soft = [
             Softness::new(60.0, 10.0, 2.5e-4),
@@ -923,18 +924,28 @@ mod tests {
                     lever: g.vector() * 0.2,
                     lever_other: if pair { g.vector() * 0.2 } else { zero },
                     rn: [g.vector(), if pair { g.vector() } else { zero }],
-                    w_a: g.vector(),
-                    w_b: if pair { g.vector() } else { zero },
+                    // Drawn as when a row had three axes (the tangents' unused), so that
+                    // the runs, and the schedule, are the ones drawn before.
+                    w_a: [g.vector(), g.vector(), g.vector()][0],
+                    w_b: if pair {
+                        [g.vector(), g.vector(), g.vector()][0]
+                    } else {
+                        zero
+                    },
                     inv_k: 0.3 + g.next() * 0.1,
-                    reach: (g.next() + 1.0) * 0.1,
+                    reach: (f.next() + 1.0) * 0.1,
                     separation: 0.0,
                     gap: g.next() * 1e-3,
                     lambda: (g.next() + 0.5).max(0.0) * 0.01,
                     max_lambda: 0.0,
                 });
+                // The two tangent impulses a row drew before.
+                g.next();
+                g.next();
                 rows.totals.push(Default::default());
             }
-            // One manifold, or two when the run has more than two rows.
+            // One manifold, or two when the run has more than two rows (drawn from their own
+            // generator: the rows and runs are the ones drawn before manifolds were).
             let first = rows.patches.len();
             let split = if count > 2 { start + 2 } else { start + count };
             for span in [start..split, split..start + count] {
@@ -951,12 +962,12 @@ mod tests {
                     rows: span,
                     normal,
                     tangents: [t1, t2],
-                    lever: g.vector() * 0.2,
-                    lever_other: if pair { g.vector() * 0.2 } else { zero },
-                    w_a: three(&mut g),
-                    w_b: if pair { three(&mut g) } else { [zero; 3] },
+                    lever: f.vector() * 0.2,
+                    lever_other: if pair { f.vector() * 0.2 } else { zero },
+                    w_a: three(&mut f),
+                    w_b: if pair { three(&mut f) } else { [zero; 3] },
                     inv_k: [0.4, 0.5, 0.6],
-                    lambda: [g.next() * 1e-3, g.next() * 1e-3, g.next() * 1e-4],
+                    lambda: [f.next() * 1e-3, f.next() * 1e-3, f.next() * 1e-4],
                 });
                 rows.patch_totals.push(Default::default());
             }
