@@ -16,7 +16,10 @@
 //! colours its constraint graph for its SIMD lanes; this keeps the sequential order instead,
 //! and with it the numbers: each lane does the scalar sweep's arithmetic, operation by
 //! operation). A stack is one chain of runs (one per level, no pairs); a pyramid or a wall is
-//! as wide as its courses.
+//! as wide as its courses. The lanes take the normal rows; each run's friction (`patch`, one
+//! block per manifold) follows, scalar, once both runs of a step are done: the runs share no
+//! body, so each body still sees its run's normal rows, then its friction, as in the
+//! sequential sweep.
 //!
 //! Two runs between two bodies each take four lanes, `[A of x, A of y, B of x, B of y]`
 //! (`f4`): the four bodies' v and ω in six registers, a row's A and B ends in the same

@@ -174,13 +174,13 @@ impl Rows {
             }
             let run = runs.last_mut().expect("a run");
             run.rows.end = i + 1;
-            match spans.last_mut() {
-                Some((span, other))
-                    if !new_run && *other == c.other && same_normal(&rows[span.start].normal, &c.normal) =>
-                {
-                    span.end = i + 1
-                }
-                _ => spans.push((i..i + 1, c.other)),
+            // The row joins the last manifold when it has the same B and normal.
+            let last = spans.last_mut().filter(|(span, other)| {
+                !new_run && *other == c.other && same_normal(&rows[span.start].normal, &c.normal)
+            });
+            match last {
+                Some((span, _)) => span.end = i + 1,
+                None => spans.push((i..i + 1, c.other)),
             }
             run.patches.end = spans.len();
         }
