@@ -160,7 +160,10 @@
 //! (a loaded machine: the ratios, not the times). The manifold's friction in the relax only,
 //! as Rapier has it, saves another 9 % of the pyramid's instructions (1.81M) and lets a stack
 //! of 10 lean 1.96 mm in 5 s (with friction per point in the relax only: 1.13 mm; the
-//! tests allow 1 mm). Earlier, with friction per point: in the solve only, lesson 36's sway
+//! tests allow 1 mm). The manifolds of two runs between two bodies each in four lanes
+//! (as their normal rows are; the same bits) cost more, not less: pyramid-10 2.07M
+//! instructions a step against 1.99M scalar, CPU time ×1.02–1.06 (paired runs, medians).
+//! Earlier, with friction per point: in the solve only, lesson 36's sway
 //! and axis claims and lesson 37's wave moved, and the contact study's box at one sub-step
 //! sank 50 mm (closed form 0.017 mm). Kept bit for bit but measured dearer: the gap refresh
 //! and the totals done run by run inside the relax sweep (+3 % instructions), skipping an
