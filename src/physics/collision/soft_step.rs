@@ -153,10 +153,12 @@
 //! dominoes16                234k → 232k    (−1 %)
 //! ```
 //!
-//! and CPU time fell more than the count (not looked into further): in one run back to
-//! back against Rapier 0.36 f32, soft-step's time over Rapier's went, per point → per
-//! manifold, stack-10 1.36 → 1.09, stack-40 1.79 → 1.60, pyramid-10 2.06 → 1.59,
-//! pyramid-20 2.28 → 1.73, dominoes16 1.51 → 1.49, wall 3.23 → 1.90, wall-ball 3.05 → 2.55
+//! and CPU time fell more than the count (not looked into further): against Rapier 0.36 f32,
+//! in six rounds back to back (benches/rapier; each scene's median ratio), soft-step's time
+//! over Rapier's went, per point → per manifold, stack-10 1.19 → 1.07, stack-40 1.75 → 1.42,
+//! pyramid-10 1.93 → 1.50, pyramid-20 2.22 → 1.78, dominoes16 1.34 → 1.26, wall 2.19 → 1.86,
+//! wall-ball 3.04 → 2.55; paired whole runs (farm-bench), per manifold over per point: 0.84
+//! (pyramid-10, wall, wall-ball), 0.81 (pyramid-20), 0.89 (stack-10), 0.95 (dominoes16)
 //! (a loaded machine: the ratios, not the times). The manifold's friction in the relax only,
 //! as Rapier has it, saves another 9 % of the pyramid's instructions (1.81M) and lets a stack
 //! of 10 lean 1.96 mm in 5 s (with friction per point in the relax only: 1.13 mm; the
