@@ -151,6 +151,8 @@
 //! pyramid-20               9.45M → 8.76M   (−7 %)
 //! wall                     1.38M → 1.29M   (−6 %)
 //! dominoes16                234k → 232k    (−1 %)
+//! stack-40                 1.16M → 1.01M   (−13 %)
+//! wall-ball                1.78M → 1.54M   (−13 %)
 //! ```
 //!
 //! and CPU time fell more than the count (not looked into further): against Rapier 0.36 f32,
