@@ -27,10 +27,11 @@
 //! `ω += Δω_contacts` (O(bodies) instead of O(rows)).
 //!
 //! The sweeps work on v and ω alone (ω = I₀⁻¹ L, I₀⁻¹ fixed over the step), taking the rows
-//! between the same two bodies together with the bodies' motions copied in once; each row
-//! keeps the total it applied along each axis, Λ, so the step's L is
-//! `L₀ + ΔL + Σ_rows Σ_axes (r×d) Λ` and the row's impulse `n Λ₀ + t₁ Λ₁ + t₂ Λ₂`. Friction
-//! reads the point's relative velocity once for both tangents.
+//! between the same two bodies together with the bodies' motions copied in once: their normal
+//! rows, then their manifolds' friction (`patch`: the rows of one pair sharing a normal, held
+//! by one tangent pair at the manifold's centre and one twist row about n). Each row and
+//! manifold keeps the total it applied along each axis, Λ, so the step's L is
+//! `L₀ + ΔL + Σ (r×d) Λ` over the rows' normals and the manifolds' three axes.
 //!
 //! No detection inside the sub-steps: a row's separation follows its bodies,
 //! `s = s₀ + n·[(Δx_A + (D_A − 𝟙) r_A) − (Δx_B + (D_B − 𝟙) r_B)]`, with Δx and D the body's
@@ -54,9 +55,29 @@
 //! no more. The relax sweep uses bias 0, `mass_scale = 1`, `impulse_scale = 0`: it removes the
 //! velocity the push-out added, so the push-out moves positions without feeding kinetic energy.
 //! A row against an obstacle (or a body of zero inverse mass) uses twice the frequency
-//! (Box2D's "static softness"). Friction: two tangent rows, the accumulated tangent impulse
-//! kept in the disk `|λ_t| ≤ μ λ`. The frequency is capped at a quarter of the sub-step rate,
+//! (Box2D's "static softness"). The frequency is capped at a quarter of the sub-step rate,
 //! `hertz ≤ n/(4 dt)`: stiffer than that, one sweep per sub-step cannot follow it.
+//!
+//! # Friction, per manifold
+//!
+//! Friction is rigid (no softness, no bias) and taken per manifold, after the normal rows of
+//! its run, in the solve and in the relax alike (`patch` has the formulas). With the
+//! manifold's points r_i, their centre c (the mean) and their offsets across the normal d_i:
+//!
+//! ```text
+//! tangents t₁, t₂ at c:   u_t = t·(v_A + ω_A×c_A − v_B − ω_B×c_B),   |λ_t| ≤ μ Σ λ_i  (a disk)
+//! twist about n:          u_τ = n·(ω_A − ω_B),                       |λ_τ| ≤ μ Σ λ_i |d_i|
+//! ```
+//!
+//! λ_i the manifold's normal impulses as the sweep left them. The twist bound is the most
+//! torque about n the points' own Coulomb cones give; a single point (a sphere) has none, and
+//! keeps its tangent pair at its point. A 4-point face thus takes 3 friction rows a sweep
+//! where two tangents per point took 8 (Rapier's and Bepu's "twist friction"; Box2D v3 keeps
+//! friction per point, as soft-step did before). What it changed, measured: a face's sliding
+//! no longer turns it about n (the sequential tangent rows at four corners gave a resting
+//! stack a yaw rate of 5.7e-4 rad/s in lesson 36's first frames; now below 5e-9), the stack
+//! of 10 leans 0.059 mm after 5 s (0.084 mm with friction per point) and lesson 36's
+//! sweep-order sway, listed top to bottom, peaks at 0.27 mm instead of 0.24 mm.
 //!
 //! # The sag it accepts
 //!
@@ -115,32 +136,56 @@
 //!
 //! Measured on issue 35's scenes (callgrind, `World::step`, the difference of two runs): a
 //! pyramid of 10 rows has 55 bodies and 580 rows, kept across steps (`kept`: detection runs
-//! in few steps), and costs 2.11M instructions a step: about 60 % in the sweeps, 17 % in
-//! preparing the rows (`rows::build`, the separations, the lanes' packed constants), 6 % in
-//! the warm-start cache, 5 % in carrying the kept rows. Per manifold of 4 points and per
-//! sub-step, soft-step updates 24 rows (4 normal and 8 tangent, in each of the two sweeps);
-//! Rapier 11 (4 normal in the solve; 4 normal, one tangent pair and one twist at the
-//! manifold's centre in the relax), about the ratio of their times on the wide scenes
-//! (pyramids, walls: 2.0–2.5× Rapier f32); the stack of 10, piped, is on a par. Moving
-//! friction out of one sweep saves 9–10 % of the pyramid's instructions and changes what the law
-//! promises: in the relax only, a stack of 10 creeps 1.1 mm sideways in 5 s; in the solve
-//! only, lesson 36's sway and axis claims and lesson 37's wave move, and the contact
-//! study's box at one sub-step sinks 50 mm (closed form 0.017 mm). Kept bit for bit but
-//! measured dearer: the gap refresh and the totals done run by run inside the relax sweep
-//! (+3 % instructions), skipping an idle row's friction (+0.8 %), a warm-start lookup trying
-//! the row's own index first (+1 %).
+//! in few steps). With friction per point it cost 2.13M instructions a step: about 60 % in
+//! the sweeps, 17 % in preparing the rows (`rows::build`, the separations, the lanes' packed
+//! constants), 6 % in the warm-start cache, 5 % in carrying the kept rows; per manifold of 4
+//! points and per sub-step it updated 24 rows (4 normal and 8 tangent, in each of the two
+//! sweeps), Rapier 11 (4 normal in the solve; 4 normal, one tangent pair and one twist at the
+//! manifold's centre in the relax). Per manifold (`patch`) it updates 14 (4 normal and 3
+//! friction in each sweep), the friction scalar after the lanes' normal rows:
+//!
+//! ```text
+//! instructions per step     per point → per manifold
+//! stack-10                  172k → 160k    (−7 %)
+//! pyramid-10               2.13M → 1.99M   (−7 %)
+//! pyramid-20               9.45M → 8.76M   (−7 %)
+//! wall                     1.38M → 1.29M   (−6 %)
+//! dominoes16                234k → 232k    (−1 %)
+//! stack-40                 1.16M → 1.01M   (−13 %)
+//! wall-ball                1.78M → 1.54M   (−13 %)
+//! ```
+//!
+//! and CPU time fell more than the count (not looked into further): against Rapier 0.36 f32,
+//! in six rounds back to back (benches/rapier; each scene's median ratio), soft-step's time
+//! over Rapier's went, per point → per manifold, stack-10 1.19 → 1.07, stack-40 1.75 → 1.42,
+//! pyramid-10 1.93 → 1.50, pyramid-20 2.22 → 1.78, dominoes16 1.34 → 1.26, wall 2.19 → 1.86,
+//! wall-ball 3.04 → 2.55; paired whole runs (farm-bench), per manifold over per point: 0.84
+//! (pyramid-10, wall, wall-ball), 0.81 (pyramid-20), 0.89 (stack-10), 0.95 (dominoes16)
+//! (a loaded machine: the ratios, not the times). The manifold's friction in the relax only,
+//! as Rapier has it, saves another 9 % of the pyramid's instructions (1.81M) and lets a stack
+//! of 10 lean 1.96 mm in 5 s (with friction per point in the relax only: 1.13 mm; the
+//! tests allow 1 mm). The manifolds of two runs between two bodies each in four lanes
+//! (as their normal rows are; the same bits) cost more, not less: pyramid-10 2.07M
+//! instructions a step against 1.99M scalar, CPU time ×1.02–1.06 (paired runs, medians).
+//! Earlier, with friction per point: in the solve only, lesson 36's sway
+//! and axis claims and lesson 37's wave moved, and the contact study's box at one sub-step
+//! sank 50 mm (closed form 0.017 mm). Kept bit for bit but measured dearer: the gap refresh
+//! and the totals done run by run inside the relax sweep (+3 % instructions), skipping an
+//! idle row's friction (+0.8 %), a warm-start lookup trying the row's own index first (+1 %).
 //!
 //! # Where it is done
 //!
 //! [`respond`] reads as the step above: `bodies` takes the bodies in contact back to the
 //! start of the step and moves them through the sub-steps; `rows` prepares each contact once
-//! per step into what the sweeps read (normal, tangents, levers, `r×n`, `I₀⁻¹(r×d)`, `1/k`:
-//! no matrix work is left for the sweeps) and refreshes the separations; `sweep` holds the
+//! per step into what the sweeps read (normal, levers, `r×n`, `I₀⁻¹(r×n)`, `1/k`: no matrix
+//! work is left for the sweeps) and refreshes the separations; `patch` each manifold's
+//! friction (its centre, tangents, twist and the impulses the points see); `sweep` holds the
 //! passes over one row (warm start, soft solve and relax); `bounce` the restitution, each
 //! manifold's bouncing rows solved together; `lanes` schedules the runs of rows so that two
 //! runs sharing no body are solved side by side in SIMD lanes (`f2`), in an order that gives
 //! the sequential sweep's numbers bit for bit (for a chain such as a stack, a whole sub-step
-//! at once: the relax of the lower runs beside the solve of the upper ones). Everything after
+//! at once: the relax of the lower runs beside the solve of the upper ones; a run's friction
+//! follows its normal rows, scalar). Everything after
 //! detection is built twice, with AVX2 (taken at run time where the CPU has it) and for any
 //! CPU: both do the same operations in the same order (no fused multiply-add), so their
 //! numbers agree bit for bit (a test).
@@ -151,6 +196,7 @@ mod f2;
 mod f4;
 mod lanes;
 pub mod particle;
+mod patch;
 mod rows;
 mod sweep;
 
@@ -624,23 +670,25 @@ fn cap_kinetic(
 /// speculative rows that pushed nothing.
 #[inline(always)]
 fn store(contacts: &mut Vec<Contact>, rows: &Rows, warm: &mut WarmCache, bounce_speed: f64) {
-    for ((c, row), t) in contacts.iter_mut().zip(&rows.rows).zip(&rows.totals) {
-        c.normal_velocity = t.approach;
-        let [t1, t2] = &row.tangents;
-        c.impulse = row.normal * t.applied[0] + t1 * t.applied[1] + t2 * t.applied[2];
+    for (p, t) in rows.patches.iter().zip(&rows.patch_totals) {
+        for i in p.rows.clone() {
+            let row = &rows.rows[i];
+            let c = &mut contacts[i];
+            c.normal_velocity = rows.totals[i].approach;
+            let friction = p.share(&rows.rows, &row.lever, t.applied);
+            c.impulse = row.normal * rows.totals[i].applied + friction;
+        }
     }
+    let impulse = |p: &patch::Patch, i: usize| {
+        let row = &rows.rows[i];
+        row.normal * row.lambda + p.share(&rows.rows, &row.lever, p.lambda)
+    };
     warm.store(
-        contacts
+        rows.patches
             .iter()
-            .zip(rows.rows.iter().zip(&rows.totals))
-            .filter(|(_, (_, t))| t.approach >= -bounce_speed)
-            .map(|(c, (row, _))| {
-                let [t1, t2] = &row.tangents;
-                let j = row.normal * row.lambda
-                    + t1 * row.lambda_tangent[0]
-                    + t2 * row.lambda_tangent[1];
-                (c, j)
-            }),
+            .flat_map(|p| p.rows.clone().map(move |i| (p, i)))
+            .filter(|&(_, i)| rows.totals[i].approach >= -bounce_speed)
+            .map(|(p, i)| (&contacts[i], impulse(p, i))),
     );
     contacts.retain(|c| c.depth > 0.0 || c.impulse != Vector3::zeros());
 }

@@ -83,7 +83,9 @@ pub(super) fn restitution(
     bounce_speed: f64,
     block: &mut Block,
 ) {
-    let Rows { rows, totals, runs } = rows;
+    let Rows {
+        rows, totals, runs, ..
+    } = rows;
     for run in runs.iter() {
         block.index.clear();
         block.index.extend(
@@ -101,12 +103,12 @@ pub(super) fn restitution(
             // One row: the one-row law.
             let (row, t) = (&mut rows[i], &mut totals[i]);
             let u = normal_rate(row, &a, &b, pair);
-            let j = -row.inv_k[0] * (u + e * t.approach);
+            let j = -row.inv_k * (u + e * t.approach);
             let new = (row.lambda + j).max(0.0);
             let change = new - row.lambda;
             row.lambda = new;
-            push(row, 0, change, &mut a, &mut b, pair);
-            t.applied[0] += change;
+            push(row, change, &mut a, &mut b, pair);
+            t.applied += change;
         } else {
             block.couple(rows, &a, &b, pair, |i| e * totals[i].approach);
             block.solve();
@@ -114,8 +116,8 @@ pub(super) fn restitution(
                 let row = &mut rows[i];
                 let change = block.x[k] - row.lambda;
                 row.lambda = block.x[k];
-                push(row, 0, change, &mut a, &mut b, pair);
-                totals[i].applied[0] += change;
+                push(row, change, &mut a, &mut b, pair);
+                totals[i].applied += change;
             }
         }
         motions[run.a] = a;
@@ -142,9 +144,9 @@ impl Block {
             for &j in &self.index {
                 let rj = &rows[j];
                 let nn = ri.normal.dot(&rj.normal);
-                let mut aij = nn * a.inv_mass + ri.rn[0].dot(&rj.w_a[0]);
+                let mut aij = nn * a.inv_mass + ri.rn[0].dot(&rj.w_a);
                 if pair {
-                    aij += nn * b.inv_mass + ri.rn[1].dot(&rj.w_b[0]);
+                    aij += nn * b.inv_mass + ri.rn[1].dot(&rj.w_b);
                 }
                 self.a.push(aij);
             }

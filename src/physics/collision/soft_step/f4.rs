@@ -19,7 +19,6 @@ pub(super) trait Quad: Copy {
     fn lo(self) -> F2;
     fn hi(self) -> F2;
     fn add(self, b: Self) -> Self;
-    fn sub(self, b: Self) -> Self;
     fn mul(self, b: Self) -> Self;
     /// Lanes 2 and 3 negated (the sign bit flipped, as the scalar negation does).
     fn neg_hi(self) -> Self;
@@ -54,10 +53,6 @@ impl Quad for Plain {
     #[inline(always)]
     fn add(self, b: Self) -> Self {
         Plain(self.0.add(b.0), self.1.add(b.1))
-    }
-    #[inline(always)]
-    fn sub(self, b: Self) -> Self {
-        Plain(self.0.sub(b.0), self.1.sub(b.1))
     }
     #[inline(always)]
     fn mul(self, b: Self) -> Self {
@@ -117,11 +112,6 @@ mod avx {
             unsafe { Avx(_mm256_add_pd(self.0, b.0)) }
         }
         #[inline(always)]
-        fn sub(self, b: Self) -> Self {
-            // SAFETY: only run where the CPU has AVX2.
-            unsafe { Avx(_mm256_sub_pd(self.0, b.0)) }
-        }
-        #[inline(always)]
         fn mul(self, b: Self) -> Self {
             // SAFETY: only run where the CPU has AVX2.
             unsafe { Avx(_mm256_mul_pd(self.0, b.0)) }
@@ -169,7 +159,6 @@ mod tests {
         let (p, q) = (Plain::load(&x), Plain::load(&y));
         let (a, b) = (Avx::load(&x), Avx::load(&y));
         check(p.add(q).lanes(), a.add(b).lanes());
-        check(p.sub(q).lanes(), a.sub(b).lanes());
         check(p.mul(q).lanes(), a.mul(b).lanes());
         check(p.neg_hi().lanes(), a.neg_hi().lanes());
         check(p.neg_hi().lanes(), [x[0], x[1], -x[2], -x[3]]);

@@ -16,7 +16,10 @@
 //! colours its constraint graph for its SIMD lanes; this keeps the sequential order instead,
 //! and with it the numbers: each lane does the scalar sweep's arithmetic, operation by
 //! operation). A stack is one chain of runs (one per level, no pairs); a pyramid or a wall is
-//! as wide as its courses.
+//! as wide as its courses. The lanes take the normal rows; each run's friction (`patch`, one
+//! block per manifold) follows, scalar, once both runs of a step are done: the runs share no
+//! body, so each body still sees its run's normal rows, then its friction, as in the
+//! sequential sweep.
 //!
 //! Two runs between two bodies each take four lanes, `[A of x, A of y, B of x, B of y]`
 //! (`f4`): the four bodies' v and ω in six registers, a row's A and B ends in the same
@@ -49,8 +52,9 @@ use super::bodies::{Bodies, Motion};
 use super::f2::F2;
 use super::f4::Quad;
 use super::rows::{refresh_run, Row, Rows, Run};
-use super::sweep::{coefficients, solve_run};
-use super::{clamp_disk, Softness};
+use super::patch::Patch;
+use super::sweep::{coefficients, run_friction, solve_run};
+use super::Softness;
 
 /// One step of a scheduled sweep: a run alone, or two runs that share no body side by side
 /// (a [`Pair`]), or two such pairs of runs between two bodies each, their rows taken in turn
@@ -276,18 +280,30 @@ impl Lanes {
         biased: bool,
     ) {
         debug_assert!(!self.piped);
-        let Rows { rows, runs, .. } = rows;
-        let sweep = Sweep { friction, h };
+        let Rows {
+            rows, runs, patches, ..
+        } = rows;
+        let sweep = Sweep { h };
+        let f = |r: usize, rows: &[Row], patches: &mut [Patch], motions: &mut [Motion]| {
+            friction_alone(&runs[r], (rows, patches), motions, friction)
+        };
         for step in &self.steps {
             match *step {
-                Step::One(r, _) => solve_run(&runs[r], rows, motions, friction, h, biased),
+                Step::One(r, _) => {
+                    solve_run(&runs[r], (rows, patches), motions, friction, h, biased)
+                }
                 Step::Two(p) => {
                     let (x, y) = (&runs[p.x], &runs[p.y]);
                     sweep.both::<Q>(self, (x, y, p.at), [biased; 2], rows, motions);
+                    f(p.x, rows, patches, motions);
+                    f(p.y, rows, patches, motions);
                 }
                 Step::Four(p, q) => {
                     let biased = [[biased; 2]; 2];
                     sweep.four::<Q>(self, [&p, &q], biased, runs, rows, motions);
+                    for r in [p.x, p.y, q.x, q.y] {
+                        f(r, rows, patches, motions);
+                    }
                 }
                 Step::Advance(..) => {}
             }
@@ -302,27 +318,38 @@ impl Lanes {
     #[inline(always)]
     pub fn substep<Q: Quad>(&self, rows: &mut Rows, bodies: &mut Bodies, friction: f64, h: f64) {
         debug_assert!(self.piped);
-        let Rows { rows, runs, .. } = rows;
-        let sweep = Sweep { friction, h };
+        let Rows {
+            rows, runs, patches, ..
+        } = rows;
+        let sweep = Sweep { h };
+        let f = |r: usize, rows: &[Row], patches: &mut [Patch], motions: &mut [Motion]| {
+            friction_alone(&runs[r], (rows, patches), motions, friction)
+        };
         for step in &self.steps {
             match *step {
                 Step::One(r, biased) => {
                     if !biased {
                         refresh_run(&runs[r], rows, &bodies.places);
                     }
-                    solve_run(&runs[r], rows, &mut bodies.motions, friction, h, biased);
+                    let run = &runs[r];
+                    solve_run(run, (rows, patches), &mut bodies.motions, friction, h, biased);
                 }
                 Step::Two(p) => {
                     refresh_relaxed(&p, runs, rows, bodies);
                     let motions = &mut bodies.motions;
                     let (x, y) = (&runs[p.x], &runs[p.y]);
                     sweep.both::<Q>(self, (x, y, p.at), p.biased, rows, motions);
+                    f(p.x, rows, patches, motions);
+                    f(p.y, rows, patches, motions);
                 }
                 Step::Four(p, q) => {
                     refresh_relaxed(&p, runs, rows, bodies);
                     refresh_relaxed(&q, runs, rows, bodies);
                     let (motions, biased) = (&mut bodies.motions, [p.biased, q.biased]);
                     sweep.four::<Q>(self, [&p, &q], biased, runs, rows, motions);
+                    for r in [p.x, p.y, q.x, q.y] {
+                        f(r, rows, patches, motions);
+                    }
                 }
                 Step::Advance(from, to) => {
                     for &b in &self.moved[from..to] {
@@ -332,6 +359,34 @@ impl Lanes {
             }
         }
     }
+}
+
+/// The friction of `run`'s manifolds after its normal rows were solved in lanes (the runs of
+/// a step share no body, so each run's friction may follow both runs' normal rows): its two
+/// motions copied in and out.
+#[inline(always)]
+fn friction_alone(
+    run: &Run,
+    (rows, patches): (&[Row], &mut [Patch]),
+    motions: &mut [Motion],
+    friction: f64,
+) {
+    if friction <= 0.0 || run.patches.is_empty() {
+        return;
+    }
+    let mut a = motions[run.a];
+    match run.b {
+        Some(i) => {
+            let mut b = motions[i];
+            run_friction::<true>(run, (rows, patches), (&mut a, &mut b), friction);
+            motions[i] = b;
+        }
+        None => {
+            let mut b = Motion::default();
+            run_friction::<false>(run, (rows, patches), (&mut a, &mut b), friction);
+        }
+    }
+    motions[run.a] = a;
 }
 
 /// The gaps of the runs of `p` that are relaxed (piped: refreshed just before).
@@ -384,16 +439,6 @@ fn dot(a: &V2, b: &V2) -> F2 {
     add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2]))
 }
 
-/// `a×b` as nalgebra computes it.
-#[inline(always)]
-fn cross(a: &V2, b: &V2) -> V2 {
-    [
-        sub(mul(a[1], b[2]), mul(a[2], b[1])),
-        sub(mul(a[2], b[0]), mul(a[0], b[2])),
-        sub(mul(a[0], b[1]), mul(a[1], b[0])),
-    ]
-}
-
 /// Two vectors side by side.
 #[inline(always)]
 fn lanes(x: &nalgebra::Vector3<f64>, y: &nalgebra::Vector3<f64>) -> V2 {
@@ -420,29 +465,18 @@ fn pick(live: [bool; 2], new: V2, old: V2) -> V2 {
 struct Packed {
     normal: V2,
     rn: V2,
-    w_a: [V2; 3],
-    lever: V2,
-    tangents: [V2; 2],
-    inv_k: [F2; 3],
+    w_a: V2,
+    inv_k: F2,
 }
 
 impl Packed {
     #[inline(always)]
     fn of(x: &Row, y: &Row) -> Packed {
-        let both = |i: usize| F2::new(x.inv_k[i], y.inv_k[i]);
-        let three = |a: &[nalgebra::Vector3<f64>; 3], b: &[nalgebra::Vector3<f64>; 3]| {
-            [lanes(&a[0], &b[0]), lanes(&a[1], &b[1]), lanes(&a[2], &b[2])]
-        };
         Packed {
             normal: lanes(&x.normal, &y.normal),
             rn: lanes(&x.rn[0], &y.rn[0]),
-            w_a: three(&x.w_a, &y.w_a),
-            lever: lanes(&x.lever, &y.lever),
-            tangents: [
-                lanes(&x.tangents[0], &y.tangents[0]),
-                lanes(&x.tangents[1], &y.tangents[1]),
-            ],
-            inv_k: [both(0), both(1), both(2)],
+            w_a: lanes(&x.w_a, &y.w_a),
+            inv_k: F2::new(x.inv_k, y.inv_k),
         }
     }
 }
@@ -478,7 +512,6 @@ impl Wide {
 
 /// The sweep's constants.
 struct Sweep {
-    friction: f64,
     h: f64,
 }
 
@@ -538,8 +571,7 @@ impl Sweep {
         (a, b): (&mut Motion, &mut Motion),
     ) {
         for row in &mut rows[run.rows.start + common..run.rows.end] {
-            let (friction, h) = (self.friction, self.h);
-            super::sweep::solve::<PAIR>(row, &run.soft, a, b, friction, h, biased);
+            super::sweep::solve::<PAIR>(row, &run.soft, a, b, self.h, biased);
         }
     }
 
@@ -585,10 +617,6 @@ impl Sweep {
             let ([a, b], [c, d]) = ([a, b], [c, d]);
             self.pair_normal::<Q>([a, b], &q1[k], soft[0], biased[0], &mut e1);
             self.pair_normal::<Q>([c, d], &q2[k], soft[1], biased[1], &mut e2);
-            if self.friction > 0.0 {
-                self.pair_friction::<Q>([a, b], &q1[k], &mut e1);
-                self.pair_friction::<Q>([c, d], &q2[k], &mut e2);
-            }
         }
         self.finish_pairs((x1, y1), biased[0], (q1, both), e1, rows, motions);
         self.finish_pairs((x2, y2), biased[1], (q2, both), e2, rows, motions);
@@ -636,15 +664,12 @@ impl Sweep {
     ) {
         let n = p.normal;
         let u = add(dot(&n, &a.v), dot(&p.rn, &a.omega));
-        let change = self.normal([x, y], p.inv_k[0], soft, biased, u);
+        let change = self.normal([x, y], p.inv_k, soft, biased, u);
         let live = [change.lane(0) != 0.0, change.lane(1) != 0.0];
         if live[0] || live[1] {
-            let wa = p.w_a[0];
+            let wa = p.w_a;
             a.v = pick(live, add3(a.v, scale(n, mul(change, a.inv_mass))), a.v);
             a.omega = pick(live, add3(a.omega, scale(wa, change)), a.omega);
-        }
-        if self.friction > 0.0 {
-            self.friction([x, y], p, a);
         }
     }
 
@@ -682,59 +707,6 @@ impl Sweep {
         change
     }
 
-    /// Two rows' tangent impulses from the points' slips (`sweep::solve`): each row's new
-    /// tangent impulse (kept in its disk) and the step from the old, `[t₁, t₂]` by lane;
-    /// which lanes changed.
-    #[inline(always)]
-    fn tangent(
-        &self,
-        [x, y]: [&mut Row; 2],
-        tangents: &[V2; 2],
-        inv_k: &[F2; 3],
-        slip: &V2,
-    ) -> (F2, F2, [bool; 2]) {
-        let bound = [self.friction * x.lambda, self.friction * y.lambda];
-        let old = [x.lambda_tangent, y.lambda_tangent];
-        let [t1, t2] = tangents;
-        let old1 = F2::new(old[0][0], old[1][0]);
-        let old2 = F2::new(old[0][1], old[1][1]);
-        let n1 = sub(old1, mul(inv_k[1], dot(t1, slip)));
-        let n2 = sub(old2, mul(inv_k[2], dot(t2, slip)));
-        let mut new = [[n1.lane(0), n2.lane(0)], [n1.lane(1), n2.lane(1)]];
-        clamp_disk(&mut new[0], bound[0]);
-        clamp_disk(&mut new[1], bound[1]);
-        let step = |i: usize| [new[i][0] - old[i][0], new[i][1] - old[i][1]];
-        let (sx, sy) = (step(0), step(1));
-        let live = [sx != [0.0; 2], sy != [0.0; 2]];
-        if live[0] {
-            x.lambda_tangent = new[0];
-        }
-        if live[1] {
-            y.lambda_tangent = new[1];
-        }
-        (F2::new(sx[0], sy[0]), F2::new(sx[1], sy[1]), live)
-    }
-
-    /// The friction of two rows against an obstacle or a fixed body side by side (after
-    /// their normal updates).
-    #[inline(always)]
-    fn friction(&self, [x, y]: [&mut Row; 2], p: &Packed, a: &mut Wide) {
-        let slip = add3(a.v, cross(&a.omega, &p.lever));
-        let (s1, s2, live) = self.tangent([x, y], &p.tangents, &p.inv_k, &slip);
-        if !(live[0] || live[1]) {
-            return;
-        }
-        let [t1, t2] = p.tangents;
-        let impulse = add3(scale(t1, s1), scale(t2, s2));
-        let (wa1, wa2) = (p.w_a[1], p.w_a[2]);
-        a.v = pick(live, add3(a.v, scale(impulse, a.inv_mass)), a.v);
-        a.omega = pick(
-            live,
-            add3(a.omega, add3(scale(wa1, s1), scale(wa2, s2))),
-            a.omega,
-        );
-    }
-
     /// Two rows between two bodies each, side by side in four lanes: the scalar
     /// `sweep::solve`, lane by lane, operation by operation (`Ends`).
     #[inline(always)]
@@ -747,9 +719,6 @@ impl Sweep {
         e: &mut Ends<Q>,
     ) {
         self.pair_normal::<Q>([x, y], p, soft, biased, e);
-        if self.friction > 0.0 {
-            self.pair_friction::<Q>([x, y], p, e);
-        }
     }
 
     /// The normal updates of two rows between two bodies each, in four lanes.
@@ -768,48 +737,20 @@ impl Sweep {
         // scalar `u = (n·v_A + (r_A×n)·ω_A) + (−n·v_B + (r_B×(−n))·ω_B)`.
         let ends = dot4(&p.normal, &e.v).neg_hi().add(dot4(&p.rn, &e.omega));
         let u = add(ends.lo(), ends.hi());
-        let change = self.normal([x, y], p.inv_k[0], soft, biased, u);
+        let change = self.normal([x, y], p.inv_k, soft, biased, u);
         let live = [change.lane(0) != 0.0, change.lane(1) != 0.0];
         if live[0] || live[1] {
             // B: n (j·(−1/M_B)) = n ((−j)/M_B) and I_B⁻¹(r_B×(−n)) j, bit for bit.
             let c = Q::join(change, change);
             let dv = c.mul(e.mass);
             for k in 0..3 {
-                let w = Q::load(&p.w[0][k]);
+                let w = Q::load(&p.w[k]);
                 e.v[k] = pick4(live, e.v[k].add(n[k].mul(dv)), e.v[k]);
                 e.omega[k] = pick4(live, e.omega[k].add(w.mul(c)), e.omega[k]);
             }
         }
     }
 
-    /// The friction of two rows between two bodies each, side by side in four lanes.
-    #[inline(always)]
-    #[allow(clippy::needless_range_loop)] // k indexes four arrays of three lanes
-    fn pair_friction<Q: Quad>(&self, [x, y]: [&mut Row; 2], p: &Quads, e: &mut Ends<Q>) {
-        // Lanes [ω_A×r_A, ω_B×r_B]; the slip `((v_A + ω_A×r_A) − v_B) − ω_B×r_B`.
-        let turn = cross4(&e.omega, &p.lever);
-        let slip: V2 = std::array::from_fn(|k| {
-            sub(
-                sub(add(e.v[k].lo(), turn[k].lo()), e.v[k].hi()),
-                turn[k].hi(),
-            )
-        });
-        let (s1, s2, live) = self.tangent([x, y], &p.tangents, &p.inv_k, &slip);
-        if !(live[0] || live[1]) {
-            return;
-        }
-        let [t1, t2] = p.tangents;
-        let impulse = add3(scale(t1, s1), scale(t2, s2));
-        let (s1, s2) = (Q::join(s1, s1), Q::join(s2, s2));
-        for k in 0..3 {
-            // B: v_B − P/M_B = v_B + P (−1/M_B), bit for bit.
-            let dv = Q::join(impulse[k], impulse[k]).mul(e.mass);
-            e.v[k] = pick4(live, e.v[k].add(dv), e.v[k]);
-            let (w1, w2) = (Q::load(&p.w[1][k]), Q::load(&p.w[2][k]));
-            let dw = w1.mul(s1).add(w2.mul(s2));
-            e.omega[k] = pick4(live, e.omega[k].add(dw), e.omega[k]);
-        }
-    }
 }
 
 /// Rows i and j (i ≠ j) of `rows`, both mutable.
@@ -832,17 +773,6 @@ type V4<Q> = [Q; 3];
 fn dot4<Q: Quad>(a: &[[f64; 4]; 3], b: &V4<Q>) -> Q {
     let p = |k: usize| Q::load(&a[k]).mul(b[k]);
     p(0).add(p(1)).add(p(2))
-}
-
-/// `a×b` lane by lane as nalgebra computes it (b loaded as it goes).
-#[inline(always)]
-fn cross4<Q: Quad>(a: &V4<Q>, b: &[[f64; 4]; 3]) -> V4<Q> {
-    let b = b.each_ref().map(Q::load);
-    [
-        a[1].mul(b[2]).sub(a[2].mul(b[1])),
-        a[2].mul(b[0]).sub(a[0].mul(b[2])),
-        a[0].mul(b[1]).sub(a[1].mul(b[0])),
-    ]
 }
 
 /// Keeps lanes 0 and 2 of `new` where `live[0]`, 1 and 3 where `live[1]`, else of `old`.
@@ -920,13 +850,10 @@ struct Quads {
     normal: [[f64; 4]; 3],
     /// `r_A×n` and `r_B×(−n)`.
     rn: [[f64; 4]; 3],
-    /// Per axis d = n, t₁, t₂: `I_A⁻¹(r_A×d)` and `I_B⁻¹(r_B×(−d))`.
-    w: [[[f64; 4]; 3]; 3],
-    /// r_A and r_B.
-    lever: [[f64; 4]; 3],
-    /// The tangents and 1/k of rows x and y.
-    tangents: [V2; 2],
-    inv_k: [F2; 3],
+    /// `I_A⁻¹(r_A×n)` and `I_B⁻¹(r_B×(−n))`.
+    w: [[f64; 4]; 3],
+    /// 1/k of rows x and y.
+    inv_k: F2,
 }
 
 impl Quads {
@@ -938,17 +865,11 @@ impl Quads {
                     d: &nalgebra::Vector3<f64>| {
             std::array::from_fn(|k| [a[k], b[k], c[k], d[k]])
         };
-        let both = |i: usize| F2::new(x.inv_k[i], y.inv_k[i]);
         Quads {
             normal: four(&x.normal, &y.normal, &x.normal, &y.normal),
             rn: four(&x.rn[0], &y.rn[0], &x.rn[1], &y.rn[1]),
-            w: std::array::from_fn(|i| four(&x.w_a[i], &y.w_a[i], &x.w_b[i], &y.w_b[i])),
-            lever: four(&x.lever, &y.lever, &x.lever_other, &y.lever_other),
-            tangents: [
-                lanes(&x.tangents[0], &y.tangents[0]),
-                lanes(&x.tangents[1], &y.tangents[1]),
-            ],
-            inv_k: [both(0), both(1), both(2)],
+            w: four(&x.w_a, &y.w_a, &x.w_b, &y.w_b),
+            inv_k: F2::new(x.inv_k, y.inv_k),
         }
     }
 }
@@ -985,6 +906,7 @@ mod tests {
     #[test]
     fn the_lanes_give_the_sequential_sweep_bit_for_bit() {
         let mut g = Lcg(7);
+        let mut f = Lcg(13);
         let bodies = 9;
         let soft = [
             Softness::new(60.0, 10.0, 2.5e-4),
@@ -998,35 +920,65 @@ mod tests {
             let start = rows.rows.len();
             for _ in 0..count {
                 let normal = g.vector().normalize();
-                let t1 = normal.cross(&Vector3::x()).normalize();
-                let t2 = normal.cross(&t1);
                 let zero = Vector3::zeros();
                 let pair = b.is_some();
                 rows.rows.push(Row {
                     normal,
-                    tangents: [t1, t2],
                     lever: g.vector() * 0.2,
                     lever_other: if pair { g.vector() * 0.2 } else { zero },
                     rn: [g.vector(), if pair { g.vector() } else { zero }],
-                    w_a: [g.vector(), g.vector(), g.vector()],
+                    // Drawn as when a row had three axes (the tangents' unused), so that
+                    // the runs, and the schedule, are the ones drawn before.
+                    w_a: [g.vector(), g.vector(), g.vector()][0],
                     w_b: if pair {
-                        [g.vector(), g.vector(), g.vector()]
+                        [g.vector(), g.vector(), g.vector()][0]
                     } else {
-                        [zero; 3]
+                        zero
                     },
-                    inv_k: [0.3 + g.next() * 0.1, 0.4, 0.5],
+                    inv_k: 0.3 + g.next() * 0.1,
+                    reach: (f.next() + 1.0) * 0.1,
                     separation: 0.0,
                     gap: g.next() * 1e-3,
                     lambda: (g.next() + 0.5).max(0.0) * 0.01,
-                    lambda_tangent: [g.next() * 1e-3, g.next() * 1e-3],
                     max_lambda: 0.0,
                 });
+                // The two tangent impulses a row drew before.
+                g.next();
+                g.next();
                 rows.totals.push(Default::default());
+            }
+            // One manifold, or two when the run has more than two rows (drawn from their own
+            // generator: the rows and runs are the ones drawn before manifolds were).
+            let first = rows.patches.len();
+            let split = if count > 2 { start + 2 } else { start + count };
+            for span in [start..split, split..start + count] {
+                if span.is_empty() {
+                    continue;
+                }
+                let pair = b.is_some();
+                let zero = Vector3::zeros();
+                let normal = rows.rows[span.start].normal;
+                let t1 = normal.cross(&Vector3::x()).normalize();
+                let t2 = normal.cross(&t1);
+                let three = |g: &mut Lcg| [g.vector(), g.vector(), g.vector()];
+                rows.patches.push(Patch {
+                    rows: span,
+                    normal,
+                    tangents: [t1, t2],
+                    lever: f.vector() * 0.2,
+                    lever_other: if pair { f.vector() * 0.2 } else { zero },
+                    w_a: three(&mut f),
+                    w_b: if pair { three(&mut f) } else { [zero; 3] },
+                    inv_k: [0.4, 0.5, 0.6],
+                    lambda: [f.next() * 1e-3, f.next() * 1e-3, f.next() * 1e-4],
+                });
+                rows.patch_totals.push(Default::default());
             }
             rows.runs.push(Run {
                 a,
                 b,
                 rows: start..start + count,
+                patches: first..rows.patches.len(),
                 soft: soft[usize::from(b.is_none())],
             });
         }
@@ -1054,7 +1006,8 @@ mod tests {
         let (mut one_rows, mut one) = (rows.clone(), motions.clone());
         for biased in [true, false, true] {
             for run in one_rows.runs.clone() {
-                solve_run(&run, &mut one_rows.rows, &mut one, 0.5, 2.5e-4, biased);
+                let both = (&mut one_rows.rows[..], &mut one_rows.patches[..]);
+                solve_run(&run, both, &mut one, 0.5, 2.5e-4, biased);
             }
         }
         let check = |wide_rows: &Rows, wide: &[Motion]| {
@@ -1064,11 +1017,10 @@ mod tests {
             }
             for (w, o) in wide_rows.rows.iter().zip(&one_rows.rows) {
                 assert_eq!(w.lambda.to_bits(), o.lambda.to_bits());
-                assert_eq!(
-                    w.lambda_tangent.map(f64::to_bits),
-                    o.lambda_tangent.map(f64::to_bits)
-                );
                 assert_eq!(w.max_lambda.to_bits(), o.max_lambda.to_bits());
+            }
+            for (w, o) in wide_rows.patches.iter().zip(&one_rows.patches) {
+                assert_eq!(w.lambda.map(f64::to_bits), o.lambda.map(f64::to_bits));
             }
         };
         let (mut wide_rows, mut wide) = (rows.clone(), motions.clone());

@@ -1,84 +1,88 @@
 //! `soft-step`'s rows, prepared once per step into what the sweeps read and nothing more
-//! (Box2D v3's contact constraints): per contact the normal n and tangents t₁, t₂, the levers
-//! r_A, r_B, each end's `r×d` for the normal and `I₀⁻¹(r×d)` for the three axes, and the three
-//! effective masses `1/k`,
+//! (Box2D v3's contact constraints): per contact the normal n, the levers r_A, r_B, each
+//! end's `r×n` and `I₀⁻¹(r×n)`, and the effective mass `1/k`,
 //!
 //! ```text
-//! k = 1/M_A + (r_A×d)·I_A⁻¹(r_A×d) + 1/M_B + (r_B×(−d))·I_B⁻¹(r_B×(−d))
+//! k = 1/M_A + (r_A×n)·I_A⁻¹(r_A×n) + 1/M_B + (r_B×(−n))·I_B⁻¹(r_B×(−n))
 //! ```
 //!
 //! with I₀⁻¹ the start pose's world inverse inertia, fixed over the step: no matrix work is
-//! left for the sweeps. Consecutive rows between the same two bodies form a [`Run`]: a sweep
-//! copies the two bodies' motions in once, and a run against an obstacle or a fixed body (no
-//! B end) takes a path that reads no B. What the sweeps do not read (the approach, the totals
-//! Λ) is kept beside, in [`Totals`].
+//! left for the sweeps. Friction is not per row but per manifold (`patch`): the rows of one
+//! pair sharing a normal. Consecutive rows between the same two bodies form a [`Run`]: a
+//! sweep copies the two bodies' motions in once, and a run against an obstacle or a fixed
+//! body (no B end) takes a path that reads no B. What the sweeps do not read (the approach,
+//! the totals Λ) is kept beside, in [`Totals`].
 
 use super::bodies::{Bodies, Placement};
-use super::{clamp_disk, Softness};
-use crate::physics::collision::impulse::tangents;
+use super::patch::{Patch, PatchTotals};
+use super::Softness;
 use crate::physics::collision::warm::WarmCache;
 use crate::physics::collision::Contact;
 use nalgebra::{Matrix3, Vector3};
 use std::ops::Range;
 
-/// One contact as the sweeps see it.
+/// One contact's normal row as the sweeps see it.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Row {
     pub normal: Vector3<f64>,
-    pub tangents: [Vector3<f64>; 2],
     pub lever: Vector3<f64>,
     pub lever_other: Vector3<f64>,
     /// `r_A×n` and `r_B×(−n)`.
     pub rn: [Vector3<f64>; 2],
-    /// `I_A⁻¹(r_A×d)` for d = n, t₁, t₂ (A's end), and `I_B⁻¹(r_B×(−d))` (B's; zero without B).
-    pub w_a: [Vector3<f64>; 3],
-    pub w_b: [Vector3<f64>; 3],
-    /// 1/k along n, t₁, t₂ (0 when k is).
-    pub inv_k: [f64; 3],
+    /// `I_A⁻¹(r_A×n)` (A's end) and `I_B⁻¹(r_B×(−n))` (B's; zero without B).
+    pub w_a: Vector3<f64>,
+    pub w_b: Vector3<f64>,
+    /// 1/k along n (0 when k is).
+    pub inv_k: f64,
+    /// The point's distance from its manifold's centre across the normal, m (`patch`).
+    pub reach: f64,
     /// Separation at the detection pose, m.
     pub separation: f64,
     /// Separation at the bodies' current poses, m: refreshed once per sub-step.
     pub gap: f64,
     pub lambda: f64,
-    pub lambda_tangent: [f64; 2],
     pub max_lambda: f64,
 }
 
-/// What the sweeps do not read: the approach and the step's totals.
+/// What the sweeps do not read: the approach and the step's total.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Totals {
     /// Normal velocity before the response, m/s.
     pub approach: f64,
-    /// `r_A×t` and `r_B×(−t)` for the two tangents (the normal's are the row's `rn`).
-    pub rt: [[Vector3<f64>; 2]; 2],
-    /// Every impulse applied over the step along the normal and the two tangents (N·s, on
-    /// A): the row's impulse is `n Λ₀ + t₁ Λ₁ + t₂ Λ₂`, and its share of each body's angular
-    /// momentum `(r×d) Λ` summed over the three axes.
-    pub applied: [f64; 3],
+    /// Every normal impulse applied over the step (N·s, on A), Λ: the row's normal impulse
+    /// is `n Λ` and its share of each body's angular momentum `(r×n) Λ`.
+    pub applied: f64,
 }
 
 /// Consecutive rows between the same two bodies (B: None for an obstacle or a fixed body),
-/// with their softness.
+/// with their softness and their manifolds' friction (`patches`, into [`Rows::patches`]).
 #[derive(Debug, Clone)]
 pub(super) struct Run {
     pub a: usize,
     pub b: Option<usize>,
     pub rows: Range<usize>,
+    pub patches: Range<usize>,
     pub soft: Softness,
 }
 
-/// The step's rows, their totals and runs.
+/// The step's rows, their totals and runs, and the manifolds' friction.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Rows {
     pub rows: Vec<Row>,
     pub totals: Vec<Totals>,
     pub runs: Vec<Run>,
+    pub patches: Vec<Patch>,
+    pub patch_totals: Vec<PatchTotals>,
+    /// Per row, the impulse last step left at its feature (the warm start), while building.
+    warm: Vec<Vector3<f64>>,
+    /// Each manifold's rows and B's solver entry, while building.
+    spans: Vec<(Range<usize>, usize)>,
 }
 
 /// One end of an axis d at lever r on a body of 1/M `inv_mass` and world I⁻¹ `inv_inertia`:
 /// `r×d`, `I⁻¹(r×d)` and its share of k, `1/M + (r×d)·I⁻¹(r×d)`.
 #[inline(always)]
-fn end(
+pub(super) fn end(
     inv_mass: f64,
     inv_inertia: &Matrix3<f64>,
     lever: &Vector3<f64>,
@@ -89,10 +93,18 @@ fn end(
     (rd, w, inv_mass + rd.dot(&w))
 }
 
+/// Whether two unit normals are those of one manifold (within 10⁻⁶ rad or so).
+#[inline(always)]
+fn same_normal(a: &Vector3<f64>, b: &Vector3<f64>) -> bool {
+    (a - b).norm_squared() < 1e-12
+}
+
 impl Rows {
     /// The rows of `contacts` over `bodies` (gathered from the same contacts), warm-started
-    /// from `warm` (last step's per-sub-step impulse at the same feature and point, its
-    /// tangent part kept in the friction disk `μ λ`); each contact's denominator set to k.
+    /// from `warm` (last step's per-sub-step impulse at the same feature and point), and
+    /// their manifolds (`patch`: consecutive rows against the same B with one normal), whose
+    /// friction starts from the rows' impulses' tangent parts; each contact's denominator
+    /// set to k.
     #[inline(always)]
     pub fn build(
         &mut self,
@@ -102,66 +114,81 @@ impl Rows {
         friction: f64,
         (dynamic, fixed): (Softness, Softness),
     ) {
-        let Rows { rows, totals, runs } = self;
+        let Rows {
+            rows,
+            totals,
+            runs,
+            patches,
+            patch_totals,
+            warm: found,
+            spans,
+        } = self;
         rows.clear();
         totals.clear();
         runs.clear();
+        patches.clear();
+        patch_totals.clear();
+        found.clear();
+        spans.clear();
         for c in contacts.iter_mut() {
             let a = bodies.slot[c.body];
             let b = bodies.moving(c.other);
-            let (t1, t2) = tangents(&c.normal);
             let (ia, ma) = (&bodies.inv_inertia[a], bodies.motions[a].inv_mass);
-            let (rn_a, wn_a, kn) = end(ma, ia, &c.lever, c.normal);
-            let (r1_a, w1_a, k1) = end(ma, ia, &c.lever, t1);
-            let (r2_a, w2_a, k2) = end(ma, ia, &c.lever, t2);
-            let mut k = [kn, k1, k2];
+            let (rn_a, wn_a, mut k) = end(ma, ia, &c.lever, c.normal);
             let zero = Vector3::zeros();
-            let (mut rn_b, mut w_b, mut rt_b) = (zero, [zero; 3], [zero; 2]);
+            let (mut rn_b, mut w_b) = (zero, zero);
             if let Some(b) = b {
                 let (ib, mb) = (&bodies.inv_inertia[b], bodies.motions[b].inv_mass);
                 let (rn, wn, kn) = end(mb, ib, &c.lever_other, -c.normal);
-                let (r1, w1, k1) = end(mb, ib, &c.lever_other, -t1);
-                let (r2, w2, k2) = end(mb, ib, &c.lever_other, -t2);
-                k[0] += kn;
-                k[1] += k1;
-                k[2] += k2;
-                (rn_b, w_b, rt_b) = (rn, [wn, w1, w2], [r1, r2]);
+                k += kn;
+                (rn_b, w_b) = (rn, wn);
             }
             let w = warm.find(c).unwrap_or_else(Vector3::zeros);
-            let lambda = w.dot(&c.normal).max(0.0);
-            let mut lambda_tangent = [w.dot(&t1), w.dot(&t2)];
-            clamp_disk(&mut lambda_tangent, friction * lambda);
-            let inv = |k: f64| if k > 0.0 { 1.0 / k } else { 0.0 };
+            found.push(w);
             rows.push(Row {
                 normal: c.normal,
-                tangents: [t1, t2],
                 lever: c.lever,
                 lever_other: c.lever_other,
                 rn: [rn_a, rn_b],
-                w_a: [wn_a, w1_a, w2_a],
+                w_a: wn_a,
                 w_b,
-                inv_k: [inv(k[0]), inv(k[1]), inv(k[2])],
+                inv_k: if k > 0.0 { 1.0 / k } else { 0.0 },
+                reach: 0.0,
                 separation: -c.depth,
                 gap: 0.0,
-                lambda,
-                lambda_tangent,
+                lambda: w.dot(&c.normal).max(0.0),
                 max_lambda: 0.0,
             });
-            totals.push(Totals {
-                approach: 0.0,
-                rt: [[r1_a, r2_a], rt_b],
-                applied: [0.0; 3],
-            });
-            c.denominator = k[0];
+            totals.push(Totals::default());
+            c.denominator = k;
             let i = rows.len() - 1;
-            match runs.last_mut() {
-                Some(run) if run.a == a && run.b == b => run.rows.end = i + 1,
-                _ => runs.push(Run {
+            let new_run = !matches!(runs.last(), Some(run) if run.a == a && run.b == b);
+            if new_run {
+                runs.push(Run {
                     a,
                     b,
                     rows: i..i + 1,
+                    patches: spans.len()..spans.len(),
                     soft: if b.is_none() { fixed } else { dynamic },
-                }),
+                });
+            }
+            let run = runs.last_mut().expect("a run");
+            run.rows.end = i + 1;
+            // The row joins the last manifold when it has the same B and normal.
+            let last = spans.last_mut().filter(|(span, other)| {
+                !new_run && *other == c.other && same_normal(&rows[span.start].normal, &c.normal)
+            });
+            match last {
+                Some((span, _)) => span.end = i + 1,
+                None => spans.push((i..i + 1, c.other)),
+            }
+            run.patches.end = spans.len();
+        }
+        for run in runs.iter() {
+            for (span, _) in &spans[run.patches.clone()] {
+                let (patch, t) = Patch::build(run, span.clone(), rows, found, bodies, friction);
+                patches.push(patch);
+                patch_totals.push(t);
             }
         }
     }
@@ -190,43 +217,51 @@ impl Rows {
         }
     }
 
-    /// Adds each row's impulses of the sub-step to its totals Λ.
+    /// Adds each row's and each manifold's impulses of the sub-step to their totals Λ.
     #[inline(always)]
     pub fn add_totals(&mut self) {
         for (row, t) in self.rows.iter().zip(self.totals.iter_mut()) {
-            t.applied[0] += row.lambda;
-            t.applied[1] += row.lambda_tangent[0];
-            t.applied[2] += row.lambda_tangent[1];
+            t.applied += row.lambda;
+        }
+        for (p, t) in self.patches.iter().zip(self.patch_totals.iter_mut()) {
+            for (total, lambda) in t.applied.iter_mut().zip(&p.lambda) {
+                *total += lambda;
+            }
         }
     }
 
-    /// Each row's share of its bodies' angular momentum, `Σ_axes (r×d) Λ`, added to `l`: a
-    /// run's two bodies (never the same) held in hand over its rows, the terms added in the
-    /// rows' and axes' order.
+    /// Each row's and manifold's share of its bodies' angular momentum, `(r×n) Λ` and
+    /// `Σ_axes (r×d) Λ` (`patch`), added to `l`: a run's two bodies (never the same) held in
+    /// hand over its rows, then over its manifolds.
     #[inline(always)]
     pub fn add_angular_momentum(&self, l: &mut [Vector3<f64>]) {
         for run in &self.runs {
             let range = run.rows.clone();
             let rows = self.rows[range.clone()].iter().zip(&self.totals[range]);
+            let patches = &self.patch_totals[run.patches.clone()];
             let mut la = l[run.a];
             match run.b {
                 Some(b) => {
                     let mut lb = l[b];
                     for (row, t) in rows {
-                        let rd_a = [row.rn[0], t.rt[0][0], t.rt[0][1]];
-                        let rd_b = [row.rn[1], t.rt[1][0], t.rt[1][1]];
+                        la += row.rn[0] * t.applied;
+                        lb += row.rn[1] * t.applied;
+                    }
+                    for t in patches {
                         for i in 0..3 {
-                            la += rd_a[i] * t.applied[i];
-                            lb += rd_b[i] * t.applied[i];
+                            la += t.rd[0][i] * t.applied[i];
+                            lb += t.rd[1][i] * t.applied[i];
                         }
                     }
                     l[b] = lb;
                 }
                 None => {
                     for (row, t) in rows {
-                        let rd_a = [row.rn[0], t.rt[0][0], t.rt[0][1]];
-                        for (rd, applied) in rd_a.iter().zip(&t.applied) {
-                            la += rd * *applied;
+                        la += row.rn[0] * t.applied;
+                    }
+                    for t in patches {
+                        for i in 0..3 {
+                            la += t.rd[0][i] * t.applied[i];
                         }
                     }
                 }
