@@ -352,7 +352,7 @@ pub struct Scratch {
 /// What the front ends say about `soft-step` (`response`).
 pub const DESCRIPTOR: Descriptor = Descriptor {
     name: "soft-step",
-    summary: "sub-stepped soft contacts with a relax pass (Box2D v3): each contact a damped spring of `hertz` and `damping_ratio`, one sweep per sub-step",
+    summary: "sub-stepped soft contacts with a relax pass (Box2D v3): each contact a damped spring of `hertz` and `damping_ratio`, one sweep per sub-step, friction per face (a tangent pair and a twist at its centre)",
     keeps: "momentum between bodies; energy at most the lift out of penetration; sags N(N−1)g/ω² at the top of a stack of N, which buckles above (1.96 ω² a/g)^(1/3) cubes of side 2a",
     brief: "soft contacts over sub-steps",
     formula: "per sub-step h = dt/n:  Δλ = −m·a₂a₃·(uₙ + ω_c s/a₁) − a₃·λ,  λ ≥ 0;  x += h·v;  relax: Δλ = −m·uₙ  (m = 1/k, ω_c = 2π·hertz)",
