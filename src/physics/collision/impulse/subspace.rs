@@ -30,6 +30,11 @@ use crate::physics::envelope::{Envelope, Pivots};
 /// that did not converge.
 pub const SUBSPACE_EVERY: u64 = 8;
 
+/// A large stage ([`SWEEPS_FIRST_ROWS`] rows or more) one of whose searches left the sweeps
+/// after it above where they stood before it searches again only when its sweeps, at their
+/// rate, need more than this many sweeps to the tolerance.
+pub const RAISED_SWEEPS: u64 = 64;
+
 /// Most changes of the active set one friction subspace search makes (each a direct solve).
 pub const SUBSPACE_ROUNDS: usize = 8;
 
@@ -92,6 +97,11 @@ pub(super) fn sweep_after(
     // The work of this stage's last search, its rounds' factorisations together (none yet:
     // the first search runs).
     let mut last_search = None;
+    // The sweeps' residual just before the last search, until the burst after it ends; and
+    // whether a search of this stage has left the sweeps above where they stood
+    // ([`RAISED_SWEEPS`]).
+    let mut before_search: Option<f64> = None;
+    let mut raised = false;
     loop {
         subspace &= steps_left > 0 && !buffers.spent();
         if !std::mem::take(&mut skip_burst) {
@@ -118,14 +128,18 @@ pub(super) fn sweep_after(
                 return (converged, total - swept, residual);
             }
             let large = rows_count >= SWEEPS_FIRST_ROWS;
+            raised |= large && before_search.take().is_some_and(|before| residual > before);
             if large
                 && middle.zip(last_search).is_some_and(|((middle, sweeps), search)| {
                     sweeps_cheaper((middle, residual, sweeps), tolerance, rows_count, search)
+                        || (raised && sweeps_needed(middle, residual, sweeps, tolerance)
+                            <= RAISED_SWEEPS as f64)
                 })
             {
                 continue;
             }
         }
+        before_search = Some(buffers.residual);
         // An active-set search: a step cut short by a normal reaching 0 or a sticking disk
         // reaching its edge changes the active set; solve again on the new one.
         buffers.pinned.clear();
@@ -216,12 +230,18 @@ fn sweeps_cheaper(
     rows: usize,
     factor: u64,
 ) -> bool {
+    sweeps_needed(middle, last, sweeps, tolerance) * rows as f64 <= factor as f64
+}
+
+/// The sweeps still needed to reach `tolerance` at the rate of sweeps whose residual fell
+/// from `middle` to `last` over their last `sweeps` (linear convergence, `r_{k+n} = r_k ρⁿ`,
+/// `n = ln(tolerance/last)/ln ρ`); infinite when they stalled, rose or none ran.
+fn sweeps_needed(middle: f64, last: f64, sweeps: u64, tolerance: f64) -> f64 {
     if sweeps == 0 || last >= middle || last <= 0.0 {
-        return false;
+        return f64::INFINITY;
     }
     let rate_log = (last / middle).ln() / sweeps as f64;
-    let needed = (tolerance / last).ln() / rate_log;
-    needed * rows as f64 <= factor as f64
+    (tolerance / last).ln() / rate_log
 }
 
 /// What a subspace step did.
