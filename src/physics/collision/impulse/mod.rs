@@ -236,6 +236,24 @@ pub const MAX_SWEEPS: usize = 2000;
 /// while it settles (about 5 ms a factorisation, against seconds of capped sweeps).
 pub const ENVELOPE_MAX: usize = 1 << 20;
 
+/// A friction stage of at least this many rows whose direct solves declined starts its
+/// sweeps from last step's normal impulses (`friction::warm_normals`), unless it is large
+/// and wide (its trial sweeps already started from them and failed).
+///
+/// Measured (issue 35, 2026-12-07, work in row updates, deterministic; total, worst after
+/// the first step ÷ median, unconverged): on 16 dominoes the first burst of the sweeps from
+/// stage 1's normals ended at about 1.3e-4 m/s, from last step's at about 3e-6 m/s, and the
+/// sweeps after the interior point then need one sweep instead of 8 and a search:
+/// dominoes16 1500 9.81M ×70.9 0 → 7.24M ×36.5 0; knife-wall 200 28.36M ×25.8 9 →
+/// 25.55M ×28.6 9; knife-wall-ball 100 7.47M ×10.8 24 → 7.00M ×11.6 26; wall-ball,
+/// bonded-wall-ball (large and wide) and dominoes (36 rows) the same. For every stage
+/// (no row limit): dominoes 3000 5.59M ×268 → 4.34M ×87, but lesson 37's claim "rises after
+/// the landing" read 0.709e-3 J against 1.145e-3 ± 5e-5 and lesson 15's walk snapshot moved
+/// (the corners' shares of a face's load); with the large and wide stages too: wall-ball
+/// 42.7M → 64.5M (69 unconverged against 45). Lesson 41's walk snapshot moves: its
+/// predicted P_z at 2.8 s (a knocked wall's chaotic fall) 232.531014 → 232.494780 kg·m/s.
+pub const WARM_NORMALS_ROWS: usize = 48;
+
 /// Above this many rows (and when the rows are wide, [`WIDE_ENVELOPE`]) a stage first tries
 /// [`TRIAL_SWEEPS`] sweeps from the last step's
 /// impulses before any factorisation: at rest (or sliding steadily) they are already the answer,
@@ -1241,6 +1259,10 @@ fn friction_stage(
         }
     }
     if !solved {
+        if !large && rows.len() >= WARM_NORMALS_ROWS {
+            // A large system's trial already started from last step's normals.
+            friction::warm_normals(rows, motions);
+        }
         friction::warm_start(rows, tangent_directions, motions);
         if INTERIOR_STAGES {
             solved = buffers_direct.interior_after_burst(
