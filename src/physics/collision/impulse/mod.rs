@@ -185,7 +185,13 @@
 //! to 0): dominoes16 7.18M 3 868 ×47 (8) → 7.24M 3 793 ×74
 //! (16), 6.77M 2 758 ×142 (32), 7.23M 2 343 ×158 (64); knife-wall-ball 6.98M → 14.0M at 32.
 //! The median falls by up to 40 % but the dear steps grow: the sweeps' rate after 8 sweeps
-//! does not hold. What would cut it: a sticking solve that does not decline where a few
+//! does not hold. **The direct sticking solves skipped after they declined** (on a stage
+//! of [`WARM_NORMALS_ROWS`] rows or more, a wait doubled at each decline up to
+//! [`TRIAL_WAIT_MAX`] steps, as stage 1's trial): dominoes16 7.24M, median 3 897, ×36.5 →
+//! 6.99M, 3 029, ×106.5; knife-wall 25.5M ×28.6 → 22.7M ×36.9; wall-ball 42.7M → 41.8M;
+//! knife-wall-ball 7.00M → 6.78M; bonded-wall-ball 41.8M → 44.3M: the median falls 22 %,
+//! the dearest steps grow (a stage whose contacts stop sliding left to the sweeps), not
+//! kept (not run through the claims tests). What would cut it: a sticking solve that does not decline where a few
 //! contacts slide (modes, as [`joined`]'s, or skip it when last step's stage slid), and
 //! an interior-point iteration that costs what its estimate says.
 //!
