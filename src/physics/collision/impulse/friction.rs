@@ -117,6 +117,21 @@ pub(super) fn warm_start(rows: &mut [Row], directions: &[[Axis; 2]], motions: &m
     }
 }
 
+/// Starts the normals of the friction sweeps from the last step's: each pushing normal that
+/// pushed last step too takes last step's impulse (≥ 0, so still feasible). Stage 1 solved
+/// the normals without friction, and where bodies lean and slide on each other (a row of
+/// dominoes) friction moves their loads a long way from there, where last step's loads are
+/// close to this step's; the disks' bounds stay μ λ from stage 1.
+pub(super) fn warm_normals(rows: &mut [Row], motions: &mut [SolverBody]) {
+    for row in rows.iter_mut() {
+        let warm = row.warm.dot(&row.normal.axis.d);
+        if row.normal.lambda > 0.0 && warm > 0.0 && warm != row.normal.lambda {
+            row.normal.axis.apply(warm - row.normal.lambda, motions);
+            row.normal.lambda = warm;
+        }
+    }
+}
+
 /// The exact minimisation of K over one contact's friction disk `|λ_t| ≤ bound`, the other
 /// impulses fixed (module doc); returns the largest change it made to a tangent velocity
 /// (m/s).
