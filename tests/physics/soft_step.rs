@@ -1,4 +1,5 @@
-//! `soft-step` (issue 17): the sag its module doc derives, its energy bound, the scene keys and
+//! `soft-step` (issue 17): the sag its module doc derives, its energy bound, its friction per face
+//! against Coulomb's law at the corners (a spinning cube), the scene keys and
 //! every bundled lesson with contact run through it.
 
 use assert_cmd::Command;
@@ -455,5 +456,96 @@ fn a_soft_stack_stands_below_its_buckling_count_and_falls_above_it() {
                 assert!(largest < 5e-4, "{hertz} Hz, {n} cubes leaned {largest:e} m");
             }
         }
+    }
+}
+
+/// A cube of side [`SIDE`] and 1 kg resting flat on the ground, spinning about the vertical
+/// at `omega` rad/s, under `response` with friction `mu` (e = 0).
+fn spinning_cube(response: Response, mu: f64, omega: f64) -> World {
+    use nalgebra::Vector3;
+    use tumble::physics::{
+        Body, ContactModel, Effect, Effects, Impacts, Integrator, NamedBody, Obstacle, State,
+    };
+    let body = Body::solid_box(Vector3::repeat(SIDE), 1.0).unwrap();
+    let spin = SIDE * SIDE / 6.0 * omega; // L = I ω, I = m s²/6 about any axis
+    World::with_bodies(
+        vec![NamedBody {
+            name: "cube".into(),
+            body,
+            initial: State {
+                position: Vector3::new(0.0, SIDE / 2.0, 0.0),
+                angular_momentum: Vector3::new(0.0, spin, 0.0),
+                ..State::at_rest()
+            },
+        }],
+        Effects::new(vec![Effect::Gravity(Vector3::new(0.0, -G, 0.0))]),
+        vec![Obstacle::Ground(Ground { height: 0.0 })],
+        Some(ContactModel {
+            response,
+            restitution: 0.0,
+            friction: mu,
+            impacts: Impacts::default(),
+        }),
+        Integrator::Rk4,
+        DT,
+    )
+}
+
+#[test]
+fn a_cube_spinning_flat_on_the_ground_stops_at_coulombs_twist_rate_under_both_responses() {
+    // Each corner of the bottom face (ρ = s/√2 from its centre) carries m g/4 and slides on a
+    // circle about the centre, so its friction μ m g/4 is tangent to that circle: no net force,
+    // a torque μ m g s/√2 about the vertical, and ω falls at α = μ m g (s/√2)/(m s²/6) =
+    // 3√2 μ g/s (104.1 rad/s² for μ = 0.5, s = 0.2 m) until it stops at t = ω₀/α, having
+    // turned ω₀²/(2α). `impulse` takes Coulomb's law per corner; `soft-step` per face (a
+    // tangent pair at the centre and a twist bounded by μ Σ λᵢ ρᵢ, its module doc): the same
+    // torque here. Neither may push the cube sideways or tilt it.
+    let (mu, omega0) = (0.5, 10.0);
+    let alpha = 3.0 * 2f64.sqrt() * mu * G / SIDE;
+    let stop = omega0 / alpha;
+    for response in [Response::from_name("impulse").unwrap(), soft()] {
+        let name = response.descriptor().name;
+        let mut world = spinning_cube(response, mu, omega0);
+        let (mut yaw, mut last) = (0.0, omega0);
+        let mut stopped_at = None;
+        for step in 1..=200 {
+            world.step();
+            // A cube's inertia is m s²/6 about every axis: ω = L/I whatever its orientation.
+            let w = world.states()[0].angular_momentum / (SIDE * SIDE / 6.0);
+            yaw += (last + w.y) / 2.0 * DT; // the trapezoid rule on ω_y
+            last = w.y;
+            let t = step as f64 * DT;
+            if step == 50 {
+                let expected = omega0 - alpha * t;
+                assert!(
+                    (w.y - expected).abs() <= 0.02 * omega0,
+                    "{name}: ω_y {:.5} rad/s at t = {t} s, closed form {expected:.5}",
+                    w.y
+                );
+            }
+            if stopped_at.is_none() && w.y.abs() < 1e-6 {
+                stopped_at = Some(t);
+            }
+        }
+        let stopped_at = stopped_at.unwrap_or_else(|| panic!("{name}: still spinning at 0.2 s"));
+        assert!(
+            (stopped_at - stop).abs() <= 0.02 * stop,
+            "{name}: stopped at {stopped_at} s, closed form {stop:.5} s"
+        );
+        let turned = omega0 * omega0 / (2.0 * alpha);
+        assert!(
+            (yaw - turned).abs() <= 0.002 * turned,
+            "{name}: turned {yaw:.5} rad, closed form {turned:.5} rad"
+        );
+        let state = world.states()[0];
+        let w = state.angular_momentum / (SIDE * SIDE / 6.0);
+        let drift = (state.position.x.powi(2) + state.position.z.powi(2)).sqrt();
+        println!(
+            "{name}: stopped at {stopped_at} s ({stop:.5}), turned {yaw:.5} rad ({turned:.5}), drift {drift:.2e} m, ω {:.2e}",
+            w.norm()
+        );
+        assert!(drift < 1e-6, "{name}: the cube slid {drift:e} m sideways");
+        // soft-step's springs still settle (its sag): 1e-6 rad/s of tilt is left at 0.2 s.
+        assert!(w.norm() < 1e-5, "{name}: ω {w:?} rad/s after stopping");
     }
 }
