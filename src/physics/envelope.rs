@@ -93,6 +93,47 @@ pub struct Envelope {
     column_start: Vec<usize>,
     column_rows: Vec<usize>,
     fill: Vec<usize>,
+    /// Whether `column_start` and `column_rows` list the rows filled since the last reset.
+    columns_listed: bool,
+}
+
+/// Lists, for each column q of an m-row envelope (`first`: each row's first column), the rows
+/// k > q whose envelope reaches q, in increasing k: `column_rows[column_start[q]..
+/// column_start[q + 1]]`. Column q's count is the number of rows with first(k) ≤ q < k,
+/// summed from a difference array (+1 at first(k), −1 at k: O(m), not O(envelope)).
+fn list_columns(
+    first: &[usize],
+    column_start: &mut Vec<usize>,
+    column_rows: &mut Vec<usize>,
+    fill: &mut Vec<usize>,
+) {
+    let m = first.len();
+    column_start.clear();
+    column_start.resize(m + 1, 0);
+    // column_start[q + 1] counts the rows of column q: +1 from q = first(k), −1 from q = k
+    // (wrapping: each prefix sum is a count, never below 0).
+    for (k, &fk) in first.iter().enumerate() {
+        column_start[fk + 1] = column_start[fk + 1].wrapping_add(1);
+        column_start[k + 1] = column_start[k + 1].wrapping_sub(1);
+    }
+    let mut count = 0usize;
+    for q in 0..m {
+        count = count.wrapping_add(column_start[q + 1]);
+        column_start[q + 1] = column_start[q] + count;
+    }
+    // Every slot below column_start[m] is written once below: grow, never clear.
+    let listed = column_start[m];
+    if column_rows.len() < listed {
+        column_rows.resize(listed, 0);
+    }
+    fill.clear();
+    fill.extend_from_slice(&column_start[..m]);
+    for (k, &fk) in first.iter().enumerate() {
+        for slot in &mut fill[fk..k] {
+            column_rows[*slot] = k;
+            *slot += 1;
+        }
+    }
 }
 
 /// `Σ aₖ bₖ` in increasing k from −0 (as `Iterator::sum` does).
@@ -126,6 +167,7 @@ impl Envelope {
             }
         }
         self.body_first.fill(usize::MAX);
+        self.columns_listed = false;
     }
 
     /// The number of stored entries the rows filled so far take (the envelope's size).
@@ -151,6 +193,7 @@ impl Envelope {
             first = first.min(self.body_first[b]);
             self.body_first[b] = self.body_first[b].min(p);
         }
+        self.columns_listed = false;
         self.start[p] = self.a.len();
         self.a.reserve(p + 1 - first);
         for q in first..p + 1 {
@@ -290,6 +333,7 @@ impl Envelope {
             column_start,
             column_rows,
             fill,
+            columns_listed,
             ..
         } = self;
         let (start, first, reciprocal) = (&start[..m], &first[..m], &reciprocal[..m]);
@@ -327,26 +371,11 @@ impl Envelope {
                 }
             }
             Pivots::Regularised => {
-                // Column q of L below the diagonal: the rows k > q whose envelope reaches q.
-                column_start.clear();
-                column_start.resize(m + 1, 0);
-                for (k, &fk) in first.iter().enumerate() {
-                    for count in &mut column_start[fk + 1..k + 1] {
-                        *count += 1;
-                    }
-                }
-                for q in 0..m {
-                    column_start[q + 1] += column_start[q];
-                }
-                column_rows.clear();
-                column_rows.resize(column_start[m], 0);
-                fill.clear();
-                fill.extend_from_slice(&column_start[..m]);
-                for (k, &fk) in first.iter().enumerate() {
-                    for slot in &mut fill[fk..k] {
-                        column_rows[*slot] = k;
-                        *slot += 1;
-                    }
+                // Column q of L below the diagonal: the rows k > q whose envelope reaches q
+                // (built once per filled system: a second right-hand side reuses them).
+                if !*columns_listed {
+                    list_columns(first, column_start, column_rows, fill);
+                    *columns_listed = true;
                 }
                 for p in (0..m).rev() {
                     let sum: f64 = column_rows[column_start[p]..column_start[p + 1]]
@@ -368,12 +397,89 @@ mod tests {
     /// `bodies[p]`, with right-hand side `rhs`.
     fn system(rows: &[&[f64]], bodies: &[[Option<usize>; 2]], rhs: &[f64]) -> Envelope {
         let mut system = Envelope::default();
+        refill(&mut system, rows, bodies, rhs);
+        system
+    }
+
+    /// [`system`] written into `system`, whatever it held.
+    fn refill(system: &mut Envelope, rows: &[&[f64]], bodies: &[[Option<usize>; 2]], rhs: &[f64]) {
         system.reset(rows.len());
         for (p, (row, &acts_on)) in rows.iter().zip(bodies).enumerate() {
             system.fill_row(p, acts_on, |q| Some(row[q + row.len() - 1 - p]));
         }
         system.rhs.copy_from_slice(rhs);
-        system
+    }
+
+    /// Springs in a row: `m` rows, row p acting on bodies p and p + `stride`, so row p shares
+    /// a body with rows p ± stride alone: K has 2 on the diagonal and −1 at distance
+    /// `stride` (`stride` independent chains, interleaved). x = 1 takes b = 1 on each chain's
+    /// first and last row, 0 elsewhere. Returns the rows (each from its first column), the
+    /// bodies and b.
+    fn springs(m: usize, stride: usize) -> (Vec<Vec<f64>>, Vec<[Option<usize>; 2]>, Vec<f64>) {
+        let rows = (0..m)
+            .map(|p| {
+                let mut row = vec![0.0; if p < stride { 1 } else { stride + 1 }];
+                row[0] = if p < stride { 2.0 } else { -1.0 };
+                *row.last_mut().unwrap() = 2.0;
+                row
+            })
+            .collect();
+        let bodies = (0..m).map(|p| [Some(p), Some(p + stride)]).collect();
+        let rhs = (0..m)
+            .map(|p| {
+                if p < stride || p + stride >= m {
+                    1.0
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        (rows, bodies, rhs)
+    }
+
+    /// The regularised answer of [`springs`]: on each chain of n rows, row i of it has
+    /// x = 1 − ε (i + 1)(n − i)/2 to first order in ε = 2e-10 (see the test below).
+    fn springs_answer(m: usize, stride: usize, p: usize) -> f64 {
+        let (n, i) = (m / stride, p / stride);
+        1.0 - 2e-10 * ((i + 1) * (n - i)) as f64 / 2.0
+    }
+
+    #[test]
+    fn the_column_lists_follow_each_filled_system() {
+        // Above SMALL the regularised back substitution lists each column's rows once per
+        // filled system: two right-hand sides on one factor, then a system of another shape
+        // in the same buffers, must each get their own answer.
+        let mut k = Envelope::default();
+        for (m, stride) in [(100, 1), (80, 2), (90, 3)] {
+            let (rows, bodies, rhs) = springs(m, stride);
+            let slices: Vec<&[f64]> = rows.iter().map(Vec::as_slice).collect();
+            refill(&mut k, &slices, &bodies, &rhs);
+            assert!(k.factor_regularised());
+            for scale in [1.0, 3.0] {
+                let mut b: Vec<f64> = rhs.iter().map(|r| r * scale).collect();
+                k.substitute_regularised(&mut b);
+                for (p, x) in b.iter().enumerate() {
+                    let want = scale * springs_answer(m, stride, p);
+                    assert!(
+                        (x - want).abs() < 1e-11,
+                        "m {m} stride {stride} row {p}: {x}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_column_lists_are_the_rows_below_each_column_inside_their_envelopes() {
+        // Brute force against the definition: column q lists the rows k > q with
+        // first(k) ≤ q, in increasing k.
+        let first = [0, 0, 1, 0, 3, 5, 2, 7, 7, 4];
+        let (mut start, mut rows, mut fill) = (Vec::new(), vec![7; 3], Vec::new());
+        list_columns(&first, &mut start, &mut rows, &mut fill);
+        for q in 0..first.len() {
+            let want: Vec<usize> = (q + 1..first.len()).filter(|&k| first[k] <= q).collect();
+            assert_eq!(rows[start[q]..start[q + 1]], want[..], "column {q}");
+        }
     }
 
     /// K = [[4, 2, 0], [2, 5, 1], [0, 1, 3]]: rows 0 and 1 share body 0, rows 1 and 2 body 1,
