@@ -410,12 +410,14 @@ mod tests {
         system.rhs.copy_from_slice(rhs);
     }
 
+    /// A system's rows (each from its first column), each row's bodies, and b.
+    type Springs = (Vec<Vec<f64>>, Vec<[Option<usize>; 2]>, Vec<f64>);
+
     /// Springs in a row: `m` rows, row p acting on bodies p and p + `stride`, so row p shares
     /// a body with rows p ± stride alone: K has 2 on the diagonal and −1 at distance
     /// `stride` (`stride` independent chains, interleaved). x = 1 takes b = 1 on each chain's
-    /// first and last row, 0 elsewhere. Returns the rows (each from its first column), the
-    /// bodies and b.
-    fn springs(m: usize, stride: usize) -> (Vec<Vec<f64>>, Vec<[Option<usize>; 2]>, Vec<f64>) {
+    /// first and last row, 0 elsewhere.
+    fn springs(m: usize, stride: usize) -> Springs {
         let rows = (0..m)
             .map(|p| {
                 let mut row = vec![0.0; if p < stride { 1 } else { stride + 1 }];
