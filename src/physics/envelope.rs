@@ -50,6 +50,15 @@
 //!   its multiplier is set to 0 and the independent rows carry the load. Dropping is exact on
 //!   the other rows (no ε shifts them), and costs one comparison.
 //!
+//! Tried and not kept (2026-12-07): eight partial sums in each dot product of 17 terms or
+//! more (independent additions, so they run side by side; the same bits on any CPU). It
+//! factors a band of width 100 and 600 rows 2.1× faster (0.93 ms against 1.9–2.0 ms, a
+//! stand-alone timing), but the sums are no longer a dense factorisation's: wide systems
+//! (walls, pyramids) take other paths, lesson 41's ledger closed to 2.0e-8 J against the
+//! 1e-8 J its page says, its walk snapshot's P_z at 2.8 s moved 232.495 → 229.411, and the
+//! time per unit of solver work on the walls fell 5–18 % in noisy paired runs, none on the
+//! pyramid of 20 rows, while the chaotic paths moved the walls' total work by −32 % to +63 %.
+//!
 //! The back substitutions are ordered differently on purpose: the regularised one sums each
 //! column's entries in increasing row order (as a dense left-looking one would), the dropped
 //! one subtracts each solved x_p from the rows above it (right-looking, in decreasing p). Both

@@ -191,9 +191,17 @@
 //! 6.99M, 3 029, ×106.5; knife-wall 25.5M ×28.6 → 22.7M ×36.9; wall-ball 42.7M → 41.8M;
 //! knife-wall-ball 7.00M → 6.78M; bonded-wall-ball 41.8M → 44.3M: the median falls 22 %,
 //! the dearest steps grow (a stage whose contacts stop sliding left to the sweeps), not
-//! kept (not run through the claims tests). What would cut it: a sticking solve that does not decline where a few
-//! contacts slide (modes, as [`joined`]'s, or skip it when last step's stage slid), and
-//! an interior-point iteration that costs what its estimate says.
+//! kept (not run through the claims tests). **The sticking solve with [`joined`]'s modes**
+//! on the contacts alone (2026-12-07: after the exact sticking solve declined, up to 8 or 24
+//! rounds of `direct::sticking` with `modes`, a contact outside its disk sliding at its bound
+//! against its slip, one that would pull separating): every scene dearer, as on the landing
+//! chain ([`joined`]'s module doc: the slide directions' fixed point does not settle). Total
+//! work, off → 8 rounds → 24: dominoes16 1500 7.24M → 11.99M → 21.51M, dominoes 3000 5.59M →
+//! 7.22M → 10.49M, wall-ball 100 19.41M → 26.96M → 42.05M, knife-wall 100 11.29M → 19.80M →
+//! 36.84M. What would cut the median step: a sticking solve that does not decline where a
+//! few contacts slide and converges where the modes do not (one wrench row set per face, or
+//! skip it when last step's stage slid), and an interior-point iteration that costs what
+//! its estimate says.
 //!
 //! # Speculative contacts
 //!
