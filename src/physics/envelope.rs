@@ -102,7 +102,8 @@ pub struct Envelope {
     column_start: Vec<usize>,
     column_rows: Vec<usize>,
     fill: Vec<usize>,
-    /// Whether `column_start` and `column_rows` list the rows filled since the last reset.
+    /// Whether `column_start` and `column_rows` list the rows filled since the last reset
+    /// (rows are filled after a reset, before the system is solved).
     columns_listed: bool,
 }
 
@@ -202,7 +203,6 @@ impl Envelope {
             first = first.min(self.body_first[b]);
             self.body_first[b] = self.body_first[b].min(p);
         }
-        self.columns_listed = false;
         self.start[p] = self.a.len();
         self.a.reserve(p + 1 - first);
         for q in first..p + 1 {
