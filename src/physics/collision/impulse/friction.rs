@@ -90,7 +90,6 @@ pub(super) fn prepare(
     motions: &[SolverBody],
 ) -> [Axis; 2] {
     row.friction.bound = friction * row.normal.lambda;
-    row.tangent_coupling = f64::NAN;
     let (t1, t2) = tangents(&contact.normal);
     [axis_at(t1, contact, motions), axis_at(t2, contact, motions)]
 }
@@ -144,10 +143,7 @@ pub(super) fn update(
 ) -> f64 {
     let [t1, t2] = directions;
     let u = [t1.velocity(motions), t2.velocity(motions)];
-    if row.tangent_coupling.is_nan() {
-        row.tangent_coupling = t1.coupling(t2, motions);
-    }
-    let (k1, k2, c) = (t1.k, t2.k, row.tangent_coupling);
+    let (k1, k2, c) = (t1.k, t2.k, t1.coupling(t2, motions));
     let Some((new, step)) = disk_step(u, (k1, k2, c), row.friction.lambda, bound) else {
         return 0.0;
     };

@@ -696,10 +696,6 @@ struct Row {
     approach: f64,
     /// The last step's impulse at the same contact, if any (warm start of the sweeps).
     warm: Vector3<f64>,
-    /// c = t₁·A t₂, the coupling of the friction pair's two tangents in the contact-space
-    /// inverse mass A (fixed over a stage: the bodies' inverse masses and the levers do not
-    /// change), taken by the first friction update after [`friction::prepare`]; NaN until then.
-    tangent_coupling: f64,
 }
 
 impl Default for Row {
@@ -712,7 +708,6 @@ impl Default for Row {
             lambda_restitution: 0.0,
             approach: 0.0,
             warm: Vector3::zeros(),
-            tangent_coupling: f64::NAN,
         }
     }
 }

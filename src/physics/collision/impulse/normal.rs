@@ -108,7 +108,6 @@ pub(super) fn prepare(c: &Contact, previous: &WarmCache, dt: f64, motions: &[Sol
         lambda_restitution: 0.0,
         approach: normal.velocity(motions),
         warm: warm.unwrap_or_else(Vector3::zeros),
-        tangent_coupling: f64::NAN,
     }
 }
 
