@@ -198,7 +198,16 @@
 //! chain ([`joined`]'s module doc: the slide directions' fixed point does not settle). Total
 //! work, off → 8 rounds → 24: dominoes16 1500 7.24M → 11.99M → 21.51M, dominoes 3000 5.59M →
 //! 7.22M → 10.49M, wall-ball 100 19.41M → 26.96M → 42.05M, knife-wall 100 11.29M → 19.80M →
-//! 36.84M. What would cut the median step: a sticking solve that does not decline where a
+//! 36.84M. **The second sticking try skipped** when the first declined with some pair of
+//! bodies' tangent impulses adding up to more than all its contacts' disks together (so no
+//! sharing of them could fit): on 16 dominoes and the hit walls the second try never
+//! answers after the first declined (1 213 of 1 213 declines; wall-ball 191 of 191), but in
+//! 8 dominoes it answers 1 853 of 2 711, and the test is no predictor there (a domino
+//! leaning on its neighbour and on the ground shares its friction between the two pairs
+//! differently under the second try's weights): dominoes 3000 5.59M → 12.47M, wall 600
+//! 19.9M → 29.9M, 16 dominoes 7.24M → 6.68M. A declined try also spends the step's budget,
+//! so skipping one moves later paths even where it would have declined. What would cut the
+//! median step: a sticking solve that does not decline where a
 //! few contacts slide and converges where the modes do not (one wrench row set per face, or
 //! skip it when last step's stage slid), and an interior-point iteration that costs what
 //! its estimate says.
