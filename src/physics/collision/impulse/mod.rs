@@ -207,10 +207,9 @@
 //! differently under the second try's weights): dominoes 3000 5.59M → 12.47M, wall 600
 //! 19.9M → 29.9M, 16 dominoes 7.24M → 6.68M. A declined try also spends the step's budget,
 //! so skipping one moves later paths even where it would have declined. What would cut the
-//! median step: a sticking solve that does not decline where a
-//! few contacts slide and converges where the modes do not (one wrench row set per face, or
-//! skip it when last step's stage slid), and an interior-point iteration that costs what
-//! its estimate says.
+//! median step: a sticking solve that does not decline where a few contacts slide and
+//! converges where the modes do not (one wrench row set per face, or skip it when last
+//! step's stage slid), and an interior-point iteration that costs what its estimate says.
 //!
 //! # Speculative contacts
 //!
